@@ -1,0 +1,67 @@
+/*
+ * rd_api — the JSON face of ringdyn: scenes in, results out (../shared/API.md).
+ *
+ * Maps a JSON scene to core structs (type checks here, range checks in core's
+ * *_validate functions, whose messages and JSON-Pointer paths are passed on
+ * unchanged), runs the analysis, and writes the result as JSON or CSV.
+ * Knows nothing of HTTP: rd_api_http_status() is only the table that maps a
+ * status to the HTTP code the contract promises.  Links core + jansson.
+ *
+ * Every returned char* is malloc'd and owned by the caller (free()).
+ */
+#ifndef RD_API_H
+#define RD_API_H
+
+#include <stddef.h>
+
+#include "rd_error.h"
+
+/* Size limits a scene may not exceed (422 limit_exceeded beyond them). */
+#define RD_API_BODY_MAX (1024 * 1024) /* bytes, 413 in the server */
+
+/* A parsed, validated, defaults-filled scene.  Opaque. */
+typedef struct rd_scene rd_scene;
+
+/* Parses and validates a scene.  On success *out owns a new scene (free with
+ * rd_scene_free).  Errors: RD_EJSON (not JSON / not an object, 400),
+ * RD_EINVAL or RD_ELIMIT (valid JSON, invalid scene, 422) with `path`. */
+int rd_scene_parse(const char *body, size_t len, rd_scene **out, rd_error *err);
+void rd_scene_free(rd_scene *scene);
+
+/* "modal", ... */
+const char *rd_scene_analysis(const rd_scene *scene);
+
+/* The echoed scene: defaults filled, only the blocks the analysis reads. */
+char *rd_scene_to_json(const rd_scene *scene);
+
+/* Runs the analysis.  On success *result_json is the `result` object of
+ * API.md ({"analysis", "scene", "numerics", ...}).  `mon` may be NULL; a monitor
+ * that asks to stop makes the run return RD_ECANCELED.  Failures during the run
+ * (RD_ENOCONV, RD_ENUMERIC, ...) come with a message saying where and why. */
+int rd_scene_run(const rd_scene *scene, const rd_monitor *mon, char **result_json, rd_error *err);
+
+/* The main table of a result as CSV (header row with units), from the JSON
+ * that rd_scene_run produced.  NULL + err on a malformed input. */
+char *rd_api_result_csv(const char *result_json, rd_error *err);
+
+/* {"error": {"code": "...", "message": "...", "path": "..."}}; path omitted when empty. */
+char *rd_api_error_json(const rd_error *err);
+
+/* HTTP status the contract gives a status code: RD_EJSON 400, RD_EINVAL and
+ * RD_ELIMIT 422, RD_ENOMEM 503, anything else 500 (never reached by user input). */
+int rd_api_http_status(int code);
+
+/* The example scenes in `dir` (*.json, each a scene object optionally carrying
+ * top-level "name" and "description"): {"examples": [{"name", "description",
+ * "scene"}...]} sorted by name.  Each file is validated with rd_scene_parse;
+ * an invalid example is an error (RD_EINVAL naming the file). */
+char *rd_api_examples_json(const char *dir, rd_error *err);
+
+/* One example's scene by name (the file name without .json), or NULL with
+ * err->code RD_EINVAL if there is no such example. */
+char *rd_api_example_scene(const char *dir, const char *name, rd_error *err);
+
+/* Library version string. */
+const char *rd_api_version(void);
+
+#endif

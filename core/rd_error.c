@@ -1,0 +1,61 @@
+/* rd_error — the status table and the first-error-wins record (rd_error.h). */
+#include "rd_error.h"
+
+#include <stdarg.h>
+#include <stdio.h>
+#include <string.h>
+
+void rd_error_init(rd_error *err)
+{
+    if (!err)
+        return;
+    err->code = RD_OK;
+    err->path[0] = '\0';
+    err->message[0] = '\0';
+}
+
+int rd_error_set(rd_error *err, int code, const char *path, const char *fmt, ...)
+{
+    if (!err || err->code != RD_OK)
+        return code;
+    err->code = code;
+    snprintf(err->path, sizeof err->path, "%s", path ? path : "");
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(err->message, sizeof err->message, fmt, ap);
+    va_end(ap);
+    return code;
+}
+
+const char *rd_error_code_name(int code)
+{
+    switch (code) {
+#define RD_NAME_(name, value, str, summary) \
+    case RD_##name:                         \
+        return str;
+        RD_ERRNO_MAP(RD_NAME_)
+#undef RD_NAME_
+    }
+    return "unknown_error";
+}
+
+const char *rd_error_summary(int code)
+{
+    switch (code) {
+#define RD_SUMMARY_(name, value, str, summary) \
+    case RD_##name:                            \
+        return summary;
+        RD_ERRNO_MAP(RD_SUMMARY_)
+#undef RD_SUMMARY_
+    }
+    return "unknown error";
+}
+
+int rd_monitor_report(const rd_monitor *mon, double fraction, rd_error *err)
+{
+    if (!mon || !mon->report)
+        return RD_OK;
+    if (mon->report(mon->ctx, fraction) != 0)
+        return rd_error_set(err, RD_ECANCELED, "", "The job was stopped before it finished.");
+    return RD_OK;
+}

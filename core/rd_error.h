@@ -1,0 +1,72 @@
+/*
+ * rd_error — one status table for all of ringdyn, and the caller-owned error
+ * record that travels down through every fallible call.
+ *
+ * Fallible functions return an int status: 0 (RD_OK) or one of the negative
+ * RD_E* codes below.  When they fail they fill the caller's rd_error, unless an
+ * earlier error is already recorded there (the first error wins, as in
+ * jansson's json_error_t).  Messages are written for the user of the service:
+ * what is wrong, the value, the allowed range.  `path` is a JSON Pointer to
+ * the offending scene field ("/ring/radial_width") or "" when there is none.
+ */
+#ifndef RD_ERROR_H
+#define RD_ERROR_H
+
+#include <stddef.h>
+
+/* X(name, value, code string, summary) */
+#define RD_ERRNO_MAP(X)                                                         \
+    X(OK, 0, "ok", "success")                                                   \
+    X(EINVAL, -1, "invalid_scene", "the scene is invalid")                      \
+    X(ELIMIT, -2, "limit_exceeded", "the scene asks for more work than allowed")\
+    X(EJSON, -3, "invalid_json", "the body is not valid JSON")                  \
+    X(ENOMEM, -4, "out_of_memory", "out of memory")                             \
+    X(ENOCONV, -5, "not_converged", "the solver did not converge")              \
+    X(ENUMERIC, -6, "numerical_failure", "a numerical library call failed")     \
+    X(ECANCELED, -7, "cancelled", "the job was cancelled")                      \
+    X(EINTERNAL, -8, "internal_error", "internal error")
+
+enum rd_status {
+#define RD_ENUM_(name, value, code, summary) RD_##name = value,
+    RD_ERRNO_MAP(RD_ENUM_)
+#undef RD_ENUM_
+};
+
+#define RD_ERROR_PATH_MAX 128
+#define RD_ERROR_MESSAGE_MAX 512
+
+typedef struct rd_error {
+    int code;                           /* RD_OK while no error is recorded */
+    char path[RD_ERROR_PATH_MAX];       /* JSON Pointer, or "" */
+    char message[RD_ERROR_MESSAGE_MAX]; /* for the user, complete sentence */
+} rd_error;
+
+/* Clears the record (code RD_OK, empty strings). */
+void rd_error_init(rd_error *err);
+
+/* Records an error unless one is already recorded; returns `code` so callers
+ * can write `return rd_error_set(err, RD_EINVAL, "/ring/diameter", ...)`.
+ * err may be NULL (then only the code is returned). */
+int rd_error_set(rd_error *err, int code, const char *path, const char *fmt, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 4, 5)))
+#endif
+    ;
+
+/* "invalid_scene", ... for a status; "unknown_error" for codes not in the table. */
+const char *rd_error_code_name(int code);
+/* One-line summary of a status. */
+const char *rd_error_summary(int code);
+
+/* Progress and cancellation for long computations.  `report` is called with a
+ * fraction in [0, 1]; a non-zero return asks the computation to stop, which
+ * then returns RD_ECANCELED.  A NULL monitor or NULL report is allowed. */
+typedef struct rd_monitor {
+    int (*report)(void *ctx, double fraction);
+    void *ctx;
+} rd_monitor;
+
+/* Calls the monitor; returns RD_ECANCELED (and records it) if asked to stop. */
+int rd_monitor_report(const rd_monitor *mon, double fraction, rd_error *err);
+
+#endif

@@ -1,0 +1,84 @@
+/*
+ * rd_modal — free-free natural frequencies of the discretized ring
+ * (thesis 3.3, eqs. 3.20-3.27): K phi = omega^2 M phi.
+ *
+ * Solved by shift-invert subspace iteration with Rayleigh-Ritz on banded
+ * matrices (LAPACK banded Cholesky, dense generalized eigensolver for the
+ * small projected problem), so cost grows linearly with the segment count.
+ * A closed ring is renumbered so its matrices stay banded.
+ *
+ * The six rigid-body modes are counted (eigenvalues indistinguishable from
+ * zero at the numerical noise level) and set apart; the requested elastic
+ * modes are returned ascending, each classified in-plane / out-of-plane
+ * from its kinetic-energy split.
+ *
+ * Error estimate: a second solve at a reference segment count m (2n, or n/2
+ * when 2n exceeds RD_SEGMENTS_MAX) and the model's convergence order 2
+ * (f_n = f_inf (1 + C n^-2)) give per mode the Richardson-extrapolated
+ * frequency and the estimated relative error of f_n against n -> infinity.
+ */
+#ifndef RD_MODAL_H
+#define RD_MODAL_H
+
+#include "rd_error.h"
+#include "rd_ring.h"
+
+#define RD_MODAL_MODES_MAX 60
+
+enum rd_mode_kind { RD_MODE_IN_PLANE = 0, RD_MODE_OUT_OF_PLANE = 1 };
+
+typedef struct rd_modal_opts {
+    int modes;          /* elastic modes wanted, 1..RD_MODAL_MODES_MAX */
+    int estimate_error; /* 1: second solve for the error estimate */
+    double tol;         /* relative eigenvalue convergence tolerance, default 1e-12 */
+    int max_iterations; /* subspace iterations allowed, default 300 */
+} rd_modal_opts;
+
+typedef struct rd_mode {
+    double frequency_hz;
+    int kind;                      /* enum rd_mode_kind */
+    double in_plane_fraction;      /* share of kinetic energy in in-plane DOFs */
+    double residual;               /* ||K phi - w^2 M phi|| / (w^2 ||M phi||) */
+    double error_estimate;         /* relative, vs n -> infinity; NAN if not estimated */
+    double frequency_extrapolated_hz; /* Richardson estimate of the limit; NAN if none */
+    /* Shape per segment in the segment's local cylindrical frame, normalized so
+     * the largest translation is 1 (sign: largest component positive):
+     * shape[6i + 0..2] = radial, tangential, axial translation (-),
+     * shape[6i + 3..5] = rotation about radial, tangential, axial axes (1/m). */
+    double *shape;
+} rd_mode;
+
+typedef struct rd_modal_result {
+    int segments, dof;
+    int rigid_body_modes;       /* eigenvalues found at zero (6 for a free ring) */
+    int n_modes;
+    rd_mode *modes;             /* n_modes elastic modes, ascending */
+    int iterations;             /* subspace iterations of the main solve */
+    int block_size;             /* subspace dimension */
+    double max_residual;        /* largest mode residual */
+    int reference_segments;     /* m of the error-estimate solve; 0 if none */
+    double error_estimate;      /* largest per-mode estimate; NAN if none */
+    double factor_s;            /* wall time of the factorizations, s */
+} rd_modal_result;
+
+void rd_modal_opts_default(rd_modal_opts *o);
+/* Checks opts against the ring (paths "/modal/modes"). */
+int rd_modal_validate(const rd_modal_opts *o, int segments, rd_error *err);
+
+/* Solves; `out` is overwritten and owns its arrays (free with
+ * rd_modal_result_cleanup, also after a failure). */
+int rd_modal_solve(const rd_ring_params *p, int segments, int closed, const rd_modal_opts *o,
+                   const rd_monitor *mon, rd_modal_result *out, rd_error *err);
+
+/* The eigen-solve alone on a built ring, without the error estimate. */
+int rd_modal_solve_ring(const rd_ring *ring, const rd_modal_opts *o, const rd_monitor *mon,
+                        rd_modal_result *out, rd_error *err);
+
+void rd_modal_result_cleanup(rd_modal_result *r);
+
+/* Thin-ring closed-form frequencies (Hz) of the complete ring, mode order k >= 2
+ * (MODEL.md): in-plane and out-of-plane. */
+double rd_modal_thin_ring_inplane_hz(const rd_ring_params *p, int k);
+double rd_modal_thin_ring_outplane_hz(const rd_ring_params *p, int k);
+
+#endif

@@ -1,0 +1,14 @@
+#!/usr/bin/env bash
+# The whole test suite on a fresh Debian machine: installs what is missing,
+# builds with -Wall -Wextra -Werror and ASan/UBSan into build-test/, runs every
+# test (unit, API cases, curl against a live server, headless browser).
+set -euo pipefail
+cd "$(dirname "$0")/.."
+scripts/install-deps.sh --test
+if [ -f tests/browser/package.json ]; then
+  (cd tests/browser && npm install --no-audit --no-fund --loglevel=error)
+fi
+cmake -S . -B build-test -DCMAKE_BUILD_TYPE=Debug -DRINGDYN_SANITIZE=ON -DRINGDYN_WERROR=ON >/dev/null
+cmake --build build-test -j"$(nproc)"
+cd build-test
+ctest --output-on-failure -j2 "$@"
