@@ -47,8 +47,11 @@ char *rd_api_result_csv(const char *result_json, rd_error *err);
 /* {"error": {"code": "...", "message": "...", "path": "..."}}; path omitted when empty. */
 char *rd_api_error_json(const rd_error *err);
 
-/* HTTP status the contract gives a status code: RD_EJSON 400, RD_EINVAL and
- * RD_ELIMIT 422, RD_ENOMEM 503, anything else 500 (never reached by user input). */
+/* HTTP status the contract gives a status code: RD_EJSON and RD_EREQUEST 400,
+ * RD_ENOTFOUND 404, RD_EMETHOD 405, RD_ETOOLARGE 413, RD_EMEDIA 415,
+ * RD_EINVAL and RD_ELIMIT 422, RD_EBUSY 429, RD_ENOMEM 503, anything else 500.
+ * (Solver failures and cancellations end a job `failed`/`cancelled`; they are
+ * reported inside the job, not as the HTTP status of a request.) */
 int rd_api_http_status(int code);
 
 /* The example scenes in `dir` (*.json, each a scene object optionally carrying

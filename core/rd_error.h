@@ -24,7 +24,14 @@
     X(ENOCONV, -5, "not_converged", "the solver did not converge")              \
     X(ENUMERIC, -6, "numerical_failure", "a numerical library call failed")     \
     X(ECANCELED, -7, "cancelled", "the job was cancelled")                      \
-    X(EINTERNAL, -8, "internal_error", "internal error")
+    X(EINTERNAL, -8, "internal_error", "internal error")                        \
+    X(EREQUEST, -9, "invalid_request", "the request is malformed")              \
+    X(ENOTFOUND, -10, "not_found", "no such resource")                          \
+    X(EMETHOD, -11, "method_not_allowed", "method not allowed on this path")    \
+    X(ETOOLARGE, -12, "payload_too_large", "the body is larger than allowed")   \
+    X(EMEDIA, -13, "unsupported_media_type", "the body must be application/json")\
+    X(EBUSY, -14, "queue_full", "the job queue is full, retry later")           \
+    X(ETIMEOUT, -15, "time_limit", "the job ran longer than allowed")
 
 enum rd_status {
 #define RD_ENUM_(name, value, code, summary) RD_##name = value,
