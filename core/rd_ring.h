@@ -34,7 +34,13 @@ typedef struct rd_ring_params {
     double youngs_modulus;   /* E, Pa */
     double poisson_ratio;    /* nu, - */
     double density;          /* rho, kg/m^3 */
+    int section;             /* enum rd_section_shape; default rectangle */
 } rd_ring_params;
+
+/* Cross-section shape.  The thesis ring is rectangular (b x h).  A circular
+ * section (wire diameter b = h) serves round-wire rings and the NAFEMS
+ * free-ring benchmark. */
+enum rd_section_shape { RD_SECTION_RECTANGLE = 0, RD_SECTION_CIRCLE = 1 };
 
 /* Allowed ranges, shared by validation and documentation. */
 #define RD_SEGMENTS_MIN 3
@@ -46,9 +52,9 @@ typedef struct rd_ring_section {
     double area;    /* A = b h */
     double I_inplane;  /* I about the axial direction: h b^3 / 12 (in-plane bending) */
     double I_outplane; /* I about the radial direction: b h^3 / 12 (out-of-plane bending) */
-    double J;       /* Saint-Venant torsion constant of the rectangle */
+    double J;       /* Saint-Venant torsion constant (rectangle: series; circle: pi a^4/2) */
     double G;       /* shear modulus E / (2 (1 + nu)) */
-    double shear_factor; /* form factor for shear, 6/5 for a rectangle (Tab. 3.1) */
+    double shear_factor; /* form factor for shear: 6/5 rectangle, 10/9 circle (Tab. 3.1) */
     double span;    /* angle covered by the ring, rad */
 } rd_ring_section;
 
@@ -75,10 +81,10 @@ void rd_ring_section_get(const rd_ring_params *p, int closed, rd_ring_section *o
 /* Saint-Venant torsion constant of a solid a x c rectangle (series solution). */
 double rd_ring_torsion_constant(double a, double c);
 
-/* Exact mass properties of an annular sector (inner radius ri, outer ro,
- * height h, opening angle phi, density rho). */
-void rd_ring_sector_mass(double ri, double ro, double h, double phi, double rho,
-                         rd_segment_mass *out);
+/* Exact mass properties of one segment: the section of `p` swept about the
+ * ring axis through the angle phi (an annular sector for a rectangle, a torus
+ * sector for a circle). */
+void rd_ring_segment_mass_get(const rd_ring_params *p, double phi, rd_segment_mass *out);
 
 /* The assembled model: opaque. */
 typedef struct rd_ring rd_ring;

@@ -1,0 +1,31 @@
+/* rd_internal.h — functions shared between core modules, not part of the
+ * public API (no caller outside core/ may include this). */
+#ifndef RD_INTERNAL_H
+#define RD_INTERNAL_H
+
+#include "rd_band.h"
+#include "rd_ring.h"
+
+/* M_PI is POSIX/XSI, not C11. */
+#ifndef M_PI
+#define M_PI 3.14159265358979323846
+#endif
+
+/* Global DOF index of segment i's local DOF k (0..5) in the band ordering:
+ * identity for a split ring, folded (0, n-1, 1, n-2, ...) for a closed ring
+ * so that the joint n-1 -> 0 stays inside the band. */
+int rd_ring_band_index(const rd_ring *ring, int i, int k);
+/* Half bandwidth of K and M in that ordering. */
+int rd_ring_band_kd(const rd_ring *ring);
+/* Initializes and fills banded K and M (6n x 6n) in the band ordering. */
+int rd_ring_assemble_band(const rd_ring *ring, rd_band *K, rd_band *M, rd_error *err);
+/* Unit vectors of segment i's local cylindrical frame in global components. */
+void rd_ring_segment_frame(const rd_ring *ring, int i, double e_r[3], double e_t[3]);
+/* 6x6 mass matrix of segment i (global components, DOFs at its reference point),
+ * row-major. */
+const double *rd_ring_segment_mass_matrix(const rd_ring *ring, int i);
+/* Largest ratio K_jj / M_jj: a cheap proxy for the largest eigenvalue of
+ * (K, M), used to size numerical-noise thresholds. */
+double rd_ring_lambda_max_estimate(const rd_ring *ring);
+
+#endif

@@ -1,0 +1,563 @@
+/*
+ * rd_ring — section properties, segment mass properties and the global
+ * stiffness and mass matrices of the segmented ring (thesis 3.1-3.2).
+ *
+ * Joint stiffness.  Neighbouring segments i, i+1 with reference points P_i,
+ * P_{i+1} on the centroid circle are joined by a straight Timoshenko beam of
+ * length L = |P_{i+1} - P_i| (the chord).  Local frame: e1 along the chord,
+ * e2 = global z (axial), e3 = e1 x e2 (radial, outward).  With end A clamped,
+ * the tip B obeys the cantilever relation (thesis 3.15, our axes)
+ *
+ *   [F1]   [EA/L                                              ] [d1]
+ *   [F2]   [     12EIo/(L^3(1+Po))                -6EIo/(L^2(1+Po))] [d2]
+ *   [F3] = [          12EIi/(L^3(1+Pi))  6EIi/(L^2(1+Pi))     ] [d3]
+ *   [M1]   [                 GJ/L                              ] [t1]
+ *   [M2]   [         sym.       (4+Pi)EIi/(L(1+Pi))           ] [t2]
+ *   [M3]   [                                 (4+Po)EIo/(L(1+Po))] [t3]
+ *
+ * where Io = b h^3/12 (out-of-plane bending, deflection d2 along the axis),
+ * Ii = h b^3/12 (in-plane bending, deflection d3 radial), P = 12 E I f_s /
+ * (G A L^2) the shear parameter (3.3, 3.11), f_s the shear form factor
+ * (Tab. 3.1) and J the Saint-Venant torsion constant (3.31, not the polar
+ * moment).  The relative motion of B seen from A's frame is
+ *
+ *   d = u_B - u_A - theta_A x (P_B - P_A),   t = theta_B - theta_A,
+ *
+ * so the joint's strain energy is 1/2 [d;t]^T Kc [d;t] (local components) and
+ * its 12x12 stiffness is T^T Kc T: for small motions exactly a straight
+ * Timoshenko beam element between the two reference points.  A rigid motion
+ * gives d = t = 0, so K has the six rigid-body modes in its null space.
+ *
+ * Mass.  Each segment is the section swept through phi = span/n about the
+ * ring axis; its mass, centre of mass and inertia tensor are integrated
+ * exactly.  With DOFs (u, theta) at the reference point P and the centre of
+ * mass at P + c:  v_com = u' - [c]x theta', hence
+ *   M_i = [[ m I,  -m [c]x ], [ m [c]x,  I_com - m [c]x [c]x ]].
+ */
+#include "rd_internal.h"
+#include "rd_ring.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+struct rd_ring {
+    rd_ring_params p;
+    rd_ring_section s;
+    int n, closed, joints;
+    double phi;        /* segment angle, rad */
+    double *alpha;     /* n mid-angles from the gap middle, rad */
+    double *P;         /* 3n reference points */
+    rd_segment_mass mass;
+    double *Mseg;      /* n x 36, row-major per segment */
+    double Kc[36];     /* local cantilever stiffness, row-major */
+    double *T;         /* joints x (6 x 12) transfer matrices, local components */
+    int *pos;          /* band position of each segment */
+};
+
+#define M6(A, r, c) ((A)[6 * (r) + (c)])
+
+void rd_ring_params_default(rd_ring_params *p)
+{
+    p->diameter = 0.0765;
+    p->radial_width = 0.0029;
+    p->axial_height = 0.0012;
+    p->closed_gap = 0.0003;
+    p->tangential_force = 10.0;
+    p->youngs_modulus = 2.1e11;
+    p->poisson_ratio = 0.3;
+    p->density = 7850.0;
+    p->section = RD_SECTION_RECTANGLE;
+}
+
+/* Range check of one value; message names the field, the value, the range. */
+static int check_range(double v, double lo, double hi, const char *path, const char *unit,
+                       rd_error *err)
+{
+    if (!isfinite(v) || v < lo || v > hi)
+        return rd_error_set(err, RD_EINVAL, path, "%s = %g %s is out of range: allowed %g to %g %s.",
+                            path, v, unit, lo, hi, unit);
+    return RD_OK;
+}
+
+int rd_ring_validate(const rd_ring_params *p, int segments, int closed, rd_error *err)
+{
+    int rc = RD_OK;
+    if ((rc = check_range(p->diameter, 1e-3, 5.0, "/ring/diameter", "m", err)))
+        return rc;
+    if ((rc = check_range(p->radial_width, 1e-5, 0.25 * p->diameter, "/ring/radial_width",
+                          "m (at most a quarter of the diameter)", err)))
+        return rc;
+    if ((rc = check_range(p->axial_height, 1e-5, 0.5 * p->diameter, "/ring/axial_height",
+                          "m (at most half the diameter)", err)))
+        return rc;
+    double ratio = p->radial_width / p->axial_height;
+    if (ratio < 0.05 || ratio > 20.0)
+        return rd_error_set(err, RD_EINVAL, "/ring/axial_height",
+                            "/ring/axial_height = %g m gives a width/height ratio b/h = %g; "
+                            "allowed 0.05 to 20.",
+                            p->axial_height, ratio);
+    if (p->section != RD_SECTION_RECTANGLE && p->section != RD_SECTION_CIRCLE)
+        return rd_error_set(err, RD_EINVAL, "/ring/section", "unknown section shape %d.",
+                            p->section);
+    if (p->section == RD_SECTION_CIRCLE && p->radial_width != p->axial_height)
+        return rd_error_set(err, RD_EINVAL, "/ring/axial_height",
+                            "a circular section needs axial_height = radial_width (the wire "
+                            "diameter); got %g m and %g m.",
+                            p->axial_height, p->radial_width);
+    if (!closed &&
+        (rc = check_range(p->closed_gap, 0.0, 0.1 * M_PI * p->diameter, "/ring/closed_gap",
+                          "m (at most 10 % of the circumference)", err)))
+        return rc;
+    if ((rc = check_range(p->tangential_force, 0.0, 1e5, "/ring/tangential_force", "N", err)))
+        return rc;
+    if ((rc = check_range(p->youngs_modulus, 1e6, 1e15, "/ring/material/youngs_modulus", "Pa",
+                          err)))
+        return rc;
+    if (!isfinite(p->poisson_ratio) || p->poisson_ratio <= -1.0 || p->poisson_ratio >= 0.5)
+        return rd_error_set(err, RD_EINVAL, "/ring/material/poisson_ratio",
+                            "/ring/material/poisson_ratio = %g is out of range: allowed "
+                            "-1 < nu < 0.5.",
+                            p->poisson_ratio);
+    if ((rc = check_range(p->density, 0.1, 1e7, "/ring/material/density", "kg/m^3", err)))
+        return rc;
+    if (segments < RD_SEGMENTS_MIN || segments > RD_SEGMENTS_MAX)
+        return rd_error_set(err, segments > RD_SEGMENTS_MAX ? RD_ELIMIT : RD_EINVAL,
+                            "/discretization/segments",
+                            "/discretization/segments = %d is out of range: allowed %d to %d.",
+                            segments, RD_SEGMENTS_MIN, RD_SEGMENTS_MAX);
+    return RD_OK;
+}
+
+double rd_ring_torsion_constant(double a, double c)
+{
+    /* J = a c^3 [1/3 - (64/pi^5)(c/a) sum_{k odd} tanh(k pi a / 2c) / k^5], a >= c. */
+    if (a < c) {
+        double t = a;
+        a = c;
+        c = t;
+    }
+    double sum = 0.0;
+    for (int k = 1; k < 200; k += 2) {
+        double term = tanh(k * M_PI * a / (2.0 * c)) / pow(k, 5);
+        sum += term;
+        if (term < 1e-17 * sum)
+            break;
+    }
+    return a * c * c * c * (1.0 / 3.0 - 64.0 / pow(M_PI, 5) * (c / a) * sum);
+}
+
+void rd_ring_section_get(const rd_ring_params *p, int closed, rd_ring_section *s)
+{
+    double b = p->radial_width, h = p->axial_height;
+    s->R = 0.5 * (p->diameter - b);
+    s->G = p->youngs_modulus / (2.0 * (1.0 + p->poisson_ratio));
+    if (p->section == RD_SECTION_CIRCLE) {
+        double a = 0.5 * b; /* wire radius */
+        s->area = M_PI * a * a;
+        s->I_inplane = s->I_outplane = M_PI * pow(a, 4) / 4.0;
+        s->J = M_PI * pow(a, 4) / 2.0;
+        s->shear_factor = 10.0 / 9.0;
+    } else {
+        s->area = b * h;
+        s->I_inplane = h * b * b * b / 12.0;
+        s->I_outplane = b * h * h * h / 12.0;
+        s->J = rd_ring_torsion_constant(b, h);
+        s->shear_factor = 6.0 / 5.0;
+    }
+    s->span = closed ? 2.0 * M_PI : 2.0 * M_PI - p->closed_gap / s->R;
+}
+
+/* (phi - sin phi) / 2 without cancellation for small phi. */
+static double half_phi_minus_sin(double phi)
+{
+    if (phi < 1e-2) {
+        double p2 = phi * phi;
+        return 0.5 * phi * p2 / 6.0 * (1.0 - p2 / 20.0 * (1.0 - p2 / 42.0));
+    }
+    return 0.5 * (phi - sin(phi));
+}
+
+void rd_ring_segment_mass_get(const rd_ring_params *p, double phi, rd_segment_mass *out)
+{
+    /* Section moments about the ring axis (r radial coordinate, z axial):
+     * S1 = int r dA, S2 = int r^2 dA, S3 = int r^3 dA, Z = int r z^2 dA.
+     * Sweeping through psi in [-phi/2, phi/2] (x radial at the mid-angle):
+     * m = rho phi S1, int x dm = 2 rho S2 sin(phi/2),
+     * int x^2 dm = rho S3 (phi + sin phi)/2, int y^2 dm = rho S3 (phi - sin phi)/2,
+     * int z^2 dm = rho phi Z. */
+    double b = p->radial_width, h = p->axial_height, rho = p->density;
+    double R = 0.5 * (p->diameter - b);
+    double S1, S2, S3, Z;
+    if (p->section == RD_SECTION_CIRCLE) {
+        double a = 0.5 * b, A = M_PI * a * a, a2 = a * a / 4.0; /* int x^2 dA / A */
+        S1 = A * R;
+        S2 = A * (R * R + a2);
+        S3 = A * (R * R * R + 3.0 * R * a2);
+        Z = R * A * a2;
+    } else {
+        double ri = R - 0.5 * b, ro = R + 0.5 * b;
+        S1 = h * (ro * ro - ri * ri) / 2.0;
+        S2 = h * (ro * ro * ro - ri * ri * ri) / 3.0;
+        S3 = h * (pow(ro, 4) - pow(ri, 4)) / 4.0;
+        Z = (ro * ro - ri * ri) / 2.0 * h * h * h / 12.0;
+    }
+    double m = rho * phi * S1;
+    double xx = rho * S3 * (phi - half_phi_minus_sin(phi)); /* (phi + sin phi)/2 */
+    double yy = rho * S3 * half_phi_minus_sin(phi);
+    double zz = rho * phi * Z;
+    double rc = 2.0 * rho * S2 * sin(0.5 * phi) / m;
+    out->mass = m;
+    out->com_radius = rc;
+    out->I_rr = yy + zz;                  /* about the radial axis through the COM */
+    out->I_tt = xx + zz - m * rc * rc;    /* parallel-axis shift by rc */
+    out->I_zz = xx + yy - m * rc * rc;
+}
+
+/* out = [v]x, the cross-product matrix (row-major 3x3). */
+static void skew(const double v[3], double out[9])
+{
+    out[0] = 0;
+    out[1] = -v[2];
+    out[2] = v[1];
+    out[3] = v[2];
+    out[4] = 0;
+    out[5] = -v[0];
+    out[6] = -v[1];
+    out[7] = v[0];
+    out[8] = 0;
+}
+
+static void cantilever_stiffness(const rd_ring_params *p, const rd_ring_section *s, double L,
+                                 double Kc[36])
+{
+    double E = p->youngs_modulus, G = s->G, A = s->area;
+    double Io = s->I_outplane, Ii = s->I_inplane;
+    double Po = 12.0 * E * Io * s->shear_factor / (G * A * L * L);
+    double Pi = 12.0 * E * Ii * s->shear_factor / (G * A * L * L);
+    memset(Kc, 0, 36 * sizeof *Kc);
+    M6(Kc, 0, 0) = E * A / L;
+    M6(Kc, 1, 1) = 12.0 * E * Io / (L * L * L * (1.0 + Po));
+    M6(Kc, 1, 5) = M6(Kc, 5, 1) = -6.0 * E * Io / (L * L * (1.0 + Po));
+    M6(Kc, 5, 5) = (4.0 + Po) * E * Io / (L * (1.0 + Po));
+    M6(Kc, 2, 2) = 12.0 * E * Ii / (L * L * L * (1.0 + Pi));
+    M6(Kc, 2, 4) = M6(Kc, 4, 2) = 6.0 * E * Ii / (L * L * (1.0 + Pi));
+    M6(Kc, 4, 4) = (4.0 + Pi) * E * Ii / (L * (1.0 + Pi));
+    M6(Kc, 3, 3) = G * s->J / L;
+}
+
+void rd_ring_segment_frame(const rd_ring *ring, int i, double e_r[3], double e_t[3])
+{
+    double a = ring->alpha[i];
+    e_r[0] = cos(a);
+    e_r[1] = sin(a);
+    e_r[2] = 0.0;
+    e_t[0] = -sin(a);
+    e_t[1] = cos(a);
+    e_t[2] = 0.0;
+}
+
+/* Segment mass matrix (global components, DOFs at P_i). */
+static void segment_mass_matrix(const rd_ring *ring, int i, double Ms[36])
+{
+    const rd_segment_mass *sm = &ring->mass;
+    double e_r[3], e_t[3], e_z[3] = {0, 0, 1};
+    rd_ring_segment_frame(ring, i, e_r, e_t);
+    double c[3], S[9], Ic[9];
+    for (int k = 0; k < 3; k++)
+        c[k] = (sm->com_radius - ring->s.R) * e_r[k];
+    skew(c, S);
+    for (int r = 0; r < 3; r++)
+        for (int q = 0; q < 3; q++)
+            Ic[3 * r + q] = sm->I_rr * e_r[r] * e_r[q] + sm->I_tt * e_t[r] * e_t[q] +
+                            sm->I_zz * e_z[r] * e_z[q];
+    memset(Ms, 0, 36 * sizeof *Ms);
+    for (int r = 0; r < 3; r++) {
+        M6(Ms, r, r) = sm->mass;
+        for (int q = 0; q < 3; q++) {
+            M6(Ms, r, 3 + q) = -sm->mass * S[3 * r + q];
+            M6(Ms, 3 + r, q) = sm->mass * S[3 * r + q];
+            double SS = 0.0;
+            for (int k = 0; k < 3; k++)
+                SS += S[3 * r + k] * S[3 * k + q];
+            M6(Ms, 3 + r, 3 + q) = Ic[3 * r + q] - sm->mass * SS;
+        }
+    }
+}
+
+/* Transfer matrix T (6x12, row-major, local components) of joint j:
+ * [d; t] = T [q_A; q_B]. */
+static void joint_transfer(const rd_ring *ring, int a, int b, double T[72])
+{
+    const double *PA = ring->P + 3 * a, *PB = ring->P + 3 * b;
+    double dP[3] = {PB[0] - PA[0], PB[1] - PA[1], PB[2] - PA[2]};
+    double L = sqrt(dP[0] * dP[0] + dP[1] * dP[1] + dP[2] * dP[2]);
+    double e1[3] = {dP[0] / L, dP[1] / L, dP[2] / L}, e2[3] = {0, 0, 1};
+    double e3[3] = {e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2],
+                    e1[0] * e2[1] - e1[1] * e2[0]};
+    const double *E[3] = {e1, e2, e3};
+    double S[9];
+    skew(dP, S);
+    /* global: d = -u_A + [dP]x th_A + u_B, t = -th_A + th_B; local rows = e_k . (...) */
+    memset(T, 0, 72 * sizeof *T);
+    for (int k = 0; k < 3; k++) {
+        for (int q = 0; q < 3; q++) {
+            double SE = 0.0;
+            for (int r = 0; r < 3; r++)
+                SE += E[k][r] * S[3 * r + q];
+            T[12 * k + q] = -E[k][q];
+            T[12 * k + 3 + q] = SE;
+            T[12 * k + 6 + q] = E[k][q];
+            T[12 * (3 + k) + 3 + q] = -E[k][q];
+            T[12 * (3 + k) + 9 + q] = E[k][q];
+        }
+    }
+}
+
+static void joint_ends(const rd_ring *ring, int j, int *a, int *b)
+{
+    *a = j;
+    *b = (j + 1) % ring->n;
+}
+
+rd_ring *rd_ring_create(const rd_ring_params *p, int segments, int closed, rd_error *err)
+{
+    rd_ring *ring = NULL;
+    if (rd_ring_validate(p, segments, closed, err) != RD_OK)
+        return NULL;
+    int n = segments;
+    ring = calloc(1, sizeof *ring);
+    if (!ring)
+        goto nomem;
+    ring->p = *p;
+    ring->n = n;
+    ring->closed = closed ? 1 : 0;
+    ring->joints = closed ? n : n - 1;
+    rd_ring_section_get(p, ring->closed, &ring->s);
+    ring->phi = ring->s.span / n;
+    ring->alpha = malloc((size_t)n * sizeof *ring->alpha);
+    ring->P = malloc((size_t)n * 3 * sizeof *ring->P);
+    ring->Mseg = malloc((size_t)n * 36 * sizeof *ring->Mseg);
+    ring->T = malloc((size_t)ring->joints * 72 * sizeof *ring->T);
+    ring->pos = malloc((size_t)n * sizeof *ring->pos);
+    if (!ring->alpha || !ring->P || !ring->Mseg || !ring->T || !ring->pos)
+        goto nomem;
+
+    double start = closed ? 0.0 : 0.5 * p->closed_gap / ring->s.R;
+    for (int i = 0; i < n; i++) {
+        ring->alpha[i] = start + (i + 0.5) * ring->phi;
+        ring->P[3 * i + 0] = ring->s.R * cos(ring->alpha[i]);
+        ring->P[3 * i + 1] = ring->s.R * sin(ring->alpha[i]);
+        ring->P[3 * i + 2] = 0.0;
+    }
+    rd_ring_segment_mass_get(p, ring->phi, &ring->mass);
+    for (int i = 0; i < n; i++)
+        segment_mass_matrix(ring, i, ring->Mseg + 36 * i);
+    cantilever_stiffness(p, &ring->s, 2.0 * ring->s.R * sin(0.5 * ring->phi), ring->Kc);
+    for (int j = 0; j < ring->joints; j++) {
+        int a, b;
+        joint_ends(ring, j, &a, &b);
+        joint_transfer(ring, a, b, ring->T + 72 * j);
+    }
+    for (int k = 0; k < n; k++) {
+        int seg = closed ? (k % 2 == 0 ? k / 2 : n - 1 - (k - 1) / 2) : k;
+        ring->pos[seg] = k;
+    }
+    return ring;
+nomem:
+    rd_ring_free(ring);
+    rd_error_set(err, RD_ENOMEM, "", "Out of memory building a %d-segment ring.", segments);
+    return NULL;
+}
+
+void rd_ring_free(rd_ring *ring)
+{
+    if (!ring)
+        return;
+    free(ring->alpha);
+    free(ring->P);
+    free(ring->Mseg);
+    free(ring->T);
+    free(ring->pos);
+    free(ring);
+}
+
+int rd_ring_get_segments(const rd_ring *ring) { return ring->n; }
+int rd_ring_get_dof(const rd_ring *ring) { return 6 * ring->n; }
+int rd_ring_is_closed(const rd_ring *ring) { return ring->closed; }
+int rd_ring_get_joints(const rd_ring *ring) { return ring->joints; }
+const rd_ring_params *rd_ring_get_params(const rd_ring *ring) { return &ring->p; }
+const rd_ring_section *rd_ring_get_section(const rd_ring *ring) { return &ring->s; }
+double rd_ring_get_segment_angle(const rd_ring *ring, int i) { return ring->alpha[i]; }
+const rd_segment_mass *rd_ring_get_segment_mass(const rd_ring *ring, int i)
+{
+    (void)i;
+    return &ring->mass;
+}
+const double *rd_ring_segment_mass_matrix(const rd_ring *ring, int i)
+{
+    return ring->Mseg + 36 * i;
+}
+
+int rd_ring_band_index(const rd_ring *ring, int i, int k) { return 6 * ring->pos[i] + k; }
+int rd_ring_band_kd(const rd_ring *ring) { return ring->closed ? 17 : 11; }
+
+/* Ke = T^T Kc T (12x12, row-major) for joint j. */
+static void joint_stiffness(const rd_ring *ring, int j, double Ke[144])
+{
+    const double *T = ring->T + 72 * j;
+    double KT[72];
+    for (int r = 0; r < 6; r++)
+        for (int c = 0; c < 12; c++) {
+            double s = 0.0;
+            for (int k = 0; k < 6; k++)
+                s += ring->Kc[6 * r + k] * T[12 * k + c];
+            KT[12 * r + c] = s;
+        }
+    for (int r = 0; r < 12; r++)
+        for (int c = 0; c < 12; c++) {
+            double s = 0.0;
+            for (int k = 0; k < 6; k++)
+                s += T[12 * k + r] * KT[12 * k + c];
+            Ke[12 * r + c] = s;
+        }
+}
+
+/* Calls add(ctx, row, col, value) for every K and M entry, global segment
+ * DOF numbering (6i + k); `which` 0 = K, 1 = M. */
+typedef void (*entry_fn)(void *ctx, int which, int gi, int gj, double v);
+
+static void for_each_entry(const rd_ring *ring, entry_fn add, void *ctx)
+{
+    double Ke[144];
+    for (int j = 0; j < ring->joints; j++) {
+        int a, b;
+        joint_ends(ring, j, &a, &b);
+        joint_stiffness(ring, j, Ke);
+        for (int r = 0; r < 12; r++)
+            for (int c = 0; c < 12; c++) {
+                int gr = 6 * (r < 6 ? a : b) + r % 6, gc = 6 * (c < 6 ? a : b) + c % 6;
+                add(ctx, 0, gr, gc, Ke[12 * r + c]);
+            }
+    }
+    for (int i = 0; i < ring->n; i++)
+        for (int r = 0; r < 6; r++)
+            for (int c = 0; c < 6; c++)
+                add(ctx, 1, 6 * i + r, 6 * i + c, ring->Mseg[36 * i + 6 * r + c]);
+}
+
+struct band_ctx {
+    const rd_ring *ring;
+    rd_band *K, *M;
+};
+
+static void band_add(void *vctx, int which, int gi, int gj, double v)
+{
+    struct band_ctx *ctx = vctx;
+    int bi = rd_ring_band_index(ctx->ring, gi / 6, gi % 6);
+    int bj = rd_ring_band_index(ctx->ring, gj / 6, gj % 6);
+    if (bi <= bj)
+        rd_band_add(which ? ctx->M : ctx->K, bi, bj, v);
+}
+
+int rd_ring_assemble_band(const rd_ring *ring, rd_band *K, rd_band *M, rd_error *err)
+{
+    int N = 6 * ring->n, kd = rd_ring_band_kd(ring);
+    K->ab = M->ab = NULL;
+    if (rd_band_init(K, N, kd, err) || rd_band_init(M, N, kd, err)) {
+        rd_band_cleanup(K);
+        rd_band_cleanup(M);
+        return err ? err->code : RD_ENOMEM;
+    }
+    struct band_ctx ctx = {ring, K, M};
+    for_each_entry(ring, band_add, &ctx);
+    return RD_OK;
+}
+
+struct dense_ctx {
+    int N;
+    double *K, *M;
+};
+
+static void dense_add(void *vctx, int which, int gi, int gj, double v)
+{
+    struct dense_ctx *ctx = vctx;
+    (which ? ctx->M : ctx->K)[gi + (size_t)gj * ctx->N] += v;
+}
+
+int rd_ring_assemble_dense(const rd_ring *ring, double *K, double *M, rd_error *err)
+{
+    if (ring->n > 500)
+        return rd_error_set(err, RD_ELIMIT, "/discretization/segments",
+                            "Dense matrices are limited to 500 segments (got %d).", ring->n);
+    int N = 6 * ring->n;
+    memset(K, 0, (size_t)N * N * sizeof *K);
+    memset(M, 0, (size_t)N * N * sizeof *M);
+    struct dense_ctx ctx = {N, K, M};
+    for_each_entry(ring, dense_add, &ctx);
+    return RD_OK;
+}
+
+double rd_ring_strain_energy(const rd_ring *ring, const double *q)
+{
+    double e = 0.0;
+    for (int j = 0; j < ring->joints; j++) {
+        int a, b;
+        joint_ends(ring, j, &a, &b);
+        const double *T = ring->T + 72 * j;
+        double qe[12], d[6];
+        for (int k = 0; k < 6; k++) {
+            qe[k] = q[6 * a + k];
+            qe[6 + k] = q[6 * b + k];
+        }
+        for (int r = 0; r < 6; r++) {
+            d[r] = 0.0;
+            for (int c = 0; c < 12; c++)
+                d[r] += T[12 * r + c] * qe[c];
+        }
+        for (int r = 0; r < 6; r++)
+            for (int c = 0; c < 6; c++)
+                e += 0.5 * d[r] * ring->Kc[6 * r + c] * d[c];
+    }
+    return e;
+}
+
+double rd_ring_kinetic_energy(const rd_ring *ring, const double *v)
+{
+    double e = 0.0;
+    for (int i = 0; i < ring->n; i++) {
+        const double *Ms = ring->Mseg + 36 * i, *vi = v + 6 * i;
+        for (int r = 0; r < 6; r++)
+            for (int c = 0; c < 6; c++)
+                e += 0.5 * vi[r] * Ms[6 * r + c] * vi[c];
+    }
+    return e;
+}
+
+void rd_ring_rigid_motion(const rd_ring *ring, const double t[3], const double w[3], double *q)
+{
+    for (int i = 0; i < ring->n; i++) {
+        const double *P = ring->P + 3 * i;
+        double wxP[3] = {w[1] * P[2] - w[2] * P[1], w[2] * P[0] - w[0] * P[2],
+                         w[0] * P[1] - w[1] * P[0]};
+        for (int k = 0; k < 3; k++) {
+            q[6 * i + k] = t[k] + wxP[k];
+            q[6 * i + 3 + k] = w[k];
+        }
+    }
+}
+
+double rd_ring_lambda_max_estimate(const rd_ring *ring)
+{
+    /* K_jj / M_jj over one interior segment's DOFs (all segments are alike). */
+    double Ke[144], best = 0.0;
+    joint_stiffness(ring, 0, Ke);
+    const double *Ms = ring->Mseg;
+    for (int k = 0; k < 6; k++) {
+        double kjj = Ke[12 * (6 + k) + (6 + k)] + Ke[12 * k + k]; /* two joints meet */
+        double r = kjj / Ms[6 * k + k];
+        if (r > best)
+            best = r;
+    }
+    return best;
+}
