@@ -294,17 +294,35 @@ static int solve_ring(const rd_ring *ring, const rd_modal_opts *o, const rd_moni
         if ((rc = rd_band_solve(&w.A, p, w.Y, err)))
             goto out;
         memcpy(w.X, w.Y, blk * sizeof(double));
-        m_orthonormalize(&w.M, N, p, w.X, w.MX, &rng);
-        /* Rayleigh-Ritz */
-        for (int j = 0; j < p; j++)
-            rd_band_symv(&w.K, COL(w.X, N, j), COL(w.KX, N, j));
-        for (int j = 0; j < p; j++)
-            for (int i = 0; i <= j; i++) {
-                w.Kr[i + (size_t)j * p] = dot(N, COL(w.X, N, i), COL(w.KX, N, j));
-                w.Mr[i + (size_t)j * p] = dot(N, COL(w.X, N, i), COL(w.MX, N, j));
+        /* From the second iteration on, A^-1 M X of Ritz vectors is nearly
+         * M-orthogonal: scaling the columns is enough for a well-conditioned
+         * X^T M X.  The random start, or a projected Cholesky that fails,
+         * gets a full M-orthonormalization. */
+        lapack_int info = 1;
+        for (int attempt = it == 1 ? 1 : 0; attempt < 2 && info != 0; attempt++) {
+            if (attempt == 1) {
+                m_orthonormalize(&w.M, N, p, w.X, w.MX, &rng);
+            } else {
+                for (int j = 0; j < p; j++) {
+                    double *x = COL(w.X, N, j), *mx = COL(w.MX, N, j);
+                    rd_band_symv(&w.M, x, mx);
+                    double scale = 1.0 / sqrt(fabs(dot(N, x, mx)));
+                    for (int i = 0; i < N; i++) {
+                        x[i] *= scale;
+                        mx[i] *= scale;
+                    }
+                }
             }
-        lapack_int info =
-            LAPACKE_dsygv(LAPACK_COL_MAJOR, 1, 'V', 'U', p, w.Kr, p, w.Mr, p, w.lam);
+            /* Rayleigh-Ritz */
+            for (int j = 0; j < p; j++)
+                rd_band_symv(&w.K, COL(w.X, N, j), COL(w.KX, N, j));
+            for (int j = 0; j < p; j++)
+                for (int i = 0; i <= j; i++) {
+                    w.Kr[i + (size_t)j * p] = dot(N, COL(w.X, N, i), COL(w.KX, N, j));
+                    w.Mr[i + (size_t)j * p] = dot(N, COL(w.X, N, i), COL(w.MX, N, j));
+                }
+            info = LAPACKE_dsygv(LAPACK_COL_MAJOR, 1, 'V', 'U', p, w.Kr, p, w.Mr, p, w.lam);
+        }
         if (info != 0) {
             rc = rd_error_set(err, RD_ENUMERIC, "",
                               "The projected eigenproblem failed (LAPACK dsygv info %d) at "

@@ -8,7 +8,7 @@ scripts/install-deps.sh --test
 if [ -f tests/browser/package.json ]; then
   (cd tests/browser && npm install --no-audit --no-fund --loglevel=error)
 fi
-cmake -S . -B build-test -DCMAKE_BUILD_TYPE=Debug -DRINGDYN_SANITIZE=ON -DRINGDYN_WERROR=ON >/dev/null
+cmake -S . -B build-test -DCMAKE_BUILD_TYPE=RelWithDebInfo -DRINGDYN_SANITIZE=ON -DRINGDYN_WERROR=ON >/dev/null
 cmake --build build-test -j"$(nproc)"
 cd build-test
 ctest --output-on-failure -j2 "$@"
