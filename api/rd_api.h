@@ -8,6 +8,8 @@
  * status to the HTTP code the contract promises.  Links core + jansson.
  *
  * Every returned char* is malloc'd and owned by the caller (free()).
+ * No global state: every function may be called from any thread, and a
+ * parsed scene is never modified, so it may be run on another thread.
  */
 #ifndef RD_API_H
 #define RD_API_H
@@ -24,7 +26,10 @@ typedef struct rd_scene rd_scene;
 
 /* Parses and validates a scene.  On success *out owns a new scene (free with
  * rd_scene_free).  Errors: RD_EJSON (not JSON / not an object, 400),
- * RD_EINVAL or RD_ELIMIT (valid JSON, invalid scene, 422) with `path`. */
+ * RD_EINVAL or RD_ELIMIT (valid JSON, invalid scene, 422) with `path`,
+ * RD_ETOOLARGE (len > RD_API_BODY_MAX; the server refuses those earlier).
+ * Unknown keys in the blocks the analysis reads are errors (typos must not
+ * pass silently); blocks it does not read are ignored. */
 int rd_scene_parse(const char *body, size_t len, rd_scene **out, rd_error *err);
 void rd_scene_free(rd_scene *scene);
 
@@ -41,13 +46,16 @@ char *rd_scene_to_json(const rd_scene *scene);
 int rd_scene_run(const rd_scene *scene, const rd_monitor *mon, char **result_json, rd_error *err);
 
 /* The main table of a result as CSV (header row with units), from the JSON
- * that rd_scene_run produced.  NULL + err on a malformed input. */
+ * that rd_scene_run produced.  NULL + err on a malformed input
+ * (RD_EINTERNAL) or for an analysis without a table (RD_ENOTFOUND).
+ * modal: mode,kind,frequency_hz,error_estimate,frequency_extrapolated_hz,
+ * in_plane_energy_fraction; reals as %.10g, an empty cell for null. */
 char *rd_api_result_csv(const char *result_json, rd_error *err);
 
 /* {"error": {"code": "...", "message": "...", "path": "..."}}; path omitted when empty. */
 char *rd_api_error_json(const rd_error *err);
 
-/* HTTP status the contract gives a status code: RD_EJSON and RD_EREQUEST 400,
+/* HTTP status the contract gives a status code: RD_OK 200, RD_EJSON and RD_EREQUEST 400,
  * RD_ENOTFOUND 404, RD_EMETHOD 405, RD_ETOOLARGE 413, RD_EMEDIA 415,
  * RD_EINVAL and RD_ELIMIT 422, RD_EBUSY 429, RD_ENOMEM 503, anything else 500.
  * (Solver failures and cancellations end a job `failed`/`cancelled`; they are
@@ -56,13 +64,25 @@ int rd_api_http_status(int code);
 
 /* The example scenes in `dir` (*.json, each a scene object optionally carrying
  * top-level "name" and "description"): {"examples": [{"name", "description",
- * "scene"}...]} sorted by name.  Each file is validated with rd_scene_parse;
- * an invalid example is an error (RD_EINVAL naming the file). */
+ * "scene"}...]} sorted by name.  "name" is the file name without .json (the
+ * key for rd_api_example_scene), "description" the scene's own or "", and
+ * "scene" the file's object as written.  Each file is validated with
+ * rd_scene_parse; an invalid example is an error (RD_EINVAL naming the file,
+ * `path` into the scene), and so is a file name that could not be served
+ * (not A-Z a-z 0-9 _ - before .json) or a file over RD_API_BODY_MAX.
+ * Hidden files and non-regular files are skipped.  An unreadable `dir` is
+ * RD_EINTERNAL (a server configuration problem). */
 char *rd_api_examples_json(const char *dir, rd_error *err);
 
 /* One example's scene by name (the file name without .json), or NULL with
- * err->code RD_EINVAL if there is no such example. */
+ * err->code RD_ENOTFOUND if there is no such example or the name has a
+ * character other than A-Z a-z 0-9 _ - (so no name can leave `dir`), and
+ * RD_EINVAL if the file is not a valid scene. */
 char *rd_api_example_scene(const char *dir, const char *name, rd_error *err);
+
+/* The same JSON text indented by two spaces, for people (the CLI); reals
+ * keep up to 15 significant digits.  NULL if `json` is not JSON. */
+char *rd_api_json_pretty(const char *json);
 
 /* Library version string. */
 const char *rd_api_version(void);

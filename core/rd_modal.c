@@ -226,6 +226,14 @@ static int extract_mode(const rd_ring *ring, const solve_ws *w, const double *x,
             if (fabs(s[k]) > fabs(umax))
                 umax = s[k];
     }
+    /* Sign: antisymmetric modes have equal and opposite extremes, so take the
+     * first translation (in segment order) within 1e-6 of the largest. */
+    for (int i = 0, found = 0; i < n && !found; i++)
+        for (int k = 0; k < 3 && !found; k++)
+            if (fabs(md->shape[6 * i + k]) >= (1.0 - 1e-6) * fabs(umax)) {
+                umax = copysign(fabs(umax), md->shape[6 * i + k]);
+                found = 1;
+            }
     md->in_plane_fraction = e_all > 0.0 ? e_in / e_all : 0.0;
     md->kind = md->in_plane_fraction > 0.5 ? RD_MODE_IN_PLANE : RD_MODE_OUT_OF_PLANE;
     if (umax != 0.0)

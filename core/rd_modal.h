@@ -42,7 +42,8 @@ typedef struct rd_mode {
     double error_estimate;         /* relative, vs n -> infinity; NAN if not estimated */
     double frequency_extrapolated_hz; /* Richardson estimate of the limit; NAN if none */
     /* Shape per segment in the segment's local cylindrical frame, normalized so
-     * the largest translation is 1 (sign: largest component positive):
+     * the largest translation is 1 (sign: the first translation, in segment
+     * order, whose size is within 1e-6 of the largest, is positive):
      * shape[6i + 0..2] = radial, tangential, axial translation (-),
      * shape[6i + 3..5] = rotation about radial, tangential, axial axes (1/m). */
     double *shape;

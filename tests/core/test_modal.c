@@ -175,12 +175,15 @@ static void test_thin_ring_limit(int section)
     }
 }
 
-/* NAFEMS free thin ring: R = 1 m, circular section 0.1 m, E 200 GPa, nu 0.3,
- * rho 8000 kg/m^3 (MODEL.md): out/in 52.29/53.97, 149.7/152.4, 288.3/288.3.
- * These targets lie 0.5-1.1 % above the classical thin-ring values (51.85,
- * 53.38, ...) while a Timoshenko ring lies 0.4-0.9 % below those (shear and
- * rotary inertia, checked exactly above), so the model sits 1-2 % below the
- * targets: tolerance 2.5 %.  See the README, "Accuracy". */
+/* NAFEMS free thin ring (Selected Benchmarks for Natural Frequency Analysis,
+ * Test 6): R = 1 m, circular section 0.1 m, E 200 GPa, nu 0.3, rho 8000
+ * (MODEL.md): out/in 52.29/53.97, 149.7/152.4, 288.3/288.3 Hz.  These targets
+ * lie up to 1.1 % above the classical thin-ring values (51.85, 53.38, ...),
+ * while a thick ring (shear, rotary inertia; checked exactly above) lies below
+ * those.  An independent 3D-solid solution of the same test (Altair SimSolid
+ * verification manual, VM09) gives 51.484/53.153, 146.74/149.49, 280.66/280.66
+ * and reports the same -1.5 ... -2.65 % against the NAFEMS targets.  So: within
+ * 1.5 % of the 3D solid, within 3 % of NAFEMS. */
 static void test_nafems(void)
 {
     rd_ring_params p;
@@ -194,14 +197,21 @@ static void test_nafems(void)
     rd_modal_result r;
     if (solve(&p, 400, 1, 12, 1, &r))
         return;
-    const double ref_out[3] = {52.29, 149.7, 288.3}, ref_in[3] = {53.97, 152.4, 288.3};
+    const double nafems_out[3] = {52.29, 149.7, 288.3}, nafems_in[3] = {53.97, 152.4, 288.3};
+    const double solid_out[3] = {51.484, 146.74, 280.66}, solid_in[3] = {53.153, 149.49, 280.66};
     int k_in = 0, k_out = 0;
     for (int i = 0; i < 12; i += 2) {
         const rd_mode *m = &r.modes[i];
-        if (m->kind == RD_MODE_IN_PLANE && k_in < 3)
-            CHECK_REL(m->frequency_extrapolated_hz, ref_in[k_in++], 0.025, "NAFEMS in-plane");
-        else if (m->kind == RD_MODE_OUT_OF_PLANE && k_out < 3)
-            CHECK_REL(m->frequency_extrapolated_hz, ref_out[k_out++], 0.025, "NAFEMS out-of-plane");
+        double f = m->frequency_extrapolated_hz;
+        if (m->kind == RD_MODE_IN_PLANE && k_in < 3) {
+            CHECK_REL(f, nafems_in[k_in], 0.03, "NAFEMS in-plane k=%d", k_in + 2);
+            CHECK_REL(f, solid_in[k_in], 0.015, "3D solid in-plane k=%d", k_in + 2);
+            k_in++;
+        } else if (m->kind == RD_MODE_OUT_OF_PLANE && k_out < 3) {
+            CHECK_REL(f, nafems_out[k_out], 0.03, "NAFEMS out-of-plane k=%d", k_out + 2);
+            CHECK_REL(f, solid_out[k_out], 0.015, "3D solid out-of-plane k=%d", k_out + 2);
+            k_out++;
+        }
     }
     CHECK(k_in == 3 && k_out == 3, "found %d in-plane and %d out-of-plane pairs", k_in, k_out);
     rd_modal_result_cleanup(&r);

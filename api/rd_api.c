@@ -1,0 +1,229 @@
+/*
+ * rd_api — running scenes, errors as JSON and HTTP statuses, CSV, version
+ * (rd_api.h).  Parsing lives in rd_scene.c, result writing in rd_result.c,
+ * the example scenes in rd_examples.c.
+ */
+#include "rd_api.h"
+
+#include <jansson.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+#include "rd_modal.h"
+#include "rd_result.h"
+#include "rd_ring.h"
+#include "rd_scene.h"
+
+#ifndef RINGDYN_VERSION
+#define RINGDYN_VERSION "unknown"
+#endif
+
+const char *rd_api_version(void)
+{
+    return RINGDYN_VERSION;
+}
+
+static double seconds_between(const struct timespec *a, const struct timespec *b)
+{
+    return (double)(b->tv_sec - a->tv_sec) + 1e-9 * (double)(b->tv_nsec - a->tv_nsec);
+}
+
+/* Modal analysis: the ring model (for the segment angles and R) and the
+ * eigen-solve with its error estimate; wall_s times the solve alone. */
+static int run_modal(const rd_scene *s, const rd_monitor *mon, json_t **out, rd_error *err)
+{
+    rd_ring *ring = NULL;
+    rd_modal_result res;
+    rd_error ring_err;
+    struct timespec t0, t1;
+    int rc;
+
+    memset(&res, 0, sizeof res);
+    rd_error_init(&ring_err);
+    ring = rd_ring_create(&s->ring, s->segments, s->closed, &ring_err);
+    if (!ring) {
+        rc = rd_error_set(err, ring_err.code != RD_OK ? ring_err.code : RD_EINTERNAL,
+                          ring_err.path, "%s", ring_err.message);
+        goto out;
+    }
+    clock_gettime(CLOCK_MONOTONIC, &t0);
+    rc = rd_modal_solve(&s->ring, s->segments, s->closed, &s->modal, mon, &res, err);
+    clock_gettime(CLOCK_MONOTONIC, &t1);
+    if (rc != RD_OK)
+        goto out;
+    *out = rd_result_modal(s, ring, &res, seconds_between(&t0, &t1));
+    if (!*out)
+        rc = rd_error_set(err, RD_ENOMEM, "", "out of memory while writing the modal result");
+out:
+    rd_modal_result_cleanup(&res);
+    rd_ring_free(ring);
+    return rc;
+}
+
+/* Indexed by enum rd_analysis; NULL = not available (the parser already
+ * refuses those scenes). */
+static int (*const runners[])(const rd_scene *, const rd_monitor *, json_t **, rd_error *) = {
+    [RD_ANALYSIS_MODAL] = run_modal,
+};
+
+int rd_scene_run(const rd_scene *scene, const rd_monitor *mon, char **result_json, rd_error *err)
+{
+    json_t *result = NULL;
+    int rc;
+
+    *result_json = NULL;
+    int a = scene->analysis;
+    if (a < 0 || a >= (int)(sizeof runners / sizeof runners[0]) || !runners[a]) {
+        rc = rd_error_set(err, RD_EINTERNAL, "/analysis", "analysis \"%s\" cannot be run",
+                          rd_scene_analysis(scene));
+        goto out;
+    }
+    rc = runners[a](scene, mon, &result, err);
+    if (rc != RD_OK)
+        goto out;
+    *result_json = json_dumps(result, JSON_COMPACT | JSON_REAL_PRECISION(RD_RESULT_REAL_DIGITS));
+    if (!*result_json)
+        rc = rd_error_set(err, RD_ENOMEM, "", "out of memory while writing the result");
+out:
+    json_decref(result);
+    return rc;
+}
+
+char *rd_api_result_csv(const char *result_json, rd_error *err)
+{
+    json_error_t jerr;
+    char *csv = NULL;
+    json_t *result = json_loads(result_json ? result_json : "", 0, &jerr);
+    if (!json_is_object(result)) {
+        rd_error_set(err, RD_EINTERNAL, "", "the result is not a JSON object: %s",
+                     result ? "wrong type" : jerr.text);
+        goto out;
+    }
+    csv = rd_result_csv(result, err);
+out:
+    json_decref(result);
+    return csv;
+}
+
+char *rd_api_json_pretty(const char *json)
+{
+    json_t *v = json_loads(json ? json : "", JSON_DECODE_ANY, NULL);
+    char *text = v ? json_dumps(v, JSON_INDENT(2) | JSON_REAL_PRECISION(RD_SCENE_REAL_DIGITS))
+                   : NULL;
+    json_decref(v);
+    return text;
+}
+
+/* Length of the valid UTF-8 sequence at s (1..4), or 0 if it is not one
+ * (overlong forms and surrogates included, as jansson rejects them too). */
+static int utf8_seq_len(const unsigned char *s)
+{
+    unsigned char c = s[0];
+    int n;
+    unsigned char lo = 0x80, hi = 0xBF; /* allowed range of the 2nd byte */
+    if (c < 0x80)
+        return 1;
+    if (c >= 0xC2 && c <= 0xDF)
+        n = 2;
+    else if (c >= 0xE0 && c <= 0xEF) {
+        n = 3;
+        if (c == 0xE0)
+            lo = 0xA0;
+        if (c == 0xED)
+            hi = 0x9F;
+    } else if (c >= 0xF0 && c <= 0xF4) {
+        n = 4;
+        if (c == 0xF0)
+            lo = 0x90;
+        if (c == 0xF4)
+            hi = 0x8F;
+    } else
+        return 0;
+    if (s[1] < lo || s[1] > hi)
+        return 0;
+    for (int k = 2; k < n; k++)
+        if ((s[k] & 0xC0) != 0x80)
+            return 0;
+    return n;
+}
+
+/* Copies s to out (size >= strlen(s) + 1) with every byte that does not
+ * start a valid UTF-8 sequence replaced by '?': messages quote user text and
+ * may have been cut mid-character, but JSON strings must be valid UTF-8. */
+static void utf8_sanitize(const char *s, char *out)
+{
+    const unsigned char *p = (const unsigned char *)s;
+    while (*p) {
+        int n = utf8_seq_len(p);
+        if (n == 0) {
+            *out++ = '?';
+            p++;
+            continue;
+        }
+        memcpy(out, p, (size_t)n);
+        out += n;
+        p += n;
+    }
+    *out = '\0';
+}
+
+char *rd_api_error_json(const rd_error *err)
+{
+    char message[RD_ERROR_MESSAGE_MAX], path[RD_ERROR_PATH_MAX];
+    int code = err ? err->code : RD_EINTERNAL;
+
+    if (code == RD_OK) {
+        /* A caller bug, but the client still deserves a well-formed error. */
+        code = RD_EINTERNAL;
+        utf8_sanitize("an error was reported without details", message);
+        path[0] = '\0';
+    } else if (!err) {
+        utf8_sanitize(rd_error_summary(code), message);
+        path[0] = '\0';
+    } else {
+        /* bounded copies: err's arrays need not be NUL-terminated by callers */
+        char m[RD_ERROR_MESSAGE_MAX], p[RD_ERROR_PATH_MAX];
+        memcpy(m, err->message, sizeof m);
+        memcpy(p, err->path, sizeof p);
+        m[sizeof m - 1] = '\0';
+        p[sizeof p - 1] = '\0';
+        utf8_sanitize(m[0] ? m : rd_error_summary(code), message);
+        utf8_sanitize(p, path);
+    }
+    json_t *body = json_pack("{s:{s:s, s:s, s:s*}}", "error",
+                             "code", rd_error_code_name(code),
+                             "message", message,
+                             "path", path[0] ? path : NULL);
+    char *text = body ? json_dumps(body, JSON_COMPACT) : NULL;
+    json_decref(body);
+    return text;
+}
+
+int rd_api_http_status(int code)
+{
+    switch (code) {
+    case RD_OK:
+        return 200;
+    case RD_EJSON:
+    case RD_EREQUEST:
+        return 400;
+    case RD_ENOTFOUND:
+        return 404;
+    case RD_EMETHOD:
+        return 405;
+    case RD_ETOOLARGE:
+        return 413;
+    case RD_EMEDIA:
+        return 415;
+    case RD_EINVAL:
+    case RD_ELIMIT:
+        return 422;
+    case RD_EBUSY:
+        return 429;
+    case RD_ENOMEM:
+        return 503;
+    default:
+        return 500;
+    }
+}

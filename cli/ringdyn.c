@@ -1,0 +1,181 @@
+/*
+ * ringdyn — the command-line face of the api layer: the same rd_scene_parse /
+ * rd_scene_run / rd_api_* calls as the server, without HTTP.
+ *
+ *   ringdyn run [--csv] SCENE     result JSON (or the main table as CSV) on stdout
+ *   ringdyn check SCENE           the validated, defaults-filled scene on stdout
+ *   ringdyn --version | --help
+ *
+ * SCENE is a file or "-" for stdin.  Errors go to stderr as the same error
+ * JSON the server answers with.  Exit status: 0 success, 2 invalid input
+ * (anything the contract answers with a 4xx), 1 the run failed (did not
+ * converge, cancelled by Ctrl-C, out of memory).
+ */
+#include <errno.h>
+#include <signal.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "rd_api.h"
+
+enum { EXIT_INPUT = 2, EXIT_RUN = 1 };
+
+static const char usage[] =
+    "usage: ringdyn run [--csv] SCENE   run a scene, print the result JSON (or CSV)\n"
+    "       ringdyn check SCENE         validate a scene, print it with defaults filled\n"
+    "       ringdyn --version | --help\n"
+    "SCENE is a JSON file, or - for stdin.  Exit status: 0 ok, 2 invalid input, 1 run failed.\n";
+
+static volatile sig_atomic_t interrupted;
+
+static void on_sigint(int sig)
+{
+    (void)sig;
+    interrupted = 1;
+}
+
+/* Monitor callback: a non-zero return asks core to stop (RD_ECANCELED). */
+static int stop_on_sigint(void *ctx, double fraction)
+{
+    (void)ctx;
+    (void)fraction;
+    return interrupted != 0;
+}
+
+/* Prints err as error JSON on stderr; returns the exit status it maps to. */
+static int fail(const rd_error *err)
+{
+    char *json = rd_api_error_json(err);
+    fprintf(stderr, "%s\n", json ? json : "{\"error\":{\"code\":\"out_of_memory\"}}");
+    free(json);
+    int status = rd_api_http_status(err->code);
+    return status >= 400 && status < 500 ? EXIT_INPUT : EXIT_RUN;
+}
+
+/* Reads the whole scene (at most RD_API_BODY_MAX bytes) from a file or stdin. */
+static int read_scene(const char *name, char **buf, size_t *len, rd_error *err)
+{
+    FILE *f = strcmp(name, "-") == 0 ? stdin : fopen(name, "rb");
+    char *b = NULL;
+    int rc = RD_OK;
+
+    *buf = NULL;
+    *len = 0;
+    if (!f) {
+        rc = rd_error_set(err, RD_EREQUEST, "", "cannot open %s: %s", name, strerror(errno));
+        goto out;
+    }
+    b = malloc((size_t)RD_API_BODY_MAX + 1);
+    if (!b) {
+        rc = rd_error_set(err, RD_ENOMEM, "", "out of memory while reading %s", name);
+        goto out;
+    }
+    size_t n = fread(b, 1, (size_t)RD_API_BODY_MAX + 1, f);
+    if (ferror(f)) {
+        rc = rd_error_set(err, RD_EREQUEST, "", "cannot read %s", name);
+        goto out;
+    }
+    if (n > (size_t)RD_API_BODY_MAX) {
+        rc = rd_error_set(err, RD_ETOOLARGE, "", "%s is larger than the limit of %d bytes", name,
+                          RD_API_BODY_MAX);
+        goto out;
+    }
+    b[n] = '\0';
+    *buf = b;
+    *len = n;
+    b = NULL;
+out:
+    free(b);
+    if (f && f != stdin)
+        fclose(f);
+    return rc;
+}
+
+/* `run` and `check`: parse, then print the echo (check) or run and print
+ * the result as pretty JSON or CSV. */
+static int command(const char *file, int run, int csv)
+{
+    rd_error err;
+    rd_scene *scene = NULL;
+    char *body = NULL, *result = NULL, *text = NULL;
+    size_t len;
+    rd_monitor mon = {stop_on_sigint, NULL};
+    int status = 0;
+
+    rd_error_init(&err);
+    if (read_scene(file, &body, &len, &err) != RD_OK ||
+        rd_scene_parse(body, len, &scene, &err) != RD_OK) {
+        status = fail(&err);
+        goto out;
+    }
+    if (!run) {
+        result = rd_scene_to_json(scene);
+    } else {
+        struct sigaction sa;
+        memset(&sa, 0, sizeof sa);
+        sa.sa_handler = on_sigint;
+        sigemptyset(&sa.sa_mask);
+        sigaction(SIGINT, &sa, NULL);
+        if (rd_scene_run(scene, &mon, &result, &err) != RD_OK) {
+            status = fail(&err);
+            goto out;
+        }
+    }
+    if (!result) {
+        rd_error_set(&err, RD_ENOMEM, "", "out of memory while writing the output");
+        status = fail(&err);
+        goto out;
+    }
+    text = csv ? rd_api_result_csv(result, &err) : rd_api_json_pretty(result);
+    if (!text) {
+        rd_error_set(&err, RD_ENOMEM, "", "out of memory while writing the output");
+        status = fail(&err);
+        goto out;
+    }
+    fputs(text, stdout);
+    if (!csv)
+        fputc('\n', stdout);
+    if (fflush(stdout) != 0) {
+        fprintf(stderr, "ringdyn: cannot write the output: %s\n", strerror(errno));
+        status = EXIT_RUN;
+    }
+out:
+    free(text);
+    free(result);
+    free(body);
+    rd_scene_free(scene);
+    return status;
+}
+
+int main(int argc, char **argv)
+{
+    const char *file = NULL;
+    int csv = 0;
+
+    if (argc == 2 && strcmp(argv[1], "--version") == 0) {
+        printf("ringdyn %s\n", rd_api_version());
+        return 0;
+    }
+    if (argc == 2 && (strcmp(argv[1], "--help") == 0 || strcmp(argv[1], "-h") == 0)) {
+        fputs(usage, stdout);
+        return 0;
+    }
+    if (argc < 3 || (strcmp(argv[1], "run") != 0 && strcmp(argv[1], "check") != 0))
+        goto usage;
+    int run = strcmp(argv[1], "run") == 0;
+    for (int i = 2; i < argc; i++) {
+        if (run && strcmp(argv[i], "--csv") == 0)
+            csv = 1;
+        else if (!file && (argv[i][0] != '-' || strcmp(argv[i], "-") == 0))
+            file = argv[i];
+        else
+            goto usage;
+    }
+    if (!file)
+        goto usage;
+    return command(file, run, csv);
+usage:
+    fputs(usage, stderr);
+    return EXIT_INPUT;
+}
