@@ -1,0 +1,78 @@
+// The HTTP side of the page: JSON requests and the job life cycle of API.md.
+
+// An error the page can show: the server's {"error":{code,message,path}} or a
+// client-side failure (network, timeout) in the same shape.
+export class ApiError extends Error {
+  constructor({ code = 'error', message = 'Unknown error', path = '' } = {}, status = 0) {
+    super(message);
+    this.code = code;
+    this.path = path || '';
+    this.status = status;
+  }
+}
+
+async function errorFrom(resp) {
+  let body = null;
+  try { body = await resp.json(); } catch { /* not JSON: fall back to the status line */ }
+  const e = body && body.error ? body.error : { message: `HTTP ${resp.status} ${resp.statusText}` };
+  if (resp.status === 429) {
+    const after = resp.headers.get('Retry-After');
+    e.message = `${e.message || 'The job queue is full'}${after ? ` — retry in ${after} s` : ''}`;
+  }
+  return new ApiError(e, resp.status);
+}
+
+async function request(url, options = {}) {
+  let resp;
+  try {
+    resp = await fetch(url, { headers: { Accept: 'application/json' }, ...options });
+  } catch (e) {
+    if (e.name === 'AbortError') throw e;
+    throw new ApiError({ code: 'network', message: `Cannot reach the ringdyn server (${e.message}).` });
+  }
+  if (!resp.ok) throw await errorFrom(resp);
+  return { status: resp.status, body: await resp.json() };
+}
+
+export async function getJSON(url, options) {
+  return (await request(url, options)).body;
+}
+
+const FINISHED = new Set(['succeeded', 'failed', 'cancelled']);
+const POLL_MS = 500;
+const POLL_LIMIT_S = 900; // give up polling after 15 min (the job keeps its id)
+
+const sleep = (ms, signal) => new Promise((resolve, reject) => {
+  const t = setTimeout(resolve, ms);
+  signal?.addEventListener('abort', () => { clearTimeout(t); reject(new DOMException('Aborted', 'AbortError')); }, { once: true });
+});
+
+// Submits a scene and resolves with the finished job ({id, status, result|error}).
+// POST ?wait=60 answers 200 with the finished job, or 202 if it is still running:
+// then GET the job every 500 ms.  onUpdate(job) sees every intermediate state.
+export async function runJob(scene, { wait = 60, signal, onUpdate = () => {} } = {}) {
+  let { status, body: job } = await request(`/api/v1/jobs?wait=${wait}`, {
+    method: 'POST',
+    headers: { 'Content-Type': 'application/json', Accept: 'application/json' },
+    body: JSON.stringify(scene),
+    signal,
+  });
+  const deadline = Date.now() + POLL_LIMIT_S * 1000;
+  while (status === 202 || !FINISHED.has(job.status)) {
+    onUpdate(job);
+    if (Date.now() > deadline) {
+      throw new ApiError({ code: 'timeout', message: `Job ${job.id} is still ${job.status}; stopped waiting after ${POLL_LIMIT_S / 60} min. Its result will be at /api/v1/jobs/${job.id}.` });
+    }
+    await sleep(POLL_MS, signal);
+    ({ status, body: job } = await request(jobUrl(job.id), { signal }));
+  }
+  return job;
+}
+
+export function cancelJob(id) {
+  return fetch(jobUrl(id), { method: 'DELETE' }).catch(() => {});
+}
+
+export function jobUrl(id, suffix = '') {
+  return `/api/v1/jobs/${encodeURIComponent(id)}${suffix}`;
+}

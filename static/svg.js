@@ -1,0 +1,79 @@
+// Small helpers to draw charts as inline SVG (no library).
+
+const NS = 'http://www.w3.org/2000/svg';
+
+// svg('circle', {cx: 1, r: 2}, child...) -> SVGElement.  Strings become text nodes.
+export function svg(tag, attrs = {}, ...children) {
+  const node = document.createElementNS(NS, tag);
+  for (const [k, v] of Object.entries(attrs)) {
+    if (v !== undefined && v !== null && v !== false) node.setAttribute(k, String(v));
+  }
+  for (const c of children.flat()) {
+    if (c !== null && c !== undefined && c !== false) node.append(c);
+  }
+  return node;
+}
+
+// Linear map from [d0, d1] to [r0, r1].
+export function scale(d0, d1, r0, r1) {
+  const k = d1 === d0 ? 0 : (r1 - r0) / (d1 - d0);
+  return (v) => r0 + (v - d0) * k;
+}
+
+// About `count` round tick values (1, 2, 5 x 10^k steps) covering [lo, hi].
+export function ticks(lo, hi, count = 5) {
+  if (!(hi > lo)) return [lo];
+  const raw = (hi - lo) / count;
+  const mag = 10 ** Math.floor(Math.log10(raw));
+  const step = [1, 2, 5, 10].map((m) => m * mag).find((s) => s >= raw);
+  const out = [];
+  for (let v = Math.ceil(lo / step) * step; v <= hi + step * 1e-9; v += step) {
+    out.push(Math.abs(v) < step * 1e-9 ? 0 : v);
+  }
+  return out;
+}
+
+// The marker of each mode kind: different shape *and* colour so the chart
+// also reads in grey scale.  (x, y) is the centre, s the half size.
+export function kindMarker(kind, x, y, s = 5, attrs = {}) {
+  if (kind === 'in_plane') {
+    return svg('circle', { cx: x, cy: y, r: s, class: 'mk mk-in', ...attrs });
+  }
+  const h = s * 1.15;
+  return svg('path', {
+    d: `M${x},${y - h * 1.15}L${x + h},${y + h * 0.85}L${x - h},${y + h * 0.85}Z`,
+    class: 'mk mk-out',
+    ...attrs,
+  });
+}
+
+// A tiny inline SVG holding one marker, for legends in HTML text.
+export function markerIcon(kind) {
+  return svg('svg', { class: 'icon', viewBox: '0 0 14 14', width: 14, height: 14, 'aria-hidden': 'true' },
+    kindMarker(kind, 7, 7.5, 4.5));
+}
+
+// Axes with ticks, grid and labels for a plot area inside `box`
+// ({left, top, width, height}); returns a <g>.
+export function axes({ box, x, y, xTicks, yTicks, xLabel, yLabel, xFormat = String, yFormat = String }) {
+  const g = svg('g', { class: 'axes' });
+  const bottom = box.top + box.height;
+  const right = box.left + box.width;
+  for (const t of yTicks) {
+    const py = y(t);
+    g.append(svg('line', { x1: box.left, x2: right, y1: py, y2: py, class: 'grid' }));
+    g.append(svg('text', { x: box.left - 6, y: py, class: 'tick', 'text-anchor': 'end', 'dominant-baseline': 'middle' }, yFormat(t)));
+  }
+  for (const t of xTicks) {
+    const px = x(t);
+    g.append(svg('line', { x1: px, x2: px, y1: bottom, y2: bottom + 4, class: 'tickmark' }));
+    g.append(svg('text', { x: px, y: bottom + 16, class: 'tick', 'text-anchor': 'middle' }, xFormat(t)));
+  }
+  g.append(svg('path', { d: `M${box.left},${box.top}V${bottom}H${right}`, class: 'axis' }));
+  g.append(svg('text', { x: box.left + box.width / 2, y: bottom + 34, class: 'label', 'text-anchor': 'middle' }, xLabel));
+  g.append(svg('text', {
+    x: 0, y: 0, class: 'label', 'text-anchor': 'middle',
+    transform: `translate(${box.left - 46},${box.top + box.height / 2}) rotate(-90)`,
+  }, yLabel));
+  return g;
+}
