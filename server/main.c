@@ -1,0 +1,192 @@
+/*
+ * ringdyn-server — command line, signals and the order of start and stop.
+ *
+ *   ringdyn-server --port N [--host 127.0.0.1] [--static DIR] [--examples DIR]
+ *                  [--threads N] [--queue N] [--job-timeout S] [--keep-jobs N]
+ *
+ * Binds 127.0.0.1 unless --host says otherwise; --port 0 takes a free port.
+ * Prints one line "ringdyn-server listening on http://HOST:PORT" to stdout
+ * once it accepts connections (scripts and tests read the port from it).
+ *
+ * SIGINT and SIGTERM are blocked in every thread and taken by sigwait() in
+ * main, so the shutdown runs as ordinary code: stop accepting, cancel the
+ * jobs (which releases requests waiting on them), let the requests in
+ * progress send their answers (at most DRAIN_S), close the connections,
+ * join the workers, free everything, exit 0.
+ */
+#include <errno.h>
+#include <math.h>
+#include <signal.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "rd_api.h"
+#include "rd_http.h"
+#include "rd_jobs.h"
+#include "rd_metrics.h"
+
+/* Longest wait at shutdown for answers still being sent, seconds. */
+#define DRAIN_S 5.0
+
+struct options {
+    const char *host;
+    long port; /* -1: not given */
+    const char *static_dir;
+    const char *examples_dir;
+    long threads;
+    long queue;
+    double job_timeout;
+    long keep_jobs;
+};
+
+static void usage(FILE *f)
+{
+    fprintf(f,
+            "usage: ringdyn-server --port N [options]\n"
+            "  --port N          TCP port, 0 for any free port (required)\n"
+            "  --host ADDR       address to bind (default 127.0.0.1; 0.0.0.0 for all interfaces)\n"
+            "  --static DIR      serve the web page from DIR at / and /static/\n"
+            "  --examples DIR    example scenes (*.json) for /api/v1/examples\n"
+            "  --threads N       worker threads running jobs (default 2, 1..64)\n"
+            "  --queue N         jobs that may wait for a worker (default 32, 1..10000)\n"
+            "  --job-timeout S   run time limit per job in seconds (default 120)\n"
+            "  --keep-jobs N     finished jobs kept for GET (default 256, 1..100000)\n");
+}
+
+static int parse_long(const char *s, long min, long max, long *out)
+{
+    char *end;
+    errno = 0;
+    long v = strtol(s, &end, 10);
+    if (errno || end == s || *end || v < min || v > max)
+        return 0;
+    *out = v;
+    return 1;
+}
+
+/* Accepts "--name value" and "--name=value".  Returns 0 on success, or
+ * prints what is wrong and returns -1. */
+static int parse_options(int argc, char **argv, struct options *o)
+{
+    for (int i = 1; i < argc; i++) {
+        const char *arg = argv[i];
+        if (strcmp(arg, "--help") == 0 || strcmp(arg, "-h") == 0) {
+            usage(stdout);
+            exit(0);
+        }
+        if (strncmp(arg, "--", 2) != 0) {
+            fprintf(stderr, "ringdyn-server: unexpected argument '%s'\n", arg);
+            return -1;
+        }
+        const char *eq = strchr(arg, '=');
+        size_t name_len = eq ? (size_t)(eq - arg) : strlen(arg);
+        const char *value = eq ? eq + 1 : (i + 1 < argc ? argv[++i] : NULL);
+        if (!value) {
+            fprintf(stderr, "ringdyn-server: %s needs a value\n", arg);
+            return -1;
+        }
+#define IS(name) (name_len == strlen(name) && strncmp(arg, name, name_len) == 0)
+        int ok = 1;
+        if (IS("--host"))
+            o->host = value;
+        else if (IS("--port"))
+            ok = parse_long(value, 0, 65535, &o->port);
+        else if (IS("--static"))
+            o->static_dir = value;
+        else if (IS("--examples"))
+            o->examples_dir = value;
+        else if (IS("--threads"))
+            ok = parse_long(value, 1, 64, &o->threads);
+        else if (IS("--queue"))
+            ok = parse_long(value, 1, 10000, &o->queue);
+        else if (IS("--keep-jobs"))
+            ok = parse_long(value, 1, 100000, &o->keep_jobs);
+        else if (IS("--job-timeout")) {
+            char *end;
+            o->job_timeout = strtod(value, &end);
+            ok = end != value && !*end && o->job_timeout > 0 && o->job_timeout <= 86400;
+        } else {
+            fprintf(stderr, "ringdyn-server: unknown option '%.*s'\n", (int)name_len, arg);
+            return -1;
+        }
+#undef IS
+        if (!ok) {
+            fprintf(stderr, "ringdyn-server: bad value '%s' for %.*s\n", value, (int)name_len, arg);
+            return -1;
+        }
+    }
+    if (o->port < 0) {
+        fprintf(stderr, "ringdyn-server: --port is required\n");
+        return -1;
+    }
+    return 0;
+}
+
+static void on_job_finish(void *ctx, int status, double run_seconds)
+{
+    (void)status;
+    rd_metrics_observe_job(ctx, run_seconds);
+}
+
+int main(int argc, char **argv)
+{
+    struct options opt = {"127.0.0.1", -1, NULL, NULL, 2, 32, 120.0, 256};
+    int status = 1;
+    rd_metrics *metrics = NULL;
+    rd_jobs *jobs = NULL;
+    rd_http *http = NULL;
+    rd_error err;
+    rd_error_init(&err);
+
+    if (parse_options(argc, argv, &opt) != 0) {
+        usage(stderr);
+        return 2;
+    }
+
+    /* Block before any thread starts, so every thread inherits the mask. */
+    sigset_t stop;
+    sigemptyset(&stop);
+    sigaddset(&stop, SIGINT);
+    sigaddset(&stop, SIGTERM);
+    pthread_sigmask(SIG_BLOCK, &stop, NULL);
+    struct sigaction ignore;
+    memset(&ignore, 0, sizeof ignore);
+    ignore.sa_handler = SIG_IGN;
+    sigaction(SIGPIPE, &ignore, NULL); /* a client hanging up must not kill us */
+
+    metrics = rd_metrics_create();
+    if (!metrics) {
+        fprintf(stderr, "ringdyn-server: out of memory\n");
+        goto out;
+    }
+    rd_jobs_config jc = {(int)opt.threads, (int)opt.queue, (int)opt.keep_jobs, opt.job_timeout,
+                         on_job_finish, metrics};
+    if (rd_jobs_create(&jc, &jobs, &err) != RD_OK)
+        goto fail;
+    rd_http_config hc = {opt.host, (int)opt.port, opt.static_dir, opt.examples_dir};
+    if (rd_http_create(&hc, jobs, metrics, &http, &err) != RD_OK)
+        goto fail;
+
+    printf("ringdyn-server listening on http://%s:%d\n", rd_http_get_host(http), rd_http_get_port(http));
+    fflush(stdout);
+    fprintf(stderr, "ringdyn-server %s: %ld workers, queue %ld, job time limit %g s\n",
+            rd_api_version(), opt.threads, opt.queue, opt.job_timeout);
+
+    int sig = 0;
+    if (sigwait(&stop, &sig) != 0)
+        goto out;
+    fprintf(stderr, "ringdyn-server: %s, shutting down\n", sig == SIGINT ? "SIGINT" : "SIGTERM");
+    rd_http_quiesce(http);
+    rd_jobs_shutdown(jobs);
+    rd_http_drain(http, DRAIN_S);
+    status = 0;
+    goto out;
+fail:
+    fprintf(stderr, "ringdyn-server: %s\n", err.message);
+out:
+    rd_http_free(http);
+    rd_jobs_free(jobs);
+    rd_metrics_free(metrics);
+    return status;
+}

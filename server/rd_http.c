@@ -1,0 +1,958 @@
+/*
+ * rd_http — routes, limits, error bodies and static files (rd_http.h).
+ *
+ * Request life cycle in libmicrohttpd: the access handler is called once
+ * with the headers (upload_data_size 0), then once per chunk of body, then a
+ * last time with upload_data_size 0.  Everything except POST /api/v1/jobs is
+ * answered on the first call.  For a POST the first call checks the method,
+ * Content-Type, ?wait= and a declared Content-Length, so a bad request is
+ * refused before its body is read; the chunks are then collected up to
+ * RD_API_BODY_MAX bytes (beyond that they are counted and dropped, never
+ * buffered) and the last call parses the scene synchronously, queues it and
+ * optionally waits for it.
+ *
+ * Paths arrive percent-decoded by unescape_path below, which turns an
+ * encoded NUL into DEL (0x7f) so that it cannot cut the C string short;
+ * every path with a control character is then refused (404).
+ */
+/* realpath() is XSI: the build defines only _POSIX_C_SOURCE. */
+#define _XOPEN_SOURCE 700
+
+#include "rd_http.h"
+
+#include <arpa/inet.h>
+#include <errno.h>
+#include <fcntl.h>
+#include <limits.h>
+#include <math.h>
+#include <netdb.h>
+#include <netinet/in.h>
+#include <pthread.h>
+#include <stdarg.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <strings.h>
+#include <sys/socket.h>
+#include <sys/stat.h>
+#include <sys/types.h>
+#include <time.h>
+#include <unistd.h>
+
+#include <jansson.h>
+#include <microhttpd.h>
+
+#include "rd_api.h"
+#include "rd_openapi.h"
+
+/* Idle time after which MHD drops a connection.  A request waiting for its
+ * job is not idle (its thread is in our handler, where MHD does not time it
+ * out). */
+#define IDLE_TIMEOUT_S 60
+/* GET /api/v1/jobs: default and largest ?limit=. */
+#define LIST_LIMIT_DEFAULT 50
+#define LIST_LIMIT_MAX 1000
+/* Room for a job id or example name taken from a path. */
+#define PATH_ARG_MAX 80
+
+static const char json_media[] = "application/json";
+static const char oom_body[] =
+    "{\"error\":{\"code\":\"out_of_memory\",\"message\":\"The server is out of memory.\"}}";
+
+struct rd_http {
+    struct MHD_Daemon *daemon;
+    MHD_socket quiesced_fd; /* listen socket handed back by MHD_quiesce_daemon */
+    rd_jobs *jobs;          /* borrowed */
+    rd_metrics *metrics;    /* borrowed */
+    char *static_root;      /* realpath of the static dir, or NULL */
+    char *examples_dir;     /* realpath of the examples dir, or NULL */
+    char host[INET6_ADDRSTRLEN + 2];
+    int port;
+    pthread_mutex_t mu; /* guards in_flight */
+    pthread_cond_t idle; /* in_flight dropped to 0 */
+    int in_flight;       /* requests between their first call and on_completed */
+};
+
+/* Per-request state, kept by MHD in *req_cls between calls. */
+struct request {
+    int started;   /* the headers have been handled */
+    int replied;   /* a response is queued: drop whatever body follows */
+    int has_wait;  /* ?wait= was given */
+    double wait_s;
+    char *body;    /* POST body so far, NUL-terminated, <= RD_API_BODY_MAX bytes */
+    size_t len, cap;
+    int too_large; /* the body passed RD_API_BODY_MAX: the rest is dropped */
+    int no_memory;
+};
+
+enum route {
+    ROUTE_NONE,
+    ROUTE_JOBS,
+    ROUTE_JOB,
+    ROUTE_JOB_CSV,
+    ROUTE_EXAMPLES,
+    ROUTE_EXAMPLE,
+    ROUTE_HEALTH,
+    ROUTE_OPENAPI,
+    ROUTE_METRICS,
+    ROUTE_STATIC
+};
+
+/* ---- small helpers ---- */
+
+/* A copy of `s` fit for a message: printable ASCII only, at most n-1 bytes.
+ * (Error bodies must be valid UTF-8; request text need not be.) */
+static const char *printable(const char *s, char *buf, size_t n)
+{
+    size_t i = 0;
+    for (; s[i] && i + 1 < n; i++)
+        buf[i] = (s[i] >= 0x20 && s[i] < 0x7f) ? s[i] : '?';
+    buf[i] = '\0';
+    if (s[i] && n > 4)
+        memcpy(buf + n - 4, "...", 4);
+    return buf;
+}
+
+static int has_control_char(const char *s)
+{
+    for (; *s; s++)
+        if ((unsigned char)*s < 0x20 || *s == 0x7f)
+            return 1;
+    return 0;
+}
+
+static int hex_value(char c)
+{
+    if (c >= '0' && c <= '9')
+        return c - '0';
+    if (c >= 'a' && c <= 'f')
+        return c - 'a' + 10;
+    if (c >= 'A' && c <= 'F')
+        return c - 'A' + 10;
+    return -1;
+}
+
+/* MHD_OPTION_UNESCAPE_CALLBACK: decodes %HH in place, as MHD's default does,
+ * except that %00 becomes DEL (see the file comment). */
+static size_t unescape_path(void *cls, struct MHD_Connection *c, char *s)
+{
+    (void)cls;
+    (void)c;
+    char *w = s;
+    const char *r = s;
+    while (*r) {
+        int hi, lo;
+        if (r[0] == '%' && (hi = hex_value(r[1])) >= 0 && (lo = hex_value(r[2])) >= 0) {
+            int v = hi * 16 + lo;
+            *w++ = v == 0 ? (char)0x7f : (char)v;
+            r += 3;
+        } else {
+            *w++ = *r++;
+        }
+    }
+    *w = '\0';
+    return (size_t)(w - s);
+}
+
+/* "application/json", optionally "; charset=utf-8" (any case, optional
+ * quotes).  Any other parameter or charset is refused: the api reads UTF-8. */
+static int is_json_media_type(const char *ct)
+{
+    if (!ct)
+        return 0;
+    while (*ct == ' ' || *ct == '\t')
+        ct++;
+    if (strncasecmp(ct, "application/json", 16) != 0)
+        return 0;
+    const char *p = ct + 16;
+    while (*p == ' ' || *p == '\t')
+        p++;
+    if (*p == '\0')
+        return 1;
+    if (*p++ != ';')
+        return 0;
+    while (*p == ' ' || *p == '\t')
+        p++;
+    if (strncasecmp(p, "charset=", 8) != 0)
+        return 0;
+    p += 8;
+    int quoted = *p == '"';
+    p += quoted;
+    if (strncasecmp(p, "utf-8", 5) != 0)
+        return 0;
+    p += 5;
+    if (quoted && *p++ != '"')
+        return 0;
+    while (*p == ' ' || *p == '\t')
+        p++;
+    return *p == '\0';
+}
+
+/* Plain decimal seconds ("2", "0.5") in [0, max]. */
+static int parse_seconds(const char *s, double max, double *out)
+{
+    if (!*s || strspn(s, "0123456789.") != strlen(s))
+        return 0;
+    char *end;
+    double v = strtod(s, &end);
+    if (*end || !(v >= 0 && v <= max))
+        return 0;
+    *out = v;
+    return 1;
+}
+
+/* Plain decimal integer in [min, max]. */
+static int parse_count(const char *s, long min, long max, long *out)
+{
+    if (!*s || strlen(s) > 9 || strspn(s, "0123456789") != strlen(s))
+        return 0;
+    long v = strtol(s, NULL, 10);
+    if (v < min || v > max)
+        return 0;
+    *out = v;
+    return 1;
+}
+
+static const char *after_prefix(const char *s, const char *prefix)
+{
+    size_t n = strlen(prefix);
+    return strncmp(s, prefix, n) == 0 ? s + n : NULL;
+}
+
+/* Maps a decoded path to a route; `arg` receives the job id or example name. */
+static enum route match_route(const char *url, char *arg, size_t argsz)
+{
+    static const struct {
+        const char *path;
+        enum route route;
+    } fixed[] = {{"/api/v1/jobs", ROUTE_JOBS},       {"/api/v1/examples", ROUTE_EXAMPLES},
+                 {"/api/v1/health", ROUTE_HEALTH},   {"/api/v1/openapi.json", ROUTE_OPENAPI},
+                 {"/metrics", ROUTE_METRICS}};
+    arg[0] = '\0';
+    for (size_t i = 0; i < sizeof fixed / sizeof fixed[0]; i++)
+        if (strcmp(url, fixed[i].path) == 0)
+            return fixed[i].route;
+
+    const char *rest;
+    if ((rest = after_prefix(url, "/api/v1/jobs/"))) {
+        const char *slash = strchr(rest, '/');
+        size_t n = slash ? (size_t)(slash - rest) : strlen(rest);
+        if (n == 0 || n >= argsz || (slash && strcmp(slash, "/result.csv") != 0))
+            return ROUTE_NONE;
+        memcpy(arg, rest, n);
+        arg[n] = '\0';
+        return slash ? ROUTE_JOB_CSV : ROUTE_JOB;
+    }
+    if ((rest = after_prefix(url, "/api/v1/examples/"))) {
+        size_t n = strlen(rest);
+        if (n == 0 || n >= argsz || strchr(rest, '/'))
+            return ROUTE_NONE;
+        memcpy(arg, rest, n + 1);
+        return ROUTE_EXAMPLE;
+    }
+    if (strcmp(url, "/api") == 0 || after_prefix(url, "/api/"))
+        return ROUTE_NONE;
+    return ROUTE_STATIC;
+}
+
+static const char *allowed_methods(enum route r)
+{
+    switch (r) {
+    case ROUTE_JOBS:
+        return "GET, HEAD, POST";
+    case ROUTE_JOB:
+        return "GET, HEAD, DELETE";
+    default:
+        return "GET, HEAD";
+    }
+}
+
+/* Is `method` one of the comma-separated tokens in `allow`? */
+static int method_allowed(const char *allow, const char *method)
+{
+    size_t n = strlen(method);
+    for (const char *p = allow; *p;) {
+        size_t len = strcspn(p, ",");
+        if (len == n && strncmp(p, method, n) == 0)
+            return 1;
+        p += len;
+        while (*p == ',' || *p == ' ')
+            p++;
+    }
+    return 0;
+}
+
+/* ---- responses ---- */
+
+/* Queues `r` (consumed; NULL means out of memory and sends a fixed 503). */
+static enum MHD_Result send_response(rd_http *h, struct MHD_Connection *c, struct request *rq,
+                                     int status, struct MHD_Response *r)
+{
+    if (!r) {
+        r = MHD_create_response_from_buffer(sizeof oom_body - 1, (void *)oom_body,
+                                            MHD_RESPMEM_PERSISTENT);
+        if (!r)
+            return MHD_NO;
+        MHD_add_response_header(r, MHD_HTTP_HEADER_CONTENT_TYPE, json_media);
+        status = MHD_HTTP_SERVICE_UNAVAILABLE;
+    }
+    rq->replied = 1;
+    enum MHD_Result ok = MHD_queue_response(c, (unsigned)status, r);
+    MHD_destroy_response(r);
+    if (ok == MHD_YES)
+        rd_metrics_count_http(h->metrics, status);
+    return ok;
+}
+
+/* A response owning the malloc'd `body` (NULL in, NULL out). */
+static struct MHD_Response *text_response(char *body, const char *content_type)
+{
+    if (!body)
+        return NULL;
+    struct MHD_Response *r =
+        MHD_create_response_from_buffer(strlen(body), body, MHD_RESPMEM_MUST_FREE);
+    if (!r) {
+        free(body);
+        return NULL;
+    }
+    if (MHD_add_response_header(r, MHD_HTTP_HEADER_CONTENT_TYPE, content_type) != MHD_YES ||
+        MHD_add_response_header(r, MHD_HTTP_HEADER_CACHE_CONTROL, "no-store") != MHD_YES) {
+        MHD_destroy_response(r);
+        return NULL;
+    }
+    return r;
+}
+
+static enum MHD_Result send_text(rd_http *h, struct MHD_Connection *c, struct request *rq,
+                                 int status, char *body, const char *content_type)
+{
+    return send_response(h, c, rq, status, text_response(body, content_type));
+}
+
+/* The contract's error body; `allow` (may be NULL) for 405. */
+static enum MHD_Result send_error(rd_http *h, struct MHD_Connection *c, struct request *rq,
+                                  const rd_error *err, const char *allow)
+{
+    rd_error fallback;
+    if (err->code == RD_OK) { /* a callee failed without saying why: our bug */
+        rd_error_init(&fallback);
+        rd_error_set(&fallback, RD_EINTERNAL, "", "Internal error.");
+        err = &fallback;
+    }
+    struct MHD_Response *r = text_response(rd_api_error_json(err), json_media);
+    if (r && allow)
+        MHD_add_response_header(r, MHD_HTTP_HEADER_ALLOW, allow);
+    if (r && err->code == RD_EBUSY) {
+        char seconds[16];
+        snprintf(seconds, sizeof seconds, "%d", rd_jobs_get_retry_after(h->jobs));
+        MHD_add_response_header(r, MHD_HTTP_HEADER_RETRY_AFTER, seconds);
+    }
+    return send_response(h, c, rq, rd_api_http_status(err->code), r);
+}
+
+#if defined(__GNUC__)
+__attribute__((format(printf, 5, 6)))
+#endif
+static enum MHD_Result send_fail(rd_http *h, struct MHD_Connection *c, struct request *rq, int code,
+                                 const char *fmt, ...)
+{
+    rd_error err;
+    rd_error_init(&err);
+    err.code = code;
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(err.message, sizeof err.message, fmt, ap);
+    va_end(ap);
+    return send_error(h, c, rq, &err, NULL);
+}
+
+static enum MHD_Result send_not_found(rd_http *h, struct MHD_Connection *c, struct request *rq,
+                                      const char *url)
+{
+    char buf[128];
+    return send_fail(h, c, rq, RD_ENOTFOUND, "There is nothing at %s.", printable(url, buf, sizeof buf));
+}
+
+/* ---- static files ---- */
+
+static const char *content_type_for(const char *path)
+{
+    static const struct {
+        const char *ext, *type;
+    } types[] = {{"html", "text/html; charset=utf-8"}, {"htm", "text/html; charset=utf-8"},
+                 {"js", "text/javascript; charset=utf-8"}, {"mjs", "text/javascript; charset=utf-8"},
+                 {"css", "text/css; charset=utf-8"},   {"svg", "image/svg+xml"},
+                 {"json", "application/json"},         {"png", "image/png"},
+                 {"jpg", "image/jpeg"},                {"jpeg", "image/jpeg"},
+                 {"ico", "image/x-icon"},              {"txt", "text/plain; charset=utf-8"},
+                 {"csv", "text/csv; charset=utf-8"},   {"map", "application/json"},
+                 {"woff2", "font/woff2"},              {"wasm", "application/wasm"}};
+    const char *slash = strrchr(path, '/');
+    const char *dot = strrchr(slash ? slash : path, '.');
+    if (dot)
+        for (size_t i = 0; i < sizeof types / sizeof types[0]; i++)
+            if (strcasecmp(dot + 1, types[i].ext) == 0)
+                return types[i].type;
+    return "application/octet-stream";
+}
+
+/* A relative path we are willing to look up: no "..", no backslash, no
+ * control character, no empty or dot-led segment (hidden files, ".", ".."),
+ * no trailing slash (no directory listings). */
+static int static_path_ok(const char *rel)
+{
+    if (!*rel || strstr(rel, "..") || strchr(rel, '\\') || has_control_char(rel) ||
+        strlen(rel) >= PATH_MAX)
+        return 0;
+    for (const char *seg = rel;;) {
+        if (*seg == '\0' || *seg == '/' || *seg == '.')
+            return 0;
+        const char *slash = strchr(seg, '/');
+        if (!slash)
+            return 1;
+        seg = slash + 1;
+    }
+}
+
+/* GET / (index.html), /static/<path>, and also /<path> for any other path
+ * outside /api/ (so a page may use relative links).  Resolved with
+ * realpath, which also follows symlinks, and served only when the result is
+ * a regular file inside the static dir. */
+static enum MHD_Result serve_static(rd_http *h, struct MHD_Connection *c, struct request *rq,
+                                    const char *url, const char *method)
+{
+    enum MHD_Result ret;
+    char *full = NULL, *resolved = NULL;
+    int fd = -1;
+    const char *rel = url[0] == '/' ? url + 1 : "";
+    const char *sub = after_prefix(rel, "static/");
+    if (sub)
+        rel = sub;
+    if (url[0] != '/' || strcmp(url, "/static") == 0) {
+        ret = send_not_found(h, c, rq, url);
+        goto out;
+    }
+    if (*rel == '\0')
+        rel = "index.html";
+    if (!h->static_root || !static_path_ok(rel)) {
+        ret = send_not_found(h, c, rq, url);
+        goto out;
+    }
+    size_t root_len = strlen(h->static_root);
+    full = malloc(root_len + 1 + strlen(rel) + 1);
+    if (!full) {
+        ret = send_response(h, c, rq, 0, NULL);
+        goto out;
+    }
+    sprintf(full, "%s/%s", h->static_root, rel);
+    resolved = realpath(full, NULL);
+    if (!resolved || strncmp(resolved, h->static_root, root_len) != 0 || resolved[root_len] != '/') {
+        ret = send_not_found(h, c, rq, url);
+        goto out;
+    }
+    /* O_NONBLOCK: opening a FIFO someone left in the dir must not hang us. */
+    fd = open(resolved, O_RDONLY | O_CLOEXEC | O_NOCTTY | O_NONBLOCK);
+    struct stat st;
+    if (fd < 0 || fstat(fd, &st) != 0 || !S_ISREG(st.st_mode)) {
+        ret = send_not_found(h, c, rq, url);
+        goto out;
+    }
+    if (!method_allowed("GET, HEAD", method)) {
+        rd_error err;
+        rd_error_init(&err);
+        rd_error_set(&err, RD_EMETHOD, "", "Method %.16s is not allowed here; use GET or HEAD.", method);
+        ret = send_error(h, c, rq, &err, "GET, HEAD");
+        goto out;
+    }
+    struct MHD_Response *r = MHD_create_response_from_fd64((uint64_t)st.st_size, fd);
+    if (!r) {
+        ret = send_response(h, c, rq, 0, NULL);
+        goto out;
+    }
+    fd = -1; /* the response owns it now */
+    MHD_add_response_header(r, MHD_HTTP_HEADER_CONTENT_TYPE, content_type_for(resolved));
+    MHD_add_response_header(r, MHD_HTTP_HEADER_CACHE_CONTROL, "no-cache");
+    MHD_add_response_header(r, "X-Content-Type-Options", "nosniff");
+    ret = send_response(h, c, rq, MHD_HTTP_OK, r);
+out:
+    if (fd >= 0)
+        close(fd);
+    free(resolved);
+    free(full);
+    return ret;
+}
+
+/* ---- API routes ---- */
+
+static enum MHD_Result get_health(rd_http *h, struct MHD_Connection *c, struct request *rq)
+{
+    size_t counts[RD_JOB_NSTATUS];
+    rd_jobs_get_counts(h->jobs, counts);
+    json_t *o = json_pack("{s:s, s:s, s:{s:I, s:I}}", "status", "ok", "version", rd_api_version(),
+                          "jobs", "queued", (json_int_t)counts[RD_JOB_QUEUED], "running",
+                          (json_int_t)counts[RD_JOB_RUNNING]);
+    char *body = o ? json_dumps(o, JSON_COMPACT) : NULL;
+    json_decref(o);
+    return send_text(h, c, rq, MHD_HTTP_OK, body, json_media);
+}
+
+static enum MHD_Result get_metrics(rd_http *h, struct MHD_Connection *c, struct request *rq)
+{
+    size_t counts[RD_JOB_NSTATUS];
+    const char *names[RD_JOB_NSTATUS];
+    rd_jobs_get_counts(h->jobs, counts);
+    for (int i = 0; i < RD_JOB_NSTATUS; i++)
+        names[i] = rd_jobs_status_name(i);
+    char *text = rd_metrics_render(h->metrics, names, counts, RD_JOB_NSTATUS);
+    return send_text(h, c, rq, MHD_HTTP_OK, text, "text/plain; version=0.0.4; charset=utf-8");
+}
+
+static enum MHD_Result get_openapi(rd_http *h, struct MHD_Connection *c, struct request *rq)
+{
+    struct MHD_Response *r = MHD_create_response_from_buffer(
+        rd_openapi_json_len, (void *)rd_openapi_json, MHD_RESPMEM_PERSISTENT);
+    if (r)
+        MHD_add_response_header(r, MHD_HTTP_HEADER_CONTENT_TYPE, json_media);
+    return send_response(h, c, rq, MHD_HTTP_OK, r);
+}
+
+static enum MHD_Result get_examples(rd_http *h, struct MHD_Connection *c, struct request *rq)
+{
+    rd_error err;
+    rd_error_init(&err);
+    if (!h->examples_dir)
+        return send_text(h, c, rq, MHD_HTTP_OK, strdup("{\"examples\":[]}"), json_media);
+    char *body = rd_api_examples_json(h->examples_dir, &err);
+    if (!body) {
+        /* A broken example file is the server's fault, not the client's. */
+        if (err.code != RD_ENOMEM)
+            err.code = RD_EINTERNAL;
+        return send_error(h, c, rq, &err, NULL);
+    }
+    return send_text(h, c, rq, MHD_HTTP_OK, body, json_media);
+}
+
+/* Example names are file names without ".json": letters, digits, '_', '-', '.'. */
+static int example_exists(const rd_http *h, const char *name)
+{
+    size_t n = strlen(name);
+    if (!h->examples_dir || n == 0 || n > 64 || name[0] == '.' ||
+        strspn(name, "abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789_-.") != n)
+        return 0;
+    char path[PATH_MAX];
+    struct stat st;
+    if (snprintf(path, sizeof path, "%s/%s.json", h->examples_dir, name) >= (int)sizeof path)
+        return 0;
+    return stat(path, &st) == 0 && S_ISREG(st.st_mode);
+}
+
+static enum MHD_Result get_example(rd_http *h, struct MHD_Connection *c, struct request *rq,
+                                   const char *name)
+{
+    rd_error err;
+    rd_error_init(&err);
+    char buf[PATH_ARG_MAX];
+    if (!example_exists(h, name))
+        return send_fail(h, c, rq, RD_ENOTFOUND,
+                         "There is no example named %s; GET /api/v1/examples lists them.",
+                         printable(name, buf, sizeof buf));
+    char *body = rd_api_example_scene(h->examples_dir, name, &err);
+    if (!body) {
+        if (err.code != RD_ENOMEM)
+            err.code = RD_EINTERNAL;
+        return send_error(h, c, rq, &err, NULL);
+    }
+    return send_text(h, c, rq, MHD_HTTP_OK, body, json_media);
+}
+
+static enum MHD_Result list_jobs(rd_http *h, struct MHD_Connection *c, struct request *rq)
+{
+    rd_error err;
+    rd_error_init(&err);
+    long limit = LIST_LIMIT_DEFAULT;
+    const char *s = MHD_lookup_connection_value(c, MHD_GET_ARGUMENT_KIND, "limit");
+    if (s && !parse_count(s, 1, LIST_LIMIT_MAX, &limit)) {
+        char buf[32];
+        return send_fail(h, c, rq, RD_EREQUEST,
+                         "The query parameter limit must be a whole number from 1 to %d, not \"%s\".",
+                         LIST_LIMIT_MAX, printable(s, buf, sizeof buf));
+    }
+    char *body = NULL;
+    if (rd_jobs_list(h->jobs, (size_t)limit, &body, &err) != RD_OK)
+        return send_error(h, c, rq, &err, NULL);
+    return send_text(h, c, rq, MHD_HTTP_OK, body, json_media);
+}
+
+static enum MHD_Result job_route(rd_http *h, struct MHD_Connection *c, struct request *rq,
+                                 enum route route, const char *method, const char *id)
+{
+    rd_error err;
+    rd_error_init(&err);
+    char *body = NULL;
+    int rc;
+    if (route == ROUTE_JOB_CSV) {
+        rc = rd_jobs_result_csv(h->jobs, id, &body, &err);
+        if (rc != RD_OK)
+            return send_error(h, c, rq, &err, NULL);
+        struct MHD_Response *r = text_response(body, "text/csv; charset=utf-8");
+        if (r) {
+            char disposition[64];
+            snprintf(disposition, sizeof disposition, "inline; filename=\"%.16s.csv\"", id);
+            MHD_add_response_header(r, "Content-Disposition", disposition);
+        }
+        return send_response(h, c, rq, MHD_HTTP_OK, r);
+    }
+    if (strcmp(method, MHD_HTTP_METHOD_DELETE) == 0)
+        rc = rd_jobs_cancel(h->jobs, id, &body, &err);
+    else
+        rc = rd_jobs_view(h->jobs, id, 0, &body, NULL, &err);
+    if (rc != RD_OK)
+        return send_error(h, c, rq, &err, NULL);
+    return send_text(h, c, rq, MHD_HTTP_OK, body, json_media);
+}
+
+/* First call of POST /api/v1/jobs: everything that can be refused before
+ * the body is read. */
+static enum MHD_Result begin_submit(rd_http *h, struct MHD_Connection *c, struct request *rq)
+{
+    char buf[64];
+    const char *type = MHD_lookup_connection_value(c, MHD_HEADER_KIND, MHD_HTTP_HEADER_CONTENT_TYPE);
+    if (!is_json_media_type(type))
+        return send_fail(h, c, rq, RD_EMEDIA,
+                         "The body must be sent as Content-Type: application/json, not %s.",
+                         type ? printable(type, buf, sizeof buf) : "without a Content-Type");
+    const char *wait = MHD_lookup_connection_value(c, MHD_GET_ARGUMENT_KIND, "wait");
+    if (wait) {
+        if (!parse_seconds(wait, RD_HTTP_WAIT_MAX, &rq->wait_s))
+            return send_fail(h, c, rq, RD_EREQUEST,
+                             "The query parameter wait must be a number of seconds from 0 to %d, "
+                             "not \"%s\".",
+                             RD_HTTP_WAIT_MAX, printable(wait, buf, sizeof buf));
+        rq->has_wait = 1;
+    }
+    const char *length = MHD_lookup_connection_value(c, MHD_HEADER_KIND, MHD_HTTP_HEADER_CONTENT_LENGTH);
+    if (length) {
+        char *end;
+        errno = 0;
+        unsigned long long n = strtoull(length, &end, 10);
+        if (errno == 0 && *end == '\0' && n > RD_API_BODY_MAX)
+            return send_fail(h, c, rq, RD_ETOOLARGE,
+                             "The body has %llu bytes; the limit is %d bytes.", n, RD_API_BODY_MAX);
+    }
+    return MHD_YES;
+}
+
+/* Appends a body chunk, up to RD_API_BODY_MAX bytes in all. */
+static void take_body(struct request *rq, const char *data, size_t n)
+{
+    if (rq->too_large || rq->no_memory)
+        return;
+    if (n > RD_API_BODY_MAX - rq->len) {
+        rq->too_large = 1;
+        free(rq->body);
+        rq->body = NULL;
+        rq->len = rq->cap = 0;
+        return;
+    }
+    if (rq->len + n + 1 > rq->cap) {
+        size_t cap = rq->cap ? rq->cap : 4096;
+        while (cap < rq->len + n + 1)
+            cap *= 2;
+        if (cap > RD_API_BODY_MAX + 1)
+            cap = RD_API_BODY_MAX + 1;
+        char *body = realloc(rq->body, cap);
+        if (!body) {
+            rq->no_memory = 1;
+            return;
+        }
+        rq->body = body;
+        rq->cap = cap;
+    }
+    memcpy(rq->body + rq->len, data, n);
+    rq->len += n;
+    rq->body[rq->len] = '\0';
+}
+
+/* Last call of POST /api/v1/jobs: parse, queue, maybe wait. */
+static enum MHD_Result finish_submit(rd_http *h, struct MHD_Connection *c, struct request *rq)
+{
+    rd_error err;
+    rd_error_init(&err);
+    if (rq->too_large)
+        return send_fail(h, c, rq, RD_ETOOLARGE, "The body is larger than the limit of %d bytes.",
+                         RD_API_BODY_MAX);
+    if (rq->no_memory)
+        return send_response(h, c, rq, 0, NULL);
+
+    rd_scene *scene = NULL;
+    int rc = rd_scene_parse(rq->body ? rq->body : "", rq->len, &scene, &err);
+    free(rq->body);
+    rq->body = NULL;
+    if (rc != RD_OK) {
+        if (err.code == RD_OK)
+            rd_error_set(&err, rc, "", "%s.", rd_error_summary(rc));
+        return send_error(h, c, rq, &err, NULL);
+    }
+    char id[RD_JOBS_ID_LEN + 1];
+    if (rd_jobs_submit(h->jobs, scene, id, &err) != RD_OK) /* takes the scene */
+        return send_error(h, c, rq, &err, NULL);
+
+    char *body = NULL;
+    int finished = 0;
+    if (rd_jobs_view(h->jobs, id, rq->has_wait ? rq->wait_s : 0, &body, &finished, &err) != RD_OK)
+        return send_error(h, c, rq, &err, NULL);
+    struct MHD_Response *r = text_response(body, json_media);
+    if (r) {
+        char location[64];
+        snprintf(location, sizeof location, "/api/v1/jobs/%s", id);
+        MHD_add_response_header(r, MHD_HTTP_HEADER_LOCATION, location);
+    }
+    return send_response(h, c, rq, rq->has_wait && finished ? MHD_HTTP_OK : MHD_HTTP_ACCEPTED, r);
+}
+
+/* First call of every request: route, check the method, answer (or, for a
+ * submission, prepare to read the body). */
+static enum MHD_Result begin_request(rd_http *h, struct MHD_Connection *c, struct request *rq,
+                                     const char *url, const char *method)
+{
+    char arg[PATH_ARG_MAX];
+    if (has_control_char(url))
+        return send_not_found(h, c, rq, url);
+    enum route route = match_route(url, arg, sizeof arg);
+    if (route == ROUTE_STATIC)
+        return serve_static(h, c, rq, url, method);
+    if (route == ROUTE_NONE)
+        return send_not_found(h, c, rq, url);
+
+    const char *allow = allowed_methods(route);
+    if (!method_allowed(allow, method)) {
+        char buf[32], where[128];
+        rd_error err;
+        rd_error_init(&err);
+        rd_error_set(&err, RD_EMETHOD, "", "Method %s is not allowed on %s; allowed: %s.",
+                     printable(method, buf, sizeof buf), printable(url, where, sizeof where), allow);
+        return send_error(h, c, rq, &err, allow);
+    }
+    switch (route) {
+    case ROUTE_JOBS:
+        if (strcmp(method, MHD_HTTP_METHOD_POST) == 0)
+            return begin_submit(h, c, rq);
+        return list_jobs(h, c, rq);
+    case ROUTE_JOB:
+    case ROUTE_JOB_CSV:
+        return job_route(h, c, rq, route, method, arg);
+    case ROUTE_EXAMPLES:
+        return get_examples(h, c, rq);
+    case ROUTE_EXAMPLE:
+        return get_example(h, c, rq, arg);
+    case ROUTE_HEALTH:
+        return get_health(h, c, rq);
+    case ROUTE_OPENAPI:
+        return get_openapi(h, c, rq);
+    case ROUTE_METRICS:
+        return get_metrics(h, c, rq);
+    case ROUTE_NONE:
+    case ROUTE_STATIC:
+        break;
+    }
+    return send_not_found(h, c, rq, url);
+}
+
+static enum MHD_Result on_request(void *cls, struct MHD_Connection *c, const char *url,
+                                  const char *method, const char *version, const char *upload_data,
+                                  size_t *upload_data_size, void **req_cls)
+{
+    rd_http *h = cls;
+    (void)version;
+    struct request *rq = *req_cls;
+    if (!rq) {
+        rq = calloc(1, sizeof *rq);
+        if (!rq)
+            return MHD_NO; /* closes the connection */
+        *req_cls = rq;
+        pthread_mutex_lock(&h->mu);
+        h->in_flight++;
+        pthread_mutex_unlock(&h->mu);
+    }
+    if (!rq->started) {
+        rq->started = 1;
+        return begin_request(h, c, rq, url, method);
+    }
+    if (*upload_data_size) {
+        if (!rq->replied)
+            take_body(rq, upload_data, *upload_data_size);
+        *upload_data_size = 0;
+        return MHD_YES;
+    }
+    if (rq->replied)
+        return MHD_YES;
+    return finish_submit(h, c, rq);
+}
+
+/* MHD_OPTION_NOTIFY_COMPLETED: the response has been sent (or the
+ * connection died); called for every request that got a *req_cls. */
+static void on_completed(void *cls, struct MHD_Connection *c, void **req_cls,
+                         enum MHD_RequestTerminationCode toe)
+{
+    rd_http *h = cls;
+    (void)c;
+    (void)toe;
+    struct request *rq = *req_cls;
+    if (!rq)
+        return;
+    free(rq->body);
+    free(rq);
+    *req_cls = NULL;
+    pthread_mutex_lock(&h->mu);
+    if (--h->in_flight == 0)
+        pthread_cond_broadcast(&h->idle);
+    pthread_mutex_unlock(&h->mu);
+}
+
+/* ---- life cycle ---- */
+
+/* realpath of a directory option, or an error naming the option. */
+static int resolve_dir(const char *option, const char *dir, char **out, rd_error *err)
+{
+    *out = NULL;
+    if (!dir)
+        return RD_OK;
+    char *path = realpath(dir, NULL);
+    struct stat st;
+    if (!path || stat(path, &st) != 0 || !S_ISDIR(st.st_mode)) {
+        int e = errno;
+        free(path);
+        return rd_error_set(err, RD_EINVAL, "", "%s %s: not a readable directory (%s).", option, dir,
+                            path ? "not a directory" : strerror(e));
+    }
+    *out = path;
+    return RD_OK;
+}
+
+int rd_http_create(const rd_http_config *cfg, rd_jobs *jobs, rd_metrics *metrics, rd_http **out,
+                   rd_error *err)
+{
+    int rc = RD_OK;
+    struct addrinfo *ai = NULL;
+    *out = NULL;
+    rd_http *h = calloc(1, sizeof *h);
+    if (!h)
+        return rd_error_set(err, RD_ENOMEM, "", "Out of memory.");
+    h->jobs = jobs;
+    h->metrics = metrics;
+    h->quiesced_fd = MHD_INVALID_SOCKET;
+    pthread_condattr_t attr;
+    pthread_condattr_init(&attr);
+    pthread_condattr_setclock(&attr, CLOCK_MONOTONIC);
+    pthread_mutex_init(&h->mu, NULL);
+    pthread_cond_init(&h->idle, &attr);
+    pthread_condattr_destroy(&attr);
+    if ((rc = resolve_dir("--static", cfg->static_dir, &h->static_root, err)) != RD_OK ||
+        (rc = resolve_dir("--examples", cfg->examples_dir, &h->examples_dir, err)) != RD_OK)
+        goto out;
+    if (cfg->port < 0 || cfg->port > 65535) {
+        rc = rd_error_set(err, RD_EINVAL, "", "--port %d: not a port (0..65535).", cfg->port);
+        goto out;
+    }
+
+    struct addrinfo hints;
+    memset(&hints, 0, sizeof hints);
+    hints.ai_family = AF_UNSPEC;
+    hints.ai_socktype = SOCK_STREAM;
+    int gai = getaddrinfo(cfg->host, NULL, &hints, &ai);
+    if (gai != 0) {
+        rc = rd_error_set(err, RD_EINVAL, "", "--host %s: %s.", cfg->host, gai_strerror(gai));
+        goto out;
+    }
+    struct sockaddr_storage addr;
+    memset(&addr, 0, sizeof addr);
+    memcpy(&addr, ai->ai_addr, ai->ai_addrlen);
+    unsigned int flags = MHD_USE_AUTO_INTERNAL_THREAD | MHD_USE_THREAD_PER_CONNECTION | MHD_USE_ITC |
+                         MHD_USE_ERROR_LOG;
+    char text[INET6_ADDRSTRLEN];
+    if (ai->ai_family == AF_INET6) {
+        struct sockaddr_in6 *a6 = (struct sockaddr_in6 *)&addr;
+        a6->sin6_port = htons((uint16_t)cfg->port);
+        inet_ntop(AF_INET6, &a6->sin6_addr, text, sizeof text);
+        snprintf(h->host, sizeof h->host, "[%s]", text);
+        flags |= MHD_USE_IPv6;
+    } else {
+        struct sockaddr_in *a4 = (struct sockaddr_in *)&addr;
+        a4->sin_port = htons((uint16_t)cfg->port);
+        inet_ntop(AF_INET, &a4->sin_addr, text, sizeof text);
+        snprintf(h->host, sizeof h->host, "%s", text);
+    }
+
+    h->daemon = MHD_start_daemon(
+        flags, (uint16_t)cfg->port, NULL, NULL, on_request, h, MHD_OPTION_SOCK_ADDR,
+        (struct sockaddr *)&addr, MHD_OPTION_CONNECTION_LIMIT, (unsigned int)RD_HTTP_CONNECTIONS_MAX,
+        MHD_OPTION_CONNECTION_TIMEOUT, (unsigned int)IDLE_TIMEOUT_S, MHD_OPTION_NOTIFY_COMPLETED,
+        on_completed, (void *)h, MHD_OPTION_UNESCAPE_CALLBACK, unescape_path, (void *)NULL,
+        MHD_OPTION_END);
+    if (!h->daemon) {
+        rc = rd_error_set(err, RD_EINTERNAL, "", "Cannot listen on %s port %d (in use?).", h->host,
+                          cfg->port);
+        goto out;
+    }
+    const union MHD_DaemonInfo *info = MHD_get_daemon_info(h->daemon, MHD_DAEMON_INFO_BIND_PORT);
+    h->port = info ? info->port : cfg->port;
+out:
+    if (ai)
+        freeaddrinfo(ai);
+    if (rc != RD_OK)
+        rd_http_free(h);
+    else
+        *out = h;
+    return rc;
+}
+
+const char *rd_http_get_host(const rd_http *http)
+{
+    return http->host;
+}
+
+int rd_http_get_port(const rd_http *http)
+{
+    return http->port;
+}
+
+void rd_http_quiesce(rd_http *http)
+{
+    if (http && http->daemon && http->quiesced_fd == MHD_INVALID_SOCKET)
+        http->quiesced_fd = MHD_quiesce_daemon(http->daemon);
+}
+
+void rd_http_drain(rd_http *http, double seconds)
+{
+    if (!http)
+        return;
+    struct timespec deadline;
+    clock_gettime(CLOCK_MONOTONIC, &deadline);
+    deadline.tv_sec += (time_t)seconds;
+    deadline.tv_nsec += (long)((seconds - floor(seconds)) * 1e9);
+    if (deadline.tv_nsec >= 1000000000L) {
+        deadline.tv_sec++;
+        deadline.tv_nsec -= 1000000000L;
+    }
+    pthread_mutex_lock(&http->mu);
+    while (http->in_flight > 0)
+        if (pthread_cond_timedwait(&http->idle, &http->mu, &deadline) == ETIMEDOUT)
+            break;
+    pthread_mutex_unlock(&http->mu);
+}
+
+void rd_http_free(rd_http *http)
+{
+    if (!http)
+        return;
+    if (http->daemon)
+        MHD_stop_daemon(http->daemon);
+    if (http->quiesced_fd != MHD_INVALID_SOCKET)
+        close(http->quiesced_fd);
+    pthread_cond_destroy(&http->idle);
+    pthread_mutex_destroy(&http->mu);
+    free(http->static_root);
+    free(http->examples_dir);
+    free(http);
+}

@@ -1,0 +1,54 @@
+/*
+ * rd_http — the HTTP face of ringdyn (../shared/API.md): routes, request
+ * limits, JSON error bodies and the static web page, on libmicrohttpd.
+ *
+ * Threading: one thread per connection (MHD_USE_THREAD_PER_CONNECTION with
+ * an internal polling thread and a connection limit), so a request that
+ * waits for its job (?wait=S) blocks only its own connection.  The server
+ * parses no scene field: bodies go to rd_scene_parse, results come from
+ * rd_jobs, error bodies from rd_api_error_json.
+ */
+#ifndef RD_HTTP_H
+#define RD_HTTP_H
+
+#include "rd_error.h"
+#include "rd_jobs.h"
+#include "rd_metrics.h"
+
+/* Most connections served at once (each holds one thread). */
+#define RD_HTTP_CONNECTIONS_MAX 128
+/* Longest ?wait= a client may ask for, seconds. */
+#define RD_HTTP_WAIT_MAX 300
+
+typedef struct rd_http_config {
+    const char *host;         /* numeric IPv4/IPv6 address or name to bind */
+    int port;                 /* 0: any free port */
+    const char *static_dir;   /* the web page, or NULL to serve none */
+    const char *examples_dir; /* example scenes, or NULL for none */
+} rd_http_config;
+
+typedef struct rd_http rd_http;
+
+/* Binds and starts serving.  `jobs` and `metrics` are borrowed and must
+ * outlive the server.  On success *out owns it; free with rd_http_free. */
+int rd_http_create(const rd_http_config *cfg, rd_jobs *jobs, rd_metrics *metrics, rd_http **out,
+                   rd_error *err);
+
+/* The bound address as text (IPv6 in brackets) and the real port. */
+const char *rd_http_get_host(const rd_http *http);
+int rd_http_get_port(const rd_http *http);
+
+/* Stops accepting new connections; open ones are served on. */
+void rd_http_quiesce(rd_http *http);
+
+/* Waits up to `seconds` for the requests in progress to finish sending
+ * their answers (idle keep-alive connections do not count), so that
+ * requests released by rd_jobs_shutdown still get their response. */
+void rd_http_drain(rd_http *http, double seconds);
+
+/* Closes every connection, joins their threads and frees the server.  Callers
+ * blocked in rd_jobs must have been released first (rd_jobs_shutdown).
+ * NULL is a no-op. */
+void rd_http_free(rd_http *http);
+
+#endif

@@ -1,0 +1,150 @@
+/*
+ * rd_metrics — counters for GET /metrics (rd_metrics.h).
+ *
+ * The job-duration histogram uses cumulative buckets as Prometheus expects:
+ * bucket[i] counts the runs that took at most bounds[i] seconds; the +Inf
+ * bucket equals the total count.
+ */
+#include "rd_metrics.h"
+
+#include <pthread.h>
+#include <stdarg.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#define HTTP_STATUS_MIN 100
+#define HTTP_STATUS_MAX 599
+
+/* Upper bounds (s) of the job-duration buckets: modal runs take milliseconds,
+ * long lift runs minutes, and the default time limit is 120 s. */
+static const double duration_bounds[] = {0.01, 0.05, 0.1, 0.25, 0.5, 1, 2.5, 5, 10, 30, 60, 120, 300};
+#define NBOUNDS (sizeof duration_bounds / sizeof duration_bounds[0])
+
+struct rd_metrics {
+    pthread_mutex_t mu;
+    uint64_t http[HTTP_STATUS_MAX - HTTP_STATUS_MIN + 1];
+    uint64_t duration_buckets[NBOUNDS]; /* cumulative: runs <= bound */
+    uint64_t duration_count;
+    double duration_sum;
+};
+
+rd_metrics *rd_metrics_create(void)
+{
+    rd_metrics *m = calloc(1, sizeof *m);
+    if (!m)
+        return NULL;
+    if (pthread_mutex_init(&m->mu, NULL) != 0) {
+        free(m);
+        return NULL;
+    }
+    return m;
+}
+
+void rd_metrics_free(rd_metrics *m)
+{
+    if (!m)
+        return;
+    pthread_mutex_destroy(&m->mu);
+    free(m);
+}
+
+void rd_metrics_count_http(rd_metrics *m, int status)
+{
+    if (!m || status < HTTP_STATUS_MIN || status > HTTP_STATUS_MAX)
+        return;
+    pthread_mutex_lock(&m->mu);
+    m->http[status - HTTP_STATUS_MIN]++;
+    pthread_mutex_unlock(&m->mu);
+}
+
+void rd_metrics_observe_job(rd_metrics *m, double seconds)
+{
+    if (!m || !(seconds >= 0)) /* also rejects NaN */
+        return;
+    pthread_mutex_lock(&m->mu);
+    for (size_t i = 0; i < NBOUNDS; i++)
+        if (seconds <= duration_bounds[i])
+            m->duration_buckets[i]++;
+    m->duration_count++;
+    m->duration_sum += seconds;
+    pthread_mutex_unlock(&m->mu);
+}
+
+/* A growing text buffer; `failed` sticks after the first allocation failure
+ * so the caller checks once at the end. */
+struct text {
+    char *s;
+    size_t len, cap;
+    int failed;
+};
+
+#if defined(__GNUC__)
+__attribute__((format(printf, 2, 3)))
+#endif
+static void text_printf(struct text *t, const char *fmt, ...)
+{
+    if (t->failed)
+        return;
+    for (;;) {
+        size_t room = t->cap - t->len;
+        va_list ap;
+        va_start(ap, fmt);
+        int n = vsnprintf(t->s ? t->s + t->len : NULL, room, fmt, ap);
+        va_end(ap);
+        if (n < 0) {
+            t->failed = 1;
+            return;
+        }
+        if ((size_t)n < room) {
+            t->len += (size_t)n;
+            return;
+        }
+        size_t cap = t->cap ? t->cap : 1024;
+        while (cap - t->len <= (size_t)n)
+            cap *= 2;
+        char *s = realloc(t->s, cap);
+        if (!s) {
+            t->failed = 1;
+            return;
+        }
+        t->s = s;
+        t->cap = cap;
+    }
+}
+
+char *rd_metrics_render(rd_metrics *m, const char *const *state_names, const size_t *state_counts,
+                        size_t n)
+{
+    struct text t = {0};
+    text_printf(&t, "# HELP ringdyn_jobs Jobs held by the server, by state.\n"
+                    "# TYPE ringdyn_jobs gauge\n");
+    for (size_t i = 0; i < n; i++)
+        text_printf(&t, "ringdyn_jobs{state=\"%s\"} %zu\n", state_names[i], state_counts[i]);
+
+    pthread_mutex_lock(&m->mu);
+    text_printf(&t, "# HELP ringdyn_job_duration_seconds Run time of finished jobs, from start to end.\n"
+                    "# TYPE ringdyn_job_duration_seconds histogram\n");
+    for (size_t i = 0; i < NBOUNDS; i++)
+        text_printf(&t, "ringdyn_job_duration_seconds_bucket{le=\"%g\"} %llu\n", duration_bounds[i],
+                    (unsigned long long)m->duration_buckets[i]);
+    text_printf(&t, "ringdyn_job_duration_seconds_bucket{le=\"+Inf\"} %llu\n",
+                (unsigned long long)m->duration_count);
+    text_printf(&t, "ringdyn_job_duration_seconds_sum %.9g\n", m->duration_sum);
+    text_printf(&t, "ringdyn_job_duration_seconds_count %llu\n", (unsigned long long)m->duration_count);
+
+    text_printf(&t, "# HELP ringdyn_http_requests_total HTTP responses sent, by status code.\n"
+                    "# TYPE ringdyn_http_requests_total counter\n");
+    for (int s = HTTP_STATUS_MIN; s <= HTTP_STATUS_MAX; s++)
+        if (m->http[s - HTTP_STATUS_MIN])
+            text_printf(&t, "ringdyn_http_requests_total{status=\"%d\"} %llu\n", s,
+                        (unsigned long long)m->http[s - HTTP_STATUS_MIN]);
+    pthread_mutex_unlock(&m->mu);
+
+    if (t.failed) {
+        free(t.s);
+        return NULL;
+    }
+    return t.s;
+}

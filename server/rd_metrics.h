@@ -1,0 +1,34 @@
+/*
+ * rd_metrics — the server's counters, rendered in the Prometheus text format
+ * (version 0.0.4) for GET /metrics.
+ *
+ * Thread-safe: every function may be called from any thread.  The registry
+ * holds only numbers; gauges that live elsewhere (jobs by state) are passed
+ * to rd_metrics_render by the caller.
+ */
+#ifndef RD_METRICS_H
+#define RD_METRICS_H
+
+#include <stddef.h>
+
+typedef struct rd_metrics rd_metrics;
+
+/* A new, zeroed registry, or NULL when out of memory.  Free with
+ * rd_metrics_free (NULL is a no-op). */
+rd_metrics *rd_metrics_create(void);
+void rd_metrics_free(rd_metrics *m);
+
+/* Counts one HTTP response with this status (100..599; others are ignored). */
+void rd_metrics_count_http(rd_metrics *m, int status);
+
+/* Records the run time (start to finish, seconds) of a job that ran. */
+void rd_metrics_observe_job(rd_metrics *m, double seconds);
+
+/* The exposition text: ringdyn_jobs{state} from the caller's `n` state names
+ * and counts, ringdyn_job_duration_seconds (histogram) and
+ * ringdyn_http_requests_total{status}.  malloc'd, caller frees; NULL when out
+ * of memory. */
+char *rd_metrics_render(rd_metrics *m, const char *const *state_names, const size_t *state_counts,
+                        size_t n);
+
+#endif
