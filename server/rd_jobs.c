@@ -609,6 +609,15 @@ out:
     return rc;
 }
 
+/* Waits (mutex held) until the job is final, the server stops, or `seconds` pass. */
+static void wait_final_locked(rd_jobs *jobs, struct job *job, double seconds)
+{
+    struct timespec deadline = mono_deadline(seconds);
+    while (!is_final(job->status) && !jobs->stopping)
+        if (pthread_cond_timedwait(&jobs->done, &jobs->mu, &deadline) == ETIMEDOUT)
+            break;
+}
+
 int rd_jobs_view(rd_jobs *jobs, const char *id, double wait_s, char **json, int *finished,
                  rd_error *err)
 {
@@ -622,12 +631,8 @@ int rd_jobs_view(rd_jobs *jobs, const char *id, double wait_s, char **json, int 
         return not_found(err, id);
     }
     job->refs++;
-    if (wait_s > 0) {
-        struct timespec deadline = mono_deadline(wait_s);
-        while (!is_final(job->status) && !jobs->stopping)
-            if (pthread_cond_timedwait(&jobs->done, &jobs->mu, &deadline) == ETIMEDOUT)
-                break;
-    }
+    if (wait_s > 0)
+        wait_final_locked(jobs, job, wait_s);
     return view_and_release(jobs, job, json, finished, err);
 }
 
@@ -647,10 +652,7 @@ int rd_jobs_cancel(rd_jobs *jobs, const char *id, char **json, rd_error *err)
         pthread_cond_broadcast(&jobs->done);
     } else if (job->status == RD_JOB_RUNNING) {
         job->cancel = 1;
-        struct timespec deadline = mono_deadline(CANCEL_WAIT_S);
-        while (!is_final(job->status) && !jobs->stopping)
-            if (pthread_cond_timedwait(&jobs->done, &jobs->mu, &deadline) == ETIMEDOUT)
-                break;
+        wait_final_locked(jobs, job, CANCEL_WAIT_S);
     }
     return view_and_release(jobs, job, json, NULL, err);
 }
