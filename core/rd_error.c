@@ -14,15 +14,21 @@ void rd_error_init(rd_error *err)
     err->message[0] = '\0';
 }
 
-int rd_error_set(rd_error *err, int code, const char *path, const char *fmt, ...)
+int rd_error_setv(rd_error *err, int code, const char *path, const char *fmt, va_list ap)
 {
     if (!err || err->code != RD_OK)
         return code;
     err->code = code;
     snprintf(err->path, sizeof err->path, "%s", path ? path : "");
+    vsnprintf(err->message, sizeof err->message, fmt, ap);
+    return code;
+}
+
+int rd_error_set(rd_error *err, int code, const char *path, const char *fmt, ...)
+{
     va_list ap;
     va_start(ap, fmt);
-    vsnprintf(err->message, sizeof err->message, fmt, ap);
+    rd_error_setv(err, code, path, fmt, ap);
     va_end(ap);
     return code;
 }

@@ -12,6 +12,7 @@
 #ifndef RD_ERROR_H
 #define RD_ERROR_H
 
+#include <stdarg.h>
 #include <stddef.h>
 
 /* X(name, value, code string, summary) */
@@ -59,6 +60,9 @@ int rd_error_set(rd_error *err, int code, const char *path, const char *fmt, ...
     __attribute__((format(printf, 4, 5)))
 #endif
     ;
+
+/* rd_error_set with a va_list, for callers that forward their own format. */
+int rd_error_setv(rd_error *err, int code, const char *path, const char *fmt, va_list ap);
 
 /* "invalid_scene", ... for a status; "unknown_error" for codes not in the table. */
 const char *rd_error_code_name(int code);

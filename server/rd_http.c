@@ -359,10 +359,9 @@ static enum MHD_Result send_fail(rd_http *h, struct MHD_Connection *c, struct re
 {
     rd_error err;
     rd_error_init(&err);
-    err.code = code;
     va_list ap;
     va_start(ap, fmt);
-    vsnprintf(err.message, sizeof err.message, fmt, ap);
+    rd_error_setv(&err, code, "", fmt, ap);
     va_end(ap);
     return send_error(h, c, rq, &err, NULL);
 }

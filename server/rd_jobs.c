@@ -153,10 +153,9 @@ static char *error_json(int code, const char *fmt, ...)
 {
     rd_error err;
     rd_error_init(&err);
-    err.code = code;
     va_list ap;
     va_start(ap, fmt);
-    vsnprintf(err.message, sizeof err.message, fmt, ap);
+    rd_error_setv(&err, code, "", fmt, ap);
     va_end(ap);
     return rd_api_error_json(&err);
 }
