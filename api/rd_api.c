@@ -6,6 +6,7 @@
 #include "rd_api.h"
 
 #include <jansson.h>
+#include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
 #include <time.h>
@@ -226,4 +227,28 @@ int rd_api_http_status(int code)
     default:
         return 500;
     }
+}
+
+int rd_api_read_stream(FILE *f, size_t max, char **buf, size_t *len)
+{
+    *buf = NULL;
+    *len = 0;
+    if (max == SIZE_MAX)
+        return RD_ETOOLARGE;
+    char *b = malloc(max + 1);
+    if (!b)
+        return RD_ENOMEM;
+    size_t n = fread(b, 1, max + 1, f);
+    if (ferror(f)) {
+        free(b);
+        return RD_EREQUEST;
+    }
+    if (n > max) {
+        free(b);
+        return RD_ETOOLARGE;
+    }
+    b[n] = '\0';
+    *buf = b;
+    *len = n;
+    return RD_OK;
 }

@@ -15,6 +15,7 @@
 #define RD_API_H
 
 #include <stddef.h>
+#include <stdio.h>
 
 #include "rd_error.h"
 
@@ -83,6 +84,12 @@ char *rd_api_example_scene(const char *dir, const char *name, rd_error *err);
 /* The same JSON text indented by two spaces, for people (the CLI); reals
  * keep up to 15 significant digits.  NULL if `json` is not JSON. */
 char *rd_api_json_pretty(const char *json);
+
+/* Reads all of `f` (at most `max` bytes) into a new NUL-terminated buffer
+ * (*buf, caller frees; *len excludes the NUL).  Returns RD_OK, RD_ETOOLARGE
+ * (more than max bytes), RD_ENOMEM or RD_EREQUEST (read error).  Sets no
+ * message: the caller knows what it was reading and says so. */
+int rd_api_read_stream(FILE *f, size_t max, char **buf, size_t *len);
 
 /* Library version string. */
 const char *rd_api_version(void);

@@ -39,44 +39,28 @@ static char *example_path(const char *dir, const char *name)
 /* The whole file at `path` (at most RD_EXAMPLE_FILE_MAX bytes), NUL-terminated. */
 static int read_file(const char *path, const char *name, char **buf, size_t *len, rd_error *err)
 {
-    FILE *f = NULL;
-    char *b = NULL;
-    int rc = RD_OK;
-
     *buf = NULL;
     *len = 0;
-    f = fopen(path, "rb");
+    FILE *f = fopen(path, "rb");
     if (!f) {
         int e = errno;
-        rc = rd_error_set(err, e == ENOENT ? RD_ENOTFOUND : RD_EINTERNAL, "",
-                          e == ENOENT ? "no example named \"%s\"" : "cannot open example \"%s\"",
-                          name);
-        goto out;
+        return rd_error_set(err, e == ENOENT ? RD_ENOTFOUND : RD_EINTERNAL, "",
+                            e == ENOENT ? "no example named \"%s\"" : "cannot open example \"%s\"",
+                            name);
     }
-    b = malloc((size_t)RD_EXAMPLE_FILE_MAX + 1);
-    if (!b) {
-        rc = rd_error_set(err, RD_ENOMEM, "", "out of memory while reading example \"%s\"", name);
-        goto out;
+    int rc = rd_api_read_stream(f, RD_EXAMPLE_FILE_MAX, buf, len);
+    fclose(f);
+    switch (rc) {
+    case RD_OK:
+        return RD_OK;
+    case RD_ENOMEM:
+        return rd_error_set(err, rc, "", "out of memory while reading example \"%s\"", name);
+    case RD_ETOOLARGE:
+        return rd_error_set(err, RD_EINVAL, "", "example \"%s.json\" is larger than %d bytes", name,
+                            RD_EXAMPLE_FILE_MAX);
+    default:
+        return rd_error_set(err, RD_EINTERNAL, "", "cannot read example \"%s\"", name);
     }
-    size_t n = fread(b, 1, (size_t)RD_EXAMPLE_FILE_MAX + 1, f);
-    if (ferror(f)) {
-        rc = rd_error_set(err, RD_EINTERNAL, "", "cannot read example \"%s\"", name);
-        goto out;
-    }
-    if (n > (size_t)RD_EXAMPLE_FILE_MAX) {
-        rc = rd_error_set(err, RD_EINVAL, "", "example \"%s.json\" is larger than %d bytes", name,
-                          RD_EXAMPLE_FILE_MAX);
-        goto out;
-    }
-    b[n] = '\0';
-    *buf = b;
-    *len = n;
-    b = NULL;
-out:
-    free(b);
-    if (f)
-        fclose(f);
-    return rc;
 }
 
 /* Reads and validates example `name`; *root is the file's JSON as written

@@ -56,40 +56,25 @@ static int fail(const rd_error *err)
 /* Reads the whole scene (at most RD_API_BODY_MAX bytes) from a file or stdin. */
 static int read_scene(const char *name, char **buf, size_t *len, rd_error *err)
 {
-    FILE *f = strcmp(name, "-") == 0 ? stdin : fopen(name, "rb");
-    char *b = NULL;
-    int rc = RD_OK;
-
     *buf = NULL;
     *len = 0;
-    if (!f) {
-        rc = rd_error_set(err, RD_EREQUEST, "", "cannot open %s: %s", name, strerror(errno));
-        goto out;
-    }
-    b = malloc((size_t)RD_API_BODY_MAX + 1);
-    if (!b) {
-        rc = rd_error_set(err, RD_ENOMEM, "", "out of memory while reading %s", name);
-        goto out;
-    }
-    size_t n = fread(b, 1, (size_t)RD_API_BODY_MAX + 1, f);
-    if (ferror(f)) {
-        rc = rd_error_set(err, RD_EREQUEST, "", "cannot read %s", name);
-        goto out;
-    }
-    if (n > (size_t)RD_API_BODY_MAX) {
-        rc = rd_error_set(err, RD_ETOOLARGE, "", "%s is larger than the limit of %d bytes", name,
-                          RD_API_BODY_MAX);
-        goto out;
-    }
-    b[n] = '\0';
-    *buf = b;
-    *len = n;
-    b = NULL;
-out:
-    free(b);
-    if (f && f != stdin)
+    FILE *f = strcmp(name, "-") == 0 ? stdin : fopen(name, "rb");
+    if (!f)
+        return rd_error_set(err, RD_EREQUEST, "", "cannot open %s: %s", name, strerror(errno));
+    int rc = rd_api_read_stream(f, RD_API_BODY_MAX, buf, len);
+    if (f != stdin)
         fclose(f);
-    return rc;
+    switch (rc) {
+    case RD_OK:
+        return RD_OK;
+    case RD_ENOMEM:
+        return rd_error_set(err, rc, "", "out of memory while reading %s", name);
+    case RD_ETOOLARGE:
+        return rd_error_set(err, rc, "", "%s is larger than the limit of %d bytes", name,
+                            RD_API_BODY_MAX);
+    default:
+        return rd_error_set(err, RD_EREQUEST, "", "cannot read %s", name);
+    }
 }
 
 /* `run` and `check`: parse, then print the echo (check) or run and print

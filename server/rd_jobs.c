@@ -608,6 +608,21 @@ out:
     return rc;
 }
 
+/* Locks the store and finds job `id`, taking a reference: on RD_OK *out is the
+ * job and the mutex is held (drop the job with release_locked); otherwise the
+ * mutex is released and the status is RD_ENOTFOUND. */
+static int acquire_locked(rd_jobs *jobs, const char *id, struct job **out, rd_error *err)
+{
+    pthread_mutex_lock(&jobs->mu);
+    *out = find_locked(jobs, id);
+    if (!*out) {
+        pthread_mutex_unlock(&jobs->mu);
+        return not_found(err, id);
+    }
+    (*out)->refs++;
+    return RD_OK;
+}
+
 /* Waits (mutex held) until the job is final, the server stops, or `seconds` pass. */
 static void wait_final_locked(rd_jobs *jobs, struct job *job, double seconds)
 {
@@ -623,13 +638,10 @@ int rd_jobs_view(rd_jobs *jobs, const char *id, double wait_s, char **json, int 
     *json = NULL;
     if (finished)
         *finished = 0;
-    pthread_mutex_lock(&jobs->mu);
-    struct job *job = find_locked(jobs, id);
-    if (!job) {
-        pthread_mutex_unlock(&jobs->mu);
-        return not_found(err, id);
-    }
-    job->refs++;
+    struct job *job;
+    int acquired = acquire_locked(jobs, id, &job, err);
+    if (acquired != RD_OK)
+        return acquired;
     if (wait_s > 0)
         wait_final_locked(jobs, job, wait_s);
     return view_and_release(jobs, job, json, finished, err);
@@ -638,13 +650,10 @@ int rd_jobs_view(rd_jobs *jobs, const char *id, double wait_s, char **json, int 
 int rd_jobs_cancel(rd_jobs *jobs, const char *id, char **json, rd_error *err)
 {
     *json = NULL;
-    pthread_mutex_lock(&jobs->mu);
-    struct job *job = find_locked(jobs, id);
-    if (!job) {
-        pthread_mutex_unlock(&jobs->mu);
-        return not_found(err, id);
-    }
-    job->refs++;
+    struct job *job;
+    int acquired = acquire_locked(jobs, id, &job, err);
+    if (acquired != RD_OK)
+        return acquired;
     if (job->status == RD_JOB_QUEUED) {
         cancel_queued_locked(jobs, job, "The job was cancelled by a DELETE request.");
         evict_locked(jobs);
@@ -659,19 +668,17 @@ int rd_jobs_cancel(rd_jobs *jobs, const char *id, char **json, rd_error *err)
 int rd_jobs_result_csv(rd_jobs *jobs, const char *id, char **csv, rd_error *err)
 {
     *csv = NULL;
-    pthread_mutex_lock(&jobs->mu);
-    struct job *job = find_locked(jobs, id);
-    if (!job) {
-        pthread_mutex_unlock(&jobs->mu);
-        return not_found(err, id);
-    }
+    struct job *job;
+    int acquired = acquire_locked(jobs, id, &job, err);
+    if (acquired != RD_OK)
+        return acquired;
     if (job->status != RD_JOB_SUCCEEDED) {
         int rc = rd_error_set(err, RD_ENOTFOUND, "", "Job %s has no result (status %s).", job->id,
                               rd_jobs_status_name(job->status));
+        release_locked(job);
         pthread_mutex_unlock(&jobs->mu);
         return rc;
     }
-    job->refs++;
     pthread_mutex_unlock(&jobs->mu);
 
     /* The input is the api's own output, so a failure here is ours, not the
