@@ -11,8 +11,10 @@
 #include <string.h>
 #include <time.h>
 
+#include "rd_lift.h"
 #include "rd_modal.h"
 #include "rd_result.h"
+#include "rd_static.h"
 #include "rd_ring.h"
 #include "rd_scene.h"
 
@@ -62,10 +64,65 @@ out:
     return rc;
 }
 
+/* Pretension: the free shape; wall_s covers both solves (the second one is
+ * the error estimate). */
+static int run_pretension(const rd_scene *s, const rd_monitor *mon, json_t **out, rd_error *err)
+{
+    rd_pretension_result res;
+    struct timespec t0, t1;
+    clock_gettime(CLOCK_MONOTONIC, &t0);
+    int rc = rd_pretension_solve(&s->ring, s->segments, &s->pretension, &s->statics, mon, &res,
+                                 err);
+    clock_gettime(CLOCK_MONOTONIC, &t1);
+    if (rc == RD_OK) {
+        *out = rd_result_pretension(s, &res, seconds_between(&t0, &t1));
+        if (!*out)
+            rc = rd_error_set(err, RD_ENOMEM, "", "out of memory while writing the result");
+    }
+    rd_pretension_result_cleanup(&res);
+    return rc;
+}
+
+static int run_contact(const rd_scene *s, const rd_monitor *mon, json_t **out, rd_error *err)
+{
+    rd_contact_result res;
+    struct timespec t0, t1;
+    clock_gettime(CLOCK_MONOTONIC, &t0);
+    int rc = rd_contact_solve(&s->ring, s->segments, &s->contact, &s->statics, mon, &res, err);
+    clock_gettime(CLOCK_MONOTONIC, &t1);
+    if (rc == RD_OK) {
+        *out = rd_result_contact(s, &res, seconds_between(&t0, &t1));
+        if (!*out)
+            rc = rd_error_set(err, RD_ENOMEM, "", "out of memory while writing the result");
+    }
+    rd_contact_result_cleanup(&res);
+    return rc;
+}
+
+static int run_lift(const rd_scene *s, const rd_monitor *mon, json_t **out, rd_error *err)
+{
+    rd_lift_result res;
+    struct timespec t0, t1;
+    memset(&res, 0, sizeof res);
+    clock_gettime(CLOCK_MONOTONIC, &t0);
+    int rc = rd_lift_solve(&s->ring, s->segments, &s->lift, mon, &res, err);
+    clock_gettime(CLOCK_MONOTONIC, &t1);
+    if (rc == RD_OK) {
+        *out = rd_result_lift(s, &res, seconds_between(&t0, &t1));
+        if (!*out)
+            rc = rd_error_set(err, RD_ENOMEM, "", "out of memory while writing the result");
+    }
+    rd_lift_result_cleanup(&res);
+    return rc;
+}
+
 /* Indexed by enum rd_analysis; NULL = not available (the parser already
  * refuses those scenes). */
 static int (*const runners[])(const rd_scene *, const rd_monitor *, json_t **, rd_error *) = {
     [RD_ANALYSIS_MODAL] = run_modal,
+    [RD_ANALYSIS_PRETENSION] = run_pretension,
+    [RD_ANALYSIS_CONTACT] = run_contact,
+    [RD_ANALYSIS_LIFT] = run_lift,
 };
 
 int rd_scene_run(const rd_scene *scene, const rd_monitor *mon, char **result_json, rd_error *err)

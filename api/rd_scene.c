@@ -28,6 +28,9 @@ enum field_type {
     F_STRING,   /* char *, strdup'd */
     F_CHOICE,   /* int: index of the JSON string in `choices` */
     F_BLOCK,    /* nested object with its own field table */
+    F_OPTBLOCK, /* F_BLOCK whose presence sets the int at `offset` to 1 */
+    F_TABLE,    /* struct rd_table: an array of numbers, malloc'd */
+    F_DISTORTION, /* /bore/distortion: an array of {order, amplitude, phase_deg} */
     F_IGNORED   /* a block this analysis does not read: not even type-checked */
 };
 
@@ -78,6 +81,137 @@ static const field modal_fields[] = {
     END,
 };
 
+/* ---- pretension and contact ---- */
+static const char *const method_names[] = {"force", "field", NULL}; /* enum rd_pretension_method */
+
+static const field pretension_fields[] = {
+    {"method", F_CHOICE, AT(pretension.method), NULL, method_names, 0, 0},
+    {"lateral_force", F_NUMBER, AT(pretension.lateral_force), NULL, NULL, 0, 0},
+    END,
+};
+
+static const field bore_fields[] = {
+    {"diameter", F_NUMBER, AT(contact.bore_diameter), NULL, NULL, 0, 0},
+    {"distortion", F_DISTORTION, AT(contact), NULL, NULL, 0, 0},
+    END,
+};
+
+static const field contact_fields[] = {
+    {"points_per_segment", F_INTEGER, AT(contact.points_per_segment), NULL, NULL, 1,
+     RD_CONTACT_POINTS_MAX},
+    {"stiffness", F_NUMBER, AT(contact.stiffness), NULL, NULL, 0, 0},
+    END,
+};
+
+static const field static_numerics_fields[] = {
+    {"tolerance", F_NUMBER, AT(statics.tol), NULL, NULL, 0, 0},
+    {"max_iterations", F_INTEGER, AT(statics.max_iterations), NULL, NULL, 1, 100000},
+    {"error_estimate", F_BOOL, AT(statics.estimate_error), NULL, NULL, 0, 0},
+    END,
+};
+
+/* ---- lift ---- */
+static const char *const kinematics_names[] = {"exact", "approximate", NULL}; /* enum rd_kinematics */
+static const char *const friction_names[] = {"coulomb", "stribeck", NULL};   /* model - 1 */
+static const char *const area_names[] = {"fixed", "dynamic", NULL};          /* enum rd_gas_area */
+
+static const field engine_fields[] = {
+    {"speed_rpm", F_NUMBER, AT(lift.engine.speed_rpm), NULL, NULL, 0, 0},
+    {"crank_radius", F_NUMBER, AT(lift.engine.crank_radius), NULL, NULL, 0, 0},
+    {"rod_length", F_NUMBER, AT(lift.engine.rod_length), NULL, NULL, 0, 0},
+    {"kinematics", F_CHOICE, AT(lift.engine.kinematics), NULL, kinematics_names, 0, 0},
+    {"cycles", F_NUMBER, AT(lift.engine.cycles), NULL, NULL, 0, 0},
+    END,
+};
+
+static const field groove_fields[] = {
+    {"axial_clearance", F_NUMBER, AT(lift.groove.axial_clearance), NULL, NULL, 0, 0},
+    {"radial_clearance", F_NUMBER, AT(lift.groove.radial_clearance), NULL, NULL, 0, 0},
+    END,
+};
+
+static const field friction_fields[] = {
+    {"model", F_CHOICE, AT(friction_model), NULL, friction_names, 0, 0},
+    {"coefficient", F_NUMBER, AT(lift.friction.coefficient), NULL, NULL, 0, 0},
+    {"viscosity", F_NUMBER, AT(lift.friction.viscosity), NULL, NULL, 0, 0},
+    {"sommerfeld_transition", F_NUMBER, AT(lift.friction.sommerfeld_transition), NULL, NULL, 0, 0},
+    {"hydrodynamic_slope", F_NUMBER, AT(lift.friction.hydrodynamic_slope), NULL, NULL, 0, 0},
+    END,
+};
+
+static const field gas_fields[] = {
+    {"crank_deg", F_TABLE, AT(gas_table[0]), NULL, NULL, 0, 0},
+    {"above", F_TABLE, AT(gas_table[1]), NULL, NULL, 0, 0},
+    {"behind", F_TABLE, AT(gas_table[2]), NULL, NULL, 0, 0},
+    {"below", F_TABLE, AT(gas_table[3]), NULL, NULL, 0, 0},
+    {"active_area", F_CHOICE, AT(lift.gas.active_area), NULL, area_names, 0, 0},
+    END,
+};
+
+static const field physics_fields[] = {
+    {"gravity", F_BOOL, AT(lift.gravity), NULL, NULL, 0, 0},
+    {"friction", F_OPTBLOCK, AT(friction_given), friction_fields, NULL, 0, 0},
+    {"gas", F_OPTBLOCK, AT(gas_given), gas_fields, NULL, 0, 0},
+    END,
+};
+
+static const field lift_contact_fields[] = {
+    {"stiffness", F_NUMBER, AT(lift.contact_stiffness), NULL, NULL, 0, 0},
+    END,
+};
+
+static const field output_fields[] = {
+    {"step_deg", F_NUMBER, AT(lift.step_deg), NULL, NULL, 0, 0},
+    END,
+};
+
+static const field lift_numerics_fields[] = {
+    {"rtol", F_NUMBER, AT(lift.rtol), NULL, NULL, 0, 0},
+    {"atol", F_NUMBER, AT(lift.atol), NULL, NULL, 0, 0},
+    {"max_steps", F_INTEGER, AT(max_steps), NULL, NULL, 1, 100000000},
+    {"error_estimate", F_BOOL, AT(lift.estimate_error), NULL, NULL, 0, 0},
+    END,
+};
+
+#define COMMON_FIELDS                                                                             \
+    {"analysis", F_ANALYSIS, 0, NULL, NULL, 0, 0},                                                \
+        {"name", F_STRING, AT(name), NULL, NULL, 0, 0},                                           \
+        {"description", F_STRING, AT(description), NULL, NULL, 0, 0},                             \
+        {"ring", F_BLOCK, 0, ring_fields, NULL, 0, 0},                                            \
+        {"discretization", F_BLOCK, 0, discretization_fields, NULL, 0, 0}
+#define IGNORED(key) {key, F_IGNORED, 0, NULL, NULL, 0, 0}
+
+static const field pretension_scene_fields[] = {
+    COMMON_FIELDS,
+    {"pretension", F_BLOCK, 0, pretension_fields, NULL, 0, 0},
+    {"numerics", F_BLOCK, 0, static_numerics_fields, NULL, 0, 0},
+    IGNORED("modal"), IGNORED("bore"), IGNORED("contact"), IGNORED("engine"), IGNORED("groove"),
+    IGNORED("physics"), IGNORED("output"),
+    END,
+};
+
+static const field contact_scene_fields[] = {
+    COMMON_FIELDS,
+    {"bore", F_BLOCK, 0, bore_fields, NULL, 0, 0},
+    {"contact", F_BLOCK, 0, contact_fields, NULL, 0, 0},
+    {"numerics", F_BLOCK, 0, static_numerics_fields, NULL, 0, 0},
+    IGNORED("modal"), IGNORED("pretension"), IGNORED("engine"), IGNORED("groove"),
+    IGNORED("physics"), IGNORED("output"),
+    END,
+};
+
+static const field lift_scene_fields[] = {
+    COMMON_FIELDS,
+    {"engine", F_BLOCK, 0, engine_fields, NULL, 0, 0},
+    {"groove", F_BLOCK, 0, groove_fields, NULL, 0, 0},
+    {"physics", F_BLOCK, 0, physics_fields, NULL, 0, 0},
+    {"contact", F_BLOCK, 0, lift_contact_fields, NULL, 0, 0},
+    {"output", F_BLOCK, 0, output_fields, NULL, 0, 0},
+    {"numerics", F_BLOCK, 0, lift_numerics_fields, NULL, 0, 0},
+    IGNORED("modal"), IGNORED("pretension"), IGNORED("bore"),
+    END,
+};
+
 /* Top level of a modal scene.  The blocks of the other analyses are known
  * (so they are not typos) but ignored: API.md, "a block the analysis does
  * not use is ignored". */
@@ -95,6 +229,7 @@ static const field modal_scene_fields[] = {
     {"physics", F_IGNORED, 0, NULL, NULL, 0, 0},
     {"output", F_IGNORED, 0, NULL, NULL, 0, 0},
     {"numerics", F_IGNORED, 0, NULL, NULL, 0, 0},
+    {"contact", F_IGNORED, 0, NULL, NULL, 0, 0},
     END,
 };
 
@@ -105,9 +240,9 @@ static const struct analysis_def {
     const field *fields;
 } analyses[] = {
     [RD_ANALYSIS_MODAL] = {"modal", modal_scene_fields},
-    [RD_ANALYSIS_PRETENSION] = {"pretension", NULL},
-    [RD_ANALYSIS_CONTACT] = {"contact", NULL},
-    [RD_ANALYSIS_LIFT] = {"lift", NULL},
+    [RD_ANALYSIS_PRETENSION] = {"pretension", pretension_scene_fields},
+    [RD_ANALYSIS_CONTACT] = {"contact", contact_scene_fields},
+    [RD_ANALYSIS_LIFT] = {"lift", lift_scene_fields},
 };
 #define N_ANALYSES ((int)(sizeof analyses / sizeof analyses[0]))
 
@@ -250,6 +385,98 @@ static int parse_integer(const field *f, json_t *v, const char *path, int *out, 
     return RD_OK;
 }
 
+/* F_TABLE: a non-empty array of numbers, at most RD_LIFT_TABLE_MAX long. */
+static int parse_table(json_t *v, const char *path, struct rd_table *t, rd_error *err)
+{
+    size_t i;
+    json_t *x;
+    if (!json_is_array(v))
+        return type_error(err, path, "an array of numbers", v);
+    size_t n = json_array_size(v);
+    if (n == 0 || n > RD_LIFT_TABLE_MAX)
+        return rd_error_set(err, n ? RD_ELIMIT : RD_EINVAL, path,
+                            "%s has %zu values; allowed 2 to %d.", path, n, RD_LIFT_TABLE_MAX);
+    free(t->v);
+    t->n = 0;
+    t->v = malloc(n * sizeof *t->v);
+    if (!t->v)
+        return rd_error_set(err, RD_ENOMEM, path, "out of memory while reading %s", path);
+    json_array_foreach(v, i, x) {
+        if (!json_is_number(x)) {
+            char item[RD_ERROR_PATH_MAX + 24];
+            snprintf(item, sizeof item, "%s/%zu", path, i);
+            return type_error(err, item, "a number", x);
+        }
+        t->v[i] = json_number_value(x);
+    }
+    t->n = (int)n;
+    return RD_OK;
+}
+
+/* F_DISTORTION: [{"order": k, "amplitude": A, "phase_deg": phi}, ...]. */
+static int parse_distortion(json_t *v, const char *path, rd_contact_opts *c, rd_error *err)
+{
+    static const char *const keys[] = {"order", "amplitude", "phase_deg"};
+    size_t i;
+    json_t *item;
+    if (!json_is_array(v))
+        return type_error(err, path, "an array of {order, amplitude, phase_deg}", v);
+    if (json_array_size(v) > RD_DISTORTION_MAX)
+        return rd_error_set(err, RD_ELIMIT, path, "%s has %zu entries; at most %d are allowed.",
+                            path, json_array_size(v), RD_DISTORTION_MAX);
+    c->n_distortion = 0;
+    json_array_foreach(v, i, item) {
+        char at[RD_ERROR_PATH_MAX + 24], child[RD_ERROR_PATH_MAX + 48];
+        snprintf(at, sizeof at, "%s/%zu", path, i);
+        if (!json_is_object(item))
+            return type_error(err, at, "an object {order, amplitude, phase_deg}", item);
+        const char *key;
+        json_t *x;
+        json_object_foreach(item, key, x) {
+            int known = 0;
+            for (int k = 0; k < 3; k++)
+                known |= strcmp(key, keys[k]) == 0;
+            if (!known) {
+                char q[QUOTE_MAX + 8];
+                quote(q, sizeof q, key);
+                path_join(child, sizeof child, at, key);
+                return rd_error_set(err, RD_EINVAL, child,
+                                    "unknown field %s in %s (known: order, amplitude, phase_deg)",
+                                    q, at);
+            }
+        }
+        rd_distortion *d = &c->distortion[i];
+        d->order = 0;
+        d->amplitude = 0.0;
+        d->phase_deg = 0.0;
+        json_t *order = json_object_get(item, "order"), *amp = json_object_get(item, "amplitude"),
+               *phase = json_object_get(item, "phase_deg");
+        path_join(child, sizeof child, at, "order");
+        if (!order)
+            return rd_error_set(err, RD_EINVAL, child, "%s is missing: each distortion needs its "
+                                "Fourier order (1 to 64)", child);
+        if (!json_is_integer(order))
+            return type_error(err, child, "an integer", order);
+        json_int_t k = json_integer_value(order);
+        d->order = k < -1000 ? -1000 : k > 1000 ? 1000 : (int)k;
+        path_join(child, sizeof child, at, "amplitude");
+        if (!amp)
+            return rd_error_set(err, RD_EINVAL, child, "%s is missing: each distortion needs its "
+                                "amplitude (m)", child);
+        if (!json_is_number(amp))
+            return type_error(err, child, "a number", amp);
+        d->amplitude = json_number_value(amp);
+        if (phase) {
+            path_join(child, sizeof child, at, "phase_deg");
+            if (!json_is_number(phase))
+                return type_error(err, child, "a number", phase);
+            d->phase_deg = json_number_value(phase);
+        }
+        c->n_distortion = (int)i + 1;
+    }
+    return RD_OK;
+}
+
 static int parse_field(const field *f, json_t *v, const char *path, struct rd_scene *s,
                        rd_error *err)
 {
@@ -291,10 +518,17 @@ static int parse_field(const field *f, json_t *v, const char *path, struct rd_sc
         }
         return type_error(err, path, want, v);
     }
+    case F_OPTBLOCK:
+        *(int *)at = 1;
+        /* fall through */
     case F_BLOCK:
         if (!json_is_object(v))
             return type_error(err, path, "an object", v);
         return parse_block(v, f->block, path, s, err);
+    case F_TABLE:
+        return parse_table(v, path, (struct rd_table *)at, err);
+    case F_DISTORTION:
+        return parse_distortion(v, path, (rd_contact_opts *)at, err);
     case F_ANALYSIS:
     case F_IGNORED:
         return RD_OK;
@@ -374,6 +608,44 @@ static int parse_analysis(json_t *root, int *out, rd_error *err)
                         available);
 }
 
+/* Lift: the optional physics the scene named, the gas tables (four of the
+ * same length), then core's checks. */
+static int lift_finish(struct rd_scene *s, rd_error *err)
+{
+    static const char *const names[] = {"crank_deg", "above", "behind", "below"};
+    rd_lift_params *l = &s->lift;
+    if (s->closed)
+        return rd_error_set(err, RD_EINVAL, "/discretization/closed",
+                            "/discretization/closed = true joins the gap, but the lift analysis "
+                            "models the split ring in its groove: use closed = false.");
+    l->friction.model = s->friction_given ? s->friction_model + 1 : RD_FRICTION_NONE;
+    l->max_steps = s->max_steps;
+    l->gas.points = 0;
+    if (s->gas_given) {
+        for (int k = 0; k < 4; k++) {
+            char path[64];
+            snprintf(path, sizeof path, "/physics/gas/%s", names[k]);
+            if (!s->gas_table[k].v)
+                return rd_error_set(err, RD_EINVAL, path,
+                                    "%s is missing: a gas block needs crank_deg, above, behind "
+                                    "and below, all of the same length (use zeros for a face "
+                                    "without pressure).",
+                                    path);
+            if (s->gas_table[k].n != s->gas_table[0].n)
+                return rd_error_set(err, RD_EINVAL, path,
+                                    "%s has %d values but /physics/gas/crank_deg has %d; all "
+                                    "four tables must have the same length.",
+                                    path, s->gas_table[k].n, s->gas_table[0].n);
+        }
+        l->gas.points = s->gas_table[0].n;
+        l->gas.crank_deg = s->gas_table[0].v;
+        l->gas.above = s->gas_table[1].v;
+        l->gas.behind = s->gas_table[2].v;
+        l->gas.below = s->gas_table[3].v;
+    }
+    return rd_lift_validate(l, &s->ring, s->segments, err);
+}
+
 int rd_scene_parse_value(struct json_t *root, rd_scene **out, rd_error *err)
 {
     rd_scene *s = NULL;
@@ -397,6 +669,12 @@ int rd_scene_parse_value(struct json_t *root, rd_scene **out, rd_error *err)
     s->closed = 0;
     rd_modal_opts_default(&s->modal);
     s->modal.estimate_error = 1; /* API default, whatever core's is */
+    rd_static_opts_default(&s->statics);
+    s->statics.estimate_error = 1;
+    rd_pretension_opts_default(&s->pretension);
+    rd_contact_opts_default(&s->contact);
+    rd_lift_params_default(&s->lift);
+    s->max_steps = (int)s->lift.max_steps;
 
     rc = parse_analysis(root, &s->analysis, err);
     if (rc != RD_OK)
@@ -409,11 +687,24 @@ int rd_scene_parse_value(struct json_t *root, rd_scene **out, rd_error *err)
     rc = rd_ring_validate(&s->ring, s->segments, s->closed, err);
     if (rc != RD_OK)
         goto out;
-    if (s->analysis == RD_ANALYSIS_MODAL) {
+    switch (s->analysis) {
+    case RD_ANALYSIS_MODAL:
         rc = rd_modal_validate(&s->modal, s->segments, err);
-        if (rc != RD_OK)
-            goto out;
+        break;
+    case RD_ANALYSIS_PRETENSION:
+        if ((rc = rd_static_validate(&s->statics, s->segments, s->closed, err)) == RD_OK)
+            rc = rd_pretension_validate(&s->pretension, &s->ring, err);
+        break;
+    case RD_ANALYSIS_CONTACT:
+        if ((rc = rd_static_validate(&s->statics, s->segments, s->closed, err)) == RD_OK)
+            rc = rd_contact_validate(&s->contact, &s->ring, err);
+        break;
+    case RD_ANALYSIS_LIFT:
+        rc = lift_finish(s, err);
+        break;
     }
+    if (rc != RD_OK)
+        goto out;
     *out = s;
     s = NULL;
 out:
@@ -456,10 +747,125 @@ void rd_scene_free(rd_scene *scene)
         return;
     free(scene->name);
     free(scene->description);
+    for (int k = 0; k < 4; k++)
+        free(scene->gas_table[k].v);
     free(scene);
 }
 
 /* ---- echo ---------------------------------------------------------------- */
+
+/* A real or null (non-finite values never reach here after validation, but
+ * jansson refuses them, so be safe). */
+static json_t *real(double x)
+{
+    return isfinite(x) ? json_real(x) : json_null();
+}
+
+static json_t *table_echo(const struct rd_table *t)
+{
+    json_t *a = json_array();
+    for (int i = 0; a && i < t->n; i++)
+        if (json_array_append_new(a, real(t->v[i])) != 0) {
+            json_decref(a);
+            return NULL;
+        }
+    return a;
+}
+
+static json_t *distortion_echo(const rd_contact_opts *c)
+{
+    json_t *a = json_array();
+    for (int i = 0; a && i < c->n_distortion; i++) {
+        const rd_distortion *d = &c->distortion[i];
+        if (json_array_append_new(a, json_pack("{s:i, s:o, s:o}", "order", d->order, "amplitude",
+                                               real(d->amplitude), "phase_deg",
+                                               real(d->phase_deg))) != 0) {
+            json_decref(a);
+            return NULL;
+        }
+    }
+    return a;
+}
+
+static json_t *static_numerics_echo(const rd_scene *s)
+{
+    return json_pack("{s:o, s:i, s:b}", "tolerance", real(s->statics.tol), "max_iterations",
+                     s->statics.max_iterations, "error_estimate", s->statics.estimate_error);
+}
+
+/* The blocks only one analysis reads; NULL on out of memory. */
+static int echo_analysis_blocks(const rd_scene *s, json_t *o)
+{
+    int bad = 0;
+    const rd_lift_params *l = &s->lift;
+    switch (s->analysis) {
+    case RD_ANALYSIS_MODAL:
+        bad |= json_object_set_new(o, "modal", json_pack("{s:i, s:b}", "modes", s->modal.modes,
+                                                         "error_estimate",
+                                                         s->modal.estimate_error));
+        break;
+    case RD_ANALYSIS_PRETENSION:
+        bad |= json_object_set_new(o, "pretension",
+                                   json_pack("{s:s, s:o}", "method",
+                                             method_names[s->pretension.method], "lateral_force",
+                                             real(s->pretension.lateral_force)));
+        bad |= json_object_set_new(o, "numerics", static_numerics_echo(s));
+        break;
+    case RD_ANALYSIS_CONTACT:
+        bad |= json_object_set_new(
+            o, "bore",
+            json_pack("{s:o, s:o}", "diameter",
+                      real(s->contact.bore_diameter > 0 ? s->contact.bore_diameter
+                                                        : s->ring.diameter),
+                      "distortion", distortion_echo(&s->contact)));
+        bad |= json_object_set_new(
+            o, "contact",
+            json_pack("{s:i, s:o}", "points_per_segment", s->contact.points_per_segment,
+                      "stiffness",
+                      real(s->contact.stiffness > 0 ? s->contact.stiffness
+                                                    : rd_contact_default_stiffness(&s->ring))));
+        bad |= json_object_set_new(o, "numerics", static_numerics_echo(s));
+        break;
+    case RD_ANALYSIS_LIFT: {
+        json_t *physics = json_pack("{s:b}", "gravity", l->gravity);
+        if (physics && s->friction_given)
+            bad |= json_object_set_new(
+                physics, "friction",
+                json_pack("{s:s, s:o, s:o, s:o, s:o}", "model", friction_names[s->friction_model],
+                          "coefficient", real(l->friction.coefficient), "viscosity",
+                          real(l->friction.viscosity), "sommerfeld_transition",
+                          real(l->friction.sommerfeld_transition), "hydrodynamic_slope",
+                          real(l->friction.hydrodynamic_slope)));
+        if (physics && s->gas_given)
+            bad |= json_object_set_new(
+                physics, "gas",
+                json_pack("{s:o, s:o, s:o, s:o, s:s}", "crank_deg", table_echo(&s->gas_table[0]),
+                          "above", table_echo(&s->gas_table[1]), "behind",
+                          table_echo(&s->gas_table[2]), "below", table_echo(&s->gas_table[3]),
+                          "active_area", area_names[l->gas.active_area]));
+        bad |= json_object_set_new(
+            o, "engine",
+            json_pack("{s:o, s:o, s:o, s:s, s:o}", "speed_rpm", real(l->engine.speed_rpm),
+                      "crank_radius", real(l->engine.crank_radius), "rod_length",
+                      real(l->engine.rod_length), "kinematics",
+                      kinematics_names[l->engine.kinematics], "cycles", real(l->engine.cycles)));
+        bad |= json_object_set_new(o, "groove",
+                                   json_pack("{s:o, s:o}", "axial_clearance",
+                                             real(l->groove.axial_clearance), "radial_clearance",
+                                             real(l->groove.radial_clearance)));
+        bad |= json_object_set_new(o, "physics", physics);
+        bad |= json_object_set_new(o, "contact",
+                                   json_pack("{s:o}", "stiffness", real(l->contact_stiffness)));
+        bad |= json_object_set_new(o, "output", json_pack("{s:o}", "step_deg", real(l->step_deg)));
+        bad |= json_object_set_new(o, "numerics",
+                                   json_pack("{s:o, s:o, s:I, s:b}", "rtol", real(l->rtol), "atol",
+                                             real(l->atol), "max_steps", (json_int_t)l->max_steps,
+                                             "error_estimate", l->estimate_error));
+        break;
+    }
+    }
+    return bad ? -1 : 0;
+}
 
 json_t *rd_scene_echo(const rd_scene *s)
 {
@@ -467,31 +873,32 @@ json_t *rd_scene_echo(const rd_scene *s)
     const int n_sections = (int)(sizeof section_names / sizeof section_names[0]) - 1;
     const char *section = r->section >= 0 && r->section < n_sections ? section_names[r->section]
                                                                     : "unknown";
-    /* Key order is the order of the schema.  Only the modal blocks exist so
-     * far; another analysis adds its own blocks here. */
-    return json_pack("{s:s, s:s*, s:s*,"
-                     " s:{s:f, s:f, s:f, s:f, s:f, s:s, s:{s:f, s:f, s:f}},"
-                     " s:{s:i, s:b}, s:{s:i, s:b}}",
-                     "analysis", rd_scene_analysis(s),
-                     "name", s->name,
-                     "description", s->description,
-                     "ring",
-                         "diameter", r->diameter,
-                         "radial_width", r->radial_width,
-                         "axial_height", r->axial_height,
-                         "closed_gap", r->closed_gap,
-                         "tangential_force", r->tangential_force,
-                         "section", section,
-                         "material",
-                             "youngs_modulus", r->youngs_modulus,
-                             "poisson_ratio", r->poisson_ratio,
-                             "density", r->density,
-                     "discretization",
-                         "segments", s->segments,
-                         "closed", s->closed,
-                     "modal",
-                         "modes", s->modal.modes,
-                         "error_estimate", s->modal.estimate_error);
+    /* Key order is the order of the schema. */
+    json_t *o = json_pack("{s:s, s:s*, s:s*,"
+                          " s:{s:f, s:f, s:f, s:f, s:f, s:s, s:{s:f, s:f, s:f}},"
+                          " s:{s:i, s:b}}",
+                          "analysis", rd_scene_analysis(s),
+                          "name", s->name,
+                          "description", s->description,
+                          "ring",
+                              "diameter", r->diameter,
+                              "radial_width", r->radial_width,
+                              "axial_height", r->axial_height,
+                              "closed_gap", r->closed_gap,
+                              "tangential_force", r->tangential_force,
+                              "section", section,
+                              "material",
+                                  "youngs_modulus", r->youngs_modulus,
+                                  "poisson_ratio", r->poisson_ratio,
+                                  "density", r->density,
+                          "discretization",
+                              "segments", s->segments,
+                              "closed", s->closed);
+    if (o && echo_analysis_blocks(s, o) != 0) {
+        json_decref(o);
+        o = NULL;
+    }
+    return o;
 }
 
 char *rd_scene_to_json(const rd_scene *scene)

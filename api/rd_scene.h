@@ -21,8 +21,10 @@
 #define RD_SCENE_H
 
 #include "rd_api.h"
+#include "rd_lift.h"
 #include "rd_modal.h"
 #include "rd_ring.h"
+#include "rd_static.h"
 
 struct json_t; /* jansson; api-internal headers use it without including jansson.h */
 
@@ -50,6 +52,19 @@ struct rd_scene {
     int segments;        /* /discretization/segments */
     int closed;          /* /discretization/closed: 1 joins the gap */
     rd_modal_opts modal; /* /modal: modes, estimate_error */
+    rd_static_opts statics;        /* /numerics of pretension and contact */
+    rd_pretension_opts pretension; /* /pretension */
+    rd_contact_opts contact;       /* /bore, /contact */
+    rd_lift_params lift;           /* /engine, /groove, /physics, /contact, /output, /numerics */
+    /* lift: which optional physics the scene names, and the gas tables it
+     * owns (rd_lift_params.gas borrows them) */
+    int friction_given, gas_given;
+    int friction_model;            /* index into the "model" choices */
+    int max_steps;                 /* /numerics/max_steps (lift) */
+    struct rd_table {
+        double *v;
+        int n;
+    } gas_table[4];                /* crank_deg, above, behind, below */
 };
 
 /* Name of an analysis ("modal", ...); "unknown" outside the enum. */

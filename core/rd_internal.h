@@ -27,5 +27,12 @@ const double *rd_ring_segment_mass_matrix(const rd_ring *ring, int i);
 /* Largest ratio K_jj / M_jj: a cheap proxy for the largest eigenvalue of
  * (K, M), used to size numerical-noise thresholds. */
 double rd_ring_lambda_max_estimate(const rd_ring *ring);
+/* Reference point P_i (3 values, on the centroid circle). */
+const double *rd_ring_reference_point(const rd_ring *ring, int i);
+/* The joints' local cantilever stiffness Kc (6x6 row-major, local axes
+ * chord, axial, radial); all joints are alike. */
+const double *rd_ring_joint_stiffness(const rd_ring *ring);
+/* The segment angle phi = span / n, rad. */
+double rd_ring_segment_phi(const rd_ring *ring);
 
 #endif

@@ -399,6 +399,10 @@ const double *rd_ring_segment_mass_matrix(const rd_ring *ring, int i)
     return ring->Mseg + 36 * i;
 }
 
+const double *rd_ring_reference_point(const rd_ring *ring, int i) { return ring->P + 3 * i; }
+const double *rd_ring_joint_stiffness(const rd_ring *ring) { return ring->Kc; }
+double rd_ring_segment_phi(const rd_ring *ring) { return ring->phi; }
+
 int rd_ring_band_index(const rd_ring *ring, int i, int k) { return 6 * ring->pos[i] + k; }
 int rd_ring_band_kd(const rd_ring *ring) { return ring->closed ? 17 : 11; }
 

@@ -1,0 +1,130 @@
+/*
+ * rd_lift — the flexible ring in its piston groove over engine cycles
+ * (thesis 3.5, 2.4; MODEL.md "lift").
+ *
+ * Frame: the piston frame, z along the cylinder axis towards the head.  The
+ * ring's 6n DOFs are the small displacements of its segments from the
+ * installed reference (the closed shape, centred in the bore, bottom face on
+ * the groove's lower flank): ring lift = axial position of the bottom face
+ * above the lower flank (0 = seated, axial_clearance = on the upper flank).
+ *
+ * The piston moves along z with the crank (thesis 1.6-1.8, or the exact
+ * slider-crank); in its frame every segment feels the inertia force -m a_p.
+ * Each other force is modelled only when the scene asks: gravity, bore
+ * friction (Coulomb, regularized, or Stribeck 2.9), gas pressure on the top,
+ * back and bottom faces from pressure-vs-crank tables with fixed or dynamic
+ * active areas.  Contacts: the groove's lower and upper flanks and back, and
+ * the bore (radially, preloaded by the pretension), as smooth penalties.
+ *
+ * Integrated with SUNDIALS CVODE (BDF, banded Newton linear solver), so the
+ * cost grows linearly with n; flank changes are located by CVODE's root
+ * finding, not on the output grid.
+ */
+#ifndef RD_LIFT_H
+#define RD_LIFT_H
+
+#include "rd_error.h"
+#include "rd_ring.h"
+
+enum rd_kinematics { RD_KINEMATICS_EXACT = 0, RD_KINEMATICS_APPROXIMATE = 1 };
+enum rd_friction_model { RD_FRICTION_NONE = 0, RD_FRICTION_COULOMB = 1, RD_FRICTION_STRIBECK = 2 };
+enum rd_gas_area { RD_GAS_AREA_FIXED = 0, RD_GAS_AREA_DYNAMIC = 1 };
+enum rd_flank { RD_FLANK_LOWER = 0, RD_FLANK_UPPER = 1, RD_FLANK_FREE = 2 };
+enum rd_lift_event_kind {
+    RD_EVENT_LEAVE_LOWER = 0,
+    RD_EVENT_REACH_UPPER = 1,
+    RD_EVENT_LEAVE_UPPER = 2,
+    RD_EVENT_REACH_LOWER = 3
+};
+
+/* Limits shared by validation and documentation. */
+#define RD_LIFT_CYCLES_MAX 50.0    /* 4-stroke cycles (720 deg each) */
+#define RD_LIFT_SAMPLES_MAX 200000 /* output samples (cycles * 720 / step_deg + 1) */
+#define RD_LIFT_TABLE_MAX 100000   /* points of a gas pressure table */
+#define RD_LIFT_SEGMENTS_MAX 1000
+
+typedef struct rd_engine_params {
+    double speed_rpm;    /* 1 .. 30000 */
+    double crank_radius; /* r, m (half the stroke) */
+    double rod_length;   /* l, m, > crank_radius */
+    int kinematics;      /* enum rd_kinematics */
+    double cycles;       /* 4-stroke cycles simulated, > 0 */
+} rd_engine_params;
+
+typedef struct rd_groove_params {
+    double axial_clearance;  /* groove height minus ring height, m */
+    double radial_clearance; /* ring inner face to groove back, m */
+} rd_groove_params;
+
+typedef struct rd_friction_params {
+    int model;          /* enum rd_friction_model; NONE = not modelled */
+    double coefficient; /* Coulomb coefficient (also C_Coulomb of 2.9) */
+    double viscosity;   /* Stribeck: oil dynamic viscosity eta, Pa s */
+    double sommerfeld_transition; /* Stribeck: So_lim of 2.9 */
+    double hydrodynamic_slope;    /* Stribeck: K of 2.9 */
+} rd_friction_params;
+
+/* Gas pressures vs crank angle, Pa, linear interpolation, periodic over 720
+ * deg.  Borrowed arrays of `points` values each; points == 0: no gas. */
+typedef struct rd_gas_params {
+    int points;
+    const double *crank_deg; /* strictly increasing, within [0, 720] */
+    const double *above;     /* on the top face */
+    const double *behind;    /* on the back (inner) face */
+    const double *below;     /* on the bottom face */
+    int active_area;         /* enum rd_gas_area */
+} rd_gas_params;
+
+typedef struct rd_lift_params {
+    rd_engine_params engine;
+    rd_groove_params groove;
+    int gravity;               /* 1: g = 9.80665 m/s^2 along -z */
+    rd_friction_params friction;
+    rd_gas_params gas;
+    double contact_stiffness;  /* flank/bore penalty, Pa/m; 0 = default */
+    double step_deg;           /* output sampling, crank degrees */
+    double rtol, atol;         /* CVODE tolerances (atol on lift, m) */
+    long max_steps;            /* bound on CVODE steps for the whole run */
+    int estimate_error;        /* 1: second run at rtol/10 for the error estimate */
+} rd_lift_params;
+
+typedef struct rd_lift_event {
+    double crank_deg;
+    int kind; /* enum rd_lift_event_kind */
+} rd_lift_event;
+
+typedef struct rd_lift_result {
+    int segments, dof, samples;
+    double *crank_deg;      /* samples */
+    double *lift;           /* mean lift over segments, m, per sample */
+    double *lift_min;       /* smallest segment lift, m, per sample */
+    double *lift_max;       /* largest segment lift, m, per sample */
+    double *lift_segments;  /* samples x segments, row-major (sample-major) */
+    double *twist;          /* mean twist (rotation about the tangent), rad, per sample */
+    double *friction_force; /* axial bore friction on the ring, N, per sample */
+    int *flank;             /* enum rd_flank per sample */
+    int n_events;
+    rd_lift_event *events;
+    /* Solver work (CVODE counters) */
+    long steps, rhs_evals, jac_evals, lin_setups, nonlin_iters, nonlin_fails, err_test_fails,
+        root_evals;
+    double error_estimate;        /* relative lift error from the rtol/10 run; NAN if none */
+    double event_error_deg;       /* largest event-angle change in that run; NAN if none */
+} rd_lift_result;
+
+void rd_lift_params_default(rd_lift_params *p);
+/* Checks every value, naming the scene field ("/engine/speed_rpm", ...). */
+int rd_lift_validate(const rd_lift_params *p, const rd_ring_params *ring, int segments,
+                     rd_error *err);
+/* Runs; `out` is overwritten and owns its arrays (rd_lift_result_cleanup,
+ * also after a failure).  The monitor reports progress and may cancel. */
+int rd_lift_solve(const rd_ring_params *ring, int segments, const rd_lift_params *p,
+                  const rd_monitor *mon, rd_lift_result *out, rd_error *err);
+void rd_lift_result_cleanup(rd_lift_result *r);
+
+/* Piston kinematics: position below TDC s (m), velocity ds/dt (m/s) and
+ * acceleration d2s/dt2 (m/s^2) at crank angle alpha (rad), thesis 1.6-1.8 or
+ * the exact slider-crank. */
+void rd_lift_piston(const rd_engine_params *e, double alpha, double *s, double *v, double *a);
+
+#endif

@@ -1,0 +1,38 @@
+/* rd_lift_internal.h — test and benchmark hooks of rd_lift (not part of the
+ * public API; no caller outside core/, tests/ and bench/ may include this).
+ *
+ * rd_lift_solve runs the scene as the user gives it: the ring starts seated
+ * at rest on the lower flank and the piston moves.  Some checks need other
+ * set-ups (a free vibration in the middle of the groove with the piston at
+ * rest, the friction regularization halved, the state at every sample); they
+ * go through rd_lift_solve_setup with the same code path. */
+#ifndef RD_LIFT_INTERNAL_H
+#define RD_LIFT_INTERNAL_H
+
+#include "rd_lift.h"
+
+typedef struct rd_lift_setup {
+    /* Initial state, 12 n values, per segment [q_i (6), v_i (6)] (the state
+     * layout of rd_lift.c); borrowed.  NULL: seated at rest (q = v = 0). */
+    const double *y0;
+    int piston_fixed;   /* 1: the piston does not move (no inertia pseudo-force) */
+    double ureg_scale;  /* multiplies the friction regularization velocity; 0 = 1 */
+    /* Called at every output sample with the time (s) and the state (12 n);
+     * NULL: not called. */
+    void (*sample)(void *ctx, double t, const double *y);
+    void *ctx;
+} rd_lift_setup;
+
+/* rd_lift_solve with a set-up; setup == NULL is rd_lift_solve. */
+int rd_lift_solve_setup(const rd_ring_params *ring, int segments, const rd_lift_params *p,
+                        const rd_lift_setup *setup, const rd_monitor *mon, rd_lift_result *out,
+                        rd_error *err);
+
+/* The flank/bore penalty stiffness (Pa/m) used when p->contact_stiffness is 0
+ * (see rd_lift.c); p and ring must be valid. */
+double rd_lift_contact_stiffness_default(const rd_ring_params *ring, const rd_lift_params *p);
+
+/* Friction regularization velocity u_reg (m/s) of a valid scene. */
+double rd_lift_friction_ureg(const rd_lift_params *p);
+
+#endif

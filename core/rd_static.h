@@ -1,0 +1,162 @@
+/*
+ * rd_static — geometrically nonlinear statics of the segment chain: the
+ * pretensioned free shape (thesis 3.4.1-3.4.2) and the ring in a round or
+ * distorted bore (thesis 3.4.3).
+ *
+ * Kinematics.  Segment i has a position x_i of its reference point (on the
+ * centroid circle in the reference, the closed shape) and a rotation matrix
+ * Q_i (body to global, I in the reference).  Joint j between A = j and
+ * B = j + 1 acts on the relative position and rotation of B's end frame seen
+ * from A's (MODEL.md: "as in the thesis' multibody software"):
+ *   d = E (Q_A^T (x_B - x_A) - (P_B - P_A)),   t = E log(Q_A^T Q_B),
+ * with E the joint's local frame (rows: chord, axial, radial) and
+ * U_j = 1/2 [d;t]^T Kc [d;t], Kc the Timoshenko cantilever matrix (3.15).
+ * Rigid motions of the whole ring leave d = t = 0 exactly, for any size of
+ * rotation; for small motions this is the linear element of rd_ring.
+ *
+ * Pretension (thesis: "free shape = closed shape + pretension in the opposite
+ * direction"): the stress-free closed ring is opened by F_t on the two gap
+ * faces, applied at the neutral axis and pushing the faces apart.  Force
+ * method: each force stays normal to its face as the face turns (follower).
+ * Field method: the force follows the last segment's face (Adams' J marker)
+ * and the first face gets the equal and opposite vector plus the balancing
+ * couple (thesis Fig. 3.18).  Optional lateral (axial) dead forces F_l: +z on
+ * the first face, -z on the last.  The cross-section opposite the gap is
+ * held (all six components), so the rigid motions are fixed without
+ * affecting the deformation; the force that holds it is reported.
+ *
+ * Contact: the same closed ring, pressed outwards by F_t on the gap faces
+ * (force method), inside the bore r_b(theta) = D/2 + sum A_k cos(k (theta -
+ * phi_k)).  Each segment carries m contact points on its running face
+ * (mid-height), each against the exact bore surface with the smooth law
+ *   p(delta) = k eps ln(1 + exp(delta / eps)),  eps = 0.05 p0 / k,
+ * (penetration delta, pressure p, nominal pressure p0 = 2 F_t / (d h)):
+ * linear with stiffness k once in contact, smooth through delta = 0, so
+ * Newton's method sees no kink; k only sets the penetration p / k.
+ * Out-of-plane rigid motions and the rotation about the axis are held at the
+ * section opposite the gap (an anti-rotation pin, zero force for a symmetric
+ * bore; reported).
+ *
+ * Solution: Newton's method on all 6n equations with load stepping
+ * (the load factor lambda scales F_t, F_l and the bore's departure from the
+ * ring's closed shape), backtracking line search, a central-difference
+ * tangent assembled element by element into LAPACK band storage (dgbsv).
+ * Convergence: largest force residual <= tol * F_ref and largest moment
+ * residual <= tol * F_ref * R.
+ */
+#ifndef RD_STATIC_H
+#define RD_STATIC_H
+
+#include "rd_error.h"
+#include "rd_ring.h"
+
+enum rd_pretension_method { RD_PRETENSION_FORCE = 0, RD_PRETENSION_FIELD = 1 };
+
+#define RD_DISTORTION_MAX 16
+#define RD_CONTACT_POINTS_MAX 64
+#define RD_STATIC_SEGMENTS_MAX 2000
+
+typedef struct rd_static_opts {
+    double tol;         /* relative residual tolerance, default 1e-10 */
+    int max_iterations; /* Newton iterations over all load steps, default 2000 */
+    int estimate_error; /* 1: second solve at 2n (n/2 above 1000) for the error estimate */
+} rd_static_opts;
+
+typedef struct rd_pretension_opts {
+    int method;           /* enum rd_pretension_method */
+    double lateral_force; /* F_l, N, >= 0 */
+} rd_pretension_opts;
+
+typedef struct rd_distortion {
+    int order;          /* k >= 1 */
+    double amplitude;   /* A_k, m (radius change) */
+    double phase_deg;   /* phi_k, degrees from the gap middle */
+} rd_distortion;
+
+typedef struct rd_contact_opts {
+    double bore_diameter;   /* D, m; 0 = the ring's diameter */
+    int n_distortion;
+    rd_distortion distortion[RD_DISTORTION_MAX];
+    int points_per_segment; /* m, 1..RD_CONTACT_POINTS_MAX, default 5 */
+    double stiffness;       /* k, Pa/m; 0 = default (see rd_contact_default_stiffness) */
+} rd_contact_opts;
+
+/* Counters and accuracy common to both analyses. */
+typedef struct rd_static_stats {
+    int segments, dof;
+    int load_steps;        /* accepted load steps */
+    int iterations;        /* Newton iterations, all steps, the main solve */
+    double residual;       /* final relative residual */
+    double tolerance;      /* residual tolerance used: the requested one, or the
+                              rounding floor of this ring if that is larger */
+    double support_force;  /* |force| the support/pin carries, N */
+    double support_moment; /* |moment| it carries, N m */
+    int reference_segments; /* segments of the error-estimate solve; 0 if none */
+    double error_estimate;  /* relative, of the headline quantity; NAN if none */
+    double strain_energy;   /* J */
+} rd_static_stats;
+
+typedef struct rd_pretension_result {
+    rd_static_stats stats;
+    double gap_opening_inner;   /* x_a: distance between the inner gap corners (mid-height), m */
+    double lateral_opening;     /* x_c: axial separation of the inner top corners, m */
+    double gap_opening_neutral; /* distance between the face centroids, m */
+    double free_gap_formula;    /* closed gap + m of (1.4)-(1.5), m */
+    double conformability;      /* k of (1.4) */
+    /* Deformed centroid line, n + 2 points: first face, the n reference
+     * points, last face; x, y, z each; and each point's reference angle. */
+    int points;
+    double *x, *y, *z, *angle_deg;
+} rd_pretension_result;
+
+typedef struct rd_contact_result {
+    rd_static_stats stats;
+    /* Per segment (the contact points of one rigid segment share its misfit
+     * against a curved bore, so only their resultant is meaningful): */
+    int points;                 /* = segments */
+    double *angle_deg;          /* position angle of the segment's running-face middle, deg */
+    double *pressure;           /* resultant contact force / (h * segment's running-face arc), Pa */
+    double *clearance;          /* closest approach of its points to the bore, m (<= 0: touching) */
+    double *bore_radius;        /* bore radius at the segment's middle, m */
+    double mean_pressure;       /* mean of the segment pressures, Pa */
+    double uniform_pressure;    /* 2 F_t / (d h) (1.3), Pa */
+    double contact_fraction;    /* share of segments touching the bore */
+    double max_clearance;       /* largest segment clearance (light gap), m, >= 0 */
+    double max_clearance_angle_deg; /* where; NAN when the ring touches everywhere */
+    double max_penetration;     /* m: what the contact stiffness allows */
+    double stiffness;           /* k used, Pa/m */
+    double conformability;      /* k of (1.4) */
+    /* Thin-ring conformability bound of each distortion order:
+     * F_t R^3 / (E I (k^2 - 1)^2), m (NAN for k = 1). */
+    double bound[RD_DISTORTION_MAX];
+} rd_contact_result;
+
+void rd_static_opts_default(rd_static_opts *o);
+void rd_pretension_opts_default(rd_pretension_opts *o);
+void rd_contact_opts_default(rd_contact_opts *o);
+
+/* Range checks, paths "/pretension/...", "/bore/...", "/contact/...",
+ * "/numerics/...". */
+int rd_static_validate(const rd_static_opts *o, int segments, int closed, rd_error *err);
+int rd_pretension_validate(const rd_pretension_opts *o, const rd_ring_params *p, rd_error *err);
+int rd_contact_validate(const rd_contact_opts *o, const rd_ring_params *p, rd_error *err);
+
+/* Default contact stiffness: 1e6 E I / (h R^4), so the penetration under the
+ * nominal pressure is 1e-6 of the radial deflection scale of the ring. */
+double rd_contact_default_stiffness(const rd_ring_params *p);
+
+/* Conformability k (1.4) and the free gap m from (1.5). */
+double rd_ring_conformability(const rd_ring_params *p);
+double rd_ring_free_gap_formula(const rd_ring_params *p);
+
+/* Solve; results own their arrays (cleanup also after a failure). */
+int rd_pretension_solve(const rd_ring_params *p, int segments, const rd_pretension_opts *o,
+                        const rd_static_opts *so, const rd_monitor *mon,
+                        rd_pretension_result *out, rd_error *err);
+int rd_contact_solve(const rd_ring_params *p, int segments, const rd_contact_opts *o,
+                     const rd_static_opts *so, const rd_monitor *mon, rd_contact_result *out,
+                     rd_error *err);
+void rd_pretension_result_cleanup(rd_pretension_result *r);
+void rd_contact_result_cleanup(rd_contact_result *r);
+
+#endif
