@@ -227,23 +227,23 @@ static void test_json_errors(void)
 
 static void test_analysis(void)
 {
-    expect_error("{}", RD_EINVAL, "/analysis", "\"analysis\" is missing (available: modal)");
+    expect_error("{}", RD_EINVAL, "/analysis",
+                 "\"analysis\" is missing (available: modal, pretension, contact, lift)");
     expect_error("{\"ring\":{}}", RD_EINVAL, "/analysis", "missing");
     expect_error("{\"analysis\":42}", RD_EINVAL, "/analysis",
                  "/analysis must be a string, got number 42");
     expect_error("{\"analysis\":null}", RD_EINVAL, "/analysis", "must be a string, got null");
     expect_error("{\"analysis\":\"modes\"}", RD_EINVAL, "/analysis",
                  "unknown analysis \"modes\" (allowed: modal, pretension, contact, lift; "
-                 "available in this version: modal)");
+                 "available in this version: modal, pretension, contact, lift)");
     expect_error("{\"analysis\":\"Modal\"}", RD_EINVAL, "/analysis", "unknown analysis");
-    expect_error("{\"analysis\":\"lift\"}", RD_EINVAL, "/analysis",
-                 "analysis \"lift\" is not available in this version (available: modal)");
-    expect_error("{\"analysis\":\"pretension\"}", RD_EINVAL, "/analysis",
-                 "analysis \"pretension\" is not available in this version (available: modal)");
-    expect_error("{\"analysis\":\"contact\"}", RD_EINVAL, "/analysis",
-                 "analysis \"contact\" is not available in this version");
-    /* the analysis is decided before anything else is looked at */
-    expect_error("{\"ring\":5,\"analysis\":\"lift\"}", RD_EINVAL, "/analysis", "not available");
+    /* the analysis is decided before anything else is looked at: it picks
+     * the schema, so a block one analysis reads is an error in another's
+     * terms only */
+    expect_error("{\"ring\":5,\"analysis\":\"lift\"}", RD_EINVAL, "/ring", "must be an object");
+    expect_ok("{\"analysis\":\"pretension\",\"bore\":{\"diameter\":\"x\"}}");
+    expect_ok("{\"analysis\":\"contact\",\"pretension\":7,\"engine\":[]}");
+    expect_ok("{\"analysis\":\"lift\",\"bore\":{},\"modal\":{\"modes\":\"x\"}}");
     /* a long analysis name is quoted cut, still valid UTF-8 */
     expect_error("{\"analysis\":\"ééééééééééééééééééééééééééééééééééééééé\"}", RD_EINVAL,
                  "/analysis", "...\" (allowed");
@@ -310,7 +310,7 @@ static void test_unknown_fields(void)
     expect_error("{\"analysis\":\"modal\",\"rnig\":{}}", RD_EINVAL, "/rnig",
                  "unknown field \"rnig\" in the scene (known: analysis, name, description, ring, "
                  "discretization, modal, pretension, bore, engine, groove, physics, output, "
-                 "numerics)");
+                 "numerics, contact)");
     expect_error(
         "{\"analysis\":\"modal\",\"ring\":{\"diameter\":0.07,\"diametre\":0.07}}", RD_EINVAL,
         "/ring/diametre",
@@ -657,7 +657,8 @@ static void test_csv(void)
         {"", RD_EINTERNAL},
         {"[]", RD_EINTERNAL},
         {"{\"modes\":[]}", RD_EINTERNAL},
-        {"{\"analysis\":\"lift\"}", RD_ENOTFOUND},
+        {"{\"analysis\":\"lift\"}", RD_EINTERNAL},
+        {"{\"analysis\":\"harmonic\"}", RD_ENOTFOUND},
         {"{\"analysis\":\"modal\"}", RD_EINTERNAL},
         {"{\"analysis\":\"modal\",\"modes\":[{\"mode\":1}]}", RD_EINTERNAL},
         {"{\"analysis\":\"modal\",\"modes\":[{\"mode\":1,\"kind\":\"in_plane\",\"frequency_hz\":"
