@@ -176,11 +176,42 @@ same "result.csv 200" "$STATUS" 200
 check "result.csv is text/csv" test -n "$(header Content-Type | grep '^text/csv')"
 check "result.csv has a header and rows" test "$(wc -l <"$WORK/body")" -ge 2
 
+# pretension and contact over HTTP: numbers against the thesis and (1.3)
+post '/api/v1/jobs?wait=60' '{"analysis": "pretension", "numerics": {"error_estimate": false}}'
+same "POST pretension -> 200" "$STATUS" 200
+same "pretension job succeeded" "$(json /status)" succeeded
+# thesis Tab. 3.3, multibody force method at n = 20: x_a = 9.42 mm (within 0.5 %)
+check "pretension x_a near the thesis' 9.42 mm" awk -v x="$(json /result/gap_opening_inner)" 'BEGIN { exit !(x > 0.00937 && x < 0.00947) }'
+same "pretension shape has n + 2 points" "$(jcount /result/shape/x)" 22
+PRE_ID=$(json /id)
+req GET "/api/v1/jobs/$PRE_ID/result.csv"
+same "pretension result.csv 200" "$STATUS" 200
+same "pretension CSV: header + 22 rows" "$(wc -l <"$WORK/body")" 23
+check "pretension CSV header has units" grep -q '^angle_deg,x_m,y_m,z_m' "$WORK/body"
+
+post '/api/v1/jobs?wait=60' '{"analysis": "contact", "discretization": {"segments": 40}, "numerics": {"error_estimate": false}}'
+same "POST contact -> 200" "$STATUS" 200
+same "contact job succeeded" "$(json /status)" succeeded
+# 2 F_t / (d h) for the default ring, computed here
+P0=$(awk 'BEGIN { printf "%.6f", 2 * 10 / (0.0765 * 0.0012) }')
+check "uniform pressure is 2 F_t / (d h)" awk -v p="$(json /result/uniform_pressure_pa)" -v q="$P0" 'BEGIN { exit !(p / q > 0.999999 && p / q < 1.000001) }'
+check "mean pressure within 0.5 % of it at n = 40" awk -v p="$(json /result/mean_pressure_pa)" -v q="$P0" 'BEGIN { exit !(p / q > 0.995 && p / q < 1.005) }'
+same "round bore: full contact" "$(json /result/contact_fraction)" 1
+same "one pressure per segment" "$(jcount /result/pressure_pa)" 40
+CON_ID=$(json /id)
+req GET "/api/v1/jobs/$CON_ID/result.csv"
+same "contact CSV: header + 40 rows" "$(wc -l <"$WORK/body")" 41
+check "contact CSV header has units" grep -q '^angle_deg,pressure_pa,clearance_m,bore_radius_m' "$WORK/body"
+post '/api/v1/jobs?wait=10' '{"analysis": "contact", "bore": {"distortion": [{"order": 2}]}}'
+expect_error "contact: distortion without amplitude" 422 invalid_scene /bore/distortion/0/amplitude
+post '/api/v1/jobs?wait=10' '{"analysis": "pretension", "discretization": {"segments": 3}}'
+expect_error "pretension: 3 segments" 422 invalid_scene /discretization/segments
+
 # job list
 req GET /api/v1/jobs
 same "job list 200" "$STATUS" 200
-same "job list newest first" "$(json /jobs/0/id)" "$JOB_ID"
-same "job list next" "$(json /jobs/1/id)" "$WAITED_ID"
+same "job list newest first" "$(json /jobs/0/id)" "$CON_ID"
+same "job list next" "$(json /jobs/1/id)" "$PRE_ID"
 check "job list has no results" test -z "$(json /jobs/0/result)"
 req GET '/api/v1/jobs?limit=1'
 same "job list ?limit=1" "$(jcount /jobs)" 1
