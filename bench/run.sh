@@ -6,7 +6,7 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 b=${1:-build-bench}
 cmake -S . -B "$b" -DCMAKE_BUILD_TYPE=Release -DRINGDYN_TESTS=OFF >/dev/null
-cmake --build "$b" -j2 --target bench_modal >/dev/null
+cmake --build "$b" -j2 --target bench_modal bench_static >/dev/null
 echo "## modal: accuracy and cost vs n"
 "$b/bench/bench_modal"
 echo
@@ -16,6 +16,25 @@ echo "|---|---|"
 prev_n=""; prev_i=""
 for n in 100 200 400 800; do
   out=$(valgrind --tool=callgrind --callgrind-out-file=/dev/null "$b/bench/bench_modal" --once $n 2>&1)
+  ins=$(printf '%s\n' "$out" | sed -n 's/.*Collected : \([0-9]*\).*/\1/p')
+  echo "| $n | $ins |"
+  if [ -n "$prev_i" ]; then
+    awk -v a="$prev_i" -v b="$ins" -v n1="$prev_n" -v n2="$n" \
+      'BEGIN{printf "|   | exponent %d->%d: %.3f |\n", n1, n2, log(b/a)/log(n2/n1)}'
+  fi
+  prev_n=$n; prev_i=$ins
+done
+
+echo
+echo "# pretension and contact"
+"$b/bench/bench_static"
+echo
+echo "## contact: instructions vs n (callgrind, one round-bore solve, 10 points per segment)"
+echo "| n | instructions |"
+echo "|---|---|"
+prev_n=""; prev_i=""
+for n in 100 200 400 800; do
+  out=$(valgrind --tool=callgrind --callgrind-out-file=/dev/null "$b/bench/bench_static" --once $n 2>&1)
   ins=$(printf '%s\n' "$out" | sed -n 's/.*Collected : \([0-9]*\).*/\1/p')
   echo "| $n | $ins |"
   if [ -n "$prev_i" ]; then

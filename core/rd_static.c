@@ -734,7 +734,7 @@ void rd_pretension_opts_default(rd_pretension_opts *o)
 void rd_contact_opts_default(rd_contact_opts *o)
 {
     memset(o, 0, sizeof *o);
-    o->points_per_segment = 5;
+    o->points_per_segment = 10;
 }
 
 int rd_static_validate(const rd_static_opts *o, int segments, int closed, rd_error *err)

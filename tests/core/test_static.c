@@ -275,7 +275,7 @@ static void test_round_bore(void)
     o.stiffness = 0;
     if (contact(&p, 40, &o, &ref, &err) != RD_OK)
         return;
-    for (int m = 3; m <= 10; m += 7) {
+    for (int m = 5; m <= 20; m += 15) {
         o.points_per_segment = m;
         if (contact(&p, 40, &o, &r, &err) != RD_OK)
             return;
