@@ -117,8 +117,13 @@ int main(int argc, char **argv)
     rd_contact_opts_default(&co);
     if (argc == 3 && strcmp(argv[1], "--once") == 0) {
         rd_contact_result r;
-        memset(&r, 0, sizeof r);
-        time_contact(&p, atoi(argv[2]), &co, &r);
+        rd_static_opts so;
+        rd_static_opts_default(&so);
+        so.estimate_error = 0;
+        rd_error err;
+        rd_error_init(&err);
+        if (rd_contact_solve(&p, atoi(argv[2]), &co, &so, NULL, &r, &err))
+            die("contact", &err);
         rd_contact_result_cleanup(&r);
         return 0;
     }

@@ -382,7 +382,9 @@ typedef struct lift_ctx {
     double *e_r;                /* n x 2: segment radial unit */
     double *e_t;                /* n x 2: segment tangential unit */
     double face_area, back_chord_area;
-    double *qbuf, *fbuf;        /* 6 n scratch */
+    double *qbuf, *fbuf;        /* 12 n and 6 n scratch */
+    double *MK;                 /* n x 3 x 36: -M_i^-1 K_ij, j = i-1, i, i+1 */
+    double *Dq, *Dv;            /* n x 36: local force derivatives (Jacobian) */
     double friction;            /* total axial friction of the last rhs call, N */
     double fz_ext;              /* total axial force on the ring except the flanks, N */
     char cv_msg[200];           /* CVODE's last error message */
@@ -413,24 +415,38 @@ static double gas_at(const rd_gas_params *g, const double *val, double deg)
     return val[a] + (val[b] - val[a]) * (deg - x[a]) / (x[b] - x[a]);
 }
 
-/* Contact pressure p(delta, delta') of the header comment. */
-static double contact_pressure(const lift_ctx *c, double d, double dd, double cdamp)
+/* Contact pressure p(delta, delta') of the header comment, and its partial
+ * derivatives p_d = dp/d delta, p_dd = dp/d delta' (for the Jacobian). */
+static double contact_pressure(const lift_ctx *c, double d, double dd, double cdamp,
+                               double *p_d, double *p_dd)
 {
+    *p_d = *p_dd = 0.0;
     if (d <= 0.0)
         return 0.0;
-    double sp, w;
+    double sp, w, w_d;
     if (d < c->d0) {
         sp = 0.5 * d * d / c->d0;
         w = d / c->d0;
+        w_d = 1.0 / c->d0;
     } else {
         sp = d - 0.5 * c->d0;
         w = 1.0;
+        w_d = 0.0;
     }
-    double pe = c->k * sp, pd = cdamp * w * dd;
-    if (pd >= -0.5 * pe)
+    double pe = c->k * sp, pe_d = c->k * w;
+    double pd = cdamp * w * dd, pd_d = cdamp * w_d * dd, pd_dd = cdamp * w;
+    if (pd >= -0.5 * pe) {
+        *p_d = pe_d + pd_d;
+        *p_dd = pd_dd;
         return pe + pd;
-    /* opening fast: pe phi(x) with phi = e^{2x + 1} / 2 for x < -1/2 */
-    return 0.5 * pe * exp(2.0 * pd / pe + 1.0);
+    }
+    if (pe <= 0.0)
+        return 0.0;
+    /* opening fast: pe phi(x), x = pd / pe, phi = e^{2x + 1} / 2 for x < -1/2 */
+    double E = exp(2.0 * pd / pe + 1.0);
+    *p_d = 0.5 * pe_d * E + E * (pd_d - pd * pe_d / pe);
+    *p_dd = E * pd_dd;
+    return 0.5 * pe * E;
 }
 
 /* Inverse of the elastic part: the penetration where k sp(delta) = p. */
@@ -444,43 +460,93 @@ static double contact_inverse(const lift_ctx *c, double p)
     return p / c->k + 0.5 * c->d0;
 }
 
-static double smoothstep(double x)
+/* smoothstep(x) = 3 x^2 - 2 x^3 on [0, 1], and its derivative. */
+static double smoothstep(double x, double *dx)
 {
+    *dx = 0.0;
     if (x <= 0.0)
         return 0.0;
     if (x >= 1.0)
         return 1.0;
+    *dx = 6.0 * x * (1.0 - x);
     return x * x * (3.0 - 2.0 * x);
 }
 
-/* Axial displacement of a point at in-plane offset d of a segment with DOFs u. */
+/* Friction force F(N, u) on one bore point (header comment) and dF/dN, dF/du. */
+static double friction_force(const lift_ctx *c, double N, double u, double *F_N, double *F_u)
+{
+    double T = tanh(u / c->ureg), T_u = (1.0 - T * T) / c->ureg;
+    if (c->p->friction.model == RD_FRICTION_COULOMB) {
+        *F_N = -c->mu * T;
+        *F_u = -c->mu * N * T_u;
+        return -c->mu * N * T;
+    }
+    /* Stribeck (2.9): B = C e^{-3 r^2.5} N, r = So_lim / So; H = K eta |u| h s_k / L */
+    double share = c->bo_area / (c->h * c->L_run); /* s_k / L */
+    double sg = u >= 0.0 ? 1.0 : -1.0, au = fabs(u);
+    double H = c->kh * c->eta * au * c->h * share, H_u = c->kh * c->eta * c->h * share * sg;
+    double B = 0.0, B_N = 0.0, B_u = 0.0;
+    if (N > 0.0) {
+        double r_u = c->so_lim * c->eta * c->h * share / N; /* r / |u| */
+        double r = r_u * au, r15 = pow(r, 1.5), E = exp(-3.0 * r15 * r);
+        B = c->mu * E * N;
+        B_N = c->mu * E * (1.0 + 7.5 * r15 * r);
+        B_u = -7.5 * c->mu * E * r15 * r_u * N * sg;
+    }
+    *F_N = -T * B_N;
+    *F_u = -T_u * (B + H) - T * (B_u + H_u);
+    return -T * (B + H);
+}
+
+/* Generalized directions: axial force at in-plane offset d, and radial
+ * force along e at offset d (so that w = a . q, u_r = b . q). */
+static void axial_dir(const double *d, double a[6])
+{
+    a[0] = a[1] = a[5] = 0.0;
+    a[2] = 1.0;
+    a[3] = d[1];
+    a[4] = -d[0];
+}
+
+static void radial_dir(const double *d, const double *e, double b[6])
+{
+    b[0] = e[0];
+    b[1] = e[1];
+    b[2] = b[3] = b[4] = 0.0;
+    b[5] = d[0] * e[1] - d[1] * e[0];
+}
+
+static double dot6(const double *a, const double *b)
+{
+    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2] + a[3] * b[3] + a[4] * b[4] + a[5] * b[5];
+}
+
+/* Axial displacement w = uz + rx dy - ry dx of a point at offset d. */
 static double axial(const double *u, const double *d)
 {
     return u[2] + u[3] * d[1] - u[4] * d[0];
 }
 
-/* Outward radial displacement along e of a point at in-plane offset d. */
-static double radial(const double *u, const double *d, const double *e)
+static void add6(double *f, const double *a, double F)
 {
-    return e[0] * (u[0] - u[5] * d[1]) + e[1] * (u[1] + u[5] * d[0]);
+    for (int k = 0; k < 6; k++)
+        f[k] += F * a[k];
 }
 
-static void add_axial(double *f, const double *d, double F)
+/* D += s a b^T (6x6 row-major); D may be NULL. */
+static void rank1(double *D, double s, const double *a, const double *b)
 {
-    f[2] += F;
-    f[3] += d[1] * F;
-    f[4] -= d[0] * F;
+    if (!D || s == 0.0)
+        return;
+    for (int r = 0; r < 6; r++)
+        if (a[r] != 0.0)
+            for (int k = 0; k < 6; k++)
+                D[6 * r + k] += s * a[r] * b[k];
 }
 
-static void add_radial(double *f, const double *d, const double *e, double F)
-{
-    f[0] += F * e[0];
-    f[1] += F * e[1];
-    f[5] += F * (d[0] * e[1] - d[1] * e[0]);
-}
-
-/* Generalized forces on all segments (without -K q) into c->fbuf. */
-static void segment_forces(lift_ctx *c, double t, const double *y)
+/* Generalized forces on all segments (without -K q) into c->fbuf.  With Dq,
+ * Dv (n x 36 each) also their local derivatives df_i/dq_i, df_i/dv_i. */
+static void segment_forces(lift_ctx *c, double t, const double *y, double *Dq, double *Dv)
 {
     const rd_lift_params *p = c->p;
     double s, sd = 0.0, sdd = 0.0, deg = c->omega * t * 180.0 / M_PI;
@@ -489,6 +555,7 @@ static void segment_forces(lift_ctx *c, double t, const double *y)
     double acc = sdd - c->g_on; /* pseudo-acceleration along +z */
     double pa = 0.0, pbh = 0.0, pbl = 0.0;
     int gas = p->gas.points > 0, dynamic = gas && p->gas.active_area == RD_GAS_AREA_DYNAMIC;
+    int fric = p->friction.model != RD_FRICTION_NONE;
     if (gas) {
         pa = gas_at(&p->gas, p->gas.above, deg);
         pbh = gas_at(&p->gas, p->gas.behind, deg);
@@ -498,68 +565,83 @@ static void segment_forces(lift_ctx *c, double t, const double *y)
     for (int i = 0; i < c->n; i++) {
         const double *q = Q(y, i), *v = V(y, i);
         double *f = c->fbuf + 6 * i;
+        double *dq = Dq ? Dq + 36 * (size_t)i : NULL, *dv = Dv ? Dv + 36 * (size_t)i : NULL;
+        if (dq) {
+            memset(dq, 0, 36 * sizeof *dq);
+            memset(dv, 0, 36 * sizeof *dv);
+        }
+        double a[6], b[6], pl_d, pl_dd, pu_d, pu_dd;
         /* inertia pseudo-force and gravity: M_i e_z (s'' - g) */
         for (int k = 0; k < 6; k++)
             f[k] = c->Mez[6 * i + k] * acc;
         fz += f[2];
-        /* flanks */
-        double seal_lo = 0.0, seal_up = 0.0;
+        /* flanks; dynamic gas areas: the sealing weights and their gradients */
+        double seal_lo = 0.0, seal_up = 0.0, g_lo[6] = {0}, g_up[6] = {0};
         for (int k = 0; k < FLANK_POINTS; k++) {
             const double *d = c->fl_d + 2 * (FLANK_POINTS * (size_t)i + k);
-            double w = axial(q, d), wd = axial(v, d), A = c->fl_area[k];
-            double plo = contact_pressure(c, -w, -wd, c->c_flank);
-            double pup = contact_pressure(c, w - c->ca, wd, c->c_flank);
-            add_axial(f, d, (plo - pup) * A);
+            axial_dir(d, a);
+            double w = dot6(a, q), wd = dot6(a, v), A = c->fl_area[k];
+            double plo = contact_pressure(c, -w, -wd, c->c_flank, &pl_d, &pl_dd);
+            double pup = contact_pressure(c, w - c->ca, wd, c->c_flank, &pu_d, &pu_dd);
+            add6(f, a, (plo - pup) * A);
+            rank1(dq, -A * (pl_d + pu_d), a, a);
+            rank1(dv, -A * (pl_dd + pu_dd), a, a);
             if (dynamic) {
-                seal_lo += A * smoothstep(-w / c->d0);
-                seal_up += A * smoothstep((w - c->ca) / c->d0);
+                double sl_d, su_d;
+                seal_lo += A * smoothstep(-w / c->d0, &sl_d);
+                seal_up += A * smoothstep((w - c->ca) / c->d0, &su_d);
+                add6(g_lo, a, -A * sl_d / c->d0);
+                add6(g_up, a, A * su_d / c->d0);
             }
         }
         /* bore: pretension outward, contact inward, friction axial */
         for (int k = 0; k < ARC_POINTS; k++) {
             size_t o = 2 * (ARC_POINTS * (size_t)i + k);
             const double *d = c->bo_d + o, *e = c->bo_e + o;
-            double ur = radial(q, d, e), urd = radial(v, d, e);
-            double N = c->bo_area * contact_pressure(c, c->delta_pre + ur, urd, c->c_rad);
-            add_radial(f, d, e, c->p0 * c->bo_area - N);
-            if (p->friction.model != RD_FRICTION_NONE) {
-                double u = axial(v, d) - sd, F;
-                double sgn = tanh(u / c->ureg);
-                if (p->friction.model == RD_FRICTION_COULOMB) {
-                    F = -c->mu * N * sgn;
-                } else {
-                    /* (2.9): C e^{-3 |So_lim/So|^2.5} N + K eta |u| h (s_k / L) */
-                    double share = c->bo_area / (c->h * c->L_run); /* s_k / L */
-                    double boundary = 0.0;
-                    if (N > 0.0) {
-                        double ratio = c->so_lim * c->eta * fabs(u) * c->h * share / N;
-                        boundary = c->mu * exp(-3.0 * pow(ratio, 2.5)) * N;
-                    }
-                    F = -sgn * (boundary + c->kh * c->eta * fabs(u) * c->h * share);
-                }
-                add_axial(f, d, F);
+            radial_dir(d, e, b);
+            double ur = dot6(b, q), urd = dot6(b, v), P_d, P_dd;
+            double N = c->bo_area * contact_pressure(c, c->delta_pre + ur, urd, c->c_rad, &P_d,
+                                                     &P_dd);
+            add6(f, b, c->p0 * c->bo_area - N);
+            rank1(dq, -c->bo_area * P_d, b, b);
+            rank1(dv, -c->bo_area * P_dd, b, b);
+            if (fric) {
+                axial_dir(d, a);
+                double F_N, F_u, F = friction_force(c, N, dot6(a, v) - sd, &F_N, &F_u);
+                add6(f, a, F);
                 ftot += F;
+                rank1(dq, F_N * c->bo_area * P_d, a, b);
+                rank1(dv, F_N * c->bo_area * P_dd, a, b);
+                rank1(dv, F_u, a, a);
             }
         }
         /* groove back */
         for (int k = 0; k < ARC_POINTS; k++) {
             size_t o = 2 * (ARC_POINTS * (size_t)i + k);
-            const double *d = c->ba_d + o, *e = c->bo_e + o;
-            double ur = radial(q, d, e), urd = radial(v, d, e);
-            double P = contact_pressure(c, -ur - c->cr, -urd, c->c_rad);
-            add_radial(f, d, e, P * c->ba_area);
+            radial_dir(c->ba_d + o, c->bo_e + o, b);
+            double P_d, P_dd;
+            double P = contact_pressure(c, -dot6(b, q) - c->cr, -dot6(b, v), c->c_rad, &P_d,
+                                        &P_dd);
+            add6(f, b, P * c->ba_area);
+            rank1(dq, -c->ba_area * P_d, b, b);
+            rank1(dv, -c->ba_area * P_dd, b, b);
         }
         /* gas */
         if (gas) {
             double ptop = pa, pbot = pbl;
+            axial_dir(c->cen_d + 2 * i, a);
             if (dynamic) {
                 double wl = seal_lo / c->face_area, wu = seal_up / c->face_area;
-                pbot += wl * (0.5 * (pbh + pbl) - pbl);
-                ptop += wu * (0.5 * (pbh + pa) - pa);
+                pbot += wl * 0.5 * (pbh - pbl);
+                ptop += wu * 0.5 * (pbh - pa);
+                /* d(pbot - ptop) A_face / dq = (pbh - pbl)/2 g_lo - (pbh - pa)/2 g_up */
+                rank1(dq, 0.5 * (pbh - pbl), a, g_lo);
+                rank1(dq, -0.5 * (pbh - pa), a, g_up);
             }
-            add_axial(f, c->cen_d + 2 * i, (pbot - ptop) * c->face_area);
+            add6(f, a, (pbot - ptop) * c->face_area);
             fz += (pbot - ptop) * c->face_area;
-            add_radial(f, c->cen_d + 2 * i, c->e_r + 2 * i, pbh * c->back_chord_area);
+            radial_dir(c->cen_d + 2 * i, c->e_r + 2 * i, b);
+            add6(f, b, pbh * c->back_chord_area);
         }
     }
     c->friction = ftot;
@@ -571,7 +653,7 @@ static int rhs(sunrealtype t, N_Vector yv, N_Vector ydv, void *user)
     lift_ctx *c = user;
     const double *y = N_VGetArrayPointer(yv);
     double *yd = N_VGetArrayPointer(ydv);
-    segment_forces(c, t, y);
+    segment_forces(c, t, y, NULL, NULL);
     for (int i = 0; i < c->n; i++)
         memcpy(c->qbuf + 6 * i, Q(y, i), 6 * sizeof(double));
     double *Kq = c->qbuf + 6 * (size_t)c->n; /* second half of the scratch */
@@ -582,17 +664,60 @@ static int rhs(sunrealtype t, N_Vector yv, N_Vector ydv, void *user)
         for (int k = 0; k < 6; k++)
             fi[k] = c->fbuf[6 * i + k] - Kq[6 * i + k];
         memcpy(Q(yd, i), V(y, i), 6 * sizeof(double));
-        double *a = V(yd, i);
-        for (int r = 0; r < 6; r++) {
-            double s = 0.0;
-            for (int k = 0; k < 6; k++)
-                s += Mi[6 * r + k] * fi[k];
-            a[r] = s;
-        }
+        double *acc = V(yd, i);
+        for (int r = 0; r < 6; r++)
+            acc[r] = dot6(Mi + 6 * r, fi);
     }
     for (size_t j = 0; j < 12 * (size_t)c->n; j++)
         if (!isfinite(yd[j]))
             return 1; /* recoverable: CVODE retries with a smaller step */
+    return 0;
+}
+
+/* Jacobian d(ydot)/dy, band (MU, ML):
+ *   d(dq_i/dt)/dv_i = I,
+ *   d(dv_i/dt)/dq_j = -M_i^-1 K_ij (+ M_i^-1 df_i/dq_i for j = i),
+ *   d(dv_i/dt)/dv_i = M_i^-1 df_i/dv_i.
+ * The constant -M_i^-1 K_ij are precomputed (c->MK). */
+static int jac(sunrealtype t, N_Vector yv, N_Vector fy, SUNMatrix J, void *user, N_Vector t1,
+               N_Vector t2, N_Vector t3)
+{
+    (void)fy;
+    (void)t1;
+    (void)t2;
+    (void)t3;
+    lift_ctx *c = user;
+    const double *y = N_VGetArrayPointer(yv);
+    segment_forces(c, t, y, c->Dq, c->Dv);
+    SUNMatZero(J);
+    for (int i = 0; i < c->n; i++) {
+        sunindextype rq = 12 * (sunindextype)i, rv = rq + 6;
+        const double *Mi = c->Minv + 36 * (size_t)i;
+        const double *dq = c->Dq + 36 * (size_t)i, *dv = c->Dv + 36 * (size_t)i;
+        for (int k = 0; k < 6; k++)
+            SM_ELEMENT_B(J, rq + k, rv + k) = 1.0;
+        for (int j = i - 1; j <= i + 1; j++) {
+            if (j < 0 || j >= c->n)
+                continue;
+            const double *B = c->MK + 36 * (3 * (size_t)i + (j - i + 1));
+            sunindextype cq = 12 * (sunindextype)j;
+            for (int r = 0; r < 6; r++)
+                for (int k = 0; k < 6; k++) {
+                    double v = B[6 * r + k];
+                    if (j == i)
+                        for (int m = 0; m < 6; m++)
+                            v += Mi[6 * r + m] * dq[6 * m + k];
+                    SM_ELEMENT_B(J, rv + r, cq + k) = v;
+                }
+        }
+        for (int r = 0; r < 6; r++)
+            for (int k = 0; k < 6; k++) {
+                double v = 0.0;
+                for (int m = 0; m < 6; m++)
+                    v += Mi[6 * r + m] * dv[6 * m + k];
+                SM_ELEMENT_B(J, rv + r, rv + k) = v;
+            }
+    }
     return 0;
 }
 
@@ -623,7 +748,7 @@ static int roots(sunrealtype t, N_Vector yv, sunrealtype *g, void *user)
     lift_ctx *c = user;
     const double *y = N_VGetArrayPointer(yv);
     double L = mean_lift(c, y, NULL);
-    segment_forces(c, t, y);
+    segment_forces(c, t, y, NULL, NULL);
     g[0] = L;
     g[1] = L - c->eps;
     g[2] = c->ca - L;
@@ -717,6 +842,9 @@ static void ctx_cleanup(lift_ctx *c)
     free(c->e_t);
     free(c->qbuf);
     free(c->fbuf);
+    free(c->MK);
+    free(c->Dq);
+    free(c->Dv);
 }
 
 static int ctx_init(lift_ctx *c, const rd_ring *ring, const rd_lift_params *p,
@@ -773,8 +901,11 @@ static int ctx_init(lift_ctx *c, const rd_ring *ring, const rd_lift_params *p,
     c->e_t = malloc(2 * (size_t)n * sizeof *c->e_t);
     c->qbuf = malloc(2 * N6 * sizeof *c->qbuf);
     c->fbuf = malloc(N6 * sizeof *c->fbuf);
+    c->MK = calloc(108 * (size_t)n, sizeof *c->MK);
+    c->Dq = malloc(36 * (size_t)n * sizeof *c->Dq);
+    c->Dv = malloc(36 * (size_t)n * sizeof *c->Dv);
     if (!c->Minv || !c->Mez || !c->fl_d || !c->bo_d || !c->bo_e || !c->ba_d || !c->cen_d ||
-        !c->e_r || !c->e_t || !c->qbuf || !c->fbuf)
+        !c->e_r || !c->e_t || !c->qbuf || !c->fbuf || !c->MK || !c->Dq || !c->Dv)
         return rd_error_set(err, RD_ENOMEM, "", "Out of memory for a %d-segment lift model.", n);
 
     rd_band M;
@@ -827,6 +958,27 @@ static int ctx_init(lift_ctx *c, const rd_ring *ring, const rd_lift_params *p,
         for (int k = 0; k < 6; k++)
             c->Mez[6 * i + k] = Ms[6 * k + 2];
     }
+    /* -M_i^-1 K_ij from the upper band storage (K symmetric, kd = 11) */
+    for (int i = 0; i < n; i++)
+        for (int j = i - 1; j <= i + 1; j++) {
+            if (j < 0 || j >= n)
+                continue;
+            double Kij[36];
+            for (int r = 0; r < 6; r++)
+                for (int k = 0; k < 6; k++) {
+                    int gi = rd_ring_band_index(ring, i, r), gj = rd_ring_band_index(ring, j, k);
+                    Kij[6 * r + k] = gi <= gj ? RD_BAND_AT(&c->K, gi, gj) : RD_BAND_AT(&c->K, gj, gi);
+                }
+            double *B = c->MK + 36 * (3 * (size_t)i + (j - i + 1));
+            const double *Mi = c->Minv + 36 * (size_t)i;
+            for (int r = 0; r < 6; r++)
+                for (int k = 0; k < 6; k++) {
+                    double v = 0.0;
+                    for (int m = 0; m < 6; m++)
+                        v -= Mi[6 * r + m] * Kij[6 * m + k];
+                    B[6 * r + k] = v;
+                }
+        }
     return RD_OK;
 }
 
@@ -996,6 +1148,7 @@ static int run(const rd_ring *ring, const rd_lift_params *p, const rd_lift_setup
         (flag = CVodeSVtolerances(cv, rtol, abstol)) ||
         (flag = CVodeSetUserData(cv, &c)) ||
         (flag = CVodeSetLinearSolver(cv, LS, A)) ||
+        (flag = CVodeSetJacFn(cv, jac)) ||
         (flag = CVodeSetMaxStep(cv, HMAX_DEG / deg_per_s)) ||
         (flag = CVodeSetLSetupFrequency(cv, 1)) ||
         (flag = CVodeSetJacEvalFrequency(cv, 1)) ||
@@ -1012,7 +1165,7 @@ static int run(const rd_ring *ring, const rd_lift_params *p, const rd_lift_setup
     flank_track tr = {RD_FLANK_LOWER, NAN};
     {
         double L0 = mean_lift(&c, yy, NULL);
-        segment_forces(&c, 0.0, yy);
+        segment_forces(&c, 0.0, yy, NULL, NULL);
         if (L0 > c.ca - c.eps)
             tr.state = RD_FLANK_UPPER;
         else if (L0 > c.eps)
@@ -1044,7 +1197,7 @@ static int run(const rd_ring *ring, const rd_lift_params *p, const rd_lift_setup
                 if (flag == CV_ROOT_RETURN) {
                     int rf[N_ROOTS];
                     CVodeGetRootInfo(cv, rf);
-                    segment_forces(&c, t, yy);
+                    segment_forces(&c, t, yy, NULL, NULL);
                     if ((rc = track_roots(&tr, rf, t, deg_per_s, c.fz_ext, o, err)))
                         goto out;
                     continue;
@@ -1087,7 +1240,7 @@ static int run(const rd_ring *ring, const rd_lift_params *p, const rd_lift_setup
             res->lift_min[k] = lo;
             res->lift_max[k] = hi;
             res->twist[k] = tw / n;
-            segment_forces(&c, tout, yy);
+            segment_forces(&c, tout, yy, NULL, NULL);
             res->friction_force[k] = c.friction;
             res->flank[k] = L < c.eps ? RD_FLANK_LOWER
                                       : (L > c.ca - c.eps ? RD_FLANK_UPPER : RD_FLANK_FREE);
@@ -1098,11 +1251,8 @@ static int run(const rd_ring *ring, const rd_lift_params *p, const rd_lift_setup
             goto out;
     }
     if (res) {
-        long v;
         CVodeGetNumSteps(cv, &res->steps);
         CVodeGetNumRhsEvals(cv, &res->rhs_evals);
-        if (CVodeGetNumLinRhsEvals(cv, &v) == CV_SUCCESS)
-            res->rhs_evals += v; /* difference-quotient Jacobian calls */
         CVodeGetNumJacEvals(cv, &res->jac_evals);
         CVodeGetNumLinSolvSetups(cv, &res->lin_setups);
         CVodeGetNumNonlinSolvIters(cv, &res->nonlin_iters);

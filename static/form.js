@@ -1,9 +1,27 @@
 // The scene form: every input carries data-path (the JSON Pointer of its scene
 // field) and data-default.  The scene is read from those inputs, an example is
 // written into them, and an error's path finds the input to highlight.
+//
+// Encoding of a field by its element:
+//   checkbox                    -> true / false
+//   <select>                    -> the chosen option's value (a string choice)
+//   number                      -> a number; data-type="int" requires a whole one;
+//                                  data-optional: left empty, the field is absent
+//                                  from the scene (the server's default applies)
+// Structures:
+//   [data-list="/ptr"]          an editable list of rows (a <template> holds one
+//                               row; its inputs name their key with data-field);
+//                               0 rows = the field is absent.  data-max caps it.
+//   input[data-toggle="/ptr"]   a checkbox that puts a whole block in the scene;
+//                               unchecked, the block is absent.  The inputs of
+//                               that block sit in [data-block="/ptr"].
+//   select[data-source="/ptr"]  for a toggled block: which prepared object
+//                               (setSource) the block starts from, e.g. the gas
+//                               pressure tables of an example.
 
 const HINTS = {
   mm: (v) => `= ${fmt(v * 1e3)} mm`,
+  um: (v) => `= ${fmt(v * 1e6)} µm`,
   GPa: (v) => `= ${fmt(v / 1e9)} GPa`,
 };
 
@@ -11,18 +29,32 @@ function fmt(v) {
   return Number(v.toPrecision(6)).toString();
 }
 
+// The scene path an element writes: a field's data-path, a toggle's block.
+const pathOf = (el) => el.dataset.path ?? el.dataset.toggle;
+
 export class SceneForm {
   constructor(form) {
     this.form = form;
-    this.inputs = [...form.querySelectorAll('[data-path]')];
-    for (const input of this.inputs) {
-      if (input.dataset.hint) this.addHint(input);
-      input.addEventListener('input', () => {
-        this.updateHint(input);
-        this.unmark(input);
-      });
-    }
+    this.analysis = null;
+    this.base = {};
+    this.sources = new Map(); // block path -> Map(option value -> object)
+    for (const input of this.inputs) if (input.dataset.hint) this.addHint(input);
+    for (const list of form.querySelectorAll('[data-list]')) this.setupList(list);
+    form.addEventListener('input', (e) => {
+      const input = e.target.closest('[data-path], [data-toggle]');
+      if (!input) return;
+      this.updateHint(input);
+      this.unmark(input);
+    });
+    form.addEventListener('change', (e) => {
+      if (e.target.dataset.toggle) this.syncToggle(e.target);
+    });
     this.reset();
+  }
+
+  // Live: list rows come and go.
+  get inputs() {
+    return [...this.form.querySelectorAll('[data-path], [data-toggle]')];
   }
 
   addHint(input) {
@@ -35,7 +67,7 @@ export class SceneForm {
 
   updateHint(input) {
     const fn = HINTS[input.dataset.hint];
-    const hint = fn && document.getElementById(`${input.id}-hint`);
+    const hint = fn && input.nextElementSibling?.classList.contains('unit-hint') ? input.nextElementSibling : null;
     if (!hint) return;
     const v = input.valueAsNumber;
     hint.textContent = Number.isFinite(v) ? fn(v) : '';
@@ -43,13 +75,11 @@ export class SceneForm {
 
   // Inputs that belong to `analysis`: the shared ones plus its own fieldset.
   inputsFor(analysis) {
-    return this.inputs.filter((input) => {
-      const owner = input.closest('[data-analysis]');
-      return !owner || owner.dataset.analysis === analysis;
-    });
+    return this.inputs.filter((input) => ownedBy(input, analysis));
   }
 
   showAnalysis(analysis) {
+    this.analysis = analysis;
     for (const fs of this.form.querySelectorAll('[data-analysis]')) {
       fs.hidden = fs.dataset.analysis !== analysis;
     }
@@ -57,7 +87,10 @@ export class SceneForm {
 
   reset() {
     this.base = {};
+    for (const list of this.form.querySelectorAll('[data-list]')) this.setRows(list, []);
     for (const input of this.inputs) setValue(input, input.dataset.default);
+    for (const select of this.form.querySelectorAll('[data-source]')) select.selectedIndex = preferredIndex(select);
+    this.syncToggles();
     this.clearMarks();
     this.updateHints();
   }
@@ -72,10 +105,21 @@ export class SceneForm {
     this.reset();
     const { name, description, ...rest } = scene;
     this.base = structuredClone(rest);
+    for (const list of this.form.querySelectorAll('[data-list]')) {
+      const rows = pointerGet(scene, list.dataset.list);
+      if (Array.isArray(rows)) this.setRows(list, rows);
+    }
     for (const input of this.inputs) {
+      if (input.dataset.toggle) {
+        const block = pointerGet(scene, input.dataset.toggle);
+        input.checked = block !== null && typeof block === 'object';
+        if (input.checked) this.matchSource(input.dataset.toggle, block);
+        continue;
+      }
       const v = pointerGet(scene, input.dataset.path);
       if (v !== undefined && v !== null && typeof v !== 'object') setValue(input, v);
     }
+    this.syncToggles();
     this.updateHints();
   }
 
@@ -83,35 +127,207 @@ export class SceneForm {
   // non-numeric field; ranges are the server's to check (one source of truth).
   read(analysis) {
     const scene = { ...structuredClone(this.base), analysis };
-    for (const input of this.inputsFor(analysis)) {
-      let v;
-      if (input.type === 'checkbox') {
-        v = input.checked;
-      } else {
-        v = input.valueAsNumber;
-        if (!Number.isFinite(v)) {
-          throw { code: 'invalid_value', message: 'must be a number', path: input.dataset.path };
-        }
-        if (input.dataset.type === 'int' && !Number.isInteger(v)) {
-          throw { code: 'invalid_value', message: `must be a whole number, got ${v}`, path: input.dataset.path };
-        }
-      }
-      pointerSet(scene, input.dataset.path, v);
+    const mine = this.inputsFor(analysis);
+    // Toggled blocks first, so their fields below land in them.
+    for (const toggle of mine.filter((i) => i.dataset.toggle)) {
+      const path = toggle.dataset.toggle;
+      const kept = pointerGet(scene, path);
+      pointerDelete(scene, path);
+      if (!toggle.checked || toggle.disabled) continue;
+      const start = kept !== null && typeof kept === 'object' && !Array.isArray(kept) ? kept : {};
+      pointerSet(scene, path, { ...start, ...structuredClone(this.sourceValue(path) || {}) });
+    }
+    for (const list of this.form.querySelectorAll('[data-list]')) {
+      if (!ownedBy(list, analysis) || this.isOff(list)) continue;
+      const rows = [...list.querySelectorAll('tbody tr')].map((tr) => {
+        const row = {};
+        for (const input of tr.querySelectorAll('[data-field]')) row[input.dataset.field] = readValue(input);
+        return row;
+      });
+      pointerDelete(scene, list.dataset.list);
+      if (rows.length) pointerSet(scene, list.dataset.list, rows);
+    }
+    for (const input of mine) {
+      if (input.dataset.toggle || input.closest('[data-list]') || this.isOff(input)) continue;
+      const v = readValue(input);
+      if (v === undefined) pointerDelete(scene, input.dataset.path);
+      else pointerSet(scene, input.dataset.path, v);
     }
     return scene;
   }
 
+  // ---- toggled blocks --------------------------------------------------
+
+  // Is `el` inside a block whose toggle is off?
+  isOff(el) {
+    const block = el.closest('[data-block]');
+    const toggle = block && this.toggleOf(block);
+    return Boolean(toggle && (!toggle.checked || toggle.disabled));
+  }
+
+  toggleOf(block) {
+    const scope = block.closest('fieldset[data-analysis]') || this.form;
+    return scope.querySelector(`[data-toggle="${block.dataset.block}"]`);
+  }
+
+  syncToggles() {
+    for (const toggle of this.form.querySelectorAll('[data-toggle]')) this.syncToggle(toggle);
+  }
+
+  // A block's controls are disabled while its toggle is off; a toggle whose
+  // block needs a source (gas tables) is disabled while there is none.
+  syncToggle(toggle) {
+    const scope = toggle.closest('fieldset[data-analysis]') || this.form;
+    const path = toggle.dataset.toggle;
+    const source = scope.querySelector(`[data-source="${path}"]`);
+    if (source) {
+      toggle.disabled = source.options.length === 0;
+      if (toggle.disabled) toggle.checked = false;
+    }
+    for (const block of scope.querySelectorAll(`[data-block="${path}"]`)) {
+      const on = toggle.checked && !toggle.disabled;
+      block.classList.toggle('off', !on);
+      for (const el of block.querySelectorAll('input, select, button')) el.disabled = !on;
+    }
+  }
+
+  // The objects a toggled block can start from: [{value, label, title, data}];
+  // `preferred` (a value) is selected by default.
+  setSource(path, options, preferred) {
+    const select = this.form.querySelector(`[data-source="${path}"]`);
+    if (!select) return;
+    const map = new Map();
+    select.replaceChildren();
+    for (const o of options) {
+      const opt = document.createElement('option');
+      opt.value = o.value;
+      opt.textContent = o.label ?? o.value;
+      if (o.title) opt.title = o.title;
+      if (o.value === preferred) opt.dataset.preferred = '';
+      select.append(opt);
+      map.set(o.value, o.data);
+    }
+    this.sources.set(path, map);
+    select.selectedIndex = preferredIndex(select);
+    this.syncToggles();
+  }
+
+  sourceValue(path) {
+    const select = this.form.querySelector(`[data-source="${path}"]`);
+    return select ? this.sources.get(path)?.get(select.value) : undefined;
+  }
+
+  // A loaded block selects the source it came from; a block with other data
+  // gets an option of its own, so running it sends what was loaded.
+  matchSource(path, block) {
+    const select = this.form.querySelector(`[data-source="${path}"]`);
+    const map = this.sources.get(path) || new Map();
+    if (!select) return;
+    const same = (data) => Object.keys(data).every((k) => JSON.stringify(data[k]) === JSON.stringify(block[k]));
+    for (const [value, data] of map) {
+      if (same(data)) { select.value = value; return; }
+    }
+    const keys = map.size ? Object.keys(map.values().next().value) : Object.keys(block).filter((k) => Array.isArray(block[k]));
+    if (!keys.some((k) => k in block)) return;
+    const data = Object.fromEntries(keys.filter((k) => k in block).map((k) => [k, block[k]]));
+    const value = 'loaded scene';
+    map.set(value, data);
+    this.sources.set(path, map);
+    let opt = [...select.options].find((o) => o.value === value);
+    if (!opt) {
+      opt = document.createElement('option');
+      opt.value = value;
+      opt.textContent = 'the loaded scene';
+      select.append(opt);
+    }
+    select.value = value;
+  }
+
+  // ---- editable lists --------------------------------------------------
+
+  setupList(list) {
+    list.querySelector('[data-list-add]')?.addEventListener('click', () => {
+      this.addRow(list);
+      const rows = list.querySelectorAll('tbody tr');
+      rows[rows.length - 1]?.querySelector('input')?.focus();
+    });
+    list.addEventListener('click', (e) => {
+      const button = e.target.closest('[data-list-remove]');
+      if (!button) return;
+      const tr = button.closest('tr');
+      const next = tr.nextElementSibling || tr.previousElementSibling;
+      tr.remove();
+      this.numberRows(list);
+      // Keep the keyboard focus in the list.
+      (next?.querySelector('[data-list-remove]') || list.querySelector('[data-list-add]'))?.focus();
+    });
+  }
+
+  // A new row with the template's defaults, or with `values` ({field: v}).
+  addRow(list, values = {}) {
+    const tbody = list.querySelector('tbody');
+    const tr = list.querySelector('template').content.firstElementChild.cloneNode(true);
+    tbody.append(tr);
+    const inputs = [...tr.querySelectorAll('[data-field]')];
+    for (const input of inputs) {
+      const v = values[input.dataset.field];
+      setValue(input, v !== undefined && v !== null && typeof v !== 'object' ? v : input.dataset.default);
+      if (input.dataset.hint) this.addHint(input); // its id is set by numberRows
+    }
+    this.numberRows(list);
+    for (const input of inputs) this.updateHint(input);
+    return tr;
+  }
+
+  setRows(list, rows) {
+    list.querySelector('tbody').replaceChildren();
+    for (const r of rows) this.addRow(list, r && typeof r === 'object' ? r : {});
+    this.numberRows(list);
+  }
+
+  // Row i's inputs get id, data-path (/list/i/field) and label "… {n}" = i + 1.
+  numberRows(list) {
+    const rows = [...list.querySelectorAll('tbody tr')];
+    rows.forEach((tr, i) => {
+      for (const input of tr.querySelectorAll('[data-field]')) {
+        const label = input.parentElement.querySelector('label');
+        const hint = input.parentElement.querySelector('.unit-hint');
+        input.id = `${list.id}-${i}-${input.dataset.field}`;
+        input.dataset.path = `${list.dataset.list}/${i}/${input.dataset.field}`;
+        if (label) {
+          label.htmlFor = input.id;
+          label.textContent = label.dataset.label.replace('{n}', i + 1);
+        }
+        if (hint) {
+          hint.id = `${input.id}-hint`;
+          input.setAttribute('aria-describedby', hint.id);
+        }
+      }
+      const remove = tr.querySelector('[data-list-remove]');
+      if (remove) remove.setAttribute('aria-label', remove.dataset.label.replace('{n}', i + 1));
+    });
+    const max = Number(list.dataset.max) || Infinity;
+    const add = list.querySelector('[data-list-add]');
+    if (add) add.disabled = rows.length >= max || this.isOff(list);
+    const count = list.querySelector('[data-list-count]');
+    if (count) count.textContent = `${rows.length} of ${Number.isFinite(max) ? max : 'any'} rows`;
+  }
+
+  // ---- errors ------------------------------------------------------------
+
   // The inputs an error path points at: the exact field, else the fields
-  // below it ("/ring/material"), else the nearest field above it.
+  // below it ("/ring/material"), else the nearest field above it.  Only the
+  // fields of the shown analysis count (two analyses may share a path).
   fieldsFor(path) {
     if (!path) return [];
-    const exact = this.inputs.filter((i) => i.dataset.path === path);
+    const inputs = this.analysis ? this.inputsFor(this.analysis) : this.inputs;
+    const exact = inputs.filter((i) => pathOf(i) === path);
     if (exact.length) return exact;
-    const below = this.inputs.filter((i) => i.dataset.path.startsWith(`${path}/`));
+    const below = inputs.filter((i) => pathOf(i).startsWith(`${path}/`));
     if (below.length) return below;
-    const above = this.inputs
-      .filter((i) => path.startsWith(`${i.dataset.path}/`))
-      .sort((a, b) => b.dataset.path.length - a.dataset.path.length);
+    const above = inputs
+      .filter((i) => path.startsWith(`${pathOf(i)}/`))
+      .sort((a, b) => pathOf(b).length - pathOf(a).length);
     return above.slice(0, 1);
   }
 
@@ -119,8 +335,8 @@ export class SceneForm {
   // for several fields their fieldset's legend.
   nameOf(fields) {
     const text = (el) => el?.textContent.replace(/\s+/g, ' ').trim();
-    if (fields.length > 1) return text(fields[0].closest('fieldset')?.querySelector('legend')) || fields[0].dataset.path;
-    return text(this.form.querySelector(`label[for="${fields[0].id}"]`)) || fields[0].dataset.path;
+    if (fields.length > 1) return text(fields[0].closest('fieldset')?.querySelector('legend')) || pathOf(fields[0]);
+    return text(this.form.querySelector(`label[for="${fields[0].id}"]`)) || pathOf(fields[0]);
   }
 
   // Highlights the fields of an error path; returns them (first one focused).
@@ -129,7 +345,7 @@ export class SceneForm {
     for (const input of fields) {
       input.setAttribute('aria-invalid', 'true');
       input.setAttribute('aria-errormessage', errorId);
-      input.closest('.field')?.classList.add('invalid');
+      (input.closest('.field') || input.closest('td'))?.classList.add('invalid');
     }
     // Centred, so the sticky run bar (which shows the message) does not cover it.
     fields[0]?.focus({ preventScroll: true });
@@ -140,7 +356,7 @@ export class SceneForm {
   unmark(input) {
     input.removeAttribute('aria-invalid');
     input.removeAttribute('aria-errormessage');
-    input.closest('.field')?.classList.remove('invalid');
+    (input.closest('.field') || input.closest('td'))?.classList.remove('invalid');
   }
 
   clearMarks() {
@@ -148,12 +364,42 @@ export class SceneForm {
   }
 }
 
+// Shared inputs (outside any analysis fieldset) belong to every analysis.
+function ownedBy(el, analysis) {
+  const owner = el.closest('[data-analysis]');
+  return !owner || owner.dataset.analysis === analysis;
+}
+
+function preferredIndex(select) {
+  const i = [...select.options].findIndex((o) => 'preferred' in o.dataset);
+  return i >= 0 ? i : 0;
+}
+
+// One field's scene value (see the encoding above); undefined = leave it out.
+function readValue(input) {
+  if (input.type === 'checkbox') return input.checked;
+  if (input.tagName === 'SELECT') return input.value;
+  if (input.value === '' && !input.validity.badInput) {
+    if ('optional' in input.dataset) return undefined;
+    throw { code: 'invalid_value', message: 'must be a number (it is empty)', path: input.dataset.path };
+  }
+  const v = input.valueAsNumber;
+  if (!Number.isFinite(v)) {
+    throw { code: 'invalid_value', message: 'must be a number', path: input.dataset.path };
+  }
+  if (input.dataset.type === 'int' && !Number.isInteger(v)) {
+    throw { code: 'invalid_value', message: `must be a whole number, got ${v}`, path: input.dataset.path };
+  }
+  return v;
+}
+
 function setValue(input, v) {
   if (input.type === 'checkbox') input.checked = v === true || v === 'true';
+  else if (input.tagName === 'SELECT') input.value = v === undefined ? input.options[0]?.value ?? '' : String(v);
   else input.value = v === undefined ? '' : String(v);
 }
 
-// JSON Pointer (RFC 6901) get / set on plain objects.
+// JSON Pointer (RFC 6901) get / set / delete on plain objects.
 function tokens(path) {
   return path.split('/').slice(1).map((t) => t.replace(/~1/g, '/').replace(/~0/g, '~'));
 }
@@ -175,4 +421,21 @@ function pointerSet(obj, path, value) {
     cur = cur[t];
   }
   cur[ts[ts.length - 1]] = value;
+}
+
+// Removes the field; a parent object left empty is removed too, so an
+// unchecked toggle does not leave "physics": {} behind.
+function pointerDelete(obj, path) {
+  const ts = tokens(path);
+  const chain = [obj];
+  for (const t of ts.slice(0, -1)) {
+    const next = chain[chain.length - 1][t];
+    if (next === null || typeof next !== 'object') return;
+    chain.push(next);
+  }
+  delete chain[chain.length - 1][ts[ts.length - 1]];
+  for (let i = chain.length - 1; i > 0; i--) {
+    if (Object.keys(chain[i]).length) break;
+    delete chain[i - 1][ts[i - 1]];
+  }
 }

@@ -2,27 +2,12 @@
 // frequency plot, a table of modes and the shape of the selected mode.
 
 import { svg, scale, ticks, axes, kindMarker, markerIcon } from './svg.js';
+import { h, seconds } from './html.js';
 
 const KIND_TEXT = { in_plane: 'in-plane', out_of_plane: 'out-of-plane' };
 
 const hz = (f) => (Number.isFinite(f) ? f.toFixed(Math.abs(f) < 10 ? 3 : 1) : '—');
 const pct = (e) => (Number.isFinite(e) ? (Math.abs(e) * 100).toFixed(2) : '—');
-
-function seconds(s) {
-  if (!Number.isFinite(s)) return '—';
-  return s < 1 ? `${(s * 1e3).toPrecision(3)} ms` : `${s.toPrecision(3)} s`;
-}
-
-function h(tag, attrs = {}, ...children) {
-  const node = document.createElement(tag);
-  for (const [k, v] of Object.entries(attrs)) {
-    if (v === undefined || v === null || v === false) continue;
-    if (k === 'class') node.className = v;
-    else node.setAttribute(k, v === true ? '' : String(v));
-  }
-  for (const c of children.flat()) if (c !== null && c !== undefined && c !== false) node.append(c);
-  return node;
-}
 
 export const modal = {
   id: 'modal',

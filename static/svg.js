@@ -77,3 +77,45 @@ export function axes({ box, x, y, xTicks, yTicks, xLabel, yLabel, xFormat = Stri
   }, yLabel));
   return g;
 }
+
+// Path data through `points` ([[x, y], ...]): "M x,y L x,y ..."; `close` adds Z.
+// Non-finite points break the line (a new M starts after them).
+export function pathD(points, close = false) {
+  let d = '';
+  let pen = false;
+  for (const [px, py] of points) {
+    if (!Number.isFinite(px) || !Number.isFinite(py)) { pen = false; continue; }
+    d += `${pen ? 'L' : 'M'}${px.toFixed(2)},${py.toFixed(2)}`;
+    pen = true;
+  }
+  return d && close ? `${d}Z` : d;
+}
+
+// Ticks at multiples of the first of `steps` that gives at most `max` of
+// them over [lo, hi] (e.g. crank angle: every 90 or 180 deg).
+export function stepTicks(lo, hi, steps, max = 12) {
+  const step = steps.find((s) => (hi - lo) / s <= max) ?? steps[steps.length - 1];
+  const out = [];
+  for (let v = Math.ceil(lo / step - 1e-9) * step; v <= hi + step * 1e-9; v += step) out.push(v);
+  return out;
+}
+
+// The point at angle `deg` and radius `r` around (cx, cy) on screen: 0 deg
+// points right, angles grow counter-clockwise (as x, y with y up).
+export function polar(cx, cy, r, deg) {
+  const t = (deg * Math.PI) / 180;
+  return [cx + r * Math.cos(t), cy - r * Math.sin(t)];
+}
+
+// A legend: a row of [swatch element, text] items from (x, y), spaced by the
+// length of their text.  Each swatch is drawn around (0, 0), about 12 px wide.
+export function legend(items, { x = 0, y = 0, id } = {}) {
+  const g = svg('g', { class: 'legend', transform: `translate(${x},${y})`, id });
+  let at = 0;
+  for (const [swatch, text] of items) {
+    g.append(svg('g', { transform: `translate(${at},0)` }, swatch,
+      svg('text', { x: 14, y: 0, 'dominant-baseline': 'middle' }, text)));
+    at += 14 + 7.2 * text.length + 16;
+  }
+  return g;
+}
