@@ -2,14 +2,18 @@
 // {id, label, runLabel, render(result, job, container)} plus a
 // <fieldset data-analysis="id"> in index.html for its own scene fields; the
 // ring, material and discretization fields are shared by all analyses.
-// To add one (pretension, contact, lift): write its module, add its fieldset,
-// and list it in ANALYSES.
+// To add one: write its module, add its fieldset, and list it in ANALYSES.
+// An analysis may also have setup({form, examples, error}), called once the
+// shipped examples are known (lift takes its gas tables from them).
 
 import { getJSON, runJob, cancelJob, ApiError } from './api.js';
 import { SceneForm } from './form.js';
 import { modal } from './modal.js';
+import { pretension } from './pretension.js';
+import { contact } from './contact.js';
+import { lift } from './lift.js';
 
-const ANALYSES = [modal];
+const ANALYSES = [modal, pretension, contact, lift];
 
 // How long the submit request waits for the result before the page polls
 // instead (API.md ?wait=, 0..300 s); the page URL may set it: /?wait=0.
@@ -176,8 +180,10 @@ async function loadExamples() {
   } catch (err) {
     select.disabled = true;
     $('example-desc').textContent = `Examples unavailable: ${err.message}`;
+    for (const a of ANALYSES) a.setup?.({ form, examples: [], error: err });
     return;
   }
+  for (const a of ANALYSES) a.setup?.({ form, examples });
   examples.forEach((ex, i) => {
     const opt = document.createElement('option');
     opt.value = String(i);
