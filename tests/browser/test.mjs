@@ -6,6 +6,7 @@ import { test, before, after } from 'node:test';
 import assert from 'node:assert/strict';
 import fs from 'node:fs';
 import path from 'node:path';
+import * as fixtures from './fixtures.mjs';
 
 const CHROMIUM = '/usr/bin/chromium';
 const BASE = (process.env.RINGDYN_URL || '').replace(/\/$/, '');
@@ -49,10 +50,11 @@ after(async () => {
 
 const shot = (name, opts = {}) => page.screenshot({ path: path.join(SHOT_DIR, name), ...opts });
 
-// Clicks the run button and waits until the job has ended (button enabled again).
-async function runAnalysis() {
-  await page.getByRole('button', { name: 'Run modal analysis' }).click();
-  await page.waitForFunction(() => !document.getElementById('run').disabled, null, { timeout: 90000 });
+// Clicks the run button (named `label`) and waits until the job has ended
+// (button enabled again).
+async function runAnalysis(label = 'Run modal analysis', timeout = 90000) {
+  await page.getByRole('button', { name: label }).click();
+  await page.waitForFunction(() => !document.getElementById('run').disabled, null, { timeout });
 }
 
 async function modeRows() {
@@ -149,7 +151,8 @@ test('an example from the dropdown fills the form and runs', { timeout: 120000 }
 
   // Every form field the example sets now shows its value.
   const fields = await page.$$eval('[data-path]', (is) => is.map((i) => ({
-    path: i.dataset.path, value: i.type === 'checkbox' ? i.checked : Number(i.value),
+    path: i.dataset.path,
+    value: i.type === 'checkbox' ? i.checked : i.tagName === 'SELECT' ? i.value : Number(i.value),
   })));
   let checked = 0;
   for (const f of fields) {
@@ -233,6 +236,544 @@ test('a job that outlives ?wait is polled, with progress shown', { timeout: 1200
   assert.match(log.at(-1).text, /^Job \S+ succeeded/);
   assert.equal((await modeRows()).length, 6);
   assert.match(await page.textContent('#cost'), /300 segments/);
+});
+
+// ---- pretension, contact, lift --------------------------------------------
+
+// Whether the server runs `analysis`.  A scene with a wrongly typed field is
+// rejected before any job starts: with "not available" (path /analysis) when
+// the analysis is missing, with a type error at /discretization/segments when
+// it is there.  Only the first makes the live tests below skip.
+async function unavailable(analysis) {
+  const resp = await fetch(`${BASE}/api/v1/jobs?wait=0`, {
+    method: 'POST',
+    headers: { 'Content-Type': 'application/json' },
+    body: JSON.stringify({ analysis, discretization: { segments: 'probe' } }),
+  });
+  const e = (await resp.json().catch(() => null))?.error;
+  if (resp.status === 422 && e?.path === '/analysis' && /not available/.test(e.message || '')) {
+    return `the server does not implement the ${analysis} analysis yet: ${e.message}`;
+  }
+  return false;
+}
+const SKIP = {};
+for (const a of ['pretension', 'contact', 'lift']) SKIP[a] = await unavailable(a);
+
+const pathPoints = (d) => (d?.match(/[ML]/g) || []).length;
+
+async function selectTab(id) {
+  await page.click(`#tab-${id}`);
+  await page.waitForSelector(`fieldset[data-analysis="${id}"]:not([hidden])`);
+}
+
+// The finished job shown on the page, as the server has it.
+async function shownJob() {
+  const href = await page.getAttribute('#json-link', 'href');
+  const resp = await page.request.get(`${BASE}${href}`);
+  assert.equal(resp.status(), 200);
+  return resp.json();
+}
+
+// The page's POST /api/v1/jobs is answered here, not by the server: with a
+// succeeded job holding `result` for its analysis, else with a 422.  Returns
+// the scenes the page sent and a function that stops this.
+async function interceptJobs(result) {
+  const sent = [];
+  const match = (url) => url.pathname === '/api/v1/jobs';
+  await page.route(match, async (route) => {
+    if (route.request().method() !== 'POST') return route.continue();
+    const scene = route.request().postDataJSON();
+    sent.push(scene);
+    if (scene.analysis !== result.analysis) {
+      return route.fulfill({
+        status: 422, contentType: 'application/json',
+        body: JSON.stringify({ error: { code: 'test', message: 'not answered by this test', path: '' } }),
+      });
+    }
+    return route.fulfill({
+      status: 200, contentType: 'application/json',
+      body: JSON.stringify({ id: `fixture-${sent.length}`, status: 'succeeded', progress: 1, result }),
+    });
+  });
+  return { sent, stop: () => page.unroute(match) };
+}
+
+// Renders `result` with module `id` into a scratch element and reports what
+// was drawn (the renderers are pure functions of the result).
+async function renderFixture(id, result) {
+  return page.evaluate(async ({ id, result }) => {
+    const mod = await import(`/static/${id}.js`);
+    const box = document.createElement('div');
+    document.body.append(box);
+    try {
+      mod[id].render(result, null, box);
+      const q = (sel) => box.querySelector(sel);
+      const all = (sel) => [...box.querySelectorAll(sel)];
+      const points = (sel) => (q(sel)?.getAttribute('d')?.match(/[ML]/g) || []).length;
+      return {
+        text: box.textContent,
+        gapLabel: q('#pt-gap-label')?.textContent,
+        xaCell: q('#pt-xa')?.textContent,
+        freePoints: points('#pt-free'),
+        referencePoints: points('#pt-reference'),
+        zPlot: Boolean(q('#pt-z-plot')),
+        pressurePoints: points('#ct-pressure'),
+        lightGaps: all('.light-gaps .light-gap').length,
+        maxGapLabel: q('#ct-max-gap-label')?.textContent,
+        p0: Boolean(q('#ct-p0')),
+        boreLabel: q('#ct-bore-label')?.textContent,
+        distortionRows: all('#ct-distortion tbody tr').length,
+        band: Boolean(q('#lf-band')),
+        meanPoints: points('#lf-mean'),
+        events: all('#lf-lift .event').map((g) => ({ kind: g.dataset.event, title: g.querySelector('title')?.textContent })),
+        eventRows: all('#lf-events tbody tr').length,
+        friction: Boolean(q('#lf-friction')),
+        flankRuns: all('#lf-flank .flank-runs rect').map((r) => r.dataset.flank),
+        crankTicks: all('#lf-lift .axes text.tick[text-anchor="middle"]').map((t) => t.textContent),
+        upperLine: Boolean(q('#lf-upper')),
+      };
+    } finally {
+      box.remove();
+    }
+  }, { id, result });
+}
+
+// Runs of equal flank states, as the strip draws them.
+const runsOf = (flank) => flank.filter((f, i) => i === 0 || f !== flank[i - 1]);
+
+test('four analysis tabs: arrow keys move between them, each shows its own labelled fields', { timeout: 60000 }, async () => {
+  await page.goto(`${BASE}/`);
+  await page.waitForSelector('#tab-modal[aria-selected="true"]');
+  assert.deepEqual(await page.$$eval('[role="tab"]', (ts) => ts.map((t) => t.textContent)), ['Modal', 'Pretension', 'Contact', 'Lift']);
+  await page.focus('#tab-modal');
+  for (const id of ['pretension', 'contact', 'lift', 'modal']) {
+    await page.keyboard.press('ArrowRight');
+    assert.equal(await page.evaluate(() => document.activeElement.id), `tab-${id}`);
+    assert.equal(await page.getAttribute(`#tab-${id}`, 'aria-selected'), 'true');
+    assert.equal(await page.getAttribute(`#tab-${id}`, 'tabindex'), '0');
+    assert.equal(await page.textContent('#run'), `Run ${id} analysis`);
+    const shown = await page.$$eval('fieldset[data-analysis]', (fs) => fs.filter((f) => !f.hidden).map((f) => f.dataset.analysis));
+    assert.ok(shown.length >= 1 && shown.every((a) => a === id), `only ${id} fields shown: ${shown}`);
+  }
+  // Every control of the analysis fieldsets has a label with text.
+  const unlabelled = await page.$$eval('fieldset[data-analysis] :is(input, select)', (els) => els
+    .filter((e) => !document.querySelector(`label[for="${e.id}"]`)?.textContent.trim())
+    .map((e) => e.id || e.outerHTML));
+  assert.deepEqual(unlabelled, []);
+});
+
+test('pretension form: choice and checkbox encoding; other analyses leave its block out', { timeout: 60000 }, async () => {
+  const jobs = await interceptJobs(fixtures.pretensionResult({ lateral: 1 }));
+  try {
+    await selectTab('pretension');
+    await runAnalysis('Run pretension analysis');
+    let scene = jobs.sent.at(-1);
+    assert.equal(scene.analysis, 'pretension');
+    assert.deepEqual(scene.pretension, { method: 'force', lateral_force: 0 });
+    assert.deepEqual(scene.numerics, { error_estimate: true });
+    assert.equal(scene.engine, undefined, 'no lift fields in a pretension scene');
+    assert.equal(await page.locator('#result-body #pt-shape').count(), 1, 'the answer is drawn');
+
+    await page.selectOption('#f-pt-method', 'field');
+    await page.fill('#f-pt-lateral', '0.3');
+    await page.uncheck('#f-pt-error-estimate');
+    await runAnalysis('Run pretension analysis');
+    scene = jobs.sent.at(-1);
+    assert.deepEqual(scene.pretension, { method: 'field', lateral_force: 0.3 });
+    assert.deepEqual(scene.numerics, { error_estimate: false });
+
+    await selectTab('modal');
+    await runAnalysis();
+    scene = jobs.sent.at(-1);
+    assert.equal(scene.analysis, 'modal');
+    assert.equal(scene.pretension, undefined);
+    assert.equal(scene.numerics, undefined);
+  } finally {
+    await jobs.stop();
+  }
+});
+
+test('contact form: empty optional fields are left out, the distortion list is sent as rows', { timeout: 60000 }, async () => {
+  const jobs = await interceptJobs(fixtures.contactResult());
+  try {
+    await page.getByRole('button', { name: 'Reset to defaults' }).click();
+    await selectTab('contact');
+    assert.equal(await page.inputValue('#f-ct-bore-diameter'), '');
+    await runAnalysis('Run contact analysis');
+    let scene = jobs.sent.at(-1);
+    assert.equal(scene.bore, undefined, 'round bore of the ring diameter: no bore block');
+    assert.deepEqual(scene.contact, { points_per_segment: 5 });
+    assert.equal(scene.numerics.error_estimate, true);
+
+    const add = page.getByRole('button', { name: 'Add a distortion order' });
+    for (let i = 0; i < 3; i++) await add.click();
+    assert.equal(await page.locator('#f-distortion tbody tr').count(), 3);
+    assert.equal(await page.evaluate(() => document.activeElement.id), 'f-distortion-2-order', 'focus on the new row');
+    await page.fill('#f-distortion-1-order', '3');
+    await page.fill('#f-distortion-1-amplitude', '4e-6');
+    await page.fill('#f-distortion-1-phase_deg', '30');
+    await page.fill('#f-distortion-2-order', '4');
+    await page.fill('#f-distortion-2-amplitude', '6e-6');
+    await page.fill('#f-distortion-2-phase_deg', '45');
+    assert.match(await page.textContent('#f-distortion-2-amplitude-hint'), /6 µm/);
+    await page.getByRole('button', { name: 'Remove distortion 1' }).click();
+    assert.equal(await page.locator('#f-distortion tbody tr').count(), 2);
+    // The rows are renumbered: labels, ids and paths.
+    assert.equal(await page.textContent('label[for="f-distortion-0-order"]'), 'Distortion 1: order k');
+    assert.equal(await page.getAttribute('#f-distortion-1-amplitude', 'data-path'), '/bore/distortion/1/amplitude');
+    await page.fill('#f-ct-bore-diameter', '0.0766');
+    await page.fill('#f-ct-stiffness', '2e13');
+    await page.fill('#f-ct-points', '8');
+    await runAnalysis('Run contact analysis');
+    scene = jobs.sent.at(-1);
+    assert.deepEqual(scene.bore, {
+      diameter: 0.0766,
+      distortion: [{ order: 3, amplitude: 4e-6, phase_deg: 30 }, { order: 4, amplitude: 6e-6, phase_deg: 45 }],
+    });
+    assert.deepEqual(scene.contact, { points_per_segment: 8, stiffness: 2e13 });
+
+    // Emptied again, the optional fields are left out again.
+    await page.fill('#f-ct-stiffness', '');
+    await page.fill('#f-ct-bore-diameter', '');
+    await runAnalysis('Run contact analysis');
+    scene = jobs.sent.at(-1);
+    assert.equal(scene.contact.stiffness, undefined);
+    assert.equal(scene.bore.diameter, undefined);
+
+    // A row with an empty amplitude stops the run on the page, naming the field.
+    const before = jobs.sent.length;
+    await page.fill('#f-distortion-0-amplitude', '');
+    await runAnalysis('Run contact analysis');
+    assert.equal(jobs.sent.length, before, 'nothing sent');
+    const text = await page.textContent('#error');
+    assert.match(text, /Distortion 1: amplitude \(m\)/);
+    assert.equal(await page.getAttribute('#f-distortion-0-amplitude', 'aria-invalid'), 'true');
+    assert.equal(await page.evaluate(() => document.activeElement.id), 'f-distortion-0-amplitude');
+
+    // 0 to 16 rows: the add button stops at 16; removing all sends no list.
+    for (let i = 2; i < 16; i++) await add.click();
+    assert.equal(await page.locator('#f-distortion tbody tr').count(), 16);
+    assert.equal(await add.isDisabled(), true, 'no 17th row');
+    assert.match(await page.textContent('#f-distortion [data-list-count]'), /16 of 16/);
+    while (await page.locator('#f-distortion [data-list-remove]').count()) {
+      await page.locator('#f-distortion [data-list-remove]').first().click();
+    }
+    assert.equal(await page.evaluate(() => document.activeElement.id), 'f-distortion-add', 'focus back on the add button');
+    await runAnalysis('Run contact analysis');
+    assert.equal(jobs.sent.at(-1).bore, undefined);
+  } finally {
+    await jobs.stop();
+  }
+});
+
+test('lift form: the friction and gas toggles put their blocks in the scene or leave them out', { timeout: 60000 }, async () => {
+  const jobs = await interceptJobs(fixtures.liftResult());
+  try {
+    await page.getByRole('button', { name: 'Reset to defaults' }).click();
+    await selectTab('lift');
+    await runAnalysis('Run lift analysis');
+    let scene = jobs.sent.at(-1);
+    assert.deepEqual(scene.engine, { speed_rpm: 1000, crank_radius: 0.04345, rod_length: 0.13, kinematics: 'exact', cycles: 2 });
+    assert.deepEqual(scene.groove, { axial_clearance: 3e-5, radial_clearance: 5e-4 });
+    assert.deepEqual(scene.physics, { gravity: false }, 'friction and gas off: absent');
+    assert.deepEqual(scene.output, { step_deg: 1 });
+    assert.deepEqual(scene.numerics, { rtol: 1e-6, atol: 1e-9, error_estimate: true });
+    assert.equal(await page.isDisabled('#f-lf-friction-coefficient'), true, 'friction fields off with their toggle');
+
+    await page.check('#f-lf-friction');
+    assert.equal(await page.isDisabled('#f-lf-friction-coefficient'), false);
+    await page.selectOption('#f-lf-friction-model', 'stribeck');
+    await page.fill('#f-lf-friction-coefficient', '0.12');
+    await page.check('#f-lf-gravity');
+    await page.selectOption('#f-lf-kinematics', 'approximate');
+    await runAnalysis('Run lift analysis');
+    scene = jobs.sent.at(-1);
+    assert.deepEqual(scene.physics, { gravity: true, friction: { model: 'stribeck', coefficient: 0.12 } });
+    assert.equal(scene.engine.kinematics, 'approximate');
+    await page.uncheck('#f-lf-friction');
+    await runAnalysis('Run lift analysis');
+    assert.deepEqual(jobs.sent.at(-1).physics, { gravity: true });
+
+    // Gas: the tables of a shipped example, or a disabled toggle that says why.
+    const resp = await page.request.get(`${BASE}/api/v1/examples`);
+    const examples = resp.status() === 200 ? (await resp.json()).examples : [];
+    const withGas = examples.filter((e) => Array.isArray(e.scene?.physics?.gas?.crank_deg));
+    await page.waitForFunction(() => !/^Pressure tables \(above/.test(document.getElementById('f-lf-gas-note').textContent) ||
+      document.getElementById('f-lf-gas-source').options.length > 0);
+    if (!withGas.length) {
+      assert.equal(await page.isDisabled('#f-lf-gas'), true, 'no example with gas tables: toggle disabled');
+      assert.match(await page.textContent('#f-lf-gas-note'), /^Unavailable/);
+    } else {
+      const preferred = withGas.find((e) => e.name === 'thesis_lift_gas_6000rpm') || withGas[0];
+      assert.equal(await page.isDisabled('#f-lf-gas'), false);
+      assert.equal(await page.inputValue('#f-lf-gas-source'), preferred.name);
+      await page.check('#f-lf-gas');
+      await page.selectOption('#f-lf-gas-area', 'dynamic');
+      await runAnalysis('Run lift analysis');
+      const gas = jobs.sent.at(-1).physics.gas;
+      const { active_area: _, ...tables } = preferred.scene.physics.gas;
+      assert.deepEqual(gas, { ...tables, active_area: 'dynamic' });
+      await page.uncheck('#f-lf-gas');
+      await runAnalysis('Run lift analysis');
+      assert.equal(jobs.sent.at(-1).physics.gas, undefined);
+    }
+  } finally {
+    await jobs.stop();
+  }
+});
+
+test('examples with gas tables and distortion rows load into the toggles and the list (examples served by the test)', { timeout: 60000 }, async () => {
+  const gas = { crank_deg: [0, 360, 375, 720], above: [1e5, 5e6, 4e6, 1e5], behind: [1e5, 3e6, 3e6, 1e5], below: [1e5, 1e6, 1e6, 1e5], active_area: 'dynamic' };
+  const served = [
+    { name: 'contact_two_orders', description: 'Two orders.', scene: { name: 'Two orders', analysis: 'contact', bore: { diameter: 0.0766, distortion: [{ order: 2, amplitude: 3e-6, phase_deg: 10 }, { order: 4, amplitude: 2e-6, phase_deg: 0 }] }, contact: { points_per_segment: 10 } } },
+    { name: 'thesis_lift_gas_6000rpm', description: 'Gas at 6000 rpm.', scene: { name: 'Lift with gas', analysis: 'lift', engine: { speed_rpm: 6000, cycles: 1 }, physics: { gravity: true, friction: { model: 'coulomb', coefficient: 0.08, viscosity: 0.02 }, gas } } },
+  ];
+  const examplesUrl = (url) => url.pathname === '/api/v1/examples';
+  await page.route(examplesUrl, (route) => route.fulfill({ status: 200, contentType: 'application/json', body: JSON.stringify({ examples: served }) }));
+  const jobs = await interceptJobs(fixtures.liftResult());
+  try {
+    await page.goto(`${BASE}/`);
+    await page.waitForFunction(() => document.querySelectorAll('#example option').length === 3);
+    assert.equal(await page.isDisabled('#f-lf-gas'), false, 'gas tables available');
+    assert.equal(await page.inputValue('#f-lf-gas-source'), 'thesis_lift_gas_6000rpm');
+    assert.doesNotMatch(await page.textContent('#f-lf-gas-note'), /Unavailable|missing/);
+
+    // The lift example: its tab, its toggles on, its values in the fields.
+    await page.selectOption('#example', { index: 2 });
+    assert.equal(await page.getAttribute('#tab-lift', 'aria-selected'), 'true');
+    assert.equal(await page.inputValue('#f-lf-speed'), '6000');
+    assert.equal(await page.isChecked('#f-lf-gravity'), true);
+    assert.equal(await page.isChecked('#f-lf-friction'), true);
+    assert.equal(await page.inputValue('#f-lf-friction-coefficient'), '0.08');
+    assert.equal(await page.isChecked('#f-lf-gas'), true);
+    assert.equal(await page.inputValue('#f-lf-gas-area'), 'dynamic');
+    await runAnalysis('Run lift analysis');
+    let scene = jobs.sent.at(-1);
+    assert.deepEqual(scene.physics.gas, gas, 'the example\'s tables and area');
+    assert.deepEqual(scene.physics.friction, { model: 'coulomb', coefficient: 0.08, viscosity: 0.02 }, 'fields without an input are kept');
+    assert.equal(scene.name, undefined);
+    // Unchecked, the example's blocks are dropped too.
+    await page.uncheck('#f-lf-friction');
+    await page.uncheck('#f-lf-gas');
+    await runAnalysis('Run lift analysis');
+    scene = jobs.sent.at(-1);
+    assert.deepEqual(scene.physics, { gravity: true });
+
+    // The contact example: one list row per distortion order.
+    await page.selectOption('#example', { index: 1 });
+    assert.equal(await page.getAttribute('#tab-contact', 'aria-selected'), 'true');
+    assert.equal(await page.locator('#f-distortion tbody tr').count(), 2);
+    assert.equal(await page.inputValue('#f-distortion-1-order'), '4');
+    assert.equal(await page.inputValue('#f-ct-bore-diameter'), '0.0766');
+    // Back to the defaults: no rows, toggles off.
+    await page.getByRole('button', { name: 'Reset to defaults' }).click();
+    assert.equal(await page.locator('#f-distortion tbody tr').count(), 0);
+    assert.equal(await page.isChecked('#f-lf-gas'), false);
+    assert.equal(await page.inputValue('#f-ct-bore-diameter'), '');
+  } finally {
+    await jobs.stop();
+    await page.unroute(examplesUrl);
+  }
+  await page.goto(`${BASE}/`);
+  await page.waitForSelector('#tab-modal[aria-selected="true"]');
+});
+
+test('renderers draw fixture results: points, marks and labels match the numbers', { timeout: 60000 }, async () => {
+  // Pretension: shape points, the gap label in mm to 2 decimals, the z plot only with a lateral opening.
+  const pt = fixtures.pretensionResult({ lateral: 1 });
+  let r = await renderFixture('pretension', pt);
+  assert.equal(r.gapLabel, `x_a = ${(pt.gap_opening_inner * 1e3).toFixed(2)} mm`);
+  assert.equal(r.freePoints, pt.shape.x.length);
+  assert.equal(r.referencePoints, pt.shape.reference_x.length);
+  assert.equal(r.zPlot, true);
+  assert.match(r.xaCell, /^9\.214 mm/);
+  r = await renderFixture('pretension', fixtures.pretensionResult({ lateral: 0 }));
+  assert.equal(r.zPlot, false, 'no z plot without a lateral opening');
+
+  // Contact: one polar point per angle, one arc per segment with clearance > 0.
+  const ct = fixtures.contactResult();
+  r = await renderFixture('contact', ct);
+  assert.equal(r.pressurePoints, ct.angle_deg.length);
+  const gaps = ct.clearance.filter((c) => c > 0).length;
+  assert.ok(gaps > 0);
+  assert.equal(r.lightGaps, gaps);
+  assert.equal(r.maxGapLabel, `max ${(ct.max_clearance * 1e6).toFixed(2)} µm`);
+  assert.equal(r.p0, true);
+  assert.match(r.boreLabel, /exaggerated/);
+  assert.equal(r.distortionRows, ct.distortion.length);
+
+  // Lift: band, one marker per event with its angle in the tooltip, flank runs, crank ticks every 90 deg for one cycle.
+  const lf = fixtures.liftResult();
+  r = await renderFixture('lift', lf);
+  assert.equal(r.band, true);
+  assert.equal(r.upperLine, true);
+  assert.equal(r.events.length, lf.events.length);
+  r.events.forEach((e, i) => {
+    assert.equal(e.kind, lf.events[i].event);
+    assert.ok(e.title.includes(`${lf.events[i].crank_deg}°`), e.title);
+  });
+  assert.equal(r.eventRows, lf.events.length);
+  assert.deepEqual(r.flankRuns, runsOf(lf.flank));
+  assert.deepEqual(r.crankTicks, ['0', '90', '180', '270', '360', '450', '540', '630', '720']);
+  assert.equal(r.friction, true);
+  r = await renderFixture('lift', fixtures.liftResult({ friction: false }));
+  assert.equal(r.friction, false, 'no friction plot without friction in the scene');
+
+  // A long run: ticks every 180 deg for two cycles, and the lines are thinned.
+  const two = fixtures.liftResult();
+  two.crank_deg = [...two.crank_deg, ...two.crank_deg.slice(1).map((c) => c + 720)];
+  for (const k of ['lift', 'lift_min', 'lift_max', 'flank', 'friction_force']) two[k] = [...two[k], ...two[k].slice(1)];
+  r = await renderFixture('lift', two);
+  assert.deepEqual(r.crankTicks, ['0', '180', '360', '540', '720', '900', '1080', '1260', '1440']);
+  const long = fixtures.liftResult();
+  long.crank_deg = Array.from({ length: 36001 }, (_, i) => i);
+  long.lift = long.crank_deg.map((c) => 1.5e-5 * (1 + Math.sin(c / 7)));
+  delete long.lift_min; delete long.lift_max; delete long.flank; delete long.friction_force;
+  r = await renderFixture('lift', long);
+  assert.ok(r.meanPoints > 0 && r.meanPoints <= 4 * 700, `36001 samples drawn with ${r.meanPoints} points`);
+  assert.ok(r.crankTicks.length <= 13, `${r.crankTicks.length} crank ticks`);
+});
+
+test('renderers cope with results that have only the fields API.md promises', { timeout: 60000 }, async () => {
+  let r = await renderFixture('pretension', fixtures.minimal(fixtures.pretensionResult()));
+  assert.match(r.text, /9\.21 mm/);
+  assert.match(r.text, /no free shape/);
+  r = await renderFixture('contact', fixtures.minimal(fixtures.contactResult()));
+  assert.equal(r.pressurePoints, fixtures.contactResult().angle_deg.length);
+  assert.equal(r.lightGaps, 0, 'no clearance array: no light gaps drawn');
+  assert.match(r.text, /Round bore/);
+  const lf = fixtures.liftResult();
+  r = await renderFixture('lift', fixtures.minimal(lf));
+  assert.equal(r.band, false, 'no lift_min / lift_max: no band');
+  assert.ok(r.meanPoints > 0);
+  assert.equal(r.events.length, lf.events.length);
+  assert.equal(r.upperLine, false, 'no scene: no clearance line');
+  r = await renderFixture('lift', { analysis: 'lift' });
+  assert.match(r.text, /no samples/);
+  assert.deepEqual(pageErrors, []);
+});
+
+test('narrow screen: the new forms and results fit without sideways scrolling', { timeout: 60000 }, async () => {
+  await page.setViewportSize({ width: 390, height: 844 });
+  try {
+    for (const result of [fixtures.pretensionResult({ lateral: 1 }), fixtures.contactResult(), fixtures.liftResult()]) {
+      const jobs = await interceptJobs(result);
+      try {
+        await selectTab(result.analysis);
+        if (result.analysis === 'contact') await page.getByRole('button', { name: 'Add a distortion order' }).click();
+        await runAnalysis(`Run ${result.analysis} analysis`);
+        assert.equal(await page.locator('#result-body svg.chart').first().isVisible(), true);
+        const overflow = await page.evaluate(() => document.documentElement.scrollWidth - window.innerWidth);
+        assert.ok(overflow <= 0, `${result.analysis}: page scrolls sideways by ${overflow}px`);
+        await shot(`ringdyn-narrow-${result.analysis}.png`, { fullPage: true });
+      } finally {
+        await jobs.stop();
+      }
+    }
+  } finally {
+    await page.setViewportSize({ width: 1280, height: 800 });
+    await page.getByRole('button', { name: 'Reset to defaults' }).click();
+  }
+});
+
+test('pretension against the server: the gap label and shape match the result; a negative lateral force is refused', { skip: SKIP.pretension, timeout: 180000 }, async () => {
+  await page.getByRole('button', { name: 'Reset to defaults' }).click();
+  await selectTab('pretension');
+  await page.fill('#f-pt-lateral', '0.5');
+  await runAnalysis('Run pretension analysis', 150000);
+  assert.equal(await page.isVisible('#error'), false, `unexpected error: ${await page.textContent('#error')}`);
+  const { result } = await shownJob();
+  assert.equal(result.analysis, 'pretension');
+  assert.equal(result.scene.pretension.lateral_force, 0.5);
+  assert.equal(await page.textContent('#pt-gap-label'), `x_a = ${(result.gap_opening_inner * 1e3).toFixed(2)} mm`);
+  assert.equal(pathPoints(await page.getAttribute('#pt-free', 'd')), result.shape.x.length);
+  assert.equal(result.shape.x.length, result.numerics.segments + 2);
+  assert.equal(await page.locator('#pt-z-plot').count(), result.lateral_opening > 0 ? 1 : 0);
+  assert.match(await page.textContent('#pt-xa'), new RegExp(`^${(result.gap_opening_inner * 1e3).toFixed(3)} mm`));
+  assert.match(await page.textContent('#cost'), new RegExp(`${result.numerics.segments} segments`));
+  assert.equal((await page.request.get(`${BASE}${await page.getAttribute('#csv-link', 'href')}`)).status(), 200, 'CSV link answers');
+  await shot('ringdyn-pretension.png', { fullPage: true });
+
+  await page.fill('#f-pt-lateral', '-1');
+  await runAnalysis('Run pretension analysis');
+  const text = await page.textContent('#error');
+  assert.match(text, /Lateral force/, `error names the field: ${text}`);
+  assert.match(text, /\/pretension\/lateral_force/);
+  assert.equal(await page.getAttribute('#f-pt-lateral', 'aria-invalid'), 'true');
+  assert.equal(await page.locator('[aria-invalid="true"]').count(), 1);
+  await page.fill('#f-pt-lateral', '0');
+});
+
+test('contact against the server: polar points, light gaps and the distortion table match the result; 3 segments are refused', { skip: SKIP.contact, timeout: 240000 }, async () => {
+  await page.getByRole('button', { name: 'Reset to defaults' }).click();
+  await selectTab('contact');
+  await page.fill('#f-segments', '40');
+  await page.getByRole('button', { name: 'Add a distortion order' }).click();
+  await page.fill('#f-distortion-0-order', '4');
+  await page.fill('#f-distortion-0-amplitude', '6e-6');
+  await page.fill('#f-distortion-0-phase_deg', '45');
+  await runAnalysis('Run contact analysis', 200000);
+  assert.equal(await page.isVisible('#error'), false, `unexpected error: ${await page.textContent('#error')}`);
+  const { result } = await shownJob();
+  assert.equal(result.analysis, 'contact');
+  assert.equal(result.scene.bore.distortion[0].order, 4);
+  assert.equal(pathPoints(await page.getAttribute('#ct-pressure', 'd')), result.angle_deg.length);
+  const gaps = result.clearance.filter((c) => c > 0).length;
+  assert.equal(await page.locator('.light-gaps .light-gap').count(), gaps);
+  if (gaps > 0) {
+    assert.equal(await page.textContent('#ct-max-gap-label'), `max ${(result.max_clearance * 1e6).toFixed(2)} µm`);
+  } else {
+    assert.equal(await page.locator('#ct-max-gap-label').count(), 0);
+  }
+  assert.equal(await page.locator('#ct-p0').count(), 1);
+  assert.equal(await page.locator('#ct-distortion tbody tr').count(), (result.distortion || []).length);
+  assert.match(await page.textContent('#ct-fraction'), new RegExp(`^${(result.contact_fraction * 100).toFixed(1)} %`));
+  assert.equal((await page.request.get(`${BASE}${await page.getAttribute('#csv-link', 'href')}`)).status(), 200, 'CSV link answers');
+  await shot('ringdyn-contact.png', { fullPage: true });
+
+  await page.fill('#f-segments', '3');
+  await runAnalysis('Run contact analysis');
+  const text = await page.textContent('#error');
+  assert.match(text, /Segments/, `error names the field: ${text}`);
+  assert.match(text, /\/discretization\/segments/);
+  assert.equal(await page.getAttribute('#f-segments', 'aria-invalid'), 'true');
+  await page.fill('#f-segments', '20');
+});
+
+test('lift against the server: band, event markers, friction plot and flank strip match the result; a zero speed is refused', { skip: SKIP.lift, timeout: 300000 }, async () => {
+  await page.getByRole('button', { name: 'Reset to defaults' }).click();
+  await selectTab('lift');
+  // Half a cycle on 8 segments: Coulomb friction makes CVODE take small
+  // steps (a whole cycle on 20 segments takes over a minute).
+  await page.fill('#f-segments', '8');
+  await page.fill('#f-lf-cycles', '0.5');
+  await page.uncheck('#f-lf-error-estimate');
+  await page.check('#f-lf-friction');
+  await runAnalysis('Run lift analysis', 280000);
+  assert.equal(await page.isVisible('#error'), false, `unexpected error: ${await page.textContent('#error')}`);
+  const { result } = await shownJob();
+  assert.equal(result.analysis, 'lift');
+  assert.equal(result.scene.physics.friction.model, 'coulomb');
+  assert.equal(result.scene.physics.friction.coefficient, 0.1);
+  assert.equal(await page.locator('#lf-band').count(), 1);
+  assert.ok(pathPoints(await page.getAttribute('#lf-mean', 'd')) > 1);
+  assert.equal(await page.locator('#lf-lift .event').count(), result.events.length);
+  assert.equal(await page.locator('#lf-events tbody tr').count(), Math.min(result.events.length, 500));
+  assert.equal(await page.locator('#lf-friction').count(), 1);
+  assert.deepEqual(await page.$$eval('#lf-flank .flank-runs rect', (rs) => rs.map((r) => r.dataset.flank)), runsOf(result.flank));
+  const ticks = (await page.$$eval('#lf-lift .axes text.tick[text-anchor="middle"]', (ts) => ts.map((t) => Number(t.textContent))));
+  assert.ok(ticks.length >= 2 && ticks.every((t) => t % 90 === 0), `crank ticks every 90 or 180 deg: ${ticks}`);
+  assert.ok([90, 180].includes(ticks[1] - ticks[0]), `tick step ${ticks[1] - ticks[0]}`);
+  assert.equal((await page.request.get(`${BASE}${await page.getAttribute('#csv-link', 'href')}`)).status(), 200, 'CSV link answers');
+  await shot('ringdyn-lift.png', { fullPage: true });
+
+  await page.fill('#f-lf-speed', '0');
+  await runAnalysis('Run lift analysis');
+  const text = await page.textContent('#error');
+  assert.match(text, /Engine speed/, `error names the field: ${text}`);
+  assert.match(text, /\/engine\/speed_rpm/);
+  assert.equal(await page.getAttribute('#f-lf-speed', 'aria-invalid'), 'true');
+  await page.fill('#f-lf-speed', '1000');
 });
 
 test('no console errors or uncaught exceptions', () => {

@@ -1,0 +1,233 @@
+// The contact analysis: renders a contact `result` (API.md) as a polar plot
+// of the contact pressure around the circumference with the uniform pressure
+// p0 as a reference circle, the bore's distortion (exaggerated) and the light
+// gaps, plus tables of the figures and of the distortion orders.
+// A pure function of the result: optional fields may be missing.
+
+import { svg, ticks, pathD, polar, legend } from './svg.js';
+import { h, isNum, fixed, sig, seconds, percent, kvTable, resultLinks } from './html.js';
+
+const MPa = (v, d = 3) => (isNum(v) ? `${sig(v / 1e6, d)} MPa` : '—');
+const um = (v, d = 2) => fixed(v, d, 1e6);
+const deg = (v) => (isNum(v) ? `${Number(v.toFixed(1))}°` : '—');
+const nums = (a) => (Array.isArray(a) ? a.map(Number) : []);
+
+export const contact = {
+  id: 'contact',
+  label: 'Contact',
+  runLabel: 'Run contact analysis',
+
+  render(result, job, container) {
+    const n = result.numerics || {};
+    const gaps = lightGaps(result);
+    const count = nums(result.clearance).length;
+    container.replaceChildren(
+      h('h3', {}, 'Contact with the bore — pressure around the circumference'),
+      h('p', { id: 'ct-summary' },
+        `Mean pressure ${MPa(result.mean_pressure_pa)} against the uniform ${MPa(result.uniform_pressure_pa)}; `,
+        isNum(result.contact_fraction) ? `${fixed(result.contact_fraction, 1, 100)} % of the circumference in contact; ` : '',
+        gaps.length
+          ? `light gaps on ${gaps.length} of ${count} segments, largest ${um(result.max_clearance)} µm at ${deg(maxGapAngle(result, gaps))}.`
+          : 'no light gap: the ring touches the bore all round.'),
+      h('p', { id: 'cost', class: 'cost' }, h('strong', {}, 'Cost and accuracy: '), costLine(n)),
+      resultLinks(job, 'contact', 'Pressure table (CSV)'),
+      h('div', { class: 'result-grid' },
+        h('figure', { class: 'plot' }, polarPlot(result, gaps),
+          h('figcaption', {}, 'Contact pressure against the angle from the gap: gap (0°) at the right, angle counter-clockwise, ring seen from the cylinder head. ' +
+            'Radius = pressure; dashed circle: the uniform pressure p0. Outer curve: the bore, its distortion exaggerated; marked arcs: light gaps (clearance > 0).')),
+        h('div', { class: 'table-wrap' }, figures(result, gaps))),
+      distortionTable(result),
+    );
+  },
+};
+
+// Indices of the segments that do not touch the bore (clearance > 0).
+function lightGaps(result) {
+  const c = nums(result.clearance);
+  return c.map((v, i) => (v > 0 ? i : -1)).filter((i) => i >= 0);
+}
+
+function maxGapAngle(result, gaps) {
+  if (isNum(result.max_clearance_angle_deg)) return result.max_clearance_angle_deg;
+  const c = nums(result.clearance), a = nums(result.angle_deg);
+  const i = gaps.reduce((best, j) => (c[j] > c[best] ? j : best), gaps[0]);
+  return a[i];
+}
+
+function costLine(n) {
+  const parts = [];
+  if (n.segments !== undefined) parts.push(`${n.segments} segments`);
+  if (n.dof !== undefined) parts.push(`${n.dof} DOF`);
+  if (n.iterations !== undefined) parts.push(`${n.iterations} Newton iterations${n.load_steps !== undefined ? ` in ${n.load_steps} load steps` : ''}`);
+  parts.push(`wall time ${seconds(n.wall_s)}`);
+  parts.push(isNum(n.error_estimate) ? `estimated error ${percent(n.error_estimate)}` : 'error not estimated');
+  return parts.join(' · ');
+}
+
+function figures(result, gaps) {
+  const n = result.numerics || {};
+  const mean = result.mean_pressure_pa, p0 = result.uniform_pressure_pa;
+  const ratio = isNum(mean) && isNum(p0) && p0 !== 0 ? ` (${(mean / p0).toFixed(3)} p0)` : '';
+  const err = isNum(n.error_estimate)
+    ? `${percent(n.error_estimate)}${n.reference_segments ? ` (vs ${n.reference_segments} segments)` : ''}`
+    : 'not estimated';
+  return kvTable({
+    id: 'ct-table',
+    caption: 'Contact figures, accuracy and cost',
+    rows: [
+      ['Mean contact pressure', `${MPa(mean)}${ratio}`, { id: 'ct-mean' }],
+      ['Uniform pressure p0 = 2 Ft / (d h)', MPa(p0), { id: 'ct-p0-value' }],
+      ['Contact fraction', isNum(result.contact_fraction) ? `${fixed(result.contact_fraction, 1, 100)} %` : '—', { id: 'ct-fraction' }],
+      ['Largest light gap', gaps.length || isNum(result.max_clearance)
+        ? `${um(result.max_clearance)} µm${gaps.length ? ` at ${deg(maxGapAngle(result, gaps))}` : ''}` : '—', { id: 'ct-max-clearance' }],
+      ['Segments with a light gap', `${gaps.length} of ${nums(result.clearance).length}`],
+      ['Largest penetration', isNum(result.max_penetration) ? `${um(result.max_penetration, 3)} µm` : undefined],
+      ['Contact stiffness', isNum(result.contact_stiffness) ? `${sig(result.contact_stiffness)} Pa/m` : undefined],
+      ['Conformability k (1.4)', isNum(result.conformability) ? sig(result.conformability, 4) : undefined],
+      ['Error estimate', err, { id: 'ct-error', title: n.error_method }],
+      ['Segments / DOF', `${n.segments ?? '—'} / ${n.dof ?? '—'}`],
+      ['Load steps / Newton iterations', `${n.load_steps ?? '—'} / ${n.iterations ?? '—'}`],
+      ['Wall time', seconds(n.wall_s)],
+      ['Solver', n.solver],
+    ],
+  });
+}
+
+// Each distortion order: its amplitude against the thin-ring conformability
+// bound F_t R^3 / (E I (k^2 - 1)^2): a ring follows distortions below it.
+function distortionTable(result) {
+  const rows = Array.isArray(result.distortion) ? result.distortion : [];
+  if (!rows.length) return h('p', { class: 'hint', id: 'ct-round' }, 'Round bore: no distortion orders.');
+  const body = rows.map((d) => {
+    const a = Number(d.amplitude), b = Number(d.conformability_bound);
+    const verdict = isNum(b) && isNum(a) ? (Math.abs(a) <= b ? 'follows' : 'light gap likely') : '—';
+    return h('tr', {},
+      h('td', { class: 'num' }, String(d.order ?? '—')),
+      h('td', { class: 'num' }, um(a, 2)),
+      h('td', { class: 'num' }, isNum(d.phase_deg) ? d.phase_deg.toFixed(1) : '—'),
+      h('td', { class: 'num' }, isNum(b) ? um(b, 2) : '—'),
+      h('td', {}, verdict));
+  });
+  return h('div', { class: 'table-wrap' }, h('table', { class: 'data', id: 'ct-distortion' },
+    h('caption', {}, 'Bore distortion orders against the thin-ring conformability bound (the largest amplitude the ring follows)'),
+    h('thead', {}, h('tr', {},
+      h('th', { scope: 'col', class: 'num' }, 'Order k'),
+      h('th', { scope: 'col', class: 'num' }, 'Amplitude (µm)'),
+      h('th', { scope: 'col', class: 'num' }, 'Phase (deg)'),
+      h('th', { scope: 'col', class: 'num' }, 'Bound (µm)'),
+      h('th', { scope: 'col' }, 'Ring'))),
+    h('tbody', {}, body)));
+}
+
+// The bore's radius change (m) at angle `a` (deg): from the distortion
+// orders when the result lists them, else from the per-segment radii.
+function boreDeviation(result) {
+  const orders = (Array.isArray(result.distortion) ? result.distortion : result.scene?.bore?.distortion) || [];
+  const valid = orders.filter((d) => isNum(d.order) && isNum(d.amplitude));
+  if (valid.length) {
+    return {
+      smooth: true,
+      at: (a) => valid.reduce((s, d) => s + d.amplitude * Math.cos((d.order * (a - (d.phase_deg || 0)) * Math.PI) / 180), 0),
+    };
+  }
+  const r = nums(result.bore_radius), ang = nums(result.angle_deg);
+  if (r.length < 3 || r.length !== ang.length) return null;
+  const mean = r.reduce((s, v) => s + v, 0) / r.length;
+  if (r.every((v) => Math.abs(v - mean) <= 1e-12 * Math.abs(mean))) return null;
+  return { smooth: false, points: ang.map((a, i) => [a, r[i] - mean]) };
+}
+
+function polarPlot(result, gaps) {
+  const S = 480, cx = S / 2, cy = S / 2 + 14;
+  const RP = 125; // px of the pressure axis maximum
+  const RB = 160; // px of the bore's nominal radius
+  const angles = nums(result.angle_deg);
+  const p = nums(result.pressure_pa);
+  const k = Math.min(angles.length, p.length);
+  const p0 = result.uniform_pressure_pa;
+  const pm = Math.max(isNum(p0) ? p0 : 0, ...p.slice(0, k).filter(isNum), 1);
+  const t = ticks(0, pm, 3);
+  const step = t.length > 1 ? t[1] - t[0] : pm;
+  const pAxis = Math.ceil((pm * 1.0001) / step) * step;
+  const rOf = (v) => (RP * Math.max(0, v)) / pAxis;
+
+  const grid = svg('g', { class: 'polar-grid' });
+  for (let v = step; v <= pAxis + step * 1e-9; v += step) {
+    grid.append(svg('circle', { class: 'grid', cx, cy, r: rOf(v), fill: 'none' }));
+    const [tx, ty] = polar(cx, cy, rOf(v), 100);
+    grid.append(svg('text', { class: 'tick', x: tx, y: ty - 2, 'text-anchor': 'middle' }, `${sig(v / 1e6)} MPa`));
+  }
+  for (const a of [0, 90, 180, 270]) {
+    const [x1, y1] = polar(cx, cy, RB + 22, a);
+    grid.append(svg('line', { class: 'grid', x1: cx, y1: cy, x2: x1, y2: y1 }));
+    const [lx, ly] = polar(cx, cy, RB + 28, a);
+    grid.append(svg('text', {
+      class: 'tick', x: lx, y: ly, 'dominant-baseline': 'middle',
+      'text-anchor': a === 0 ? 'start' : a === 180 ? 'end' : 'middle',
+    }, a === 0 ? '0° gap' : `${a}°`));
+  }
+
+  // The bore: a circle of radius RB, its distortion exaggerated to <= 18 px.
+  const dev = boreDeviation(result);
+  let borePath, boreText = 'bore (round)', exaggerate = 0;
+  let boreAt = () => RB; // px radius of the drawn bore at an angle
+  const D = Number(result.scene?.bore?.diameter) || Number(result.scene?.ring?.diameter) || 0;
+  if (dev) {
+    const samples = dev.smooth ? Array.from({ length: 361 }, (_, i) => [i, dev.at(i)]) : dev.points;
+    const maxDev = Math.max(...samples.map((s) => Math.abs(s[1])));
+    exaggerate = maxDev > 0 ? 18 / maxDev : 0; // px per m of radius change
+    borePath = pathD(samples.map(([a, d]) => polar(cx, cy, RB + d * exaggerate, a)), true);
+    if (dev.smooth) boreAt = (a) => RB + dev.at(a) * exaggerate;
+    if (D > 0 && exaggerate > 0) boreText = `bore, distortion ×${sig(exaggerate / (RB / (D / 2)), 2)} (exaggerated)`;
+    else boreText = 'bore, distortion exaggerated';
+  }
+  const bore = dev
+    ? svg('path', { class: 'bore', id: 'ct-bore', d: borePath })
+    : svg('circle', { class: 'bore', id: 'ct-bore', cx, cy, r: RB });
+
+  // Light gaps: an arc per segment with clearance > 0, just inside the bore.
+  const c = nums(result.clearance);
+  const half = k > 0 ? 180 / k : 5;
+  const RG = (a) => boreAt(a) - 8;
+  const arcs = gaps.map((i) => {
+    const a = angles[i];
+    const pts = [];
+    for (let j = 0; j <= 8; j++) {
+      const t = a - half + (2 * half * j) / 8;
+      pts.push(polar(cx, cy, RG(t), t));
+    }
+    return svg('path', { class: 'light-gap', d: pathD(pts), 'data-index': i },
+      svg('title', {}, `Light gap ${um(c[i])} µm at ${deg(a)}`));
+  });
+  let maxMark = null;
+  if (gaps.length) {
+    const am = maxGapAngle(result, gaps);
+    const [mx, my] = polar(cx, cy, RG(am), am);
+    const [lx, ly] = polar(cx, cy, RG(am) - 14, am);
+    const cos = Math.cos((am * Math.PI) / 180);
+    maxMark = svg('g', { class: 'max-gap' },
+      svg('circle', { cx: mx, cy: my, r: 4 }),
+      svg('text', {
+        id: 'ct-max-gap-label', class: 'halo', x: lx, y: ly, 'dominant-baseline': 'middle',
+        'text-anchor': cos > 0.3 ? 'end' : cos < -0.3 ? 'start' : 'middle',
+      }, `max ${um(result.max_clearance)} µm`));
+  }
+
+  const pressure = pathD(angles.slice(0, k).map((a, i) => polar(cx, cy, rOf(p[i]), a)));
+  const summary = `Polar plot of the contact pressure at ${k} points, up to ${MPa(Math.max(...p.slice(0, k).filter(isNum), 0))}; ` +
+    `uniform pressure ${MPa(p0)}; ${gaps.length} light-gap segments${gaps.length ? `, largest ${um(result.max_clearance)} µm` : ''}.`;
+  return svg('svg', { id: 'ct-polar', class: 'chart polar', viewBox: `0 0 ${S} ${S + 28}`, role: 'img', 'aria-label': summary },
+    legend([
+      [svg('path', { class: 'pressure', d: 'M-2,0H12' }), 'pressure'],
+      [svg('path', { class: 'p0', d: 'M-2,0H12' }), 'p0'],
+      [svg('path', { class: 'light-gap', d: 'M-2,0H12' }), 'light gap'],
+    ], { x: 10, y: 12 }),
+    svg('text', { class: 'tick', x: 10, y: 32, id: 'ct-bore-label' }, boreText),
+    grid,
+    bore,
+    isNum(p0) ? svg('circle', { class: 'p0', id: 'ct-p0', cx, cy, r: rOf(p0) },
+      svg('title', {}, `Uniform pressure p0 = ${MPa(p0)}`)) : null,
+    svg('path', { class: 'pressure', id: 'ct-pressure', d: pressure }),
+    svg('g', { class: 'light-gaps' }, arcs),
+    maxMark);
+}

@@ -1,0 +1,296 @@
+// The lift analysis: renders a lift `result` (API.md) as the ring lift in its
+// groove against crank angle (mean over the segments, the band between the
+// lowest and highest segment, both flanks, the flank events), a strip of the
+// flank state, the friction force when friction is modelled, and tables of
+// the events and the solver's cost.
+// A pure function of the result: optional fields may be missing.
+//
+// setup() is called once the shipped examples are known: the gas pressure
+// tables of the scene come from one of them.
+
+import { svg, scale, ticks, axes, pathD, stepTicks, legend } from './svg.js';
+import { h, isNum, fixed, sig, seconds, percent, kvTable, resultLinks } from './html.js';
+
+const GAS_EXAMPLE = 'thesis_lift_gas_6000rpm';
+const EVENT_TEXT = {
+  leave_lower: 'leaves the lower flank',
+  reach_upper: 'reaches the upper flank',
+  leave_upper: 'leaves the upper flank',
+  reach_lower: 'reaches the lower flank',
+};
+const FLANK_TEXT = { lower: 'on the lower flank', upper: 'on the upper flank', free: 'free (between the flanks)' };
+const EVENTS_SHOWN = 500; // rows of the event table
+const CRANK_STEPS = [90, 180, 360, 720, 1440, 3600, 7200, 14400];
+
+const um = (v, d = 2) => fixed(v, d, 1e6);
+const nums = (a) => (Array.isArray(a) ? a.map(Number) : []);
+const degText = (v) => (isNum(v) ? `${Number(v.toFixed(1))}°` : '—');
+
+export const lift = {
+  id: 'lift',
+  label: 'Lift',
+  runLabel: 'Run lift analysis',
+
+  // Offers the gas tables of the shipped examples that have them; without
+  // any, the gas toggle is disabled and says why.
+  setup({ form, examples, error }) {
+    const withGas = (examples || []).filter((ex) => {
+      const g = ex.scene?.physics?.gas;
+      return g && Array.isArray(g.crank_deg) && g.crank_deg.length > 1;
+    });
+    const options = withGas.map((ex) => {
+      const { active_area: _, ...tables } = ex.scene.physics.gas;
+      return { value: ex.name, label: ex.name, title: ex.scene.name || ex.description, data: tables };
+    });
+    form.setSource('/physics/gas', options, GAS_EXAMPLE);
+    const note = document.getElementById('f-lf-gas-note');
+    if (!note) return;
+    if (error) {
+      note.textContent = `Unavailable: the gas pressure tables come from the shipped examples, which could not be loaded (${error.message}).`;
+    } else if (!options.length) {
+      note.textContent = `Unavailable: the gas pressure tables come from a shipped example (${GAS_EXAMPLE}), and this server has none with gas tables.`;
+    } else {
+      note.textContent = `Pressure tables (above, behind and below the ring against crank angle) from a shipped example${withGas.some((ex) => ex.name === GAS_EXAMPLE) ? '' : ` (${GAS_EXAMPLE} is missing; others have tables)`}.`;
+    }
+  },
+
+  render(result, job, container) {
+    const n = result.numerics || {};
+    const crank = nums(result.crank_deg);
+    const events = Array.isArray(result.events) ? result.events : [];
+    const friction = result.scene?.physics?.friction;
+    const engine = result.scene?.engine || {};
+    const title = [
+      isNum(engine.cycles) ? `${sig(engine.cycles)} cycle${engine.cycles === 1 ? '' : 's'}` : null,
+      isNum(engine.speed_rpm) ? `${sig(engine.speed_rpm, 5)} rpm` : null,
+    ].filter(Boolean).join(' at ');
+    container.replaceChildren(
+      h('h3', {}, `Lift — the ring in its groove${title ? `, ${title}` : ''}`),
+      h('p', { id: 'lf-summary' }, summary(result, events)),
+      h('p', { id: 'cost', class: 'cost' }, h('strong', {}, 'Cost and accuracy: '), costLine(n)),
+      resultLinks(job, 'lift', 'Lift table (CSV)'),
+      crank.length < 2
+        ? h('p', { class: 'hint', id: 'lf-empty' }, 'This result has no samples to draw.')
+        : h('figure', { class: 'plot wide' }, liftPlot(result, events), flankStrip(result),
+          h('figcaption', {}, 'Ring lift above the groove\'s lower flank against crank angle (0° = top dead centre before the power stroke). ' +
+            'Line: mean over the segments; band: lowest to highest segment; markers: flank events (hover for the angle). Bar: flank state.')),
+      friction && typeof friction === 'object' && crank.length >= 2
+        ? h('figure', { class: 'plot wide' }, frictionPlot(result),
+          h('figcaption', {}, `Axial bore friction force on the ring (${friction.model || 'friction'}${isNum(friction.coefficient) ? `, μ = ${friction.coefficient}` : ''}).`))
+        : null,
+      h('div', { class: 'lift-tables' },
+        h('div', { class: 'table-wrap events-wrap' }, eventTable(events)),
+        h('div', { class: 'table-wrap' }, costTable(result))),
+    );
+  },
+};
+
+function summary(result, events) {
+  const lmax = nums(result.lift_max).length ? nums(result.lift_max) : nums(result.lift);
+  const flank = Array.isArray(result.flank) ? result.flank : [];
+  const clearance = result.scene?.groove?.axial_clearance;
+  const parts = [];
+  if (lmax.length) parts.push(`Largest lift ${um(Math.max(...lmax))} µm${isNum(clearance) ? ` of ${um(clearance)} µm clearance` : ''}`);
+  if (flank.length) {
+    const share = (s) => `${((flank.filter((f) => f === s).length / flank.length) * 100).toFixed(0)} %`;
+    parts.push(`samples on the lower flank ${share('lower')}, upper ${share('upper')}, free ${share('free')}`);
+  }
+  parts.push(`${events.length} flank event${events.length === 1 ? '' : 's'}`);
+  return `${parts.join('; ')}.`;
+}
+
+function costLine(n) {
+  const parts = [];
+  if (n.segments !== undefined) parts.push(`${n.segments} segments`);
+  if (n.dof !== undefined) parts.push(`${n.dof} DOF`);
+  if (n.steps !== undefined) parts.push(`${n.steps} steps`);
+  if (n.rhs_evals !== undefined) parts.push(`${n.rhs_evals} RHS evaluations`);
+  parts.push(`wall time ${seconds(n.wall_s)}`);
+  parts.push(isNum(n.error_estimate) ? `estimated error ${percent(n.error_estimate)}` : 'error not estimated');
+  return parts.join(' · ');
+}
+
+// At most about 4 points per bucket of samples: the first, the lowest, the
+// highest and the last, so a long run draws the same envelope with fewer points.
+function thin(xs, ys, buckets = 700) {
+  const N = Math.min(xs.length, ys.length);
+  if (N <= 4 * buckets) return xs.slice(0, N).map((x, i) => [x, ys[i]]);
+  const out = [];
+  const per = N / buckets;
+  for (let b = 0; b < buckets; b++) {
+    const i0 = Math.floor(b * per), i1 = Math.min(N, Math.floor((b + 1) * per));
+    let lo = i0, hi = i0;
+    for (let i = i0; i < i1; i++) {
+      if (ys[i] < ys[lo]) lo = i;
+      if (ys[i] > ys[hi]) hi = i;
+    }
+    for (const i of [...new Set([i0, lo, hi, i1 - 1])].sort((a, c) => a - c)) out.push([xs[i], ys[i]]);
+  }
+  return out;
+}
+
+const W = 720;
+const BOX = { left: 64, width: W - 64 - 16 };
+
+function crankAxis(crank) {
+  const c0 = Math.min(...crank), c1 = Math.max(...crank);
+  const x = scale(c0, c1, BOX.left, BOX.left + BOX.width);
+  return { x, c0, c1, ticks: stepTicks(c0, c1, CRANK_STEPS, 12) };
+}
+
+// An event marker: circle at the lower flank, square at the upper; filled
+// when the ring arrives, open when it leaves.
+function eventMarker(kind, px, py) {
+  const upper = kind === 'reach_upper' || kind === 'leave_upper';
+  const cls = `ev-mk ${upper ? 'ev-upper' : 'ev-lower'} ${kind.startsWith('reach') ? 'ev-reach' : 'ev-leave'}`;
+  return upper
+    ? svg('rect', { class: cls, x: px - 4.5, y: py - 4.5, width: 9, height: 9 })
+    : svg('circle', { class: cls, cx: px, cy: py, r: 5 });
+}
+
+function liftPlot(result, events) {
+  const H = 320;
+  const box = { ...BOX, top: 34, height: H - 34 - 50 };
+  const crank = nums(result.crank_deg);
+  const N = crank.length;
+  const mean = nums(result.lift).slice(0, N).map((v) => v * 1e6);
+  const lo = nums(result.lift_min).slice(0, N).map((v) => v * 1e6);
+  const hi = nums(result.lift_max).slice(0, N).map((v) => v * 1e6);
+  const clearance = Number(result.scene?.groove?.axial_clearance);
+  const cl = isNum(clearance) ? clearance * 1e6 : null;
+  const values = [...mean, ...lo, ...hi].filter(isNum);
+  const y0 = Math.min(0, ...values), y1 = Math.max(cl ?? 0, ...values, 1e-3);
+  const pad = (y1 - y0) * 0.08;
+  const { x, ticks: xTicks } = crankAxis(crank);
+  const y = scale(y0 - pad, y1 + pad, box.top + box.height, box.top);
+
+  const band = lo.length === N && hi.length === N
+    ? svg('path', {
+      class: 'band', id: 'lf-band',
+      d: pathD([...thin(crank, hi).map(([c, v]) => [x(c), y(v)]), ...thin(crank, lo).reverse().map(([c, v]) => [x(c), y(v)])], true),
+    })
+    : null;
+  const flankLine = (id, v, text) => svg('g', { class: 'flank-line', id },
+    svg('line', { x1: box.left, x2: box.left + box.width, y1: y(v), y2: y(v) }),
+    svg('text', { class: 'tick halo', x: box.left + box.width - 4, y: y(v) - 5, 'text-anchor': 'end' }, text));
+  const atFlank = (kind) => (kind === 'reach_upper' || kind === 'leave_upper' ? cl ?? y1 : 0);
+  const markers = events.map((e, i) => {
+    const kind = String(e.event);
+    const g = svg('g', { class: 'event', 'data-event': kind, 'data-index': i },
+      svg('title', {}, `${EVENT_TEXT[kind] || kind} at ${degText(e.crank_deg)} crank`),
+      eventMarker(kind, x(e.crank_deg), y(atFlank(kind))));
+    return g;
+  });
+  return svg('svg', {
+    id: 'lf-lift', class: 'chart', viewBox: `0 0 ${W} ${H}`, role: 'img',
+    'aria-label': `Ring lift against crank angle, ${N} samples, ${um(Math.min(...values) / 1e6)} to ${um(Math.max(...values) / 1e6)} µm; ${events.length} flank events.`,
+  },
+  legend([
+    [svg('path', { class: 'mean', d: 'M-2,0H12' }), 'mean lift'],
+    [svg('rect', { class: 'band', x: -2, y: -5, width: 14, height: 10 }), 'segment range'],
+    [eventMarker('reach_lower', 5, 0), 'reach'],
+    [eventMarker('leave_lower', 5, 0), 'leave (circle: lower, square: upper)'],
+  ], { x: box.left, y: 14 }),
+  axes({
+    box, x, y, xTicks, yTicks: ticks(y0 - pad, y1 + pad, 5),
+    xLabel: 'crank angle (deg)', yLabel: 'lift (µm)', yFormat: (v) => String(Number(v.toPrecision(4))),
+  }),
+  band,
+  flankLine('lf-lower', 0, 'lower flank'),
+  cl !== null ? flankLine('lf-upper', cl, `upper flank (clearance ${um(clearance)} µm)`) : null,
+  mean.length === N ? svg('path', { class: 'mean', id: 'lf-mean', d: pathD(thin(crank, mean).map(([c, v]) => [x(c), y(v)])) }) : null,
+  svg('g', { class: 'events' }, markers));
+}
+
+// The flank state along the crank axis: one bar per run of equal states.
+function flankStrip(result) {
+  const crank = nums(result.crank_deg);
+  const flank = Array.isArray(result.flank) ? result.flank : [];
+  const N = Math.min(crank.length, flank.length);
+  if (N < 2) return null;
+  const H = 58, top = 6, height = 16;
+  const { x } = crankAxis(crank);
+  const runs = [];
+  for (let i = 0; i < N; i++) {
+    const last = runs[runs.length - 1];
+    if (last && last.state === flank[i]) last.end = i;
+    else runs.push({ state: flank[i], start: i, end: i });
+  }
+  // Each run reaches to the middle between its last sample and the next run's first.
+  const edge = (i) => (i <= 0 ? crank[0] : i >= N ? crank[N - 1] : (crank[i - 1] + crank[i]) / 2);
+  const bars = runs.map((r) => svg('rect', {
+    class: `flank-run flank-${r.state}`, 'data-flank': r.state,
+    x: x(edge(r.start)), y: top, width: Math.max(0.5, x(edge(r.end + 1)) - x(edge(r.start))), height,
+  }, svg('title', {}, `${FLANK_TEXT[r.state] || r.state}: ${degText(crank[r.start])} to ${degText(crank[r.end])}`)));
+  const swatch = (state) => svg('rect', { class: `flank-run flank-${state}`, x: -2, y: -5, width: 14, height: 10 });
+  const count = (s) => runs.filter((r) => r.state === s).length;
+  return svg('svg', {
+    id: 'lf-flank', class: 'chart strip', viewBox: `0 0 ${W} ${H}`, role: 'img',
+    'aria-label': `Flank state along the crank axis: ${runs.length} stretches (${count('lower')} on the lower flank, ${count('upper')} on the upper, ${count('free')} free).`,
+  },
+  svg('text', { class: 'tick', x: BOX.left - 6, y: top + height / 2, 'text-anchor': 'end', 'dominant-baseline': 'middle' }, 'flank'),
+  svg('g', { class: 'flank-runs' }, bars),
+  legend([[swatch('lower'), 'lower'], [swatch('upper'), 'upper'], [swatch('free'), 'free']], { x: BOX.left, y: top + height + 20 }));
+}
+
+function frictionPlot(result) {
+  const H = 220;
+  const box = { ...BOX, top: 14, height: H - 14 - 50 };
+  const crank = nums(result.crank_deg);
+  const f = nums(result.friction_force).slice(0, crank.length);
+  const vals = f.filter(isNum);
+  const f0 = Math.min(0, ...vals), f1 = Math.max(0, ...vals);
+  const pad = (f1 - f0) * 0.08 || 1;
+  const { x, ticks: xTicks } = crankAxis(crank);
+  const y = scale(f0 - pad, f1 + pad, box.top + box.height, box.top);
+  return svg('svg', {
+    id: 'lf-friction', class: 'chart', viewBox: `0 0 ${W} ${H}`, role: 'img',
+    'aria-label': `Friction force against crank angle, ${sig(f0)} to ${sig(f1)} N.`,
+  },
+  axes({
+    box, x, y, xTicks, yTicks: ticks(f0 - pad, f1 + pad, 4),
+    xLabel: 'crank angle (deg)', yLabel: 'friction (N)', yFormat: (v) => String(Number(v.toPrecision(4))),
+  }),
+  svg('line', { class: 'zero', x1: box.left, x2: box.left + box.width, y1: y(0), y2: y(0) }),
+  f.length === crank.length ? svg('path', { class: 'friction', id: 'lf-friction-line', d: pathD(thin(crank, f).map(([c, v]) => [x(c), y(v)])) }) : null);
+}
+
+function eventTable(events) {
+  const shown = events.slice(0, EVENTS_SHOWN);
+  const rows = shown.map((e, i) => h('tr', { 'data-event': e.event },
+    h('td', { class: 'num' }, String(i + 1)),
+    h('td', { class: 'num' }, fixed(e.crank_deg, 2)),
+    h('td', { class: 'num' }, isNum(e.crank_deg) ? (((e.crank_deg % 720) + 720) % 720).toFixed(2) : '—'),
+    h('td', {}, EVENT_TEXT[e.event] || String(e.event))));
+  return h('table', { class: 'data', id: 'lf-events' },
+    h('caption', {}, events.length
+      ? `Flank events${events.length > EVENTS_SHOWN ? ` (first ${EVENTS_SHOWN} of ${events.length}; all are in the raw result)` : ''}`
+      : 'Flank events: none (the ring stays where it started)'),
+    h('thead', {}, h('tr', {},
+      h('th', { scope: 'col', class: 'num' }, '#'),
+      h('th', { scope: 'col', class: 'num' }, 'Crank (deg)'),
+      h('th', { scope: 'col', class: 'num' }, 'In cycle (deg)'),
+      h('th', { scope: 'col' }, 'The ring…'))),
+    h('tbody', {}, rows));
+}
+
+function costTable(result) {
+  const n = result.numerics || {};
+  return kvTable({
+    id: 'lf-cost',
+    caption: 'Accuracy and cost (CVODE)',
+    rows: [
+      ['Error estimate (lift)', percent(n.error_estimate), { id: 'lf-error', title: n.error_method }],
+      ['Event angle change in the check run', isNum(n.event_error_deg) ? `${sig(n.event_error_deg, 2)}°` : undefined],
+      ['Segments / DOF', `${n.segments ?? '—'} / ${n.dof ?? '—'}`],
+      ['Steps', n.steps],
+      ['RHS evaluations', n.rhs_evals],
+      ['Jacobian evaluations', n.jac_evals],
+      ['Error test failures', n.error_test_fails],
+      ['Nonlinear iterations', n.nonlinear_iterations],
+      ['Root function evaluations', n.root_evals],
+      ['Wall time', seconds(n.wall_s)],
+      ['Solver', n.solver],
+    ].map((r) => (r[1] === undefined || r[1] === null ? [r[0], undefined] : [r[0], String(r[1]), r[2]])),
+  });
+}

@@ -1,0 +1,163 @@
+// The pretension analysis: renders a pretension `result` (API.md) as the free
+// shape of the ring in its plane (closed reference and opened free shape,
+// gap opening x_a marked), the axial gap opening against angle when there is
+// a lateral force, and a table of the gap figures, accuracy and cost.
+// A pure function of the result: optional fields may be missing.
+
+import { svg, scale, ticks, axes, pathD, legend } from './svg.js';
+import { h, isNum, fixed, sig, seconds, percent, kvTable, resultLinks } from './html.js';
+
+const mm = (v, d = 2) => fixed(v, d, 1e3);
+const um = (v, d = 1) => fixed(v, d, 1e6);
+const nums = (a) => (Array.isArray(a) ? a.map(Number) : []);
+
+export const pretension = {
+  id: 'pretension',
+  label: 'Pretension',
+  runLabel: 'Run pretension analysis',
+
+  // Draws `result` of finished job `job` into `container` (emptied first).
+  render(result, job, container) {
+    const n = result.numerics || {};
+    const xa = result.gap_opening_inner, xc = result.lateral_opening;
+    const lateral = isNum(xc) && xc > 0 && nums(result.shape?.z).length > 1;
+    const method = result.scene?.pretension?.method;
+    container.replaceChildren(
+      h('h3', {}, `Pretension — free shape${method ? ` (${method} method)` : ''}`),
+      h('p', { id: 'pt-summary' },
+        'Gap opening ', h('i', {}, 'x'), h('sub', {}, 'a'), ' = ', h('strong', {}, `${mm(xa)} mm`),
+        isNum(result.free_gap_formula) ? ` (formula 1.5: ${mm(result.free_gap_formula)} mm)` : '',
+        isNum(xc) ? [', lateral opening ', h('i', {}, 'x'), h('sub', {}, 'c'), ` = ${mm(xc, 3)} mm`] : '',
+        '.'),
+      h('p', { id: 'cost', class: 'cost' }, h('strong', {}, 'Cost and accuracy: '), costLine(n)),
+      resultLinks(job, 'pretension', 'Free shape (CSV)'),
+      h('div', { class: 'result-grid' },
+        h('figure', { class: 'plot' }, shapePlot(result),
+          h('figcaption', {}, 'The ring in its plane seen from the cylinder head, gap (0°) to the right (+x), true scale. ' +
+            'Dashed: closed (reference) shape; solid: free shape opened by the pretension.')),
+        lateral ? h('figure', { class: 'plot' }, zPlot(result),
+          h('figcaption', {}, 'Axial (z) displacement of the centroid line against the angle from the gap: the lateral forces twist the ring out of its plane.')) : null),
+      h('div', { class: 'table-wrap' }, figures(result)),
+    );
+  },
+};
+
+function costLine(n) {
+  const parts = [];
+  if (n.segments !== undefined) parts.push(`${n.segments} segments`);
+  if (n.dof !== undefined) parts.push(`${n.dof} DOF`);
+  if (n.iterations !== undefined) parts.push(`${n.iterations} Newton iterations${n.load_steps !== undefined ? ` in ${n.load_steps} load steps` : ''}`);
+  parts.push(`wall time ${seconds(n.wall_s)}`);
+  parts.push(isNum(n.error_estimate) ? `estimated error ${percent(n.error_estimate)}` : 'error not estimated');
+  return parts.join(' · ');
+}
+
+function figures(result) {
+  const n = result.numerics || {};
+  const xa = result.gap_opening_inner, m = result.free_gap_formula;
+  const vsFormula = isNum(xa) && isNum(m) && m !== 0 ? ` (${xa >= m ? '+' : ''}${(((xa - m) / m) * 100).toFixed(1)} %)` : '';
+  const support = result.support || {};
+  const err = isNum(n.error_estimate)
+    ? `${percent(n.error_estimate)}${n.reference_segments ? ` (vs ${n.reference_segments} segments)` : ''}`
+    : 'not estimated';
+  return kvTable({
+    id: 'pt-table',
+    caption: 'Gap figures, accuracy and cost',
+    rows: [
+      [['Gap opening ', h('i', {}, 'x'), h('sub', {}, 'a'), ' (inner corners)'], `${mm(xa, 3)} mm${vsFormula}`, { id: 'pt-xa' }],
+      [['Lateral opening ', h('i', {}, 'x'), h('sub', {}, 'c')], `${mm(result.lateral_opening, 3)} mm`, { id: 'pt-xc' }],
+      ['Gap opening at the neutral axis', isNum(result.gap_opening_neutral) ? `${mm(result.gap_opening_neutral, 3)} mm` : undefined],
+      ['Free gap from the formula (1.5)', `${mm(m, 3)} mm`, { id: 'pt-formula' }],
+      [['Conformability ', h('i', {}, 'k'), ' (1.4)'], sig(result.conformability, 4), { id: 'pt-k' }],
+      ['Support force / moment (opposite the gap)', isNum(support.force_n) || isNum(support.moment_nm)
+        ? `${sig(support.force_n)} N / ${sig(support.moment_nm)} N·m` : undefined],
+      ['Error estimate', err, { id: 'pt-error', title: n.error_method }],
+      ['Segments / DOF', `${n.segments ?? '—'} / ${n.dof ?? '—'}`],
+      ['Load steps / Newton iterations', `${n.load_steps ?? '—'} / ${n.iterations ?? '—'}`],
+      ['Residual (tolerance)', isNum(n.residual) ? `${sig(n.residual, 2)} (${sig(n.tolerance, 2)})` : undefined],
+      ['Wall time', seconds(n.wall_s)],
+      ['Solver', n.solver],
+    ],
+  });
+}
+
+// The free and the closed shape in the ring plane, x right, y up, one scale
+// for both axes.  x_a is marked between the inner gap corners, which lie
+// half a radial width inside the first and last centroid points.
+function shapePlot(result) {
+  const s = result.shape || {};
+  const X = nums(s.x), Y = nums(s.y), RX = nums(s.reference_x), RY = nums(s.reference_y);
+  const k = Math.min(X.length, Y.length), kr = Math.min(RX.length, RY.length);
+  if (k < 2) return h('p', { class: 'hint', id: 'pt-shape-missing' }, 'This result has no free shape to draw.');
+  const free = X.slice(0, k).map((x, i) => [x, Y[i]]);
+  const ref = RX.slice(0, kr).map((x, i) => [x, RY[i]]);
+  const all = free.concat(ref).filter(([x, y]) => isNum(x) && isNum(y));
+  const xs = all.map((p) => p[0]), ys = all.map((p) => p[1]);
+  const x0 = Math.min(...xs), x1 = Math.max(...xs), y0 = Math.min(...ys), y1 = Math.max(...ys);
+  const W = 420, H = 420, pad = 30, top = 36;
+  const span = Math.max(x1 - x0, y1 - y0) || 1;
+  const cxData = (x0 + x1) / 2, cyData = (y0 + y1) / 2;
+  const cx = W / 2, cy = top + (H - top - pad) / 2;
+  const k2 = Math.min(W - 2 * pad, H - top - pad) / span; // px per m, both axes
+  const X_ = (x) => cx + (x - cxData) * k2;
+  const Y_ = (y) => cy - (y - cyData) * k2;
+  const screen = (pts) => pts.map(([x, y]) => [X_(x), Y_(y)]);
+
+  // Ring centre: the middle of the reference (closed) shape.
+  const rxs = ref.length ? ref.map((p) => p[0]) : xs, rys = ref.length ? ref.map((p) => p[1]) : ys;
+  const c = [(Math.min(...rxs) + Math.max(...rxs)) / 2, (Math.min(...rys) + Math.max(...rys)) / 2];
+  const b = Number(result.scene?.ring?.radial_width) || 0;
+  const inner = ([x, y]) => {
+    const dx = x - c[0], dy = y - c[1], r = Math.hypot(dx, dy) || 1;
+    return [x - (b / 2) * (dx / r), y - (b / 2) * (dy / r)];
+  };
+  const [qa, qb] = screen([inner(free[0]), inner(free[k - 1])]);
+  const xa = result.gap_opening_inner;
+  const label = `x_a = ${mm(xa)} mm`;
+  const lx = Math.min(qa[0], qb[0]) - 10, ly = (qa[1] + qb[1]) / 2;
+
+  const dim = svg('g', { class: 'gap-mark', id: 'pt-gap' },
+    svg('title', {}, `Gap opening between the inner corners: ${mm(xa, 3)} mm`),
+    svg('path', { class: 'dimension', d: pathD([qa, qb]) }),
+    svg('circle', { class: 'corner', cx: qa[0], cy: qa[1], r: 3 }),
+    svg('circle', { class: 'corner', cx: qb[0], cy: qb[1], r: 3 }),
+    svg('text', { id: 'pt-gap-label', class: 'gap-label halo', x: lx, y: ly, 'text-anchor': 'end', 'dominant-baseline': 'middle' }, label));
+  const [gx, gy] = [X_(Math.max(...xs)) + 4, Y_(c[1])];
+  return svg('svg', {
+    id: 'pt-shape', class: 'chart ring-plane', viewBox: `0 0 ${W} ${H}`, role: 'img',
+    'aria-label': `Free shape of the ring in its plane: ${k} points; gap opening x_a ${mm(xa)} mm at the right.`,
+  },
+  legend([
+    [svg('path', { class: 'reference', d: 'M-2,0H12' }), 'closed (reference)'],
+    [svg('path', { class: 'free', d: 'M-2,0H12' }), 'free shape'],
+  ], { x: 12, y: 14 }),
+  svg('path', { class: 'crosshair', d: `M${X_(c[0]) - 6},${Y_(c[1])}H${X_(c[0]) + 6}M${X_(c[0])},${Y_(c[1]) - 6}V${Y_(c[1]) + 6}` }),
+  svg('path', { class: 'reference', id: 'pt-reference', d: pathD(screen(ref)) }),
+  svg('path', { class: 'free', id: 'pt-free', d: pathD(screen(free)) }),
+  dim,
+  svg('text', { class: 'tick', x: Math.min(gx, W - 2), y: gy, 'text-anchor': 'end', 'dominant-baseline': 'middle', transform: `rotate(-90 ${Math.min(gx, W - 2)} ${gy})` }, 'gap 0°'));
+}
+
+// Axial displacement z (µm) of the centroid line against the angle from the gap.
+function zPlot(result) {
+  const s = result.shape || {};
+  const z = nums(s.z), a = nums(s.angle_deg);
+  const k = Math.min(z.length, a.length);
+  const W = 420, H = 240;
+  const box = { left: 62, top: 14, width: W - 62 - 12, height: H - 14 - 50 };
+  const zs = z.slice(0, k).map((v) => v * 1e6);
+  const lo = Math.min(0, ...zs), hi = Math.max(0, ...zs);
+  const pad = (hi - lo) * 0.08 || 1;
+  const x = scale(0, 360, box.left, box.left + box.width);
+  const y = scale(lo - pad, hi + pad, box.top + box.height, box.top);
+  return svg('svg', {
+    id: 'pt-z-plot', class: 'chart', viewBox: `0 0 ${W} ${H}`, role: 'img',
+    'aria-label': `Axial displacement against angle from the gap, ${sig(Math.min(...zs))} to ${sig(Math.max(...zs))} µm; lateral opening x_c ${um(result.lateral_opening)} µm.`,
+  },
+  axes({
+    box, x, y, xTicks: [0, 90, 180, 270, 360], yTicks: ticks(lo - pad, hi + pad, 4),
+    xLabel: 'angle from the gap (deg)', yLabel: 'z (µm)', yFormat: (v) => String(Number(v.toPrecision(4))),
+  }),
+  svg('line', { class: 'zero', x1: box.left, x2: box.left + box.width, y1: y(0), y2: y(0) }),
+  svg('path', { class: 'free', d: pathD(a.slice(0, k).map((ang, i) => [x(ang), y(zs[i])])) }));
+}

@@ -1,0 +1,133 @@
+// Hand-made result objects for the renderers of static/pretension.js,
+// contact.js and lift.js, shaped as API.md describes them: the renderers are
+// pure functions of the result, so these check what is drawn without the
+// server, including results that lack the optional fields.  The numbers are
+// plausible for the thesis ring, not computed.
+
+const D = 0.0765, B = 0.0029, H = 0.0012, FT = 10;
+const R = (D - B) / 2;
+const rad = (deg) => (deg * Math.PI) / 180;
+const ring = { diameter: D, radial_width: B, axial_height: H, closed_gap: 0.0003, tangential_force: FT };
+
+// Free shape of a 20-segment ring: the closed ring opened by spreading the
+// angles away from the side opposite the gap; z twists the ends apart.
+export function pretensionResult({ lateral = 0 } = {}) {
+  const n = 20;
+  const t0 = 0.0003 / (2 * R); // half the closed gap, rad
+  const angle = [(t0 * 180) / Math.PI, ...Array.from({ length: n }, (_, i) => (i + 0.5) * (360 / n)), 360 - (t0 * 180) / Math.PI];
+  const spread = 0.04;
+  const free = angle.map((a) => Math.PI + (rad(a) - Math.PI) * (1 - spread));
+  const xc = lateral > 0 ? 2.4e-4 * lateral : 0;
+  return {
+    analysis: 'pretension',
+    scene: { analysis: 'pretension', ring, discretization: { segments: n, closed: false }, pretension: { method: 'force', lateral_force: lateral } },
+    gap_opening_inner: 0.0092137,
+    lateral_opening: xc,
+    gap_opening_neutral: 0.0094412,
+    free_gap_formula: 0.0090518,
+    conformability: 0.0214,
+    support: { force_n: 1.2e-9, moment_nm: 3.4e-11 },
+    shape: {
+      angle_deg: angle,
+      x: free.map((t) => R * Math.cos(t)),
+      y: free.map((t) => R * Math.sin(t)),
+      z: angle.map((a) => (xc / 2) * Math.cos(rad(a) / 2)),
+      reference_x: angle.map((a) => R * Math.cos(rad(a))),
+      reference_y: angle.map((a) => R * Math.sin(rad(a))),
+    },
+    numerics: {
+      segments: n, dof: 6 * n, wall_s: 0.0123, solver: 'Newton, banded LU (dgbsv)', load_steps: 4, iterations: 17,
+      residual: 3.1e-12, tolerance: 1e-9, reference_segments: 40, error_estimate: 0.0042, error_method: 'Richardson, n and 2n',
+    },
+  };
+}
+
+// A ring in a bore with a 4th-order distortion beyond what it follows: the
+// segments where 1 + 1.3 cos 4θ < 0 lift off (light gaps).
+export function contactResult() {
+  const n = 24;
+  const p0 = (2 * FT) / (D * H);
+  const angle = Array.from({ length: n }, (_, i) => (i + 0.5) * (360 / n));
+  const q = angle.map((a) => 1 + 1.3 * Math.cos(4 * rad(a)));
+  const pressure = q.map((v) => Math.max(0, v) * p0);
+  const clearance = q.map((v) => (v < 0 ? -v * 2e-6 : -1e-9 * v));
+  const light = clearance.map((c, i) => [c, i]).filter(([c]) => c > 0);
+  const [maxC, maxI] = light.reduce((m, e) => (e[0] > m[0] ? e : m), [0, -1]);
+  return {
+    analysis: 'contact',
+    scene: { analysis: 'contact', ring, discretization: { segments: n, closed: false }, bore: { diameter: D, distortion: [{ order: 4, amplitude: 8e-6, phase_deg: 0 }] } },
+    angle_deg: angle,
+    pressure_pa: pressure,
+    clearance,
+    bore_radius: angle.map((a) => D / 2 + 8e-6 * Math.cos(4 * rad(a))),
+    mean_pressure_pa: pressure.reduce((s, v) => s + v, 0) / n,
+    uniform_pressure_pa: p0,
+    contact_fraction: 1 - light.length / n,
+    max_clearance: maxC,
+    max_clearance_angle_deg: angle[maxI],
+    max_penetration: 2.1e-8,
+    contact_stiffness: 1.05e13,
+    conformability: 0.0214,
+    distortion: [{ order: 4, amplitude: 8e-6, phase_deg: 0, conformability_bound: 2.5e-6 }],
+    numerics: { segments: n, dof: 6 * n, wall_s: 0.21, solver: 'Newton, banded LU (dgbsv)', load_steps: 6, iterations: 41, residual: 2e-11, tolerance: 1e-9, error_estimate: 0.011, reference_segments: 48 },
+  };
+}
+
+// One cycle at 1 deg: seated, lifted to the upper flank around 180-360 deg,
+// a free excursion around 540-600 deg.  Events follow from the flank states.
+export function liftResult({ friction = true } = {}) {
+  const clearance = 3e-5;
+  const crank = Array.from({ length: 721 }, (_, i) => i);
+  const ramp = (a, a0, a1) => Math.min(1, Math.max(0, (a - a0) / (a1 - a0)));
+  const lift = crank.map((a) => {
+    if (a < 170) return 0;
+    if (a < 200) return clearance * ramp(a, 170, 200);
+    if (a < 360) return clearance;
+    if (a < 390) return clearance * (1 - ramp(a, 360, 390));
+    if (a < 540) return 0;
+    if (a < 600) return 1.5e-5 * Math.sin(Math.PI * ramp(a, 540, 600));
+    return 0;
+  });
+  const flank = lift.map((l) => (l <= 0 ? 'lower' : l >= clearance ? 'upper' : 'free'));
+  const events = [];
+  const KIND = { 'lower>free': 'leave_lower', 'free>upper': 'reach_upper', 'upper>free': 'leave_upper', 'free>lower': 'reach_lower' };
+  for (let i = 1; i < flank.length; i++) {
+    const k = KIND[`${flank[i - 1]}>${flank[i]}`];
+    if (k) events.push({ crank_deg: i - 0.5, event: k });
+  }
+  const spread = lift.map((l, i) => (flank[i] === 'free' ? 2e-6 : 0));
+  const scene = { analysis: 'lift', ring, engine: { speed_rpm: 1000, cycles: 1 }, groove: { axial_clearance: clearance, radial_clearance: 5e-4 }, physics: { gravity: false } };
+  if (friction) scene.physics.friction = { model: 'coulomb', coefficient: 0.1 };
+  return {
+    analysis: 'lift',
+    scene,
+    crank_deg: crank,
+    lift,
+    lift_min: lift.map((l, i) => Math.max(0, l - spread[i])),
+    lift_max: lift.map((l, i) => Math.min(clearance, l + spread[i])),
+    lift_segments: lift.map((l) => [l, l, l, l]),
+    twist_rad: lift.map(() => 0),
+    friction_force: crank.map((a) => (friction ? 1.5 * Math.sin(rad(2 * a)) : 0)),
+    flank,
+    events,
+    numerics: { segments: 4, dof: 24, wall_s: 1.7, solver: 'CVODE BDF, banded', steps: 5123, rhs_evals: 7012, jac_evals: 88, error_test_fails: 41, nonlinear_iterations: 6900, root_evals: 5200, error_estimate: 0.003, event_error_deg: 0.02 },
+  };
+}
+
+// The same results with only the fields API.md lists as always present.
+export function minimal(result) {
+  switch (result.analysis) {
+    case 'pretension':
+      return { analysis: 'pretension', gap_opening_inner: result.gap_opening_inner, lateral_opening: result.lateral_opening, numerics: {} };
+    case 'contact':
+      return {
+        analysis: 'contact', angle_deg: result.angle_deg, pressure_pa: result.pressure_pa,
+        mean_pressure_pa: result.mean_pressure_pa, uniform_pressure_pa: result.uniform_pressure_pa,
+        contact_fraction: result.contact_fraction, max_clearance: result.max_clearance,
+      };
+    case 'lift':
+      return { analysis: 'lift', crank_deg: result.crank_deg, lift: result.lift, flank: result.flank, events: result.events };
+    default:
+      throw new Error(`no minimal form of ${result.analysis}`);
+  }
+}
