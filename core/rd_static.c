@@ -19,10 +19,10 @@
  *
  * Tangent: central differences of these element residuals, element by
  * element (12 perturbations per joint, 6 per loaded segment), assembled in
- * LAPACK general band storage (half bandwidth 11).  The field method's
- * coupling of the first segment to the last one falls outside the band and
- * is left out of the tangent (the residual keeps it, so the answer is exact;
- * Newton converges linearly there instead of quadratically).
+ * LAPACK general band storage (half bandwidth 11) and factored by dgbtrf.
+ * The field method couples the first segment's load to the last segment's
+ * state, outside the band: that 6x6 block is added exactly by the Woodbury
+ * identity on the band factorization (newton_step).
  */
 #include "rd_internal.h"
 #include "rd_static.h"
@@ -462,12 +462,34 @@ static void tangent(problem *pb, double *ab)
                 band_add(ab, 6 * i + row, 6 * i + k, -(fp[row] - fm[row]) / (2.0 * h));
         }
     }
+    /* support: translations 1/4 k_t mask; rotations 1/4 k_r A_a mask A_c^T
+     * with A = Jl^-T(psi) (the derivative of log on each side; the held mean
+     * rotation is ~0 but each segment's own psi is not) */
     int s[2] = {pb->pa, pb->pb};
+    double A[2][9];
+    for (int q = 0; q < 2; q++) {
+        double psi[3];
+        rot_log(pb->Q + 9 * s[q], psi);
+        for (int k = 0; k < 3; k++) {
+            double e[3] = {0, 0, 0}, col[3];
+            e[k] = 1.0;
+            jl_inv_t(psi, e, col);
+            for (int r = 0; r < 3; r++)
+                A[q][3 * r + k] = col[r];
+        }
+    }
     for (int a = 0; a < 2; a++)
-        for (int c = 0; c < 2; c++)
-            for (int k = 0; k < 6; k++)
-                band_add(ab, 6 * s[a] + k, 6 * s[c] + k,
-                         0.25 * (k < 3 ? pb->k_t : pb->k_r) * pb->mask[k]);
+        for (int c = 0; c < 2; c++) {
+            for (int k = 0; k < 3; k++)
+                band_add(ab, 6 * s[a] + k, 6 * s[c] + k, 0.25 * pb->k_t * pb->mask[k]);
+            for (int r = 0; r < 3; r++)
+                for (int q = 0; q < 3; q++) {
+                    double v = 0.0;
+                    for (int k = 0; k < 3; k++)
+                        v += A[a][3 * r + k] * pb->mask[3 + k] * A[c][3 * q + k];
+                    band_add(ab, 6 * s[a] + 3 + r, 6 * s[c] + 3 + q, 0.25 * pb->k_r * v);
+                }
+        }
 }
 
 /* Gram-Schmidt on the rows, so repeated updates do not drift from SO(3). */
@@ -502,8 +524,68 @@ static void apply_step(problem *pb, const double *delta, double a)
 
 typedef struct work {
     double *r, *delta, *ab, *x0, *Q0, *xs, *Qs;
+    double *Y; /* N x 6: the field method's Woodbury columns; NULL otherwise */
     int *ipiv;
 } work;
+
+/* The field method's coupling of the first segment's load to the last
+ * segment's state: C = -d f_ext(0) / d state(n-1), 6x6 column-major, by
+ * central differences. */
+static void field_coupling(problem *pb, double C[36])
+{
+    int last = pb->n - 1;
+    double hx = 1e-6 * pb->R, hr = 1e-6, x0[3], Q0[9];
+    memcpy(x0, pb->x + 3 * last, sizeof x0);
+    memcpy(Q0, pb->Q + 9 * last, sizeof Q0);
+    for (int k = 0; k < 6; k++) {
+        double h = k < 3 ? hx : hr, fp[6], fm[6];
+        perturb(x0, Q0, k, h, pb->x + 3 * last, pb->Q + 9 * last);
+        segment_load(pb, 0, pb->x, pb->Q, fp);
+        perturb(x0, Q0, k, -h, pb->x + 3 * last, pb->Q + 9 * last);
+        segment_load(pb, 0, pb->x, pb->Q, fm);
+        for (int r = 0; r < 6; r++)
+            C[r + 6 * k] = -(fp[r] - fm[r]) / (2.0 * h);
+    }
+    memcpy(pb->x + 3 * last, x0, sizeof x0);
+    memcpy(pb->Q + 9 * last, Q0, sizeof Q0);
+}
+
+/* Solves J delta = -r (w->delta holds -r on entry) with the band tangent in
+ * w->ab.  For the field method J = J_band + U V^T, U = C in the first
+ * segment's rows, V selecting the last segment's DOFs, solved exactly by the
+ * Woodbury identity on the band factorization:
+ *   delta = z - Y (I + V^T Y)^-1 V^T z,  J_band z = -r,  J_band Y = U. */
+static int newton_step(problem *pb, work *w)
+{
+    int N = 6 * pb->n, off = 6 * (pb->n - 1);
+    if (LAPACKE_dgbtrf(LAPACK_COL_MAJOR, N, N, KL, KL, w->ab, LDAB, w->ipiv) != 0)
+        return -1;
+    if (LAPACKE_dgbtrs(LAPACK_COL_MAJOR, 'N', N, KL, KL, 1, w->ab, LDAB, w->ipiv, w->delta, N) !=
+        0)
+        return -1;
+    if (!(pb->kind == PRETENSION && pb->method == RD_PRETENSION_FIELD && w->Y))
+        return 0;
+    double C[36], S[36], t[6];
+    int piv[6];
+    field_coupling(pb, C);
+    memset(w->Y, 0, (size_t)6 * N * sizeof *w->Y);
+    for (int c = 0; c < 6; c++)
+        for (int r = 0; r < 6; r++)
+            w->Y[(size_t)c * N + r] = C[r + 6 * c];
+    if (LAPACKE_dgbtrs(LAPACK_COL_MAJOR, 'N', N, KL, KL, 6, w->ab, LDAB, w->ipiv, w->Y, N) != 0)
+        return -1;
+    for (int c = 0; c < 6; c++)
+        for (int r = 0; r < 6; r++)
+            S[r + 6 * c] = (r == c ? 1.0 : 0.0) + w->Y[(size_t)c * N + off + r];
+    for (int r = 0; r < 6; r++)
+        t[r] = w->delta[off + r];
+    if (LAPACKE_dgesv(LAPACK_COL_MAJOR, 6, 1, S, 6, piv, t, 6) != 0)
+        return -1;
+    for (int k = 0; k < N; k++)
+        for (int c = 0; c < 6; c++)
+            w->delta[k] -= w->Y[(size_t)c * N + k] * t[c];
+    return 0;
+}
 
 /* Newton iterations at the current load factor.  Returns 1 converged,
  * 0 not converged (caller cuts the load step), < 0 on error. */
@@ -524,9 +606,7 @@ static int newton(problem *pb, work *w, double tol, int *budget, int *iters, dou
         tangent(pb, w->ab);
         for (int k = 0; k < N; k++)
             w->delta[k] = -w->r[k];
-        int info = LAPACKE_dgbsv(LAPACK_COL_MAJOR, N, KL, KL, 1, w->ab, LDAB, w->ipiv, w->delta,
-                                 N);
-        if (info != 0)
+        if (newton_step(pb, w) != 0)
             return 0;
         double step_len = 0.0;
         for (int i = 0; i < pb->n; i++)
@@ -583,6 +663,7 @@ static void work_free(work *w)
     free(w->Q0);
     free(w->xs);
     free(w->Qs);
+    free(w->Y);
     free(w->ipiv);
 }
 
@@ -600,7 +681,10 @@ static int solve_path(problem *pb, const rd_static_opts *so, const rd_monitor *m
     w.xs = malloc((size_t)3 * n * sizeof *w.xs);
     w.Qs = malloc((size_t)9 * n * sizeof *w.Qs);
     w.ipiv = malloc((size_t)N * sizeof *w.ipiv);
-    if (!w.r || !w.delta || !w.ab || !w.x0 || !w.Q0 || !w.xs || !w.Qs || !w.ipiv) {
+    int need_y = pb->kind == PRETENSION && pb->method == RD_PRETENSION_FIELD;
+    if (need_y)
+        w.Y = malloc((size_t)6 * N * sizeof *w.Y);
+    if ((need_y && !w.Y) || !w.r || !w.delta || !w.ab || !w.x0 || !w.Q0 || !w.xs || !w.Qs || !w.ipiv) {
         rc = rd_error_set(err, RD_ENOMEM, "", "Out of memory for the %d-segment static solve.", n);
         goto out;
     }
