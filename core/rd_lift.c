@@ -128,6 +128,7 @@
 #define GRAVITY 9.80665
 #define ARC_POINTS 3              /* contact positions along a segment's arc */
 #define FLANK_POINTS (2 * ARC_POINTS)
+#define FLAGS (2 * FLANK_POINTS + 2 * ARC_POINTS) /* contact-set bytes per segment */
 #define SMOOTH_FRACTION 1e-4      /* d0 / c_a: quadratic start of the penalty */
 #define EVENT_FRACTION 1e-2       /* eps / c_a: smallest hop that is a flank change */
 #define DAMPING_RATIO 5.0         /* zeta of the contacts: landings do not rebound */
@@ -138,6 +139,9 @@
 #define MEMORY_BOUND 2e7          /* samples x segments */
 #define MU 11                     /* upper half bandwidth of the Jacobian */
 #define ML 23                     /* lower half bandwidth */
+#ifndef MAX_ORDER
+#define MAX_ORDER 2
+#endif
 
 /* State access, cvRoberts style. */
 #define Q(y, i) ((y) + 12 * (size_t)(i))
@@ -385,6 +389,13 @@ typedef struct lift_ctx {
     double *qbuf, *fbuf;        /* 12 n and 6 n scratch */
     double *MK;                 /* n x 3 x 36: -M_i^-1 K_ij, j = i-1, i, i+1 */
     double *Dq, *Dv;            /* n x 36: local force derivatives (Jacobian) */
+    /* Contact set (per segment FLAGS bytes: flank points touching, friction
+     * in its regularized range, groove back touching) of the state the last
+     * Jacobian was taken at, and of the current state; see rhs(). */
+    unsigned char *jflags, *flags;
+    int jvalid;
+    long jnst;                  /* CVODE step count at the last Jacobian */
+    void *cv;                   /* CVODE memory, for the step count; NULL in tests */
     double friction;            /* total axial friction of the last rhs call, N */
     double fz_ext;              /* total axial force on the ring except the flanks, N */
     char cv_msg[200];           /* CVODE's last error message */
@@ -566,6 +577,7 @@ static void segment_forces(lift_ctx *c, double t, const double *y, double *Dq, d
         const double *q = Q(y, i), *v = V(y, i);
         double *f = c->fbuf + 6 * i;
         double *dq = Dq ? Dq + 36 * (size_t)i : NULL, *dv = Dv ? Dv + 36 * (size_t)i : NULL;
+        unsigned char *fl = c->flags + FLAGS * (size_t)i;
         if (dq) {
             memset(dq, 0, 36 * sizeof *dq);
             memset(dv, 0, 36 * sizeof *dv);
@@ -583,6 +595,8 @@ static void segment_forces(lift_ctx *c, double t, const double *y, double *Dq, d
             double w = dot6(a, q), wd = dot6(a, v), A = c->fl_area[k];
             double plo = contact_pressure(c, -w, -wd, c->c_flank, &pl_d, &pl_dd);
             double pup = contact_pressure(c, w - c->ca, wd, c->c_flank, &pu_d, &pu_dd);
+            fl[2 * k] = w < 0.0;
+            fl[2 * k + 1] = w > c->ca;
             add6(f, a, (plo - pup) * A);
             rank1(dq, -A * (pl_d + pu_d), a, a);
             rank1(dv, -A * (pl_dd + pu_dd), a, a);
@@ -607,7 +621,8 @@ static void segment_forces(lift_ctx *c, double t, const double *y, double *Dq, d
             rank1(dv, -c->bo_area * P_dd, b, b);
             if (fric) {
                 axial_dir(d, a);
-                double F_N, F_u, F = friction_force(c, N, dot6(a, v) - sd, &F_N, &F_u);
+                double u = dot6(a, v) - sd, F_N, F_u, F = friction_force(c, N, u, &F_N, &F_u);
+                fl[2 * FLANK_POINTS + k] = fabs(u) < 3.0 * c->ureg;
                 add6(f, a, F);
                 ftot += F;
                 rank1(dq, F_N * c->bo_area * P_d, a, b);
@@ -620,8 +635,9 @@ static void segment_forces(lift_ctx *c, double t, const double *y, double *Dq, d
             size_t o = 2 * (ARC_POINTS * (size_t)i + k);
             radial_dir(c->ba_d + o, c->bo_e + o, b);
             double P_d, P_dd;
-            double P = contact_pressure(c, -dot6(b, q) - c->cr, -dot6(b, v), c->c_rad, &P_d,
-                                        &P_dd);
+            double pen = -dot6(b, q) - c->cr;
+            double P = contact_pressure(c, pen, -dot6(b, v), c->c_rad, &P_d, &P_dd);
+            fl[2 * FLANK_POINTS + ARC_POINTS + k] = pen > 0.0;
             add6(f, b, P * c->ba_area);
             rank1(dq, -c->ba_area * P_d, b, b);
             rank1(dv, -c->ba_area * P_dd, b, b);
@@ -648,12 +664,27 @@ static void segment_forces(lift_ctx *c, double t, const double *y, double *Dq, d
     c->fz_ext = fz + ftot;
 }
 
+/* The right-hand side.  It also guards CVODE's modified Newton iteration:
+ * a Newton matrix taken while a contact was closed (or friction was in its
+ * steep regularized range) keeps that penalty's stiffness after the contact
+ * opened, and then the iteration converges falsely, holding the ring on the
+ * flank.  So when the contact set differs from the one of the last Jacobian
+ * and that Jacobian is from an earlier step, the call reports a recoverable
+ * failure: CVODE then takes a fresh Jacobian and retries the step (at most
+ * once per step). */
 static int rhs(sunrealtype t, N_Vector yv, N_Vector ydv, void *user)
 {
     lift_ctx *c = user;
     const double *y = N_VGetArrayPointer(yv);
     double *yd = N_VGetArrayPointer(ydv);
     segment_forces(c, t, y, NULL, NULL);
+    if (c->cv && c->jvalid &&
+        memcmp(c->flags, c->jflags, FLAGS * (size_t)c->n) != 0) {
+        long nst = 0;
+        CVodeGetNumSteps(c->cv, &nst);
+        if (nst != c->jnst)
+            return 1;
+    }
     for (int i = 0; i < c->n; i++)
         memcpy(c->qbuf + 6 * i, Q(y, i), 6 * sizeof(double));
     double *Kq = c->qbuf + 6 * (size_t)c->n; /* second half of the scratch */
@@ -689,6 +720,10 @@ static int jac(sunrealtype t, N_Vector yv, N_Vector fy, SUNMatrix J, void *user,
     lift_ctx *c = user;
     const double *y = N_VGetArrayPointer(yv);
     segment_forces(c, t, y, c->Dq, c->Dv);
+    memcpy(c->jflags, c->flags, FLAGS * (size_t)c->n);
+    c->jvalid = 1;
+    if (c->cv)
+        CVodeGetNumSteps(c->cv, &c->jnst);
     SUNMatZero(J);
     for (int i = 0; i < c->n; i++) {
         sunindextype rq = 12 * (sunindextype)i, rv = rq + 6;
@@ -845,6 +880,8 @@ static void ctx_cleanup(lift_ctx *c)
     free(c->MK);
     free(c->Dq);
     free(c->Dv);
+    free(c->flags);
+    free(c->jflags);
 }
 
 static int ctx_init(lift_ctx *c, const rd_ring *ring, const rd_lift_params *p,
@@ -904,8 +941,11 @@ static int ctx_init(lift_ctx *c, const rd_ring *ring, const rd_lift_params *p,
     c->MK = calloc(108 * (size_t)n, sizeof *c->MK);
     c->Dq = malloc(36 * (size_t)n * sizeof *c->Dq);
     c->Dv = malloc(36 * (size_t)n * sizeof *c->Dv);
+    c->flags = calloc(FLAGS * (size_t)n, 1);
+    c->jflags = calloc(FLAGS * (size_t)n, 1);
     if (!c->Minv || !c->Mez || !c->fl_d || !c->bo_d || !c->bo_e || !c->ba_d || !c->cen_d ||
-        !c->e_r || !c->e_t || !c->qbuf || !c->fbuf || !c->MK || !c->Dq || !c->Dv)
+        !c->e_r || !c->e_t || !c->qbuf || !c->fbuf || !c->MK || !c->Dq || !c->Dv ||
+        !c->flags || !c->jflags)
         return rd_error_set(err, RD_ENOMEM, "", "Out of memory for a %d-segment lift model.", n);
 
     rd_band M;
@@ -1126,6 +1166,7 @@ static int run(const rd_ring *ring, const rd_lift_params *p, const rd_lift_setup
                           n);
         goto out;
     }
+    c.cv = cv;
     double *yy = N_VGetArrayPointer(y), *at = N_VGetArrayPointer(abstol);
     const rd_ring_params *rp = rd_ring_get_params(ring);
     double R = rd_ring_get_section(ring)->R;
@@ -1149,8 +1190,8 @@ static int run(const rd_ring *ring, const rd_lift_params *p, const rd_lift_setup
         (flag = CVodeSetUserData(cv, &c)) ||
         (flag = CVodeSetLinearSolver(cv, LS, A)) ||
         (flag = CVodeSetJacFn(cv, jac)) ||
+        (flag = CVodeSetMaxOrd(cv, MAX_ORDER)) ||
         (flag = CVodeSetMaxStep(cv, HMAX_DEG / deg_per_s)) ||
-        (flag = CVodeSetLSetupFrequency(cv, 1)) ||
         (flag = CVodeSetJacEvalFrequency(cv, 1)) ||
         (flag = CVodeRootInit(cv, N_ROOTS, roots)) ||
         (flag = CVodeSetRootDirection(cv, rootdir)) ||
@@ -1385,4 +1426,74 @@ int rd_lift_solve(const rd_ring_params *ring, int segments, const rd_lift_params
                   const rd_monitor *mon, rd_lift_result *out, rd_error *err)
 {
     return rd_lift_solve_setup(ring, segments, p, NULL, mon, out, err);
+}
+
+/* ------------------------------------------------------------- test hook */
+
+int rd_lift_jacobian_check(const rd_ring_params *rp, int segments, const rd_lift_params *p,
+                           double t, const double *y0, double *max_err, rd_error *err)
+{
+    lift_ctx c;
+    rd_ring *ring = NULL;
+    SUNContext sunctx = NULL;
+    N_Vector y = NULL, f1 = NULL, f2 = NULL;
+    SUNMatrix J = NULL;
+    int rc;
+    memset(&c, 0, sizeof c);
+    if ((rc = rd_lift_validate(p, rp, segments, err)))
+        return rc;
+    ring = rd_ring_create(rp, segments, 0, err);
+    if (!ring)
+        return err ? err->code : RD_ENOMEM;
+    if ((rc = ctx_init(&c, ring, p, NULL, err)))
+        goto out;
+    sunindextype N = 12 * (sunindextype)segments;
+    if (SUNContext_Create(NULL, &sunctx) || !(y = N_VNew_Serial(N, sunctx)) ||
+        !(f1 = N_VNew_Serial(N, sunctx)) || !(f2 = N_VNew_Serial(N, sunctx)) ||
+        !(J = SUNBandMatrix(N, MU, ML, sunctx))) {
+        rc = rd_error_set(err, RD_ENOMEM, "", "Out of memory.");
+        goto out;
+    }
+    double *yy = N_VGetArrayPointer(y);
+    memcpy(yy, y0, (size_t)N * sizeof *yy);
+    jac(t, y, NULL, J, &c, NULL, NULL, NULL);
+    double jmax = 0.0, worst = 0.0;
+    for (sunindextype j = 0; j < N; j++)
+        for (sunindextype i = j - MU < 0 ? 0 : j - MU; i <= j + ML && i < N; i++)
+            jmax = fmax(jmax, fabs(SM_ELEMENT_B(J, i, j)));
+    for (sunindextype j = 0; j < N; j++) {
+        /* central differences, steps 1e-3 d0 (translations), the same at
+         * 0.05 m lever arm (rotations), 1e-4 u_reg (rates): exact on the
+         * penalty's quadratic and linear pieces, far from its kinks, and
+         * large enough that rounding stays ~1e-6 relative */
+        double h = (j % 12) < 6 ? (j % 12 < 3 ? 1e-3 * c.d0 : 2e-2 * c.d0) : 1e-4 * c.ureg;
+        double keep = yy[j];
+        yy[j] = keep + h;
+        rhs(t, y, f1, &c);
+        yy[j] = keep - h;
+        rhs(t, y, f2, &c);
+        yy[j] = keep;
+        const double *a = N_VGetArrayPointer(f1), *b = N_VGetArrayPointer(f2);
+        for (sunindextype i = 0; i < N; i++) {
+            double fd = (a[i] - b[i]) / (2.0 * h);
+            double an = (i - j <= ML && j - i <= MU) ? SM_ELEMENT_B(J, i, j) : 0.0;
+            double e = fabs(fd - an) / (fabs(an) + 1e-6 * jmax);
+            worst = fmax(worst, e);
+        }
+    }
+    *max_err = worst;
+out:
+    if (J)
+        SUNMatDestroy(J);
+    if (y)
+        N_VDestroy(y);
+    if (f1)
+        N_VDestroy(f1);
+    if (f2)
+        N_VDestroy(f2);
+    if (sunctx)
+        SUNContext_Free(&sunctx);
+    ctx_cleanup(&c);
+    rd_ring_free(ring);
+    return rc;
 }

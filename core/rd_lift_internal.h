@@ -35,4 +35,11 @@ double rd_lift_contact_stiffness_default(const rd_ring_params *ring, const rd_li
 /* Friction regularization velocity u_reg (m/s) of a valid scene. */
 double rd_lift_friction_ureg(const rd_lift_params *p);
 
+/* Largest relative difference between the analytic Jacobian of the lift
+ * equations at (t, y) (12 n values) and central differences of the
+ * right-hand side (entries smaller than 1e-6 of the largest are compared
+ * absolutely at that level). */
+int rd_lift_jacobian_check(const rd_ring_params *ring, int segments, const rd_lift_params *p,
+                           double t, const double *y, double *max_err, rd_error *err);
+
 #endif
