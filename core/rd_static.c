@@ -171,6 +171,22 @@ typedef struct problem {
     double noise; /* residual's rounding floor, in the units of residual_norm */
 } problem;
 
+/* The load path.  Pretension: F_t and F_l grow with lambda.  Contact: the
+ * pretension first (lambda 0..1/2, the bore still the ring's closed shape,
+ * so the ring is pressed on it throughout), then the bore's departure from
+ * that shape (lambda 1/2..1) with the ring already pressed on it: a bore
+ * moving away from an unloaded ring would leave it floating, and Newton
+ * with it. */
+static double force_factor(const problem *pb)
+{
+    return pb->kind == CONTACT ? fmin(1.0, 2.0 * pb->lambda) : pb->lambda;
+}
+
+static double bore_factor(const problem *pb)
+{
+    return fmax(0.0, 2.0 * pb->lambda - 1.0);
+}
+
 /* Bore radius and its derivative at theta, at the current load factor. */
 static void bore_radius(const problem *pb, double theta, double *r, double *dr)
 {
@@ -181,8 +197,9 @@ static void bore_radius(const problem *pb, double theta, double *r, double *dr)
         a += d->amplitude * cos(arg);
         da -= d->amplitude * d->order * sin(arg);
     }
-    *r = pb->r_o + pb->lambda * a;
-    *dr = pb->lambda * da;
+    double mu = bore_factor(pb);
+    *r = pb->r_o + mu * a;
+    *dr = mu * da;
 }
 
 /* The smooth contact law p(delta) = k eps ln(1 + exp(delta / eps)). */
@@ -297,7 +314,7 @@ static int segment_load(const problem *pb, int i, const double *x, const double 
                 double t[3];
                 mv3(Q, i == 0 ? pb->tA : pb->tB, t);
                 for (int k = 0; k < 3; k++)
-                    F[k] = pb->lambda * pb->Ft * t[k];
+                    F[k] = force_factor(pb) * pb->Ft * t[k];
             }
             if (pb->kind == PRETENSION)
                 F[2] += (i == 0 ? 1.0 : -1.0) * pb->lambda * pb->Fl;
@@ -587,11 +604,24 @@ static int newton_step(problem *pb, work *w)
     return 0;
 }
 
-/* Newton iterations at the current load factor.  Returns 1 converged,
- * 0 not converged (caller cuts the load step), < 0 on error. */
+/* Adds mu |J_ii| to the band's diagonal (Marquardt's scaling): a step in a
+ * direction the tangent barely resists (a ring losing the bore, a rigid
+ * motion nothing holds) stays bounded. */
+static void damp(problem *pb, double *ab, double mu)
+{
+    for (int k = 0; k < 6 * pb->n; k++) {
+        double *d = &ab[(size_t)k * LDAB + 2 * KL];
+        *d += mu * fabs(*d);
+    }
+}
+
+/* Newton iterations at the current load factor, Levenberg-Marquardt damped
+ * when a plain step fails.  Returns 1 converged, 0 not converged (caller
+ * cuts the load step), < 0 on error. */
 static int newton(problem *pb, work *w, double tol, int *budget, int *iters, double *res_out)
 {
     int N = 6 * pb->n;
+    double mu = 0.0;
     residual(pb, w->r);
     double res = residual_norm(pb, w->r);
     for (int it = 0; it < 40; it++) {
@@ -604,6 +634,8 @@ static int newton(problem *pb, work *w, double tol, int *budget, int *iters, dou
         (*budget)--;
         (*iters)++;
         tangent(pb, w->ab);
+        if (mu > 0.0)
+            damp(pb, w->ab, mu);
         for (int k = 0; k < N; k++)
             w->delta[k] = -w->r[k];
         if (newton_step(pb, w) != 0)
@@ -637,14 +669,19 @@ static int newton(problem *pb, work *w, double tol, int *budget, int *iters, dou
             }
         }
         if (!accepted) {
-            /* no descent: at the rounding floor if the step is negligible */
             residual(pb, w->r);
+            /* at the rounding floor if the step is negligible */
             if (step_len < 1e-12 && res < 1e3 * tol) {
                 *res_out = res;
                 return 1;
             }
-            return 0;
+            /* otherwise damp harder and try again from the same state */
+            mu = mu > 0.0 ? 100.0 * mu : 1e-10;
+            if (mu > 1.0)
+                return 0;
+            continue;
         }
+        mu = mu > 1e-10 ? 0.1 * mu : 0.0;
         res = res_new;
         if (step_len * a < 1e-14 && res < 1e3 * tol) {
             *res_out = res;
@@ -665,6 +702,23 @@ static void work_free(work *w)
     free(w->Qs);
     free(w->Y);
     free(w->ipiv);
+}
+
+/* Predictor for a contact load step: every segment moves radially with the
+ * bore under it from load factor l0 to l1.  Without it a bore that moves
+ * away by more than the law's smoothing length eps leaves every contact on
+ * the law's exp(delta / eps) tail, with no stiffness to push the ring out. */
+static void follow_bore(problem *pb, double l0, double l1)
+{
+    for (int i = 0; i < pb->n; i++) {
+        double *x = pb->x + 3 * i, th = atan2(x[1], x[0]), r0, r1, d;
+        pb->lambda = l0;
+        bore_radius(pb, th, &r0, &d);
+        pb->lambda = l1;
+        bore_radius(pb, th, &r1, &d);
+        x[0] += (r1 - r0) * cos(th);
+        x[1] += (r1 - r0) * sin(th);
+    }
 }
 
 /* Load stepping from lambda = 0 to 1. */
@@ -702,6 +756,8 @@ static int solve_path(problem *pb, const rd_static_opts *so, const rd_monitor *m
         double target = fmin(1.0, lam + dlam);
         memcpy(w.x0, pb->x, (size_t)3 * n * sizeof *pb->x);
         memcpy(w.Q0, pb->Q, (size_t)9 * n * sizeof *pb->Q);
+        if (pb->kind == CONTACT)
+            follow_bore(pb, lam, target);
         pb->lambda = target;
         int before = st->iterations;
         int ok = newton(pb, &w, tol, &budget, &st->iterations, &res);

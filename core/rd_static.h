@@ -57,7 +57,7 @@ enum rd_pretension_method { RD_PRETENSION_FORCE = 0, RD_PRETENSION_FIELD = 1 };
 #define RD_STATIC_SEGMENTS_MAX 2000
 
 typedef struct rd_static_opts {
-    double tol;         /* relative residual tolerance, default 1e-10 */
+    double tol;         /* relative residual tolerance, default 1e-9 */
     int max_iterations; /* Newton iterations over all load steps, default 2000 */
     int estimate_error; /* 1: second solve at 2n (n/2 above 1000) for the error estimate */
 } rd_static_opts;

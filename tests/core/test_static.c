@@ -370,6 +370,22 @@ static void test_extremes_and_errors(void)
     CHECK_REL(r.mean_pressure, p0, 1e-3, "n = 1000 mean pressure");
     rd_contact_result_cleanup(&r);
 
+    /* bores up to 2 % off the ring's diameter: the ring is squeezed into a
+     * smaller one (mean pressure up) and opens into a larger one (down,
+     * light gaps at the tips once it can no longer follow) */
+    const double scale[4] = {0.98, 0.999, 1.001, 1.02};
+    double last = INFINITY;
+    for (int k = 0; k < 4; k++) {
+        o.bore_diameter = scale[k] * p.diameter;
+        int rc = contact(&p, 20, &o, &r, &err);
+        CHECK(rc == RD_OK && r.mean_pressure < last, "bore x%g: rc %d %s, mean %g", scale[k], rc,
+              err.message, rc == RD_OK ? r.mean_pressure : NAN);
+        if (rc == RD_OK)
+            last = r.mean_pressure;
+        rd_contact_result_cleanup(&r);
+    }
+    o.bore_diameter = 0;
+
     /* no pretension: a clear error naming the field */
     p.tangential_force = 0;
     CHECK(contact(&p, 20, &o, &r, &err) == RD_EINVAL &&
