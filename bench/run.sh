@@ -6,7 +6,7 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 b=${1:-build-bench}
 cmake -S . -B "$b" -DCMAKE_BUILD_TYPE=Release -DRINGDYN_TESTS=OFF >/dev/null
-cmake --build "$b" -j2 --target bench_modal bench_static >/dev/null
+cmake --build "$b" -j2 --target bench_modal bench_static bench_lift >/dev/null
 echo "## modal: accuracy and cost vs n"
 "$b/bench/bench_modal"
 echo
@@ -43,3 +43,6 @@ for n in 100 200 400 800; do
   fi
   prev_n=$n; prev_i=$ins
 done
+echo
+echo "## lift: cost per engine cycle vs n, and flank-change accuracy vs rtol"
+"$b/bench/bench_lift"

@@ -33,15 +33,17 @@
  * Contacts (smooth penalties, pressure in Pa on a tributary area):
  *   p(delta, delta') = k sp(delta) phi(x),  x = c w(delta) delta' / (k sp(delta))
  *   sp = delta^2 / (2 d0) (0 < delta < d0),  delta - d0/2 (delta >= d0),  0 else
- *   w = sp' = min(delta / d0, 1);  phi(x) = 1 + x (x >= 0), exp(x) (x < 0)
+ *   w = sp' = min(delta / d0, 1);  phi(x) = 1 + x (x >= -1/2),
+ *   e^{2x + 1} / 2 (x < -1/2)
  * i.e. a C1 linear spring with a quadratic start over d0 = 1e-4 axial
- * clearances, and Kelvin-Voigt damping c w delta' while the contact closes
- * (x >= 0) that fades exponentially while it opens, so the contact never
- * pulls and the pressure is C1 in delta'.  c = 2 zeta sqrt(k m_a) with m_a
- * the ring's mass per contact area (rho h on a flank, rho b on the bore) and
- * zeta = 1: a critically damped contact, so a landing is plastic (the
- * thesis' slap motion, oil squeeze damps real landings) and its energy is the
- * landing loss.
+ * clearances, with Kelvin-Voigt damping c w delta' that fades exponentially
+ * when the contact opens fast, so the contact never pulls and the pressure is
+ * C1 in delta'.  c = 2 zeta sqrt(k m_a) with m_a the ring's mass per contact
+ * area (rho h on a flank, rho b on the bore) and zeta = 5: an overdamped
+ * contact, so a landing under load is plastic, without rebound (with this
+ * law zeta = 1 still rebounds with restitution 0.16, zeta = 2: 0.06, 3: 0.02,
+ * >= 5: none; the thesis' slap motion, oil squeeze damps real landings).
+ * The energy it takes is the landing loss.
  *   Flanks: on the bottom and top faces, 3 arc positions (centres of thirds
  *   of the segment's arc) x 2 radii (inner and outer edge, each carrying its
  *   half of the face width).  Axial displacement of a point at in-plane
@@ -58,9 +60,9 @@
  *   k_load = P_max / (1e-3 c_a): the largest pressure the scene can put on a
  *     flank (inertia rho h r w^2 (1 + lambda), gravity, friction, gas)
  *     pushes it in by at most 1e-3 of the clearance;
- *   k_dyn = rho h (1e4 w)^2: the flank contact frequency sqrt(k / (rho h)) is
- *     1e4 times the crank's, so the critically damped contact follows the
- *     load with a lag 2 zeta / w_c = 2e-4 rad = 0.01 deg of crank.
+ *   k_dyn = rho h (3e4 w)^2: the flank contact frequency w_c = sqrt(k / (rho h))
+ *     is 3e4 times the crank's, so the damped contact follows the load with
+ *     a lag 2 zeta / w_c = 3.3e-4 rad = 0.02 deg of crank.
  * Both effects shift the flank-change angles by far less than the flight
  * times (degrees); test_lift checks the angles over 2 decades of k.
  *
@@ -92,21 +94,35 @@
  *   own pressure.  The blend weight is the face's mean smoothstep(delta/d0)
  *   (3 x^2 - 2 x^3) over its contact points, C1 in the penetration.
  *
- * Integration: SUNDIALS CVODE, BDF, Newton with a band matrix and band LU
- * (difference-quotient Jacobian: mu + ml + 1 = 35 rhs calls, O(n) each), so
- * each step costs O(n).  Tolerances: rtol; atol on the translations (m),
+ * Integration: SUNDIALS CVODE, BDF of order <= 2, Newton with a band matrix
+ * and band LU and the analytic Jacobian (jac()), so each step costs O(n).
+ * Order <= 2: the undamped elastic modes of a finely cut ring are fast and
+ * on the imaginary axis, where BDF3-5 are unstable (n = 200 took 70x more
+ * steps); BDF2 is A-stable.  The Jacobian is re-evaluated and factored at
+ * every step: a Newton matrix kept from a closed contact carries that
+ * penalty's stiffness after the contact opened, and the modified Newton
+ * iteration then converges falsely and holds the ring on the flank (landings
+ * came 5-40 deg late with CVODE's default reuse; with any reuse the tests'
+ * 1-DOF and stiffness checks fail at rtol 1e-6).  Tolerances: rtol; atol on the translations (m),
  * atol / R on the rotations, and atol w_v on their rates with w_v =
  * sqrt(a_ref / c_a), the rate of a flight across the clearance under the
  * scene's largest acceleration a_ref.  The step is bounded by 1 crank degree
  * so no gas-table feature or short contact is stepped over.
  *
  * Events: the ring's mean lift L (mean over segments of the bottom face's
- * axial position above the lower flank).  CVODE locates the roots of L,
- * L - eps, c_a - L, c_a - L - eps (eps = 1e-2 c_a).  A flank change is
- * dated at the geometric contact change (L = 0 or L = c_a) and confirmed
- * only when the ring moves on by eps: hops lower than 1 % of the clearance
- * (micro-bounces of a landing, the penalty's settling) are not flank changes.
- * A sample's flank: lower if L < eps, upper if L > c_a - eps, else free.
+ * axial position above the lower flank) and F, the total axial force on the
+ * ring without the flank contacts (inertia, gravity, gas, friction; the
+ * elastic forces sum to zero).  CVODE locates the roots of L (landing on the
+ * lower flank), L - eps, c_a - L (landing on the upper flank), c_a - L - eps
+ * (eps = 1e-2 c_a) and F.  A landing is dated where L reaches the flank.  A
+ * leave is dated where F turns away from the flank (the 1-DOF definition:
+ * a seated ring separates with zero velocity and acceleration, so the
+ * geometric separation time is ill-conditioned, ~(6 atol / jerk)^(1/3) =
+ * 0.3 deg at 1000 rpm), and confirmed only when L has moved eps off the
+ * flank; if F turns back first, nothing is reported.  So hops lower than 1 %
+ * of the clearance (micro-bounces, the penalty's settling, an edge lifting
+ * under a twist) are not flank changes.  A sample's flank: lower if L < eps,
+ * upper if L > c_a - eps, else free.
  */
 #include "rd_lift.h"
 
@@ -128,7 +144,6 @@
 #define GRAVITY 9.80665
 #define ARC_POINTS 3              /* contact positions along a segment's arc */
 #define FLANK_POINTS (2 * ARC_POINTS)
-#define FLAGS (2 * FLANK_POINTS + 2 * ARC_POINTS) /* contact-set bytes per segment */
 #define SMOOTH_FRACTION 1e-4      /* d0 / c_a: quadratic start of the penalty */
 #define EVENT_FRACTION 1e-2       /* eps / c_a: smallest hop that is a flank change */
 #define DAMPING_RATIO 5.0         /* zeta of the contacts: landings do not rebound */
@@ -139,9 +154,7 @@
 #define MEMORY_BOUND 2e7          /* samples x segments */
 #define MU 11                     /* upper half bandwidth of the Jacobian */
 #define ML 23                     /* lower half bandwidth */
-#ifndef MAX_ORDER
-#define MAX_ORDER 2
-#endif
+#define MAX_ORDER 2                /* BDF order bound (header comment) */
 
 /* State access, cvRoberts style. */
 #define Q(y, i) ((y) + 12 * (size_t)(i))
@@ -299,9 +312,6 @@ int rd_lift_validate(const rd_lift_params *p, const rd_ring_params *ring, int se
             return rd_error_set(err, RD_EINVAL, "/physics/gas/active_area",
                                 "/physics/gas/active_area = %d is unknown: use fixed or dynamic.",
                                 g->active_area);
-    } else if (g->points < 0) {
-        return rd_error_set(err, RD_EINVAL, "/physics/gas/crank_deg",
-                            "/physics/gas has %d points.", g->points);
     }
     if (p->contact_stiffness != 0.0 &&
         (rc = check_range(p->contact_stiffness, 1e3, 1e20, "/contact/stiffness",
@@ -389,13 +399,6 @@ typedef struct lift_ctx {
     double *qbuf, *fbuf;        /* 12 n and 6 n scratch */
     double *MK;                 /* n x 3 x 36: -M_i^-1 K_ij, j = i-1, i, i+1 */
     double *Dq, *Dv;            /* n x 36: local force derivatives (Jacobian) */
-    /* Contact set (per segment FLAGS bytes: flank points touching, friction
-     * in its regularized range, groove back touching) of the state the last
-     * Jacobian was taken at, and of the current state; see rhs(). */
-    unsigned char *jflags, *flags;
-    int jvalid;
-    long jnst;                  /* CVODE step count at the last Jacobian */
-    void *cv;                   /* CVODE memory, for the step count; NULL in tests */
     double friction;            /* total axial friction of the last rhs call, N */
     double fz_ext;              /* total axial force on the ring except the flanks, N */
     char cv_msg[200];           /* CVODE's last error message */
@@ -577,7 +580,6 @@ static void segment_forces(lift_ctx *c, double t, const double *y, double *Dq, d
         const double *q = Q(y, i), *v = V(y, i);
         double *f = c->fbuf + 6 * i;
         double *dq = Dq ? Dq + 36 * (size_t)i : NULL, *dv = Dv ? Dv + 36 * (size_t)i : NULL;
-        unsigned char *fl = c->flags + FLAGS * (size_t)i;
         if (dq) {
             memset(dq, 0, 36 * sizeof *dq);
             memset(dv, 0, 36 * sizeof *dv);
@@ -595,8 +597,6 @@ static void segment_forces(lift_ctx *c, double t, const double *y, double *Dq, d
             double w = dot6(a, q), wd = dot6(a, v), A = c->fl_area[k];
             double plo = contact_pressure(c, -w, -wd, c->c_flank, &pl_d, &pl_dd);
             double pup = contact_pressure(c, w - c->ca, wd, c->c_flank, &pu_d, &pu_dd);
-            fl[2 * k] = w < 0.0;
-            fl[2 * k + 1] = w > c->ca;
             add6(f, a, (plo - pup) * A);
             rank1(dq, -A * (pl_d + pu_d), a, a);
             rank1(dv, -A * (pl_dd + pu_dd), a, a);
@@ -621,8 +621,7 @@ static void segment_forces(lift_ctx *c, double t, const double *y, double *Dq, d
             rank1(dv, -c->bo_area * P_dd, b, b);
             if (fric) {
                 axial_dir(d, a);
-                double u = dot6(a, v) - sd, F_N, F_u, F = friction_force(c, N, u, &F_N, &F_u);
-                fl[2 * FLANK_POINTS + k] = fabs(u) < 3.0 * c->ureg;
+                double F_N, F_u, F = friction_force(c, N, dot6(a, v) - sd, &F_N, &F_u);
                 add6(f, a, F);
                 ftot += F;
                 rank1(dq, F_N * c->bo_area * P_d, a, b);
@@ -637,7 +636,6 @@ static void segment_forces(lift_ctx *c, double t, const double *y, double *Dq, d
             double P_d, P_dd;
             double pen = -dot6(b, q) - c->cr;
             double P = contact_pressure(c, pen, -dot6(b, v), c->c_rad, &P_d, &P_dd);
-            fl[2 * FLANK_POINTS + ARC_POINTS + k] = pen > 0.0;
             add6(f, b, P * c->ba_area);
             rank1(dq, -c->ba_area * P_d, b, b);
             rank1(dv, -c->ba_area * P_dd, b, b);
@@ -664,27 +662,13 @@ static void segment_forces(lift_ctx *c, double t, const double *y, double *Dq, d
     c->fz_ext = fz + ftot;
 }
 
-/* The right-hand side.  It also guards CVODE's modified Newton iteration:
- * a Newton matrix taken while a contact was closed (or friction was in its
- * steep regularized range) keeps that penalty's stiffness after the contact
- * opened, and then the iteration converges falsely, holding the ring on the
- * flank.  So when the contact set differs from the one of the last Jacobian
- * and that Jacobian is from an earlier step, the call reports a recoverable
- * failure: CVODE then takes a fresh Jacobian and retries the step (at most
- * once per step). */
+/* The right-hand side: ydot = (v, M^-1 (f - K q)) per segment. */
 static int rhs(sunrealtype t, N_Vector yv, N_Vector ydv, void *user)
 {
     lift_ctx *c = user;
     const double *y = N_VGetArrayPointer(yv);
     double *yd = N_VGetArrayPointer(ydv);
     segment_forces(c, t, y, NULL, NULL);
-    if (c->cv && c->jvalid &&
-        memcmp(c->flags, c->jflags, FLAGS * (size_t)c->n) != 0) {
-        long nst = 0;
-        CVodeGetNumSteps(c->cv, &nst);
-        if (nst != c->jnst)
-            return 1;
-    }
     for (int i = 0; i < c->n; i++)
         memcpy(c->qbuf + 6 * i, Q(y, i), 6 * sizeof(double));
     double *Kq = c->qbuf + 6 * (size_t)c->n; /* second half of the scratch */
@@ -720,10 +704,6 @@ static int jac(sunrealtype t, N_Vector yv, N_Vector fy, SUNMatrix J, void *user,
     lift_ctx *c = user;
     const double *y = N_VGetArrayPointer(yv);
     segment_forces(c, t, y, c->Dq, c->Dv);
-    memcpy(c->jflags, c->flags, FLAGS * (size_t)c->n);
-    c->jvalid = 1;
-    if (c->cv)
-        CVodeGetNumSteps(c->cv, &c->jnst);
     SUNMatZero(J);
     for (int i = 0; i < c->n; i++) {
         sunindextype rq = 12 * (sunindextype)i, rv = rq + 6;
@@ -880,8 +860,7 @@ static void ctx_cleanup(lift_ctx *c)
     free(c->MK);
     free(c->Dq);
     free(c->Dv);
-    free(c->flags);
-    free(c->jflags);
+
 }
 
 static int ctx_init(lift_ctx *c, const rd_ring *ring, const rd_lift_params *p,
@@ -941,11 +920,9 @@ static int ctx_init(lift_ctx *c, const rd_ring *ring, const rd_lift_params *p,
     c->MK = calloc(108 * (size_t)n, sizeof *c->MK);
     c->Dq = malloc(36 * (size_t)n * sizeof *c->Dq);
     c->Dv = malloc(36 * (size_t)n * sizeof *c->Dv);
-    c->flags = calloc(FLAGS * (size_t)n, 1);
-    c->jflags = calloc(FLAGS * (size_t)n, 1);
+
     if (!c->Minv || !c->Mez || !c->fl_d || !c->bo_d || !c->bo_e || !c->ba_d || !c->cen_d ||
-        !c->e_r || !c->e_t || !c->qbuf || !c->fbuf || !c->MK || !c->Dq || !c->Dv ||
-        !c->flags || !c->jflags)
+        !c->e_r || !c->e_t || !c->qbuf || !c->fbuf || !c->MK || !c->Dq || !c->Dv)
         return rd_error_set(err, RD_ENOMEM, "", "Out of memory for a %d-segment lift model.", n);
 
     rd_band M;
@@ -1166,7 +1143,6 @@ static int run(const rd_ring *ring, const rd_lift_params *p, const rd_lift_setup
                           n);
         goto out;
     }
-    c.cv = cv;
     double *yy = N_VGetArrayPointer(y), *at = N_VGetArrayPointer(abstol);
     const rd_ring_params *rp = rd_ring_get_params(ring);
     double R = rd_ring_get_section(ring)->R;
@@ -1192,6 +1168,7 @@ static int run(const rd_ring *ring, const rd_lift_params *p, const rd_lift_setup
         (flag = CVodeSetJacFn(cv, jac)) ||
         (flag = CVodeSetMaxOrd(cv, MAX_ORDER)) ||
         (flag = CVodeSetMaxStep(cv, HMAX_DEG / deg_per_s)) ||
+        (flag = CVodeSetLSetupFrequency(cv, 1)) || /* fresh Newton matrix each step */
         (flag = CVodeSetJacEvalFrequency(cv, 1)) ||
         (flag = CVodeRootInit(cv, N_ROOTS, roots)) ||
         (flag = CVodeSetRootDirection(cv, rootdir)) ||

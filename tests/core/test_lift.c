@@ -281,7 +281,7 @@ static void test_rigid_limit(void)
         p.step_deg = 2.0;
         rd_lift_result r;
         rd_error err;
-        int rc = solve(&rp, 12, &p, NULL, &r, &err);
+        int rc = solve(&rp, 6, &p, NULL, &r, &err);
         CHECK(rc == RD_OK, "rigid limit: %s", err.message);
         odof o;
         odof_init(&o, &rp, &p);
@@ -324,7 +324,7 @@ static void test_friction(void)
     p.step_deg = 2.0;
     rd_lift_result r, r2;
     rd_error err;
-    int rc = solve(&rp, 12, &p, NULL, &r, &err);
+    int rc = solve(&rp, 6, &p, NULL, &r, &err);
     CHECK(rc == RD_OK, "friction: %s", err.message);
     odof o;
     odof_init(&o, &rp, &p);
@@ -354,7 +354,7 @@ static void test_friction(void)
     CHECK_REL(fabs(r.friction_force[45]), o.mu * o.N, 1e-3, "friction force at 90 deg");
     rd_lift_setup su = {0};
     su.ureg_scale = 0.5;
-    rc = solve(&rp, 12, &p, &su, &r2, &err);
+    rc = solve(&rp, 6, &p, &su, &r2, &err);
     CHECK(rc == RD_OK, "friction u_reg/2: %s", err.message);
     copy_events(&r2, &c);
     d = event_diff(&a, &c);
@@ -366,7 +366,7 @@ static void test_friction(void)
     rd_ring_params_default(&rp);
     p.rtol = 1e-6;
     p.atol = 1e-9;
-    rc = solve(&rp, 20, &p, NULL, &r, &err);
+    rc = solve(&rp, 8, &p, NULL, &r, &err);
     CHECK(rc == RD_OK, "friction, thesis ring: %s", err.message);
     int lands = 0;
     for (int i = 0; rc == RD_OK && i < r.n_events; i++)
@@ -554,7 +554,7 @@ static void test_thesis(void)
      * at TDC; landings 1-30 deg later. */
     lift_params(&p, 1000.0, 2.0);
     p.estimate_error = 1;
-    rc = solve(&rp, 20, &p, NULL, &r, &err);
+    rc = solve(&rp, 8, &p, NULL, &r, &err);
     CHECK(rc == RD_OK, "1000 rpm: %s", err.message);
     double zeros[4] = {0};
     {
@@ -613,14 +613,14 @@ static void test_thesis(void)
     lift_params(&p, 40.0, 1.0);
     p.gravity = 1;
     p.step_deg = 5.0;
-    rc = solve(&rp, 20, &p, NULL, &r, &err);
+    rc = solve(&rp, 8, &p, NULL, &r, &err);
     CHECK(rc == RD_OK, "40 rpm: %s", err.message);
     CHECK(r.n_events == 0, "40 rpm with gravity: %d flank changes", r.n_events);
     CHECK(count_flank(&r, RD_FLANK_LOWER) == r.samples, "40 rpm: not always on the lower flank");
     rd_lift_result_cleanup(&r);
     /* ... and without gravity the same engine does lift it (the check can fail) */
     p.gravity = 0;
-    rc = solve(&rp, 20, &p, NULL, &r, &err);
+    rc = solve(&rp, 8, &p, NULL, &r, &err);
     CHECK(rc == RD_OK && r.n_events > 0, "40 rpm without gravity: %d flank changes",
           r.n_events);
     rd_lift_result_cleanup(&r);
@@ -632,7 +632,7 @@ static void test_thesis(void)
         lift_params(&p, 1000.0, 1.0);
         p.step_deg = 2.0;
         p.gas = (rd_gas_params){2, deg2, hi, hi, zero, area};
-        rc = solve(&rp, 20, &p, NULL, &r, &err);
+        rc = solve(&rp, 8, &p, NULL, &r, &err);
         CHECK(rc == RD_OK, "gas held down: %s", err.message);
         CHECK(r.n_events == 0, "gas held down (area %d): %d flank changes", area, r.n_events);
         CHECK(count_flank(&r, RD_FLANK_LOWER) == r.samples, "gas held down: not seated");
@@ -651,7 +651,7 @@ static void test_thesis(void)
         p.step_deg = 2.0;
         if (gas)
             p.gas = (rd_gas_params){6, degs, suck, suck, zer6, RD_GAS_AREA_FIXED};
-        rc = solve(&rp, 20, &p, NULL, &r, &err);
+        rc = solve(&rp, 8, &p, NULL, &r, &err);
         CHECK(rc == RD_OK, "suction: %s", err.message);
         if (rc == RD_OK)
             CHECK(r.flank[k500] == (gas ? RD_FLANK_UPPER : RD_FLANK_LOWER),

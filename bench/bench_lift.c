@@ -1,0 +1,192 @@
+/*
+ * bench_lift — what the lift analysis costs per engine cycle and what its
+ * segment count and tolerance buy.
+ *
+ *   bench_lift [--max-n N] [--reps R]
+ *     1. The thesis ring at 1000 rpm, inertia only (examples/thesis_lift_
+ *        1000rpm.json), one cycle, n = 4 .. 1000: wall time (median of R >= 3
+ *        runs), CVODE steps, rhs and Jacobian evaluations, the flank-change
+ *        angles of the cycle and their largest change against the finest n;
+ *        fitted cost exponent (least-squares slope of log time vs log n over
+ *        n >= 32).
+ *     2. n = 20: the flank-change angles' error vs rtol (1e-4 .. 1e-8, atol =
+ *        1e-3 m x rtol) against a reference run at rtol 1e-10, and the cost.
+ *   bench_lift --once N    one cycle, for instruction counts (callgrind).
+ *
+ * Wall times on a shared 2-core machine are noisy: medians of repeats.
+ */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+#include "rd_lift.h"
+
+#define MAX_EV 32
+
+static double now(void)
+{
+    struct timespec t;
+    clock_gettime(CLOCK_MONOTONIC, &t);
+    return t.tv_sec + 1e-9 * t.tv_nsec;
+}
+
+static int cmp(const void *a, const void *b)
+{
+    double x = *(const double *)a, y = *(const double *)b;
+    return (x > y) - (x < y);
+}
+
+typedef struct run {
+    double wall;
+    long steps, rhs, jac;
+    int n_events;
+    double deg[MAX_EV];
+    int kind[MAX_EV];
+} run;
+
+static void params(rd_lift_params *p, double rtol)
+{
+    rd_lift_params_default(p);
+    p->engine.cycles = 1.0;
+    p->estimate_error = 0;
+    p->step_deg = 1.0;
+    p->rtol = rtol;
+    p->atol = 1e-3 * rtol;
+}
+
+/* Median wall time of `reps` runs; counters and events of the last. */
+static int timed(const rd_ring_params *rp, int n, double rtol, int reps, run *out)
+{
+    double t[64];
+    rd_lift_params p;
+    params(&p, rtol);
+    for (int k = 0; k < reps && k < 64; k++) {
+        rd_lift_result r;
+        rd_error err;
+        rd_error_init(&err);
+        double t0 = now();
+        int rc = rd_lift_solve(rp, n, &p, NULL, &r, &err);
+        t[k] = now() - t0;
+        if (rc) {
+            fprintf(stderr, "n=%d rtol=%g: %s\n", n, rtol, err.message);
+            rd_lift_result_cleanup(&r);
+            return rc;
+        }
+        out->steps = r.steps;
+        out->rhs = r.rhs_evals;
+        out->jac = r.jac_evals;
+        out->n_events = r.n_events < MAX_EV ? r.n_events : MAX_EV;
+        for (int i = 0; i < out->n_events; i++) {
+            out->deg[i] = r.events[i].crank_deg;
+            out->kind[i] = r.events[i].kind;
+        }
+        rd_lift_result_cleanup(&r);
+    }
+    qsort(t, reps, sizeof t[0], cmp);
+    out->wall = t[reps / 2];
+    return 0;
+}
+
+static double event_change(const run *a, const run *b)
+{
+    if (a->n_events != b->n_events)
+        return NAN;
+    double d = 0.0;
+    for (int i = 0; i < a->n_events; i++) {
+        if (a->kind[i] != b->kind[i])
+            return NAN;
+        d = fmax(d, fabs(a->deg[i] - b->deg[i]));
+    }
+    return d;
+}
+
+int main(int argc, char **argv)
+{
+    int max_n = 1000, reps = 3, once = 0;
+    for (int i = 1; i < argc; i++) {
+        if (!strcmp(argv[i], "--max-n") && i + 1 < argc)
+            max_n = atoi(argv[++i]);
+        else if (!strcmp(argv[i], "--reps") && i + 1 < argc)
+            reps = atoi(argv[++i]);
+        else if (!strcmp(argv[i], "--once") && i + 1 < argc)
+            once = atoi(argv[++i]);
+        else {
+            fprintf(stderr, "usage: bench_lift [--max-n N] [--reps R] | --once N\n");
+            return 2;
+        }
+    }
+    if (reps < 3)
+        reps = 3;
+    rd_ring_params rp;
+    rd_ring_params_default(&rp);
+    if (once) {
+        run r;
+        int rc = timed(&rp, once, 1e-6, 1, &r);
+        printf("n=%d rc=%d steps=%ld rhs=%ld jac=%ld events=%d\n", once, rc, r.steps, r.rhs,
+               r.jac, r.n_events);
+        return rc ? 1 : 0;
+    }
+
+    static const int ns[] = {4, 8, 16, 32, 64, 125, 250, 500, 1000};
+    int nn = 0;
+    while (nn < (int)(sizeof ns / sizeof ns[0]) && ns[nn] <= max_n)
+        nn++;
+    run *runs = calloc((size_t)nn, sizeof *runs);
+    if (!runs)
+        return 1;
+    for (int k = 0; k < nn; k++)
+        if (timed(&rp, ns[k], 1e-6, reps, &runs[k]))
+            return 1;
+    const run *fine = &runs[nn - 1];
+    printf("Thesis ring, 1000 rpm, inertia only, one cycle (720 deg), rtol 1e-6, atol 1e-9 m;\n"
+           "wall time = median of %d runs; change = largest flank-change angle difference\n"
+           "against n = %d (NAN: a different number of flank changes).\n\n",
+           reps, ns[nn - 1]);
+    printf("| n | DOF | wall [s/cycle] | steps | rhs evals | jac evals | flank changes [deg] | "
+           "change vs n=%d [deg] |\n|---|---|---|---|---|---|---|---|\n",
+           ns[nn - 1]);
+    double lx[16], ly[16];
+    int nfit = 0;
+    for (int k = 0; k < nn; k++) {
+        const run *r = &runs[k];
+        char ev[512] = "";
+        size_t len = 0;
+        for (int i = 0; i < r->n_events && len + 16 < sizeof ev; i++)
+            len += (size_t)snprintf(ev + len, sizeof ev - len, "%s%.3f", i ? " " : "",
+                                    r->deg[i]);
+        printf("| %d | %d | %.3f | %ld | %ld | %ld | %s | %.4f |\n", ns[k], 6 * ns[k], r->wall,
+               r->steps, r->rhs, r->jac, ev, event_change(r, fine));
+        if (ns[k] >= 32) {
+            lx[nfit] = log(ns[k]);
+            ly[nfit++] = log(r->wall);
+        }
+    }
+    if (nfit >= 2) {
+        double mx = 0, my = 0, sxx = 0, sxy = 0;
+        for (int i = 0; i < nfit; i++) {
+            mx += lx[i] / nfit;
+            my += ly[i] / nfit;
+        }
+        for (int i = 0; i < nfit; i++) {
+            sxx += (lx[i] - mx) * (lx[i] - mx);
+            sxy += (lx[i] - mx) * (ly[i] - my);
+        }
+        printf("\nFitted cost exponent (wall time ~ n^p, n >= 32): p = %.2f\n", sxy / sxx);
+    }
+
+    run ref;
+    if (timed(&rp, 20, 1e-10, 1, &ref))
+        return 1;
+    printf("\nn = 20: flank-change angle error vs rtol (atol = 1e-3 m x rtol), reference rtol "
+           "1e-10\n\n| rtol | wall [s/cycle] | steps | max angle error [deg] |\n|---|---|---|---|\n");
+    for (double rtol = 1e-4; rtol > 0.5e-8; rtol /= 10) {
+        run r;
+        if (timed(&rp, 20, rtol, reps, &r))
+            return 1;
+        printf("| %.0e | %.3f | %ld | %.4f |\n", rtol, r.wall, r.steps, event_change(&r, &ref));
+    }
+    free(runs);
+    return 0;
+}
