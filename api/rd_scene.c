@@ -854,8 +854,12 @@ static int echo_analysis_blocks(const rd_scene *s, json_t *o)
                                              real(l->groove.axial_clearance), "radial_clearance",
                                              real(l->groove.radial_clearance)));
         bad |= json_object_set_new(o, "physics", physics);
-        bad |= json_object_set_new(o, "contact",
-                                   json_pack("{s:o}", "stiffness", real(l->contact_stiffness)));
+        bad |= json_object_set_new(
+            o, "contact",
+            json_pack("{s:o}", "stiffness",
+                      real(l->contact_stiffness > 0
+                               ? l->contact_stiffness
+                               : rd_lift_contact_stiffness_default(&s->ring, l))));
         bad |= json_object_set_new(o, "output", json_pack("{s:o}", "step_deg", real(l->step_deg)));
         bad |= json_object_set_new(o, "numerics",
                                    json_pack("{s:o, s:o, s:I, s:b}", "rtol", real(l->rtol), "atol",

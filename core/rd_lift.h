@@ -122,6 +122,10 @@ int rd_lift_solve(const rd_ring_params *ring, int segments, const rd_lift_params
                   const rd_monitor *mon, rd_lift_result *out, rd_error *err);
 void rd_lift_result_cleanup(rd_lift_result *r);
 
+/* The flank/bore penalty stiffness (Pa/m) used when p->contact_stiffness is 0
+ * (rd_lift.c explains the rule); p and ring must be valid. */
+double rd_lift_contact_stiffness_default(const rd_ring_params *ring, const rd_lift_params *p);
+
 /* Piston kinematics: position below TDC s (m), velocity ds/dt (m/s) and
  * acceleration d2s/dt2 (m/s^2) at crank angle alpha (rad), thesis 1.6-1.8 or
  * the exact slider-crank. */

@@ -28,10 +28,6 @@ int rd_lift_solve_setup(const rd_ring_params *ring, int segments, const rd_lift_
                         const rd_lift_setup *setup, const rd_monitor *mon, rd_lift_result *out,
                         rd_error *err);
 
-/* The flank/bore penalty stiffness (Pa/m) used when p->contact_stiffness is 0
- * (see rd_lift.c); p and ring must be valid. */
-double rd_lift_contact_stiffness_default(const rd_ring_params *ring, const rd_lift_params *p);
-
 /* Friction regularization velocity u_reg (m/s) of a valid scene. */
 double rd_lift_friction_ureg(const rd_lift_params *p);
 
