@@ -168,7 +168,7 @@ static const field output_fields[] = {
 static const field lift_numerics_fields[] = {
     {"rtol", F_NUMBER, AT(lift.rtol), NULL, NULL, 0, 0},
     {"atol", F_NUMBER, AT(lift.atol), NULL, NULL, 0, 0},
-    {"max_steps", F_INTEGER, AT(max_steps), NULL, NULL, 1, 100000000},
+    {"max_steps", F_INTEGER, AT(max_steps), NULL, NULL, 100, 1000000000},
     {"error_estimate", F_BOOL, AT(lift.estimate_error), NULL, NULL, 0, 0},
     END,
 };

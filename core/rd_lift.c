@@ -326,8 +326,8 @@ int rd_lift_validate(const rd_lift_params *p, const rd_ring_params *ring, int se
                             "/numerics/max_steps = %ld is out of range: allowed 100 to 1e9.",
                             p->max_steps);
     if (p->estimate_error != 0 && p->estimate_error != 1)
-        return rd_error_set(err, RD_EINVAL, "/numerics/estimate_error",
-                            "/numerics/estimate_error = %d: use true or false.",
+        return rd_error_set(err, RD_EINVAL, "/numerics/error_estimate",
+                            "/numerics/error_estimate = %d: use true or false.",
                             p->estimate_error);
     double samples = ceil(e->cycles * 720.0 / p->step_deg - 1e-9) + 1.0;
     if (samples > RD_LIFT_SAMPLES_MAX)
