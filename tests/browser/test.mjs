@@ -402,7 +402,7 @@ test('contact form: empty optional fields are left out, the distortion list is s
     await runAnalysis('Run contact analysis');
     let scene = jobs.sent.at(-1);
     assert.equal(scene.bore, undefined, 'round bore of the ring diameter: no bore block');
-    assert.deepEqual(scene.contact, { points_per_segment: 5 });
+    assert.deepEqual(scene.contact, { points_per_segment: 10 });
     assert.equal(scene.numerics.error_estimate, true);
 
     const add = page.getByRole('button', { name: 'Add a distortion order' });
