@@ -401,6 +401,7 @@ typedef struct lift_ctx {
     double *Dq, *Dv;            /* n x 36: local force derivatives (Jacobian) */
     double friction;            /* total axial friction of the last rhs call, N */
     double fz_ext;              /* total axial force on the ring except the flanks, N */
+    rd_lift_energy *energy;     /* non-NULL: segment_forces accumulates the bookkeeping */
     char cv_msg[200];           /* CVODE's last error message */
 } lift_ctx;
 
@@ -472,6 +473,30 @@ static double contact_inverse(const lift_ctx *c, double p)
     if (p < pl)
         return sqrt(2.0 * c->d0 * p / c->k);
     return p / c->k + 0.5 * c->d0;
+}
+
+/* Elastic part k sp(delta) of the contact pressure, and its potential
+ * k int_0^delta sp per unit area into *U (energy bookkeeping). */
+static double contact_elastic(const lift_ctx *c, double d, double *U)
+{
+    *U = 0.0;
+    if (d <= 0.0)
+        return 0.0;
+    if (d < c->d0) {
+        *U = c->k * d * d * d / (6.0 * c->d0);
+        return 0.5 * c->k * d * d / c->d0;
+    }
+    *U = c->k * (0.5 * d * d - 0.5 * c->d0 * d + c->d0 * c->d0 / 6.0);
+    return c->k * (d - 0.5 * c->d0);
+}
+
+/* Adds one contact (pressure p at penetration d, rate dd, area A) to the
+ * energy bookkeeping. */
+static void book_contact(lift_ctx *c, double p, double d, double dd, double A)
+{
+    double U, pe = contact_elastic(c, d, &U);
+    c->energy->contact += A * U;
+    c->energy->damping_power -= (p - pe) * A * dd;
 }
 
 /* smoothstep(x) = 3 x^2 - 2 x^3 on [0, 1], and its derivative. */
@@ -598,6 +623,10 @@ static void segment_forces(lift_ctx *c, double t, const double *y, double *Dq, d
             double plo = contact_pressure(c, -w, -wd, c->c_flank, &pl_d, &pl_dd);
             double pup = contact_pressure(c, w - c->ca, wd, c->c_flank, &pu_d, &pu_dd);
             add6(f, a, (plo - pup) * A);
+            if (c->energy) {
+                book_contact(c, plo, -w, -wd, A);
+                book_contact(c, pup, w - c->ca, wd, A);
+            }
             rank1(dq, -A * (pl_d + pu_d), a, a);
             rank1(dv, -A * (pl_dd + pu_dd), a, a);
             if (dynamic) {
@@ -617,12 +646,18 @@ static void segment_forces(lift_ctx *c, double t, const double *y, double *Dq, d
             double N = c->bo_area * contact_pressure(c, c->delta_pre + ur, urd, c->c_rad, &P_d,
                                                      &P_dd);
             add6(f, b, c->p0 * c->bo_area - N);
+            if (c->energy) {
+                book_contact(c, N / c->bo_area, c->delta_pre + ur, urd, c->bo_area);
+                c->energy->contact -= c->p0 * c->bo_area * ur;
+            }
             rank1(dq, -c->bo_area * P_d, b, b);
             rank1(dv, -c->bo_area * P_dd, b, b);
             if (fric) {
                 axial_dir(d, a);
-                double F_N, F_u, F = friction_force(c, N, dot6(a, v) - sd, &F_N, &F_u);
+                double F_N, F_u, u = dot6(a, v) - sd, F = friction_force(c, N, u, &F_N, &F_u);
                 add6(f, a, F);
+                if (c->energy)
+                    c->energy->friction_power += F * u;
                 ftot += F;
                 rank1(dq, F_N * c->bo_area * P_d, a, b);
                 rank1(dv, F_N * c->bo_area * P_dd, a, b);
@@ -637,6 +672,8 @@ static void segment_forces(lift_ctx *c, double t, const double *y, double *Dq, d
             double pen = -dot6(b, q) - c->cr;
             double P = contact_pressure(c, pen, -dot6(b, v), c->c_rad, &P_d, &P_dd);
             add6(f, b, P * c->ba_area);
+            if (c->energy)
+                book_contact(c, P, pen, -dot6(b, v), c->ba_area);
             rank1(dq, -c->ba_area * P_d, b, b);
             rank1(dv, -c->ba_area * P_dd, b, b);
         }
@@ -1265,6 +1302,13 @@ static int run(const rd_ring *ring, const rd_lift_params *p, const rd_lift_setup
         }
         if (setup && setup->sample)
             setup->sample(setup->ctx, tout, yy);
+        if (setup && setup->energy) {
+            rd_lift_energy en = {0.0, 0.0, 0.0};
+            c.energy = &en;
+            segment_forces(&c, tout, yy, NULL, NULL);
+            c.energy = NULL;
+            setup->energy(setup->ctx, tout, &en);
+        }
         if ((rc = rd_monitor_report(mon, prog_lo + (prog_hi - prog_lo) * (k + 1.0) / S, err)))
             goto out;
     }

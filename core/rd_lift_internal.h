@@ -11,6 +11,21 @@
 
 #include "rd_lift.h"
 
+/* Energy bookkeeping of one state (rd_lift_setup.energy).  Along a solution
+ *   d/dt (kinetic + strain + contact) = friction_power + damping_power
+ *                                       + the power of the piston's pseudo-
+ *                                         force, gravity and gas
+ * (kinetic and strain: rd_ring_kinetic_energy, rd_ring_strain_energy). */
+typedef struct rd_lift_energy {
+    double contact;        /* J: potential of the contacts' elastic parts, A k int_0^delta sp
+                            * over flanks, bore and groove back, minus the work of the
+                            * constant pretension, sum p0 A u_r over the bore points */
+    double friction_power; /* W: sum over the bore points of F u, u the sliding velocity
+                            * (with the piston fixed, the friction's power on the ring) */
+    double damping_power;  /* W: power on the ring of the contacts' damping parts,
+                            * sum -(p - k sp) A delta' (<= 0) */
+} rd_lift_energy;
+
 typedef struct rd_lift_setup {
     /* Initial state, 12 n values, per segment [q_i (6), v_i (6)] (the state
      * layout of rd_lift.c); borrowed.  NULL: seated at rest (q = v = 0). */
@@ -21,6 +36,9 @@ typedef struct rd_lift_setup {
      * NULL: not called. */
     void (*sample)(void *ctx, double t, const double *y);
     void *ctx;
+    /* Called at every output sample, after `sample`, with the same ctx, the
+     * time (s) and the energy bookkeeping of the state; NULL: not called. */
+    void (*energy)(void *ctx, double t, const rd_lift_energy *e);
 } rd_lift_setup;
 
 /* rd_lift_solve with a set-up; setup == NULL is rd_lift_solve. */
