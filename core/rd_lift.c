@@ -151,7 +151,7 @@
 #define CONTACT_FREQ_RATIO 3e4    /* flank contact frequency / crank frequency */
 #define UREG_FRACTION 1e-3        /* u_reg / mean piston speed */
 #define HMAX_DEG 1.0              /* largest step, crank degrees */
-#define MEMORY_BOUND 2e7          /* samples x segments */
+#define MEMORY_BOUND 2e6 /* samples x segments: 16 MB here, ~40 MB as JSON text */
 #define MU 11                     /* upper half bandwidth of the Jacobian */
 #define ML 23                     /* lower half bandwidth */
 #define MAX_ORDER 2                /* BDF order bound (header comment) */

@@ -1026,7 +1026,7 @@ static void test_validation(void)
     q.engine.cycles = 50;
     q.step_deg = 0.01;
     expect_invalid(&q, 20, "/output/step_deg", RD_ELIMIT);
-    /* 1000 segments x 36001 samples > 2e7 values */
+    /* 1000 segments x 36001 samples > 2e6 values */
     q = p;
     q.engine.cycles = 5;
     q.step_deg = 0.1;
