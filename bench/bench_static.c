@@ -156,7 +156,7 @@ int main(int argc, char **argv)
     }
     printf("\ncost exponent (t ~ n^p, n >= 80): p = %.2f\n\n", slope(xs, ts, k));
 
-    printf("## contact, round bore (5 points per segment)\n\n");
+    printf("## contact, round bore (%d points per segment, the default)\n\n", co.points_per_segment);
     printf("| n | mean pressure / p0 - 1 | Newton iterations | wall (ms) |\n|---|---|---|---|\n");
     rd_contact_result c, c20;
     memset(&c, 0, sizeof c);
