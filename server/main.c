@@ -38,6 +38,7 @@ struct options {
     long queue;
     double job_timeout;
     long keep_jobs;
+    long keep_mb;
 };
 
 static void usage(FILE *f)
@@ -51,7 +52,9 @@ static void usage(FILE *f)
             "  --threads N       worker threads running jobs (default 2, 1..64)\n"
             "  --queue N         jobs that may wait for a worker (default 32, 1..10000)\n"
             "  --job-timeout S   run time limit per job in seconds (default 120)\n"
-            "  --keep-jobs N     finished jobs kept for GET (default 256, 1..100000)\n");
+            "  --keep-jobs N     finished jobs kept for GET (default 256, 1..100000)\n"
+            "  --keep-mb N       and at most N MiB of their results (default 512, 1..65536;\n"
+            "                    the newest finished job is always kept)\n");
 }
 
 static int parse_long(const char *s, long min, long max, long *out)
@@ -102,6 +105,8 @@ static int parse_options(int argc, char **argv, struct options *o)
             ok = parse_long(value, 1, 10000, &o->queue);
         else if (IS("--keep-jobs"))
             ok = parse_long(value, 1, 100000, &o->keep_jobs);
+        else if (IS("--keep-mb"))
+            ok = parse_long(value, 1, 65536, &o->keep_mb);
         else if (IS("--job-timeout")) {
             char *end;
             o->job_timeout = strtod(value, &end);
@@ -131,7 +136,7 @@ static void on_job_finish(void *ctx, int status, double run_seconds)
 
 int main(int argc, char **argv)
 {
-    struct options opt = {"127.0.0.1", -1, NULL, NULL, 2, 32, 120.0, 256};
+    struct options opt = {"127.0.0.1", -1, NULL, NULL, 2, 32, 120.0, 256, 512};
     int status = 1;
     rd_metrics *metrics = NULL;
     rd_jobs *jobs = NULL;
@@ -160,8 +165,13 @@ int main(int argc, char **argv)
         fprintf(stderr, "ringdyn-server: out of memory\n");
         goto out;
     }
-    rd_jobs_config jc = {(int)opt.threads, (int)opt.queue, (int)opt.keep_jobs, opt.job_timeout,
-                         on_job_finish, metrics};
+    rd_jobs_config jc = {.threads = (int)opt.threads,
+                         .queue_max = (int)opt.queue,
+                         .keep_max = (int)opt.keep_jobs,
+                         .keep_bytes = (size_t)opt.keep_mb << 20,
+                         .timeout_s = opt.job_timeout,
+                         .on_finish = on_job_finish,
+                         .on_finish_ctx = metrics};
     if (rd_jobs_create(&jc, &jobs, &err) != RD_OK)
         goto fail;
     rd_http_config hc = {opt.host, (int)opt.port, opt.static_dir, opt.examples_dir};
@@ -170,8 +180,10 @@ int main(int argc, char **argv)
 
     printf("ringdyn-server listening on http://%s:%d\n", rd_http_get_host(http), rd_http_get_port(http));
     fflush(stdout);
-    fprintf(stderr, "ringdyn-server %s: %ld workers, queue %ld, job time limit %g s\n",
-            rd_api_version(), opt.threads, opt.queue, opt.job_timeout);
+    fprintf(stderr,
+            "ringdyn-server %s: %ld workers, queue %ld, job time limit %g s, keeps %ld finished "
+            "jobs / %ld MiB of results\n",
+            rd_api_version(), opt.threads, opt.queue, opt.job_timeout, opt.keep_jobs, opt.keep_mb);
 
     int sig = 0;
     if (sigwait(&stop, &sig) != 0)

@@ -57,6 +57,7 @@ struct job {
     struct timespec created, started, finished; /* CLOCK_REALTIME; zero = not yet */
     rd_scene *scene;  /* owned until a worker takes it */
     char *result;     /* rd_scene_run's JSON, once succeeded */
+    size_t result_len; /* strlen(result), counted in rd_jobs.result_bytes while listed */
     char *error;      /* rd_api_error_json body, once failed or cancelled */
 };
 
@@ -67,6 +68,7 @@ struct rd_jobs {
     pthread_cond_t done;
     struct job *head, *tail;
     size_t counts[RD_JOB_NSTATUS]; /* jobs in the list, by status */
+    size_t result_bytes;           /* result text held by listed jobs */
     int stopping;
     double mean_run_s; /* moving average of run times, for Retry-After */
     int random_fd;     /* /dev/urandom, for ids */
@@ -203,15 +205,19 @@ static void unlink_locked(rd_jobs *jobs, struct job *job)
         jobs->tail = job->prev;
     job->prev = job->next = NULL;
     jobs->counts[job->status]--;
+    jobs->result_bytes -= job->result_len;
 }
 
-/* Drops the oldest finished jobs beyond keep_max. */
+/* Drops the oldest finished jobs beyond keep_max, or while their results
+ * hold more than keep_bytes (a lift result can be tens of MB); the newest
+ * finished job always stays. */
 static void evict_locked(rd_jobs *jobs)
 {
     size_t finished = jobs->counts[RD_JOB_SUCCEEDED] + jobs->counts[RD_JOB_FAILED] +
                       jobs->counts[RD_JOB_CANCELLED];
     struct job *j = jobs->tail;
-    while (j && finished > (size_t)jobs->cfg.keep_max) {
+    while (j && (finished > (size_t)jobs->cfg.keep_max ||
+                 (jobs->result_bytes > jobs->cfg.keep_bytes && finished > 1))) {
         struct job *prev = j->prev;
         if (is_final(j->status)) {
             unlink_locked(jobs, j);
@@ -442,6 +448,8 @@ static void run_job(rd_jobs *jobs, struct job *job, rd_scene *scene)
 
     pthread_mutex_lock(&jobs->mu);
     job->result = result;
+    job->result_len = result ? strlen(result) : 0;
+    jobs->result_bytes += job->result_len;
     job->error = error;
     if (status == RD_JOB_SUCCEEDED)
         job->progress = 1;
@@ -486,7 +494,8 @@ static void *worker_main(void *arg)
 int rd_jobs_create(const rd_jobs_config *cfg, rd_jobs **out, rd_error *err)
 {
     *out = NULL;
-    if (cfg->threads < 1 || cfg->queue_max < 1 || cfg->keep_max < 1 || !(cfg->timeout_s > 0))
+    if (cfg->threads < 1 || cfg->queue_max < 1 || cfg->keep_max < 1 || cfg->keep_bytes < 1 ||
+        !(cfg->timeout_s > 0))
         return rd_error_set(err, RD_EINVAL, "", "Job pool settings out of range.");
     rd_jobs *jobs = calloc(1, sizeof *jobs);
     if (!jobs)

@@ -39,6 +39,7 @@ typedef struct rd_jobs_config {
     int threads;      /* workers, >= 1 */
     int queue_max;    /* queued (not yet running) jobs accepted at once, >= 1 */
     int keep_max;     /* finished jobs kept for GET, >= 1 */
+    size_t keep_bytes; /* and at most this much result text (the newest is always kept) */
     double timeout_s; /* run time limit per job, > 0 */
     /* Called by a worker after each job that ran, with its final status and
      * run time; no lock is held.  May be NULL. */

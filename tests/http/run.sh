@@ -425,5 +425,23 @@ same "its error is time_limit" "$(json /error/code)" time_limit
 check "its message gives the limit" grep -q '0\.5 s' "$WORK/body"
 stop_server C "$C_PID"
 
+# ---- server D: finished results are bounded in bytes too ----------------------
+# A modal result at n = 1000 with 20 mode shapes is about 1.2 MB of JSON:
+# with --keep-mb 2 the older of two such jobs is dropped, the newer one kept.
+start_server D --keep-mb 2
+D_PID=$SPID
+BIG='{"analysis": "modal", "discretization": {"segments": 1000}, "modal": {"modes": 20, "error_estimate": false}}'
+post '/api/v1/jobs?wait=60' "$BIG"
+same "big result 1 succeeded" "$(json /status)" succeeded
+BIG1=$(json /id)
+post '/api/v1/jobs?wait=60' "$BIG"
+same "big result 2 succeeded" "$(json /status)" succeeded
+BIG2=$(json /id)
+req GET "/api/v1/jobs/$BIG1"
+expect_error "--keep-mb: the older big result is dropped" 404 not_found
+req GET "/api/v1/jobs/$BIG2"
+same "--keep-mb: the newest is kept" "$STATUS" 200
+stop_server D "$D_PID"
+
 echo "$PASSED passed, $FAILED failed"
 [ "$FAILED" -eq 0 ]
