@@ -21,22 +21,11 @@
 #include <string.h>
 #include <time.h>
 
+#include "bench_util.h"
+
 #include "rd_lift.h"
 
 #define MAX_EV 32
-
-static double now(void)
-{
-    struct timespec t;
-    clock_gettime(CLOCK_MONOTONIC, &t);
-    return t.tv_sec + 1e-9 * t.tv_nsec;
-}
-
-static int cmp(const void *a, const void *b)
-{
-    double x = *(const double *)a, y = *(const double *)b;
-    return (x > y) - (x < y);
-}
 
 typedef struct run {
     double wall;
@@ -66,9 +55,9 @@ static int timed(const rd_ring_params *rp, int n, double rtol, int reps, run *ou
         rd_lift_result r;
         rd_error err;
         rd_error_init(&err);
-        double t0 = now();
+        double t0 = bench_now();
         int rc = rd_lift_solve(rp, n, &p, NULL, &r, &err);
-        t[k] = now() - t0;
+        t[k] = bench_now() - t0;
         if (rc) {
             fprintf(stderr, "n=%d rtol=%g: %s\n", n, rtol, err.message);
             rd_lift_result_cleanup(&r);
@@ -84,8 +73,7 @@ static int timed(const rd_ring_params *rp, int n, double rtol, int reps, run *ou
         }
         rd_lift_result_cleanup(&r);
     }
-    qsort(t, reps, sizeof t[0], cmp);
-    out->wall = t[reps / 2];
+    out->wall = bench_median(t, reps);
     return 0;
 }
 
@@ -159,22 +147,13 @@ int main(int argc, char **argv)
         printf("| %d | %d | %.3f | %ld | %ld | %ld | %s | %.4f |\n", ns[k], 6 * ns[k], r->wall,
                r->steps, r->rhs, r->jac, ev, event_change(r, fine));
         if (ns[k] >= 32) {
-            lx[nfit] = log(ns[k]);
-            ly[nfit++] = log(r->wall);
+            lx[nfit] = ns[k];
+            ly[nfit++] = r->wall;
         }
     }
-    if (nfit >= 2) {
-        double mx = 0, my = 0, sxx = 0, sxy = 0;
-        for (int i = 0; i < nfit; i++) {
-            mx += lx[i] / nfit;
-            my += ly[i] / nfit;
-        }
-        for (int i = 0; i < nfit; i++) {
-            sxx += (lx[i] - mx) * (lx[i] - mx);
-            sxy += (lx[i] - mx) * (ly[i] - my);
-        }
-        printf("\nFitted cost exponent (wall time ~ n^p, n >= 32): p = %.2f\n", sxy / sxx);
-    }
+    if (nfit >= 2)
+        printf("\nFitted cost exponent (wall time ~ n^p, n >= 32): p = %.2f\n",
+               bench_exponent(lx, ly, nfit));
 
     run ref;
     if (timed(&rp, 20, 1e-10, 1, &ref))

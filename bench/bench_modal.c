@@ -19,27 +19,16 @@
 #include <string.h>
 #include <time.h>
 
+#include "bench_util.h"
+
 #include "rd_modal.h"
-
-static double now(void)
-{
-    struct timespec t;
-    clock_gettime(CLOCK_MONOTONIC, &t);
-    return t.tv_sec + 1e-9 * t.tv_nsec;
-}
-
-static int cmp(const void *a, const void *b)
-{
-    double x = *(const double *)a, y = *(const double *)b;
-    return (x > y) - (x < y);
-}
 
 static double timed_solve(const rd_ring_params *p, int n, int modes, int estimate, int *iters)
 {
     double t[64];
     int reps = 0;
-    double start = now();
-    while (reps < 64 && (reps < 5 || now() - start < 0.3)) {
+    double start = bench_now();
+    while (reps < 64 && (reps < 5 || bench_now() - start < 0.3)) {
         rd_modal_opts o;
         rd_modal_opts_default(&o);
         o.modes = modes;
@@ -47,17 +36,16 @@ static double timed_solve(const rd_ring_params *p, int n, int modes, int estimat
         rd_modal_result r;
         rd_error err;
         rd_error_init(&err);
-        double t0 = now();
+        double t0 = bench_now();
         if (rd_modal_solve(p, n, 0, &o, NULL, &r, &err)) {
             fprintf(stderr, "n=%d: %s\n", n, err.message);
             exit(1);
         }
-        t[reps++] = now() - t0;
+        t[reps++] = bench_now() - t0;
         *iters = r.iterations;
         rd_modal_result_cleanup(&r);
     }
-    qsort(t, reps, sizeof t[0], cmp);
-    return t[reps / 2];
+    return bench_median(t, reps);
 }
 
 int main(int argc, char **argv)
@@ -129,23 +117,14 @@ int main(int argc, char **argv)
         printf("| %d | %d | %.3f | %d | %.2e | %.2e | %.3f |\n", n, 6 * n, 1e3 * t, iters,
                true_err, r.error_estimate, 1e3 * te);
         if (n >= 100) {
-            lx[nfit] = log(n);
-            ly[nfit++] = log(t);
+            lx[nfit] = n;
+            ly[nfit++] = t;
         }
         rd_modal_result_cleanup(&r);
     }
-    if (nfit >= 2) {
-        double mx = 0, my = 0, sxx = 0, sxy = 0;
-        for (int i = 0; i < nfit; i++) {
-            mx += lx[i] / nfit;
-            my += ly[i] / nfit;
-        }
-        for (int i = 0; i < nfit; i++) {
-            sxx += (lx[i] - mx) * (lx[i] - mx);
-            sxy += (lx[i] - mx) * (ly[i] - my);
-        }
-        printf("\nFitted cost exponent (wall time ~ n^p, n >= 100): p = %.2f\n", sxy / sxx);
-    }
+    if (nfit >= 2)
+        printf("\nFitted cost exponent (wall time ~ n^p, n >= 100): p = %.2f\n",
+               bench_exponent(lx, ly, nfit));
     rd_modal_result_cleanup(&lim);
     return 0;
 }

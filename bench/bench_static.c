@@ -19,20 +19,9 @@
 #include <string.h>
 #include <time.h>
 
+#include "bench_util.h"
+
 #include "rd_static.h"
-
-static double now(void)
-{
-    struct timespec t;
-    clock_gettime(CLOCK_MONOTONIC, &t);
-    return t.tv_sec + 1e-9 * t.tv_nsec;
-}
-
-static int cmp(const void *a, const void *b)
-{
-    double x = *(const double *)a, y = *(const double *)b;
-    return (x > y) - (x < y);
-}
 
 static void die(const char *what, const rd_error *err)
 {
@@ -46,8 +35,8 @@ static double time_pretension(const rd_ring_params *p, int n, int estimate,
 {
     double t[64];
     int reps = 0;
-    double start = now();
-    while (reps < 64 && (reps < 5 || now() - start < 0.3)) {
+    double start = bench_now();
+    while (reps < 64 && (reps < 5 || bench_now() - start < 0.3)) {
         rd_pretension_opts o;
         rd_pretension_opts_default(&o);
         rd_static_opts so;
@@ -56,13 +45,12 @@ static double time_pretension(const rd_ring_params *p, int n, int estimate,
         rd_error err;
         rd_error_init(&err);
         rd_pretension_result_cleanup(keep);
-        double t0 = now();
+        double t0 = bench_now();
         if (rd_pretension_solve(p, n, &o, &so, NULL, keep, &err))
             die("pretension", &err);
-        t[reps++] = now() - t0;
+        t[reps++] = bench_now() - t0;
     }
-    qsort(t, reps, sizeof t[0], cmp);
-    return t[reps / 2];
+    return bench_median(t, reps);
 }
 
 static double time_contact(const rd_ring_params *p, int n, const rd_contact_opts *o,
@@ -70,35 +58,20 @@ static double time_contact(const rd_ring_params *p, int n, const rd_contact_opts
 {
     double t[64];
     int reps = 0;
-    double start = now();
-    while (reps < 64 && (reps < 5 || now() - start < 0.3)) {
+    double start = bench_now();
+    while (reps < 64 && (reps < 5 || bench_now() - start < 0.3)) {
         rd_static_opts so;
         rd_static_opts_default(&so);
         so.estimate_error = 0;
         rd_error err;
         rd_error_init(&err);
         rd_contact_result_cleanup(keep);
-        double t0 = now();
+        double t0 = bench_now();
         if (rd_contact_solve(p, n, o, &so, NULL, keep, &err))
             die("contact", &err);
-        t[reps++] = now() - t0;
+        t[reps++] = bench_now() - t0;
     }
-    qsort(t, reps, sizeof t[0], cmp);
-    return t[reps / 2];
-}
-
-/* Least-squares slope of log t vs log n. */
-static double slope(const double *n, const double *t, int k)
-{
-    double sx = 0, sy = 0, sxx = 0, sxy = 0;
-    for (int i = 0; i < k; i++) {
-        double x = log(n[i]), y = log(t[i]);
-        sx += x;
-        sy += y;
-        sxx += x * x;
-        sxy += x * y;
-    }
-    return (k * sxy - sx * sy) / (k * sxx - sx * sx);
+    return bench_median(t, reps);
 }
 
 static double profile_change(const rd_contact_result *a, const rd_contact_result *b, double p0)
@@ -154,7 +127,7 @@ int main(int argc, char **argv)
             ts[k++] = t;
         }
     }
-    printf("\ncost exponent (t ~ n^p, n >= 80): p = %.2f\n\n", slope(xs, ts, k));
+    printf("\ncost exponent (t ~ n^p, n >= 80): p = %.2f\n\n", bench_exponent(xs, ts, k));
 
     printf("## contact, round bore (%d points per segment, the default)\n\n", co.points_per_segment);
     printf("| n | mean pressure / p0 - 1 | Newton iterations | wall (ms) |\n|---|---|---|---|\n");
@@ -171,7 +144,7 @@ int main(int argc, char **argv)
             tc[k++] = t;
         }
     }
-    printf("\ncost exponent (t ~ n^p, n >= 80): p = %.2f\n\n", slope(xs, tc, k));
+    printf("\ncost exponent (t ~ n^p, n >= 80): p = %.2f\n\n", bench_exponent(xs, tc, k));
 
     printf("## contact points per segment, n = 40\n\n");
     printf("| points | round bore: wall (ms) | change vs 20 points (of p0) | distorted "

@@ -7,42 +7,37 @@ cd "$(dirname "$0")/.."
 b=${1:-build-bench}
 cmake -S . -B "$b" -DCMAKE_BUILD_TYPE=Release -DRINGDYN_TESTS=OFF >/dev/null
 cmake --build "$b" -j2 --target bench_modal bench_static bench_lift >/dev/null
+
+# instructions BENCH: callgrind instruction counts of `BENCH --once n` for
+# n = 100..800 and the exponent between each pair of sizes.
+instructions() {
+  echo "| n | instructions |"
+  echo "|---|---|"
+  local prev_n="" prev_i="" n out ins
+  for n in 100 200 400 800; do
+    out=$(valgrind --tool=callgrind --callgrind-out-file=/dev/null "$b/bench/$1" --once $n 2>&1)
+    ins=$(printf '%s\n' "$out" | sed -n 's/.*Collected : \([0-9]*\).*/\1/p')
+    echo "| $n | $ins |"
+    if [ -n "$prev_i" ]; then
+      awk -v a="$prev_i" -v b="$ins" -v n1="$prev_n" -v n2="$n" \
+        'BEGIN{printf "|   | exponent %d->%d: %.3f |\n", n1, n2, log(b/a)/log(n2/n1)}'
+    fi
+    prev_n=$n; prev_i=$ins
+  done
+}
+
 echo "## modal: accuracy and cost vs n"
 "$b/bench/bench_modal"
 echo
 echo "## modal: instructions vs n (callgrind, one solve with the error estimate, 6 modes)"
-echo "| n | instructions |"
-echo "|---|---|"
-prev_n=""; prev_i=""
-for n in 100 200 400 800; do
-  out=$(valgrind --tool=callgrind --callgrind-out-file=/dev/null "$b/bench/bench_modal" --once $n 2>&1)
-  ins=$(printf '%s\n' "$out" | sed -n 's/.*Collected : \([0-9]*\).*/\1/p')
-  echo "| $n | $ins |"
-  if [ -n "$prev_i" ]; then
-    awk -v a="$prev_i" -v b="$ins" -v n1="$prev_n" -v n2="$n" \
-      'BEGIN{printf "|   | exponent %d->%d: %.3f |\n", n1, n2, log(b/a)/log(n2/n1)}'
-  fi
-  prev_n=$n; prev_i=$ins
-done
+instructions bench_modal
 
 echo
 echo "# pretension and contact"
 "$b/bench/bench_static"
 echo
 echo "## contact: instructions vs n (callgrind, one round-bore solve, 10 points per segment)"
-echo "| n | instructions |"
-echo "|---|---|"
-prev_n=""; prev_i=""
-for n in 100 200 400 800; do
-  out=$(valgrind --tool=callgrind --callgrind-out-file=/dev/null "$b/bench/bench_static" --once $n 2>&1)
-  ins=$(printf '%s\n' "$out" | sed -n 's/.*Collected : \([0-9]*\).*/\1/p')
-  echo "| $n | $ins |"
-  if [ -n "$prev_i" ]; then
-    awk -v a="$prev_i" -v b="$ins" -v n1="$prev_n" -v n2="$n" \
-      'BEGIN{printf "|   | exponent %d->%d: %.3f |\n", n1, n2, log(b/a)/log(n2/n1)}'
-  fi
-  prev_n=$n; prev_i=$ins
-done
+instructions bench_static
 echo
 echo "## lift: cost per engine cycle vs n, and flank-change accuracy vs rtol"
 "$b/bench/bench_lift"
