@@ -5,12 +5,9 @@
 // A pure function of the result: optional fields may be missing.
 
 import { svg, ticks, pathD, polar, legend } from './svg.js';
-import { h, isNum, fixed, sig, seconds, percent, kvTable, resultLinks } from './html.js';
+import { h, isNum, fixed, sig, seconds, percent, kvTable, resultLinks, nums, um, deg } from './html.js';
 
 const MPa = (v, d = 3) => (isNum(v) ? `${sig(v / 1e6, d)} MPa` : '—');
-const um = (v, d = 2) => fixed(v, d, 1e6);
-const deg = (v) => (isNum(v) ? `${Number(v.toFixed(1))}°` : '—');
-const nums = (a) => (Array.isArray(a) ? a.map(Number) : []);
 
 export const contact = {
   id: 'contact',

@@ -21,6 +21,15 @@ export function fixed(v, digits = 2, factor = 1) {
   return isNum(v) ? (v * factor).toFixed(digits) : '—';
 }
 
+// A result array as numbers ([] when absent).
+export const nums = (a) => (Array.isArray(a) ? a.map(Number) : []);
+
+// Metres shown in micrometres, `digits` decimals.
+export const um = (v, digits = 2) => fixed(v, digits, 1e6);
+
+// An angle in degrees to 0.1, "—" when missing.
+export const deg = (v) => (isNum(v) ? `${Number(v.toFixed(1))}°` : '—');
+
 // Significant digits, plain notation where it reads well.
 export function sig(v, digits = 3) {
   if (!isNum(v)) return '—';

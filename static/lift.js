@@ -9,7 +9,7 @@
 // tables of the scene come from one of them.
 
 import { svg, scale, ticks, axes, pathD, stepTicks, legend } from './svg.js';
-import { h, isNum, fixed, sig, seconds, percent, kvTable, resultLinks } from './html.js';
+import { h, isNum, fixed, sig, seconds, percent, kvTable, resultLinks, nums, um, deg } from './html.js';
 
 const GAS_EXAMPLE = 'thesis_lift_gas_6000rpm';
 const EVENT_TEXT = {
@@ -22,9 +22,6 @@ const FLANK_TEXT = { lower: 'on the lower flank', upper: 'on the upper flank', f
 const EVENTS_SHOWN = 500; // rows of the event table
 const CRANK_STEPS = [90, 180, 360, 720, 1440, 3600, 7200, 14400];
 
-const um = (v, d = 2) => fixed(v, d, 1e6);
-const nums = (a) => (Array.isArray(a) ? a.map(Number) : []);
-const degText = (v) => (isNum(v) ? `${Number(v.toFixed(1))}°` : '—');
 
 export const lift = {
   id: 'lift',
@@ -177,7 +174,7 @@ function liftPlot(result, events) {
   const markers = events.map((e, i) => {
     const kind = String(e.event);
     const g = svg('g', { class: 'event', 'data-event': kind, 'data-index': i },
-      svg('title', {}, `${EVENT_TEXT[kind] || kind} at ${degText(e.crank_deg)} crank`),
+      svg('title', {}, `${EVENT_TEXT[kind] || kind} at ${deg(e.crank_deg)} crank`),
       eventMarker(kind, x(e.crank_deg), y(atFlank(kind))));
     return g;
   });
@@ -221,7 +218,7 @@ function flankStrip(result) {
   const bars = runs.map((r) => svg('rect', {
     class: `flank-run flank-${r.state}`, 'data-flank': r.state,
     x: x(edge(r.start)), y: top, width: Math.max(0.5, x(edge(r.end + 1)) - x(edge(r.start))), height,
-  }, svg('title', {}, `${FLANK_TEXT[r.state] || r.state}: ${degText(crank[r.start])} to ${degText(crank[r.end])}`)));
+  }, svg('title', {}, `${FLANK_TEXT[r.state] || r.state}: ${deg(crank[r.start])} to ${deg(crank[r.end])}`)));
   const swatch = (state) => svg('rect', { class: `flank-run flank-${state}`, x: -2, y: -5, width: 14, height: 10 });
   const count = (s) => runs.filter((r) => r.state === s).length;
   return svg('svg', {

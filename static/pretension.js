@@ -5,11 +5,9 @@
 // A pure function of the result: optional fields may be missing.
 
 import { svg, scale, ticks, axes, pathD, legend } from './svg.js';
-import { h, isNum, fixed, sig, seconds, percent, kvTable, resultLinks } from './html.js';
+import { h, isNum, fixed, sig, seconds, percent, kvTable, resultLinks, nums, um } from './html.js';
 
 const mm = (v, d = 2) => fixed(v, d, 1e3);
-const um = (v, d = 1) => fixed(v, d, 1e6);
-const nums = (a) => (Array.isArray(a) ? a.map(Number) : []);
 
 export const pretension = {
   id: 'pretension',
@@ -152,7 +150,7 @@ function zPlot(result) {
   const y = scale(lo - pad, hi + pad, box.top + box.height, box.top);
   return svg('svg', {
     id: 'pt-z-plot', class: 'chart', viewBox: `0 0 ${W} ${H}`, role: 'img',
-    'aria-label': `Axial displacement against angle from the gap, ${sig(Math.min(...zs))} to ${sig(Math.max(...zs))} µm; lateral opening x_c ${um(result.lateral_opening)} µm.`,
+    'aria-label': `Axial displacement against angle from the gap, ${sig(Math.min(...zs))} to ${sig(Math.max(...zs))} µm; lateral opening x_c ${um(result.lateral_opening, 1)} µm.`,
   },
   axes({
     box, x, y, xTicks: [0, 90, 180, 270, 360], yTicks: ticks(lo - pad, hi + pad, 4),
