@@ -168,7 +168,6 @@ typedef struct problem {
     double k, eps, p0;
     /* scales */
     double F_ref;
-    double noise; /* residual's rounding floor, in the units of residual_norm */
 } problem;
 
 /* The load path.  Pretension: F_t and F_l grow with lambda.  Contact: the
@@ -273,7 +272,7 @@ static void field_force(const problem *pb, const double *xJ, const double *QJ, d
     mv3(QJ, first ? pb->tA : pb->tB, t);
     mv3(QJ, first ? pb->cA : pb->cB, c);
     for (int k = 0; k < 3; k++) {
-        F[k] = pb->lambda * pb->Ft * t[k];
+        F[k] = force_factor(pb) * pb->Ft * t[k];
         pJ[k] = xJ[k] + c[k];
     }
 }
@@ -281,46 +280,48 @@ static void field_force(const problem *pb, const double *xJ, const double *QJ, d
 /* External generalized force on segment i (6 values) at state (x, Q); other
  * segments' states are read from pb (the field method's pair).  Returns 0
  * when the segment carries no load. */
+/* The gap-face loads on segment i (0 or n - 1): the pretension F_t, by the
+ * force or the field method, and the lateral force F_l (0 in contact). */
+static void gap_face_load(const problem *pb, int i, const double *x, const double *Q,
+                          double f[6])
+{
+    const double *c = i == 0 ? pb->cA : pb->cB;
+    double F[3];
+    if (pb->method == RD_PRETENSION_FIELD) {
+        double FJ[3], pJ[3];
+        if (i == pb->jseg) {
+            field_force(pb, x, Q, F, pJ);
+        } else {
+            /* equal and opposite vector on the I face, plus the couple that
+             * keeps the pair's moment zero */
+            double arm[3], M[3];
+            field_force(pb, pb->x + 3 * pb->jseg, pb->Q + 9 * pb->jseg, FJ, pJ);
+            mv3(Q, c, arm);
+            for (int k = 0; k < 3; k++) {
+                F[k] = -FJ[k];
+                arm[k] += x[k] - pJ[k];
+            }
+            cross3(arm, FJ, M);
+            for (int k = 0; k < 3; k++)
+                f[3 + k] += M[k];
+        }
+    } else {
+        double t[3];
+        mv3(Q, i == 0 ? pb->tA : pb->tB, t);
+        for (int k = 0; k < 3; k++)
+            F[k] = force_factor(pb) * pb->Ft * t[k];
+    }
+    F[2] += (i == 0 ? 1.0 : -1.0) * pb->lambda * pb->Fl;
+    add_force(Q, c, F, f);
+}
+
 static int segment_load(const problem *pb, int i, const double *x, const double *Q, double f[6])
 {
     int loaded = 0;
     memset(f, 0, 6 * sizeof *f);
-    if (pb->kind == PRETENSION || pb->kind == CONTACT) {
-        int last = pb->n - 1;
-        if (i == 0 || i == last) {
-            const double *c = i == 0 ? pb->cA : pb->cB;
-            double F[3] = {0, 0, 0};
-            if (pb->method == RD_PRETENSION_FIELD && pb->kind == PRETENSION) {
-                double FJ[3], pJ[3];
-                if (i == pb->jseg) {
-                    field_force(pb, x, Q, FJ, pJ);
-                    memcpy(F, FJ, sizeof F);
-                } else {
-                    /* equal and opposite vector on the I face, plus the
-                     * couple that keeps the pair's moment zero */
-                    double pI[3], arm[3], M[3];
-                    field_force(pb, pb->x + 3 * pb->jseg, pb->Q + 9 * pb->jseg, FJ, pJ);
-                    mv3(Q, c, arm);
-                    for (int k = 0; k < 3; k++) {
-                        F[k] = -FJ[k];
-                        pI[k] = x[k] + arm[k];
-                        arm[k] = pI[k] - pJ[k];
-                    }
-                    cross3(arm, FJ, M);
-                    for (int k = 0; k < 3; k++)
-                        f[3 + k] += M[k];
-                }
-            } else {
-                double t[3];
-                mv3(Q, i == 0 ? pb->tA : pb->tB, t);
-                for (int k = 0; k < 3; k++)
-                    F[k] = force_factor(pb) * pb->Ft * t[k];
-            }
-            if (pb->kind == PRETENSION)
-                F[2] += (i == 0 ? 1.0 : -1.0) * pb->lambda * pb->Fl;
-            add_force(Q, c, F, f);
-            loaded = 1;
-        }
+    if (i == 0 || i == pb->n - 1) {
+        gap_face_load(pb, i, x, Q, f);
+        loaded = 1;
     }
     if (pb->kind == CONTACT) {
         for (int k = 0; k < pb->m; k++) {
@@ -746,8 +747,8 @@ static int solve_path(problem *pb, const rd_static_opts *so, const rd_monitor *m
     int budget = so->max_iterations;
     /* Rounding floor: the stiffest spring (joint axial EA/L, or a contact
      * point's k A) times a position's last bits (measured: up to ~1000 eps R), over F_ref. */
-    pb->noise = 1024.0 * DBL_EPSILON * fmax(pb->Kc[0], pb->k * pb->area) * pb->R / pb->F_ref;
-    double tol = fmax(so->tol, pb->noise);
+    double noise = 1024.0 * DBL_EPSILON * fmax(pb->Kc[0], pb->k * pb->area) * pb->R / pb->F_ref;
+    double tol = fmax(so->tol, noise);
     st->tolerance = tol;
     st->iterations = 0;
     st->load_steps = 0;
