@@ -27,10 +27,16 @@ const char *rd_api_version(void)
     return RINGDYN_VERSION;
 }
 
-static double seconds_between(const struct timespec *a, const struct timespec *b)
+static double now_s(void)
 {
-    return (double)(b->tv_sec - a->tv_sec) + 1e-9 * (double)(b->tv_nsec - a->tv_nsec);
+    struct timespec t;
+    clock_gettime(CLOCK_MONOTONIC, &t);
+    return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
 }
+
+/* The runners: solve, time the solve (with its error-estimate solve, if any)
+ * and build the result object.  A NULL *out on success means out of memory,
+ * which rd_scene_run reports. */
 
 /* Modal analysis: the ring model (for the segment angles and R) and the
  * eigen-solve with its error estimate; wall_s times the solve alone. */
@@ -39,7 +45,6 @@ static int run_modal(const rd_scene *s, const rd_monitor *mon, json_t **out, rd_
     rd_ring *ring = NULL;
     rd_modal_result res;
     rd_error ring_err;
-    struct timespec t0, t1;
     int rc;
 
     memset(&res, 0, sizeof res);
@@ -50,35 +55,24 @@ static int run_modal(const rd_scene *s, const rd_monitor *mon, json_t **out, rd_
                           ring_err.path, "%s", ring_err.message);
         goto out;
     }
-    clock_gettime(CLOCK_MONOTONIC, &t0);
+    double t0 = now_s();
     rc = rd_modal_solve(&s->ring, s->segments, s->closed, &s->modal, mon, &res, err);
-    clock_gettime(CLOCK_MONOTONIC, &t1);
-    if (rc != RD_OK)
-        goto out;
-    *out = rd_result_modal(s, ring, &res, seconds_between(&t0, &t1));
-    if (!*out)
-        rc = rd_error_set(err, RD_ENOMEM, "", "out of memory while writing the modal result");
+    if (rc == RD_OK)
+        *out = rd_result_modal(s, ring, &res, now_s() - t0);
 out:
     rd_modal_result_cleanup(&res);
     rd_ring_free(ring);
     return rc;
 }
 
-/* Pretension: the free shape; wall_s covers both solves (the second one is
- * the error estimate). */
 static int run_pretension(const rd_scene *s, const rd_monitor *mon, json_t **out, rd_error *err)
 {
     rd_pretension_result res;
-    struct timespec t0, t1;
-    clock_gettime(CLOCK_MONOTONIC, &t0);
+    double t0 = now_s();
     int rc = rd_pretension_solve(&s->ring, s->segments, &s->pretension, &s->statics, mon, &res,
                                  err);
-    clock_gettime(CLOCK_MONOTONIC, &t1);
-    if (rc == RD_OK) {
-        *out = rd_result_pretension(s, &res, seconds_between(&t0, &t1));
-        if (!*out)
-            rc = rd_error_set(err, RD_ENOMEM, "", "out of memory while writing the result");
-    }
+    if (rc == RD_OK)
+        *out = rd_result_pretension(s, &res, now_s() - t0);
     rd_pretension_result_cleanup(&res);
     return rc;
 }
@@ -86,15 +80,10 @@ static int run_pretension(const rd_scene *s, const rd_monitor *mon, json_t **out
 static int run_contact(const rd_scene *s, const rd_monitor *mon, json_t **out, rd_error *err)
 {
     rd_contact_result res;
-    struct timespec t0, t1;
-    clock_gettime(CLOCK_MONOTONIC, &t0);
+    double t0 = now_s();
     int rc = rd_contact_solve(&s->ring, s->segments, &s->contact, &s->statics, mon, &res, err);
-    clock_gettime(CLOCK_MONOTONIC, &t1);
-    if (rc == RD_OK) {
-        *out = rd_result_contact(s, &res, seconds_between(&t0, &t1));
-        if (!*out)
-            rc = rd_error_set(err, RD_ENOMEM, "", "out of memory while writing the result");
-    }
+    if (rc == RD_OK)
+        *out = rd_result_contact(s, &res, now_s() - t0);
     rd_contact_result_cleanup(&res);
     return rc;
 }
@@ -102,16 +91,10 @@ static int run_contact(const rd_scene *s, const rd_monitor *mon, json_t **out, r
 static int run_lift(const rd_scene *s, const rd_monitor *mon, json_t **out, rd_error *err)
 {
     rd_lift_result res;
-    struct timespec t0, t1;
-    memset(&res, 0, sizeof res);
-    clock_gettime(CLOCK_MONOTONIC, &t0);
+    double t0 = now_s();
     int rc = rd_lift_solve(&s->ring, s->segments, &s->lift, mon, &res, err);
-    clock_gettime(CLOCK_MONOTONIC, &t1);
-    if (rc == RD_OK) {
-        *out = rd_result_lift(s, &res, seconds_between(&t0, &t1));
-        if (!*out)
-            rc = rd_error_set(err, RD_ENOMEM, "", "out of memory while writing the result");
-    }
+    if (rc == RD_OK)
+        *out = rd_result_lift(s, &res, now_s() - t0);
     rd_lift_result_cleanup(&res);
     return rc;
 }
@@ -140,6 +123,7 @@ int rd_scene_run(const rd_scene *scene, const rd_monitor *mon, char **result_jso
     rc = runners[a](scene, mon, &result, err);
     if (rc != RD_OK)
         goto out;
+    /* json_dumps(NULL) is NULL: a result the runner could not build */
     *result_json = json_dumps(result, JSON_COMPACT | JSON_REAL_PRECISION(RD_RESULT_REAL_DIGITS));
     if (!*result_json)
         rc = rd_error_set(err, RD_ENOMEM, "", "out of memory while writing the result");
