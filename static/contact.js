@@ -5,7 +5,7 @@
 // A pure function of the result: optional fields may be missing.
 
 import { svg, ticks, pathD, polar, legend } from './svg.js';
-import { h, isNum, fixed, sig, seconds, percent, kvTable, resultLinks, nums, um, deg } from './html.js';
+import { h, isNum, fixed, sig, seconds, percent, kvTable, resultLinks, newtonCost, nums, um, deg } from './html.js';
 
 const MPa = (v, d = 3) => (isNum(v) ? `${sig(v / 1e6, d)} MPa` : '—');
 
@@ -26,7 +26,7 @@ export const contact = {
         gaps.length
           ? `light gaps on ${gaps.length} of ${count} segments, largest ${um(result.max_clearance)} µm at ${deg(maxGapAngle(result, gaps))}.`
           : 'no light gap: the ring touches the bore all round.'),
-      h('p', { id: 'cost', class: 'cost' }, h('strong', {}, 'Cost and accuracy: '), costLine(n)),
+      h('p', { id: 'cost', class: 'cost' }, h('strong', {}, 'Cost and accuracy: '), newtonCost(n)),
       resultLinks(job, 'contact', 'Pressure table (CSV)'),
       h('div', { class: 'result-grid' },
         h('figure', { class: 'plot' }, polarPlot(result, gaps),
@@ -49,16 +49,6 @@ function maxGapAngle(result, gaps) {
   const c = nums(result.clearance), a = nums(result.angle_deg);
   const i = gaps.reduce((best, j) => (c[j] > c[best] ? j : best), gaps[0]);
   return a[i];
-}
-
-function costLine(n) {
-  const parts = [];
-  if (n.segments !== undefined) parts.push(`${n.segments} segments`);
-  if (n.dof !== undefined) parts.push(`${n.dof} DOF`);
-  if (n.iterations !== undefined) parts.push(`${n.iterations} Newton iterations${n.load_steps !== undefined ? ` in ${n.load_steps} load steps` : ''}`);
-  parts.push(`wall time ${seconds(n.wall_s)}`);
-  parts.push(isNum(n.error_estimate) ? `estimated error ${percent(n.error_estimate)}` : 'error not estimated');
-  return parts.join(' · ');
 }
 
 function figures(result, gaps) {

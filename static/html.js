@@ -48,6 +48,18 @@ export function percent(e, digits = 2) {
   return isNum(e) ? `${(Math.abs(e) * 100).toFixed(digits)} %` : 'not estimated';
 }
 
+// The cost line of a static (Newton) result's numerics: segments, DOF,
+// iterations and load steps, wall time, error estimate.
+export function newtonCost(n) {
+  const parts = [];
+  if (n.segments !== undefined) parts.push(`${n.segments} segments`);
+  if (n.dof !== undefined) parts.push(`${n.dof} DOF`);
+  if (n.iterations !== undefined) parts.push(`${n.iterations} Newton iterations${n.load_steps !== undefined ? ` in ${n.load_steps} load steps` : ''}`);
+  parts.push(`wall time ${seconds(n.wall_s)}`);
+  parts.push(isNum(n.error_estimate) ? `estimated error ${percent(n.error_estimate)}` : 'error not estimated');
+  return parts.join(' · ');
+}
+
 // A two-column table of [name, value] rows (a row may carry a third item:
 // {id, title} for the value cell).  Rows whose value is undefined are left out.
 export function kvTable({ id, caption, rows }) {

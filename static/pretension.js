@@ -5,7 +5,7 @@
 // A pure function of the result: optional fields may be missing.
 
 import { svg, scale, ticks, axes, pathD, legend } from './svg.js';
-import { h, isNum, fixed, sig, seconds, percent, kvTable, resultLinks, nums, um } from './html.js';
+import { h, isNum, fixed, sig, seconds, percent, kvTable, resultLinks, newtonCost, nums, um } from './html.js';
 
 const mm = (v, d = 2) => fixed(v, d, 1e3);
 
@@ -27,7 +27,7 @@ export const pretension = {
         isNum(result.free_gap_formula) ? ` (formula 1.5: ${mm(result.free_gap_formula)} mm)` : '',
         isNum(xc) ? [', lateral opening ', h('i', {}, 'x'), h('sub', {}, 'c'), ` = ${mm(xc, 3)} mm`] : '',
         '.'),
-      h('p', { id: 'cost', class: 'cost' }, h('strong', {}, 'Cost and accuracy: '), costLine(n)),
+      h('p', { id: 'cost', class: 'cost' }, h('strong', {}, 'Cost and accuracy: '), newtonCost(n)),
       resultLinks(job, 'pretension', 'Free shape (CSV)'),
       h('div', { class: 'result-grid' },
         h('figure', { class: 'plot' }, shapePlot(result),
@@ -39,16 +39,6 @@ export const pretension = {
     );
   },
 };
-
-function costLine(n) {
-  const parts = [];
-  if (n.segments !== undefined) parts.push(`${n.segments} segments`);
-  if (n.dof !== undefined) parts.push(`${n.dof} DOF`);
-  if (n.iterations !== undefined) parts.push(`${n.iterations} Newton iterations${n.load_steps !== undefined ? ` in ${n.load_steps} load steps` : ''}`);
-  parts.push(`wall time ${seconds(n.wall_s)}`);
-  parts.push(isNum(n.error_estimate) ? `estimated error ${percent(n.error_estimate)}` : 'error not estimated');
-  return parts.join(' · ');
-}
 
 function figures(result) {
   const n = result.numerics || {};
