@@ -956,6 +956,77 @@ static void test_cancel(void)
     rd_lift_result_cleanup(&r);
 }
 
+/* A work bound that runs out exactly when an output sample is reached: the
+ * error must date the stop at the crank angle really reached (issue 9: it
+ * said 0.000 deg).  The run to 90 deg takes S1 steps; the same scene over
+ * 180 deg with max_steps = S1 reaches the 90 deg sample with its budget
+ * spent (CVODE's steps do not depend on the later output times) and stops
+ * before the next one, past 90 deg by less than one step (<= 1 crank deg). */
+static void test_max_steps_at_sample(void)
+{
+    rd_ring_params rp;
+    rd_ring_params_default(&rp);
+    rd_lift_params p;
+    lift_params(&p, 1000.0, 0.125);
+    p.step_deg = 5.0;
+    rd_lift_result r;
+    rd_error err;
+    int rc = solve(&rp, 8, &p, NULL, &r, &err);
+    long s1 = r.steps;
+    rd_lift_result_cleanup(&r);
+    CHECK(rc == RD_OK && s1 >= 100, "run to 90 deg: rc %d, %ld steps", rc, s1);
+    p.engine.cycles = 0.25;
+    p.max_steps = s1;
+    rc = solve(&rp, 8, &p, NULL, &r, &err);
+    rd_lift_result_cleanup(&r);
+    const char *at = strstr(err.message, "by crank angle ");
+    double deg = at ? atof(at + strlen("by crank angle ")) : -1.0;
+    CHECK(rc == RD_ELIMIT && !strcmp(err.path, "/numerics/max_steps"), "rc %d path %s", rc,
+          err.path);
+    CHECK(deg >= 90.0 && deg <= 91.0, "stop dated at %g deg, want 90..91: %s", deg, err.message);
+}
+
+/* Cancellation inside an output interval: with 90 deg between samples the
+ * monitor is still asked between chunks of steps, so a stop requested at
+ * its second call (the first is sample 0's) ends the run before the 90 deg
+ * sample (at n = 40 the first 90 deg take several chunks of 50 steps). */
+typedef struct cancel_ctx {
+    int calls, samples;
+} cancel_ctx;
+
+static int stop_second(void *vctx, double fraction)
+{
+    (void)fraction;
+    cancel_ctx *c = vctx;
+    return ++c->calls >= 2;
+}
+
+static void count_sample(void *vctx, double t, const double *y)
+{
+    (void)t;
+    (void)y;
+    ((cancel_ctx *)vctx)->samples++;
+}
+
+static void test_cancel_in_interval(void)
+{
+    rd_ring_params rp;
+    rd_ring_params_default(&rp);
+    rd_lift_params p;
+    lift_params(&p, 1000.0, 0.5);
+    p.step_deg = 90.0;
+    cancel_ctx cc = {0, 0};
+    rd_monitor mon = {stop_second, &cc};
+    rd_lift_setup setup = {.sample = count_sample, .ctx = &cc};
+    rd_lift_result r;
+    rd_error err;
+    rd_error_init(&err);
+    int rc = rd_lift_solve_setup(&rp, 40, &p, &setup, &mon, &r, &err);
+    CHECK(rc == RD_ECANCELED && cc.samples == 1, "cancel: rc %d after %d samples (want 1)", rc,
+          cc.samples);
+    rd_lift_result_cleanup(&r);
+}
+
 static void expect_invalid(const rd_lift_params *p, int n, const char *path, int code)
 {
     rd_ring_params rp;
@@ -1067,5 +1138,7 @@ int main(void)
     RUN(test_stiffness);
     RUN(test_extremes);
     RUN(test_cancel);
+    RUN(test_cancel_in_interval);
+    RUN(test_max_steps_at_sample);
     return check_done();
 }

@@ -1,0 +1,518 @@
+/*
+ * rd_lift_driver.c — the CVODE driver of the full lift model (file map:
+ * rd_lift_model.h): integrator set-up, events (root finding and the flank
+ * state machine), output sampling, solver counters, the work bound, progress
+ * and cancellation.
+ *
+ * Integration: SUNDIALS CVODE, BDF of order <= 2, Newton with a band matrix
+ * and band LU and the analytic Jacobian (rd_lift_cv_jac), so each step costs
+ * O(n).  Order <= 2: the undamped elastic modes of a finely cut ring are
+ * fast and on the imaginary axis, where BDF3-5 are unstable (n = 200 took
+ * 70x more steps); BDF2 is A-stable.  The Jacobian is re-evaluated and
+ * factored at every step: a Newton matrix kept from a closed contact carries
+ * that penalty's stiffness after the contact opened, and the modified Newton
+ * iteration then converges falsely and holds the ring on the flank (landings
+ * came 5-40 deg late with CVODE's default reuse; with any reuse the tests'
+ * 1-DOF and stiffness checks fail at rtol 1e-6).  Tolerances: rtol; atol on
+ * the translations (m), atol / R on the rotations, and atol w_v on their
+ * rates with w_v = sqrt(a_ref / c_a), the rate of a flight across the
+ * clearance under the scene's largest acceleration a_ref.  The step is
+ * bounded by 1 crank degree so no gas-table feature or short contact is
+ * stepped over.
+ *
+ * Work bound and cancellation: CVODE is called with at most STEP_CHUNK / n
+ * steps per call (about 45 ms: a step costs ~22 us per segment, issue 10's
+ * measurement), so the monitor is asked between chunks and a cancel takes
+ * effect within ~0.1 s even when one output interval takes thousands of
+ * steps; an interrupted call is resumed where it stopped (the chunking does
+ * not change the steps taken).  When /numerics/max_steps runs out the error
+ * names the crank angle the integrator really reached (CVODE's current time).
+ *
+ * Events: the ring's mean lift L (mean over segments of the bottom face's
+ * axial position above the lower flank) and F, the total axial force on the
+ * ring without the flank contacts (inertia, gravity, gas, friction; the
+ * elastic forces sum to zero).  CVODE locates the roots of L (landing on the
+ * lower flank), L - eps, c_a - L (landing on the upper flank), c_a - L - eps
+ * (eps = 1e-2 c_a) and F.  A landing is dated where L reaches the flank.  A
+ * leave is dated where F turns away from the flank (the 1-DOF definition:
+ * a seated ring separates with zero velocity and acceleration, so the
+ * geometric separation time is ill-conditioned, ~(6 atol / jerk)^(1/3) =
+ * 0.3 deg at 1000 rpm), and confirmed only when L has moved eps off the
+ * flank; if F turns back first, nothing is reported.  So hops lower than 1 %
+ * of the clearance (micro-bounces, the penalty's settling, an edge lifting
+ * under a twist) are not flank changes.  A sample's flank: lower if L < eps,
+ * upper if L > c_a - eps, else free.
+ */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include <cvode/cvode.h>
+#include <sundials/sundials_context.h>
+#include <sunlinsol/sunlinsol_band.h>
+#include <sunmatrix/sunmatrix_band.h>
+
+#include "rd_lift_model.h"
+
+#define Q RD_LIFT_Q
+#define V RD_LIFT_V
+#define HMAX_DEG 1.0     /* largest step, crank degrees */
+#define MAX_ORDER 2      /* BDF order bound (header comment) */
+#define STEP_CHUNK 2000  /* segment-steps between monitor calls (header comment) */
+#define N_ROOTS 5
+
+/* One integration's solver objects and bookkeeping. */
+typedef struct driver {
+    rd_lift_model m;
+    SUNContext sunctx;
+    N_Vector y, abstol;
+    SUNMatrix A;
+    SUNLinearSolver LS;
+    void *cv;
+    double *seg;       /* n: per-segment lift of the current sample */
+    double deg_per_s;  /* crank degrees per second */
+    long chunk;        /* steps per CVode call between monitor calls */
+    char cv_msg[200];  /* CVODE's last error message */
+} driver;
+
+/* Flank tracking between root returns: the committed flank and the time a
+ * pending leave started (the load's sign change), NAN if none. */
+typedef struct flank_track {
+    int state;
+    double cand;
+} flank_track;
+
+/* Root functions (directions in rootdir of cv_configure): landing on the
+ * lower flank, leave confirmed, landing on the upper flank, leave confirmed,
+ * and the ring's total axial load without the flanks (its sign change dates
+ * a leave).  An exact zero is nudged up: CVODE stops with an error when a
+ * root function stays exactly zero just after a root. */
+static int roots(sunrealtype t, N_Vector yv, sunrealtype *g, void *user)
+{
+    rd_lift_model *c = user;
+    const double *y = N_VGetArrayPointer(yv);
+    double L = rd_lift_model_mean_lift(c, y, NULL);
+    rd_lift_forces(c, t, y, NULL, NULL);
+    g[0] = L;
+    g[1] = L - c->eps;
+    g[2] = c->ca - L;
+    g[3] = c->ca - L - c->eps;
+    g[4] = c->fz_ext;
+    for (int i = 0; i < N_ROOTS; i++)
+        if (g[i] == 0.0)
+            g[i] = 1e-300;
+    return 0;
+}
+
+static void cv_silent(int code, const char *module, const char *function, char *msg, void *user)
+{
+    (void)code;
+    (void)module;
+    (void)function;
+    driver *d = user;
+    snprintf(d->cv_msg, sizeof d->cv_msg, "%s", msg ? msg : "");
+}
+
+static const char *cvode_what(int flag)
+{
+    switch (flag) {
+    case CV_TOO_MUCH_ACC:
+        return "the requested accuracy is below what double precision allows";
+    case CV_ERR_FAILURE:
+        return "the error test failed repeatedly (the step size collapsed)";
+    case CV_CONV_FAILURE:
+        return "the Newton iteration failed to converge repeatedly";
+    case CV_LSETUP_FAIL:
+    case CV_LSOLVE_FAIL:
+        return "the banded linear solver failed (singular Newton matrix)";
+    case CV_RHSFUNC_FAIL:
+    case CV_REPTD_RHSFUNC_ERR:
+    case CV_UNREC_RHSFUNC_ERR:
+    case CV_FIRST_RHSFUNC_ERR:
+        return "the forces became non-finite";
+    case CV_TOO_CLOSE:
+        return "the output times are too close together";
+    default:
+        return "the integrator failed";
+    }
+}
+
+/* An error from a CVODE query or set-up call (these fail only on misuse). */
+static int cv_fail(const driver *d, int flag, const char *what, rd_error *err)
+{
+    return rd_error_set(err, RD_EINTERNAL, "", "CVODE %s failed: %s (%s).", what,
+                        CVodeGetReturnFlagName(flag), d->cv_msg);
+}
+
+static void driver_free(driver *d)
+{
+    if (d->cv)
+        CVodeFree(&d->cv);
+    if (d->LS)
+        SUNLinSolFree(d->LS);
+    if (d->A)
+        SUNMatDestroy(d->A);
+    if (d->y)
+        N_VDestroy(d->y);
+    if (d->abstol)
+        N_VDestroy(d->abstol);
+    if (d->sunctx)
+        SUNContext_Free(&d->sunctx);
+    free(d->seg);
+    rd_lift_model_cleanup(&d->m);
+}
+
+/* Absolute tolerances (header comment) and the initial state. */
+static void initial_values(driver *d, const rd_lift_setup *setup, double atol)
+{
+    const rd_lift_model *c = &d->m;
+    double *yy = N_VGetArrayPointer(d->y), *at = N_VGetArrayPointer(d->abstol);
+    const rd_ring_params *rp = rd_ring_get_params(c->ring);
+    double R = rd_ring_get_section(c->ring)->R;
+    double wv = sqrt(rd_lift_accel_scale(rp, c->p) / c->ca); /* velocity / position ratio */
+    for (int i = 0; i < c->n; i++)
+        for (int k = 0; k < 6; k++) {
+            double a = k < 3 ? atol : atol / R;
+            Q(at, i)[k] = a;
+            V(at, i)[k] = a * wv;
+        }
+    size_t N = 12 * (size_t)c->n;
+    if (setup && setup->y0)
+        memcpy(yy, setup->y0, N * sizeof *yy);
+    else
+        memset(yy, 0, N * sizeof *yy);
+}
+
+static int cv_configure(driver *d, double rtol, rd_error *err)
+{
+    int flag, rootdir[N_ROOTS] = {-1, +1, -1, +1, 0};
+    if ((flag = CVodeSetErrHandlerFn(d->cv, cv_silent, d)) ||
+        (flag = CVodeInit(d->cv, rd_lift_cv_rhs, 0.0, d->y)) ||
+        (flag = CVodeSVtolerances(d->cv, rtol, d->abstol)) ||
+        (flag = CVodeSetUserData(d->cv, &d->m)) ||
+        (flag = CVodeSetLinearSolver(d->cv, d->LS, d->A)) ||
+        (flag = CVodeSetJacFn(d->cv, rd_lift_cv_jac)) ||
+        (flag = CVodeSetMaxOrd(d->cv, MAX_ORDER)) ||
+        (flag = CVodeSetMaxStep(d->cv, HMAX_DEG / d->deg_per_s)) ||
+        (flag = CVodeSetLSetupFrequency(d->cv, 1)) || /* fresh Newton matrix each step */
+        (flag = CVodeSetJacEvalFrequency(d->cv, 1)) ||
+        (flag = CVodeRootInit(d->cv, N_ROOTS, roots)) ||
+        (flag = CVodeSetRootDirection(d->cv, rootdir)) ||
+        (flag = CVodeSetNoInactiveRootWarn(d->cv)))
+        return cv_fail(d, flag, "set-up", err);
+    return RD_OK;
+}
+
+static int driver_open(driver *d, const rd_ring *ring, const rd_lift_params *p,
+                       const rd_lift_setup *setup, double rtol, double atol, rd_error *err)
+{
+    memset(d, 0, sizeof *d);
+    int rc = rd_lift_model_init(&d->m, ring, p, setup, err);
+    if (rc)
+        return rc;
+    int n = d->m.n;
+    sunindextype N = 12 * (sunindextype)n;
+    d->deg_per_s = d->m.omega * 180.0 / M_PI;
+    d->chunk = STEP_CHUNK / n > 1 ? STEP_CHUNK / n : 1;
+    d->seg = malloc((size_t)n * sizeof *d->seg);
+    if (!d->seg)
+        return rd_error_set(err, RD_ENOMEM, "", "Out of memory for the lift output.");
+    if (SUNContext_Create(NULL, &d->sunctx))
+        return rd_error_set(err, RD_ENOMEM, "", "Could not create the SUNDIALS context.");
+    d->y = N_VNew_Serial(N, d->sunctx);
+    d->abstol = N_VNew_Serial(N, d->sunctx);
+    d->A = d->y ? SUNBandMatrix(N, RD_LIFT_MU, RD_LIFT_ML, d->sunctx) : NULL;
+    d->LS = d->A ? SUNLinSol_Band(d->y, d->A, d->sunctx) : NULL;
+    d->cv = CVodeCreate(CV_BDF, d->sunctx);
+    if (!d->y || !d->abstol || !d->A || !d->LS || !d->cv)
+        return rd_error_set(err, RD_ENOMEM, "", "Out of memory setting up CVODE for %d segments.",
+                            n);
+    initial_values(d, setup, atol);
+    return cv_configure(d, rtol, err);
+}
+
+/* ---------------------------------------------------------------- events */
+
+static int push_event(rd_lift_run *o, double deg, int kind, rd_error *err)
+{
+    if (o->n_events == o->cap_events) {
+        int cap = o->cap_events ? 2 * o->cap_events : 16;
+        rd_lift_event *e = realloc(o->events, (size_t)cap * sizeof *e);
+        if (!e)
+            return rd_error_set(err, RD_ENOMEM, "", "Out of memory recording flank changes.");
+        o->events = e;
+        o->cap_events = cap;
+    }
+    o->events[o->n_events].crank_deg = deg;
+    o->events[o->n_events].kind = kind;
+    o->n_events++;
+    return RD_OK;
+}
+
+/* A seated ring: a leave needs the load to turn away (rf[load] with sign
+ * `away`) and then the lift to confirm it (rf[confirm] > 0). */
+static int track_seated(flank_track *tr, const int *rf, int away, int confirm, int kind,
+                        double t, double deg_per_s, rd_lift_run *o, rd_error *err)
+{
+    if (rf[4] == away)
+        tr->cand = t;
+    else if (rf[4] == -away)
+        tr->cand = NAN; /* the load turned back before the ring got away */
+    if (rf[confirm] > 0) {
+        tr->state = RD_FLANK_FREE;
+        return push_event(o, (isnan(tr->cand) ? t : tr->cand) * deg_per_s, kind, err);
+    }
+    return RD_OK;
+}
+
+static int track_roots(flank_track *tr, const int *rf, double t, double deg_per_s, double fz,
+                       rd_lift_run *o, rd_error *err)
+{
+    if (tr->state == RD_FLANK_LOWER)
+        return track_seated(tr, rf, +1, 1, RD_EVENT_LEAVE_LOWER, t, deg_per_s, o, err);
+    if (tr->state == RD_FLANK_UPPER)
+        return track_seated(tr, rf, -1, 3, RD_EVENT_LEAVE_UPPER, t, deg_per_s, o, err);
+    if (rf[0] < 0) {
+        tr->state = RD_FLANK_LOWER;
+        tr->cand = fz > 0.0 ? t : NAN; /* landed against its load: leaves again */
+        return push_event(o, t * deg_per_s, RD_EVENT_REACH_LOWER, err);
+    }
+    if (rf[2] < 0) {
+        tr->state = RD_FLANK_UPPER;
+        tr->cand = fz < 0.0 ? t : NAN;
+        return push_event(o, t * deg_per_s, RD_EVENT_REACH_UPPER, err);
+    }
+    return RD_OK;
+}
+
+/* The event state machine starts where the initial state is (the seated
+ * ring on the lower flank; a load already pulling it away dates a leave at 0). */
+static flank_track initial_flank(driver *d)
+{
+    flank_track tr = {RD_FLANK_LOWER, NAN};
+    const double *yy = N_VGetArrayPointer(d->y);
+    double L0 = rd_lift_model_mean_lift(&d->m, yy, NULL);
+    rd_lift_forces(&d->m, 0.0, yy, NULL, NULL);
+    if (L0 > d->m.ca - d->m.eps)
+        tr.state = RD_FLANK_UPPER;
+    else if (L0 > d->m.eps)
+        tr.state = RD_FLANK_FREE;
+    else if (d->m.fz_ext > 0.0)
+        tr.cand = 0.0;
+    return tr;
+}
+
+/* ---------------------------------------------------------- stepping */
+
+/* The error of a failed or exhausted integration, dated at the crank angle
+ * the integrator really reached. */
+static int step_error(driver *d, int flag, rd_error *err)
+{
+    double tc = 0.0, total = d->m.p->engine.cycles * 720.0;
+    long nst = 0;
+    int f2;
+    if ((f2 = CVodeGetCurrentTime(d->cv, &tc)) || (f2 = CVodeGetNumSteps(d->cv, &nst)))
+        return cv_fail(d, f2, "query", err);
+    if (flag == CV_TOO_MUCH_WORK)
+        return rd_error_set(err, RD_ELIMIT, "/numerics/max_steps",
+                            "The integration used its /numerics/max_steps = %ld steps by crank "
+                            "angle %.3f deg (of %.1f): the ring's motion needs more work than "
+                            "allowed; raise max_steps or loosen rtol.",
+                            d->m.p->max_steps, tc * d->deg_per_s, total);
+    return rd_error_set(err, RD_ENOCONV, "",
+                        "The lift integration failed at crank angle %.4f deg after %ld steps: "
+                        "%s (CVODE %s: %s).",
+                        tc * d->deg_per_s, nst, cvode_what(flag), CVodeGetReturnFlagName(flag),
+                        d->cv_msg);
+}
+
+/* Integrates to tout in chunks of d->chunk steps, handling the roots on the
+ * way and asking the monitor between chunks (at progress `frac`). */
+static int advance(driver *d, double tout, flank_track *tr, rd_lift_run *o,
+                   const rd_monitor *mon, double frac, rd_error *err)
+{
+    double *yy = N_VGetArrayPointer(d->y), t = 0.0;
+    for (;;) {
+        long nst = 0;
+        int flag, rc;
+        if ((flag = CVodeGetNumSteps(d->cv, &nst)))
+            return cv_fail(d, flag, "query", err);
+        long left = d->m.p->max_steps - nst;
+        if (left <= 0)
+            return step_error(d, CV_TOO_MUCH_WORK, err);
+        if ((flag = CVodeSetMaxNumSteps(d->cv, left < d->chunk ? left : d->chunk)))
+            return cv_fail(d, flag, "set-up", err);
+        flag = CVode(d->cv, tout, d->y, &t, CV_NORMAL);
+        if (flag == CV_ROOT_RETURN) {
+            int rf[N_ROOTS];
+            if ((flag = CVodeGetRootInfo(d->cv, rf)))
+                return cv_fail(d, flag, "query", err);
+            rd_lift_forces(&d->m, t, yy, NULL, NULL);
+            if ((rc = track_roots(tr, rf, t, d->deg_per_s, d->m.fz_ext, o, err)))
+                return rc;
+            continue;
+        }
+        if (flag == CV_TOO_MUCH_WORK) { /* a chunk ended, or max_steps did */
+            if ((rc = rd_monitor_report(mon, frac, err)))
+                return rc;
+            continue;
+        }
+        if (flag < 0)
+            return step_error(d, flag, err);
+        return RD_OK;
+    }
+}
+
+/* The outputs of sample k at time tout (state in d->y). */
+static void store_sample(driver *d, int k, double deg, double tout, rd_lift_run *o,
+                         const rd_lift_setup *setup)
+{
+    rd_lift_model *c = &d->m;
+    const double *yy = N_VGetArrayPointer(d->y);
+    int n = c->n;
+    double L = rd_lift_model_mean_lift(c, yy, d->seg);
+    o->lift[k] = L;
+    rd_lift_result *res = o->res;
+    if (res) {
+        res->crank_deg[k] = deg;
+        res->lift[k] = L;
+        double lo = d->seg[0], hi = d->seg[0], tw = 0.0;
+        for (int i = 0; i < n; i++) {
+            lo = fmin(lo, d->seg[i]);
+            hi = fmax(hi, d->seg[i]);
+            const double *q = Q(yy, i);
+            tw += q[3] * c->e_t[2 * i] + q[4] * c->e_t[2 * i + 1];
+        }
+        memcpy(res->lift_segments + (size_t)k * n, d->seg, (size_t)n * sizeof *d->seg);
+        res->lift_min[k] = lo;
+        res->lift_max[k] = hi;
+        res->twist[k] = tw / n;
+        rd_lift_forces(c, tout, yy, NULL, NULL);
+        res->friction_force[k] = c->friction;
+        res->flank[k] = L < c->eps ? RD_FLANK_LOWER
+                                   : (L > c->ca - c->eps ? RD_FLANK_UPPER : RD_FLANK_FREE);
+    }
+    if (setup && setup->sample)
+        setup->sample(setup->ctx, tout, yy);
+    if (setup && setup->energy) {
+        rd_lift_energy en = {0.0, 0.0, 0.0};
+        c->energy = &en;
+        rd_lift_forces(c, tout, yy, NULL, NULL);
+        c->energy = NULL;
+        setup->energy(setup->ctx, tout, &en);
+    }
+}
+
+static int store_counters(driver *d, rd_lift_result *r, rd_error *err)
+{
+    int flag;
+    if ((flag = CVodeGetNumSteps(d->cv, &r->steps)) ||
+        (flag = CVodeGetNumRhsEvals(d->cv, &r->rhs_evals)) ||
+        (flag = CVodeGetNumJacEvals(d->cv, &r->jac_evals)) ||
+        (flag = CVodeGetNumLinSolvSetups(d->cv, &r->lin_setups)) ||
+        (flag = CVodeGetNumNonlinSolvIters(d->cv, &r->nonlin_iters)) ||
+        (flag = CVodeGetNumNonlinSolvConvFails(d->cv, &r->nonlin_fails)) ||
+        (flag = CVodeGetNumErrTestFails(d->cv, &r->err_test_fails)) ||
+        (flag = CVodeGetNumGEvals(d->cv, &r->root_evals)))
+        return cv_fail(d, flag, "counter query", err);
+    return RD_OK;
+}
+
+int rd_lift_integrate(const rd_ring *ring, const rd_lift_params *p, const rd_lift_setup *setup,
+                      const rd_monitor *mon, rd_lift_run *o, rd_error *err)
+{
+    driver d;
+    int rc = driver_open(&d, ring, p, setup, o->rtol, o->atol, err);
+    if (rc)
+        goto out;
+    flank_track tr = initial_flank(&d);
+    int S = o->samples;
+    double total = p->engine.cycles * 720.0;
+    for (int k = 0; k < S; k++) {
+        double deg = fmin(k * p->step_deg, total), tout = deg / d.deg_per_s;
+        if (k > 0 && (rc = advance(&d, tout, &tr, o, mon, (double)k / S, err)))
+            goto out;
+        store_sample(&d, k, deg, tout, o, setup);
+        if ((rc = rd_monitor_report(mon, (k + 1.0) / S, err)))
+            goto out;
+    }
+    if (o->res)
+        rc = store_counters(&d, o->res, err);
+out:
+    driver_free(&d);
+    return rc;
+}
+
+/* ------------------------------------------------------------- test hook */
+
+int rd_lift_jacobian_check(const rd_ring_params *rp, int segments, const rd_lift_params *p,
+                           double t, const double *y0, double *max_err, rd_error *err)
+{
+    rd_lift_model c;
+    rd_ring *ring = NULL;
+    SUNContext sunctx = NULL;
+    N_Vector y = NULL, f1 = NULL, f2 = NULL;
+    SUNMatrix J = NULL;
+    int rc;
+    memset(&c, 0, sizeof c);
+    if ((rc = rd_lift_validate(p, rp, segments, err)))
+        return rc;
+    ring = rd_ring_create(rp, segments, 0, err);
+    if (!ring)
+        return err ? err->code : RD_ENOMEM;
+    if ((rc = rd_lift_model_init(&c, ring, p, NULL, err)))
+        goto out;
+    sunindextype N = 12 * (sunindextype)segments;
+    if (SUNContext_Create(NULL, &sunctx) || !(y = N_VNew_Serial(N, sunctx)) ||
+        !(f1 = N_VNew_Serial(N, sunctx)) || !(f2 = N_VNew_Serial(N, sunctx)) ||
+        !(J = SUNBandMatrix(N, RD_LIFT_MU, RD_LIFT_ML, sunctx))) {
+        rc = rd_error_set(err, RD_ENOMEM, "", "Out of memory.");
+        goto out;
+    }
+    double *yy = N_VGetArrayPointer(y);
+    memcpy(yy, y0, (size_t)N * sizeof *yy);
+    if (rd_lift_cv_jac(t, y, NULL, J, &c, NULL, NULL, NULL)) {
+        rc = rd_error_set(err, RD_EINTERNAL, "", "The lift Jacobian could not be assembled.");
+        goto out;
+    }
+    double jmax = 0.0, worst = 0.0;
+    for (sunindextype j = 0; j < N; j++)
+        for (sunindextype i = j - RD_LIFT_MU < 0 ? 0 : j - RD_LIFT_MU; i <= j + RD_LIFT_ML && i < N; i++)
+            jmax = fmax(jmax, fabs(SM_ELEMENT_B(J, i, j)));
+    for (sunindextype j = 0; j < N; j++) {
+        /* central differences, steps 1e-3 d0 (translations), the same at
+         * 0.05 m lever arm (rotations), 1e-4 u_reg (rates): exact on the
+         * penalty's quadratic and linear pieces, far from its kinks, and
+         * large enough that rounding stays ~1e-6 relative */
+        double h = (j % 12) < 6 ? (j % 12 < 3 ? 1e-3 * c.d0 : 2e-2 * c.d0) : 1e-4 * c.ureg;
+        double keep = yy[j];
+        yy[j] = keep + h;
+        rd_lift_cv_rhs(t, y, f1, &c);
+        yy[j] = keep - h;
+        rd_lift_cv_rhs(t, y, f2, &c);
+        yy[j] = keep;
+        const double *a = N_VGetArrayPointer(f1), *b = N_VGetArrayPointer(f2);
+        for (sunindextype i = 0; i < N; i++) {
+            double fd = (a[i] - b[i]) / (2.0 * h);
+            double an = (i - j <= RD_LIFT_ML && j - i <= RD_LIFT_MU) ? SM_ELEMENT_B(J, i, j) : 0.0;
+            double e = fabs(fd - an) / (fabs(an) + 1e-6 * jmax);
+            worst = fmax(worst, e);
+        }
+    }
+    *max_err = worst;
+out:
+    if (J)
+        SUNMatDestroy(J);
+    if (y)
+        N_VDestroy(y);
+    if (f1)
+        N_VDestroy(f1);
+    if (f2)
+        N_VDestroy(f2);
+    if (sunctx)
+        SUNContext_Free(&sunctx);
+    rd_lift_model_cleanup(&c);
+    rd_ring_free(ring);
+    return rc;
+}

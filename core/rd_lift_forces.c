@@ -1,0 +1,421 @@
+/*
+ * rd_lift_forces.c — the force elements of the full lift model (file map and
+ * state layout: rd_lift_model.h; frame and piston: rd_lift.c).  Each element
+ * is one small function that adds, for segment i, its generalized force to
+ * f_i and its local derivatives to df_i/dq_i (dq) and df_i/dv_i (dv), and,
+ * when asked, its share of the energy bookkeeping (rd_lift_internal.h).
+ * Order of the sums (kept from the single-file version, so the goldens hold
+ * bit for bit): inertia and gravity, flanks, bore, groove back, gas.
+ *
+ * Contacts (smooth penalties, pressure in Pa on a tributary area):
+ *   p(delta, delta') = k sp(delta) phi(x),  x = c w(delta) delta' / (k sp(delta))
+ *   sp = delta^2 / (2 d0) (0 < delta < d0),  delta - d0/2 (delta >= d0),  0 else
+ *   w = sp' = min(delta / d0, 1);  phi(x) = 1 + x (x >= -1/2),
+ *   e^{2x + 1} / 2 (x < -1/2)
+ * i.e. a C1 linear spring with a quadratic start over d0 = 1e-4 axial
+ * clearances, with Kelvin-Voigt damping c w delta' that fades exponentially
+ * when the contact opens fast, so the contact never pulls and the pressure is
+ * C1 in delta'.  c = 2 zeta sqrt(k m_a) with m_a the ring's mass per contact
+ * area (rho h on a flank, rho b on the bore) and zeta = 5: an overdamped
+ * contact, so a landing under load is plastic, without rebound (with this
+ * law zeta = 1 still rebounds with restitution 0.16, zeta = 2: 0.06, 3: 0.02,
+ * >= 5: none; the thesis' slap motion, oil squeeze damps real landings).
+ * The energy it takes is the landing loss.
+ *   Flanks: on the bottom and top faces, 3 arc positions (centres of thirds
+ *   of the segment's arc) x 2 radii (inner and outer edge, each carrying its
+ *   half of the face width).  Axial displacement of a point at in-plane
+ *   offset d = X - P_i:  w = uz + rx dy - ry dx.  Lower flank penetration
+ *   -w, upper flank penetration w - c_a (c_a = axial clearance).
+ *   Bore: 3 points on the running face (mid-height), penetration
+ *   delta_pre + u_r with u_r = e_r . (u + r x d) the outward displacement
+ *   and delta_pre the preload penetration p(delta_pre) = p0; the ring's
+ *   pretension (its spring-back from the free shape, not carried by the
+ *   linear K) is the constant outward force p0 h (arc)/3 at each point, so
+ *   the reference is in equilibrium.  p0 = 2 F_t / (d h)  (thesis 1.3).
+ *   Groove back: 3 points on the inner face, penetration -u_r - c_r.
+ * Default stiffness k (Pa/m, contact_stiffness = 0), the larger of
+ *   k_load = P_max / (1e-3 c_a): the largest pressure the scene can put on a
+ *     flank (inertia rho h r w^2 (1 + lambda), gravity, friction, gas)
+ *     pushes it in by at most 1e-3 of the clearance;
+ *   k_dyn = rho h (3e4 w)^2: the flank contact frequency w_c = sqrt(k / (rho h))
+ *     is 3e4 times the crank's, so the damped contact follows the load with
+ *     a lag 2 zeta / w_c = 3.3e-4 rad = 0.02 deg of crank.
+ * Both effects shift the flank-change angles by far less than the flight
+ * times (degrees); test_lift checks the angles over 2 decades of k.
+ *
+ *
+ * Friction (model != NONE), on each bore point, axial.  Sliding velocity of
+ * the ring against the liner: ring velocity in the piston frame plus the
+ * piston's velocity in the cylinder frame (-ds/dt):  u = w' - s'.
+ *   Coulomb:  F = -mu N tanh(u / u_reg)
+ *   Stribeck (2.9) with the Sommerfeld number (1.11):
+ *     F = -tanh(u / u_reg) (C e^{-3 |So_lim / So|^2.5} + K / So) N,
+ *     So = N_ring / (eta |u| h),  so K / So N = K eta |u| h N / N_ring.
+ *   N is the point's bore normal force; N_ring = N L / s_k is the ring-
+ *   equivalent normal force at that point's local line load (s_k its arc,
+ *   L the whole running face), so a uniform load gives exactly (1.11) with
+ *   the ring's total force and the hydrodynamic part sums to K eta u h over
+ *   the ring, independent of n.  u_reg = 1e-3 x the mean piston speed.
+ *
+ *
+ * Gas (points > 0), gauge pressures interpolated linearly in crank angle,
+ * periodic over 720 deg: "above" presses the top face down, "below" the
+ * bottom face up, "behind" the back face outward (its resultant
+ * p h 2 r_i sin(phi/2) along e_r, and through the bore contact it raises the
+ * friction normal force).  The running face is sealed by the oil film and
+ * carries no gas load (the thesis' three forces, Fig. 3.28).  Forces act at
+ * the face centroids.  Areas:
+ *   fixed (thesis): full faces, A = b R phi top and bottom.
+ *   dynamic (the thesis' suggested improvement): a face sealing on a flank
+ *   sees, across its contact land, a pressure falling linearly from the
+ *   groove-back pressure (inner edge) to its own side's pressure (outer
+ *   edge), i.e. the average (p_behind + p_own) / 2; a free face sees its
+ *   own pressure.  The blend weight is the face's mean smoothstep(delta/d0)
+ *   (3 x^2 - 2 x^3) over its contact points, C1 in the penetration.
+ *
+ */
+#include <math.h>
+#include <string.h>
+
+#include "rd_lift_model.h"
+
+#define ARC_POINTS RD_LIFT_ARC_POINTS
+#define FLANK_POINTS RD_LIFT_FLANK_POINTS
+#define Q RD_LIFT_Q
+#define V RD_LIFT_V
+#define dot6 rd_lift_dot6
+
+static double gas_at(const rd_gas_params *g, const double *val, double deg)
+{
+    const double *x = g->crank_deg;
+    int n = g->points;
+    deg = fmod(deg, 720.0);
+    if (deg < 0)
+        deg += 720.0;
+    if (deg < x[0] || deg >= x[n - 1]) {
+        /* wrap-around interval [x[n-1], x[0] + 720] */
+        double lo = x[n - 1], hi = x[0] + 720.0, d = deg < x[0] ? deg + 720.0 : deg;
+        if (hi - lo <= 0.0)
+            return val[0];
+        return val[n - 1] + (val[0] - val[n - 1]) * (d - lo) / (hi - lo);
+    }
+    int a = 0, b = n - 1; /* x[a] <= deg < x[b] */
+    while (b - a > 1) {
+        int m = (a + b) / 2;
+        if (x[m] <= deg)
+            a = m;
+        else
+            b = m;
+    }
+    return val[a] + (val[b] - val[a]) * (deg - x[a]) / (x[b] - x[a]);
+}
+
+/* Contact pressure p(delta, delta') of the header comment, and its partial
+ * derivatives p_d = dp/d delta, p_dd = dp/d delta' (for the Jacobian). */
+static double contact_pressure(const rd_lift_model *c, double d, double dd, double cdamp,
+                               double *p_d, double *p_dd)
+{
+    *p_d = *p_dd = 0.0;
+    if (d <= 0.0)
+        return 0.0;
+    double sp, w, w_d;
+    if (d < c->d0) {
+        sp = 0.5 * d * d / c->d0;
+        w = d / c->d0;
+        w_d = 1.0 / c->d0;
+    } else {
+        sp = d - 0.5 * c->d0;
+        w = 1.0;
+        w_d = 0.0;
+    }
+    double pe = c->k * sp, pe_d = c->k * w;
+    double pd = cdamp * w * dd, pd_d = cdamp * w_d * dd, pd_dd = cdamp * w;
+    if (pd >= -0.5 * pe) {
+        *p_d = pe_d + pd_d;
+        *p_dd = pd_dd;
+        return pe + pd;
+    }
+    if (pe <= 0.0)
+        return 0.0;
+    /* opening fast: pe phi(x), x = pd / pe, phi = e^{2x + 1} / 2 for x < -1/2 */
+    double E = exp(2.0 * pd / pe + 1.0);
+    *p_d = 0.5 * pe_d * E + E * (pd_d - pd * pe_d / pe);
+    *p_dd = E * pd_dd;
+    return 0.5 * pe * E;
+}
+
+double rd_lift_contact_inverse(const rd_lift_model *c, double p)
+{
+    double pl = 0.5 * c->k * c->d0; /* pressure at the end of the quadratic start */
+    if (p <= 0.0)
+        return 0.0;
+    if (p < pl)
+        return sqrt(2.0 * c->d0 * p / c->k);
+    return p / c->k + 0.5 * c->d0;
+}
+
+/* Elastic part k sp(delta) of the contact pressure, and its potential
+ * k int_0^delta sp per unit area into *U (energy bookkeeping). */
+static double contact_elastic(const rd_lift_model *c, double d, double *U)
+{
+    *U = 0.0;
+    if (d <= 0.0)
+        return 0.0;
+    if (d < c->d0) {
+        *U = c->k * d * d * d / (6.0 * c->d0);
+        return 0.5 * c->k * d * d / c->d0;
+    }
+    *U = c->k * (0.5 * d * d - 0.5 * c->d0 * d + c->d0 * c->d0 / 6.0);
+    return c->k * (d - 0.5 * c->d0);
+}
+
+/* Adds one contact (pressure p at penetration d, rate dd, area A) to the
+ * energy bookkeeping. */
+static void book_contact(rd_lift_model *c, double p, double d, double dd, double A)
+{
+    double U, pe = contact_elastic(c, d, &U);
+    c->energy->contact += A * U;
+    c->energy->damping_power -= (p - pe) * A * dd;
+}
+
+/* smoothstep(x) = 3 x^2 - 2 x^3 on [0, 1], and its derivative. */
+static double smoothstep(double x, double *dx)
+{
+    *dx = 0.0;
+    if (x <= 0.0)
+        return 0.0;
+    if (x >= 1.0)
+        return 1.0;
+    *dx = 6.0 * x * (1.0 - x);
+    return x * x * (3.0 - 2.0 * x);
+}
+
+/* Friction force F(N, u) on one bore point (header comment) and dF/dN, dF/du. */
+static double friction_force(const rd_lift_model *c, double N, double u, double *F_N, double *F_u)
+{
+    double T = tanh(u / c->ureg), T_u = (1.0 - T * T) / c->ureg;
+    if (c->p->friction.model == RD_FRICTION_COULOMB) {
+        *F_N = -c->mu * T;
+        *F_u = -c->mu * N * T_u;
+        return -c->mu * N * T;
+    }
+    /* Stribeck (2.9): B = C e^{-3 r^2.5} N, r = So_lim / So; H = K eta |u| h s_k / L */
+    double share = c->bo_area / (c->h * c->L_run); /* s_k / L */
+    double sg = u >= 0.0 ? 1.0 : -1.0, au = fabs(u);
+    double H = c->kh * c->eta * au * c->h * share, H_u = c->kh * c->eta * c->h * share * sg;
+    double B = 0.0, B_N = 0.0, B_u = 0.0;
+    if (N > 0.0) {
+        double r_u = c->so_lim * c->eta * c->h * share / N; /* r / |u| */
+        double r = r_u * au, r15 = pow(r, 1.5), E = exp(-3.0 * r15 * r);
+        B = c->mu * E * N;
+        B_N = c->mu * E * (1.0 + 7.5 * r15 * r);
+        B_u = -7.5 * c->mu * E * r15 * r_u * N * sg;
+    }
+    *F_N = -T * B_N;
+    *F_u = -T_u * (B + H) - T * (B_u + H_u);
+    return -T * (B + H);
+}
+
+/* Generalized directions: axial force at in-plane offset d, and radial
+ * force along e at offset d (so that w = a . q, u_r = b . q). */
+static void axial_dir(const double *d, double a[6])
+{
+    a[0] = a[1] = a[5] = 0.0;
+    a[2] = 1.0;
+    a[3] = d[1];
+    a[4] = -d[0];
+}
+
+static void radial_dir(const double *d, const double *e, double b[6])
+{
+    b[0] = e[0];
+    b[1] = e[1];
+    b[2] = b[3] = b[4] = 0.0;
+    b[5] = d[0] * e[1] - d[1] * e[0];
+}
+
+static void add6(double *f, const double *a, double F)
+{
+    for (int k = 0; k < 6; k++)
+        f[k] += F * a[k];
+}
+
+/* D += s a b^T (6x6 row-major); D may be NULL. */
+static void rank1(double *D, double s, const double *a, const double *b)
+{
+    if (!D || s == 0.0)
+        return;
+    for (int r = 0; r < 6; r++)
+        if (a[r] != 0.0)
+            for (int k = 0; k < 6; k++)
+                D[6 * r + k] += s * a[r] * b[k];
+}
+
+/* The time-dependent inputs of all elements at one time, computed once per
+ * force call. */
+typedef struct force_env {
+    double sd, acc;          /* piston velocity ds/dt; pseudo-acceleration s'' - g */
+    double pa, pbh, pbl;     /* gas: above, behind, below, Pa */
+    int gas, dynamic, fric;  /* which elements the scene asks for */
+} force_env;
+
+/* One segment's view: its state, its force and local Jacobian blocks (dq,
+ * dv NULL when not wanted), and the dynamic-area sealing weights the flank
+ * element leaves for the gas element. */
+typedef struct seg_view {
+    int i;
+    const double *q, *v;
+    double *f, *dq, *dv;
+    double seal_lo, seal_up, g_lo[6], g_up[6];
+} seg_view;
+
+/* Inertia pseudo-force and gravity: M_i e_z (s'' - g); no state dependence. */
+static void add_inertia_gravity(const rd_lift_model *c, const force_env *env, seg_view *s)
+{
+    for (int k = 0; k < 6; k++)
+        s->f[k] = c->Mez[6 * s->i + k] * env->acc;
+}
+
+/* Lower and upper flank contacts at the face points; with dynamic gas areas
+ * also the sealing weights and their gradients. */
+static void add_flanks(rd_lift_model *c, const force_env *env, seg_view *s)
+{
+    double a[6], pl_d, pl_dd, pu_d, pu_dd;
+    for (int k = 0; k < FLANK_POINTS; k++) {
+        const double *d = c->fl_d + 2 * (FLANK_POINTS * (size_t)s->i + k);
+        axial_dir(d, a);
+        double w = dot6(a, s->q), wd = dot6(a, s->v), A = c->fl_area[k];
+        double plo = contact_pressure(c, -w, -wd, c->c_flank, &pl_d, &pl_dd);
+        double pup = contact_pressure(c, w - c->ca, wd, c->c_flank, &pu_d, &pu_dd);
+        add6(s->f, a, (plo - pup) * A);
+        if (c->energy) {
+            book_contact(c, plo, -w, -wd, A);
+            book_contact(c, pup, w - c->ca, wd, A);
+        }
+        rank1(s->dq, -A * (pl_d + pu_d), a, a);
+        rank1(s->dv, -A * (pl_dd + pu_dd), a, a);
+        if (env->dynamic) {
+            double sl_d, su_d;
+            s->seal_lo += A * smoothstep(-w / c->d0, &sl_d);
+            s->seal_up += A * smoothstep((w - c->ca) / c->d0, &su_d);
+            add6(s->g_lo, a, -A * sl_d / c->d0);
+            add6(s->g_up, a, A * su_d / c->d0);
+        }
+    }
+}
+
+/* Bore: the pretension outward, the contact inward, and the axial friction
+ * driven by its normal force, added point by point to *ftot (N). */
+static void add_bore(rd_lift_model *c, const force_env *env, seg_view *s, double *ftot)
+{
+    double a[6], b[6];
+    for (int k = 0; k < ARC_POINTS; k++) {
+        size_t o = 2 * (ARC_POINTS * (size_t)s->i + k);
+        const double *d = c->bo_d + o, *e = c->bo_e + o;
+        radial_dir(d, e, b);
+        double ur = dot6(b, s->q), urd = dot6(b, s->v), P_d, P_dd;
+        double N = c->bo_area *
+                   contact_pressure(c, c->delta_pre + ur, urd, c->c_rad, &P_d, &P_dd);
+        add6(s->f, b, c->p0 * c->bo_area - N);
+        if (c->energy) {
+            book_contact(c, N / c->bo_area, c->delta_pre + ur, urd, c->bo_area);
+            c->energy->contact -= c->p0 * c->bo_area * ur;
+        }
+        rank1(s->dq, -c->bo_area * P_d, b, b);
+        rank1(s->dv, -c->bo_area * P_dd, b, b);
+        if (env->fric) {
+            axial_dir(d, a);
+            double F_N, F_u, u = dot6(a, s->v) - env->sd;
+            double F = friction_force(c, N, u, &F_N, &F_u);
+            add6(s->f, a, F);
+            if (c->energy)
+                c->energy->friction_power += F * u;
+            *ftot += F;
+            rank1(s->dq, F_N * c->bo_area * P_d, a, b);
+            rank1(s->dv, F_N * c->bo_area * P_dd, a, b);
+            rank1(s->dv, F_u, a, a);
+        }
+    }
+}
+
+/* Groove back contact on the inner face. */
+static void add_back(rd_lift_model *c, seg_view *s)
+{
+    double b[6];
+    for (int k = 0; k < ARC_POINTS; k++) {
+        size_t o = 2 * (ARC_POINTS * (size_t)s->i + k);
+        radial_dir(c->ba_d + o, c->bo_e + o, b);
+        double P_d, P_dd;
+        double pen = -dot6(b, s->q) - c->cr;
+        double P = contact_pressure(c, pen, -dot6(b, s->v), c->c_rad, &P_d, &P_dd);
+        add6(s->f, b, P * c->ba_area);
+        if (c->energy)
+            book_contact(c, P, pen, -dot6(b, s->v), c->ba_area);
+        rank1(s->dq, -c->ba_area * P_d, b, b);
+        rank1(s->dv, -c->ba_area * P_dd, b, b);
+    }
+}
+
+/* Gas on the top, bottom and back faces (fixed or dynamic areas); returns
+ * its axial force on the segment, N. */
+static double add_gas(const rd_lift_model *c, const force_env *env, seg_view *s)
+{
+    double a[6], b[6], ptop = env->pa, pbot = env->pbl;
+    axial_dir(c->cen_d + 2 * s->i, a);
+    if (env->dynamic) {
+        double wl = s->seal_lo / c->face_area, wu = s->seal_up / c->face_area;
+        pbot += wl * 0.5 * (env->pbh - env->pbl);
+        ptop += wu * 0.5 * (env->pbh - env->pa);
+        /* d(pbot - ptop) A_face / dq = (pbh - pbl)/2 g_lo - (pbh - pa)/2 g_up */
+        rank1(s->dq, 0.5 * (env->pbh - env->pbl), a, s->g_lo);
+        rank1(s->dq, -0.5 * (env->pbh - env->pa), a, s->g_up);
+    }
+    add6(s->f, a, (pbot - ptop) * c->face_area);
+    radial_dir(c->cen_d + 2 * s->i, c->e_r + 2 * s->i, b);
+    add6(s->f, b, env->pbh * c->back_chord_area);
+    return (pbot - ptop) * c->face_area;
+}
+
+static void force_env_at(const rd_lift_model *c, double t, force_env *env)
+{
+    const rd_lift_params *p = c->p;
+    double s, sdd = 0.0, deg = c->omega * t * 180.0 / M_PI;
+    env->sd = 0.0;
+    if (!c->piston_fixed)
+        rd_lift_piston(&p->engine, c->omega * t, &s, &env->sd, &sdd);
+    env->acc = sdd - c->g_on;
+    env->gas = p->gas.points > 0;
+    env->dynamic = env->gas && p->gas.active_area == RD_GAS_AREA_DYNAMIC;
+    env->fric = p->friction.model != RD_FRICTION_NONE;
+    env->pa = env->pbh = env->pbl = 0.0;
+    if (env->gas) {
+        env->pa = gas_at(&p->gas, p->gas.above, deg);
+        env->pbh = gas_at(&p->gas, p->gas.behind, deg);
+        env->pbl = gas_at(&p->gas, p->gas.below, deg);
+    }
+}
+
+void rd_lift_forces(rd_lift_model *c, double t, const double *y, double *Dq, double *Dv)
+{
+    force_env env;
+    force_env_at(c, t, &env);
+    double ftot = 0.0, fz = 0.0;
+    for (int i = 0; i < c->n; i++) {
+        seg_view s = {.i = i, .q = Q(y, i), .v = V(y, i), .f = c->fbuf + 6 * i};
+        if (Dq) {
+            s.dq = Dq + 36 * (size_t)i;
+            s.dv = Dv + 36 * (size_t)i;
+            memset(s.dq, 0, 36 * sizeof *s.dq);
+            memset(s.dv, 0, 36 * sizeof *s.dv);
+        }
+        add_inertia_gravity(c, &env, &s);
+        fz += s.f[2];
+        add_flanks(c, &env, &s);
+        add_bore(c, &env, &s, &ftot);
+        add_back(c, &s);
+        if (env.gas)
+            fz += add_gas(c, &env, &s);
+    }
+    c->friction = ftot;
+    c->fz_ext = fz + ftot;
+}

@@ -1,0 +1,157 @@
+/*
+ * rd_lift_model.h — the full lift model's pieces, shared by its files (not
+ * part of the public API; no caller outside core/ may include this).
+ *
+ * The full model is split by concern (MODEL.md "lift" and rd_lift.h for the
+ * physics; each file's comment for its part):
+ *   rd_lift.c         parameters, validation, piston kinematics, default
+ *                     stiffness, the public solve (the accuracy driver's
+ *                     two solves and their comparison)
+ *   rd_lift_model.c   the model: state layout, geometry of the contact
+ *                     points, mass (M_i^-1) and stiffness (K, -M_i^-1 K_ij),
+ *                     the right-hand side and the Jacobian assembled from
+ *                     the force elements
+ *   rd_lift_forces.c  the force elements, each a small unit that adds its
+ *                     generalized force on segment i and its local Jacobian
+ *                     contribution df_i/dq_i, df_i/dv_i: inertia and
+ *                     gravity, flank contacts, bore contact and friction,
+ *                     groove back, gas faces
+ *   rd_lift_driver.c  the CVODE driver: set-up, events (root finding and
+ *                     the flank state machine), output sampling, counters,
+ *                     the work bound and cancellation, the Jacobian check
+ *
+ * State layout (interleaved per segment so that the Jacobian is banded):
+ *     y[12 i + k] = q_i[k],  y[12 i + 6 + k] = v_i[k],  k = 0..5   (Q(), V())
+ *
+ * Jacobian structure, and the plan for elements that couple all segments.
+ * Today every force element is local: f_i depends on q_i, v_i only, so its
+ * contribution is a 6x6 block on the diagonal, and the only coupling is the
+ * ring's K (segment i to i +- 1): a band with MU = 11, ML = 23, factored by
+ * band LU in O(n).  Two planned elements break locality:
+ *  - a gas volume shared by the whole ring (a groove-back or inter-ring
+ *    land pressure p_g that is a state, dp_g/dt = g(p_g, all flank gaps)):
+ *    p_g becomes one extra unknown appended after the 12 n segment states.
+ *    Its row depends on every segment (the gaps) and its column acts on
+ *    every segment (the face loads), so the Newton matrix is banded with a
+ *    border: [B  U; V^T  D] with B the band, U, V of width m = number of
+ *    shared volumes.  Solve by block elimination: factor B (band LU, as
+ *    today), solve B X = U (m extra band solves), then the dense m x m
+ *    Schur complement D - V^T X, then back-substitute; O(n m + m^3) per
+ *    step, keeping the band cost.  This needs a custom SUNLinearSolver
+ *    (setup: band LU of B, X, the Schur factorization; solve: two band
+ *    solves and one m x m solve) over a SUNMatrix that stores the band and
+ *    the border; a force element then adds, besides its 6x6 local block,
+ *    entries of U (d f_i / d p_g) and V (d g / d q_i).
+ *  - several rings in a pack: each ring keeps its own band block (its own
+ *    K, its own segments), the rings couple only through the shared gas
+ *    volumes between them, so the pack's matrix is block-diagonal in the
+ *    rings plus the same border (one column per inter-ring volume), solved
+ *    by the same bordered elimination with one band factorization per ring.
+ * Force elements stay "add f and the local blocks"; the border entries are
+ * a second, optional output of the few elements that touch a shared volume.
+ */
+#ifndef RD_LIFT_MODEL_H
+#define RD_LIFT_MODEL_H
+
+#include <nvector/nvector_serial.h>
+#include <sundials/sundials_matrix.h>
+
+#include "rd_internal.h"
+#include "rd_lift.h"
+#include "rd_lift_internal.h"
+
+#define RD_LIFT_GRAVITY 9.80665
+#define RD_LIFT_ARC_POINTS 3 /* contact positions along a segment's arc */
+#define RD_LIFT_FLANK_POINTS (2 * RD_LIFT_ARC_POINTS)
+#define RD_LIFT_MU 11        /* upper half bandwidth of the Jacobian */
+#define RD_LIFT_ML 23        /* lower half bandwidth */
+
+/* State access, cvRoberts style. */
+#define RD_LIFT_Q(y, i) ((y) + 12 * (size_t)(i))
+#define RD_LIFT_V(y, i) ((y) + 12 * (size_t)(i) + 6)
+
+/* The full model of one ring: constants of the scene and the geometry of its
+ * contact points, plus scratch and the force elements' last outputs. */
+typedef struct rd_lift_model {
+    const rd_ring *ring;
+    const rd_lift_params *p;
+    int n, piston_fixed;
+    double omega;          /* crank speed, rad/s */
+    double ca, cr;         /* axial and radial clearances */
+    double k, d0, c_flank, c_rad;
+    double eps;            /* event threshold on the mean lift */
+    double g_on;           /* gravity, m/s^2, or 0 */
+    double p0, delta_pre;  /* pretension pressure and bore preload penetration */
+    double ureg, mu, eta, so_lim, kh, h, L_run;
+    rd_band K;
+    double *Minv;          /* n x 36 row-major */
+    double *Mez;           /* n x 6: M_i e_z */
+    double *fl_d;          /* n x FLANK_POINTS x 2: in-plane offsets of flank points */
+    double fl_area[RD_LIFT_FLANK_POINTS];
+    double *bo_d, *bo_e;   /* n x ARC_POINTS x 2: bore point offsets, radial unit */
+    double *ba_d;          /* n x ARC_POINTS x 2: back point offsets */
+    double bo_area, ba_area; /* per point */
+    double *cen_d;         /* n x 2: face centroid offsets */
+    double *e_r;           /* n x 2: segment radial unit */
+    double *e_t;           /* n x 2: segment tangential unit */
+    double face_area, back_chord_area;
+    double *qbuf, *fbuf;   /* 12 n and 6 n scratch */
+    double *MK;            /* n x 3 x 36: -M_i^-1 K_ij, j = i-1, i, i+1 */
+    double *Dq, *Dv;       /* n x 36: local force derivatives (Jacobian) */
+    double friction;       /* total axial friction of the last force call, N */
+    double fz_ext;         /* total axial force on the ring except the flanks, N */
+    rd_lift_energy *energy; /* non-NULL: the forces accumulate the bookkeeping */
+} rd_lift_model;
+
+/* Builds the model of a valid scene on `ring` (borrowed, as p).  On failure
+ * the model is still safe to clean up. */
+int rd_lift_model_init(rd_lift_model *m, const rd_ring *ring, const rd_lift_params *p,
+                       const rd_lift_setup *setup, rd_error *err);
+void rd_lift_model_cleanup(rd_lift_model *m);
+
+static inline double rd_lift_dot6(const double *a, const double *b)
+{
+    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2] + a[3] * b[3] + a[4] * b[4] + a[5] * b[5];
+}
+
+/* Inverse of the contacts' elastic part: the penetration where k sp(delta)
+ * = p (rd_lift_forces.c). */
+double rd_lift_contact_inverse(const rd_lift_model *m, double p);
+
+/* Generalized forces on all segments (without -K q) into m->fbuf; with Dq,
+ * Dv (n x 36 each) also their local derivatives df_i/dq_i, df_i/dv_i.  Sets
+ * m->friction and m->fz_ext (rd_lift_forces.c). */
+void rd_lift_forces(rd_lift_model *m, double t, const double *y, double *Dq, double *Dv);
+
+/* The CVODE callbacks of the model (user data: the rd_lift_model).
+ * rhs: ydot = (v, M^-1 (f - K q)) per segment; 1 (recoverable) if not
+ * finite.  jac: d(ydot)/dy into the band matrix J (RD_LIFT_MU, RD_LIFT_ML). */
+int rd_lift_cv_rhs(sunrealtype t, N_Vector y, N_Vector yd, void *user);
+int rd_lift_cv_jac(sunrealtype t, N_Vector y, N_Vector fy, SUNMatrix J, void *user,
+                   N_Vector t1, N_Vector t2, N_Vector t3);
+
+/* Mean lift L (mean over segments of the bottom face's axial position);
+ * per-segment values into seg (n values) when not NULL. */
+double rd_lift_model_mean_lift(const rd_lift_model *m, const double *y, double *seg);
+
+/* Crank speed (rad/s) and the scene's largest acceleration (m/s^2, for the
+ * velocity tolerance) (rd_lift.c). */
+double rd_lift_omega(const rd_engine_params *e);
+double rd_lift_accel_scale(const rd_ring_params *rp, const rd_lift_params *p);
+
+/* One integration of the full model at tolerances (rtol, atol): `res`
+ * (optional) receives the per-sample results and the counters, `lift`
+ * (samples values) the mean lift, *events / *n_events the flank changes
+ * (owned by the caller after the call, also on failure) (rd_lift_driver.c). */
+typedef struct rd_lift_run {
+    double rtol, atol;
+    rd_lift_result *res; /* may be NULL */
+    double *lift;        /* samples values */
+    int samples;
+    rd_lift_event *events;
+    int n_events, cap_events;
+} rd_lift_run;
+int rd_lift_integrate(const rd_ring *ring, const rd_lift_params *p, const rd_lift_setup *setup,
+                      const rd_monitor *mon, rd_lift_run *run, rd_error *err);
+
+#endif
