@@ -450,8 +450,64 @@ static void test_extremes_and_errors(void)
     rd_pretension_result_cleanup(&pr);
 }
 
+/* Counts monitor calls; asks to stop at call `stop_at` (0: never). */
+typedef struct counter {
+    int calls, stop_at;
+} counter;
+
+static int count_report(void *ctx, double fraction)
+{
+    counter *c = ctx;
+    (void)fraction;
+    c->calls++;
+    return c->stop_at > 0 && c->calls >= c->stop_at;
+}
+
+/* The monitor is called inside the Newton iterations (at least once per
+ * iteration), so a cancel takes effect within one iteration, not at the end
+ * of a load step; and a cancel returns RD_ECANCELED from either analysis. */
+static void test_monitor(void)
+{
+    rd_ring_params p;
+    rd_ring_params_default(&p);
+    rd_contact_opts o;
+    rd_contact_opts_default(&o);
+    o.n_distortion = 1;
+    o.distortion[0] = (rd_distortion){4, 10e-6, 0.0};
+    rd_static_opts so = opts(0);
+    counter c = {0, 0};
+    rd_monitor mon = {count_report, &c};
+    rd_contact_result r;
+    rd_error err;
+    rd_error_init(&err);
+    int rc = rd_contact_solve(&p, 40, &o, &so, &mon, &r, &err);
+    CHECK(rc == RD_OK, "contact with a monitor: %s", err.message);
+    /* this bore takes ~25 iterations in one load step: the old per-step
+     * report would have called the monitor once or twice */
+    CHECK(c.calls >= r.stats.iterations && r.stats.iterations > 5,
+          "monitor calls %d vs Newton iterations %d", c.calls, r.stats.iterations);
+    rd_contact_result_cleanup(&r);
+
+    c = (counter){0, 3};
+    rd_error_init(&err);
+    rc = rd_contact_solve(&p, 40, &o, &so, &mon, &r, &err);
+    CHECK(rc == RD_ECANCELED && c.calls == 3, "contact cancel: rc %d after %d calls", rc, c.calls);
+    rd_contact_result_cleanup(&r);
+
+    rd_pretension_opts po;
+    rd_pretension_opts_default(&po);
+    rd_pretension_result pr;
+    c = (counter){0, 2};
+    rd_error_init(&err);
+    rc = rd_pretension_solve(&p, 40, &po, &so, &mon, &pr, &err);
+    CHECK(rc == RD_ECANCELED && c.calls == 2, "pretension cancel: rc %d after %d calls", rc,
+          c.calls);
+    rd_pretension_result_cleanup(&pr);
+}
+
 int main(void)
 {
+    test_monitor();
     test_small_load_limits();
     test_thesis_tables();
     test_round_bore();

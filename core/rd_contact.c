@@ -1,0 +1,381 @@
+/*
+ * rd_contact — the split ring pressed by F_t (force method, on the gap faces)
+ * into a round or distorted bore, thesis 3.4.3; the model is in rd_static.h,
+ * the chain's mechanics and solver in rd_static.c.
+ *
+ * Bore: r_b(theta) = r_o + mu (D/2 - r_o + sum A_k cos(k (theta - phi_k))),
+ * r_o the closed ring's running-face radius, mu = 0 while F_t is applied
+ * (lambda 0..1/2) and rising to 1 over lambda 1/2..1.  Each of the m contact
+ * points of a segment (running face, mid-height) carries the smooth law
+ *   p(delta) = k eps ln(1 + exp(delta / eps)),  eps = 0.05 p0 / k,
+ * delta = rho - r_b(theta) its penetration, over its tributary area h r_o
+ * phi / m, along the bore's outward normal.  Outputs per segment: pressure
+ * (resultant / (h r_o phi)), closest approach, bore radius.  Error estimate:
+ * the RMS difference of the pressure profiles at n and 2n, over p0, by
+ * rd_accuracy.
+ */
+#include "rd_accuracy.h"
+#include "rd_static_internal.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+/* Contact applies the bore over lambda 1/2..1 (rd_static_force_factor). */
+static double bore_factor(const rd_static_problem *pb)
+{
+    return fmax(0.0, 2.0 * pb->lambda - 1.0);
+}
+
+/* Bore radius and its derivative at theta, at the current load factor. */
+static void bore_radius(const rd_static_problem *pb, double theta, double *r, double *dr)
+{
+    double a = pb->bore_dr, da = 0.0;
+    for (int k = 0; k < pb->co->n_distortion; k++) {
+        const rd_distortion *d = &pb->co->distortion[k];
+        double arg = d->order * (theta - d->phase_deg * M_PI / 180.0);
+        a += d->amplitude * cos(arg);
+        da -= d->amplitude * d->order * sin(arg);
+    }
+    double mu = bore_factor(pb);
+    *r = pb->r_o + mu * a;
+    *dr = mu * da;
+}
+
+/* The smooth contact law p(delta) = k eps ln(1 + exp(delta / eps)). */
+static double contact_pressure(const rd_static_problem *pb, double delta)
+{
+    double z = delta / pb->eps;
+    if (z > 0)
+        return pb->k * (delta + pb->eps * log1p(exp(-z)));
+    return pb->k * pb->eps * log1p(exp(z));
+}
+
+/* Predictor for a contact load step: every segment moves radially with the
+ * bore under it from load factor l0 to l1.  Without it a bore that moves
+ * away by more than the law's smoothing length eps leaves every contact on
+ * the law's exp(delta / eps) tail, with no stiffness to push the ring out. */
+void rd_contact_follow_bore(rd_static_problem *pb, double l0, double l1)
+{
+    for (int i = 0; i < pb->n; i++) {
+        double *x = pb->x + 3 * i, th = atan2(x[1], x[0]), r0, r1, d;
+        pb->lambda = l0;
+        bore_radius(pb, th, &r0, &d);
+        pb->lambda = l1;
+        bore_radius(pb, th, &r1, &d);
+        x[0] += (r1 - r0) * cos(th);
+        x[1] += (r1 - r0) * sin(th);
+    }
+}
+
+void rd_contact_opts_default(rd_contact_opts *o)
+{
+    memset(o, 0, sizeof *o);
+    o->points_per_segment = 10;
+}
+
+double rd_contact_default_stiffness(const rd_ring_params *p)
+{
+    rd_ring_section s;
+    rd_ring_section_get(p, 0, &s);
+    return 1e6 * p->youngs_modulus * s.I_inplane / (p->axial_height * pow(s.R, 4));
+}
+
+int rd_contact_validate(const rd_contact_opts *o, const rd_ring_params *p, rd_error *err)
+{
+    double d = p->diameter;
+    if (p->tangential_force <= 0.0)
+        return rd_error_set(err, RD_EINVAL, "/ring/tangential_force",
+                            "/ring/tangential_force = %g N: the contact analysis needs a "
+                            "pretension > 0 (without it the ring presses on nothing and its "
+                            "place in the bore is undetermined).",
+                            p->tangential_force);
+    if (o->bore_diameter != 0.0 &&
+        (!isfinite(o->bore_diameter) || o->bore_diameter < 0.98 * d || o->bore_diameter > 1.02 * d))
+        return rd_error_set(err, RD_EINVAL, "/bore/diameter",
+                            "/bore/diameter = %g m is out of range: allowed %g to %g m (within "
+                            "2 %% of the ring diameter %g m).",
+                            o->bore_diameter, 0.98 * d, 1.02 * d, d);
+    if (o->n_distortion < 0 || o->n_distortion > RD_DISTORTION_MAX)
+        return rd_error_set(err, RD_ELIMIT, "/bore/distortion",
+                            "/bore/distortion has %d entries; at most %d are allowed.",
+                            o->n_distortion, RD_DISTORTION_MAX);
+    double total = 0.0;
+    for (int k = 0; k < o->n_distortion; k++) {
+        const rd_distortion *ds = &o->distortion[k];
+        char path[64];
+        snprintf(path, sizeof path, "/bore/distortion/%d/order", k);
+        if (ds->order < 1 || ds->order > 64)
+            return rd_error_set(err, RD_EINVAL, path, "%s = %d is out of range: allowed 1 to 64.",
+                                path, ds->order);
+        snprintf(path, sizeof path, "/bore/distortion/%d/amplitude", k);
+        if (!isfinite(ds->amplitude) || fabs(ds->amplitude) > 0.01 * d)
+            return rd_error_set(err, RD_EINVAL, path,
+                                "%s = %g m is out of range: allowed -%g to %g m (1 %% of the "
+                                "diameter).",
+                                path, ds->amplitude, 0.01 * d, 0.01 * d);
+        snprintf(path, sizeof path, "/bore/distortion/%d/phase_deg", k);
+        if (!isfinite(ds->phase_deg) || fabs(ds->phase_deg) > 360.0)
+            return rd_error_set(err, RD_EINVAL, path,
+                                "%s = %g deg is out of range: allowed -360 to 360 deg.", path,
+                                ds->phase_deg);
+        total += fabs(ds->amplitude);
+    }
+    if (total > 0.01 * d)
+        return rd_error_set(err, RD_EINVAL, "/bore/distortion",
+                            "/bore/distortion: the amplitudes add up to %g m; allowed at most "
+                            "%g m (1 %% of the diameter).",
+                            total, 0.01 * d);
+    if (o->points_per_segment < 1 || o->points_per_segment > RD_CONTACT_POINTS_MAX)
+        return rd_error_set(err, RD_EINVAL, "/contact/points_per_segment",
+                            "/contact/points_per_segment = %d is out of range: allowed 1 to %d.",
+                            o->points_per_segment, RD_CONTACT_POINTS_MAX);
+    double k0 = rd_contact_default_stiffness(p);
+    if (o->stiffness != 0.0 &&
+        (!isfinite(o->stiffness) || o->stiffness < 1e-3 * k0 || o->stiffness > 1e2 * k0))
+        return rd_error_set(err, RD_EINVAL, "/contact/stiffness",
+                            "/contact/stiffness = %g Pa/m is out of range for this ring: "
+                            "allowed %g to %g Pa/m (1e-3 to 1e2 times the default %g).",
+                            o->stiffness, 1e-3 * k0, 1e2 * k0, k0);
+    return RD_OK;
+}
+
+void rd_contact_segment_load(const rd_static_problem *pb, int i, const double *x, const double *Q,
+                             double f[6])
+{
+    for (int k = 0; k < pb->m; k++) {
+        const double *c = pb->cp + 3 * (pb->m * i + k);
+        double arm[3], y[3];
+        rd_mv3(Q, c, arm);
+        for (int q = 0; q < 3; q++)
+            y[q] = x[q] + arm[q];
+        double rho = hypot(y[0], y[1]), th = atan2(y[1], y[0]), rb, drb;
+        bore_radius(pb, th, &rb, &drb);
+        double p = contact_pressure(pb, rho - rb);
+        /* outward bore normal ~ grad(rho - r_b(theta)) = e_rho - r_b'/rho e_theta */
+        double er[2] = {y[0] / rho, y[1] / rho}, et[2] = {-er[1], er[0]};
+        double nv[3] = {er[0] - drb / rho * et[0], er[1] - drb / rho * et[1], 0.0};
+        double nn = sqrt(rd_dot3(nv, nv));
+        double F[3] = {-p * pb->area * nv[0] / nn, -p * pb->area * nv[1] / nn, 0.0};
+        rd_static_add_force(Q, c, F, f);
+    }
+}
+
+/* The contact problem on `ring`: loads, law, support, contact points. */
+static int contact_setup(rd_static_problem *pb, const rd_ring_params *p, const rd_contact_opts *o)
+{
+    int n = pb->n, m = o->points_per_segment;
+    const rd_ring *ring = pb->ring;
+    double phi = rd_ring_segment_phi(ring);
+    pb->Ft = p->tangential_force;
+    pb->method = RD_PRETENSION_FORCE;
+    pb->co = o;
+    pb->m = m;
+    pb->r_o = pb->R + 0.5 * pb->b;
+    pb->bore_dr = (o->bore_diameter > 0.0 ? 0.5 * o->bore_diameter : 0.5 * p->diameter) - pb->r_o;
+    pb->area = pb->h * pb->r_o * phi / m;
+    pb->p0 = 2.0 * p->tangential_force / (p->diameter * p->axial_height);
+    pb->k = o->stiffness > 0.0 ? o->stiffness : rd_contact_default_stiffness(p);
+    pb->eps = 0.05 * pb->p0 / pb->k;
+    pb->F_ref = p->tangential_force;
+    /* held: tangential (y at 180 deg), axial, tilts; free: radial, in-plane turn */
+    double mask[6] = {0, 1, 1, 1, 1, 0};
+    memcpy(pb->mask, mask, sizeof mask);
+    pb->cp = malloc((size_t)3 * n * m * sizeof *pb->cp);
+    if (!pb->cp)
+        return RD_ENOMEM;
+    for (int i = 0; i < n; i++) {
+        const double *P = rd_ring_reference_point(ring, i);
+        for (int k = 0; k < m; k++) {
+            double a = rd_ring_get_segment_angle(ring, i) + (k + 0.5 - 0.5 * m) * phi / m;
+            double *c = pb->cp + 3 * (m * i + k);
+            c[0] = pb->r_o * cos(a) - P[0];
+            c[1] = pb->r_o * sin(a) - P[1];
+            c[2] = 0.0;
+        }
+    }
+    return RD_OK;
+}
+
+/* Segment i's resultant pressure, closest approach, position angle and bore
+ * radius; updates the largest penetration.  The points inside one rigid
+ * segment share whatever misfit the straight-sided segment has against a
+ * curved bore, so how the pressure splits between them is an artifact of
+ * rigid segments; the resultant is not. */
+static void segment_output(const rd_static_problem *pb, int i, rd_contact_result *out)
+{
+    int m = pb->m;
+    double force = 0.0, closest = INFINITY, mid[3], c_mid[3], rb, drb;
+    for (int k = 0; k < m; k++) {
+        double y[3];
+        rd_static_point_at(pb, i, pb->cp + 3 * (m * i + k), y);
+        bore_radius(pb, atan2(y[1], y[0]), &rb, &drb);
+        double delta = hypot(y[0], y[1]) - rb;
+        force += contact_pressure(pb, delta) * pb->area;
+        closest = fmin(closest, -delta);
+        out->max_penetration = fmax(out->max_penetration, delta);
+    }
+    const double *P = rd_ring_reference_point(pb->ring, i);
+    for (int k = 0; k < 3; k++)
+        c_mid[k] = (pb->r_o / pb->R) * P[k] - P[k];
+    rd_static_point_at(pb, i, c_mid, mid);
+    double th = atan2(mid[1], mid[0]), deg = th * 180.0 / M_PI;
+    bore_radius(pb, th, &rb, &drb);
+    out->angle_deg[i] = deg < 0.0 ? deg + 360.0 : deg;
+    out->pressure[i] = force / (m * pb->area);
+    out->clearance[i] = closest;
+    out->bore_radius[i] = rb;
+}
+
+/* The result of a solved problem: profiles, summaries, bounds. */
+static int contact_outputs(const rd_ring_params *p, const rd_contact_opts *o,
+                           const rd_static_problem *pb, rd_contact_result *out)
+{
+    int n = pb->n;
+    out->points = n;
+    out->angle_deg = malloc((size_t)n * sizeof *out->angle_deg);
+    out->pressure = malloc((size_t)n * sizeof *out->pressure);
+    out->clearance = malloc((size_t)n * sizeof *out->clearance);
+    out->bore_radius = malloc((size_t)n * sizeof *out->bore_radius);
+    if (!out->angle_deg || !out->pressure || !out->clearance || !out->bore_radius)
+        return RD_ENOMEM;
+    double sum = 0.0, in_contact = 0.0;
+    out->max_clearance = 0.0;
+    out->max_clearance_angle_deg = NAN;
+    out->max_penetration = 0.0;
+    for (int i = 0; i < n; i++) {
+        segment_output(pb, i, out);
+        sum += out->pressure[i];
+        if (out->clearance[i] <= 0.0)
+            in_contact += 1.0;
+        if (out->clearance[i] > out->max_clearance) {
+            out->max_clearance = out->clearance[i];
+            out->max_clearance_angle_deg = out->angle_deg[i];
+        }
+    }
+    out->mean_pressure = sum / n;
+    out->uniform_pressure = pb->p0;
+    out->contact_fraction = in_contact / n;
+    out->stiffness = pb->k;
+    out->conformability = rd_ring_conformability(p);
+    rd_ring_section sec;
+    rd_ring_section_get(p, 0, &sec);
+    for (int k = 0; k < o->n_distortion; k++) {
+        double kk = o->distortion[k].order;
+        out->bound[k] = kk < 2 ? NAN
+                               : p->tangential_force * pow(sec.R, 3) /
+                                     (p->youngs_modulus * sec.I_inplane * pow(kk * kk - 1.0, 2));
+    }
+    return RD_OK;
+}
+
+static int contact_once(const rd_ring_params *p, int segments, const rd_contact_opts *o,
+                        const rd_static_opts *so, const rd_monitor *mon, rd_contact_result *out,
+                        rd_error *err)
+{
+    rd_static_problem pb;
+    int rc;
+    rd_ring *ring = rd_ring_create(p, segments, 0, err);
+    if (!ring)
+        return err ? err->code : RD_EINVAL;
+    if ((rc = rd_static_problem_init(&pb, ring, RD_STATIC_CONTACT)) != RD_OK ||
+        (rc = contact_setup(&pb, p, o)) != RD_OK)
+        goto out;
+    if ((rc = rd_static_solve_path(&pb, so, mon, &out->stats, err)) != RD_OK)
+        goto out;
+    rd_static_stats_fill(&pb, &out->stats);
+    rc = contact_outputs(p, o, &pb, out);
+out:
+    if (rc == RD_ENOMEM)
+        rc = rd_error_set(err, RD_ENOMEM, "", "Out of memory for the %d-segment contact solve.",
+                          segments);
+    rd_static_problem_cleanup(&pb);
+    rd_ring_free(ring);
+    return rc;
+}
+
+void rd_contact_result_cleanup(rd_contact_result *r)
+{
+    if (!r)
+        return;
+    free(r->angle_deg);
+    free(r->pressure);
+    free(r->clearance);
+    free(r->bore_radius);
+    r->angle_deg = r->pressure = r->clearance = r->bore_radius = NULL;
+}
+
+/* Pressure of a result at angle a (deg), linear between its points. */
+static double pressure_at(const rd_contact_result *r, double a)
+{
+    int np = r->points;
+    if (a <= r->angle_deg[0])
+        return r->pressure[0];
+    for (int q = 1; q < np; q++)
+        if (a <= r->angle_deg[q]) {
+            double t = (a - r->angle_deg[q - 1]) / (r->angle_deg[q] - r->angle_deg[q - 1]);
+            return (1.0 - t) * r->pressure[q - 1] + t * r->pressure[q];
+        }
+    return r->pressure[np - 1];
+}
+
+/* The accuracy driver's view of one contact run. */
+typedef struct contact_run {
+    const rd_ring_params *p;
+    int segments, ref_segments;
+    const rd_contact_opts *o;
+    const rd_static_opts *so;
+    rd_contact_result *out, ref;
+} contact_run;
+
+static int contact_level(void *ctx, int level, const rd_monitor *mon, rd_error *err)
+{
+    contact_run *run = ctx;
+    if (level == 0)
+        return contact_once(run->p, run->segments, run->o, run->so, mon, run->out, err);
+    return contact_once(run->p, run->ref_segments, run->o, run->so, mon, &run->ref, err);
+}
+
+/* RMS difference of the pressure profiles, relative to p0, on the main
+ * solution's points (angles increase along the ring). */
+static int contact_compare(void *ctx, rd_error *err)
+{
+    (void)err;
+    contact_run *run = ctx;
+    rd_contact_result *out = run->out;
+    double s2 = 0.0;
+    for (int q = 0; q < out->points; q++) {
+        double d = out->pressure[q] - pressure_at(&run->ref, out->angle_deg[q]);
+        s2 += d * d;
+    }
+    out->stats.reference_segments = run->ref_segments;
+    out->stats.error_estimate = sqrt(s2 / out->points) / out->uniform_pressure;
+    return RD_OK;
+}
+
+int rd_contact_solve(const rd_ring_params *p, int segments, const rd_contact_opts *o,
+                     const rd_static_opts *so, const rd_monitor *mon, rd_contact_result *out,
+                     rd_error *err)
+{
+    int rc;
+    memset(out, 0, sizeof *out);
+    out->stats.error_estimate = NAN;
+    if ((rc = rd_ring_validate(p, segments, 0, err)) ||
+        (rc = rd_static_validate(so, segments, 0, err)) || (rc = rd_contact_validate(o, p, err)))
+        return rc;
+    int m = rd_accuracy_refined_segments(segments, RD_STATIC_SEGMENTS_MAX);
+    contact_run run = {
+        .p = p, .segments = segments, .ref_segments = m, .o = o, .so = so, .out = out};
+    char what[32];
+    snprintf(what, sizeof what, "%d segments", m);
+    rd_accuracy_plan plan = {.solve = contact_level,
+                             .compare = contact_compare,
+                             .ctx = &run,
+                             .estimate = so->estimate_error,
+                             .main_share = 0.34,
+                             .reference = what};
+    rc = rd_accuracy_run(&plan, mon, NULL, err);
+    rd_contact_result_cleanup(&run.ref);
+    return rc;
+}

@@ -1,0 +1,114 @@
+/*
+ * rd_static_internal.h — what the three static files share (no caller outside
+ * core/ may include this):
+ *   rd_static.c      the chain's nonlinear joint mechanics, the residual and
+ *                    its tangent, Newton's method and the load stepping;
+ *   rd_pretension.c  the free shape under F_t (and F_l) on the gap faces;
+ *   rd_contact.c     the ring pressed into a round or distorted bore.
+ * The model and its equations are in rd_static.h; the state layout in
+ * rd_static.c.
+ */
+#ifndef RD_STATIC_INTERNAL_H
+#define RD_STATIC_INTERNAL_H
+
+#include <string.h>
+
+#include "rd_internal.h"
+#include "rd_static.h"
+
+enum { RD_STATIC_PRETENSION = 0, RD_STATIC_CONTACT = 1 };
+
+/* ---- 3-vectors and 3x3 matrices (row-major) ------------------------------- */
+
+static inline double rd_dot3(const double a[3], const double b[3])
+{
+    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
+
+static inline void rd_cross3(const double a[3], const double b[3], double out[3])
+{
+    double c[3] = {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
+    memcpy(out, c, sizeof c);
+}
+
+/* out = A v */
+static inline void rd_mv3(const double A[9], const double v[3], double out[3])
+{
+    double c[3];
+    for (int r = 0; r < 3; r++)
+        c[r] = A[3 * r] * v[0] + A[3 * r + 1] * v[1] + A[3 * r + 2] * v[2];
+    memcpy(out, c, sizeof c);
+}
+
+/* ---- the problem ---------------------------------------------------------- */
+
+typedef struct rd_static_problem {
+    const rd_ring *ring;
+    int n, kind;
+    double R, b, h;
+    const double *Kc;
+    double *E;   /* 9 per joint: rows chord, axial, radial */
+    double *dP0; /* 3 per joint: P_B - P_A */
+    double *x;   /* 3n */
+    double *Q;   /* 9n */
+    double lambda;
+    /* gap-face loads */
+    double Ft, Fl;
+    int method;
+    int jseg;            /* field method: the segment whose face carries the J marker */
+    double cA[3], cB[3]; /* face centroids, body offsets of segments 0, n-1 */
+    double tA[3], tB[3]; /* face forces' directions, body components */
+    /* support at the section opposite the gap */
+    int pa, pb;
+    double mask[6];
+    double k_t, k_r;
+    /* contact */
+    int m;          /* points per segment */
+    double *cp;     /* 3 per point: body offsets */
+    double area;    /* tributary area of one point, m^2 */
+    double r_o;     /* running-face radius of the closed ring */
+    double bore_dr; /* D/2 - r_o */
+    const rd_contact_opts *co;
+    double k, eps, p0;
+    /* scales */
+    double F_ref;
+} rd_static_problem;
+
+/* Allocates the state and fills the reference geometry, the gap faces and
+ * the support (kind: RD_STATIC_PRETENSION or RD_STATIC_CONTACT); the caller
+ * sets the loads.  RD_ENOMEM on failure; cleanup is safe either way. */
+int rd_static_problem_init(rd_static_problem *pb, const rd_ring *ring, int kind);
+void rd_static_problem_cleanup(rd_static_problem *pb);
+
+/* Load stepping from lambda = 0 to 1 with Newton's method; `mon` sees 0..1
+ * of this solve (and is called inside the iterations, so a cancel takes
+ * effect within one iteration).  Fills the counters of st. */
+int rd_static_solve_path(rd_static_problem *pb, const rd_static_opts *so, const rd_monitor *mon,
+                         rd_static_stats *st, rd_error *err);
+
+/* Strain energy, support force and moment, sizes, after a solve. */
+void rd_static_stats_fill(rd_static_problem *pb, rd_static_stats *st);
+
+/* Current global position of the body offset c of segment i. */
+void rd_static_point_at(const rd_static_problem *pb, int i, const double c[3], double y[3]);
+
+/* Adds (F, (y - x) x F) for a force F at body offset c of a segment at (x, Q). */
+void rd_static_add_force(const double *Q, const double c[3], const double F[3], double f[6]);
+
+/* The load factor of F_t: pretension grows with lambda; contact applies it
+ * over lambda 0..1/2 (rd_contact.c has the bore's part of the path). */
+double rd_static_force_factor(const rd_static_problem *pb);
+
+/* rd_pretension.c: adds the gap-face loads on segment i (0 or n - 1) at
+ * (x, Q) to f: F_t by the force or the field method, and F_l. */
+void rd_pretension_gap_face_load(const rd_static_problem *pb, int i, const double *x,
+                                 const double *Q, double f[6]);
+
+/* rd_contact.c: adds the bore's contact forces on segment i at (x, Q) to f;
+ * the predictor of a load step (each segment moved with the bore under it
+ * from load factor l0 to l1). */
+void rd_contact_segment_load(const rd_static_problem *pb, int i, const double *x, const double *Q,
+                             double f[6]);
+void rd_contact_follow_bore(rd_static_problem *pb, double l0, double l1);
+
+#endif
