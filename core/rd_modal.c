@@ -28,9 +28,11 @@
 #include <lapacke.h>
 #include <math.h>
 #include <stdint.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
+#include "rd_accuracy.h"
 #include "rd_internal.h"
 
 #define COL(X, N, j) ((X) + (size_t)(j) * (size_t)(N))
@@ -155,6 +157,11 @@ static void m_orthonormalize(const rd_band *M, int N, int p, double *X, double *
 typedef struct solve_ws {
     rd_band K, M, A;
     double *X, *MX, *KX, *Y, *Kr, *Mr, *lam, *lam_prev;
+    int N, p;              /* DOF, block size */
+    double noise;          /* Rayleigh-quotient rounding level, 10 eps lambda_max */
+    double lambda_ref;     /* shift: first thin-ring eigenvalue */
+    double tau;            /* rigid-body threshold sqrt(noise lambda_ref) */
+    uint64_t rng;
 } solve_ws;
 
 static void ws_cleanup(solve_ws *w)
@@ -242,15 +249,185 @@ static int extract_mode(const rd_ring *ring, const solve_ws *w, const double *x,
     return RD_OK;
 }
 
+/* Assembles K and M, factors A = K + lambda_ref M, allocates the block of p
+ * vectors and fills it at random. */
+static int setup(const rd_ring *ring, int p, solve_ws *w, rd_error *err)
+{
+    int rc;
+    const int N = w->N;
+    if ((rc = rd_ring_assemble_band(ring, &w->K, &w->M, err)))
+        return rc;
+    if ((rc = rd_band_init(&w->A, N, w->K.kd, err)))
+        return rc;
+    double f_ref = rd_modal_thin_ring_outplane_hz(rd_ring_get_params(ring), 2);
+    w->lambda_ref = pow(2.0 * M_PI * f_ref, 2);
+    w->noise = 10.0 * 2.220446049250313e-16 * rd_ring_lambda_max_estimate(ring);
+    w->tau = sqrt(w->noise * w->lambda_ref);
+    rd_band_axpby(&w->A, &w->K, w->lambda_ref, &w->M);
+    if ((rc = rd_band_cholesky(&w->A, err)))
+        return rc;
+
+    size_t blk = (size_t)N * (size_t)p;
+    w->X = malloc(blk * sizeof(double));
+    w->MX = malloc(blk * sizeof(double));
+    w->KX = malloc(blk * sizeof(double));
+    w->Y = malloc(blk * sizeof(double));
+    w->Kr = malloc((size_t)p * p * sizeof(double));
+    w->Mr = malloc((size_t)p * p * sizeof(double));
+    w->lam = malloc((size_t)p * sizeof(double));
+    w->lam_prev = malloc((size_t)p * sizeof(double));
+    if (!w->X || !w->MX || !w->KX || !w->Y || !w->Kr || !w->Mr || !w->lam || !w->lam_prev)
+        return rd_error_set(err, RD_ENOMEM, "", "Out of memory for the modal solver (%d DOF).", N);
+    w->rng = 0x9E3779B97F4A7C15ULL;
+    random_fill(&w->rng, (int)blk, w->X);
+    for (int j = 0; j < p; j++)
+        w->lam_prev[j] = NAN;
+    return RD_OK;
+}
+
+/* Rayleigh-Ritz on the block X (columns M-normalized, MX = M X): solves
+ * (X^T K X) Q = (X^T M X) Q Lambda into Kr (Q) and lam.  Returns LAPACK's info. */
+static lapack_int rayleigh_ritz(solve_ws *w)
+{
+    const int N = w->N, p = w->p;
+    for (int j = 0; j < p; j++)
+        rd_band_symv(&w->K, COL(w->X, N, j), COL(w->KX, N, j));
+    for (int j = 0; j < p; j++)
+        for (int i = 0; i <= j; i++) {
+            w->Kr[i + (size_t)j * p] = dot(N, COL(w->X, N, i), COL(w->KX, N, j));
+            w->Mr[i + (size_t)j * p] = dot(N, COL(w->X, N, i), COL(w->MX, N, j));
+        }
+    return LAPACKE_dsygv(LAPACK_COL_MAJOR, 1, 'V', 'U', p, w->Kr, p, w->Mr, p, w->lam);
+}
+
+/* One subspace iteration: X <- A^-1 M X, Rayleigh-Ritz, X <- X Q. */
+static int iterate(solve_ws *w, int it, rd_error *err)
+{
+    const int N = w->N, p = w->p;
+    size_t blk = (size_t)N * (size_t)p;
+    int rc;
+    for (int j = 0; j < p; j++)
+        rd_band_symv(&w->M, COL(w->X, N, j), COL(w->Y, N, j));
+    if ((rc = rd_band_solve(&w->A, p, w->Y, err)))
+        return rc;
+    memcpy(w->X, w->Y, blk * sizeof(double));
+    /* From the second iteration on, A^-1 M X of Ritz vectors is nearly
+     * M-orthogonal: scaling the columns is enough for a well-conditioned
+     * X^T M X.  The random start, or a projected Cholesky that fails, gets a
+     * full M-orthonormalization. */
+    lapack_int info = 1;
+    for (int attempt = it == 1 ? 1 : 0; attempt < 2 && info != 0; attempt++) {
+        if (attempt == 1) {
+            m_orthonormalize(&w->M, N, p, w->X, w->MX, &w->rng);
+        } else {
+            for (int j = 0; j < p; j++) {
+                double *x = COL(w->X, N, j), *mx = COL(w->MX, N, j);
+                rd_band_symv(&w->M, x, mx);
+                double scale = 1.0 / sqrt(fabs(dot(N, x, mx)));
+                for (int i = 0; i < N; i++) {
+                    x[i] *= scale;
+                    mx[i] *= scale;
+                }
+            }
+        }
+        info = rayleigh_ritz(w);
+    }
+    if (info != 0)
+        return rd_error_set(err, RD_ENUMERIC, "",
+                            "The projected eigenproblem failed (LAPACK dsygv info %d) at "
+                            "subspace iteration %d.",
+                            (int)info, it);
+    for (int j = 0; j < p; j++) {
+        double *y = COL(w->Y, N, j);
+        memset(y, 0, (size_t)N * sizeof *y);
+        for (int k = 0; k < p; k++) {
+            double q = w->Kr[k + (size_t)j * p];
+            const double *xk = COL(w->X, N, k);
+            for (int i = 0; i < N; i++)
+                y[i] += q * xk[i];
+        }
+    }
+    memcpy(w->X, w->Y, blk * sizeof(double));
+    return RD_OK;
+}
+
+/* Counts the rigid modes (Ritz values below tau) into *rigid and returns 1
+ * when the wanted elastic modes have converged: relative eigenvalue change
+ * <= tol (largest change in *worst), and residuals at their noise floor,
+ * about eps lambda_max / lambda (eigenvalues converge twice as fast as
+ * vectors). */
+static int converged(solve_ws *w, const rd_modal_opts *o, int *rigid, double *worst)
+{
+    const int N = w->N, p = w->p;
+    int r = 0;
+    while (r < p && w->lam[r] < w->tau)
+        r++;
+    *rigid = r;
+    int last = r + o->modes, guard = p == N ? 0 : 2;
+    if (last + guard > p) {
+        *worst = INFINITY; /* too many zero modes for the block: keep iterating */
+        return 0;
+    }
+    *worst = 0.0;
+    for (int j = r; j < last; j++) {
+        double change = fabs(w->lam[j] - w->lam_prev[j]) / (fabs(w->lam[j]) + w->noise);
+        if (!(change <= *worst))
+            *worst = isnan(change) ? INFINITY : change;
+    }
+    if (!(*worst <= o->tol + w->noise / w->lambda_ref))
+        return 0;
+    for (int j = r; j < last; j++) {
+        double res = residual(w, N, COL(w->X, N, j), w->lam[j], w->KX, w->MX);
+        if (!(res <= RESIDUAL_FLOOR * w->noise / w->lam[j] + o->tol))
+            return 0;
+    }
+    return 1;
+}
+
+/* The failure message of an unconverged solve. */
+static int no_convergence(const solve_ws *w, const rd_modal_opts *o, int n, int rigid,
+                          double worst, rd_error *err)
+{
+    if (rigid + o->modes > w->p)
+        return rd_error_set(err, RD_ENOCONV, "",
+                            "The modal solver found %d zero-frequency modes where a free ring "
+                            "has 6: the stiffness matrix is degenerate for these inputs.",
+                            rigid);
+    return rd_error_set(err, RD_ENOCONV, "",
+                        "The modal solver did not converge in %d subspace iterations "
+                        "(%d segments, %d modes): largest relative eigenvalue change %.3g, "
+                        "wanted %.3g.",
+                        o->max_iterations, n, o->modes, worst, o->tol);
+}
+
+/* Fills out->modes from the converged Ritz vectors after the rigid ones. */
+static int collect_modes(const rd_ring *ring, solve_ws *w, int rigid, int modes,
+                         rd_modal_result *out, rd_error *err)
+{
+    out->rigid_body_modes = rigid;
+    out->modes = calloc((size_t)modes, sizeof *out->modes);
+    if (!out->modes)
+        return rd_error_set(err, RD_ENOMEM, "", "Out of memory for the modal results.");
+    out->n_modes = modes;
+    for (int e = 0; e < modes; e++) {
+        int j = rigid + e;
+        int rc = extract_mode(ring, w, COL(w->X, w->N, j), w->lam[j], w->KX, w->MX, &out->modes[e]);
+        if (rc)
+            return rd_error_set(err, rc, "", "Out of memory for the mode shapes.");
+        if (out->modes[e].residual > out->max_residual)
+            out->max_residual = out->modes[e].residual;
+    }
+    return RD_OK;
+}
+
 static int solve_ring(const rd_ring *ring, const rd_modal_opts *o, const rd_monitor *mon,
-                      double prog_lo, double prog_hi, rd_modal_result *out, rd_error *err)
+                      rd_modal_result *out, rd_error *err)
 {
     solve_ws w;
     memset(&w, 0, sizeof w);
     memset(out, 0, sizeof *out);
     int rc = RD_OK;
     const int n = rd_ring_get_segments(ring), N = 6 * n;
-    const rd_ring_params *prm = rd_ring_get_params(ring);
     out->segments = n;
     out->dof = N;
     out->error_estimate = NAN;
@@ -259,157 +436,27 @@ static int solve_ring(const rd_ring *ring, const rd_modal_opts *o, const rd_moni
         goto out;
     int want = 6 + o->modes;
     int p = 2 * want > want + 8 ? 2 * want : want + 8;
-    if (p > N)
-        p = N;
-    out->block_size = p;
-
-    if ((rc = rd_ring_assemble_band(ring, &w.K, &w.M, err)))
-        goto out;
-    if ((rc = rd_band_init(&w.A, N, w.K.kd, err)))
-        goto out;
-    double f_ref = rd_modal_thin_ring_outplane_hz(prm, 2);
-    double lambda_ref = pow(2.0 * M_PI * f_ref, 2);
-    double noise = 10.0 * 2.220446049250313e-16 * rd_ring_lambda_max_estimate(ring);
-    double tau = sqrt(noise * lambda_ref);
-    rd_band_axpby(&w.A, &w.K, lambda_ref, &w.M);
-    if ((rc = rd_band_cholesky(&w.A, err)))
+    w.N = N;
+    w.p = out->block_size = p > N ? N : p;
+    if ((rc = setup(ring, w.p, &w, err)))
         goto out;
 
-    size_t blk = (size_t)N * (size_t)p;
-    w.X = malloc(blk * sizeof(double));
-    w.MX = malloc(blk * sizeof(double));
-    w.KX = malloc(blk * sizeof(double));
-    w.Y = malloc(blk * sizeof(double));
-    w.Kr = malloc((size_t)p * p * sizeof(double));
-    w.Mr = malloc((size_t)p * p * sizeof(double));
-    w.lam = malloc((size_t)p * sizeof(double));
-    w.lam_prev = malloc((size_t)p * sizeof(double));
-    if (!w.X || !w.MX || !w.KX || !w.Y || !w.Kr || !w.Mr || !w.lam || !w.lam_prev) {
-        rc = rd_error_set(err, RD_ENOMEM, "", "Out of memory for the modal solver (%d DOF).", N);
-        goto out;
-    }
-    uint64_t rng = 0x9E3779B97F4A7C15ULL;
-    random_fill(&rng, (int)blk, w.X);
-    for (int j = 0; j < p; j++)
-        w.lam_prev[j] = NAN;
-
-    int converged = 0, rigid = 0, it;
+    int done = 0, rigid = 0, it;
     double worst = INFINITY;
-    for (it = 1; it <= o->max_iterations && !converged; it++) {
-        /* X <- A^-1 M X */
-        for (int j = 0; j < p; j++)
-            rd_band_symv(&w.M, COL(w.X, N, j), COL(w.Y, N, j));
-        if ((rc = rd_band_solve(&w.A, p, w.Y, err)))
+    for (it = 1; it <= o->max_iterations && !done; it++) {
+        if ((rc = iterate(&w, it, err)))
             goto out;
-        memcpy(w.X, w.Y, blk * sizeof(double));
-        /* From the second iteration on, A^-1 M X of Ritz vectors is nearly
-         * M-orthogonal: scaling the columns is enough for a well-conditioned
-         * X^T M X.  The random start, or a projected Cholesky that fails,
-         * gets a full M-orthonormalization. */
-        lapack_int info = 1;
-        for (int attempt = it == 1 ? 1 : 0; attempt < 2 && info != 0; attempt++) {
-            if (attempt == 1) {
-                m_orthonormalize(&w.M, N, p, w.X, w.MX, &rng);
-            } else {
-                for (int j = 0; j < p; j++) {
-                    double *x = COL(w.X, N, j), *mx = COL(w.MX, N, j);
-                    rd_band_symv(&w.M, x, mx);
-                    double scale = 1.0 / sqrt(fabs(dot(N, x, mx)));
-                    for (int i = 0; i < N; i++) {
-                        x[i] *= scale;
-                        mx[i] *= scale;
-                    }
-                }
-            }
-            /* Rayleigh-Ritz */
-            for (int j = 0; j < p; j++)
-                rd_band_symv(&w.K, COL(w.X, N, j), COL(w.KX, N, j));
-            for (int j = 0; j < p; j++)
-                for (int i = 0; i <= j; i++) {
-                    w.Kr[i + (size_t)j * p] = dot(N, COL(w.X, N, i), COL(w.KX, N, j));
-                    w.Mr[i + (size_t)j * p] = dot(N, COL(w.X, N, i), COL(w.MX, N, j));
-                }
-            info = LAPACKE_dsygv(LAPACK_COL_MAJOR, 1, 'V', 'U', p, w.Kr, p, w.Mr, p, w.lam);
-        }
-        if (info != 0) {
-            rc = rd_error_set(err, RD_ENUMERIC, "",
-                              "The projected eigenproblem failed (LAPACK dsygv info %d) at "
-                              "subspace iteration %d.",
-                              (int)info, it);
-            goto out;
-        }
-        /* X <- X Q */
-        for (int j = 0; j < p; j++) {
-            double *y = COL(w.Y, N, j);
-            memset(y, 0, (size_t)N * sizeof *y);
-            for (int k = 0; k < p; k++) {
-                double q = w.Kr[k + (size_t)j * p];
-                const double *xk = COL(w.X, N, k);
-                for (int i = 0; i < N; i++)
-                    y[i] += q * xk[i];
-            }
-        }
-        memcpy(w.X, w.Y, blk * sizeof(double));
-
-        rigid = 0;
-        while (rigid < p && w.lam[rigid] < tau)
-            rigid++;
-        int last = rigid + o->modes, guard = p == N ? 0 : 2;
-        worst = 0.0;
-        if (last + guard > p) {
-            worst = INFINITY; /* too many zero modes for the block: keep iterating */
-        } else {
-            for (int j = rigid; j < last; j++) {
-                double change = fabs(w.lam[j] - w.lam_prev[j]) / (fabs(w.lam[j]) + noise);
-                if (!(change <= worst))
-                    worst = isnan(change) ? INFINITY : change;
-            }
-        }
-        converged = worst <= o->tol + noise / lambda_ref;
-        /* Eigenvalues converge twice as fast as vectors: also ask every wanted
-         * vector's residual to reach its noise floor, about eps * lambda_max / lambda. */
-        for (int j = rigid; converged && j < last; j++) {
-            double res = residual(&w, N, COL(w.X, N, j), w.lam[j], w.KX, w.MX);
-            if (!(res <= RESIDUAL_FLOOR * noise / w.lam[j] + o->tol))
-                converged = 0;
-        }
-        memcpy(w.lam_prev, w.lam, (size_t)p * sizeof(double));
-        double frac = 1.0 - 1.0 / (1.0 + it);
-        if ((rc = rd_monitor_report(mon, prog_lo + (prog_hi - prog_lo) * frac, err)))
+        done = converged(&w, o, &rigid, &worst);
+        memcpy(w.lam_prev, w.lam, (size_t)w.p * sizeof(double));
+        if ((rc = rd_monitor_report(mon, 1.0 - 1.0 / (1.0 + it), err)))
             goto out;
     }
     out->iterations = it - 1;
-    if (!converged) {
-        if (rigid + o->modes > p)
-            rc = rd_error_set(err, RD_ENOCONV, "",
-                              "The modal solver found %d zero-frequency modes where a free ring "
-                              "has 6: the stiffness matrix is degenerate for these inputs.",
-                              rigid);
-        else
-            rc = rd_error_set(err, RD_ENOCONV, "",
-                              "The modal solver did not converge in %d subspace iterations "
-                              "(%d segments, %d modes): largest relative eigenvalue change %.3g, "
-                              "wanted %.3g.",
-                              o->max_iterations, n, o->modes, worst, o->tol);
+    if (!done) {
+        rc = no_convergence(&w, o, n, rigid, worst, err);
         goto out;
     }
-
-    out->rigid_body_modes = rigid;
-    out->modes = calloc((size_t)o->modes, sizeof *out->modes);
-    if (!out->modes) {
-        rc = rd_error_set(err, RD_ENOMEM, "", "Out of memory for the modal results.");
-        goto out;
-    }
-    out->n_modes = o->modes;
-    for (int e = 0; e < o->modes; e++) {
-        int j = rigid + e;
-        if ((rc = extract_mode(ring, &w, COL(w.X, N, j), w.lam[j], w.KX, w.MX, &out->modes[e]))) {
-            rd_error_set(err, rc, "", "Out of memory for the mode shapes.");
-            goto out;
-        }
-        if (out->modes[e].residual > out->max_residual)
-            out->max_residual = out->modes[e].residual;
-    }
+    rc = collect_modes(ring, &w, rigid, o->modes, out, err);
 out:
     ws_cleanup(&w);
     if (rc != RD_OK)
@@ -420,7 +467,7 @@ out:
 int rd_modal_solve_ring(const rd_ring *ring, const rd_modal_opts *o, const rd_monitor *mon,
                         rd_modal_result *out, rd_error *err)
 {
-    return solve_ring(ring, o, mon, 0.0, 1.0, out, err);
+    return solve_ring(ring, o, mon, out, err);
 }
 
 /* The k-th mode of `kind` in r (k counts from 0), or -1. */
@@ -432,62 +479,75 @@ static int nth_of_kind(const rd_modal_result *r, int kind, int k)
     return -1;
 }
 
+/* The error estimate on the accuracy driver: level 0 solves the scene's n,
+ * level 1 the reference m with 6 spare modes, so that a coarse ring's extra
+ * mode of one kind still leaves the k-th mode of each kind to match. */
+typedef struct modal_levels {
+    const rd_ring_params *p;
+    int n[2], closed;
+    const rd_modal_opts *o;
+    rd_modal_result *res[2];
+} modal_levels;
+
+static int level_solve(void *ctx, int level, const rd_monitor *mon, rd_error *err)
+{
+    modal_levels *L = ctx;
+    rd_modal_opts ro = *L->o;
+    if (level == 1) {
+        ro.modes = L->o->modes + 6 <= RD_MODAL_MODES_MAX ? L->o->modes + 6 : RD_MODAL_MODES_MAX;
+        if (ro.modes > 6 * L->n[1] - 6)
+            ro.modes = 6 * L->n[1] - 6;
+    }
+    rd_ring *ring = rd_ring_create(L->p, L->n[level], L->closed, err);
+    if (!ring)
+        return err ? err->code : RD_ENOMEM;
+    int rc = solve_ring(ring, &ro, mon, L->res[level], err);
+    rd_ring_free(ring);
+    return rc;
+}
+
+/* Richardson with the model's order 2 (f_n = f_inf (1 + C n^-2)), mode by
+ * mode, the k-th of each kind against the k-th of the same kind. */
+static int level_compare(void *ctx, rd_error *err)
+{
+    (void)err;
+    modal_levels *L = ctx;
+    rd_modal_result *out = L->res[0], *ref = L->res[1];
+    out->reference_segments = L->n[1];
+    out->error_estimate = 0.0;
+    int seen[2] = {0, 0};
+    for (int i = 0; i < out->n_modes; i++) {
+        rd_mode *md = &out->modes[i];
+        int k = nth_of_kind(ref, md->kind, seen[md->kind]++);
+        if (k < 0) {
+            out->error_estimate = NAN;
+            continue;
+        }
+        md->frequency_extrapolated_hz = rd_accuracy_richardson(
+            md->frequency_hz, L->n[0], ref->modes[k].frequency_hz, L->n[1], 2.0, &md->error_estimate);
+        if (!(md->error_estimate <= out->error_estimate) && !isnan(out->error_estimate))
+            out->error_estimate = md->error_estimate;
+    }
+    return RD_OK;
+}
+
 int rd_modal_solve(const rd_ring_params *p, int segments, int closed, const rd_modal_opts *o,
                    const rd_monitor *mon, rd_modal_result *out, rd_error *err)
 {
-    rd_ring *ring = NULL, *ref_ring = NULL;
     rd_modal_result ref;
     memset(&ref, 0, sizeof ref);
     memset(out, 0, sizeof *out);
     int rc;
     if ((rc = rd_ring_validate(p, segments, closed, err)) || (rc = rd_modal_validate(o, segments, err)))
-        goto out;
-    /* Reference segment count: 2n (cost x2) unless that exceeds the limit. */
-    int m = 2 * segments <= RD_SEGMENTS_MAX ? 2 * segments : segments / 2;
-    double w_main = o->estimate_error ? (double)segments / (segments + m) : 1.0;
-
-    if (!(ring = rd_ring_create(p, segments, closed, err))) {
-        rc = err ? err->code : RD_ENOMEM;
-        goto out;
-    }
-    if ((rc = solve_ring(ring, o, mon, 0.0, w_main, out, err)))
-        goto out;
-    if (!o->estimate_error)
-        goto out;
-
-    rd_modal_opts ro = *o;
-    ro.modes = o->modes + 6 <= RD_MODAL_MODES_MAX ? o->modes + 6 : RD_MODAL_MODES_MAX;
-    if (ro.modes > 6 * m - 6)
-        ro.modes = 6 * m - 6;
-    if (!(ref_ring = rd_ring_create(p, m, closed, err))) {
-        rc = err ? err->code : RD_ENOMEM;
-        goto out;
-    }
-    if ((rc = solve_ring(ref_ring, &ro, mon, w_main, 1.0, &ref, err)))
-        goto out;
-    out->reference_segments = m;
-    out->error_estimate = 0.0;
-    /* f_n = f_inf (1 + C n^-2): f_inf = (m^2 f_m - n^2 f_n) / (m^2 - n^2). */
-    double n2 = (double)segments * segments, m2 = (double)m * m;
-    int seen[2] = {0, 0};
-    for (int i = 0; i < out->n_modes; i++) {
-        rd_mode *md = &out->modes[i];
-        int k = nth_of_kind(&ref, md->kind, seen[md->kind]++);
-        if (k < 0) {
-            out->error_estimate = NAN;
-            continue;
-        }
-        double fn = md->frequency_hz, fm = ref.modes[k].frequency_hz;
-        double finf = (m2 * fm - n2 * fn) / (m2 - n2);
-        md->frequency_extrapolated_hz = finf;
-        md->error_estimate = fabs(fn - finf) / fabs(finf);
-        if (!(md->error_estimate <= out->error_estimate) && !isnan(out->error_estimate))
-            out->error_estimate = md->error_estimate;
-    }
-out:
+        return rc;
+    int m = rd_accuracy_refined_segments(segments, RD_SEGMENTS_MAX);
+    char what[48];
+    snprintf(what, sizeof what, "%d segments", m);
+    modal_levels L = {p, {segments, m}, closed, o, {out, &ref}};
+    rd_accuracy_plan plan = {level_solve, level_compare, &L, o->estimate_error,
+                             (double)segments / (segments + m), what};
+    rc = rd_accuracy_run(&plan, mon, NULL, err);
     rd_modal_result_cleanup(&ref);
-    rd_ring_free(ring);
-    rd_ring_free(ref_ring);
     if (rc != RD_OK)
         rd_modal_result_cleanup(out);
     return rc;
