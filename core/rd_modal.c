@@ -4,20 +4,25 @@
  * six rigid-body null vectors) and M (block diagonal, positive definite) are
  * banded, see rd_ring.c.
  *
- * Method: shift-invert subspace iteration with Rayleigh-Ritz (Bathe).  With a
- * shift s > 0, A = K + s M is positive definite; iterate on a block X of p
- * vectors
- *     X <- A^-1 M X,  M-orthonormalize X,  solve (X^T K X) Q = (X^T M X) Q Lambda,
- *     X <- X Q,
- * which converges to the p lowest eigenpairs, pair j at the rate
- * (lambda_j + s) / (lambda_{p+1} + s) per iteration.  A is factored once
- * (LAPACK dpbtrf, O(n kd^2)); each iteration costs p band solves and O(n p^2)
- * dense work, so the cost is linear in the segment count n.
+ * Method: shift-invert Lanczos (rd_lanczos.c) on A = K + s M, s = the first
+ * thin-ring eigenvalue, factored once by banded Cholesky; cost linear in n.
  *
- * Rigid-body modes: K's null space gives Ritz values that are zero up to the
- * rounding noise of the Rayleigh quotient, about eps * lambda_max.  They are
- * counted as those below tau = sqrt(noise * lambda_ref), the geometric mean of
- * that noise and the first thin-ring eigenvalue, so both are a wide factor away.
+ * Split: for a flat ring with a section symmetric about its plane the
+ * in-plane DOFs (ux, uy, rz) and the out-of-plane DOFs (uz, rx, ry) share no
+ * entry of K or M (checked entry by entry: exact zeros), so the two 3n
+ * problems are solved separately, each for the wanted number of modes, and
+ * merged in ascending order.  Each has half the DOFs and half the bandwidth.
+ *
+ * Rigid-body modes: the six rigid motions (three in each part) are built
+ * exactly (rd_ring_rigid_motion), confirmed as null vectors of K and deflated
+ * explicitly, so they cannot leak into the elastic spectrum.  Any further
+ * eigenvalue below tau = sqrt(noise * lambda_ref) (noise = 10 eps
+ * lambda_max, the Rayleigh-quotient rounding level: tau is the geometric mean
+ * of that noise and the first thin-ring eigenvalue, a wide factor from both)
+ * is counted as one more zero mode; rigid_body_modes is the sum.
+ *
+ * Closed ring: its modes come in degenerate pairs (cos k theta, sin k theta);
+ * Lanczos runs with block size 2 so that it finds both.
  *
  * Kind: in-plane DOFs (ux, uy, rz) and out-of-plane DOFs (uz, rx, ry) decouple
  * for a section symmetric about the ring plane; a mode's kind is the side that
@@ -34,11 +39,10 @@
 
 #include "rd_accuracy.h"
 #include "rd_internal.h"
-
-#define COL(X, N, j) ((X) + (size_t)(j) * (size_t)(N))
+#include "rd_lanczos.h"
 
 /* Converged vectors have residual <= RESIDUAL_FLOOR * noise / lambda, noise =
- * 10 eps lambda_max (see solve_ring): a factor 100 above the rounding level. */
+ * 10 eps lambda_max (see setup): a factor 100 above the rounding level. */
 #define RESIDUAL_FLOOR 100.0
 
 void rd_modal_opts_default(rd_modal_opts *o)
@@ -47,6 +51,7 @@ void rd_modal_opts_default(rd_modal_opts *o)
     o->estimate_error = 1;
     o->tol = 1e-12;
     o->max_iterations = 300;
+    o->coupled = 0;
 }
 
 int rd_modal_validate(const rd_modal_opts *o, int segments, rd_error *err)
@@ -108,78 +113,48 @@ static double dot(int N, const double *a, const double *b)
     return s;
 }
 
-/* Deterministic pseudo-random fill in [-1, 1] (xorshift64*). */
-static void random_fill(uint64_t *state, int N, double *x)
-{
-    for (int i = 0; i < N; i++) {
-        uint64_t z = *state;
-        z ^= z >> 12;
-        z ^= z << 25;
-        z ^= z >> 27;
-        *state = z;
-        x[i] = (double)((z * 0x2545F4914F6CDD1DULL) >> 11) / 9007199254740992.0 * 2.0 - 1.0;
-    }
-}
-
-/* M-orthonormalizes the p columns of X (modified Gram-Schmidt, two passes),
- * MX receives M X.  A column that turns out dependent is replaced by a fresh
- * random vector. */
-static void m_orthonormalize(const rd_band *M, int N, int p, double *X, double *MX,
-                             uint64_t *rng)
-{
-    for (int j = 0; j < p; j++) {
-        double *x = COL(X, N, j), *mx = COL(MX, N, j);
-        for (int attempt = 0; attempt < 4; attempt++) {
-            rd_band_symv(M, x, mx);
-            double before = sqrt(fabs(dot(N, x, mx)));
-            for (int pass = 0; pass < 2; pass++)
-                for (int k = 0; k < j; k++) {
-                    double c = dot(N, COL(X, N, k), mx);
-                    const double *xk = COL(X, N, k), *mxk = COL(MX, N, k);
-                    for (int i = 0; i < N; i++) {
-                        x[i] -= c * xk[i];
-                        mx[i] -= c * mxk[i];
-                    }
-                }
-            double norm = sqrt(fabs(dot(N, x, mx)));
-            if (norm > 1e-10 * before && norm > 0.0) {
-                for (int i = 0; i < N; i++) {
-                    x[i] /= norm;
-                    mx[i] /= norm;
-                }
-                break;
-            }
-            random_fill(rng, N, x);
-        }
-    }
-}
+/* One independent sub-problem: a set of DOFs per segment, its K and M, the
+ * rigid motions that live in it, and its Lanczos answer. */
+typedef struct part {
+    int dofs[6], ndof; /* DOF k (0..5) of every segment */
+    int N, *map;       /* part index -> band index of the full problem */
+    rd_band K, M;
+    double *Z;         /* N x nz rigid motions restricted to the part */
+    int nz;
+    rd_lanczos_result res;
+} part;
 
 typedef struct solve_ws {
-    rd_band K, M, A;
-    double *X, *MX, *KX, *Y, *Kr, *Mr, *lam, *lam_prev;
-    int N, p;              /* DOF, block size */
-    double noise;          /* Rayleigh-quotient rounding level, 10 eps lambda_max */
-    double lambda_ref;     /* shift: first thin-ring eigenvalue */
-    double tau;            /* rigid-body threshold sqrt(noise lambda_ref) */
-    uint64_t rng;
+    rd_band K, M;      /* the full problem, band ordering */
+    int N, nparts, block;
+    part parts[2];
+    double noise;      /* Rayleigh-quotient rounding level, 10 eps lambda_max */
+    double lambda_ref; /* shift: first thin-ring eigenvalue */
+    double tau;        /* zero-mode threshold sqrt(noise lambda_ref) */
+    int *inv;          /* N: band index -> part index (scratch) */
+    double *x, *tmp1, *tmp2; /* N scratch */
 } solve_ws;
 
 static void ws_cleanup(solve_ws *w)
 {
     rd_band_cleanup(&w->K);
     rd_band_cleanup(&w->M);
-    rd_band_cleanup(&w->A);
-    free(w->X);
-    free(w->MX);
-    free(w->KX);
-    free(w->Y);
-    free(w->Kr);
-    free(w->Mr);
-    free(w->lam);
-    free(w->lam_prev);
+    for (int p = 0; p < 2; p++) {
+        part *pt = &w->parts[p];
+        free(pt->map);
+        free(pt->Z);
+        rd_band_cleanup(&pt->K);
+        rd_band_cleanup(&pt->M);
+        rd_lanczos_result_cleanup(&pt->res);
+    }
+    free(w->inv);
+    free(w->x);
+    free(w->tmp1);
+    free(w->tmp2);
 }
 
-/* Relative residual ||K x - lam M x|| / (|lam| ||M x||); tmp1, tmp2 scratch (N). */
+/* Relative residual ||K x - lam M x|| / (|lam| ||M x||) on the full problem;
+ * tmp1, tmp2 scratch (N). */
 static double residual(const solve_ws *w, int N, const double *x, double lam, double *tmp1,
                        double *tmp2)
 {
@@ -192,7 +167,6 @@ static double residual(const solve_ws *w, int N, const double *x, double lam, do
     }
     return sqrt(rr) / (fabs(lam) * sqrt(dot(N, tmp2, tmp2)));
 }
-
 /* Fills mode `md` from the band-ordered eigenvector x (eigenvalue lam). */
 static int extract_mode(const rd_ring *ring, const solve_ws *w, const double *x, double lam,
                         double *tmp1, double *tmp2, rd_mode *md)
@@ -249,169 +223,164 @@ static int extract_mode(const rd_ring *ring, const solve_ws *w, const double *x,
     return RD_OK;
 }
 
-/* Assembles K and M, factors A = K + lambda_ref M, allocates the block of p
- * vectors and fills it at random. */
-static int setup(const rd_ring *ring, int p, solve_ws *w, rd_error *err)
+/* In-plane DOFs (ux, uy, rz) and out-of-plane DOFs (uz, rx, ry) decouple
+ * when no entry of K or M joins the two sets: exactly zero, as for every flat
+ * ring with a section symmetric about its plane (rd_ring.c). */
+static const int in_plane_dof[6] = {1, 1, 0, 0, 0, 1};
+
+static int splits(const rd_band *K, const rd_band *M)
+{
+    for (int j = 0; j < K->n; j++)
+        for (int i = j - K->kd < 0 ? 0 : j - K->kd; i < j; i++)
+            if (in_plane_dof[i % 6] != in_plane_dof[j % 6] &&
+                (RD_BAND_AT(K, i, j) != 0.0 || RD_BAND_AT(M, i, j) != 0.0))
+                return 0;
+    return 1;
+}
+
+/* Copies the part's entries of the full K, M into its own band matrices. */
+static int part_matrices(solve_ws *w, part *pt, rd_error *err)
+{
+    const rd_band *K = &w->K, *M = &w->M;
+    for (int g = 0; g < w->N; g++)
+        w->inv[g] = -1;
+    for (int l = 0; l < pt->N; l++)
+        w->inv[pt->map[l]] = l;
+    int kd = 0, rc;
+    for (int pass = 0; pass < 2; pass++) {
+        if (pass == 1 && ((rc = rd_band_init(&pt->K, pt->N, kd, err)) ||
+                          (rc = rd_band_init(&pt->M, pt->N, kd, err))))
+            return rc;
+        for (int j = 0; j < w->N; j++)
+            for (int i = j - K->kd < 0 ? 0 : j - K->kd; i <= j; i++) {
+                int li = w->inv[i], lj = w->inv[j];
+                double k = RD_BAND_AT(K, i, j), m = RD_BAND_AT(M, i, j);
+                if (li < 0 || lj < 0 || (k == 0.0 && m == 0.0))
+                    continue;
+                int lo = li < lj ? li : lj, hi = li < lj ? lj : li;
+                if (pass == 0 && hi - lo > kd)
+                    kd = hi - lo;
+                if (pass == 1) {
+                    RD_BAND_AT(&pt->K, lo, hi) = k;
+                    RD_BAND_AT(&pt->M, lo, hi) = m;
+                }
+            }
+    }
+    return RD_OK;
+}
+
+/* The part's index map, matrices and the rigid motions (unit translations
+ * and rotations about the origin) whose every DOF lies in it. */
+static int build_part(const rd_ring *ring, solve_ws *w, part *pt, rd_error *err)
+{
+    const int n = rd_ring_get_segments(ring);
+    pt->N = n * pt->ndof;
+    pt->map = malloc((size_t)pt->N * sizeof *pt->map);
+    pt->Z = malloc((size_t)pt->N * 6 * sizeof *pt->Z);
+    if (!pt->map || !pt->Z)
+        return rd_error_set(err, RD_ENOMEM, "", "Out of memory for the modal solver.");
+    for (int s = 0; s < n; s++)
+        for (int t = 0; t < pt->ndof; t++)
+            pt->map[pt->ndof * s + t] = 6 * s + pt->dofs[t];
+    int rc = part_matrices(w, pt, err);
+    if (rc)
+        return rc;
+    for (int m = 0; m < 6; m++) {
+        double t[3] = {0, 0, 0}, r[3] = {0, 0, 0};
+        (m < 3 ? t : r)[m % 3] = 1.0;
+        rd_ring_rigid_motion(ring, t, r, w->x);
+        int inside = 1;
+        double *z = pt->Z + (size_t)pt->nz * pt->N;
+        for (int i = 0; i < n; i++)
+            for (int k = 0; k < 6; k++) {
+                int l = w->inv[rd_ring_band_index(ring, i, k)];
+                if (l >= 0)
+                    z[l] = w->x[6 * i + k];
+                else if (w->x[6 * i + k] != 0.0)
+                    inside = 0;
+            }
+        pt->nz += inside;
+    }
+    return RD_OK;
+}
+
+/* Assembles K and M, splits them into in-plane and out-of-plane parts where
+ * they decouple (unless o->coupled), and sets the shift and thresholds. */
+static int setup(const rd_ring *ring, const rd_modal_opts *o, solve_ws *w, rd_error *err)
 {
     int rc;
     const int N = w->N;
     if ((rc = rd_ring_assemble_band(ring, &w->K, &w->M, err)))
         return rc;
-    if ((rc = rd_band_init(&w->A, N, w->K.kd, err)))
-        return rc;
+    w->inv = malloc((size_t)N * sizeof *w->inv);
+    w->x = malloc((size_t)N * sizeof *w->x);
+    w->tmp1 = malloc((size_t)N * sizeof *w->tmp1);
+    w->tmp2 = malloc((size_t)N * sizeof *w->tmp2);
+    if (!w->inv || !w->x || !w->tmp1 || !w->tmp2)
+        return rd_error_set(err, RD_ENOMEM, "", "Out of memory for the modal solver (%d DOF).", N);
     double f_ref = rd_modal_thin_ring_outplane_hz(rd_ring_get_params(ring), 2);
     w->lambda_ref = pow(2.0 * M_PI * f_ref, 2);
     w->noise = 10.0 * 2.220446049250313e-16 * rd_ring_lambda_max_estimate(ring);
     w->tau = sqrt(w->noise * w->lambda_ref);
-    rd_band_axpby(&w->A, &w->K, w->lambda_ref, &w->M);
-    if ((rc = rd_band_cholesky(&w->A, err)))
-        return rc;
-
-    size_t blk = (size_t)N * (size_t)p;
-    w->X = malloc(blk * sizeof(double));
-    w->MX = malloc(blk * sizeof(double));
-    w->KX = malloc(blk * sizeof(double));
-    w->Y = malloc(blk * sizeof(double));
-    w->Kr = malloc((size_t)p * p * sizeof(double));
-    w->Mr = malloc((size_t)p * p * sizeof(double));
-    w->lam = malloc((size_t)p * sizeof(double));
-    w->lam_prev = malloc((size_t)p * sizeof(double));
-    if (!w->X || !w->MX || !w->KX || !w->Y || !w->Kr || !w->Mr || !w->lam || !w->lam_prev)
-        return rd_error_set(err, RD_ENOMEM, "", "Out of memory for the modal solver (%d DOF).", N);
-    w->rng = 0x9E3779B97F4A7C15ULL;
-    random_fill(&w->rng, (int)blk, w->X);
-    for (int j = 0; j < p; j++)
-        w->lam_prev[j] = NAN;
+    /* single-vector Lanczos sees one vector of each eigenspace: the closed
+     * ring's modes come in degenerate pairs */
+    w->block = rd_ring_is_closed(ring) ? 2 : 1;
+    w->nparts = !o->coupled && splits(&w->K, &w->M) ? 2 : 1;
+    for (int p = 0; p < w->nparts; p++) {
+        part *pt = &w->parts[p];
+        for (int k = 0; k < 6; k++)
+            if (w->nparts == 1 || in_plane_dof[k] == (p == 0))
+                pt->dofs[pt->ndof++] = k;
+        if ((rc = build_part(ring, w, pt, err)))
+            return rc;
+    }
     return RD_OK;
 }
 
-/* Rayleigh-Ritz on the block X (columns M-normalized, MX = M X): solves
- * (X^T K X) Q = (X^T M X) Q Lambda into Kr (Q) and lam.  Returns LAPACK's info. */
-static lapack_int rayleigh_ritz(solve_ws *w)
+/* Lanczos on part p for its `want` lowest elastic modes. */
+static int solve_part(solve_ws *w, int p, int want, const rd_modal_opts *o, const rd_monitor *mon,
+                      rd_error *err)
 {
-    const int N = w->N, p = w->p;
-    for (int j = 0; j < p; j++)
-        rd_band_symv(&w->K, COL(w->X, N, j), COL(w->KX, N, j));
-    for (int j = 0; j < p; j++)
-        for (int i = 0; i <= j; i++) {
-            w->Kr[i + (size_t)j * p] = dot(N, COL(w->X, N, i), COL(w->KX, N, j));
-            w->Mr[i + (size_t)j * p] = dot(N, COL(w->X, N, i), COL(w->MX, N, j));
-        }
-    return LAPACKE_dsygv(LAPACK_COL_MAJOR, 1, 'V', 'U', p, w->Kr, p, w->Mr, p, w->lam);
+    part *pt = &w->parts[p];
+    int room = pt->N - pt->nz;
+    rd_lanczos_problem pb = {
+        .K = &pt->K, .M = &pt->M, .null = pt->Z, .r = pt->nz,
+        .shift = w->lambda_ref, .zero = w->tau,
+        .want = want < room ? want : room, .block = w->block,
+        .max_steps = o->max_iterations,
+        .floor_abs = RESIDUAL_FLOOR * w->noise, .tol = o->tol,
+        .mon = mon, .mon_lo = (double)p / w->nparts, .mon_hi = (double)(p + 1) / w->nparts};
+    return rd_lanczos_solve(&pb, &pt->res, err);
 }
 
-/* One subspace iteration: X <- A^-1 M X, Rayleigh-Ritz, X <- X Q. */
-static int iterate(solve_ws *w, int it, rd_error *err)
+/* Fills out->modes with the `total` lowest modes of all parts, each scattered
+ * to the full problem. */
+static int collect_modes(const rd_ring *ring, solve_ws *w, int total, rd_modal_result *out,
+                         rd_error *err)
 {
-    const int N = w->N, p = w->p;
-    size_t blk = (size_t)N * (size_t)p;
-    int rc;
-    for (int j = 0; j < p; j++)
-        rd_band_symv(&w->M, COL(w->X, N, j), COL(w->Y, N, j));
-    if ((rc = rd_band_solve(&w->A, p, w->Y, err)))
-        return rc;
-    memcpy(w->X, w->Y, blk * sizeof(double));
-    /* From the second iteration on, A^-1 M X of Ritz vectors is nearly
-     * M-orthogonal: scaling the columns is enough for a well-conditioned
-     * X^T M X.  The random start, or a projected Cholesky that fails, gets a
-     * full M-orthonormalization. */
-    lapack_int info = 1;
-    for (int attempt = it == 1 ? 1 : 0; attempt < 2 && info != 0; attempt++) {
-        if (attempt == 1) {
-            m_orthonormalize(&w->M, N, p, w->X, w->MX, &w->rng);
-        } else {
-            for (int j = 0; j < p; j++) {
-                double *x = COL(w->X, N, j), *mx = COL(w->MX, N, j);
-                rd_band_symv(&w->M, x, mx);
-                double scale = 1.0 / sqrt(fabs(dot(N, x, mx)));
-                for (int i = 0; i < N; i++) {
-                    x[i] *= scale;
-                    mx[i] *= scale;
-                }
-            }
-        }
-        info = rayleigh_ritz(w);
-    }
-    if (info != 0)
-        return rd_error_set(err, RD_ENUMERIC, "",
-                            "The projected eigenproblem failed (LAPACK dsygv info %d) at "
-                            "subspace iteration %d.",
-                            (int)info, it);
-    for (int j = 0; j < p; j++) {
-        double *y = COL(w->Y, N, j);
-        memset(y, 0, (size_t)N * sizeof *y);
-        for (int k = 0; k < p; k++) {
-            double q = w->Kr[k + (size_t)j * p];
-            const double *xk = COL(w->X, N, k);
-            for (int i = 0; i < N; i++)
-                y[i] += q * xk[i];
-        }
-    }
-    memcpy(w->X, w->Y, blk * sizeof(double));
-    return RD_OK;
-}
-
-/* Counts the rigid modes (Ritz values below tau) into *rigid and returns 1
- * when the wanted elastic modes have converged: relative eigenvalue change
- * <= tol (largest change in *worst), and residuals at their noise floor,
- * about eps lambda_max / lambda (eigenvalues converge twice as fast as
- * vectors). */
-static int converged(solve_ws *w, const rd_modal_opts *o, int *rigid, double *worst)
-{
-    const int N = w->N, p = w->p;
-    int r = 0;
-    while (r < p && w->lam[r] < w->tau)
-        r++;
-    *rigid = r;
-    int last = r + o->modes, guard = p == N ? 0 : 2;
-    if (last + guard > p) {
-        *worst = INFINITY; /* too many zero modes for the block: keep iterating */
-        return 0;
-    }
-    *worst = 0.0;
-    for (int j = r; j < last; j++) {
-        double change = fabs(w->lam[j] - w->lam_prev[j]) / (fabs(w->lam[j]) + w->noise);
-        if (!(change <= *worst))
-            *worst = isnan(change) ? INFINITY : change;
-    }
-    if (!(*worst <= o->tol + w->noise / w->lambda_ref))
-        return 0;
-    for (int j = r; j < last; j++) {
-        double res = residual(w, N, COL(w->X, N, j), w->lam[j], w->KX, w->MX);
-        if (!(res <= RESIDUAL_FLOOR * w->noise / w->lam[j] + o->tol))
-            return 0;
-    }
-    return 1;
-}
-
-/* The failure message of an unconverged solve. */
-static int no_convergence(const solve_ws *w, const rd_modal_opts *o, int n, int rigid,
-                          double worst, rd_error *err)
-{
-    if (rigid + o->modes > w->p)
-        return rd_error_set(err, RD_ENOCONV, "",
-                            "The modal solver found %d zero-frequency modes where a free ring "
-                            "has 6: the stiffness matrix is degenerate for these inputs.",
-                            rigid);
-    return rd_error_set(err, RD_ENOCONV, "",
-                        "The modal solver did not converge in %d subspace iterations "
-                        "(%d segments, %d modes): largest relative eigenvalue change %.3g, "
-                        "wanted %.3g.",
-                        o->max_iterations, n, o->modes, worst, o->tol);
-}
-
-/* Fills out->modes from the converged Ritz vectors after the rigid ones. */
-static int collect_modes(const rd_ring *ring, solve_ws *w, int rigid, int modes,
-                         rd_modal_result *out, rd_error *err)
-{
-    out->rigid_body_modes = rigid;
-    out->modes = calloc((size_t)modes, sizeof *out->modes);
+    out->modes = calloc((size_t)total, sizeof *out->modes);
     if (!out->modes)
         return rd_error_set(err, RD_ENOMEM, "", "Out of memory for the modal results.");
-    out->n_modes = modes;
-    for (int e = 0; e < modes; e++) {
-        int j = rigid + e;
-        int rc = extract_mode(ring, w, COL(w->X, w->N, j), w->lam[j], w->KX, w->MX, &out->modes[e]);
+    int next[2] = {0, 0};
+    for (int e = 0; e < total; e++) {
+        int best = -1;
+        for (int p = 0; p < w->nparts; p++) {
+            const rd_lanczos_result *r = &w->parts[p].res;
+            if (next[p] < r->found &&
+                (best < 0 || r->lambda[next[p]] < w->parts[best].res.lambda[next[best]]))
+                best = p;
+        }
+        if (best < 0)
+            return rd_error_set(err, RD_EINTERNAL, "", "The modal solver found %d of %d modes.",
+                                e, total);
+        const part *pt = &w->parts[best];
+        const double *xp = pt->res.x + (size_t)next[best] * pt->N;
+        memset(w->x, 0, (size_t)w->N * sizeof *w->x);
+        for (int l = 0; l < pt->N; l++)
+            w->x[pt->map[l]] = xp[l];
+        int rc = extract_mode(ring, w, w->x, pt->res.lambda[next[best]++], w->tmp1, w->tmp2,
+                              &out->modes[e]);
+        out->n_modes = e + 1;
         if (rc)
             return rd_error_set(err, rc, "", "Out of memory for the mode shapes.");
         if (out->modes[e].residual > out->max_residual)
@@ -420,43 +389,44 @@ static int collect_modes(const rd_ring *ring, solve_ws *w, int rigid, int modes,
     return RD_OK;
 }
 
-static int solve_ring(const rd_ring *ring, const rd_modal_opts *o, const rd_monitor *mon,
-                      rd_modal_result *out, rd_error *err)
+/* Solves the ring for o->modes modes, or, when want_kind is given and the
+ * problem splits, for want_kind[k] modes of kind k (the reference solve of
+ * the error estimate matches modes kind by kind). */
+static int solve_ring(const rd_ring *ring, const rd_modal_opts *o, const int *want_kind,
+                      const rd_monitor *mon, rd_modal_result *out, rd_error *err)
 {
     solve_ws w;
     memset(&w, 0, sizeof w);
     memset(out, 0, sizeof *out);
     int rc = RD_OK;
-    const int n = rd_ring_get_segments(ring), N = 6 * n;
+    const int n = rd_ring_get_segments(ring);
+    w.N = 6 * n;
     out->segments = n;
-    out->dof = N;
+    out->dof = w.N;
     out->error_estimate = NAN;
 
-    if ((rc = rd_modal_validate(o, n, err)))
+    if ((rc = rd_modal_validate(o, n, err)) || (rc = setup(ring, o, &w, err)))
         goto out;
-    int want = 6 + o->modes;
-    int p = 2 * want > want + 8 ? 2 * want : want + 8;
-    w.N = N;
-    w.p = out->block_size = p > N ? N : p;
-    if ((rc = setup(ring, w.p, &w, err)))
-        goto out;
-
-    int done = 0, rigid = 0, it;
-    double worst = INFINITY;
-    for (it = 1; it <= o->max_iterations && !done; it++) {
-        if ((rc = iterate(&w, it, err)))
-            goto out;
-        done = converged(&w, o, &rigid, &worst);
-        memcpy(w.lam_prev, w.lam, (size_t)w.p * sizeof(double));
-        if ((rc = rd_monitor_report(mon, 1.0 - 1.0 / (1.0 + it), err)))
+    out->block_size = w.block;
+    int per_kind = want_kind && w.nparts == 2;
+    int total = per_kind ? want_kind[0] + want_kind[1] : o->modes;
+    for (int p = 0; p < w.nparts; p++) {
+        rd_error sub;
+        rd_error_init(&sub);
+        rc = solve_part(&w, p, per_kind ? want_kind[p] : o->modes, o, mon, &sub);
+        out->iterations += w.parts[p].res.steps;
+        out->rigid_body_modes += w.parts[p].res.deflated + w.parts[p].res.zeros;
+        if (rc == RD_ENOCONV)
+            rd_error_set(err, rc, "",
+                         "The modal solver did not converge in %d Lanczos steps (%d segments, "
+                         "%d modes): the largest residual is %.3g times its rounding floor.",
+                         o->max_iterations, n, o->modes, w.parts[p].res.worst);
+        else if (rc)
+            rd_error_set(err, rc, sub.path, "%s", sub.message);
+        if (rc)
             goto out;
     }
-    out->iterations = it - 1;
-    if (!done) {
-        rc = no_convergence(&w, o, n, rigid, worst, err);
-        goto out;
-    }
-    rc = collect_modes(ring, &w, rigid, o->modes, out, err);
+    rc = collect_modes(ring, &w, total, out, err);
 out:
     ws_cleanup(&w);
     if (rc != RD_OK)
@@ -467,7 +437,7 @@ out:
 int rd_modal_solve_ring(const rd_ring *ring, const rd_modal_opts *o, const rd_monitor *mon,
                         rd_modal_result *out, rd_error *err)
 {
-    return solve_ring(ring, o, mon, out, err);
+    return solve_ring(ring, o, NULL, mon, out, err);
 }
 
 /* The k-th mode of `kind` in r (k counts from 0), or -1. */
@@ -493,15 +463,18 @@ static int level_solve(void *ctx, int level, const rd_monitor *mon, rd_error *er
 {
     modal_levels *L = ctx;
     rd_modal_opts ro = *L->o;
+    int want_kind[2] = {0, 0};
     if (level == 1) {
         ro.modes = L->o->modes + 6 <= RD_MODAL_MODES_MAX ? L->o->modes + 6 : RD_MODAL_MODES_MAX;
         if (ro.modes > 6 * L->n[1] - 6)
             ro.modes = 6 * L->n[1] - 6;
+        for (int i = 0; i < L->res[0]->n_modes; i++)
+            want_kind[L->res[0]->modes[i].kind]++;
     }
     rd_ring *ring = rd_ring_create(L->p, L->n[level], L->closed, err);
     if (!ring)
         return err ? err->code : RD_ENOMEM;
-    int rc = solve_ring(ring, &ro, mon, L->res[level], err);
+    int rc = solve_ring(ring, &ro, level == 1 ? want_kind : NULL, mon, L->res[level], err);
     rd_ring_free(ring);
     return rc;
 }
