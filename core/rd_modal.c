@@ -4,20 +4,25 @@
  * six rigid-body null vectors) and M (block diagonal, positive definite) are
  * banded, see rd_ring.c.
  *
- * Method: shift-invert subspace iteration with Rayleigh-Ritz (Bathe).  With a
- * shift s > 0, A = K + s M is positive definite; iterate on a block X of p
- * vectors
- *     X <- A^-1 M X,  M-orthonormalize X,  solve (X^T K X) Q = (X^T M X) Q Lambda,
- *     X <- X Q,
- * which converges to the p lowest eigenpairs, pair j at the rate
- * (lambda_j + s) / (lambda_{p+1} + s) per iteration.  A is factored once
- * (LAPACK dpbtrf, O(n kd^2)); each iteration costs p band solves and O(n p^2)
- * dense work, so the cost is linear in the segment count n.
+ * Method: shift-invert Lanczos (rd_lanczos.c) on A = K + s M, s = the first
+ * thin-ring eigenvalue, factored once by banded Cholesky; cost linear in n.
  *
- * Rigid-body modes: K's null space gives Ritz values that are zero up to the
- * rounding noise of the Rayleigh quotient, about eps * lambda_max.  They are
- * counted as those below tau = sqrt(noise * lambda_ref), the geometric mean of
- * that noise and the first thin-ring eigenvalue, so both are a wide factor away.
+ * Split: for a flat ring with a section symmetric about its plane the
+ * in-plane DOFs (ux, uy, rz) and the out-of-plane DOFs (uz, rx, ry) share no
+ * entry of K or M (checked entry by entry: exact zeros), so the two 3n
+ * problems are solved separately, each for the wanted number of modes, and
+ * merged in ascending order.  Each has half the DOFs and half the bandwidth.
+ *
+ * Rigid-body modes: the six rigid motions (three in each part) are built
+ * exactly (rd_ring_rigid_motion), confirmed as null vectors of K and deflated
+ * explicitly, so they cannot leak into the elastic spectrum.  Any further
+ * eigenvalue below tau = sqrt(noise * lambda_ref) (noise = 10 eps
+ * lambda_max, the Rayleigh-quotient rounding level: tau is the geometric mean
+ * of that noise and the first thin-ring eigenvalue, a wide factor from both)
+ * is counted as one more zero mode; rigid_body_modes is the sum.
+ *
+ * Closed ring: its modes come in degenerate pairs (cos k theta, sin k theta);
+ * Lanczos runs with block size 2 so that it finds both.
  *
  * Kind: in-plane DOFs (ux, uy, rz) and out-of-plane DOFs (uz, rx, ry) decouple
  * for a section symmetric about the ring plane; a mode's kind is the side that
@@ -28,15 +33,16 @@
 #include <lapacke.h>
 #include <math.h>
 #include <stdint.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
+#include "rd_accuracy.h"
 #include "rd_internal.h"
-
-#define COL(X, N, j) ((X) + (size_t)(j) * (size_t)(N))
+#include "rd_lanczos.h"
 
 /* Converged vectors have residual <= RESIDUAL_FLOOR * noise / lambda, noise =
- * 10 eps lambda_max (see solve_ring): a factor 100 above the rounding level. */
+ * 10 eps lambda_max (see setup): a factor 100 above the rounding level. */
 #define RESIDUAL_FLOOR 100.0
 
 void rd_modal_opts_default(rd_modal_opts *o)
@@ -45,6 +51,7 @@ void rd_modal_opts_default(rd_modal_opts *o)
     o->estimate_error = 1;
     o->tol = 1e-12;
     o->max_iterations = 300;
+    o->coupled = 0;
 }
 
 int rd_modal_validate(const rd_modal_opts *o, int segments, rd_error *err)
@@ -106,73 +113,48 @@ static double dot(int N, const double *a, const double *b)
     return s;
 }
 
-/* Deterministic pseudo-random fill in [-1, 1] (xorshift64*). */
-static void random_fill(uint64_t *state, int N, double *x)
-{
-    for (int i = 0; i < N; i++) {
-        uint64_t z = *state;
-        z ^= z >> 12;
-        z ^= z << 25;
-        z ^= z >> 27;
-        *state = z;
-        x[i] = (double)((z * 0x2545F4914F6CDD1DULL) >> 11) / 9007199254740992.0 * 2.0 - 1.0;
-    }
-}
-
-/* M-orthonormalizes the p columns of X (modified Gram-Schmidt, two passes),
- * MX receives M X.  A column that turns out dependent is replaced by a fresh
- * random vector. */
-static void m_orthonormalize(const rd_band *M, int N, int p, double *X, double *MX,
-                             uint64_t *rng)
-{
-    for (int j = 0; j < p; j++) {
-        double *x = COL(X, N, j), *mx = COL(MX, N, j);
-        for (int attempt = 0; attempt < 4; attempt++) {
-            rd_band_symv(M, x, mx);
-            double before = sqrt(fabs(dot(N, x, mx)));
-            for (int pass = 0; pass < 2; pass++)
-                for (int k = 0; k < j; k++) {
-                    double c = dot(N, COL(X, N, k), mx);
-                    const double *xk = COL(X, N, k), *mxk = COL(MX, N, k);
-                    for (int i = 0; i < N; i++) {
-                        x[i] -= c * xk[i];
-                        mx[i] -= c * mxk[i];
-                    }
-                }
-            double norm = sqrt(fabs(dot(N, x, mx)));
-            if (norm > 1e-10 * before && norm > 0.0) {
-                for (int i = 0; i < N; i++) {
-                    x[i] /= norm;
-                    mx[i] /= norm;
-                }
-                break;
-            }
-            random_fill(rng, N, x);
-        }
-    }
-}
+/* One independent sub-problem: a set of DOFs per segment, its K and M, the
+ * rigid motions that live in it, and its Lanczos answer. */
+typedef struct part {
+    int dofs[6], ndof; /* DOF k (0..5) of every segment */
+    int N, *map;       /* part index -> band index of the full problem */
+    rd_band K, M;
+    double *Z;         /* N x nz rigid motions restricted to the part */
+    int nz;
+    rd_lanczos_result res;
+} part;
 
 typedef struct solve_ws {
-    rd_band K, M, A;
-    double *X, *MX, *KX, *Y, *Kr, *Mr, *lam, *lam_prev;
+    rd_band K, M;      /* the full problem, band ordering */
+    int N, nparts, block;
+    part parts[2];
+    double noise;      /* Rayleigh-quotient rounding level, 10 eps lambda_max */
+    double lambda_ref; /* shift: first thin-ring eigenvalue */
+    double tau;        /* zero-mode threshold sqrt(noise lambda_ref) */
+    int *inv;          /* N: band index -> part index (scratch) */
+    double *x, *tmp1, *tmp2; /* N scratch */
 } solve_ws;
 
 static void ws_cleanup(solve_ws *w)
 {
     rd_band_cleanup(&w->K);
     rd_band_cleanup(&w->M);
-    rd_band_cleanup(&w->A);
-    free(w->X);
-    free(w->MX);
-    free(w->KX);
-    free(w->Y);
-    free(w->Kr);
-    free(w->Mr);
-    free(w->lam);
-    free(w->lam_prev);
+    for (int p = 0; p < 2; p++) {
+        part *pt = &w->parts[p];
+        free(pt->map);
+        free(pt->Z);
+        rd_band_cleanup(&pt->K);
+        rd_band_cleanup(&pt->M);
+        rd_lanczos_result_cleanup(&pt->res);
+    }
+    free(w->inv);
+    free(w->x);
+    free(w->tmp1);
+    free(w->tmp2);
 }
 
-/* Relative residual ||K x - lam M x|| / (|lam| ||M x||); tmp1, tmp2 scratch (N). */
+/* Relative residual ||K x - lam M x|| / (|lam| ||M x||) on the full problem;
+ * tmp1, tmp2 scratch (N). */
 static double residual(const solve_ws *w, int N, const double *x, double lam, double *tmp1,
                        double *tmp2)
 {
@@ -185,7 +167,6 @@ static double residual(const solve_ws *w, int N, const double *x, double lam, do
     }
     return sqrt(rr) / (fabs(lam) * sqrt(dot(N, tmp2, tmp2)));
 }
-
 /* Fills mode `md` from the band-ordered eigenvector x (eigenvalue lam). */
 static int extract_mode(const rd_ring *ring, const solve_ws *w, const double *x, double lam,
                         double *tmp1, double *tmp2, rd_mode *md)
@@ -242,174 +223,210 @@ static int extract_mode(const rd_ring *ring, const solve_ws *w, const double *x,
     return RD_OK;
 }
 
-static int solve_ring(const rd_ring *ring, const rd_modal_opts *o, const rd_monitor *mon,
-                      double prog_lo, double prog_hi, rd_modal_result *out, rd_error *err)
+/* In-plane DOFs (ux, uy, rz) and out-of-plane DOFs (uz, rx, ry) decouple
+ * when no entry of K or M joins the two sets: exactly zero, as for every flat
+ * ring with a section symmetric about its plane (rd_ring.c). */
+static const int in_plane_dof[6] = {1, 1, 0, 0, 0, 1};
+
+static int splits(const rd_band *K, const rd_band *M)
+{
+    for (int j = 0; j < K->n; j++)
+        for (int i = j - K->kd < 0 ? 0 : j - K->kd; i < j; i++)
+            if (in_plane_dof[i % 6] != in_plane_dof[j % 6] &&
+                (RD_BAND_AT(K, i, j) != 0.0 || RD_BAND_AT(M, i, j) != 0.0))
+                return 0;
+    return 1;
+}
+
+/* Copies the part's entries of the full K, M into its own band matrices. */
+static int part_matrices(solve_ws *w, part *pt, rd_error *err)
+{
+    const rd_band *K = &w->K, *M = &w->M;
+    for (int g = 0; g < w->N; g++)
+        w->inv[g] = -1;
+    for (int l = 0; l < pt->N; l++)
+        w->inv[pt->map[l]] = l;
+    int kd = 0, rc;
+    for (int pass = 0; pass < 2; pass++) {
+        if (pass == 1 && ((rc = rd_band_init(&pt->K, pt->N, kd, err)) ||
+                          (rc = rd_band_init(&pt->M, pt->N, kd, err))))
+            return rc;
+        for (int j = 0; j < w->N; j++)
+            for (int i = j - K->kd < 0 ? 0 : j - K->kd; i <= j; i++) {
+                int li = w->inv[i], lj = w->inv[j];
+                double k = RD_BAND_AT(K, i, j), m = RD_BAND_AT(M, i, j);
+                if (li < 0 || lj < 0 || (k == 0.0 && m == 0.0))
+                    continue;
+                int lo = li < lj ? li : lj, hi = li < lj ? lj : li;
+                if (pass == 0 && hi - lo > kd)
+                    kd = hi - lo;
+                if (pass == 1) {
+                    RD_BAND_AT(&pt->K, lo, hi) = k;
+                    RD_BAND_AT(&pt->M, lo, hi) = m;
+                }
+            }
+    }
+    return RD_OK;
+}
+
+/* The part's index map, matrices and the rigid motions (unit translations
+ * and rotations about the origin) whose every DOF lies in it. */
+static int build_part(const rd_ring *ring, solve_ws *w, part *pt, rd_error *err)
+{
+    const int n = rd_ring_get_segments(ring);
+    pt->N = n * pt->ndof;
+    pt->map = malloc((size_t)pt->N * sizeof *pt->map);
+    pt->Z = malloc((size_t)pt->N * 6 * sizeof *pt->Z);
+    if (!pt->map || !pt->Z)
+        return rd_error_set(err, RD_ENOMEM, "", "Out of memory for the modal solver.");
+    for (int s = 0; s < n; s++)
+        for (int t = 0; t < pt->ndof; t++)
+            pt->map[pt->ndof * s + t] = 6 * s + pt->dofs[t];
+    int rc = part_matrices(w, pt, err);
+    if (rc)
+        return rc;
+    for (int m = 0; m < 6; m++) {
+        double t[3] = {0, 0, 0}, r[3] = {0, 0, 0};
+        (m < 3 ? t : r)[m % 3] = 1.0;
+        rd_ring_rigid_motion(ring, t, r, w->x);
+        int inside = 1;
+        double *z = pt->Z + (size_t)pt->nz * pt->N;
+        for (int i = 0; i < n; i++)
+            for (int k = 0; k < 6; k++) {
+                int l = w->inv[rd_ring_band_index(ring, i, k)];
+                if (l >= 0)
+                    z[l] = w->x[6 * i + k];
+                else if (w->x[6 * i + k] != 0.0)
+                    inside = 0;
+            }
+        pt->nz += inside;
+    }
+    return RD_OK;
+}
+
+/* Assembles K and M, splits them into in-plane and out-of-plane parts where
+ * they decouple (unless o->coupled), and sets the shift and thresholds. */
+static int setup(const rd_ring *ring, const rd_modal_opts *o, solve_ws *w, rd_error *err)
+{
+    int rc;
+    const int N = w->N;
+    if ((rc = rd_ring_assemble_band(ring, &w->K, &w->M, err)))
+        return rc;
+    w->inv = malloc((size_t)N * sizeof *w->inv);
+    w->x = malloc((size_t)N * sizeof *w->x);
+    w->tmp1 = malloc((size_t)N * sizeof *w->tmp1);
+    w->tmp2 = malloc((size_t)N * sizeof *w->tmp2);
+    if (!w->inv || !w->x || !w->tmp1 || !w->tmp2)
+        return rd_error_set(err, RD_ENOMEM, "", "Out of memory for the modal solver (%d DOF).", N);
+    double f_ref = rd_modal_thin_ring_outplane_hz(rd_ring_get_params(ring), 2);
+    w->lambda_ref = pow(2.0 * M_PI * f_ref, 2);
+    w->noise = 10.0 * 2.220446049250313e-16 * rd_ring_lambda_max_estimate(ring);
+    w->tau = sqrt(w->noise * w->lambda_ref);
+    /* single-vector Lanczos sees one vector of each eigenspace: the closed
+     * ring's modes come in degenerate pairs */
+    w->block = rd_ring_is_closed(ring) ? 2 : 1;
+    w->nparts = !o->coupled && splits(&w->K, &w->M) ? 2 : 1;
+    for (int p = 0; p < w->nparts; p++) {
+        part *pt = &w->parts[p];
+        for (int k = 0; k < 6; k++)
+            if (w->nparts == 1 || in_plane_dof[k] == (p == 0))
+                pt->dofs[pt->ndof++] = k;
+        if ((rc = build_part(ring, w, pt, err)))
+            return rc;
+    }
+    return RD_OK;
+}
+
+/* Lanczos on part p for its `want` lowest elastic modes. */
+static int solve_part(solve_ws *w, int p, int want, const rd_modal_opts *o, const rd_monitor *mon,
+                      rd_error *err)
+{
+    part *pt = &w->parts[p];
+    int room = pt->N - pt->nz;
+    rd_lanczos_problem pb = {
+        .K = &pt->K, .M = &pt->M, .null = pt->Z, .r = pt->nz,
+        .shift = w->lambda_ref, .zero = w->tau,
+        .want = want < room ? want : room, .block = w->block,
+        .max_steps = o->max_iterations,
+        .floor_abs = RESIDUAL_FLOOR * w->noise, .tol = o->tol,
+        .mon = mon, .mon_lo = (double)p / w->nparts, .mon_hi = (double)(p + 1) / w->nparts};
+    return rd_lanczos_solve(&pb, &pt->res, err);
+}
+
+/* Fills out->modes with the `total` lowest modes of all parts, each scattered
+ * to the full problem. */
+static int collect_modes(const rd_ring *ring, solve_ws *w, int total, rd_modal_result *out,
+                         rd_error *err)
+{
+    out->modes = calloc((size_t)total, sizeof *out->modes);
+    if (!out->modes)
+        return rd_error_set(err, RD_ENOMEM, "", "Out of memory for the modal results.");
+    int next[2] = {0, 0};
+    for (int e = 0; e < total; e++) {
+        int best = -1;
+        for (int p = 0; p < w->nparts; p++) {
+            const rd_lanczos_result *r = &w->parts[p].res;
+            if (next[p] < r->found &&
+                (best < 0 || r->lambda[next[p]] < w->parts[best].res.lambda[next[best]]))
+                best = p;
+        }
+        if (best < 0)
+            return rd_error_set(err, RD_EINTERNAL, "", "The modal solver found %d of %d modes.",
+                                e, total);
+        const part *pt = &w->parts[best];
+        const double *xp = pt->res.x + (size_t)next[best] * pt->N;
+        memset(w->x, 0, (size_t)w->N * sizeof *w->x);
+        for (int l = 0; l < pt->N; l++)
+            w->x[pt->map[l]] = xp[l];
+        int rc = extract_mode(ring, w, w->x, pt->res.lambda[next[best]++], w->tmp1, w->tmp2,
+                              &out->modes[e]);
+        out->n_modes = e + 1;
+        if (rc)
+            return rd_error_set(err, rc, "", "Out of memory for the mode shapes.");
+        if (out->modes[e].residual > out->max_residual)
+            out->max_residual = out->modes[e].residual;
+    }
+    return RD_OK;
+}
+
+/* Solves the ring for o->modes modes, or, when want_kind is given and the
+ * problem splits, for want_kind[k] modes of kind k (the reference solve of
+ * the error estimate matches modes kind by kind). */
+static int solve_ring(const rd_ring *ring, const rd_modal_opts *o, const int *want_kind,
+                      const rd_monitor *mon, rd_modal_result *out, rd_error *err)
 {
     solve_ws w;
     memset(&w, 0, sizeof w);
     memset(out, 0, sizeof *out);
     int rc = RD_OK;
-    const int n = rd_ring_get_segments(ring), N = 6 * n;
-    const rd_ring_params *prm = rd_ring_get_params(ring);
+    const int n = rd_ring_get_segments(ring);
+    w.N = 6 * n;
     out->segments = n;
-    out->dof = N;
+    out->dof = w.N;
     out->error_estimate = NAN;
 
-    if ((rc = rd_modal_validate(o, n, err)))
+    if ((rc = rd_modal_validate(o, n, err)) || (rc = setup(ring, o, &w, err)))
         goto out;
-    int want = 6 + o->modes;
-    int p = 2 * want > want + 8 ? 2 * want : want + 8;
-    if (p > N)
-        p = N;
-    out->block_size = p;
-
-    if ((rc = rd_ring_assemble_band(ring, &w.K, &w.M, err)))
-        goto out;
-    if ((rc = rd_band_init(&w.A, N, w.K.kd, err)))
-        goto out;
-    double f_ref = rd_modal_thin_ring_outplane_hz(prm, 2);
-    double lambda_ref = pow(2.0 * M_PI * f_ref, 2);
-    double noise = 10.0 * 2.220446049250313e-16 * rd_ring_lambda_max_estimate(ring);
-    double tau = sqrt(noise * lambda_ref);
-    rd_band_axpby(&w.A, &w.K, lambda_ref, &w.M);
-    if ((rc = rd_band_cholesky(&w.A, err)))
-        goto out;
-
-    size_t blk = (size_t)N * (size_t)p;
-    w.X = malloc(blk * sizeof(double));
-    w.MX = malloc(blk * sizeof(double));
-    w.KX = malloc(blk * sizeof(double));
-    w.Y = malloc(blk * sizeof(double));
-    w.Kr = malloc((size_t)p * p * sizeof(double));
-    w.Mr = malloc((size_t)p * p * sizeof(double));
-    w.lam = malloc((size_t)p * sizeof(double));
-    w.lam_prev = malloc((size_t)p * sizeof(double));
-    if (!w.X || !w.MX || !w.KX || !w.Y || !w.Kr || !w.Mr || !w.lam || !w.lam_prev) {
-        rc = rd_error_set(err, RD_ENOMEM, "", "Out of memory for the modal solver (%d DOF).", N);
-        goto out;
-    }
-    uint64_t rng = 0x9E3779B97F4A7C15ULL;
-    random_fill(&rng, (int)blk, w.X);
-    for (int j = 0; j < p; j++)
-        w.lam_prev[j] = NAN;
-
-    int converged = 0, rigid = 0, it;
-    double worst = INFINITY;
-    for (it = 1; it <= o->max_iterations && !converged; it++) {
-        /* X <- A^-1 M X */
-        for (int j = 0; j < p; j++)
-            rd_band_symv(&w.M, COL(w.X, N, j), COL(w.Y, N, j));
-        if ((rc = rd_band_solve(&w.A, p, w.Y, err)))
-            goto out;
-        memcpy(w.X, w.Y, blk * sizeof(double));
-        /* From the second iteration on, A^-1 M X of Ritz vectors is nearly
-         * M-orthogonal: scaling the columns is enough for a well-conditioned
-         * X^T M X.  The random start, or a projected Cholesky that fails,
-         * gets a full M-orthonormalization. */
-        lapack_int info = 1;
-        for (int attempt = it == 1 ? 1 : 0; attempt < 2 && info != 0; attempt++) {
-            if (attempt == 1) {
-                m_orthonormalize(&w.M, N, p, w.X, w.MX, &rng);
-            } else {
-                for (int j = 0; j < p; j++) {
-                    double *x = COL(w.X, N, j), *mx = COL(w.MX, N, j);
-                    rd_band_symv(&w.M, x, mx);
-                    double scale = 1.0 / sqrt(fabs(dot(N, x, mx)));
-                    for (int i = 0; i < N; i++) {
-                        x[i] *= scale;
-                        mx[i] *= scale;
-                    }
-                }
-            }
-            /* Rayleigh-Ritz */
-            for (int j = 0; j < p; j++)
-                rd_band_symv(&w.K, COL(w.X, N, j), COL(w.KX, N, j));
-            for (int j = 0; j < p; j++)
-                for (int i = 0; i <= j; i++) {
-                    w.Kr[i + (size_t)j * p] = dot(N, COL(w.X, N, i), COL(w.KX, N, j));
-                    w.Mr[i + (size_t)j * p] = dot(N, COL(w.X, N, i), COL(w.MX, N, j));
-                }
-            info = LAPACKE_dsygv(LAPACK_COL_MAJOR, 1, 'V', 'U', p, w.Kr, p, w.Mr, p, w.lam);
-        }
-        if (info != 0) {
-            rc = rd_error_set(err, RD_ENUMERIC, "",
-                              "The projected eigenproblem failed (LAPACK dsygv info %d) at "
-                              "subspace iteration %d.",
-                              (int)info, it);
-            goto out;
-        }
-        /* X <- X Q */
-        for (int j = 0; j < p; j++) {
-            double *y = COL(w.Y, N, j);
-            memset(y, 0, (size_t)N * sizeof *y);
-            for (int k = 0; k < p; k++) {
-                double q = w.Kr[k + (size_t)j * p];
-                const double *xk = COL(w.X, N, k);
-                for (int i = 0; i < N; i++)
-                    y[i] += q * xk[i];
-            }
-        }
-        memcpy(w.X, w.Y, blk * sizeof(double));
-
-        rigid = 0;
-        while (rigid < p && w.lam[rigid] < tau)
-            rigid++;
-        int last = rigid + o->modes, guard = p == N ? 0 : 2;
-        worst = 0.0;
-        if (last + guard > p) {
-            worst = INFINITY; /* too many zero modes for the block: keep iterating */
-        } else {
-            for (int j = rigid; j < last; j++) {
-                double change = fabs(w.lam[j] - w.lam_prev[j]) / (fabs(w.lam[j]) + noise);
-                if (!(change <= worst))
-                    worst = isnan(change) ? INFINITY : change;
-            }
-        }
-        converged = worst <= o->tol + noise / lambda_ref;
-        /* Eigenvalues converge twice as fast as vectors: also ask every wanted
-         * vector's residual to reach its noise floor, about eps * lambda_max / lambda. */
-        for (int j = rigid; converged && j < last; j++) {
-            double res = residual(&w, N, COL(w.X, N, j), w.lam[j], w.KX, w.MX);
-            if (!(res <= RESIDUAL_FLOOR * noise / w.lam[j] + o->tol))
-                converged = 0;
-        }
-        memcpy(w.lam_prev, w.lam, (size_t)p * sizeof(double));
-        double frac = 1.0 - 1.0 / (1.0 + it);
-        if ((rc = rd_monitor_report(mon, prog_lo + (prog_hi - prog_lo) * frac, err)))
+    out->block_size = w.block;
+    int per_kind = want_kind && w.nparts == 2;
+    int total = per_kind ? want_kind[0] + want_kind[1] : o->modes;
+    for (int p = 0; p < w.nparts; p++) {
+        rd_error sub;
+        rd_error_init(&sub);
+        rc = solve_part(&w, p, per_kind ? want_kind[p] : o->modes, o, mon, &sub);
+        out->iterations += w.parts[p].res.steps;
+        out->rigid_body_modes += w.parts[p].res.deflated + w.parts[p].res.zeros;
+        if (rc == RD_ENOCONV)
+            rd_error_set(err, rc, "",
+                         "The modal solver did not converge in %d Lanczos steps (%d segments, "
+                         "%d modes): the largest residual is %.3g times its rounding floor.",
+                         o->max_iterations, n, o->modes, w.parts[p].res.worst);
+        else if (rc)
+            rd_error_set(err, rc, sub.path, "%s", sub.message);
+        if (rc)
             goto out;
     }
-    out->iterations = it - 1;
-    if (!converged) {
-        if (rigid + o->modes > p)
-            rc = rd_error_set(err, RD_ENOCONV, "",
-                              "The modal solver found %d zero-frequency modes where a free ring "
-                              "has 6: the stiffness matrix is degenerate for these inputs.",
-                              rigid);
-        else
-            rc = rd_error_set(err, RD_ENOCONV, "",
-                              "The modal solver did not converge in %d subspace iterations "
-                              "(%d segments, %d modes): largest relative eigenvalue change %.3g, "
-                              "wanted %.3g.",
-                              o->max_iterations, n, o->modes, worst, o->tol);
-        goto out;
-    }
-
-    out->rigid_body_modes = rigid;
-    out->modes = calloc((size_t)o->modes, sizeof *out->modes);
-    if (!out->modes) {
-        rc = rd_error_set(err, RD_ENOMEM, "", "Out of memory for the modal results.");
-        goto out;
-    }
-    out->n_modes = o->modes;
-    for (int e = 0; e < o->modes; e++) {
-        int j = rigid + e;
-        if ((rc = extract_mode(ring, &w, COL(w.X, N, j), w.lam[j], w.KX, w.MX, &out->modes[e]))) {
-            rd_error_set(err, rc, "", "Out of memory for the mode shapes.");
-            goto out;
-        }
-        if (out->modes[e].residual > out->max_residual)
-            out->max_residual = out->modes[e].residual;
-    }
+    rc = collect_modes(ring, &w, total, out, err);
 out:
     ws_cleanup(&w);
     if (rc != RD_OK)
@@ -420,7 +437,7 @@ out:
 int rd_modal_solve_ring(const rd_ring *ring, const rd_modal_opts *o, const rd_monitor *mon,
                         rd_modal_result *out, rd_error *err)
 {
-    return solve_ring(ring, o, mon, 0.0, 1.0, out, err);
+    return solve_ring(ring, o, NULL, mon, out, err);
 }
 
 /* The k-th mode of `kind` in r (k counts from 0), or -1. */
@@ -432,62 +449,78 @@ static int nth_of_kind(const rd_modal_result *r, int kind, int k)
     return -1;
 }
 
+/* The error estimate on the accuracy driver: level 0 solves the scene's n,
+ * level 1 the reference m with 6 spare modes, so that a coarse ring's extra
+ * mode of one kind still leaves the k-th mode of each kind to match. */
+typedef struct modal_levels {
+    const rd_ring_params *p;
+    int n[2], closed;
+    const rd_modal_opts *o;
+    rd_modal_result *res[2];
+} modal_levels;
+
+static int level_solve(void *ctx, int level, const rd_monitor *mon, rd_error *err)
+{
+    modal_levels *L = ctx;
+    rd_modal_opts ro = *L->o;
+    int want_kind[2] = {0, 0};
+    if (level == 1) {
+        ro.modes = L->o->modes + 6 <= RD_MODAL_MODES_MAX ? L->o->modes + 6 : RD_MODAL_MODES_MAX;
+        if (ro.modes > 6 * L->n[1] - 6)
+            ro.modes = 6 * L->n[1] - 6;
+        for (int i = 0; i < L->res[0]->n_modes; i++)
+            want_kind[L->res[0]->modes[i].kind]++;
+    }
+    rd_ring *ring = rd_ring_create(L->p, L->n[level], L->closed, err);
+    if (!ring)
+        return err ? err->code : RD_ENOMEM;
+    int rc = solve_ring(ring, &ro, level == 1 ? want_kind : NULL, mon, L->res[level], err);
+    rd_ring_free(ring);
+    return rc;
+}
+
+/* Richardson with the model's order 2 (f_n = f_inf (1 + C n^-2)), mode by
+ * mode, the k-th of each kind against the k-th of the same kind. */
+static int level_compare(void *ctx, rd_error *err)
+{
+    (void)err;
+    modal_levels *L = ctx;
+    rd_modal_result *out = L->res[0], *ref = L->res[1];
+    out->reference_segments = L->n[1];
+    out->error_estimate = 0.0;
+    int seen[2] = {0, 0};
+    for (int i = 0; i < out->n_modes; i++) {
+        rd_mode *md = &out->modes[i];
+        int k = nth_of_kind(ref, md->kind, seen[md->kind]++);
+        if (k < 0) {
+            out->error_estimate = NAN;
+            continue;
+        }
+        md->frequency_extrapolated_hz = rd_accuracy_richardson(
+            md->frequency_hz, L->n[0], ref->modes[k].frequency_hz, L->n[1], 2.0, &md->error_estimate);
+        if (!(md->error_estimate <= out->error_estimate) && !isnan(out->error_estimate))
+            out->error_estimate = md->error_estimate;
+    }
+    return RD_OK;
+}
+
 int rd_modal_solve(const rd_ring_params *p, int segments, int closed, const rd_modal_opts *o,
                    const rd_monitor *mon, rd_modal_result *out, rd_error *err)
 {
-    rd_ring *ring = NULL, *ref_ring = NULL;
     rd_modal_result ref;
     memset(&ref, 0, sizeof ref);
     memset(out, 0, sizeof *out);
     int rc;
     if ((rc = rd_ring_validate(p, segments, closed, err)) || (rc = rd_modal_validate(o, segments, err)))
-        goto out;
-    /* Reference segment count: 2n (cost x2) unless that exceeds the limit. */
-    int m = 2 * segments <= RD_SEGMENTS_MAX ? 2 * segments : segments / 2;
-    double w_main = o->estimate_error ? (double)segments / (segments + m) : 1.0;
-
-    if (!(ring = rd_ring_create(p, segments, closed, err))) {
-        rc = err ? err->code : RD_ENOMEM;
-        goto out;
-    }
-    if ((rc = solve_ring(ring, o, mon, 0.0, w_main, out, err)))
-        goto out;
-    if (!o->estimate_error)
-        goto out;
-
-    rd_modal_opts ro = *o;
-    ro.modes = o->modes + 6 <= RD_MODAL_MODES_MAX ? o->modes + 6 : RD_MODAL_MODES_MAX;
-    if (ro.modes > 6 * m - 6)
-        ro.modes = 6 * m - 6;
-    if (!(ref_ring = rd_ring_create(p, m, closed, err))) {
-        rc = err ? err->code : RD_ENOMEM;
-        goto out;
-    }
-    if ((rc = solve_ring(ref_ring, &ro, mon, w_main, 1.0, &ref, err)))
-        goto out;
-    out->reference_segments = m;
-    out->error_estimate = 0.0;
-    /* f_n = f_inf (1 + C n^-2): f_inf = (m^2 f_m - n^2 f_n) / (m^2 - n^2). */
-    double n2 = (double)segments * segments, m2 = (double)m * m;
-    int seen[2] = {0, 0};
-    for (int i = 0; i < out->n_modes; i++) {
-        rd_mode *md = &out->modes[i];
-        int k = nth_of_kind(&ref, md->kind, seen[md->kind]++);
-        if (k < 0) {
-            out->error_estimate = NAN;
-            continue;
-        }
-        double fn = md->frequency_hz, fm = ref.modes[k].frequency_hz;
-        double finf = (m2 * fm - n2 * fn) / (m2 - n2);
-        md->frequency_extrapolated_hz = finf;
-        md->error_estimate = fabs(fn - finf) / fabs(finf);
-        if (!(md->error_estimate <= out->error_estimate) && !isnan(out->error_estimate))
-            out->error_estimate = md->error_estimate;
-    }
-out:
+        return rc;
+    int m = rd_accuracy_refined_segments(segments, RD_SEGMENTS_MAX);
+    char what[48];
+    snprintf(what, sizeof what, "%d segments", m);
+    modal_levels L = {p, {segments, m}, closed, o, {out, &ref}};
+    rd_accuracy_plan plan = {level_solve, level_compare, &L, o->estimate_error,
+                             (double)segments / (segments + m), what};
+    rc = rd_accuracy_run(&plan, mon, NULL, err);
     rd_modal_result_cleanup(&ref);
-    rd_ring_free(ring);
-    rd_ring_free(ref_ring);
     if (rc != RD_OK)
         rd_modal_result_cleanup(out);
     return rc;
