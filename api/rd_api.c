@@ -13,6 +13,7 @@
 
 #include "rd_registry.h"
 #include "rd_scene.h"
+#include "rd_schema.h"
 
 #ifndef RINGDYN_VERSION
 #define RINGDYN_VERSION "unknown"
@@ -43,39 +44,6 @@ char *rd_api_json_pretty(const char *json)
     return text;
 }
 
-/* Length of the valid UTF-8 sequence at s (1..4), or 0 if it is not one
- * (overlong forms and surrogates included, as jansson rejects them too). */
-static int utf8_seq_len(const unsigned char *s)
-{
-    unsigned char c = s[0];
-    int n;
-    unsigned char lo = 0x80, hi = 0xBF; /* allowed range of the 2nd byte */
-    if (c < 0x80)
-        return 1;
-    if (c >= 0xC2 && c <= 0xDF)
-        n = 2;
-    else if (c >= 0xE0 && c <= 0xEF) {
-        n = 3;
-        if (c == 0xE0)
-            lo = 0xA0;
-        if (c == 0xED)
-            hi = 0x9F;
-    } else if (c >= 0xF0 && c <= 0xF4) {
-        n = 4;
-        if (c == 0xF0)
-            lo = 0x90;
-        if (c == 0xF4)
-            hi = 0x8F;
-    } else
-        return 0;
-    if (s[1] < lo || s[1] > hi)
-        return 0;
-    for (int k = 2; k < n; k++)
-        if ((s[k] & 0xC0) != 0x80)
-            return 0;
-    return n;
-}
-
 /* Copies s to out (size >= strlen(s) + 1) with every byte that does not
  * start a valid UTF-8 sequence replaced by '?': messages quote user text and
  * may have been cut mid-character, but JSON strings must be valid UTF-8. */
@@ -83,7 +51,7 @@ static void utf8_sanitize(const char *s, char *out)
 {
     const unsigned char *p = (const unsigned char *)s;
     while (*p) {
-        int n = utf8_seq_len(p);
+        int n = rd_schema_utf8_len(p);
         if (n == 0) {
             *out++ = '?';
             p++;

@@ -97,9 +97,11 @@ int rd_api_http_status(int code);
 char *rd_api_examples_json(const char *dir, rd_error *err);
 
 /* One example's scene by name (the file name without .json), or NULL with
- * err->code RD_ENOTFOUND if there is no such example or the name has a
- * character other than A-Z a-z 0-9 _ - (so no name can leave `dir`), and
- * RD_EINVAL if the file is not a valid scene. */
+ * err->code RD_EREQUEST if the name is not valid UTF-8 or holds a control
+ * character (malformed, 400), RD_ENOTFOUND if there is no such example or the name has another
+ * character than A-Z a-z 0-9 _ - (so no name can leave `dir`; 404), and
+ * RD_EINVAL if the file is not a valid scene (the server's fault).  This is
+ * the one rule for example names: the server asks nothing else. */
 char *rd_api_example_scene(const char *dir, const char *name, rd_error *err);
 
 /* The same JSON text indented by two spaces, for people (the CLI); reals

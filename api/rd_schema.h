@@ -108,6 +108,10 @@ struct json_t *rd_schema_field_openapi(const rd_field *f, const rd_block *in,
 struct json_t *rd_schema_block_openapi(const rd_block *block, const struct rd_scene *defaults,
                                        struct json_t *components);
 
+/* Length of the valid UTF-8 sequence at s (1..4), or 0 if it is not one
+ * (overlong forms and surrogates included, as jansson rejects them too). */
+int rd_schema_utf8_len(const unsigned char *s);
+
 /* Messages quote user text: `"text"` cut to a readable length. */
 void rd_schema_quote(char *buf, size_t size, const char *s);
 /* "<path> must be <want>, got <what v is>" (RD_EINVAL). */
