@@ -9,7 +9,7 @@
  *   - the OpenAPI document's defaults are what a parsed scene holds (the
  *     echo of {"analysis": name});
  *   - every field the README names exists in the schema, and every scene
- *     the README shows is valid;
+ *     the README shows is valid; the page's form keeps no default of its own;
  *   - a toy analysis added next to the built-in ones (one rd_analysis_def
  *     and one registry line, here in the test) is parsed, echoed,
  *     described in OpenAPI, run, and written as JSON and CSV.
@@ -456,6 +456,30 @@ static void test_readme(void)
     free(readme);
 }
 
+/* The page holds no copy of a scene default: no input with data-path also
+ * has data-default (form.js takes them from the OpenAPI document; the
+ * browser test checks that it does). */
+static void test_page(void)
+{
+    char *html = read_text("static/index.html");
+    int inputs = 0;
+    CHECK(html != NULL, "static/index.html");
+    for (const char *p = html; p && (p = strstr(p, "data-path=")) != NULL; p++) {
+        const char *start = p, *end = strchr(p, '>');
+        while (start > html && *start != '<')
+            start--;
+        if (!end || *start != '<' || start[1] == '!') /* a comment's words */
+            continue;
+        char tag[1024];
+        size_t n = (size_t)(end - start);
+        snprintf(tag, sizeof tag, "%.*s", (int)(n < sizeof tag - 1 ? n : sizeof tag - 1), start);
+        CHECK(!strstr(tag, "data-default="), "index.html keeps a default: %s", tag);
+        inputs++;
+    }
+    CHECK(inputs >= 34, "%d scene fields in index.html", inputs);
+    free(html);
+}
+
 /* ---- a toy analysis, added the way a new one is ---------------------------- */
 
 /* Its options (rd_scene.opts) and its "core": y_k = gain * k, k = 0..count-1. */
@@ -609,6 +633,7 @@ int main(int argc, char **argv)
     test_ranges();
     test_defaults();
     test_readme();
+    test_page();
     test_toy();
     return check_done();
 }
