@@ -26,7 +26,8 @@
 double rd_clock_s(void)
 {
     struct timespec t;
-    clock_gettime(CLOCK_MONOTONIC, &t);
+    if (clock_gettime(CLOCK_MONOTONIC, &t) != 0)
+        return NAN; /* reported as null: no time rather than a wrong one */
     return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
 }
 
