@@ -1,7 +1,8 @@
 /*
- * rd_api — running scenes, errors as JSON and HTTP statuses, CSV, version
- * (rd_api.h).  Parsing lives in rd_scene.c, result writing in rd_result.c,
- * the example scenes in rd_examples.c.
+ * rd_api — errors as JSON and HTTP statuses, the OpenAPI document, version
+ * (rd_api.h).  Parsing lives in rd_scene.c (with the tables of
+ * rd_schema.c), the analyses in rd_an_*.c listed by rd_registry.c, running
+ * and CSV in rd_result.c, the example scenes in rd_examples.c.
  */
 #include "rd_api.h"
 
@@ -9,14 +10,10 @@
 #include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
-#include <time.h>
 
-#include "rd_lift.h"
-#include "rd_modal.h"
-#include "rd_result.h"
-#include "rd_static.h"
-#include "rd_ring.h"
+#include "rd_registry.h"
 #include "rd_scene.h"
+#include "rd_schema.h"
 
 #ifndef RINGDYN_VERSION
 #define RINGDYN_VERSION "unknown"
@@ -27,125 +24,15 @@ const char *rd_api_version(void)
     return RINGDYN_VERSION;
 }
 
-static double now_s(void)
+char *rd_api_openapi_json(const char *template_json, rd_error *err)
 {
-    struct timespec t;
-    clock_gettime(CLOCK_MONOTONIC, &t);
-    return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
-}
-
-/* The runners: solve, time the solve (with its error-estimate solve, if any)
- * and build the result object.  A NULL *out on success means out of memory,
- * which rd_scene_run reports. */
-
-/* Modal analysis: the ring model (for the segment angles and R) and the
- * eigen-solve with its error estimate; wall_s times the solve alone. */
-static int run_modal(const rd_scene *s, const rd_monitor *mon, json_t **out, rd_error *err)
-{
-    rd_ring *ring = NULL;
-    rd_modal_result res;
-    rd_error ring_err;
-    int rc;
-
-    memset(&res, 0, sizeof res);
-    rd_error_init(&ring_err);
-    ring = rd_ring_create(&s->ring, s->segments, s->closed, &ring_err);
-    if (!ring) {
-        rc = rd_error_set(err, ring_err.code != RD_OK ? ring_err.code : RD_EINTERNAL,
-                          ring_err.path, "%s", ring_err.message);
-        goto out;
-    }
-    double t0 = now_s();
-    rc = rd_modal_solve(&s->ring, s->segments, s->closed, &s->modal, mon, &res, err);
-    if (rc == RD_OK)
-        *out = rd_result_modal(s, ring, &res, now_s() - t0);
-out:
-    rd_modal_result_cleanup(&res);
-    rd_ring_free(ring);
-    return rc;
-}
-
-static int run_pretension(const rd_scene *s, const rd_monitor *mon, json_t **out, rd_error *err)
-{
-    rd_pretension_result res;
-    double t0 = now_s();
-    int rc = rd_pretension_solve(&s->ring, s->segments, &s->pretension, &s->statics, mon, &res,
-                                 err);
-    if (rc == RD_OK)
-        *out = rd_result_pretension(s, &res, now_s() - t0);
-    rd_pretension_result_cleanup(&res);
-    return rc;
-}
-
-static int run_contact(const rd_scene *s, const rd_monitor *mon, json_t **out, rd_error *err)
-{
-    rd_contact_result res;
-    double t0 = now_s();
-    int rc = rd_contact_solve(&s->ring, s->segments, &s->contact, &s->statics, mon, &res, err);
-    if (rc == RD_OK)
-        *out = rd_result_contact(s, &res, now_s() - t0);
-    rd_contact_result_cleanup(&res);
-    return rc;
-}
-
-static int run_lift(const rd_scene *s, const rd_monitor *mon, json_t **out, rd_error *err)
-{
-    rd_lift_result res;
-    double t0 = now_s();
-    int rc = rd_lift_solve(&s->ring, s->segments, &s->lift, mon, &res, err);
-    if (rc == RD_OK)
-        *out = rd_result_lift(s, &res, now_s() - t0);
-    rd_lift_result_cleanup(&res);
-    return rc;
-}
-
-/* Indexed by enum rd_analysis; NULL = not available (the parser already
- * refuses those scenes). */
-static int (*const runners[])(const rd_scene *, const rd_monitor *, json_t **, rd_error *) = {
-    [RD_ANALYSIS_MODAL] = run_modal,
-    [RD_ANALYSIS_PRETENSION] = run_pretension,
-    [RD_ANALYSIS_CONTACT] = run_contact,
-    [RD_ANALYSIS_LIFT] = run_lift,
-};
-
-int rd_scene_run(const rd_scene *scene, const rd_monitor *mon, char **result_json, rd_error *err)
-{
-    json_t *result = NULL;
-    int rc;
-
-    *result_json = NULL;
-    int a = scene->analysis;
-    if (a < 0 || a >= (int)(sizeof runners / sizeof runners[0]) || !runners[a]) {
-        rc = rd_error_set(err, RD_EINTERNAL, "/analysis", "analysis \"%s\" cannot be run",
-                          rd_scene_analysis(scene));
-        goto out;
-    }
-    rc = runners[a](scene, mon, &result, err);
-    if (rc != RD_OK)
-        goto out;
-    /* json_dumps(NULL) is NULL: a result the runner could not build */
-    *result_json = json_dumps(result, JSON_COMPACT | JSON_REAL_PRECISION(RD_RESULT_REAL_DIGITS));
-    if (!*result_json)
-        rc = rd_error_set(err, RD_ENOMEM, "", "out of memory while writing the result");
-out:
-    json_decref(result);
-    return rc;
-}
-
-char *rd_api_result_csv(const char *result_json, rd_error *err)
-{
-    json_error_t jerr;
-    char *csv = NULL;
-    json_t *result = json_loads(result_json ? result_json : "", 0, &jerr);
-    if (!json_is_object(result)) {
-        rd_error_set(err, RD_EINTERNAL, "", "the result is not a JSON object: %s",
-                     result ? "wrong type" : jerr.text);
-        goto out;
-    }
-    csv = rd_result_csv(result, err);
-out:
-    json_decref(result);
-    return csv;
+    json_t *doc = rd_registry_openapi(rd_registry, template_json, err);
+    char *text = doc ? json_dumps(doc, JSON_INDENT(2) | JSON_REAL_PRECISION(RD_SCENE_REAL_DIGITS))
+                     : NULL;
+    if (doc && !text)
+        rd_error_set(err, RD_ENOMEM, "", "out of memory while writing the OpenAPI document");
+    json_decref(doc);
+    return text;
 }
 
 char *rd_api_json_pretty(const char *json)
@@ -157,39 +44,6 @@ char *rd_api_json_pretty(const char *json)
     return text;
 }
 
-/* Length of the valid UTF-8 sequence at s (1..4), or 0 if it is not one
- * (overlong forms and surrogates included, as jansson rejects them too). */
-static int utf8_seq_len(const unsigned char *s)
-{
-    unsigned char c = s[0];
-    int n;
-    unsigned char lo = 0x80, hi = 0xBF; /* allowed range of the 2nd byte */
-    if (c < 0x80)
-        return 1;
-    if (c >= 0xC2 && c <= 0xDF)
-        n = 2;
-    else if (c >= 0xE0 && c <= 0xEF) {
-        n = 3;
-        if (c == 0xE0)
-            lo = 0xA0;
-        if (c == 0xED)
-            hi = 0x9F;
-    } else if (c >= 0xF0 && c <= 0xF4) {
-        n = 4;
-        if (c == 0xF0)
-            lo = 0x90;
-        if (c == 0xF4)
-            hi = 0x8F;
-    } else
-        return 0;
-    if (s[1] < lo || s[1] > hi)
-        return 0;
-    for (int k = 2; k < n; k++)
-        if ((s[k] & 0xC0) != 0x80)
-            return 0;
-    return n;
-}
-
 /* Copies s to out (size >= strlen(s) + 1) with every byte that does not
  * start a valid UTF-8 sequence replaced by '?': messages quote user text and
  * may have been cut mid-character, but JSON strings must be valid UTF-8. */
@@ -197,7 +51,7 @@ static void utf8_sanitize(const char *s, char *out)
 {
     const unsigned char *p = (const unsigned char *)s;
     while (*p) {
-        int n = utf8_seq_len(p);
+        int n = rd_schema_utf8_len(p);
         if (n == 0) {
             *out++ = '?';
             p++;

@@ -46,12 +46,33 @@ char *rd_scene_to_json(const rd_scene *scene);
  * (RD_ENOCONV, RD_ENUMERIC, ...) come with a message saying where and why. */
 int rd_scene_run(const rd_scene *scene, const rd_monitor *mon, char **result_json, rd_error *err);
 
+/* A result built once, as data, from which both its JSON text and its CSV
+ * table are written (no re-parsing).  Opaque; free with rd_result_doc_free. */
+typedef struct rd_result_doc rd_result_doc;
+
+/* rd_scene_run, keeping the result as a document (*out, caller frees). */
+int rd_scene_run_doc(const rd_scene *scene, const rd_monitor *mon, rd_result_doc **out,
+                     rd_error *err);
+/* The result's JSON text (what rd_scene_run returns); NULL when out of memory. */
+char *rd_result_doc_json(const rd_result_doc *doc);
+/* The result's main table as CSV (see rd_api_result_csv); NULL + err. */
+char *rd_result_doc_csv(const rd_result_doc *doc, rd_error *err);
+void rd_result_doc_free(rd_result_doc *doc);
+
 /* The main table of a result as CSV (header row with units), from the JSON
- * that rd_scene_run produced.  NULL + err on a malformed input
- * (RD_EINTERNAL) or for an analysis without a table (RD_ENOTFOUND).
+ * text that rd_scene_run produced; only the members the table reads are
+ * decoded.  NULL + err on a malformed input (RD_EINTERNAL) or for an
+ * analysis without a table (RD_ENOTFOUND).
  * modal: mode,kind,frequency_hz,error_estimate,frequency_extrapolated_hz,
  * in_plane_energy_fraction; reals as %.10g, an empty cell for null. */
 char *rd_api_result_csv(const char *result_json, rd_error *err);
+
+/* The OpenAPI document: `template_json` (the non-scene parts: paths,
+ * results, errors) with the scene schemas written from the same tables
+ * that parse scenes (types, defaults, ranges, enums, descriptions).
+ * NULL + err (RD_EINTERNAL: the template is not an OpenAPI object;
+ * RD_ENOMEM). */
+char *rd_api_openapi_json(const char *template_json, rd_error *err);
 
 /* {"error": {"code": "...", "message": "...", "path": "..."}}; path omitted when empty. */
 char *rd_api_error_json(const rd_error *err);
@@ -76,9 +97,11 @@ int rd_api_http_status(int code);
 char *rd_api_examples_json(const char *dir, rd_error *err);
 
 /* One example's scene by name (the file name without .json), or NULL with
- * err->code RD_ENOTFOUND if there is no such example or the name has a
- * character other than A-Z a-z 0-9 _ - (so no name can leave `dir`), and
- * RD_EINVAL if the file is not a valid scene. */
+ * err->code RD_EREQUEST if the name is not valid UTF-8 or holds a control
+ * character (malformed, 400), RD_ENOTFOUND if there is no such example or the name has another
+ * character than A-Z a-z 0-9 _ - (so no name can leave `dir`; 404), and
+ * RD_EINVAL if the file is not a valid scene (the server's fault).  This is
+ * the one rule for example names: the server asks nothing else. */
 char *rd_api_example_scene(const char *dir, const char *name, rd_error *err);
 
 /* The same JSON text indented by two spaces, for people (the CLI); reals

@@ -10,6 +10,7 @@
 #include <sys/stat.h>
 
 #include "rd_scene.h"
+#include "rd_schema.h"
 
 int rd_examples_name_ok(const char *name)
 {
@@ -225,13 +226,34 @@ out:
     return text;
 }
 
+int rd_examples_name_malformed(const char *name)
+{
+    const unsigned char *p = (const unsigned char *)(name ? name : "");
+    while (*p) {
+        int n = rd_schema_utf8_len(p);
+        if (n == 0 || *p < 0x20 || *p == 0x7f)
+            return 1;
+        p += n;
+    }
+    return 0;
+}
+
 char *rd_api_example_scene(const char *dir, const char *name, rd_error *err)
 {
     json_t *root = NULL;
     char *text = NULL;
 
+    if (rd_examples_name_malformed(name)) {
+        rd_error_set(err, RD_EREQUEST, "",
+                     "an example name is printable UTF-8 text; this one is not");
+        goto out;
+    }
     if (!rd_examples_name_ok(name)) {
-        rd_error_set(err, RD_ENOTFOUND, "", "no example named \"%.64s\"", name ? name : "");
+        char q[80];
+        rd_schema_quote(q, sizeof q, name ? name : "");
+        rd_error_set(err, RD_ENOTFOUND, "",
+                     "no example named %s (names use A-Z, a-z, 0-9, _ and -; GET "
+                     "/api/v1/examples lists them)", q);
         goto out;
     }
     if (load_example(dir, name, &root, err) != RD_OK)

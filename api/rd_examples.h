@@ -21,4 +21,9 @@
  * the only names served, so a name can never reach outside the directory. */
 int rd_examples_name_ok(const char *name);
 
+/* 1 if `name` is not valid UTF-8 or holds a control character (below
+ * 0x20, or 0x7f): not a name at all, so a request for it is malformed
+ * (400) rather than naming an example that does not exist (404). */
+int rd_examples_name_malformed(const char *name);
+
 #endif

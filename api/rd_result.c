@@ -1,13 +1,13 @@
 /*
- * rd_result — result objects and CSV tables (rd_result.h).
+ * rd_result — reals as JSON, CSV tables of a result, and the CSV of a
+ * stored result text without decoding all of it (rd_result.h, rd_api.h).
  *
- * Mode shapes: core gives per segment i six components in the segment's
- * local cylindrical frame, shape[6i + 0..2] = radial, tangential, axial
- * translation and shape[6i + 3..5] = rotation about the radial, tangential,
- * axial axes (1/m, the translations being normalized to a largest value of
- * 1).  The result reports the three translations and the twist of the
- * section, rotation about the tangential axis times the centroid radius R,
- * which makes it dimensionless and comparable with the translations.
+ * A result is built once, as a jansson object, by the analysis' runner;
+ * its JSON text and its CSV table are both written from that object
+ * (rd_result_doc).  A server that kept only the text (rd_api_result_csv)
+ * gets the CSV by decoding just the members the table reads: the lift
+ * result's bulk, lift_segments (samples x n numbers), is skipped over,
+ * never turned into jansson values.
  */
 #include "rd_result.h"
 
@@ -17,294 +17,35 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <time.h>
 
-#define PI 3.14159265358979323846
+#include "rd_api.h"
+#include "rd_registry.h"
+#include "rd_scene.h"
 
-#define SHAPE(m, i, k) ((m)->shape[6 * (i) + (k)])
-enum { S_RADIAL = 0, S_TANGENTIAL = 1, S_AXIAL = 2, S_ROT_TANGENTIAL = 4 };
+double rd_clock_s(void)
+{
+    struct timespec t;
+    if (clock_gettime(CLOCK_MONOTONIC, &t) != 0)
+        return NAN; /* reported as null: no time rather than a wrong one */
+    return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
+}
 
-static const char modal_solver[] =
-    "shift-invert subspace iteration on banded K, M (LAPACK dpbtrf/dpbtrs, dsygv)";
-
-/* A real, or null when there is none (NaN): jansson refuses non-finite reals. */
-static json_t *real_or_null(double x)
+json_t *rd_result_real(double x)
 {
     return isfinite(x) ? json_real(x) : json_null();
 }
 
-/* [scale * x[0], scale * x[stride], ...], n values. */
-static json_t *real_array(const double *x, int n, int stride, double scale)
+json_t *rd_result_reals(const double *x, int n, int stride, double scale)
 {
     json_t *a = json_array();
     for (int i = 0; a && i < n; i++) {
-        if (json_array_append_new(a, real_or_null(scale * x[(size_t)i * (size_t)stride])) != 0) {
+        if (json_array_append_new(a, rd_result_real(scale * x[(size_t)i * (size_t)stride])) != 0) {
             json_decref(a);
             a = NULL;
         }
     }
     return a;
-}
-
-static json_t *mode_shape(const rd_mode *m, int n, double R)
-{
-    if (!m->shape)
-        return json_null();
-    return json_pack("{s:o, s:o, s:o, s:o}",
-                     "radial", real_array(&SHAPE(m, 0, S_RADIAL), n, 6, 1.0),
-                     "tangential", real_array(&SHAPE(m, 0, S_TANGENTIAL), n, 6, 1.0),
-                     "axial", real_array(&SHAPE(m, 0, S_AXIAL), n, 6, 1.0),
-                     "twist", real_array(&SHAPE(m, 0, S_ROT_TANGENTIAL), n, 6, R));
-}
-
-static json_t *modal_modes(const rd_modal_result *res, int n, double R)
-{
-    json_t *modes = json_array();
-    for (int k = 0; modes && k < res->n_modes; k++) {
-        const rd_mode *m = &res->modes[k];
-        /* json_pack steals every "o" value, also when it fails. */
-        json_t *mode = json_pack(
-            "{s:i, s:o, s:s, s:o, s:o, s:o, s:o, s:o}",
-            "mode", k + 1,
-            "frequency_hz", real_or_null(m->frequency_hz),
-            "kind", m->kind == RD_MODE_IN_PLANE ? "in_plane" : "out_of_plane",
-            "in_plane_energy_fraction", real_or_null(m->in_plane_fraction),
-            "error_estimate", real_or_null(m->error_estimate),
-            "frequency_extrapolated_hz", real_or_null(m->frequency_extrapolated_hz),
-            "residual", real_or_null(m->residual),
-            "shape", mode_shape(m, n, R));
-        if (json_array_append_new(modes, mode) != 0) {
-            json_decref(modes);
-            modes = NULL;
-        }
-    }
-    return modes;
-}
-
-static json_t *modal_numerics(const rd_modal_result *res, double wall_s)
-{
-    char method[128];
-    int estimated = res->reference_segments > 0;
-    snprintf(method, sizeof method,
-             "Richardson extrapolation from a second solve at %d segments, convergence order 2",
-             res->reference_segments);
-    return json_pack("{s:i, s:i, s:o, s:s, s:i, s:i, s:o, s:o, s:o, s:o}",
-                     "segments", res->segments,
-                     "dof", res->dof,
-                     "wall_s", real_or_null(wall_s),
-                     "solver", modal_solver,
-                     "iterations", res->iterations,
-                     "block_size", res->block_size,
-                     "max_residual", real_or_null(res->max_residual),
-                     "reference_segments",
-                         estimated ? json_integer(res->reference_segments) : json_null(),
-                     "error_estimate", real_or_null(res->error_estimate),
-                     "error_method", estimated ? json_string(method) : json_null());
-}
-
-json_t *rd_result_modal(const rd_scene *scene, const rd_ring *ring, const rd_modal_result *res,
-                        double wall_s)
-{
-    int n = rd_ring_get_segments(ring);
-    double R = rd_ring_get_section(ring)->R;
-
-    json_t *angles = json_array();
-    for (int i = 0; angles && i < n; i++) {
-        double deg = rd_ring_get_segment_angle(ring, i) * 180.0 / PI;
-        if (json_array_append_new(angles, json_real(deg)) != 0) {
-            json_decref(angles);
-            angles = NULL;
-        }
-    }
-    return json_pack("{s:s, s:o, s:i, s:o, s:o, s:o}",
-                     "analysis", rd_scene_analysis(scene),
-                     "scene", rd_scene_echo(scene),
-                     "rigid_body_modes", res->rigid_body_modes,
-                     "segment_angle_deg", angles,
-                     "modes", modal_modes(res, n, R),
-                     "numerics", modal_numerics(res, wall_s));
-}
-
-/* ---- pretension and contact ------------------------------------------------ */
-
-static const char static_solver[] =
-    "Newton's method with load stepping on the 6n equilibrium equations, large rotations, "
-    "central-difference tangent in LAPACK band storage (dgbsv)";
-
-static json_t *static_numerics(const rd_static_stats *st, double wall_s, const char *what)
-{
-    char method[192];
-    int estimated = st->reference_segments > 0;
-    snprintf(method, sizeof method,
-             "%s from a second solve at %d segments", what, st->reference_segments);
-    return json_pack("{s:i, s:i, s:o, s:s, s:i, s:i, s:o, s:o, s:o, s:o, s:o, s:o}",
-                     "segments", st->segments,
-                     "dof", st->dof,
-                     "wall_s", real_or_null(wall_s),
-                     "solver", static_solver,
-                     "load_steps", st->load_steps,
-                     "iterations", st->iterations,
-                     "residual", real_or_null(st->residual),
-                     "tolerance", real_or_null(st->tolerance),
-                     "strain_energy", real_or_null(st->strain_energy),
-                     "reference_segments",
-                         estimated ? json_integer(st->reference_segments) : json_null(),
-                     "error_estimate", real_or_null(st->error_estimate),
-                     "error_method", estimated ? json_string(method) : json_null());
-}
-
-static json_t *support_object(const rd_static_stats *st)
-{
-    return json_pack("{s:o, s:o}", "force_n", real_or_null(st->support_force), "moment_nm",
-                     real_or_null(st->support_moment));
-}
-
-json_t *rd_result_pretension(const rd_scene *scene, const rd_pretension_result *res,
-                             double wall_s)
-{
-    int np = res->points;
-    double *rx = malloc((size_t)np * sizeof *rx), *ry = malloc((size_t)np * sizeof *ry);
-    json_t *out = NULL;
-    if (!rx || !ry)
-        goto out;
-    double R = 0.5 * (scene->ring.diameter - scene->ring.radial_width);
-    for (int k = 0; k < np; k++) {
-        rx[k] = R * cos(res->angle_deg[k] * PI / 180.0);
-        ry[k] = R * sin(res->angle_deg[k] * PI / 180.0);
-    }
-    out = json_pack(
-        "{s:s, s:o, s:o, s:o, s:o, s:o, s:o, s:o, s:{s:o, s:o, s:o, s:o, s:o, s:o}, s:o}",
-        "analysis", rd_scene_analysis(scene),
-        "scene", rd_scene_echo(scene),
-        "gap_opening_inner", real_or_null(res->gap_opening_inner),
-        "lateral_opening", real_or_null(res->lateral_opening),
-        "gap_opening_neutral", real_or_null(res->gap_opening_neutral),
-        "free_gap_formula", real_or_null(res->free_gap_formula),
-        "conformability", real_or_null(res->conformability),
-        "support", support_object(&res->stats),
-        "shape",
-            "angle_deg", real_array(res->angle_deg, np, 1, 1.0),
-            "x", real_array(res->x, np, 1, 1.0),
-            "y", real_array(res->y, np, 1, 1.0),
-            "z", real_array(res->z, np, 1, 1.0),
-            "reference_x", real_array(rx, np, 1, 1.0),
-            "reference_y", real_array(ry, np, 1, 1.0),
-        "numerics", static_numerics(&res->stats, wall_s,
-                                    "Richardson extrapolation (order 2) of x_a and x_c"));
-out:
-    free(rx);
-    free(ry);
-    return out;
-}
-
-json_t *rd_result_contact(const rd_scene *scene, const rd_contact_result *res, double wall_s)
-{
-    int n = res->points;
-    json_t *dist = json_array();
-    for (int k = 0; dist && k < scene->contact.n_distortion; k++) {
-        const rd_distortion *d = &scene->contact.distortion[k];
-        if (json_array_append_new(dist, json_pack("{s:i, s:o, s:o, s:o}", "order", d->order,
-                                                  "amplitude", real_or_null(d->amplitude),
-                                                  "phase_deg", real_or_null(d->phase_deg),
-                                                  "conformability_bound",
-                                                  real_or_null(res->bound[k]))) != 0) {
-            json_decref(dist);
-            dist = NULL;
-        }
-    }
-    return json_pack(
-        "{s:s, s:o, s:o, s:o, s:o, s:o, s:o, s:o, s:o, s:o, s:o, s:o, s:o, s:o, s:o, s:o,"
-        " s:o}",
-        "analysis", rd_scene_analysis(scene),
-        "scene", rd_scene_echo(scene),
-        "angle_deg", real_array(res->angle_deg, n, 1, 1.0),
-        "pressure_pa", real_array(res->pressure, n, 1, 1.0),
-        "clearance", real_array(res->clearance, n, 1, 1.0),
-        "bore_radius", real_array(res->bore_radius, n, 1, 1.0),
-        "mean_pressure_pa", real_or_null(res->mean_pressure),
-        "uniform_pressure_pa", real_or_null(res->uniform_pressure),
-        "contact_fraction", real_or_null(res->contact_fraction),
-        "max_clearance", real_or_null(res->max_clearance),
-        "max_clearance_angle_deg", real_or_null(res->max_clearance_angle_deg),
-        "max_penetration", real_or_null(res->max_penetration),
-        "contact_stiffness", real_or_null(res->stiffness),
-        "conformability", real_or_null(res->conformability),
-        "distortion", dist,
-        "support", support_object(&res->stats),
-        "numerics", static_numerics(&res->stats, wall_s,
-                                    "RMS difference of the pressure profile, relative to the "
-                                    "uniform pressure,"));
-}
-
-/* ---- lift ------------------------------------------------------------------ */
-
-static const char *const flank_names[] = {"lower", "upper", "free"};
-static const char *const event_names[] = {"leave_lower", "reach_upper", "leave_upper",
-                                          "reach_lower"};
-
-json_t *rd_result_lift(const rd_scene *scene, const rd_lift_result *res, double wall_s)
-{
-    int N = res->samples, n = res->segments;
-    json_t *segs = json_array(), *flank = json_array(), *events = json_array();
-    for (int k = 0; segs && k < N; k++)
-        if (json_array_append_new(segs, real_array(res->lift_segments + (size_t)k * n, n, 1,
-                                                   1.0)) != 0) {
-            json_decref(segs);
-            segs = NULL;
-        }
-    for (int k = 0; flank && k < N; k++) {
-        int f = res->flank[k];
-        if (json_array_append_new(flank, json_string(f >= 0 && f < 3 ? flank_names[f] : "free")) != 0) {
-            json_decref(flank);
-            flank = NULL;
-        }
-    }
-    for (int k = 0; events && k < res->n_events; k++) {
-        int e = res->events[k].kind;
-        if (json_array_append_new(events, json_pack("{s:o, s:s}", "crank_deg",
-                                                    real_or_null(res->events[k].crank_deg),
-                                                    "event",
-                                                    e >= 0 && e < 4 ? event_names[e] : "unknown")) != 0) {
-            json_decref(events);
-            events = NULL;
-        }
-    }
-    int estimated = isfinite(res->error_estimate);
-    json_t *numerics = json_pack(
-        "{s:i, s:i, s:o, s:s, s:I, s:I, s:I, s:I, s:I, s:I, s:I, s:I, s:o, s:o, s:o, s:o, s:o}",
-        "segments", n,
-        "dof", res->dof,
-        "wall_s", real_or_null(wall_s),
-        "solver", "SUNDIALS CVODE, BDF with a banded Newton linear solver, root finding for the "
-                  "flank changes",
-        "steps", (json_int_t)res->steps,
-        "rhs_evals", (json_int_t)res->rhs_evals,
-        "jac_evals", (json_int_t)res->jac_evals,
-        "linear_setups", (json_int_t)res->lin_setups,
-        "nonlinear_iterations", (json_int_t)res->nonlin_iters,
-        "nonlinear_failures", (json_int_t)res->nonlin_fails,
-        "error_test_fails", (json_int_t)res->err_test_fails,
-        "root_evals", (json_int_t)res->root_evals,
-        "rtol", real_or_null(scene->lift.rtol),
-        "atol", real_or_null(scene->lift.atol),
-        "error_estimate", real_or_null(res->error_estimate),
-        "event_error_deg", real_or_null(res->event_error_deg),
-        "error_method", estimated ? json_string("second run at rtol/10 and atol/10: largest lift "
-                                                "difference over the axial clearance, and the "
-                                                "largest shift of a matched flank change")
-                                  : json_null());
-    return json_pack("{s:s, s:o, s:o, s:o, s:o, s:o, s:o, s:o, s:o, s:o, s:o, s:o}",
-                     "analysis", rd_scene_analysis(scene),
-                     "scene", rd_scene_echo(scene),
-                     "crank_deg", real_array(res->crank_deg, N, 1, 1.0),
-                     "lift", real_array(res->lift, N, 1, 1.0),
-                     "lift_min", real_array(res->lift_min, N, 1, 1.0),
-                     "lift_max", real_array(res->lift_max, N, 1, 1.0),
-                     "lift_segments", segs,
-                     "twist_rad", real_array(res->twist, N, 1, 1.0),
-                     "friction_force", real_array(res->friction_force, N, 1, 1.0),
-                     "flank", flank,
-                     "events", events,
-                     "numerics", numerics);
 }
 
 /* ---- CSV ----------------------------------------------------------------- */
@@ -352,19 +93,6 @@ static void sb_printf(strbuf *b, const char *fmt, ...)
     b->len += (size_t)need;
 }
 
-/* A cell from a number or null (empty); anything else is malformed. */
-static int csv_real(strbuf *b, json_t *v, const char *sep)
-{
-    if (json_is_null(v)) {
-        sb_printf(b, "%s", sep);
-        return 0;
-    }
-    if (!json_is_number(v))
-        return -1;
-    sb_printf(b, "%.10g%s", json_number_value(v), sep);
-    return 0;
-}
-
 /* A text cell, quoted (RFC 4180) when it holds a separator, quote or newline. */
 static void csv_text(strbuf *b, const char *s, const char *sep)
 {
@@ -382,143 +110,315 @@ static void csv_text(strbuf *b, const char *s, const char *sep)
     sb_printf(b, "\"%s", sep);
 }
 
-static int csv_modal(json_t *result, strbuf *b, rd_error *err)
+/* One cell: text for a text column, else a number (%.10g) or null (empty);
+ * anything else (or a missing value) is malformed: -1. */
+static int csv_cell(strbuf *b, const rd_csv_column *c, json_t *v, const char *sep)
 {
-    static const char *const reals[] = {"frequency_hz", "error_estimate",
-                                        "frequency_extrapolated_hz", "in_plane_energy_fraction"};
-    const size_t n_reals = sizeof reals / sizeof reals[0];
-    json_t *modes = json_object_get(result, "modes");
+    if (c->text) {
+        if (!json_is_string(v))
+            return -1;
+        csv_text(b, json_string_value(v), sep);
+    } else if (json_is_null(v)) {
+        sb_printf(b, "%s", sep);
+    } else if (json_is_number(v)) {
+        sb_printf(b, "%.10g%s", json_number_value(v), sep);
+    } else {
+        return -1;
+    }
+    return 0;
+}
+
+static int count_columns(const rd_csv_table *t)
+{
+    int n = 0;
+    while (t->columns[n].header)
+        n++;
+    return n;
+}
+
+/* Rows from an array of objects (table->rows). */
+static int csv_rows(json_t *result, const rd_csv_table *t, int ncols, strbuf *b,
+                    const char *analysis, rd_error *err)
+{
+    json_t *rows = json_object_get(result, t->rows), *row;
     size_t i;
-    json_t *mode;
-
-    if (!json_is_array(modes))
-        return rd_error_set(err, RD_EINTERNAL, "",
-                            "malformed modal result: /modes is not an array");
-    sb_printf(b, "mode,kind");
-    for (size_t k = 0; k < n_reals; k++)
-        sb_printf(b, ",%s", reals[k]);
-    sb_printf(b, "\n");
-
-    json_array_foreach(modes, i, mode) {
-        json_t *number = json_object_get(mode, "mode");
-        json_t *kind = json_object_get(mode, "kind");
-        if (!json_is_integer(number) || !json_is_string(kind))
-            return rd_error_set(err, RD_EINTERNAL, "",
-                                "malformed modal result: /modes/%zu needs an integer \"mode\" and "
-                                "a string \"kind\"",
-                                i);
-        sb_printf(b, "%" JSON_INTEGER_FORMAT ",", json_integer_value(number));
-        csv_text(b, json_string_value(kind), ",");
-        for (size_t k = 0; k < n_reals; k++) {
-            if (csv_real(b, json_object_get(mode, reals[k]), k + 1 < n_reals ? "," : "\n") != 0)
-                return rd_error_set(err, RD_EINTERNAL, "",
-                                    "malformed modal result: /modes/%zu/%s is not a number or null",
-                                    i, reals[k]);
+    if (!json_is_array(rows))
+        return rd_error_set(err, RD_EINTERNAL, "", "malformed %s result: /%s is not an array",
+                            analysis, t->rows);
+    json_array_foreach(rows, i, row) {
+        for (int c = 0; c < ncols; c++) {
+            const rd_csv_column *col = &t->columns[c];
+            if (csv_cell(b, col, json_object_get(row, col->key), c + 1 < ncols ? "," : "\n"))
+                return rd_error_set(err, RD_EINTERNAL, "", "malformed %s result: /%s/%zu/%s",
+                                    analysis, t->rows, i, col->key);
         }
     }
     return RD_OK;
 }
 
-/* Columns of equal-length arrays: header names (with units) and the result
- * keys they come from; `text` columns hold strings. */
-typedef struct column {
-    const char *header, *key;
-    int text;
-} column;
-
-static int csv_columns(json_t *result, strbuf *b, const column *cols, int ncols,
-                       const char *analysis, rd_error *err)
+/* Rows from columns of equal-length arrays (in table->object, if named). */
+static int csv_arrays(json_t *result, const rd_csv_table *t, int ncols, strbuf *b,
+                      const char *analysis, rd_error *err)
 {
+    json_t *holder = t->object ? json_object_get(result, t->object) : result;
     size_t rows = 0;
     for (int c = 0; c < ncols; c++) {
-        json_t *a = json_object_get(result, cols[c].key);
+        json_t *a = json_object_get(holder, t->columns[c].key);
         if (!json_is_array(a))
             return rd_error_set(err, RD_EINTERNAL, "", "malformed %s result: /%s is not an array",
-                                analysis, cols[c].key);
+                                analysis, t->columns[c].key);
         if (c == 0)
             rows = json_array_size(a);
         else if (json_array_size(a) != rows)
             return rd_error_set(err, RD_EINTERNAL, "", "malformed %s result: /%s has %zu rows, "
-                                "not %zu", analysis, cols[c].key, json_array_size(a), rows);
-        sb_printf(b, "%s%s", cols[c].header, c + 1 < ncols ? "," : "\n");
+                                "not %zu", analysis, t->columns[c].key, json_array_size(a), rows);
     }
     for (size_t i = 0; i < rows; i++)
         for (int c = 0; c < ncols; c++) {
-            json_t *v = json_array_get(json_object_get(result, cols[c].key), i);
-            const char *sep = c + 1 < ncols ? "," : "\n";
-            if (cols[c].text && json_is_string(v))
-                csv_text(b, json_string_value(v), sep);
-            else if (cols[c].text || csv_real(b, v, sep) != 0)
+            const rd_csv_column *col = &t->columns[c];
+            json_t *v = json_array_get(json_object_get(holder, col->key), i);
+            if (csv_cell(b, col, v, c + 1 < ncols ? "," : "\n"))
                 return rd_error_set(err, RD_EINTERNAL, "", "malformed %s result: /%s/%zu",
-                                    analysis, cols[c].key, i);
+                                    analysis, col->key, i);
         }
     return RD_OK;
 }
 
-static int csv_pretension(json_t *result, strbuf *b, rd_error *err)
-{
-    static const column cols[] = {{"angle_deg", "angle_deg", 0}, {"x_m", "x", 0},
-                                  {"y_m", "y", 0}, {"z_m", "z", 0},
-                                  {"reference_x_m", "reference_x", 0},
-                                  {"reference_y_m", "reference_y", 0}};
-    return csv_columns(json_object_get(result, "shape"), b, cols, 6, "pretension", err);
-}
-
-static int csv_contact(json_t *result, strbuf *b, rd_error *err)
-{
-    static const column cols[] = {{"angle_deg", "angle_deg", 0},
-                                  {"pressure_pa", "pressure_pa", 0},
-                                  {"clearance_m", "clearance", 0},
-                                  {"bore_radius_m", "bore_radius", 0}};
-    return csv_columns(result, b, cols, 4, "contact", err);
-}
-
-static int csv_lift(json_t *result, strbuf *b, rd_error *err)
-{
-    static const column cols[] = {{"crank_deg", "crank_deg", 0}, {"lift_m", "lift", 0},
-                                  {"lift_min_m", "lift_min", 0}, {"lift_max_m", "lift_max", 0},
-                                  {"twist_rad", "twist_rad", 0},
-                                  {"friction_force_n", "friction_force", 0},
-                                  {"flank", "flank", 1}};
-    return csv_columns(result, b, cols, 7, "lift", err);
-}
-
-/* One table per analysis; a later analysis adds its writer here. */
-static const struct csv_table {
-    const char *analysis;
-    int (*write)(json_t *result, strbuf *b, rd_error *err);
-} csv_tables[] = {
-    {"modal", csv_modal},
-    {"pretension", csv_pretension},
-    {"contact", csv_contact},
-    {"lift", csv_lift},
-};
-
-char *rd_result_csv(json_t *result, rd_error *err)
+char *rd_result_csv(json_t *result, const rd_csv_table *t, const char *analysis, rd_error *err)
 {
     strbuf b = {NULL, 0, 0, 0};
-    const char *analysis = json_string_value(json_object_get(result, "analysis"));
-    const struct csv_table *table = NULL;
-    int rc;
-
-    if (!analysis) {
-        rc = rd_error_set(err, RD_EINTERNAL, "", "malformed result: no \"analysis\" string");
-        goto out;
-    }
-    for (size_t k = 0; k < sizeof csv_tables / sizeof csv_tables[0]; k++)
-        if (strcmp(csv_tables[k].analysis, analysis) == 0)
-            table = &csv_tables[k];
-    if (!table) {
-        rc = rd_error_set(err, RD_ENOTFOUND, "", "a %.40s result has no CSV table", analysis);
-        goto out;
-    }
-    rc = table->write(result, &b, err);
+    int ncols = count_columns(t);
+    for (int c = 0; c < ncols; c++)
+        sb_printf(&b, "%s%s", t->columns[c].header, c + 1 < ncols ? "," : "\n");
+    int rc = t->rows ? csv_rows(result, t, ncols, &b, analysis, err)
+                     : csv_arrays(result, t, ncols, &b, analysis, err);
     if (rc == RD_OK && b.failed)
         rc = rd_error_set(err, RD_ENOMEM, "", "out of memory while writing the CSV table");
-out:
     if (rc != RD_OK) {
         free(b.p);
         return NULL;
     }
     return b.p;
+}
+
+/* ---- the result document -------------------------------------------------- */
+
+struct rd_result_doc {
+    const rd_analysis_def *an;
+    json_t *result;
+};
+
+int rd_scene_run_doc(const rd_scene *scene, const rd_monitor *mon, rd_result_doc **out,
+                     rd_error *err)
+{
+    json_t *result = NULL;
+    *out = NULL;
+    int rc = scene->an->run(scene, mon, &result, err);
+    if (rc != RD_OK) {
+        json_decref(result);
+        return rc;
+    }
+    *out = result ? malloc(sizeof **out) : NULL;
+    if (!*out) {
+        json_decref(result);
+        return rd_error_set(err, RD_ENOMEM, "", "out of memory while writing the result");
+    }
+    (*out)->an = scene->an;
+    (*out)->result = result;
+    return RD_OK;
+}
+
+char *rd_result_doc_json(const rd_result_doc *doc)
+{
+    return json_dumps(doc->result, JSON_COMPACT | JSON_REAL_PRECISION(RD_RESULT_REAL_DIGITS));
+}
+
+char *rd_result_doc_csv(const rd_result_doc *doc, rd_error *err)
+{
+    if (!doc->an->csv) {
+        rd_error_set(err, RD_ENOTFOUND, "", "a %s result has no CSV table", doc->an->name);
+        return NULL;
+    }
+    return rd_result_csv(doc->result, doc->an->csv, doc->an->name, err);
+}
+
+void rd_result_doc_free(rd_result_doc *doc)
+{
+    if (!doc)
+        return;
+    json_decref(doc->result);
+    free(doc);
+}
+
+int rd_scene_run(const rd_scene *scene, const rd_monitor *mon, char **result_json, rd_error *err)
+{
+    rd_result_doc *doc = NULL;
+    *result_json = NULL;
+    int rc = rd_scene_run_doc(scene, mon, &doc, err);
+    if (rc != RD_OK)
+        return rc;
+    *result_json = rd_result_doc_json(doc);
+    rd_result_doc_free(doc);
+    if (!*result_json)
+        rc = rd_error_set(err, RD_ENOMEM, "", "out of memory while writing the result");
+    return rc;
+}
+
+/* ---- CSV of a result text ------------------------------------------------- */
+
+/* A top-level member of the result text: its key (raw bytes between the
+ * quotes) and the span of its value. */
+typedef struct member {
+    const char *key, *value;
+    size_t key_len, value_len;
+} member;
+
+#define MEMBERS_MAX 64
+
+static const char *skip_ws(const char *p, const char *end)
+{
+    while (p < end && (*p == ' ' || *p == '\t' || *p == '\n' || *p == '\r'))
+        p++;
+    return p;
+}
+
+/* p at '"': past the closing quote, or NULL. */
+static const char *skip_string(const char *p, const char *end)
+{
+    for (p++; p < end; p++) {
+        if (*p == '\\')
+            p++;
+        else if (*p == '"')
+            return p + 1;
+    }
+    return NULL;
+}
+
+/* Past one value (its brackets balanced, strings skipped whole; the
+ * content is checked only when a member is decoded), or NULL. */
+static const char *skip_value(const char *p, const char *end)
+{
+    if (p < end && *p == '"')
+        return skip_string(p, end);
+    if (p < end && (*p == '{' || *p == '[')) {
+        size_t depth = 0;
+        for (; p < end; p++) {
+            if (*p == '"') {
+                if (!(p = skip_string(p, end)))
+                    return NULL;
+                p--;
+            } else if (*p == '{' || *p == '[') {
+                depth++;
+            } else if ((*p == '}' || *p == ']') && --depth == 0) {
+                return p + 1;
+            }
+        }
+        return NULL;
+    }
+    const char *start = p;
+    while (p < end && !strchr(",}] \t\r\n", *p))
+        p++;
+    return p > start ? p : NULL;
+}
+
+/* The members of the top-level object in `text`; -1 if it is not one. */
+static int scan_members(const char *text, size_t len, member *m, int max)
+{
+    const char *p = text, *end = text + len;
+    int n = 0;
+    p = skip_ws(p, end);
+    if (p >= end || *p != '{')
+        return -1;
+    p = skip_ws(p + 1, end);
+    if (p < end && *p == '}')
+        return 0;
+    while (p < end && n < max) {
+        if (*p != '"')
+            return -1;
+        const char *key_end = skip_string(p, end);
+        if (!key_end)
+            return -1;
+        m[n].key = p + 1;
+        m[n].key_len = (size_t)(key_end - p - 2);
+        p = skip_ws(key_end, end);
+        if (p >= end || *p != ':')
+            return -1;
+        p = skip_ws(p + 1, end);
+        const char *value_end = skip_value(p, end);
+        if (!value_end)
+            return -1;
+        m[n].value = p;
+        m[n++].value_len = (size_t)(value_end - p);
+        p = skip_ws(value_end, end);
+        if (p < end && *p == '}')
+            return skip_ws(p + 1, end) == end ? n : -1;
+        if (p >= end || *p != ',')
+            return -1;
+        p = skip_ws(p + 1, end);
+    }
+    return -1;
+}
+
+/* The value of member `key` decoded (new reference), or NULL when absent
+ * or not JSON. */
+static json_t *member_value(const member *m, int n, const char *key)
+{
+    size_t k = strlen(key);
+    for (int i = 0; i < n; i++)
+        if (m[i].key_len == k && memcmp(m[i].key, key, k) == 0)
+            return json_loadb(m[i].value, m[i].value_len, JSON_DECODE_ANY, NULL);
+    return NULL;
+}
+
+/* An object holding only the members `t` reads ("analysis" aside): what
+ * rd_result_csv needs of the whole result.  NULL on out of memory. */
+static json_t *table_members(const member *m, int n, const rd_csv_table *t)
+{
+    json_t *o = json_object();
+    const char *holder = t->rows ? t->rows : t->object;
+    if (o && holder) {
+        json_t *v = member_value(m, n, holder);
+        if (v && json_object_set_new(o, holder, v) != 0) {
+            json_decref(o);
+            return NULL;
+        }
+        return o;
+    }
+    for (int c = 0; o && t->columns[c].header; c++) {
+        json_t *v = member_value(m, n, t->columns[c].key);
+        if (v && json_object_set_new(o, t->columns[c].key, v) != 0) {
+            json_decref(o);
+            o = NULL;
+        }
+    }
+    return o;
+}
+
+char *rd_api_result_csv(const char *result_json, rd_error *err)
+{
+    member m[MEMBERS_MAX];
+    const char *text = result_json ? result_json : "";
+    int n = scan_members(text, strlen(text), m, MEMBERS_MAX);
+    if (n < 0) {
+        rd_error_set(err, RD_EINTERNAL, "", "the result is not a JSON object");
+        return NULL;
+    }
+    json_t *name = member_value(m, n, "analysis");
+    const rd_analysis_def *an =
+        json_is_string(name) ? rd_registry_find(rd_registry, json_string_value(name), NULL) : NULL;
+    char *csv = NULL;
+    if (!json_is_string(name)) {
+        rd_error_set(err, RD_EINTERNAL, "", "malformed result: no \"analysis\" string");
+    } else if (!an || !an->csv) {
+        rd_error_set(err, RD_ENOTFOUND, "", "a %.40s result has no CSV table",
+                     json_string_value(name));
+    } else {
+        json_t *part = table_members(m, n, an->csv);
+        csv = part ? rd_result_csv(part, an->csv, an->name, err) : NULL;
+        if (!part)
+            rd_error_set(err, RD_ENOMEM, "", "out of memory while writing the CSV table");
+        json_decref(part);
+    }
+    json_decref(name);
+    return csv;
 }

@@ -1,18 +1,18 @@
 /*
- * rd_result — results as the contract writes them: the `result` JSON object
- * of each analysis (API.md "Results"), and its main table as CSV.
+ * rd_result — what every result writer shares: reals as JSON, the CSV
+ * table of a result (declared by each analysis as columns of its result
+ * object), and the result document (rd_api.h) that writes both the JSON
+ * and the CSV from the one object built by the runner.
  *
- * api-internal (rd_api.c uses it); jansson values are passed as
- * struct json_t so this header does not pull in jansson.h.
+ * api-internal; jansson values are passed as struct json_t so this header
+ * does not pull in jansson.h.
  */
 #ifndef RD_RESULT_H
 #define RD_RESULT_H
 
-#include "rd_lift.h"
-#include "rd_modal.h"
-#include "rd_ring.h"
-#include "rd_scene.h"
-#include "rd_static.h"
+#include <stddef.h>
+
+#include "rd_error.h"
 
 struct json_t;
 
@@ -21,53 +21,37 @@ struct json_t;
  * mode shapes of a large ring (60 modes x 4 x 2000 numbers) compact. */
 #define RD_RESULT_REAL_DIGITS 10
 
-/* The modal result object:
- *   {"analysis":"modal", "scene":{echo}, "rigid_body_modes",
- *    "segment_angle_deg":[n], "modes":[{"mode", "frequency_hz", "kind",
- *    "in_plane_energy_fraction", "error_estimate", "frequency_extrapolated_hz",
- *    "residual", "shape":{"radial","tangential","axial","twist"}}...],
- *    "numerics":{"segments", "dof", "wall_s", "solver", "iterations",
- *    "block_size", "max_residual", "reference_segments", "error_estimate",
- *    "error_method"}}
- * NaN values (nothing estimated) become null.  `ring` is the model that was
- * solved (segment angles, centroid radius); everything is borrowed.
- * Returns a new reference, or NULL when out of memory. */
-struct json_t *rd_result_modal(const rd_scene *scene, const rd_ring *ring,
-                               const rd_modal_result *res, double wall_s);
+/* Monotonic wall clock, s: what a runner reports as numerics.wall_s. */
+double rd_clock_s(void);
 
-/* The static results (rd_static.h):
- *   pretension: {"analysis", "scene", "gap_opening_inner", "lateral_opening",
- *     "gap_opening_neutral", "free_gap_formula", "conformability",
- *     "support":{"force_n","moment_nm"}, "shape":{"angle_deg","x","y","z",
- *     "reference_x","reference_y"} (n + 2 points), "numerics"}
- *   contact: {"analysis", "scene", "angle_deg", "pressure_pa", "clearance",
- *     "bore_radius" (n each, per segment), "mean_pressure_pa",
- *     "uniform_pressure_pa", "contact_fraction", "max_clearance",
- *     "max_clearance_angle_deg", "max_penetration", "contact_stiffness",
- *     "conformability", "distortion":[{"order","amplitude","phase_deg",
- *     "conformability_bound"}], "support":{...}, "numerics"}
- * with numerics {"segments","dof","wall_s","solver","load_steps",
- * "iterations","residual","tolerance","strain_energy","reference_segments",
- * "error_estimate","error_method"}. */
-struct json_t *rd_result_pretension(const rd_scene *scene, const rd_pretension_result *res,
-                                     double wall_s);
-struct json_t *rd_result_contact(const rd_scene *scene, const rd_contact_result *res,
-                                 double wall_s);
+/* A real, or null when it is not finite (NaN: nothing estimated); jansson
+ * refuses non-finite reals.  NULL only when out of memory. */
+struct json_t *rd_result_real(double x);
 
-/* The lift result (rd_lift.h): {"analysis", "scene", "crank_deg", "lift",
- * "lift_min", "lift_max", "lift_segments" (samples x n), "twist_rad",
- * "friction_force", "flank", "events":[{"crank_deg","event"}], "numerics":
- * {"segments","dof","wall_s","solver","steps","rhs_evals","jac_evals",
- * "linear_setups","nonlinear_iterations","nonlinear_failures",
- * "error_test_fails","root_evals","rtol","atol","error_estimate",
- * "event_error_deg","error_method"}}. */
-struct json_t *rd_result_lift(const rd_scene *scene, const rd_lift_result *res, double wall_s);
+/* [scale * x[0], scale * x[stride], ...], n values; NULL on out of memory. */
+struct json_t *rd_result_reals(const double *x, int n, int stride, double scale);
 
-/* The main table of a result object as CSV text (malloc'd, caller frees):
- * a header row whose column names carry their units, one row per entry,
- * reals as %.10g, an empty cell for null.  Dispatches on "analysis"; an
- * analysis without a table is RD_ENOTFOUND, a malformed result RD_EINTERNAL.
- * `result` is borrowed. */
-char *rd_result_csv(struct json_t *result, rd_error *err);
+/* One CSV column: its header (name with unit), the result key it reads and
+ * whether its cells are text (else numbers or null, written %.10g, empty
+ * for null). */
+typedef struct rd_csv_column {
+    const char *header, *key;
+    int text;
+} rd_csv_column;
+
+/* A result's main table.  Either `rows` names an array of objects (one row
+ * each, a column per key), or the columns are equal-length arrays found in
+ * the result object, or in its member `object` when that is not NULL. */
+typedef struct rd_csv_table {
+    const char *object;
+    const char *rows;
+    const rd_csv_column *columns; /* ended by a NULL header */
+} rd_csv_table;
+
+/* The table of `result` (borrowed) as CSV text, malloc'd: a header row, one
+ * row per entry.  A result that does not have the table's shape is
+ * RD_EINTERNAL ("malformed <analysis> result: ..."). */
+char *rd_result_csv(struct json_t *result, const rd_csv_table *table, const char *analysis,
+                    rd_error *err);
 
 #endif

@@ -4,29 +4,28 @@
  *
  * Implements the rd_scene_parse / rd_scene_free / rd_scene_analysis /
  * rd_scene_to_json entry points declared in rd_api.h; this header adds what
- * the other api modules (rd_api.c, rd_result.c, rd_examples.c) need to see.
- * Not for the server: it should only include rd_api.h.
+ * the other api modules need to see.  Not for the server: it should only
+ * include rd_api.h.
  *
  * Parsing order (the first error wins and is the only one reported):
  *   1. the body is a JSON object (RD_EJSON otherwise, with jansson's
  *      line/column/text);
- *   2. "analysis" names an available analysis;
+ *   2. "analysis" names an analysis of the registry (rd_registry.h);
  *   3. every key the analysis reads is known (typos are errors, not ignored)
- *      and has the right JSON type; blocks the analysis does not read are
- *      ignored entirely;
- *   4. core's validators (rd_ring_validate, rd_modal_validate) check values
- *      and ranges; their errors pass through unchanged.
+ *      and has the right JSON type (rd_schema.h); blocks that only other
+ *      analyses read are ignored entirely;
+ *   4. the analysis' finish hook runs core's validators (rd_ring_validate,
+ *      rd_modal_validate, ...); their errors pass through unchanged.
  */
 #ifndef RD_SCENE_H
 #define RD_SCENE_H
 
 #include "rd_api.h"
-#include "rd_lift.h"
 #include "rd_modal.h"
 #include "rd_ring.h"
-#include "rd_static.h"
 
 struct json_t; /* jansson; api-internal headers use it without including jansson.h */
+struct rd_analysis_def;
 
 /* Segment count when the scene gives none: the thesis' compromise (3.3). */
 #define RD_SCENE_DEFAULT_SEGMENTS 20
@@ -36,7 +35,8 @@ struct json_t; /* jansson; api-internal headers use it without including jansson
  * turn 0.0765 into 0.076499999999999999. */
 #define RD_SCENE_REAL_DIGITS 15
 
-/* Analyses the contract names, available or not (API.md). */
+/* The analyses of the built-in registry, by index (rd_registry.c keeps
+ * this order). */
 enum rd_analysis {
     RD_ANALYSIS_MODAL = 0,
     RD_ANALYSIS_PRETENSION,
@@ -44,30 +44,28 @@ enum rd_analysis {
     RD_ANALYSIS_LIFT
 };
 
+/* An array of numbers read from the scene (malloc'd). */
+struct rd_table {
+    double *v;
+    int n;
+};
+
 struct rd_scene {
-    int analysis;        /* enum rd_analysis */
+    int analysis;                     /* index into the registry it was parsed with */
+    const struct rd_analysis_def *an; /* that registry entry */
     char *name;          /* optional metadata, NULL when absent; owned */
     char *description;   /* optional metadata, NULL when absent; owned */
     rd_ring_params ring; /* /ring */
     int segments;        /* /discretization/segments */
     int closed;          /* /discretization/closed: 1 joins the gap */
-    rd_modal_opts modal; /* /modal: modes, estimate_error */
-    rd_static_opts statics;        /* /numerics of pretension and contact */
-    rd_pretension_opts pretension; /* /pretension */
-    rd_contact_opts contact;       /* /bore, /contact */
-    rd_lift_params lift;           /* /engine, /groove, /physics, /contact, /output, /numerics */
-    /* lift: which optional physics the scene names, and the gas tables it
-     * owns (rd_lift_params.gas borrows them) */
-    int friction_given, gas_given;
-    int friction_model;            /* index into the "model" choices */
-    int max_steps;                 /* /numerics/max_steps (lift) */
-    struct rd_table {
-        double *v;
-        int n;
-    } gas_table[4];                /* crank_deg, above, behind, below */
+    rd_modal_opts modal; /* /modal: the modal analysis' options (a member, not
+                            in opts, because callers and tests read it here) */
+    void *opts;          /* the analysis' own options (an->opts_size bytes,
+                            owned; an->cleanup frees what it holds) */
 };
 
-/* Name of an analysis ("modal", ...); "unknown" outside the enum. */
+/* Name of an analysis of the built-in registry ("modal", ...); "unknown"
+ * outside it. */
 const char *rd_scene_analysis_name(int analysis);
 
 /* The echoed scene as a new jansson object (caller owns the reference):
@@ -80,5 +78,15 @@ struct json_t *rd_scene_echo(const rd_scene *scene);
  * const only because jansson's object iteration takes a mutable json_t).
  * Same contract as rd_scene_parse otherwise. */
 int rd_scene_parse_value(struct json_t *value, rd_scene **out, rd_error *err);
+
+/* rd_scene_parse_value against another registry (NULL-ended array of
+ * analyses): how tests try an analysis that is not built in. */
+int rd_scene_parse_with(const struct rd_analysis_def *const *registry, struct json_t *value,
+                        rd_scene **out, rd_error *err);
+
+/* A scene of analysis `an` holding only defaults (what a scene that names
+ * nothing else parses to, before core's checks): the source of the
+ * OpenAPI defaults.  NULL when out of memory. */
+rd_scene *rd_scene_defaults(const struct rd_analysis_def *an);
 
 #endif

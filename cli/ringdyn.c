@@ -84,6 +84,7 @@ static int command(const char *file, int run, int csv)
     rd_error err;
     rd_scene *scene = NULL;
     char *body = NULL, *result = NULL, *text = NULL;
+    rd_result_doc *doc = NULL;
     size_t len;
     rd_monitor mon = {stop_on_sigint, NULL};
     int status = 0;
@@ -102,17 +103,23 @@ static int command(const char *file, int run, int csv)
         sa.sa_handler = on_sigint;
         sigemptyset(&sa.sa_mask);
         sigaction(SIGINT, &sa, NULL);
-        if (rd_scene_run(scene, &mon, &result, &err) != RD_OK) {
+        if (rd_scene_run_doc(scene, &mon, &doc, &err) != RD_OK) {
             status = fail(&err);
             goto out;
         }
+        /* the CSV straight from the result document, no JSON text between */
+        result = csv ? rd_result_doc_csv(doc, &err) : rd_result_doc_json(doc);
     }
     if (!result) {
-        rd_error_set(&err, RD_ENOMEM, "", "out of memory while writing the output");
+        if (err.code == RD_OK)
+            rd_error_set(&err, RD_ENOMEM, "", "out of memory while writing the output");
         status = fail(&err);
         goto out;
     }
-    text = csv ? rd_api_result_csv(result, &err) : rd_api_json_pretty(result);
+    /* --csv comes only with run: result is then the CSV text already */
+    text = csv ? result : rd_api_json_pretty(result);
+    if (text == result)
+        result = NULL;
     if (!text) {
         rd_error_set(&err, RD_ENOMEM, "", "out of memory while writing the output");
         status = fail(&err);
@@ -129,6 +136,7 @@ out:
     free(text);
     free(result);
     free(body);
+    rd_result_doc_free(doc);
     rd_scene_free(scene);
     return status;
 }

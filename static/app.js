@@ -219,6 +219,13 @@ async function loadVersion() {
   }
 }
 
+// The form's defaults come from the server's scene schemas (one source with
+// the scene parser); the tabs appear once they are in.
+try {
+  form.setDefaults(await getJSON('/api/v1/openapi.json'), ANALYSES[0].id);
+} catch (err) {
+  setStatus(`Field defaults unavailable (${err.message}); fill in every field.`);
+}
 buildTabs();
 selectAnalysis(state.analysis);
 $('scene-form').addEventListener('submit', run);

@@ -1,6 +1,9 @@
 // The scene form: every input carries data-path (the JSON Pointer of its scene
-// field) and data-default.  The scene is read from those inputs, an example is
-// written into them, and an error's path finds the input to highlight.
+// field); its data-default comes from the server's OpenAPI document
+// (setDefaults), whose scene schemas the server writes from the same tables
+// that parse scenes, so the page holds no copy of a default.  The scene is
+// read from those inputs, an example is written into them, and an error's
+// path finds the input to highlight.
 //
 // Encoding of a field by its element:
 //   checkbox                    -> true / false
@@ -49,6 +52,28 @@ export class SceneForm {
     form.addEventListener('change', (e) => {
       if (e.target.dataset.toggle) this.syncToggle(e.target);
     });
+    this.reset();
+  }
+
+  // Each field's default from the OpenAPI document: the schema of the
+  // field's analysis (its fieldset's data-analysis; the shared fields use
+  // `shared`'s), followed along data-path.  Optional fields (data-optional)
+  // stay empty: absent from the scene, the server's default applies.
+  setDefaults(openapi, shared) {
+    const schemas = openapi?.components?.schemas ?? {};
+    const mapping = schemas.Scene?.discriminator?.mapping ?? {};
+    const resolve = (s) => {
+      const ref = s?.$ref ?? s?.allOf?.[0]?.$ref;
+      return ref ? schemas[ref.split('/').pop()] : s;
+    };
+    for (const input of this.form.querySelectorAll('[data-path]')) {
+      if ('optional' in input.dataset) continue;
+      const analysis = input.closest('[data-analysis]')?.dataset.analysis ?? shared;
+      let schema = resolve({ $ref: mapping[analysis] });
+      for (const t of tokens(input.dataset.path)) schema = resolve(resolve(schema)?.properties?.[t]);
+      const d = schema?.default;
+      if (d !== undefined) input.dataset.default = typeof d === 'number' ? formatDefault(d) : String(d);
+    }
     this.reset();
   }
 
@@ -397,6 +422,12 @@ function setValue(input, v) {
   if (input.type === 'checkbox') input.checked = v === true || v === 'true';
   else if (input.tagName === 'SELECT') input.value = v === undefined ? input.options[0]?.value ?? '' : String(v);
   else input.value = v === undefined ? '' : String(v);
+}
+
+// A default as a person writes it: 2.1e11 and 3e-5, not 210000000000 and 0.00003.
+function formatDefault(v) {
+  const a = Math.abs(v);
+  return a !== 0 && (a >= 1e6 || a < 1e-4) ? v.toExponential().replace('e+', 'e') : String(v);
 }
 
 // JSON Pointer (RFC 6901) get / set / delete on plain objects.

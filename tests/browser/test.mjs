@@ -71,6 +71,16 @@ test('default modal analysis: table, plot, cost line, links', { timeout: 120000 
   assert.equal(await page.inputValue('#f-diameter'), '0.0765');
   assert.equal(await page.inputValue('#f-segments'), '20');
   assert.equal(await page.inputValue('#f-modes'), '6');
+  // Those defaults are the served scene schema's: every field has one, and a
+  // shared, a modal and a lift field match the document (no copy in the page).
+  const missing = await page.$$eval('[data-path]:not([data-optional])',
+    (els) => els.filter((e) => e.dataset.default === undefined).map((e) => e.id));
+  assert.deepEqual(missing, []);
+  const schemas = (await (await fetch(`${BASE}/api/v1/openapi.json`)).json()).components.schemas;
+  const dflt = (id) => page.$eval(id, (e) => Number(e.dataset.default));
+  assert.equal(await dflt('#f-youngs-modulus'), schemas.Ring.properties.material.properties.youngs_modulus.default);
+  assert.equal(await dflt('#f-modes'), schemas.ModalOptions.properties.modes.default);
+  assert.equal(await dflt('#f-lf-speed'), schemas.Engine.properties.speed_rpm.default);
   assert.match(await page.textContent('#f-diameter-hint'), /76\.5 mm/);
 
   await runAnalysis();

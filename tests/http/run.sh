@@ -416,8 +416,14 @@ check "the waiting request is answered at shutdown" grep -qx '200\|202' "$WORK/l
 
 # ---- server C: the run-time limit ------------------------------------------
 # The slow job takes seconds even in a Release build; 0.5 s stops it early.
-start_server C --job-timeout 0.5
+# (its examples: a file whose name has a dot, which the api does not serve)
+mkdir -p "$WORK/dotted" && cp "$EXAMPLES/thesis_modal.json" "$WORK/dotted/thesis.modal.json"
+start_server C --job-timeout 0.5 --examples "$WORK/dotted"
 C_PID=$SPID
+req GET /api/v1/examples/thesis.modal
+expect_error "example name with a dot, file present" 404 not_found
+req GET /api/v1/examples/bad%FFname
+expect_error "example name that is not UTF-8" 400 invalid_request
 post '/api/v1/jobs?wait=60' "$SLOW"
 same "job over --job-timeout 0.5 ends within ?wait" "$STATUS" 200
 same "job over the time limit fails" "$(json /status)" failed

@@ -1,0 +1,174 @@
+/*
+ * rd_an_contact — the contact analysis in the api (the installed ring in a
+ * round or distorted bore, thesis 3.4.3): scene schema, runner, result
+ * object and CSV table (rd_registry.h).  Options: struct rd_static_scene.
+ */
+#include <jansson.h>
+#include <stddef.h>
+
+#include "rd_registry.h"
+#include "rd_scene.h"
+#include "rd_static.h"
+
+#define ST(member) offsetof(struct rd_static_scene, member)
+
+/* The echo gives the bore diameter and contact stiffness used, where the
+ * scene's 0 means "from the ring". */
+static json_t *echo_bore_diameter(const rd_scene *s)
+{
+    const struct rd_static_scene *o = s->opts;
+    double d = o->contact.bore_diameter;
+    return rd_result_real(d > 0 ? d : s->ring.diameter);
+}
+
+static json_t *echo_stiffness(const rd_scene *s)
+{
+    const struct rd_static_scene *o = s->opts;
+    double k = o->contact.stiffness;
+    return rd_result_real(k > 0 ? k : rd_contact_default_stiffness(&s->ring));
+}
+
+static const rd_field distortion_fields[] = {
+    {"order", RD_F_INTEGER, offsetof(rd_distortion, order), RD_MIN(1), RD_MAX(64),
+     .required = 1, .desc = "Fourier order k; a JSON integer (20.0 is refused here)."},
+    {"amplitude", RD_F_NUMBER, offsetof(rd_distortion, amplitude), .required = 1,
+     .desc = "Radius change A_k, m; |A_k| at most 1 % of the ring diameter."},
+    {"phase_deg", RD_F_NUMBER, offsetof(rd_distortion, phase_deg), RD_MIN(-360), RD_MAX(360),
+     .desc = "Phase phi_k, degrees from the gap middle."},
+    {.key = NULL},
+};
+static const rd_block distortion_block = {
+    "BoreDistortion", "One Fourier term of the bore distortion.", 0, 1, distortion_fields};
+
+static const rd_field bore_fields[] = {
+    {"diameter", RD_F_NUMBER, ST(contact.bore_diameter), RD_MIN(0.0), .echo = echo_bore_diameter,
+     .desc = "Bore diameter D, m; absent or 0 = the ring's diameter; otherwise within 2 % of it "
+             "(0.98 d to 1.02 d). The echo gives the diameter used."},
+    {"distortion", RD_F_DISTORTION, ST(contact), .block = &distortion_block, RD_MAX(RD_DISTORTION_MAX),
+     .desc = "Fourier terms of the bore's out-of-roundness, at most 16; the sum of |amplitude| "
+             "is at most 1 % of the ring diameter. Default: none (a round bore)."},
+    {.key = NULL},
+};
+static const rd_block bore_block = {
+    "Bore", "/bore (contact): the bore r_b(theta) = D/2 + sum A_k cos(k (theta - phi_k)).", 1, 0,
+    bore_fields};
+
+static const rd_field contact_fields[] = {
+    {"points_per_segment", RD_F_INTEGER, ST(contact.points_per_segment), RD_MIN(1),
+     RD_MAX(RD_CONTACT_POINTS_MAX), .desc = "Contact points m on each segment's running face."},
+    {"stiffness", RD_F_NUMBER, ST(contact.stiffness), RD_MIN(0.0), .echo = echo_stiffness,
+     .desc = "Contact stiffness k, Pa/m. Absent or 0 = the default 1e6 E I / (h R^4) "
+             "(penetration under the nominal pressure 1e-6 of the ring's radial deflection "
+             "scale); otherwise 1e-3 to 1e2 times that default. The echo gives the stiffness "
+             "used."},
+    {.key = NULL},
+};
+static const rd_block contact_block = {
+    "ContactOptions", "/contact of a contact scene: the contact points and their law.", 1, 0,
+    contact_fields};
+
+static const rd_field scene_fields[] = {
+    RD_SCENE_COMMON_WITH("The ring; the contact analysis needs tangential_force > 0.",
+                         "{\"properties\": {\"tangential_force\": {\"minimum\": 0, "
+                         "\"exclusiveMinimum\": true}}}",
+                         rd_block_discretization_static),
+    {"bore", RD_F_BLOCK, 0, .block = &bore_block},
+    {"contact", RD_F_BLOCK, 0, .block = &contact_block},
+    {"numerics", RD_F_BLOCK, 0, .block = &rd_block_static_numerics},
+    {.key = NULL},
+};
+static const rd_block scene_block = {
+    "ContactScene",
+    "The installed ring pressed by its pretension against a round or distorted bore: contact "
+    "pressure and light gaps around the circumference (thesis 3.4.3). Reads ring "
+    "(tangential_force must be > 0), discretization (4..2000 segments, split ring only), bore, "
+    "contact (ContactOptions) and numerics (StaticNumerics).",
+    0, 0, scene_fields};
+
+static int finish(struct rd_scene *s, rd_error *err)
+{
+    struct rd_static_scene *o = s->opts;
+    int rc = rd_static_validate(&o->statics, s->segments, s->closed, err);
+    return rc != RD_OK ? rc : rd_contact_validate(&o->contact, &s->ring, err);
+}
+
+static json_t *distortion_bounds(const rd_scene *scene, const rd_contact_result *res)
+{
+    const struct rd_static_scene *o = scene->opts;
+    json_t *dist = json_array();
+    for (int k = 0; dist && k < o->contact.n_distortion; k++) {
+        const rd_distortion *d = &o->contact.distortion[k];
+        if (json_array_append_new(dist, json_pack("{s:i, s:o, s:o, s:o}", "order", d->order,
+                                                  "amplitude", rd_result_real(d->amplitude),
+                                                  "phase_deg", rd_result_real(d->phase_deg),
+                                                  "conformability_bound",
+                                                  rd_result_real(res->bound[k]))) != 0) {
+            json_decref(dist);
+            dist = NULL;
+        }
+    }
+    return dist;
+}
+
+/* {"analysis", "scene", "angle_deg", "pressure_pa", "clearance",
+ *  "bore_radius" (n each, per segment), "mean_pressure_pa", ...,
+ *  "distortion":[{"order","amplitude","phase_deg","conformability_bound"}],
+ *  "support", "numerics"} */
+static json_t *contact_result(const rd_scene *scene, const rd_contact_result *res, double wall_s)
+{
+    int n = res->points;
+    return json_pack(
+        "{s:s, s:o, s:o, s:o, s:o, s:o, s:o, s:o, s:o, s:o, s:o, s:o, s:o, s:o, s:o, s:o,"
+        " s:o}",
+        "analysis", rd_scene_analysis(scene),
+        "scene", rd_scene_echo(scene),
+        "angle_deg", rd_result_reals(res->angle_deg, n, 1, 1.0),
+        "pressure_pa", rd_result_reals(res->pressure, n, 1, 1.0),
+        "clearance", rd_result_reals(res->clearance, n, 1, 1.0),
+        "bore_radius", rd_result_reals(res->bore_radius, n, 1, 1.0),
+        "mean_pressure_pa", rd_result_real(res->mean_pressure),
+        "uniform_pressure_pa", rd_result_real(res->uniform_pressure),
+        "contact_fraction", rd_result_real(res->contact_fraction),
+        "max_clearance", rd_result_real(res->max_clearance),
+        "max_clearance_angle_deg", rd_result_real(res->max_clearance_angle_deg),
+        "max_penetration", rd_result_real(res->max_penetration),
+        "contact_stiffness", rd_result_real(res->stiffness),
+        "conformability", rd_result_real(res->conformability),
+        "distortion", distortion_bounds(scene, res),
+        "support", rd_static_result_support(&res->stats),
+        "numerics", rd_static_result_numerics(&res->stats, wall_s,
+                                              "RMS difference of the pressure profile, relative "
+                                              "to the uniform pressure,"));
+}
+
+static int run(const rd_scene *s, const rd_monitor *mon, json_t **out, rd_error *err)
+{
+    const struct rd_static_scene *o = s->opts;
+    rd_contact_result res;
+    double t0 = rd_clock_s();
+    int rc = rd_contact_solve(&s->ring, s->segments, &o->contact, &o->statics, mon, &res, err);
+    if (rc == RD_OK)
+        *out = contact_result(s, &res, rd_clock_s() - t0);
+    rd_contact_result_cleanup(&res);
+    return rc;
+}
+
+static const rd_csv_column csv_columns[] = {
+    {"angle_deg", "angle_deg", 0},
+    {"pressure_pa", "pressure_pa", 0},
+    {"clearance_m", "clearance", 0},
+    {"bore_radius_m", "bore_radius", 0},
+    {NULL, NULL, 0},
+};
+static const rd_csv_table csv = {NULL, NULL, csv_columns};
+
+const rd_analysis_def rd_an_contact = {
+    .name = "contact",
+    .scene = &scene_block,
+    .opts_size = sizeof(struct rd_static_scene),
+    .defaults = rd_static_scene_defaults,
+    .finish = finish,
+    .run = run,
+    .csv = &csv,
+    .page = "contact.js",
+};

@@ -1,0 +1,359 @@
+/*
+ * rd_an_lift — the lift analysis in the api (the ring's axial motion in its
+ * groove over engine cycles, thesis 3.5): scene schema, runner, result
+ * object and CSV table (rd_registry.h).
+ *
+ * Options (struct lift_opts): core's rd_lift_params, plus what only the
+ * scene knows: which optional physics it named (friction, gas), the
+ * friction model's index and the four gas tables, which rd_lift_params.gas
+ * borrows once the scene is parsed.
+ */
+#include <jansson.h>
+#include <math.h>
+#include <stddef.h>
+#include <stdio.h>
+#include <stdlib.h>
+
+#include "rd_lift.h"
+#include "rd_registry.h"
+#include "rd_scene.h"
+
+struct lift_opts {
+    rd_lift_params lift;
+    int friction_given, gas_given;
+    int friction_model;         /* index into friction_names */
+    int max_steps;              /* /numerics/max_steps */
+    struct rd_table gas_table[4]; /* crank_deg, above, behind, below */
+};
+
+#define LO(member) offsetof(struct lift_opts, member)
+
+/* ---- scene ---------------------------------------------------------------- */
+
+static const char *const kinematics_names[] = {"exact", "approximate", NULL}; /* enum rd_kinematics */
+static const char *const friction_names[] = {"coulomb", "stribeck", NULL};   /* model - 1 */
+static const char *const area_names[] = {"fixed", "dynamic", NULL};          /* enum rd_gas_area */
+
+static const rd_field engine_fields[] = {
+    {"speed_rpm", RD_F_NUMBER, LO(lift.engine.speed_rpm), RD_MIN(1), RD_MAX(30000),
+     .desc = "Crank speed, rpm."},
+    {"crank_radius", RD_F_NUMBER, LO(lift.engine.crank_radius), RD_MIN(0.001), RD_MAX(1.0),
+     .desc = "Crank radius r (half the stroke), m."},
+    {"rod_length", RD_F_NUMBER, LO(lift.engine.rod_length), RD_MAX(10.0),
+     .desc = "Connecting rod length l, m; from r / 0.9 to 10 m."},
+    {"kinematics", RD_F_CHOICE, LO(lift.engine.kinematics), .choices = kinematics_names,
+     .desc = "exact slider-crank, or the approximate series (thesis 1.6-1.8)."},
+    {"cycles", RD_F_NUMBER, LO(lift.engine.cycles), RD_XMIN(0), RD_MAX(50),
+     .desc = "4-stroke cycles (720 deg each) simulated; any real > 0."},
+    {.key = NULL},
+};
+static const rd_block engine_block = {"Engine", "/engine (lift): piston kinematics.", 1, 0,
+                                      engine_fields};
+
+static const rd_field groove_fields[] = {
+    {"axial_clearance", RD_F_NUMBER, LO(lift.groove.axial_clearance), RD_MIN(1e-07),
+     RD_MAX(0.005), .desc = "Groove height minus ring height, m."},
+    {"radial_clearance", RD_F_NUMBER, LO(lift.groove.radial_clearance), RD_MIN(1e-06),
+     RD_MAX(0.01), .desc = "Ring inner face to groove back, m."},
+    {.key = NULL},
+};
+static const rd_block groove_block = {"Groove", "/groove (lift).", 1, 0, groove_fields};
+
+static const rd_field friction_fields[] = {
+    {"model", RD_F_CHOICE, LO(friction_model), .choices = friction_names,
+     .desc = "coulomb: F = -mu N tanh(u / u_reg). stribeck: thesis (2.9) with the Sommerfeld "
+             "number (1.11)."},
+    {"coefficient", RD_F_NUMBER, LO(lift.friction.coefficient), RD_MIN(0), RD_MAX(10),
+     .desc = "Coulomb coefficient mu (also C_Coulomb of 2.9), -."},
+    {"viscosity", RD_F_NUMBER, LO(lift.friction.viscosity), RD_MIN(1e-05), RD_MAX(10),
+     .desc = "Stribeck only: oil dynamic viscosity eta, Pa s."},
+    {"sommerfeld_transition", RD_F_NUMBER, LO(lift.friction.sommerfeld_transition), RD_MIN(0),
+     RD_MAX(1e15), .desc = "Stribeck only: So_lim of (2.9), -."},
+    {"hydrodynamic_slope", RD_F_NUMBER, LO(lift.friction.hydrodynamic_slope), RD_MIN(0),
+     RD_MAX(1e12), .desc = "Stribeck only: K of (2.9), -."},
+    {.key = NULL},
+};
+static const rd_block friction_block = {
+    "Friction",
+    "/physics/friction: axial bore friction on the running face; present = modelled. The echo "
+    "gives all five fields.",
+    1, 0, friction_fields};
+
+#define GAS_TABLE(key, k, text)                                                                  \
+    {key, RD_F_TABLE, LO(gas_table[k]), RD_MIN(2), RD_MAX(RD_LIFT_TABLE_MAX), .required = 1,     \
+     .desc = text}
+static const rd_field gas_fields[] = {
+    GAS_TABLE("crank_deg", 0, "Crank angles, deg, strictly increasing within 0..720."),
+    GAS_TABLE("above", 1, "Gauge pressure on the top face, Pa, each -1e6 to 1e9."),
+    GAS_TABLE("behind", 2, "Gauge pressure on the back (inner) face, Pa, each -1e6 to 1e9."),
+    GAS_TABLE("below", 3, "Gauge pressure on the bottom face, Pa, each -1e6 to 1e9."),
+    {"active_area", RD_F_CHOICE, LO(lift.gas.active_area), .choices = area_names,
+     .desc = "fixed: full faces (thesis). dynamic: a face sealing on a flank sees the mean of "
+             "the groove-back pressure and its own side's."},
+    {.key = NULL},
+};
+static const rd_block gas_block = {
+    "Gas",
+    "/physics/gas: gas pressures vs crank angle; present = modelled. Four tables of the same "
+    "length (2 to 100000 points), interpolated linearly and periodic over 720 deg.",
+    1, 0, gas_fields};
+
+static const rd_field physics_fields[] = {
+    {"gravity", RD_F_BOOL, LO(lift.gravity), .desc = "Gravity, g = 9.80665 m/s^2 along -z."},
+    {"friction", RD_F_OPTBLOCK, LO(friction_given), .block = &friction_block},
+    {"gas", RD_F_OPTBLOCK, LO(gas_given), .block = &gas_block},
+    {.key = NULL},
+};
+static const rd_block physics_block = {
+    "Physics",
+    "/physics (lift): the forces besides piston inertia. An absent entry means that effect is "
+    "not modelled (friction and gas are switched on by naming their block).",
+    1, 0, physics_fields};
+
+/* The echo gives the stiffness used, where the scene's 0 means "default". */
+static json_t *echo_stiffness(const rd_scene *s)
+{
+    const struct lift_opts *o = s->opts;
+    double k = o->lift.contact_stiffness;
+    return rd_result_real(k > 0 ? k : rd_lift_contact_stiffness_default(&s->ring, &o->lift));
+}
+
+static const rd_field contact_fields[] = {
+    {"stiffness", RD_F_NUMBER, LO(lift.contact_stiffness), RD_MIN(0.0), RD_MAX(1e20),
+     .echo = echo_stiffness,
+     .desc = "Penalty stiffness k, Pa/m. 0 = a default from the scene's largest flank load and "
+             "the crank speed (echoed as the value used); otherwise 1e3 to 1e20."},
+    {.key = NULL},
+};
+static const rd_block contact_block = {
+    "LiftContact", "/contact of a lift scene: the flank, bore and groove-back contacts.", 1, 0,
+    contact_fields};
+
+static const rd_field output_fields[] = {
+    {"step_deg", RD_F_NUMBER, LO(lift.step_deg), RD_MIN(0.001), RD_MAX(90),
+     .desc = "Crank-angle step of the output samples, deg."},
+    {.key = NULL},
+};
+static const rd_block output_block = {"Output", "/output (lift).", 1, 0, output_fields};
+
+static const rd_field numerics_fields[] = {
+    {"rtol", RD_F_NUMBER, LO(lift.rtol), RD_MIN(1e-12), RD_MAX(0.01),
+     .desc = "Relative tolerance."},
+    {"atol", RD_F_NUMBER, LO(lift.atol), RD_MIN(1e-16), RD_MAX(1e-05),
+     .desc = "Absolute tolerance on the translations, m (atol / R on the rotations)."},
+    {"max_steps", RD_F_INTEGER, LO(max_steps), RD_MIN(100), RD_MAX(1000000000),
+     .desc = "CVODE steps allowed for the whole run (a run that needs more fails with "
+             "limit_exceeded)."},
+    {"error_estimate", RD_F_BOOL, LO(lift.estimate_error),
+     .desc = "Estimate the error by a second run at rtol/10 and atol/10."},
+    {.key = NULL},
+};
+static const rd_block numerics_block = {
+    "LiftNumerics", "/numerics of a lift scene: the CVODE integration.", 1, 0, numerics_fields};
+
+static const rd_field scene_fields[] = {
+    RD_SCENE_COMMON_WITH("The ring; the lift analysis needs a rectangular section (its faces "
+                         "seal on the groove flanks).",
+                         "{\"properties\": {\"section\": {\"enum\": [\"rectangle\"]}}}",
+                         rd_block_discretization_lift),
+    {"engine", RD_F_BLOCK, 0, .block = &engine_block},
+    {"groove", RD_F_BLOCK, 0, .block = &groove_block},
+    {"physics", RD_F_BLOCK, 0, .block = &physics_block},
+    {"contact", RD_F_BLOCK, 0, .block = &contact_block},
+    {"output", RD_F_BLOCK, 0, .block = &output_block},
+    {"numerics", RD_F_BLOCK, 0, .block = &numerics_block},
+    {.key = NULL},
+};
+static const rd_block scene_block = {
+    "LiftScene",
+    "Axial motion (lift) of the flexible ring in its piston groove over engine cycles (thesis "
+    "3.5): piston inertia always, plus gravity, bore friction and gas pressures when physics "
+    "names them. Reads ring (section must be rectangle), discretization (4..1000 segments, "
+    "split ring only), engine, groove, physics, contact (LiftContact), output and numerics "
+    "(LiftNumerics). Output size: cycles * 720 / step_deg + 1 samples, at most 200000, and "
+    "samples x segments at most 2e7 (limit_exceeded at /output/step_deg otherwise).",
+    0, 0, scene_fields};
+
+static void defaults(struct rd_scene *s)
+{
+    struct lift_opts *o = s->opts;
+    rd_lift_params_default(&o->lift);
+    o->max_steps = (int)o->lift.max_steps;
+}
+
+static void cleanup(void *opts)
+{
+    struct lift_opts *o = opts;
+    for (int k = 0; k < 4; k++)
+        free(o->gas_table[k].v);
+}
+
+/* The gas tables: all four, of the same length; rd_lift_params borrows them. */
+static int gas_finish(struct lift_opts *o, rd_error *err)
+{
+    for (int k = 0; k < 4; k++) {
+        char path[64];
+        snprintf(path, sizeof path, "/physics/gas/%s", gas_fields[k].key);
+        if (!o->gas_table[k].v)
+            return rd_error_set(err, RD_EINVAL, path,
+                                "%s is missing: a gas block needs crank_deg, above, behind "
+                                "and below, all of the same length (use zeros for a face "
+                                "without pressure).",
+                                path);
+        if (o->gas_table[k].n != o->gas_table[0].n)
+            return rd_error_set(err, RD_EINVAL, path,
+                                "%s has %d values but /physics/gas/crank_deg has %d; all "
+                                "four tables must have the same length.",
+                                path, o->gas_table[k].n, o->gas_table[0].n);
+    }
+    o->lift.gas.points = o->gas_table[0].n;
+    o->lift.gas.crank_deg = o->gas_table[0].v;
+    o->lift.gas.above = o->gas_table[1].v;
+    o->lift.gas.behind = o->gas_table[2].v;
+    o->lift.gas.below = o->gas_table[3].v;
+    return RD_OK;
+}
+
+/* The optional physics the scene named, the gas tables, then core's checks. */
+static int finish(struct rd_scene *s, rd_error *err)
+{
+    struct lift_opts *o = s->opts;
+    rd_lift_params *l = &o->lift;
+    if (s->closed)
+        return rd_error_set(err, RD_EINVAL, "/discretization/closed",
+                            "/discretization/closed = true joins the gap, but the lift analysis "
+                            "models the split ring in its groove: use closed = false.");
+    l->friction.model = o->friction_given ? o->friction_model + 1 : RD_FRICTION_NONE;
+    l->max_steps = o->max_steps;
+    l->gas.points = 0;
+    if (o->gas_given) {
+        int rc = gas_finish(o, err);
+        if (rc != RD_OK)
+            return rc;
+    }
+    return rd_lift_validate(l, &s->ring, s->segments, err);
+}
+
+/* ---- result --------------------------------------------------------------- */
+
+static const char *const flank_names[] = {"lower", "upper", "free"};
+static const char *const event_names[] = {"leave_lower", "reach_upper", "leave_upper",
+                                          "reach_lower"};
+
+/* lift_segments (samples x n), flank (per sample), events. */
+static int lift_series(const rd_lift_result *res, json_t **segs, json_t **flank, json_t **events)
+{
+    int N = res->samples, n = res->segments, bad = 0;
+    *segs = json_array();
+    *flank = json_array();
+    *events = json_array();
+    bad |= !*segs || !*flank || !*events;
+    for (int k = 0; !bad && k < N; k++) {
+        int f = res->flank[k];
+        bad |= json_array_append_new(*segs, rd_result_reals(res->lift_segments + (size_t)k * n,
+                                                            n, 1, 1.0));
+        bad |= json_array_append_new(*flank, json_string(f >= 0 && f < 3 ? flank_names[f]
+                                                                         : "free"));
+    }
+    for (int k = 0; !bad && k < res->n_events; k++) {
+        int e = res->events[k].kind;
+        bad |= json_array_append_new(*events,
+                                     json_pack("{s:o, s:s}", "crank_deg",
+                                               rd_result_real(res->events[k].crank_deg), "event",
+                                               e >= 0 && e < 4 ? event_names[e] : "unknown"));
+    }
+    return bad ? -1 : 0;
+}
+
+static json_t *lift_numerics(const rd_scene *scene, const rd_lift_result *res, double wall_s)
+{
+    const struct lift_opts *o = scene->opts;
+    int estimated = isfinite(res->error_estimate);
+    return json_pack(
+        "{s:i, s:i, s:o, s:s, s:I, s:I, s:I, s:I, s:I, s:I, s:I, s:I, s:o, s:o, s:o, s:o, s:o}",
+        "segments", res->segments,
+        "dof", res->dof,
+        "wall_s", rd_result_real(wall_s),
+        "solver", "SUNDIALS CVODE, BDF with a banded Newton linear solver, root finding for the "
+                  "flank changes",
+        "steps", (json_int_t)res->steps,
+        "rhs_evals", (json_int_t)res->rhs_evals,
+        "jac_evals", (json_int_t)res->jac_evals,
+        "linear_setups", (json_int_t)res->lin_setups,
+        "nonlinear_iterations", (json_int_t)res->nonlin_iters,
+        "nonlinear_failures", (json_int_t)res->nonlin_fails,
+        "error_test_fails", (json_int_t)res->err_test_fails,
+        "root_evals", (json_int_t)res->root_evals,
+        "rtol", rd_result_real(o->lift.rtol),
+        "atol", rd_result_real(o->lift.atol),
+        "error_estimate", rd_result_real(res->error_estimate),
+        "event_error_deg", rd_result_real(res->event_error_deg),
+        "error_method", estimated ? json_string("second run at rtol/10 and atol/10: largest lift "
+                                                "difference over the axial clearance, and the "
+                                                "largest shift of a matched flank change")
+                                  : json_null());
+}
+
+/* {"analysis", "scene", "crank_deg", "lift", "lift_min", "lift_max",
+ *  "lift_segments", "twist_rad", "friction_force", "flank", "events",
+ *  "numerics"} */
+static json_t *lift_result(const rd_scene *scene, const rd_lift_result *res, double wall_s)
+{
+    int N = res->samples;
+    json_t *segs, *flank, *events;
+    if (lift_series(res, &segs, &flank, &events) != 0) {
+        json_decref(segs);
+        json_decref(flank);
+        json_decref(events);
+        return NULL;
+    }
+    return json_pack("{s:s, s:o, s:o, s:o, s:o, s:o, s:o, s:o, s:o, s:o, s:o, s:o}",
+                     "analysis", rd_scene_analysis(scene),
+                     "scene", rd_scene_echo(scene),
+                     "crank_deg", rd_result_reals(res->crank_deg, N, 1, 1.0),
+                     "lift", rd_result_reals(res->lift, N, 1, 1.0),
+                     "lift_min", rd_result_reals(res->lift_min, N, 1, 1.0),
+                     "lift_max", rd_result_reals(res->lift_max, N, 1, 1.0),
+                     "lift_segments", segs,
+                     "twist_rad", rd_result_reals(res->twist, N, 1, 1.0),
+                     "friction_force", rd_result_reals(res->friction_force, N, 1, 1.0),
+                     "flank", flank,
+                     "events", events,
+                     "numerics", lift_numerics(scene, res, wall_s));
+}
+
+static int run(const rd_scene *s, const rd_monitor *mon, json_t **out, rd_error *err)
+{
+    const struct lift_opts *o = s->opts;
+    rd_lift_result res;
+    double t0 = rd_clock_s();
+    int rc = rd_lift_solve(&s->ring, s->segments, &o->lift, mon, &res, err);
+    if (rc == RD_OK)
+        *out = lift_result(s, &res, rd_clock_s() - t0);
+    rd_lift_result_cleanup(&res);
+    return rc;
+}
+
+static const rd_csv_column csv_columns[] = {
+    {"crank_deg", "crank_deg", 0},
+    {"lift_m", "lift", 0},
+    {"lift_min_m", "lift_min", 0},
+    {"lift_max_m", "lift_max", 0},
+    {"twist_rad", "twist_rad", 0},
+    {"friction_force_n", "friction_force", 0},
+    {"flank", "flank", 1},
+    {NULL, NULL, 0},
+};
+static const rd_csv_table csv = {NULL, NULL, csv_columns};
+
+const rd_analysis_def rd_an_lift = {
+    .name = "lift",
+    .scene = &scene_block,
+    .opts_size = sizeof(struct lift_opts),
+    .defaults = defaults,
+    .finish = finish,
+    .cleanup = cleanup,
+    .run = run,
+    .csv = &csv,
+    .page = "lift.js",
+};

@@ -1,0 +1,130 @@
+/*
+ * rd_an_pretension — the pretension analysis in the api (the free shape of
+ * the split ring, thesis 3.4.1-3.4.2): scene schema, runner, result object
+ * and CSV table (rd_registry.h).  Options: struct rd_static_scene.
+ */
+#include <jansson.h>
+#include <math.h>
+#include <stddef.h>
+#include <stdlib.h>
+
+#include "rd_registry.h"
+#include "rd_scene.h"
+#include "rd_static.h"
+
+#define PI 3.14159265358979323846
+#define ST(member) offsetof(struct rd_static_scene, member)
+
+/* Indexed by enum rd_pretension_method. */
+static const char *const method_names[] = {"force", "field", NULL};
+
+static const rd_field pretension_fields[] = {
+    {"method", RD_F_CHOICE, ST(pretension.method), .choices = method_names,
+     .desc = "force: each gap force stays normal to its face as the face turns (follower). "
+             "field: the force follows the last segment's face and the first face gets the "
+             "opposite vector plus the balancing couple (thesis Fig. 3.18)."},
+    {"lateral_force", RD_F_NUMBER, ST(pretension.lateral_force), RD_MIN(0.0),
+     .desc = "Lateral (axial) force F_l on the gap faces, +z on the first and -z on the last, "
+             "N; at most 100 * max(F_t, 1 N)."},
+    {.key = NULL},
+};
+static const rd_block pretension_block = {
+    "PretensionOptions", "/pretension: how the free shape is loaded.", 1, 0, pretension_fields};
+
+static const rd_field scene_fields[] = {
+    RD_SCENE_COMMON(rd_block_discretization_static),
+    {"pretension", RD_F_BLOCK, 0, .block = &pretension_block},
+    {"numerics", RD_F_BLOCK, 0, .block = &rd_block_static_numerics},
+    {.key = NULL},
+};
+static const rd_block scene_block = {
+    "PretensionScene",
+    "The free (unloaded) shape of the split ring: the closed ring opened by the tangential "
+    "force F_t on the gap faces, optionally with a lateral (axial) force (thesis 3.4.1-3.4.2). "
+    "Reads ring, discretization (4..2000 segments, split ring only), pretension and numerics "
+    "(StaticNumerics).",
+    0, 0, scene_fields};
+
+static int finish(struct rd_scene *s, rd_error *err)
+{
+    struct rd_static_scene *o = s->opts;
+    int rc = rd_static_validate(&o->statics, s->segments, s->closed, err);
+    return rc != RD_OK ? rc : rd_pretension_validate(&o->pretension, &s->ring, err);
+}
+
+/* {"analysis", "scene", "gap_opening_inner", "lateral_opening",
+ *  "gap_opening_neutral", "free_gap_formula", "conformability", "support",
+ *  "shape":{"angle_deg","x","y","z","reference_x","reference_y"} (n + 2
+ *  points), "numerics"} */
+static json_t *pretension_result(const rd_scene *scene, const rd_pretension_result *res,
+                                 double wall_s)
+{
+    int np = res->points;
+    double *rx = malloc((size_t)np * sizeof *rx), *ry = malloc((size_t)np * sizeof *ry);
+    json_t *out = NULL;
+    if (!rx || !ry)
+        goto out;
+    double R = 0.5 * (scene->ring.diameter - scene->ring.radial_width);
+    for (int k = 0; k < np; k++) {
+        rx[k] = R * cos(res->angle_deg[k] * PI / 180.0);
+        ry[k] = R * sin(res->angle_deg[k] * PI / 180.0);
+    }
+    out = json_pack(
+        "{s:s, s:o, s:o, s:o, s:o, s:o, s:o, s:o, s:{s:o, s:o, s:o, s:o, s:o, s:o}, s:o}",
+        "analysis", rd_scene_analysis(scene),
+        "scene", rd_scene_echo(scene),
+        "gap_opening_inner", rd_result_real(res->gap_opening_inner),
+        "lateral_opening", rd_result_real(res->lateral_opening),
+        "gap_opening_neutral", rd_result_real(res->gap_opening_neutral),
+        "free_gap_formula", rd_result_real(res->free_gap_formula),
+        "conformability", rd_result_real(res->conformability),
+        "support", rd_static_result_support(&res->stats),
+        "shape",
+            "angle_deg", rd_result_reals(res->angle_deg, np, 1, 1.0),
+            "x", rd_result_reals(res->x, np, 1, 1.0),
+            "y", rd_result_reals(res->y, np, 1, 1.0),
+            "z", rd_result_reals(res->z, np, 1, 1.0),
+            "reference_x", rd_result_reals(rx, np, 1, 1.0),
+            "reference_y", rd_result_reals(ry, np, 1, 1.0),
+        "numerics", rd_static_result_numerics(&res->stats, wall_s,
+                                              "Richardson extrapolation (order 2) of x_a and x_c"));
+out:
+    free(rx);
+    free(ry);
+    return out;
+}
+
+static int run(const rd_scene *s, const rd_monitor *mon, json_t **out, rd_error *err)
+{
+    const struct rd_static_scene *o = s->opts;
+    rd_pretension_result res;
+    double t0 = rd_clock_s();
+    int rc = rd_pretension_solve(&s->ring, s->segments, &o->pretension, &o->statics, mon, &res,
+                                 err);
+    if (rc == RD_OK)
+        *out = pretension_result(s, &res, rd_clock_s() - t0);
+    rd_pretension_result_cleanup(&res);
+    return rc;
+}
+
+static const rd_csv_column csv_columns[] = {
+    {"angle_deg", "angle_deg", 0},
+    {"x_m", "x", 0},
+    {"y_m", "y", 0},
+    {"z_m", "z", 0},
+    {"reference_x_m", "reference_x", 0},
+    {"reference_y_m", "reference_y", 0},
+    {NULL, NULL, 0},
+};
+static const rd_csv_table csv = {"shape", NULL, csv_columns};
+
+const rd_analysis_def rd_an_pretension = {
+    .name = "pretension",
+    .scene = &scene_block,
+    .opts_size = sizeof(struct rd_static_scene),
+    .defaults = rd_static_scene_defaults,
+    .finish = finish,
+    .run = run,
+    .csv = &csv,
+    .page = "pretension.js",
+};

@@ -1,0 +1,151 @@
+/*
+ * rd_blocks — the blocks several analyses read, declared once
+ * (rd_registry.h): the ring with its material, the three discretization
+ * blocks (the analyses differ in the segment range and whether the ring
+ * may be closed) and the Newton numerics of pretension and contact, with
+ * the result pieces those two share.
+ */
+#include <jansson.h>
+#include <stddef.h>
+#include <stdio.h>
+
+#include "rd_registry.h"
+#include "rd_scene.h"
+
+#define AT(member) offsetof(struct rd_scene, member)
+
+static const rd_field material_fields[] = {
+    {"youngs_modulus", RD_F_NUMBER, AT(ring.youngs_modulus), RD_MIN(1e6), RD_MAX(1e15),
+     .desc = "Young's modulus E, Pa."},
+    {"poisson_ratio", RD_F_NUMBER, AT(ring.poisson_ratio), RD_XMIN(-1), RD_XMAX(0.5),
+     .desc = "Poisson's ratio nu, -1 < nu < 0.5."},
+    {"density", RD_F_NUMBER, AT(ring.density), RD_MIN(0.1), RD_MAX(1e7),
+     .desc = "Density rho, kg/m^3."},
+    {.key = NULL},
+};
+static const rd_block material = {NULL, "Material.", 0, 0, material_fields};
+
+/* Indexed by enum rd_section_shape. */
+static const char *const section_names[] = {"rectangle", "circle", NULL};
+
+static const rd_field ring_fields[] = {
+    {"diameter", RD_F_NUMBER, AT(ring.diameter), RD_MIN(0.001), RD_MAX(5.0),
+     .desc = "Nominal (= bore) diameter d, m."},
+    {"radial_width", RD_F_NUMBER, AT(ring.radial_width), RD_MIN(1e-05),
+     .desc = "Radial width b, m; at most d/4."},
+    {"axial_height", RD_F_NUMBER, AT(ring.axial_height), RD_MIN(1e-05),
+     .desc = "Axial height h, m; at most d/2, with b/h from 0.05 to 20; equal to radial_width "
+             "for a circular section."},
+    {"closed_gap", RD_F_NUMBER, AT(ring.closed_gap), RD_MIN(0.0),
+     .desc = "Gap in the installed (closed) state, m; at most 10 % of the circumference "
+             "(pi d / 10); not checked for a closed ring."},
+    {"tangential_force", RD_F_NUMBER, AT(ring.tangential_force), RD_MIN(0.0), RD_MAX(100000.0),
+     .desc = "Tangential (pretension) force F_t, N; the contact analysis needs it > 0."},
+    {"section", RD_F_CHOICE, AT(ring.section), .choices = section_names,
+     .desc = "Cross-section: rectangle b x h, or circle (a wire of diameter b = h). The lift "
+             "analysis needs rectangle."},
+    {"material", RD_F_BLOCK, 0, .block = &material},
+    {.key = NULL},
+};
+const rd_block rd_block_ring = {
+    "Ring",
+    "The ring (every analysis). Defaults: the thesis ring. Ranges are checked by the server; "
+    "those that depend on other fields are given in the descriptions.",
+    0, 0, ring_fields};
+
+static const rd_field modal_discretization[] = {
+    {"segments", RD_F_INTEGER, AT(segments), RD_MIN(3), RD_MAX(2000),
+     .desc = "Number of rigid segments n."},
+    {"closed", RD_F_BOOL, AT(closed), .desc = "Join the gap (a closed ring)."},
+    {.key = NULL},
+};
+const rd_block rd_block_discretization_modal = {
+    "ModalDiscretization", "Discretization of a modal scene.", 0, 0, modal_discretization};
+
+#define SPLIT_ONLY                                                                               \
+    {"closed", RD_F_BOOL, AT(closed), .only_false = 1,                                           \
+     .desc = "Must be false (true is 422 invalid_scene)."}
+
+static const rd_field static_discretization[] = {
+    {"segments", RD_F_INTEGER, AT(segments), RD_MIN(4), RD_MAX(2000),
+     .desc = "Number of rigid segments n."},
+    SPLIT_ONLY,
+    {.key = NULL},
+};
+const rd_block rd_block_discretization_static = {
+    "StaticDiscretization",
+    "Discretization of a pretension or contact scene: the forces act on the gap faces, so the "
+    "ring must be split.",
+    0, 0, static_discretization};
+
+static const rd_field lift_discretization[] = {
+    {"segments", RD_F_INTEGER, AT(segments), RD_MIN(4), RD_MAX(1000),
+     .desc = "Number of rigid segments n."},
+    SPLIT_ONLY,
+    {.key = NULL},
+};
+const rd_block rd_block_discretization_lift = {
+    "LiftDiscretization", "Discretization of a lift scene: the split ring in its groove.", 0, 0,
+    lift_discretization};
+
+#define ST(member) offsetof(struct rd_static_scene, member)
+
+static const rd_field static_numerics[] = {
+    {"tolerance", RD_F_NUMBER, ST(statics.tol), RD_MIN(1e-13), RD_MAX(0.001),
+     .desc = "Relative residual tolerance: largest force residual <= tolerance * F_ref, moment "
+             "residual <= tolerance * F_ref * R. Raised to the ring's rounding floor when that "
+             "is larger (result numerics.tolerance gives the one used)."},
+    {"max_iterations", RD_F_INTEGER, ST(statics.max_iterations), RD_MIN(1), RD_MAX(100000),
+     .desc = "Newton iterations allowed over all load steps."},
+    {"error_estimate", RD_F_BOOL, ST(statics.estimate_error),
+     .desc = "Estimate the discretization error by a second solve at 2n segments (n/2 above "
+             "1000)."},
+    {.key = NULL},
+};
+const rd_block rd_block_static_numerics = {
+    "StaticNumerics",
+    "/numerics of a pretension or contact scene: Newton's method with load stepping.", 1, 0,
+    static_numerics};
+
+void rd_static_scene_defaults(struct rd_scene *s)
+{
+    struct rd_static_scene *o = s->opts;
+    rd_static_opts_default(&o->statics);
+    o->statics.estimate_error = 1; /* API default, whatever core's is */
+    rd_pretension_opts_default(&o->pretension);
+    rd_contact_opts_default(&o->contact);
+}
+
+/* ---- the result pieces pretension and contact share ---- */
+
+static const char static_solver[] =
+    "Newton's method with load stepping on the 6n equilibrium equations, large rotations, "
+    "central-difference tangent in LAPACK band storage (dgbsv)";
+
+json_t *rd_static_result_numerics(const rd_static_stats *st, double wall_s, const char *what)
+{
+    char method[192];
+    int estimated = st->reference_segments > 0;
+    snprintf(method, sizeof method,
+             "%s from a second solve at %d segments", what, st->reference_segments);
+    return json_pack("{s:i, s:i, s:o, s:s, s:i, s:i, s:o, s:o, s:o, s:o, s:o, s:o}",
+                     "segments", st->segments,
+                     "dof", st->dof,
+                     "wall_s", rd_result_real(wall_s),
+                     "solver", static_solver,
+                     "load_steps", st->load_steps,
+                     "iterations", st->iterations,
+                     "residual", rd_result_real(st->residual),
+                     "tolerance", rd_result_real(st->tolerance),
+                     "strain_energy", rd_result_real(st->strain_energy),
+                     "reference_segments",
+                         estimated ? json_integer(st->reference_segments) : json_null(),
+                     "error_estimate", rd_result_real(st->error_estimate),
+                     "error_method", estimated ? json_string(method) : json_null());
+}
+
+json_t *rd_static_result_support(const rd_static_stats *st)
+{
+    return json_pack("{s:o, s:o}", "force_n", rd_result_real(st->support_force), "moment_nm",
+                     rd_result_real(st->support_moment));
+}

@@ -1,0 +1,114 @@
+/*
+ * rd_registry — the analyses this build knows, each one api file
+ * (rd_an_<name>.c) that declares everything the api needs of it:
+ *
+ *   scene    its schema: the top-level block of fields (rd_schema.h), which
+ *            references the shared blocks declared below (ring, material,
+ *            discretization, static numerics) and its own;
+ *   opts     the size of its own options (struct rd_scene.opts) and the
+ *            hooks that fill their defaults, check them with core's
+ *            validators once parsed, and free what they hold;
+ *   run      the runner: calls the core solver and builds the result
+ *            object (API.md "Results") once, as data;
+ *   csv      its main table (columns of that result object), or NULL with
+ *            `csv_none` saying why there is none;
+ *   page     its tab on the web page (a module in static/), or "none".
+ *
+ * rd_registry.c lists them; everything else (parsing, echo, OpenAPI,
+ * running, CSV) walks the list.  Adding an analysis is one new
+ * rd_an_<name>.c, one line in rd_registry.c, its core module and an
+ * example scene (README "The registry").
+ */
+#ifndef RD_REGISTRY_H
+#define RD_REGISTRY_H
+
+#include <stddef.h>
+
+#include "rd_error.h"
+#include "rd_result.h"
+#include "rd_schema.h"
+
+struct json_t;
+struct rd_scene;
+
+typedef struct rd_analysis_def {
+    const char *name;         /* the scene's "analysis" */
+    const rd_block *scene;    /* top level; its name is the OpenAPI component */
+    size_t opts_size;         /* bytes of struct rd_scene.opts (0: none) */
+    /* Fills the analysis' defaults (s->opts is zeroed, the common fields
+     * hold theirs); may be NULL. */
+    void (*defaults)(struct rd_scene *s);
+    /* After parsing: the analysis' cross-field rules and core's validators
+     * (rd_ring_validate has already passed). */
+    int (*finish)(struct rd_scene *s, rd_error *err);
+    void (*cleanup)(void *opts); /* frees what opts holds (not opts); may be NULL */
+    /* Solves and builds the result object; a NULL *result on success means
+     * out of memory, which the caller reports. */
+    int (*run)(const struct rd_scene *s, const rd_monitor *mon, struct json_t **result,
+               rd_error *err);
+    const rd_csv_table *csv;  /* the main table, or NULL */
+    const char *csv_none;     /* why there is no table (csv NULL) */
+    const char *page;         /* "modal.js": its tab in static/, or "none" */
+} rd_analysis_def;
+
+/* The built-in registry, NULL-ended, in enum rd_analysis order. */
+extern const rd_analysis_def *const rd_registry[];
+
+/* The entry named `name` in `registry`, its index in *index; NULL if none. */
+const rd_analysis_def *rd_registry_find(const rd_analysis_def *const *registry,
+                                        const char *name, int *index);
+
+/* The top-level keys that analyses of `registry` other than `an` read and
+ * `an` does not: known to `an`'s scenes but ignored.  Written to keys[]
+ * (at most max - 1, NULL-ended, in the contract's order); returns their
+ * count. */
+int rd_registry_ignored(const rd_analysis_def *const *registry, const rd_analysis_def *an,
+                        const char **keys, int max);
+
+/* The OpenAPI document `template_json` with its scene schemas filled in
+ * from `registry`: components.schemas gets "Scene" (oneOf the analyses,
+ * discriminated by "analysis"), one "<Name>Scene" per analysis and every
+ * named block they reference.  New reference; NULL + err when the
+ * template is not a JSON object with components.schemas, or on out of
+ * memory. */
+struct json_t *rd_registry_openapi(const rd_analysis_def *const *registry,
+                                   const char *template_json, rd_error *err);
+
+/* ---- shared blocks (rd_blocks.c), referenced by the analyses ---- */
+extern const rd_block rd_block_ring;                  /* /ring, with /ring/material */
+extern const rd_block rd_block_discretization_modal;  /* 3..2000 segments, closed allowed */
+extern const rd_block rd_block_discretization_static; /* 4..2000, split ring */
+extern const rd_block rd_block_discretization_lift;   /* 4..1000, split ring */
+extern const rd_block rd_block_static_numerics;       /* Newton, in struct rd_static_scene */
+
+/* The options of pretension and contact (their opts): the static numerics
+ * block is shared, so both keep it at the same place. */
+#include "rd_static.h"
+struct rd_static_scene {
+    rd_static_opts statics;        /* /numerics */
+    rd_pretension_opts pretension; /* /pretension */
+    rd_contact_opts contact;       /* /bore, /contact */
+};
+/* Their common defaults (the error estimate on, as the API promises). */
+void rd_static_scene_defaults(struct rd_scene *s);
+/* Their result's "numerics" ({"segments", ..., "error_method"}; `what` the
+ * estimate's method) and "support" objects; NULL on out of memory. */
+struct json_t *rd_static_result_numerics(const rd_static_stats *st, double wall_s,
+                                         const char *what);
+struct json_t *rd_static_result_support(const rd_static_stats *st);
+
+/* The fields every analysis reads first: analysis, name, description, ring
+ * and its discretization block.  _WITH adds to the shared ring what this
+ * analysis requires of it (a description and a JSON schema, allOf). */
+#define RD_SCENE_COMMON_WITH(ring_desc, ring_extra, discretization)                              \
+    {"analysis", RD_F_ANALYSIS, 0, .desc = "Which analysis to run; decides which blocks are "    \
+                                           "read."},                                            \
+        {"name", RD_F_STRING, offsetof(struct rd_scene, name),                                   \
+         .desc = "Free text, echoed in the result; absent when not given."},                     \
+        {"description", RD_F_STRING, offsetof(struct rd_scene, description),                     \
+         .desc = "Free text, echoed in the result; absent when not given."},                     \
+        {"ring", RD_F_BLOCK, 0, .block = &rd_block_ring, .desc = (ring_desc), .extra = (ring_extra)},     \
+        {"discretization", RD_F_BLOCK, 0, .block = &(discretization)}
+#define RD_SCENE_COMMON(discretization) RD_SCENE_COMMON_WITH(NULL, NULL, discretization)
+
+#endif

@@ -1,0 +1,632 @@
+/*
+ * rd_schema — the field-table engine (rd_schema.h): parse, echo and
+ * OpenAPI schema of a block, all three read from the same table.
+ *
+ * A field's value lives at base + offset, where base is the scene, the
+ * analysis' opts (rd_block.in_opts) or one array item (rd_block.items).
+ * Values and ranges are core's business (its validators run after
+ * parsing); this file checks shape and type, and quotes the table's range
+ * only for an integer that does not even fit an int.
+ */
+#include "rd_schema.h"
+
+#include <jansson.h>
+#include <limits.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "rd_result.h"
+#include "rd_scene.h"
+#include "rd_static.h"
+
+/* How much of a user-supplied key or string a message quotes, bytes. */
+#define QUOTE_MAX 40
+
+static char *base_of(const rd_block *block, struct rd_scene *s)
+{
+    return block->in_opts ? (char *)s->opts : (char *)s;
+}
+
+static const char *cbase_of(const rd_block *block, const struct rd_scene *s)
+{
+    return block->in_opts ? (const char *)s->opts : (const char *)s;
+}
+
+/* ---- message helpers ------------------------------------------------------ */
+
+/* Length of the longest prefix of s of at most max bytes that does not end
+ * inside a UTF-8 sequence, so quoted user text stays valid UTF-8. */
+static size_t utf8_prefix(const char *s, size_t max)
+{
+    size_t n = strlen(s);
+    if (n <= max)
+        return n;
+    while (max > 0 && ((unsigned char)s[max] & 0xC0) == 0x80)
+        max--;
+    return max;
+}
+
+int rd_schema_utf8_len(const unsigned char *s)
+{
+    unsigned char c = s[0];
+    int n;
+    unsigned char lo = 0x80, hi = 0xBF; /* allowed range of the 2nd byte */
+    if (c < 0x80)
+        return 1;
+    if (c >= 0xC2 && c <= 0xDF)
+        n = 2;
+    else if (c >= 0xE0 && c <= 0xEF) {
+        n = 3;
+        if (c == 0xE0)
+            lo = 0xA0;
+        if (c == 0xED)
+            hi = 0x9F;
+    } else if (c >= 0xF0 && c <= 0xF4) {
+        n = 4;
+        if (c == 0xF0)
+            lo = 0x90;
+        if (c == 0xF4)
+            hi = 0x8F;
+    } else
+        return 0;
+    if (s[1] < lo || s[1] > hi)
+        return 0;
+    for (int k = 2; k < n; k++)
+        if ((s[k] & 0xC0) != 0x80)
+            return 0;
+    return n;
+}
+
+
+void rd_schema_quote(char *buf, size_t size, const char *s)
+{
+    size_t n = utf8_prefix(s, QUOTE_MAX);
+    snprintf(buf, size, "\"%.*s%s\"", (int)n, s, s[n] ? "..." : "");
+}
+
+void rd_schema_describe(const json_t *v, char *buf, size_t size)
+{
+    char q[QUOTE_MAX + 8];
+    switch (json_typeof(v)) {
+    case JSON_STRING:
+        rd_schema_quote(q, sizeof q, json_string_value(v));
+        snprintf(buf, size, "string %s", q);
+        break;
+    case JSON_INTEGER:
+        snprintf(buf, size, "number %" JSON_INTEGER_FORMAT, json_integer_value(v));
+        break;
+    case JSON_REAL:
+        snprintf(buf, size, "number %.15g", json_real_value(v));
+        break;
+    case JSON_TRUE:
+        snprintf(buf, size, "true");
+        break;
+    case JSON_FALSE:
+        snprintf(buf, size, "false");
+        break;
+    case JSON_NULL:
+        snprintf(buf, size, "null");
+        break;
+    case JSON_OBJECT:
+        snprintf(buf, size, "an object");
+        break;
+    case JSON_ARRAY:
+        snprintf(buf, size, "an array");
+        break;
+    }
+}
+
+int rd_schema_type_error(rd_error *err, const char *path, const char *want, const json_t *v)
+{
+    char got[QUOTE_MAX + 32];
+    rd_schema_describe(v, got, sizeof got);
+    return rd_error_set(err, RD_EINVAL, path, "%s must be %s, got %s", path, want, got);
+}
+
+void rd_schema_path_join(char *out, size_t size, const char *parent, const char *key)
+{
+    size_t n = (size_t)snprintf(out, size, "%s/", parent);
+    for (; *key && n + 3 < size; key++) {
+        if (*key == '~' || *key == '/') {
+            out[n++] = '~';
+            out[n++] = *key == '~' ? '0' : '1';
+        } else {
+            out[n++] = *key;
+        }
+    }
+    if (n < size)
+        out[n] = '\0';
+}
+
+static const rd_field *find_field(const rd_field *fields, const char *key)
+{
+    for (const rd_field *f = fields; f->key; f++)
+        if (strcmp(f->key, key) == 0)
+            return f;
+    return NULL;
+}
+
+static int in_list(const char *const *list, const char *key)
+{
+    for (; list && *list; list++)
+        if (strcmp(*list, key) == 0)
+            return 1;
+    return 0;
+}
+
+/* "a, b, c": the keys of `fields`, then those of `also` it lacks. */
+static void list_known(char *buf, size_t size, const rd_field *fields, const char *const *also)
+{
+    size_t n = 0;
+    buf[0] = '\0';
+    for (const rd_field *f = fields; f->key && n < size; f++)
+        n += (size_t)snprintf(buf + n, size - n, "%s%s", n ? ", " : "", f->key);
+    for (; also && *also && n < size; also++)
+        if (!find_field(fields, *also))
+            n += (size_t)snprintf(buf + n, size - n, "%s%s", n ? ", " : "", *also);
+}
+
+/* ---- parsing ------------------------------------------------------------- */
+
+/* RD_F_INTEGER: JSON integers, and reals with an integral value (20.0),
+ * since many JSON writers do not distinguish the two. */
+static int parse_integer(const rd_field *f, json_t *v, const char *path, int *out, rd_error *err)
+{
+    double d;
+    if (json_is_integer(v)) {
+        d = (double)json_integer_value(v);
+    } else if (json_is_real(v)) {
+        d = json_real_value(v);
+        if (d != floor(d))
+            return rd_error_set(err, RD_EINVAL, path, "%s must be an integer, got %.15g", path, d);
+    } else {
+        return rd_schema_type_error(err, path, "an integer", v);
+    }
+    if (d < (double)INT_MIN || d > (double)INT_MAX)
+        return rd_error_set(err, d > 0 ? RD_ELIMIT : RD_EINVAL, path,
+                            "%s = %.15g is out of range (allowed: %d to %d)", path, d,
+                            f->has_min ? (int)f->min : INT_MIN,
+                            f->has_max ? (int)f->max : INT_MAX);
+    *out = (int)d;
+    return RD_OK;
+}
+
+/* RD_F_TABLE: a non-empty array of numbers, at most f->max long. */
+static int parse_table(const rd_field *f, json_t *v, const char *path, struct rd_table *t,
+                       rd_error *err)
+{
+    size_t i;
+    json_t *x;
+    if (!json_is_array(v))
+        return rd_schema_type_error(err, path, "an array of numbers", v);
+    size_t n = json_array_size(v);
+    if (n == 0 || (double)n > f->max)
+        return rd_error_set(err, n ? RD_ELIMIT : RD_EINVAL, path, "%s has %zu values; allowed %d to %d.",
+                            path, n, (int)f->min, (int)f->max);
+    free(t->v);
+    t->n = 0;
+    t->v = malloc(n * sizeof *t->v);
+    if (!t->v)
+        return rd_error_set(err, RD_ENOMEM, path, "out of memory while reading %s", path);
+    json_array_foreach(v, i, x) {
+        if (!json_is_number(x)) {
+            char item[RD_ERROR_PATH_MAX + 24];
+            snprintf(item, sizeof item, "%s/%zu", path, i);
+            return rd_schema_type_error(err, item, "a number", x);
+        }
+        t->v[i] = json_number_value(x);
+    }
+    t->n = (int)n;
+    return RD_OK;
+}
+
+/* One distortion item {order, amplitude, phase_deg} (keys from the item
+ * block); `order` must be a JSON integer, clamped to +-1000 for core to
+ * refuse with the value. */
+static int parse_distortion_item(const rd_block *items, json_t *item, const char *at,
+                                 rd_distortion *d, rd_error *err)
+{
+    char child[RD_ERROR_PATH_MAX + 48], known[128], q[QUOTE_MAX + 8];
+    const char *key;
+    json_t *x;
+    if (!json_is_object(item))
+        return rd_schema_type_error(err, at, "an object {order, amplitude, phase_deg}", item);
+    json_object_foreach(item, key, x) {
+        if (find_field(items->fields, key))
+            continue;
+        list_known(known, sizeof known, items->fields, NULL);
+        rd_schema_quote(q, sizeof q, key);
+        rd_schema_path_join(child, sizeof child, at, key);
+        return rd_error_set(err, RD_EINVAL, child, "unknown field %s in %s (known: %s)", q, at,
+                            known);
+    }
+    memset(d, 0, sizeof *d);
+    json_t *order = json_object_get(item, "order"), *amp = json_object_get(item, "amplitude"),
+           *phase = json_object_get(item, "phase_deg");
+    rd_schema_path_join(child, sizeof child, at, "order");
+    if (!order)
+        return rd_error_set(err, RD_EINVAL, child, "%s is missing: each distortion needs its "
+                            "Fourier order (1 to 64)", child);
+    if (!json_is_integer(order))
+        return rd_schema_type_error(err, child, "an integer", order);
+    json_int_t k = json_integer_value(order);
+    d->order = k < -1000 ? -1000 : k > 1000 ? 1000 : (int)k;
+    rd_schema_path_join(child, sizeof child, at, "amplitude");
+    if (!amp)
+        return rd_error_set(err, RD_EINVAL, child, "%s is missing: each distortion needs its "
+                            "amplitude (m)", child);
+    if (!json_is_number(amp))
+        return rd_schema_type_error(err, child, "a number", amp);
+    d->amplitude = json_number_value(amp);
+    if (phase) {
+        rd_schema_path_join(child, sizeof child, at, "phase_deg");
+        if (!json_is_number(phase))
+            return rd_schema_type_error(err, child, "a number", phase);
+        d->phase_deg = json_number_value(phase);
+    }
+    return RD_OK;
+}
+
+/* RD_F_DISTORTION: [{"order": k, "amplitude": A, "phase_deg": phi}, ...]. */
+static int parse_distortion(const rd_field *f, json_t *v, const char *path, rd_contact_opts *c,
+                            rd_error *err)
+{
+    size_t i;
+    json_t *item;
+    if (!json_is_array(v))
+        return rd_schema_type_error(err, path, "an array of {order, amplitude, phase_deg}", v);
+    if (json_array_size(v) > RD_DISTORTION_MAX)
+        return rd_error_set(err, RD_ELIMIT, path, "%s has %zu entries; at most %d are allowed.",
+                            path, json_array_size(v), RD_DISTORTION_MAX);
+    c->n_distortion = 0;
+    json_array_foreach(v, i, item) {
+        char at[RD_ERROR_PATH_MAX + 24];
+        snprintf(at, sizeof at, "%s/%zu", path, i);
+        int rc = parse_distortion_item(f->block, item, at, &c->distortion[i], err);
+        if (rc != RD_OK)
+            return rc;
+        c->n_distortion = (int)i + 1;
+    }
+    return RD_OK;
+}
+
+static int parse_choice(const rd_field *f, json_t *v, const char *path, int *out, rd_error *err)
+{
+    char want[128];
+    size_t n = (size_t)snprintf(want, sizeof want, "one of");
+    for (int k = 0; f->choices[k]; k++) {
+        if (json_is_string(v) && strcmp(json_string_value(v), f->choices[k]) == 0) {
+            *out = k;
+            return RD_OK;
+        }
+        if (n < sizeof want)
+            n += (size_t)snprintf(want + n, sizeof want - n, "%s \"%s\"", k ? "," : "",
+                                  f->choices[k]);
+    }
+    return rd_schema_type_error(err, path, want, v);
+}
+
+static int parse_field(const rd_field *f, char *at, json_t *v, const char *path,
+                       struct rd_scene *s, rd_error *err)
+{
+    switch (f->type) {
+    case RD_F_NUMBER:
+        if (!json_is_number(v))
+            return rd_schema_type_error(err, path, "a number", v);
+        *(double *)at = json_number_value(v);
+        return RD_OK;
+    case RD_F_INTEGER:
+        return parse_integer(f, v, path, (int *)at, err);
+    case RD_F_BOOL:
+        if (!json_is_boolean(v))
+            return rd_schema_type_error(err, path, "true or false", v);
+        *(int *)at = json_is_true(v);
+        return RD_OK;
+    case RD_F_STRING: {
+        if (!json_is_string(v))
+            return rd_schema_type_error(err, path, "a string", v);
+        char **dst = (char **)at;
+        free(*dst);
+        *dst = strdup(json_string_value(v));
+        if (!*dst)
+            return rd_error_set(err, RD_ENOMEM, path, "out of memory while reading %s", path);
+        return RD_OK;
+    }
+    case RD_F_CHOICE:
+        return parse_choice(f, v, path, (int *)at, err);
+    case RD_F_OPTBLOCK:
+        *(int *)at = 1;
+        /* fall through */
+    case RD_F_BLOCK:
+        if (!json_is_object(v))
+            return rd_schema_type_error(err, path, "an object", v);
+        return rd_schema_parse(v, f->block, NULL, path, s, err);
+    case RD_F_TABLE:
+        return parse_table(f, v, path, (struct rd_table *)at, err);
+    case RD_F_DISTORTION:
+        return parse_distortion(f, v, path, (rd_contact_opts *)at, err);
+    case RD_F_ANALYSIS:
+        return RD_OK;
+    }
+    return rd_error_set(err, RD_EINTERNAL, path, "unhandled field type for %s", path);
+}
+
+int rd_schema_parse(json_t *obj, const rd_block *block, const char *const *also,
+                    const char *path, struct rd_scene *s, rd_error *err)
+{
+    char child[RD_ERROR_PATH_MAX];
+    const char *key;
+    json_t *v;
+
+    /* Unknown keys first: a typo is the likeliest cause of anything else
+     * that looks wrong. */
+    json_object_foreach(obj, key, v) {
+        if (find_field(block->fields, key) || in_list(also, key))
+            continue;
+        char known[256], q[QUOTE_MAX + 8];
+        list_known(known, sizeof known, block->fields, also);
+        rd_schema_quote(q, sizeof q, key);
+        rd_schema_path_join(child, sizeof child, path, key);
+        return rd_error_set(err, RD_EINVAL, child, "unknown field %s in %s (known: %s)", q,
+                            *path ? path : "the scene", known);
+    }
+    char *base = base_of(block, s);
+    for (const rd_field *f = block->fields; f->key; f++) {
+        v = json_object_get(obj, f->key);
+        if (!v)
+            continue; /* absent: the default stays */
+        rd_schema_path_join(child, sizeof child, path, f->key);
+        int rc = parse_field(f, base + f->offset, v, child, s, err);
+        if (rc != RD_OK)
+            return rc;
+    }
+    return RD_OK;
+}
+
+/* ---- echo ---------------------------------------------------------------- */
+
+/* json_object_set_new that also fails on a NULL value (out of memory);
+ * the value is released either way. */
+static int set_new(json_t *o, const char *key, json_t *v)
+{
+    if (!v)
+        return -1;
+    return json_object_set_new(o, key, v);
+}
+
+static json_t *table_echo(const struct rd_table *t)
+{
+    json_t *a = json_array();
+    for (int i = 0; a && i < t->n; i++)
+        if (json_array_append_new(a, rd_result_real(t->v[i])) != 0) {
+            json_decref(a);
+            a = NULL;
+        }
+    return a;
+}
+
+static json_t *distortion_echo(const rd_contact_opts *c)
+{
+    json_t *a = json_array();
+    for (int i = 0; a && i < c->n_distortion; i++) {
+        const rd_distortion *d = &c->distortion[i];
+        if (json_array_append_new(a, json_pack("{s:i, s:o, s:o}", "order", d->order,
+                                               "amplitude", rd_result_real(d->amplitude),
+                                               "phase_deg", rd_result_real(d->phase_deg))) != 0) {
+            json_decref(a);
+            a = NULL;
+        }
+    }
+    return a;
+}
+
+static json_t *choice_echo(const rd_field *f, int k)
+{
+    int n = 0;
+    while (f->choices[n])
+        n++;
+    return json_string(k >= 0 && k < n ? f->choices[k] : "unknown");
+}
+
+/* The echo of one field; *skip set when it is not echoed at all. */
+static json_t *field_echo(const rd_field *f, const char *at, const struct rd_scene *s, int *skip)
+{
+    *skip = 0;
+    if (f->echo)
+        return f->echo(s);
+    switch (f->type) {
+    case RD_F_ANALYSIS:
+        return json_string(rd_scene_analysis(s));
+    case RD_F_NUMBER:
+        return rd_result_real(*(const double *)at);
+    case RD_F_INTEGER:
+        return json_integer(*(const int *)at);
+    case RD_F_BOOL:
+        return json_boolean(*(const int *)at);
+    case RD_F_STRING:
+        *skip = *(char *const *)at == NULL;
+        return *skip ? NULL : json_string(*(char *const *)at);
+    case RD_F_CHOICE:
+        return choice_echo(f, *(const int *)at);
+    case RD_F_OPTBLOCK:
+        *skip = !*(const int *)at;
+        if (*skip)
+            return NULL;
+        /* fall through */
+    case RD_F_BLOCK: {
+        json_t *o = json_object();
+        if (o && rd_schema_echo(f->block, s, o) != 0) {
+            json_decref(o);
+            o = NULL;
+        }
+        return o;
+    }
+    case RD_F_TABLE:
+        return table_echo((const struct rd_table *)at);
+    case RD_F_DISTORTION:
+        return distortion_echo((const rd_contact_opts *)at);
+    }
+    return NULL;
+}
+
+int rd_schema_echo(const rd_block *block, const struct rd_scene *s, json_t *out)
+{
+    const char *base = cbase_of(block, s);
+    for (const rd_field *f = block->fields; f->key; f++) {
+        int skip;
+        json_t *v = field_echo(f, base + f->offset, s, &skip);
+        if (!skip && set_new(out, f->key, v) != 0)
+            return -1;
+    }
+    return 0;
+}
+
+/* ---- OpenAPI ------------------------------------------------------------- */
+
+static int add_bounds(json_t *o, const rd_field *f, int count)
+{
+    int bad = 0;
+    const char *lo = count ? "minItems" : "minimum", *hi = count ? "maxItems" : "maximum";
+    if (f->has_min)
+        bad |= set_new(o, lo, count || f->type == RD_F_INTEGER ? json_integer((json_int_t)f->min)
+                                                                 : json_real(f->min));
+    if (f->has_min == RD_BOUND_EX)
+        bad |= set_new(o, "exclusiveMinimum", json_true());
+    if (f->has_max)
+        bad |= set_new(o, hi, count || f->type == RD_F_INTEGER ? json_integer((json_int_t)f->max)
+                                                                 : json_real(f->max));
+    if (f->has_max == RD_BOUND_EX)
+        bad |= set_new(o, "exclusiveMaximum", json_true());
+    return bad;
+}
+
+static json_t *choices_array(const rd_field *f)
+{
+    json_t *a = json_array();
+    for (int k = 0; a && f->choices[k]; k++)
+        if (json_array_append_new(a, json_string(f->choices[k])) != 0) {
+            json_decref(a);
+            a = NULL;
+        }
+    return a;
+}
+
+/* "default": the value a defaults-filled scene holds (`at`), for the
+ * scalar types; required fields and tables have none. */
+static int add_default(json_t *o, const rd_field *f, const char *at)
+{
+    if (f->required)
+        return 0;
+    switch (f->type) {
+    case RD_F_NUMBER:
+        return set_new(o, "default", json_real(*(const double *)at));
+    case RD_F_INTEGER:
+        return set_new(o, "default", json_integer(*(const int *)at));
+    case RD_F_BOOL:
+        return set_new(o, "default", json_boolean(*(const int *)at));
+    case RD_F_CHOICE:
+        return set_new(o, "default", choice_echo(f, *(const int *)at));
+    case RD_F_DISTORTION:
+        return set_new(o, "default", json_array());
+    default:
+        return 0;
+    }
+}
+
+static const char *type_name(enum rd_field_type t)
+{
+    switch (t) {
+    case RD_F_NUMBER:
+        return "number";
+    case RD_F_INTEGER:
+        return "integer";
+    case RD_F_BOOL:
+        return "boolean";
+    case RD_F_TABLE:
+    case RD_F_DISTORTION:
+        return "array";
+    default:
+        return "string";
+    }
+}
+
+/* {"$ref": ...} to a named block (adding its component once), or the
+ * block inline; with `extra`, both combined under the field's description. */
+static json_t *block_ref(const rd_field *f, const struct rd_scene *defaults, json_t *components)
+{
+    const rd_block *b = f->block;
+    if (!b->name)
+        return rd_schema_block_openapi(b, defaults, components);
+    if (!json_object_get(components, b->name) &&
+        set_new(components, b->name, rd_schema_block_openapi(b, defaults, components)) != 0)
+        return NULL;
+    char ref[128];
+    snprintf(ref, sizeof ref, "#/components/schemas/%s", b->name);
+    if (!f->extra)
+        return json_pack("{s:s}", "$ref", ref);
+    return json_pack("{s:s, s:[{s:s}, o]}", "description", f->desc ? f->desc : "", "allOf",
+                     "$ref", ref, json_loads(f->extra, 0, NULL));
+}
+
+/* The keywords of a non-block field after "type"; nonzero on out of memory. */
+static int field_keywords(json_t *o, const rd_field *f, const char *at,
+                          const struct rd_scene *defaults, json_t *components)
+{
+    if (f->type == RD_F_ANALYSIS)
+        return set_new(o, "enum", json_pack("[s]", rd_scene_analysis(defaults)));
+    int bad = 0;
+    if (f->desc)
+        bad |= set_new(o, "description", json_string(f->desc));
+    if (f->type == RD_F_CHOICE)
+        bad |= set_new(o, "enum", choices_array(f));
+    if (f->only_false)
+        bad |= set_new(o, "enum", json_pack("[b]", 0));
+    if (f->type == RD_F_TABLE)
+        bad |= set_new(o, "items", json_pack("{s:s}", "type", "number"));
+    if (f->type == RD_F_DISTORTION) {
+        rd_field item = {.key = f->key, .block = f->block};
+        bad |= set_new(o, "items", block_ref(&item, defaults, components));
+    }
+    int count = f->type == RD_F_TABLE || f->type == RD_F_DISTORTION;
+    return bad | add_default(o, f, at) | add_bounds(o, f, count);
+}
+
+json_t *rd_schema_field_openapi(const rd_field *f, const rd_block *in,
+                                const struct rd_scene *defaults, json_t *components)
+{
+    static const char zero_item[64]; /* the defaults of an array item: all 0 */
+    if (f->type == RD_F_BLOCK || f->type == RD_F_OPTBLOCK)
+        return block_ref(f, defaults, components);
+    const char *at = (in->items ? zero_item : cbase_of(in, defaults)) + f->offset;
+    json_t *o = json_object();
+    if (!o || set_new(o, "type", json_string(type_name(f->type))) != 0 ||
+        field_keywords(o, f, at, defaults, components) != 0) {
+        json_decref(o);
+        return NULL;
+    }
+    return o;
+}
+
+json_t *rd_schema_block_openapi(const rd_block *block, const struct rd_scene *defaults,
+                                json_t *components)
+{
+    json_t *props = json_object(), *required = json_array();
+    int bad = !props || !required;
+    for (const rd_field *f = block->fields; !bad && f->key; f++) {
+        bad |= set_new(props, f->key, rd_schema_field_openapi(f, block, defaults, components));
+        if (!bad && f->required)
+            bad |= json_array_append_new(required, json_string(f->key));
+    }
+    json_t *o = bad ? NULL : json_pack("{s:s, s:s, s:b, s:O}", "type", "object", "description",
+                                       block->desc ? block->desc : "", "additionalProperties",
+                                       0, "properties", props);
+    if (o && json_array_size(required) > 0 && json_object_set(o, "required", required) != 0) {
+        json_decref(o);
+        o = NULL;
+    }
+    json_decref(props);
+    json_decref(required);
+    return o;
+}

@@ -1,0 +1,639 @@
+/*
+ * test_schema — the one schema and the registry (api/rd_registry.h):
+ *   - every analysis of the registry has a scene schema, an OpenAPI entry,
+ *     an example in examples/, a CSV table and a page tab (or says "none");
+ *   - the OpenAPI document's ranges are the ones core enforces: every
+ *     bound of every field is probed through rd_scene_parse (at the edge:
+ *     not refused for that field; just outside: refused at that field's
+ *     path);
+ *   - the OpenAPI document's defaults are what a parsed scene holds (the
+ *     echo of {"analysis": name});
+ *   - every field the README names exists in the schema, and every scene
+ *     the README shows is valid; the page's form keeps no default of its own;
+ *   - a toy analysis added next to the built-in ones (one rd_analysis_def
+ *     and one registry line, here in the test) is parsed, echoed,
+ *     described in OpenAPI, run, and written as JSON and CSV.
+ *
+ * usage: test_schema SOURCE_DIR (the repository: examples/, static/,
+ * server/openapi.json, README.md)
+ */
+#include <dirent.h>
+#include <jansson.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+
+#include "check.h"
+#include "rd_api.h"
+#include "rd_registry.h"
+#include "rd_scene.h"
+
+static const char *src; /* the repository */
+
+static char *read_text(const char *rel)
+{
+    char path[4096];
+    snprintf(path, sizeof path, "%s/%s", src, rel);
+    FILE *f = fopen(path, "rb");
+    char *buf = NULL;
+    size_t len;
+    if (f) {
+        if (rd_api_read_stream(f, 16 * 1024 * 1024, &buf, &len) != RD_OK)
+            buf = NULL;
+        fclose(f);
+    }
+    return buf;
+}
+
+/* The served OpenAPI document for `registry`, from the shipped template. */
+static json_t *openapi(const rd_analysis_def *const *registry)
+{
+    char *template_json = read_text("server/openapi.json");
+    rd_error err;
+    rd_error_init(&err);
+    json_t *doc = template_json ? rd_registry_openapi(registry, template_json, &err) : NULL;
+    CHECK(doc != NULL, "OpenAPI document: %s", err.message);
+    free(template_json);
+    return doc;
+}
+
+static json_t *schemas_of(json_t *doc)
+{
+    return json_object_get(json_object_get(doc, "components"), "schemas");
+}
+
+/* ---- the registry walk ---------------------------------------------------- */
+
+/* Number of examples/ scenes whose "analysis" is `name`. */
+static int count_examples(const char *name)
+{
+    char dir[4096];
+    snprintf(dir, sizeof dir, "%s/examples", src);
+    DIR *d = opendir(dir);
+    struct dirent *de;
+    int n = 0;
+    while (d && (de = readdir(d)) != NULL) {
+        size_t len = strlen(de->d_name);
+        if (len < 6 || strcmp(de->d_name + len - 5, ".json") != 0)
+            continue;
+        char rel[512];
+        snprintf(rel, sizeof rel, "examples/%s", de->d_name);
+        char *text = read_text(rel);
+        json_t *scene = text ? json_loads(text, 0, NULL) : NULL;
+        const char *a = json_string_value(json_object_get(scene, "analysis"));
+        n += a && strcmp(a, name) == 0;
+        json_decref(scene);
+        free(text);
+    }
+    if (d)
+        closedir(d);
+    return n;
+}
+
+static void test_registry(void)
+{
+    json_t *doc = openapi(rd_registry);
+    json_t *schemas = schemas_of(doc);
+    char *app = read_text("static/app.js");
+    CHECK(app != NULL, "static/app.js");
+    int n = 0;
+    for (int i = 0; rd_registry[i]; i++, n++) {
+        const rd_analysis_def *an = rd_registry[i];
+        char ref[128];
+        CHECK(strcmp(rd_scene_analysis_name(i), an->name) == 0, "enum order: %s", an->name);
+        CHECK(an->scene && an->scene->name && an->scene->fields, "%s: a scene schema", an->name);
+        CHECK(an->run != NULL, "%s: a runner", an->name);
+        CHECK(json_is_object(json_object_get(schemas, an->scene->name)), "%s: OpenAPI %s",
+              an->name, an->scene->name);
+        snprintf(ref, sizeof ref, "#/components/schemas/%s", an->scene->name);
+        json_t *mapping = json_object_get(
+            json_object_get(json_object_get(schemas, "Scene"), "discriminator"), "mapping");
+        const char *got = json_string_value(json_object_get(mapping, an->name));
+        CHECK(got && strcmp(got, ref) == 0, "%s: in the Scene discriminator", an->name);
+        CHECK(count_examples(an->name) >= 1, "%s: at least one example in examples/", an->name);
+        CHECK(an->csv || (an->csv_none && *an->csv_none), "%s: a CSV table or why none",
+              an->name);
+        CHECK(an->page != NULL, "%s: a page tab or \"none\"", an->name);
+        if (an->page && strcmp(an->page, "none") != 0) {
+            char rel[256], import[300];
+            snprintf(rel, sizeof rel, "static/%s", an->page);
+            char *tab = read_text(rel);
+            snprintf(import, sizeof import, "'./%s'", an->page);
+            CHECK(tab != NULL, "%s: page tab %s exists", an->name, rel);
+            CHECK(app && strstr(app, import), "%s: static/app.js imports %s", an->name, import);
+            free(tab);
+        }
+    }
+    CHECK(n == RD_ANALYSIS_LIFT + 1, "registry has %d analyses", n);
+    free(app);
+    json_decref(doc);
+}
+
+/* ---- every field, with its path ------------------------------------------- */
+
+typedef void (*field_fn)(const rd_analysis_def *an, const rd_field *f, const char *path,
+                         int item);
+
+/* Calls fn for every field of `block` (recursively); item: inside an array
+ * item (the path then has "/0"). */
+static void walk(const rd_analysis_def *an, const rd_block *block, const char *prefix, int item,
+                 field_fn fn)
+{
+    for (const rd_field *f = block->fields; f->key; f++) {
+        char path[256];
+        snprintf(path, sizeof path, "%s/%s", prefix, f->key);
+        if (f->type == RD_F_BLOCK || f->type == RD_F_OPTBLOCK) {
+            walk(an, f->block, path, item, fn);
+        } else if (f->type == RD_F_DISTORTION) {
+            fn(an, f, path, item);
+            strcat(path, "/0");
+            walk(an, f->block, path, 1, fn);
+        } else {
+            fn(an, f, path, item);
+        }
+    }
+}
+
+/* Sets `v` (stolen) at JSON Pointer `path` in `root`, creating objects on
+ * the way; a "0" step makes a one-item array whose item has the required
+ * fields of a distortion term. */
+static void set_path(json_t *root, const char *path, json_t *v)
+{
+    char buf[256], *save = NULL;
+    snprintf(buf, sizeof buf, "%s", path + 1);
+    json_t *at = root;
+    char *key = strtok_r(buf, "/", &save), *next;
+    for (; (next = strtok_r(NULL, "/", &save)) != NULL; key = next) {
+        json_t *child = json_is_array(at) ? json_array_get(at, 0) : json_object_get(at, key);
+        if (!child) {
+            child = strcmp(next, "0") == 0 ? json_pack("[{s:i, s:f}]", "order", 2, "amplitude", 0.0)
+                                           : json_object();
+            json_object_set_new(at, key, child);
+        }
+        at = child;
+    }
+    if (json_is_array(at))
+        at = json_array_get(at, 0);
+    json_object_set_new(at, key, v);
+}
+
+/* What a bound's probe also sets, so that a rule tying the field to
+ * another one does not hide the field's own bound: a thin section needs a
+ * thin width (b/h <= 20); the Stribeck parameters are read only by that
+ * model; the finest output step needs a short run (at most 200000
+ * samples). */
+static const struct {
+    const char *prefix, *scene;
+} companions[] = {
+    {"/ring/axial_height", "{\"ring\": {\"radial_width\": 1e-5}}"},
+    {"/physics/friction/", "{\"physics\": {\"friction\": {\"model\": \"stribeck\"}}}"},
+    {"/output/step_deg", "{\"engine\": {\"cycles\": 0.1}}"},
+};
+
+/* Copies the members of `from` into `to`, merging objects. */
+static void merge(json_t *to, json_t *from)
+{
+    const char *key;
+    json_t *v;
+    json_object_foreach(from, key, v) {
+        json_t *have = json_object_get(to, key);
+        if (json_is_object(have) && json_is_object(v))
+            merge(have, v);
+        else
+            json_object_set(to, key, v);
+    }
+}
+
+/* The status of parsing {"analysis": an, <path>: v} (with the path's
+ * companions) and the error path. */
+static int probe(const rd_analysis_def *an, const char *path, json_t *v, char *err_path)
+{
+    json_t *scene = json_pack("{s:s}", "analysis", an->name);
+    for (size_t i = 0; i < sizeof companions / sizeof companions[0]; i++)
+        if (strncmp(path, companions[i].prefix, strlen(companions[i].prefix)) == 0) {
+            json_t *c = json_loads(companions[i].scene, 0, NULL);
+            merge(scene, c);
+            json_decref(c);
+        }
+    set_path(scene, path, v);
+    char *text = json_dumps(scene, JSON_COMPACT | JSON_REAL_PRECISION(17));
+    rd_scene *s = NULL;
+    rd_error err;
+    rd_error_init(&err);
+    int rc = rd_scene_parse(text, strlen(text), &s, &err);
+    snprintf(err_path, RD_ERROR_PATH_MAX, "%s", rc == RD_OK ? "" : err.path);
+    rd_scene_free(s);
+    free(text);
+    json_decref(scene);
+    return rc;
+}
+
+static json_t *value(const rd_field *f, double x)
+{
+    return f->type == RD_F_INTEGER ? json_integer((json_int_t)x) : json_real(x);
+}
+
+static int probes;
+
+/* One bound: at the edge (inclusive) the field itself is not refused (a
+ * rule tying it to another field may still refuse the scene, at that
+ * other field); one step outside it is refused, at the field's path. */
+static void probe_bound(const rd_analysis_def *an, const rd_field *f, const char *path,
+                        double edge, int kind, int below)
+{
+    char at[RD_ERROR_PATH_MAX];
+    double dir = below ? -1.0 : 1.0;
+    double out = f->type == RD_F_INTEGER ? edge + dir : nextafter(edge, dir * INFINITY);
+    double in = f->type == RD_F_INTEGER ? edge - dir : nextafter(edge, -dir * INFINITY);
+    if (kind == RD_BOUND_EX) {
+        out = edge; /* the edge itself is outside */
+    } else {
+        in = edge;
+    }
+    int rc = probe(an, path, value(f, in), at);
+    CHECK(rc == RD_OK || strcmp(at, path) != 0, "%s %s = %.17g (inside): refused at %s",
+          an->name, path, in, at);
+    rc = probe(an, path, value(f, out), at);
+    CHECK(rc != RD_OK && strcmp(at, path) == 0, "%s %s = %.17g (outside): status %d at \"%s\"",
+          an->name, path, out, rc, at);
+    probes++;
+}
+
+/* What the analysis adds to a shared block's bound (rd_field.extra, e.g.
+ * contact's tangential_force > 0): *min and *kind replaced when it says. */
+static void extra_bound(const rd_analysis_def *an, const char *path, double *min, int *kind)
+{
+    for (const rd_field *top = an->scene->fields; top->key; top++) {
+        size_t n = strlen(top->key);
+        if (!top->extra || strncmp(path + 1, top->key, n) != 0 || path[n + 1] != '/')
+            continue;
+        json_t *extra = json_loads(top->extra, 0, NULL);
+        json_t *p = json_object_get(json_object_get(extra, "properties"), path + n + 2);
+        if (json_is_number(json_object_get(p, "minimum"))) {
+            *min = json_number_value(json_object_get(p, "minimum"));
+            *kind = json_is_true(json_object_get(p, "exclusiveMinimum")) ? RD_BOUND_EX
+                                                                         : RD_BOUND_IN;
+        }
+        json_decref(extra);
+    }
+}
+
+static void probe_field(const rd_analysis_def *an, const rd_field *f, const char *path, int item)
+{
+    double min = f->min;
+    int min_kind = f->has_min;
+    (void)item;
+    extra_bound(an, path, &min, &min_kind);
+    if (f->type != RD_F_NUMBER && f->type != RD_F_INTEGER) {
+        if (f->only_false) {
+            char at[RD_ERROR_PATH_MAX];
+            int rc = probe(an, path, json_true(), at);
+            CHECK(rc != RD_OK && strcmp(at, path) == 0, "%s %s = true: refused here", an->name,
+                  path);
+        }
+        return;
+    }
+    if (min_kind)
+        probe_bound(an, f, path, min, min_kind, 1);
+    if (f->has_max)
+        probe_bound(an, f, path, f->max, f->has_max, 0);
+}
+
+static void test_ranges(void)
+{
+    for (int i = 0; rd_registry[i]; i++)
+        walk(rd_registry[i], rd_registry[i]->scene, "", 0, probe_field);
+    /* 24 numeric fields with both bounds and 9 with one, counted by hand:
+     * a walk that silently skipped blocks would probe fewer. */
+    CHECK(probes >= 70, "%d bounds probed", probes);
+}
+
+/* ---- defaults ------------------------------------------------------------- */
+
+static json_t *echo_of(const rd_analysis_def *an)
+{
+    char body[128];
+    snprintf(body, sizeof body, "{\"analysis\":\"%s\"}", an->name);
+    rd_scene *s = NULL;
+    rd_error err;
+    rd_error_init(&err);
+    CHECK(rd_scene_parse(body, strlen(body), &s, &err) == RD_OK, "%s: %s", body, err.message);
+    json_t *echo = s ? rd_scene_echo(s) : NULL;
+    rd_scene_free(s);
+    return echo;
+}
+
+static const json_t *resolve(json_t *schemas, json_t *schema)
+{
+    const char *ref = json_string_value(json_object_get(schema, "$ref"));
+    if (!ref)
+        ref = json_string_value(json_object_get(json_array_get(json_object_get(schema, "allOf"),
+                                                                0),
+                                                "$ref"));
+    return ref ? json_object_get(schemas, ref + strlen("#/components/schemas/")) : schema;
+}
+
+static int defaults_checked;
+
+/* Every "default" of `schema` against the echo (fields whose echo is a
+ * computed value, `echo` hooks, say so in their description). */
+static void compare_defaults(json_t *schemas, const json_t *schema, json_t *echo,
+                             const char *path)
+{
+    const char *key;
+    json_t *prop;
+    json_object_foreach(json_object_get(schema, "properties"), key, prop) {
+        char child[256];
+        snprintf(child, sizeof child, "%s/%s", path, key);
+        const json_t *sub = resolve(schemas, prop);
+        json_t *want = json_object_get(sub, "default"), *got = json_object_get(echo, key);
+        const char *desc = json_string_value(json_object_get(sub, "description"));
+        if (json_is_object(json_object_get(sub, "properties")) && json_is_object(got))
+            compare_defaults(schemas, sub, got, child);
+        if (!want || (desc && strstr(desc, "The echo gives")) ||
+            (desc && strstr(desc, "echoed as the value used")))
+            continue;
+        int same = json_equal(want, got) ||
+                   (json_is_number(want) && json_is_number(got) &&
+                    json_number_value(want) == json_number_value(got));
+        CHECK(same, "%s: OpenAPI default differs from the echo of a bare scene", child);
+        defaults_checked++;
+    }
+}
+
+static void test_defaults(void)
+{
+    json_t *doc = openapi(rd_registry);
+    json_t *schemas = schemas_of(doc);
+    for (int i = 0; rd_registry[i]; i++) {
+        json_t *echo = echo_of(rd_registry[i]);
+        compare_defaults(schemas, json_object_get(schemas, rd_registry[i]->scene->name), echo,
+                         rd_registry[i]->name);
+        json_decref(echo);
+    }
+    /* ring (8) + discretization (2) per analysis, and the analyses' own */
+    CHECK(defaults_checked >= 60, "%d defaults compared", defaults_checked);
+    json_decref(doc);
+}
+
+/* ---- README --------------------------------------------------------------- */
+
+/* 1 if some analysis has the field at dotted `name` (ring.material.density). */
+static int field_exists(const char *name)
+{
+    for (int i = 0; rd_registry[i]; i++) {
+        const rd_block *b = rd_registry[i]->scene;
+        char buf[128], *save = NULL;
+        snprintf(buf, sizeof buf, "%s", name);
+        const rd_field *found = NULL;
+        for (char *k = strtok_r(buf, ".", &save); k; k = strtok_r(NULL, ".", &save)) {
+            found = NULL;
+            for (const rd_field *f = b ? b->fields : NULL; f && f->key; f++)
+                if (strcmp(f->key, k) == 0)
+                    found = f;
+            if (!found)
+                break;
+            b = found->block;
+        }
+        if (found)
+            return 1;
+    }
+    return 0;
+}
+
+static int is_top_level_key(const char *key, size_t n)
+{
+    for (int i = 0; rd_registry[i]; i++)
+        for (const rd_field *f = rd_registry[i]->scene->fields; f->key; f++)
+            if (f->type == RD_F_BLOCK && strlen(f->key) == n && strncmp(f->key, key, n) == 0)
+                return 1;
+    return 0;
+}
+
+static void test_readme(void)
+{
+    char *readme = read_text("README.md");
+    CHECK(readme != NULL, "README.md");
+    int names = 0, scenes = 0;
+    /* `block.field` mentions */
+    for (const char *p = readme; p && (p = strchr(p, '`')) != NULL; p++) {
+        const char *end = strchr(p + 1, '`');
+        if (!end)
+            break;
+        size_t n = (size_t)(end - p - 1);
+        const char *dot = memchr(p + 1, '.', n);
+        if (dot && n < 100 && strspn(p + 1, "abcdefghijklmnopqrstuvwxyz_.") == n &&
+            is_top_level_key(p + 1, (size_t)(dot - p - 1))) {
+            char name[128];
+            snprintf(name, sizeof name, "%.*s", (int)n, p + 1);
+            CHECK(field_exists(name), "README names `%s`, which no scene schema has", name);
+            names++;
+        }
+        p = end;
+    }
+    /* ```json blocks that are scenes */
+    for (const char *p = readme; p && (p = strstr(p, "```json\n")) != NULL;) {
+        p += 8;
+        const char *end = strstr(p, "```");
+        if (!end)
+            break;
+        json_t *v = json_loadb(p, (size_t)(end - p), 0, NULL);
+        if (json_object_get(v, "analysis")) {
+            rd_scene *s = NULL;
+            rd_error err;
+            rd_error_init(&err);
+            CHECK(rd_scene_parse_value(v, &s, &err) == RD_OK, "README scene: %s at %s",
+                  err.message, err.path);
+            rd_scene_free(s);
+            scenes++;
+        }
+        json_decref(v);
+        p = end + 3;
+    }
+    CHECK(names >= 10 && scenes >= 1, "README: %d field names, %d scenes checked", names, scenes);
+    free(readme);
+}
+
+/* The page holds no copy of a scene default: no input with data-path also
+ * has data-default (form.js takes them from the OpenAPI document; the
+ * browser test checks that it does). */
+static void test_page(void)
+{
+    char *html = read_text("static/index.html");
+    int inputs = 0;
+    CHECK(html != NULL, "static/index.html");
+    for (const char *p = html; p && (p = strstr(p, "data-path=")) != NULL; p++) {
+        const char *start = p, *end = strchr(p, '>');
+        while (start > html && *start != '<')
+            start--;
+        if (!end || *start != '<' || start[1] == '!') /* a comment's words */
+            continue;
+        char tag[1024];
+        size_t n = (size_t)(end - start);
+        snprintf(tag, sizeof tag, "%.*s", (int)(n < sizeof tag - 1 ? n : sizeof tag - 1), start);
+        CHECK(!strstr(tag, "data-default="), "index.html keeps a default: %s", tag);
+        inputs++;
+    }
+    CHECK(inputs >= 34, "%d scene fields in index.html", inputs);
+    free(html);
+}
+
+/* ---- a toy analysis, added the way a new one is ---------------------------- */
+
+/* Its options (rd_scene.opts) and its "core": y_k = gain * k, k = 0..count-1. */
+struct toy_opts {
+    double gain;
+    int count;
+};
+
+static const rd_field toy_fields[] = {
+    {"gain", RD_F_NUMBER, offsetof(struct toy_opts, gain), RD_MIN(0), RD_MAX(10),
+     .desc = "Gain, -."},
+    {"count", RD_F_INTEGER, offsetof(struct toy_opts, count), RD_MIN(1), RD_MAX(100),
+     .desc = "Rows."},
+    {.key = NULL},
+};
+static const rd_block toy_block = {"ToyOptions", "/toy.", 1, 0, toy_fields};
+static const rd_field toy_scene_fields[] = {
+    RD_SCENE_COMMON(rd_block_discretization_modal),
+    {"toy", RD_F_BLOCK, 0, .block = &toy_block},
+    {.key = NULL},
+};
+static const rd_block toy_scene = {"ToyScene", "A toy.", 0, 0, toy_scene_fields};
+
+static void toy_defaults(rd_scene *s)
+{
+    struct toy_opts *o = s->opts;
+    o->gain = 2.0;
+    o->count = 3;
+}
+
+/* What a core validator does: the range, with the field's path. */
+static int toy_finish(rd_scene *s, rd_error *err)
+{
+    const struct toy_opts *o = s->opts;
+    if (!(o->gain >= 0 && o->gain <= 10))
+        return rd_error_set(err, RD_EINVAL, "/toy/gain", "/toy/gain = %g: allowed 0 to 10",
+                            o->gain);
+    if (o->count < 1 || o->count > 100)
+        return rd_error_set(err, RD_EINVAL, "/toy/count", "/toy/count = %d: allowed 1 to 100",
+                            o->count);
+    return RD_OK;
+}
+
+static int toy_run(const rd_scene *s, const rd_monitor *mon, json_t **out, rd_error *err)
+{
+    const struct toy_opts *o = s->opts;
+    (void)mon;
+    (void)err;
+    json_t *k = json_array(), *y = json_array();
+    for (int i = 0; i < o->count; i++) {
+        json_array_append_new(k, json_integer(i));
+        json_array_append_new(y, json_real(o->gain * i));
+    }
+    *out = json_pack("{s:s, s:o, s:o, s:o}", "analysis", "toy", "scene", rd_scene_echo(s), "k",
+                     k, "y", y);
+    return RD_OK;
+}
+
+static const rd_csv_column toy_columns[] = {{"k", "k", 0}, {"y", "y", 0}, {NULL, NULL, 0}};
+static const rd_csv_table toy_csv = {NULL, NULL, toy_columns};
+
+static const rd_analysis_def toy = {
+    .name = "toy",
+    .scene = &toy_scene,
+    .opts_size = sizeof(struct toy_opts),
+    .defaults = toy_defaults,
+    .finish = toy_finish,
+    .run = toy_run,
+    .csv = &toy_csv,
+    .page = "none",
+};
+
+static int parse_in(const rd_analysis_def *const *registry, const char *body, rd_scene **s,
+                    rd_error *err)
+{
+    json_t *v = json_loads(body, 0, NULL);
+    rd_error_init(err);
+    int rc = rd_scene_parse_with(registry, v, s, err);
+    json_decref(v);
+    return rc;
+}
+
+static void test_toy(void)
+{
+    const rd_analysis_def *registry[] = {rd_registry[0], rd_registry[1], rd_registry[2],
+                                         rd_registry[3], &toy, NULL};
+    rd_scene *s = NULL;
+    rd_error err;
+
+    /* parse: defaults, the block, a typo, core's range check */
+    CHECK(parse_in(registry, "{\"analysis\":\"toy\",\"toy\":{\"gain\":0.5}}", &s, &err) == RD_OK,
+          "toy scene: %s", err.message);
+    char *echo = s ? rd_scene_to_json(s) : NULL;
+    CHECK(echo && strstr(echo, "\"toy\":{\"gain\":0.5,\"count\":3}"), "toy echo: %s",
+          echo ? echo : "-");
+    free(echo);
+    rd_scene_free(s);
+    s = NULL;
+    CHECK(parse_in(registry, "{\"analysis\":\"toy\",\"toy\":{\"gian\":1}}", &s,
+                   &err) == RD_EINVAL &&
+              strcmp(err.path, "/toy/gian") == 0 && strstr(err.message, "known: gain, count"),
+          "toy typo: %s", err.message);
+    CHECK(parse_in(registry, "{\"analysis\":\"toy\",\"toy\":{\"gain\":11}}", &s, &err) ==
+                  RD_EINVAL && strcmp(err.path, "/toy/gain") == 0,
+          "toy range: %s", err.message);
+    /* the built-in analyses now know (and ignore) the toy's block */
+    CHECK(parse_in(registry, "{\"analysis\":\"modal\",\"toy\":{\"x\":1}}", &s, &err) == RD_OK,
+          "modal ignores /toy: %s", err.message);
+    rd_scene_free(s);
+    s = NULL;
+    CHECK(parse_in(rd_registry, "{\"analysis\":\"modal\",\"toy\":{}}", &s, &err) == RD_EINVAL,
+          "without the toy, /toy is unknown");
+
+    /* OpenAPI: its scene, its block with default and range, in Scene */
+    json_t *doc = openapi(registry);
+    json_t *gain = json_object_get(
+        json_object_get(json_object_get(schemas_of(doc), "ToyOptions"), "properties"), "gain");
+    CHECK(json_real_value(json_object_get(gain, "default")) == 2.0 &&
+              json_real_value(json_object_get(gain, "maximum")) == 10.0,
+          "ToyOptions.gain: default and maximum");
+    CHECK(json_object_get(json_object_get(json_object_get(schemas_of(doc), "ModalScene"),
+                                          "properties"),
+                          "toy") != NULL,
+          "ModalScene lists /toy as ignored");
+    json_decref(doc);
+
+    /* run: one result document, JSON and CSV written from it */
+    CHECK(parse_in(registry, "{\"analysis\":\"toy\",\"toy\":{\"gain\":0.5,\"count\":2}}", &s,
+                   &err) == RD_OK,
+          "%s", err.message);
+    rd_result_doc *doc_run = NULL;
+    CHECK(s && rd_scene_run_doc(s, NULL, &doc_run, &err) == RD_OK, "toy run: %s", err.message);
+    char *json = doc_run ? rd_result_doc_json(doc_run) : NULL;
+    char *csv = doc_run ? rd_result_doc_csv(doc_run, &err) : NULL;
+    CHECK(json && strstr(json, "\"y\":[0.0,0.5]"), "toy JSON: %s", json ? json : "-");
+    CHECK(csv && strcmp(csv, "k,y\n0,0\n1,0.5\n") == 0, "toy CSV: %s", csv ? csv : err.message);
+    free(json);
+    free(csv);
+    rd_result_doc_free(doc_run);
+    rd_scene_free(s);
+}
+
+int main(int argc, char **argv)
+{
+    if (argc != 2) {
+        fprintf(stderr, "usage: %s SOURCE_DIR\n", argv[0]);
+        return 2;
+    }
+    src = argv[1];
+    test_registry();
+    test_ranges();
+    test_defaults();
+    test_readme();
+    test_page();
+    test_toy();
+    return check_done();
+}
