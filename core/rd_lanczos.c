@@ -28,9 +28,12 @@
  * When the new direction vanishes the Krylov space is invariant and a random
  * vector, orthogonal to all before it, continues the basis.
  *
- * Convergence: the top pairs whose cheap residual ||Op y - theta y|| / theta
- * is below the floor are then checked explicitly, ||K y - lambda M y|| /
- * (lambda ||M y||) <= floor_abs / lambda + tol.
+ * Convergence: when the top pairs' cheap residuals ||Op y - theta y|| / theta
+ * are below the floor, their Ritz vectors get one refining step of subspace
+ * iteration (polish) and are then checked explicitly, ||K y - lambda M y|| /
+ * (lambda ||M y||) <= floor_abs / lambda + tol.  floor_abs is an estimate of
+ * the rounding level; residuals that stop falling a little above it (at most
+ * STALL_MAX times) are rounding too and are accepted.
  */
 #include "rd_lanczos.h"
 
@@ -46,10 +49,15 @@
 /* A new direction shorter than BREAKDOWN times Op q_j (M-norms) is rounding
  * noise of an invariant Krylov space, not a direction of Op. */
 #define BREAKDOWN 1e-8
+/* Explicit residuals that stall (fall less than 2x between checks) are
+ * accepted up to this multiple of their floor estimate. */
+#define STALL_MAX 100.0
 
 typedef struct lz {
     const rd_lanczos_problem *pb;
     int N, b, cap, k, r; /* basis capacity and size; deflated null vectors */
+    int D;               /* N - r: dimension of the deflated space */
+    double prev_expl;    /* largest explicit residual / floor at the previous check */
     rd_band A;           /* Cholesky factor of K + sigma M */
     double *Z, *MZ;      /* N x r: null vectors, M-orthonormal, and M Z */
     double *Q, *MQ;      /* N x cap: Lanczos basis and M Q */
@@ -57,6 +65,7 @@ typedef struct lz {
     double *v, *mv, *coef; /* N, N, cap: work vector, M v, its coefficients */
     double *theta, *S, *ab; /* Ritz values and vectors of T_s, T_s in band storage */
     double *t1, *t2;     /* N scratch */
+    double *X, *KX, *MX, *Kr, *Mr; /* polish: N x want (three), want x want (two) */
     uint64_t rng;
 } lz;
 
@@ -97,6 +106,11 @@ static void lz_cleanup(lz *w)
     free(w->ab);
     free(w->t1);
     free(w->t2);
+    free(w->X);
+    free(w->KX);
+    free(w->MX);
+    free(w->Kr);
+    free(w->Mr);
 }
 
 void rd_lanczos_result_cleanup(rd_lanczos_result *r)
@@ -216,8 +230,14 @@ static int lz_alloc(lz *w, rd_error *err)
     w->theta = malloc(cap * sizeof(double));
     w->S = malloc(cap * cap * sizeof(double));
     w->ab = malloc(3 * cap * sizeof(double));
+    size_t want = (size_t)(w->pb->want > 0 ? w->pb->want : 1);
+    w->X = malloc((size_t)N * want * sizeof(double));
+    w->KX = malloc((size_t)N * want * sizeof(double));
+    w->MX = malloc((size_t)N * want * sizeof(double));
+    w->Kr = malloc(want * want * sizeof(double));
+    w->Mr = malloc(want * want * sizeof(double));
     if (!w->Z || !w->MZ || !w->Q || !w->MQ || !w->H || !w->v || !w->mv || !w->t1 || !w->t2 ||
-        !w->coef || !w->theta || !w->S || !w->ab)
+        !w->coef || !w->theta || !w->S || !w->ab || !w->X || !w->KX || !w->MX || !w->Kr || !w->Mr)
         return rd_error_set(err, RD_ENOMEM, "", "Out of memory for the Lanczos basis (%d x %d).",
                             N, w->cap);
     return RD_OK;
@@ -291,6 +311,59 @@ static double explicit_residual(lz *w, const double *y, double lambda)
     return sqrt(rr) / (fabs(lambda) * sqrt(dot(w->N, w->t2, w->t2)));
 }
 
+/* One step of subspace iteration on the Ritz vectors out->x (m of them):
+ * X = A^-1 M Y, deflated, then Rayleigh-Ritz (X^T K X) C = (X^T M X) C L
+ * (LAPACK dsygv), Y = X C.  A Ritz vector is a sum of s basis vectors, each
+ * carrying rounding along the stiff high modes, which K amplifies by up to
+ * lambda_max; one application of A^-1 damps those by (lambda + sigma) /
+ * (lambda_high + sigma), so the residual drops to the rounding level of a
+ * single solve. */
+static int polish(lz *w, int m, rd_lanczos_result *out, rd_error *err)
+{
+    const int N = w->N;
+    for (int e = 0; e < m; e++)
+        rd_band_symv(w->pb->M, COL(out->x, N, e), COL(w->X, N, e));
+    int rc = rd_band_solve(&w->A, m, w->X, err);
+    if (rc)
+        return rc;
+    for (int e = 0; e < m; e++) {
+        double *x = COL(w->X, N, e);
+        for (int pass = 0; pass < 2; pass++)
+            project_out(N, w->r, w->Z, w->MZ, x, NULL);
+        /* M-normalized: A^-1 shrinks mode j by 1 / (lambda_j + sigma), and
+         * unscaled columns would make X^T M X as ill-conditioned as A */
+        double *mx = COL(w->MX, N, e);
+        rd_band_symv(w->pb->M, x, mx);
+        double scale = 1.0 / sqrt(dot(N, x, mx));
+        for (int t = 0; t < N; t++) {
+            x[t] *= scale;
+            mx[t] *= scale;
+        }
+        rd_band_symv(w->pb->K, x, COL(w->KX, N, e));
+    }
+    for (int j = 0; j < m; j++)
+        for (int i = 0; i <= j; i++) {
+            w->Kr[i + (size_t)j * m] = dot(N, COL(w->X, N, i), COL(w->KX, N, j));
+            w->Mr[i + (size_t)j * m] = dot(N, COL(w->X, N, i), COL(w->MX, N, j));
+        }
+    lapack_int info = LAPACKE_dsygv(LAPACK_COL_MAJOR, 1, 'V', 'U', m, w->Kr, m, w->Mr, m, out->lambda);
+    if (info != 0)
+        return rd_error_set(err, RD_ENUMERIC, "",
+                            "The Ritz refinement failed (LAPACK dsygv info %d, %d vectors).",
+                            (int)info, m);
+    for (int e = 0; e < m; e++) {
+        double *y = COL(out->x, N, e);
+        memset(y, 0, (size_t)N * sizeof *y);
+        for (int j = 0; j < m; j++) {
+            double c = w->Kr[j + (size_t)e * m];
+            const double *x = COL(w->X, N, j);
+            for (int t = 0; t < N; t++)
+                y[t] += c * x[t];
+        }
+    }
+    return RD_OK;
+}
+
 /* Checks the wanted pairs after s expanded columns: returns 1 (and fills
  * out->lambda, out->x) when all passed, 0 when more steps are needed. */
 static int check(lz *w, int s, rd_lanczos_result *out, rd_error *err)
@@ -326,9 +399,25 @@ static int check(lz *w, int s, rd_lanczos_result *out, rd_error *err)
             for (int t = 0; t < w->N; t++)
                 y[t] += c * q[t];
         }
-        if (!(explicit_residual(w, y, out->lambda[e]) <= pb->floor_abs / out->lambda[e] + pb->tol))
-            return 0;
     }
+    if ((rc = polish(w, found, out, err)))
+        return rc;
+    double expl = 0.0;
+    for (int e = 0; e < found; e++) {
+        double ratio = explicit_residual(w, COL(out->x, w->N, e), out->lambda[e]) /
+                       (pb->floor_abs / out->lambda[e] + pb->tol);
+        if (!(ratio <= expl))
+            expl = isnan(ratio) ? INFINITY : ratio;
+    }
+    /* Accepted: residuals at the floor; or a basis that spans the whole
+     * deflated space (a dense solve: nothing left to converge); or residuals
+     * that stopped falling between checks while the Krylov residuals are
+     * below the floor: rounding, a little above the floor's estimate. */
+    int stalled = expl <= STALL_MAX && expl > 0.5 * w->prev_expl;
+    w->prev_expl = expl;
+    out->worst = expl;
+    if (!(expl <= 1.0 || w->k >= w->D || stalled))
+        return 0;
     out->zeros = zeros;
     out->found = found;
     return 1;
@@ -346,18 +435,19 @@ static int start(lz *w, rd_lanczos_result *out, rd_error *err)
         return rc;
     deflate_null(w);
     out->deflated = w->r;
-    int D = w->N - w->r;
-    if (pb->want < 1 || pb->want > D)
+    w->D = w->N - w->r;
+    if (pb->want < 1 || pb->want > w->D)
         return rd_error_set(err, RD_EINTERNAL, "",
                             "Lanczos asked for %d eigenpairs of a %d-dimensional space.",
-                            pb->want, D);
-    if (w->cap > D)
-        w->cap = D;
+                            pb->want, w->D);
+    if (w->cap > w->D)
+        w->cap = w->D;
     out->lambda = malloc((size_t)pb->want * sizeof *out->lambda);
     out->x = malloc((size_t)w->N * (size_t)pb->want * sizeof *out->x);
     if (!out->lambda || !out->x)
         return rd_error_set(err, RD_ENOMEM, "", "Out of memory for %d eigenvectors.", pb->want);
     w->rng = 0x9E3779B97F4A7C15ULL;
+    w->prev_expl = INFINITY;
     for (int c = 0; c < w->b && w->k < w->cap; c++)
         if (append_random(w) != 0)
             break;
@@ -397,7 +487,7 @@ int rd_lanczos_solve(const rd_lanczos_problem *pb, rd_lanczos_result *out, rd_er
     if (rc == RD_OK && !done)
         rc = rd_error_set(err, RD_ENOCONV, "",
                           "The Lanczos solver did not converge in %d steps: the largest residual "
-                          "is %.3g times its floor.",
+                          "is %.3g times its rounding floor.",
                           s, out->worst);
     lz_cleanup(&w);
     if (rc != RD_OK) {
