@@ -27,7 +27,7 @@
 
 enum { P_VALUES, P_RANGE, P_RANDOM };
 enum { C_PRODUCT, C_ZIP, C_LHS };
-enum { O_POINTER, O_MAX, O_MIN, O_MEAN, O_COUNT };
+enum { O_POINTER, O_MAX, O_MIN, O_MEAN, O_COUNT, O_ALL };
 
 typedef struct {
     const char *path; /* scene pointer, borrowed from the spec */
@@ -296,8 +296,8 @@ static int parse_param(json_t *v, int k, param *q, rd_error *err)
 /* outputs[k]: a pointer, or name(pointer) for an aggregate. */
 static int parse_output(json_t *v, int k, output *o, rd_error *err)
 {
-    static const char *const names[] = {"max", "min", "mean", "count"};
-    static const int kinds[] = {O_MAX, O_MIN, O_MEAN, O_COUNT};
+    static const char *const names[] = {"max", "min", "mean", "count", "all"};
+    static const int kinds[] = {O_MAX, O_MIN, O_MEAN, O_COUNT, O_ALL};
     char path[64];
     snprintf(path, sizeof path, "/outputs/%d", k);
     const char *t = json_string_value(v);
@@ -307,7 +307,7 @@ static int parse_output(json_t *v, int k, output *o, rd_error *err)
         o->kind = O_POINTER;
         o->ptr = strdup(t);
     }
-    for (int a = 0; t && o->kind < 0 && a < 4; a++) {
+    for (int a = 0; t && o->kind < 0 && a < 5; a++) {
         size_t n = strlen(names[a]), len = strlen(t);
         if (strncmp(t, names[a], n) != 0 || t[n] != '(' || t[len - 1] != ')' || t[n + 1] != '/')
             continue;
@@ -318,7 +318,7 @@ static int parse_output(json_t *v, int k, output *o, rd_error *err)
     }
     if (o->kind < 0)
         return spec_error(err, path, "%s must be a JSON Pointer into the result (\"/...\") or "
-                                     "max(P), min(P), mean(P), count(P) of one", path);
+                                     "max(P), min(P), mean(P), count(P), all(P) of one", path);
     return o->ptr ? RD_OK : RD_ENOMEM;
 }
 
@@ -651,13 +651,16 @@ static int has_star(const char *ptr)
     return 0;
 }
 
-/* Folds every number in `v` (arrays flattened) into min/max/sum/n. */
-static void fold(json_t *v, double *lo, double *hi, double *sum, size_t *n)
+/* Folds every number in `v` (arrays flattened) into min/max/sum/n, and
+ * appends it to `list` when that is not NULL. */
+static void fold(json_t *v, double *lo, double *hi, double *sum, size_t *n, json_t *list)
 {
     if (json_is_array(v)) {
         for (size_t k = 0; k < json_array_size(v); k++)
-            fold(json_array_get(v, k), lo, hi, sum, n);
+            fold(json_array_get(v, k), lo, hi, sum, n, list);
     } else if (json_is_number(v)) {
+        if (list)
+            json_array_append(list, v);
         double x = json_number_value(v);
         *lo = *n == 0 || x < *lo ? x : *lo;
         *hi = *n == 0 || x > *hi ? x : *hi;
@@ -690,7 +693,12 @@ static json_t *output_value(const output *o, json_t *result)
     } else {
         double lo = 0, hi = 0, sum = 0;
         size_t n = 0;
-        fold(all, &lo, &hi, &sum, &n);
+        json_t *list = o->kind == O_ALL ? json_array() : NULL;
+        fold(all, &lo, &hi, &sum, &n, list);
+        if (o->kind == O_ALL) {
+            json_decref(all);
+            return list;
+        }
         double x = o->kind == O_MAX ? hi : o->kind == O_MIN ? lo : sum / (double)n;
         cell = n > 0 ? json_real(x) : json_null();
     }

@@ -37,9 +37,10 @@
  *   The u are bit-identical everywhere; log scales go through libm's pow.
  *
  * Outputs: a JSON Pointer into the result ("/modes/0/frequency_hz"), or an
- * aggregate  max(P) | min(P) | mean(P) | count(P)  where P may hold "*" tokens
- * (every element of an array or member of an object): max/min/mean of all
- * numbers P names (arrays are flattened; null when none), count = the number
+ * aggregate  max(P) | min(P) | mean(P) | count(P) | all(P)  where P may hold
+ * "*" tokens (every element of an array or member of an object): max/min/mean
+ * of all numbers P names (arrays are flattened; null when none), all = those
+ * numbers as one flat array (for comparing runs), count = the number
  * of values P names, where a P naming one array or object counts its
  * elements: "count(/events)", "max(/lift)", and the largest error estimate of
  * all modes is "max(/modes/X/error_estimate)" with X replaced by a star.
@@ -128,6 +129,45 @@ char *rd_sweep_table_csv(const rd_sweep *sweep, char *const *rows, size_t n, rd_
 /* A JSON array (columns or a row) as one CSV record with its CRLF; NULL + err
  * when `array_json` is not a JSON array or memory runs out. */
 char *rd_sweep_csv_record(const char *array_json, rd_error *err);
+
+/* A table (JSON text as above, any columns) as CSV; NULL + err when it is not
+ * a table or memory runs out. */
+char *rd_sweep_csv_from_table(const char *table_json, rd_error *err);
+
+/* ---- fidelity: the speed/accuracy trade of one scene ----------------------
+ * A fidelity sweep runs one scene over its fidelity settings with its error
+ * estimate switched on: /discretization/segments (default ladder: 5, 10, 20,
+ * 40, 80, 160, 320; lift 4, 8, 16, 32), for lift also /numerics/rtol
+ * (default 1e-4, 1e-5, 1e-6, 1e-7), and /numerics/model when values are given
+ * (refused like any parameter when the scene schema has no such field).
+ * Outputs: /numerics/wall_s (the run with its estimate), the error estimate
+ * (modal: max(/modes/X/error_estimate) over the modes X; others
+ * /numerics/error_estimate) and all(Q) of the compared quantity Q: modal
+ * every frequency_hz, pretension /gap_opening_inner, contact
+ * /mean_pressure_pa, lift /lift (plus /scene/groove/axial_clearance). */
+typedef struct rd_sweep_fidelity_opts {
+    const double *segments; /* NULL: the default ladder */
+    size_t n_segments;
+    const double *rtol; /* lift only; NULL: the default */
+    size_t n_rtol;
+    const char *const *models; /* NULL: the scene's own model */
+    size_t n_models;
+} rd_sweep_fidelity_opts;
+
+/* The spec of a fidelity sweep of `scene` (JSON text; caller frees the
+ * spec), to be parsed with rd_sweep_parse.  NULL + err when the scene is
+ * invalid (its own error, RD_EINVAL/RD_EJSON) or out of memory. */
+char *rd_sweep_fidelity_spec(const char *scene, size_t len, const rd_sweep_fidelity_opts *opts,
+                             rd_error *err);
+
+/* The fidelity table from the table of a fidelity sweep: the all(Q) (and
+ * clearance) columns are replaced by "error_vs_finest" — for each ok row,
+ * max_k |q_k - Q_k| / |Q_k| against the finest ok run (most segments, then
+ * smallest rtol), for lift max_k |q_k - Q_k| / axial clearance, the measure
+ * the lift estimate uses — and "pareto": true for the ok rows that no other
+ * ok row beats in both wall time and error estimate.  NULL + err (RD_EINTERNAL)
+ * when `table_json` is not a fidelity table. */
+char *rd_sweep_fidelity_table(const char *table_json, rd_error *err);
 
 /* ---- chunks: one sweep split over K processes ---------------------------
  * Chunk c of K (0 <= c < K <= N) holds points [c N / K, (c + 1) N / K).  Its

@@ -435,3 +435,23 @@ int rd_sweep_reduce(const char *dir, int csv, FILE *out, rd_error *err)
     json_decref(st.columns);
     return rc;
 }
+
+char *rd_sweep_csv_from_table(const char *table_json, rd_error *err)
+{
+    json_t *t = json_loads(table_json, 0, NULL), *rows = json_object_get(t, "rows");
+    json_t *cols = json_object_get(t, "columns");
+    if (!json_is_array(cols) || !json_is_array(rows)) {
+        json_decref(t);
+        rd_error_set(err, RD_EINTERNAL, "", "not a sweep table {\"columns\", \"rows\"}");
+        return NULL;
+    }
+    buf b = {0};
+    csv_record(&b, cols);
+    for (size_t i = 0; i < json_array_size(rows); i++)
+        csv_record(&b, json_array_get(rows, i));
+    json_decref(t);
+    char *text = take(&b);
+    if (!text)
+        rd_error_set(err, RD_ENOMEM, "", "out of memory while writing CSV");
+    return text;
+}

@@ -10,6 +10,11 @@
  *        K defaults to 1).  The file appears complete or not at all: it is
  *        written to a hidden temporary name in DIR and renamed.
  *   ringdyn sweep reduce DIR [--csv]      the whole table on stdout
+ *   ringdyn sweep fidelity SCENE [--segments N,N..] [--rtol R,R..]
+ *        [--model M,M..] [--spec] [--csv]
+ *        the speed/accuracy table of one scene (rd_sweep.h, fidelity), run
+ *        here; --spec prints the sweep spec instead, to run it as chunks and
+ *        turn the reduced table into this one with --table FILE.
  *
  * Exit status as for `ringdyn run`: 0 ok, 2 invalid input (a 4xx error:
  * bad spec, missing chunks), 1 the run could not finish (interrupted, out of
@@ -36,6 +41,9 @@ static const char usage[] =
     "       ringdyn sweep scene SPEC I\n"
     "       ringdyn sweep run SPEC [--index I] [--chunks K] --out DIR\n"
     "       ringdyn sweep reduce DIR [--csv]\n"
+    "       ringdyn sweep fidelity SCENE [--segments N,..] [--rtol R,..] [--model M,..]\n"
+    "                              [--spec] [--csv]\n"
+    "       ringdyn sweep fidelity --table TABLE [--csv]\n"
     "I defaults to $JOB_COMPLETION_INDEX or $SLURM_ARRAY_TASK_ID, K to 1.\n";
 
 static volatile sig_atomic_t interrupted;
@@ -273,6 +281,139 @@ static int cmd_reduce(int argc, char **argv)
     return rd_sweep_reduce(dir, csv, stdout, &err) == RD_OK ? 0 : fail(&err);
 }
 
+/* Reads a whole file ("-": stdin) of at most `max` bytes. */
+static int read_all(const char *name, size_t max, char **buf, size_t *len, rd_error *err)
+{
+    FILE *f = strcmp(name, "-") == 0 ? stdin : fopen(name, "rb");
+    *buf = NULL;
+    if (!f)
+        return rd_error_set(err, RD_EREQUEST, "", "cannot open %s: %s", name, strerror(errno));
+    int rc = rd_api_read_stream(f, max, buf, len);
+    if (f != stdin)
+        fclose(f);
+    return rc == RD_OK ? RD_OK : rd_error_set(err, rc == RD_ENOMEM ? rc : RD_EREQUEST, "",
+                                              "cannot read %s", name);
+}
+
+/* Splits a comma list in place: up to `max` items into items[]; numbers
+ * too when nums != NULL.  Returns the count, or 0 on a bad list. */
+static size_t split_list(char *text, const char **items, double *nums, size_t max)
+{
+    size_t n = 0;
+    for (char *tok = strtok(text, ","); tok; tok = strtok(NULL, ",")) {
+        char *end;
+        if (n == max)
+            return 0;
+        items[n] = tok;
+        if (nums) {
+            nums[n] = strtod(tok, &end);
+            if (*end || end == tok)
+                return 0;
+        }
+        n++;
+    }
+    return n;
+}
+
+/* Runs every point of a sweep here and returns its table. */
+static char *run_all(const rd_sweep *s, rd_error *err)
+{
+    size_t n = rd_sweep_points(s);
+    char **rows = calloc(n, sizeof *rows), *table = NULL;
+    rd_monitor mon = {stop_on_signal, NULL};
+    int rc = rows ? RD_OK : rd_error_set(err, RD_ENOMEM, "", "out of memory");
+    for (size_t i = 0; rc == RD_OK && i < n; i++)
+        rc = rd_sweep_run_point(s, i, &mon, &rows[i], err);
+    if (rc == RD_OK)
+        table = rd_sweep_table_json(s, rows, n, err);
+    for (size_t i = 0; rows && i < n; i++)
+        free(rows[i]);
+    free(rows);
+    return table;
+}
+
+/* The fidelity table, printed as JSON or CSV. */
+static int print_fidelity(const char *table, int csv, rd_error *err)
+{
+    char *fid = rd_sweep_fidelity_table(table, err);
+    char *text = fid && csv ? rd_sweep_csv_from_table(fid, err) : NULL;
+    int status = !fid || (csv && !text) ? fail(err) : 0;
+    if (status == 0 && (fputs(csv ? text : fid, stdout) == EOF || (!csv && puts("") == EOF) ||
+                        fflush(stdout) != 0))
+        status = print_line(NULL);
+    free(text);
+    free(fid);
+    return status;
+}
+
+enum { LIST_MAX = 64 };
+
+static int cmd_fidelity(int argc, char **argv)
+{
+    const char *scene = NULL, *table = NULL, *items[LIST_MAX], *models[LIST_MAX];
+    double seg[LIST_MAX], rtol[LIST_MAX];
+    rd_sweep_fidelity_opts o = {0};
+    int csv = 0, spec_only = 0, bad = 0;
+    for (int i = 0; i < argc && !bad; i++) {
+        const char *a = argv[i];
+        int more = i + 1 < argc;
+        if (strcmp(a, "--csv") == 0)
+            csv = 1;
+        else if (strcmp(a, "--spec") == 0)
+            spec_only = 1;
+        else if (strcmp(a, "--table") == 0 && more)
+            table = argv[++i];
+        else if (strcmp(a, "--segments") == 0 && more)
+            bad = (o.n_segments = split_list(argv[++i], items, seg, LIST_MAX)) == 0;
+        else if (strcmp(a, "--rtol") == 0 && more)
+            bad = (o.n_rtol = split_list(argv[++i], items, rtol, LIST_MAX)) == 0;
+        else if (strcmp(a, "--model") == 0 && more)
+            bad = (o.n_models = split_list(argv[++i], models, NULL, LIST_MAX)) == 0;
+        else if (!scene && (a[0] != '-' || strcmp(a, "-") == 0))
+            scene = a;
+        else
+            bad = 1;
+    }
+    if (bad || !!scene == !!table) {
+        fputs(usage, stderr);
+        return EXIT_INPUT;
+    }
+    o.segments = o.n_segments ? seg : NULL;
+    o.rtol = o.n_rtol ? rtol : NULL;
+    o.models = o.n_models ? models : NULL;
+    rd_error err;
+    rd_error_init(&err);
+    char *body = NULL, *spec = NULL, *result = NULL;
+    size_t len;
+    rd_sweep *s = NULL;
+    int status = 0;
+    if (read_all(table ? table : scene, table ? (size_t)1 << 30 : RD_API_BODY_MAX, &body, &len,
+                 &err) != RD_OK) {
+        status = fail(&err);
+    } else if (table) {
+        status = print_fidelity(body, csv, &err);
+    } else if (!(spec = rd_sweep_fidelity_spec(body, len, &o, &err)) ||
+               rd_sweep_parse(spec, strlen(spec), RD_SWEEP_POINTS_MAX, &s, &err) != RD_OK) {
+        status = fail(&err);
+    } else if (spec_only) {
+        result = rd_api_json_pretty(spec);
+        status = print_line(result);
+    } else {
+        struct sigaction sa;
+        memset(&sa, 0, sizeof sa);
+        sa.sa_handler = on_sigint;
+        sigemptyset(&sa.sa_mask);
+        sigaction(SIGINT, &sa, NULL);
+        result = run_all(s, &err);
+        status = result ? print_fidelity(result, csv, &err) : fail(&err);
+    }
+    free(result);
+    free(spec);
+    free(body);
+    rd_sweep_free(s);
+    return status;
+}
+
 int rd_sweep_cli_main(int argc, char **argv)
 {
     const char *cmd = argc > 0 ? argv[0] : "";
@@ -288,6 +429,8 @@ int rd_sweep_cli_main(int argc, char **argv)
         return cmd_run(argc - 1, argv + 1);
     if (strcmp(cmd, "reduce") == 0)
         return cmd_reduce(argc - 1, argv + 1);
+    if (strcmp(cmd, "fidelity") == 0)
+        return cmd_fidelity(argc - 1, argv + 1);
     fputs(usage, stderr);
     return EXIT_INPUT;
 }

@@ -58,5 +58,21 @@ out=$(env -u JOB_COMPLETION_INDEX -u SLURM_ARRAY_TASK_ID "$ringdyn" sweep run \
 [ $rc = 2 ] && [[ $out == *'no chunk index'* ]] || fail "no index: rc $rc, $out"
 "$ringdyn" sweep 2>/dev/null; [ $? = 2 ] || fail "bare sweep is a usage error"
 
+# fidelity: in one process, and as a spec run in 2 chunks, reduced, tabulated.
+scene=$sweeps/../../../examples/thesis_pretension.json
+"$ringdyn" sweep fidelity "$scene" --segments 10,20,40 --csv > "$work/fid.csv" || fail "fidelity run"
+head -1 "$work/fid.csv" | grep -q '^/discretization/segments,/numerics/wall_s,/numerics/error_estimate,error_vs_finest,pareto,status,error' \
+  || fail "fidelity columns: $(head -1 "$work/fid.csv")"
+grep -q '^40,[0-9.e-]*,[0-9.e-]*,0,true,ok,' "$work/fid.csv" || fail "finest row: $(cat "$work/fid.csv")"
+"$ringdyn" sweep fidelity "$scene" --segments 10,20,40 --spec > "$work/fid_spec.json" || fail "fidelity --spec"
+for i in 0 1; do "$ringdyn" sweep run "$work/fid_spec.json" --index $i --chunks 2 --out "$work/fid" & done
+wait
+"$ringdyn" sweep reduce "$work/fid" > "$work/fid_table.json" || fail "fidelity reduce"
+"$ringdyn" sweep fidelity --table "$work/fid_table.json" --csv > "$work/fid2.csv" || fail "fidelity --table"
+# Wall times differ between runs; every other cell must not.
+cut -d, -f1,3- "$work/fid.csv" > "$work/a"; cut -d, -f1,3- "$work/fid2.csv" | sed 's/,\(true\|false\),/,P,/' > "$work/b"
+sed -i 's/,\(true\|false\),/,P,/' "$work/a"
+cmp "$work/a" "$work/b" || fail "fidelity: chunked table differs from the in-process one"
+
 [ $failed = 0 ] && echo "sweep CLI: all checks passed"
 exit $failed

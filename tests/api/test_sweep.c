@@ -397,6 +397,91 @@ static void test_csv_and_chunks(void)
     rd_sweep_free(s);
 }
 
+/* Runs every point of a sweep; the table JSON (caller frees). */
+static char *run_table(const rd_sweep *s)
+{
+    rd_error err;
+    size_t n = rd_sweep_points(s);
+    char **rows = calloc(n, sizeof *rows), *table = NULL;
+    int ok = rows != NULL;
+    for (size_t i = 0; ok && i < n; i++)
+        ok = rd_sweep_run_point(s, i, NULL, &rows[i], &err) == RD_OK;
+    if (ok)
+        table = rd_sweep_table_json(s, rows, n, &err);
+    for (size_t i = 0; rows && i < n; i++)
+        free(rows[i]);
+    free(rows);
+    return table;
+}
+
+/* The fidelity table of the thesis ring (modal): the estimate and the error
+ * against the finest run agree where the finest run's own error is small. */
+static void test_fidelity(void)
+{
+    rd_error err;
+    rd_error_init(&err);
+    const char *scene = "{\"analysis\": \"modal\", \"modal\": {\"modes\": 4, "
+                        "\"error_estimate\": false}}";
+    const double seg[] = {10, 20, 40, 320};
+    rd_sweep_fidelity_opts o = {seg, 4, NULL, 0, NULL, 0};
+    char *spec = rd_sweep_fidelity_spec(scene, strlen(scene), &o, &err);
+    rd_sweep *s = spec ? parse(spec, 1000, &err) : NULL;
+    CHECK(s && rd_sweep_points(s) == 4, "fidelity spec: %s", err.message);
+    char *table = s ? run_table(s) : NULL;
+    char *fid = table ? rd_sweep_fidelity_table(table, &err) : NULL;
+    json_t *t = fid ? json_loads(fid, 0, NULL) : NULL, *rows = json_object_get(t, "rows");
+    json_t *cols = json_object_get(t, "columns");
+    CHECK(json_array_size(cols) == 7 &&
+              strcmp(json_string_value(json_array_get(cols, 3)), "error_vs_finest") == 0 &&
+              strcmp(json_string_value(json_array_get(cols, 4)), "pareto") == 0,
+          "columns: segments, wall, estimate, error_vs_finest, pareto, status, error");
+    for (size_t i = 0; i < json_array_size(rows); i++) {
+        json_t *r = json_array_get(rows, i);
+        double est = json_number_value(json_array_get(r, 2));
+        double vs = json_number_value(json_array_get(r, 3));
+        if (i == 3) {
+            CHECK(vs == 0, "the finest run against itself");
+            continue;
+        }
+        /* The estimate (switched on by the fidelity sweep although the scene
+         * had it off) claims the true error to a factor 3; the error against
+         * n = 320 is the true error minus n = 320's own (< 1e-4 of these). */
+        CHECK(est > 0 && vs > est / 3 && vs < est * 3, "n = %g: estimate %g vs finest %g",
+              seg[i], est, vs);
+        CHECK(json_is_boolean(json_array_get(r, 4)), "pareto flag");
+    }
+    json_decref(t);
+    free(fid);
+    free(table);
+    free(spec);
+    rd_sweep_free(s);
+
+    /* A model parameter is only accepted where the scene schema has one. */
+    const char *const models[] = {"no_such_model"};
+    rd_sweep_fidelity_opts m = {seg, 2, NULL, 0, models, 1};
+    rd_error_init(&err);
+    spec = rd_sweep_fidelity_spec(scene, strlen(scene), &m, &err);
+    s = spec ? parse(spec, 1000, &err) : NULL;
+    CHECK(!s && err.code == RD_EREQUEST && strncmp(err.path, "/parameters/1/values/0", 22) == 0,
+          "a model the schema does not have is refused: %s %s", err.path, err.message);
+    free(spec);
+    rd_sweep_free(s);
+
+    const char *lift = "{\"analysis\": \"lift\", \"engine\": {\"cycles\": 0.05}}";
+    rd_error_init(&err);
+    spec = rd_sweep_fidelity_spec(lift, strlen(lift), NULL, &err);
+    s = spec ? parse(spec, 1000, &err) : NULL;
+    CHECK(s && rd_sweep_points(s) == 16, "lift: 4 segment counts x 4 rtol: %s", err.message);
+    rd_sweep_free(s);
+    free(spec);
+    rd_error_init(&err);
+    const char *bad = "{\"analysis\": \"modal\", \"ring\": 1}";
+    spec = rd_sweep_fidelity_spec(bad, strlen(bad), NULL, &err);
+    CHECK(!spec && strcmp(err.path, "/ring") == 0, "an invalid scene gives its own error: %s",
+          err.path);
+    free(spec);
+}
+
 int main(void)
 {
     test_jsonptr();
@@ -406,5 +491,6 @@ int main(void)
     test_outputs();
     test_failed_points();
     test_csv_and_chunks();
+    test_fidelity();
     return check_done();
 }
