@@ -34,6 +34,20 @@ for spec in modal_grid modal_lhs; do
   [ "$rows" = $((n + 1)) ] || fail "$spec: $rows CSV lines, want header + $n"
 done
 
+# The deploy/ scripts: local (xargs -P) and the Slurm array task script, run
+# here as a 3-task array would run it.
+deploy=$sweeps/../../../deploy
+RINGDYN=$ringdyn bash "$deploy/local-sweep.sh" "$sweeps/modal_grid.json" "$work/local" 5 2 \
+  > "$work/local.json" || fail "deploy/local-sweep.sh"
+cmp "$work/modal_grid.1.json" "$work/local.json" || fail "local-sweep.sh table differs"
+for i in 0 1 2; do
+  SLURM_ARRAY_TASK_ID=$i SLURM_ARRAY_TASK_COUNT=3 RINGDYN=$ringdyn \
+    bash "$deploy/slurm-sweep.sh" "$sweeps/modal_grid.json" "$work/slurm" &
+done
+wait
+"$ringdyn" sweep reduce "$work/slurm" > "$work/slurm.json" || fail "reduce of the Slurm chunks"
+cmp "$work/modal_grid.1.json" "$work/slurm.json" || fail "slurm-sweep.sh table differs"
+
 # The impossible corner of modal_grid is a row with its error, the rest ran.
 grep -q '^0.02,0.01,8,,,,,invalid_scene,' "$work/modal_grid.4.csv" || fail "failed point row missing"
 [ "$(grep -c ',ok,' "$work/modal_grid.4.csv")" = 16 ] || fail "want 16 ok rows"
