@@ -12,7 +12,7 @@
 set -euo pipefail
 spec=${1:?usage: local-sweep.sh SPEC OUTDIR [K] [P]}
 out=${2:?usage: local-sweep.sh SPEC OUTDIR [K] [P]}
-P=${4:-$(nproc)}
+P=${4:-$(env -u OMP_NUM_THREADS nproc)}   # nproc alone would obey OMP_NUM_THREADS
 K=${3:-$((4 * P))}
 ringdyn=${RINGDYN:-$(command -v ringdyn || echo build/cli/ringdyn)}
 
