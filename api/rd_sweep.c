@@ -268,8 +268,10 @@ static int parse_param(json_t *v, int k, param *q, rd_error *err)
     json_t *p = json_object_get(v, "path");
     if (!json_is_string(p) || !rd_jsonptr_valid(json_string_value(p)) ||
         json_string_value(p)[0] != '/')
-        return spec_error(err, path, "%s/path must be a JSON Pointer into the scene, such as "
-                                     "\"/ring/tangential_force\"", path);
+        return spec_error(err, path,
+                          "%s/path must be a JSON Pointer into the scene, such as "
+                          "\"/ring/tangential_force\"",
+                          path);
     q->path = json_string_value(p);
     json_t *values = json_object_get(v, "values"), *range = json_object_get(v, "range"),
            *random = json_object_get(v, "random");
@@ -317,8 +319,10 @@ static int parse_output(json_t *v, int k, output *o, rd_error *err)
         o->kind = kinds[a];
     }
     if (o->kind < 0)
-        return spec_error(err, path, "%s must be a JSON Pointer into the result (\"/...\") or "
-                                     "max(P), min(P), mean(P), count(P), all(P) of one", path);
+        return spec_error(err, path,
+                          "%s must be a JSON Pointer into the result (\"/...\") or "
+                          "max(P), min(P), mean(P), count(P), all(P) of one",
+                          path);
     return o->ptr ? RD_OK : RD_ENOMEM;
 }
 
@@ -329,8 +333,9 @@ static int count_points(rd_sweep *s, json_t *spec, size_t max, rd_error *err)
     if (s->combine == C_LHS) {
         json_t *n = json_object_get(spec, "samples");
         if (!json_is_integer(n) || json_integer_value(n) < 1)
-            return spec_error(err, "/samples", "/samples must be a positive integer (the "
-                                               "number of points of the latin_hypercube)");
+            return spec_error(err, "/samples",
+                              "/samples must be a positive integer (the "
+                              "number of points of the latin_hypercube)");
         total = (double)json_integer_value(n);
     } else {
         for (int p = 0; p < s->np; p++)
@@ -375,11 +380,15 @@ static int parse_combine(rd_sweep *s, json_t *spec, rd_error *err)
         char path[64];
         snprintf(path, sizeof path, "/parameters/%d", p);
         if (s->combine != C_LHS && s->p[p].kind == P_RANDOM)
-            return spec_error(err, path, "%s is random: random parameters need \"combine\": "
-                                         "\"latin_hypercube\"", path);
+            return spec_error(err, path,
+                              "%s is random: random parameters need \"combine\": "
+                              "\"latin_hypercube\"",
+                              path);
         if (s->combine == C_ZIP && s->p[p].n != s->p[0].n)
-            return spec_error(err, path, "zip needs parameters of one length: %s has %zu values, "
-                                         "/parameters/0 has %zu", path, s->p[p].n, s->p[0].n);
+            return spec_error(err, path,
+                              "zip needs parameters of one length: %s has %zu values, "
+                              "/parameters/0 has %zu",
+                              path, s->p[p].n, s->p[0].n);
     }
     return RD_OK;
 }
@@ -407,8 +416,9 @@ static int parse_lists(rd_sweep *s, json_t *spec, rd_error *err)
         return spec_error(err, "/parameters", "/parameters has %zu entries, more than %d",
                           json_array_size(params), RD_SWEEP_PARAMS_MAX);
     if (!json_is_array(outs) || json_array_size(outs) == 0)
-        return spec_error(err, "/outputs", "/outputs must be a non-empty array of JSON Pointers "
-                                           "into the result");
+        return spec_error(err, "/outputs",
+                          "/outputs must be a non-empty array of JSON Pointers "
+                          "into the result");
     if (json_array_size(outs) > RD_SWEEP_OUTPUTS_MAX)
         return spec_error(err, "/outputs", "/outputs has %zu entries, more than %d",
                           json_array_size(outs), RD_SWEEP_OUTPUTS_MAX);
@@ -418,8 +428,10 @@ static int parse_lists(rd_sweep *s, json_t *spec, rd_error *err)
             return err->code;
         for (int q = 0; q < p; q++)
             if (strcmp(s->p[q].path, s->p[p].path) == 0)
-                return spec_error(err, "/parameters", "/parameters/%d and /parameters/%d both "
-                                  "set %s", q, p, s->p[p].path);
+                return spec_error(err, "/parameters",
+                                  "/parameters/%d and /parameters/%d both "
+                                  "set %s",
+                                  q, p, s->p[p].path);
     }
     for (s->no = 0; s->no < (int)json_array_size(outs); s->no++) {
         int k = s->no;
@@ -438,8 +450,8 @@ static int parse_lists(rd_sweep *s, json_t *spec, rd_error *err)
 /* A short text of a JSON value for messages. */
 static void value_text(const json_t *v, char *buf, size_t size)
 {
-    char *t = json_dumps(v, JSON_ENCODE_ANY | JSON_COMPACT |
-                                JSON_REAL_PRECISION(RD_SWEEP_REAL_DIGITS));
+    char *t =
+        json_dumps(v, JSON_ENCODE_ANY | JSON_COMPACT | JSON_REAL_PRECISION(RD_SWEEP_REAL_DIGITS));
     snprintf(buf, size, "%s", t ? t : "?");
     if (t && strlen(t) >= size && size > 4)
         strcpy(buf + size - 4, "...");
@@ -455,8 +467,10 @@ static int try_value(const rd_sweep *s, int p, json_t *value, const char *where,
     value_text(value, text, sizeof text);
     json_t *scene = with_value(s->base, NULL, path, value);
     if (!scene)
-        return spec_error(err, where, "parameter %s cannot be set in the base scene: a part of "
-                                      "the path is not an object or array element", path);
+        return spec_error(err, where,
+                          "parameter %s cannot be set in the base scene: a part of "
+                          "the path is not an object or array element",
+                          path);
     rd_error e;
     rd_error_init(&e);
     rd_scene *sc = NULL;
@@ -471,7 +485,7 @@ static int try_value(const rd_sweep *s, int p, json_t *value, const char *where,
     json_t *doc = echo ? json_loads(echo, 0, NULL) : NULL;
     int read = rd_jsonptr_get(doc, path) != NULL;
     const char *analysis = rd_scene_analysis(sc);
-    rc = !doc ? rd_error_set(err, RD_ENOMEM, "", "out of memory while checking the sweep spec")
+    rc = !doc   ? rd_error_set(err, RD_ENOMEM, "", "out of memory while checking the sweep spec")
          : read ? RD_OK
                 : spec_error(err, where, "parameter %s is not a field that a %s scene reads", path,
                              analysis);
@@ -523,8 +537,8 @@ static int spec_hash(rd_sweep *s)
 /* Steps after the JSON is decoded: shape, base, parameters, size, design. */
 static int parse_spec(rd_sweep *s, size_t max, rd_error *err)
 {
-    static const char *const keys[] = {"base",  "parameters", "combine", "samples",
-                                       "seed",  "outputs",    "name",    "description", NULL};
+    static const char *const keys[] = {"base",    "parameters", "combine",     "samples", "seed",
+                                       "outputs", "name",       "description", NULL};
     json_t *spec = s->spec;
     uint64_t seed;
     if (!json_is_object(spec))
@@ -533,8 +547,9 @@ static int parse_spec(rd_sweep *s, size_t max, rd_error *err)
         return err->code;
     s->base = json_object_get(spec, "base");
     if (!json_is_object(s->base))
-        return spec_error(err, "/base", "/base must be a scene object, such as "
-                                        "{\"analysis\": \"modal\"}");
+        return spec_error(err, "/base",
+                          "/base must be a scene object, such as "
+                          "{\"analysis\": \"modal\"}");
     rd_error e;
     rd_error_init(&e);
     rd_scene *sc = NULL;
@@ -550,9 +565,10 @@ static int parse_spec(rd_sweep *s, size_t max, rd_error *err)
         count_points(s, spec, max, err))
         return err->code;
     if (s->combine == C_LHS && (double)s->points * s->np > RD_SWEEP_LHS_ENTRIES_MAX)
-        return spec_error(err, "/samples", "a latin_hypercube of %zu samples over %d parameters "
-                          "holds more than %d entries", s->points, s->np,
-                          RD_SWEEP_LHS_ENTRIES_MAX);
+        return spec_error(err, "/samples",
+                          "a latin_hypercube of %zu samples over %d parameters "
+                          "holds more than %d entries",
+                          s->points, s->np, RD_SWEEP_LHS_ENTRIES_MAX);
     for (int p = 0; p < s->np; p++)
         if (check_param(s, p, err))
             return err->code;
@@ -570,16 +586,18 @@ int rd_sweep_parse(const char *body, size_t len, size_t max_points, rd_sweep **o
     json_error_t jerr;
     json_t *spec = json_loadb(body, len, JSON_REJECT_DUPLICATES, &jerr);
     if (!spec)
-        return rd_error_set(err, RD_EJSON, "", "the sweep spec is not valid JSON: %s (line %d, "
-                            "column %d)", jerr.text, jerr.line, jerr.column);
+        return rd_error_set(err, RD_EJSON, "",
+                            "the sweep spec is not valid JSON: %s (line %d, "
+                            "column %d)",
+                            jerr.text, jerr.line, jerr.column);
     rd_sweep *s = calloc(1, sizeof *s);
     if (!s) {
         json_decref(spec);
         return rd_error_set(err, RD_ENOMEM, "", "out of memory while reading the sweep spec");
     }
     s->spec = spec;
-    if (parse_spec(s, max_points < RD_SWEEP_POINTS_MAX ? max_points : RD_SWEEP_POINTS_MAX,
-                   err) != RD_OK) {
+    if (parse_spec(s, max_points < RD_SWEEP_POINTS_MAX ? max_points : RD_SWEEP_POINTS_MAX, err) !=
+        RD_OK) {
         rd_sweep_free(s);
         return err->code;
     }
@@ -631,9 +649,8 @@ char *rd_sweep_point_scene(const rd_sweep *s, size_t i, rd_error *err)
         return NULL;
     }
     json_t *scene = point_scene(s, i);
-    char *text = scene ? json_dumps(scene, JSON_COMPACT |
-                                               JSON_REAL_PRECISION(RD_SWEEP_REAL_DIGITS))
-                       : NULL;
+    char *text =
+        scene ? json_dumps(scene, JSON_COMPACT | JSON_REAL_PRECISION(RD_SWEEP_REAL_DIGITS)) : NULL;
     json_decref(scene);
     if (!text)
         rd_error_set(err, RD_ENOMEM, "", "out of memory while expanding point %zu", i);
@@ -730,8 +747,8 @@ static int append_failure(const rd_sweep *s, json_t *row, const rd_error *e)
     if (rc == 0)
         rc = json_array_append_new(row, json_string(rd_error_code_name(e->code)));
     if (rc == 0)
-        rc = json_array_append_new(row, json_string(e->message[0] ? e->message
-                                                                  : rd_error_summary(e->code)));
+        rc = json_array_append_new(
+            row, json_string(e->message[0] ? e->message : rd_error_summary(e->code)));
     return rc;
 }
 
@@ -740,8 +757,10 @@ int rd_sweep_run_point(const rd_sweep *s, size_t i, const rd_monitor *mon, char 
 {
     *row = NULL;
     if (i >= s->points)
-        return rd_error_set(err, RD_EINVAL, "", "point %zu does not exist: the sweep has %zu "
-                            "points", i, s->points);
+        return rd_error_set(err, RD_EINVAL, "",
+                            "point %zu does not exist: the sweep has %zu "
+                            "points",
+                            i, s->points);
     json_t *r = json_array(), *scene = point_scene(s, i);
     int rc = r && scene ? 0 : -1;
     for (int p = 0; rc == 0 && p < s->np; p++)

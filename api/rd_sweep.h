@@ -74,11 +74,11 @@
 /* Hard ceilings: points of one sweep (the CLI's limit; a service passes a
  * lower one), parameters, outputs, and S * parameters of a Latin hypercube
  * (its design is held in memory, 8 bytes per entry). */
-#define RD_SWEEP_POINTS_MAX 1000000
-#define RD_SWEEP_PARAMS_MAX 32
-#define RD_SWEEP_OUTPUTS_MAX 64
+#define RD_SWEEP_POINTS_MAX      1000000
+#define RD_SWEEP_PARAMS_MAX      32
+#define RD_SWEEP_OUTPUTS_MAX     64
 #define RD_SWEEP_LHS_ENTRIES_MAX 8000000
-#define RD_SWEEP_REAL_DIGITS 15
+#define RD_SWEEP_REAL_DIGITS     15
 
 typedef struct rd_sweep rd_sweep; /* a parsed, validated spec; opaque, read-only */
 
@@ -89,8 +89,7 @@ typedef struct rd_sweep rd_sweep; /* a parsed, validated spec; opaque, read-only
  * (400: any other problem of the spec, including a base scene or parameter
  * value the scene schema refuses and too many points) with `path` into the
  * spec, RD_ENOMEM.  On success *out is a new sweep (rd_sweep_free). */
-int rd_sweep_parse(const char *body, size_t len, size_t max_points, rd_sweep **out,
-                   rd_error *err);
+int rd_sweep_parse(const char *body, size_t len, size_t max_points, rd_sweep **out, rd_error *err);
 void rd_sweep_free(rd_sweep *sweep);
 
 /* Number of points N. */

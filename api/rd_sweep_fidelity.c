@@ -68,7 +68,8 @@ static json_t *fidelity_base(const char *text, size_t len, int *kind, rd_error *
     if (!base) {
         rd_error_set(err, *kind < 0 ? RD_EINVAL : RD_ENOMEM, "/analysis",
                      *kind < 0 ? "a fidelity sweep needs a modal, pretension, contact or lift "
-                                 "scene" : "out of memory");
+                                 "scene"
+                               : "out of memory");
         return NULL;
     }
     const char *block = kinds[*kind].block;
@@ -106,12 +107,12 @@ char *rd_sweep_fidelity_spec(const char *scene, size_t len, const rd_sweep_fidel
         json_array_append_new(models, json_string(opts->models[k]));
     if (opts->n_models)
         add_param(params, "/numerics/model", json_incref(models));
-    json_t *outputs = json_pack("[s, s, s]", "/numerics/wall_s", kinds[kind].estimate,
-                                kinds[kind].quantity);
+    json_t *outputs =
+        json_pack("[s, s, s]", "/numerics/wall_s", kinds[kind].estimate, kinds[kind].quantity);
     if (lift && outputs)
         json_array_append_new(outputs, json_string("/scene/groove/axial_clearance"));
-    json_t *spec = json_pack("{s:o, s:o, s:s, s:o}", "base", base, "parameters", params,
-                             "combine", "product", "outputs", outputs);
+    json_t *spec = json_pack("{s:o, s:o, s:s, s:o}", "base", base, "parameters", params, "combine",
+                             "product", "outputs", outputs);
     json_decref(models);
     char *text = spec ? json_dumps(spec, DUMP_FLAGS) : NULL;
     json_decref(spec);
@@ -158,7 +159,8 @@ static json_t *finest_row(json_t *rows, const fidelity_cols *c)
         if (!row_ok(r, c))
             continue;
         double n = cell(r, c->seg), bn = best ? cell(best, c->seg) : -1;
-        double t = c->rtol >= 0 ? cell(r, c->rtol) : 0, bt = best && c->rtol >= 0 ? cell(best, c->rtol) : 0;
+        double t = c->rtol >= 0 ? cell(r, c->rtol) : 0,
+               bt = best && c->rtol >= 0 ? cell(best, c->rtol) : 0;
         if (!best || n > bn || (n == bn && t < bt))
             best = r;
     }
@@ -175,7 +177,8 @@ static json_t *error_vs(json_t *row, json_t *finest, const fidelity_cols *c)
     if (json_array_size(q) != json_array_size(Q) || json_array_size(Q) == 0)
         return json_null();
     for (size_t k = 0; k < json_array_size(Q); k++) {
-        double a = json_number_value(json_array_get(q, k)), b = json_number_value(json_array_get(Q, k));
+        double a = json_number_value(json_array_get(q, k)),
+               b = json_number_value(json_array_get(Q, k));
         double s = c->clearance >= 0 ? scale : fabs(b);
         double d = s > 0 ? fabs(a - b) / s : (a == b ? 0 : INFINITY);
         e = d > e ? d : e;
@@ -218,9 +221,13 @@ char *rd_sweep_fidelity_table(const char *table_json, rd_error *err)
 {
     json_t *t = json_loads(table_json, 0, NULL), *cols = json_object_get(t, "columns");
     json_t *rows = json_object_get(t, "rows");
-    fidelity_cols c = {column(cols, "/discretization/segments", 0), column(cols, "/numerics/rtol", 0),
-                       column(cols, "/numerics/wall_s", 0), -1, column(cols, "all(", 1),
-                       column(cols, "/scene/groove/axial_clearance", 0), column(cols, "status", 0)};
+    fidelity_cols c = {column(cols, "/discretization/segments", 0),
+                       column(cols, "/numerics/rtol", 0),
+                       column(cols, "/numerics/wall_s", 0),
+                       -1,
+                       column(cols, "all(", 1),
+                       column(cols, "/scene/groove/axial_clearance", 0),
+                       column(cols, "status", 0)};
     c.est = c.wall + 1;
     if (!json_is_array(rows) || c.seg < 0 || c.wall < 0 || c.q < 0 || c.status < 0 ||
         c.est >= (int)json_array_size(cols)) {

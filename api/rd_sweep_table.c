@@ -17,7 +17,7 @@
 #include <string.h>
 
 #define CHUNK_FORMAT "ringdyn-sweep-chunk/1"
-#define DUMP_FLAGS (JSON_COMPACT | JSON_REAL_PRECISION(RD_SWEEP_REAL_DIGITS))
+#define DUMP_FLAGS   (JSON_COMPACT | JSON_REAL_PRECISION(RD_SWEEP_REAL_DIGITS))
 
 /* ---- a growing string ---------------------------------------------------- */
 
@@ -208,11 +208,15 @@ int rd_sweep_chunk_range(const rd_sweep *s, size_t c, size_t k, size_t *first, s
 {
     size_t n = rd_sweep_points(s);
     if (k == 0 || k > n)
-        return rd_error_set(err, RD_EREQUEST, "", "--chunks %zu is out of range: allowed 1 to "
-                            "%zu (the number of points)", k, n);
+        return rd_error_set(err, RD_EREQUEST, "",
+                            "--chunks %zu is out of range: allowed 1 to "
+                            "%zu (the number of points)",
+                            k, n);
     if (c >= k)
-        return rd_error_set(err, RD_EREQUEST, "", "--index %zu is out of range: allowed 0 to %zu "
-                            "(--chunks - 1)", c, k - 1);
+        return rd_error_set(err, RD_EREQUEST, "",
+                            "--index %zu is out of range: allowed 0 to %zu "
+                            "(--chunks - 1)",
+                            c, k - 1);
     *first = c * n / k;
     *end = (c + 1) * n / k;
     return RD_OK;
@@ -236,7 +240,8 @@ char *rd_sweep_chunk_head(const rd_sweep *s, size_t c, size_t k)
         return NULL;
     buf b = {0};
     char num[320];
-    snprintf(num, sizeof num, "{\"format\":\"%s\",\"spec_hash\":\"%s\",\"points\":%zu,"
+    snprintf(num, sizeof num,
+             "{\"format\":\"%s\",\"spec_hash\":\"%s\",\"points\":%zu,"
              "\"chunk\":%zu,\"chunks\":%zu,\"first\":%zu,\"end\":%zu,\"columns\":",
              CHUNK_FORMAT, rd_sweep_hash(s), rd_sweep_points(s), c, k, first, end);
     puts_(&b, num);
@@ -251,8 +256,8 @@ char *rd_sweep_chunk_head(const rd_sweep *s, size_t c, size_t k)
 /* What chunk 0 says; every other chunk must agree. */
 typedef struct {
     const char *dir;
-    size_t k;              /* chunks */
-    unsigned char *seen;   /* k flags */
+    size_t k;                        /* chunks */
+    unsigned char *seen;             /* k flags */
     json_t *hash, *points, *columns; /* from chunk 0 (owned references) */
 } reduce_state;
 
@@ -281,8 +286,10 @@ static int scan_dir(reduce_state *st, rd_error *err)
         if (strcmp(again, e->d_name) != 0)
             continue;
         if (st->k && st->k != k)
-            rc = rd_error_set(err, RD_EINVAL, "", "%s holds chunks of two splits (of %zu and of "
-                              "%zu): reduce one sweep per directory", st->dir, st->k, k);
+            rc = rd_error_set(err, RD_EINVAL, "",
+                              "%s holds chunks of two splits (of %zu and of "
+                              "%zu): reduce one sweep per directory",
+                              st->dir, st->k, k);
         if (!st->k && (st->seen = calloc(k, 1)) == NULL)
             rc = rd_error_set(err, RD_ENOMEM, "", "out of memory");
         st->k = k;
@@ -291,8 +298,10 @@ static int scan_dir(reduce_state *st, rd_error *err)
     }
     closedir(d);
     if (rc == RD_OK && !st->k)
-        rc = rd_error_set(err, RD_ENOTFOUND, "", "no chunk files (chunk-NNNNNN-of-NNNNNN.json) "
-                          "in %s", st->dir);
+        rc = rd_error_set(err, RD_ENOTFOUND, "",
+                          "no chunk files (chunk-NNNNNN-of-NNNNNN.json) "
+                          "in %s",
+                          st->dir);
     return rc;
 }
 
@@ -305,8 +314,8 @@ static int check_complete(const reduce_state *st, rd_error *err)
         if (st->seen[c])
             continue;
         if (++missing <= 20 && at < sizeof list)
-            at += (size_t)snprintf(list + at, sizeof list - at, "%s%zu", missing > 1 ? ", " : "",
-                                   c);
+            at +=
+                (size_t)snprintf(list + at, sizeof list - at, "%s%zu", missing > 1 ? ", " : "", c);
     }
     if (missing == 0)
         return RD_OK;
@@ -337,22 +346,22 @@ static json_t *load_chunk(reduce_state *st, size_t c, rd_error *err)
         st->columns = json_incref(json_object_get(doc, "columns"));
     }
     size_t first = c * n / st->k, end = (c + 1) * n / st->k, ncol = json_array_size(st->columns);
-    const char *why = !doc ? jerr.text
+    const char *why =
+        !doc ? jerr.text
         : !json_is_string(json_object_get(doc, "format")) ||
-                  strcmp(json_string_value(json_object_get(doc, "format")), CHUNK_FORMAT) != 0
-              ? "it is not a " CHUNK_FORMAT " file"
+                strcmp(json_string_value(json_object_get(doc, "format")), CHUNK_FORMAT) != 0
+            ? "it is not a " CHUNK_FORMAT " file"
         : !json_is_string(st->hash) || !json_equal(json_object_get(doc, "spec_hash"), st->hash)
-              ? "it comes from another spec than chunk 0 (spec_hash differs)"
-        : !json_equal(json_object_get(doc, "points"), st->points) ||
-                  !json_is_array(st->columns) ||
-                  !json_equal(json_object_get(doc, "columns"), st->columns)
-              ? "its points or columns differ from chunk 0's"
+            ? "it comes from another spec than chunk 0 (spec_hash differs)"
+        : !json_equal(json_object_get(doc, "points"), st->points) || !json_is_array(st->columns) ||
+                !json_equal(json_object_get(doc, "columns"), st->columns)
+            ? "its points or columns differ from chunk 0's"
         : member_size(doc, "chunk") != c || member_size(doc, "chunks") != st->k ||
-                  member_size(doc, "first") != first || member_size(doc, "end") != end
-              ? "its chunk, chunks, first or end do not match its name"
+                member_size(doc, "first") != first || member_size(doc, "end") != end
+            ? "its chunk, chunks, first or end do not match its name"
         : !json_is_array(rows) || json_array_size(rows) != end - first
-              ? "it does not hold one row per point of the chunk"
-              : NULL;
+            ? "it does not hold one row per point of the chunk"
+            : NULL;
     for (size_t i = 0; !why && i < json_array_size(rows); i++)
         if (json_array_size(json_array_get(rows, i)) != ncol)
             why = "a row does not have one cell per column";

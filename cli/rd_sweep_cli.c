@@ -143,8 +143,7 @@ static int cmd_scene(const char *spec, const char *index)
         return fail(&err);
     char *scene = NULL, *pretty = NULL;
     if (i < 0)
-        rd_error_set(&err, RD_EREQUEST, "", "the point index must be a number >= 0, got %s",
-                     index);
+        rd_error_set(&err, RD_EREQUEST, "", "the point index must be a number >= 0, got %s", index);
     else
         scene = rd_sweep_point_scene(s, (size_t)i, &err);
     pretty = scene ? rd_api_json_pretty(scene) : NULL;
@@ -185,8 +184,8 @@ static int write_chunk(const rd_sweep *s, size_t c, size_t k, const char *dir, r
     size_t size = strlen(dir) + 128;
     char *path = malloc(size), *tmp = malloc(size);
     FILE *f = NULL;
-    int rc = name && head && path && tmp ? RD_OK
-                                         : rd_error_set(err, RD_ENOMEM, "", "out of memory");
+    int rc =
+        name && head && path && tmp ? RD_OK : rd_error_set(err, RD_ENOMEM, "", "out of memory");
     if (rc == RD_OK) {
         snprintf(path, size, "%s/%s", dir, name);
         snprintf(tmp, size, "%s/.%s.%ld.tmp", dir, name, (long)getpid());
@@ -235,14 +234,16 @@ static int cmd_run(int argc, char **argv)
     rd_error err;
     rd_error_init(&err);
     if (index == -1 || chunks < 1) {
-        rd_error_set(&err, RD_EREQUEST, "", "--index and --chunks must be whole numbers (index "
+        rd_error_set(&err, RD_EREQUEST, "",
+                     "--index and --chunks must be whole numbers (index "
                      ">= 0, chunks >= 1)");
         return fail(&err);
     }
     if (index == -2)
         index = chunks == 1 && env_index() < 0 ? 0 : env_index();
     if (index < 0) {
-        rd_error_set(&err, RD_EREQUEST, "", "no chunk index: give --index I, or set "
+        rd_error_set(&err, RD_EREQUEST, "",
+                     "no chunk index: give --index I, or set "
                      "JOB_COMPLETION_INDEX or SLURM_ARRAY_TASK_ID");
         return fail(&err);
     }
@@ -291,8 +292,9 @@ static int read_all(const char *name, size_t max, char **buf, size_t *len, rd_er
     int rc = rd_api_read_stream(f, max, buf, len);
     if (f != stdin)
         fclose(f);
-    return rc == RD_OK ? RD_OK : rd_error_set(err, rc == RD_ENOMEM ? rc : RD_EREQUEST, "",
-                                              "cannot read %s", name);
+    return rc == RD_OK
+               ? RD_OK
+               : rd_error_set(err, rc == RD_ENOMEM ? rc : RD_EREQUEST, "", "cannot read %s", name);
 }
 
 /* Splits a comma list in place: up to `max` items into items[]; numbers

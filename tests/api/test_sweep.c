@@ -190,29 +190,36 @@ static void test_bad_specs(void)
         {"{\"path\": \"/discretization/segments\", \"values\": [20, 2001]}", "",
          "/parameters/0/values/1", "2001 is out of range: allowed 3 to 2000", 1000},
         {"{\"path\": \"/discretization/segments\", \"range\": {\"start\": 10, \"stop\": 3000, "
-         "\"count\": 3}}", "", "/parameters/0/range", "allowed 3 to 2000", 1000},
+         "\"count\": 3}}",
+         "", "/parameters/0/range", "allowed 3 to 2000", 1000},
         {"{\"path\": \"/engine/speed_rpm\", \"values\": [1000]}", "", "/parameters/0/values/0",
          "not a field that a modal scene reads", 1000},
-        {"{\"path\": \"/ring/diameter\", \"values\": []}", "", "/parameters/0/values",
-         "non-empty", 1000},
+        {"{\"path\": \"/ring/diameter\", \"values\": []}", "", "/parameters/0/values", "non-empty",
+         1000},
         {"{\"path\": \"/ring/diameter\", \"range\": {\"start\": 0.05, \"stop\": 0.1, \"count\": "
          "1000}}, {\"path\": \"/ring/closed_gap\", \"range\": {\"start\": 1e-4, \"stop\": 1e-3, "
          "\"count\": 1000}}, {\"path\": \"/ring/tangential_force\", \"range\": {\"start\": 5, "
-         "\"stop\": 15, \"count\": 1000}}", "", "/parameters", "1000000000 points", 1000000000},
+         "\"stop\": 15, \"count\": 1000}}",
+         "", "/parameters", "1000000000 points", 1000000000},
         {"{\"path\": \"/ring/diameter\", \"range\": {\"start\": 0.05, \"stop\": 0.1, \"count\": "
-         "200}}", "", "/parameters", "ringdyn sweep run", 100},
+         "200}}",
+         "", "/parameters", "ringdyn sweep run", 100},
         {"{\"path\": \"/ring/diameter\", \"random\": {\"min\": 0.05, \"max\": 0.1}}", "",
          "/parameters/0", "latin_hypercube", 1000},
         {"{\"path\": \"/ring/diameter\", \"values\": [0.07]}, {\"path\": \"/ring/diameter\", "
-         "\"values\": [0.08]}", "", "/parameters", "both set /ring/diameter", 1000},
+         "\"values\": [0.08]}",
+         "", "/parameters", "both set /ring/diameter", 1000},
         {"{\"path\": \"/ring/diameter\", \"values\": [0.07], \"rnage\": 1}", "", "/parameters/0",
          "unknown field \"rnage\"", 1000},
-        {"{\"path\": \"/ring/diameter\", \"values\": [0.07, 0.08]}, {\"path\": \"/ring/closed_gap\","
-         " \"values\": [1e-4]}", ", \"combine\": \"zip\"", "/parameters/1", "one length", 1000},
+        {"{\"path\": \"/ring/diameter\", \"values\": [0.07, 0.08]}, {\"path\": "
+         "\"/ring/closed_gap\","
+         " \"values\": [1e-4]}",
+         ", \"combine\": \"zip\"", "/parameters/1", "one length", 1000},
         {"{\"path\": \"/ring/diameter\", \"range\": {\"start\": 0, \"stop\": 0.1, \"count\": 3, "
-         "\"scale\": \"log\"}}", "", "/parameters/0/range", "start > 0", 1000},
-        {"{\"path\": \"ring/diameter\", \"values\": [0.07]}", "", "/parameters/0",
-         "JSON Pointer", 1000},
+         "\"scale\": \"log\"}}",
+         "", "/parameters/0/range", "start > 0", 1000},
+        {"{\"path\": \"ring/diameter\", \"values\": [0.07]}", "", "/parameters/0", "JSON Pointer",
+         1000},
         {"{\"path\": \"/ring/diameter\", \"values\": [0.07]}", ", \"seed\": 3", "/seed",
          "samples and seed are for", 1000},
     };
@@ -235,15 +242,19 @@ static void test_bad_specs(void)
     rd_error err;
     CHECK(!parse("{\"base\": {\"analysis\": \"modal\", \"ring\": {\"diameter\": -1}}, "
                  "\"parameters\": [{\"path\": \"/ring/closed_gap\", \"values\": [1e-4]}], "
-                 "\"outputs\": [\"/x\"]}", 1000, &err) &&
+                 "\"outputs\": [\"/x\"]}",
+                 1000, &err) &&
               strcmp(err.path, "/base/ring/diameter") == 0,
           "an invalid base names its field under /base: %s", err.path);
     CHECK(!parse("{\"base\": {\"analysis\": \"modal\"}, \"parameters\": [{\"path\": "
-                 "\"/ring/closed_gap\", \"values\": [1e-4]}], \"outputs\": [\"max/x\"]}", 1000,
-                 &err) && strcmp(err.path, "/outputs/0") == 0,
+                 "\"/ring/closed_gap\", \"values\": [1e-4]}], \"outputs\": [\"max/x\"]}",
+                 1000, &err) &&
+              strcmp(err.path, "/outputs/0") == 0,
           "a malformed output is named: %s", err.path);
     CHECK(!parse("{\"base\": {\"analysis\": \"modal\"}, \"parameters\": [], \"outputs\": "
-                 "[\"/x\"]}", 1000, &err) && strcmp(err.path, "/parameters") == 0,
+                 "[\"/x\"]}",
+                 1000, &err) &&
+              strcmp(err.path, "/parameters") == 0,
           "no parameters: %s", err.path);
     CHECK(!parse("[1, 2", 1000, &err) && err.code == RD_EJSON, "not JSON");
 }
@@ -266,13 +277,14 @@ static void test_outputs(void)
               rd_scene_run(sc, NULL, &result, &err) == RD_OK,
           "direct run: %s", err.message);
     CHECK(s && rd_sweep_run_point(s, 0, NULL, &row, &err) == RD_OK, "point 0: %s", err.message);
-    json_t *res = result ? json_loads(result, 0, NULL) : NULL, *r = row ? json_loads(row, 0, NULL) : NULL;
+    json_t *res = result ? json_loads(result, 0, NULL) : NULL,
+           *r = row ? json_loads(row, 0, NULL) : NULL;
     double f[4], e[4], fmax = 0, emin = INFINITY, fsum = 0;
     for (int k = 0; k < 4; k++) {
-        f[k] = json_number_value(json_object_get(json_array_get(json_object_get(res, "modes"),
-                                                                 (size_t)k), "frequency_hz"));
-        e[k] = json_number_value(json_object_get(json_array_get(json_object_get(res, "modes"),
-                                                                 (size_t)k), "error_estimate"));
+        f[k] = json_number_value(json_object_get(
+            json_array_get(json_object_get(res, "modes"), (size_t)k), "frequency_hz"));
+        e[k] = json_number_value(json_object_get(
+            json_array_get(json_object_get(res, "modes"), (size_t)k), "error_estimate"));
         fmax = fmax > f[k] ? fmax : f[k];
         emin = emin < e[k] ? emin : e[k];
         fsum += f[k];
@@ -367,8 +379,8 @@ static void test_csv_and_chunks(void)
 {
     rd_error err;
     rd_error_init(&err);
-    char *rec = rd_sweep_csv_record("[1.5, \"a,b\", \"say \\\"hi\\\"\", null, true, 7, [1,2]]",
-                                    &err);
+    char *rec =
+        rd_sweep_csv_record("[1.5, \"a,b\", \"say \\\"hi\\\"\", null, true, 7, [1,2]]", &err);
     CHECK(rec && strcmp(rec, "1.5,\"a,b\",\"say \"\"hi\"\"\",,true,7,\"[1,2]\"\r\n") == 0,
           "RFC 4180 record: %s", rec ? rec : "(null)");
     free(rec);
@@ -446,8 +458,8 @@ static void test_fidelity(void)
         /* The estimate (switched on by the fidelity sweep although the scene
          * had it off) claims the true error to a factor 3; the error against
          * n = 320 is the true error minus n = 320's own (< 1e-4 of these). */
-        CHECK(est > 0 && vs > est / 3 && vs < est * 3, "n = %g: estimate %g vs finest %g",
-              seg[i], est, vs);
+        CHECK(est > 0 && vs > est / 3 && vs < est * 3, "n = %g: estimate %g vs finest %g", seg[i],
+              est, vs);
         CHECK(json_is_boolean(json_array_get(r, 4)), "pareto flag");
     }
     json_decref(t);
