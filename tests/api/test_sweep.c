@@ -9,6 +9,7 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 #include "check.h"
 #include "rd_api.h"
@@ -494,6 +495,64 @@ static void test_fidelity(void)
     free(spec);
 }
 
+/* The in-memory table (what a service builds) and the reduced chunk files
+ * (what a cluster writes) are the same bytes, JSON and CSV. */
+static void test_table_matches_reduce(void)
+{
+    rd_error err;
+    rd_sweep *s = parse("{\"base\": {\"analysis\": \"modal\", \"modal\": {\"modes\": 2, "
+                        "\"error_estimate\": false}}, \"parameters\": ["
+                        "{\"path\": \"/ring/diameter\", \"values\": [0.0765, 0.02]},"
+                        "{\"path\": \"/ring/radial_width\", \"values\": [0.0029, 0.01, 0.004]}],"
+                        "\"outputs\": [\"/modes/0/frequency_hz\", \"/numerics/wall_s\"]}",
+                        1000, &err);
+    size_t n = s ? rd_sweep_points(s) : 0, k = 4;
+    char **rows = calloc(n, sizeof *rows);
+    for (size_t i = 0; rows && i < n; i++)
+        rd_sweep_run_point(s, i, NULL, &rows[i], &err);
+    char dir[] = "/tmp/test_sweep_XXXXXX";
+    int ok = s && rows && mkdtemp(dir) != NULL;
+    for (size_t c = 0; ok && c < k; c++) {
+        size_t first, end;
+        char *name = rd_sweep_chunk_name(c, k), *head = rd_sweep_chunk_head(s, c, k), path[128];
+        rd_sweep_chunk_range(s, c, k, &first, &end, &err);
+        snprintf(path, sizeof path, "%s/%s", dir, name);
+        FILE *f = fopen(path, "w");
+        ok = f && fputs(head, f) != EOF;
+        for (size_t i = first; ok && i < end; i++)
+            ok = fputs(rows[i], f) != EOF && fputs(i + 1 < end ? ",\n" : "\n", f) != EOF;
+        ok = f && fputs("]}\n", f) != EOF && fclose(f) == 0 && ok;
+        free(name);
+        free(head);
+    }
+    for (int csv = 0; ok && csv < 2; csv++) {
+        char *mem = NULL, *table = csv ? rd_sweep_table_csv(s, rows, n, &err)
+                                       : rd_sweep_table_json(s, rows, n, &err);
+        size_t size = 0;
+        FILE *out = open_memstream(&mem, &size);
+        int rc = rd_sweep_reduce(dir, csv, out, &err);
+        fclose(out);
+        CHECK(rc == RD_OK && table && strncmp(mem, table, strlen(table)) == 0 &&
+                  strcmp(mem + strlen(table), csv ? "" : "\n") == 0,
+              "%s: reduce of %zu chunks = the in-memory table (%s)", csv ? "CSV" : "JSON", k,
+              err.message);
+        free(mem);
+        free(table);
+    }
+    CHECK(ok, "chunk files written");
+    for (size_t c = 0; c < k; c++) {
+        char *name = rd_sweep_chunk_name(c, k), path[128];
+        snprintf(path, sizeof path, "%s/%s", dir, name);
+        remove(path);
+        free(name);
+    }
+    rmdir(dir);
+    for (size_t i = 0; rows && i < n; i++)
+        free(rows[i]);
+    free(rows);
+    rd_sweep_free(s);
+}
+
 int main(void)
 {
     test_jsonptr();
@@ -504,5 +563,6 @@ int main(void)
     test_failed_points();
     test_csv_and_chunks();
     test_fidelity();
+    test_table_matches_reduce();
     return check_done();
 }
