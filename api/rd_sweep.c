@@ -230,6 +230,10 @@ static int parse_range(json_t *r, const char *path, param *q, rd_error *err)
                           RD_SWEEP_POINTS_MAX);
     if (integer && !json_is_boolean(integer))
         return spec_error(err, path, "%s/integer must be true or false", path);
+    /* llround is defined only for values a long long holds; beyond 2^53 a
+     * double has no fractional part to round anyway. */
+    if (json_is_true(integer) && (fabs(q->a) > 0x1p53 || fabs(q->b) > 0x1p53))
+        return spec_error(err, path, "%s: an integer range must lie within +-2^53", path);
     if (q->log && (q->a <= 0 || q->b <= 0))
         return spec_error(err, path, "%s: a log range needs start > 0 and stop > 0, got %g and %g",
                           path, q->a, q->b);

@@ -7,6 +7,7 @@
  */
 #include <jansson.h>
 #include <math.h>
+#include <pthread.h>
 #include <stdlib.h>
 #include <string.h>
 #include <unistd.h>
@@ -553,6 +554,62 @@ static void test_table_matches_reduce(void)
     rd_sweep_free(s);
 }
 
+typedef struct {
+    const rd_sweep *s;
+    size_t from, step;
+    char **rows;
+    int failed;
+} worker;
+
+/* Runs points from, from + step, ... of a shared sweep. */
+static void *work(void *arg)
+{
+    worker *w = arg;
+    rd_error err;
+    rd_error_init(&err);
+    for (size_t i = w->from; i < rd_sweep_points(w->s); i += w->step)
+        w->failed |= rd_sweep_run_point(w->s, i, NULL, &w->rows[i], &err) != RD_OK;
+    return NULL;
+}
+
+/* One parsed sweep run by two threads at once (as a server's workers would)
+ * gives the rows one thread gives. */
+static void test_threads(void)
+{
+    rd_error err;
+    rd_sweep *s = parse("{\"base\": {\"analysis\": \"pretension\"}, \"parameters\": ["
+                        "{\"path\": \"/ring/tangential_force\", \"values\": [6, 8, 10, 12, 14]},"
+                        "{\"path\": \"/discretization/segments\", \"values\": [8, 12]}],"
+                        "\"outputs\": [\"/gap_opening_inner\", \"/numerics/error_estimate\"]}",
+                        1000, &err);
+    size_t n = s ? rd_sweep_points(s) : 0;
+    char **one = calloc(n, sizeof *one), **two = calloc(n, sizeof *two);
+    worker w1 = {s, 0, 1, one, 0}, a = {s, 0, 2, two, 0}, b = {s, 1, 2, two, 0};
+    pthread_t ta, tb;
+    if (!s || !one || !two || pthread_create(&ta, NULL, work, &a) != 0) {
+        CHECK(0, "set-up: %s", err.message);
+    } else {
+        int second = pthread_create(&tb, NULL, work, &b) == 0;
+        if (!second)
+            work(&b);
+        pthread_join(ta, NULL);
+        if (second)
+            pthread_join(tb, NULL);
+        work(&w1);
+        int same = !a.failed && !b.failed && !w1.failed;
+        for (size_t i = 0; same && i < n; i++)
+            same = one[i] && two[i] && strcmp(one[i], two[i]) == 0;
+        CHECK(same, "2 threads on one sweep give the rows of 1 thread");
+    }
+    for (size_t i = 0; i < n; i++) {
+        free(one[i]);
+        free(two[i]);
+    }
+    free(one);
+    free(two);
+    rd_sweep_free(s);
+}
+
 int main(void)
 {
     test_jsonptr();
@@ -564,5 +621,6 @@ int main(void)
     test_csv_and_chunks();
     test_fidelity();
     test_table_matches_reduce();
+    test_threads();
     return check_done();
 }
