@@ -104,11 +104,13 @@ static int lhs_design(rd_sweep *s, uint64_t seed)
 
 /* ---- values of a point --------------------------------------------------- */
 
-/* Entry k of a values/range parameter (new reference). */
+/* Entry k of a values/range parameter (new reference).  A listed value is
+ * copied, not shared: a later parameter may write inside it (/ring, then
+ * /ring/diameter), and the spec must stay unmodified for other threads. */
 static json_t *entry(const param *q, size_t k)
 {
     if (q->kind == P_VALUES)
-        return json_incref(json_array_get(q->values, k));
+        return json_deep_copy(json_array_get(q->values, k));
     double t = q->n > 1 ? (double)k / (double)(q->n - 1) : 0.0;
     double v = q->log ? q->a * pow(q->b / q->a, t) : q->a + (q->b - q->a) * t;
     if (k == 0)
@@ -133,8 +135,9 @@ static json_t *param_value(const rd_sweep *s, int p, size_t i)
     return entry(q, k < q->n ? k : q->n - 1);
 }
 
-/* A deep copy of the base with `value` (stolen) at parameter p's path.
- * NULL when the path cannot be written (it crosses a scalar) or no memory. */
+/* `scene` (or, when NULL, a deep copy of the base) with `value` written at
+ * `path`; value and scene are stolen.  NULL when the path cannot be written
+ * (it crosses a scalar or indexes past an array) or memory runs out. */
 static json_t *with_value(const json_t *base, json_t *scene, const char *path, json_t *value)
 {
     if (!scene)

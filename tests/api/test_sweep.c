@@ -112,6 +112,37 @@ static void test_product_and_ranges(void)
     rd_sweep_free(s);
 }
 
+/* A parameter that writes inside another's value leaves the spec as it was. */
+static void test_nested_parameters(void)
+{
+    rd_error err;
+    rd_sweep *s = parse("{\"base\": {\"analysis\": \"modal\"}, \"parameters\": ["
+                        "{\"path\": \"/ring\", \"values\": [{\"diameter\": 0.07}]},"
+                        "{\"path\": \"/ring/tangential_force\", \"values\": [8, 12]}],"
+                        "\"outputs\": [\"/numerics/dof\"]}",
+                        1000, &err);
+    CHECK(s != NULL, "nested parameters: %s", err.message);
+    for (int pass = 0; s && pass < 2; pass++)
+        for (size_t i = 0; i < 2; i++) {
+            CHECK(point_number(s, i, "/ring/tangential_force") == (i ? 12 : 8) &&
+                      point_number(s, i, "/ring/diameter") == 0.07,
+                  "pass %d, point %zu: the listed object plus the force", pass, i);
+        }
+    /* The row shows the value as listed, not the scene's /ring after the
+     * force was written into it. */
+    char *row = NULL;
+    CHECK(s && rd_sweep_run_point(s, 1, NULL, &row, &err) == RD_OK && row &&
+              strncmp(row, "[{\"diameter\":0.07},12,", 22) == 0,
+          "row: %s", row ? row : "(null)");
+    free(row);
+    char *cols = s ? rd_sweep_columns_json(s) : NULL;
+    CHECK(cols && strcmp(cols, "[\"/ring\",\"/ring/tangential_force\",\"/numerics/dof\","
+                               "\"status\",\"error\"]") == 0,
+          "columns: %s", cols ? cols : "(null)");
+    free(cols);
+    rd_sweep_free(s);
+}
+
 /* Latin hypercube: every stratum of every parameter once; the design is the
  * published splitmix64 sequence. */
 static void test_latin_hypercube(void)
@@ -614,6 +645,7 @@ int main(void)
 {
     test_jsonptr();
     test_product_and_ranges();
+    test_nested_parameters();
     test_latin_hypercube();
     test_bad_specs();
     test_outputs();
