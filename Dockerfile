@@ -20,7 +20,8 @@ COPY . .
 RUN rm -rf build \
  && cmake -S . -B build -DCMAKE_BUILD_TYPE=Release -DRINGDYN_TESTS=OFF -DRINGDYN_BENCH=OFF \
  && cmake --build build -j"$(nproc)" \
- && install -m 0755 build/server/ringdyn-server /usr/local/bin/ringdyn-server
+ && install -m 0755 build/server/ringdyn-server /usr/local/bin/ringdyn-server \
+ && install -m 0755 build/cli/ringdyn /usr/local/bin/ringdyn
 
 # The server needs no privileges: it only reads /app/static and /app/examples.
 RUN useradd --system --no-create-home --shell /usr/sbin/nologin ringdyn

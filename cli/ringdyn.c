@@ -4,6 +4,8 @@
  *
  *   ringdyn run [--csv] SCENE     result JSON (or the main table as CSV) on stdout
  *   ringdyn check SCENE           the validated, defaults-filled scene on stdout
+ *   ringdyn sweep ...             sweeps: count, scene, run (a chunk), reduce
+ *                                 (rd_sweep_cli.c)
  *   ringdyn --version | --help
  *
  * SCENE is a file or "-" for stdin.  Errors go to stderr as the same error
@@ -18,12 +20,14 @@
 #include <string.h>
 
 #include "rd_api.h"
+#include "rd_sweep_cli.h"
 
 enum { EXIT_INPUT = 2, EXIT_RUN = 1 };
 
 static const char usage[] =
     "usage: ringdyn run [--csv] SCENE   run a scene, print the result JSON (or CSV)\n"
     "       ringdyn check SCENE         validate a scene, print it with defaults filled\n"
+    "       ringdyn sweep count|scene|run|reduce ...   sweeps (ringdyn sweep --help)\n"
     "       ringdyn --version | --help\n"
     "SCENE is a JSON file, or - for stdin.  Exit status: 0 ok, 2 invalid input, 1 run failed.\n";
 
@@ -154,6 +158,8 @@ int main(int argc, char **argv)
         fputs(usage, stdout);
         return 0;
     }
+    if (argc >= 2 && strcmp(argv[1], "sweep") == 0)
+        return rd_sweep_cli_main(argc - 2, argv + 2);
     if (argc < 3 || (strcmp(argv[1], "run") != 0 && strcmp(argv[1], "check") != 0))
         goto usage;
     int run = strcmp(argv[1], "run") == 0;

@@ -1,0 +1,799 @@
+/*
+ * rd_sweep — sweep specs: parsing, validation against the scene schema,
+ * deterministic expansion (product, zip, Latin hypercube over splitmix64),
+ * and running one point into a table row.  The spec format, the expansion
+ * formulas and the output syntax are in rd_sweep.h; the table, CSV and chunk
+ * files are in rd_sweep_table.c.
+ *
+ * A point's scene is the base with each parameter's value written at its
+ * pointer; it goes through rd_scene_parse_value and rd_scene_run exactly like
+ * a posted scene, so a sweep can only ask what a single job could.
+ */
+#include "rd_sweep.h"
+
+#include <jansson.h>
+#include <math.h>
+#include <stdarg.h>
+#include <stdint.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "rd_jsonptr.h"
+#include "rd_scene.h"
+
+/* Values of a range tried at validation: all of them up to this count,
+ * the two endpoints above it (each try parses a whole scene). */
+#define RANGE_CHECK_ALL 1000
+
+enum { P_VALUES, P_RANGE, P_RANDOM };
+enum { C_PRODUCT, C_ZIP, C_LHS };
+enum { O_POINTER, O_MAX, O_MIN, O_MEAN, O_COUNT, O_ALL };
+
+typedef struct {
+    const char *path; /* scene pointer, borrowed from the spec */
+    int kind;         /* P_* */
+    json_t *values;   /* P_VALUES: the spec's array (borrowed) */
+    double a, b;      /* range start/stop, random min/max */
+    size_t n;         /* entries of values/range; 0 for random */
+    int log, integer;
+    size_t stride; /* product: points between two successive entries */
+} param;
+
+typedef struct {
+    int kind;         /* O_* */
+    const char *text; /* as written (the column name), borrowed */
+    char *ptr;        /* the pointer (inside the parentheses), owned */
+} output;
+
+struct rd_sweep {
+    json_t *spec;
+    json_t *base; /* borrowed from spec */
+    param p[RD_SWEEP_PARAMS_MAX];
+    int np;
+    output o[RD_SWEEP_OUTPUTS_MAX];
+    int no;
+    int combine;
+    size_t points;
+    double *u; /* latin_hypercube: u[p * points + i] in [0, 1) */
+    char hash[17];
+};
+
+/* ---- splitmix64 (Steele, Lea, Flood, OOPSLA 2014) ------------------------ */
+
+static uint64_t splitmix64(uint64_t *x)
+{
+    uint64_t z = (*x += 0x9E3779B97F4A7C15u);
+    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9u;
+    z = (z ^ (z >> 27)) * 0x94D049BB133111EBu;
+    return z ^ (z >> 31);
+}
+
+/* A uniform double in [0, 1) from the top 53 bits: exact on every machine. */
+static double uniform(uint64_t *x)
+{
+    return (double)(splitmix64(x) >> 11) * 0x1.0p-53;
+}
+
+/* The design of rd_sweep.h: per parameter a Fisher-Yates permutation of the
+ * S strata, then S jitters; u = (stratum + jitter) / S. */
+static int lhs_design(rd_sweep *s, uint64_t seed)
+{
+    size_t S = s->points;
+    s->u = malloc((size_t)s->np * S * sizeof *s->u);
+    size_t *perm = malloc(S * sizeof *perm);
+    if (!s->u || !perm) {
+        free(perm);
+        return RD_ENOMEM;
+    }
+    uint64_t x = seed;
+    for (int p = 0; p < s->np; p++) {
+        for (size_t k = 0; k < S; k++)
+            perm[k] = k;
+        for (size_t k = S - 1; k >= 1; k--) {
+            size_t j = (size_t)(uniform(&x) * (double)(k + 1));
+            size_t t = perm[k];
+            perm[k] = perm[j];
+            perm[j] = t;
+        }
+        for (size_t i = 0; i < S; i++)
+            s->u[(size_t)p * S + i] = ((double)perm[i] + uniform(&x)) / (double)S;
+    }
+    free(perm);
+    return RD_OK;
+}
+
+/* ---- values of a point --------------------------------------------------- */
+
+/* Entry k of a values/range parameter (new reference).  A listed value is
+ * copied, not shared: a later parameter may write inside it (/ring, then
+ * /ring/diameter), and the spec must stay unmodified for other threads. */
+static json_t *entry(const param *q, size_t k)
+{
+    if (q->kind == P_VALUES)
+        return json_deep_copy(json_array_get(q->values, k));
+    double t = q->n > 1 ? (double)k / (double)(q->n - 1) : 0.0;
+    double v = q->log ? q->a * pow(q->b / q->a, t) : q->a + (q->b - q->a) * t;
+    if (k == 0)
+        v = q->a;
+    else if (k == q->n - 1)
+        v = q->b;
+    return q->integer ? json_integer((json_int_t)llround(v)) : json_real(v);
+}
+
+/* The value of parameter p at point i (new reference; NULL out of memory). */
+static json_t *param_value(const rd_sweep *s, int p, size_t i)
+{
+    const param *q = &s->p[p];
+    if (s->combine == C_ZIP)
+        return entry(q, i);
+    if (s->combine == C_PRODUCT)
+        return entry(q, (i / q->stride) % q->n);
+    double u = s->u[(size_t)p * s->points + i];
+    if (q->kind == P_RANDOM)
+        return json_real(q->log ? q->a * pow(q->b / q->a, u) : q->a + (q->b - q->a) * u);
+    size_t k = (size_t)(u * (double)q->n);
+    return entry(q, k < q->n ? k : q->n - 1);
+}
+
+/* `scene` (or, when NULL, a deep copy of the base) with `value` written at
+ * `path`; value and scene are stolen.  NULL when the path cannot be written
+ * (it crosses a scalar or indexes past an array) or memory runs out. */
+static json_t *with_value(const json_t *base, json_t *scene, const char *path, json_t *value)
+{
+    if (!scene)
+        scene = json_deep_copy(base);
+    if (!scene || !value || rd_jsonptr_set(scene, path, value) != 0) {
+        if (!scene || !value)
+            json_decref(value);
+        json_decref(scene);
+        return NULL;
+    }
+    return scene;
+}
+
+/* The scene of point i (new reference), NULL when out of memory. */
+static json_t *point_scene(const rd_sweep *s, size_t i)
+{
+    json_t *scene = json_deep_copy(s->base);
+    for (int p = 0; scene && p < s->np; p++)
+        scene = with_value(s->base, scene, s->p[p].path, param_value(s, p, i));
+    return scene;
+}
+
+/* ---- spec parsing -------------------------------------------------------- */
+
+static int spec_error(rd_error *err, const char *path, const char *fmt, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 3, 4)))
+#endif
+    ;
+
+static int spec_error(rd_error *err, const char *path, const char *fmt, ...)
+{
+    va_list ap;
+    va_start(ap, fmt);
+    int rc = rd_error_setv(err, RD_EREQUEST, path, fmt, ap);
+    va_end(ap);
+    return rc;
+}
+
+/* Every key of `obj` is one of `allowed` (NULL-terminated). */
+static int known_keys(json_t *obj, const char *const *allowed, const char *path, rd_error *err)
+{
+    const char *key;
+    json_t *v;
+    json_object_foreach(obj, key, v)
+    {
+        int ok = 0;
+        for (int k = 0; allowed[k] && !ok; k++)
+            ok = strcmp(key, allowed[k]) == 0;
+        if (!ok)
+            return spec_error(err, path, "unknown field \"%s\" in %s", key,
+                              path[0] ? path : "the sweep spec");
+    }
+    return RD_OK;
+}
+
+/* A finite number member `key` of obj (required). */
+static int number(json_t *obj, const char *key, const char *path, double *out, rd_error *err)
+{
+    json_t *v = json_object_get(obj, key);
+    if (!json_is_number(v) || !isfinite(json_number_value(v)))
+        return spec_error(err, path, "%s/%s must be a finite number", path, key);
+    *out = json_number_value(v);
+    return RD_OK;
+}
+
+/* "scale": "linear" (default) or "log"; *log = 1 for log. */
+static int scale(json_t *obj, const char *path, int *log, rd_error *err)
+{
+    json_t *v = json_object_get(obj, "scale");
+    *log = 0;
+    if (!v || (json_is_string(v) && strcmp(json_string_value(v), "linear") == 0))
+        return RD_OK;
+    if (json_is_string(v) && strcmp(json_string_value(v), "log") == 0) {
+        *log = 1;
+        return RD_OK;
+    }
+    return spec_error(err, path, "%s/scale must be \"linear\" or \"log\"", path);
+}
+
+static int parse_range(json_t *r, const char *path, param *q, rd_error *err)
+{
+    static const char *const keys[] = {"start", "stop", "count", "scale", "integer", NULL};
+    if (!json_is_object(r))
+        return spec_error(err, path, "%s must be an object {start, stop, count, scale}", path);
+    json_t *count = json_object_get(r, "count"), *integer = json_object_get(r, "integer");
+    if (known_keys(r, keys, path, err) || number(r, "start", path, &q->a, err) ||
+        number(r, "stop", path, &q->b, err) || scale(r, path, &q->log, err))
+        return err->code;
+    if (!json_is_integer(count) || json_integer_value(count) < 1 ||
+        json_integer_value(count) > RD_SWEEP_POINTS_MAX)
+        return spec_error(err, path, "%s/count must be an integer from 1 to %d", path,
+                          RD_SWEEP_POINTS_MAX);
+    if (integer && !json_is_boolean(integer))
+        return spec_error(err, path, "%s/integer must be true or false", path);
+    /* llround is defined only for values a long long holds; beyond 2^53 a
+     * double has no fractional part to round anyway. */
+    if (json_is_true(integer) && (fabs(q->a) > 0x1p53 || fabs(q->b) > 0x1p53))
+        return spec_error(err, path, "%s: an integer range must lie within +-2^53", path);
+    if (q->log && (q->a <= 0 || q->b <= 0))
+        return spec_error(err, path, "%s: a log range needs start > 0 and stop > 0, got %g and %g",
+                          path, q->a, q->b);
+    q->n = (size_t)json_integer_value(count);
+    q->integer = json_is_true(integer);
+    q->kind = P_RANGE;
+    return RD_OK;
+}
+
+static int parse_random(json_t *r, const char *path, param *q, rd_error *err)
+{
+    static const char *const keys[] = {"min", "max", "scale", NULL};
+    if (!json_is_object(r))
+        return spec_error(err, path, "%s must be an object {min, max, scale}", path);
+    if (known_keys(r, keys, path, err) || number(r, "min", path, &q->a, err) ||
+        number(r, "max", path, &q->b, err) || scale(r, path, &q->log, err))
+        return err->code;
+    if (q->a > q->b)
+        return spec_error(err, path, "%s: min %g is above max %g", path, q->a, q->b);
+    if (q->log && q->a <= 0)
+        return spec_error(err, path, "%s: a log scale needs min > 0, got %g", path, q->a);
+    q->kind = P_RANDOM;
+    return RD_OK;
+}
+
+/* parameters[k]: {"path", one of values/range/random}. */
+static int parse_param(json_t *v, int k, param *q, rd_error *err)
+{
+    static const char *const keys[] = {"path", "values", "range", "random", NULL};
+    char path[64], sub[80];
+    snprintf(path, sizeof path, "/parameters/%d", k);
+    if (!json_is_object(v))
+        return spec_error(err, path, "%s must be an object {path, values|range|random}", path);
+    if (known_keys(v, keys, path, err))
+        return err->code;
+    json_t *p = json_object_get(v, "path");
+    if (!json_is_string(p) || !rd_jsonptr_valid(json_string_value(p)) ||
+        json_string_value(p)[0] != '/')
+        return spec_error(err, path,
+                          "%s/path must be a JSON Pointer into the scene, such as "
+                          "\"/ring/tangential_force\"",
+                          path);
+    q->path = json_string_value(p);
+    json_t *values = json_object_get(v, "values"), *range = json_object_get(v, "range"),
+           *random = json_object_get(v, "random");
+    if ((values != NULL) + (range != NULL) + (random != NULL) != 1)
+        return spec_error(err, path, "%s needs exactly one of \"values\", \"range\", \"random\"",
+                          path);
+    if (range) {
+        snprintf(sub, sizeof sub, "%s/range", path);
+        return parse_range(range, sub, q, err);
+    }
+    if (random) {
+        snprintf(sub, sizeof sub, "%s/random", path);
+        return parse_random(random, sub, q, err);
+    }
+    snprintf(sub, sizeof sub, "%s/values", path);
+    if (!json_is_array(values) || json_array_size(values) == 0)
+        return spec_error(err, sub, "%s must be a non-empty array of values", sub);
+    q->kind = P_VALUES;
+    q->values = values;
+    q->n = json_array_size(values);
+    return RD_OK;
+}
+
+/* outputs[k]: a pointer, or name(pointer) for an aggregate. */
+static int parse_output(json_t *v, int k, output *o, rd_error *err)
+{
+    static const char *const names[] = {"max", "min", "mean", "count", "all"};
+    static const int kinds[] = {O_MAX, O_MIN, O_MEAN, O_COUNT, O_ALL};
+    char path[64];
+    snprintf(path, sizeof path, "/outputs/%d", k);
+    const char *t = json_string_value(v);
+    o->text = t;
+    o->kind = -1;
+    if (t && t[0] == '/' && rd_jsonptr_valid(t)) {
+        o->kind = O_POINTER;
+        o->ptr = strdup(t);
+    }
+    for (int a = 0; t && o->kind < 0 && a < 5; a++) {
+        size_t n = strlen(names[a]), len = strlen(t);
+        if (strncmp(t, names[a], n) != 0 || t[n] != '(' || t[len - 1] != ')' || t[n + 1] != '/')
+            continue;
+        o->ptr = strndup(t + n + 1, len - n - 2);
+        if (o->ptr && !rd_jsonptr_valid(o->ptr))
+            break;
+        o->kind = kinds[a];
+    }
+    if (o->kind < 0)
+        return spec_error(err, path,
+                          "%s must be a JSON Pointer into the result (\"/...\") or "
+                          "max(P), min(P), mean(P), count(P), all(P) of one",
+                          path);
+    return o->ptr ? RD_OK : RD_ENOMEM;
+}
+
+/* Number of points, or an error when above `max` (a saturating product). */
+static int count_points(rd_sweep *s, json_t *spec, size_t max, rd_error *err)
+{
+    double total = 1;
+    if (s->combine == C_LHS) {
+        json_t *n = json_object_get(spec, "samples");
+        if (!json_is_integer(n) || json_integer_value(n) < 1)
+            return spec_error(err, "/samples",
+                              "/samples must be a positive integer (the "
+                              "number of points of the latin_hypercube)");
+        total = (double)json_integer_value(n);
+    } else {
+        for (int p = 0; p < s->np; p++)
+            total = s->combine == C_ZIP ? (double)s->p[0].n : total * (double)s->p[p].n;
+    }
+    if (total > (double)max)
+        return spec_error(err, s->combine == C_LHS ? "/samples" : "/parameters",
+                          "the sweep has %.0f points, more than the limit of %zu%s", total, max,
+                          max < RD_SWEEP_POINTS_MAX
+                              ? "; run larger sweeps with the same binary on a cluster: "
+                                "ringdyn sweep run SPEC --index I --chunks K --out DIR"
+                              : "; split it into several specs");
+    s->points = (size_t)total;
+    size_t stride = 1;
+    for (int p = s->np - 1; p >= 0; p--) {
+        s->p[p].stride = stride;
+        stride *= s->p[p].n ? s->p[p].n : 1;
+    }
+    return RD_OK;
+}
+
+/* "combine", and what each combination asks of the parameters. */
+static int parse_combine(rd_sweep *s, json_t *spec, rd_error *err)
+{
+    json_t *c = json_object_get(spec, "combine");
+    const char *name = c ? json_string_value(c) : "product";
+    if (name && strcmp(name, "product") == 0)
+        s->combine = C_PRODUCT;
+    else if (name && strcmp(name, "zip") == 0)
+        s->combine = C_ZIP;
+    else if (name && strcmp(name, "latin_hypercube") == 0)
+        s->combine = C_LHS;
+    else
+        return spec_error(err, "/combine",
+                          "/combine must be \"product\", \"zip\" or \"latin_hypercube\"");
+    if (s->combine != C_LHS) {
+        if (json_object_get(spec, "samples") || json_object_get(spec, "seed"))
+            return spec_error(err, json_object_get(spec, "samples") ? "/samples" : "/seed",
+                              "samples and seed are for \"combine\": \"latin_hypercube\" only");
+    }
+    for (int p = 0; p < s->np; p++) {
+        char path[64];
+        snprintf(path, sizeof path, "/parameters/%d", p);
+        if (s->combine != C_LHS && s->p[p].kind == P_RANDOM)
+            return spec_error(err, path,
+                              "%s is random: random parameters need \"combine\": "
+                              "\"latin_hypercube\"",
+                              path);
+        if (s->combine == C_ZIP && s->p[p].n != s->p[0].n)
+            return spec_error(err, path,
+                              "zip needs parameters of one length: %s has %zu values, "
+                              "/parameters/0 has %zu",
+                              path, s->p[p].n, s->p[0].n);
+    }
+    return RD_OK;
+}
+
+/* The seed of a latin_hypercube: an integer >= 0, default 0. */
+static int parse_seed(json_t *spec, uint64_t *seed, rd_error *err)
+{
+    json_t *v = json_object_get(spec, "seed");
+    *seed = 0;
+    if (!v)
+        return RD_OK;
+    if (!json_is_integer(v) || json_integer_value(v) < 0)
+        return spec_error(err, "/seed", "/seed must be an integer >= 0");
+    *seed = (uint64_t)json_integer_value(v);
+    return RD_OK;
+}
+
+/* "parameters" and "outputs": non-empty arrays, no path or output twice. */
+static int parse_lists(rd_sweep *s, json_t *spec, rd_error *err)
+{
+    json_t *params = json_object_get(spec, "parameters"), *outs = json_object_get(spec, "outputs");
+    if (!json_is_array(params) || json_array_size(params) == 0)
+        return spec_error(err, "/parameters", "/parameters must be a non-empty array");
+    if (json_array_size(params) > RD_SWEEP_PARAMS_MAX)
+        return spec_error(err, "/parameters", "/parameters has %zu entries, more than %d",
+                          json_array_size(params), RD_SWEEP_PARAMS_MAX);
+    if (!json_is_array(outs) || json_array_size(outs) == 0)
+        return spec_error(err, "/outputs",
+                          "/outputs must be a non-empty array of JSON Pointers "
+                          "into the result");
+    if (json_array_size(outs) > RD_SWEEP_OUTPUTS_MAX)
+        return spec_error(err, "/outputs", "/outputs has %zu entries, more than %d",
+                          json_array_size(outs), RD_SWEEP_OUTPUTS_MAX);
+    for (s->np = 0; s->np < (int)json_array_size(params); s->np++) {
+        int p = s->np;
+        if (parse_param(json_array_get(params, (size_t)p), p, &s->p[p], err))
+            return err->code;
+        for (int q = 0; q < p; q++)
+            if (strcmp(s->p[q].path, s->p[p].path) == 0)
+                return spec_error(err, "/parameters",
+                                  "/parameters/%d and /parameters/%d both "
+                                  "set %s",
+                                  q, p, s->p[p].path);
+    }
+    for (s->no = 0; s->no < (int)json_array_size(outs); s->no++) {
+        int k = s->no;
+        int rc = parse_output(json_array_get(outs, (size_t)k), k, &s->o[k], err);
+        if (rc == RD_ENOMEM)
+            return rd_error_set(err, rc, "", "out of memory while reading the sweep spec");
+        if (rc)
+            return rc;
+        for (int q = 0; q < k; q++)
+            if (strcmp(s->o[q].text, s->o[k].text) == 0)
+                return spec_error(err, "/outputs", "/outputs/%d repeats /outputs/%d", k, q);
+    }
+    return RD_OK;
+}
+
+/* A short text of a JSON value for messages. */
+static void value_text(const json_t *v, char *buf, size_t size)
+{
+    char *t =
+        json_dumps(v, JSON_ENCODE_ANY | JSON_COMPACT | JSON_REAL_PRECISION(RD_SWEEP_REAL_DIGITS));
+    snprintf(buf, size, "%s", t ? t : "?");
+    if (t && strlen(t) >= size && size > 4)
+        strcpy(buf + size - 4, "...");
+    free(t);
+}
+
+/* Applies `value` (stolen) alone to the base and checks that the scene is
+ * valid and reads parameter p's path; errors point at `where` in the spec. */
+static int try_value(const rd_sweep *s, int p, json_t *value, const char *where, rd_error *err)
+{
+    const char *path = s->p[p].path;
+    char text[64];
+    value_text(value, text, sizeof text);
+    json_t *scene = with_value(s->base, NULL, path, value);
+    if (!scene)
+        return spec_error(err, where,
+                          "parameter %s cannot be set in the base scene: a part of "
+                          "the path is not an object or array element",
+                          path);
+    rd_error e;
+    rd_error_init(&e);
+    rd_scene *sc = NULL;
+    int rc = rd_scene_parse_value(scene, &sc, &e);
+    json_decref(scene);
+    if (rc == RD_ENOMEM)
+        return rd_error_set(err, rc, "", "out of memory while checking the sweep spec");
+    if (rc != RD_OK)
+        return spec_error(err, where, "parameter %s = %s gives an invalid scene: %s", path, text,
+                          e.message);
+    char *echo = rd_scene_to_json(sc);
+    json_t *doc = echo ? json_loads(echo, 0, NULL) : NULL;
+    int read = rd_jsonptr_get(doc, path) != NULL;
+    const char *analysis = rd_scene_analysis(sc);
+    rc = !doc   ? rd_error_set(err, RD_ENOMEM, "", "out of memory while checking the sweep spec")
+         : read ? RD_OK
+                : spec_error(err, where, "parameter %s is not a field that a %s scene reads", path,
+                             analysis);
+    json_decref(doc);
+    free(echo);
+    rd_scene_free(sc);
+    return rc;
+}
+
+/* Every value of parameter p that validation tries (rd_sweep.h). */
+static int check_param(const rd_sweep *s, int p, rd_error *err)
+{
+    const param *q = &s->p[p];
+    char where[96];
+    if (q->kind == P_RANDOM) {
+        snprintf(where, sizeof where, "/parameters/%d/random/min", p);
+        if (try_value(s, p, json_real(q->a), where, err))
+            return err->code;
+        snprintf(where, sizeof where, "/parameters/%d/random/max", p);
+        return try_value(s, p, json_real(q->b), where, err);
+    }
+    for (size_t k = 0; k < q->n; k++) {
+        if (q->kind == P_RANGE && q->n > RANGE_CHECK_ALL && k > 0 && k < q->n - 1)
+            k = q->n - 1;
+        if (q->kind == P_VALUES)
+            snprintf(where, sizeof where, "/parameters/%d/values/%zu", p, k);
+        else
+            snprintf(where, sizeof where, "/parameters/%d/range", p);
+        if (try_value(s, p, entry(q, k), where, err))
+            return err->code;
+    }
+    return RD_OK;
+}
+
+/* FNV-1a 64 of the canonical spec, as 16 hex digits. */
+static int spec_hash(rd_sweep *s)
+{
+    char *text = json_dumps(s->spec, JSON_COMPACT | JSON_SORT_KEYS | JSON_REAL_PRECISION(17));
+    if (!text)
+        return RD_ENOMEM;
+    uint64_t h = 0xcbf29ce484222325u;
+    for (const unsigned char *c = (const unsigned char *)text; *c; c++)
+        h = (h ^ *c) * 0x100000001b3u;
+    free(text);
+    snprintf(s->hash, sizeof s->hash, "%016llx", (unsigned long long)h);
+    return RD_OK;
+}
+
+/* Steps after the JSON is decoded: shape, base, parameters, size, design. */
+static int parse_spec(rd_sweep *s, size_t max, rd_error *err)
+{
+    static const char *const keys[] = {"base",    "parameters", "combine",     "samples", "seed",
+                                       "outputs", "name",       "description", NULL};
+    json_t *spec = s->spec;
+    uint64_t seed;
+    if (!json_is_object(spec))
+        return rd_error_set(err, RD_EJSON, "", "the sweep spec must be a JSON object");
+    if (known_keys(spec, keys, "", err))
+        return err->code;
+    s->base = json_object_get(spec, "base");
+    if (!json_is_object(s->base))
+        return spec_error(err, "/base",
+                          "/base must be a scene object, such as "
+                          "{\"analysis\": \"modal\"}");
+    rd_error e;
+    rd_error_init(&e);
+    rd_scene *sc = NULL;
+    int rc = rd_scene_parse_value(s->base, &sc, &e);
+    rd_scene_free(sc);
+    if (rc != RD_OK) {
+        char path[RD_ERROR_PATH_MAX + 8]; /* rd_error_set truncates to RD_ERROR_PATH_MAX */
+        snprintf(path, sizeof path, "/base%s", e.path);
+        return rc == RD_ENOMEM ? rd_error_set(err, rc, "", "%s", e.message)
+                               : spec_error(err, path, "the base scene is invalid: %s", e.message);
+    }
+    if (parse_lists(s, spec, err) || parse_combine(s, spec, err) || parse_seed(spec, &seed, err) ||
+        count_points(s, spec, max, err))
+        return err->code;
+    if (s->combine == C_LHS && (double)s->points * s->np > RD_SWEEP_LHS_ENTRIES_MAX)
+        return spec_error(err, "/samples",
+                          "a latin_hypercube of %zu samples over %d parameters "
+                          "holds more than %d entries",
+                          s->points, s->np, RD_SWEEP_LHS_ENTRIES_MAX);
+    for (int p = 0; p < s->np; p++)
+        if (check_param(s, p, err))
+            return err->code;
+    if ((s->combine == C_LHS && lhs_design(s, seed) != RD_OK) || spec_hash(s) != RD_OK)
+        return rd_error_set(err, RD_ENOMEM, "", "out of memory while expanding the sweep");
+    return RD_OK;
+}
+
+int rd_sweep_parse(const char *body, size_t len, size_t max_points, rd_sweep **out, rd_error *err)
+{
+    *out = NULL;
+    if (len > RD_API_BODY_MAX)
+        return rd_error_set(err, RD_ETOOLARGE, "", "the sweep spec is larger than %d bytes",
+                            RD_API_BODY_MAX);
+    json_error_t jerr;
+    json_t *spec = json_loadb(body, len, JSON_REJECT_DUPLICATES, &jerr);
+    if (!spec)
+        return rd_error_set(err, RD_EJSON, "",
+                            "the sweep spec is not valid JSON: %s (line %d, "
+                            "column %d)",
+                            jerr.text, jerr.line, jerr.column);
+    rd_sweep *s = calloc(1, sizeof *s);
+    if (!s) {
+        json_decref(spec);
+        return rd_error_set(err, RD_ENOMEM, "", "out of memory while reading the sweep spec");
+    }
+    s->spec = spec;
+    if (parse_spec(s, max_points < RD_SWEEP_POINTS_MAX ? max_points : RD_SWEEP_POINTS_MAX, err) !=
+        RD_OK) {
+        rd_sweep_free(s);
+        return err->code;
+    }
+    *out = s;
+    return RD_OK;
+}
+
+void rd_sweep_free(rd_sweep *s)
+{
+    if (!s)
+        return;
+    for (int k = 0; k < RD_SWEEP_OUTPUTS_MAX; k++)
+        free(s->o[k].ptr);
+    free(s->u);
+    json_decref(s->spec);
+    free(s);
+}
+
+size_t rd_sweep_points(const rd_sweep *s)
+{
+    return s->points;
+}
+
+const char *rd_sweep_hash(const rd_sweep *s)
+{
+    return s->hash;
+}
+
+char *rd_sweep_columns_json(const rd_sweep *s)
+{
+    json_t *cols = json_array();
+    for (int p = 0; cols && p < s->np; p++)
+        json_array_append_new(cols, json_string(s->p[p].path));
+    for (int k = 0; cols && k < s->no; k++)
+        json_array_append_new(cols, json_string(s->o[k].text));
+    json_array_append_new(cols, json_string("status"));
+    json_array_append_new(cols, json_string("error"));
+    size_t want = (size_t)(s->np + s->no + 2);
+    char *text = json_array_size(cols) == want ? json_dumps(cols, JSON_COMPACT) : NULL;
+    json_decref(cols);
+    return text;
+}
+
+char *rd_sweep_point_scene(const rd_sweep *s, size_t i, rd_error *err)
+{
+    if (i >= s->points) {
+        rd_error_set(err, RD_EINVAL, "", "point %zu does not exist: the sweep has %zu points", i,
+                     s->points);
+        return NULL;
+    }
+    json_t *scene = point_scene(s, i);
+    char *text =
+        scene ? json_dumps(scene, JSON_COMPACT | JSON_REAL_PRECISION(RD_SWEEP_REAL_DIGITS)) : NULL;
+    json_decref(scene);
+    if (!text)
+        rd_error_set(err, RD_ENOMEM, "", "out of memory while expanding point %zu", i);
+    return text;
+}
+
+/* ---- running a point ----------------------------------------------------- */
+
+/* 1 if `ptr` has a "*" token. */
+static int has_star(const char *ptr)
+{
+    for (const char *c = strstr(ptr, "/*"); c; c = strstr(c + 1, "/*"))
+        if (c[2] == '/' || c[2] == '\0')
+            return 1;
+    return 0;
+}
+
+/* Folds every number in `v` (arrays flattened) into min/max/sum/n, and
+ * appends it to `list` when that is not NULL. */
+static void fold(json_t *v, double *lo, double *hi, double *sum, size_t *n, json_t *list)
+{
+    if (json_is_array(v)) {
+        for (size_t k = 0; k < json_array_size(v); k++)
+            fold(json_array_get(v, k), lo, hi, sum, n, list);
+    } else if (json_is_number(v)) {
+        if (list)
+            json_array_append(list, v);
+        double x = json_number_value(v);
+        *lo = *n == 0 || x < *lo ? x : *lo;
+        *hi = *n == 0 || x > *hi ? x : *hi;
+        *sum += x;
+        (*n)++;
+    }
+}
+
+/* The cell of output o for a result (new reference; NULL out of memory). */
+static json_t *output_value(const output *o, json_t *result)
+{
+    if (o->kind == O_POINTER) {
+        json_t *v = rd_jsonptr_get(result, o->ptr);
+        return v ? json_incref(v) : json_null();
+    }
+    json_t *all = json_array();
+    if (!all || rd_jsonptr_collect(result, o->ptr, all) != 0) {
+        json_decref(all);
+        return NULL;
+    }
+    json_t *cell;
+    if (o->kind == O_COUNT) {
+        json_t *one = json_array_get(all, 0);
+        size_t n = json_array_size(all);
+        if (!has_star(o->ptr) && json_is_array(one))
+            n = json_array_size(one);
+        else if (!has_star(o->ptr) && json_is_object(one))
+            n = json_object_size(one);
+        cell = json_integer((json_int_t)n);
+    } else {
+        double lo = 0, hi = 0, sum = 0;
+        size_t n = 0;
+        json_t *list = o->kind == O_ALL ? json_array() : NULL;
+        fold(all, &lo, &hi, &sum, &n, list);
+        if (o->kind == O_ALL) {
+            json_decref(all);
+            return list;
+        }
+        double x = o->kind == O_MAX ? hi : o->kind == O_MIN ? lo : sum / (double)n;
+        cell = n > 0 ? json_real(x) : json_null();
+    }
+    json_decref(all);
+    return cell;
+}
+
+/* Appends the outputs of a finished run (result text) and status "ok". */
+static int append_outputs(const rd_sweep *s, json_t *row, const char *result_text)
+{
+    json_t *result = json_loads(result_text, 0, NULL);
+    int rc = result ? 0 : -1;
+    for (int k = 0; rc == 0 && k < s->no; k++)
+        rc = json_array_append_new(row, output_value(&s->o[k], result));
+    json_decref(result);
+    if (rc == 0)
+        rc = json_array_append_new(row, json_string("ok"));
+    if (rc == 0)
+        rc = json_array_append_new(row, json_null());
+    return rc;
+}
+
+/* Appends null outputs and the point's error. */
+static int append_failure(const rd_sweep *s, json_t *row, const rd_error *e)
+{
+    int rc = 0;
+    for (int k = 0; rc == 0 && k < s->no; k++)
+        rc = json_array_append_new(row, json_null());
+    if (rc == 0)
+        rc = json_array_append_new(row, json_string(rd_error_code_name(e->code)));
+    if (rc == 0)
+        rc = json_array_append_new(
+            row, json_string(e->message[0] ? e->message : rd_error_summary(e->code)));
+    return rc;
+}
+
+int rd_sweep_run_point(const rd_sweep *s, size_t i, const rd_monitor *mon, char **row,
+                       rd_error *err)
+{
+    *row = NULL;
+    if (i >= s->points)
+        return rd_error_set(err, RD_EINVAL, "",
+                            "point %zu does not exist: the sweep has %zu "
+                            "points",
+                            i, s->points);
+    json_t *r = json_array(), *scene = point_scene(s, i);
+    int rc = r && scene ? 0 : -1;
+    for (int p = 0; rc == 0 && p < s->np; p++)
+        rc = json_array_append_new(r, param_value(s, p, i));
+    rd_error e;
+    rd_error_init(&e);
+    rd_scene *sc = NULL;
+    char *result = NULL;
+    int status = RD_ENOMEM;
+    if (rc == 0) {
+        status = rd_scene_parse_value(scene, &sc, &e);
+        if (status == RD_OK)
+            status = rd_scene_run(sc, mon, &result, &e);
+        if (status == RD_ECANCELED) {
+            rd_error_set(err, RD_ECANCELED, "", "the sweep was cancelled at point %zu", i);
+            goto out;
+        }
+        rc = status == RD_OK ? append_outputs(s, r, result) : append_failure(s, r, &e);
+    }
+    if (rc == 0)
+        *row = json_dumps(r, JSON_COMPACT | JSON_REAL_PRECISION(RD_SWEEP_REAL_DIGITS));
+    status = *row ? RD_OK : rd_error_set(err, RD_ENOMEM, "", "out of memory at point %zu", i);
+out:
+    free(result);
+    rd_scene_free(sc);
+    json_decref(scene);
+    json_decref(r);
+    return status;
+}
