@@ -3,6 +3,7 @@
  *
  *   ringdyn-server --port N [--host 127.0.0.1] [--static DIR] [--examples DIR]
  *                  [--threads N] [--queue N] [--job-timeout S] [--keep-jobs N]
+ *                  [--allow-host NAME]... [--token-file FILE]
  *
  * Binds 127.0.0.1 unless --host says otherwise; --port 0 takes a free port.
  * Prints one line "ringdyn-server listening on http://HOST:PORT" to stdout
@@ -26,6 +27,12 @@
 #include "rd_jobs.h"
 #include "rd_metrics.h"
 
+/* --allow-host may be given this many times. */
+#define ALLOW_HOSTS_MAX 32
+/* A token shorter than this is refused: it must not be guessable. */
+#define TOKEN_MIN 16
+#define TOKEN_MAX 4096
+
 /* Longest wait at shutdown for answers still being sent, seconds. */
 #define DRAIN_S 5.0
 
@@ -39,6 +46,9 @@ struct options {
     double job_timeout;
     long keep_jobs;
     long keep_mb;
+    const char *allow_hosts[ALLOW_HOSTS_MAX];
+    int n_allow_hosts;
+    const char *token_file;
 };
 
 static void usage(FILE *f)
@@ -54,7 +64,15 @@ static void usage(FILE *f)
             "  --job-timeout S   run time limit per job in seconds (default 120)\n"
             "  --keep-jobs N     finished jobs kept for GET (default 256, 1..100000)\n"
             "  --keep-mb N       and at most N MiB of their results (default 512, 1..65536;\n"
-            "                    the newest finished job is always kept)\n");
+            "                    the newest finished job is always kept)\n"
+            "access:\n"
+            "  --allow-host NAME serve requests whose Host header names NAME (any port); repeatable.\n"
+            "                    127.0.0.1, localhost, [::1] and the bound address are always\n"
+            "                    served; any other Host gets 403 (DNS rebinding guard)\n"
+            "  --token-file FILE require 'Authorization: Bearer TOKEN' on /api/v1/jobs*,\n"
+            "                    /api/v1/examples* and /metrics; TOKEN is the file's first line\n"
+            "                    (16..4096 printable characters).  Required with a --host that\n"
+            "                    is not a loopback address\n");
 }
 
 static int parse_long(const char *s, long min, long max, long *out)
@@ -105,6 +123,12 @@ static int parse_options(int argc, char **argv, struct options *o)
             ok = parse_long(value, 1, 10000, &o->queue);
         else if (IS("--keep-jobs"))
             ok = parse_long(value, 1, 100000, &o->keep_jobs);
+        else if (IS("--allow-host")) {
+            ok = o->n_allow_hosts < ALLOW_HOSTS_MAX;
+            if (ok)
+                o->allow_hosts[o->n_allow_hosts++] = value;
+        } else if (IS("--token-file"))
+            o->token_file = value;
         else if (IS("--keep-mb"))
             ok = parse_long(value, 1, 65536, &o->keep_mb);
         else if (IS("--job-timeout")) {
@@ -128,6 +152,41 @@ static int parse_options(int argc, char **argv, struct options *o)
     return 0;
 }
 
+/* The token: the first line of `path`, without trailing blanks.  NULL after
+ * printing why on stderr. */
+static char *read_token(const char *path)
+{
+    FILE *f = fopen(path, "r");
+    if (!f) {
+        fprintf(stderr, "ringdyn-server: --token-file %s: %s\n", path, strerror(errno));
+        return NULL;
+    }
+    char *line = calloc(1, TOKEN_MAX + 2);
+    if (line && !fgets(line, TOKEN_MAX + 2, f))
+        line[0] = '\0';
+    fclose(f);
+    if (!line) {
+        fprintf(stderr, "ringdyn-server: out of memory\n");
+        return NULL;
+    }
+    size_t n = strlen(line);
+    while (n > 0 && (line[n - 1] == '\n' || line[n - 1] == '\r' || line[n - 1] == ' ' ||
+                     line[n - 1] == '\t'))
+        line[--n] = '\0';
+    int printable = 1;
+    for (size_t i = 0; i < n; i++)
+        printable &= line[i] > 0x20 && line[i] < 0x7f;
+    if (n < TOKEN_MIN || n > TOKEN_MAX || !printable) {
+        fprintf(stderr,
+                "ringdyn-server: --token-file %s: the first line must be %d..%d printable "
+                "characters without blanks (e.g. head -c 24 /dev/urandom | base64)\n",
+                path, TOKEN_MIN, TOKEN_MAX);
+        free(line);
+        return NULL;
+    }
+    return line;
+}
+
 static void on_job_finish(void *ctx, int status, double run_seconds)
 {
     (void)status;
@@ -136,7 +195,9 @@ static void on_job_finish(void *ctx, int status, double run_seconds)
 
 int main(int argc, char **argv)
 {
-    struct options opt = {"127.0.0.1", -1, NULL, NULL, 2, 32, 120.0, 256, 512};
+    struct options opt = {.host = "127.0.0.1", .port = -1, .threads = 2, .queue = 32,
+                          .job_timeout = 120.0, .keep_jobs = 256, .keep_mb = 512};
+    char *token = NULL;
     int status = 1;
     rd_metrics *metrics = NULL;
     rd_jobs *jobs = NULL;
@@ -174,7 +235,15 @@ int main(int argc, char **argv)
                          .on_finish_ctx = metrics};
     if (rd_jobs_create(&jc, &jobs, &err) != RD_OK)
         goto fail;
-    rd_http_config hc = {opt.host, (int)opt.port, opt.static_dir, opt.examples_dir};
+    if (opt.token_file && !(token = read_token(opt.token_file)))
+        goto out;
+    rd_http_config hc = {.host = opt.host,
+                         .port = (int)opt.port,
+                         .static_dir = opt.static_dir,
+                         .examples_dir = opt.examples_dir,
+                         .allow_hosts = opt.allow_hosts,
+                         .n_allow_hosts = opt.n_allow_hosts,
+                         .token = token};
     if (rd_http_create(&hc, jobs, metrics, &http, &err) != RD_OK)
         goto fail;
 
@@ -200,5 +269,6 @@ out:
     rd_http_free(http);
     rd_jobs_free(jobs);
     rd_metrics_free(metrics);
+    free(token);
     return status;
 }

@@ -69,6 +69,9 @@ struct rd_http {
     char *examples_dir;     /* realpath of the examples dir, or NULL */
     char host[INET6_ADDRSTRLEN + 2];
     int port;
+    char **allow;           /* Host names served (lower case, IPv6 in brackets) */
+    size_t n_allow;
+    char *token;            /* bearer token, or NULL */
     pthread_mutex_t mu; /* guards in_flight */
     pthread_cond_t idle; /* in_flight dropped to 0 */
     int in_flight;       /* requests between their first call and on_completed */
@@ -256,6 +259,14 @@ static enum route match_route(const char *url, char *arg, size_t argsz)
     return ROUTE_STATIC;
 }
 
+/* Job data, examples and metrics need the token; the page, the OpenAPI
+ * document and the health check (no job data) do not, so that the page can
+ * load and ask for the token and a container health check needs no secret. */
+static int route_needs_token(enum route r)
+{
+    return r != ROUTE_STATIC && r != ROUTE_HEALTH && r != ROUTE_OPENAPI;
+}
+
 static const char *allowed_methods(enum route r)
 {
     switch (r) {
@@ -371,6 +382,93 @@ static enum MHD_Result send_not_found(rd_http *h, struct MHD_Connection *c, stru
 {
     char buf[128];
     return send_fail(h, c, rq, RD_ENOTFOUND, "There is nothing at %s.", printable(url, buf, sizeof buf));
+}
+
+/* An error the status table of core/rd_error.h has no code for (401, 403,
+ * 400 for a framing fault): the same {"error": {"code", "message"}} shape,
+ * written here.  `header`/`value` (may be NULL) adds one response header. */
+static enum MHD_Result send_server_error(rd_http *h, struct MHD_Connection *c, struct request *rq,
+                                         int status, const char *code, const char *message,
+                                         const char *header, const char *value)
+{
+    json_t *o = json_pack("{s:{s:s, s:s}}", "error", "code", code, "message", message);
+    char *body = o ? json_dumps(o, JSON_COMPACT) : NULL;
+    json_decref(o);
+    struct MHD_Response *r = text_response(body, json_media);
+    if (r && header && MHD_add_response_header(r, header, value) != MHD_YES) {
+        MHD_destroy_response(r);
+        r = NULL;
+    }
+    return send_response(h, c, rq, status, r);
+}
+
+/* ---- access: Host allowlist and bearer token ---- */
+
+/* The name part of a Host header value: "[v6]" with its brackets, or what
+ * precedes ":port"; NULL when the port is not all digits or the name is
+ * empty or too long.  Lower-cased into buf. */
+static const char *host_name(const char *host, char *buf, size_t n)
+{
+    const char *end;
+    if (host[0] == '[') {
+        end = strchr(host, ']');
+        if (!end)
+            return NULL;
+        end++;
+    } else {
+        end = host + strcspn(host, ":");
+    }
+    if (*end == ':' && (end[1] == '\0' || strspn(end + 1, "0123456789") != strlen(end + 1)))
+        return NULL;
+    if (*end != '\0' && *end != ':')
+        return NULL;
+    size_t len = (size_t)(end - host);
+    if (len == 0 || len >= n)
+        return NULL;
+    for (size_t i = 0; i < len; i++)
+        buf[i] = (char)((host[i] >= 'A' && host[i] <= 'Z') ? host[i] - 'A' + 'a' : host[i]);
+    buf[len] = '\0';
+    return buf;
+}
+
+/* A request that names no Host (HTTP/1.0; MHD refuses HTTP/1.1 without one)
+ * is allowed: DNS rebinding needs a browser, and browsers always send Host. */
+static int host_allowed(const rd_http *h, const char *host)
+{
+    if (!host)
+        return 1;
+    char buf[256];
+    const char *name = host_name(host, buf, sizeof buf);
+    if (!name)
+        return 0;
+    for (size_t i = 0; i < h->n_allow; i++)
+        if (strcmp(name, h->allow[i]) == 0)
+            return 1;
+    return 0;
+}
+
+/* Compares in time that depends on the lengths only, not on where they differ. */
+static int token_matches(const char *given, size_t given_len, const char *want, size_t want_len)
+{
+    unsigned char diff = given_len != want_len;
+    for (size_t i = 0; i < given_len && i < want_len; i++)
+        diff |= (unsigned char)(given[i] ^ want[i]);
+    return diff == 0;
+}
+
+/* "Bearer TOKEN" (scheme in any case) carrying our token. */
+static int authorized(const rd_http *h, struct MHD_Connection *c)
+{
+    const char *auth = MHD_lookup_connection_value(c, MHD_HEADER_KIND, MHD_HTTP_HEADER_AUTHORIZATION);
+    if (!auth || strncasecmp(auth, "Bearer ", 7) != 0)
+        return 0;
+    const char *t = auth + 7;
+    while (*t == ' ')
+        t++;
+    size_t n = strlen(t);
+    while (n > 0 && (t[n - 1] == ' ' || t[n - 1] == '\t'))
+        n--;
+    return token_matches(t, n, h->token, strlen(h->token));
 }
 
 /* ---- static files ---- */
@@ -716,9 +814,21 @@ static enum MHD_Result begin_request(rd_http *h, struct MHD_Connection *c, struc
                                      const char *url, const char *method)
 {
     char arg[PATH_ARG_MAX];
+    if (!host_allowed(h, MHD_lookup_connection_value(c, MHD_HEADER_KIND, MHD_HTTP_HEADER_HOST)))
+        return send_server_error(h, c, rq, MHD_HTTP_FORBIDDEN, "forbidden_host",
+                                 "This server does not serve the host named in the Host header "
+                                 "(a guard against DNS rebinding); start it with --allow-host NAME "
+                                 "to serve that name.",
+                                 NULL, NULL);
     if (has_control_char(url))
         return send_not_found(h, c, rq, url);
     enum route route = match_route(url, arg, sizeof arg);
+    if (h->token && route_needs_token(route) && !authorized(h, c))
+        return send_server_error(h, c, rq, MHD_HTTP_UNAUTHORIZED, "unauthorized",
+                                 "This server needs its access token: send the header "
+                                 "Authorization: Bearer TOKEN (the token is in the file given to "
+                                 "--token-file).",
+                                 MHD_HTTP_HEADER_WWW_AUTHENTICATE, "Bearer realm=\"ringdyn\"");
     if (route == ROUTE_STATIC)
         return serve_static(h, c, rq, url, method);
     if (route == ROUTE_NONE)
@@ -811,6 +921,61 @@ static void on_completed(void *cls, struct MHD_Connection *c, void **req_cls,
 
 /* ---- life cycle ---- */
 
+static int is_loopback(const struct sockaddr_storage *addr)
+{
+    if (addr->ss_family == AF_INET) {
+        const struct sockaddr_in *a4 = (const struct sockaddr_in *)addr;
+        return (ntohl(a4->sin_addr.s_addr) >> 24) == 127;
+    }
+    const struct sockaddr_in6 *a6 = (const struct sockaddr_in6 *)addr;
+    return IN6_IS_ADDR_LOOPBACK(&a6->sin6_addr) ||
+           (IN6_IS_ADDR_V4MAPPED(&a6->sin6_addr) && a6->sin6_addr.s6_addr[12] == 127);
+}
+
+static int is_wildcard(const struct sockaddr_storage *addr)
+{
+    if (addr->ss_family == AF_INET)
+        return ((const struct sockaddr_in *)addr)->sin_addr.s_addr == htonl(INADDR_ANY);
+    return IN6_IS_ADDR_UNSPECIFIED(&((const struct sockaddr_in6 *)addr)->sin6_addr);
+}
+
+static int add_allowed(rd_http *h, const char *name, rd_error *err)
+{
+    char buf[256];
+    const char *lower = host_name(name, buf, sizeof buf);
+    if (!lower || strlen(lower) != strlen(name)) /* a port was given */
+        return rd_error_set(err, RD_EINVAL, "",
+                            "--allow-host %s: not a host name (give the name without a port; IPv6 in "
+                            "brackets).",
+                            name);
+    char **grown = realloc(h->allow, (h->n_allow + 1) * sizeof *grown);
+    if (!grown)
+        return rd_error_set(err, RD_ENOMEM, "", "Out of memory.");
+    h->allow = grown;
+    if (!(h->allow[h->n_allow] = strdup(lower)))
+        return rd_error_set(err, RD_ENOMEM, "", "Out of memory.");
+    h->n_allow++;
+    return RD_OK;
+}
+
+/* The Host allowlist (loopback names, the bound address unless it is a
+ * wildcard, --allow-host) and a copy of the token. */
+static int set_access(rd_http *h, const rd_http_config *cfg, const struct sockaddr_storage *addr,
+                      rd_error *err)
+{
+    static const char *const loopback[] = {"127.0.0.1", "localhost", "[::1]"};
+    int rc = RD_OK;
+    for (size_t i = 0; i < sizeof loopback / sizeof loopback[0] && rc == RD_OK; i++)
+        rc = add_allowed(h, loopback[i], err);
+    if (rc == RD_OK && !is_wildcard(addr))
+        rc = add_allowed(h, h->host, err);
+    for (int i = 0; i < cfg->n_allow_hosts && rc == RD_OK; i++)
+        rc = add_allowed(h, cfg->allow_hosts[i], err);
+    if (rc == RD_OK && cfg->token && !(h->token = strdup(cfg->token)))
+        rc = rd_error_set(err, RD_ENOMEM, "", "Out of memory.");
+    return rc;
+}
+
 /* realpath of a directory option, or an error naming the option. */
 static int resolve_dir(const char *option, const char *dir, char **out, rd_error *err)
 {
@@ -883,6 +1048,16 @@ int rd_http_create(const rd_http_config *cfg, rd_jobs *jobs, rd_metrics *metrics
         snprintf(h->host, sizeof h->host, "%s", text);
     }
 
+    if (!is_loopback(&addr) && !cfg->token) {
+        rc = rd_error_set(err, RD_EINVAL, "",
+                          "--host %s is not a loopback address: give an access token with "
+                          "--token-file FILE.",
+                          cfg->host);
+        goto out;
+    }
+    if ((rc = set_access(h, cfg, &addr, err)) != RD_OK)
+        goto out;
+
     h->daemon = MHD_start_daemon(
         flags, (uint16_t)cfg->port, NULL, NULL, on_request, h, MHD_OPTION_SOCK_ADDR,
         (struct sockaddr *)&addr, MHD_OPTION_CONNECTION_LIMIT, (unsigned int)RD_HTTP_CONNECTIONS_MAX,
@@ -953,5 +1128,9 @@ void rd_http_free(rd_http *http)
     pthread_mutex_destroy(&http->mu);
     free(http->static_root);
     free(http->examples_dir);
+    for (size_t i = 0; i < http->n_allow; i++)
+        free(http->allow[i]);
+    free(http->allow);
+    free(http->token);
     free(http);
 }

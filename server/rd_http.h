@@ -25,6 +25,14 @@ typedef struct rd_http_config {
     int port;                 /* 0: any free port */
     const char *static_dir;   /* the web page, or NULL to serve none */
     const char *examples_dir; /* example scenes, or NULL for none */
+    /* Host-header names served besides the loopback names (127.0.0.1,
+     * localhost, [::1]) and the bound address; any port.  May be NULL. */
+    const char *const *allow_hosts;
+    int n_allow_hosts;
+    /* Bearer token every /api/v1/jobs*, /api/v1/examples* and /metrics
+     * request must send (Authorization: Bearer TOKEN), or NULL for none.
+     * Required when `host` is not a loopback address. */
+    const char *token;
 } rd_http_config;
 
 typedef struct rd_http rd_http;
