@@ -10,10 +10,12 @@
  * once it accepts connections (scripts and tests read the port from it).
  *
  * SIGINT and SIGTERM are blocked in every thread and taken by sigwait() in
- * main, so the shutdown runs as ordinary code: stop accepting, cancel the
- * jobs (which releases requests waiting on them), let the requests in
- * progress send their answers (at most DRAIN_S), close the connections,
- * join the workers, free everything, exit 0.
+ * main, so the shutdown runs as ordinary code: stop accepting, end queued
+ * jobs `interrupted`, give running ones STOP_WAIT_S to stop (what finishes
+ * is stored; the rest end `interrupted`, which releases requests waiting on
+ * them with a final job), let the requests in progress send their answers
+ * (at most DRAIN_S), close the connections, join the workers, close the
+ * store, exit 0.
  */
 #include <errno.h>
 #include <math.h>
@@ -26,6 +28,7 @@
 #include "rd_http.h"
 #include "rd_jobs.h"
 #include "rd_metrics.h"
+#include "rd_store.h"
 
 /* --allow-host may be given this many times. */
 #define ALLOW_HOSTS_MAX 32
@@ -33,8 +36,11 @@
 #define TOKEN_MIN 16
 #define TOKEN_MAX 4096
 
-/* Longest wait at shutdown for answers still being sent, seconds. */
-#define DRAIN_S 5.0
+/* At shutdown: how long running jobs may take to stop on their own (a run
+ * that ends in time keeps its result), then how long answers still being
+ * sent may take; together under 1 s. */
+#define STOP_WAIT_S 0.4
+#define DRAIN_S 0.4
 
 struct options {
     const char *host;
@@ -46,6 +52,8 @@ struct options {
     double job_timeout;
     long keep_jobs;
     long keep_mb;
+    double keep_days;
+    const char *data_dir;
     const char *allow_hosts[ALLOW_HOSTS_MAX];
     int n_allow_hosts;
     const char *token_file;
@@ -65,6 +73,11 @@ static void usage(FILE *f)
             "  --keep-jobs N     finished jobs kept for GET (default 256, 1..100000)\n"
             "  --keep-mb N       and at most N MiB of their results (default 512, 1..65536;\n"
             "                    the newest finished job is always kept)\n"
+            "  --keep-days D     and none finished more than D days ago (default 30; 0: no limit)\n"
+            "  --data DIR        the job store (SQLite, WAL) lives in DIR/jobs.sqlite3; default\n"
+            "                    $XDG_STATE_HOME/ringdyn or ~/.local/state/ringdyn; ':memory:'\n"
+            "                    keeps nothing across restarts.  Finished jobs survive a restart;\n"
+            "                    jobs queued or running when the server stopped end 'interrupted'\n"
             "access:\n"
             "  --allow-host NAME serve requests whose Host header names NAME (any port); repeatable.\n"
             "                    127.0.0.1, localhost, [::1] and the bound address are always\n"
@@ -129,7 +142,13 @@ static int parse_options(int argc, char **argv, struct options *o)
                 o->allow_hosts[o->n_allow_hosts++] = value;
         } else if (IS("--token-file"))
             o->token_file = value;
-        else if (IS("--keep-mb"))
+        else if (IS("--data"))
+            o->data_dir = value;
+        else if (IS("--keep-days")) {
+            char *end;
+            o->keep_days = strtod(value, &end);
+            ok = end != value && !*end && o->keep_days >= 0 && o->keep_days <= 36500;
+        } else if (IS("--keep-mb"))
             ok = parse_long(value, 1, 65536, &o->keep_mb);
         else if (IS("--job-timeout")) {
             char *end;
@@ -150,6 +169,22 @@ static int parse_options(int argc, char **argv, struct options *o)
         return -1;
     }
     return 0;
+}
+
+/* --data's default: $XDG_STATE_HOME/ringdyn, else ~/.local/state/ringdyn
+ * (the XDG base directory rules), in buf; NULL without either variable. */
+static const char *default_data_dir(char *buf, size_t n)
+{
+    const char *state = getenv("XDG_STATE_HOME");
+    const char *home = getenv("HOME");
+    int w;
+    if (state && state[0] == '/')
+        w = snprintf(buf, n, "%s/ringdyn", state);
+    else if (home && home[0])
+        w = snprintf(buf, n, "%s/.local/state/ringdyn", home);
+    else
+        return NULL;
+    return w > 0 && (size_t)w < n ? buf : NULL;
 }
 
 /* The token: the first line of `path`, without trailing blanks.  NULL after
@@ -196,7 +231,10 @@ static void on_job_finish(void *ctx, int status, double run_seconds)
 int main(int argc, char **argv)
 {
     struct options opt = {.host = "127.0.0.1", .port = -1, .threads = 2, .queue = 32,
-                          .job_timeout = 120.0, .keep_jobs = 256, .keep_mb = 512};
+                          .job_timeout = 120.0, .keep_jobs = 256, .keep_mb = 512,
+                          .keep_days = 30};
+    rd_store *store = NULL;
+    char data_buf[4096];
     char *token = NULL;
     int status = 1;
     rd_metrics *metrics = NULL;
@@ -226,10 +264,19 @@ int main(int argc, char **argv)
         fprintf(stderr, "ringdyn-server: out of memory\n");
         goto out;
     }
+    const char *data_dir = opt.data_dir ? opt.data_dir : default_data_dir(data_buf, sizeof data_buf);
+    if (!data_dir) {
+        fprintf(stderr, "ringdyn-server: neither HOME nor XDG_STATE_HOME is set: give --data DIR\n");
+        goto out;
+    }
+    if (rd_store_open(data_dir, &store, &err) != RD_OK)
+        goto fail;
     rd_jobs_config jc = {.threads = (int)opt.threads,
                          .queue_max = (int)opt.queue,
                          .keep_max = (int)opt.keep_jobs,
                          .keep_bytes = (size_t)opt.keep_mb << 20,
+                         .keep_age_s = opt.keep_days * 86400.0,
+                         .store = store,
                          .timeout_s = opt.job_timeout,
                          .on_finish = on_job_finish,
                          .on_finish_ctx = metrics};
@@ -251,15 +298,16 @@ int main(int argc, char **argv)
     fflush(stdout);
     fprintf(stderr,
             "ringdyn-server %s: %ld workers, queue %ld, job time limit %g s, keeps %ld finished "
-            "jobs / %ld MiB of results\n",
-            rd_api_version(), opt.threads, opt.queue, opt.job_timeout, opt.keep_jobs, opt.keep_mb);
+            "jobs / %ld MiB of results / %g days in %s\n",
+            rd_api_version(), opt.threads, opt.queue, opt.job_timeout, opt.keep_jobs, opt.keep_mb,
+            opt.keep_days, data_dir);
 
     int sig = 0;
     if (sigwait(&stop, &sig) != 0)
         goto out;
     fprintf(stderr, "ringdyn-server: %s, shutting down\n", sig == SIGINT ? "SIGINT" : "SIGTERM");
     rd_http_quiesce(http);
-    rd_jobs_shutdown(jobs);
+    rd_jobs_shutdown(jobs, STOP_WAIT_S);
     rd_http_drain(http, DRAIN_S);
     status = 0;
     goto out;
@@ -268,6 +316,7 @@ fail:
 out:
     rd_http_free(http);
     rd_jobs_free(jobs);
+    rd_store_close(store);
     rd_metrics_free(metrics);
     free(token);
     return status;

@@ -335,6 +335,26 @@ static struct MHD_Response *text_response(char *body, const char *content_type)
     return r;
 }
 
+/* A job's answer: its shared JSON (a succeeded job: one copy for all the
+ * requests sending it, released when MHD is done) or the rendered `json`. */
+static struct MHD_Response *job_response(rd_jobs_body *body, char *json)
+{
+    if (!body)
+        return text_response(json, json_media);
+    struct MHD_Response *r = MHD_create_response_from_buffer_with_free_callback_cls(
+        body->len, (void *)body->data, rd_jobs_body_release, body);
+    if (!r) {
+        rd_jobs_body_release(body);
+        return NULL;
+    }
+    if (MHD_add_response_header(r, MHD_HTTP_HEADER_CONTENT_TYPE, json_media) != MHD_YES ||
+        MHD_add_response_header(r, MHD_HTTP_HEADER_CACHE_CONTROL, "no-store") != MHD_YES) {
+        MHD_destroy_response(r); /* releases the body */
+        return NULL;
+    }
+    return r;
+}
+
 static enum MHD_Result send_text(rd_http *h, struct MHD_Connection *c, struct request *rq,
                                  int status, char *body, const char *content_type)
 {
@@ -601,7 +621,9 @@ static enum MHD_Result get_metrics(rd_http *h, struct MHD_Connection *c, struct 
     rd_jobs_get_counts(h->jobs, counts);
     for (int i = 0; i < RD_JOB_NSTATUS; i++)
         names[i] = rd_jobs_status_name(i);
-    char *text = rd_metrics_render(h->metrics, names, counts, RD_JOB_NSTATUS);
+    rd_metrics_gauges g = {0};
+    rd_jobs_get_stop_latency(h->jobs, &g.stop_last_s, &g.stop_max_s);
+    char *text = rd_metrics_render(h->metrics, names, counts, RD_JOB_NSTATUS, &g);
     return send_text(h, c, rq, MHD_HTTP_OK, text, "text/plain; version=0.0.4; charset=utf-8");
 }
 
@@ -700,13 +722,14 @@ static enum MHD_Result job_route(rd_http *h, struct MHD_Connection *c, struct re
         }
         return send_response(h, c, rq, MHD_HTTP_OK, r);
     }
+    rd_jobs_body *shared = NULL;
     if (strcmp(method, MHD_HTTP_METHOD_DELETE) == 0)
-        rc = rd_jobs_cancel(h->jobs, id, &body, &err);
+        rc = rd_jobs_cancel(h->jobs, id, &shared, &body, &err);
     else
-        rc = rd_jobs_view(h->jobs, id, 0, &body, NULL, &err);
+        rc = rd_jobs_get(h->jobs, id, 0, &shared, &body, NULL, &err);
     if (rc != RD_OK)
         return send_error(h, c, rq, &err, NULL);
-    return send_text(h, c, rq, MHD_HTTP_OK, body, json_media);
+    return send_response(h, c, rq, MHD_HTTP_OK, job_response(shared, body));
 }
 
 /* First call of POST /api/v1/jobs: everything that can be refused before
@@ -796,10 +819,12 @@ static enum MHD_Result finish_submit(rd_http *h, struct MHD_Connection *c, struc
         return send_error(h, c, rq, &err, NULL);
 
     char *body = NULL;
+    rd_jobs_body *shared = NULL;
     int finished = 0;
-    if (rd_jobs_view(h->jobs, id, rq->has_wait ? rq->wait_s : 0, &body, &finished, &err) != RD_OK)
+    if (rd_jobs_get(h->jobs, id, rq->has_wait ? rq->wait_s : 0, &shared, &body, &finished, &err) !=
+        RD_OK)
         return send_error(h, c, rq, &err, NULL);
-    struct MHD_Response *r = text_response(body, json_media);
+    struct MHD_Response *r = job_response(shared, body);
     if (r) {
         char location[64];
         snprintf(location, sizeof location, "/api/v1/jobs/%s", id);

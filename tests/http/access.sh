@@ -72,7 +72,7 @@ stop_server T "$T_PID"
 # ---- start-up refusals -------------------------------------------------------------
 refuses() { # NAME WANT_IN_STDERR ARGS...
   local name=$1 want=$2 rc=0; shift 2
-  timeout 20 "$SERVER" "$@" >"$WORK/refuse.out" 2>"$WORK/refuse.err" || rc=$?
+  timeout 20 "$SERVER" --data :memory: "$@" >"$WORK/refuse.out" 2>"$WORK/refuse.err" || rc=$?
   if [ "$rc" -ne 0 ] && [ "$rc" -ne 124 ] && grep -q -- "$want" "$WORK/refuse.err"; then
     ok "$name"
   else
@@ -86,7 +86,7 @@ refuses "a missing token file is refused" --token-file --port 0 --token-file "$W
 refuses "--allow-host with a port is refused" --allow-host --port 0 --allow-host a.example:80
 
 # 0.0.0.0 with a token starts, and the token is asked for
-"$SERVER" --host 0.0.0.0 --port 0 --token-file "$WORK/token" >"$WORK/any.out" 2>"$WORK/any.err" &
+"$SERVER" --data :memory: --host 0.0.0.0 --port 0 --token-file "$WORK/token" >"$WORK/any.out" 2>"$WORK/any.err" &
 PIDS+=($!)
 ANY_PID=$!
 for _ in $(seq 1 150); do

@@ -23,7 +23,9 @@ same() { if [ "$2" = "$3" ]; then ok "$1"; else bad "$1" "got '$2', want '$3'"; 
 # start_server NAME ARGS...: starts a server, sets BASE and SPID.
 start_server() {
   local name=$1; shift
-  "$SERVER" --host 127.0.0.1 --port 0 "$@" >"$WORK/$name.out" 2>"$WORK/$name.err" &
+  local data=(--data :memory:) # unless the caller names a store
+  case " $* " in *" --data "*) data=() ;; esac
+  "$SERVER" --host 127.0.0.1 --port 0 "${data[@]}" "$@" >"$WORK/$name.out" 2>"$WORK/$name.err" &
   SPID=$!
   PIDS+=("$SPID")
   local i line=""
