@@ -36,4 +36,4 @@ VOLUME /data
 EXPOSE 8080
 HEALTHCHECK --interval=30s --timeout=5s --start-period=5s \
   CMD curl -fsS http://127.0.0.1:8080/api/v1/health >/dev/null || exit 1
-CMD ["sh", "-c", "[ -s /data/token ] || (umask 077 && head -c 24 /dev/urandom | base64 >/data/token) && exec ringdyn-server --host 0.0.0.0 --port 8080 --static /app/static --examples /app/examples --token-file /data/token"]
+CMD ["sh", "-c", "[ -s /data/token ] || (umask 077 && head -c 24 /dev/urandom | base64 >/data/token) && exec ringdyn-server --host 0.0.0.0 --port 8080 --static /app/static --examples /app/examples --token-file /data/token --data /data"]
