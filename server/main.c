@@ -54,6 +54,7 @@ struct options {
     long keep_mb;
     double keep_days;
     const char *data_dir;
+    rd_http_limits limits;
     const char *allow_hosts[ALLOW_HOSTS_MAX];
     int n_allow_hosts;
     const char *token_file;
@@ -78,6 +79,17 @@ static void usage(FILE *f)
             "                    $XDG_STATE_HOME/ringdyn or ~/.local/state/ringdyn; ':memory:'\n"
             "                    keeps nothing across restarts.  Finished jobs survive a restart;\n"
             "                    jobs queued or running when the server stopped end 'interrupted'\n"
+            "connections (libmicrohttpd's epoll event loop; an open connection holds no thread):\n"
+            "  --http-threads N  event-loop threads (default 4, 1..64)\n"
+            "  --max-connections N  open connections in all (default 1000, 1..100000);\n"
+            "                    more are closed at once when accepted\n"
+            "  --max-per-ip N    open connections from one client address (default 64, 1..100000)\n"
+            "  --request-deadline S  a request's header and body must arrive within S seconds of\n"
+            "                    the connection's start or of the previous answer (default 10,\n"
+            "                    0.1..3600); a slower one is closed without an answer.  An idle\n"
+            "                    keep-alive connection is closed after S as well\n"
+            "  --idle-timeout S  a connection with no traffic at all is closed after S seconds,\n"
+            "                    also while an answer is being sent (default 30, 1..3600)\n"
             "access:\n"
             "  --allow-host NAME serve requests whose Host header names NAME (any port); repeatable.\n"
             "                    127.0.0.1, localhost, [::1] and the bound address are always\n"
@@ -142,7 +154,29 @@ static int parse_options(int argc, char **argv, struct options *o)
                 o->allow_hosts[o->n_allow_hosts++] = value;
         } else if (IS("--token-file"))
             o->token_file = value;
-        else if (IS("--data"))
+        else if (IS("--http-threads")) {
+            long v;
+            if ((ok = parse_long(value, 1, 64, &v)))
+                o->limits.threads = (int)v;
+        } else if (IS("--max-connections")) {
+            long v;
+            if ((ok = parse_long(value, 1, 100000, &v)))
+                o->limits.connections_max = (int)v;
+        } else if (IS("--max-per-ip")) {
+            long v;
+            if ((ok = parse_long(value, 1, 100000, &v)))
+                o->limits.per_ip_max = (int)v;
+        } else if (IS("--idle-timeout")) {
+            long v;
+            if ((ok = parse_long(value, 1, 3600, &v)))
+                o->limits.idle_timeout_s = (int)v;
+        } else if (IS("--request-deadline")) {
+            char *end;
+            double v = strtod(value, &end);
+            ok = end != value && !*end && v >= 0.1 && v <= 3600;
+            if (ok)
+                o->limits.request_deadline_s = v;
+        } else if (IS("--data"))
             o->data_dir = value;
         else if (IS("--keep-days")) {
             char *end;
@@ -222,6 +256,16 @@ static char *read_token(const char *path)
     return line;
 }
 
+/* rd_jobs' on_final: wakes the requests waiting for jobs.  Jobs start only
+ * once the server serves (no job can end before `http` is set), and none
+ * ends after rd_jobs_shutdown returns, which precedes rd_http_free. */
+static void on_job_final(void *ctx)
+{
+    rd_http *const *http = ctx;
+    if (*http)
+        rd_http_job_ended(*http);
+}
+
 static void on_job_finish(void *ctx, int status, double run_seconds)
 {
     (void)status;
@@ -232,7 +276,12 @@ int main(int argc, char **argv)
 {
     struct options opt = {.host = "127.0.0.1", .port = -1, .threads = 2, .queue = 32,
                           .job_timeout = 120.0, .keep_jobs = 256, .keep_mb = 512,
-                          .keep_days = 30};
+                          .keep_days = 30,
+                          .limits = {.threads = 4,
+                                     .connections_max = 1000,
+                                     .per_ip_max = 64,
+                                     .request_deadline_s = 10,
+                                     .idle_timeout_s = 30}};
     rd_store *store = NULL;
     char data_buf[4096];
     char *token = NULL;
@@ -279,7 +328,9 @@ int main(int argc, char **argv)
                          .store = store,
                          .timeout_s = opt.job_timeout,
                          .on_finish = on_job_finish,
-                         .on_finish_ctx = metrics};
+                         .on_finish_ctx = metrics,
+                         .on_final = on_job_final,
+                         .on_final_ctx = &http};
     if (rd_jobs_create(&jc, &jobs, &err) != RD_OK)
         goto fail;
     if (opt.token_file && !(token = read_token(opt.token_file)))
@@ -290,7 +341,8 @@ int main(int argc, char **argv)
                          .examples_dir = opt.examples_dir,
                          .allow_hosts = opt.allow_hosts,
                          .n_allow_hosts = opt.n_allow_hosts,
-                         .token = token};
+                         .token = token,
+                         .limits = opt.limits};
     if (rd_http_create(&hc, jobs, metrics, &http, &err) != RD_OK)
         goto fail;
 

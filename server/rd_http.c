@@ -46,10 +46,15 @@
 #include "rd_api.h"
 #include "rd_openapi.h"
 
-/* Idle time after which MHD drops a connection.  A request waiting for its
- * job is not idle (its thread is in our handler, where MHD does not time it
- * out). */
-#define IDLE_TIMEOUT_S 60
+/* Connections the kernel queues before MHD accepts them. */
+#define LISTEN_BACKLOG 1024
+/* The timer thread's period: the latest a waiter is resumed after its
+ * deadline, and the resolution of the request deadline. */
+#define TICK_S 0.1
+/* How often the store's age limit is applied. */
+#define EXPIRE_EVERY_S 60.0
+/* How long DELETE waits for a running job to acknowledge the cancellation. */
+#define CANCEL_WAIT_S 5.0
 /* GET /api/v1/jobs: default and largest ?limit=. */
 #define LIST_LIMIT_DEFAULT 50
 #define LIST_LIMIT_MAX 1000
@@ -72,13 +77,40 @@ struct rd_http {
     char **allow;           /* Host names served (lower case, IPv6 in brackets) */
     size_t n_allow;
     char *token;            /* bearer token, or NULL */
-    pthread_mutex_t mu; /* guards in_flight */
+    rd_http_limits limits;
+    pthread_mutex_t mu;  /* guards everything below */
     pthread_cond_t idle; /* in_flight dropped to 0 */
     int in_flight;       /* requests between their first call and on_completed */
+    pthread_cond_t wake; /* for the timer thread: a job ended, a waiter came, or stop */
+    int poked, stop;
+    pthread_t timer;
+    int timer_started;
+    struct request *waiters; /* suspended requests, waiting for their job */
+    struct conn *conns;      /* every open connection */
+    size_t nconns;
+    size_t deadline_closed;
 };
+
+/* Per-connection state (MHD_OPTION_NOTIFY_CONNECTION), in rd_http.conns. */
+struct conn {
+    struct conn *prev, *next;
+    MHD_socket fd;
+    double since; /* CLOCK_MONOTONIC: the request now arriving began no earlier */
+    int busy;     /* a complete request is being answered: no deadline */
+    int shut;     /* the deadline passed and the socket was shut down */
+};
+
+enum wait_kind { WAIT_NONE, WAIT_SUBMIT, WAIT_CANCEL };
 
 /* Per-request state, kept by MHD in *req_cls between calls. */
 struct request {
+    struct MHD_Connection *c;
+    struct conn *conn;       /* may be NULL */
+    struct request *prev, *next; /* in rd_http.waiters while suspended */
+    enum wait_kind waiting;  /* suspended until its job ends or `until` */
+    int resumed;             /* the timer thread resumed it */
+    double until;            /* CLOCK_MONOTONIC */
+    char job_id[RD_JOBS_ID_LEN + 1];
     int started;   /* the headers have been handled */
     int replied;   /* a response is queued: drop whatever body follows */
     int has_wait;  /* ?wait= was given */
@@ -103,6 +135,27 @@ enum route {
 };
 
 /* ---- small helpers ---- */
+
+static double mono_now(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+static struct timespec mono_deadline(double seconds)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    double whole = floor(seconds);
+    ts.tv_sec += (time_t)whole;
+    ts.tv_nsec += (long)((seconds - whole) * 1e9);
+    if (ts.tv_nsec >= 1000000000L) {
+        ts.tv_sec++;
+        ts.tv_nsec -= 1000000000L;
+    }
+    return ts;
+}
 
 /* A copy of `s` fit for a message: printable ASCII only, at most n-1 bytes.
  * (Error bodies must be valid UTF-8; request text need not be.) */
@@ -294,6 +347,172 @@ static int method_allowed(const char *allow, const char *method)
     return 0;
 }
 
+/* ---- connections: the request deadline and suspended waits ---- */
+
+/* The request on this connection is complete (being answered): the
+ * deadline no longer applies until the next one starts. */
+static void set_busy(rd_http *h, struct request *rq)
+{
+    if (!rq->conn)
+        return;
+    pthread_mutex_lock(&h->mu);
+    rq->conn->busy = 1;
+    pthread_mutex_unlock(&h->mu);
+}
+
+/* MHD_OPTION_NOTIFY_CONNECTION: keeps rd_http.conns.  MHD calls CLOSED
+ * before it closes the socket, and the timer thread shuts sockets down only
+ * under `mu` while the connection is listed, so it never touches a
+ * descriptor that has been reused. */
+static void on_connection(void *cls, struct MHD_Connection *c, void **socket_context,
+                          enum MHD_ConnectionNotificationCode code)
+{
+    rd_http *h = cls;
+    if (code == MHD_CONNECTION_NOTIFY_STARTED) {
+        const union MHD_ConnectionInfo *info =
+            MHD_get_connection_info(c, MHD_CONNECTION_INFO_CONNECTION_FD);
+        struct conn *k = calloc(1, sizeof *k);
+        if (!k || !info) { /* not tracked: then only the idle timeout applies */
+            free(k);
+            *socket_context = NULL;
+            return;
+        }
+        k->fd = info->connect_fd;
+        k->since = mono_now();
+        pthread_mutex_lock(&h->mu);
+        k->next = h->conns;
+        if (h->conns)
+            h->conns->prev = k;
+        h->conns = k;
+        h->nconns++;
+        pthread_mutex_unlock(&h->mu);
+        *socket_context = k;
+        return;
+    }
+    struct conn *k = *socket_context;
+    if (!k)
+        return;
+    pthread_mutex_lock(&h->mu);
+    if (k->prev)
+        k->prev->next = k->next;
+    else
+        h->conns = k->next;
+    if (k->next)
+        k->next->prev = k->prev;
+    h->nconns--;
+    pthread_mutex_unlock(&h->mu);
+    free(k);
+    *socket_context = NULL;
+}
+
+/* Shuts down the sockets whose request is overdue (mu held).  MHD sees the
+ * socket end and closes the connection in its own thread. */
+static void enforce_deadline_locked(rd_http *h, double now)
+{
+    for (struct conn *k = h->conns; k; k = k->next)
+        if (!k->busy && !k->shut && now - k->since > h->limits.request_deadline_s) {
+            shutdown(k->fd, SHUT_RDWR);
+            k->shut = 1;
+            h->deadline_closed++;
+        }
+}
+
+/* Suspends a request until job `id` ends or `seconds` pass; the timer
+ * thread resumes it, and MHD then calls on_request again (answer_waiter). */
+static enum MHD_Result suspend_for(rd_http *h, struct MHD_Connection *c, struct request *rq,
+                                   enum wait_kind kind, const char *id, double seconds)
+{
+    set_busy(h, rq);
+    rq->waiting = kind;
+    rq->until = mono_now() + seconds;
+    memcpy(rq->job_id, id, sizeof rq->job_id);
+    MHD_suspend_connection(c);
+    pthread_mutex_lock(&h->mu);
+    rq->prev = NULL;
+    rq->next = h->waiters;
+    if (h->waiters)
+        h->waiters->prev = rq;
+    h->waiters = rq;
+    h->poked = 1; /* the job may have ended before the request was listed */
+    pthread_cond_signal(&h->wake);
+    pthread_mutex_unlock(&h->mu);
+    return MHD_YES;
+}
+
+/* Takes the waiters that may go on (job final, time up, or `all`) off the
+ * list (mu held) and returns them chained through `next`; the caller resumes
+ * them after unlocking (MHD takes its own locks in MHD_resume_connection). */
+static struct request *take_ready_locked(rd_http *h, double now, int all)
+{
+    struct request *ready = NULL, *rq = h->waiters;
+    while (rq) {
+        struct request *next = rq->next;
+        if (all || now >= rq->until || rd_jobs_is_final(h->jobs, rq->job_id)) {
+            if (rq->prev)
+                rq->prev->next = rq->next;
+            else
+                h->waiters = rq->next;
+            if (rq->next)
+                rq->next->prev = rq->prev;
+            rq->prev = NULL;
+            rq->next = ready;
+            ready = rq;
+        }
+        rq = next;
+    }
+    return ready;
+}
+
+static void resume_all(struct request *ready)
+{
+    while (ready) {
+        struct request *next = ready->next;
+        ready->next = NULL;
+        ready->resumed = 1;
+        MHD_resume_connection(ready->c);
+        ready = next;
+    }
+}
+
+/* The timer thread: resumes waiters, enforces the request deadline, applies
+ * the job store's age limit; wakes on rd_http_job_ended or every TICK_S. */
+static void *timer_main(void *arg)
+{
+    rd_http *h = arg;
+    double next_expire = mono_now() + EXPIRE_EVERY_S;
+    pthread_mutex_lock(&h->mu);
+    while (!h->stop) {
+        if (!h->poked) {
+            struct timespec tick = mono_deadline(TICK_S);
+            pthread_cond_timedwait(&h->wake, &h->mu, &tick);
+        }
+        h->poked = 0;
+        double now = mono_now();
+        struct request *ready = take_ready_locked(h, now, 0);
+        enforce_deadline_locked(h, now);
+        pthread_mutex_unlock(&h->mu);
+        resume_all(ready);
+        if (now >= next_expire) {
+            rd_jobs_expire(h->jobs);
+            next_expire = now + EXPIRE_EVERY_S;
+        }
+        pthread_mutex_lock(&h->mu);
+    }
+    struct request *ready = take_ready_locked(h, 0, 1);
+    pthread_mutex_unlock(&h->mu);
+    resume_all(ready);
+    return NULL;
+}
+
+void rd_http_job_ended(void *http)
+{
+    rd_http *h = http;
+    pthread_mutex_lock(&h->mu);
+    h->poked = 1;
+    pthread_cond_signal(&h->wake);
+    pthread_mutex_unlock(&h->mu);
+}
+
 /* ---- responses ---- */
 
 /* Queues `r` (consumed; NULL means out of memory and sends a fixed 503). */
@@ -309,6 +528,7 @@ static enum MHD_Result send_response(rd_http *h, struct MHD_Connection *c, struc
         status = MHD_HTTP_SERVICE_UNAVAILABLE;
     }
     rq->replied = 1;
+    set_busy(h, rq);
     enum MHD_Result ok = MHD_queue_response(c, (unsigned)status, r);
     MHD_destroy_response(r);
     if (ok == MHD_YES)
@@ -623,6 +843,10 @@ static enum MHD_Result get_metrics(rd_http *h, struct MHD_Connection *c, struct 
         names[i] = rd_jobs_status_name(i);
     rd_metrics_gauges g = {0};
     rd_jobs_get_stop_latency(h->jobs, &g.stop_last_s, &g.stop_max_s);
+    pthread_mutex_lock(&h->mu);
+    g.connections = h->nconns;
+    g.deadline_closed = h->deadline_closed;
+    pthread_mutex_unlock(&h->mu);
     char *text = rd_metrics_render(h->metrics, names, counts, RD_JOB_NSTATUS, &g);
     return send_text(h, c, rq, MHD_HTTP_OK, text, "text/plain; version=0.0.4; charset=utf-8");
 }
@@ -723,10 +947,13 @@ static enum MHD_Result job_route(rd_http *h, struct MHD_Connection *c, struct re
         return send_response(h, c, rq, MHD_HTTP_OK, r);
     }
     rd_jobs_body *shared = NULL;
-    if (strcmp(method, MHD_HTTP_METHOD_DELETE) == 0)
-        rc = rd_jobs_cancel(h->jobs, id, &shared, &body, &err);
-    else
-        rc = rd_jobs_get(h->jobs, id, 0, &shared, &body, NULL, &err);
+    if (strcmp(method, MHD_HTTP_METHOD_DELETE) == 0) {
+        if ((rc = rd_jobs_request_cancel(h->jobs, id, &err)) != RD_OK)
+            return send_error(h, c, rq, &err, NULL);
+        if (!rd_jobs_is_final(h->jobs, id)) /* running: wait for it to stop */
+            return suspend_for(h, c, rq, WAIT_CANCEL, id, CANCEL_WAIT_S);
+    }
+    rc = rd_jobs_get(h->jobs, id, 0, &shared, &body, NULL, &err);
     if (rc != RD_OK)
         return send_error(h, c, rq, &err, NULL);
     return send_response(h, c, rq, MHD_HTTP_OK, job_response(shared, body));
@@ -794,6 +1021,45 @@ static void take_body(struct request *rq, const char *data, size_t n)
     rq->body[rq->len] = '\0';
 }
 
+/* The answer to a submission: 200 and the job if ?wait was given and the
+ * job is final, else 202; Location either way. */
+static enum MHD_Result answer_submit(rd_http *h, struct MHD_Connection *c, struct request *rq,
+                                     const char *id)
+{
+    rd_error err;
+    rd_error_init(&err);
+    char *body = NULL;
+    rd_jobs_body *shared = NULL;
+    int finished = 0;
+    if (rd_jobs_get(h->jobs, id, 0, &shared, &body, &finished, &err) != RD_OK)
+        return send_error(h, c, rq, &err, NULL);
+    struct MHD_Response *r = job_response(shared, body);
+    char location[64];
+    snprintf(location, sizeof location, "/api/v1/jobs/%s", id);
+    if (r && MHD_add_response_header(r, MHD_HTTP_HEADER_LOCATION, location) != MHD_YES) {
+        MHD_destroy_response(r);
+        r = NULL;
+    }
+    return send_response(h, c, rq, rq->has_wait && finished ? MHD_HTTP_OK : MHD_HTTP_ACCEPTED, r);
+}
+
+/* A suspended request, resumed: answer with the job as it is now. */
+static enum MHD_Result answer_waiter(rd_http *h, struct MHD_Connection *c, struct request *rq)
+{
+    enum wait_kind kind = rq->waiting;
+    rq->waiting = WAIT_NONE;
+    rq->resumed = 0;
+    if (kind == WAIT_SUBMIT)
+        return answer_submit(h, c, rq, rq->job_id);
+    rd_error err;
+    rd_error_init(&err);
+    char *body = NULL;
+    rd_jobs_body *shared = NULL;
+    if (rd_jobs_get(h->jobs, rq->job_id, 0, &shared, &body, NULL, &err) != RD_OK)
+        return send_error(h, c, rq, &err, NULL);
+    return send_response(h, c, rq, MHD_HTTP_OK, job_response(shared, body));
+}
+
 /* Last call of POST /api/v1/jobs: parse, queue, maybe wait. */
 static enum MHD_Result finish_submit(rd_http *h, struct MHD_Connection *c, struct request *rq)
 {
@@ -818,19 +1084,9 @@ static enum MHD_Result finish_submit(rd_http *h, struct MHD_Connection *c, struc
     if (rd_jobs_submit(h->jobs, scene, id, &err) != RD_OK) /* takes the scene */
         return send_error(h, c, rq, &err, NULL);
 
-    char *body = NULL;
-    rd_jobs_body *shared = NULL;
-    int finished = 0;
-    if (rd_jobs_get(h->jobs, id, rq->has_wait ? rq->wait_s : 0, &shared, &body, &finished, &err) !=
-        RD_OK)
-        return send_error(h, c, rq, &err, NULL);
-    struct MHD_Response *r = job_response(shared, body);
-    if (r) {
-        char location[64];
-        snprintf(location, sizeof location, "/api/v1/jobs/%s", id);
-        MHD_add_response_header(r, MHD_HTTP_HEADER_LOCATION, location);
-    }
-    return send_response(h, c, rq, rq->has_wait && finished ? MHD_HTTP_OK : MHD_HTTP_ACCEPTED, r);
+    if (rq->has_wait && rq->wait_s > 0 && !rd_jobs_is_final(h->jobs, id))
+        return suspend_for(h, c, rq, WAIT_SUBMIT, id, rq->wait_s);
+    return answer_submit(h, c, rq, id);
 }
 
 /* First call of every request: route, check the method, answer (or, for a
@@ -905,9 +1161,18 @@ static enum MHD_Result on_request(void *cls, struct MHD_Connection *c, const cha
         if (!rq)
             return MHD_NO; /* closes the connection */
         *req_cls = rq;
+        rq->c = c;
+        const union MHD_ConnectionInfo *info =
+            MHD_get_connection_info(c, MHD_CONNECTION_INFO_SOCKET_CONTEXT);
+        rq->conn = info ? info->socket_context : NULL;
         pthread_mutex_lock(&h->mu);
         h->in_flight++;
         pthread_mutex_unlock(&h->mu);
+    }
+    if (rq->waiting != WAIT_NONE) {
+        if (!rq->resumed) /* MHD should not call a suspended request; be safe */
+            return MHD_YES;
+        return answer_waiter(h, c, rq);
     }
     if (!rq->started) {
         rq->started = 1;
@@ -936,9 +1201,21 @@ static void on_completed(void *cls, struct MHD_Connection *c, void **req_cls,
     if (!rq)
         return;
     free(rq->body);
+    pthread_mutex_lock(&h->mu);
+    if (rq->waiting != WAIT_NONE && !rq->resumed) { /* still listed (daemon stop) */
+        if (rq->prev)
+            rq->prev->next = rq->next;
+        else
+            h->waiters = rq->next;
+        if (rq->next)
+            rq->next->prev = rq->prev;
+    }
+    if (rq->conn) { /* the next request on this connection starts now */
+        rq->conn->busy = 0;
+        rq->conn->since = mono_now();
+    }
     free(rq);
     *req_cls = NULL;
-    pthread_mutex_lock(&h->mu);
     if (--h->in_flight == 0)
         pthread_cond_broadcast(&h->idle);
     pthread_mutex_unlock(&h->mu);
@@ -1036,10 +1313,17 @@ int rd_http_create(const rd_http_config *cfg, rd_jobs *jobs, rd_metrics *metrics
     pthread_condattr_setclock(&attr, CLOCK_MONOTONIC);
     pthread_mutex_init(&h->mu, NULL);
     pthread_cond_init(&h->idle, &attr);
+    pthread_cond_init(&h->wake, &attr);
     pthread_condattr_destroy(&attr);
     if ((rc = resolve_dir("--static", cfg->static_dir, &h->static_root, err)) != RD_OK ||
         (rc = resolve_dir("--examples", cfg->examples_dir, &h->examples_dir, err)) != RD_OK)
         goto out;
+    h->limits = cfg->limits;
+    if (cfg->limits.threads < 1 || cfg->limits.connections_max < 1 || cfg->limits.per_ip_max < 1 ||
+        !(cfg->limits.request_deadline_s > 0) || cfg->limits.idle_timeout_s < 1) {
+        rc = rd_error_set(err, RD_EINVAL, "", "Connection limits out of range.");
+        goto out;
+    }
     if (cfg->port < 0 || cfg->port > 65535) {
         rc = rd_error_set(err, RD_EINVAL, "", "--port %d: not a port (0..65535).", cfg->port);
         goto out;
@@ -1057,8 +1341,8 @@ int rd_http_create(const rd_http_config *cfg, rd_jobs *jobs, rd_metrics *metrics
     struct sockaddr_storage addr;
     memset(&addr, 0, sizeof addr);
     memcpy(&addr, ai->ai_addr, ai->ai_addrlen);
-    unsigned int flags = MHD_USE_AUTO_INTERNAL_THREAD | MHD_USE_THREAD_PER_CONNECTION | MHD_USE_ITC |
-                         MHD_USE_ERROR_LOG;
+    unsigned int flags = MHD_USE_INTERNAL_POLLING_THREAD | MHD_USE_EPOLL | MHD_USE_ITC |
+                         MHD_ALLOW_SUSPEND_RESUME | MHD_USE_ERROR_LOG;
     char text[INET6_ADDRSTRLEN];
     if (ai->ai_family == AF_INET6) {
         struct sockaddr_in6 *a6 = (struct sockaddr_in6 *)&addr;
@@ -1083,12 +1367,22 @@ int rd_http_create(const rd_http_config *cfg, rd_jobs *jobs, rd_metrics *metrics
     if ((rc = set_access(h, cfg, &addr, err)) != RD_OK)
         goto out;
 
+    int e = pthread_create(&h->timer, NULL, timer_main, h);
+    if (e != 0) {
+        rc = rd_error_set(err, RD_EINTERNAL, "", "Cannot start the timer thread: %s.", strerror(e));
+        goto out;
+    }
+    h->timer_started = 1;
+    const rd_http_limits *lim = &cfg->limits;
     h->daemon = MHD_start_daemon(
         flags, (uint16_t)cfg->port, NULL, NULL, on_request, h, MHD_OPTION_SOCK_ADDR,
-        (struct sockaddr *)&addr, MHD_OPTION_CONNECTION_LIMIT, (unsigned int)RD_HTTP_CONNECTIONS_MAX,
-        MHD_OPTION_CONNECTION_TIMEOUT, (unsigned int)IDLE_TIMEOUT_S, MHD_OPTION_NOTIFY_COMPLETED,
-        on_completed, (void *)h, MHD_OPTION_UNESCAPE_CALLBACK, unescape_path, (void *)NULL,
-        MHD_OPTION_END);
+        (struct sockaddr *)&addr, MHD_OPTION_THREAD_POOL_SIZE, (unsigned int)lim->threads,
+        MHD_OPTION_CONNECTION_LIMIT, (unsigned int)lim->connections_max,
+        MHD_OPTION_PER_IP_CONNECTION_LIMIT, (unsigned int)lim->per_ip_max,
+        MHD_OPTION_CONNECTION_TIMEOUT, (unsigned int)lim->idle_timeout_s,
+        MHD_OPTION_LISTEN_BACKLOG_SIZE, (unsigned int)LISTEN_BACKLOG, MHD_OPTION_NOTIFY_COMPLETED,
+        on_completed, (void *)h, MHD_OPTION_NOTIFY_CONNECTION, on_connection, (void *)h,
+        MHD_OPTION_UNESCAPE_CALLBACK, unescape_path, (void *)NULL, MHD_OPTION_END);
     if (!h->daemon) {
         rc = rd_error_set(err, RD_EINTERNAL, "", "Cannot listen on %s port %d (in use?).", h->host,
                           cfg->port);
@@ -1126,14 +1420,7 @@ void rd_http_drain(rd_http *http, double seconds)
 {
     if (!http)
         return;
-    struct timespec deadline;
-    clock_gettime(CLOCK_MONOTONIC, &deadline);
-    deadline.tv_sec += (time_t)seconds;
-    deadline.tv_nsec += (long)((seconds - floor(seconds)) * 1e9);
-    if (deadline.tv_nsec >= 1000000000L) {
-        deadline.tv_sec++;
-        deadline.tv_nsec -= 1000000000L;
-    }
+    struct timespec deadline = mono_deadline(seconds);
     pthread_mutex_lock(&http->mu);
     while (http->in_flight > 0)
         if (pthread_cond_timedwait(&http->idle, &http->mu, &deadline) == ETIMEDOUT)
@@ -1145,11 +1432,19 @@ void rd_http_free(rd_http *http)
 {
     if (!http)
         return;
+    if (http->timer_started) { /* resumes every waiter on its way out */
+        pthread_mutex_lock(&http->mu);
+        http->stop = 1;
+        pthread_cond_signal(&http->wake);
+        pthread_mutex_unlock(&http->mu);
+        pthread_join(http->timer, NULL);
+    }
     if (http->daemon)
         MHD_stop_daemon(http->daemon);
     if (http->quiesced_fd != MHD_INVALID_SOCKET)
         close(http->quiesced_fd);
     pthread_cond_destroy(&http->idle);
+    pthread_cond_destroy(&http->wake);
     pthread_mutex_destroy(&http->mu);
     free(http->static_root);
     free(http->examples_dir);

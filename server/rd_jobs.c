@@ -100,6 +100,7 @@ struct rd_jobs {
     int nworkers; /* started successfully */
     int active;   /* workers not yet returned */
     int in_solver; /* workers inside rd_scene_run */
+    struct body *recent; /* the body read last, held one reference longer (see keep_recent_locked) */
 };
 
 /* What a request reads of a job, copied under `mu`. */
@@ -493,6 +494,14 @@ static int view_and_release(rd_jobs *jobs, struct job *job, char **json, int *fi
 
 /* ---- the shared JSON of a succeeded job ---- */
 
+static void body_free(struct body *b)
+{
+    if (b) {
+        free(b->data);
+        free(b);
+    }
+}
+
 void rd_jobs_body_release(void *pub)
 {
     struct body *b = pub;
@@ -504,10 +513,27 @@ void rd_jobs_body_release(void *pub)
     if (last && b->owner)
         b->owner->body = NULL;
     pthread_mutex_unlock(&jobs->mu);
-    if (last) {
-        free(b->data);
-        free(b);
-    }
+    if (last)
+        body_free(b);
+}
+
+/* Holds `b` as the most recently read body, dropping the one held before;
+ * returns that one when this was its last reference (the caller frees it
+ * after unlocking).  So a job read again and again (a page polling it,
+ * clients whose socket buffers swallow the whole answer) is read from the
+ * store once, at the cost of one result held while nobody reads it. */
+static struct body *keep_recent_locked(rd_jobs *jobs, struct body *b)
+{
+    struct body *old = jobs->recent;
+    if (old == b)
+        return NULL;
+    b->refs++;
+    jobs->recent = b;
+    if (!old || --old->refs > 0)
+        return NULL;
+    if (old->owner)
+        old->owner->body = NULL;
+    return old;
 }
 
 /* Called with `mu` held and a reference on a succeeded `job`: its shared
@@ -518,8 +544,10 @@ static int body_and_release(rd_jobs *jobs, struct job *job, rd_jobs_body **out, 
     struct body *b = job->body;
     if (b) {
         b->refs++;
+        struct body *dropped = keep_recent_locked(jobs, b);
         release_locked(job);
         pthread_mutex_unlock(&jobs->mu);
+        body_free(dropped);
         *out = &b->pub;
         return RD_OK;
     }
@@ -554,8 +582,10 @@ static int body_and_release(rd_jobs *jobs, struct job *job, rd_jobs_body **out, 
     } else {
         free(data);
     }
+    struct body *dropped = rc == RD_OK ? keep_recent_locked(jobs, job->body) : NULL;
     release_locked(job);
     pthread_mutex_unlock(&jobs->mu);
+    body_free(dropped);
     return rc;
 }
 
@@ -869,18 +899,20 @@ void rd_jobs_shutdown(rd_jobs *jobs, double wait_s)
     if (!jobs)
         return;
     pthread_mutex_lock(&jobs->mu);
-    if (!jobs->stopping) {
-        jobs->stopping = 1;
-        double now = mono_now();
-        for (struct job *j = jobs->head; j; j = j->next) {
-            if (j->status == RD_JOB_QUEUED)
-                end_locked(jobs, j, RD_JOB_INTERRUPTED, interrupted_json("queued"));
-            else if (j->status == RD_JOB_RUNNING && !(j->stop_asked > 0))
-                j->stop_asked = now; /* runs see `stopping` at their next report */
-        }
-        pthread_cond_broadcast(&jobs->work);
-        pthread_cond_broadcast(&jobs->done);
+    if (jobs->stopping) {
+        pthread_mutex_unlock(&jobs->mu);
+        return;
     }
+    jobs->stopping = 1;
+    double now = mono_now();
+    for (struct job *j = jobs->head; j; j = j->next) {
+        if (j->status == RD_JOB_QUEUED)
+            end_locked(jobs, j, RD_JOB_INTERRUPTED, interrupted_json("queued"));
+        else if (j->status == RD_JOB_RUNNING && !(j->stop_asked > 0))
+            j->stop_asked = now; /* runs see `stopping` at their next report */
+    }
+    pthread_cond_broadcast(&jobs->work);
+    pthread_cond_broadcast(&jobs->done);
     /* Runs that end within wait_s end as they would (a success is kept);
      * the rest are ended interrupted now and their workers left behind. */
     struct timespec deadline = mono_deadline(wait_s);
@@ -919,6 +951,8 @@ void rd_jobs_free(rd_jobs *jobs)
     for (int i = 0; i < jobs->nworkers; i++)
         pthread_join(jobs->workers[i], NULL);
     free(jobs->workers);
+    if (jobs->recent) /* no request is left: this is its last reference */
+        rd_jobs_body_release(&jobs->recent->pub);
     struct job *j = jobs->head;
     while (j) {
         struct job *next = j->next;
