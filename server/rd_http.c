@@ -642,6 +642,72 @@ static enum MHD_Result send_server_error(rd_http *h, struct MHD_Connection *c, s
     return send_response(h, c, rq, status, r);
 }
 
+/* ---- framing the handler can still judge ---- */
+
+struct header_scan {
+    const char *name;
+    int count;
+    int differ;        /* two of them have different values */
+    const char *first; /* the first value */
+};
+
+static enum MHD_Result scan_header(void *cls, enum MHD_ValueKind kind, const char *key,
+                                   const char *value)
+{
+    (void)kind;
+    struct header_scan *scan = cls;
+    if (strcasecmp(key, scan->name) != 0)
+        return MHD_YES;
+    if (scan->count++ == 0)
+        scan->first = value ? value : "";
+    else if (strcmp(scan->first, value ? value : "") != 0)
+        scan->differ = 1;
+    return MHD_YES;
+}
+
+static struct header_scan scan_headers(struct MHD_Connection *c, const char *name)
+{
+    struct header_scan scan = {name, 0, 0, NULL};
+    MHD_get_connection_values(c, MHD_HEADER_KIND, scan_header, &scan);
+    return scan;
+}
+
+/* Message framing libmicrohttpd lets through but HTTP/1.1 (RFC 9112 6.3)
+ * says to refuse, since a proxy in front could read the body differently
+ * (request smuggling): Content-Length headers that disagree, Content-Length
+ * together with Transfer-Encoding, a transfer coding other than chunked;
+ * and an HTTP/1.1 request without Host.  The answer closes the connection,
+ * whose remaining bytes cannot be trusted.  Returns MHD_YES (with
+ * *refused = 1) after queueing the refusal, or leaves *refused 0. */
+static enum MHD_Result check_framing(rd_http *h, struct MHD_Connection *c, struct request *rq,
+                                     const char *version, int *refused)
+{
+    char buf[64];
+    const char *why = NULL;
+    struct header_scan length = scan_headers(c, MHD_HTTP_HEADER_CONTENT_LENGTH);
+    struct header_scan coding = scan_headers(c, MHD_HTTP_HEADER_TRANSFER_ENCODING);
+    struct header_scan host = scan_headers(c, MHD_HTTP_HEADER_HOST);
+    char message[256];
+    if (length.differ)
+        why = "The request has Content-Length headers with different values; send one.";
+    else if (length.count > 0 && coding.count > 0)
+        why = "The request has both Content-Length and Transfer-Encoding; send one of them.";
+    else if (coding.count > 1 || (coding.count == 1 && strcasecmp(coding.first, "chunked") != 0)) {
+        snprintf(message, sizeof message,
+                 "Transfer-Encoding %s is not supported; send the body as it is or chunked.",
+                 printable(coding.first, buf, sizeof buf));
+        why = message;
+    } else if (host.count > 1)
+        why = "The request has more than one Host header.";
+    else if (host.count == 0 && strcmp(version, MHD_HTTP_VERSION_1_1) == 0)
+        why = "An HTTP/1.1 request must carry a Host header.";
+    *refused = why != NULL;
+    if (!why)
+        return MHD_YES;
+    return send_server_error(h, c, rq, MHD_HTTP_BAD_REQUEST, "invalid_request", why,
+                             MHD_HTTP_HEADER_CONNECTION, "close");
+}
+
 /* ---- access: Host allowlist and bearer token ---- */
 
 /* The name part of a Host header value: "[v6]" with its brackets, or what
@@ -671,8 +737,9 @@ static const char *host_name(const char *host, char *buf, size_t n)
     return buf;
 }
 
-/* A request that names no Host (HTTP/1.0; MHD refuses HTTP/1.1 without one)
- * is allowed: DNS rebinding needs a browser, and browsers always send Host. */
+/* A request that names no Host (HTTP/1.0; check_framing refuses HTTP/1.1
+ * without one) is allowed: DNS rebinding needs a browser, and browsers
+ * always send Host. */
 static int host_allowed(const rd_http *h, const char *host)
 {
     if (!host)
@@ -1092,9 +1159,13 @@ static enum MHD_Result finish_submit(rd_http *h, struct MHD_Connection *c, struc
 /* First call of every request: route, check the method, answer (or, for a
  * submission, prepare to read the body). */
 static enum MHD_Result begin_request(rd_http *h, struct MHD_Connection *c, struct request *rq,
-                                     const char *url, const char *method)
+                                     const char *url, const char *method, const char *version)
 {
     char arg[PATH_ARG_MAX];
+    int refused = 0;
+    enum MHD_Result framing = check_framing(h, c, rq, version, &refused);
+    if (refused)
+        return framing;
     if (!host_allowed(h, MHD_lookup_connection_value(c, MHD_HEADER_KIND, MHD_HTTP_HEADER_HOST)))
         return send_server_error(h, c, rq, MHD_HTTP_FORBIDDEN, "forbidden_host",
                                  "This server does not serve the host named in the Host header "
@@ -1154,7 +1225,6 @@ static enum MHD_Result on_request(void *cls, struct MHD_Connection *c, const cha
                                   size_t *upload_data_size, void **req_cls)
 {
     rd_http *h = cls;
-    (void)version;
     struct request *rq = *req_cls;
     if (!rq) {
         rq = calloc(1, sizeof *rq);
@@ -1176,7 +1246,7 @@ static enum MHD_Result on_request(void *cls, struct MHD_Connection *c, const cha
     }
     if (!rq->started) {
         rq->started = 1;
-        return begin_request(h, c, rq, url, method);
+        return begin_request(h, c, rq, url, method, version);
     }
     if (*upload_data_size) {
         if (!rq->replied)
