@@ -3,16 +3,19 @@
  *
  *   ringdyn-server --port N [--host 127.0.0.1] [--static DIR] [--examples DIR]
  *                  [--threads N] [--queue N] [--job-timeout S] [--keep-jobs N]
+ *                  [--allow-host NAME]... [--token-file FILE]
  *
  * Binds 127.0.0.1 unless --host says otherwise; --port 0 takes a free port.
  * Prints one line "ringdyn-server listening on http://HOST:PORT" to stdout
  * once it accepts connections (scripts and tests read the port from it).
  *
  * SIGINT and SIGTERM are blocked in every thread and taken by sigwait() in
- * main, so the shutdown runs as ordinary code: stop accepting, cancel the
- * jobs (which releases requests waiting on them), let the requests in
- * progress send their answers (at most DRAIN_S), close the connections,
- * join the workers, free everything, exit 0.
+ * main, so the shutdown runs as ordinary code: stop accepting, end queued
+ * jobs `interrupted`, give running ones STOP_WAIT_S to stop (what finishes
+ * is stored; the rest end `interrupted`, which releases requests waiting on
+ * them with a final job), let the requests in progress send their answers
+ * (at most DRAIN_S), close the connections, join the workers, close the
+ * store, exit 0.
  */
 #include <errno.h>
 #include <math.h>
@@ -25,9 +28,19 @@
 #include "rd_http.h"
 #include "rd_jobs.h"
 #include "rd_metrics.h"
+#include "rd_store.h"
 
-/* Longest wait at shutdown for answers still being sent, seconds. */
-#define DRAIN_S 5.0
+/* --allow-host may be given this many times. */
+#define ALLOW_HOSTS_MAX 32
+/* A token shorter than this is refused: it must not be guessable. */
+#define TOKEN_MIN 16
+#define TOKEN_MAX 4096
+
+/* At shutdown: how long running jobs may take to stop on their own (a run
+ * that ends in time keeps its result), then how long answers still being
+ * sent may take; together under 1 s. */
+#define STOP_WAIT_S 0.4
+#define DRAIN_S 0.4
 
 struct options {
     const char *host;
@@ -39,6 +52,12 @@ struct options {
     double job_timeout;
     long keep_jobs;
     long keep_mb;
+    double keep_days;
+    const char *data_dir;
+    rd_http_limits limits;
+    const char *allow_hosts[ALLOW_HOSTS_MAX];
+    int n_allow_hosts;
+    const char *token_file;
 };
 
 static void usage(FILE *f)
@@ -54,7 +73,31 @@ static void usage(FILE *f)
             "  --job-timeout S   run time limit per job in seconds (default 120)\n"
             "  --keep-jobs N     finished jobs kept for GET (default 256, 1..100000)\n"
             "  --keep-mb N       and at most N MiB of their results (default 512, 1..65536;\n"
-            "                    the newest finished job is always kept)\n");
+            "                    the newest finished job is always kept)\n"
+            "  --keep-days D     and none finished more than D days ago (default 30; 0: no limit)\n"
+            "  --data DIR        the job store (SQLite, WAL) lives in DIR/jobs.sqlite3; default\n"
+            "                    $XDG_STATE_HOME/ringdyn or ~/.local/state/ringdyn; ':memory:'\n"
+            "                    keeps nothing across restarts.  Finished jobs survive a restart;\n"
+            "                    jobs queued or running when the server stopped end 'interrupted'\n"
+            "connections (libmicrohttpd's epoll event loop; an open connection holds no thread):\n"
+            "  --http-threads N  event-loop threads (default 4, 1..64)\n"
+            "  --max-connections N  open connections in all (default 1000, 1..100000);\n"
+            "                    more are closed at once when accepted\n"
+            "  --max-per-ip N    open connections from one client address (default 64, 1..100000)\n"
+            "  --request-deadline S  a request's header and body must arrive within S seconds of\n"
+            "                    the connection's start or of the previous answer (default 10,\n"
+            "                    0.1..3600); a slower one is closed without an answer.  An idle\n"
+            "                    keep-alive connection is closed after S as well\n"
+            "  --idle-timeout S  a connection with no traffic at all is closed after S seconds,\n"
+            "                    also while an answer is being sent (default 30, 1..3600)\n"
+            "access:\n"
+            "  --allow-host NAME serve requests whose Host header names NAME (any port); repeatable.\n"
+            "                    127.0.0.1, localhost, [::1] and the bound address are always\n"
+            "                    served; any other Host gets 403 (DNS rebinding guard)\n"
+            "  --token-file FILE require 'Authorization: Bearer TOKEN' on /api/v1/jobs*,\n"
+            "                    /api/v1/examples* and /metrics; TOKEN is the file's first line\n"
+            "                    (16..4096 printable characters).  Required with a --host that\n"
+            "                    is not a loopback address\n");
 }
 
 static int parse_long(const char *s, long min, long max, long *out)
@@ -105,7 +148,41 @@ static int parse_options(int argc, char **argv, struct options *o)
             ok = parse_long(value, 1, 10000, &o->queue);
         else if (IS("--keep-jobs"))
             ok = parse_long(value, 1, 100000, &o->keep_jobs);
-        else if (IS("--keep-mb"))
+        else if (IS("--allow-host")) {
+            ok = o->n_allow_hosts < ALLOW_HOSTS_MAX;
+            if (ok)
+                o->allow_hosts[o->n_allow_hosts++] = value;
+        } else if (IS("--token-file"))
+            o->token_file = value;
+        else if (IS("--http-threads")) {
+            long v;
+            if ((ok = parse_long(value, 1, 64, &v)))
+                o->limits.threads = (int)v;
+        } else if (IS("--max-connections")) {
+            long v;
+            if ((ok = parse_long(value, 1, 100000, &v)))
+                o->limits.connections_max = (int)v;
+        } else if (IS("--max-per-ip")) {
+            long v;
+            if ((ok = parse_long(value, 1, 100000, &v)))
+                o->limits.per_ip_max = (int)v;
+        } else if (IS("--idle-timeout")) {
+            long v;
+            if ((ok = parse_long(value, 1, 3600, &v)))
+                o->limits.idle_timeout_s = (int)v;
+        } else if (IS("--request-deadline")) {
+            char *end;
+            double v = strtod(value, &end);
+            ok = end != value && !*end && v >= 0.1 && v <= 3600;
+            if (ok)
+                o->limits.request_deadline_s = v;
+        } else if (IS("--data"))
+            o->data_dir = value;
+        else if (IS("--keep-days")) {
+            char *end;
+            o->keep_days = strtod(value, &end);
+            ok = end != value && !*end && o->keep_days >= 0 && o->keep_days <= 36500;
+        } else if (IS("--keep-mb"))
             ok = parse_long(value, 1, 65536, &o->keep_mb);
         else if (IS("--job-timeout")) {
             char *end;
@@ -128,6 +205,67 @@ static int parse_options(int argc, char **argv, struct options *o)
     return 0;
 }
 
+/* --data's default: $XDG_STATE_HOME/ringdyn, else ~/.local/state/ringdyn
+ * (the XDG base directory rules), in buf; NULL without either variable. */
+static const char *default_data_dir(char *buf, size_t n)
+{
+    const char *state = getenv("XDG_STATE_HOME");
+    const char *home = getenv("HOME");
+    int w;
+    if (state && state[0] == '/')
+        w = snprintf(buf, n, "%s/ringdyn", state);
+    else if (home && home[0])
+        w = snprintf(buf, n, "%s/.local/state/ringdyn", home);
+    else
+        return NULL;
+    return w > 0 && (size_t)w < n ? buf : NULL;
+}
+
+/* The token: the first line of `path`, without trailing blanks.  NULL after
+ * printing why on stderr. */
+static char *read_token(const char *path)
+{
+    FILE *f = fopen(path, "r");
+    if (!f) {
+        fprintf(stderr, "ringdyn-server: --token-file %s: %s\n", path, strerror(errno));
+        return NULL;
+    }
+    char *line = calloc(1, TOKEN_MAX + 2);
+    if (line && !fgets(line, TOKEN_MAX + 2, f))
+        line[0] = '\0';
+    fclose(f);
+    if (!line) {
+        fprintf(stderr, "ringdyn-server: out of memory\n");
+        return NULL;
+    }
+    size_t n = strlen(line);
+    while (n > 0 && (line[n - 1] == '\n' || line[n - 1] == '\r' || line[n - 1] == ' ' ||
+                     line[n - 1] == '\t'))
+        line[--n] = '\0';
+    int printable = 1;
+    for (size_t i = 0; i < n; i++)
+        printable &= line[i] > 0x20 && line[i] < 0x7f;
+    if (n < TOKEN_MIN || n > TOKEN_MAX || !printable) {
+        fprintf(stderr,
+                "ringdyn-server: --token-file %s: the first line must be %d..%d printable "
+                "characters without blanks (e.g. head -c 24 /dev/urandom | base64)\n",
+                path, TOKEN_MIN, TOKEN_MAX);
+        free(line);
+        return NULL;
+    }
+    return line;
+}
+
+/* rd_jobs' on_final: wakes the requests waiting for jobs.  Jobs start only
+ * once the server serves (no job can end before `http` is set), and none
+ * ends after rd_jobs_shutdown returns, which precedes rd_http_free. */
+static void on_job_final(void *ctx)
+{
+    rd_http *const *http = ctx;
+    if (*http)
+        rd_http_job_ended(*http);
+}
+
 static void on_job_finish(void *ctx, int status, double run_seconds)
 {
     (void)status;
@@ -136,7 +274,17 @@ static void on_job_finish(void *ctx, int status, double run_seconds)
 
 int main(int argc, char **argv)
 {
-    struct options opt = {"127.0.0.1", -1, NULL, NULL, 2, 32, 120.0, 256, 512};
+    struct options opt = {.host = "127.0.0.1", .port = -1, .threads = 2, .queue = 32,
+                          .job_timeout = 120.0, .keep_jobs = 256, .keep_mb = 512,
+                          .keep_days = 30,
+                          .limits = {.threads = 4,
+                                     .connections_max = 1000,
+                                     .per_ip_max = 64,
+                                     .request_deadline_s = 10,
+                                     .idle_timeout_s = 30}};
+    rd_store *store = NULL;
+    char data_buf[4096];
+    char *token = NULL;
     int status = 1;
     rd_metrics *metrics = NULL;
     rd_jobs *jobs = NULL;
@@ -165,16 +313,36 @@ int main(int argc, char **argv)
         fprintf(stderr, "ringdyn-server: out of memory\n");
         goto out;
     }
+    const char *data_dir = opt.data_dir ? opt.data_dir : default_data_dir(data_buf, sizeof data_buf);
+    if (!data_dir) {
+        fprintf(stderr, "ringdyn-server: neither HOME nor XDG_STATE_HOME is set: give --data DIR\n");
+        goto out;
+    }
+    if (rd_store_open(data_dir, &store, &err) != RD_OK)
+        goto fail;
     rd_jobs_config jc = {.threads = (int)opt.threads,
                          .queue_max = (int)opt.queue,
                          .keep_max = (int)opt.keep_jobs,
                          .keep_bytes = (size_t)opt.keep_mb << 20,
+                         .keep_age_s = opt.keep_days * 86400.0,
+                         .store = store,
                          .timeout_s = opt.job_timeout,
                          .on_finish = on_job_finish,
-                         .on_finish_ctx = metrics};
+                         .on_finish_ctx = metrics,
+                         .on_final = on_job_final,
+                         .on_final_ctx = &http};
     if (rd_jobs_create(&jc, &jobs, &err) != RD_OK)
         goto fail;
-    rd_http_config hc = {opt.host, (int)opt.port, opt.static_dir, opt.examples_dir};
+    if (opt.token_file && !(token = read_token(opt.token_file)))
+        goto out;
+    rd_http_config hc = {.host = opt.host,
+                         .port = (int)opt.port,
+                         .static_dir = opt.static_dir,
+                         .examples_dir = opt.examples_dir,
+                         .allow_hosts = opt.allow_hosts,
+                         .n_allow_hosts = opt.n_allow_hosts,
+                         .token = token,
+                         .limits = opt.limits};
     if (rd_http_create(&hc, jobs, metrics, &http, &err) != RD_OK)
         goto fail;
 
@@ -182,15 +350,16 @@ int main(int argc, char **argv)
     fflush(stdout);
     fprintf(stderr,
             "ringdyn-server %s: %ld workers, queue %ld, job time limit %g s, keeps %ld finished "
-            "jobs / %ld MiB of results\n",
-            rd_api_version(), opt.threads, opt.queue, opt.job_timeout, opt.keep_jobs, opt.keep_mb);
+            "jobs / %ld MiB of results / %g days in %s\n",
+            rd_api_version(), opt.threads, opt.queue, opt.job_timeout, opt.keep_jobs, opt.keep_mb,
+            opt.keep_days, data_dir);
 
     int sig = 0;
     if (sigwait(&stop, &sig) != 0)
         goto out;
     fprintf(stderr, "ringdyn-server: %s, shutting down\n", sig == SIGINT ? "SIGINT" : "SIGTERM");
     rd_http_quiesce(http);
-    rd_jobs_shutdown(jobs);
+    rd_jobs_shutdown(jobs, STOP_WAIT_S);
     rd_http_drain(http, DRAIN_S);
     status = 0;
     goto out;
@@ -199,6 +368,8 @@ fail:
 out:
     rd_http_free(http);
     rd_jobs_free(jobs);
+    rd_store_close(store);
     rd_metrics_free(metrics);
+    free(token);
     return status;
 }

@@ -46,10 +46,15 @@
 #include "rd_api.h"
 #include "rd_openapi.h"
 
-/* Idle time after which MHD drops a connection.  A request waiting for its
- * job is not idle (its thread is in our handler, where MHD does not time it
- * out). */
-#define IDLE_TIMEOUT_S 60
+/* Connections the kernel queues before MHD accepts them. */
+#define LISTEN_BACKLOG 1024
+/* The timer thread's period: the latest a waiter is resumed after its
+ * deadline, and the resolution of the request deadline. */
+#define TICK_S 0.1
+/* How often the store's age limit is applied. */
+#define EXPIRE_EVERY_S 60.0
+/* How long DELETE waits for a running job to acknowledge the cancellation. */
+#define CANCEL_WAIT_S 5.0
 /* GET /api/v1/jobs: default and largest ?limit=. */
 #define LIST_LIMIT_DEFAULT 50
 #define LIST_LIMIT_MAX 1000
@@ -69,13 +74,43 @@ struct rd_http {
     char *examples_dir;     /* realpath of the examples dir, or NULL */
     char host[INET6_ADDRSTRLEN + 2];
     int port;
-    pthread_mutex_t mu; /* guards in_flight */
+    char **allow;           /* Host names served (lower case, IPv6 in brackets) */
+    size_t n_allow;
+    char *token;            /* bearer token, or NULL */
+    rd_http_limits limits;
+    pthread_mutex_t mu;  /* guards everything below */
     pthread_cond_t idle; /* in_flight dropped to 0 */
     int in_flight;       /* requests between their first call and on_completed */
+    pthread_cond_t wake; /* for the timer thread: a job ended, a waiter came, or stop */
+    int poked, stop;
+    pthread_t timer;
+    int timer_started;
+    struct request *waiters; /* suspended requests, waiting for their job */
+    struct conn *conns;      /* every open connection */
+    size_t nconns;
+    size_t deadline_closed;
 };
+
+/* Per-connection state (MHD_OPTION_NOTIFY_CONNECTION), in rd_http.conns. */
+struct conn {
+    struct conn *prev, *next;
+    MHD_socket fd;
+    double since; /* CLOCK_MONOTONIC: the request now arriving began no earlier */
+    int busy;     /* a complete request is being answered: no deadline */
+    int shut;     /* the deadline passed and the socket was shut down */
+};
+
+enum wait_kind { WAIT_NONE, WAIT_SUBMIT, WAIT_CANCEL };
 
 /* Per-request state, kept by MHD in *req_cls between calls. */
 struct request {
+    struct MHD_Connection *c;
+    struct conn *conn;       /* may be NULL */
+    struct request *prev, *next; /* in rd_http.waiters while suspended */
+    enum wait_kind waiting;  /* suspended until its job ends or `until` */
+    int resumed;             /* the timer thread resumed it */
+    double until;            /* CLOCK_MONOTONIC */
+    char job_id[RD_JOBS_ID_LEN + 1];
     int started;   /* the headers have been handled */
     int replied;   /* a response is queued: drop whatever body follows */
     int has_wait;  /* ?wait= was given */
@@ -100,6 +135,27 @@ enum route {
 };
 
 /* ---- small helpers ---- */
+
+static double mono_now(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+static struct timespec mono_deadline(double seconds)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    double whole = floor(seconds);
+    ts.tv_sec += (time_t)whole;
+    ts.tv_nsec += (long)((seconds - whole) * 1e9);
+    if (ts.tv_nsec >= 1000000000L) {
+        ts.tv_sec++;
+        ts.tv_nsec -= 1000000000L;
+    }
+    return ts;
+}
 
 /* A copy of `s` fit for a message: printable ASCII only, at most n-1 bytes.
  * (Error bodies must be valid UTF-8; request text need not be.) */
@@ -256,6 +312,14 @@ static enum route match_route(const char *url, char *arg, size_t argsz)
     return ROUTE_STATIC;
 }
 
+/* Job data, examples and metrics need the token; the page, the OpenAPI
+ * document and the health check (no job data) do not, so that the page can
+ * load and ask for the token and a container health check needs no secret. */
+static int route_needs_token(enum route r)
+{
+    return r != ROUTE_STATIC && r != ROUTE_HEALTH && r != ROUTE_OPENAPI;
+}
+
 static const char *allowed_methods(enum route r)
 {
     switch (r) {
@@ -283,6 +347,172 @@ static int method_allowed(const char *allow, const char *method)
     return 0;
 }
 
+/* ---- connections: the request deadline and suspended waits ---- */
+
+/* The request on this connection is complete (being answered): the
+ * deadline no longer applies until the next one starts. */
+static void set_busy(rd_http *h, struct request *rq)
+{
+    if (!rq->conn)
+        return;
+    pthread_mutex_lock(&h->mu);
+    rq->conn->busy = 1;
+    pthread_mutex_unlock(&h->mu);
+}
+
+/* MHD_OPTION_NOTIFY_CONNECTION: keeps rd_http.conns.  MHD calls CLOSED
+ * before it closes the socket, and the timer thread shuts sockets down only
+ * under `mu` while the connection is listed, so it never touches a
+ * descriptor that has been reused. */
+static void on_connection(void *cls, struct MHD_Connection *c, void **socket_context,
+                          enum MHD_ConnectionNotificationCode code)
+{
+    rd_http *h = cls;
+    if (code == MHD_CONNECTION_NOTIFY_STARTED) {
+        const union MHD_ConnectionInfo *info =
+            MHD_get_connection_info(c, MHD_CONNECTION_INFO_CONNECTION_FD);
+        struct conn *k = calloc(1, sizeof *k);
+        if (!k || !info) { /* not tracked: then only the idle timeout applies */
+            free(k);
+            *socket_context = NULL;
+            return;
+        }
+        k->fd = info->connect_fd;
+        k->since = mono_now();
+        pthread_mutex_lock(&h->mu);
+        k->next = h->conns;
+        if (h->conns)
+            h->conns->prev = k;
+        h->conns = k;
+        h->nconns++;
+        pthread_mutex_unlock(&h->mu);
+        *socket_context = k;
+        return;
+    }
+    struct conn *k = *socket_context;
+    if (!k)
+        return;
+    pthread_mutex_lock(&h->mu);
+    if (k->prev)
+        k->prev->next = k->next;
+    else
+        h->conns = k->next;
+    if (k->next)
+        k->next->prev = k->prev;
+    h->nconns--;
+    pthread_mutex_unlock(&h->mu);
+    free(k);
+    *socket_context = NULL;
+}
+
+/* Shuts down the sockets whose request is overdue (mu held).  MHD sees the
+ * socket end and closes the connection in its own thread. */
+static void enforce_deadline_locked(rd_http *h, double now)
+{
+    for (struct conn *k = h->conns; k; k = k->next)
+        if (!k->busy && !k->shut && now - k->since > h->limits.request_deadline_s) {
+            shutdown(k->fd, SHUT_RDWR);
+            k->shut = 1;
+            h->deadline_closed++;
+        }
+}
+
+/* Suspends a request until job `id` ends or `seconds` pass; the timer
+ * thread resumes it, and MHD then calls on_request again (answer_waiter). */
+static enum MHD_Result suspend_for(rd_http *h, struct MHD_Connection *c, struct request *rq,
+                                   enum wait_kind kind, const char *id, double seconds)
+{
+    set_busy(h, rq);
+    rq->waiting = kind;
+    rq->until = mono_now() + seconds;
+    memcpy(rq->job_id, id, sizeof rq->job_id);
+    MHD_suspend_connection(c);
+    pthread_mutex_lock(&h->mu);
+    rq->prev = NULL;
+    rq->next = h->waiters;
+    if (h->waiters)
+        h->waiters->prev = rq;
+    h->waiters = rq;
+    h->poked = 1; /* the job may have ended before the request was listed */
+    pthread_cond_signal(&h->wake);
+    pthread_mutex_unlock(&h->mu);
+    return MHD_YES;
+}
+
+/* Takes the waiters that may go on (job final, time up, or `all`) off the
+ * list (mu held) and returns them chained through `next`; the caller resumes
+ * them after unlocking (MHD takes its own locks in MHD_resume_connection). */
+static struct request *take_ready_locked(rd_http *h, double now, int all)
+{
+    struct request *ready = NULL, *rq = h->waiters;
+    while (rq) {
+        struct request *next = rq->next;
+        if (all || now >= rq->until || rd_jobs_is_final(h->jobs, rq->job_id)) {
+            if (rq->prev)
+                rq->prev->next = rq->next;
+            else
+                h->waiters = rq->next;
+            if (rq->next)
+                rq->next->prev = rq->prev;
+            rq->prev = NULL;
+            rq->next = ready;
+            ready = rq;
+        }
+        rq = next;
+    }
+    return ready;
+}
+
+static void resume_all(struct request *ready)
+{
+    while (ready) {
+        struct request *next = ready->next;
+        ready->next = NULL;
+        ready->resumed = 1;
+        MHD_resume_connection(ready->c);
+        ready = next;
+    }
+}
+
+/* The timer thread: resumes waiters, enforces the request deadline, applies
+ * the job store's age limit; wakes on rd_http_job_ended or every TICK_S. */
+static void *timer_main(void *arg)
+{
+    rd_http *h = arg;
+    double next_expire = mono_now() + EXPIRE_EVERY_S;
+    pthread_mutex_lock(&h->mu);
+    while (!h->stop) {
+        if (!h->poked) {
+            struct timespec tick = mono_deadline(TICK_S);
+            pthread_cond_timedwait(&h->wake, &h->mu, &tick);
+        }
+        h->poked = 0;
+        double now = mono_now();
+        struct request *ready = take_ready_locked(h, now, 0);
+        enforce_deadline_locked(h, now);
+        pthread_mutex_unlock(&h->mu);
+        resume_all(ready);
+        if (now >= next_expire) {
+            rd_jobs_expire(h->jobs);
+            next_expire = now + EXPIRE_EVERY_S;
+        }
+        pthread_mutex_lock(&h->mu);
+    }
+    struct request *ready = take_ready_locked(h, 0, 1);
+    pthread_mutex_unlock(&h->mu);
+    resume_all(ready);
+    return NULL;
+}
+
+void rd_http_job_ended(void *http)
+{
+    rd_http *h = http;
+    pthread_mutex_lock(&h->mu);
+    h->poked = 1;
+    pthread_cond_signal(&h->wake);
+    pthread_mutex_unlock(&h->mu);
+}
+
 /* ---- responses ---- */
 
 /* Queues `r` (consumed; NULL means out of memory and sends a fixed 503). */
@@ -298,6 +528,7 @@ static enum MHD_Result send_response(rd_http *h, struct MHD_Connection *c, struc
         status = MHD_HTTP_SERVICE_UNAVAILABLE;
     }
     rq->replied = 1;
+    set_busy(h, rq);
     enum MHD_Result ok = MHD_queue_response(c, (unsigned)status, r);
     MHD_destroy_response(r);
     if (ok == MHD_YES)
@@ -319,6 +550,26 @@ static struct MHD_Response *text_response(char *body, const char *content_type)
     if (MHD_add_response_header(r, MHD_HTTP_HEADER_CONTENT_TYPE, content_type) != MHD_YES ||
         MHD_add_response_header(r, MHD_HTTP_HEADER_CACHE_CONTROL, "no-store") != MHD_YES) {
         MHD_destroy_response(r);
+        return NULL;
+    }
+    return r;
+}
+
+/* A job's answer: its shared JSON (a succeeded job: one copy for all the
+ * requests sending it, released when MHD is done) or the rendered `json`. */
+static struct MHD_Response *job_response(rd_jobs_body *body, char *json)
+{
+    if (!body)
+        return text_response(json, json_media);
+    struct MHD_Response *r = MHD_create_response_from_buffer_with_free_callback_cls(
+        body->len, (void *)body->data, rd_jobs_body_release, body);
+    if (!r) {
+        rd_jobs_body_release(body);
+        return NULL;
+    }
+    if (MHD_add_response_header(r, MHD_HTTP_HEADER_CONTENT_TYPE, json_media) != MHD_YES ||
+        MHD_add_response_header(r, MHD_HTTP_HEADER_CACHE_CONTROL, "no-store") != MHD_YES) {
+        MHD_destroy_response(r); /* releases the body */
         return NULL;
     }
     return r;
@@ -371,6 +622,160 @@ static enum MHD_Result send_not_found(rd_http *h, struct MHD_Connection *c, stru
 {
     char buf[128];
     return send_fail(h, c, rq, RD_ENOTFOUND, "There is nothing at %s.", printable(url, buf, sizeof buf));
+}
+
+/* An error the status table of core/rd_error.h has no code for (401, 403,
+ * 400 for a framing fault): the same {"error": {"code", "message"}} shape,
+ * written here.  `header`/`value` (may be NULL) adds one response header. */
+static enum MHD_Result send_server_error(rd_http *h, struct MHD_Connection *c, struct request *rq,
+                                         int status, const char *code, const char *message,
+                                         const char *header, const char *value)
+{
+    json_t *o = json_pack("{s:{s:s, s:s}}", "error", "code", code, "message", message);
+    char *body = o ? json_dumps(o, JSON_COMPACT) : NULL;
+    json_decref(o);
+    struct MHD_Response *r = text_response(body, json_media);
+    if (r && header && MHD_add_response_header(r, header, value) != MHD_YES) {
+        MHD_destroy_response(r);
+        r = NULL;
+    }
+    return send_response(h, c, rq, status, r);
+}
+
+/* ---- framing the handler can still judge ---- */
+
+struct header_scan {
+    const char *name;
+    int count;
+    int differ;        /* two of them have different values */
+    const char *first; /* the first value */
+};
+
+static enum MHD_Result scan_header(void *cls, enum MHD_ValueKind kind, const char *key,
+                                   const char *value)
+{
+    (void)kind;
+    struct header_scan *scan = cls;
+    if (strcasecmp(key, scan->name) != 0)
+        return MHD_YES;
+    if (scan->count++ == 0)
+        scan->first = value ? value : "";
+    else if (strcmp(scan->first, value ? value : "") != 0)
+        scan->differ = 1;
+    return MHD_YES;
+}
+
+static struct header_scan scan_headers(struct MHD_Connection *c, const char *name)
+{
+    struct header_scan scan = {name, 0, 0, NULL};
+    MHD_get_connection_values(c, MHD_HEADER_KIND, scan_header, &scan);
+    return scan;
+}
+
+/* Message framing libmicrohttpd lets through but HTTP/1.1 (RFC 9112 6.3)
+ * says to refuse, since a proxy in front could read the body differently
+ * (request smuggling): Content-Length headers that disagree, Content-Length
+ * together with Transfer-Encoding, a transfer coding other than chunked;
+ * and an HTTP/1.1 request without Host.  The answer closes the connection,
+ * whose remaining bytes cannot be trusted.  Returns MHD_YES (with
+ * *refused = 1) after queueing the refusal, or leaves *refused 0. */
+static enum MHD_Result check_framing(rd_http *h, struct MHD_Connection *c, struct request *rq,
+                                     const char *version, int *refused)
+{
+    char buf[64];
+    const char *why = NULL;
+    struct header_scan length = scan_headers(c, MHD_HTTP_HEADER_CONTENT_LENGTH);
+    struct header_scan coding = scan_headers(c, MHD_HTTP_HEADER_TRANSFER_ENCODING);
+    struct header_scan host = scan_headers(c, MHD_HTTP_HEADER_HOST);
+    char message[256];
+    if (length.differ)
+        why = "The request has Content-Length headers with different values; send one.";
+    else if (length.count > 0 && coding.count > 0)
+        why = "The request has both Content-Length and Transfer-Encoding; send one of them.";
+    else if (coding.count > 1 || (coding.count == 1 && strcasecmp(coding.first, "chunked") != 0)) {
+        snprintf(message, sizeof message,
+                 "Transfer-Encoding %s is not supported; send the body as it is or chunked.",
+                 printable(coding.first, buf, sizeof buf));
+        why = message;
+    } else if (host.count > 1)
+        why = "The request has more than one Host header.";
+    else if (host.count == 0 && strcmp(version, MHD_HTTP_VERSION_1_1) == 0)
+        why = "An HTTP/1.1 request must carry a Host header.";
+    *refused = why != NULL;
+    if (!why)
+        return MHD_YES;
+    return send_server_error(h, c, rq, MHD_HTTP_BAD_REQUEST, "invalid_request", why,
+                             MHD_HTTP_HEADER_CONNECTION, "close");
+}
+
+/* ---- access: Host allowlist and bearer token ---- */
+
+/* The name part of a Host header value: "[v6]" with its brackets, or what
+ * precedes ":port"; NULL when the port is not all digits or the name is
+ * empty or too long.  Lower-cased into buf. */
+static const char *host_name(const char *host, char *buf, size_t n)
+{
+    const char *end;
+    if (host[0] == '[') {
+        end = strchr(host, ']');
+        if (!end)
+            return NULL;
+        end++;
+    } else {
+        end = host + strcspn(host, ":");
+    }
+    if (*end == ':' && (end[1] == '\0' || strspn(end + 1, "0123456789") != strlen(end + 1)))
+        return NULL;
+    if (*end != '\0' && *end != ':')
+        return NULL;
+    size_t len = (size_t)(end - host);
+    if (len == 0 || len >= n)
+        return NULL;
+    for (size_t i = 0; i < len; i++)
+        buf[i] = (char)((host[i] >= 'A' && host[i] <= 'Z') ? host[i] - 'A' + 'a' : host[i]);
+    buf[len] = '\0';
+    return buf;
+}
+
+/* A request that names no Host (HTTP/1.0; check_framing refuses HTTP/1.1
+ * without one) is allowed: DNS rebinding needs a browser, and browsers
+ * always send Host. */
+static int host_allowed(const rd_http *h, const char *host)
+{
+    if (!host)
+        return 1;
+    char buf[256];
+    const char *name = host_name(host, buf, sizeof buf);
+    if (!name)
+        return 0;
+    for (size_t i = 0; i < h->n_allow; i++)
+        if (strcmp(name, h->allow[i]) == 0)
+            return 1;
+    return 0;
+}
+
+/* Compares in time that depends on the lengths only, not on where they differ. */
+static int token_matches(const char *given, size_t given_len, const char *want, size_t want_len)
+{
+    unsigned char diff = given_len != want_len;
+    for (size_t i = 0; i < given_len && i < want_len; i++)
+        diff |= (unsigned char)(given[i] ^ want[i]);
+    return diff == 0;
+}
+
+/* "Bearer TOKEN" (scheme in any case) carrying our token. */
+static int authorized(const rd_http *h, struct MHD_Connection *c)
+{
+    const char *auth = MHD_lookup_connection_value(c, MHD_HEADER_KIND, MHD_HTTP_HEADER_AUTHORIZATION);
+    if (!auth || strncasecmp(auth, "Bearer ", 7) != 0)
+        return 0;
+    const char *t = auth + 7;
+    while (*t == ' ')
+        t++;
+    size_t n = strlen(t);
+    while (n > 0 && (t[n - 1] == ' ' || t[n - 1] == '\t'))
+        n--;
+    return token_matches(t, n, h->token, strlen(h->token));
 }
 
 /* ---- static files ---- */
@@ -503,7 +908,13 @@ static enum MHD_Result get_metrics(rd_http *h, struct MHD_Connection *c, struct 
     rd_jobs_get_counts(h->jobs, counts);
     for (int i = 0; i < RD_JOB_NSTATUS; i++)
         names[i] = rd_jobs_status_name(i);
-    char *text = rd_metrics_render(h->metrics, names, counts, RD_JOB_NSTATUS);
+    rd_metrics_gauges g = {0};
+    rd_jobs_get_stop_latency(h->jobs, &g.stop_last_s, &g.stop_max_s);
+    pthread_mutex_lock(&h->mu);
+    g.connections = h->nconns;
+    g.deadline_closed = h->deadline_closed;
+    pthread_mutex_unlock(&h->mu);
+    char *text = rd_metrics_render(h->metrics, names, counts, RD_JOB_NSTATUS, &g);
     return send_text(h, c, rq, MHD_HTTP_OK, text, "text/plain; version=0.0.4; charset=utf-8");
 }
 
@@ -591,13 +1002,17 @@ static enum MHD_Result job_route(rd_http *h, struct MHD_Connection *c, struct re
         }
         return send_response(h, c, rq, MHD_HTTP_OK, r);
     }
-    if (strcmp(method, MHD_HTTP_METHOD_DELETE) == 0)
-        rc = rd_jobs_cancel(h->jobs, id, &body, &err);
-    else
-        rc = rd_jobs_view(h->jobs, id, 0, &body, NULL, &err);
+    rd_jobs_body *shared = NULL;
+    if (strcmp(method, MHD_HTTP_METHOD_DELETE) == 0) {
+        if ((rc = rd_jobs_request_cancel(h->jobs, id, &err)) != RD_OK)
+            return send_error(h, c, rq, &err, NULL);
+        if (!rd_jobs_is_final(h->jobs, id)) /* running: wait for it to stop */
+            return suspend_for(h, c, rq, WAIT_CANCEL, id, CANCEL_WAIT_S);
+    }
+    rc = rd_jobs_get(h->jobs, id, 0, &shared, &body, NULL, &err);
     if (rc != RD_OK)
         return send_error(h, c, rq, &err, NULL);
-    return send_text(h, c, rq, MHD_HTTP_OK, body, json_media);
+    return send_response(h, c, rq, MHD_HTTP_OK, job_response(shared, body));
 }
 
 /* First call of POST /api/v1/jobs: everything that can be refused before
@@ -662,6 +1077,45 @@ static void take_body(struct request *rq, const char *data, size_t n)
     rq->body[rq->len] = '\0';
 }
 
+/* The answer to a submission: 200 and the job if ?wait was given and the
+ * job is final, else 202; Location either way. */
+static enum MHD_Result answer_submit(rd_http *h, struct MHD_Connection *c, struct request *rq,
+                                     const char *id)
+{
+    rd_error err;
+    rd_error_init(&err);
+    char *body = NULL;
+    rd_jobs_body *shared = NULL;
+    int finished = 0;
+    if (rd_jobs_get(h->jobs, id, 0, &shared, &body, &finished, &err) != RD_OK)
+        return send_error(h, c, rq, &err, NULL);
+    struct MHD_Response *r = job_response(shared, body);
+    char location[64];
+    snprintf(location, sizeof location, "/api/v1/jobs/%s", id);
+    if (r && MHD_add_response_header(r, MHD_HTTP_HEADER_LOCATION, location) != MHD_YES) {
+        MHD_destroy_response(r);
+        r = NULL;
+    }
+    return send_response(h, c, rq, rq->has_wait && finished ? MHD_HTTP_OK : MHD_HTTP_ACCEPTED, r);
+}
+
+/* A suspended request, resumed: answer with the job as it is now. */
+static enum MHD_Result answer_waiter(rd_http *h, struct MHD_Connection *c, struct request *rq)
+{
+    enum wait_kind kind = rq->waiting;
+    rq->waiting = WAIT_NONE;
+    rq->resumed = 0;
+    if (kind == WAIT_SUBMIT)
+        return answer_submit(h, c, rq, rq->job_id);
+    rd_error err;
+    rd_error_init(&err);
+    char *body = NULL;
+    rd_jobs_body *shared = NULL;
+    if (rd_jobs_get(h->jobs, rq->job_id, 0, &shared, &body, NULL, &err) != RD_OK)
+        return send_error(h, c, rq, &err, NULL);
+    return send_response(h, c, rq, MHD_HTTP_OK, job_response(shared, body));
+}
+
 /* Last call of POST /api/v1/jobs: parse, queue, maybe wait. */
 static enum MHD_Result finish_submit(rd_http *h, struct MHD_Connection *c, struct request *rq)
 {
@@ -686,28 +1140,36 @@ static enum MHD_Result finish_submit(rd_http *h, struct MHD_Connection *c, struc
     if (rd_jobs_submit(h->jobs, scene, id, &err) != RD_OK) /* takes the scene */
         return send_error(h, c, rq, &err, NULL);
 
-    char *body = NULL;
-    int finished = 0;
-    if (rd_jobs_view(h->jobs, id, rq->has_wait ? rq->wait_s : 0, &body, &finished, &err) != RD_OK)
-        return send_error(h, c, rq, &err, NULL);
-    struct MHD_Response *r = text_response(body, json_media);
-    if (r) {
-        char location[64];
-        snprintf(location, sizeof location, "/api/v1/jobs/%s", id);
-        MHD_add_response_header(r, MHD_HTTP_HEADER_LOCATION, location);
-    }
-    return send_response(h, c, rq, rq->has_wait && finished ? MHD_HTTP_OK : MHD_HTTP_ACCEPTED, r);
+    if (rq->has_wait && rq->wait_s > 0 && !rd_jobs_is_final(h->jobs, id))
+        return suspend_for(h, c, rq, WAIT_SUBMIT, id, rq->wait_s);
+    return answer_submit(h, c, rq, id);
 }
 
 /* First call of every request: route, check the method, answer (or, for a
  * submission, prepare to read the body). */
 static enum MHD_Result begin_request(rd_http *h, struct MHD_Connection *c, struct request *rq,
-                                     const char *url, const char *method)
+                                     const char *url, const char *method, const char *version)
 {
     char arg[PATH_ARG_MAX];
+    int refused = 0;
+    enum MHD_Result framing = check_framing(h, c, rq, version, &refused);
+    if (refused)
+        return framing;
+    if (!host_allowed(h, MHD_lookup_connection_value(c, MHD_HEADER_KIND, MHD_HTTP_HEADER_HOST)))
+        return send_server_error(h, c, rq, MHD_HTTP_FORBIDDEN, "forbidden_host",
+                                 "This server does not serve the host named in the Host header "
+                                 "(a guard against DNS rebinding); start it with --allow-host NAME "
+                                 "to serve that name.",
+                                 NULL, NULL);
     if (has_control_char(url))
         return send_not_found(h, c, rq, url);
     enum route route = match_route(url, arg, sizeof arg);
+    if (h->token && route_needs_token(route) && !authorized(h, c))
+        return send_server_error(h, c, rq, MHD_HTTP_UNAUTHORIZED, "unauthorized",
+                                 "This server needs its access token: send the header "
+                                 "Authorization: Bearer TOKEN (the token is in the file given to "
+                                 "--token-file).",
+                                 MHD_HTTP_HEADER_WWW_AUTHENTICATE, "Bearer realm=\"ringdyn\"");
     if (route == ROUTE_STATIC)
         return serve_static(h, c, rq, url, method);
     if (route == ROUTE_NONE)
@@ -752,20 +1214,28 @@ static enum MHD_Result on_request(void *cls, struct MHD_Connection *c, const cha
                                   size_t *upload_data_size, void **req_cls)
 {
     rd_http *h = cls;
-    (void)version;
     struct request *rq = *req_cls;
     if (!rq) {
         rq = calloc(1, sizeof *rq);
         if (!rq)
             return MHD_NO; /* closes the connection */
         *req_cls = rq;
+        rq->c = c;
+        const union MHD_ConnectionInfo *info =
+            MHD_get_connection_info(c, MHD_CONNECTION_INFO_SOCKET_CONTEXT);
+        rq->conn = info ? info->socket_context : NULL;
         pthread_mutex_lock(&h->mu);
         h->in_flight++;
         pthread_mutex_unlock(&h->mu);
     }
+    if (rq->waiting != WAIT_NONE) {
+        if (!rq->resumed) /* MHD should not call a suspended request; be safe */
+            return MHD_YES;
+        return answer_waiter(h, c, rq);
+    }
     if (!rq->started) {
         rq->started = 1;
-        return begin_request(h, c, rq, url, method);
+        return begin_request(h, c, rq, url, method, version);
     }
     if (*upload_data_size) {
         if (!rq->replied)
@@ -790,15 +1260,82 @@ static void on_completed(void *cls, struct MHD_Connection *c, void **req_cls,
     if (!rq)
         return;
     free(rq->body);
+    pthread_mutex_lock(&h->mu);
+    if (rq->waiting != WAIT_NONE && !rq->resumed) { /* still listed (daemon stop) */
+        if (rq->prev)
+            rq->prev->next = rq->next;
+        else
+            h->waiters = rq->next;
+        if (rq->next)
+            rq->next->prev = rq->prev;
+    }
+    if (rq->conn) { /* the next request on this connection starts now */
+        rq->conn->busy = 0;
+        rq->conn->since = mono_now();
+    }
     free(rq);
     *req_cls = NULL;
-    pthread_mutex_lock(&h->mu);
     if (--h->in_flight == 0)
         pthread_cond_broadcast(&h->idle);
     pthread_mutex_unlock(&h->mu);
 }
 
 /* ---- life cycle ---- */
+
+static int is_loopback(const struct sockaddr_storage *addr)
+{
+    if (addr->ss_family == AF_INET) {
+        const struct sockaddr_in *a4 = (const struct sockaddr_in *)addr;
+        return (ntohl(a4->sin_addr.s_addr) >> 24) == 127;
+    }
+    const struct sockaddr_in6 *a6 = (const struct sockaddr_in6 *)addr;
+    return IN6_IS_ADDR_LOOPBACK(&a6->sin6_addr) ||
+           (IN6_IS_ADDR_V4MAPPED(&a6->sin6_addr) && a6->sin6_addr.s6_addr[12] == 127);
+}
+
+static int is_wildcard(const struct sockaddr_storage *addr)
+{
+    if (addr->ss_family == AF_INET)
+        return ((const struct sockaddr_in *)addr)->sin_addr.s_addr == htonl(INADDR_ANY);
+    return IN6_IS_ADDR_UNSPECIFIED(&((const struct sockaddr_in6 *)addr)->sin6_addr);
+}
+
+static int add_allowed(rd_http *h, const char *name, rd_error *err)
+{
+    char buf[256];
+    const char *lower = host_name(name, buf, sizeof buf);
+    if (!lower || strlen(lower) != strlen(name)) /* a port was given */
+        return rd_error_set(err, RD_EINVAL, "",
+                            "--allow-host %s: not a host name (give the name without a port; IPv6 in "
+                            "brackets).",
+                            name);
+    char **grown = realloc(h->allow, (h->n_allow + 1) * sizeof *grown);
+    if (!grown)
+        return rd_error_set(err, RD_ENOMEM, "", "Out of memory.");
+    h->allow = grown;
+    if (!(h->allow[h->n_allow] = strdup(lower)))
+        return rd_error_set(err, RD_ENOMEM, "", "Out of memory.");
+    h->n_allow++;
+    return RD_OK;
+}
+
+/* The Host allowlist (loopback names, the bound address unless it is a
+ * wildcard, --allow-host) and a copy of the token. */
+static int set_access(rd_http *h, const rd_http_config *cfg, const struct sockaddr_storage *addr,
+                      rd_error *err)
+{
+    static const char *const loopback[] = {"127.0.0.1", "localhost", "[::1]"};
+    int rc = RD_OK;
+    for (size_t i = 0; i < sizeof loopback / sizeof loopback[0] && rc == RD_OK; i++)
+        rc = add_allowed(h, loopback[i], err);
+    if (rc == RD_OK && !is_wildcard(addr))
+        rc = add_allowed(h, h->host, err);
+    for (int i = 0; i < cfg->n_allow_hosts && rc == RD_OK; i++)
+        rc = add_allowed(h, cfg->allow_hosts[i], err);
+    if (rc == RD_OK && cfg->token && !(h->token = strdup(cfg->token)))
+        rc = rd_error_set(err, RD_ENOMEM, "", "Out of memory.");
+    return rc;
+}
 
 /* realpath of a directory option, or an error naming the option. */
 static int resolve_dir(const char *option, const char *dir, char **out, rd_error *err)
@@ -835,10 +1372,17 @@ int rd_http_create(const rd_http_config *cfg, rd_jobs *jobs, rd_metrics *metrics
     pthread_condattr_setclock(&attr, CLOCK_MONOTONIC);
     pthread_mutex_init(&h->mu, NULL);
     pthread_cond_init(&h->idle, &attr);
+    pthread_cond_init(&h->wake, &attr);
     pthread_condattr_destroy(&attr);
     if ((rc = resolve_dir("--static", cfg->static_dir, &h->static_root, err)) != RD_OK ||
         (rc = resolve_dir("--examples", cfg->examples_dir, &h->examples_dir, err)) != RD_OK)
         goto out;
+    h->limits = cfg->limits;
+    if (cfg->limits.threads < 1 || cfg->limits.connections_max < 1 || cfg->limits.per_ip_max < 1 ||
+        !(cfg->limits.request_deadline_s > 0) || cfg->limits.idle_timeout_s < 1) {
+        rc = rd_error_set(err, RD_EINVAL, "", "Connection limits out of range.");
+        goto out;
+    }
     if (cfg->port < 0 || cfg->port > 65535) {
         rc = rd_error_set(err, RD_EINVAL, "", "--port %d: not a port (0..65535).", cfg->port);
         goto out;
@@ -856,8 +1400,8 @@ int rd_http_create(const rd_http_config *cfg, rd_jobs *jobs, rd_metrics *metrics
     struct sockaddr_storage addr;
     memset(&addr, 0, sizeof addr);
     memcpy(&addr, ai->ai_addr, ai->ai_addrlen);
-    unsigned int flags = MHD_USE_AUTO_INTERNAL_THREAD | MHD_USE_THREAD_PER_CONNECTION | MHD_USE_ITC |
-                         MHD_USE_ERROR_LOG;
+    unsigned int flags = MHD_USE_INTERNAL_POLLING_THREAD | MHD_USE_EPOLL | MHD_USE_ITC |
+                         MHD_ALLOW_SUSPEND_RESUME | MHD_USE_ERROR_LOG;
     char text[INET6_ADDRSTRLEN];
     if (ai->ai_family == AF_INET6) {
         struct sockaddr_in6 *a6 = (struct sockaddr_in6 *)&addr;
@@ -872,12 +1416,32 @@ int rd_http_create(const rd_http_config *cfg, rd_jobs *jobs, rd_metrics *metrics
         snprintf(h->host, sizeof h->host, "%s", text);
     }
 
+    if (!is_loopback(&addr) && !cfg->token) {
+        rc = rd_error_set(err, RD_EINVAL, "",
+                          "--host %s is not a loopback address: give an access token with "
+                          "--token-file FILE.",
+                          cfg->host);
+        goto out;
+    }
+    if ((rc = set_access(h, cfg, &addr, err)) != RD_OK)
+        goto out;
+
+    int e = pthread_create(&h->timer, NULL, timer_main, h);
+    if (e != 0) {
+        rc = rd_error_set(err, RD_EINTERNAL, "", "Cannot start the timer thread: %s.", strerror(e));
+        goto out;
+    }
+    h->timer_started = 1;
+    const rd_http_limits *lim = &cfg->limits;
     h->daemon = MHD_start_daemon(
         flags, (uint16_t)cfg->port, NULL, NULL, on_request, h, MHD_OPTION_SOCK_ADDR,
-        (struct sockaddr *)&addr, MHD_OPTION_CONNECTION_LIMIT, (unsigned int)RD_HTTP_CONNECTIONS_MAX,
-        MHD_OPTION_CONNECTION_TIMEOUT, (unsigned int)IDLE_TIMEOUT_S, MHD_OPTION_NOTIFY_COMPLETED,
-        on_completed, (void *)h, MHD_OPTION_UNESCAPE_CALLBACK, unescape_path, (void *)NULL,
-        MHD_OPTION_END);
+        (struct sockaddr *)&addr, MHD_OPTION_THREAD_POOL_SIZE, (unsigned int)lim->threads,
+        MHD_OPTION_CONNECTION_LIMIT, (unsigned int)lim->connections_max,
+        MHD_OPTION_PER_IP_CONNECTION_LIMIT, (unsigned int)lim->per_ip_max,
+        MHD_OPTION_CONNECTION_TIMEOUT, (unsigned int)lim->idle_timeout_s,
+        MHD_OPTION_LISTEN_BACKLOG_SIZE, (unsigned int)LISTEN_BACKLOG, MHD_OPTION_NOTIFY_COMPLETED,
+        on_completed, (void *)h, MHD_OPTION_NOTIFY_CONNECTION, on_connection, (void *)h,
+        MHD_OPTION_UNESCAPE_CALLBACK, unescape_path, (void *)NULL, MHD_OPTION_END);
     if (!h->daemon) {
         rc = rd_error_set(err, RD_EINTERNAL, "", "Cannot listen on %s port %d (in use?).", h->host,
                           cfg->port);
@@ -915,14 +1479,7 @@ void rd_http_drain(rd_http *http, double seconds)
 {
     if (!http)
         return;
-    struct timespec deadline;
-    clock_gettime(CLOCK_MONOTONIC, &deadline);
-    deadline.tv_sec += (time_t)seconds;
-    deadline.tv_nsec += (long)((seconds - floor(seconds)) * 1e9);
-    if (deadline.tv_nsec >= 1000000000L) {
-        deadline.tv_sec++;
-        deadline.tv_nsec -= 1000000000L;
-    }
+    struct timespec deadline = mono_deadline(seconds);
     pthread_mutex_lock(&http->mu);
     while (http->in_flight > 0)
         if (pthread_cond_timedwait(&http->idle, &http->mu, &deadline) == ETIMEDOUT)
@@ -934,13 +1491,25 @@ void rd_http_free(rd_http *http)
 {
     if (!http)
         return;
+    if (http->timer_started) { /* resumes every waiter on its way out */
+        pthread_mutex_lock(&http->mu);
+        http->stop = 1;
+        pthread_cond_signal(&http->wake);
+        pthread_mutex_unlock(&http->mu);
+        pthread_join(http->timer, NULL);
+    }
     if (http->daemon)
         MHD_stop_daemon(http->daemon);
     if (http->quiesced_fd != MHD_INVALID_SOCKET)
         close(http->quiesced_fd);
     pthread_cond_destroy(&http->idle);
+    pthread_cond_destroy(&http->wake);
     pthread_mutex_destroy(&http->mu);
     free(http->static_root);
     free(http->examples_dir);
+    for (size_t i = 0; i < http->n_allow; i++)
+        free(http->allow[i]);
+    free(http->allow);
+    free(http->token);
     free(http);
 }

@@ -2,11 +2,18 @@
  * rd_http — the HTTP face of ringdyn (../shared/API.md): routes, request
  * limits, JSON error bodies and the static web page, on libmicrohttpd.
  *
- * Threading: one thread per connection (MHD_USE_THREAD_PER_CONNECTION with
- * an internal polling thread and a connection limit), so a request that
- * waits for its job (?wait=S) blocks only its own connection.  The server
- * parses no scene field: bodies go to rd_scene_parse, results come from
- * rd_jobs, error bodies from rd_api_error_json.
+ * Threading: libmicrohttpd's own epoll event loop on a small pool of
+ * threads (limits.threads), so an open connection costs a socket and a
+ * few kB, not a thread.  A request that waits for its job (?wait=S, or a
+ * DELETE of a running job) is suspended (MHD_suspend_connection) and
+ * resumed by the timer thread when the job ends or the wait is over, so it
+ * blocks no thread.  The timer thread also enforces the request deadline:
+ * a connection whose request (header and body) has not arrived complete
+ * within limits.request_deadline_s of its start (or of the end of the
+ * previous request on the connection) is shut down, so slow-header
+ * clients cannot hold connections.  The server parses no scene field:
+ * bodies go to rd_scene_parse, results come from rd_jobs, error bodies
+ * from rd_api_error_json.
  */
 #ifndef RD_HTTP_H
 #define RD_HTTP_H
@@ -15,16 +22,31 @@
 #include "rd_jobs.h"
 #include "rd_metrics.h"
 
-/* Most connections served at once (each holds one thread). */
-#define RD_HTTP_CONNECTIONS_MAX 128
 /* Longest ?wait= a client may ask for, seconds. */
 #define RD_HTTP_WAIT_MAX 300
+
+typedef struct rd_http_limits {
+    int threads;               /* event-loop threads, >= 1 */
+    int connections_max;       /* open connections in all (more are refused at accept) */
+    int per_ip_max;            /* open connections from one client address */
+    double request_deadline_s; /* a request's header and body must arrive within this */
+    int idle_timeout_s;        /* a connection with no traffic at all is closed after this */
+} rd_http_limits;
 
 typedef struct rd_http_config {
     const char *host;         /* numeric IPv4/IPv6 address or name to bind */
     int port;                 /* 0: any free port */
     const char *static_dir;   /* the web page, or NULL to serve none */
     const char *examples_dir; /* example scenes, or NULL for none */
+    /* Host-header names served besides the loopback names (127.0.0.1,
+     * localhost, [::1]) and the bound address; any port.  May be NULL. */
+    const char *const *allow_hosts;
+    int n_allow_hosts;
+    /* Bearer token every /api/v1/jobs*, /api/v1/examples* and /metrics
+     * request must send (Authorization: Bearer TOKEN), or NULL for none.
+     * Required when `host` is not a loopback address. */
+    const char *token;
+    rd_http_limits limits;
 } rd_http_config;
 
 typedef struct rd_http rd_http;
@@ -41,14 +63,17 @@ int rd_http_get_port(const rd_http *http);
 /* Stops accepting new connections; open ones are served on. */
 void rd_http_quiesce(rd_http *http);
 
+/* rd_jobs_config.on_final: a job ended, wake the requests waiting for it.
+ * `http` is the rd_http (void * for the callback). */
+void rd_http_job_ended(void *http);
+
 /* Waits up to `seconds` for the requests in progress to finish sending
  * their answers (idle keep-alive connections do not count), so that
  * requests released by rd_jobs_shutdown still get their response. */
 void rd_http_drain(rd_http *http, double seconds);
 
-/* Closes every connection, joins their threads and frees the server.  Callers
- * blocked in rd_jobs must have been released first (rd_jobs_shutdown).
- * NULL is a no-op. */
+/* Answers the requests still waiting for a job (as they stand), closes every
+ * connection, joins the threads and frees the server.  NULL is a no-op. */
 void rd_http_free(rd_http *http);
 
 #endif

@@ -1,28 +1,39 @@
 /*
- * rd_jobs — job store, bounded queue and worker pool (rd_jobs.h).
+ * rd_jobs — job pool over the job store (rd_jobs.h).
  *
- * Data layout: every job lives in one doubly linked list, newest first.  The
- * queue is not a separate structure: a worker takes the oldest `queued` job,
- * found by walking the list from its tail (the store holds a few hundred
- * jobs at most, so the walk costs less than one HTTP request).
+ * Data layout: every job the store holds is also in one doubly linked list
+ * in memory, newest first, with its metadata (no scene once it runs, no
+ * result: results live in the store).  The queue is not a separate
+ * structure: a worker takes the oldest `queued` job, found by walking the
+ * list from its tail.
  *
  * Locking: one mutex `mu` guards the list, the per-state counts, the stop
  * flag and every field of a job that changes (status, progress, times,
- * cancel and timeout flags, reference count).  `result` and `error` are
- * written once, under `mu`, before the status becomes final; after that
- * they never change, so a thread holding a reference may read them without
- * the lock.  Condition variables: `work` (a job was queued, or stop) wakes
- * workers; `done` (a job finished, or stop) wakes waiters.  Both wait on
- * CLOCK_MONOTONIC so wall-clock jumps do not stretch a wait.
+ * cancel and timeout flags, reference count, the shared body).  `error` is
+ * written once, under `mu`, when the status becomes final, and never
+ * changes after.  The store has its own mutex, always taken after `mu`
+ * (never the other way round); big writes (a result) are made without `mu`.
+ * Condition variables: `work` (a job was queued, or stop) wakes workers;
+ * `done` (a job finished, or stop) wakes waiters; `idle` (a worker left).
+ * They wait on CLOCK_MONOTONIC so wall-clock jumps do not stretch a wait.
  *
  * Lifetime: a job is freed when its reference count drops to zero.  The
  * list holds one reference; a worker running it and each request reading it
- * hold one more, so eviction never frees a job somebody is still reading.
+ * hold one more, so retention never frees a job somebody is still reading.
+ * A succeeded job's rendered JSON is written to the store when it ends and
+ * read back on demand into one `struct body`, which every request sending
+ * it shares (reference counted under `mu`); the last release frees it, so
+ * a finished job costs no memory while nobody reads it.
+ *
+ * Order of a job's end: the store row is written first, then the status in
+ * memory becomes final, so whoever sees a final status finds the row.
  *
  * Cancellation and the time limit act through the rd_monitor that the
- * worker passes to rd_scene_run: its report() returns non-zero once the job
- * is cancelled, the pool is stopping or the deadline has passed, and the
- * run then returns RD_ECANCELED at its next progress report.
+ * worker passes to rd_scene_run: its report() reads the job's cancel flag,
+ * the stop flag and the deadline, and returns non-zero once any is set; the
+ * run then returns RD_ECANCELED at that report.  How soon that is depends on
+ * how often the solver reports (core/); the time from the request to the
+ * solver's return is measured here (rd_jobs_get_stop_latency).
  */
 #include "rd_jobs.h"
 
@@ -31,6 +42,7 @@
 #include <math.h>
 #include <pthread.h>
 #include <stdarg.h>
+#include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -41,11 +53,21 @@
 
 /* How long DELETE waits for a running job to acknowledge the cancellation. */
 #define CANCEL_WAIT_S 5.0
+/* How long rd_jobs_free waits for idle workers to leave. */
+#define IDLE_WAIT_S 1.0
 /* Run time assumed for Retry-After before any job has finished. */
 #define RUN_ESTIMATE_INITIAL_S 1.0
 
+struct body {
+    rd_jobs_body pub;  /* first: the public view is a pointer to it */
+    rd_jobs *jobs;
+    struct job *owner; /* the job whose `body` this is, NULL once it is gone */
+    int refs;
+    char *data;
+};
+
 struct job {
-    struct job *prev, *next; /* store list, newest first */
+    struct job *prev, *next; /* list, newest first */
     int refs;
     char id[RD_JOBS_ID_LEN + 1];
     char analysis[32];
@@ -53,12 +75,13 @@ struct job {
     double progress;  /* 0..1 */
     int cancel;       /* DELETE asked a running job to stop */
     int timed_out;    /* the monitor saw the deadline pass */
+    double stop_asked; /* CLOCK_MONOTONIC of the DELETE, the deadline, or the shutdown; 0 = none */
     double deadline;  /* CLOCK_MONOTONIC seconds, set when the run starts */
     struct timespec created, started, finished; /* CLOCK_REALTIME; zero = not yet */
     rd_scene *scene;  /* owned until a worker takes it */
-    char *result;     /* rd_scene_run's JSON, once succeeded */
-    size_t result_len; /* strlen(result), counted in rd_jobs.result_bytes while listed */
-    char *error;      /* rd_api_error_json body, once failed or cancelled */
+    size_t body_len;  /* bytes of the stored JSON of a succeeded job */
+    struct body *body; /* that JSON while some request sends it, else NULL */
+    char *error;      /* error body, once failed, cancelled or interrupted */
 };
 
 struct rd_jobs {
@@ -66,26 +89,28 @@ struct rd_jobs {
     pthread_mutex_t mu;
     pthread_cond_t work;
     pthread_cond_t done;
+    pthread_cond_t idle;
     struct job *head, *tail;
     size_t counts[RD_JOB_NSTATUS]; /* jobs in the list, by status */
-    size_t result_bytes;           /* result text held by listed jobs */
     int stopping;
     double mean_run_s; /* moving average of run times, for Retry-After */
+    double stop_last_s, stop_max_s;
     int random_fd;     /* /dev/urandom, for ids */
     pthread_t *workers;
     int nworkers; /* started successfully */
+    int active;   /* workers not yet returned */
+    int in_solver; /* workers inside rd_scene_run */
+    struct body *recent; /* the body read last, held one reference longer (see keep_recent_locked) */
 };
 
-/* What a request reads of a job: the mutable fields copied under `mu`, the
- * immutable strings borrowed while a reference is held. */
+/* What a request reads of a job, copied under `mu`. */
 struct snap {
     char id[RD_JOBS_ID_LEN + 1];
     char analysis[32];
     int status;
     double progress;
     struct timespec created, started, finished;
-    const char *result;
-    const char *error;
+    char *error; /* a copy, or NULL */
 };
 
 struct run_ctx {
@@ -93,8 +118,8 @@ struct run_ctx {
     struct job *job;
 };
 
-static const char *const status_names[RD_JOB_NSTATUS] = {"queued", "running", "succeeded",
-                                                          "failed", "cancelled"};
+static const char *const status_names[RD_JOB_NSTATUS] = {"queued",    "running",  "succeeded",
+                                                          "failed",    "cancelled", "interrupted"};
 
 const char *rd_jobs_status_name(int status)
 {
@@ -103,9 +128,17 @@ const char *rd_jobs_status_name(int status)
     return status_names[status];
 }
 
+static int status_from_name(const char *name)
+{
+    for (int i = 0; i < RD_JOB_NSTATUS; i++)
+        if (strcmp(name, status_names[i]) == 0)
+            return i;
+    return -1;
+}
+
 static int is_final(int status)
 {
-    return status == RD_JOB_SUCCEEDED || status == RD_JOB_FAILED || status == RD_JOB_CANCELLED;
+    return status >= RD_JOB_SUCCEEDED;
 }
 
 static double mono_now(void)
@@ -128,6 +161,24 @@ static struct timespec mono_deadline(double seconds)
         ts.tv_nsec -= 1000000000L;
     }
     return ts;
+}
+
+static int64_t to_ns(const struct timespec *ts)
+{
+    return (int64_t)ts->tv_sec * 1000000000 + ts->tv_nsec;
+}
+
+static struct timespec from_ns(int64_t ns)
+{
+    struct timespec ts = {(time_t)(ns / 1000000000), (long)(ns % 1000000000)};
+    return ts;
+}
+
+static int64_t real_now_ns(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_REALTIME, &ts);
+    return to_ns(&ts);
 }
 
 static int id_is_wellformed(const char *id)
@@ -162,6 +213,42 @@ static char *error_json(int code, const char *fmt, ...)
     return rd_api_error_json(&err);
 }
 
+/* The error of an interrupted job: code "interrupted", which the status
+ * table of core/ (errors of a request or a run) has no entry for. */
+static char *interrupted_json(const char *when)
+{
+    char message[256];
+    snprintf(message, sizeof message,
+             "The server stopped while the job was %s; it did not finish and is not run again. "
+             "Submit the scene again.",
+             when);
+    json_t *o = json_pack("{s:{s:s, s:s}}", "error", "code", "interrupted", "message", message);
+    char *text = o ? json_dumps(o, JSON_COMPACT) : NULL;
+    json_decref(o);
+    return text;
+}
+
+static void store_row(const struct job *job, rd_store_row *row)
+{
+    memset(row, 0, sizeof *row);
+    memcpy(row->id, job->id, sizeof row->id);
+    memcpy(row->analysis, job->analysis, sizeof row->analysis);
+    row->status = status_names[job->status];
+    row->progress = job->progress;
+    row->created_ns = to_ns(&job->created);
+    row->started_ns = to_ns(&job->started);
+    row->finished_ns = to_ns(&job->finished);
+    row->error = job->error;
+    row->body_len = job->body_len;
+}
+
+/* A store failure after the job has been accepted is the server's problem,
+ * not the client's: it is logged and the job goes on in memory. */
+static void log_store_error(const char *what, const rd_error *err)
+{
+    fprintf(stderr, "ringdyn-server: job store, %s: %s\n", what, err->message);
+}
+
 /* ---- list and reference handling, all with `mu` held ---- */
 
 static struct job *find_locked(rd_jobs *jobs, const char *id)
@@ -174,8 +261,9 @@ static struct job *find_locked(rd_jobs *jobs, const char *id)
 
 static void job_free(struct job *job)
 {
+    if (job->body)
+        job->body->owner = NULL;
     rd_scene_free(job->scene);
-    free(job->result);
     free(job->error);
     free(job);
 }
@@ -193,6 +281,17 @@ static void set_status_locked(rd_jobs *jobs, struct job *job, int status)
     job->status = status;
 }
 
+static void push_locked(rd_jobs *jobs, struct job *job)
+{
+    job->next = jobs->head;
+    if (jobs->head)
+        jobs->head->prev = job;
+    else
+        jobs->tail = job;
+    jobs->head = job;
+    jobs->counts[job->status]++;
+}
+
 static void unlink_locked(rd_jobs *jobs, struct job *job)
 {
     if (job->prev)
@@ -205,37 +304,52 @@ static void unlink_locked(rd_jobs *jobs, struct job *job)
         jobs->tail = job->prev;
     job->prev = job->next = NULL;
     jobs->counts[job->status]--;
-    jobs->result_bytes -= job->result_len;
 }
 
-/* Drops the oldest finished jobs beyond keep_max, or while their results
- * hold more than keep_bytes (a lift result can be tens of MB); the newest
- * finished job always stays. */
-static void evict_locked(rd_jobs *jobs)
+/* rd_store_retain's callback: the row is gone, so is the job. */
+static void forget_locked(void *ctx, const char *id)
 {
-    size_t finished = jobs->counts[RD_JOB_SUCCEEDED] + jobs->counts[RD_JOB_FAILED] +
-                      jobs->counts[RD_JOB_CANCELLED];
-    struct job *j = jobs->tail;
-    while (j && (finished > (size_t)jobs->cfg.keep_max ||
-                 (jobs->result_bytes > jobs->cfg.keep_bytes && finished > 1))) {
-        struct job *prev = j->prev;
-        if (is_final(j->status)) {
-            unlink_locked(jobs, j);
-            release_locked(j);
-            finished--;
-        }
-        j = prev;
+    rd_jobs *jobs = ctx;
+    struct job *job = find_locked(jobs, id);
+    if (job) {
+        unlink_locked(jobs, job);
+        release_locked(job);
     }
 }
 
-/* Ends a job that never ran. */
-static void cancel_queued_locked(rd_jobs *jobs, struct job *job, const char *why)
+static void retain_locked(rd_jobs *jobs)
+{
+    rd_error err;
+    rd_error_init(&err);
+    int64_t oldest = jobs->cfg.keep_age_s > 0
+                         ? real_now_ns() - (int64_t)(jobs->cfg.keep_age_s * 1e9)
+                         : INT64_MIN;
+    if (rd_store_retain(jobs->cfg.store, (size_t)jobs->cfg.keep_max, jobs->cfg.keep_bytes, oldest,
+                        forget_locked, jobs, &err) != RD_OK)
+        log_store_error("retention", &err);
+}
+
+static void update_store(rd_jobs *jobs, const struct job *job, const char *body)
+{
+    rd_store_row row;
+    rd_error err;
+    rd_error_init(&err);
+    store_row(job, &row);
+    if (rd_store_update(jobs->cfg.store, &row, body, &err) != RD_OK)
+        log_store_error("update", &err);
+}
+
+/* Ends a job that is not running (queued), or detaches a running one from
+ * its worker (shutdown): final at once, in the store too. */
+static void end_locked(rd_jobs *jobs, struct job *job, int status, char *error)
 {
     rd_scene_free(job->scene);
     job->scene = NULL;
-    job->error = error_json(RD_ECANCELED, "%s", why);
+    free(job->error);
+    job->error = error;
     clock_gettime(CLOCK_REALTIME, &job->finished);
-    set_status_locked(jobs, job, RD_JOB_CANCELLED);
+    set_status_locked(jobs, job, status);
+    update_store(jobs, job, NULL);
 }
 
 static struct job *oldest_queued_locked(rd_jobs *jobs)
@@ -266,7 +380,7 @@ static int new_id_locked(rd_jobs *jobs, char *id, rd_error *err)
     return rd_error_set(err, RD_EINTERNAL, "", "Could not find a free job id.");
 }
 
-static void snapshot_locked(const struct job *job, struct snap *s)
+static int snapshot_locked(const struct job *job, struct snap *s)
 {
     memcpy(s->id, job->id, sizeof s->id);
     memcpy(s->analysis, job->analysis, sizeof s->analysis);
@@ -275,8 +389,10 @@ static void snapshot_locked(const struct job *job, struct snap *s)
     s->created = job->created;
     s->started = job->started;
     s->finished = job->finished;
-    s->result = is_final(job->status) ? job->result : NULL;
-    s->error = is_final(job->status) ? job->error : NULL;
+    s->error = NULL;
+    if (is_final(job->status) && job->error && !(s->error = strdup(job->error)))
+        return -1;
+    return 0;
 }
 
 /* ---- rendering (no lock needed: works on a snapshot) ---- */
@@ -311,7 +427,7 @@ static json_t *job_object(const struct snap *s)
     bad |= json_object_set_new(o, "started", iso_time(&s->started));
     bad |= json_object_set_new(o, "finished", iso_time(&s->finished));
     if (s->error) {
-        /* The api's body is {"error": {...}}; the job carries the inner object. */
+        /* The error body is {"error": {...}}; the job carries the inner object. */
         json_t *body = json_loads(s->error, 0, NULL);
         json_t *inner = body ? json_object_get(body, "error") : NULL;
         if (inner)
@@ -325,54 +441,151 @@ static json_t *job_object(const struct snap *s)
     return o;
 }
 
-/* The whole job: the envelope built by jansson, then the api's result text
- * spliced in verbatim as the last member (it is already JSON, and may be
- * megabytes, so it is not parsed again). */
-static int render_job(const struct snap *s, char **json, rd_error *err)
+static char *render_head(const struct snap *s)
 {
-    static const char key[] = ",\"result\":";
-    char *out = NULL;
     json_t *o = job_object(s);
     char *head = o ? json_dumps(o, JSON_COMPACT | JSON_REAL_PRECISION(6)) : NULL;
     json_decref(o);
+    return head;
+}
+
+/* The whole succeeded job: the envelope built by jansson, then the api's
+ * result text spliced in verbatim as the last member (it is already JSON,
+ * and may be megabytes, so it is not parsed again).  NULL when out of memory. */
+static char *render_with_result(const struct snap *s, const char *result, size_t *len)
+{
+    static const char key[] = ",\"result\":";
+    char *head = render_head(s);
     if (!head)
-        goto out;
-    if (!s->result || s->status != RD_JOB_SUCCEEDED) {
-        out = head;
-        head = NULL;
-        goto out;
-    }
-    size_t hl = strlen(head), rl = strlen(s->result);
+        return NULL;
+    size_t hl = strlen(head), rl = strlen(result);
     /* head is "{...}": drop its '}', append the member and close again. */
-    out = malloc(hl - 1 + (sizeof key - 1) + rl + 2);
-    if (!out)
-        goto out;
-    memcpy(out, head, hl - 1);
-    memcpy(out + hl - 1, key, sizeof key - 1);
-    memcpy(out + hl - 1 + sizeof key - 1, s->result, rl);
-    memcpy(out + hl - 1 + sizeof key - 1 + rl, "}", 2);
-out:
+    char *out = malloc(hl - 1 + (sizeof key - 1) + rl + 2);
+    if (out) {
+        memcpy(out, head, hl - 1);
+        memcpy(out + hl - 1, key, sizeof key - 1);
+        memcpy(out + hl - 1 + sizeof key - 1, result, rl);
+        memcpy(out + hl - 1 + sizeof key - 1 + rl, "}", 2);
+        *len = hl - 1 + (sizeof key - 1) + rl + 1;
+    }
     free(head);
-    *json = out;
-    if (!out)
-        return rd_error_set(err, RD_ENOMEM, "", "Out of memory while rendering job %s.", s->id);
-    return RD_OK;
+    return out;
 }
 
 /* Called with `mu` held and a reference on `job`: snapshots, unlocks,
- * renders, drops the reference.  Returns with `mu` released. */
+ * renders (without result), drops the reference.  Returns with `mu` released. */
 static int view_and_release(rd_jobs *jobs, struct job *job, char **json, int *finished,
                             rd_error *err)
 {
     struct snap s;
-    snapshot_locked(job, &s);
+    int bad = snapshot_locked(job, &s);
     pthread_mutex_unlock(&jobs->mu);
     if (finished)
         *finished = is_final(s.status);
-    int rc = render_job(&s, json, err);
+    *json = bad ? NULL : render_head(&s);
+    free(s.error);
     pthread_mutex_lock(&jobs->mu);
     release_locked(job);
     pthread_mutex_unlock(&jobs->mu);
+    if (!*json)
+        return rd_error_set(err, RD_ENOMEM, "", "Out of memory while rendering job %s.", s.id);
+    return RD_OK;
+}
+
+/* ---- the shared JSON of a succeeded job ---- */
+
+static void body_free(struct body *b)
+{
+    if (b) {
+        free(b->data);
+        free(b);
+    }
+}
+
+void rd_jobs_body_release(void *pub)
+{
+    struct body *b = pub;
+    if (!b)
+        return;
+    rd_jobs *jobs = b->jobs;
+    pthread_mutex_lock(&jobs->mu);
+    int last = --b->refs == 0;
+    if (last && b->owner)
+        b->owner->body = NULL;
+    pthread_mutex_unlock(&jobs->mu);
+    if (last)
+        body_free(b);
+}
+
+/* Holds `b` as the most recently read body, dropping the one held before;
+ * returns that one when this was its last reference (the caller frees it
+ * after unlocking).  So a job read again and again (a page polling it,
+ * clients whose socket buffers swallow the whole answer) is read from the
+ * store once, at the cost of one result held while nobody reads it. */
+static struct body *keep_recent_locked(rd_jobs *jobs, struct body *b)
+{
+    struct body *old = jobs->recent;
+    if (old == b)
+        return NULL;
+    b->refs++;
+    jobs->recent = b;
+    if (!old || --old->refs > 0)
+        return NULL;
+    if (old->owner)
+        old->owner->body = NULL;
+    return old;
+}
+
+/* Called with `mu` held and a reference on a succeeded `job`: its shared
+ * body, read from the store unless some request holds it already.  Returns
+ * with `mu` released and the job's reference dropped. */
+static int body_and_release(rd_jobs *jobs, struct job *job, rd_jobs_body **out, rd_error *err)
+{
+    struct body *b = job->body;
+    if (b) {
+        b->refs++;
+        struct body *dropped = keep_recent_locked(jobs, b);
+        release_locked(job);
+        pthread_mutex_unlock(&jobs->mu);
+        body_free(dropped);
+        *out = &b->pub;
+        return RD_OK;
+    }
+    char id[RD_JOBS_ID_LEN + 1];
+    memcpy(id, job->id, sizeof id);
+    pthread_mutex_unlock(&jobs->mu);
+
+    char *data = NULL;
+    size_t len = 0;
+    int rc = rd_store_read_body(jobs->cfg.store, id, &data, &len, err);
+    struct body *fresh = rc == RD_OK ? calloc(1, sizeof *fresh) : NULL;
+    if (rc == RD_OK && !fresh)
+        rc = rd_error_set(err, RD_ENOMEM, "", "Out of memory reading job %s.", id);
+    if (rc == RD_ENOTFOUND) /* the row of a succeeded job has a body: ours to explain */
+        rc = rd_error_set(err, RD_EINTERNAL, "", "The result of job %s is missing from the store.", id);
+
+    pthread_mutex_lock(&jobs->mu);
+    if (rc == RD_OK) {
+        if (job->body) { /* another request read it meanwhile: share that one */
+            free(data);
+            free(fresh);
+        } else {
+            fresh->jobs = jobs;
+            fresh->owner = job;
+            fresh->data = data;
+            fresh->pub.data = data;
+            fresh->pub.len = len;
+            job->body = fresh;
+        }
+        job->body->refs++;
+        *out = &job->body->pub;
+    } else {
+        free(data);
+    }
+    struct body *dropped = rc == RD_OK ? keep_recent_locked(jobs, job->body) : NULL;
+    release_locked(job);
+    pthread_mutex_unlock(&jobs->mu);
+    body_free(dropped);
     return rc;
 }
 
@@ -389,80 +602,156 @@ static int report_progress(void *arg, double fraction)
         job->progress = fraction;
     else if (fraction > 1)
         job->progress = 1;
-    int stop = job->cancel || ctx->jobs->stopping;
+    int stop = job->cancel || ctx->jobs->stopping || is_final(job->status);
     if (!stop && now >= job->deadline) {
         job->timed_out = 1;
+        job->stop_asked = job->deadline;
         stop = 1;
     }
     pthread_mutex_unlock(&ctx->jobs->mu);
     return stop;
 }
 
-/* Runs one job (taken by the caller, who holds a reference) to its end. */
+/* The final status and error of a run that returned `rc`. */
+static int final_status(rd_jobs *jobs, struct job *job, int rc, const char *result, rd_error *err,
+                        char **error)
+{
+    pthread_mutex_lock(&jobs->mu);
+    int cancel = job->cancel, timed_out = job->timed_out;
+    double progress = job->progress;
+    pthread_mutex_unlock(&jobs->mu);
+    /* A DELETE wins even over a run that completed meanwhile: the client was
+     * told the job is being cancelled, so it must not turn up succeeded. */
+    if (cancel) {
+        *error = error_json(RD_ECANCELED, "The job was cancelled by a DELETE request.");
+        return RD_JOB_CANCELLED;
+    }
+    if (rc == RD_OK && result)
+        return RD_JOB_SUCCEEDED;
+    if (rc == RD_ECANCELED && timed_out) {
+        *error = error_json(RD_ETIMEOUT,
+                            "The job ran longer than the time limit of %g s and was stopped "
+                            "(at %.0f %% progress).",
+                            jobs->cfg.timeout_s, 100.0 * progress);
+        return RD_JOB_FAILED;
+    }
+    if (err->code == RD_OK)
+        rd_error_set(err, rc != RD_OK ? rc : RD_EINTERNAL, "", "The analysis failed: %s.",
+                     rd_error_summary(rc != RD_OK ? rc : RD_EINTERNAL));
+    *error = rd_api_error_json(err);
+    return RD_JOB_FAILED;
+}
+
+/* Records how long the solver took to honour a stop request. */
+static void note_stop_latency_locked(rd_jobs *jobs, const struct job *job, double now)
+{
+    if (!(job->stop_asked > 0))
+        return;
+    double latency = now - job->stop_asked;
+    jobs->stop_last_s = latency;
+    if (latency > jobs->stop_max_s)
+        jobs->stop_max_s = latency;
+}
+
+/* Writes the end of a run (snapshot `s` with status, error and body) to the store. */
+static int store_end(rd_jobs *jobs, const struct snap *s, int status, const char *error,
+                     const char *body, size_t body_len)
+{
+    rd_store_row row;
+    memset(&row, 0, sizeof row);
+    memcpy(row.id, s->id, sizeof row.id);
+    memcpy(row.analysis, s->analysis, sizeof row.analysis);
+    row.status = status_names[status];
+    row.progress = s->progress;
+    row.created_ns = to_ns(&s->created);
+    row.started_ns = to_ns(&s->started);
+    row.finished_ns = to_ns(&s->finished);
+    row.error = error;
+    row.body_len = body ? body_len : 0;
+    rd_error err;
+    rd_error_init(&err);
+    int rc = rd_store_update(jobs->cfg.store, &row, body, &err);
+    if (rc != RD_OK)
+        log_store_error("writing a finished job", &err);
+    return rc;
+}
+
+/* Runs one job (taken by the caller, who holds a reference) to its end:
+ * the store row first (with the rendered JSON of a success), then the
+ * status in memory.  A job that shutdown already ended `interrupted` keeps
+ * that end; what its run produced is dropped. */
 static void run_job(rd_jobs *jobs, struct job *job, rd_scene *scene)
 {
     struct run_ctx ctx = {jobs, job};
     rd_monitor mon = {report_progress, &ctx};
     rd_error err;
     rd_error_init(&err);
-    char *result = NULL, *error = NULL;
+    char *result = NULL, *error = NULL, *body = NULL;
+    size_t body_len = 0;
 
     double t0 = mono_now();
     int rc = rd_scene_run(scene, &mon, &result, &err);
-    double run_s = mono_now() - t0;
+    double t1 = mono_now();
     rd_scene_free(scene);
+    int status = final_status(jobs, job, rc, result, &err, &error);
 
     pthread_mutex_lock(&jobs->mu);
-    int cancel = job->cancel, stopping = jobs->stopping, timed_out = job->timed_out;
-    double progress = job->progress;
+    jobs->in_solver--;
+    pthread_cond_broadcast(&jobs->idle);
+    note_stop_latency_locked(jobs, job, t1);
+    int detached = is_final(job->status);
+    struct snap s;
+    memset(&s, 0, sizeof s);
+    int bad = detached ? 0 : snapshot_locked(job, &s);
     pthread_mutex_unlock(&jobs->mu);
 
-    /* A DELETE wins even over a run that completed meanwhile: the client was
-     * told the job is being cancelled, so it must not turn up succeeded. */
-    int status;
-    if (cancel) {
-        status = RD_JOB_CANCELLED;
-        error = error_json(RD_ECANCELED, "The job was cancelled by a DELETE request.");
-    } else if (rc == RD_OK && result) {
-        status = RD_JOB_SUCCEEDED;
-    } else if (stopping) {
-        status = RD_JOB_CANCELLED;
-        error = error_json(RD_ECANCELED, "The server shut down before the job finished.");
-    } else if (rc == RD_ECANCELED && timed_out) {
-        status = RD_JOB_FAILED;
-        error = error_json(RD_ETIMEOUT,
-                           "The job ran longer than the time limit of %g s and was stopped "
-                           "(at %.0f %% progress).",
-                           jobs->cfg.timeout_s, 100.0 * progress);
-    } else {
-        status = RD_JOB_FAILED;
-        if (err.code == RD_OK)
-            rd_error_set(&err, rc != RD_OK ? rc : RD_EINTERNAL, "", "The analysis failed: %s.",
-                         rd_error_summary(rc != RD_OK ? rc : RD_EINTERNAL));
-        error = rd_api_error_json(&err);
+    if (!detached && !bad) {
+        clock_gettime(CLOCK_REALTIME, &s.finished);
+        s.status = status;
+        if (status == RD_JOB_SUCCEEDED) {
+            s.progress = 1;
+            body = render_with_result(&s, result, &body_len);
+            if (!body) { /* the result exists but cannot be sent: say so in the job */
+                status = RD_JOB_FAILED;
+                error = error_json(RD_ENOMEM, "Out of memory while storing the result.");
+            }
+        }
+        if (store_end(jobs, &s, status, error, body, body_len) != RD_OK && body) {
+            free(body);
+            body = NULL;
+            free(error);
+            status = RD_JOB_FAILED;
+            error = error_json(RD_EINTERNAL, "The result could not be written to the job store "
+                                             "(the server's log says why).");
+            store_end(jobs, &s, status, error, NULL, 0);
+        }
     }
-    if (status != RD_JOB_SUCCEEDED) {
-        free(result);
-        result = NULL;
-    }
+    free(result);
+    free(body);
+    free(s.error);
 
     pthread_mutex_lock(&jobs->mu);
-    job->result = result;
-    job->result_len = result ? strlen(result) : 0;
-    jobs->result_bytes += job->result_len;
-    job->error = error;
-    if (status == RD_JOB_SUCCEEDED)
-        job->progress = 1;
-    clock_gettime(CLOCK_REALTIME, &job->finished);
-    set_status_locked(jobs, job, status);
-    jobs->mean_run_s = 0.7 * jobs->mean_run_s + 0.3 * run_s;
-    evict_locked(jobs);
-    pthread_cond_broadcast(&jobs->done);
+    if (!detached) {
+        free(job->error);
+        job->error = error;
+        error = NULL;
+        job->body_len = status == RD_JOB_SUCCEEDED ? body_len : 0;
+        if (status == RD_JOB_SUCCEEDED)
+            job->progress = 1;
+        job->finished = s.finished;
+        set_status_locked(jobs, job, status);
+        jobs->mean_run_s = 0.7 * jobs->mean_run_s + 0.3 * (t1 - t0);
+        retain_locked(jobs);
+        pthread_cond_broadcast(&jobs->done);
+    }
     release_locked(job);
     pthread_mutex_unlock(&jobs->mu);
+    free(error);
 
-    if (jobs->cfg.on_finish)
-        jobs->cfg.on_finish(jobs->cfg.on_finish_ctx, status, run_s);
+    if (!detached && jobs->cfg.on_final)
+        jobs->cfg.on_final(jobs->cfg.on_final_ctx);
+    if (!detached && jobs->cfg.on_finish)
+        jobs->cfg.on_finish(jobs->cfg.on_finish_ctx, status, t1 - t0);
 }
 
 static void *worker_main(void *arg)
@@ -474,6 +763,8 @@ static void *worker_main(void *arg)
         while (!jobs->stopping && !(job = oldest_queued_locked(jobs)))
             pthread_cond_wait(&jobs->work, &jobs->mu);
         if (jobs->stopping) {
+            jobs->active--;
+            pthread_cond_broadcast(&jobs->idle);
             pthread_mutex_unlock(&jobs->mu);
             return NULL;
         }
@@ -483,10 +774,69 @@ static void *worker_main(void *arg)
         job->deadline = mono_now() + jobs->cfg.timeout_s;
         rd_scene *scene = job->scene;
         job->scene = NULL;
+        update_store(jobs, job, NULL); /* small: status and start time */
+        jobs->in_solver++;
         pthread_mutex_unlock(&jobs->mu);
 
         run_job(jobs, job, scene);
     }
+}
+
+/* ---- start: the jobs of the store ---- */
+
+/* rd_store_load's callback: one row becomes one job in the list. */
+static int load_row(void *ctx, const rd_store_row *row)
+{
+    rd_jobs *jobs = ctx;
+    int status = status_from_name(row->status);
+    if (status < 0 || !is_final(status))
+        return RD_OK; /* marked interrupted before loading; anything else is not ours */
+    struct job *job = calloc(1, sizeof *job);
+    if (!job)
+        return RD_ENOMEM;
+    memcpy(job->id, row->id, sizeof job->id);
+    memcpy(job->analysis, row->analysis, sizeof job->analysis);
+    job->status = status;
+    job->progress = row->progress;
+    job->created = from_ns(row->created_ns);
+    job->started = from_ns(row->started_ns);
+    job->finished = from_ns(row->finished_ns);
+    job->body_len = row->body_len;
+    job->refs = 1;
+    if (row->error && !(job->error = strdup(row->error))) {
+        free(job);
+        return RD_ENOMEM;
+    }
+    push_locked(jobs, job);
+    return RD_OK;
+}
+
+/* What the last process left queued or running ends `interrupted`, then
+ * every row is loaded and retention applied. */
+static int load_store(rd_jobs *jobs, rd_error *err)
+{
+    char *queued = interrupted_json("queued"), *running = interrupted_json("running");
+    int rc = !queued || !running ? rd_error_set(err, RD_ENOMEM, "", "Out of memory.") : RD_OK;
+    int64_t now = real_now_ns();
+    int n_queued = 0, n_running = 0;
+    if (rc == RD_OK)
+        rc = rd_store_mark(jobs->cfg.store, "queued", "queued", "interrupted", now, queued, &n_queued,
+                           err);
+    if (rc == RD_OK)
+        rc = rd_store_mark(jobs->cfg.store, "running", "running", "interrupted", now, running,
+                           &n_running, err);
+    free(queued);
+    free(running);
+    if (rc == RD_OK && n_queued + n_running > 0)
+        fprintf(stderr, "ringdyn-server: %d queued and %d running jobs of the last run are marked "
+                        "interrupted\n", n_queued, n_running);
+    pthread_mutex_lock(&jobs->mu);
+    if (rc == RD_OK && (rc = rd_store_load(jobs->cfg.store, load_row, jobs, err)) == RD_ENOMEM)
+        rd_error_set(err, RD_ENOMEM, "", "Out of memory loading the job store.");
+    if (rc == RD_OK)
+        retain_locked(jobs);
+    pthread_mutex_unlock(&jobs->mu);
+    return rc;
 }
 
 /* ---- public functions ---- */
@@ -495,7 +845,7 @@ int rd_jobs_create(const rd_jobs_config *cfg, rd_jobs **out, rd_error *err)
 {
     *out = NULL;
     if (cfg->threads < 1 || cfg->queue_max < 1 || cfg->keep_max < 1 || cfg->keep_bytes < 1 ||
-        !(cfg->timeout_s > 0))
+        !(cfg->timeout_s > 0) || !(cfg->keep_age_s >= 0) || !cfg->store)
         return rd_error_set(err, RD_EINVAL, "", "Job pool settings out of range.");
     rd_jobs *jobs = calloc(1, sizeof *jobs);
     if (!jobs)
@@ -514,50 +864,95 @@ int rd_jobs_create(const rd_jobs_config *cfg, rd_jobs **out, rd_error *err)
     pthread_mutex_init(&jobs->mu, NULL);
     pthread_cond_init(&jobs->work, &attr);
     pthread_cond_init(&jobs->done, &attr);
+    pthread_cond_init(&jobs->idle, &attr);
     pthread_condattr_destroy(&attr);
 
-    jobs->workers = calloc((size_t)cfg->threads, sizeof *jobs->workers);
-    if (!jobs->workers) {
-        rd_jobs_free(jobs);
-        return rd_error_set(err, RD_ENOMEM, "", "Out of memory.");
-    }
-    for (int i = 0; i < cfg->threads; i++) {
+    int rc = load_store(jobs, err);
+    jobs->workers = rc == RD_OK ? calloc((size_t)cfg->threads, sizeof *jobs->workers) : NULL;
+    if (rc == RD_OK && !jobs->workers)
+        rc = rd_error_set(err, RD_ENOMEM, "", "Out of memory.");
+    for (int i = 0; rc == RD_OK && i < cfg->threads; i++) {
+        pthread_mutex_lock(&jobs->mu);
+        jobs->active++;
+        pthread_mutex_unlock(&jobs->mu);
         int e = pthread_create(&jobs->workers[i], NULL, worker_main, jobs);
         if (e != 0) {
-            rd_jobs_free(jobs);
-            return rd_error_set(err, RD_EINTERNAL, "", "Cannot start worker thread: %s.", strerror(e));
+            pthread_mutex_lock(&jobs->mu);
+            jobs->active--;
+            pthread_mutex_unlock(&jobs->mu);
+            rc = rd_error_set(err, RD_EINTERNAL, "", "Cannot start worker thread: %s.", strerror(e));
+        } else {
+            jobs->nworkers++;
         }
-        jobs->nworkers++;
+    }
+    if (rc != RD_OK) {
+        rd_jobs_shutdown(jobs, 0);
+        rd_jobs_free(jobs);
+        return rc;
     }
     *out = jobs;
     return RD_OK;
 }
 
-void rd_jobs_shutdown(rd_jobs *jobs)
+void rd_jobs_shutdown(rd_jobs *jobs, double wait_s)
 {
     if (!jobs)
         return;
     pthread_mutex_lock(&jobs->mu);
-    if (!jobs->stopping) {
-        jobs->stopping = 1;
-        /* Running jobs see `stopping` at their next progress report. */
-        for (struct job *j = jobs->head; j; j = j->next)
-            if (j->status == RD_JOB_QUEUED)
-                cancel_queued_locked(jobs, j, "The server shut down before the job started.");
-        pthread_cond_broadcast(&jobs->work);
-        pthread_cond_broadcast(&jobs->done);
+    if (jobs->stopping) {
+        pthread_mutex_unlock(&jobs->mu);
+        return;
     }
+    jobs->stopping = 1;
+    double now = mono_now();
+    for (struct job *j = jobs->head; j; j = j->next) {
+        if (j->status == RD_JOB_QUEUED)
+            end_locked(jobs, j, RD_JOB_INTERRUPTED, interrupted_json("queued"));
+        else if (j->status == RD_JOB_RUNNING && !(j->stop_asked > 0))
+            j->stop_asked = now; /* runs see `stopping` at their next report */
+    }
+    pthread_cond_broadcast(&jobs->work);
+    pthread_cond_broadcast(&jobs->done);
+    /* Runs that end within wait_s end as they would (a success is kept);
+     * the rest are ended interrupted now and their workers left behind. */
+    struct timespec deadline = mono_deadline(wait_s);
+    while (jobs->counts[RD_JOB_RUNNING] > 0)
+        if (pthread_cond_timedwait(&jobs->done, &jobs->mu, &deadline) == ETIMEDOUT)
+            break;
+    for (struct job *j = jobs->head; j; j = j->next)
+        if (j->status == RD_JOB_RUNNING)
+            end_locked(jobs, j, RD_JOB_INTERRUPTED, interrupted_json("running"));
+    pthread_cond_broadcast(&jobs->done);
     pthread_mutex_unlock(&jobs->mu);
+    if (jobs->cfg.on_final)
+        jobs->cfg.on_final(jobs->cfg.on_final_ctx);
 }
 
 void rd_jobs_free(rd_jobs *jobs)
 {
     if (!jobs)
         return;
-    rd_jobs_shutdown(jobs);
+    rd_jobs_shutdown(jobs, 0);
+    /* Idle workers leave at once; wait (briefly) for them, not for solvers. */
+    pthread_mutex_lock(&jobs->mu);
+    struct timespec deadline = mono_deadline(IDLE_WAIT_S);
+    while (jobs->active > jobs->in_solver)
+        if (pthread_cond_timedwait(&jobs->idle, &jobs->mu, &deadline) == ETIMEDOUT)
+            break;
+    int active = jobs->active;
+    pthread_mutex_unlock(&jobs->mu);
+    if (active > 0) {
+        /* A solver that does not report cannot be stopped: the process exit
+         * ends it.  Freeing the pool under it would be a use after free. */
+        fprintf(stderr, "ringdyn-server: %d worker(s) still in a solver; leaving them to the exit\n",
+                active);
+        return;
+    }
     for (int i = 0; i < jobs->nworkers; i++)
         pthread_join(jobs->workers[i], NULL);
     free(jobs->workers);
+    if (jobs->recent) /* no request is left: this is its last reference */
+        rd_jobs_body_release(&jobs->recent->pub);
     struct job *j = jobs->head;
     while (j) {
         struct job *next = j->next;
@@ -566,6 +961,7 @@ void rd_jobs_free(rd_jobs *jobs)
     }
     pthread_cond_destroy(&jobs->work);
     pthread_cond_destroy(&jobs->done);
+    pthread_cond_destroy(&jobs->idle);
     pthread_mutex_destroy(&jobs->mu);
     close(jobs->random_fd);
     free(jobs);
@@ -575,7 +971,9 @@ int rd_jobs_submit(rd_jobs *jobs, rd_scene *scene, char *id, rd_error *err)
 {
     int rc = RD_OK;
     struct job *job = calloc(1, sizeof *job);
-    if (!job) {
+    char *echo = job ? rd_scene_to_json(scene) : NULL;
+    if (!job || !echo) {
+        free(job);
         rd_scene_free(scene);
         return rd_error_set(err, RD_ENOMEM, "", "Out of memory.");
     }
@@ -597,21 +995,25 @@ int rd_jobs_submit(rd_jobs *jobs, rd_scene *scene, char *id, rd_error *err)
                           jobs->cfg.queue_max, jobs->cfg.threads);
         goto out;
     }
-    rc = new_id_locked(jobs, job->id, err);
-    if (rc != RD_OK)
+    if ((rc = new_id_locked(jobs, job->id, err)) != RD_OK)
         goto out;
-    job->next = jobs->head;
-    if (jobs->head)
-        jobs->head->prev = job;
-    else
-        jobs->tail = job;
-    jobs->head = job;
-    jobs->counts[RD_JOB_QUEUED]++;
+    rd_store_row row;
+    store_row(job, &row);
+    rd_error store_err;
+    rd_error_init(&store_err);
+    if (rd_store_insert(jobs->cfg.store, &row, echo, &store_err) != RD_OK) {
+        log_store_error("insert", &store_err);
+        rc = rd_error_set(err, store_err.code == RD_ENOMEM ? RD_ENOMEM : RD_EINTERNAL, "",
+                          "The job could not be written to the job store.");
+        goto out;
+    }
+    push_locked(jobs, job);
     memcpy(id, job->id, RD_JOBS_ID_LEN + 1);
     pthread_cond_signal(&jobs->work);
     job = NULL;
 out:
     pthread_mutex_unlock(&jobs->mu);
+    free(echo);
     if (job)
         job_free(job);
     return rc;
@@ -632,18 +1034,32 @@ static int acquire_locked(rd_jobs *jobs, const char *id, struct job **out, rd_er
     return RD_OK;
 }
 
-/* Waits (mutex held) until the job is final, the server stops, or `seconds` pass. */
+/* Waits (mutex held) until the job is final or `seconds` pass.  Shutdown
+ * makes every job final within its wait, so a waiter always gets a final job. */
 static void wait_final_locked(rd_jobs *jobs, struct job *job, double seconds)
 {
     struct timespec deadline = mono_deadline(seconds);
-    while (!is_final(job->status) && !jobs->stopping)
+    while (!is_final(job->status))
         if (pthread_cond_timedwait(&jobs->done, &jobs->mu, &deadline) == ETIMEDOUT)
             break;
 }
 
-int rd_jobs_view(rd_jobs *jobs, const char *id, double wait_s, char **json, int *finished,
-                 rd_error *err)
+/* With `mu` held and a reference on `job`: the shared body of a succeeded
+ * job, else its rendering.  Returns with `mu` released. */
+static int answer_and_release(rd_jobs *jobs, struct job *job, rd_jobs_body **body, char **json,
+                              int *finished, rd_error *err)
 {
+    if (finished)
+        *finished = is_final(job->status);
+    if (job->status == RD_JOB_SUCCEEDED)
+        return body_and_release(jobs, job, body, err);
+    return view_and_release(jobs, job, json, NULL, err);
+}
+
+int rd_jobs_get(rd_jobs *jobs, const char *id, double wait_s, rd_jobs_body **body, char **json,
+                int *finished, rd_error *err)
+{
+    *body = NULL;
     *json = NULL;
     if (finished)
         *finished = 0;
@@ -653,25 +1069,75 @@ int rd_jobs_view(rd_jobs *jobs, const char *id, double wait_s, char **json, int 
         return acquired;
     if (wait_s > 0)
         wait_final_locked(jobs, job, wait_s);
-    return view_and_release(jobs, job, json, finished, err);
+    return answer_and_release(jobs, job, body, json, finished, err);
 }
 
-int rd_jobs_cancel(rd_jobs *jobs, const char *id, char **json, rd_error *err)
+int rd_jobs_is_final(rd_jobs *jobs, const char *id)
 {
-    *json = NULL;
+    pthread_mutex_lock(&jobs->mu);
+    struct job *job = find_locked(jobs, id);
+    int final = !job || is_final(job->status);
+    pthread_mutex_unlock(&jobs->mu);
+    return final;
+}
+
+int rd_jobs_request_cancel(rd_jobs *jobs, const char *id, rd_error *err)
+{
     struct job *job;
     int acquired = acquire_locked(jobs, id, &job, err);
     if (acquired != RD_OK)
         return acquired;
+    int ended = 0;
     if (job->status == RD_JOB_QUEUED) {
-        cancel_queued_locked(jobs, job, "The job was cancelled by a DELETE request.");
-        evict_locked(jobs);
+        end_locked(jobs, job, RD_JOB_CANCELLED,
+                   error_json(RD_ECANCELED, "The job was cancelled by a DELETE request."));
+        retain_locked(jobs);
         pthread_cond_broadcast(&jobs->done);
-    } else if (job->status == RD_JOB_RUNNING) {
+        ended = 1;
+    } else if (job->status == RD_JOB_RUNNING && !job->cancel) {
         job->cancel = 1;
-        wait_final_locked(jobs, job, CANCEL_WAIT_S);
+        job->stop_asked = mono_now();
     }
-    return view_and_release(jobs, job, json, NULL, err);
+    release_locked(job);
+    pthread_mutex_unlock(&jobs->mu);
+    if (ended && jobs->cfg.on_final)
+        jobs->cfg.on_final(jobs->cfg.on_final_ctx);
+    return RD_OK;
+}
+
+int rd_jobs_cancel(rd_jobs *jobs, const char *id, rd_jobs_body **body, char **json, rd_error *err)
+{
+    *body = NULL;
+    *json = NULL;
+    int rc = rd_jobs_request_cancel(jobs, id, err);
+    if (rc != RD_OK)
+        return rc;
+    return rd_jobs_get(jobs, id, CANCEL_WAIT_S, body, json, NULL, err);
+}
+
+void rd_jobs_expire(rd_jobs *jobs)
+{
+    pthread_mutex_lock(&jobs->mu);
+    retain_locked(jobs);
+    pthread_mutex_unlock(&jobs->mu);
+}
+
+/* The result member of a succeeded job's JSON, which render_with_result
+ * wrote as the last member: a NUL-terminated copy, or NULL. */
+static char *result_of(const rd_jobs_body *b)
+{
+    static const char key[] = ",\"result\":";
+    const char *p = strstr(b->data, key);
+    if (!p || b->len < 1)
+        return NULL;
+    p += sizeof key - 1;
+    size_t n = (size_t)(b->data + b->len - 1 - p); /* up to the closing '}' */
+    char *copy = malloc(n + 1);
+    if (copy) {
+        memcpy(copy, p, n);
+        copy[n] = '\0';
+    }
+    return copy;
 }
 
 int rd_jobs_result_csv(rd_jobs *jobs, const char *id, char **csv, rd_error *err)
@@ -688,23 +1154,26 @@ int rd_jobs_result_csv(rd_jobs *jobs, const char *id, char **csv, rd_error *err)
         pthread_mutex_unlock(&jobs->mu);
         return rc;
     }
-    pthread_mutex_unlock(&jobs->mu);
+    rd_jobs_body *body = NULL;
+    int rc = body_and_release(jobs, job, &body, err);
+    if (rc != RD_OK)
+        return rc;
+    char *result = result_of(body);
+    rd_jobs_body_release(body);
+    if (!result)
+        return rd_error_set(err, RD_ENOMEM, "", "Out of memory reading job %s.", id);
 
     /* The input is the api's own output, so a failure here is ours, not the
      * client's: report it as internal (or out of memory) whatever the api said. */
     rd_error e;
     rd_error_init(&e);
-    *csv = rd_api_result_csv(job->result, &e);
-    int rc = RD_OK;
+    *csv = rd_api_result_csv(result, &e);
+    free(result);
     if (!*csv)
-        rc = rd_error_set(err, e.code == RD_ENOMEM ? RD_ENOMEM : RD_EINTERNAL, "",
-                          "Cannot write the result of job %s as CSV: %s", id,
-                          e.message[0] ? e.message : "unknown error.");
-
-    pthread_mutex_lock(&jobs->mu);
-    release_locked(job);
-    pthread_mutex_unlock(&jobs->mu);
-    return rc;
+        return rd_error_set(err, e.code == RD_ENOMEM ? RD_ENOMEM : RD_EINTERNAL, "",
+                            "Cannot write the result of job %s as CSV: %s", id,
+                            e.message[0] ? e.message : "unknown error.");
+    return RD_OK;
 }
 
 int rd_jobs_list(rd_jobs *jobs, size_t limit, char **json, rd_error *err)
@@ -717,8 +1186,10 @@ int rd_jobs_list(rd_jobs *jobs, size_t limit, char **json, rd_error *err)
     size_t n = 0;
     for (struct job *j = jobs->head; j && n < limit && !bad; j = j->next, n++) {
         struct snap s;
-        snapshot_locked(j, &s);
-        bad |= json_array_append_new(list, job_object(&s));
+        bad |= snapshot_locked(j, &s);
+        if (!bad)
+            bad |= json_array_append_new(list, job_object(&s));
+        free(s.error);
     }
     pthread_mutex_unlock(&jobs->mu);
     if (!bad) {
@@ -736,6 +1207,14 @@ void rd_jobs_get_counts(rd_jobs *jobs, size_t *counts)
 {
     pthread_mutex_lock(&jobs->mu);
     memcpy(counts, jobs->counts, sizeof jobs->counts);
+    pthread_mutex_unlock(&jobs->mu);
+}
+
+void rd_jobs_get_stop_latency(rd_jobs *jobs, double *last_s, double *max_s)
+{
+    pthread_mutex_lock(&jobs->mu);
+    *last_s = jobs->stop_last_s;
+    *max_s = jobs->stop_max_s;
     pthread_mutex_unlock(&jobs->mu);
 }
 

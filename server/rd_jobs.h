@@ -2,11 +2,19 @@
  * rd_jobs — the job store, the bounded queue and the worker pool.
  *
  * A job is created `queued` by rd_jobs_submit, taken by one of the workers in
- * submission order (`running`), and ends `succeeded`, `failed` or
- * `cancelled`.  The store keeps at most `keep_max` finished jobs (the oldest
- * finished job is evicted first) and at most `queue_max` queued ones; running
- * jobs are bounded by the worker count.  Jobs are rendered as the JSON of
- * API.md (the job object with `result` or `error`).
+ * submission order (`running`), and ends `succeeded`, `failed`,
+ * `cancelled` or `interrupted` (the server stopped, or died, while the job
+ * was queued or running; it is not run again).  Every job is written to the
+ * rd_store as it changes, so finished jobs outlive the process; at start
+ * the jobs the last process left queued or running become `interrupted`.
+ * Retention (applied in the store): at most `keep_max` finished jobs,
+ * `keep_bytes` of results and `keep_age_s` of age (the newest finished job
+ * always stays); at most `queue_max` queued jobs; running jobs are bounded
+ * by the worker count.  Jobs are rendered as the JSON of API.md.
+ *
+ * A succeeded job's JSON (with its `result`) is rendered once when it ends,
+ * stored once, and served from one shared copy (rd_jobs_body) while any
+ * request is sending it, however many requests that are.
  *
  * Knows nothing of HTTP: errors are rd_error statuses (RD_ENOTFOUND for an
  * unknown id, RD_EBUSY for a full queue) that the caller maps.  Every
@@ -19,6 +27,7 @@
 
 #include "rd_api.h"
 #include "rd_error.h"
+#include "rd_store.h"
 
 /* Job ids are RD_JOBS_ID_LEN lowercase hex digits (64 random bits). */
 #define RD_JOBS_ID_LEN 16
@@ -29,6 +38,7 @@ enum rd_job_status {
     RD_JOB_SUCCEEDED,
     RD_JOB_FAILED,
     RD_JOB_CANCELLED,
+    RD_JOB_INTERRUPTED,
     RD_JOB_NSTATUS
 };
 
@@ -40,25 +50,47 @@ typedef struct rd_jobs_config {
     int queue_max;    /* queued (not yet running) jobs accepted at once, >= 1 */
     int keep_max;     /* finished jobs kept for GET, >= 1 */
     size_t keep_bytes; /* and at most this much result text (the newest is always kept) */
+    double keep_age_s; /* and none older than this (0: no age limit) */
     double timeout_s; /* run time limit per job, > 0 */
+    rd_store *store;  /* borrowed; must outlive the pool */
     /* Called by a worker after each job that ran, with its final status and
      * run time; no lock is held.  May be NULL. */
     void (*on_finish)(void *ctx, int status, double run_seconds);
     void *on_finish_ctx;
+    /* Called (no lock held) whenever a job reaches a final state, so that
+     * requests waiting for it can be woken.  May be NULL. */
+    void (*on_final)(void *ctx);
+    void *on_final_ctx;
 } rd_jobs_config;
+
+/* The JSON of a finished, succeeded job, shared by the requests sending it:
+ * `data` (`len` bytes) stays valid until the holder calls
+ * rd_jobs_body_release. */
+typedef struct rd_jobs_body {
+    const char *data;
+    size_t len;
+} rd_jobs_body;
+void rd_jobs_body_release(void *body);
 
 typedef struct rd_jobs rd_jobs;
 
-/* Starts the workers.  On success *out owns the pool; free with rd_jobs_free. */
+/* Loads the store (marking what the last process left queued or running
+ * `interrupted`) and starts the workers.  On success *out owns the pool;
+ * free with rd_jobs_free. */
 int rd_jobs_create(const rd_jobs_config *cfg, rd_jobs **out, rd_error *err);
 
-/* Stops taking jobs, cancels queued and running ones and wakes every waiter,
- * so callers blocked in rd_jobs_view return at once.  Idempotent. */
-void rd_jobs_shutdown(rd_jobs *jobs);
+/* Stops taking jobs and ends queued ones `interrupted`; running ones are
+ * asked to stop and given `wait_s` seconds: a run that ends in that time
+ * ends as it would (a success is kept), the others are then ended
+ * `interrupted` (in memory and in the store) and their workers left behind.
+ * Wakes every waiter, so callers blocked in rd_jobs_get return with a final
+ * job.  Idempotent. */
+void rd_jobs_shutdown(rd_jobs *jobs, double wait_s);
 
-/* Shuts down, joins the workers (a running job stops at its next progress
- * report) and frees everything.  No other call may be in progress or follow.
- * NULL is a no-op. */
+/* Shuts down (without waiting), joins the workers and frees everything.  A
+ * worker still inside a solver that does not report cannot be joined: then
+ * the pool is left to the process exit.  No other call may be in progress or
+ * follow.  NULL is a no-op. */
 void rd_jobs_free(rd_jobs *jobs);
 
 /* Queues a parsed scene.  Takes ownership of `scene` in every case.  On
@@ -66,17 +98,30 @@ void rd_jobs_free(rd_jobs *jobs);
  * RD_EBUSY when the queue is full or the pool is shutting down. */
 int rd_jobs_submit(rd_jobs *jobs, rd_scene *scene, char *id, rd_error *err);
 
-/* The job as JSON: {"id", "status", "progress", "analysis", "created",
- * "started", "finished", "result" | "error"}.  Waits up to `wait_s` seconds
- * (0: not at all) for the job to finish; *finished (may be NULL) tells
- * whether it had.  RD_ENOTFOUND for an unknown id. */
-int rd_jobs_view(rd_jobs *jobs, const char *id, double wait_s, char **json, int *finished,
-                 rd_error *err);
+/* The job: {"id", "status", "progress", "analysis", "created", "started",
+ * "finished", "result" | "error"}.  Waits up to `wait_s` seconds (0: not at
+ * all) for the job to finish; *finished (may be NULL) tells whether it had.
+ * A succeeded job comes as its shared JSON in *body (release with
+ * rd_jobs_body_release) and *json stays NULL; any other job is rendered into
+ * *json (malloc'd).  RD_ENOTFOUND for an unknown id. */
+int rd_jobs_get(rd_jobs *jobs, const char *id, double wait_s, rd_jobs_body **body, char **json,
+                int *finished, rd_error *err);
+
+/* Is job `id` final (or gone)?  For waiters polled after on_final. */
+int rd_jobs_is_final(rd_jobs *jobs, const char *id);
+
+/* Asks a running job to stop (DELETE) without waiting; a queued job ends
+ * cancelled at once.  RD_ENOTFOUND for an unknown id. */
+int rd_jobs_request_cancel(rd_jobs *jobs, const char *id, rd_error *err);
+
+/* Applies the age limit now (the count and size limits apply whenever a job
+ * ends); for a periodic timer. */
+void rd_jobs_expire(rd_jobs *jobs);
 
 /* Cancels a queued job at once, or asks a running one to stop and waits a
- * few seconds for it; a finished job is left as it is.  Then renders the job
- * as rd_jobs_view does.  RD_ENOTFOUND for an unknown id. */
-int rd_jobs_cancel(rd_jobs *jobs, const char *id, char **json, rd_error *err);
+ * few seconds for it; a finished job is left as it is.  Then answers as
+ * rd_jobs_get does.  RD_ENOTFOUND for an unknown id. */
+int rd_jobs_cancel(rd_jobs *jobs, const char *id, rd_jobs_body **body, char **json, rd_error *err);
 
 /* The result of a succeeded job as CSV (rd_api_result_csv).  RD_ENOTFOUND for
  * an unknown id or a job without a result (the message gives its status). */
@@ -87,6 +132,11 @@ int rd_jobs_list(rd_jobs *jobs, size_t limit, char **json, rd_error *err);
 
 /* Current number of jobs in each state (RD_JOB_NSTATUS entries). */
 void rd_jobs_get_counts(rd_jobs *jobs, size_t *counts);
+
+/* Stop latency of the last cancelled or timed-out run: seconds from the
+ * DELETE (or the deadline) to the solver's return; the largest so far in
+ * *max_s.  Both 0 before the first. */
+void rd_jobs_get_stop_latency(rd_jobs *jobs, double *last_s, double *max_s);
 
 /* Seconds a client turned away by a full queue should wait before retrying:
  * the queue ahead of it times the recent mean run time, 1..300. */

@@ -115,9 +115,24 @@ static void text_printf(struct text *t, const char *fmt, ...)
 }
 
 char *rd_metrics_render(rd_metrics *m, const char *const *state_names, const size_t *state_counts,
-                        size_t n)
+                        size_t n, const rd_metrics_gauges *g)
 {
     struct text t = {0};
+    text_printf(&t, "# HELP ringdyn_stop_latency_seconds Time from a DELETE, the time limit or a "
+                    "shutdown to the solver's return: the last run stopped, and the largest.\n"
+                    "# TYPE ringdyn_stop_latency_seconds gauge\n"
+                    "ringdyn_stop_latency_seconds{which=\"last\"} %.6f\n"
+                    "ringdyn_stop_latency_seconds{which=\"max\"} %.6f\n",
+                g->stop_last_s, g->stop_max_s);
+    text_printf(&t, "# HELP ringdyn_connections Open HTTP connections.\n"
+                    "# TYPE ringdyn_connections gauge\n"
+                    "ringdyn_connections %zu\n",
+                g->connections);
+    text_printf(&t, "# HELP ringdyn_connections_deadline_total Connections closed because their "
+                    "request did not arrive complete within the request deadline.\n"
+                    "# TYPE ringdyn_connections_deadline_total counter\n"
+                    "ringdyn_connections_deadline_total %zu\n",
+                g->deadline_closed);
     text_printf(&t, "# HELP ringdyn_jobs Jobs held by the server, by state.\n"
                     "# TYPE ringdyn_jobs gauge\n");
     for (size_t i = 0; i < n; i++)

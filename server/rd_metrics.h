@@ -24,11 +24,18 @@ void rd_metrics_count_http(rd_metrics *m, int status);
 /* Records the run time (start to finish, seconds) of a job that ran. */
 void rd_metrics_observe_job(rd_metrics *m, double seconds);
 
+/* Gauges that live elsewhere, passed in by the caller at render time. */
+typedef struct rd_metrics_gauges {
+    double stop_last_s, stop_max_s; /* rd_jobs_get_stop_latency */
+    size_t connections;             /* open HTTP connections */
+    size_t deadline_closed;         /* connections closed by the request deadline */
+} rd_metrics_gauges;
+
 /* The exposition text: ringdyn_jobs{state} from the caller's `n` state names
- * and counts, ringdyn_job_duration_seconds (histogram) and
+ * and counts, the gauges `g`, ringdyn_job_duration_seconds (histogram) and
  * ringdyn_http_requests_total{status}.  malloc'd, caller frees; NULL when out
  * of memory. */
 char *rd_metrics_render(rd_metrics *m, const char *const *state_names, const size_t *state_counts,
-                        size_t n);
+                        size_t n, const rd_metrics_gauges *g);
 
 #endif

@@ -22,13 +22,40 @@ async function errorFrom(resp) {
   return new ApiError(e, resp.status);
 }
 
-async function request(url, options = {}) {
+// The access token of a server started with --token-file: opened once as
+// /?token=TOKEN (then dropped from the address bar), or typed in when the server
+// answers 401; kept in this browser's localStorage and sent as a Bearer header.
+const TOKEN_KEY = 'ringdyn.token';
+const storage = () => { try { return globalThis.localStorage ?? null; } catch { return null; } };
+(() => {
+  const loc = globalThis.location;
+  const token = loc ? new URLSearchParams(loc.search).get('token') : null;
+  if (!token) return;
+  storage()?.setItem(TOKEN_KEY, token);
+  const url = new URL(loc.href);
+  url.searchParams.delete('token');
+  globalThis.history?.replaceState(null, '', url);
+})();
+
+function authHeaders() {
+  const token = storage()?.getItem(TOKEN_KEY);
+  return token ? { Authorization: `Bearer ${token}` } : {};
+}
+
+async function request(url, options = {}, retried = false) {
   let resp;
   try {
-    resp = await fetch(url, { headers: { Accept: 'application/json' }, ...options });
+    resp = await fetch(url, { ...options, headers: { Accept: 'application/json', ...authHeaders(), ...options.headers } });
   } catch (e) {
     if (e.name === 'AbortError') throw e;
     throw new ApiError({ code: 'network', message: `Cannot reach the ringdyn server (${e.message}).` });
+  }
+  if (resp.status === 401 && !retried && globalThis.prompt) {
+    const token = globalThis.prompt('This ringdyn server needs its access token (the --token-file):');
+    if (token) {
+      storage()?.setItem(TOKEN_KEY, token.trim());
+      return request(url, options, true);
+    }
   }
   if (!resp.ok) throw await errorFrom(resp);
   return { status: resp.status, body: await resp.json() };
@@ -70,7 +97,7 @@ export async function runJob(scene, { wait = 60, signal, onUpdate = () => {} } =
 }
 
 export function cancelJob(id) {
-  return fetch(jobUrl(id), { method: 'DELETE' }).catch(() => {});
+  return fetch(jobUrl(id), { method: 'DELETE', headers: authHeaders() }).catch(() => {});
 }
 
 export function jobUrl(id, suffix = '') {

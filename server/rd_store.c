@@ -1,0 +1,378 @@
+/*
+ * rd_store — jobs in SQLite (rd_store.h).
+ *
+ * The file is created with auto_vacuum=INCREMENTAL, and the pages of
+ * deleted rows are returned after each retention pass, so the file shrinks
+ * with what it keeps.
+ *
+ * Every public function takes `mu`, runs its statements on the one
+ * connection and releases it; multi-statement changes run in one
+ * transaction (BEGIN IMMEDIATE ... COMMIT, ROLLBACK on any failure).  Every
+ * sqlite3_* return is checked; a failure becomes RD_EINTERNAL with SQLite's
+ * message (RD_ENOMEM for SQLITE_NOMEM).
+ */
+#include "rd_store.h"
+
+#include <errno.h>
+#include <pthread.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <sys/types.h>
+
+#include <sqlite3.h>
+
+/* A writer waits this long for a lock held by another process (a second
+ * server on the same directory) before failing. */
+#define BUSY_TIMEOUT_MS 5000
+
+struct rd_store {
+    sqlite3 *db;
+    pthread_mutex_t mu;
+};
+
+static const char schema[] =
+    "CREATE TABLE IF NOT EXISTS jobs ("
+    " seq INTEGER PRIMARY KEY AUTOINCREMENT,"
+    " id TEXT NOT NULL UNIQUE,"
+    " analysis TEXT NOT NULL,"
+    " status TEXT NOT NULL,"
+    " progress REAL NOT NULL DEFAULT 0,"
+    " created_ns INTEGER NOT NULL DEFAULT 0,"
+    " started_ns INTEGER NOT NULL DEFAULT 0,"
+    " finished_ns INTEGER NOT NULL DEFAULT 0,"
+    " scene TEXT,"
+    " error TEXT,"
+    " body BLOB,"
+    " body_len INTEGER NOT NULL DEFAULT 0);"
+    "CREATE INDEX IF NOT EXISTS jobs_finished ON jobs (finished_ns);";
+
+static int db_fail(sqlite3 *db, int src, const char *what, rd_error *err)
+{
+    return rd_error_set(err, src == SQLITE_NOMEM ? RD_ENOMEM : RD_EINTERNAL, "",
+                        "Job store: %s failed: %s.", what, db ? sqlite3_errmsg(db) : sqlite3_errstr(src));
+}
+
+static int exec(sqlite3 *db, const char *sql, rd_error *err)
+{
+    int rc = sqlite3_exec(db, sql, NULL, NULL, NULL);
+    return rc == SQLITE_OK ? RD_OK : db_fail(db, rc, sql, err);
+}
+
+/* mkdir -p with mode 0700 for the directories it creates. */
+static int make_dirs(const char *dir, rd_error *err)
+{
+    char path[4096];
+    if (snprintf(path, sizeof path, "%s", dir) >= (int)sizeof path)
+        return rd_error_set(err, RD_EINVAL, "", "--data %s: path too long.", dir);
+    for (char *p = path + 1;; p++) {
+        if (*p != '/' && *p != '\0')
+            continue;
+        char c = *p;
+        *p = '\0';
+        if (mkdir(path, 0700) != 0 && errno != EEXIST)
+            return rd_error_set(err, RD_EINVAL, "", "--data %s: cannot create %s: %s.", dir, path,
+                                strerror(errno));
+        *p = c;
+        if (c == '\0')
+            return RD_OK;
+    }
+}
+
+int rd_store_open(const char *dir, rd_store **out, rd_error *err)
+{
+    *out = NULL;
+    char file[4200];
+    int memory = strcmp(dir, ":memory:") == 0;
+    if (memory)
+        snprintf(file, sizeof file, ":memory:");
+    else if (make_dirs(dir, err) != RD_OK)
+        return err->code;
+    else if (snprintf(file, sizeof file, "%s/jobs.sqlite3", dir) >= (int)sizeof file)
+        return rd_error_set(err, RD_EINVAL, "", "--data %s: path too long.", dir);
+    rd_store *s = calloc(1, sizeof *s);
+    if (!s)
+        return rd_error_set(err, RD_ENOMEM, "", "Out of memory.");
+    int rc = sqlite3_open_v2(file, &s->db,
+                             SQLITE_OPEN_READWRITE | SQLITE_OPEN_CREATE | SQLITE_OPEN_NOMUTEX, NULL);
+    int status = RD_OK;
+    if (rc != SQLITE_OK) {
+        status = rd_error_set(err, RD_EINVAL, "", "--data %s: cannot open %s: %s.", dir, file,
+                              s->db ? sqlite3_errmsg(s->db) : sqlite3_errstr(rc));
+        goto out;
+    }
+    if ((rc = sqlite3_busy_timeout(s->db, BUSY_TIMEOUT_MS)) != SQLITE_OK) {
+        status = db_fail(s->db, rc, "busy_timeout", err);
+        goto out;
+    }
+    /* WAL: readers never block the writer, and a crash is recovered at the
+     * next open; NORMAL: no fsync per commit (see rd_store.h). */
+    if ((status = exec(s->db, "PRAGMA auto_vacuum=INCREMENTAL", err)) ||
+        (status = exec(s->db, memory ? "PRAGMA journal_mode=MEMORY" : "PRAGMA journal_mode=WAL", err)) ||
+        (status = exec(s->db, "PRAGMA synchronous=NORMAL", err)) ||
+        (status = exec(s->db, schema, err)))
+        goto out;
+    int e = pthread_mutex_init(&s->mu, NULL);
+    if (e != 0)
+        status = rd_error_set(err, RD_EINTERNAL, "", "pthread_mutex_init: %s.", strerror(e));
+out:
+    if (status != RD_OK) {
+        sqlite3_close(s->db);
+        free(s);
+        return status;
+    }
+    *out = s;
+    return RD_OK;
+}
+
+void rd_store_close(rd_store *store)
+{
+    if (!store)
+        return;
+    sqlite3_close(store->db); /* every statement is finalized where it is used */
+    pthread_mutex_destroy(&store->mu);
+    free(store);
+}
+
+/* Prepares `sql` or fails with its text. */
+static int prepare(sqlite3 *db, const char *sql, sqlite3_stmt **st, rd_error *err)
+{
+    int rc = sqlite3_prepare_v2(db, sql, -1, st, NULL);
+    return rc == SQLITE_OK ? RD_OK : db_fail(db, rc, sql, err);
+}
+
+/* Steps a statement that returns no rows, then finalizes it. */
+static int run(sqlite3 *db, sqlite3_stmt *st, const char *what, int bind_rc, rd_error *err)
+{
+    int rc = bind_rc == SQLITE_OK ? sqlite3_step(st) : bind_rc;
+    sqlite3_finalize(st);
+    return rc == SQLITE_DONE ? RD_OK : db_fail(db, rc, what, err);
+}
+
+static int bind_text(sqlite3_stmt *st, int i, const char *s)
+{
+    return s ? sqlite3_bind_text(st, i, s, -1, SQLITE_STATIC) : sqlite3_bind_null(st, i);
+}
+
+int rd_store_insert(rd_store *store, const rd_store_row *row, const char *scene, rd_error *err)
+{
+    sqlite3_stmt *st;
+    pthread_mutex_lock(&store->mu);
+    int status = prepare(store->db,
+                         "INSERT INTO jobs (id, analysis, status, progress, created_ns, scene) "
+                         "VALUES (?, ?, ?, ?, ?, ?)",
+                         &st, err);
+    if (status == RD_OK) {
+        int b = sqlite3_bind_text(st, 1, row->id, -1, SQLITE_STATIC);
+        b = b ? b : sqlite3_bind_text(st, 2, row->analysis, -1, SQLITE_STATIC);
+        b = b ? b : sqlite3_bind_text(st, 3, row->status, -1, SQLITE_STATIC);
+        b = b ? b : sqlite3_bind_double(st, 4, row->progress);
+        b = b ? b : sqlite3_bind_int64(st, 5, row->created_ns);
+        b = b ? b : bind_text(st, 6, scene);
+        status = run(store->db, st, "insert", b, err);
+    }
+    pthread_mutex_unlock(&store->mu);
+    return status;
+}
+
+int rd_store_update(rd_store *store, const rd_store_row *row, const char *body, rd_error *err)
+{
+    sqlite3_stmt *st;
+    pthread_mutex_lock(&store->mu);
+    int status = prepare(store->db,
+                         body ? "UPDATE jobs SET status = ?, progress = ?, started_ns = ?, "
+                                "finished_ns = ?, error = ?, body = ?, body_len = ? WHERE id = ?"
+                              : "UPDATE jobs SET status = ?, progress = ?, started_ns = ?, "
+                                "finished_ns = ?, error = ? WHERE id = ?",
+                         &st, err);
+    if (status == RD_OK) {
+        int b = sqlite3_bind_text(st, 1, row->status, -1, SQLITE_STATIC);
+        b = b ? b : sqlite3_bind_double(st, 2, row->progress);
+        b = b ? b : sqlite3_bind_int64(st, 3, row->started_ns);
+        b = b ? b : sqlite3_bind_int64(st, 4, row->finished_ns);
+        b = b ? b : bind_text(st, 5, row->error);
+        int next = 6;
+        if (body) {
+            b = b ? b : sqlite3_bind_blob64(st, 6, body, row->body_len, SQLITE_STATIC);
+            b = b ? b : sqlite3_bind_int64(st, 7, (sqlite3_int64)row->body_len);
+            next = 8;
+        }
+        b = b ? b : sqlite3_bind_text(st, next, row->id, -1, SQLITE_STATIC);
+        status = run(store->db, st, "update", b, err);
+    }
+    pthread_mutex_unlock(&store->mu);
+    return status;
+}
+
+int rd_store_mark(rd_store *store, const char *from_a, const char *from_b, const char *to,
+                  int64_t finished_ns, const char *error, int *changed, rd_error *err)
+{
+    sqlite3_stmt *st;
+    pthread_mutex_lock(&store->mu);
+    int status = prepare(store->db,
+                         "UPDATE jobs SET status = ?, finished_ns = ?, error = ? "
+                         "WHERE status IN (?, ?)",
+                         &st, err);
+    if (status == RD_OK) {
+        int b = sqlite3_bind_text(st, 1, to, -1, SQLITE_STATIC);
+        b = b ? b : sqlite3_bind_int64(st, 2, finished_ns);
+        b = b ? b : bind_text(st, 3, error);
+        b = b ? b : sqlite3_bind_text(st, 4, from_a, -1, SQLITE_STATIC);
+        b = b ? b : sqlite3_bind_text(st, 5, from_b, -1, SQLITE_STATIC);
+        status = run(store->db, st, "mark", b, err);
+        if (changed)
+            *changed = status == RD_OK ? sqlite3_changes(store->db) : 0;
+    }
+    pthread_mutex_unlock(&store->mu);
+    return status;
+}
+
+static void copy_text(char *dst, size_t n, const unsigned char *src)
+{
+    snprintf(dst, n, "%s", src ? (const char *)src : "");
+}
+
+int rd_store_load(rd_store *store, int (*each)(void *ctx, const rd_store_row *row), void *ctx,
+                  rd_error *err)
+{
+    sqlite3_stmt *st;
+    pthread_mutex_lock(&store->mu);
+    int status = prepare(store->db,
+                         "SELECT id, analysis, status, progress, created_ns, started_ns, "
+                         "finished_ns, error, body_len FROM jobs ORDER BY seq",
+                         &st, err);
+    int rc = SQLITE_DONE;
+    while (status == RD_OK && (rc = sqlite3_step(st)) == SQLITE_ROW) {
+        rd_store_row row;
+        memset(&row, 0, sizeof row);
+        copy_text(row.id, sizeof row.id, sqlite3_column_text(st, 0));
+        copy_text(row.analysis, sizeof row.analysis, sqlite3_column_text(st, 1));
+        row.status = (const char *)sqlite3_column_text(st, 2);
+        row.progress = sqlite3_column_double(st, 3);
+        row.created_ns = sqlite3_column_int64(st, 4);
+        row.started_ns = sqlite3_column_int64(st, 5);
+        row.finished_ns = sqlite3_column_int64(st, 6);
+        row.error = (const char *)sqlite3_column_text(st, 7);
+        row.body_len = (size_t)sqlite3_column_int64(st, 8);
+        if (!row.status) {
+            status = rd_error_set(err, RD_EINTERNAL, "", "Job store: a row without a status.");
+            break;
+        }
+        status = each(ctx, &row);
+    }
+    if (status == RD_OK && rc != SQLITE_DONE)
+        status = db_fail(store->db, rc, "load", err);
+    sqlite3_finalize(st);
+    pthread_mutex_unlock(&store->mu);
+    return status;
+}
+
+int rd_store_read_body(rd_store *store, const char *id, char **body, size_t *len, rd_error *err)
+{
+    *body = NULL;
+    *len = 0;
+    sqlite3_stmt *st;
+    pthread_mutex_lock(&store->mu);
+    int status = prepare(store->db, "SELECT body FROM jobs WHERE id = ? AND body IS NOT NULL", &st, err);
+    if (status == RD_OK) {
+        int rc = sqlite3_bind_text(st, 1, id, -1, SQLITE_STATIC);
+        rc = rc ? rc : sqlite3_step(st);
+        if (rc == SQLITE_ROW) {
+            size_t n = (size_t)sqlite3_column_bytes(st, 0);
+            const void *data = sqlite3_column_blob(st, 0);
+            *body = malloc(n + 1);
+            if (!*body || (!data && n > 0)) {
+                free(*body);
+                *body = NULL;
+                status = rd_error_set(err, RD_ENOMEM, "", "Out of memory reading job %s.", id);
+            } else {
+                if (n > 0)
+                    memcpy(*body, data, n);
+                (*body)[n] = '\0';
+                *len = n;
+            }
+        } else if (rc == SQLITE_DONE) {
+            status = rd_error_set(err, RD_ENOTFOUND, "", "Job %s has no stored result.", id);
+        } else {
+            status = db_fail(store->db, rc, "read", err);
+        }
+        sqlite3_finalize(st);
+    }
+    pthread_mutex_unlock(&store->mu);
+    return status;
+}
+
+/* The ids to delete, newest finished first (see rd_store.h); malloc'd array
+ * of 17-byte ids in *ids, count in *n. */
+static int select_expired(sqlite3 *db, size_t keep_max, size_t keep_bytes, int64_t oldest_ns,
+                          char (**ids)[17], size_t *n, rd_error *err)
+{
+    sqlite3_stmt *st;
+    *ids = NULL;
+    *n = 0;
+    int status = prepare(db,
+                         "SELECT id, body_len, finished_ns FROM jobs WHERE status IN "
+                         "('succeeded', 'failed', 'cancelled', 'interrupted') "
+                         "ORDER BY finished_ns DESC, seq DESC",
+                         &st, err);
+    if (status != RD_OK)
+        return status;
+    size_t kept = 0, bytes = 0, cap = 0;
+    int rc;
+    while ((rc = sqlite3_step(st)) == SQLITE_ROW) {
+        size_t len = (size_t)sqlite3_column_int64(st, 1);
+        int64_t finished = sqlite3_column_int64(st, 2);
+        int expired = kept >= 1 && (kept + 1 > keep_max || bytes + len > keep_bytes ||
+                                     finished < oldest_ns);
+        if (!expired) {
+            kept++;
+            bytes += len;
+            continue;
+        }
+        if (*n == cap) {
+            cap = cap ? 2 * cap : 16;
+            char(*grown)[17] = realloc(*ids, cap * sizeof **ids);
+            if (!grown) {
+                status = rd_error_set(err, RD_ENOMEM, "", "Out of memory.");
+                break;
+            }
+            *ids = grown;
+        }
+        copy_text((*ids)[(*n)++], 17, sqlite3_column_text(st, 0));
+    }
+    if (status == RD_OK && rc != SQLITE_DONE)
+        status = db_fail(db, rc, "retention", err);
+    sqlite3_finalize(st);
+    return status;
+}
+
+int rd_store_retain(rd_store *store, size_t keep_max, size_t keep_bytes, int64_t oldest_ns,
+                    void (*gone)(void *ctx, const char *id), void *ctx, rd_error *err)
+{
+    char(*ids)[17] = NULL;
+    size_t n = 0;
+    pthread_mutex_lock(&store->mu);
+    int status = select_expired(store->db, keep_max, keep_bytes, oldest_ns, &ids, &n, err);
+    if (status == RD_OK && n > 0 && (status = exec(store->db, "BEGIN IMMEDIATE", err)) == RD_OK) {
+        for (size_t i = 0; i < n && status == RD_OK; i++) {
+            sqlite3_stmt *st;
+            status = prepare(store->db, "DELETE FROM jobs WHERE id = ?", &st, err);
+            if (status == RD_OK)
+                status = run(store->db, st, "delete",
+                             sqlite3_bind_text(st, 1, ids[i], -1, SQLITE_STATIC), err);
+        }
+        if (status == RD_OK)
+            status = exec(store->db, "COMMIT", err);
+        /* Hands the freed pages back to the file system (auto_vacuum=INCREMENTAL). */
+        if (status == RD_OK)
+            status = exec(store->db, "PRAGMA incremental_vacuum", err);
+        else
+            sqlite3_exec(store->db, "ROLLBACK", NULL, NULL, NULL);
+    }
+    pthread_mutex_unlock(&store->mu);
+    for (size_t i = 0; status == RD_OK && i < n; i++)
+        gone(ctx, ids[i]);
+    free(ids);
+    return status;
+}

@@ -1,0 +1,77 @@
+#!/usr/bin/env bash
+# Prompt stops, measured at the server (ringdyn_stop_latency_seconds: from
+# the DELETE, or the time limit, to the solver's return).  The server's part
+# is checked: the job's flag is set at once, the monitor callback reads it at
+# the solver's next progress report, and the DELETE is answered right after
+# the run's return.  How often a solver reports is core/'s part:
+# the latencies (DELETE or time limit to return) are printed, not checked.
+#
+#   stop.sh SERVER_BINARY RD_JSONQ
+set -euo pipefail
+if [ $# -ne 2 ]; then
+  echo "usage: $0 SERVER RD_JSONQ" >&2
+  exit 2
+fi
+SERVER=$1 JQ=$2
+. "$(dirname "$0")/lib.sh"
+
+LONG_LIFT='{"analysis":"lift","engine":{"cycles":40}}'
+SLOW_MODAL='{"analysis":"modal","discretization":{"segments":2000},"modal":{"modes":60}}'
+latency() { # the ringdyn_stop_latency_seconds{which=$1}
+  req GET /metrics
+  sed -n "s/^ringdyn_stop_latency_seconds{which=\"$1\"} //p" "$WORK/body"
+}
+wait_running() {
+  local _
+  for _ in $(seq 1 100); do
+    req GET "/api/v1/jobs/$1"
+    [ "$(json /status)" = running ] && [ "$(json /progress)" != 0 ] && return 0
+    sleep 0.05
+  done
+  return 1
+}
+
+start_server C
+C_PID=$SPID
+for i in 1 2 3; do
+  post /api/v1/jobs "$LONG_LIFT"
+  ID=$(json /id)
+  check "lift $i runs" wait_running "$ID"
+  T0=$(date +%s.%N)
+  req DELETE "/api/v1/jobs/$ID"
+  T1=$(date +%s.%N)
+  same "DELETE lift $i -> 200 cancelled" "$STATUS $(json /status)" "200 cancelled"
+  L=$(latency last)
+  RT=$(awk -v a="$T0" -v b="$T1" 'BEGIN { printf "%.3f", b - a }')
+  echo "# lift $i: stop latency $L s at the server, DELETE answered in $RT s"
+  check "lift $i: a stop latency is recorded" awk -v l="$L" 'BEGIN { exit !(l > 0) }'
+  # The answer follows the run's end at once (rd_jobs wakes the timer thread),
+  # or at the latest at its next 0.1 s tick; 0.3 s leaves 0.2 s for a loaded
+  # machine's scheduling (this one is shared by several builds).
+  check "lift $i: DELETE answered within 0.3 s of the stop" awk -v l="$L" -v r="$RT" 'BEGIN { exit !(r - l < 0.3) }'
+done
+post /api/v1/jobs "$SLOW_MODAL"
+ID=$(json /id)
+if wait_running "$ID"; then
+  req DELETE "/api/v1/jobs/$ID"
+  MODAL_STATUS=$(json /status)
+  echo "# modal (2000 segments, 60 modes): stop latency $(latency last) s, status $MODAL_STATUS (not checked: core/)"
+fi
+stop_server C "$C_PID"
+
+# the time limit: a lift job over --job-timeout 0.5 ends failed, and the
+# ?wait request is answered promptly after the run's return
+start_server T --job-timeout 0.5
+T_PID=$SPID
+T0=$(date +%s.%N)
+post '/api/v1/jobs?wait=30' "$LONG_LIFT"
+T1=$(date +%s.%N)
+same "lift over the time limit fails with time_limit" "$(json /status) $(json /error/code)" "failed time_limit"
+L=$(latency last)
+RT=$(awk -v a="$T0" -v b="$T1" 'BEGIN { printf "%.3f", b - a }')
+echo "# lift over --job-timeout 0.5: stopped $L s after the limit; answered after $RT s"
+check "answered within 0.3 s of the stop (0.5 + latency)" awk -v l="$L" -v r="$RT" 'BEGIN { exit !(r < 0.5 + l + 0.3) }'
+stop_server T "$T_PID"
+
+echo "$PASSED passed, $FAILED failed"
+[ "$FAILED" -eq 0 ]
