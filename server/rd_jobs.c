@@ -617,7 +617,7 @@ static int final_status(rd_jobs *jobs, struct job *job, int rc, const char *resu
                         char **error)
 {
     pthread_mutex_lock(&jobs->mu);
-    int cancel = job->cancel, timed_out = job->timed_out;
+    int cancel = job->cancel, timed_out = job->timed_out, stopping = jobs->stopping;
     double progress = job->progress;
     pthread_mutex_unlock(&jobs->mu);
     /* A DELETE wins even over a run that completed meanwhile: the client was
@@ -628,6 +628,12 @@ static int final_status(rd_jobs *jobs, struct job *job, int rc, const char *resu
     }
     if (rc == RD_OK && result)
         return RD_JOB_SUCCEEDED;
+    /* A run that honoured the shutdown's stop request in time ends as one the
+     * shutdown had to leave behind: interrupted, not failed. */
+    if (rc == RD_ECANCELED && stopping && !timed_out) {
+        *error = interrupted_json("running");
+        return RD_JOB_INTERRUPTED;
+    }
     if (rc == RD_ECANCELED && timed_out) {
         *error = error_json(RD_ETIMEOUT,
                             "The job ran longer than the time limit of %g s and was stopped "
