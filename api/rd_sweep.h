@@ -88,7 +88,8 @@ typedef struct rd_sweep rd_sweep; /* a parsed, validated spec; opaque, read-only
  * path (`ringdyn sweep run`).  Errors: RD_EJSON (not JSON), RD_EREQUEST
  * (400: any other problem of the spec, including a base scene or parameter
  * value the scene schema refuses and too many points) with `path` into the
- * spec, RD_ENOMEM.  On success *out is a new sweep (rd_sweep_free). */
+ * spec, RD_ETOOLARGE (len > RD_API_BODY_MAX), RD_ENOMEM.  On success *out is
+ * a new sweep (rd_sweep_free). */
 int rd_sweep_parse(const char *body, size_t len, size_t max_points, rd_sweep **out, rd_error *err);
 void rd_sweep_free(rd_sweep *sweep);
 

@@ -181,14 +181,19 @@ static int write_chunk(const rd_sweep *s, size_t c, size_t k, const char *dir, r
     if (mkdir(dir, 0777) != 0 && errno != EEXIST)
         return rd_error_set(err, RD_EINTERNAL, "", "cannot create %s: %s", dir, strerror(errno));
     char *name = rd_sweep_chunk_name(c, k), *head = rd_sweep_chunk_head(s, c, k);
-    size_t size = strlen(dir) + 128;
+    size_t size = strlen(dir) + 200;
     char *path = malloc(size), *tmp = malloc(size);
     FILE *f = NULL;
     int rc =
         name && head && path && tmp ? RD_OK : rd_error_set(err, RD_ENOMEM, "", "out of memory");
     if (rc == RD_OK) {
         snprintf(path, size, "%s/%s", dir, name);
-        snprintf(tmp, size, "%s/.%s.%ld.tmp", dir, name, (long)getpid());
+        /* host and pid: in containers every pid may be 1, and a replaced
+         * pod can overlap its predecessor on another node */
+        char host[64] = "";
+        gethostname(host, sizeof host - 1);
+        host[strcspn(host, "/")] = '\0';
+        snprintf(tmp, size, "%s/.%s.%.63s.%ld.tmp", dir, name, host, (long)getpid());
         f = fopen(tmp, "wb");
         if (!f || fputs(head, f) == EOF)
             rc = rd_error_set(err, RD_EINTERNAL, "", "cannot write %s: %s", tmp, strerror(errno));

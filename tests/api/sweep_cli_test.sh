@@ -61,6 +61,15 @@ out=$("$ringdyn" sweep reduce "$work/modal_grid.4" 2>&1 >/dev/null); rc=$?
 out=$("$ringdyn" sweep reduce "$work/modal_grid.4" 2>&1 >/dev/null); rc=$?
 [ $rc = 2 ] && [[ $out == *'another spec'* ]] || fail "foreign chunk: rc $rc, $out"
 
+# An interrupted chunk (Ctrl-C, or SIGTERM from the cluster) leaves no file,
+# not even its temporary one, and exits 1.
+"$ringdyn" sweep run "$sweeps/lift_long.json" --out "$work/int" &
+pid=$!
+sleep 0.5
+kill -TERM $pid
+wait $pid; rc=$?
+[ $rc = 1 ] && [ -z "$(ls -A "$work/int" 2>/dev/null)" ] || fail "interrupted: rc $rc, $(ls -A "$work/int")"
+
 # Bad input: exit 2 and the error JSON with the spec path.
 echo '{"base": {"analysis": "modal"}, "parameters": [{"path": "/discretization/segments", "values": [2001]}], "outputs": ["/x"]}' > "$work/bad.json"
 out=$("$ringdyn" sweep count "$work/bad.json" 2>&1); rc=$?
