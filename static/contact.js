@@ -5,7 +5,7 @@
 // A pure function of the result: optional fields may be missing.
 
 import { svg, ticks, pathD, polar, legend } from './svg.js';
-import { h, isNum, fixed, sig, seconds, percent, kvTable, resultLinks, newtonCost, nums, um, deg } from './html.js';
+import { h, fill, isNum, fixed, sig, seconds, percent, kvTable, resultLinks, newtonCost, nums, um, deg } from './html.js';
 
 const MPa = (v, d = 3) => (isNum(v) ? `${sig(v / 1e6, d)} MPa` : '—');
 
@@ -18,7 +18,7 @@ export const contact = {
     const n = result.numerics || {};
     const gaps = lightGaps(result);
     const count = nums(result.clearance).length;
-    container.replaceChildren(
+    fill(container,
       h('h3', {}, 'Contact with the bore — pressure around the circumference'),
       h('p', { id: 'ct-summary' },
         `Mean pressure ${MPa(result.mean_pressure_pa)} against the uniform ${MPa(result.uniform_pressure_pa)}; `,

@@ -396,7 +396,15 @@ function readValue(input) {
 function setValue(input, v) {
   if (input.type === 'checkbox') input.checked = v === true || v === 'true';
   else if (input.tagName === 'SELECT') input.value = v === undefined ? input.options[0]?.value ?? '' : String(v);
-  else input.value = v === undefined ? '' : String(v);
+  else input.value = v === undefined ? '' : numberText(v);
+}
+
+// A number as a field shows it whole: very large or small ones in exponent
+// form (2.1e11, not 210000000000, which a narrow field cuts off).
+function numberText(v) {
+  const a = Math.abs(v);
+  if (typeof v !== 'number' || !Number.isFinite(v) || a === 0 || (a < 1e7 && a >= 1e-4)) return String(v);
+  return v.toExponential().replace('e+', 'e');
 }
 
 // JSON Pointer (RFC 6901) get / set / delete on plain objects.

@@ -9,7 +9,7 @@
 // tables of the scene come from one of them.
 
 import { svg, scale, ticks, axes, pathD, stepTicks, legend } from './svg.js';
-import { h, isNum, fixed, sig, seconds, percent, kvTable, resultLinks, nums, um, deg } from './html.js';
+import { h, fill, isNum, fixed, sig, seconds, percent, kvTable, resultLinks, nums, um, deg } from './html.js';
 
 const GAS_EXAMPLE = 'thesis_lift_gas_6000rpm';
 const EVENT_TEXT = {
@@ -61,7 +61,7 @@ export const lift = {
       isNum(engine.cycles) ? `${sig(engine.cycles)} cycle${engine.cycles === 1 ? '' : 's'}` : null,
       isNum(engine.speed_rpm) ? `${sig(engine.speed_rpm, 5)} rpm` : null,
     ].filter(Boolean).join(' at ');
-    container.replaceChildren(
+    fill(container,
       h('h3', {}, `Lift — the ring in its groove${title ? `, ${title}` : ''}`),
       h('p', { id: 'lf-summary' }, summary(result, events)),
       h('p', { id: 'cost', class: 'cost' }, h('strong', {}, 'Cost and accuracy: '), costLine(n)),
@@ -227,7 +227,7 @@ function flankStrip(result) {
   },
   svg('text', { class: 'tick', x: BOX.left - 6, y: top + height / 2, 'text-anchor': 'end', 'dominant-baseline': 'middle' }, 'flank'),
   svg('g', { class: 'flank-runs' }, bars),
-  legend([[swatch('lower'), 'lower'], [swatch('upper'), 'upper'], [swatch('free'), 'free']], { x: BOX.left, y: top + height + 20 }));
+  legend([[swatch('lower'), 'lower'], [swatch('upper'), 'upper'], [swatch('free'), 'free']], { x: BOX.left, y: top + height + 20, wrap: 'down' }));
 }
 
 function frictionPlot(result) {
