@@ -117,7 +117,6 @@ function showEntry(entry) {
   }
   $('results-empty').hidden = true;
   state.analysis.render(entry.result, entry.job, body);
-  addExportButtons(body, `ringdyn-${state.analysis.id}-${entry.job?.id ?? 'result'}`);
   markStale(entry);
   // Warnings the server attaches to a result (strings or {message, path}).
   const list = Array.isArray(entry.result.warnings) ? entry.result.warnings : [];
@@ -416,7 +415,12 @@ async function loadVersion() {
 
 buildTabs();
 selectAnalysis(state.analysis);
-watchCharts($('result-body'));
+// Every figure shown gets SVG / PNG buttons, also one redrawn later (lift's
+// cycle zoom, modal's mode shape).
+watchCharts($('result-body'), () => {
+  const entry = state.results.get(state.analysis.id);
+  addExportButtons($('result-body'), `ringdyn-${state.analysis.id}-${entry?.job?.id ?? 'result'}`);
+});
 $('scene-form').addEventListener('submit', run);
 $('cancel').addEventListener('click', cancel);
 $('reset').addEventListener('click', () => {

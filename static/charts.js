@@ -21,15 +21,19 @@ const CHARTS = 'svg[viewBox]:not(.icon)';
 const known = new WeakSet();
 const resize = new ResizeObserver((entries) => { for (const e of entries) fit(e.target); });
 
-// Fits every chart below `root` now and whenever it is added or resized.
-export function watchCharts(root) {
+// Fits every chart below `root` now and whenever it is added or resized;
+// onAdded() runs after charts were added (e.g. to give them export buttons).
+export function watchCharts(root, onAdded = () => {}) {
   const scan = () => {
+    let added = false;
     for (const s of root.querySelectorAll(CHARTS)) {
       if (known.has(s)) continue;
       known.add(s);
       s.dataset.viewBox = s.getAttribute('viewBox');
       resize.observe(s);
+      added = true;
     }
+    if (added) onAdded();
   };
   new MutationObserver(scan).observe(root, { childList: true, subtree: true });
   scan();
