@@ -311,8 +311,11 @@ async function copyScript(kind) {
   out.hidden = false;
   out.dataset.kind = kind;
   const what = kind === 'curl' ? 'The curl command' : 'The Python program (standard library only)';
+  toolStatus(`${what} is below.`);
+  // The clipboard may be refused, or wait for a permission that never comes.
+  const refused = new Promise((_, reject) => setTimeout(() => reject(new Error('no answer')), 2000));
   try {
-    await navigator.clipboard.writeText(text);
+    await Promise.race([navigator.clipboard.writeText(text), refused]);
     toolStatus(`${what} is on the clipboard and below.`);
   } catch {
     toolStatus(`${what} is below (the browser did not allow copying it to the clipboard).`);
