@@ -273,9 +273,10 @@ function liftPlot(result, events) {
       d: pathD([...thin(crank, hi).map(([c, v]) => [x(c), y(v)]), ...thin(crank, lo).reverse().map(([c, v]) => [x(c), y(v)])], true),
     })
     : null;
-  const flankLine = (id, v, text) => svg('g', { class: 'flank-line', id },
+  // The label above the lower line, below the upper one (clear of the legend).
+  const flankLine = (id, v, text, below = false) => svg('g', { class: 'flank-line', id },
     svg('line', { x1: box.left, x2: box.left + box.width, y1: y(v), y2: y(v) }),
-    svg('text', { class: 'tick halo', x: box.left + box.width - 4, y: y(v) - 5, 'text-anchor': 'end' }, text));
+    svg('text', { class: 'tick halo', x: box.left + box.width - 4, y: below ? y(v) + 4 : y(v) - 5, dy: below ? '0.8em' : null, 'text-anchor': 'end' }, text));
   const atFlank = (kind) => (kind === 'reach_upper' || kind === 'leave_upper' ? cl ?? y1 : 0);
   const markers = events.map((e, i) => {
     const kind = String(e.event);
@@ -300,7 +301,7 @@ function liftPlot(result, events) {
   }),
   band,
   flankLine('lf-lower', 0, 'lower flank'),
-  cl !== null ? flankLine('lf-upper', cl, `upper flank (clearance ${um(clearance)} µm)`) : null,
+  cl !== null ? flankLine('lf-upper', cl, `upper flank (clearance ${um(clearance)} µm)`, true) : null,
   mean.length === N ? svg('path', { class: 'mean', id: 'lf-mean', d: pathD(thin(crank, mean).map(([c, v]) => [x(c), y(v)])) }) : null,
   svg('g', { class: 'events' }, markers));
 }
