@@ -893,7 +893,7 @@ for (const width of [1280, 390]) {
       assert.equal(await page.isVisible('#error'), true);
       assert.match(await page.textContent('#result-stale'), /Out of date: the last run failed/);
       await page.fill('#f-lf-speed', '1000');
-      if (width === 390) assert.deepEqual(await smallText(), [], 'no text below 10 px');
+      assert.deepEqual(await smallText(), [], 'no text below 10 px');
       await shot(`ringdyn-live-${width}.png`, { fullPage: true });
     } finally {
       await page.setViewportSize({ width: 1280, height: 800 });
@@ -929,7 +929,7 @@ for (const width of [1280, 390]) {
         await page.waitForFunction(() => !document.getElementById('run').disabled, null, { timeout: 20000 });
         assert.equal((await serverJob(running.id)).status, 'cancelled');
       }
-      if (width === 390) assert.deepEqual(await smallText(), [], 'no text below 10 px');
+      assert.deepEqual(await smallText(), [], 'no text below 10 px');
     } finally {
       await page.setViewportSize({ width: 1280, height: 800 });
       await page.goto(`${BASE}/`);
@@ -994,9 +994,9 @@ for (const width of [1280, 390]) {
       await page.setInputFiles('#load-scene-file', { name: 'notes.json', mimeType: 'application/json', buffer: Buffer.from('{"hello": 1}') });
       assert.match(await page.textContent('#error'), /notes\.json holds no scene/);
       assert.equal(await page.inputValue('#f-lf-speed'), '3000');
+      await page.click('#copy-python');
+      assert.deepEqual(await smallText(), [], 'no text below 10 px');
       if (width === 390) {
-        await page.click('#copy-python');
-        assert.deepEqual(await smallText(), [], 'no text below 10 px');
         const overflow = await page.evaluate(() => document.documentElement.scrollWidth - window.innerWidth);
         assert.ok(overflow <= 0, `page scrolls sideways by ${overflow}px`);
       }
@@ -1035,6 +1035,45 @@ for (const width of [1280, 390]) {
     }
   });
 }
+
+test('the server\'s eta_s is shown when a job has one; a job that fails leaves the old result marked out of date', { timeout: 60000 }, async () => {
+  await page.goto(`${BASE}/`);
+  await page.waitForSelector('#tab-modal[aria-selected="true"]');
+  const jobs = await interceptJobs(fixtures.pretensionResult());
+  try {
+    await selectTab('pretension');
+    await runAnalysis('Run pretension analysis');
+  } finally {
+    await jobs.stop();
+  }
+  assert.equal(await page.locator('#result-body #pt-shape').count(), 1);
+  // Then a job the test answers: queued, running with eta_s, failed.
+  let polls = 0;
+  const match = (url) => url.pathname.startsWith('/api/v1/jobs');
+  await page.route(match, (route) => {
+    if (route.request().method() === 'POST') return route.fulfill({ status: 202, json: { id: 'eta-job', status: 'queued', progress: 0 } });
+    polls += 1;
+    if (polls < 5) return route.fulfill({ json: { id: 'eta-job', status: 'running', progress: 0.25, eta_s: 95 } });
+    return route.fulfill({ json: { id: 'eta-job', status: 'failed', progress: 0.3, error: { code: 'solver_failed', message: 'Newton did not converge in load step 3.', path: '' } } });
+  });
+  try {
+    await page.evaluate(() => {
+      window.statusLog = [];
+      new MutationObserver(() => window.statusLog.push(document.getElementById('status-text').textContent))
+        .observe(document.getElementById('status'), { subtree: true, childList: true, characterData: true });
+    });
+    await runAnalysis('Run pretension analysis');
+    const log = await page.evaluate(() => window.statusLog);
+    assert.ok(log.some((t) => /^Job eta-job running — 25 % · \d+ s elapsed · about 1 min 35 s left$/.test(t)), `eta_s shown: ${JSON.stringify(log)}`);
+    assert.equal(log.at(-1), 'Job eta-job failed.');
+    assert.match(await page.textContent('#error'), /Newton did not converge in load step 3/);
+    assert.match(await page.textContent('#result-stale'), /Out of date: job eta-job failed\./);
+    assert.equal(await page.locator('#result-body #pt-shape').count(), 1, 'the old result is still there, marked');
+    assert.equal(jobInUrl(), 'eta-job');
+  } finally {
+    await page.unroute(match);
+  }
+});
 
 // Clicks the SVG and PNG button of every figure shown (at least `count`):
 // the SVG is a standalone document holding the chart's text, with its font
@@ -1167,7 +1206,8 @@ for (const width of [1280, 390]) {
       assert.equal(await page.locator('#lf-gas').locator('xpath=ancestor::figure').locator('button[data-export="svg"]').count(), 1, 'the redrawn figure has its export buttons');
       await page.selectOption('#lf-zoom', { index: 0 });
       await page.waitForFunction(() => document.querySelector('#lf-lift .axes text.tick[text-anchor="middle"]')?.textContent === '0');
-      if (width === 390) { await settled(); assert.deepEqual(await smallText(), [], 'lift with gas'); }
+      await settled();
+      assert.deepEqual(await smallText(), [], 'lift with gas');
 
       // Contact in a round bore: the ripple fills most of the Cartesian plot's height.
       const ct = fixtures.contactRoundResult();
@@ -1188,7 +1228,8 @@ for (const width of [1280, 390]) {
       assert.ok(extent > 0.5 * (box[2] - box[1]), `the ${((Math.max(...q) - Math.min(...q)) * 100).toFixed(2)} % ripple spans ${extent.toFixed(0)} of ${box[2] - box[1]} units`);
       const polar = vertices(await page.getAttribute('#ct-pressure', 'd'));
       assert.equal(polar.length, ct.angle_deg.length);
-      if (width === 390) { await settled(); assert.deepEqual(await smallText(), [], 'contact'); }
+      await settled();
+      assert.deepEqual(await smallText(), [], 'contact');
       await shot(`ringdyn-plots-${width}.png`, { fullPage: true });
     } finally {
       await page.setViewportSize({ width: 1280, height: 800 });
