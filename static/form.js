@@ -402,9 +402,9 @@ function setValue(input, v) {
 // A number as a field shows it whole: very large or small ones in exponent
 // form (2.1e11, not 210000000000, which a narrow field cuts off).
 function numberText(v) {
+  if (typeof v !== 'number' || !Number.isFinite(v)) return String(v);
   const a = Math.abs(v);
-  if (typeof v !== 'number' || !Number.isFinite(v) || a === 0 || (a < 1e7 && a >= 1e-4)) return String(v);
-  return v.toExponential().replace('e+', 'e');
+  return a === 0 || (a >= 1e-4 && a < 1e7) ? String(v) : v.toExponential().replace('e+', 'e');
 }
 
 // JSON Pointer (RFC 6901) get / set / delete on plain objects.
