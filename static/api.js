@@ -22,7 +22,7 @@ async function errorFrom(resp) {
   return new ApiError(e, resp.status);
 }
 
-async function request(url, options = {}) {
+async function request(url, options = {}, read = (resp) => resp.json()) {
   let resp;
   try {
     resp = await fetch(url, { headers: { Accept: 'application/json' }, ...options });
@@ -31,11 +31,16 @@ async function request(url, options = {}) {
     throw new ApiError({ code: 'network', message: `Cannot reach the ringdyn server (${e.message}).` });
   }
   if (!resp.ok) throw await errorFrom(resp);
-  return { status: resp.status, body: await resp.json() };
+  return { status: resp.status, body: await read(resp) };
 }
 
 export async function getJSON(url, options) {
   return (await request(url, options)).body;
+}
+
+// A table (result.csv) as a Blob; errors as for JSON requests.
+export async function getBlob(url, options) {
+  return (await request(url, options, (resp) => resp.blob())).body;
 }
 
 const FINISHED = new Set(['succeeded', 'failed', 'cancelled']);

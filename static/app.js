@@ -6,7 +6,7 @@
 // An analysis may also have setup({form, examples, error}), called once the
 // shipped examples are known (lift takes its gas tables from them).
 
-import { getJSON, runJob, watchJob, cancelJob, ApiError } from './api.js';
+import { getJSON, getBlob, runJob, watchJob, cancelJob, ApiError } from './api.js';
 import { SceneForm } from './form.js';
 import { modal } from './modal.js';
 import { pretension } from './pretension.js';
@@ -361,9 +361,7 @@ async function saveCsv(e) {
   if (!a) return;
   e.preventDefault();
   try {
-    const resp = await fetch(a.href);
-    if (!resp.ok) throw new ApiError((await resp.json().catch(() => null))?.error ?? { message: `HTTP ${resp.status}` }, resp.status);
-    saveBlob(await resp.blob(), a.getAttribute('download'));
+    saveBlob(await getBlob(a.href, { headers: { Accept: 'text/csv' } }), a.getAttribute('download'));
   } catch (err) {
     showError(err instanceof ApiError ? err : { message: `The CSV could not be fetched: ${err.message}` });
   }

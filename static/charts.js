@@ -134,6 +134,9 @@ export function figureSvg(figure) {
   out.setAttribute('width', width);
   out.setAttribute('height', height);
   out.setAttribute('viewBox', `0 0 ${width} ${height}`);
+  const title = document.createElementNS(NS, 'title');
+  title.textContent = charts.map((c) => c.getAttribute('aria-label')).filter(Boolean).join(' ');
+  out.append(title);
   const bg = document.createElementNS(NS, 'rect');
   for (const [k, v] of Object.entries({ width, height, fill: '#fff' })) bg.setAttribute(k, v);
   out.append(bg);
