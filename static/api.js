@@ -42,7 +42,7 @@ function authHeaders() {
   return token ? { Authorization: `Bearer ${token}` } : {};
 }
 
-async function request(url, options = {}, retried = false) {
+async function request(url, options = {}, read = (resp) => resp.json(), retried = false) {
   let resp;
   try {
     resp = await fetch(url, { ...options, headers: { Accept: 'application/json', ...authHeaders(), ...options.headers } });
@@ -54,19 +54,26 @@ async function request(url, options = {}, retried = false) {
     const token = globalThis.prompt('This ringdyn server needs its access token (the --token-file):');
     if (token) {
       storage()?.setItem(TOKEN_KEY, token.trim());
-      return request(url, options, true);
+      return request(url, options, read, true);
     }
   }
   if (!resp.ok) throw await errorFrom(resp);
-  return { status: resp.status, body: await resp.json() };
+  return { status: resp.status, body: await read(resp) };
 }
 
 export async function getJSON(url, options) {
   return (await request(url, options)).body;
 }
 
+// A table (result.csv) as a Blob; errors as for JSON requests.
+export async function getBlob(url, options) {
+  return (await request(url, options, (resp) => resp.blob())).body;
+}
+
 const FINISHED = new Set(['succeeded', 'failed', 'cancelled']);
-const POLL_MS = 500;
+// Polls soon after the submission (a short job is then shown at once), then
+// every 500 ms.
+const POLL_MS = [100, 200, 300, 500];
 const POLL_LIMIT_S = 900; // give up polling after 15 min (the job keeps its id)
 
 const sleep = (ms, signal) => new Promise((resolve, reject) => {
@@ -75,23 +82,31 @@ const sleep = (ms, signal) => new Promise((resolve, reject) => {
 });
 
 // Submits a scene and resolves with the finished job ({id, status, result|error}).
-// POST ?wait=60 answers 200 with the finished job, or 202 if it is still running:
-// then GET the job every 500 ms.  onUpdate(job) sees every intermediate state.
-export async function runJob(scene, { wait = 60, signal, onUpdate = () => {} } = {}) {
-  let { status, body: job } = await request(`/api/v1/jobs?wait=${wait}`, {
+// POST ?wait=S answers 200 with the finished job, or 202 if it is still
+// running: then watchJob polls it.  onUpdate(job) sees every intermediate
+// state, the first one as soon as the job has an id.
+export async function runJob(scene, { wait = 0, signal, onUpdate = () => {} } = {}) {
+  const { status, body: job } = await request(`/api/v1/jobs?wait=${wait}`, {
     method: 'POST',
     headers: { 'Content-Type': 'application/json', Accept: 'application/json' },
     body: JSON.stringify(scene),
     signal,
   });
+  if (status !== 202 && FINISHED.has(job.status)) return job;
+  return watchJob(job, { signal, onUpdate });
+}
+
+// Polls job `job` ({id, status}, or just its id) until it has finished.
+export async function watchJob(job, { signal, onUpdate = () => {} } = {}) {
+  if (typeof job === 'string') job = await getJSON(jobUrl(job), { signal });
   const deadline = Date.now() + POLL_LIMIT_S * 1000;
-  while (status === 202 || !FINISHED.has(job.status)) {
+  for (let i = 0; !FINISHED.has(job.status); i++) {
     onUpdate(job);
     if (Date.now() > deadline) {
       throw new ApiError({ code: 'timeout', message: `Job ${job.id} is still ${job.status}; stopped waiting after ${POLL_LIMIT_S / 60} min. Its result will be at /api/v1/jobs/${job.id}.` });
     }
-    await sleep(POLL_MS, signal);
-    ({ status, body: job } = await request(jobUrl(job.id), { signal }));
+    await sleep(POLL_MS[Math.min(i, POLL_MS.length - 1)], signal);
+    job = await getJSON(jobUrl(job.id), { signal });
   }
   return job;
 }

@@ -4,8 +4,8 @@
 // gaps, plus tables of the figures and of the distortion orders.
 // A pure function of the result: optional fields may be missing.
 
-import { svg, ticks, pathD, polar, legend } from './svg.js';
-import { h, isNum, fixed, sig, seconds, percent, kvTable, resultLinks, newtonCost, nums, um, deg } from './html.js';
+import { svg, scale, ticks, axes, pathD, polar, legend } from './svg.js';
+import { h, fill, isNum, fixed, sig, seconds, percent, kvTable, resultLinks, newtonCost, nums, um, deg } from './html.js';
 
 const MPa = (v, d = 3) => (isNum(v) ? `${sig(v / 1e6, d)} MPa` : '—');
 
@@ -18,7 +18,7 @@ export const contact = {
     const n = result.numerics || {};
     const gaps = lightGaps(result);
     const count = nums(result.clearance).length;
-    container.replaceChildren(
+    fill(container,
       h('h3', {}, 'Contact with the bore — pressure around the circumference'),
       h('p', { id: 'ct-summary' },
         `Mean pressure ${MPa(result.mean_pressure_pa)} against the uniform ${MPa(result.uniform_pressure_pa)}; `,
@@ -33,6 +33,10 @@ export const contact = {
           h('figcaption', {}, 'Contact pressure against the angle from the gap: gap (0°) at the right, angle counter-clockwise, ring seen from the cylinder head. ' +
             'Radius = pressure; dashed circle: the uniform pressure p0. Outer curve: the bore, its distortion exaggerated; marked arcs: light gaps (clearance > 0).')),
         h('div', { class: 'table-wrap' }, figures(result, gaps))),
+      nums(result.angle_deg).length > 1
+        ? h('figure', { class: 'plot wide' }, cartesianPlot(result, gaps),
+          h('figcaption', {}, 'The same pressure against the angle from the gap, its axis fitted to the values so that small departures from p0 show (dashed: p0).'))
+        : null,
       distortionTable(result),
     );
   },
@@ -217,4 +221,44 @@ function polarPlot(result, gaps) {
     svg('path', { class: 'pressure', id: 'ct-pressure', d: pressure }),
     svg('g', { class: 'light-gaps' }, arcs),
     maxMark);
+}
+
+// Pressure against angle on axes fitted to the values (p0 included): the
+// polar plot starts at 0, where a ±1 % ripple near the gap cannot be seen.
+function cartesianPlot(result, gaps) {
+  const W = 720, H = 280;
+  const box = { left: 72, top: 34, width: W - 72 - 16, height: H - 34 - 50 };
+  const angles = nums(result.angle_deg), p = nums(result.pressure_pa);
+  const k = Math.min(angles.length, p.length);
+  const p0 = result.uniform_pressure_pa;
+  const mpa = p.slice(0, k).map((v) => v / 1e6);
+  const vals = [...mpa, ...(isNum(p0) ? [p0 / 1e6] : [])].filter(isNum);
+  const lo = Math.min(...vals), hi = Math.max(...vals);
+  const pad = (hi - lo) * 0.12 || Math.abs(hi) * 0.01 || 1;
+  const x = scale(0, 360, box.left, box.left + box.width);
+  const y = scale(lo - pad, hi + pad, box.top + box.height, box.top);
+  const rel = (v) => `${v >= 0 ? '+' : '−'}${Math.abs(v * 100).toFixed(2)} %`;
+  const dev = isNum(p0) && p0 > 0 ? [Math.min(...mpa) / (p0 / 1e6) - 1, Math.max(...mpa) / (p0 / 1e6) - 1] : null;
+  const yTicks = ticks(lo - pad, hi + pad, 5);
+  const digits = Math.max(3, Math.ceil(Math.log10(Math.abs(hi) / (yTicks.length > 1 ? yTicks[1] - yTicks[0] : 1) || 1)) + 2);
+  return svg('svg', {
+    id: 'ct-cartesian', class: 'chart', viewBox: `0 0 ${W} ${H}`, role: 'img',
+    'data-deviation': dev ? dev.map((v) => v.toFixed(6)).join(' ') : null,
+    'aria-label': `Contact pressure against angle, ${sig(lo)} to ${sig(hi)} MPa${dev ? ` (${rel(dev[0])} to ${rel(dev[1])} of p0)` : ''}.`,
+  },
+  legend([
+    [svg('path', { class: 'p-line', d: 'M-2,0H12' }), 'pressure'],
+    [svg('path', { class: 'p0', d: 'M-2,0H12' }), `p0 = ${MPa(p0)}`],
+    ...(dev ? [[svg('g', {}), `range ${rel(dev[0])} to ${rel(dev[1])} of p0`]] : []),
+  ], { x: box.left, y: 14 }),
+  axes({
+    box, x, y, xTicks: [0, 45, 90, 135, 180, 225, 270, 315, 360], yTicks,
+    xLabel: 'angle from the gap (deg)', yLabel: 'pressure (MPa)', yFormat: (v) => String(Number(v.toPrecision(digits))),
+  }),
+  isNum(p0) ? svg('line', { class: 'p0', id: 'ct-cart-p0', x1: box.left, x2: box.left + box.width, y1: y(p0 / 1e6), y2: y(p0 / 1e6) }) : null,
+  gaps.map((i) => svg('rect', { class: 'band', x: x(angles[i]) - box.width / (2 * k), y: box.top, width: box.width / k, height: box.height },
+    svg('title', {}, `Light gap at ${deg(angles[i])}`))),
+  svg('path', { class: 'p-line', id: 'ct-cart-line', d: pathD(angles.slice(0, k).map((a, i) => [x(a), y(mpa[i])])) }),
+  svg('g', { class: 'p-points' }, angles.slice(0, k).map((a, i) => svg('circle', { class: 'p-mk', cx: x(a), cy: y(mpa[i]), r: 2.5 },
+    svg('title', {}, `${deg(a)}: ${MPa(p[i], 5)}`)))));
 }

@@ -421,7 +421,15 @@ function readValue(input) {
 function setValue(input, v) {
   if (input.type === 'checkbox') input.checked = v === true || v === 'true';
   else if (input.tagName === 'SELECT') input.value = v === undefined ? input.options[0]?.value ?? '' : String(v);
-  else input.value = v === undefined ? '' : String(v);
+  else input.value = v === undefined ? '' : numberText(v);
+}
+
+// A number as a field shows it whole: very large or small ones in exponent
+// form (2.1e11, not 210000000000, which a narrow field cuts off).
+function numberText(v) {
+  if (typeof v !== 'number' || !Number.isFinite(v)) return String(v);
+  const a = Math.abs(v);
+  return a === 0 || (a >= 1e-4 && a < 1e7) ? String(v) : v.toExponential().replace('e+', 'e');
 }
 
 // A default as a person writes it: 2.1e11 and 3e-5, not 210000000000 and 0.00003.

@@ -14,6 +14,12 @@ export function h(tag, attrs = {}, ...children) {
   return node;
 }
 
+// Replaces the children of `container` with `children`, skipping null,
+// undefined and false (replaceChildren itself would write them as text).
+export function fill(container, ...children) {
+  container.replaceChildren(...children.flat().filter((c) => c !== null && c !== undefined && c !== false));
+}
+
 export const isNum = (v) => typeof v === 'number' && Number.isFinite(v);
 
 // v * factor with `digits` decimals, or '—' when v is not a finite number.

@@ -9,7 +9,7 @@
 // tables of the scene come from one of them.
 
 import { svg, scale, ticks, axes, pathD, stepTicks, legend } from './svg.js';
-import { h, isNum, fixed, sig, seconds, percent, kvTable, resultLinks, nums, um, deg } from './html.js';
+import { h, fill, isNum, fixed, sig, seconds, percent, kvTable, resultLinks, nums, um, deg } from './html.js';
 
 const GAS_EXAMPLE = 'thesis_lift_gas_6000rpm';
 const EVENT_TEXT = {
@@ -55,32 +55,138 @@ export const lift = {
     const n = result.numerics || {};
     const crank = nums(result.crank_deg);
     const events = Array.isArray(result.events) ? result.events : [];
-    const friction = result.scene?.physics?.friction;
     const engine = result.scene?.engine || {};
     const title = [
       isNum(engine.cycles) ? `${sig(engine.cycles)} cycle${engine.cycles === 1 ? '' : 's'}` : null,
       isNum(engine.speed_rpm) ? `${sig(engine.speed_rpm, 5)} rpm` : null,
     ].filter(Boolean).join(' at ');
-    container.replaceChildren(
+    const plots = h('div', { id: 'lf-plots' }, figures({ ...result, events }));
+    fill(container,
       h('h3', {}, `Lift — the ring in its groove${title ? `, ${title}` : ''}`),
       h('p', { id: 'lf-summary' }, summary(result, events)),
       h('p', { id: 'cost', class: 'cost' }, h('strong', {}, 'Cost and accuracy: '), costLine(n)),
       resultLinks(job, 'lift', 'Lift table (CSV)'),
-      crank.length < 2
-        ? h('p', { class: 'hint', id: 'lf-empty' }, 'This result has no samples to draw.')
-        : h('figure', { class: 'plot wide' }, liftPlot(result, events), flankStrip(result),
-          h('figcaption', {}, 'Ring lift above the groove\'s lower flank against crank angle (0° = top dead centre before the power stroke). ' +
-            'Line: mean over the segments; band: lowest to highest segment; markers: flank events (hover for the angle). Bar: flank state.')),
-      friction && typeof friction === 'object' && crank.length >= 2
-        ? h('figure', { class: 'plot wide' }, frictionPlot(result),
-          h('figcaption', {}, `Axial bore friction force on the ring (${friction.model || 'friction'}${isNum(friction.coefficient) ? `, μ = ${friction.coefficient}` : ''}).`))
-        : null,
+      zoomControl(crank, (range) => fill(plots, figures(sliceRun(result, events, range)))),
+      plots,
       h('div', { class: 'lift-tables' },
         h('div', { class: 'table-wrap events-wrap' }, eventTable(events)),
         h('div', { class: 'table-wrap' }, costTable(result))),
     );
   },
 };
+
+// The figures of a (possibly cut to one cycle) lift result.
+function figures(result) {
+  const crank = nums(result.crank_deg);
+  const friction = result.scene?.physics?.friction;
+  if (crank.length < 2) return h('p', { class: 'hint', id: 'lf-empty' }, 'This result has no samples to draw.');
+  const gas = gasTables(result.scene?.physics?.gas);
+  return [
+    h('figure', { class: 'plot wide' }, liftPlot(result, result.events), flankStrip(result),
+      h('figcaption', {}, 'Ring lift above the groove\'s lower flank against crank angle (0° = top dead centre before the power stroke). ' +
+        'Line: mean over the segments; band: lowest to highest segment; markers: flank events (hover for the angle). Bar: flank state.')),
+    gas ? h('figure', { class: 'plot wide' }, gasPlot(result, gas),
+      h('figcaption', {}, `Gas pressures that drove the ring (the scene's tables, repeated every 720°; ${result.scene.physics.gas.active_area || 'fixed'} active areas).`))
+      : null,
+    friction && typeof friction === 'object'
+      ? h('figure', { class: 'plot wide' }, frictionPlot(result),
+        h('figcaption', {}, `Axial bore friction force on the ring (${friction.model || 'friction'}${isNum(friction.coefficient) ? `, μ = ${friction.coefficient}` : ''}).`))
+      : null,
+  ];
+}
+
+// A choice of the crank range drawn: the whole run or one 720° cycle of it
+// (none for a run of one cycle or less).  onChange(null | [c0, c1]).
+function zoomControl(crank, onChange) {
+  if (crank.length < 2) return null;
+  const c0 = Math.min(...crank), c1 = Math.max(...crank);
+  const first = Math.floor(c0 / 720 + 1e-9);
+  const count = Math.ceil(c1 / 720 - 1e-9) - first;
+  if (count < 2) return null;
+  const select = h('select', { id: 'lf-zoom' },
+    h('option', { value: '' }, `the whole run (${sig(c0, 5)}–${sig(c1, 5)}°)`),
+    Array.from({ length: count }, (_, i) => {
+      const a = Math.max(c0, (first + i) * 720), b = Math.min(c1, (first + i + 1) * 720);
+      return h('option', { value: `${a},${b}` }, `cycle ${first + i + 1} (${sig(a, 5)}–${sig(b, 5)}°)${b - a < 720 - 1e-6 ? ', part' : ''}`);
+    }));
+  select.addEventListener('change', () => onChange(select.value ? select.value.split(',').map(Number) : null));
+  return h('p', { class: 'lift-controls' }, h('label', { for: 'lf-zoom' }, 'Show'), select);
+}
+
+// The samples and events of `result` within [c0, c1] (all for range null).
+function sliceRun(result, events, range) {
+  if (!range) return { ...result, events };
+  const [c0, c1] = range;
+  const crank = nums(result.crank_deg);
+  const keep = crank.map((c, i) => (c >= c0 - 1e-9 && c <= c1 + 1e-9 ? i : -1)).filter((i) => i >= 0);
+  const cut = (a) => (Array.isArray(a) ? keep.map((i) => a[i]) : a);
+  const out = { ...result, events: events.filter((e) => e.crank_deg >= c0 && e.crank_deg <= c1) };
+  for (const k of ['crank_deg', 'lift', 'lift_min', 'lift_max', 'flank', 'friction_force']) out[k] = cut(result[k]);
+  return out;
+}
+
+// The gas tables of a scene ({crank_deg, above, behind, below}) when usable.
+function gasTables(gas) {
+  if (!gas || typeof gas !== 'object') return null;
+  const x = nums(gas.crank_deg);
+  if (x.length < 2) return null;
+  const t = { crank_deg: x };
+  for (const k of ['above', 'behind', 'below']) {
+    t[k] = nums(gas[k]);
+    if (t[k].length !== x.length) return null;
+  }
+  return t;
+}
+
+// A table's pressure at crank angle c: linear between the points, repeated
+// every 720°, from the last point back to the first across 720 (as the
+// solver reads it, core/rd_lift.c gas_at).
+function gasAt(x, v, c) {
+  const n = x.length;
+  const d = ((c % 720) + 720) % 720;
+  if (d < x[0] || d >= x[n - 1]) {
+    const lo = x[n - 1], hi = x[0] + 720, e = d < x[0] ? d + 720 : d;
+    return hi - lo <= 0 ? v[0] : v[n - 1] + ((v[0] - v[n - 1]) * (e - lo)) / (hi - lo);
+  }
+  let i = 0;
+  while (x[i + 1] <= d) i++;
+  return v[i] + ((v[i + 1] - v[i]) * (d - x[i])) / (x[i + 1] - x[i]);
+}
+
+// The table's points within [c0, c1] (every cycle), with both ends.
+function gasSeries(t, key, c0, c1) {
+  const pts = [[c0, gasAt(t.crank_deg, t[key], c0)]];
+  for (let k = Math.floor(c0 / 720); k * 720 <= c1; k++) {
+    t.crank_deg.forEach((x, i) => {
+      const c = k * 720 + x;
+      if (c > c0 && c < c1) pts.push([c, t[key][i]]);
+    });
+  }
+  pts.push([c1, gasAt(t.crank_deg, t[key], c1)]);
+  return pts;
+}
+
+const GAS_TEXT = { above: 'above the ring', behind: 'behind the ring', below: 'below the ring' };
+
+function gasPlot(result, t) {
+  const H = 240;
+  const box = { ...BOX, top: 34, height: H - 34 - 50 };
+  const crank = nums(result.crank_deg);
+  const { x, c0, c1, ticks: xTicks } = crankAxis(crank);
+  const series = Object.keys(GAS_TEXT).map((k) => [k, gasSeries(t, k, c0, c1).map(([c, p]) => [c, p / 1e5])]);
+  const top = Math.max(1e-3, ...series.flatMap(([, pts]) => pts.map((q) => q[1])));
+  const y = scale(0, top * 1.08, box.top + box.height, box.top);
+  return svg('svg', {
+    id: 'lf-gas', class: 'chart', viewBox: `0 0 ${W} ${H}`, role: 'img',
+    'aria-label': `Gas pressures against crank angle, up to ${sig(top)} bar: ${series.map(([k, pts]) => `${GAS_TEXT[k]} ${sig(Math.min(...pts.map((q) => q[1])))} to ${sig(Math.max(...pts.map((q) => q[1])))} bar`).join('; ')}.`,
+  },
+  legend(series.map(([k]) => [svg('path', { class: `gas-${k}`, d: 'M-2,0H12' }), GAS_TEXT[k]]), { x: box.left, y: 14 }),
+  axes({
+    box, x, y, xTicks, yTicks: ticks(0, top * 1.08, 4),
+    xLabel: 'crank angle (deg)', yLabel: 'pressure (bar)', yFormat: (v) => String(Number(v.toPrecision(4))),
+  }),
+  series.map(([k, pts]) => svg('path', { class: `gas-${k}`, id: `lf-gas-${k}`, 'data-points': pts.length, d: pathD(pts.map(([c, p]) => [x(c), y(p)])) })));
+}
 
 function summary(result, events) {
   const lmax = nums(result.lift_max).length ? nums(result.lift_max) : nums(result.lift);
@@ -167,9 +273,10 @@ function liftPlot(result, events) {
       d: pathD([...thin(crank, hi).map(([c, v]) => [x(c), y(v)]), ...thin(crank, lo).reverse().map(([c, v]) => [x(c), y(v)])], true),
     })
     : null;
-  const flankLine = (id, v, text) => svg('g', { class: 'flank-line', id },
+  // The label above the lower line, below the upper one (clear of the legend).
+  const flankLine = (id, v, text, below = false) => svg('g', { class: 'flank-line', id },
     svg('line', { x1: box.left, x2: box.left + box.width, y1: y(v), y2: y(v) }),
-    svg('text', { class: 'tick halo', x: box.left + box.width - 4, y: y(v) - 5, 'text-anchor': 'end' }, text));
+    svg('text', { class: 'tick halo', x: box.left + box.width - 4, y: below ? y(v) + 4 : y(v) - 5, dy: below ? '0.8em' : null, 'text-anchor': 'end' }, text));
   const atFlank = (kind) => (kind === 'reach_upper' || kind === 'leave_upper' ? cl ?? y1 : 0);
   const markers = events.map((e, i) => {
     const kind = String(e.event);
@@ -194,7 +301,7 @@ function liftPlot(result, events) {
   }),
   band,
   flankLine('lf-lower', 0, 'lower flank'),
-  cl !== null ? flankLine('lf-upper', cl, `upper flank (clearance ${um(clearance)} µm)`) : null,
+  cl !== null ? flankLine('lf-upper', cl, `upper flank (clearance ${um(clearance)} µm)`, true) : null,
   mean.length === N ? svg('path', { class: 'mean', id: 'lf-mean', d: pathD(thin(crank, mean).map(([c, v]) => [x(c), y(v)])) }) : null,
   svg('g', { class: 'events' }, markers));
 }
@@ -227,7 +334,7 @@ function flankStrip(result) {
   },
   svg('text', { class: 'tick', x: BOX.left - 6, y: top + height / 2, 'text-anchor': 'end', 'dominant-baseline': 'middle' }, 'flank'),
   svg('g', { class: 'flank-runs' }, bars),
-  legend([[swatch('lower'), 'lower'], [swatch('upper'), 'upper'], [swatch('free'), 'free']], { x: BOX.left, y: top + height + 20 }));
+  legend([[swatch('lower'), 'lower'], [swatch('upper'), 'upper'], [swatch('free'), 'free']], { x: BOX.left, y: top + height + 20, wrap: 'down' }));
 }
 
 function frictionPlot(result) {

@@ -1,8 +1,8 @@
 // The modal analysis: renders a modal `result` (API.md) as a summary, a
 // frequency plot, a table of modes and the shape of the selected mode.
 
-import { svg, scale, ticks, axes, kindMarker, markerIcon } from './svg.js';
-import { h, seconds } from './html.js';
+import { svg, scale, ticks, axes, kindMarker, markerIcon, legend } from './svg.js';
+import { h, fill, seconds } from './html.js';
 
 const KIND_TEXT = { in_plane: 'in-plane', out_of_plane: 'out-of-plane' };
 
@@ -30,7 +30,7 @@ export const modal = {
     const plot = frequencyPlot(modes, (m) => select(m));
     const table = modeTable(modes, (m) => select(m));
 
-    container.replaceChildren(
+    fill(container,
       h('h3', {}, `Modal analysis — ${modes.length} elastic mode${modes.length === 1 ? '' : 's'}`),
       h('p', { id: 'rigid-body' },
         h('strong', {}, String(result.rigid_body_modes)),
@@ -41,7 +41,7 @@ export const modal = {
       h('div', { class: 'modal-grid' },
         h('figure', { class: 'plot' }, plot,
           h('figcaption', {}, 'Natural frequency against mode number; bars: estimated discretization error.')),
-        h('section', { class: 'shape-view', 'aria-labelledby': 'shape-title' },
+        h('section', { class: 'shape-view', 'aria-labelledby': 'shape-title', 'data-figure': '' },
           h('h3', { id: 'shape-title' }, 'Mode shape'), shapeBox)),
       h('div', { class: 'table-wrap' }, table),
     );
@@ -156,11 +156,11 @@ function frequencyPlot(modes, onSelect) {
     return g;
   });
 
-  const legend = svg('g', { class: 'legend', transform: `translate(${box.left + 8},16)` },
-    kindMarker('out_of_plane', 6, 0, 5), svg('text', { x: 16, y: 0, 'dominant-baseline': 'middle' }, 'out-of-plane'),
-    kindMarker('in_plane', 118, 0, 5), svg('text', { x: 128, y: 0, 'dominant-baseline': 'middle' }, 'in-plane'),
-    svg('path', { class: 'errbar', d: 'M202,-6H210M206,-6V6M202,6H210' }),
-    svg('text', { x: 218, y: 0, 'dominant-baseline': 'middle' }, 'est. error'));
+  const key = legend([
+    [kindMarker('out_of_plane', 5, 0, 5), 'out-of-plane'],
+    [kindMarker('in_plane', 5, 0, 5), 'in-plane'],
+    [svg('path', { class: 'errbar', d: 'M1,-6H9M5,-6V6M1,6H9' }), 'est. error'],
+  ], { x: box.left + 8, y: 16 });
 
   const summary = modes.map((m) => `mode ${m.mode} ${KIND_TEXT[m.kind] || m.kind} ${hz(m.frequency_hz)} Hz`).join('; ');
   return svg('svg', {
@@ -171,7 +171,7 @@ function frequencyPlot(modes, onSelect) {
     box, x, y, xTicks, yTicks, xLabel: 'mode number', yLabel: 'frequency (Hz)',
     yFormat: (v) => String(Number(v.toPrecision(6))),
   }),
-  legend,
+  key,
   svg('g', { class: 'markers' }, markers));
 }
 

@@ -5,7 +5,7 @@
 // A pure function of the result: optional fields may be missing.
 
 import { svg, scale, ticks, axes, pathD, legend } from './svg.js';
-import { h, isNum, fixed, sig, seconds, percent, kvTable, resultLinks, newtonCost, nums, um } from './html.js';
+import { h, fill, isNum, fixed, sig, seconds, percent, kvTable, resultLinks, newtonCost, nums, um } from './html.js';
 
 const mm = (v, d = 2) => fixed(v, d, 1e3);
 
@@ -20,7 +20,7 @@ export const pretension = {
     const xa = result.gap_opening_inner, xc = result.lateral_opening;
     const lateral = isNum(xc) && xc > 0 && nums(result.shape?.z).length > 1;
     const method = result.scene?.pretension?.method;
-    container.replaceChildren(
+    fill(container,
       h('h3', {}, `Pretension — free shape${method ? ` (${method} method)` : ''}`),
       h('p', { id: 'pt-summary' },
         'Gap opening ', h('i', {}, 'x'), h('sub', {}, 'a'), ' = ', h('strong', {}, `${mm(xa)} mm`),

@@ -67,12 +67,14 @@ export function axes({ box, x, y, xTicks, yTicks, xLabel, yLabel, xFormat = Stri
   for (const t of xTicks) {
     const px = x(t);
     g.append(svg('line', { x1: px, x2: px, y1: bottom, y2: bottom + 4, class: 'tickmark' }));
-    g.append(svg('text', { x: px, y: bottom + 16, class: 'tick', 'text-anchor': 'middle' }, xFormat(t)));
+    // Offsets in em: they grow with the text (charts.js enlarges it on narrow screens).
+    g.append(svg('text', { x: px, y: bottom + 6, dy: '0.8em', class: 'tick', 'text-anchor': 'middle' }, xFormat(t)));
   }
   g.append(svg('path', { d: `M${box.left},${box.top}V${bottom}H${right}`, class: 'axis' }));
-  g.append(svg('text', { x: box.left + box.width / 2, y: bottom + 34, class: 'label', 'text-anchor': 'middle' }, xLabel));
+  g.append(svg('text', { x: box.left + box.width / 2, y: bottom + 6, dy: '2.05em', class: 'label', 'text-anchor': 'middle' }, xLabel));
+  // data-left / data-mid: charts.js moves it left of wider tick labels.
   g.append(svg('text', {
-    x: 0, y: 0, class: 'label', 'text-anchor': 'middle',
+    x: 0, y: 0, class: 'label ylabel', 'text-anchor': 'middle', 'data-left': box.left, 'data-mid': box.top + box.height / 2,
     transform: `translate(${box.left - 46},${box.top + box.height / 2}) rotate(-90)`,
   }, yLabel));
   return g;
@@ -109,8 +111,10 @@ export function polar(cx, cy, r, deg) {
 
 // A legend: a row of [swatch element, text] items from (x, y), spaced by the
 // length of their text.  Each swatch is drawn around (0, 0), about 12 px wide.
-export function legend(items, { x = 0, y = 0, id } = {}) {
-  const g = svg('g', { class: 'legend', transform: `translate(${x},${y})`, id });
+// Where the text is enlarged (charts.js), the items wrap into rows: above the
+// first row, or below it with wrap = 'down'.
+export function legend(items, { x = 0, y = 0, id, wrap = 'up' } = {}) {
+  const g = svg('g', { class: 'legend', transform: `translate(${x},${y})`, id, 'data-x': x, 'data-wrap': wrap });
   let at = 0;
   for (const [swatch, text] of items) {
     g.append(svg('g', { transform: `translate(${at},0)` }, swatch,

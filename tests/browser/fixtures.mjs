@@ -131,3 +131,46 @@ export function minimal(result) {
       throw new Error(`no minimal form of ${result.analysis}`);
   }
 }
+
+// Gas tables (Pa against crank angle, one 720° cycle) and a two-cycle lift
+// result driven by them: the peak above the ring (60 bar at 360°) comes back
+// at 1080°.
+export const GAS = {
+  crank_deg: [0, 180, 360, 380, 540, 720],
+  above: [1e5, 2e5, 60e5, 40e5, 3e5, 1e5],
+  behind: [1e5, 1.8e5, 45e5, 35e5, 2.5e5, 1e5],
+  below: [1e5, 1.2e5, 8e5, 8e5, 1.5e5, 1e5],
+  active_area: 'fixed',
+};
+
+export function liftGasResult() {
+  const one = liftResult({ friction: false });
+  const two = { ...one, scene: { ...one.scene, engine: { speed_rpm: 1000, cycles: 2 }, physics: { gravity: false, gas: GAS } } };
+  two.crank_deg = [...one.crank_deg, ...one.crank_deg.slice(1).map((c) => c + 720)];
+  for (const k of ['lift', 'lift_min', 'lift_max', 'flank', 'friction_force']) two[k] = [...one[k], ...one[k].slice(1)];
+  two.lift_segments = two.lift.map((l) => [l, l, l, l]);
+  two.twist_rad = two.lift.map(() => 0);
+  two.events = [...one.events, ...one.events.map((e) => ({ ...e, crank_deg: e.crank_deg + 720 }))];
+  return two;
+}
+
+// A round bore: the pressure within about ±1 % of p0, the ripple near the gap.
+export function contactRoundResult() {
+  const r = contactResult();
+  const n = r.angle_deg.length;
+  const p0 = r.uniform_pressure_pa;
+  const q = r.angle_deg.map((a) => 1 + 0.01 * Math.cos(rad(3 * a)) * Math.exp(-((Math.min(a, 360 - a) / 40) ** 2)));
+  const pressure = q.map((v) => v * p0);
+  return {
+    ...r,
+    scene: { ...r.scene, bore: { diameter: D } },
+    pressure_pa: pressure,
+    clearance: q.map((v) => -1e-9 * v),
+    bore_radius: r.angle_deg.map(() => D / 2),
+    mean_pressure_pa: pressure.reduce((s, v) => s + v, 0) / n,
+    contact_fraction: 1,
+    max_clearance: 0,
+    max_clearance_angle_deg: undefined,
+    distortion: [],
+  };
+}

@@ -786,6 +786,468 @@ test('lift against the server: band, event markers, friction plot and flank stri
   await page.fill('#f-lf-speed', '1000');
 });
 
+// ---- live jobs, form <-> script, export, readable text, plots (issue 13) ----
+
+// Visible text smaller than `minPx` on screen: every element holding text,
+// its computed font size; for SVG text times the chart's scale on screen.
+async function smallText(minPx = 10) {
+  return page.evaluate((minPx) => {
+    const out = [];
+    const seen = new Set();
+    const walker = document.createTreeWalker(document.body, NodeFilter.SHOW_TEXT);
+    for (let n = walker.nextNode(); n; n = walker.nextNode()) {
+      const el = n.parentElement;
+      if (!n.data.trim() || !el || seen.has(el)) continue;
+      seen.add(el);
+      // <title> is a tooltip, an <option> is drawn by its <select>.
+      if (el.closest('title, option, script, style')) continue;
+      const r = el.getBoundingClientRect();
+      const cs = getComputedStyle(el);
+      if (r.width <= 1 || r.height <= 1 || cs.visibility !== 'visible') continue; // not shown, or for screen readers only
+      let px = parseFloat(cs.fontSize);
+      if (el instanceof SVGElement) {
+        const m = el.getScreenCTM();
+        px *= Math.hypot(m.a, m.b);
+      }
+      if (px < minPx) out.push(`${el.tagName}#${el.id || ''} "${n.data.trim().slice(0, 30)}" ${px.toFixed(1)} px`);
+    }
+    return out;
+  }, minPx);
+}
+
+// Two frames: the charts' ResizeObserver has refitted them.
+const settled = () => page.evaluate(() => new Promise((r) => requestAnimationFrame(() => requestAnimationFrame(r))));
+
+async function download(click) {
+  const [dl] = await Promise.all([page.waitForEvent('download'), click()]);
+  return { name: dl.suggestedFilename(), data: fs.readFileSync(await dl.path()) };
+}
+
+const jobInUrl = () => new URL(page.url()).searchParams.get('job');
+
+async function serverJob(id) {
+  const resp = await page.request.get(`${BASE}/api/v1/jobs/${id}`);
+  assert.equal(resp.status(), 200);
+  return resp.json();
+}
+
+// A lift of many cycles: runs for seconds (about 12 s for 20 cycles here).
+async function fillLongLift() {
+  await page.getByRole('button', { name: 'Reset to defaults' }).click();
+  await selectTab('lift');
+  await page.fill('#f-lf-cycles', '40');
+  await page.uncheck('#f-lf-error-estimate');
+}
+
+for (const width of [1280, 390]) {
+  test(`${width} px: a live lift job shows progress and an ETA in its first second, Cancel within that second cancels it on the server, the old result is marked stale`, { skip: SKIP.lift, timeout: 180000 }, async () => {
+    await page.setViewportSize({ width, height: 844 });
+    await page.goto(`${BASE}/`);
+    await page.waitForSelector('#tab-modal[aria-selected="true"]');
+    try {
+      // A short lift without friction first: its result becomes the old one.
+      await page.getByRole('button', { name: 'Reset to defaults' }).click();
+      await selectTab('lift');
+      await page.fill('#f-segments', '8');
+      await page.fill('#f-lf-cycles', '0.5');
+      await page.uncheck('#f-lf-error-estimate');
+      await runAnalysis('Run lift analysis', 120000);
+      assert.equal(await page.isVisible('#error'), false, `unexpected error: ${await page.textContent('#error')}`);
+      const first = jobInUrl();
+      assert.match(first, /^[0-9a-f]{16}$/, 'the page URL names the job');
+      assert.equal((await serverJob(first)).status, 'succeeded');
+      assert.doesNotMatch(await page.textContent('#result-body'), /\bnull\b|undefined|NaN/, 'no "null" above the event table (no friction)');
+      assert.equal(await page.isVisible('#result-stale'), false);
+
+      // The long job: progress from the first second, then Cancel before 1 s is out.
+      await page.fill('#f-segments', '20');
+      await page.fill('#f-lf-cycles', '40');
+      const t0 = Date.now();
+      await page.getByRole('button', { name: 'Run lift analysis' }).click();
+      await page.waitForFunction(() => /^Job \S+ running — \d+ % · .* elapsed/.test(document.getElementById('status-text').textContent), null, { timeout: 1000 });
+      assert.equal(await page.isVisible('#progress'), true, 'progress bar shown');
+      assert.match(await page.textContent('#result-stale'), /Out of date: a new job is running/);
+      assert.equal(await page.locator('#result-body.stale').count(), 1, 'the old result is dimmed');
+      const id = jobInUrl();
+      assert.ok(id && id !== first, `the URL names the new job (${id})`);
+      const clicked = Date.now() - t0;
+      await page.click('#cancel');
+      assert.ok(clicked < 1000, `Cancel clicked ${clicked} ms after Run`);
+      await page.waitForFunction(() => !document.getElementById('run').disabled, null, { timeout: 20000 });
+      assert.equal(await page.textContent('#status-text'), `Job ${id} cancelled.`);
+      const job = await serverJob(id);
+      assert.equal(job.status, 'cancelled', 'the server cancelled the job');
+      assert.ok(job.progress < 0.5, `cancelled early (progress ${job.progress})`);
+      assert.match(await page.textContent('#result-stale'), new RegExp(`job ${id} was cancelled.*\\(${first}\\)`));
+      assert.equal(await page.isVisible('#error'), false, 'a cancel is not an error');
+
+      // Run and Cancel at once: the job has no id yet when Cancel is pressed;
+      // the page cancels it as soon as the submission answers.
+      await page.getByRole('button', { name: 'Run lift analysis' }).click();
+      await page.click('#cancel');
+      await page.waitForFunction(() => !document.getElementById('run').disabled, null, { timeout: 20000 });
+      const quick = jobInUrl();
+      assert.match(await page.textContent('#status-text'), new RegExp(`^Job ${quick} cancelled\\.$`));
+      assert.equal((await serverJob(quick)).status, 'cancelled');
+
+      // An ETA once there is progress to go by (the server gives no eta_s yet).
+      await page.getByRole('button', { name: 'Run lift analysis' }).click();
+      await page.waitForFunction(() => /running — \d+ % · .* elapsed · about .* left/.test(document.getElementById('status-text').textContent), null, { timeout: 10000 });
+      await page.click('#cancel');
+      await page.waitForFunction(() => !document.getElementById('run').disabled, null, { timeout: 20000 });
+      assert.equal((await serverJob(jobInUrl())).status, 'cancelled');
+
+      // An error also leaves the old result marked.
+      await page.fill('#f-lf-speed', '0');
+      await runAnalysis('Run lift analysis');
+      assert.equal(await page.isVisible('#error'), true);
+      assert.match(await page.textContent('#result-stale'), /Out of date: the last run failed/);
+      await page.fill('#f-lf-speed', '1000');
+      assert.deepEqual(await smallText(), [], 'no text below 10 px');
+      await shot(`ringdyn-live-${width}.png`, { fullPage: true });
+    } finally {
+      await page.setViewportSize({ width: 1280, height: 800 });
+    }
+  });
+
+  test(`${width} px: /?job=<id> reopens a finished job (result, tab and form) and a running one (progress, Cancel)`, { timeout: 120000 }, async () => {
+    await page.setViewportSize({ width, height: 844 });
+    try {
+      await page.goto(`${BASE}/`);
+      await page.waitForSelector('#tab-modal[aria-selected="true"]');
+      await page.getByRole('button', { name: 'Reset to defaults' }).click();
+      await selectTab('pretension');
+      await page.fill('#f-segments', '16');
+      await page.fill('#f-pt-lateral', '0.25');
+      await runAnalysis('Run pretension analysis');
+      const id = jobInUrl();
+      const label = await page.textContent('#pt-gap-label');
+      await page.goto(`${BASE}/?job=${id}`);
+      await page.waitForFunction((id) => document.getElementById('status-text').textContent === `Job ${id} succeeded.`, id);
+      assert.equal(await page.getAttribute('#tab-pretension', 'aria-selected'), 'true');
+      assert.equal(await page.textContent('#pt-gap-label'), label, 'the same result');
+      assert.equal(await page.inputValue('#f-segments'), '16', 'the job\'s scene in the form');
+      assert.equal(await page.inputValue('#f-pt-lateral'), '0.25');
+
+      if (!SKIP.lift) {
+        const resp = await page.request.post(`${BASE}/api/v1/jobs?wait=0`, { data: { analysis: 'lift', engine: { cycles: 40 }, numerics: { error_estimate: false } } });
+        const running = await resp.json();
+        await page.goto(`${BASE}/?job=${running.id}`);
+        await page.waitForFunction(() => /^Job \S+ running/.test(document.getElementById('status-text').textContent));
+        assert.equal(await page.getAttribute('#tab-lift', 'aria-selected'), 'true');
+        await page.click('#cancel');
+        await page.waitForFunction(() => !document.getElementById('run').disabled, null, { timeout: 20000 });
+        assert.equal((await serverJob(running.id)).status, 'cancelled');
+      }
+      assert.deepEqual(await smallText(), [], 'no text below 10 px');
+    } finally {
+      await page.setViewportSize({ width: 1280, height: 800 });
+      await page.goto(`${BASE}/`);
+      await page.waitForSelector('#tab-modal[aria-selected="true"]');
+    }
+  });
+
+  test(`${width} px: Copy as curl / Python run as they are; Download and Load scene JSON; a large modulus shows as 2.1e11`, { timeout: 120000 }, async () => {
+    await page.setViewportSize({ width, height: 844 });
+    try {
+      await page.getByRole('button', { name: 'Reset to defaults' }).click();
+      await selectTab('modal');
+      await page.fill('#f-segments', '12');
+      await page.fill('#f-modes', '4');
+      const { execFileSync } = await import('node:child_process');
+
+      await page.context().grantPermissions(['clipboard-read', 'clipboard-write'], { origin: BASE });
+      await page.click('#copy-curl');
+      await page.waitForFunction(() => /on the clipboard/.test(document.getElementById('tools-status').textContent));
+      const curl = await page.textContent('#script-out');
+      assert.equal(await page.evaluate(() => navigator.clipboard.readText()), curl, 'the clipboard holds the command shown');
+      const viaCurl = JSON.parse(execFileSync('bash', ['-c', curl], { encoding: 'utf8', timeout: 60000 }));
+      assert.equal(viaCurl.status, 'succeeded');
+      assert.equal(viaCurl.result.numerics.segments, 12);
+      assert.equal(viaCurl.result.modes.length, 4);
+
+      await page.click('#copy-python');
+      const py = await page.textContent('#script-out');
+      assert.doesNotMatch(py, /^import (?!json|sys|time|urllib)/m, 'standard library only');
+      const viaPython = JSON.parse(execFileSync('python3', ['-'], { input: py, encoding: 'utf8', timeout: 60000 }));
+      assert.deepEqual(viaPython.modes.map((m) => m.frequency_hz), viaCurl.result.modes.map((m) => m.frequency_hz), 'same scene, same frequencies');
+
+      // A scene the server refuses: the Python program names the field.
+      await page.fill('#f-segments', '1');
+      await page.click('#copy-python');
+      let failed = null;
+      try { execFileSync('python3', ['-'], { input: await page.textContent('#script-out'), encoding: 'utf8', stdio: 'pipe', timeout: 60000 }); } catch (e) { failed = e; }
+      assert.ok(failed && failed.status === 1, 'exit status 1');
+      assert.match(failed.stderr, /HTTP 422: .* \(path \/discretization\/segments\)/);
+      await page.fill('#f-segments', '12');
+
+      // Download: the scene the form sends.
+      const saved = await download(() => page.click('#save-scene'));
+      assert.equal(saved.name, 'ringdyn-modal-scene.json');
+      const scene = JSON.parse(saved.data.toString());
+      const sentByCurl = JSON.parse(curl.slice(curl.indexOf('\n{') + 1, curl.lastIndexOf('}') + 1));
+      assert.deepEqual(scene, sentByCurl);
+      assert.equal(scene.discretization.segments, 12);
+
+      // Load: another analysis's scene fills its tab; E = 210000000000 shows whole.
+      const lift = { analysis: 'lift', ring: { material: { youngs_modulus: 210000000000, density: 7800 } }, engine: { speed_rpm: 3000, cycles: 1 } };
+      await page.setInputFiles('#load-scene-file', { name: 'lift.json', mimeType: 'application/json', buffer: Buffer.from(JSON.stringify(lift)) });
+      await page.waitForSelector('#tab-lift[aria-selected="true"]');
+      assert.equal(await page.inputValue('#f-lf-speed'), '3000');
+      assert.equal(await page.inputValue('#f-lf-cycles'), '1');
+      assert.equal(await page.inputValue('#f-youngs-modulus'), '2.1e11');
+      assert.match(await page.textContent('#f-youngs-modulus-hint'), /210 GPa/);
+      // The whole value fits in the field (nothing cut off).
+      assert.ok(await page.$eval('#f-youngs-modulus', (i) => i.scrollWidth <= i.clientWidth), 'the field shows the whole number');
+      assert.match(await page.textContent('#tools-status'), /Loaded lift\.json/);
+      // A file without a scene: an error that says so, the form unchanged.
+      await page.setInputFiles('#load-scene-file', { name: 'notes.json', mimeType: 'application/json', buffer: Buffer.from('{"hello": 1}') });
+      assert.match(await page.textContent('#error'), /notes\.json holds no scene/);
+      assert.equal(await page.inputValue('#f-lf-speed'), '3000');
+      await page.click('#copy-python');
+      assert.deepEqual(await smallText(), [], 'no text below 10 px');
+      if (width === 390) {
+        const overflow = await page.evaluate(() => document.documentElement.scrollWidth - window.innerWidth);
+        assert.ok(overflow <= 0, `page scrolls sideways by ${overflow}px`);
+      }
+    } finally {
+      await page.setViewportSize({ width: 1280, height: 800 });
+      await page.getByRole('button', { name: 'Reset to defaults' }).click();
+    }
+  });
+
+  test(`${width} px: every figure exports as SVG and PNG; the CSV downloads as ringdyn-<analysis>-<id>.csv`, { timeout: 120000 }, async () => {
+    await page.setViewportSize({ width, height: 844 });
+    try {
+      await page.getByRole('button', { name: 'Reset to defaults' }).click();
+      await selectTab('modal');
+      await runAnalysis();
+      const id = jobInUrl();
+      const csv = await download(() => page.click('#csv-link'));
+      assert.equal(csv.name, `ringdyn-modal-${id}.csv`);
+      assert.equal(csv.data.toString(), await (await page.request.get(`${BASE}/api/v1/jobs/${id}/result.csv`)).text());
+      await checkExports(`ringdyn-modal-${id}`, 2);
+      // The analyses drawn from fixtures: each of their figures too.
+      for (const [result, figures] of [[fixtures.pretensionResult({ lateral: 1 }), 2], [fixtures.contactResult(), 2], [fixtures.liftGasResult(), 2]]) {
+        const jobs = await interceptJobs(result);
+        try {
+          await selectTab(result.analysis);
+          if (result.analysis === 'contact') await page.getByRole('button', { name: 'Add a distortion order' }).click();
+          await runAnalysis(`Run ${result.analysis} analysis`);
+          await checkExports(`ringdyn-${result.analysis}-fixture-`, figures);
+        } finally {
+          await jobs.stop();
+        }
+      }
+    } finally {
+      await page.setViewportSize({ width: 1280, height: 800 });
+      await page.getByRole('button', { name: 'Reset to defaults' }).click();
+    }
+  });
+}
+
+test('the server\'s eta_s is shown when a job has one; a job that fails leaves the old result marked out of date', { timeout: 60000 }, async () => {
+  await page.goto(`${BASE}/`);
+  await page.waitForSelector('#tab-modal[aria-selected="true"]');
+  const jobs = await interceptJobs(fixtures.pretensionResult());
+  try {
+    await selectTab('pretension');
+    await runAnalysis('Run pretension analysis');
+  } finally {
+    await jobs.stop();
+  }
+  assert.equal(await page.locator('#result-body #pt-shape').count(), 1);
+  // Then a job the test answers: queued, running with eta_s, failed.
+  let polls = 0;
+  const match = (url) => url.pathname.startsWith('/api/v1/jobs');
+  await page.route(match, (route) => {
+    if (route.request().method() === 'POST') return route.fulfill({ status: 202, json: { id: 'eta-job', status: 'queued', progress: 0 } });
+    polls += 1;
+    if (polls < 5) return route.fulfill({ json: { id: 'eta-job', status: 'running', progress: 0.25, eta_s: 95 } });
+    return route.fulfill({ json: { id: 'eta-job', status: 'failed', progress: 0.3, error: { code: 'solver_failed', message: 'Newton did not converge in load step 3.', path: '' } } });
+  });
+  try {
+    await page.evaluate(() => {
+      window.statusLog = [];
+      new MutationObserver(() => window.statusLog.push(document.getElementById('status-text').textContent))
+        .observe(document.getElementById('status'), { subtree: true, childList: true, characterData: true });
+    });
+    await runAnalysis('Run pretension analysis');
+    const log = await page.evaluate(() => window.statusLog);
+    assert.ok(log.some((t) => /^Job eta-job running — 25 % · \d+ s elapsed · about 1 min 35 s left$/.test(t)), `eta_s shown: ${JSON.stringify(log)}`);
+    assert.equal(log.at(-1), 'Job eta-job failed.');
+    assert.match(await page.textContent('#error'), /Newton did not converge in load step 3/);
+    assert.match(await page.textContent('#result-stale'), /Out of date: job eta-job failed\./);
+    assert.equal(await page.locator('#result-body #pt-shape').count(), 1, 'the old result is still there, marked');
+    assert.equal(jobInUrl(), 'eta-job');
+  } finally {
+    await page.unroute(match);
+  }
+});
+
+// Clicks the SVG and PNG button of every figure shown (at least `count`):
+// the SVG is a standalone document holding the chart's text, with its font
+// size written in; the PNG is twice the SVG's size.
+async function checkExports(prefix, count) {
+  const figures = page.locator('#result-body :is(figure, [data-figure])');
+  assert.ok(await figures.count() >= count, `${await figures.count()} figures, at least ${count}`);
+  for (let i = 0; i < await figures.count(); i++) {
+    const fig = figures.nth(i);
+    const texts = await fig.locator('svg[viewBox]:not(.icon) text').allTextContents();
+    const svgFile = await download(() => fig.locator('button[data-export="svg"]').click());
+    assert.ok(svgFile.name.startsWith(prefix) && svgFile.name.endsWith('.svg'), svgFile.name);
+    const doc = svgFile.data.toString();
+    const parsed = await page.evaluate((doc) => {
+      const d = new DOMParser().parseFromString(doc, 'image/svg+xml');
+      const root = d.documentElement;
+      return {
+        error: d.querySelector('parsererror')?.textContent ?? null,
+        root: root.localName, width: Number(root.getAttribute('width')), height: Number(root.getAttribute('height')),
+        texts: [...d.querySelectorAll('text')].map((t) => t.textContent),
+        styled: [...d.querySelectorAll('text')].every((t) => /font-size:\s*[\d.]+px/.test(t.getAttribute('style') || '')),
+        classes: d.querySelectorAll('[class]').length,
+      };
+    }, doc);
+    assert.equal(parsed.error, null);
+    assert.equal(parsed.root, 'svg');
+    assert.deepEqual(parsed.texts, texts, 'the exported file holds the chart\'s text');
+    assert.ok(parsed.styled && parsed.classes === 0, 'styles written in, no dependence on the page\'s CSS');
+    const button = fig.locator('button[data-export="png"]');
+    const png = await download(() => button.click()).catch(async (e) => {
+      throw new Error(`PNG of figure ${i} (${await fig.locator('svg').first().getAttribute('id')}): ${await button.getAttribute('title')} ${e.message}`);
+    });
+    assert.ok(png.name.startsWith(prefix) && png.name.endsWith('.png'), png.name);
+    assert.equal(png.data.subarray(1, 4).toString(), 'PNG');
+    assert.equal(png.data.readUInt32BE(16), Math.round(parsed.width * 2), 'PNG width: twice the SVG');
+    assert.equal(png.data.readUInt32BE(20), Math.round(parsed.height * 2));
+  }
+}
+
+test('390 px: no text below 10 px in any analysis, form or result; warnings of a result are listed', { timeout: 120000 }, async () => {
+  await page.setViewportSize({ width: 390, height: 844 });
+  try {
+    await page.getByRole('button', { name: 'Reset to defaults' }).click();
+    await selectTab('modal');
+    await runAnalysis();
+    await settled();
+    assert.deepEqual(await smallText(), [], 'modal');
+    // The frequency plot's text was enlarged in viewBox units to stay readable.
+    const tick = await page.$eval('#freq-plot text.tick', (t) => parseFloat(getComputedStyle(t).fontSize) * t.getScreenCTM().a);
+    assert.ok(tick >= 10, `tick label ${tick} px`);
+    const cases = [
+      fixtures.pretensionResult({ lateral: 1 }), fixtures.contactResult(), fixtures.contactRoundResult(),
+      fixtures.liftResult(), fixtures.liftResult({ friction: false }), fixtures.liftGasResult(),
+    ];
+    for (const result of cases) {
+      const warned = { ...result, warnings: ['Density 7.85 kg/m³ is below 1000 kg/m³: g/cm³ typed as kg/m³?', { code: 'estimate', message: 'The estimated error is 22 %.', path: '/numerics/error_estimate' }] };
+      const jobs = await interceptJobs(warned);
+      try {
+        await selectTab(result.analysis);
+        if (result.analysis === 'contact') await page.getByRole('button', { name: 'Add a distortion order' }).click();
+        await runAnalysis(`Run ${result.analysis} analysis`);
+        await settled();
+        assert.deepEqual(await smallText(), [], `${result.analysis}`);
+        assert.deepEqual(await page.$$eval('#result-warnings li', (ls) => ls.map((l) => l.textContent)),
+          [warned.warnings[0], 'The estimated error is 22 %. (/numerics/error_estimate)']);
+        assert.doesNotMatch(await page.textContent('#result-body'), /\bnull\b|undefined|NaN/);
+        const overflow = await page.evaluate(() => document.documentElement.scrollWidth - window.innerWidth);
+        assert.ok(overflow <= 0, `${result.analysis}: page scrolls sideways by ${overflow}px`);
+        if (result === cases.at(-1)) await shot('ringdyn-narrow-lift-gas.png', { fullPage: true });
+      } finally {
+        await jobs.stop();
+      }
+    }
+    // No warnings: no list.
+    const jobs = await interceptJobs(fixtures.pretensionResult());
+    try {
+      await selectTab('pretension');
+      await runAnalysis('Run pretension analysis');
+      assert.equal(await page.isVisible('#result-warnings'), false);
+    } finally {
+      await jobs.stop();
+    }
+  } finally {
+    await page.setViewportSize({ width: 1280, height: 800 });
+    await page.getByRole('button', { name: 'Reset to defaults' }).click();
+  }
+});
+
+// The vertices of a path's d ("M x,y L x,y ..."), as [x, y] pairs.
+const vertices = (d) => [...d.matchAll(/[ML](-?[\d.]+),(-?[\d.]+)/g)].map((m) => [Number(m[1]), Number(m[2])]);
+
+for (const width of [1280, 390]) {
+  test(`${width} px: lift draws its gas pressures and zooms to one cycle; contact shows the ±1 % round-bore ripple against angle`, { timeout: 60000 }, async () => {
+    await page.setViewportSize({ width, height: 844 });
+    try {
+      const lf = fixtures.liftGasResult();
+      let jobs = await interceptJobs(lf);
+      try {
+        await selectTab('lift');
+        await runAnalysis('Run lift analysis');
+      } finally {
+        await jobs.stop();
+      }
+      // The crank axis in px per degree, from its tick labels.
+      const axis = async () => {
+        const t = await page.$$eval('#lf-gas .axes text.tick[text-anchor="middle"]', (ts) => ts.map((e) => [Number(e.textContent), Number(e.getAttribute('x'))]));
+        return { first: t[0][0], last: t.at(-1)[0], x: (c) => t[0][1] + ((c - t[0][0]) * (t.at(-1)[1] - t[0][1])) / (t.at(-1)[0] - t[0][0]) };
+      };
+      const peaks = async () => {
+        const v = vertices(await page.getAttribute('#lf-gas-above', 'd'));
+        const top = Math.min(...v.map((p) => p[1]));
+        return v.filter((p) => Math.abs(p[1] - top) < 0.01).map((p) => p[0]);
+      };
+      assert.match(await page.getAttribute('#lf-gas', 'aria-label'), /up to 60 bar: above the ring 1 to 60 bar; behind the ring 1 to 45 bar; below the ring 1 to 8 bar/);
+      let a = await axis();
+      assert.deepEqual([a.first, a.last], [0, 1440]);
+      // The table's 60 bar at 360° repeats each cycle: at 360° and 1080°.
+      assert.deepEqual((await peaks()).map((px) => Math.round((px - a.x(0)) / ((a.x(720) - a.x(0)) / 720))), [360, 1080]);
+      assert.equal(await page.locator('#lf-lift .event').count(), lf.events.length);
+
+      // One cycle: the second.
+      await page.selectOption('#lf-zoom', { index: 2 });
+      await page.waitForFunction(() => document.querySelector('#lf-lift .axes text.tick[text-anchor="middle"]')?.textContent === '720');
+      a = await axis();
+      assert.deepEqual([a.first, a.last], [720, 1440]);
+      assert.deepEqual((await peaks()).map((px) => Math.round(720 + (px - a.x(720)) / ((a.x(1440) - a.x(720)) / 720))), [1080]);
+      assert.equal(await page.locator('#lf-lift .event').count(), lf.events.filter((e) => e.crank_deg >= 720).length);
+      const flank = await page.$$eval('#lf-flank .flank-runs rect', (rs) => rs.map((r) => r.dataset.flank));
+      assert.deepEqual(flank, runsOf(lf.flank.slice(720)));
+      assert.equal(await page.locator('#lf-gas').locator('xpath=ancestor::figure').locator('button[data-export="svg"]').count(), 1, 'the redrawn figure has its export buttons');
+      await page.selectOption('#lf-zoom', { index: 0 });
+      await page.waitForFunction(() => document.querySelector('#lf-lift .axes text.tick[text-anchor="middle"]')?.textContent === '0');
+      await settled();
+      assert.deepEqual(await smallText(), [], 'lift with gas');
+
+      // Contact in a round bore: the ripple fills most of the Cartesian plot's height.
+      const ct = fixtures.contactRoundResult();
+      jobs = await interceptJobs(ct);
+      try {
+        await selectTab('contact');
+        await runAnalysis('Run contact analysis');
+      } finally {
+        await jobs.stop();
+      }
+      const q = ct.pressure_pa.map((p) => p / ct.uniform_pressure_pa - 1);
+      const dev = (await page.getAttribute('#ct-cartesian', 'data-deviation')).split(' ').map(Number);
+      assert.ok(Math.abs(dev[0] - Math.min(...q)) < 1e-6 && Math.abs(dev[1] - Math.max(...q)) < 1e-6, `deviation ${dev}`);
+      const pts = vertices(await page.getAttribute('#ct-cart-line', 'd'));
+      assert.equal(pts.length, ct.angle_deg.length);
+      const box = await page.$eval('#ct-cartesian .axes .axis', (p) => p.getAttribute('d').match(/M([\d.]+),([\d.]+)V([\d.]+)/).slice(1).map(Number));
+      const extent = Math.max(...pts.map((p) => p[1])) - Math.min(...pts.map((p) => p[1]));
+      assert.ok(extent > 0.5 * (box[2] - box[1]), `the ${((Math.max(...q) - Math.min(...q)) * 100).toFixed(2)} % ripple spans ${extent.toFixed(0)} of ${box[2] - box[1]} units`);
+      const polar = vertices(await page.getAttribute('#ct-pressure', 'd'));
+      assert.equal(polar.length, ct.angle_deg.length);
+      await settled();
+      assert.deepEqual(await smallText(), [], 'contact');
+      await shot(`ringdyn-plots-${width}.png`, { fullPage: true });
+    } finally {
+      await page.setViewportSize({ width: 1280, height: 800 });
+      await page.getByRole('button', { name: 'Reset to defaults' }).click();
+    }
+  });
+}
+
 test('no console errors or uncaught exceptions', () => {
   assert.deepEqual(pageErrors, []);
   assert.deepEqual(consoleErrors.filter((t) => !expectedConsole(t)), []);
