@@ -21,7 +21,7 @@ command -v node >/dev/null 2>&1 || fail "node is missing; install it with script
 mkdir -p "$shots"
 
 out="$shots/browser-server.out" log="$shots/browser-server.log"
-"$server" --host 127.0.0.1 --port 0 --static "$static" --examples "$examples" >"$out" 2>"$log" &
+"$server" --data :memory: --host 127.0.0.1 --port 0 --static "$static" --examples "$examples" >"$out" 2>"$log" &
 pid=$!
 cleanup() {
   kill "$pid" 2>/dev/null || true

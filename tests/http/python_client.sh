@@ -25,7 +25,7 @@ PASSED=0 FAILED=0
 ok() { PASSED=$((PASSED + 1)); echo "ok   - $1"; }
 bad() { FAILED=$((FAILED + 1)); echo "FAIL - $1${2:+ ($2)}"; }
 
-"$SERVER" --host 127.0.0.1 --port 0 --examples "$EXAMPLES" >"$WORK/server.out" 2>"$WORK/server.err" &
+"$SERVER" --data :memory: --host 127.0.0.1 --port 0 --examples "$EXAMPLES" >"$WORK/server.out" 2>"$WORK/server.err" &
 SPID=$!
 line=""
 for _ in $(seq 1 150); do # 15 s: sanitizer builds start slowly
