@@ -416,7 +416,7 @@ static int check(lz *w, int s, rd_lanczos_result *out, rd_error *err)
     int stalled = expl <= STALL_MAX && expl > 0.5 * w->prev_expl;
     w->prev_expl = expl;
     out->worst = expl;
-    if (!(expl <= 1.0 || w->k >= w->D || stalled))
+    if (!(expl <= 1.0 || (s == w->k && w->k >= w->D) || stalled))
         return 0;
     out->zeros = zeros;
     out->found = found;

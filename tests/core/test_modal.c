@@ -218,6 +218,10 @@ static void test_split_vs_coupled(void)
                           1e-12 + 100 * EPS * lmax / lam, "split vs coupled, n=%d closed=%d mode %d",
                           ns[a], closed, i + 1);
                 CHECK(r[0].modes[i].kind == r[1].modes[i].kind, "kind n=%d mode %d", ns[a], i + 1);
+                /* the split really happened: the other half of each split mode
+                 * is exactly zero, so its energy split is exactly 0 or 1 */
+                double fr = r[0].modes[i].in_plane_fraction;
+                CHECK(fr == 0.0 || fr == 1.0, "split mode %d: in-plane fraction %.17g", i + 1, fr);
             }
             rd_modal_result_cleanup(&r[0]);
             rd_modal_result_cleanup(&r[1]);
