@@ -9,6 +9,9 @@
  *       n >= 100, and locally 500 -> 1000 -> 2000).
  *   bench_modal --once N [--modes K]      one solve with the error estimate,
  *       for `valgrind --tool=callgrind` instruction counts (bench/run.sh).
+ *   bench_modal --predict                 rd_modal_cost_predict against the
+ *       measured CPU time over n, modes, split/closed, with/without the
+ *       estimate, and the worst ratio.
  *
  * The limit is the Richardson extrapolation from n = 2000 and 1000 (the
  * model converges as n^-2; tests/core/test_modal.c checks that order).
@@ -73,9 +76,44 @@ static double limit_of(const rd_modal_result *lim, const rd_modal_result *r, int
     return NAN;
 }
 
+/* rd_modal_cost_predict against measured CPU-time medians. */
+static int predict_table(const rd_ring_params *p)
+{
+    static const int ns[] = {5, 10, 20, 50, 100, 300, 1000}, ms[] = {1, 6, 20, 60};
+    double worst = 1.0;
+    printf("| closed | n | modes | estimate | predicted CPU [ms] | measured CPU [ms] | ratio |\n"
+           "|---|---|---|---|---|---|---|\n");
+    for (int closed = 0; closed < 2; closed++)
+        for (size_t a = 0; a < sizeof ns / sizeof ns[0]; a++)
+            for (size_t b = 0; b < sizeof ms / sizeof ms[0]; b++)
+                for (int e = 0; e < 2; e++) {
+                    rd_modal_opts o;
+                    rd_modal_opts_default(&o);
+                    o.modes = ms[b];
+                    o.estimate_error = e;
+                    if (o.modes > 6 * ns[a] - 6)
+                        continue;
+                    double t[9];
+                    for (int r = 0; r < 9; r++) {
+                        rd_modal_result res;
+                        double c0 = cpu_now();
+                        if (rd_modal_solve(p, ns[a], closed, &o, NULL, &res, NULL))
+                            return 1;
+                        t[r] = cpu_now() - c0;
+                        rd_modal_result_cleanup(&res);
+                    }
+                    double meas = bench_median(t, 9), pred = rd_modal_cost_predict(&o, ns[a], closed);
+                    worst = fmax(worst, fmax(pred / meas, meas / pred));
+                    printf("| %d | %d | %d | %d | %.3f | %.3f | %.2f |\n", closed, ns[a], ms[b], e,
+                           1e3 * pred, 1e3 * meas, pred / meas);
+                }
+    printf("\nWorst factor between predicted and measured: %.2f\n", worst);
+    return 0;
+}
+
 int main(int argc, char **argv)
 {
-    int modes = 6, max_n = 2000, once = 0;
+    int modes = 6, max_n = 2000, once = 0, predict = 0;
     for (int i = 1; i < argc; i++) {
         if (!strcmp(argv[i], "--modes") && i + 1 < argc)
             modes = atoi(argv[++i]);
@@ -83,8 +121,11 @@ int main(int argc, char **argv)
             max_n = atoi(argv[++i]);
         else if (!strcmp(argv[i], "--once") && i + 1 < argc)
             once = atoi(argv[++i]);
+        else if (!strcmp(argv[i], "--predict"))
+            predict = 1;
         else {
-            fprintf(stderr, "usage: bench_modal [--modes K] [--max-n N] | --once N [--modes K]\n");
+            fprintf(stderr, "usage: bench_modal [--modes K] [--max-n N] | --once N [--modes K] | "
+                            "--predict\n");
             return 2;
         }
     }
@@ -95,6 +136,8 @@ int main(int argc, char **argv)
     o.modes = modes;
     rd_error err;
     rd_error_init(&err);
+    if (predict)
+        return predict_table(&p);
     if (once) {
         rd_modal_result r;
         int rc = rd_modal_solve(&p, once, 0, &o, NULL, &r, &err);
