@@ -111,6 +111,71 @@ static int predict_table(const rd_ring_params *p)
     return 0;
 }
 
+/* The accuracy/cost table against the limit from n = 2000 and 1000. */
+static int accuracy_table(const rd_ring_params *pp, const rd_modal_opts *o, int max_n)
+{
+    const rd_ring_params p = *pp;
+    int modes = o->modes;
+    rd_error err;
+    rd_error_init(&err);
+    /* spare modes in the limit, so coarse rings with a spurious mode still
+     * find their k-th mode of each kind */
+    rd_modal_opts lo = *o;
+    lo.modes = modes + 6 <= RD_MODAL_MODES_MAX ? modes + 6 : RD_MODAL_MODES_MAX;
+    rd_modal_result lim;
+    if (rd_modal_solve(&p, RD_SEGMENTS_MAX, 0, &lo, NULL, &lim, &err)) {
+        fprintf(stderr, "%s\n", err.message);
+        return 1;
+    }
+    printf("Thesis ring, first %d elastic modes; limit = Richardson(n=2000, 1000); times are "
+           "medians (wall / CPU of the calling thread).\n\n", modes);
+    printf("| n | DOF | solve wall / CPU [ms] | Lanczos steps | with estimate wall / CPU [ms] | "
+           "max true error | max estimated error | max error of extrapolated f |\n"
+           "|---|---|---|---|---|---|---|---|\n");
+    static const int ns[] = {4, 6, 8, 10, 12, 16, 20, 30, 40, 60, 100, 150, 200, 300, 500, 1000, 2000};
+    double lx[32], ly[32], t_at[3] = {0, 0, 0};
+    int nfit = 0;
+    for (size_t k = 0; k < sizeof ns / sizeof ns[0] && ns[k] <= max_n; k++) {
+        int n = ns[k], iters = 0, it2 = 0;
+        double tw, tc, tew, tec;
+        timed_solve(&p, n, modes, 0, &iters, &tw, &tc);
+        timed_solve(&p, n, modes, 1, &it2, &tew, &tec);
+        rd_modal_result r;
+        rd_error_init(&err);
+        rd_modal_solve(&p, n, 0, o, NULL, &r, &err);
+        double true_err = 0.0, extra_err = 0.0;
+        for (int i = 0; i < r.n_modes; i++) {
+            double f = limit_of(&lim, &r, i);
+            double e = fabs(r.modes[i].frequency_hz - f) / f;
+            double x = fabs(r.modes[i].frequency_extrapolated_hz - f) / f;
+            if (!(e <= true_err))
+                true_err = e;
+            if (!(x <= extra_err))
+                extra_err = x;
+        }
+        printf("| %d | %d | %.3f / %.3f | %d | %.3f / %.3f | %.2e | %.2e | %.1e |\n", n, 6 * n,
+               1e3 * tw, 1e3 * tc, iters, 1e3 * tew, 1e3 * tec, true_err, r.error_estimate,
+               extra_err);
+        if (n >= 100) {
+            lx[nfit] = n;
+            ly[nfit++] = tc;
+        }
+        for (int a = 0; a < 3; a++)
+            if (n == 500 << a)
+                t_at[a] = tc;
+        rd_modal_result_cleanup(&r);
+    }
+    if (nfit >= 2)
+        printf("\nFitted cost exponent (CPU time of one solve ~ n^p, n >= 100): p = %.2f\n",
+               bench_exponent(lx, ly, nfit));
+    if (t_at[0] > 0 && t_at[1] > 0)
+        printf("Local exponent 500 -> 1000: %.2f\n", log(t_at[1] / t_at[0]) / log(2.0));
+    if (t_at[1] > 0 && t_at[2] > 0)
+        printf("Local exponent 1000 -> 2000: %.2f\n", log(t_at[2] / t_at[1]) / log(2.0));
+    rd_modal_result_cleanup(&lim);
+    return 0;
+}
+
 int main(int argc, char **argv)
 {
     int modes = 6, max_n = 2000, once = 0, predict = 0;
@@ -147,60 +212,6 @@ int main(int argc, char **argv)
         return rc ? 1 : 0;
     }
 
-    /* spare modes in the limit, so coarse rings with a spurious mode still
-     * find their k-th mode of each kind */
-    rd_modal_opts lo = o;
-    lo.modes = modes + 6 <= RD_MODAL_MODES_MAX ? modes + 6 : RD_MODAL_MODES_MAX;
-    rd_modal_result lim;
-    if (rd_modal_solve(&p, RD_SEGMENTS_MAX, 0, &lo, NULL, &lim, &err)) {
-        fprintf(stderr, "%s\n", err.message);
-        return 1;
-    }
-    printf("Thesis ring, first %d elastic modes; limit = Richardson(n=2000, 1000); times are "
-           "medians (wall / CPU of the calling thread).\n\n", modes);
-    printf("| n | DOF | solve wall / CPU [ms] | Lanczos steps | with estimate wall / CPU [ms] | "
-           "max true error | max estimated error | max error of extrapolated f |\n"
-           "|---|---|---|---|---|---|---|---|\n");
-    static const int ns[] = {4, 6, 8, 10, 12, 16, 20, 30, 40, 60, 100, 150, 200, 300, 500, 1000, 2000};
-    double lx[32], ly[32], t_at[3] = {0, 0, 0};
-    int nfit = 0;
-    for (size_t k = 0; k < sizeof ns / sizeof ns[0] && ns[k] <= max_n; k++) {
-        int n = ns[k], iters = 0, it2 = 0;
-        double tw, tc, tew, tec;
-        timed_solve(&p, n, modes, 0, &iters, &tw, &tc);
-        timed_solve(&p, n, modes, 1, &it2, &tew, &tec);
-        rd_modal_result r;
-        rd_error_init(&err);
-        rd_modal_solve(&p, n, 0, &o, NULL, &r, &err);
-        double true_err = 0.0, extra_err = 0.0;
-        for (int i = 0; i < r.n_modes; i++) {
-            double f = limit_of(&lim, &r, i);
-            double e = fabs(r.modes[i].frequency_hz - f) / f;
-            double x = fabs(r.modes[i].frequency_extrapolated_hz - f) / f;
-            if (!(e <= true_err))
-                true_err = e;
-            if (!(x <= extra_err))
-                extra_err = x;
-        }
-        printf("| %d | %d | %.3f / %.3f | %d | %.3f / %.3f | %.2e | %.2e | %.1e |\n", n, 6 * n,
-               1e3 * tw, 1e3 * tc, iters, 1e3 * tew, 1e3 * tec, true_err, r.error_estimate,
-               extra_err);
-        if (n >= 100) {
-            lx[nfit] = n;
-            ly[nfit++] = tc;
-        }
-        for (int a = 0; a < 3; a++)
-            if (n == 500 << a)
-                t_at[a] = tc;
-        rd_modal_result_cleanup(&r);
-    }
-    if (nfit >= 2)
-        printf("\nFitted cost exponent (CPU time of one solve ~ n^p, n >= 100): p = %.2f\n",
-               bench_exponent(lx, ly, nfit));
-    if (t_at[0] > 0 && t_at[1] > 0)
-        printf("Local exponent 500 -> 1000: %.2f\n", log(t_at[1] / t_at[0]) / log(2.0));
-    if (t_at[1] > 0 && t_at[2] > 0)
-        printf("Local exponent 1000 -> 2000: %.2f\n", log(t_at[2] / t_at[1]) / log(2.0));
-    rd_modal_result_cleanup(&lim);
-    return 0;
+    return accuracy_table(&p, &o, max_n);
 }
+
