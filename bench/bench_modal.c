@@ -102,7 +102,8 @@ static int predict_table(const rd_ring_params *p)
                         t[r] = cpu_now() - c0;
                         rd_modal_result_cleanup(&res);
                     }
-                    double meas = bench_median(t, 9), pred = rd_modal_cost_predict(&o, ns[a], closed);
+                    double meas = bench_median(t, 9);
+                    double pred = rd_modal_cost_predict(&o, ns[a], closed);
                     worst = fmax(worst, fmax(pred / meas, meas / pred));
                     printf("| %d | %d | %d | %d | %.3f | %.3f | %.2f |\n", closed, ns[a], ms[b], e,
                            1e3 * pred, 1e3 * meas, pred / meas);
@@ -132,7 +133,8 @@ static int accuracy_table(const rd_ring_params *pp, const rd_modal_opts *o, int 
     printf("| n | DOF | solve wall / CPU [ms] | Lanczos steps | with estimate wall / CPU [ms] | "
            "max true error | max estimated error | max error of extrapolated f |\n"
            "|---|---|---|---|---|---|---|---|\n");
-    static const int ns[] = {4, 6, 8, 10, 12, 16, 20, 30, 40, 60, 100, 150, 200, 300, 500, 1000, 2000};
+    static const int ns[] = {4,   6,   8,   10,  12,  16,   20,  30, 40,
+                             60, 100, 150, 200, 300, 500, 1000, 2000};
     double lx[32], ly[32], t_at[3] = {0, 0, 0};
     int nfit = 0;
     for (size_t k = 0; k < sizeof ns / sizeof ns[0] && ns[k] <= max_n; k++) {

@@ -346,7 +346,8 @@ static int polish(lz *w, int m, rd_lanczos_result *out, rd_error *err)
             w->Kr[i + (size_t)j * m] = dot(N, COL(w->X, N, i), COL(w->KX, N, j));
             w->Mr[i + (size_t)j * m] = dot(N, COL(w->X, N, i), COL(w->MX, N, j));
         }
-    lapack_int info = LAPACKE_dsygv(LAPACK_COL_MAJOR, 1, 'V', 'U', m, w->Kr, m, w->Mr, m, out->lambda);
+    lapack_int info =
+        LAPACKE_dsygv(LAPACK_COL_MAJOR, 1, 'V', 'U', m, w->Kr, m, w->Mr, m, out->lambda);
     if (info != 0)
         return rd_error_set(err, RD_ENUMERIC, "",
                             "The Ritz refinement failed (LAPACK dsygv info %d, %d vectors).",

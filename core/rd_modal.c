@@ -503,8 +503,9 @@ static int level_compare(void *ctx, rd_error *err)
             out->error_estimate = NAN;
             continue;
         }
-        md->frequency_extrapolated_hz = rd_accuracy_richardson(
-            md->frequency_hz, L->n[0], ref->modes[k].frequency_hz, L->n[1], 2.0, &md->error_estimate);
+        md->frequency_extrapolated_hz =
+            rd_accuracy_richardson(md->frequency_hz, L->n[0], ref->modes[k].frequency_hz, L->n[1],
+                                   2.0, &md->error_estimate);
         if (!(md->error_estimate <= out->error_estimate) && !isnan(out->error_estimate))
             out->error_estimate = md->error_estimate;
     }
@@ -518,7 +519,8 @@ int rd_modal_solve(const rd_ring_params *p, int segments, int closed, const rd_m
     memset(&ref, 0, sizeof ref);
     memset(out, 0, sizeof *out);
     int rc;
-    if ((rc = rd_ring_validate(p, segments, closed, err)) || (rc = rd_modal_validate(o, segments, err)))
+    if ((rc = rd_ring_validate(p, segments, closed, err)) ||
+        (rc = rd_modal_validate(o, segments, err)))
         return rc;
     int m = rd_accuracy_refined_segments(segments, RD_SEGMENTS_MAX);
     char what[48];

@@ -215,8 +215,8 @@ static void test_split_vs_coupled(void)
             for (int i = 0; i < o.modes && r[0].modes && r[1].modes; i++) {
                 double lam = pow(2 * PI * r[1].modes[i].frequency_hz, 2);
                 CHECK_REL(r[0].modes[i].frequency_hz, r[1].modes[i].frequency_hz,
-                          1e-12 + 100 * EPS * lmax / lam, "split vs coupled, n=%d closed=%d mode %d",
-                          ns[a], closed, i + 1);
+                          1e-12 + 100 * EPS * lmax / lam,
+                          "split vs coupled, n=%d closed=%d mode %d", ns[a], closed, i + 1);
                 CHECK(r[0].modes[i].kind == r[1].modes[i].kind, "kind n=%d mode %d", ns[a], i + 1);
                 /* the split really happened: the other half of each split mode
                  * is exactly zero, so its energy split is exactly 0 or 1 */
