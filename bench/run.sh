@@ -31,6 +31,9 @@ echo "## modal: accuracy and cost vs n"
 echo
 echo "## modal: instructions vs n (callgrind, one solve with the error estimate, 6 modes)"
 instructions bench_modal
+echo
+echo "## modal: predicted (rd_modal_cost_predict) vs measured CPU time"
+"$b/bench/bench_modal" --predict
 
 echo
 echo "# pretension and contact"

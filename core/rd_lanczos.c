@@ -346,7 +346,8 @@ static int polish(lz *w, int m, rd_lanczos_result *out, rd_error *err)
             w->Kr[i + (size_t)j * m] = dot(N, COL(w->X, N, i), COL(w->KX, N, j));
             w->Mr[i + (size_t)j * m] = dot(N, COL(w->X, N, i), COL(w->MX, N, j));
         }
-    lapack_int info = LAPACKE_dsygv(LAPACK_COL_MAJOR, 1, 'V', 'U', m, w->Kr, m, w->Mr, m, out->lambda);
+    lapack_int info =
+        LAPACKE_dsygv(LAPACK_COL_MAJOR, 1, 'V', 'U', m, w->Kr, m, w->Mr, m, out->lambda);
     if (info != 0)
         return rd_error_set(err, RD_ENUMERIC, "",
                             "The Ritz refinement failed (LAPACK dsygv info %d, %d vectors).",
@@ -416,7 +417,7 @@ static int check(lz *w, int s, rd_lanczos_result *out, rd_error *err)
     int stalled = expl <= STALL_MAX && expl > 0.5 * w->prev_expl;
     w->prev_expl = expl;
     out->worst = expl;
-    if (!(expl <= 1.0 || w->k >= w->D || stalled))
+    if (!(expl <= 1.0 || (s == w->k && w->k >= w->D) || stalled))
         return 0;
     out->zeros = zeros;
     out->found = found;

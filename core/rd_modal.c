@@ -503,8 +503,9 @@ static int level_compare(void *ctx, rd_error *err)
             out->error_estimate = NAN;
             continue;
         }
-        md->frequency_extrapolated_hz = rd_accuracy_richardson(
-            md->frequency_hz, L->n[0], ref->modes[k].frequency_hz, L->n[1], 2.0, &md->error_estimate);
+        md->frequency_extrapolated_hz =
+            rd_accuracy_richardson(md->frequency_hz, L->n[0], ref->modes[k].frequency_hz, L->n[1],
+                                   2.0, &md->error_estimate);
         if (!(md->error_estimate <= out->error_estimate) && !isnan(out->error_estimate))
             out->error_estimate = md->error_estimate;
     }
@@ -518,7 +519,8 @@ int rd_modal_solve(const rd_ring_params *p, int segments, int closed, const rd_m
     memset(&ref, 0, sizeof ref);
     memset(out, 0, sizeof *out);
     int rc;
-    if ((rc = rd_ring_validate(p, segments, closed, err)) || (rc = rd_modal_validate(o, segments, err)))
+    if ((rc = rd_ring_validate(p, segments, closed, err)) ||
+        (rc = rd_modal_validate(o, segments, err)))
         return rc;
     int m = rd_accuracy_refined_segments(segments, RD_SEGMENTS_MAX);
     char what[48];
@@ -531,4 +533,36 @@ int rd_modal_solve(const rd_ring_params *p, int segments, int closed, const rd_m
     if (rc != RD_OK)
         rd_modal_result_cleanup(out);
     return rc;
+}
+
+/* Work of one solve_ring with `want` modes asked of each of two parts of 3n
+ * DOFs: steps per part as measured (bench_modal: about 1.75 w + 8 on a split
+ * ring, 2 w + 12 with the closed ring's block size 2; the whole space when
+ * the wanted modes pass a third of it), then per step the band work N (kd + 1)
+ * and the reorthogonalisation N s, per check the projected problem s^3, and
+ * the mode extraction n modes.  Constants: relative least squares on 104
+ * CPU-time medians (Release, reference BLAS); worst factor 1.8. */
+static double solve_cost(int n, int want, int closed)
+{
+    const double c_band = 5.37e-9, c_reorth = 6.04e-10, c_small = 3.69e-9, c_extract = 5.16e-7,
+                 c_fixed = 2.41e-5;
+    int Np = 3 * n, room = Np - 3, kd = closed ? 8 : 5;
+    int w = want < room ? want : room;
+    double S = 3 * w > room ? room : (closed ? 2.0 * w + 12.0 : 1.75 * w + 8.0);
+    if (S > room)
+        S = room;
+    return 2.0 * (c_band * Np * S * (kd + 1) + c_reorth * Np * S * S + c_small * S * S * S) +
+           c_extract * n * 2.0 * w + c_fixed;
+}
+
+double rd_modal_cost_predict(const rd_modal_opts *o, int segments, int closed)
+{
+    if (!o || rd_modal_validate(o, segments, NULL) != RD_OK || segments < RD_SEGMENTS_MIN ||
+        segments > RD_SEGMENTS_MAX)
+        return NAN;
+    double t = solve_cost(segments, o->modes, closed);
+    if (o->estimate_error) /* the reference asks each kind for about half the modes */
+        t += solve_cost(rd_accuracy_refined_segments(segments, RD_SEGMENTS_MAX), o->modes / 2 + 1,
+                        closed);
+    return t;
 }

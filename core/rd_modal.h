@@ -80,6 +80,18 @@ int rd_modal_solve_ring(const rd_ring *ring, const rd_modal_opts *o, const rd_mo
 
 void rd_modal_result_cleanup(rd_modal_result *r);
 
+/* Predicted CPU time, s, of rd_modal_solve with these options, before any
+ * work: for a caller deciding whether a job is small enough to run at once
+ * (a server answering on its own thread).  A model of the solver's work
+ * (Lanczos steps ~ wanted modes, band and reorthogonalisation work per step,
+ * projected eigenproblems, mode extraction) whose five constants are fitted to
+ * CPU-time medians of one core of the reference machine (bench_modal
+ * --predict compares); within a factor 2 over n = 5..1000, modes 1..60,
+ * split and closed rings, with and without the estimate.  Scale it by the
+ * ratio of a measured solve on another machine.  Invalid options or sizes
+ * give NAN. */
+double rd_modal_cost_predict(const rd_modal_opts *o, int segments, int closed);
+
 /* Thin-ring closed-form frequencies (Hz) of the complete ring, mode order k >= 2
  * (MODEL.md): in-plane and out-of-plane. */
 double rd_modal_thin_ring_inplane_hz(const rd_ring_params *p, int k);

@@ -215,9 +215,13 @@ static void test_split_vs_coupled(void)
             for (int i = 0; i < o.modes && r[0].modes && r[1].modes; i++) {
                 double lam = pow(2 * PI * r[1].modes[i].frequency_hz, 2);
                 CHECK_REL(r[0].modes[i].frequency_hz, r[1].modes[i].frequency_hz,
-                          1e-12 + 100 * EPS * lmax / lam, "split vs coupled, n=%d closed=%d mode %d",
-                          ns[a], closed, i + 1);
+                          1e-12 + 100 * EPS * lmax / lam,
+                          "split vs coupled, n=%d closed=%d mode %d", ns[a], closed, i + 1);
                 CHECK(r[0].modes[i].kind == r[1].modes[i].kind, "kind n=%d mode %d", ns[a], i + 1);
+                /* the split really happened: the other half of each split mode
+                 * is exactly zero, so its energy split is exactly 0 or 1 */
+                double fr = r[0].modes[i].in_plane_fraction;
+                CHECK(fr == 0.0 || fr == 1.0, "split mode %d: in-plane fraction %.17g", i + 1, fr);
             }
             rd_modal_result_cleanup(&r[0]);
             rd_modal_result_cleanup(&r[1]);
@@ -520,6 +524,39 @@ static void test_extremes(void)
     }
 }
 
+/* The cost prediction (its accuracy against measured times is in
+ * bench_modal --predict, not here): finite and positive for valid input,
+ * growing with n, with the mode count and with the estimate; NAN for what
+ * rd_modal_solve would refuse. */
+static void test_cost_predict(void)
+{
+    rd_modal_opts o;
+    rd_modal_opts_default(&o);
+    double prev = 0.0;
+    for (int n = 3; n <= 2000; n = n * 3 / 2 + 1) {
+        o.estimate_error = 0;
+        double t0 = rd_modal_cost_predict(&o, n, 0);
+        o.estimate_error = 1;
+        double t1 = rd_modal_cost_predict(&o, n, 0);
+        CHECK(isfinite(t0) && t0 > 0.0 && t1 > t0, "n=%d: %g without, %g with the estimate", n,
+              t0, t1);
+        CHECK(t0 > prev, "grows with n: %g after %g (n=%d)", t0, prev, n);
+        prev = t0;
+    }
+    o.estimate_error = 0;
+    double prev_m = 0.0;
+    for (int m = 1; m <= RD_MODAL_MODES_MAX; m++) {
+        o.modes = m;
+        double t = rd_modal_cost_predict(&o, 500, 1);
+        CHECK(t > prev_m, "grows with the mode count: %g after %g (modes=%d)", t, prev_m, m);
+        prev_m = t;
+    }
+    o.modes = 13;
+    CHECK(isnan(rd_modal_cost_predict(&o, 3, 0)), "13 modes of a 3-segment ring: NAN");
+    o.modes = 6;
+    CHECK(isnan(rd_modal_cost_predict(&o, 2001, 0)), "2001 segments: NAN");
+}
+
 static int cancel_after(void *ctx, double fraction)
 {
     (void)fraction;
@@ -576,5 +613,6 @@ int main(void)
     test_estimate_battery();
     test_extremes();
     test_errors();
+    test_cost_predict();
     return check_done();
 }
