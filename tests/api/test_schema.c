@@ -24,6 +24,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
+#include <unistd.h>
 
 #include "check.h"
 #include "rd_api.h"
@@ -622,6 +623,54 @@ static void test_toy(void)
     rd_scene_free(s);
 }
 
+/* ---- example names: one rule, 404 unknown, 400 malformed, never 500 ------- */
+
+static void write_file(const char *path, const char *text)
+{
+    FILE *f = fopen(path, "wb");
+    CHECK(f != NULL, "create %s", path);
+    if (f) {
+        fputs(text, f);
+        fclose(f);
+    }
+}
+
+static void test_example_names(void)
+{
+    char dir[] = "/tmp/rd_test_schema_XXXXXX", path[256];
+    CHECK(mkdtemp(dir) != NULL, "temp dir");
+    snprintf(path, sizeof path, "%s/ok.json", dir);
+    write_file(path, "{\"analysis\":\"modal\"}");
+    snprintf(path, sizeof path, "%s/a.b.json", dir); /* present, but not a servable name */
+    write_file(path, "{\"analysis\":\"modal\"}");
+    snprintf(path, sizeof path, "%s/d.json", dir);   /* a directory */
+    CHECK(mkdir(path, 0700) == 0, "mkdir %s", path);
+    static const struct {
+        const char *name;
+        int code, status;
+    } cases[] = {
+        {"ok", RD_OK, 200},           {"a.b", RD_ENOTFOUND, 404},   {"a.b.json", RD_ENOTFOUND, 404},
+        {"d", RD_ENOTFOUND, 404},     {"nothing", RD_ENOTFOUND, 404}, {"bad\xff", RD_EREQUEST, 400},
+        {"bad\x01", RD_EREQUEST, 400}, {"caf\xc3\xa9", RD_ENOTFOUND, 404},
+    };
+    for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
+        rd_error err;
+        rd_error_init(&err);
+        char *text = rd_api_example_scene(dir, cases[i].name, &err);
+        int code = text ? RD_OK : err.code;
+        CHECK(code == cases[i].code && rd_api_http_status(code) == cases[i].status,
+              "example \"%s\": %d (%s), want %d", cases[i].name, code, err.message,
+              cases[i].code);
+        free(text);
+    }
+    rmdir(path);
+    snprintf(path, sizeof path, "%s/ok.json", dir);
+    remove(path);
+    snprintf(path, sizeof path, "%s/a.b.json", dir);
+    remove(path);
+    rmdir(dir);
+}
+
 int main(int argc, char **argv)
 {
     if (argc != 2) {
@@ -635,5 +684,6 @@ int main(int argc, char **argv)
     test_readme();
     test_page();
     test_toy();
+    test_example_names();
     return check_done();
 }
