@@ -1,6 +1,7 @@
 /*
  * test_schema — the one schema and the registry (api/rd_registry.h):
- *   - every analysis of the registry has a scene schema, an OpenAPI entry,
+ *   - every analysis of the registry has a scene schema, an OpenAPI entry
+ *     (and every $ref of the served document resolves),
  *     an example in examples/, a CSV table and a page tab (or says "none");
  *   - the OpenAPI document's ranges are the ones core enforces: every
  *     bound of every field is probed through rd_scene_parse (at the edge:
@@ -129,6 +130,45 @@ static void test_registry(void)
     }
     CHECK(n >= RD_ANALYSIS_LIFT + 1, "registry has %d analyses", n);
     free(app);
+    json_decref(doc);
+}
+
+/* Every "$ref" under `v` names an existing part of `doc` (the template's
+ * references to the written scene schemas included). */
+static int check_refs(json_t *doc, json_t *v)
+{
+    int refs = 0;
+    if (json_is_array(v)) {
+        size_t i;
+        json_t *x;
+        json_array_foreach(v, i, x)
+            refs += check_refs(doc, x);
+    } else if (json_is_object(v)) {
+        const char *key;
+        json_t *x;
+        json_object_foreach(v, key, x) {
+            if (strcmp(key, "$ref") == 0 && json_is_string(x)) {
+                char ptr[256], *save = NULL;
+                snprintf(ptr, sizeof ptr, "%s", json_string_value(x) + 1); /* after '#' */
+                json_t *at = doc;
+                for (char *t = strtok_r(ptr, "/", &save); at && t; t = strtok_r(NULL, "/", &save))
+                    at = json_object_get(at, t);
+                CHECK(at != NULL, "OpenAPI $ref %s resolves", json_string_value(x));
+                refs++;
+            } else {
+                refs += check_refs(doc, x);
+            }
+        }
+    }
+    return refs;
+}
+
+static void test_openapi_refs(void)
+{
+    json_t *doc = openapi(rd_registry);
+    int refs = check_refs(doc, doc);
+    /* the template's paths and results point at Scene and the analyses' scenes */
+    CHECK(refs >= 40, "%d $refs checked", refs);
     json_decref(doc);
 }
 
@@ -679,6 +719,7 @@ int main(int argc, char **argv)
     }
     src = argv[1];
     test_registry();
+    test_openapi_refs();
     test_ranges();
     test_defaults();
     test_readme();
