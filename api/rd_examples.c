@@ -49,6 +49,11 @@ static int read_file(const char *path, const char *name, char **buf, size_t *len
                             e == ENOENT ? "no example named \"%s\"" : "cannot open example \"%s\"",
                             name);
     }
+    struct stat st;
+    if (fstat(fileno(f), &st) != 0 || !S_ISREG(st.st_mode)) {
+        fclose(f); /* a directory named <name>.json is not an example */
+        return rd_error_set(err, RD_ENOTFOUND, "", "no example named \"%s\"", name);
+    }
     int rc = rd_api_read_stream(f, RD_EXAMPLE_FILE_MAX, buf, len);
     fclose(f);
     switch (rc) {

@@ -63,33 +63,45 @@ static void sb_printf(strbuf *b, const char *fmt, ...)
 #endif
     ;
 
+/* Grows b to hold at least `need` more bytes and a NUL; 0, or -1 (failed). */
+static int sb_reserve(strbuf *b, size_t need)
+{
+    if (b->len + need + 1 <= b->cap)
+        return 0;
+    size_t cap = b->cap ? b->cap : 1024;
+    while (cap < b->len + need + 1)
+        cap *= 2;
+    char *p = realloc(b->p, cap);
+    if (!p) {
+        b->failed = 1;
+        return -1;
+    }
+    b->p = p;
+    b->cap = cap;
+    return 0;
+}
+
+/* Formats into the room left, growing and formatting again only when the
+ * text did not fit (a CSV cell nearly always does: one vsnprintf each). */
 static void sb_printf(strbuf *b, const char *fmt, ...)
 {
     va_list ap;
-    if (b->failed)
+    if (b->failed || sb_reserve(b, 64) != 0)
         return;
     va_start(ap, fmt);
-    int need = vsnprintf(NULL, 0, fmt, ap);
+    int need = vsnprintf(b->p + b->len, b->cap - b->len, fmt, ap);
     va_end(ap);
     if (need < 0) {
         b->failed = 1;
         return;
     }
     if (b->len + (size_t)need + 1 > b->cap) {
-        size_t cap = b->cap ? b->cap : 1024;
-        while (cap < b->len + (size_t)need + 1)
-            cap *= 2;
-        char *p = realloc(b->p, cap);
-        if (!p) {
-            b->failed = 1;
+        if (sb_reserve(b, (size_t)need) != 0)
             return;
-        }
-        b->p = p;
-        b->cap = cap;
+        va_start(ap, fmt);
+        vsnprintf(b->p + b->len, b->cap - b->len, fmt, ap);
+        va_end(ap);
     }
-    va_start(ap, fmt);
-    vsnprintf(b->p + b->len, b->cap - b->len, fmt, ap);
-    va_end(ap);
     b->len += (size_t)need;
 }
 

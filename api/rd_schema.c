@@ -599,6 +599,8 @@ json_t *rd_schema_field_openapi(const rd_field *f, const rd_block *in,
     static const char zero_item[64]; /* the defaults of an array item: all 0 */
     if (f->type == RD_F_BLOCK || f->type == RD_F_OPTBLOCK)
         return block_ref(f, defaults, components);
+    if (in->items && f->offset + sizeof(double) > sizeof zero_item)
+        return NULL; /* an item larger than zero_item: widen it */
     const char *at = (in->items ? zero_item : cbase_of(in, defaults)) + f->offset;
     json_t *o = json_object();
     if (!o || set_new(o, "type", json_string(type_name(f->type))) != 0 ||

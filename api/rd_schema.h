@@ -12,7 +12,7 @@
  *     defaults-filled scene, ranges, enums, descriptions),
  * so none of the three can drift from the others.
  *
- * Ranges: core's validators (core/ *_validate) stay the authority for value
+ * Ranges: core's validators (the core *_validate functions) stay the authority for value
  * checks and their messages.  A field's min/max here is the static part of
  * the range core enforces (ranges that depend on other fields are said in
  * the description); tests/api/test_schema.c probes every edge through

@@ -1,6 +1,7 @@
 /*
  * test_schema — the one schema and the registry (api/rd_registry.h):
- *   - every analysis of the registry has a scene schema, an OpenAPI entry,
+ *   - every analysis of the registry has a scene schema, an OpenAPI entry
+ *     (and every $ref of the served document resolves),
  *     an example in examples/, a CSV table and a page tab (or says "none");
  *   - the OpenAPI document's ranges are the ones core enforces: every
  *     bound of every field is probed through rd_scene_parse (at the edge:
@@ -24,6 +25,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
+#include <unistd.h>
 
 #include "check.h"
 #include "rd_api.h"
@@ -126,8 +128,47 @@ static void test_registry(void)
             free(tab);
         }
     }
-    CHECK(n == RD_ANALYSIS_LIFT + 1, "registry has %d analyses", n);
+    CHECK(n >= RD_ANALYSIS_LIFT + 1, "registry has %d analyses", n);
     free(app);
+    json_decref(doc);
+}
+
+/* Every "$ref" under `v` names an existing part of `doc` (the template's
+ * references to the written scene schemas included). */
+static int check_refs(json_t *doc, json_t *v)
+{
+    int refs = 0;
+    if (json_is_array(v)) {
+        size_t i;
+        json_t *x;
+        json_array_foreach(v, i, x)
+            refs += check_refs(doc, x);
+    } else if (json_is_object(v)) {
+        const char *key;
+        json_t *x;
+        json_object_foreach(v, key, x) {
+            if (strcmp(key, "$ref") == 0 && json_is_string(x)) {
+                char ptr[256], *save = NULL;
+                snprintf(ptr, sizeof ptr, "%s", json_string_value(x) + 1); /* after '#' */
+                json_t *at = doc;
+                for (char *t = strtok_r(ptr, "/", &save); at && t; t = strtok_r(NULL, "/", &save))
+                    at = json_object_get(at, t);
+                CHECK(at != NULL, "OpenAPI $ref %s resolves", json_string_value(x));
+                refs++;
+            } else {
+                refs += check_refs(doc, x);
+            }
+        }
+    }
+    return refs;
+}
+
+static void test_openapi_refs(void)
+{
+    json_t *doc = openapi(rd_registry);
+    int refs = check_refs(doc, doc);
+    /* the template's paths and results point at Scene and the analyses' scenes */
+    CHECK(refs >= 40, "%d $refs checked", refs);
     json_decref(doc);
 }
 
@@ -305,9 +346,9 @@ static void test_ranges(void)
 {
     for (int i = 0; rd_registry[i]; i++)
         walk(rd_registry[i], rd_registry[i]->scene, "", 0, probe_field);
-    /* 24 numeric fields with both bounds and 9 with one, counted by hand:
-     * a walk that silently skipped blocks would probe fewer. */
-    CHECK(probes >= 70, "%d bounds probed", probes);
+    /* 108 bounds today (the shared ring and discretization ones once per
+     * analysis): a walk that silently skipped a block would probe fewer. */
+    CHECK(probes >= 108, "%d bounds probed", probes);
 }
 
 /* ---- defaults ------------------------------------------------------------- */
@@ -373,8 +414,9 @@ static void test_defaults(void)
                          rd_registry[i]->name);
         json_decref(echo);
     }
-    /* ring (8) + discretization (2) per analysis, and the analyses' own */
-    CHECK(defaults_checked >= 60, "%d defaults compared", defaults_checked);
+    /* 69 today: ring and discretization per analysis, and the analyses' own
+     * (less the three echoed as the value used) */
+    CHECK(defaults_checked >= 69, "%d defaults compared", defaults_checked);
     json_decref(doc);
 }
 
@@ -622,6 +664,54 @@ static void test_toy(void)
     rd_scene_free(s);
 }
 
+/* ---- example names: one rule, 404 unknown, 400 malformed, never 500 ------- */
+
+static void write_file(const char *path, const char *text)
+{
+    FILE *f = fopen(path, "wb");
+    CHECK(f != NULL, "create %s", path);
+    if (f) {
+        fputs(text, f);
+        fclose(f);
+    }
+}
+
+static void test_example_names(void)
+{
+    char dir[] = "/tmp/rd_test_schema_XXXXXX", path[256];
+    CHECK(mkdtemp(dir) != NULL, "temp dir");
+    snprintf(path, sizeof path, "%s/ok.json", dir);
+    write_file(path, "{\"analysis\":\"modal\"}");
+    snprintf(path, sizeof path, "%s/a.b.json", dir); /* present, but not a servable name */
+    write_file(path, "{\"analysis\":\"modal\"}");
+    snprintf(path, sizeof path, "%s/d.json", dir);   /* a directory */
+    CHECK(mkdir(path, 0700) == 0, "mkdir %s", path);
+    static const struct {
+        const char *name;
+        int code, status;
+    } cases[] = {
+        {"ok", RD_OK, 200},           {"a.b", RD_ENOTFOUND, 404},   {"a.b.json", RD_ENOTFOUND, 404},
+        {"d", RD_ENOTFOUND, 404},     {"nothing", RD_ENOTFOUND, 404}, {"bad\xff", RD_EREQUEST, 400},
+        {"bad\x01", RD_EREQUEST, 400}, {"caf\xc3\xa9", RD_ENOTFOUND, 404},
+    };
+    for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
+        rd_error err;
+        rd_error_init(&err);
+        char *text = rd_api_example_scene(dir, cases[i].name, &err);
+        int code = text ? RD_OK : err.code;
+        CHECK(code == cases[i].code && rd_api_http_status(code) == cases[i].status,
+              "example \"%s\": %d (%s), want %d", cases[i].name, code, err.message,
+              cases[i].code);
+        free(text);
+    }
+    rmdir(path);
+    snprintf(path, sizeof path, "%s/ok.json", dir);
+    remove(path);
+    snprintf(path, sizeof path, "%s/a.b.json", dir);
+    remove(path);
+    rmdir(dir);
+}
+
 int main(int argc, char **argv)
 {
     if (argc != 2) {
@@ -630,10 +720,13 @@ int main(int argc, char **argv)
     }
     src = argv[1];
     test_registry();
+    test_openapi_refs();
     test_ranges();
     test_defaults();
     test_readme();
     test_page();
     test_toy();
+    test_example_names();
+    printf("%d range bounds probed, %d defaults compared\n", probes, defaults_checked);
     return check_done();
 }

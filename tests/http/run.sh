@@ -54,6 +54,7 @@ same "openapi 200" "$STATUS" 200
 check "openapi is OpenAPI 3" test "$(json /openapi | cut -c 1-2)" = "3."
 check "openapi describes POST /api/v1/jobs" test -n "$(json '/paths/~1api~1v1~1jobs/post/responses/202')"
 check "openapi has the scene schema" test -n "$(json /components/schemas/Scene/properties/analysis)"
+check "openapi scene schemas written from the api tables" test "$(json /components/schemas/ModalDiscretization/properties/segments/default)" = 20
 
 # the modal scene, waiting for it
 post '/api/v1/jobs?wait=60' "$MODAL"
