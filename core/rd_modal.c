@@ -38,7 +38,6 @@
 
 #include <lapacke.h>
 #include <math.h>
-#include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
