@@ -432,7 +432,7 @@ static int solve_ring(const rd_ring *ring, const rd_modal_opts *o, const int *wa
             rd_error_set(err, rc, "",
                          "The modal solver did not converge in %d Lanczos steps (%d segments, "
                          "%d modes): the largest residual is %.3g times its rounding floor.",
-                         o->max_iterations, n, o->modes, w.parts[p].res.worst);
+                         w.parts[p].res.steps, n, o->modes, w.parts[p].res.worst);
         else if (rc)
             rd_error_set(err, rc, sub.path, "%s", sub.message);
         if (rc)
