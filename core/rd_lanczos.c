@@ -52,6 +52,10 @@
 /* Explicit residuals that stall (fall less than 2x between checks) are
  * accepted up to this multiple of their floor estimate. */
 #define STALL_MAX 100.0
+/* The whole basis is kept (full reorthogonalisation): at most this many
+ * vectors, 2 x 58 MB at the largest part (6000 DOF).  Convergence of 60
+ * modes takes about 130. */
+#define BASIS_MAX 600
 
 typedef struct lz {
     const rd_lanczos_problem *pb;
@@ -463,21 +467,22 @@ int rd_lanczos_solve(const rd_lanczos_problem *pb, rd_lanczos_result *out, rd_er
     w.pb = pb;
     w.N = pb->K->n;
     w.b = pb->block == 2 ? 2 : 1;
-    w.cap = (pb->max_steps > 0 ? pb->max_steps : 1) + w.b;
+    int max_steps = pb->max_steps < 1 ? 1 : pb->max_steps > BASIS_MAX ? BASIS_MAX : pb->max_steps;
+    w.cap = max_steps + w.b;
     if (w.cap > w.N)
         w.cap = w.N;
     int rc = lz_alloc(&w, err);
     if (rc == RD_OK)
         rc = start(&w, out, err);
     int s = 0, next = pb->want + w.b, done = 0;
-    while (rc == RD_OK && !done && s < pb->max_steps && s < w.k) {
+    while (rc == RD_OK && !done && s < max_steps && s < w.k) {
         if ((rc = expand(&w, s, err)))
             break;
         s++;
         double frac = 1.0 - 1.0 / (1.0 + s / 8.0);
         if ((rc = rd_monitor_report(pb->mon, pb->mon_lo + (pb->mon_hi - pb->mon_lo) * frac, err)))
             break;
-        if (s >= next || s == w.k || s == pb->max_steps) {
+        if (s >= next || s == w.k || s == max_steps) {
             rc = check(&w, s, out, err);
             done = rc == 1;
             rc = rc == 1 ? RD_OK : rc;

@@ -23,7 +23,8 @@ typedef struct rd_lanczos_problem {
     double zero;          /* eigenvalues below this count as (extra) zero modes */
     int want;             /* lowest eigenpairs wanted above `zero`, 1..N - r */
     int block;            /* block size b, 1 or 2 (2: eigenvalues may come in pairs) */
-    int max_steps;        /* Lanczos steps (expanded basis vectors) allowed */
+    int max_steps;        /* Lanczos steps (expanded basis vectors) allowed; at most 600 are
+                           * taken, the basis is kept whole */
     /* A pair is converged when ||K x - lambda M x|| / (lambda ||M x||) <=
      * floor_abs / lambda + tol (its rounding floor plus the tolerance). */
     double floor_abs, tol;

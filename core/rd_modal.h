@@ -32,7 +32,8 @@ typedef struct rd_modal_opts {
     int estimate_error; /* 1: second solve for the error estimate */
     double tol;         /* relative residual tolerance on top of its rounding floor, default
                          * 1e-12 (the eigenvalue error is of the order of its square) */
-    int max_iterations; /* Lanczos steps allowed per sub-problem, default 300 */
+    int max_iterations; /* Lanczos steps allowed per sub-problem, default 300 (at most
+                         * 600 are taken: the basis is kept whole, memory ~ 600 x DOF) */
     int coupled;        /* 1: solve the 6n problem whole even where in-plane and
                          * out-of-plane decouple (a second path for the tests); default 0 */
 } rd_modal_opts;
