@@ -65,7 +65,8 @@ static int finish(struct rd_scene *s, rd_error *err)
 enum { S_RADIAL = 0, S_TANGENTIAL = 1, S_AXIAL = 2, S_ROT_TANGENTIAL = 4 };
 
 static const char modal_solver[] =
-    "shift-invert subspace iteration on banded K, M (LAPACK dpbtrf/dpbtrs, dsygv)";
+    "shift-invert block Lanczos with explicit rigid-body deflation on banded K, M, in-plane and "
+    "out-of-plane parts solved separately where they decouple (LAPACK dpbtrf/dpbtrs, dsbev, dsygv)";
 
 static json_t *mode_shape(const rd_mode *m, int n, double R)
 {

@@ -21,6 +21,7 @@ command -v node >/dev/null 2>&1 || fail "node is missing; install it with script
 mkdir -p "$shots"
 
 out="$shots/browser-server.out" log="$shots/browser-server.log"
+: >"$out" # exists before the server starts, so the polling below never races its redirect
 "$server" --data :memory: --host 127.0.0.1 --port 0 --static "$static" --examples "$examples" >"$out" 2>"$log" &
 pid=$!
 cleanup() {
