@@ -99,6 +99,7 @@ static int load_example(gcase *c, const char *dir, const char *file)
     snprintf(c->name, sizeof c->name, "%s", file);
     rd_ring_params_default(&c->ring);
     rd_lift_params_default(&c->p);
+    c->p.model = RD_LIFT_MODEL_FULL; /* the goldens are the full model's */
     c->p.estimate_error = 0;
     json_t *r = json_object_get(s, "ring"), *m = json_object_get(r, "material");
     c->ring.diameter = num(r, "diameter", c->ring.diameter);
@@ -155,6 +156,7 @@ static int extreme_cases(gcase *c)
         snprintf(c[j].name, sizeof c[j].name, "%s", x[j].name);
         rd_ring_params_default(&c[j].ring);
         rd_lift_params_default(&c[j].p);
+        c[j].p.model = RD_LIFT_MODEL_FULL;
         c[j].n = x[j].n;
         c[j].p.engine.speed_rpm = x[j].rpm;
         c[j].p.engine.cycles = x[j].cycles;
