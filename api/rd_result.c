@@ -270,12 +270,17 @@ json_t *rd_result_lift(const rd_scene *scene, const rd_lift_result *res, double 
     }
     int estimated = isfinite(res->error_estimate);
     json_t *numerics = json_pack(
-        "{s:i, s:i, s:o, s:s, s:I, s:I, s:I, s:I, s:I, s:I, s:I, s:I, s:o, s:o, s:o, s:o, s:o}",
+        "{s:i, s:i, s:o, s:o, s:s, s:I, s:I, s:I, s:I, s:I, s:I, s:I, s:I, s:o, s:o, s:o, s:o, s:o}",
         "segments", n,
         "dof", res->dof,
+        "model", json_pack("{s:s, s:i, s:i, s:s}", "name", rd_lift_model_name(res->model), "dof",
+                           res->dof, "modes", res->modes, "why", res->why),
         "wall_s", real_or_null(wall_s),
-        "solver", "SUNDIALS CVODE, BDF with a banded Newton linear solver, root finding for the "
-                  "flank changes",
+        "solver", res->model == RD_LIFT_MODEL_RIGID
+                      ? "SUNDIALS CVODE, BDF with a dense Newton linear solver (the rigid ring's "
+                        "6 states), root finding for the flank changes"
+                      : "SUNDIALS CVODE, BDF with a banded Newton linear solver, root finding for "
+                        "the flank changes",
         "steps", (json_int_t)res->steps,
         "rhs_evals", (json_int_t)res->rhs_evals,
         "jac_evals", (json_int_t)res->jac_evals,

@@ -165,7 +165,13 @@ static const field output_fields[] = {
     END,
 };
 
+/* enum rd_lift_model_kind */
+static const char *const lift_model_names[] = {"full", "rigid", "modal", "auto", NULL};
+
 static const field lift_numerics_fields[] = {
+    {"model", F_CHOICE, AT(lift.model), NULL, lift_model_names, 0, 0},
+    {"modes", F_INTEGER, AT(lift.modes), NULL, NULL, 0, RD_LIFT_MODES_MAX},
+    {"accuracy_deg", F_NUMBER, AT(lift.accuracy_deg), NULL, NULL, 0, 0},
     {"rtol", F_NUMBER, AT(lift.rtol), NULL, NULL, 0, 0},
     {"atol", F_NUMBER, AT(lift.atol), NULL, NULL, 0, 0},
     {"max_steps", F_INTEGER, AT(max_steps), NULL, NULL, 100, 1000000000},
@@ -862,9 +868,12 @@ static int echo_analysis_blocks(const rd_scene *s, json_t *o)
                                : rd_lift_contact_stiffness_default(&s->ring, l))));
         bad |= json_object_set_new(o, "output", json_pack("{s:o}", "step_deg", real(l->step_deg)));
         bad |= json_object_set_new(o, "numerics",
-                                   json_pack("{s:o, s:o, s:I, s:b}", "rtol", real(l->rtol), "atol",
-                                             real(l->atol), "max_steps", (json_int_t)l->max_steps,
-                                             "error_estimate", l->estimate_error));
+                                   json_pack("{s:s, s:i, s:o, s:o, s:o, s:I, s:b}", "model",
+                                             lift_model_names[l->model], "modes", l->modes,
+                                             "accuracy_deg", real(l->accuracy_deg), "rtol",
+                                             real(l->rtol), "atol", real(l->atol), "max_steps",
+                                             (json_int_t)l->max_steps, "error_estimate",
+                                             l->estimate_error));
         break;
     }
     }

@@ -99,7 +99,8 @@ void rd_lift_params_default(rd_lift_params *p)
     p->atol = 1e-9;
     p->max_steps = 500000;
     p->estimate_error = 1;
-    p->model = RD_LIFT_MODEL_FULL;
+    p->model = RD_LIFT_MODEL_AUTO;
+    p->modes = 0;
     p->accuracy_deg = 0.1;
 }
 
@@ -268,6 +269,10 @@ static int validate_numerics(const rd_lift_params *p, int segments, rd_error *er
                             "full.");
     if ((rc = check_range(p->accuracy_deg, 1e-4, 10.0, "/numerics/accuracy_deg", "deg", err)))
         return rc;
+    if (p->modes < 0 || p->modes > RD_LIFT_MODES_MAX)
+        return rd_error_set(err, RD_EINVAL, "/numerics/modes",
+                            "/numerics/modes = %d is out of range: allowed 0 (auto) to %d.",
+                            p->modes, RD_LIFT_MODES_MAX);
     if (p->estimate_error != 0 && p->estimate_error != 1)
         return rd_error_set(err, RD_EINVAL, "/numerics/error_estimate",
                             "/numerics/error_estimate = %d: use true or false.",

@@ -52,6 +52,7 @@ enum rd_lift_event_kind {
 #define RD_LIFT_SAMPLES_MAX 200000 /* output samples (cycles * 720 / step_deg + 1) */
 #define RD_LIFT_TABLE_MAX 100000   /* points of a gas pressure table */
 #define RD_LIFT_SEGMENTS_MAX 1000
+#define RD_LIFT_MODES_MAX 60
 
 typedef struct rd_engine_params {
     double speed_rpm;    /* 1 .. 30000 */
@@ -97,6 +98,7 @@ typedef struct rd_lift_params {
     long max_steps;            /* bound on CVODE steps for the whole run */
     int estimate_error;        /* 1: second run at rtol/10 for the error estimate */
     int model;                 /* enum rd_lift_model_kind */
+    int modes;                 /* elastic modes of the modal model, 0 = auto, <= RD_LIFT_MODES_MAX */
     double accuracy_deg;       /* target on the flank-change angles, deg (auto) */
 } rd_lift_params;
 
