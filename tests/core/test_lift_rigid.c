@@ -13,6 +13,7 @@
 
 #include "check.h"
 #include "rd_lift.h"
+#include "rd_lift_internal.h"
 
 #define GAS_POINTS 361
 
@@ -202,6 +203,43 @@ static void test_auto(void)
     rd_lift_result_cleanup(&r);
 }
 
+/* The rigid model's analytic Jacobian (the projection of segment 0's local
+ * blocks) vs central differences of its right-hand side, at states that
+ * engage every force law: pressed into the lower and the upper flank (inside
+ * the quadratic start and in the linear range), twisted so one edge carries
+ * more, pushed radially, moving; Coulomb and Stribeck friction near a
+ * sliding reversal; dynamic gas areas.  The differences carry ~1e-5
+ * relative rounding on the stiff entries; tolerance 1e-4 (as test_lift's
+ * full-model check). */
+static void test_rigid_jacobian(void)
+{
+    rd_ring_params rp;
+    rd_ring_params_default(&rp);
+    double deg[] = {0, 400, 720}, above[] = {2e5, 1e6, 2e5}, behind[] = {1e5, 8e5, 1e5},
+           below[] = {0, 3e5, 0};
+    for (int fm = 1; fm <= 2; fm++)
+        for (int st = 0; st < 4; st++) {
+            rd_lift_params p;
+            rd_lift_params_default(&p);
+            p.model = RD_LIFT_MODEL_RIGID;
+            p.gravity = 1;
+            p.friction.model = fm;
+            p.gas = (rd_gas_params){3, deg, above, behind, below, RD_GAS_AREA_DYNAMIC};
+            double ca = p.groove.axial_clearance, d0 = 1e-4 * ca;
+            double z[4] = {-0.3 * d0, -4.0 * d0, ca + 0.4 * d0, ca + 5.0 * d0};
+            double y[6] = {z[st], (st % 2 ? 1e-9 : -2e-9), 1e-8 * (st - 1), (st - 1.5) * 1e-4,
+                           1e-6, 1e-5 * (st - 2)};
+            double e = 1e9;
+            rd_error err;
+            rd_error_init(&err);
+            /* t = 3 us: the piston speed ~ u_reg, friction in its regularized range */
+            int rc = rd_lift_jacobian_check(&rp, 8, &p, 3e-6, y, &e, &err);
+            CHECK(rc == RD_OK, "rigid jacobian check: %s", err.message);
+            CHECK(e < 1e-4, "rigid, friction %d, state %d: Jacobian differs by %g (relative)", fm,
+                  st, e);
+        }
+}
+
 static void expect_invalid(const rd_lift_params *p, const char *path, const char *text)
 {
     rd_ring_params rp;
@@ -231,6 +269,7 @@ static void test_validation(void)
 int main(void)
 {
     test_validation();
+    test_rigid_jacobian();
     test_auto();
     test_rigid_extremes();
     test_rigid_vs_full();
