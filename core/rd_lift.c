@@ -436,14 +436,18 @@ void rd_lift_result_cleanup(rd_lift_result *r)
  * the split ring's free ends do.  Without friction that is nothing
  * measurable: its flank changes agree with the full model's within 0.035
  * deg (thesis_lift_1000rpm, and the gas example without friction: 0.007
- * deg; test_lift_rigid).  Friction on the running face twists the ring, and
- * a leave that the twist's edge lift decides (the "315 deg" flank change of
- * the thesis ring) is ill-conditioned in the twist: the split ring twists
- * ~3 % more than the uniform twist the rigid model allows, and such leaves
- * move by up to RIGID_FRICTION_ERROR_DEG (measured 0.94 deg at 1000 rpm
- * Coulomb, 0.91 deg at 6000 rpm with gas, 0.92 deg at 3000 rpm Stribeck; all
- * other flank changes within 0.02 deg).  So auto takes the rigid model with
- * friction only when the target allows that error with a factor 2 margin. */
+ * deg; test_lift_rigid).  Friction on the running face puts a couple on the
+ * ring that the split ring, with its free ends, does not take uniformly,
+ * and the rigid ring then misses flank changes by up to
+ * RIGID_FRICTION_ERROR_DEG (measured: 0.94 deg at 1000 rpm Coulomb, where a
+ * leave decided by the twist's edge lift moves by ~0.8 deg per 3 % of twist
+ * stiffness; 0.91 deg on the 6000 rpm gas example, where the full ring's
+ * landings come later because its lift spreads around the circumference in
+ * flight, lift_max - lift_min up to 0.09 of the clearance; 0.92 deg at 3000
+ * rpm Stribeck).  A twist-stiffness sensitivity run as an error
+ * indicator caught only the first kind (0.90 deg; 0.01-0.03 deg on the
+ * others), so it is not used.  auto takes the rigid model with friction
+ * only when the target allows that error with a factor 2 margin. */
 #define RIGID_FRICTION_ERROR_DEG 1.0
 static void choose_model(const rd_lift_params *p, rd_lift_result *out)
 {
