@@ -136,7 +136,19 @@ static const rd_field output_fields[] = {
 };
 static const rd_block output_block = {"Output", "/output (lift).", 1, 0, output_fields};
 
+/* enum rd_lift_model_kind */
+static const char *const model_names[] = {"full", "rigid", "modal", "auto", NULL};
+
 static const rd_field numerics_fields[] = {
+    {"model", RD_F_CHOICE, LO(lift.model), .choices = model_names,
+     .desc = "Which equations are integrated: auto (the cheapest model the scene allows and the "
+             "accuracy target admits), rigid (the ring as one body: axial lift, twist, radial; "
+             "exact for axisymmetric scenes without friction), modal (not available yet) or "
+             "full (the flexible ring, 6n DOFs)."},
+    {"modes", RD_F_INTEGER, LO(lift.modes), RD_MIN(0), RD_MAX(RD_LIFT_MODES_MAX),
+     .desc = "Elastic modes of the modal model; 0 = chosen automatically."},
+    {"accuracy_deg", RD_F_NUMBER, LO(lift.accuracy_deg), RD_MIN(1e-4), RD_MAX(10.0),
+     .desc = "Target accuracy of the flank-change angles, deg (used by auto)."},
     {"rtol", RD_F_NUMBER, LO(lift.rtol), RD_MIN(1e-12), RD_MAX(0.01),
      .desc = "Relative tolerance."},
     {"atol", RD_F_NUMBER, LO(lift.atol), RD_MIN(1e-16), RD_MAX(1e-05),
@@ -270,12 +282,17 @@ static json_t *lift_numerics(const rd_scene *scene, const rd_lift_result *res, d
     const struct lift_opts *o = scene->opts;
     int estimated = isfinite(res->error_estimate);
     return json_pack(
-        "{s:i, s:i, s:o, s:s, s:I, s:I, s:I, s:I, s:I, s:I, s:I, s:I, s:o, s:o, s:o, s:o, s:o}",
+        "{s:i, s:i, s:o, s:o, s:s, s:I, s:I, s:I, s:I, s:I, s:I, s:I, s:I, s:o, s:o, s:o, s:o, s:o}",
         "segments", res->segments,
         "dof", res->dof,
+        "model", json_pack("{s:s, s:i, s:i, s:s}", "name", rd_lift_model_name(res->model), "dof",
+                           res->dof, "modes", res->modes, "why", res->why),
         "wall_s", rd_result_real(wall_s),
-        "solver", "SUNDIALS CVODE, BDF with a banded Newton linear solver, root finding for the "
-                  "flank changes",
+        "solver", res->model == RD_LIFT_MODEL_RIGID
+                      ? "SUNDIALS CVODE, BDF with a dense Newton linear solver (the rigid ring's "
+                        "6 states), root finding for the flank changes"
+                      : "SUNDIALS CVODE, BDF with a banded Newton linear solver, root finding for "
+                        "the flank changes",
         "steps", (json_int_t)res->steps,
         "rhs_evals", (json_int_t)res->rhs_evals,
         "jac_evals", (json_int_t)res->jac_evals,

@@ -12,6 +12,13 @@
  *     2. n = 20: the flank-change angles' error vs rtol (1e-4 .. 1e-8, atol =
  *        1e-3 m x rtol) against a reference run at rtol 1e-10, and the cost.
  *   bench_lift --once N    one cycle, for instruction counts (callgrind).
+ *   bench_lift --models EXAMPLES_DIR [--reps R]
+ *     3. The two lift examples, one cycle each, as the scene asks (its n,
+ *        rtol, and the error estimate on, as the API runs it): numerics.model
+ *        auto, rigid and full; wall time (median of R >= 3), CVODE steps,
+ *        Jacobian evaluations and factorizations (linear-solver set-ups) of
+ *        the main run, and the flank changes' largest difference from the
+ *        full model at n = 40, rtol 1e-8 (atol 1e-11 m).
  *
  * Wall times on a shared 2-core machine are noisy: medians of repeats.
  */
@@ -23,13 +30,15 @@
 
 #include "bench_util.h"
 
+#include "lift_example.h"
 #include "rd_lift.h"
 
 #define MAX_EV 32
 
 typedef struct run {
     double wall;
-    long steps, rhs, jac;
+    long steps, rhs, jac, setups;
+    int model, dof;
     int n_events;
     double deg[MAX_EV];
     int kind[MAX_EV];
@@ -38,6 +47,7 @@ typedef struct run {
 static void params(rd_lift_params *p, double rtol)
 {
     rd_lift_params_default(p);
+    p->model = RD_LIFT_MODEL_FULL;
     p->engine.cycles = 1.0;
     p->estimate_error = 0;
     p->step_deg = 1.0;
@@ -46,11 +56,11 @@ static void params(rd_lift_params *p, double rtol)
 }
 
 /* Median wall time of `reps` runs; counters and events of the last. */
-static int timed(const rd_ring_params *rp, int n, double rtol, int reps, run *out)
+static int timed_p(const rd_ring_params *rp, int n, const rd_lift_params *pp, int reps, run *out)
 {
     double t[64];
-    rd_lift_params p;
-    params(&p, rtol);
+    rd_lift_params p = *pp;
+    double rtol = p.rtol;
     for (int k = 0; k < reps && k < 64; k++) {
         rd_lift_result r;
         rd_error err;
@@ -66,6 +76,9 @@ static int timed(const rd_ring_params *rp, int n, double rtol, int reps, run *ou
         out->steps = r.steps;
         out->rhs = r.rhs_evals;
         out->jac = r.jac_evals;
+        out->setups = r.lin_setups;
+        out->model = r.model;
+        out->dof = r.dof;
         out->n_events = r.n_events < MAX_EV ? r.n_events : MAX_EV;
         for (int i = 0; i < out->n_events; i++) {
             out->deg[i] = r.events[i].crank_deg;
@@ -75,6 +88,13 @@ static int timed(const rd_ring_params *rp, int n, double rtol, int reps, run *ou
     }
     out->wall = bench_median(t, reps);
     return 0;
+}
+
+static int timed(const rd_ring_params *rp, int n, double rtol, int reps, run *out)
+{
+    rd_lift_params p;
+    params(&p, rtol);
+    return timed_p(rp, n, &p, reps, out);
 }
 
 static double event_change(const run *a, const run *b)
@@ -90,9 +110,51 @@ static double event_change(const run *a, const run *b)
     return d;
 }
 
+/* Table 3 (file comment). */
+static int models(const char *dir, int reps)
+{
+    static const char *files[] = {"thesis_lift_1000rpm.json", "thesis_lift_gas_6000rpm.json"};
+    static const int kinds[] = {RD_LIFT_MODEL_AUTO, RD_LIFT_MODEL_RIGID, RD_LIFT_MODEL_FULL};
+    printf("One 720 deg cycle of each lift example, its own n and rtol, error estimate on;\n"
+           "wall = median of %d runs (Release); steps, Jacobians, factorizations: the main run;\n"
+           "change = largest flank-change difference from full n = 40, rtol 1e-8.\n\n"
+           "| example | model | used | dof | wall [ms/cycle] | steps | Jacobians | "
+           "factorizations | change vs full n=40 [deg] |\n|---|---|---|---|---|---|---|---|---|\n",
+           reps);
+    for (int f = 0; f < 2; f++) {
+        gcase c;
+        if (!load_example(&c, dir, files[f])) {
+            fprintf(stderr, "cannot read %s/%s\n", dir, files[f]);
+            return 1;
+        }
+        c.p.engine.cycles = 1.0;
+        run ref, r;
+        rd_lift_params p = c.p;
+        p.rtol = 1e-8;
+        p.atol = 1e-11;
+        if (timed_p(&c.ring, 40, &p, 1, &ref))
+            return 1;
+        for (int k = 0; k < 3; k++) {
+            p = c.p;
+            p.estimate_error = 1;
+            p.model = kinds[k];
+            if (timed_p(&c.ring, c.n, &p, reps, &r))
+                return 1;
+            printf("| %s | %s | %s | %d | %.2f | %ld | %ld | %ld | %.4f |\n", files[f],
+                   rd_lift_model_name(kinds[k]), rd_lift_model_name(r.model), r.dof,
+                   1e3 * r.wall, r.steps, r.jac, r.setups, event_change(&r, &ref));
+            fflush(stdout);
+        }
+        for (int k = 0; k < 4; k++)
+            free(c.gas[k]);
+    }
+    return 0;
+}
+
 int main(int argc, char **argv)
 {
     int max_n = 1000, reps = 3, once = 0;
+    const char *examples = NULL;
     for (int i = 1; i < argc; i++) {
         if (!strcmp(argv[i], "--max-n") && i + 1 < argc)
             max_n = atoi(argv[++i]);
@@ -100,13 +162,18 @@ int main(int argc, char **argv)
             reps = atoi(argv[++i]);
         else if (!strcmp(argv[i], "--once") && i + 1 < argc)
             once = atoi(argv[++i]);
+        else if (!strcmp(argv[i], "--models") && i + 1 < argc)
+            examples = argv[++i];
         else {
-            fprintf(stderr, "usage: bench_lift [--max-n N] [--reps R] | --once N\n");
+            fprintf(stderr, "usage: bench_lift [--max-n N] [--reps R] | --once N | "
+                            "--models EXAMPLES_DIR [--reps R]\n");
             return 2;
         }
     }
     if (reps < 3)
         reps = 3;
+    if (examples)
+        return models(examples, reps);
     rd_ring_params rp;
     rd_ring_params_default(&rp);
     if (once) {

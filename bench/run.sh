@@ -44,3 +44,6 @@ instructions bench_static
 echo
 echo "## lift: cost per engine cycle vs n, and flank-change accuracy vs rtol"
 "$b/bench/bench_lift"
+echo
+echo "## lift: models (auto, rigid, full) on the lift examples"
+"$b/bench/bench_lift" --models examples

@@ -30,6 +30,16 @@ enum rd_kinematics { RD_KINEMATICS_EXACT = 0, RD_KINEMATICS_APPROXIMATE = 1 };
 enum rd_friction_model { RD_FRICTION_NONE = 0, RD_FRICTION_COULOMB = 1, RD_FRICTION_STRIBECK = 2 };
 enum rd_gas_area { RD_GAS_AREA_FIXED = 0, RD_GAS_AREA_DYNAMIC = 1 };
 enum rd_flank { RD_FLANK_LOWER = 0, RD_FLANK_UPPER = 1, RD_FLANK_FREE = 2 };
+/* Which equations are integrated (numerics.model): the full flexible ring
+ * (6 n DOFs), the rigid ring (axial lift, twist, radial: exact for
+ * axisymmetric scenes, rd_lift_rigid.c), the modal reduction (not available
+ * yet), or auto: the cheapest the scene allows. */
+enum rd_lift_model_kind {
+    RD_LIFT_MODEL_FULL = 0,
+    RD_LIFT_MODEL_RIGID = 1,
+    RD_LIFT_MODEL_MODAL = 2,
+    RD_LIFT_MODEL_AUTO = 3
+};
 enum rd_lift_event_kind {
     RD_EVENT_LEAVE_LOWER = 0,
     RD_EVENT_REACH_UPPER = 1,
@@ -42,6 +52,7 @@ enum rd_lift_event_kind {
 #define RD_LIFT_SAMPLES_MAX 200000 /* output samples (cycles * 720 / step_deg + 1) */
 #define RD_LIFT_TABLE_MAX 100000   /* points of a gas pressure table */
 #define RD_LIFT_SEGMENTS_MAX 1000
+#define RD_LIFT_MODES_MAX 60
 
 typedef struct rd_engine_params {
     double speed_rpm;    /* 1 .. 30000 */
@@ -86,6 +97,9 @@ typedef struct rd_lift_params {
     double rtol, atol;         /* CVODE tolerances (atol on lift, m) */
     long max_steps;            /* bound on CVODE steps for the whole run */
     int estimate_error;        /* 1: second run at rtol/10 for the error estimate */
+    int model;                 /* enum rd_lift_model_kind */
+    int modes;                 /* elastic modes of the modal model, 0 = auto, <= RD_LIFT_MODES_MAX */
+    double accuracy_deg;       /* target on the flank-change angles, deg (auto) */
 } rd_lift_params;
 
 typedef struct rd_lift_event {
@@ -108,11 +122,16 @@ typedef struct rd_lift_result {
     /* Solver work (CVODE counters) */
     long steps, rhs_evals, jac_evals, lin_setups, nonlin_iters, nonlin_fails, err_test_fails,
         root_evals;
+    int model;                    /* enum rd_lift_model_kind actually integrated */
+    int modes;                    /* elastic modes of a modal model; 0 otherwise */
+    char why[320];                /* why that model (the scene content that decided it) */
     double error_estimate;        /* relative lift error from the rtol/10 run; NAN if none */
     double event_error_deg;       /* largest event-angle change in that run; NAN if none */
 } rd_lift_result;
 
 void rd_lift_params_default(rd_lift_params *p);
+/* "full", "rigid", "modal", "auto" (NULL for an unknown kind). */
+const char *rd_lift_model_name(int model);
 /* Checks every value, naming the scene field ("/engine/speed_rpm", ...). */
 int rd_lift_validate(const rd_lift_params *p, const rd_ring_params *ring, int segments,
                      rd_error *err);

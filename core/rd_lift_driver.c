@@ -51,7 +51,9 @@
 #include <cvode/cvode.h>
 #include <sundials/sundials_context.h>
 #include <sunlinsol/sunlinsol_band.h>
+#include <sunlinsol/sunlinsol_dense.h>
 #include <sunmatrix/sunmatrix_band.h>
+#include <sunmatrix/sunmatrix_dense.h>
 
 #include "rd_lift_model.h"
 
@@ -65,6 +67,8 @@
 /* One integration's solver objects and bookkeeping. */
 typedef struct driver {
     rd_lift_model m;
+    rd_lift_form form; /* what is integrated: the full model or a reduced one */
+    double *full;      /* 12 n: the full state of a sample (reduced forms) */
     SUNContext sunctx;
     N_Vector y, abstol;
     SUNMatrix A;
@@ -90,10 +94,11 @@ typedef struct flank_track {
  * root function stays exactly zero just after a root. */
 static int roots(sunrealtype t, N_Vector yv, sunrealtype *g, void *user)
 {
-    rd_lift_model *c = user;
+    driver *d = user;
+    rd_lift_model *c = &d->m;
     const double *y = N_VGetArrayPointer(yv);
-    double L = rd_lift_model_mean_lift(c, y, NULL);
-    rd_lift_forces(c, t, y, NULL, NULL);
+    double L = d->form.lift(d->form.user, y, NULL);
+    d->form.loads(d->form.user, t, y);
     g[0] = L;
     g[1] = L - c->eps;
     g[2] = c->ca - L;
@@ -103,6 +108,19 @@ static int roots(sunrealtype t, N_Vector yv, sunrealtype *g, void *user)
         if (g[i] == 0.0)
             g[i] = 1e-300;
     return 0;
+}
+
+static int drv_rhs(sunrealtype t, N_Vector y, N_Vector yd, void *user)
+{
+    driver *d = user;
+    return d->form.rhs(t, y, yd, d->form.user);
+}
+
+static int drv_jac(sunrealtype t, N_Vector y, N_Vector fy, SUNMatrix J, void *user, N_Vector t1,
+                   N_Vector t2, N_Vector t3)
+{
+    driver *d = user;
+    return d->form.jac(t, y, fy, J, d->form.user, t1, t2, t3);
 }
 
 static void cv_silent(int code, const char *module, const char *function, char *msg, void *user)
@@ -160,39 +178,21 @@ static void driver_free(driver *d)
     if (d->sunctx)
         SUNContext_Free(&d->sunctx);
     free(d->seg);
+    free(d->full);
+    if (d->form.user && d->form.user != &d->m)
+        rd_lift_rigid_close(&d->form);
     rd_lift_model_cleanup(&d->m);
-}
-
-/* Absolute tolerances (header comment) and the initial state. */
-static void initial_values(driver *d, const rd_lift_setup *setup, double atol)
-{
-    const rd_lift_model *c = &d->m;
-    double *yy = N_VGetArrayPointer(d->y), *at = N_VGetArrayPointer(d->abstol);
-    const rd_ring_params *rp = rd_ring_get_params(c->ring);
-    double R = rd_ring_get_section(c->ring)->R;
-    double wv = sqrt(rd_lift_accel_scale(rp, c->p) / c->ca); /* velocity / position ratio */
-    for (int i = 0; i < c->n; i++)
-        for (int k = 0; k < 6; k++) {
-            double a = k < 3 ? atol : atol / R;
-            Q(at, i)[k] = a;
-            V(at, i)[k] = a * wv;
-        }
-    size_t N = 12 * (size_t)c->n;
-    if (setup && setup->y0)
-        memcpy(yy, setup->y0, N * sizeof *yy);
-    else
-        memset(yy, 0, N * sizeof *yy);
 }
 
 static int cv_configure(driver *d, double rtol, rd_error *err)
 {
     int flag, rootdir[N_ROOTS] = {-1, +1, -1, +1, 0};
     if ((flag = CVodeSetErrHandlerFn(d->cv, cv_silent, d)) ||
-        (flag = CVodeInit(d->cv, rd_lift_cv_rhs, 0.0, d->y)) ||
+        (flag = CVodeInit(d->cv, drv_rhs, 0.0, d->y)) ||
         (flag = CVodeSVtolerances(d->cv, rtol, d->abstol)) ||
-        (flag = CVodeSetUserData(d->cv, &d->m)) ||
+        (flag = CVodeSetUserData(d->cv, d)) ||
         (flag = CVodeSetLinearSolver(d->cv, d->LS, d->A)) ||
-        (flag = CVodeSetJacFn(d->cv, rd_lift_cv_jac)) ||
+        (flag = CVodeSetJacFn(d->cv, drv_jac)) ||
         (flag = CVodeSetMaxOrd(d->cv, MAX_ORDER)) ||
         (flag = CVodeSetMaxStep(d->cv, HMAX_DEG / d->deg_per_s)) ||
         (flag = CVodeSetLSetupFrequency(d->cv, 1)) || /* fresh Newton matrix each step */
@@ -205,30 +205,46 @@ static int cv_configure(driver *d, double rtol, rd_error *err)
 }
 
 static int driver_open(driver *d, const rd_ring *ring, const rd_lift_params *p,
-                       const rd_lift_setup *setup, double rtol, double atol, rd_error *err)
+                       const rd_lift_setup *setup, int rigid, double rtol, double atol,
+                       rd_error *err)
 {
     memset(d, 0, sizeof *d);
     int rc = rd_lift_model_init(&d->m, ring, p, setup, err);
     if (rc)
         return rc;
     int n = d->m.n;
-    sunindextype N = 12 * (sunindextype)n;
+    if (rigid)
+        rc = rd_lift_rigid_open(&d->m, &d->form, err);
+    else
+        rd_lift_full_form(&d->m, &d->form);
+    if (rc)
+        return rc;
+    sunindextype N = d->form.N;
     d->deg_per_s = d->m.omega * 180.0 / M_PI;
     d->chunk = STEP_CHUNK / n > 1 ? STEP_CHUNK / n : 1;
+    if (rigid) /* a step costs about as much as one segment's forces */
+        d->chunk = STEP_CHUNK;
     d->seg = malloc((size_t)n * sizeof *d->seg);
-    if (!d->seg)
+    d->full = d->form.expand ? malloc(12 * (size_t)n * sizeof *d->full) : NULL;
+    if (!d->seg || (d->form.expand && !d->full))
         return rd_error_set(err, RD_ENOMEM, "", "Out of memory for the lift output.");
     if (SUNContext_Create(NULL, &d->sunctx))
         return rd_error_set(err, RD_ENOMEM, "", "Could not create the SUNDIALS context.");
     d->y = N_VNew_Serial(N, d->sunctx);
     d->abstol = N_VNew_Serial(N, d->sunctx);
-    d->A = d->y ? SUNBandMatrix(N, RD_LIFT_MU, RD_LIFT_ML, d->sunctx) : NULL;
-    d->LS = d->A ? SUNLinSol_Band(d->y, d->A, d->sunctx) : NULL;
+    if (d->y)
+        d->A = d->form.dense ? SUNDenseMatrix(N, N, d->sunctx)
+                             : SUNBandMatrix(N, RD_LIFT_MU, RD_LIFT_ML, d->sunctx);
+    if (d->A)
+        d->LS = d->form.dense ? SUNLinSol_Dense(d->y, d->A, d->sunctx)
+                              : SUNLinSol_Band(d->y, d->A, d->sunctx);
     d->cv = CVodeCreate(CV_BDF, d->sunctx);
     if (!d->y || !d->abstol || !d->A || !d->LS || !d->cv)
         return rd_error_set(err, RD_ENOMEM, "", "Out of memory setting up CVODE for %d segments.",
                             n);
-    initial_values(d, setup, atol);
+    if ((rc = d->form.initial(d->form.user, setup, atol, N_VGetArrayPointer(d->y),
+                              N_VGetArrayPointer(d->abstol), err)))
+        return rc;
     return cv_configure(d, rtol, err);
 }
 
@@ -292,8 +308,8 @@ static flank_track initial_flank(driver *d)
 {
     flank_track tr = {RD_FLANK_LOWER, NAN};
     const double *yy = N_VGetArrayPointer(d->y);
-    double L0 = rd_lift_model_mean_lift(&d->m, yy, NULL);
-    rd_lift_forces(&d->m, 0.0, yy, NULL, NULL);
+    double L0 = d->form.lift(d->form.user, yy, NULL);
+    d->form.loads(d->form.user, 0.0, yy);
     if (L0 > d->m.ca - d->m.eps)
         tr.state = RD_FLANK_UPPER;
     else if (L0 > d->m.eps)
@@ -348,7 +364,7 @@ static int advance(driver *d, double tout, flank_track *tr, rd_lift_run *o,
             int rf[N_ROOTS];
             if ((flag = CVodeGetRootInfo(d->cv, rf)))
                 return cv_fail(d, flag, "query", err);
-            rd_lift_forces(&d->m, t, yy, NULL, NULL);
+            d->form.loads(d->form.user, t, yy);
             if ((rc = track_roots(tr, rf, t, d->deg_per_s, d->m.fz_ext, o, err)))
                 return rc;
             continue;
@@ -369,9 +385,13 @@ static void store_sample(driver *d, int k, double deg, double tout, rd_lift_run 
                          const rd_lift_setup *setup)
 {
     rd_lift_model *c = &d->m;
-    const double *yy = N_VGetArrayPointer(d->y);
+    const double *yy = N_VGetArrayPointer(d->y), *yf = yy;
+    if (d->form.expand) {
+        d->form.expand(d->form.user, yy, d->full);
+        yf = d->full;
+    }
     int n = c->n;
-    double L = rd_lift_model_mean_lift(c, yy, d->seg);
+    double L = d->form.lift(d->form.user, yy, d->seg);
     o->lift[k] = L;
     rd_lift_result *res = o->res;
     if (res) {
@@ -381,24 +401,24 @@ static void store_sample(driver *d, int k, double deg, double tout, rd_lift_run 
         for (int i = 0; i < n; i++) {
             lo = fmin(lo, d->seg[i]);
             hi = fmax(hi, d->seg[i]);
-            const double *q = Q(yy, i);
+            const double *q = Q(yf, i);
             tw += q[3] * c->e_t[2 * i] + q[4] * c->e_t[2 * i + 1];
         }
         memcpy(res->lift_segments + (size_t)k * n, d->seg, (size_t)n * sizeof *d->seg);
         res->lift_min[k] = lo;
         res->lift_max[k] = hi;
         res->twist[k] = tw / n;
-        rd_lift_forces(c, tout, yy, NULL, NULL);
+        d->form.loads(d->form.user, tout, yy);
         res->friction_force[k] = c->friction;
         res->flank[k] = L < c->eps ? RD_FLANK_LOWER
                                    : (L > c->ca - c->eps ? RD_FLANK_UPPER : RD_FLANK_FREE);
     }
     if (setup && setup->sample)
-        setup->sample(setup->ctx, tout, yy);
+        setup->sample(setup->ctx, tout, yf);
     if (setup && setup->energy) {
         rd_lift_energy en = {0.0, 0.0, 0.0};
         c->energy = &en;
-        rd_lift_forces(c, tout, yy, NULL, NULL);
+        rd_lift_forces(c, tout, yf, NULL, NULL);
         c->energy = NULL;
         setup->energy(setup->ctx, tout, &en);
     }
@@ -420,10 +440,10 @@ static int store_counters(driver *d, rd_lift_result *r, rd_error *err)
 }
 
 int rd_lift_integrate(const rd_ring *ring, const rd_lift_params *p, const rd_lift_setup *setup,
-                      const rd_monitor *mon, rd_lift_run *o, rd_error *err)
+                      int rigid, const rd_monitor *mon, rd_lift_run *o, rd_error *err)
 {
     driver d;
-    int rc = driver_open(&d, ring, p, setup, o->rtol, o->atol, err);
+    int rc = driver_open(&d, ring, p, setup, rigid, o->rtol, o->atol, err);
     if (rc)
         goto out;
     flank_track tr = initial_flank(&d);
@@ -446,10 +466,56 @@ out:
 
 /* ------------------------------------------------------------- test hook */
 
+/* Entry (i, j) of the form's Newton-matrix storage (0 outside a band). */
+static double jac_entry(const rd_lift_form *f, SUNMatrix J, sunindextype i, sunindextype j)
+{
+    if (f->dense)
+        return SM_ELEMENT_D(J, i, j);
+    return (i - j <= RD_LIFT_ML && j - i <= RD_LIFT_MU) ? SM_ELEMENT_B(J, i, j) : 0.0;
+}
+
+/* Central-difference step of state j: 1e-3 d0 on translations, the same at
+ * 0.05 m lever arm on rotations, 1e-4 u_reg on rates: exact on the
+ * penalty's quadratic and linear pieces, far from its kinks, and large
+ * enough that rounding stays ~1e-6 relative. */
+static double fd_step(const rd_lift_form *f, sunindextype j)
+{
+    const rd_lift_model *c = f->m;
+    if (f->dense) /* rigid: z, theta, r, then their rates */
+        return j >= 3 ? 1e-4 * c->ureg : (j == 1 ? 2e-2 * c->d0 : 1e-3 * c->d0);
+    return (j % 12) < 6 ? (j % 12 < 3 ? 1e-3 * c->d0 : 2e-2 * c->d0) : 1e-4 * c->ureg;
+}
+
+/* The largest relative difference between J and central differences. */
+static double jac_compare(const rd_lift_form *f, double t, N_Vector y, N_Vector f1, N_Vector f2,
+                          SUNMatrix J)
+{
+    sunindextype N = f->N;
+    double *yy = N_VGetArrayPointer(y), jmax = 0.0, worst = 0.0;
+    for (sunindextype j = 0; j < N; j++)
+        for (sunindextype i = 0; i < N; i++)
+            jmax = fmax(jmax, fabs(jac_entry(f, J, i, j)));
+    for (sunindextype j = 0; j < N; j++) {
+        double h = fd_step(f, j), keep = yy[j];
+        yy[j] = keep + h;
+        f->rhs(t, y, f1, f->user);
+        yy[j] = keep - h;
+        f->rhs(t, y, f2, f->user);
+        yy[j] = keep;
+        const double *a = N_VGetArrayPointer(f1), *b = N_VGetArrayPointer(f2);
+        for (sunindextype i = 0; i < N; i++) {
+            double fd = (a[i] - b[i]) / (2.0 * h), an = jac_entry(f, J, i, j);
+            worst = fmax(worst, fabs(fd - an) / (fabs(an) + 1e-6 * jmax));
+        }
+    }
+    return worst;
+}
+
 int rd_lift_jacobian_check(const rd_ring_params *rp, int segments, const rd_lift_params *p,
                            double t, const double *y0, double *max_err, rd_error *err)
 {
     rd_lift_model c;
+    rd_lift_form form = {0};
     rd_ring *ring = NULL;
     SUNContext sunctx = NULL;
     N_Vector y = NULL, f1 = NULL, f2 = NULL;
@@ -463,44 +529,26 @@ int rd_lift_jacobian_check(const rd_ring_params *rp, int segments, const rd_lift
         return err ? err->code : RD_ENOMEM;
     if ((rc = rd_lift_model_init(&c, ring, p, NULL, err)))
         goto out;
-    sunindextype N = 12 * (sunindextype)segments;
+    if (p->model == RD_LIFT_MODEL_RIGID)
+        rc = rd_lift_rigid_open(&c, &form, err);
+    else
+        rd_lift_full_form(&c, &form);
+    if (rc)
+        goto out;
+    sunindextype N = form.N;
     if (SUNContext_Create(NULL, &sunctx) || !(y = N_VNew_Serial(N, sunctx)) ||
         !(f1 = N_VNew_Serial(N, sunctx)) || !(f2 = N_VNew_Serial(N, sunctx)) ||
-        !(J = SUNBandMatrix(N, RD_LIFT_MU, RD_LIFT_ML, sunctx))) {
+        !(J = form.dense ? SUNDenseMatrix(N, N, sunctx)
+                         : SUNBandMatrix(N, RD_LIFT_MU, RD_LIFT_ML, sunctx))) {
         rc = rd_error_set(err, RD_ENOMEM, "", "Out of memory.");
         goto out;
     }
-    double *yy = N_VGetArrayPointer(y);
-    memcpy(yy, y0, (size_t)N * sizeof *yy);
-    if (rd_lift_cv_jac(t, y, NULL, J, &c, NULL, NULL, NULL)) {
+    memcpy(N_VGetArrayPointer(y), y0, (size_t)N * sizeof(double));
+    if (form.jac(t, y, NULL, J, form.user, NULL, NULL, NULL)) {
         rc = rd_error_set(err, RD_EINTERNAL, "", "The lift Jacobian could not be assembled.");
         goto out;
     }
-    double jmax = 0.0, worst = 0.0;
-    for (sunindextype j = 0; j < N; j++)
-        for (sunindextype i = j - RD_LIFT_MU < 0 ? 0 : j - RD_LIFT_MU; i <= j + RD_LIFT_ML && i < N; i++)
-            jmax = fmax(jmax, fabs(SM_ELEMENT_B(J, i, j)));
-    for (sunindextype j = 0; j < N; j++) {
-        /* central differences, steps 1e-3 d0 (translations), the same at
-         * 0.05 m lever arm (rotations), 1e-4 u_reg (rates): exact on the
-         * penalty's quadratic and linear pieces, far from its kinks, and
-         * large enough that rounding stays ~1e-6 relative */
-        double h = (j % 12) < 6 ? (j % 12 < 3 ? 1e-3 * c.d0 : 2e-2 * c.d0) : 1e-4 * c.ureg;
-        double keep = yy[j];
-        yy[j] = keep + h;
-        rd_lift_cv_rhs(t, y, f1, &c);
-        yy[j] = keep - h;
-        rd_lift_cv_rhs(t, y, f2, &c);
-        yy[j] = keep;
-        const double *a = N_VGetArrayPointer(f1), *b = N_VGetArrayPointer(f2);
-        for (sunindextype i = 0; i < N; i++) {
-            double fd = (a[i] - b[i]) / (2.0 * h);
-            double an = (i - j <= RD_LIFT_ML && j - i <= RD_LIFT_MU) ? SM_ELEMENT_B(J, i, j) : 0.0;
-            double e = fabs(fd - an) / (fabs(an) + 1e-6 * jmax);
-            worst = fmax(worst, e);
-        }
-    }
-    *max_err = worst;
+    *max_err = jac_compare(&form, t, y, f1, f2, J);
 out:
     if (J)
         SUNMatDestroy(J);
@@ -512,6 +560,8 @@ out:
         N_VDestroy(f2);
     if (sunctx)
         SUNContext_Free(&sunctx);
+    if (form.user && form.user != &c)
+        rd_lift_rigid_close(&form);
     rd_lift_model_cleanup(&c);
     rd_ring_free(ring);
     return rc;

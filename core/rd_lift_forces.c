@@ -419,3 +419,25 @@ void rd_lift_forces(rd_lift_model *c, double t, const double *y, double *Dq, dou
     c->friction = ftot;
     c->fz_ext = fz + ftot;
 }
+
+void rd_lift_forces_segment(rd_lift_model *c, double t, int i, const double *q, const double *v,
+                            double *f, double *dq, double *dv)
+{
+    force_env env;
+    force_env_at(c, t, &env);
+    double ftot = 0.0, fz = 0.0;
+    seg_view s = {.i = i, .q = q, .v = v, .f = f, .dq = dq, .dv = dv};
+    if (dq) {
+        memset(dq, 0, 36 * sizeof *dq);
+        memset(dv, 0, 36 * sizeof *dv);
+    }
+    add_inertia_gravity(c, &env, &s);
+    fz += s.f[2];
+    add_flanks(c, &env, &s);
+    add_bore(c, &env, &s, &ftot);
+    add_back(c, &s);
+    if (env.gas)
+        fz += add_gas(c, &env, &s);
+    c->friction = ftot;
+    c->fz_ext = fz + ftot;
+}

@@ -50,8 +50,9 @@ int rd_lift_solve_setup(const rd_ring_params *ring, int segments, const rd_lift_
 double rd_lift_friction_ureg(const rd_lift_params *p);
 
 /* Largest relative difference between the analytic Jacobian of the lift
- * equations at (t, y) (12 n values) and central differences of the
- * right-hand side (entries smaller than 1e-6 of the largest are compared
+ * equations at (t, y) and central differences of the right-hand side: the
+ * full model's (y: 12 n values), or the rigid model's when p->model is
+ * RD_LIFT_MODEL_RIGID (y: z, theta, r and their rates, 6 values) (entries smaller than 1e-6 of the largest are compared
  * absolutely at that level). */
 int rd_lift_jacobian_check(const rd_ring_params *ring, int segments, const rd_lift_params *p,
                            double t, const double *y, double *max_err, rd_error *err);

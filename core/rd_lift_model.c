@@ -324,3 +324,54 @@ double rd_lift_model_mean_lift(const rd_lift_model *c, const double *y, double *
     }
     return sum / c->n;
 }
+
+/* ------------------------------------------------ the full formulation */
+
+static double full_lift(void *user, const double *y, double *seg)
+{
+    return rd_lift_model_mean_lift(user, y, seg);
+}
+
+static void full_loads(void *user, double t, const double *y)
+{
+    rd_lift_forces(user, t, y, NULL, NULL);
+}
+
+/* atol on the translations (m), atol / R on the rotations, and atol w_v on
+ * their rates (rd_lift_driver.c); the seated ring at rest unless given. */
+static int full_initial(void *user, const rd_lift_setup *setup, double atol, double *y,
+                        double *at, rd_error *err)
+{
+    (void)err;
+    const rd_lift_model *c = user;
+    const rd_ring_params *rp = rd_ring_get_params(c->ring);
+    double R = rd_ring_get_section(c->ring)->R;
+    double wv = sqrt(rd_lift_accel_scale(rp, c->p) / c->ca); /* velocity / position ratio */
+    for (int i = 0; i < c->n; i++)
+        for (int k = 0; k < 6; k++) {
+            double a = k < 3 ? atol : atol / R;
+            Q(at, i)[k] = a;
+            V(at, i)[k] = a * wv;
+        }
+    size_t N = 12 * (size_t)c->n;
+    if (setup && setup->y0)
+        memcpy(y, setup->y0, N * sizeof *y);
+    else
+        memset(y, 0, N * sizeof *y);
+    return RD_OK;
+}
+
+void rd_lift_full_form(rd_lift_model *m, rd_lift_form *form)
+{
+    *form = (rd_lift_form){.name = "full",
+                           .N = 12 * (sunindextype)m->n,
+                           .dense = 0,
+                           .user = m,
+                           .m = m,
+                           .rhs = rd_lift_cv_rhs,
+                           .jac = rd_lift_cv_jac,
+                           .lift = full_lift,
+                           .loads = full_loads,
+                           .expand = NULL,
+                           .initial = full_initial};
+}

@@ -55,6 +55,7 @@
 
 #include <nvector/nvector_serial.h>
 #include <sundials/sundials_matrix.h>
+#include <cvode/cvode.h>
 
 #include "rd_internal.h"
 #include "rd_lift.h"
@@ -123,6 +124,12 @@ double rd_lift_contact_inverse(const rd_lift_model *m, double p);
  * m->friction and m->fz_ext (rd_lift_forces.c). */
 void rd_lift_forces(rd_lift_model *m, double t, const double *y, double *Dq, double *Dv);
 
+/* The same for one segment i at state (q, v) (6 values each): its force
+ * into f (6), its local derivatives into dq, dv (36 each, or NULL), and its
+ * friction and axial load without the flanks into m->friction, m->fz_ext. */
+void rd_lift_forces_segment(rd_lift_model *m, double t, int i, const double *q, const double *v,
+                            double *f, double *dq, double *dv);
+
 /* The CVODE callbacks of the model (user data: the rd_lift_model).
  * rhs: ydot = (v, M^-1 (f - K q)) per segment; 1 (recoverable) if not
  * finite.  jac: d(ydot)/dy into the band matrix J (RD_LIFT_MU, RD_LIFT_ML). */
@@ -139,6 +146,37 @@ double rd_lift_model_mean_lift(const rd_lift_model *m, const double *y, double *
 double rd_lift_omega(const rd_engine_params *e);
 double rd_lift_accel_scale(const rd_ring_params *rp, const rd_lift_params *p);
 
+/* A formulation of the equations the driver integrates: the full model's
+ * 12 n states, or a reduced one (rd_lift_rigid.c) built on the same model's
+ * geometry and force elements.  `user` is passed to every function. */
+typedef struct rd_lift_form {
+    const char *name;  /* "full", "rigid" */
+    sunindextype N;    /* number of states */
+    int dense;         /* 1: dense Newton matrix; 0: band (RD_LIFT_MU, RD_LIFT_ML) */
+    void *user;
+    rd_lift_model *m;  /* the model whose constants (ca, eps, omega, p) apply */
+    CVRhsFn rhs;
+    CVLsJacFn jac;
+    /* mean lift L; the per-segment lifts into seg (n values) when not NULL */
+    double (*lift)(void *user, const double *y, double *seg);
+    /* the loads at (t, y): sets m->fz_ext and m->friction */
+    void (*loads)(void *user, double t, const double *y);
+    /* the 12 n full state of y into full; NULL: y is the full state */
+    void (*expand)(void *user, const double *y, double *full);
+    /* the initial state and absolute tolerances (atol on translations, m) */
+    int (*initial)(void *user, const rd_lift_setup *setup, double atol, double *y,
+                   double *abstol, rd_error *err);
+} rd_lift_form;
+
+/* The full model as a formulation (rd_lift_model.c). */
+void rd_lift_full_form(rd_lift_model *m, rd_lift_form *form);
+
+/* The rigid model (rd_lift_rigid.c): uniform axial lift, twist and radial
+ * motion of the whole ring.  rd_lift_rigid_open allocates its state; the
+ * form's user is freed by rd_lift_rigid_close. */
+int rd_lift_rigid_open(rd_lift_model *m, rd_lift_form *form, rd_error *err);
+void rd_lift_rigid_close(rd_lift_form *form);
+
 /* One integration of the full model at tolerances (rtol, atol): `res`
  * (optional) receives the per-sample results and the counters, `lift`
  * (samples values) the mean lift, *events / *n_events the flank changes
@@ -152,6 +190,6 @@ typedef struct rd_lift_run {
     int n_events, cap_events;
 } rd_lift_run;
 int rd_lift_integrate(const rd_ring *ring, const rd_lift_params *p, const rd_lift_setup *setup,
-                      const rd_monitor *mon, rd_lift_run *run, rd_error *err);
+                      int rigid, const rd_monitor *mon, rd_lift_run *run, rd_error *err);
 
 #endif

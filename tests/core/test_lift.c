@@ -34,6 +34,7 @@ typedef struct evlist {
 static void lift_params(rd_lift_params *p, double rpm, double cycles)
 {
     rd_lift_params_default(p);
+    p->model = RD_LIFT_MODEL_FULL; /* these tests are about the full model unless they say */
     p->engine.speed_rpm = rpm;
     p->engine.cycles = cycles;
     p->estimate_error = 0;
@@ -273,10 +274,12 @@ static void test_rigid_limit(void)
 {
     rd_ring_params rp;
     rd_ring_params_default(&rp);
-    for (int grav = 0; grav < 2; grav++) {
+    for (int run = 0; run < 4; run++) {
+        int grav = run % 2, model = run < 2 ? RD_LIFT_MODEL_FULL : RD_LIFT_MODEL_RIGID;
         rd_lift_params p;
         lift_params(&p, 1000.0, 1.0);
         p.gravity = grav;
+        p.model = model;
         p.rtol = 1e-8;
         p.atol = 1e-12;
         p.step_deg = 2.0;
@@ -290,14 +293,16 @@ static void test_rigid_limit(void)
         one_dof(&o, 718.0, &b); /* a leave in the last 2 deg cannot be confirmed */
         copy_events(&r, &a);
         double d = event_diff(&a, &b);
-        CHECK(d < 0.05, "gravity %d: events differ from the 1-DOF model by %g deg", grav, d);
+        CHECK(d < 0.05, "%s, gravity %d: events differ from the 1-DOF model by %g deg",
+              rd_lift_model_name(model), grav, d);
         if (d >= 0.05) {
             print_events("3D   ", &a);
             print_events("1-DOF", &b);
         }
         /* leave at TDC, then leave + landing after each of the 4 sign
          * changes of s'' - g in 720 deg, and the landing after the first */
-        CHECK(a.n == 10, "gravity %d: %d flank changes, want 10", grav, a.n);
+        CHECK(a.n == 10, "%s, gravity %d: %d flank changes, want 10", rd_lift_model_name(model),
+              grav, a.n);
         rd_lift_result_cleanup(&r);
     }
 }
@@ -351,6 +356,20 @@ static void test_friction(void)
         changes++;
     }
     CHECK(changes == 8, "friction: %d flank changes in one cycle, want 8", changes);
+    /* the rigid model on the same stiff ring: the same 1-DOF limit */
+    {
+        rd_lift_params pr = p;
+        pr.model = RD_LIFT_MODEL_RIGID;
+        rd_lift_result rr;
+        evlist e;
+        rc = solve(&rp, 6, &pr, NULL, &rr, &err);
+        CHECK(rc == RD_OK, "friction, rigid: %s", err.message);
+        copy_events(&rr, &e);
+        d = event_diff(&e, &b);
+        CHECK(d < 0.05, "friction, rigid: events differ from the 1-DOF model by %g deg", d);
+        CHECK_REL(fabs(rr.friction_force[45]), o.mu * o.N, 1e-3, "rigid friction force at 90 deg");
+        rd_lift_result_cleanup(&rr);
+    }
     /* friction force reported: |F| = mu N = 6.28 N mid-stroke */
     CHECK_REL(fabs(r.friction_force[45]), o.mu * o.N, 1e-3, "friction force at 90 deg");
     rd_lift_setup su = {0};
