@@ -80,7 +80,7 @@ static int make_dirs(const char *dir, rd_error *err)
     }
 }
 
-int rd_store_open(const char *dir, rd_store **out, rd_error *err)
+int rd_store_create(const char *dir, rd_store **out, rd_error *err)
 {
     *out = NULL;
     char file[4200];
@@ -126,7 +126,7 @@ out:
     return RD_OK;
 }
 
-void rd_store_close(rd_store *store)
+void rd_store_free(rd_store *store)
 {
     if (!store)
         return;
