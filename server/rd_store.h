@@ -38,7 +38,8 @@ typedef struct rd_store_row {
 typedef struct rd_store rd_store;
 
 /* Opens (creating if needed) DIR/jobs.sqlite3, creating DIR (mode 0700) and
- * its missing parents; ":memory:" keeps everything in memory (tests). */
+ * its missing parents, and locks DIR/jobs.lock: a second server on the same
+ * DIR is refused.  ":memory:" keeps everything in memory (tests). */
 int rd_store_create(const char *dir, rd_store **out, rd_error *err);
 void rd_store_free(rd_store *store); /* NULL is a no-op */
 
