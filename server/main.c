@@ -318,7 +318,7 @@ int main(int argc, char **argv)
         fprintf(stderr, "ringdyn-server: neither HOME nor XDG_STATE_HOME is set: give --data DIR\n");
         goto out;
     }
-    if (rd_store_open(data_dir, &store, &err) != RD_OK)
+    if (rd_store_create(data_dir, &store, &err) != RD_OK)
         goto fail;
     rd_jobs_config jc = {.threads = (int)opt.threads,
                          .queue_max = (int)opt.queue,
@@ -368,7 +368,7 @@ fail:
 out:
     rd_http_free(http);
     rd_jobs_free(jobs);
-    rd_store_close(store);
+    rd_store_free(store);
     rd_metrics_free(metrics);
     free(token);
     return status;

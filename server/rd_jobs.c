@@ -557,14 +557,20 @@ static int body_and_release(rd_jobs *jobs, struct job *job, rd_jobs_body **out, 
 
     char *data = NULL;
     size_t len = 0;
-    int rc = rd_store_read_body(jobs->cfg.store, id, &data, &len, err);
+    rd_error read_err;
+    rd_error_init(&read_err);
+    int rc = rd_store_read_body(jobs->cfg.store, id, &data, &len, &read_err);
     struct body *fresh = rc == RD_OK ? calloc(1, sizeof *fresh) : NULL;
     if (rc == RD_OK && !fresh)
         rc = rd_error_set(err, RD_ENOMEM, "", "Out of memory reading job %s.", id);
-    if (rc == RD_ENOTFOUND) /* the row of a succeeded job has a body: ours to explain */
-        rc = rd_error_set(err, RD_EINTERNAL, "", "The result of job %s is missing from the store.", id);
 
     pthread_mutex_lock(&jobs->mu);
+    if (rc == RD_ENOTFOUND && !find_locked(jobs, id)) /* retention took it meanwhile */
+        rc = not_found(err, id);
+    else if (rc == RD_ENOTFOUND) /* a succeeded job's row has a body: ours to explain */
+        rc = rd_error_set(err, RD_EINTERNAL, "", "The result of job %s is missing from the store.", id);
+    else if (rc != RD_OK && read_err.code != RD_OK)
+        rc = rd_error_set(err, read_err.code, "", "%s", read_err.message);
     if (rc == RD_OK) {
         if (job->body) { /* another request read it meanwhile: share that one */
             free(data);

@@ -14,6 +14,8 @@
 #include "rd_store.h"
 
 #include <errno.h>
+#include <fcntl.h>
+#include <unistd.h>
 #include <pthread.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -29,6 +31,7 @@
 
 struct rd_store {
     sqlite3 *db;
+    int lock_fd; /* DIR/jobs.lock, write-locked while we live; -1 for :memory: */
     pthread_mutex_t mu;
 };
 
@@ -80,7 +83,36 @@ static int make_dirs(const char *dir, rd_error *err)
     }
 }
 
-int rd_store_open(const char *dir, rd_store **out, rd_error *err)
+/* One server per store: two would each mark the other's running jobs
+ * interrupted at start.  A POSIX record lock on DIR/jobs.lock, released by
+ * the kernel when the process ends however it ends. */
+static int lock_dir(const char *dir, int *fd_out, rd_error *err)
+{
+    char path[4200];
+    *fd_out = -1;
+    if (snprintf(path, sizeof path, "%s/jobs.lock", dir) >= (int)sizeof path)
+        return rd_error_set(err, RD_EINVAL, "", "--data %s: path too long.", dir);
+    int fd = open(path, O_RDWR | O_CREAT | O_CLOEXEC, 0600);
+    if (fd < 0)
+        return rd_error_set(err, RD_EINVAL, "", "--data %s: cannot open %s: %s.", dir, path,
+                            strerror(errno));
+    struct flock lk = {.l_type = F_WRLCK, .l_whence = SEEK_SET};
+    if (fcntl(fd, F_SETLK, &lk) != 0) {
+        int e = errno;
+        close(fd);
+        if (e == EACCES || e == EAGAIN)
+            return rd_error_set(err, RD_EINVAL, "",
+                                "--data %s is in use by another ringdyn-server; give each server "
+                                "its own directory.",
+                                dir);
+        return rd_error_set(err, RD_EINVAL, "", "--data %s: cannot lock %s: %s.", dir, path,
+                            strerror(e));
+    }
+    *fd_out = fd;
+    return RD_OK;
+}
+
+int rd_store_create(const char *dir, rd_store **out, rd_error *err)
 {
     *out = NULL;
     char file[4200];
@@ -94,6 +126,11 @@ int rd_store_open(const char *dir, rd_store **out, rd_error *err)
     rd_store *s = calloc(1, sizeof *s);
     if (!s)
         return rd_error_set(err, RD_ENOMEM, "", "Out of memory.");
+    s->lock_fd = -1;
+    if (!memory && lock_dir(dir, &s->lock_fd, err) != RD_OK) {
+        free(s);
+        return err->code;
+    }
     int rc = sqlite3_open_v2(file, &s->db,
                              SQLITE_OPEN_READWRITE | SQLITE_OPEN_CREATE | SQLITE_OPEN_NOMUTEX, NULL);
     int status = RD_OK;
@@ -119,6 +156,8 @@ int rd_store_open(const char *dir, rd_store **out, rd_error *err)
 out:
     if (status != RD_OK) {
         sqlite3_close(s->db);
+        if (s->lock_fd >= 0)
+            close(s->lock_fd);
         free(s);
         return status;
     }
@@ -126,11 +165,13 @@ out:
     return RD_OK;
 }
 
-void rd_store_close(rd_store *store)
+void rd_store_free(rd_store *store)
 {
     if (!store)
         return;
     sqlite3_close(store->db); /* every statement is finalized where it is used */
+    if (store->lock_fd >= 0)
+        close(store->lock_fd);
     pthread_mutex_destroy(&store->mu);
     free(store);
 }

@@ -38,9 +38,10 @@ typedef struct rd_store_row {
 typedef struct rd_store rd_store;
 
 /* Opens (creating if needed) DIR/jobs.sqlite3, creating DIR (mode 0700) and
- * its missing parents; ":memory:" keeps everything in memory (tests). */
-int rd_store_open(const char *dir, rd_store **out, rd_error *err);
-void rd_store_close(rd_store *store); /* NULL is a no-op */
+ * its missing parents, and locks DIR/jobs.lock: a second server on the same
+ * DIR is refused.  ":memory:" keeps everything in memory (tests). */
+int rd_store_create(const char *dir, rd_store **out, rd_error *err);
+void rd_store_free(rd_store *store); /* NULL is a no-op */
 
 /* A new row (status queued). */
 int rd_store_insert(rd_store *store, const rd_store_row *row, const char *scene, rd_error *err);

@@ -58,6 +58,10 @@ stop_server S1 "$S1"
 start_server S2 --data "$DATA"
 S2=$SPID
 same_after "SIGTERM and restart"
+rc=0
+timeout 20 "$SERVER" --port 0 --data "$DATA" >"$WORK/second.out" 2>"$WORK/second.err" || rc=$?
+check "a second server on the same --data is refused" \
+  test "$rc" -ne 0 -a "$rc" -ne 124 -a -n "$(grep 'in use by another ringdyn-server' "$WORK/second.err")"
 req GET /api/v1/jobs
 same "the list after the restart: newest first" "$(json /jobs/0/id)" "${IDS[2]}"
 req GET "/api/v1/jobs/${IDS[0]}/result.csv"

@@ -1,0 +1,54 @@
+#!/usr/bin/env bash
+# Runs the scene-parser fuzzer for a while on a corpus seeded with the
+# project's scenes (examples/*.json, tests/api/cases/*/request.json).
+#
+#   run.sh FUZZER SECONDS SOURCE_ROOT [CORPUS_DIR]
+#   run.sh --coverage FUZZER_COV SOURCE_ROOT CORPUS_DIR   (api/ coverage of a corpus)
+#
+# Without CORPUS_DIR the corpus is a temporary directory (ctest); with one it
+# is kept and grows from run to run (the long run of the README).  Exit
+# status: the fuzzer's (non-zero on a finding, whose input libFuzzer writes
+# as crash-* / leak-* / timeout-* in the current directory).
+set -euo pipefail
+if [ "${1:-}" = --coverage ]; then
+  COV=$2 ROOT=$3 CORPUS=$4
+  WORK=$(mktemp -d "${TMPDIR:-/tmp}/ringdyn-fuzzcov.XXXXXX")
+  trap 'rm -rf "$WORK"' EXIT
+  LLVM_PROFILE_FILE="$WORK/cov.profraw" "$COV" -runs=0 "$CORPUS" >/dev/null 2>&1
+  PROFDATA=$(command -v llvm-profdata-14 || command -v llvm-profdata)
+  LLVMCOV=$(command -v llvm-cov-14 || command -v llvm-cov)
+  "$PROFDATA" merge -sparse "$WORK/cov.profraw" -o "$WORK/cov.profdata"
+  "$LLVMCOV" report "$COV" -instr-profile="$WORK/cov.profdata" -show-branch-summary \
+    "$ROOT"/api/*.c | tail -n 1 | awk '{ print "api/ total: regions " $4 " covered, functions " $7 ", lines " $10 ", branches " $13 }'
+  "$LLVMCOV" report "$COV" -instr-profile="$WORK/cov.profdata" -show-branch-summary "$ROOT"/api/*.c
+  # The range checks live in core's *_validate functions: their lines too.
+  "$LLVMCOV" report "$COV" -instr-profile="$WORK/cov.profdata" -show-functions "$ROOT"/core/*.c |
+    awk '/validate/ { print "core " $1 ": regions " $4 ", lines " $7 }'
+  exit 0
+fi
+if [ $# -lt 3 ]; then
+  echo "usage: $0 FUZZER SECONDS SOURCE_ROOT [CORPUS_DIR]" >&2
+  exit 2
+fi
+FUZZER=$(realpath "$1") SECONDS_=$2 ROOT=$(realpath "$3") CORPUS=${4:+$(realpath "$4")}
+HERE=$PWD
+WORK=$(mktemp -d "${TMPDIR:-/tmp}/ringdyn-fuzz.XXXXXX")
+trap 'rm -rf "$WORK"' EXIT
+if [ -z "$CORPUS" ]; then CORPUS=$WORK/corpus; fi
+mkdir -p "$CORPUS" "$WORK/seeds"
+i=0
+for f in "$ROOT"/examples/*.json "$ROOT"/tests/api/cases/*/request.json; do
+  [ -f "$f" ] && cp "$f" "$WORK/seeds/seed$((i += 1)).json"
+done
+# -max_len: room for gas tables and distortion lists; -timeout: a parse of
+# one input never takes a second, so 10 s is a hang.
+cd "$WORK"
+rc=0
+"$FUZZER" -max_total_time="$SECONDS_" -max_len=16384 -timeout=10 -rss_limit_mb=2048 \
+  -print_final_stats=1 "$CORPUS" "$WORK/seeds" >"$WORK/log" 2>&1 || rc=$?
+grep -E '^(#[0-9]+.*(INITED|DONE)|stat::|INFO: Loaded|==[0-9]+==|SUMMARY)' "$WORK/log" | tail -n 20 || true
+if [ "$rc" -ne 0 ]; then
+  tail -n 40 "$WORK/log"
+  cp "$WORK"/crash-* "$WORK"/leak-* "$WORK"/timeout-* "$HERE"/ 2>/dev/null || true
+fi
+exit "$rc"
