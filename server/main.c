@@ -87,7 +87,7 @@ static void usage(FILE *f)
             "                    jobs queued or running when the server stopped end 'interrupted'\n"
             "  --sweep-max-points N  points a sweep may have (default 10000, 1..1000000); a larger\n"
             "                    one is refused with the cluster path (ringdyn sweep run --chunks K).\n"
-            "                    Sweeps run on --threads workers of their own and live in memory\n"
+            "                    Sweeps run on --threads workers of their own; finished ones are stored\n"
             "connections (libmicrohttpd's epoll event loop; an open connection holds no thread):\n"
             "  --http-threads N  event-loop threads (default 4, 1..64)\n"
             "  --max-connections N  open connections in all (default 1000, 1..100000);\n"
@@ -347,7 +347,7 @@ int main(int argc, char **argv)
         goto fail;
     rd_sweeps_config sc = {.threads = (int)opt.threads, .max_points = (size_t)opt.sweep_max_points,
                            .timeout_s = opt.job_timeout, .queue_max = SWEEPS_QUEUE_MAX,
-                           .keep_max = SWEEPS_KEEP_MAX, .on_final = on_job_final,
+                           .keep_max = SWEEPS_KEEP_MAX, .store = store, .on_final = on_job_final,
                            .on_final_ctx = &http};
     if (rd_sweeps_create(&sc, &sweeps, &err) != RD_OK)
         goto fail;

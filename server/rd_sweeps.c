@@ -33,6 +33,7 @@
 
 #include "rd_api.h"
 #include "rd_sweep.h"
+#include "rd_store.h"
 #include "rd_sweep_request.h"
 
 /* Retry-After for a full sweep queue: a sweep takes minutes, not seconds. */
@@ -47,11 +48,16 @@ static const char *const status_names[] = {"queued", "running", "succeeded", "ca
 struct sweep {
     struct sweep *prev, *next;
     char id[RD_SWEEPS_ID_LEN + 1];
-    rd_sweep_request req;
+    char hash[RD_SWEEPS_ID_LEN + 1]; /* rd_sweep_hash */
+    int fidelity;
+    rd_sweep_request req; /* NULL sweep once frozen and released */
     size_t n, next_point, running, done, failed;
     char **rows;
     int status, cancel;
     struct timespec created, started, finished; /* CLOCK_REALTIME; zero = not yet */
+    /* A final sweep, rendered once (freeze_locked): its list entry, JSON and
+     * CSV.  NULL until then (or when rendering ran out of memory). */
+    char *meta, *body, *csv;
 };
 
 struct rd_sweeps {
@@ -153,13 +159,13 @@ static json_t *sweep_object(const struct sweep *sw)
         return NULL;
     int bad = 0;
     bad |= json_object_set_new(o, "id", json_string(sw->id));
-    bad |= json_object_set_new(o, "kind", json_string(sw->req.fidelity ? "fidelity" : "sweep"));
+    bad |= json_object_set_new(o, "kind", json_string(sw->fidelity ? "fidelity" : "sweep"));
     bad |= json_object_set_new(o, "status", json_string(status_names[sw->status]));
     bad |= json_object_set_new(o, "progress", json_real(sw->n ? (double)sw->done / (double)sw->n : 1));
     bad |= json_object_set_new(o, "points", json_integer((json_int_t)sw->n));
     bad |= json_object_set_new(o, "done", json_integer((json_int_t)sw->done));
     bad |= json_object_set_new(o, "failed", json_integer((json_int_t)sw->failed));
-    bad |= json_object_set_new(o, "spec_hash", json_string(rd_sweep_hash(sw->req.sweep)));
+    bad |= json_object_set_new(o, "spec_hash", json_string(sw->hash));
     bad |= json_object_set_new(o, "created", iso_time(&sw->created));
     bad |= json_object_set_new(o, "started", iso_time(&sw->started));
     bad |= json_object_set_new(o, "finished", iso_time(&sw->finished));
@@ -190,6 +196,12 @@ static char *splice(char *head, const char *key, const char *value)
  * succeeded fidelity sweep `fidelity` (rd_sweep_fidelity_table). */
 static char *sweep_json(const struct sweep *sw, rd_error *err)
 {
+    if (sw->body) {
+        char *copy = strdup(sw->body);
+        if (!copy)
+            rd_error_set(err, RD_ENOMEM, "", "The server is out of memory.");
+        return copy;
+    }
     json_t *o = sweep_object(sw);
     char *text = o ? json_dumps(o, JSON_COMPACT) : NULL;
     json_decref(o);
@@ -237,15 +249,36 @@ static void unlink_locked(rd_sweeps *ss, struct sweep *sw)
         ss->tail = sw->prev;
 }
 
+/* The rows and the spec of a sweep (not what freeze_locked rendered). */
+static void release_rows(struct sweep *sw)
+{
+    for (size_t i = 0; sw->rows && i < sw->n; i++)
+        free(sw->rows[i]);
+    free(sw->rows);
+    sw->rows = NULL;
+    rd_sweep_request_cleanup(&sw->req);
+}
+
 static void sweep_free(struct sweep *sw)
 {
     if (!sw)
         return;
-    for (size_t i = 0; sw->rows && i < sw->n; i++)
-        free(sw->rows[i]);
-    free(sw->rows);
-    rd_sweep_request_cleanup(&sw->req);
+    release_rows(sw);
+    free(sw->meta);
+    free(sw->body);
+    free(sw->csv);
     free(sw);
+}
+
+/* Removes a final sweep from memory and from the store. */
+static void drop_locked(rd_sweeps *ss, struct sweep *sw)
+{
+    rd_error err;
+    rd_error_init(&err);
+    unlink_locked(ss, sw);
+    if (ss->cfg.store && rd_store_sweep_delete(ss->cfg.store, sw->id, &err) != RD_OK)
+        fprintf(stderr, "ringdyn-server: sweep %s: %s\n", sw->id, err.message);
+    sweep_free(sw);
 }
 
 /* Drops the oldest finished sweeps beyond keep_max. */
@@ -254,12 +287,37 @@ static void retain_locked(rd_sweeps *ss)
     int finished = 0;
     for (struct sweep *sw = ss->tail; sw;) {
         struct sweep *prev = sw->prev;
-        if (is_final(sw->status) && sw->running == 0 && ++finished > ss->cfg.keep_max) {
-            unlink_locked(ss, sw);
-            sweep_free(sw);
-        }
+        if (is_final(sw->status) && sw->running == 0 && ++finished > ss->cfg.keep_max)
+            drop_locked(ss, sw);
         sw = prev;
     }
+}
+
+/* Renders a sweep that just became final once (its list entry, JSON and
+ * CSV), stores it, and frees its rows and spec once no point of it runs.
+ * Out of memory: it stays unrendered and is rendered at each request. */
+static void freeze_locked(rd_sweeps *ss, struct sweep *sw)
+{
+    rd_error err;
+    rd_error_init(&err);
+    json_t *o = sweep_object(sw);
+    char *meta = o ? json_dumps(o, JSON_COMPACT) : NULL;
+    json_decref(o);
+    char *body = sweep_json(sw, &err);
+    char *csv = rd_sweep_table_csv(sw->req.sweep, sw->rows, sw->n, &err);
+    if (!meta || !body || !csv) {
+        free(meta);
+        free(body);
+        free(csv);
+        return;
+    }
+    sw->meta = meta;
+    sw->body = body;
+    sw->csv = csv;
+    if (ss->cfg.store && rd_store_sweep_put(ss->cfg.store, sw->id, meta, body, csv, &err) != RD_OK)
+        fprintf(stderr, "ringdyn-server: sweep %s is kept in memory only: %s\n", sw->id, err.message);
+    if (sw->running == 0)
+        release_rows(sw);
 }
 
 /* Ends `sw` if nothing of it runs and it is complete, cancelled or the
@@ -277,6 +335,7 @@ static int settle_locked(rd_sweeps *ss, struct sweep *sw)
     else
         return 0;
     clock_gettime(CLOCK_REALTIME, &sw->finished);
+    freeze_locked(ss, sw);
     retain_locked(ss);
     return 1;
 }
@@ -358,7 +417,9 @@ static void *worker_main(void *arg)
         pthread_mutex_unlock(&ss->mu);
         char *row = run_point(ss, sw, i);
         pthread_mutex_lock(&ss->mu);
-        if (row) {
+        if (is_final(sw->status)) { /* ended under it (shutdown): the row comes too late */
+            free(row);
+        } else if (row) {
             size_t len = strlen(row), tail = sizeof ok_tail - 1;
             /* An ok row ends with status "ok" and error null (rd_sweep.h). */
             sw->failed += len < tail || strcmp(row + len - tail, ok_tail) != 0;
@@ -370,6 +431,8 @@ static void *worker_main(void *arg)
         }
         sw->running--;
         ss->busy--;
+        if (sw->running == 0 && sw->body)
+            release_rows(sw);
         pthread_cond_broadcast(&ss->idle);
         if (settle_locked(ss, sw)) {
             pthread_mutex_unlock(&ss->mu);
@@ -382,6 +445,41 @@ static void *worker_main(void *arg)
 }
 
 /* ---- life cycle ---- */
+
+/* rd_store_sweep_load: a stored sweep back in memory, rendered and final. */
+static int load_one(void *ctx, const char *id, const char *meta, const char *body, const char *csv)
+{
+    rd_sweeps *ss = ctx;
+    json_t *m = json_loads(meta, 0, NULL);
+    const char *status = json_string_value(json_object_get(m, "status"));
+    struct sweep *sw = calloc(1, sizeof *sw);
+    int known = 0;
+    for (int k = SW_SUCCEEDED; sw && status && k <= SW_INTERRUPTED; k++)
+        if (strcmp(status, status_names[k]) == 0) {
+            sw->status = k;
+            known = 1;
+        }
+    if (sw && known && strlen(id) == RD_SWEEPS_ID_LEN) {
+        memcpy(sw->id, id, sizeof sw->id);
+        const char *kind = json_string_value(json_object_get(m, "kind"));
+        sw->fidelity = kind && strcmp(kind, "fidelity") == 0;
+        sw->meta = strdup(meta);
+        sw->body = strdup(body);
+        sw->csv = strdup(csv);
+    }
+    json_decref(m);
+    if (!sw || !sw->meta || !sw->body || !sw->csv) { /* unreadable row: left out */
+        sweep_free(sw);
+        return RD_OK;
+    }
+    sw->prev = ss->tail;
+    if (ss->tail)
+        ss->tail->next = sw;
+    else
+        ss->head = sw;
+    ss->tail = sw;
+    return RD_OK;
+}
 
 int rd_sweeps_create(const rd_sweeps_config *cfg, rd_sweeps **out, rd_error *err)
 {
@@ -402,6 +500,15 @@ int rd_sweeps_create(const rd_sweeps_config *cfg, rd_sweeps **out, rd_error *err
     pthread_mutex_init(&ss->mu, NULL);
     pthread_cond_init(&ss->work, NULL);
     pthread_cond_init(&ss->idle, NULL);
+    if (cfg->store) {
+        if (rd_store_sweep_load(cfg->store, load_one, ss, err) != RD_OK) {
+            rd_sweeps_free(ss);
+            return err->code;
+        }
+        pthread_mutex_lock(&ss->mu);
+        retain_locked(ss);
+        pthread_mutex_unlock(&ss->mu);
+    }
     ss->workers = calloc((size_t)cfg->threads, sizeof *ss->workers);
     if (!ss->workers) {
         rd_sweeps_free(ss);
@@ -443,6 +550,7 @@ void rd_sweeps_shutdown(rd_sweeps *ss, double wait_s)
         if (!is_final(sw->status)) { /* what still runs is abandoned: interrupted */
             sw->status = SW_INTERRUPTED;
             clock_gettime(CLOCK_REALTIME, &sw->finished);
+            freeze_locked(ss, sw);
             ended = 1;
         }
     pthread_mutex_unlock(&ss->mu);
@@ -526,6 +634,8 @@ void rd_sweeps_post(rd_sweeps *ss, const char *body, size_t len, double wait_s,
         return;
     }
     sw->n = rd_sweep_points(sw->req.sweep);
+    sw->fidelity = sw->req.fidelity;
+    memcpy(sw->hash, rd_sweep_hash(sw->req.sweep), sizeof sw->hash);
     sw->rows = calloc(sw->n ? sw->n : 1, sizeof *sw->rows);
     if (!sw->rows || new_id(ss, sw->id) != 0) {
         sweep_free(sw);
@@ -581,7 +691,8 @@ void rd_sweeps_list(rd_sweeps *ss, size_t limit, rd_sweeps_reply *r)
     pthread_mutex_lock(&ss->mu);
     size_t k = 0;
     for (struct sweep *sw = ss->tail; sw && !bad && k < limit; sw = sw->prev, k++)
-        bad = json_array_append_new(list, sweep_object(sw)) != 0;
+        bad = json_array_append_new(list, sw->meta ? json_loads(sw->meta, 0, NULL)
+                                                   : sweep_object(sw)) != 0;
     pthread_mutex_unlock(&ss->mu);
     json_t *o = bad ? NULL : json_pack("{s:O}", "sweeps", list);
     reply_json(r, 200, o ? json_dumps(o, JSON_COMPACT) : NULL);
@@ -595,7 +706,11 @@ static void item_csv(rd_sweeps *ss, const char *id, rd_sweeps_reply *r)
     rd_error_init(&err);
     pthread_mutex_lock(&ss->mu);
     struct sweep *sw = find_locked(ss, id);
-    char *csv = sw ? rd_sweep_table_csv(sw->req.sweep, sw->rows, sw->n, &err) : NULL;
+    char *csv = !sw       ? NULL
+                : sw->csv ? strdup(sw->csv)
+                          : rd_sweep_table_csv(sw->req.sweep, sw->rows, sw->n, &err);
+    if (sw && !csv && err.code == RD_OK)
+        rd_error_set(&err, RD_ENOMEM, "", "The server is out of memory.");
     pthread_mutex_unlock(&ss->mu);
     if (!sw) {
         reply_not_found(r, id);
@@ -622,9 +737,8 @@ static void item_delete(rd_sweeps *ss, const char *id, rd_sweeps_reply *r)
         return;
     }
     if (is_final(sw->status) && sw->running == 0) {
-        unlink_locked(ss, sw);
+        drop_locked(ss, sw);
         pthread_mutex_unlock(&ss->mu);
-        sweep_free(sw);
         r->status = 204;
         return;
     }

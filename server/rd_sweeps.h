@@ -15,9 +15,13 @@
  * row, `cancelled` (DELETE; the rows done stay), or `interrupted` (the
  * server stopped).  DELETE of a finished sweep deletes it.
  *
- * Sweeps live in memory: a restart forgets them (the job store holds jobs
- * only).  At most `queue_max` unfinished sweeps (more: RD_EBUSY, 503) and
- * `keep_max` finished ones (the oldest finished go first).
+ * A sweep that becomes final is rendered once (its JSON, its CSV, its list
+ * entry), written to the job store's `sweeps` table and served from that
+ * text; its rows and spec are freed.  A restart loads the finished sweeps
+ * back; sweeps queued or running when the server stops end `interrupted`
+ * with the rows done.  At most `queue_max` unfinished sweeps (more:
+ * RD_EBUSY, 503) and `keep_max` finished ones (the oldest finished go
+ * first, from memory and store).
  *
  * The HTTP layer hands each request here and turns the rd_sweeps_reply
  * into a response: this module knows no libmicrohttpd type, rd_http.c no
@@ -29,6 +33,7 @@
 #include <stddef.h>
 
 #include "rd_error.h"
+#include "rd_store.h"
 
 /* Sweep ids: 16 lowercase hex digits, as job ids. */
 #define RD_SWEEPS_ID_LEN 16
@@ -41,6 +46,7 @@ typedef struct rd_sweeps_config {
     double timeout_s;  /* run time limit per point, > 0 */
     int queue_max;     /* unfinished sweeps at once, >= 1 */
     int keep_max;      /* finished sweeps kept, >= 1 */
+    rd_store *store;   /* finished sweeps persist here (borrowed); NULL: memory only */
     /* Called (no lock held) when a sweep reaches a final state, so that
      * requests waiting for it can be woken.  May be NULL. */
     void (*on_final)(void *ctx);

@@ -6,7 +6,8 @@
 # over the time limit is a row with its error, not a failed sweep; a spec
 # over the service limit is refused naming the cluster path; bad specs are
 # 400 with the path of the problem, before anything runs; the fidelity
-# request; the token and the Host allowlist.
+# request; finished sweeps survive a restart (the job store), unfinished
+# ones end interrupted; the token and the Host allowlist.
 #
 #   sweeps.sh SERVER_BINARY RD_JSONQ RINGDYN_CLI
 set -euo pipefail
@@ -151,6 +152,40 @@ expect_error "fidelity scene invalid" 400 invalid_request /fidelity/ring/diamete
 post '/api/v1/sweeps' '{"fidelity": {"analysis": "modal"}, "segmnts": [5]}'
 expect_error "fidelity unknown field" 400 invalid_request /segmnts
 stop_server S "$S_PID"
+
+# ---- finished sweeps outlive the server; unfinished ones end interrupted ------------
+DATA=$WORK/data
+start_server P --data "$DATA"
+P_PID=$SPID
+post '/api/v1/sweeps?wait=60' "$SPEC"
+PID_=$(json /id)
+cp "$WORK/body" "$WORK/before.json"
+req GET "/api/v1/sweeps/$PID_/table.csv"
+cp "$WORK/body" "$WORK/before.csv"
+post '/api/v1/sweeps' '{"base": '"$SLOW"', "parameters": [{"path": "/ring/tangential_force",
+  "range": {"start": 5, "stop": 15, "count": 20}}], "outputs": ["/modes/0/frequency_hz"]}'
+RUNNING=$(json /id)
+check "a slow sweep runs at the stop" wait_status "$RUNNING" running
+stop_server P "$P_PID"
+start_server P2 --data "$DATA"
+P2_PID=$SPID
+req GET "/api/v1/sweeps/$PID_"
+check "after a restart the finished sweep is served byte for byte as before" cmp -s "$WORK/body" "$WORK/before.json"
+req GET "/api/v1/sweeps/$PID_/table.csv"
+check "... and its table.csv" cmp -s "$WORK/body" "$WORK/before.csv"
+req GET "/api/v1/sweeps/$RUNNING"
+same "the sweep running at the stop is interrupted" "$(json /status)" interrupted
+check "... with fewer rows than points" test "$(jcount /table/rows)" -lt 20
+req GET /api/v1/sweeps
+same "the list after the restart: both, newest first" "$(json /sweeps/0/id) $(json /sweeps/1/id)" "$RUNNING $PID_"
+req DELETE "/api/v1/sweeps/$PID_"
+same "DELETE of the stored sweep -> 204" "$STATUS" 204
+stop_server P2 "$P2_PID"
+start_server P3 --data "$DATA"
+P3_PID=$SPID
+req GET "/api/v1/sweeps/$PID_"
+expect_error "a deleted sweep stays deleted after a restart" 404 not_found
+stop_server P3 "$P3_PID"
 
 # ---- token and Host ----------------------------------------------------------------------
 head -c 24 /dev/urandom | base64 >"$WORK/token"
