@@ -378,6 +378,7 @@ int main(int argc, char **argv)
         goto out;
     fprintf(stderr, "ringdyn-server: %s, shutting down\n", sig == SIGINT ? "SIGINT" : "SIGTERM");
     rd_http_quiesce(http);
+    rd_sweeps_stop(sweeps);
     rd_jobs_shutdown(jobs, STOP_WAIT_S);
     rd_sweeps_shutdown(sweeps, STOP_WAIT_S);
     rd_http_drain(http, DRAIN_S);

@@ -66,7 +66,8 @@ struct rd_sweeps {
     pthread_cond_t work; /* a point to run, or stop */
     pthread_cond_t idle; /* a point finished */
     struct sweep *head, *tail;
-    size_t busy; /* points running in all */
+    size_t busy;   /* points running in all */
+    int notifying; /* workers inside on_final (shutdown waits for them) */
     int stopping;
     int random_fd;
     pthread_t *workers;
@@ -435,9 +436,12 @@ static void *worker_main(void *arg)
             release_rows(sw);
         pthread_cond_broadcast(&ss->idle);
         if (settle_locked(ss, sw)) {
+            ss->notifying++;
             pthread_mutex_unlock(&ss->mu);
             notify_final(ss);
             pthread_mutex_lock(&ss->mu);
+            ss->notifying--;
+            pthread_cond_broadcast(&ss->idle);
         }
     }
     pthread_mutex_unlock(&ss->mu);
@@ -527,6 +531,16 @@ int rd_sweeps_create(const rd_sweeps_config *cfg, rd_sweeps **out, rd_error *err
     return RD_OK;
 }
 
+void rd_sweeps_stop(rd_sweeps *ss)
+{
+    if (!ss)
+        return;
+    pthread_mutex_lock(&ss->mu);
+    ss->stopping = 1;
+    pthread_cond_broadcast(&ss->work);
+    pthread_mutex_unlock(&ss->mu);
+}
+
 void rd_sweeps_shutdown(rd_sweeps *ss, double wait_s)
 {
     if (!ss)
@@ -545,6 +559,10 @@ void rd_sweeps_shutdown(rd_sweeps *ss, double wait_s)
         }
         pthread_cond_timedwait(&ss->idle, &ss->mu, &t);
     }
+    /* A worker that ended a sweep just before may still be telling on_final;
+     * after this returns nobody calls it (every sweep is final). */
+    while (ss->notifying > 0)
+        pthread_cond_wait(&ss->idle, &ss->mu);
     int ended = 0;
     for (struct sweep *sw = ss->head; sw; sw = sw->next)
         if (!is_final(sw->status)) { /* what still runs is abandoned: interrupted */

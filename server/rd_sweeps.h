@@ -71,6 +71,10 @@ typedef struct rd_sweeps rd_sweeps;
 
 int rd_sweeps_create(const rd_sweeps_config *cfg, rd_sweeps **out, rd_error *err);
 
+/* Asks the running points to stop and takes no new ones, without waiting
+ * (so that they stop while the jobs do). */
+void rd_sweeps_stop(rd_sweeps *sweeps);
+
 /* Stops taking points; unfinished sweeps end `interrupted` once their
  * running points stop (asked to at once), waiting at most `wait_s`.
  * Idempotent. */
