@@ -20,7 +20,7 @@
  * text; its rows and spec are freed.  A restart loads the finished sweeps
  * back; sweeps queued or running when the server stops end `interrupted`
  * with the rows done.  At most `queue_max` unfinished sweeps (more:
- * RD_EBUSY, 503) and `keep_max` finished ones (the oldest finished go
+ * RD_EBUSY, 429) and `keep_max` finished ones (the oldest finished go
  * first, from memory and store).
  *
  * The HTTP layer hands each request here and turns the rd_sweeps_reply

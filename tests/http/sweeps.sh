@@ -116,6 +116,22 @@ expect_error "GET of the deleted sweep" 404 not_found
 req DELETE "/api/v1/sweeps/$C/table.csv"
 expect_error "DELETE on table.csv" 405 method_not_allowed
 
+# ---- at most 8 sweeps queued or running ----------------------------------------------
+FULL=()
+for i in $(seq 1 8); do
+  post '/api/v1/sweeps' '{"base": '"$SLOW"', "parameters": [{"path": "/ring/tangential_force",
+    "range": {"start": 5, "stop": 15, "count": 20}}], "outputs": ["/modes/0/frequency_hz"]}'
+  FULL+=("$(json /id)")
+done
+post '/api/v1/sweeps' "$SPEC"
+expect_error "a 9th unfinished sweep" 429 queue_full
+check "... with Retry-After" test -n "$(header Retry-After)"
+for id in "${FULL[@]}"; do
+  req DELETE "/api/v1/sweeps/$id" # cancel
+  req DELETE "/api/v1/sweeps/$id" # and delete
+done
+same "the 8 were cancelled and deleted" "$STATUS" 204
+
 # ---- refused before anything runs --------------------------------------------------
 post '/api/v1/sweeps' '{"base": {"analysis": "modal"}, "parameters": [{"path": "/ring/tangential_force",
   "range": {"start": 1, "stop": 20, "count": 51}}], "outputs": ["/modes/0/frequency_hz"]}'
