@@ -354,7 +354,7 @@ const runsOf = (flank) => flank.filter((f, i) => i === 0 || f !== flank[i - 1]);
 test('four analysis tabs: arrow keys move between them, each shows its own labelled fields', { timeout: 60000 }, async () => {
   await page.goto(`${BASE}/`);
   await page.waitForSelector('#tab-modal[aria-selected="true"]');
-  assert.deepEqual(await page.$$eval('[role="tab"]', (ts) => ts.map((t) => t.textContent)), ['Modal', 'Pretension', 'Contact', 'Lift']);
+  assert.deepEqual(await page.$$eval('#tabs [role="tab"]', (ts) => ts.map((t) => t.textContent)), ['Modal', 'Pretension', 'Contact', 'Lift']);
   await page.focus('#tab-modal');
   for (const id of ['pretension', 'contact', 'lift', 'modal']) {
     await page.keyboard.press('ArrowRight');
