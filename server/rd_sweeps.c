@@ -680,10 +680,10 @@ void rd_sweeps_post(rd_sweeps *ss, const char *body, size_t len, double wait_s,
     else
         ss->head = sw;
     ss->tail = sw;
-    int final = settle_locked(ss, sw); /* a sweep of 0 points (cannot happen today) ends at once */
-    pthread_cond_broadcast(&ss->work);
     char id[RD_SWEEPS_ID_LEN + 1];
     memcpy(id, sw->id, sizeof id);
+    int final = settle_locked(ss, sw); /* a sweep of 0 points (cannot happen today) ends at once */
+    pthread_cond_broadcast(&ss->work);
     pthread_mutex_unlock(&ss->mu);
     if (final)
         notify_final(ss);

@@ -93,6 +93,8 @@ same "a sweep with a point over the limit succeeds" "$(json /status)" succeeded
 same "... one point failed" "$(json /failed)" 1
 same "... the fast point's row is ok" "$(json /table/rows/0/3)" ok
 same "... the slow point's row says time_limit" "$(json /table/rows/1/3)" time_limit
+same "... with its parameter values and a null output" \
+  "$(json /table/rows/1/0) $(json /table/rows/1/1) $(json /table/rows/1/2)" "2000 60 null"
 check "... and names the limit" grep -q 'time limit of 0.5 s' "$WORK/body"
 
 # ---- cancel ------------------------------------------------------------------------
