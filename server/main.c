@@ -29,6 +29,8 @@
 #include "rd_jobs.h"
 #include "rd_metrics.h"
 #include "rd_store.h"
+#include "rd_sweep.h"
+#include "rd_sweeps.h"
 
 /* --allow-host may be given this many times. */
 #define ALLOW_HOSTS_MAX 32
@@ -41,6 +43,9 @@
  * sent may take; together under 1 s. */
 #define STOP_WAIT_S 0.4
 #define DRAIN_S 0.4
+/* Sweeps queued or running at once, and finished sweeps kept in memory. */
+#define SWEEPS_QUEUE_MAX 8
+#define SWEEPS_KEEP_MAX 32
 
 struct options {
     const char *host;
@@ -58,6 +63,7 @@ struct options {
     const char *allow_hosts[ALLOW_HOSTS_MAX];
     int n_allow_hosts;
     const char *token_file;
+    long sweep_max_points;
 };
 
 static void usage(FILE *f)
@@ -79,6 +85,9 @@ static void usage(FILE *f)
             "                    $XDG_STATE_HOME/ringdyn or ~/.local/state/ringdyn; ':memory:'\n"
             "                    keeps nothing across restarts.  Finished jobs survive a restart;\n"
             "                    jobs queued or running when the server stopped end 'interrupted'\n"
+            "  --sweep-max-points N  points a sweep may have (default 10000, 1..1000000); a larger\n"
+            "                    one is refused with the cluster path (ringdyn sweep run --chunks K).\n"
+            "                    Sweeps run on --threads workers of their own; finished ones are stored\n"
             "connections (libmicrohttpd's epoll event loop; an open connection holds no thread):\n"
             "  --http-threads N  event-loop threads (default 4, 1..64)\n"
             "  --max-connections N  open connections in all (default 1000, 1..100000);\n"
@@ -148,6 +157,8 @@ static int parse_options(int argc, char **argv, struct options *o)
             ok = parse_long(value, 1, 10000, &o->queue);
         else if (IS("--keep-jobs"))
             ok = parse_long(value, 1, 100000, &o->keep_jobs);
+        else if (IS("--sweep-max-points"))
+            ok = parse_long(value, 1, RD_SWEEP_POINTS_MAX, &o->sweep_max_points);
         else if (IS("--allow-host")) {
             ok = o->n_allow_hosts < ALLOW_HOSTS_MAX;
             if (ok)
@@ -276,7 +287,7 @@ int main(int argc, char **argv)
 {
     struct options opt = {.host = "127.0.0.1", .port = -1, .threads = 2, .queue = 32,
                           .job_timeout = 120.0, .keep_jobs = 256, .keep_mb = 512,
-                          .keep_days = 30,
+                          .keep_days = 30, .sweep_max_points = RD_SWEEPS_POINTS_DEFAULT,
                           .limits = {.threads = 4,
                                      .connections_max = 1000,
                                      .per_ip_max = 64,
@@ -288,6 +299,7 @@ int main(int argc, char **argv)
     int status = 1;
     rd_metrics *metrics = NULL;
     rd_jobs *jobs = NULL;
+    rd_sweeps *sweeps = NULL;
     rd_http *http = NULL;
     rd_error err;
     rd_error_init(&err);
@@ -333,6 +345,12 @@ int main(int argc, char **argv)
                          .on_final_ctx = &http};
     if (rd_jobs_create(&jc, &jobs, &err) != RD_OK)
         goto fail;
+    rd_sweeps_config sc = {.threads = (int)opt.threads, .max_points = (size_t)opt.sweep_max_points,
+                           .timeout_s = opt.job_timeout, .queue_max = SWEEPS_QUEUE_MAX,
+                           .keep_max = SWEEPS_KEEP_MAX, .store = store, .on_final = on_job_final,
+                           .on_final_ctx = &http};
+    if (rd_sweeps_create(&sc, &sweeps, &err) != RD_OK)
+        goto fail;
     if (opt.token_file && !(token = read_token(opt.token_file)))
         goto out;
     rd_http_config hc = {.host = opt.host,
@@ -342,7 +360,8 @@ int main(int argc, char **argv)
                          .allow_hosts = opt.allow_hosts,
                          .n_allow_hosts = opt.n_allow_hosts,
                          .token = token,
-                         .limits = opt.limits};
+                         .limits = opt.limits,
+                         .sweeps = sweeps};
     if (rd_http_create(&hc, jobs, metrics, &http, &err) != RD_OK)
         goto fail;
 
@@ -359,7 +378,9 @@ int main(int argc, char **argv)
         goto out;
     fprintf(stderr, "ringdyn-server: %s, shutting down\n", sig == SIGINT ? "SIGINT" : "SIGTERM");
     rd_http_quiesce(http);
+    rd_sweeps_stop(sweeps);
     rd_jobs_shutdown(jobs, STOP_WAIT_S);
+    rd_sweeps_shutdown(sweeps, STOP_WAIT_S);
     rd_http_drain(http, DRAIN_S);
     status = 0;
     goto out;
@@ -368,6 +389,7 @@ fail:
 out:
     rd_http_free(http);
     rd_jobs_free(jobs);
+    rd_sweeps_free(sweeps);
     rd_store_free(store);
     rd_metrics_free(metrics);
     free(token);

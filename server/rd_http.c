@@ -70,6 +70,7 @@ struct rd_http {
     MHD_socket quiesced_fd; /* listen socket handed back by MHD_quiesce_daemon */
     rd_jobs *jobs;          /* borrowed */
     rd_metrics *metrics;    /* borrowed */
+    rd_sweeps *sweeps;      /* borrowed, may be NULL */
     char *static_root;      /* realpath of the static dir, or NULL */
     char *examples_dir;     /* realpath of the examples dir, or NULL */
     char host[INET6_ADDRSTRLEN + 2];
@@ -100,7 +101,7 @@ struct conn {
     int shut;     /* the deadline passed and the socket was shut down */
 };
 
-enum wait_kind { WAIT_NONE, WAIT_SUBMIT, WAIT_CANCEL };
+enum wait_kind { WAIT_NONE, WAIT_SUBMIT, WAIT_CANCEL, WAIT_SWEEP };
 
 /* Per-request state, kept by MHD in *req_cls between calls. */
 struct request {
@@ -119,6 +120,7 @@ struct request {
     size_t len, cap;
     int too_large; /* the body passed RD_API_BODY_MAX: the rest is dropped */
     int no_memory;
+    int sweep;        /* a POST /api/v1/sweeps; with WAIT_SWEEP: a wait that answers it */
 };
 
 enum route {
@@ -131,7 +133,10 @@ enum route {
     ROUTE_HEALTH,
     ROUTE_OPENAPI,
     ROUTE_METRICS,
-    ROUTE_STATIC
+    ROUTE_STATIC,
+    ROUTE_SWEEPS,
+    ROUTE_SWEEP,
+    ROUTE_SWEEP_CSV
 };
 
 /* ---- small helpers ---- */
@@ -284,7 +289,7 @@ static enum route match_route(const char *url, char *arg, size_t argsz)
         enum route route;
     } fixed[] = {{"/api/v1/jobs", ROUTE_JOBS},       {"/api/v1/examples", ROUTE_EXAMPLES},
                  {"/api/v1/health", ROUTE_HEALTH},   {"/api/v1/openapi.json", ROUTE_OPENAPI},
-                 {"/metrics", ROUTE_METRICS}};
+                 {"/metrics", ROUTE_METRICS},        {"/api/v1/sweeps", ROUTE_SWEEPS}};
     arg[0] = '\0';
     for (size_t i = 0; i < sizeof fixed / sizeof fixed[0]; i++)
         if (strcmp(url, fixed[i].path) == 0)
@@ -299,6 +304,15 @@ static enum route match_route(const char *url, char *arg, size_t argsz)
         memcpy(arg, rest, n);
         arg[n] = '\0';
         return slash ? ROUTE_JOB_CSV : ROUTE_JOB;
+    }
+    if ((rest = after_prefix(url, "/api/v1/sweeps/"))) {
+        const char *slash = strchr(rest, '/');
+        size_t n = slash ? (size_t)(slash - rest) : strlen(rest);
+        if (n == 0 || n >= argsz || (slash && strcmp(slash, "/table.csv") != 0))
+            return ROUTE_NONE;
+        memcpy(arg, rest, n);
+        arg[n] = '\0';
+        return slash ? ROUTE_SWEEP_CSV : ROUTE_SWEEP;
     }
     if ((rest = after_prefix(url, "/api/v1/examples/"))) {
         size_t n = strlen(rest);
@@ -324,8 +338,10 @@ static const char *allowed_methods(enum route r)
 {
     switch (r) {
     case ROUTE_JOBS:
+    case ROUTE_SWEEPS:
         return "GET, HEAD, POST";
     case ROUTE_JOB:
+    case ROUTE_SWEEP:
         return "GET, HEAD, DELETE";
     default:
         return "GET, HEAD";
@@ -447,7 +463,9 @@ static struct request *take_ready_locked(rd_http *h, double now, int all)
     struct request *ready = NULL, *rq = h->waiters;
     while (rq) {
         struct request *next = rq->next;
-        if (all || now >= rq->until || rd_jobs_is_final(h->jobs, rq->job_id)) {
+        int final = rq->waiting == WAIT_SWEEP ? rd_sweeps_is_final(h->sweeps, rq->job_id)
+                                              : rd_jobs_is_final(h->jobs, rq->job_id);
+        if (all || now >= rq->until || final) {
             if (rq->prev)
                 rq->prev->next = rq->next;
             else
@@ -1015,6 +1033,52 @@ static enum MHD_Result job_route(rd_http *h, struct MHD_Connection *c, struct re
     return send_response(h, c, rq, MHD_HTTP_OK, job_response(shared, body));
 }
 
+/* An rd_sweeps answer as a response, or a suspended wait (status 0). */
+static enum MHD_Result sweep_reply(rd_http *h, struct MHD_Connection *c, struct request *rq,
+                                   rd_sweeps_reply *sr)
+{
+    if (sr->status == 0) {
+        rq->sweep = sr->wait_submit;
+        return suspend_for(h, c, rq, WAIT_SWEEP, sr->wait_id, sr->wait_s);
+    }
+    struct MHD_Response *r =
+        sr->body ? text_response(sr->body, sr->content_type)
+                 : MHD_create_response_from_buffer(0, (void *)"", MHD_RESPMEM_PERSISTENT);
+    sr->body = NULL;
+    char seconds[16];
+    snprintf(seconds, sizeof seconds, "%d", sr->retry_after);
+    if (r && ((sr->location[0] &&
+               MHD_add_response_header(r, MHD_HTTP_HEADER_LOCATION, sr->location) != MHD_YES) ||
+              (sr->disposition[0] &&
+               MHD_add_response_header(r, "Content-Disposition", sr->disposition) != MHD_YES) ||
+              (sr->retry_after &&
+               MHD_add_response_header(r, MHD_HTTP_HEADER_RETRY_AFTER, seconds) != MHD_YES))) {
+        MHD_destroy_response(r);
+        r = NULL;
+    }
+    return send_response(h, c, rq, sr->status, r);
+}
+
+/* GET /api/v1/sweeps, and GET/HEAD/DELETE under it. */
+static enum MHD_Result sweep_route(rd_http *h, struct MHD_Connection *c, struct request *rq,
+                                   enum route route, const char *method, const char *id)
+{
+    rd_sweeps_reply sr = {0};
+    long limit = LIST_LIMIT_DEFAULT;
+    const char *s = MHD_lookup_connection_value(c, MHD_GET_ARGUMENT_KIND, "limit");
+    if (route == ROUTE_SWEEPS && s && !parse_count(s, 1, LIST_LIMIT_MAX, &limit)) {
+        char buf[32];
+        return send_fail(h, c, rq, RD_EREQUEST,
+                         "The query parameter limit must be a whole number from 1 to %d, not \"%s\".",
+                         LIST_LIMIT_MAX, printable(s, buf, sizeof buf));
+    }
+    if (route == ROUTE_SWEEPS)
+        rd_sweeps_list(h->sweeps, (size_t)limit, &sr);
+    else
+        rd_sweeps_item(h->sweeps, method, id, route == ROUTE_SWEEP_CSV, &sr);
+    return sweep_reply(h, c, rq, &sr);
+}
+
 /* First call of POST /api/v1/jobs: everything that can be refused before
  * the body is read. */
 static enum MHD_Result begin_submit(rd_http *h, struct MHD_Connection *c, struct request *rq)
@@ -1107,6 +1171,11 @@ static enum MHD_Result answer_waiter(rd_http *h, struct MHD_Connection *c, struc
     rq->resumed = 0;
     if (kind == WAIT_SUBMIT)
         return answer_submit(h, c, rq, rq->job_id);
+    if (kind == WAIT_SWEEP) {
+        rd_sweeps_reply sr = {0};
+        rd_sweeps_answer_wait(h->sweeps, rq->job_id, rq->sweep, &sr);
+        return sweep_reply(h, c, rq, &sr);
+    }
     rd_error err;
     rd_error_init(&err);
     char *body = NULL;
@@ -1126,6 +1195,12 @@ static enum MHD_Result finish_submit(rd_http *h, struct MHD_Connection *c, struc
                          RD_API_BODY_MAX);
     if (rq->no_memory)
         return send_response(h, c, rq, 0, NULL);
+    if (rq->sweep) {
+        rd_sweeps_reply sr = {0};
+        rd_sweeps_post(h->sweeps, rq->body ? rq->body : "", rq->len, rq->has_wait ? rq->wait_s : -1,
+                       &sr);
+        return sweep_reply(h, c, rq, &sr);
+    }
 
     rd_scene *scene = NULL;
     int rc = rd_scene_parse(rq->body ? rq->body : "", rq->len, &scene, &err);
@@ -1172,7 +1247,7 @@ static enum MHD_Result begin_request(rd_http *h, struct MHD_Connection *c, struc
                                  MHD_HTTP_HEADER_WWW_AUTHENTICATE, "Bearer realm=\"ringdyn\"");
     if (route == ROUTE_STATIC)
         return serve_static(h, c, rq, url, method);
-    if (route == ROUTE_NONE)
+    if (route == ROUTE_NONE || (route >= ROUTE_SWEEPS && !h->sweeps))
         return send_not_found(h, c, rq, url);
 
     const char *allow = allowed_methods(route);
@@ -1202,6 +1277,15 @@ static enum MHD_Result begin_request(rd_http *h, struct MHD_Connection *c, struc
         return get_openapi(h, c, rq);
     case ROUTE_METRICS:
         return get_metrics(h, c, rq);
+    case ROUTE_SWEEPS:
+        if (strcmp(method, MHD_HTTP_METHOD_POST) == 0) {
+            rq->sweep = 1;
+            return begin_submit(h, c, rq);
+        }
+        return sweep_route(h, c, rq, route, method, arg);
+    case ROUTE_SWEEP:
+    case ROUTE_SWEEP_CSV:
+        return sweep_route(h, c, rq, route, method, arg);
     case ROUTE_NONE:
     case ROUTE_STATIC:
         break;
@@ -1366,6 +1450,7 @@ int rd_http_create(const rd_http_config *cfg, rd_jobs *jobs, rd_metrics *metrics
         return rd_error_set(err, RD_ENOMEM, "", "Out of memory.");
     h->jobs = jobs;
     h->metrics = metrics;
+    h->sweeps = cfg->sweeps;
     h->quiesced_fd = MHD_INVALID_SOCKET;
     pthread_condattr_t attr;
     pthread_condattr_init(&attr);

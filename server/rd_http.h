@@ -21,6 +21,7 @@
 #include "rd_error.h"
 #include "rd_jobs.h"
 #include "rd_metrics.h"
+#include "rd_sweeps.h"
 
 /* Longest ?wait= a client may ask for, seconds. */
 #define RD_HTTP_WAIT_MAX 300
@@ -42,11 +43,12 @@ typedef struct rd_http_config {
      * localhost, [::1]) and the bound address; any port.  May be NULL. */
     const char *const *allow_hosts;
     int n_allow_hosts;
-    /* Bearer token every /api/v1/jobs*, /api/v1/examples* and /metrics
+    /* Bearer token every /api/v1/jobs*, /api/v1/sweeps*, /api/v1/examples* and /metrics
      * request must send (Authorization: Bearer TOKEN), or NULL for none.
      * Required when `host` is not a loopback address. */
     const char *token;
     rd_http_limits limits;
+    rd_sweeps *sweeps; /* /api/v1/sweeps*, borrowed; NULL: those routes are 404 */
 } rd_http_config;
 
 typedef struct rd_http rd_http;

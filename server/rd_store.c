@@ -49,7 +49,14 @@ static const char schema[] =
     " error TEXT,"
     " body BLOB,"
     " body_len INTEGER NOT NULL DEFAULT 0);"
-    "CREATE INDEX IF NOT EXISTS jobs_finished ON jobs (finished_ns);";
+    "CREATE INDEX IF NOT EXISTS jobs_finished ON jobs (finished_ns);"
+    /* Finished sweeps (rd_sweeps): written once when final, never changed. */
+    "CREATE TABLE IF NOT EXISTS sweeps ("
+    " seq INTEGER PRIMARY KEY AUTOINCREMENT,"
+    " id TEXT NOT NULL UNIQUE,"
+    " meta TEXT NOT NULL,"
+    " body TEXT NOT NULL,"
+    " csv TEXT NOT NULL);";
 
 static int db_fail(sqlite3 *db, int src, const char *what, rd_error *err)
 {
@@ -415,5 +422,65 @@ int rd_store_retain(rd_store *store, size_t keep_max, size_t keep_bytes, int64_t
     for (size_t i = 0; status == RD_OK && i < n; i++)
         gone(ctx, ids[i]);
     free(ids);
+    return status;
+}
+
+/* ---- finished sweeps ---- */
+
+int rd_store_sweep_put(rd_store *store, const char *id, const char *meta, const char *body,
+                       const char *csv, rd_error *err)
+{
+    sqlite3_stmt *st;
+    pthread_mutex_lock(&store->mu);
+    int status = prepare(store->db,
+                         "INSERT OR REPLACE INTO sweeps (id, meta, body, csv) VALUES (?, ?, ?, ?)",
+                         &st, err);
+    if (status == RD_OK) {
+        int rc = bind_text(st, 1, id);
+        rc = rc ? rc : bind_text(st, 2, meta);
+        rc = rc ? rc : bind_text(st, 3, body);
+        rc = rc ? rc : bind_text(st, 4, csv);
+        status = run(store->db, st, "sweep insert", rc, err);
+    }
+    pthread_mutex_unlock(&store->mu);
+    return status;
+}
+
+int rd_store_sweep_delete(rd_store *store, const char *id, rd_error *err)
+{
+    sqlite3_stmt *st;
+    pthread_mutex_lock(&store->mu);
+    int status = prepare(store->db, "DELETE FROM sweeps WHERE id = ?", &st, err);
+    if (status == RD_OK)
+        status = run(store->db, st, "sweep delete", bind_text(st, 1, id), err);
+    if (status == RD_OK)
+        status = exec(store->db, "PRAGMA incremental_vacuum", err);
+    pthread_mutex_unlock(&store->mu);
+    return status;
+}
+
+int rd_store_sweep_load(rd_store *store,
+                        int (*each)(void *ctx, const char *id, const char *meta, const char *body,
+                                    const char *csv),
+                        void *ctx, rd_error *err)
+{
+    sqlite3_stmt *st;
+    pthread_mutex_lock(&store->mu);
+    int status = prepare(store->db, "SELECT id, meta, body, csv FROM sweeps ORDER BY seq", &st, err);
+    int rc = SQLITE_DONE;
+    while (status == RD_OK && (rc = sqlite3_step(st)) == SQLITE_ROW) {
+        const char *t[4];
+        for (int k = 0; k < 4; k++)
+            t[k] = (const char *)sqlite3_column_text(st, k);
+        if (!t[0] || !t[1] || !t[2] || !t[3]) {
+            status = rd_error_set(err, RD_EINTERNAL, "", "Job store: a sweep row with a NULL.");
+            break;
+        }
+        status = each(ctx, t[0], t[1], t[2], t[3]);
+    }
+    if (status == RD_OK && rc != SQLITE_DONE)
+        status = db_fail(store->db, rc, "sweep load", err);
+    sqlite3_finalize(st);
+    pthread_mutex_unlock(&store->mu);
     return status;
 }

@@ -2,7 +2,7 @@
  * rd_store — the job store on disk: one SQLite database (Debian libsqlite3)
  * in WAL mode, so that finished jobs outlive the process.
  *
- * One table, one row per job: id, analysis, status (the names of
+ * One table of jobs, one row per job (and one of finished sweeps, below): id, analysis, status (the names of
  * rd_jobs_status_name), progress, the three times (nanoseconds since the
  * epoch, 0 = not yet), the echoed scene, the error body (rd_api_error_json)
  * and, for a succeeded job, the job's whole JSON as served (`body`, written
@@ -70,5 +70,18 @@ int rd_store_read_body(rd_store *store, const char *id, char **body, size_t *len
  * `gone(ctx, id)` is called for each deleted row. */
 int rd_store_retain(rd_store *store, size_t keep_max, size_t keep_bytes, int64_t oldest_ns,
                     void (*gone)(void *ctx, const char *id), void *ctx, rd_error *err);
+
+/* Finished sweeps (rd_sweeps), one row each in table `sweeps`: id, `meta`
+ * (the sweep's JSON without its table, for lists), `body` (its whole JSON
+ * as served) and `csv` (its table as CSV), written once when it is final.
+ * put replaces a row of the same id; delete of an unknown id is no error;
+ * load calls `each` oldest first (strings live only during the call). */
+int rd_store_sweep_put(rd_store *store, const char *id, const char *meta, const char *body,
+                       const char *csv, rd_error *err);
+int rd_store_sweep_delete(rd_store *store, const char *id, rd_error *err);
+int rd_store_sweep_load(rd_store *store,
+                        int (*each)(void *ctx, const char *id, const char *meta, const char *body,
+                                    const char *csv),
+                        void *ctx, rd_error *err);
 
 #endif

@@ -118,3 +118,18 @@ export function cancelJob(id) {
 export function jobUrl(id, suffix = '') {
   return `/api/v1/jobs/${encodeURIComponent(id)}${suffix}`;
 }
+
+// POST a JSON body (e.g. a sweep spec); resolves with the answer's JSON.
+export async function postJSON(url, body, { signal } = {}) {
+  return (await request(url, {
+    method: 'POST',
+    headers: { 'Content-Type': 'application/json', Accept: 'application/json' },
+    body: JSON.stringify(body),
+    signal,
+  })).body;
+}
+
+// DELETE `url` (a sweep); resolves with the Response, or undefined when unreachable.
+export function deleteUrl(url) {
+  return fetch(url, { method: 'DELETE', headers: authHeaders() }).catch(() => {});
+}

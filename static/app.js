@@ -14,6 +14,7 @@ import { contact } from './contact.js';
 import { lift } from './lift.js';
 import { curlText, pythonText, saveBlob } from './script.js';
 import { watchCharts, addExportButtons } from './charts.js';
+import { setupSweeps } from './sweep.js';
 
 const ANALYSES = [modal, pretension, contact, lift];
 
@@ -242,6 +243,7 @@ async function run(event) {
     showError(err);
     return;
   }
+  views.select('result'); // the run's result is what to see now
   await follow(analysis, (signal, onUpdate) => runJob(scene, { wait: WAIT_S, signal, onUpdate }));
 }
 
@@ -447,6 +449,11 @@ $('load-scene-file').addEventListener('change', (e) => {
   if (file) loadSceneFile(file);
 });
 $('result-body').addEventListener('click', saveCsv);
+// The Sweep and Speed vs accuracy views: their base scene is the form's, of
+// the analysis shown.
+const views = setupSweeps({ form, analysis: () => state.analysis.id, onApply: (text) => setStatus(text) });
+watchCharts($('sweep-view'));
+watchCharts($('fidelity-view'));
 loadVersion();
 // A job in the address is reopened once the examples (the gas tables the
 // form offers) are known.

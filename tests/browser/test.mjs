@@ -354,7 +354,7 @@ const runsOf = (flank) => flank.filter((f, i) => i === 0 || f !== flank[i - 1]);
 test('four analysis tabs: arrow keys move between them, each shows its own labelled fields', { timeout: 60000 }, async () => {
   await page.goto(`${BASE}/`);
   await page.waitForSelector('#tab-modal[aria-selected="true"]');
-  assert.deepEqual(await page.$$eval('[role="tab"]', (ts) => ts.map((t) => t.textContent)), ['Modal', 'Pretension', 'Contact', 'Lift']);
+  assert.deepEqual(await page.$$eval('#tabs [role="tab"]', (ts) => ts.map((t) => t.textContent)), ['Modal', 'Pretension', 'Contact', 'Lift']);
   await page.focus('#tab-modal');
   for (const id of ['pretension', 'contact', 'lift', 'modal']) {
     await page.keyboard.press('ArrowRight');
@@ -1041,6 +1041,134 @@ for (const width of [1280, 390]) {
       }
     } finally {
       await page.setViewportSize({ width: 1280, height: 800 });
+      await page.getByRole('button', { name: 'Reset to defaults' }).click();
+    }
+  });
+}
+
+// ---- the Sweep and Speed vs accuracy views (issue 16) ----
+
+// The newest sweep on the server, whole (table, fidelity table).
+async function newestSweep() {
+  const list = await (await page.request.get(`${BASE}/api/v1/sweeps?limit=1`)).json();
+  const resp = await page.request.get(`${BASE}/api/v1/sweeps/${list.sweeps[0].id}`);
+  assert.equal(resp.status(), 200);
+  return resp.json();
+}
+const sweepDone = (prefix, word = 'succeeded', timeout = 120000) => page.waitForFunction(
+  ([p, w]) => new RegExp(`Sweep \\w+ ${w}:`).test(document.getElementById(`${p}-status-text`).textContent) && !document.getElementById(`${p}-run`).disabled,
+  [prefix, word], { timeout });
+const circles = (id) => page.$$eval(`#${id} circle.pt`, (cs) => cs.map((c) => ({
+  x: Number(c.dataset.x), y: Number(c.dataset.y), cx: Number(c.getAttribute('cx')), cy: Number(c.getAttribute('cy')), cls: c.getAttribute('class') })));
+
+for (const width of [1280, 390]) {
+  test(`${width} px: a sweep from the form runs, plots an output against a parameter, downloads its CSV; bad specs and cancel`, { timeout: 240000 }, async () => {
+    await page.setViewportSize({ width, height: 844 });
+    try {
+      await page.getByRole('button', { name: 'Reset to defaults' }).click();
+      await selectTab('modal');
+      await page.click('#view-sweep');
+      assert.equal(await page.isVisible('#result-view'), false, 'the result view is hidden');
+      // The editor starts from the form's scene with one example parameter.
+      const spec = JSON.parse(await page.inputValue('#sw-spec'));
+      assert.equal(spec.base.analysis, 'modal');
+      assert.equal(spec.base.ring.radial_width, Number(await page.inputValue('#f-radial-width')));
+      assert.equal(spec.parameters[0].path, '/ring/radial_width');
+      await page.click('#sw-run');
+      await sweepDone('sw');
+      const sw = await newestSweep();
+      assert.equal(sw.status, 'succeeded');
+      assert.equal(sw.table.rows.length, 5);
+      // One marker per point; x = the parameter, y = the first output, as the server's table has them.
+      const pts = await circles('sw-plot');
+      assert.deepEqual(pts.map((p) => p.x), sw.table.rows.map((r) => r[0]));
+      assert.deepEqual(pts.map((p) => p.y), sw.table.rows.map((r) => r[1]));
+      // Screen y falls as the value grows (the frequency rises with the radial width).
+      for (let i = 1; i < pts.length; i++) assert.ok((pts[i].y - pts[i - 1].y) * (pts[i].cy - pts[i - 1].cy) < 0, `marker ${i} is placed by its value`);
+      // Another output from the dropdown redraws the markers at its values.
+      await page.selectOption('#sw-y', { label: '/modes/1/frequency_hz' });
+      assert.deepEqual((await circles('sw-plot')).map((p) => p.y), sw.table.rows.map((r) => r[2]));
+      // The CSV is the server's table.csv.
+      const csv = await download(() => page.click('#sw-csv'));
+      assert.equal(csv.name, `ringdyn-sweep-${sw.id}.csv`);
+      assert.equal(csv.data.toString(), await (await page.request.get(`${BASE}/api/v1/sweeps/${sw.id}/table.csv`)).text());
+      if (width === 390) {
+        const overflow = await page.evaluate(() => document.documentElement.scrollWidth - window.innerWidth);
+        assert.ok(overflow <= 0, `no sideways scrolling (${overflow} px)`);
+        await settled();
+        assert.deepEqual(await smallText(), [], 'sweep view');
+      }
+      await shot(`ringdyn-sweep-${width}.png`, { fullPage: true });
+
+      // A bad spec: the server's message and the path into the spec; nothing runs.
+      const before = (await (await page.request.get(`${BASE}/api/v1/sweeps`)).json()).sweeps.length;
+      const bad = structuredClone(spec);
+      bad.parameters = [{ path: '/discretization/segments', values: [10, 2001] }];
+      await page.fill('#sw-spec', JSON.stringify(bad));
+      await page.click('#sw-run');
+      await page.waitForSelector('#sw-error:not([hidden])');
+      assert.match(await page.textContent('#sw-error'), /2001 is out of range.*\/parameters\/0\/values\/1/);
+      assert.equal((await (await page.request.get(`${BASE}/api/v1/sweeps`)).json()).sweeps.length, before);
+      // Chromium logs the 400 as a failed resource load: expected here.
+      for (let i = consoleErrors.length - 1; i >= 0; i--) if (/status of 400/.test(consoleErrors[i])) consoleErrors.splice(i, 1);
+
+      // Cancel: slow points, cancelled while running.
+      const slow = { base: { analysis: 'modal', discretization: { segments: 2000 }, modal: { modes: 60 } },
+        parameters: [{ path: '/ring/tangential_force', range: { start: 5, stop: 15, count: 8 } }], outputs: ['/modes/0/frequency_hz'] };
+      await page.fill('#sw-spec', JSON.stringify(slow));
+      await page.click('#sw-run');
+      await page.waitForFunction(() => / running /.test(document.getElementById('sw-status-text').textContent));
+      await page.click('#sw-cancel');
+      await sweepDone('sw', 'cancelled', 30000);
+      assert.equal((await newestSweep()).status, 'cancelled');
+      await page.click('#sw-fill');
+      assert.equal(JSON.parse(await page.inputValue('#sw-spec')).parameters[0].path, '/ring/radial_width');
+    } finally {
+      await page.setViewportSize({ width: 1280, height: 800 });
+      await page.click('#view-result');
+    }
+  });
+
+  test(`${width} px: speed vs accuracy plots wall time against the error estimate, the Pareto front marked; a Pareto setting goes back into the form`, { timeout: 240000 }, async () => {
+    await page.setViewportSize({ width, height: 844 });
+    try {
+      await page.getByRole('button', { name: 'Reset to defaults' }).click();
+      await selectTab('modal');
+      await page.click('#view-fidelity');
+      await page.click('#fd-run');
+      await sweepDone('fd');
+      const sw = await newestSweep();
+      assert.equal(sw.kind, 'fidelity');
+      const t = sw.fidelity, c = (name) => t.columns.indexOf(name);
+      const ok = t.rows.filter((r) => r[c('status')] === 'ok');
+      const pts = await circles('fd-plot');
+      assert.equal(pts.length, ok.length);
+      assert.deepEqual(pts.map((p) => p.x), ok.map((r) => r[c('/numerics/wall_s')]));
+      assert.deepEqual(pts.map((p) => p.cls.includes('pareto')), ok.map((r) => r[c('pareto')]));
+      // The front: cheaper means less accurate (sorted by time, the estimates fall).
+      const front = pts.filter((p) => p.cls.includes('pareto')).sort((a, b) => a.x - b.x);
+      assert.ok(front.length >= 1);
+      for (let i = 1; i < front.length; i++) assert.ok(front[i].y < front[i - 1].y, 'the Pareto front trades time for error');
+      assert.equal(pathPoints(await page.getAttribute('#fd-plot .front-line', 'd')), front.length);
+      assert.equal(await page.locator('#fd-table button.use').count(), front.length);
+      // The cheapest setting within 1 %: what the table says.
+      const within = ok.filter((r) => r[c('max(/modes/*/error_estimate)')] <= 0.01).sort((a, b) => a[c('/numerics/wall_s')] - b[c('/numerics/wall_s')])[0];
+      assert.match(await page.textContent('#fd-cheapest'), new RegExp(`segments ${within[0]}\\b`));
+      // A Pareto setting other than the form's goes into the form.
+      const k = ok.findIndex((r) => r[c('pareto')] && r[0] !== 20);
+      await page.click(`#fd-use-${k}`);
+      assert.equal(await page.inputValue('#f-segments'), String(ok[k][0]));
+      assert.match(await page.textContent('#fd-applied'), new RegExp(`segments = ${ok[k][0]} went into the form`));
+      if (width === 390) {
+        const overflow = await page.evaluate(() => document.documentElement.scrollWidth - window.innerWidth);
+        assert.ok(overflow <= 0, `no sideways scrolling (${overflow} px)`);
+        await settled();
+        assert.deepEqual(await smallText(), [], 'speed vs accuracy view');
+      }
+      await shot(`ringdyn-fidelity-${width}.png`, { fullPage: true });
+    } finally {
+      await page.setViewportSize({ width: 1280, height: 800 });
+      await page.click('#view-result');
       await page.getByRole('button', { name: 'Reset to defaults' }).click();
     }
   });

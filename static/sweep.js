@@ -1,0 +1,355 @@
+// The sweep views of the results panel (issue 16): "Sweep" runs a sweep spec
+// through POST /api/v1/sweeps, follows its progress and plots an output
+// column against a parameter column of its table (rows done so far); "Speed
+// vs accuracy" runs the fidelity sweep of the form's scene ({"fidelity":
+// scene}) and plots wall time against the error estimate, the Pareto front
+// highlighted, with a button per Pareto setting that puts it into the form.
+//
+// setupSweeps({form, analysis, onApply}) wires the view tabs: `analysis()`
+// is the id of the analysis whose form is shown; `onApply(text)` is told
+// when a setting went into the form.
+
+import { getBlob, getJSON, postJSON, deleteUrl, ApiError } from './api.js';
+import { h, fill, isNum, sig, seconds } from './html.js';
+import { svg, scale, ticks, axes, pathD } from './svg.js';
+import { saveBlob } from './script.js';
+
+const $ = (id) => document.getElementById(id);
+// Each poll brings the whole table so far: every 0.4 s, every 2 s for a
+// sweep of more than 1000 points (up to about 1 MB a poll at 10^4).
+const POLL_MS = 400;
+const POLL_LARGE_MS = 2000;
+const FINAL = new Set(['succeeded', 'cancelled', 'interrupted']);
+
+// What a sweep of each analysis tabulates by default, and the parameter the
+// example varies (+-20 % around the form's value, 5 points).
+const DEFAULTS = {
+  modal: { param: '/ring/radial_width', outputs: ['/modes/0/frequency_hz', '/modes/1/frequency_hz', 'max(/modes/*/error_estimate)', '/numerics/wall_s'] },
+  pretension: { param: '/ring/radial_width', outputs: ['/gap_opening_inner', '/conformability', '/numerics/wall_s'] },
+  contact: { param: '/ring/radial_width', outputs: ['/uniform_pressure_pa', 'max(/pressure_pa)', 'min(/pressure_pa)', '/numerics/wall_s'] },
+  lift: { param: '/engine/speed_rpm', outputs: ['max(/lift)', 'count(/events)', '/numerics/wall_s'] },
+};
+
+const pointer = (obj, path) => path.split('/').slice(1)
+  .map((t) => t.replace(/~1/g, '/').replace(/~0/g, '~'))
+  .reduce((o, k) => (o === undefined || o === null ? undefined : o[k]), obj);
+
+// The example spec: the form's scene as base, one parameter, the outputs.
+export function exampleSpec(scene) {
+  const d = DEFAULTS[scene.analysis] ?? DEFAULTS.modal;
+  const v = Number(pointer(scene, d.param));
+  const mid = isNum(v) && v > 0 ? v : 1;
+  const round = (x) => Number(x.toPrecision(6));
+  return {
+    base: scene,
+    parameters: [{ path: d.param, range: { start: round(mid * 0.8), stop: round(mid * 1.2), count: 5 } }],
+    outputs: d.outputs,
+  };
+}
+
+// ---- following a sweep ------------------------------------------------------
+
+const sleep = (ms, signal) => new Promise((resolve, reject) => {
+  const t = setTimeout(resolve, ms);
+  signal?.addEventListener('abort', () => { clearTimeout(t); reject(new DOMException('Aborted', 'AbortError')); }, { once: true });
+});
+
+// Submits `body` and polls the sweep until it is final; onUpdate(sweep) sees
+// every state (the first as soon as it has an id).  Resolves with the final sweep.
+async function runSweep(body, { signal, onUpdate }) {
+  let sweep = await postJSON('/api/v1/sweeps', body, { signal });
+  for (;;) {
+    onUpdate(sweep);
+    if (FINAL.has(sweep.status)) return sweep;
+    await sleep(sweep.points > 1000 ? POLL_LARGE_MS : POLL_MS, signal);
+    sweep = await getJSON(`/api/v1/sweeps/${encodeURIComponent(sweep.id)}`, { signal });
+  }
+}
+
+// One runner per view: Run / Cancel buttons, status line, error box.
+function runner(prefix, { submit, onUpdate, onDone }) {
+  const state = { run: null };
+  const status = (text, progress) => {
+    $(`${prefix}-status-text`).textContent = text;
+    const bar = $(`${prefix}-progress`);
+    bar.hidden = progress === undefined;
+    if (progress !== undefined) bar.value = progress;
+  };
+  const showError = (err) => {
+    const box = $(`${prefix}-error`);
+    fill(box, err.message || String(err), err.path ? [' (', h('code', {}, err.path), ')'] : null);
+    box.hidden = false;
+  };
+  async function start() {
+    if (state.run) return;
+    $(`${prefix}-error`).hidden = true;
+    let body;
+    try {
+      body = submit();
+    } catch (err) {
+      showError(err);
+      return;
+    }
+    const controller = new AbortController();
+    const run = { controller, id: null };
+    state.run = run;
+    $(`${prefix}-run`).disabled = true;
+    $(`${prefix}-cancel`).hidden = false;
+    status('Submitting…', 0);
+    try {
+      const sweep = await runSweep(body, {
+        signal: controller.signal,
+        onUpdate: (s) => {
+          run.id = s.id;
+          status(`Sweep ${s.id} ${s.status} — ${s.done} of ${s.points} points${s.failed ? ` (${s.failed} failed)` : ''}`, s.progress);
+          onUpdate(s);
+        },
+      });
+      status(`Sweep ${sweep.id} ${sweep.status}: ${sweep.done} of ${sweep.points} points${sweep.failed ? `, ${sweep.failed} failed (see their rows)` : ''}.`);
+      onDone(sweep);
+    } catch (err) {
+      if (err.name === 'AbortError') status(run.id ? `Stopped following sweep ${run.id}.` : 'Cancelled.');
+      else {
+        status('');
+        showError(err instanceof ApiError ? err : { message: String(err.message || err) });
+      }
+    } finally {
+      state.run = null;
+      $(`${prefix}-run`).disabled = false;
+      $(`${prefix}-cancel`).hidden = true;
+    }
+  }
+  // DELETE cancels it; the next poll sees it end "cancelled".
+  async function cancel() {
+    const run = state.run;
+    if (!run) return;
+    if (!run.id) { run.controller.abort(); return; }
+    status(`Cancelling sweep ${run.id}…`, undefined);
+    const resp = await deleteUrl(`/api/v1/sweeps/${encodeURIComponent(run.id)}`);
+    if (!resp?.ok) run.controller.abort();
+  }
+  $(`${prefix}-run`).addEventListener('click', start);
+  $(`${prefix}-cancel`).addEventListener('click', cancel);
+  return { showError };
+}
+
+// ---- a scatter plot -----------------------------------------------------------
+
+// Axis mapping for values `v`: linear, or log10 when `log` (positive values only).
+function axis(v, log, r0, r1) {
+  const t = log ? v.map(Math.log10) : v;
+  let lo = Math.min(...t), hi = Math.max(...t);
+  if (!(hi > lo)) { lo -= log ? 0.5 : Math.abs(lo) * 0.1 || 1; hi += log ? 0.5 : Math.abs(hi) * 0.1 || 1; }
+  const pad = (hi - lo) * 0.05;
+  const f = scale(lo - pad, hi + pad, r0, r1);
+  const tk = log
+    ? Array.from({ length: Math.floor(hi + pad) - Math.ceil(lo - pad) + 1 }, (_, i) => Math.ceil(lo - pad) + i)
+    : ticks(lo - pad, hi + pad, 5);
+  return { map: (x) => f(log ? Math.log10(x) : x), ticks: tk, at: f, format: log ? (e) => `1e${e}` : (x) => sig(x, 3) };
+}
+
+// points: [{x, y, cls, title, id}], `line` joins them in x order (or the
+// `front` subset); returns the <svg>.
+function scatter({ id, points, xLabel, yLabel, xLog = false, yLog = false, front = null, label }) {
+  const W = 560, H = 340, box = { left: 72, top: 16, width: 460, height: 260 };
+  const ok = points.filter((p) => isNum(p.x) && isNum(p.y) && (!xLog || p.x > 0) && (!yLog || p.y > 0));
+  if (!ok.length) return h('p', { class: 'hint', id: `${id}-empty` }, 'No point with numbers in both columns yet.');
+  const X = axis(ok.map((p) => p.x), xLog, box.left, box.left + box.width);
+  const Y = axis(ok.map((p) => p.y), yLog, box.top + box.height, box.top);
+  const line = (front ?? ok).filter((p) => ok.includes(p)).slice().sort((a, b) => a.x - b.x);
+  return svg('svg', { id, class: 'chart sweep-plot', viewBox: `0 0 ${W} ${H}`, role: 'img', 'aria-label': label },
+    axes({ box, x: X.at, y: Y.at, xTicks: X.ticks, yTicks: Y.ticks, xLabel, yLabel, xFormat: X.format, yFormat: Y.format }),
+    svg('path', { class: front ? 'front-line' : 'series', d: pathD(line.map((p) => [X.map(p.x), Y.map(p.y)])) }),
+    ok.map((p) => svg('circle', { cx: X.map(p.x).toFixed(2), cy: Y.map(p.y).toFixed(2), r: 5, class: `pt ${p.cls ?? ''}`, id: p.id, 'data-x': p.x, 'data-y': p.y },
+      svg('title', {}, p.title))));
+}
+
+// ---- the Sweep view --------------------------------------------------------------
+
+function sweepView({ form, analysis }) {
+  let shown = null; // the sweep on screen
+  const textarea = $('sw-spec');
+  const fillSpec = () => {
+    try {
+      textarea.value = JSON.stringify(exampleSpec(form.read(analysis())), null, 2);
+    } catch (err) {
+      textarea.value = '';
+      ui.showError(err);
+    }
+  };
+  const columns = () => shown?.table?.columns ?? [];
+  const nParams = () => (shown?.spec_parameters ?? 0);
+  const numericCol = (k) => (shown?.table?.rows ?? []).some((r) => isNum(r[k]));
+  const chosen = { x: null, y: null }; // what the user picked, kept while the columns have it
+  function setChoices() {
+    const cols = columns();
+    const opts = (ks) => ks.map((k) => h('option', { value: String(k) }, cols[k]));
+    const params = cols.map((_, k) => k).filter((k) => k < nParams());
+    const outs = cols.map((_, k) => k).filter((k) => k >= nParams() && k < cols.length - 2 && numericCol(k));
+    fill($('sw-x'), opts(params.concat(outs)));
+    fill($('sw-y'), opts(outs.concat(params)));
+    for (const a of ['x', 'y']) {
+      const sel = $(`sw-${a}`);
+      if (chosen[a] !== null && [...sel.options].some((o) => o.value === chosen[a])) sel.value = chosen[a];
+    }
+  }
+  function draw() {
+    if (!shown?.table) return;
+    const cols = columns(), rows = shown.table.rows;
+    const xk = Number($('sw-x').value), yk = Number($('sw-y').value);
+    const st = cols.length - 2;
+    const pts = rows.map((r, i) => ({ x: r[xk], y: r[yk], cls: r[st] === 'ok' ? '' : 'failed', id: `sw-pt-${i}`, title: `${cols[xk]} = ${sig(r[xk], 4)}, ${cols[yk]} = ${sig(r[yk], 4)}${r[st] === 'ok' ? '' : ` — ${r[st]}: ${r[st + 1]}`}` }));
+    const failed = rows.filter((r) => r[st] !== 'ok');
+    fill($('sw-result'),
+      h('figure', { class: 'plot wide' },
+        scatter({ id: 'sw-plot', points: pts, xLabel: cols[xk] ?? '', yLabel: cols[yk] ?? '', label: `${cols[yk]} against ${cols[xk]}: ${rows.length} of ${shown.points} points` }),
+        h('figcaption', {}, `${cols[yk]} against ${cols[xk]}, one marker per point done (${rows.length} of ${shown.points}); hover a marker for its values.`)),
+      failed.length ? h('ul', { class: 'warnings', id: 'sw-failed' }, failed.slice(0, 20).map((r) =>
+        h('li', {}, `${cols.slice(0, nParams()).map((c, k) => `${c} = ${sig(r[k], 4)}`).join(', ')}: ${r[st]} — ${r[st + 1]}`))) : null);
+  }
+  function show(sweep, spec) {
+    const first = !shown || shown.id !== sweep.id;
+    shown = { ...sweep, spec_parameters: spec ? spec.parameters.length : shown?.spec_parameters ?? 0 };
+    if (first) chosen.x = chosen.y = null;
+    setChoices();
+    $('sw-choose').hidden = false;
+    $('sw-csv').hidden = false;
+    draw();
+  }
+  let spec = null;
+  const ui = runner('sw', {
+    submit: () => {
+      try {
+        spec = JSON.parse(textarea.value);
+      } catch (err) {
+        throw { message: `The spec is not JSON: ${err.message}` };
+      }
+      return spec;
+    },
+    onUpdate: (s) => show(s, spec),
+    onDone: (s) => show(s, spec),
+  });
+  $('sw-fill').addEventListener('click', fillSpec);
+  for (const a of ['x', 'y']) {
+    $(`sw-${a}`).addEventListener('change', (e) => { chosen[a] = e.target.value; draw(); });
+  }
+  $('sw-csv').addEventListener('click', async () => {
+    if (!shown) return;
+    try {
+      saveBlob(await getBlob(`/api/v1/sweeps/${encodeURIComponent(shown.id)}/table.csv`, { headers: { Accept: 'text/csv' } }), `ringdyn-sweep-${shown.id}.csv`);
+    } catch (err) {
+      ui.showError(err);
+    }
+  });
+  return { opened: () => { if (!textarea.value.trim()) fillSpec(); } };
+}
+
+// ---- the Speed vs accuracy view -------------------------------------------------------
+
+// The fidelity table's columns by role (rd_sweep.h: the parameters, then
+// wall time, the estimate, error_vs_finest, pareto, status, error).
+function roles(cols) {
+  const wall = cols.indexOf('/numerics/wall_s');
+  return { params: cols.slice(0, wall).map((c, k) => [c, k]), wall, est: wall + 1, vs: cols.indexOf('error_vs_finest'), pareto: cols.indexOf('pareto'), status: cols.indexOf('status') };
+}
+
+const SHORT = { '/discretization/segments': 'segments', '/numerics/rtol': 'rtol', '/numerics/model': 'model' };
+
+function fidelityView({ form, analysis, onApply }) {
+  let table = null, scene = null;
+  function apply(row) {
+    const c = roles(table.columns);
+    let now;
+    try {
+      now = form.read(scene.analysis);
+    } catch {
+      now = structuredClone(scene);
+    }
+    const set = [];
+    for (const [path, k] of c.params) {
+      const keys = path.split('/').slice(1);
+      let o = now;
+      for (const key of keys.slice(0, -1)) o = o[key] ??= {};
+      o[keys.at(-1)] = row[k];
+      set.push(`${SHORT[path] ?? path} = ${row[k]}`);
+    }
+    form.load(now);
+    const text = `${set.join(', ')} went into the form.`;
+    $('fd-applied').textContent = text;
+    onApply?.(text);
+  }
+  function draw() {
+    if (!table) return;
+    const c = roles(table.columns);
+    const rows = table.rows.filter((r) => r[c.status] === 'ok');
+    const name = (r) => c.params.map(([p, k]) => `${SHORT[p] ?? p} ${r[k]}`).join(', ');
+    const target = Number($('fd-target').value) / 100;
+    const within = rows.filter((r) => isNum(r[c.est]) && r[c.est] <= target).sort((a, b) => a[c.wall] - b[c.wall])[0];
+    const pts = rows.map((r, i) => ({ x: r[c.wall], y: r[c.est], cls: r[c.pareto] ? 'pareto' : 'dominated', id: `fd-pt-${i}`, title: `${name(r)}: ${seconds(r[c.wall])}, estimated error ${sig(r[c.est], 2)}${r[c.pareto] ? ' (Pareto front)' : ''}` }));
+    const front = pts.filter((p) => p.cls === 'pareto');
+    const body = rows.map((r, i) => h('tr', { class: [r[c.pareto] ? 'pareto' : '', r === within ? 'chosen' : ''].join(' ').trim() || null, id: `fd-row-${i}` },
+      c.params.map(([, k]) => h('td', { class: 'num' }, String(r[k]))),
+      h('td', { class: 'num' }, seconds(r[c.wall])),
+      h('td', { class: 'num' }, sig(r[c.est], 2)),
+      h('td', { class: 'num' }, sig(r[c.vs], 2)),
+      h('td', {}, r[c.pareto] ? h('button', { type: 'button', class: 'use', id: `fd-use-${i}`, 'aria-label': `Use ${name(r)} in the form` }, 'Use') : '')));
+    const useButtons = new Map(rows.map((r, i) => [`fd-use-${i}`, r]));
+    fill($('fd-result'),
+      h('figure', { class: 'plot wide' },
+        scatter({ id: 'fd-plot', points: pts, front, xLog: true, yLog: true, xLabel: 'wall time (s, with the estimate)', yLabel: 'error estimate', label: `Wall time against error estimate of ${rows.length} settings; ${front.length} on the Pareto front` }),
+        h('figcaption', {}, 'Each fidelity setting of the scene: its cost (wall time of the run with its error estimate) against its estimated error, both log scales. Filled and joined: the Pareto front, the settings no other beats in both.')),
+      h('p', { id: 'fd-cheapest' }, within
+        ? ['Cheapest setting within ', `${sig(target * 100, 3)} %`, `: ${name(within)} (${seconds(within[c.wall])}). `, h('button', { type: 'button', id: 'fd-use-cheapest' }, 'Use it')]
+        : `No setting reaches an estimated error of ${sig(target * 100, 3)} %.`),
+      h('div', { class: 'table-wrap' }, h('table', { class: 'modes', id: 'fd-table' },
+        h('caption', {}, 'Fidelity settings (ok runs). Error vs finest: against the finest setting run, which it underestimates by that run\'s own error.'),
+        h('thead', {}, h('tr', {}, c.params.map(([p]) => h('th', { scope: 'col' }, SHORT[p] ?? p)), h('th', { scope: 'col' }, 'wall'), h('th', { scope: 'col' }, 'estimate'), h('th', { scope: 'col' }, 'vs finest'), h('th', { scope: 'col' }, 'Pareto'))),
+        h('tbody', {}, body))));
+    for (const [id, r] of useButtons) $(id)?.addEventListener('click', () => apply(r));
+    $('fd-use-cheapest')?.addEventListener('click', () => apply(within));
+  }
+  runner('fd', {
+    submit: () => {
+      scene = form.read(analysis());
+      table = null;
+      fill($('fd-result'));
+      $('fd-applied').textContent = '';
+      return { fidelity: scene };
+    },
+    onUpdate: () => {},
+    onDone: (s) => {
+      table = s.fidelity ?? null;
+      if (table) draw();
+      else fill($('fd-result'), h('p', { class: 'hint' }, `The sweep ${s.status} before every setting ran: no fidelity table.`));
+    },
+  });
+  $('fd-target').addEventListener('input', draw);
+  return { opened: () => {} };
+}
+
+// ---- the view tabs ---------------------------------------------------------------
+
+export function setupSweeps({ form, analysis, onApply }) {
+  const views = { result: null, sweep: sweepView({ form, analysis }), fidelity: fidelityView({ form, analysis, onApply }) };
+  const ids = Object.keys(views);
+  const select = (id) => {
+    for (const v of ids) {
+      const tab = $(`view-${v}`);
+      tab.setAttribute('aria-selected', String(v === id));
+      tab.tabIndex = v === id ? 0 : -1;
+      $(`${v}-view`).hidden = v !== id;
+    }
+    views[id]?.opened();
+  };
+  for (const v of ids) $(`view-${v}`).addEventListener('click', () => select(v));
+  $('views').addEventListener('keydown', (e) => {
+    const step = { ArrowRight: 1, ArrowLeft: -1 }[e.key];
+    if (!step) return;
+    const i = ids.findIndex((v) => $(`view-${v}`).getAttribute('aria-selected') === 'true');
+    const next = ids[(i + step + ids.length) % ids.length];
+    select(next);
+    $(`view-${next}`).focus();
+  });
+  select('result');
+  return { select };
+}
