@@ -3,13 +3,18 @@
  *
  * Request life cycle in libmicrohttpd: the access handler is called once
  * with the headers (upload_data_size 0), then once per chunk of body, then a
- * last time with upload_data_size 0.  Everything except POST /api/v1/jobs is
+ * last time with upload_data_size 0.  The first call checks framing, Host
+ * and token (check_framing, host_allowed, authorized), then routes.
+ * Everything except POST /api/v1/jobs and DELETE of a running job is
  * answered on the first call.  For a POST the first call checks the method,
  * Content-Type, ?wait= and a declared Content-Length, so a bad request is
  * refused before its body is read; the chunks are then collected up to
  * RD_API_BODY_MAX bytes (beyond that they are counted and dropped, never
- * buffered) and the last call parses the scene synchronously, queues it and
- * optionally waits for it.
+ * buffered) and the last call parses the scene, queues it and, with ?wait,
+ * suspends the connection (suspend_for) until the job ends or the wait is
+ * over; the timer thread resumes it and MHD calls the handler once more
+ * (answer_waiter).  A succeeded job is sent from its shared JSON
+ * (job_response), never copied per request.
  *
  * Paths arrive percent-decoded by unescape_path below, which turns an
  * encoded NUL into DEL (0x7f) so that it cannot cut the C string short;

@@ -127,10 +127,9 @@ static json_t *random_value(struct rng *r)
     }
 }
 
-/* Replaces the slot's value (consumes `v`). */
-static void replace(struct slot *s, json_t *root, json_t *v)
+/* Replaces the slot's value (consumes `v`); the root stays. */
+static void replace(struct slot *s, json_t *v)
 {
-    (void)root;
     if (!v)
         return;
     if (!s->parent)
@@ -178,10 +177,10 @@ static void mutate(json_t *root, struct rng *r)
     struct slot *at = &s.v[pick(r, s.n)];
     switch (pick(r, 8)) {
     case 0: /* a boundary number */
-        replace(at, root, json_real(numbers[pick(r, sizeof numbers / sizeof numbers[0])]));
+        replace(at, json_real(numbers[pick(r, sizeof numbers / sizeof numbers[0])]));
         break;
     case 1:
-        replace(at, root, json_is_number(at->value) ? tweak_number(r, json_number_value(at->value))
+        replace(at, json_is_number(at->value) ? tweak_number(r, json_number_value(at->value))
                                                     : random_value(r));
         break;
     case 2: /* drop a key */
@@ -201,7 +200,7 @@ static void mutate(json_t *root, struct rng *r)
         json_object_set_new(root, "analysis", json_string(words[pick(r, 5)]));
         break;
     case 5: /* an enum word where a string was */
-        replace(at, root, json_string(words[pick(r, sizeof words / sizeof words[0])]));
+        replace(at, json_string(words[pick(r, sizeof words / sizeof words[0])]));
         break;
     case 6: /* arrays: grow, shrink, or a whole table */
         if (json_is_array(at->value) && json_array_size(at->value) > 0 && pick(r, 2))
@@ -209,7 +208,7 @@ static void mutate(json_t *root, struct rng *r)
         else if (json_is_array(at->value) && json_array_size(at->value) > 0)
             json_array_remove(at->value, pick(r, json_array_size(at->value)));
         else
-            replace(at, root, table(r));
+            replace(at, table(r));
         break;
     default: { /* a distortion order list, the contact's own array */
         json_t *d = json_array();
