@@ -43,7 +43,7 @@
  * sent may take; together under 1 s. */
 #define STOP_WAIT_S 0.4
 #define DRAIN_S 0.4
-/* Sweeps queued or running at once, and finished sweeps kept in memory. */
+/* Sweeps queued or running at once, and finished sweeps kept (memory and store). */
 #define SWEEPS_QUEUE_MAX 8
 #define SWEEPS_KEEP_MAX 32
 
