@@ -152,7 +152,8 @@ static char *error_body(const rd_error *err, const rd_issues *issues, json_t *ro
     bad = bad || json_object_set(body, "errors", list) != 0;
     if (!bad && issues && issues->dropped > 0)
         bad = json_object_set_new(body, "errors_omitted", json_integer(issues->dropped)) != 0;
-    char *text = bad ? NULL : json_dumps(body, JSON_COMPACT | JSON_REAL_PRECISION(RD_SCENE_REAL_DIGITS));
+    size_t flags = JSON_COMPACT | JSON_REAL_PRECISION(RD_SCENE_REAL_DIGITS);
+    char *text = bad ? NULL : json_dumps(body, flags);
     json_decref(list);
     json_decref(body);
     return text ? text : rd_api_error_json(err);
