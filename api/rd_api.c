@@ -11,6 +11,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "rd_jsonptr.h"
 #include "rd_registry.h"
 #include "rd_scene.h"
 #include "rd_schema.h"
@@ -94,6 +95,81 @@ char *rd_api_error_json(const rd_error *err)
     char *text = body ? json_dumps(body, JSON_COMPACT) : NULL;
     json_decref(body);
     return text;
+}
+
+/* One entry of "errors"; `root` (may be NULL) is the scene, for "value". */
+static json_t *issue_json(int code, const char *path, const char *message, const char *allowed,
+                          const char *dym, json_t *root)
+{
+    char m[RD_ERROR_MESSAGE_MAX], a[sizeof ((rd_issue *)0)->allowed];
+    utf8_sanitize(message, m);
+    json_t *o = json_pack("{s:s, s:s, s:s}", "code", rd_error_code_name(code), "path", path,
+                          "message", m);
+    json_t *value = root && path[0] ? rd_jsonptr_get(root, path) : NULL;
+    int bad = !o || (value && json_object_set(o, "value", value) != 0);
+    if (!bad && allowed && allowed[0]) {
+        utf8_sanitize(allowed, a);
+        bad = json_object_set_new(o, "allowed", json_string(a)) != 0;
+    }
+    if (!bad && dym && dym[0])
+        bad = json_object_set_new(o, "did_you_mean", json_string(dym)) != 0;
+    if (bad) {
+        json_decref(o);
+        return NULL;
+    }
+    return o;
+}
+
+/* {"error", "errors"[, "errors_omitted"]}: errors[0] is err, completed by
+ * the issue at its path (whose suggestion also goes to error.did_you_mean:
+ * the message itself stays as it was); then every issue at another path. */
+static char *error_body(const rd_error *err, const rd_issues *issues, json_t *root)
+{
+    char *first = rd_api_error_json(err);
+    json_t *body = first ? json_loads(first, 0, NULL) : NULL;
+    free(first);
+    json_t *error = json_object_get(body, "error"), *list = json_array();
+    const char *path = json_string_value(json_object_get(error, "path"));
+    path = path ? path : "";
+    const rd_issue *same = NULL;
+    for (int i = 0; issues && i < issues->n && !same; i++)
+        if (strcmp(issues->item[i].path, path) == 0)
+            same = &issues->item[i];
+    int bad = !error || !list ||
+              json_array_append_new(list, issue_json(err->code, path,
+                                                     json_string_value(json_object_get(error,
+                                                                                       "message")),
+                                                     same ? same->allowed : NULL,
+                                                     same ? same->did_you_mean : NULL, root));
+    for (int i = 0; !bad && issues && i < issues->n; i++) {
+        const rd_issue *it = &issues->item[i];
+        if (strcmp(it->path, path) != 0)
+            bad = json_array_append_new(list, issue_json(it->code, it->path, it->message,
+                                                         it->allowed, it->did_you_mean, root));
+    }
+    if (!bad && same && same->did_you_mean[0])
+        bad = json_object_set_new(error, "did_you_mean", json_string(same->did_you_mean)) != 0;
+    bad = bad || json_object_set(body, "errors", list) != 0;
+    if (!bad && issues && issues->dropped > 0)
+        bad = json_object_set_new(body, "errors_omitted", json_integer(issues->dropped)) != 0;
+    size_t flags = JSON_COMPACT | JSON_REAL_PRECISION(RD_SCENE_REAL_DIGITS);
+    char *text = bad ? NULL : json_dumps(body, flags);
+    json_decref(list);
+    json_decref(body);
+    return text ? text : rd_api_error_json(err);
+}
+
+int rd_scene_parse_report(const char *body, size_t len, rd_scene **out, rd_error *err,
+                          char **error_json)
+{
+    rd_issues *issues = calloc(1, sizeof *issues); /* NULL: no list, still the error */
+    json_t *root = NULL;
+    int rc = rd_scene_parse_keep(body, len, out, err, issues, &root);
+    if (error_json)
+        *error_json = rc != RD_OK ? error_body(err, issues, root) : NULL;
+    json_decref(root);
+    free(issues);
+    return rc;
 }
 
 int rd_api_http_status(int code)

@@ -74,6 +74,21 @@ char *rd_api_result_csv(const char *result_json, rd_error *err);
  * RD_ENOMEM). */
 char *rd_api_openapi_json(const char *template_json, rd_error *err);
 
+/* rd_scene_parse that teaches: on failure *error_json (when error_json is
+ * not NULL; caller frees, NULL when out of memory) is the whole error body,
+ *   {"error": {...},            the first problem, as rd_api_error_json
+ *    "errors": [{"code", "path", "message", "value", "allowed",
+ *                "did_you_mean"}, ...],
+ *    "errors_omitted": n}      (only when more than RD_ISSUES_MAX were found)
+ * where errors[0] is `error` itself and the others are every further
+ * problem the schema tables find (JSON types, unknown keys with the closest
+ * known key when one is close, values outside the tables' static ranges),
+ * core's validator error among them; "value" (the offending JSON value),
+ * "allowed" (text) and "did_you_mean" appear when known.  On success
+ * *error_json is NULL. */
+int rd_scene_parse_report(const char *body, size_t len, rd_scene **out, rd_error *err,
+                          char **error_json);
+
 /* {"error": {"code": "...", "message": "...", "path": "..."}}; path omitted when empty. */
 char *rd_api_error_json(const rd_error *err);
 

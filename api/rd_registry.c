@@ -90,8 +90,9 @@ static const char scene_description[] =
     "path). Note that `numerics` and `contact` mean different things per analysis: `numerics` "
     "is StaticNumerics for pretension and contact, LiftNumerics for lift (ignored by modal); "
     "`contact` is ContactOptions for contact, LiftContact for lift (ignored by modal and "
-    "pretension). Parsing order (the first error is the only one reported): JSON object, "
-    "`analysis`, unknown keys and JSON types block by block, then value ranges. Integers may be "
+    "pretension). Parsing order (the first error is `error`; `errors` lists every problem the "
+    "schema finds, with core's first range error): JSON object, `analysis`, unknown keys and "
+    "JSON types block by block, then value ranges. Integers may be "
     "written as reals with an integral value (20.0), except /bore/distortion/*/order. The job's "
     "result echoes the scene with every default filled in.";
 
@@ -133,14 +134,18 @@ static json_t *scene_schema(const rd_analysis_def *const *registry)
         bad |= json_object_set_new(mapping, registry[i]->name, json_string(ref));
         bad |= json_array_append_new(one_of, json_pack("{s:s}", "$ref", ref));
     }
+    /* "additionalProperties": true (the default, said out loud): the keys
+     * are the branches' business; validators that merge the discriminated
+     * branch with this schema (Redocly's example check) otherwise judge the
+     * branch's own keys as unevaluated here. */
     json_t *o = bad ? NULL
-                    : json_pack("{s:s, s:[s], s:s, s:{s:{s:s, s:s, s:O}}, s:{s:s, s:O}, s:O}",
+                    : json_pack("{s:s, s:[s], s:s, s:{s:{s:s, s:s, s:O}}, s:b, s:{s:s, s:O}, s:O}",
                                 "type", "object", "required", "analysis", "description",
                                 scene_description, "properties", "analysis", "type", "string",
                                 "description",
                                 "Which analysis to run; decides which blocks are read.", "enum",
-                                names, "discriminator", "propertyName", "analysis", "mapping",
-                                mapping, "oneOf", one_of);
+                                names, "additionalProperties", 1, "discriminator",
+                                "propertyName", "analysis", "mapping", mapping, "oneOf", one_of);
     json_decref(names);
     json_decref(mapping);
     json_decref(one_of);

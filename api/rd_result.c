@@ -21,6 +21,7 @@
 
 #include "rd_api.h"
 #include "rd_registry.h"
+#include "rd_warnings.h"
 #include "rd_scene.h"
 
 double rd_clock_s(void)
@@ -230,7 +231,8 @@ int rd_scene_run_doc(const rd_scene *scene, const rd_monitor *mon, rd_result_doc
         json_decref(result);
         return rc;
     }
-    *out = result ? malloc(sizeof **out) : NULL;
+    /* warnings never refuse: they only annotate a finished result */
+    *out = result && rd_warnings_add(result) == 0 ? malloc(sizeof **out) : NULL;
     if (!*out) {
         json_decref(result);
         return rd_error_set(err, RD_ENOMEM, "", "out of memory while writing the result");

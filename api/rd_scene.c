@@ -42,25 +42,39 @@ static void list_analyses(char *buf, size_t size, const rd_analysis_def *const *
 
 /* "analysis" decides which keys are known, so it is checked before them. */
 static int parse_analysis(const rd_analysis_def *const *registry, json_t *root, int *index,
-                          rd_error *err)
+                          rd_issues *issues, rd_error *err)
 {
-    char all[256], q[64];
+    char all[256], q[64], hint[96] = "";
+    const char *names[32];
+    int n = 0;
     list_analyses(all, sizeof all, registry);
+    for (; registry[n] && n < 31; n++)
+        names[n] = registry[n]->name;
+    names[n] = NULL;
 
     json_t *v = json_object_get(root, "analysis");
-    if (!v)
+    if (!v) {
+        rd_issues_add(issues, RD_EINVAL, "/analysis", all, NULL, "\"analysis\" is missing");
         return rd_error_set(err, RD_EINVAL, "/analysis",
                             "the scene must say which analysis to run: \"analysis\" is missing "
                             "(available: %s)",
                             all);
-    if (!json_is_string(v))
-        return rd_schema_type_error(err, "/analysis", "a string", v);
+    }
+    if (!json_is_string(v)) {
+        rd_schema_type_error(err, "/analysis", "a string", v);
+        rd_issues_add(issues, RD_EINVAL, "/analysis", all, NULL, "%s", err->message);
+        return RD_EINVAL;
+    }
     if (rd_registry_find(registry, json_string_value(v), index))
         return RD_OK;
+    const char *dym = rd_schema_closest(json_string_value(v), names);
+    if (dym)
+        snprintf(hint, sizeof hint, "; did you mean \"%s\"?", dym);
     rd_schema_quote(q, sizeof q, json_string_value(v));
+    rd_issues_add(issues, RD_EINVAL, "/analysis", all, dym, "unknown analysis %s%s", q, hint);
     return rd_error_set(err, RD_EINVAL, "/analysis",
-                        "unknown analysis %s (allowed: %s; available in this version: %s)", q, all,
-                        all);
+                        "unknown analysis %s (allowed: %s; available in this version: %s)", q,
+                        all, all);
 }
 
 /* A zeroed scene of `an` with the common and the analysis' defaults:
@@ -92,8 +106,26 @@ rd_scene *rd_scene_defaults(const rd_analysis_def *an)
     return scene_new(an, index);
 }
 
-int rd_scene_parse_with(const rd_analysis_def *const *registry, json_t *root, rd_scene **out,
-                        rd_error *err)
+/* Core's first error, listed with the table's allowed values of its field;
+ * the table's own note on the same field (its static range) gives way. */
+static void list_core_error(const rd_scene *s, const rd_error *err, rd_issues *issues)
+{
+    char allowed[160] = "";
+    if (!issues)
+        return;
+    const rd_field *f = rd_schema_find(s->an->scene, err->path);
+    if (f)
+        rd_schema_allowed(f, allowed, sizeof allowed);
+    for (int i = 0; i < issues->n; i++)
+        if (strcmp(issues->item[i].path, err->path) == 0) {
+            issues->item[i] = issues->item[--issues->n];
+            i--;
+        }
+    rd_issues_add(issues, err->code, err->path, allowed, NULL, "%s", err->message);
+}
+
+int rd_scene_parse_issues(const rd_analysis_def *const *registry, json_t *root, rd_scene **out,
+                          rd_error *err, rd_issues *issues)
 {
     rd_scene *s = NULL;
     const char *ignored[MAX_KEYS];
@@ -106,7 +138,7 @@ int rd_scene_parse_with(const rd_analysis_def *const *registry, json_t *root, rd
         rc = rd_error_set(err, RD_EJSON, "", "the scene must be a JSON object, got %s", got);
         goto out;
     }
-    rc = parse_analysis(registry, root, &index, err);
+    rc = parse_analysis(registry, root, &index, issues, err);
     if (rc != RD_OK)
         goto out;
     s = scene_new(registry[index], index);
@@ -115,12 +147,19 @@ int rd_scene_parse_with(const rd_analysis_def *const *registry, json_t *root, rd
         goto out;
     }
     rd_registry_ignored(registry, s->an, ignored, MAX_KEYS);
+    s->issues = issues;
     rc = rd_schema_parse(root, s->an->scene, ignored, "", s, err);
+    s->issues = NULL;
     /* Values and ranges: core's validators, messages passed on unchanged. */
-    if (rc == RD_OK)
+    if (rc == RD_OK) {
         rc = rd_ring_validate(&s->ring, s->segments, s->closed, err);
-    if (rc == RD_OK && s->an->finish)
-        rc = s->an->finish(s, err);
+        if (rc == RD_OK && s->an->finish)
+            rc = s->an->finish(s, err);
+        if (rc != RD_OK)
+            list_core_error(s, err, issues);
+        else if (issues)
+            issues->n = issues->dropped = 0; /* notes on ranges core accepted */
+    }
     if (rc != RD_OK)
         goto out;
     *out = s;
@@ -130,12 +169,19 @@ out:
     return rc;
 }
 
+int rd_scene_parse_with(const rd_analysis_def *const *registry, json_t *root, rd_scene **out,
+                        rd_error *err)
+{
+    return rd_scene_parse_issues(registry, root, out, err, NULL);
+}
+
 int rd_scene_parse_value(json_t *root, rd_scene **out, rd_error *err)
 {
     return rd_scene_parse_with(rd_registry, root, out, err);
 }
 
-int rd_scene_parse(const char *body, size_t len, rd_scene **out, rd_error *err)
+int rd_scene_parse_keep(const char *body, size_t len, rd_scene **out, rd_error *err,
+                        rd_issues *issues, json_t **root_out)
 {
     json_error_t jerr;
     json_t *root = NULL;
@@ -158,10 +204,18 @@ int rd_scene_parse(const char *body, size_t len, rd_scene **out, rd_error *err)
                           jerr.text, jerr.line, jerr.column);
         goto out;
     }
-    rc = rd_scene_parse_value(root, out, err);
+    rc = rd_scene_parse_issues(rd_registry, root, out, err, issues);
 out:
-    json_decref(root);
+    if (root_out)
+        *root_out = root;
+    else
+        json_decref(root);
     return rc;
+}
+
+int rd_scene_parse(const char *body, size_t len, rd_scene **out, rd_error *err)
+{
+    return rd_scene_parse_keep(body, len, out, err, NULL, NULL);
 }
 
 void rd_scene_free(rd_scene *scene)

@@ -7,7 +7,8 @@
  * the other api modules need to see.  Not for the server: it should only
  * include rd_api.h.
  *
- * Parsing order (the first error wins and is the only one reported):
+ * Parsing order (the first error wins and is `error`; rd_scene_parse_issues
+ * also lists every problem the tables find, the "errors" of the answer):
  *   1. the body is a JSON object (RD_EJSON otherwise, with jansson's
  *      line/column/text);
  *   2. "analysis" names an analysis of the registry (rd_registry.h);
@@ -62,6 +63,8 @@ struct rd_scene {
                             in opts, because callers and tests read it here) */
     void *opts;          /* the analysis' own options (an->opts_size bytes,
                             owned; an->cleanup frees what it holds) */
+    struct rd_issues *issues; /* while parsing: where every problem is listed
+                                 (rd_schema_parse), or NULL; NULL afterwards */
 };
 
 /* Name of an analysis of the built-in registry ("modal", ...); "unknown"
@@ -83,6 +86,19 @@ int rd_scene_parse_value(struct json_t *value, rd_scene **out, rd_error *err);
  * analyses): how tests try an analysis that is not built in. */
 int rd_scene_parse_with(const struct rd_analysis_def *const *registry, struct json_t *value,
                         rd_scene **out, rd_error *err);
+
+/* rd_scene_parse_with that also lists every problem in `issues` (may be
+ * NULL; rd_schema.h): the table's findings (types, unknown keys, values
+ * outside the static ranges) and core's first validator error, which
+ * replaces the table's note on the same field.  Emptied on success. */
+struct rd_issues;
+int rd_scene_parse_issues(const struct rd_analysis_def *const *registry, struct json_t *value,
+                          rd_scene **out, rd_error *err, struct rd_issues *issues);
+
+/* rd_scene_parse with `issues` as above; *root_out (may be NULL) gets the
+ * decoded body (a new reference, NULL when it was not JSON). */
+int rd_scene_parse_keep(const char *body, size_t len, rd_scene **out, rd_error *err,
+                        struct rd_issues *issues, struct json_t **root_out);
 
 /* A scene of analysis `an` holding only defaults (what a scene that names
  * nothing else parses to, before core's checks): the source of the

@@ -82,11 +82,57 @@ typedef struct rd_block {
     const rd_field *fields;  /* ended by a NULL key */
 } rd_block;
 
+/* Every problem of a scene, not only the first (the "errors" of an error
+ * answer).  Bounded: at most RD_ISSUES_MAX entries, `dropped` counts the
+ * rest.  `allowed` says the allowed values as text ("" when unknown);
+ * `did_you_mean` is the closest known key or choice of a misspelt one
+ * ("" when none is close). */
+#define RD_ISSUES_MAX 50
+typedef struct rd_issue {
+    int code;
+    int range_only; /* out of the table's static range: not an error of its own
+                       (core's validators decide; see rd_scene_parse_report) */
+    char path[RD_ERROR_PATH_MAX];
+    char message[RD_ERROR_MESSAGE_MAX];
+    char allowed[160];
+    char did_you_mean[48];
+} rd_issue;
+
+typedef struct rd_issues {
+    int n, dropped;
+    rd_issue item[RD_ISSUES_MAX];
+} rd_issues;
+
+/* Appends one issue (message from fmt); the list stays bounded. */
+void rd_issues_add(rd_issues *list, int code, const char *path, const char *allowed,
+                   const char *did_you_mean, const char *fmt, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 6, 7)))
+#endif
+    ;
+
+/* The allowed values of field `f` as text ("> 0 and <= 5", "one of ...");
+ * "" when the table says nothing. */
+void rd_schema_allowed(const rd_field *f, char *buf, size_t size);
+
+/* The field the JSON Pointer `path` names under `block` (array indices of
+ * item blocks skipped), or NULL. */
+const rd_field *rd_schema_find(const rd_block *block, const char *path);
+
+/* The closest of `names` (NULL-ended) to `word` by edit distance
+ * (insertions, deletions, substitutions and swaps of neighbours), when it
+ * is close enough to be a likely typo: at most 1 edit for words up to 5
+ * bytes, 2 up to 10, 3 beyond.  NULL when none is. */
+const char *rd_schema_closest(const char *word, const char *const *names);
+
 /* Parses the JSON object `obj` at JSON Pointer `path` into scene `s` by
  * `block`: unknown keys first (listing `block`'s keys, then `also`'s that
  * it lacks, as known), then every present field in table order.  `also`
  * (may be NULL) names keys that are known but not read: they are skipped
- * unchecked.  First error wins. */
+ * unchecked.  The first error goes to `err` (first error wins); the
+ * parse goes on after an error, and when s->issues is set every problem
+ * found is also listed there, together with values outside the table's
+ * static ranges (listed only: core's validators decide about values). */
 int rd_schema_parse(struct json_t *obj, const rd_block *block, const char *const *also,
                     const char *path, struct rd_scene *s, rd_error *err);
 

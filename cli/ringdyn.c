@@ -6,6 +6,8 @@
  *   ringdyn check SCENE           the validated, defaults-filled scene on stdout
  *   ringdyn sweep ...             sweeps: count, scene, run (a chunk), reduce
  *                                 (rd_sweep_cli.c)
+ *   ringdyn openapi TEMPLATE      the OpenAPI document the server serves, from
+ *                                 its template (server/openapi.json)
  *   ringdyn --version | --help
  *
  * SCENE is a file or "-" for stdin.  Errors go to stderr as the same error
@@ -28,6 +30,7 @@ static const char usage[] =
     "usage: ringdyn run [--csv] SCENE   run a scene, print the result JSON (or CSV)\n"
     "       ringdyn check SCENE         validate a scene, print it with defaults filled\n"
     "       ringdyn sweep count|scene|run|reduce ...   sweeps (ringdyn sweep --help)\n"
+    "       ringdyn openapi TEMPLATE    print the OpenAPI document built on TEMPLATE\n"
     "       ringdyn --version | --help\n"
     "SCENE is a JSON file, or - for stdin.  Exit status: 0 ok, 2 invalid input, 1 run failed.\n";
 
@@ -145,6 +148,28 @@ out:
     return status;
 }
 
+/* `openapi`: the scene schemas written into the template, as the server
+ * does (its @RINGDYN_VERSION@ becomes this version). */
+static int openapi(const char *file)
+{
+    rd_error err;
+    char *template = NULL, *doc = NULL;
+    size_t len;
+    rd_error_init(&err);
+    if (read_scene(file, &template, &len, &err) == RD_OK)
+        doc = rd_api_openapi_json(template, &err);
+    free(template);
+    if (!doc)
+        return fail(&err);
+    const char *at = strstr(doc, "@RINGDYN_VERSION@");
+    if (at)
+        printf("%.*s%s%s\n", (int)(at - doc), doc, rd_api_version(), at + 17);
+    else
+        printf("%s\n", doc);
+    free(doc);
+    return 0;
+}
+
 int main(int argc, char **argv)
 {
     const char *file = NULL;
@@ -160,6 +185,8 @@ int main(int argc, char **argv)
     }
     if (argc >= 2 && strcmp(argv[1], "sweep") == 0)
         return rd_sweep_cli_main(argc - 2, argv + 2);
+    if (argc == 3 && strcmp(argv[1], "openapi") == 0)
+        return openapi(argv[2]);
     if (argc < 3 || (strcmp(argv[1], "run") != 0 && strcmp(argv[1], "check") != 0))
         goto usage;
     int run = strcmp(argv[1], "run") == 0;

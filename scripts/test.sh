@@ -5,9 +5,12 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/install-deps.sh --test
-if [ -f tests/browser/package.json ]; then
-  (cd tests/browser && npm install --no-audit --no-fund --loglevel=error)
-fi
+# The npm packages of the tests (browser: playwright-core; lint/openapi: @redocly/cli).
+for dir in tests/browser tests/lint/openapi; do
+  if [ -f "$dir/package.json" ]; then
+    (cd "$dir" && npm install --no-audit --no-fund --loglevel=error)
+  fi
+done
 cmake -S . -B build-test -DCMAKE_BUILD_TYPE=RelWithDebInfo -DRINGDYN_SANITIZE=ON -DRINGDYN_WERROR=ON >/dev/null
 cmake --build build-test -j"$(nproc)"
 cd build-test

@@ -862,6 +862,8 @@ static enum MHD_Result serve_static(rd_http *h, struct MHD_Connection *c, struct
     }
     if (*rel == '\0')
         rel = "index.html";
+    else if (strcmp(rel, "docs") == 0) /* the API docs page (static/docs.html) */
+        rel = "docs.html";
     if (!h->static_root || !static_path_ok(rel)) {
         ret = send_not_found(h, c, rq, url);
         goto out;
@@ -1208,9 +1210,13 @@ static enum MHD_Result finish_submit(rd_http *h, struct MHD_Connection *c, struc
     }
 
     rd_scene *scene = NULL;
-    int rc = rd_scene_parse(rq->body ? rq->body : "", rq->len, &scene, &err);
+    char *errors = NULL; /* the error body with every problem (rd_api.h) */
+    int rc = rd_scene_parse_report(rq->body ? rq->body : "", rq->len, &scene, &err, &errors);
     free(rq->body);
     rq->body = NULL;
+    if (rc != RD_OK && err.code != RD_OK && errors)
+        return send_text(h, c, rq, rd_api_http_status(err.code), errors, json_media);
+    free(errors);
     if (rc != RD_OK) {
         if (err.code == RD_OK)
             rd_error_set(&err, rc, "", "%s.", rd_error_summary(rc));

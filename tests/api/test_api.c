@@ -501,18 +501,19 @@ static void test_run_modal(void)
     json_t *r = text ? json_loads(text, 0, NULL) : NULL;
     CHECK(r != NULL, "result is JSON");
     if (r) {
-        /* top-level keys, in the documented order */
-        static const char *const keys[] = {"analysis",          "scene", "rigid_body_modes",
-                                           "segment_angle_deg", "modes", "numerics"};
+        /* top-level keys, in the documented order (warnings last: rd_warnings.c) */
+        static const char *const keys[] = {"analysis", "scene",    "rigid_body_modes",
+                                           "segment_angle_deg", "modes", "numerics",
+                                           "warnings"};
         size_t k = 0;
         const char *key;
         json_t *v;
         json_object_foreach(r, key, v)
         {
-            CHECK(k < 6 && strcmp(key, keys[k]) == 0, "key %zu is %s", k, key);
+            CHECK(k < 7 && strcmp(key, keys[k]) == 0, "key %zu is %s", k, key);
             k++;
         }
-        CHECK(k == 6, "%zu top-level keys", k);
+        CHECK(k == 7, "%zu top-level keys", k);
         CHECK(json_integer_value(json_object_get(r, "rigid_body_modes")) == 6,
               "6 rigid-body modes");
         CHECK(strcmp(json_string_value(json_object_get(json_object_get(r, "scene"), "name")),

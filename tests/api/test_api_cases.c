@@ -9,9 +9,10 @@
  *    "comment": "..."}                              (ignored)
  *   {"status": 200, "result": {"rigid_body_modes": 6, "modes": [{...}, ...]}}
  *
- * The answer is built in-process as the server would: rd_scene_parse, then
- * rd_scene_run; status = rd_api_http_status of the error (200 on success),
- * "error" = the error JSON's object, "result" = the result JSON.  Matching:
+ * The answer is built in-process as the server would: rd_scene_parse_report,
+ * then rd_scene_run; status = rd_api_http_status of the error (200 on
+ * success), "error" and "errors" = the error body's, "result" = the result
+ * JSON.  Matching:
  * every key of an expected object must be present and match; arrays must
  * have the same length and match element by element; numbers within the
  * tolerance; everything else equal.
@@ -124,24 +125,26 @@ static char *read_all(const char *path, size_t *len)
     return buf;
 }
 
-/* The answer to `body` as {"status", "error"} or {"status", "result"}. */
+/* The answer to `body` as {"status", "error", "errors"[, "errors_omitted"]}
+ * (the error body of rd_scene_parse_report, or rd_api_error_json's for a
+ * failed run) or {"status", "result"}. */
 static json_t *answer(const char *body, size_t len)
 {
     rd_error err;
     rd_scene *scene = NULL;
-    char *result = NULL;
+    char *result = NULL, *e = NULL;
     json_t *out = NULL;
 
     rd_error_init(&err);
-    if (rd_scene_parse(body, len, &scene, &err) == RD_OK &&
+    if (rd_scene_parse_report(body, len, &scene, &err, &e) == RD_OK &&
         rd_scene_run(scene, NULL, &result, &err) == RD_OK) {
         out = json_pack("{s:i, s:o}", "status", 200, "result", json_loads(result, 0, NULL));
     } else {
-        char *e = rd_api_error_json(&err);
-        json_t *ej = e ? json_loads(e, 0, NULL) : NULL;
-        out = json_pack("{s:i, s:O}", "status", rd_api_http_status(err.code), "error",
-                        json_object_get(ej, "error"));
-        json_decref(ej);
+        if (!e)
+            e = rd_api_error_json(&err);
+        out = e ? json_loads(e, 0, NULL) : NULL;
+        if (out)
+            json_object_set_new(out, "status", json_integer(rd_api_http_status(err.code)));
         free(e);
     }
     free(result);
@@ -157,6 +160,27 @@ static int contains(json_t *answer_json, const char *needle, const char *name)
         fprintf(stderr, "case %s: message \"%s\" lacks \"%s\"\n", name,
                 message ? message : "(none)", needle);
         return 0;
+    }
+    return 1;
+}
+
+/* Every error answer lists its first problem again as errors[0], with the
+ * same code, path and message (what scripts reading "error" rely on). */
+static int first_is_error(json_t *got, const char *name)
+{
+    json_t *error = json_object_get(got, "error");
+    if (!error)
+        return 1;
+    json_t *first = json_array_get(json_object_get(got, "errors"), 0);
+    const char *keys[] = {"code", "path", "message"};
+    for (int k = 0; k < 3; k++) {
+        json_t *a = json_object_get(error, keys[k]), *b = json_object_get(first, keys[k]);
+        int same = a ? b && json_equal(a, b) : !b || strcmp(json_string_value(b), "") == 0;
+        if (!first || !same) {
+            fprintf(stderr, "case %s: errors[0].%s differs from error.%s\n", name, keys[k],
+                    keys[k]);
+            return 0;
+        }
     }
     return 1;
 }
@@ -197,7 +221,7 @@ static int run_case(const char *dir, const char *name)
     }
 
     json_t *got = answer(body, len);
-    ok = ok && got && match(expected, got, "", &tol, name);
+    ok = ok && got && match(expected, got, "", &tol, name) && first_is_error(got, name);
     if (json_is_string(needles))
         ok = contains(got, json_string_value(needles), name) && ok;
     size_t i;

@@ -1376,6 +1376,51 @@ for (const width of [1280, 390]) {
   });
 }
 
+// ---- /docs: the API docs page, built from the OpenAPI document (issue 13) ----
+
+for (const width of [1280, 390]) {
+  test(`${width} px: /docs lists every path and operation of the OpenAPI document, readable, linked from the page`, { timeout: 60000 }, async () => {
+    const doc = await (await fetch(`${BASE}/api/v1/openapi.json`)).json();
+    try {
+      await page.setViewportSize({ width, height: 844 });
+      await page.goto(`${BASE}/`);
+      await page.waitForSelector('#tab-modal[aria-selected="true"]');
+      await page.getByRole('link', { name: 'API docs' }).click();
+      await page.waitForSelector('#docs[data-ready]');
+      assert.equal(new URL(page.url()).pathname, '/docs');
+      // Every path with each of its methods, as a heading of its own section and in the contents.
+      const want = [];
+      for (const [p, item] of Object.entries(doc.paths)) {
+        for (const m of ['get', 'put', 'post', 'delete', 'patch']) if (item[m]) want.push(`${m.toUpperCase()} ${p}`);
+      }
+      const norm = (t) => t.replace(/\s+/g, ' ').trim();
+      const headings = (await page.$$eval('#docs-operations section.op h3', (hs) => hs.map((h) => h.textContent))).map(norm);
+      const toc = (await page.$$eval('#docs-toc ul.toc a', (as) => as.map((a) => a.textContent))).map(norm);
+      assert.deepEqual(headings.sort(), [...want].sort());
+      assert.deepEqual(toc.sort(), [...want].sort());
+      assert.ok(want.length >= 10, `${want.length} operations`);
+      // Every schema has its section, and the scene's fields show their ranges and defaults.
+      const schemas = await page.$$eval('#docs-schemas section.schema', (ss) => ss.map((s) => s.id));
+      assert.deepEqual(schemas.sort(), Object.keys(doc.components.schemas).map((n) => `schema-${n}`).sort());
+      const ring = await page.$eval('#schema-Ring', (s) => s.textContent);
+      assert.match(ring, /diameter/);
+      assert.match(ring, /default 0\.0765/);
+      // The request body's examples are shown as JSON.
+      const examples = await page.$$eval('#op-submitJob pre.json', (ps) => ps.map((p) => JSON.parse(p.textContent)));
+      assert.ok(examples.some((e) => e.analysis === 'modal'), 'the modal example of POST /api/v1/jobs');
+      // Readable: no text below 10 px, nothing wider than the screen.
+      assert.deepEqual(await smallText(), [], 'no text below 10 px');
+      const overflow = await page.evaluate(() => document.documentElement.scrollWidth - document.documentElement.clientWidth);
+      assert.ok(overflow <= 1, `no sideways scrolling (${overflow} px)`);
+      await shot(`docs-${width}.png`);
+    } finally {
+      await page.setViewportSize({ width: 1280, height: 800 });
+      await page.goto(`${BASE}/`);
+      await page.waitForSelector('#tab-modal[aria-selected="true"]');
+    }
+  });
+}
+
 test('no console errors or uncaught exceptions', () => {
   assert.deepEqual(pageErrors, []);
   assert.deepEqual(consoleErrors.filter((t) => !expectedConsole(t)), []);

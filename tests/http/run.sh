@@ -181,6 +181,11 @@ post /api/v1/jobs '{"analysis":"modal","discretization":{"segments":1}}'
 expect_error "segments 1" 422 invalid_scene /discretization/segments
 post /api/v1/jobs '{"analysis":"modal","ring":{"diamter":0.07}}'
 expect_error "unknown field" 422 invalid_scene /ring/diamter
+same "unknown field: error.did_you_mean" "$(json /error/did_you_mean)" diameter
+post /api/v1/jobs '{"analysis":"modal","ring":{"diamter":0.07,"radial_width":"2.9 mm"},"discretization":{"segments":1}}'
+expect_error "three problems" 422 invalid_scene /ring/diamter
+same "three problems: all in errors[]" "$(json /errors/1/path),$(json /errors/2/path),$(json /errors/3/path)" \
+  "/ring/radial_width,/discretization/segments,"
 post /api/v1/jobs '{"analysis":"modal","discretization":{"segments":"many"}}'
 expect_error "wrong type" 422 invalid_scene /discretization/segments
 post /api/v1/jobs '{"analysis":"warp"}'
