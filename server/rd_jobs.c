@@ -100,6 +100,7 @@ struct rd_jobs {
     int nworkers; /* started successfully */
     int active;   /* workers not yet returned */
     int in_solver; /* workers inside rd_scene_run */
+    int notifying; /* workers inside on_final/on_finish (shutdown waits for them) */
     struct body *recent; /* the body read last, held one reference longer (see keep_recent_locked) */
 };
 
@@ -754,16 +755,23 @@ static void run_job(rd_jobs *jobs, struct job *job, rd_scene *scene)
         set_status_locked(jobs, job, status);
         jobs->mean_run_s = 0.7 * jobs->mean_run_s + 0.3 * (t1 - t0);
         retain_locked(jobs);
+        jobs->notifying++; /* counted before `done` so shutdown cannot miss it */
         pthread_cond_broadcast(&jobs->done);
     }
     release_locked(job);
     pthread_mutex_unlock(&jobs->mu);
     free(error);
 
-    if (!detached && jobs->cfg.on_final)
+    if (detached)
+        return;
+    if (jobs->cfg.on_final)
         jobs->cfg.on_final(jobs->cfg.on_final_ctx);
-    if (!detached && jobs->cfg.on_finish)
+    if (jobs->cfg.on_finish)
         jobs->cfg.on_finish(jobs->cfg.on_finish_ctx, status, t1 - t0);
+    pthread_mutex_lock(&jobs->mu);
+    jobs->notifying--;
+    pthread_cond_broadcast(&jobs->done);
+    pthread_mutex_unlock(&jobs->mu);
 }
 
 static void *worker_main(void *arg)
@@ -934,6 +942,13 @@ void rd_jobs_shutdown(rd_jobs *jobs, double wait_s)
     for (struct job *j = jobs->head; j; j = j->next)
         if (j->status == RD_JOB_RUNNING)
             end_locked(jobs, j, RD_JOB_INTERRUPTED, interrupted_json("running"));
+    /* A worker that ended its job just before may still be telling on_final
+     * (the HTTP server, which main frees next): wait for it; it takes
+     * microseconds, so the bound only guards against a stuck callback. */
+    struct timespec notify_deadline = mono_deadline(1.0);
+    while (jobs->notifying > 0)
+        if (pthread_cond_timedwait(&jobs->done, &jobs->mu, &notify_deadline) == ETIMEDOUT)
+            break;
     pthread_cond_broadcast(&jobs->done);
     pthread_mutex_unlock(&jobs->mu);
     if (jobs->cfg.on_final)
