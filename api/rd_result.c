@@ -196,6 +196,45 @@ out:
     return out;
 }
 
+/* Light gaps, tip forces, bins and the accuracy record (issue 11) added to
+ * a contact result; non-zero on out of memory. */
+static int contact_accuracy(json_t *out, const rd_contact_result *res)
+{
+    json_t *gaps = json_array(), *num = json_object_get(out, "numerics");
+    int bad = !gaps || !num;
+    for (int g = 0; !bad && g < res->n_gaps; g++) {
+        const rd_contact_gap *p = &res->gaps[g];
+        bad |= json_array_append_new(
+            gaps, json_pack("{s:o, s:o, s:o, s:o}", "start_deg", real_or_null(p->start_deg),
+                            "end_deg", real_or_null(p->end_deg), "max_clearance",
+                            real_or_null(p->max_clearance), "max_clearance_angle_deg",
+                            real_or_null(p->max_clearance_deg)));
+    }
+    bad |= json_object_set_new(out, "light_gaps", gaps);
+    bad |= json_object_set_new(out, "tip_forces_n", real_array(res->tip_force, 2, 1, 1.0));
+    bad |= json_object_set_new(
+        out, "pressure_bins",
+        json_pack("{s:f, s:o}", "bin_deg", RD_CONTACT_BIN_DEG, "pressure_pa",
+                  real_array(res->bin_pressure, RD_CONTACT_BINS, 1, 1.0)));
+    if (bad)
+        return 1;
+    const rd_contact_estimates *e = &res->estimates;
+    bad |= json_object_set_new(
+        num, "error_estimates",
+        json_pack("{s:o, s:o, s:o, s:o}", "pressure", real_or_null(e->pressure),
+                  "contact_fraction", real_or_null(e->contact_fraction), "max_clearance",
+                  real_or_null(e->max_clearance), "gap_edges_deg", real_or_null(e->gap_edges_deg)));
+    bad |= json_object_set_new(num, "accuracy", real_or_null(res->accuracy_met < 0 ? NAN
+                                                                                  : res->accuracy));
+    bad |= json_object_set_new(num, "accuracy_met", res->accuracy_met < 0
+                                                        ? json_null()
+                                                        : json_boolean(res->accuracy_met));
+    bad |= json_object_set_new(num, "accuracy_note", res->accuracy_note[0]
+                                                         ? json_string(res->accuracy_note)
+                                                         : json_null());
+    return bad;
+}
+
 json_t *rd_result_contact(const rd_scene *scene, const rd_contact_result *res, double wall_s)
 {
     int n = res->points;
@@ -211,7 +250,7 @@ json_t *rd_result_contact(const rd_scene *scene, const rd_contact_result *res, d
             dist = NULL;
         }
     }
-    return json_pack(
+    json_t *out = json_pack(
         "{s:s, s:o, s:o, s:o, s:o, s:o, s:o, s:o, s:o, s:o, s:o, s:o, s:o, s:o, s:o, s:o,"
         " s:o}",
         "analysis", rd_scene_analysis(scene),
@@ -231,8 +270,13 @@ json_t *rd_result_contact(const rd_scene *scene, const rd_contact_result *res, d
         "distortion", dist,
         "support", support_object(&res->stats),
         "numerics", static_numerics(&res->stats, wall_s,
-                                    "RMS difference of the pressure profile, relative to the "
-                                    "uniform pressure,"));
+                                    "Largest difference of the binned pressure, relative to "
+                                    "the uniform pressure, at the last two refinement levels,"));
+    if (out && contact_accuracy(out, res) != 0) {
+        json_decref(out);
+        out = NULL;
+    }
+    return out;
 }
 
 /* ---- lift ------------------------------------------------------------------ */

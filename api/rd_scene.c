@@ -100,6 +100,7 @@ static const field contact_fields[] = {
     {"points_per_segment", F_INTEGER, AT(contact.points_per_segment), NULL, NULL, 1,
      RD_CONTACT_POINTS_MAX},
     {"stiffness", F_NUMBER, AT(contact.stiffness), NULL, NULL, 0, 0},
+    {"max_segments", F_INTEGER, AT(contact.max_segments), NULL, NULL, 4, RD_STATIC_SEGMENTS_MAX},
     END,
 };
 
@@ -190,11 +191,19 @@ static const field pretension_scene_fields[] = {
     END,
 };
 
+static const field contact_numerics_fields[] = {
+    {"tolerance", F_NUMBER, AT(statics.tol), NULL, NULL, 0, 0},
+    {"max_iterations", F_INTEGER, AT(statics.max_iterations), NULL, NULL, 1, 100000},
+    {"error_estimate", F_BOOL, AT(statics.estimate_error), NULL, NULL, 0, 0},
+    {"accuracy", F_NUMBER, AT(contact.accuracy), NULL, NULL, 0, 0},
+    END,
+};
+
 static const field contact_scene_fields[] = {
     COMMON_FIELDS,
     {"bore", F_BLOCK, 0, bore_fields, NULL, 0, 0},
     {"contact", F_BLOCK, 0, contact_fields, NULL, 0, 0},
-    {"numerics", F_BLOCK, 0, static_numerics_fields, NULL, 0, 0},
+    {"numerics", F_BLOCK, 0, contact_numerics_fields, NULL, 0, 0},
     IGNORED("modal"), IGNORED("pretension"), IGNORED("engine"), IGNORED("groove"),
     IGNORED("physics"), IGNORED("output"),
     END,
@@ -820,11 +829,14 @@ static int echo_analysis_blocks(const rd_scene *s, json_t *o)
                       "distortion", distortion_echo(&s->contact)));
         bad |= json_object_set_new(
             o, "contact",
-            json_pack("{s:i, s:o}", "points_per_segment", s->contact.points_per_segment,
+            json_pack("{s:i, s:o, s:i}", "points_per_segment", s->contact.points_per_segment,
                       "stiffness",
                       real(s->contact.stiffness > 0 ? s->contact.stiffness
-                                                    : rd_contact_default_stiffness(&s->ring))));
-        bad |= json_object_set_new(o, "numerics", static_numerics_echo(s));
+                                                    : rd_contact_default_stiffness(&s->ring)),
+                      "max_segments", s->contact.max_segments));
+        json_t *num = static_numerics_echo(s);
+        bad |= !num || json_object_set_new(num, "accuracy", real(s->contact.accuracy));
+        bad |= json_object_set_new(o, "numerics", num);
         break;
     case RD_ANALYSIS_LIFT: {
         json_t *physics = json_pack("{s:b}", "gravity", l->gravity);
