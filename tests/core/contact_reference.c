@@ -25,6 +25,10 @@
 #include <stdlib.h>
 #include <string.h>
 
+#ifndef M_PI
+#define M_PI 3.14159265358979323846
+#endif
+
 #define KD 5 /* half bandwidth: node j couples with j +- 1 */
 
 typedef struct model {
@@ -128,7 +132,7 @@ static double edge(double ta, double tb, double g1, double g2)
 }
 
 static void post(const model *m, const char *act, const double *u, const double *lam,
-                 double bin_deg, ref_result *out)
+                 double bin_deg, double gap_floor, ref_result *out)
 {
     int N = m->N;
     double span = 2.0 * M_PI - 2.0 * m->s, gap_len = 0.0;
@@ -151,12 +155,14 @@ static void post(const model *m, const char *act, const double *u, const double 
         double end = b == N ? te
                             : -edge(-(te + m->D), -te, gB,
                                     b - 1 >= a ? m->g0[b - 1] - u[3 * b - 2] : 0);
-        gap_len += end - start;
-        ref_gap *g = out->n_gaps < 64 ? &out->gaps[out->n_gaps++] : NULL;
         double best = 0.0, at = th;
         for (int q = a; q <= b; q++)
             if (m->g0[q] - u[3 * q + 1] > best)
                 best = m->g0[q] - u[3 * q + 1], at = m->s + q * m->D;
+        if (best <= gap_floor)
+            continue;
+        gap_len += end - start;
+        ref_gap *g = out->n_gaps < 64 ? &out->gaps[out->n_gaps++] : NULL;
         if (g)
             *g = (ref_gap){start * 180 / M_PI, end * 180 / M_PI, best, at * 180 / M_PI};
         if (best > out->max_clearance)
@@ -184,7 +190,7 @@ static void post(const model *m, const char *act, const double *u, const double 
 }
 
 int ref_contact_solve(const rd_ring_params *p, const rd_contact_opts *o, int cells, double bin_deg,
-                      ref_result *out)
+                      double gap_floor, ref_result *out)
 {
     model m = {0};
     double E = p->youngs_modulus, G = E / (2.0 * (1.0 + p->poisson_ratio));
@@ -244,7 +250,7 @@ int ref_contact_solve(const rd_ring_params *p, const rd_contact_opts *o, int cel
                 lam[j] = 0.0;
         out->cells = cells;
         out->p0 = 2.0 * m.Ft / (p->diameter * h);
-        post(&m, act, u, lam, bin_deg, out);
+        post(&m, act, u, lam, bin_deg, gap_floor, out);
     }
 out:
     free(m.K), free(m.g0), free(ab), free(u), free(f), free(val), free(re), free(lam);

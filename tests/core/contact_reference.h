@@ -31,9 +31,10 @@ typedef struct ref_result {
     double p0;
 } ref_result;
 
-/* Solves on `cells` cells; bins of bin_deg.  Returns 0, or -1 (no
- * convergence, out of memory, singular). */
+/* Solves on `cells` cells (even); bins of bin_deg; light gaps no deeper
+ * than gap_floor (m) count as contact.  Returns 0, or -1 (no convergence,
+ * out of memory, singular). */
 int ref_contact_solve(const rd_ring_params *p, const rd_contact_opts *o, int cells, double bin_deg,
-                      ref_result *out);
+                      double gap_floor, ref_result *out);
 
 #endif
