@@ -482,6 +482,8 @@ int rd_contact_solve(const rd_ring_params *p, int segments, const rd_contact_opt
     rc = refine(&run, mon, err);
     if (rc == RD_OK) {
         *out = run.level[0];
+        if (out->stats.reference_segments == 0) /* the first finer solve failed */
+            out->estimates = (rd_contact_estimates){NAN, NAN, NAN, NAN};
         out->stats.error_estimate = out->estimates.pressure;
         memset(&run.level[0], 0, sizeof run.level[0]);
     }
