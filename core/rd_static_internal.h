@@ -18,6 +18,8 @@
 
 enum { RD_STATIC_PRETENSION = 0, RD_STATIC_CONTACT = 1 };
 
+#define RD_CONTACT_LF 0.4 /* contact: load factor at which F_t is fully applied */
+
 /* ---- 3-vectors and 3x3 matrices (row-major) ------------------------------- */
 
 static inline double rd_dot3(const double a[3], const double b[3])
