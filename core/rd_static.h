@@ -40,10 +40,12 @@
  * Solution: Newton's method on all 6n equations with load stepping
  * (pretension: lambda scales F_t and F_l; contact: F_t first, then the
  * bore's departure from the ring's closed shape, each segment moved with
- * the bore as a predictor), backtracking line search, Levenberg-Marquardt
- * damping when a plain step fails, a central-difference tangent assembled
- * element by element into LAPACK band storage (dgbtrf/dgbtrs; the field
- * method's one off-band block by the Woodbury identity).
+ * the bore as a predictor, the law smoothed 1000 times wider until the bore
+ * is in place and then narrowed to eps), backtracking line search,
+ * Levenberg-Marquardt damping when a plain step fails, a central-difference
+ * tangent assembled element by element into LAPACK band storage
+ * (dgbtrf/dgbtrs; the field method's one off-band block by the Woodbury
+ * identity).
  * Convergence: largest force residual <= tol * F_ref and largest moment
  * residual <= tol * F_ref * R, tol raised to the rounding floor of the
  * stiffest spring when that is larger (reported as numerics.tolerance).
