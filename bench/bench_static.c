@@ -173,7 +173,7 @@ static void battery(const rd_ring_params *p)
                 double dg = r.max_clearance > 1e-7
                                 ? fabs(c.max_clearance - r.max_clearance) / r.max_clearance
                                 : NAN;
-                double eg = c.estimates.max_clearance / fmax(c.max_clearance, 1e-300);
+                double eg = c.max_clearance > 0 ? c.estimates.max_clearance / c.max_clearance : NAN;
                 double de = edge_error(&c, &r);
                 total++;
                 ok[0] += dcf <= 0.02;

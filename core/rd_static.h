@@ -87,8 +87,9 @@ typedef struct rd_contact_opts {
                                5 moves a distorted bore's pressures by ~0.2 p0, 10 by ~0.05) */
     double stiffness;       /* k, Pa/m; 0 = default (see rd_contact_default_stiffness) */
     double accuracy;        /* a: refine n until the error estimates meet a (pressure, of
-                               p0), 2a (contact fraction), 5a (largest light gap, relative)
-                               and 100a deg (gap edges); default 0.01, 1e-4..0.5 */
+                               p0), 2a (contact fraction), 5a (largest light gap, relative;
+                               or the gap is certainly under 0.1 um) and 100a deg (gap
+                               edges); default 0.01, 1e-4..0.5 */
     int max_segments;       /* refinement stops here (the first pair n, 2n always runs);
                                default 320, 4..RD_STATIC_SEGMENTS_MAX */
 } rd_contact_opts;
