@@ -4,6 +4,7 @@
  * object and CSV table (rd_registry.h).  Options: struct rd_static_scene.
  */
 #include <jansson.h>
+#include <math.h>
 #include <stddef.h>
 
 #include "rd_registry.h"
@@ -56,6 +57,9 @@ static const rd_block bore_block = {
 static const rd_field contact_fields[] = {
     {"points_per_segment", RD_F_INTEGER, ST(contact.points_per_segment), RD_MIN(1),
      RD_MAX(RD_CONTACT_POINTS_MAX), .desc = "Contact points m on each segment's running face."},
+    {"max_segments", RD_F_INTEGER, ST(contact.max_segments), RD_MIN(4),
+     RD_MAX(RD_STATIC_SEGMENTS_MAX),
+     .desc = "Largest segment count the accuracy target may refine to (n, 2n, 4n ...)."},
     {"stiffness", RD_F_NUMBER, ST(contact.stiffness), RD_MIN(0.0), .echo = echo_stiffness,
      .desc = "Contact stiffness k, Pa/m. Absent or 0 = the default 1e6 E I / (h R^4) "
              "(penetration under the nominal pressure 1e-6 of the ring's radial deflection "
@@ -74,7 +78,7 @@ static const rd_field scene_fields[] = {
                          rd_block_discretization_static),
     {"bore", RD_F_BLOCK, 0, .block = &bore_block},
     {"contact", RD_F_BLOCK, 0, .block = &contact_block},
-    {"numerics", RD_F_BLOCK, 0, .block = &rd_block_static_numerics},
+    {"numerics", RD_F_BLOCK, 0, .block = &rd_block_contact_numerics},
     {.key = NULL},
 };
 static const rd_block scene_block = {
@@ -82,7 +86,7 @@ static const rd_block scene_block = {
     "The installed ring pressed by its pretension against a round or distorted bore: contact "
     "pressure and light gaps around the circumference (thesis 3.4.3). Reads ring "
     "(tangential_force must be > 0), discretization (4..2000 segments, split ring only), bore, "
-    "contact (ContactOptions) and numerics (StaticNumerics).",
+    "contact (ContactOptions) and numerics (ContactNumerics).",
     0, 0, scene_fields};
 
 static int finish(struct rd_scene *s, rd_error *err)
@@ -114,10 +118,49 @@ static json_t *distortion_bounds(const rd_scene *scene, const rd_contact_result 
  *  "bore_radius" (n each, per segment), "mean_pressure_pa", ...,
  *  "distortion":[{"order","amplitude","phase_deg","conformability_bound"}],
  *  "support", "numerics"} */
+/* Light gaps, tip forces, bins and the accuracy record added to a contact
+ * result; non-zero on out of memory. */
+static int contact_accuracy(json_t *out, const rd_contact_result *res)
+{
+    json_t *gaps = json_array(), *num = json_object_get(out, "numerics");
+    int bad = !gaps || !num;
+    for (int g = 0; !bad && g < res->n_gaps; g++) {
+        const rd_contact_gap *p = &res->gaps[g];
+        bad |= json_array_append_new(
+            gaps, json_pack("{s:o, s:o, s:o, s:o}", "start_deg", rd_result_real(p->start_deg),
+                            "end_deg", rd_result_real(p->end_deg), "max_clearance",
+                            rd_result_real(p->max_clearance), "max_clearance_angle_deg",
+                            rd_result_real(p->max_clearance_deg)));
+    }
+    bad |= json_object_set_new(out, "light_gaps", gaps);
+    bad |= json_object_set_new(out, "tip_forces_n", rd_result_reals(res->tip_force, 2, 1, 1.0));
+    bad |= json_object_set_new(
+        out, "pressure_bins",
+        json_pack("{s:f, s:o}", "bin_deg", RD_CONTACT_BIN_DEG, "pressure_pa",
+                  rd_result_reals(res->bin_pressure, RD_CONTACT_BINS, 1, 1.0)));
+    if (bad)
+        return 1;
+    const rd_contact_estimates *e = &res->estimates;
+    bad |= json_object_set_new(
+        num, "error_estimates",
+        json_pack("{s:o, s:o, s:o, s:o}", "pressure", rd_result_real(e->pressure),
+                  "contact_fraction", rd_result_real(e->contact_fraction), "max_clearance",
+                  rd_result_real(e->max_clearance), "gap_edges_deg",
+                  rd_result_real(e->gap_edges_deg)));
+    bad |= json_object_set_new(
+        num, "accuracy", rd_result_real(res->accuracy_met < 0 ? NAN : res->accuracy));
+    bad |= json_object_set_new(
+        num, "accuracy_met", res->accuracy_met < 0 ? json_null() : json_boolean(res->accuracy_met));
+    bad |= json_object_set_new(num, "accuracy_note", res->accuracy_note[0]
+                                                         ? json_string(res->accuracy_note)
+                                                         : json_null());
+    return bad;
+}
+
 static json_t *contact_result(const rd_scene *scene, const rd_contact_result *res, double wall_s)
 {
     int n = res->points;
-    return json_pack(
+    json_t *out = json_pack(
         "{s:s, s:o, s:o, s:o, s:o, s:o, s:o, s:o, s:o, s:o, s:o, s:o, s:o, s:o, s:o, s:o,"
         " s:o}",
         "analysis", rd_scene_analysis(scene),
@@ -137,8 +180,14 @@ static json_t *contact_result(const rd_scene *scene, const rd_contact_result *re
         "distortion", distortion_bounds(scene, res),
         "support", rd_static_result_support(&res->stats),
         "numerics", rd_static_result_numerics(&res->stats, wall_s,
-                                              "RMS difference of the pressure profile, relative "
-                                              "to the uniform pressure,"));
+                                              "Largest difference of the binned pressure, "
+                                              "relative to the uniform pressure, at the last two "
+                                              "refinement levels,"));
+    if (out && contact_accuracy(out, res) != 0) {
+        json_decref(out);
+        out = NULL;
+    }
+    return out;
 }
 
 static int run(const rd_scene *s, const rd_monitor *mon, json_t **out, rd_error *err)

@@ -90,22 +90,40 @@ const rd_block rd_block_discretization_lift = {
 
 #define ST(member) offsetof(struct rd_static_scene, member)
 
-static const rd_field static_numerics[] = {
-    {"tolerance", RD_F_NUMBER, ST(statics.tol), RD_MIN(1e-13), RD_MAX(0.001),
-     .desc = "Relative residual tolerance: largest force residual <= tolerance * F_ref, moment "
-             "residual <= tolerance * F_ref * R. Raised to the ring's rounding floor when that "
-             "is larger (result numerics.tolerance gives the one used)."},
-    {"max_iterations", RD_F_INTEGER, ST(statics.max_iterations), RD_MIN(1), RD_MAX(100000),
-     .desc = "Newton iterations allowed over all load steps."},
-    {"error_estimate", RD_F_BOOL, ST(statics.estimate_error),
-     .desc = "Estimate the discretization error by a second solve at 2n segments (n/2 above "
+/* The Newton fields pretension and contact share; contact adds its accuracy target. */
+#define STATIC_NUMERICS_FIELDS \
+    {"tolerance", RD_F_NUMBER, ST(statics.tol), RD_MIN(1e-13), RD_MAX(0.001), \
+     .desc = "Relative residual tolerance: largest force residual <= tolerance * F_ref, moment " \
+             "residual <= tolerance * F_ref * R. Raised to the ring's rounding floor when that " \
+             "is larger (result numerics.tolerance gives the one used)."}, \
+    {"max_iterations", RD_F_INTEGER, ST(statics.max_iterations), RD_MIN(1), RD_MAX(100000), \
+     .desc = "Newton iterations allowed over all load steps."}, \
+    {"error_estimate", RD_F_BOOL, ST(statics.estimate_error), \
+     .desc = "Estimate the discretization error by a second solve at 2n segments (n/2 above " \
              "1000)."},
+
+static const rd_field static_numerics[] = {
+    STATIC_NUMERICS_FIELDS
     {.key = NULL},
 };
 const rd_block rd_block_static_numerics = {
     "StaticNumerics",
-    "/numerics of a pretension or contact scene: Newton's method with load stepping.", 1, 0,
+    "/numerics of a pretension scene: Newton's method with load stepping.", 1, 0,
     static_numerics};
+
+static const rd_field contact_numerics[] = {
+    STATIC_NUMERICS_FIELDS
+    {"accuracy", RD_F_NUMBER, ST(contact.accuracy), RD_MIN(1e-4), RD_MAX(0.5),
+     .desc = "Target relative accuracy of the pressure (relative to 2 F_t / (d h)), held to the "
+             "same standard for the light-gap quantities: the solve refines n, 2n, 4n ... up to "
+             "contact.max_segments until its error estimates meet it, or says why not "
+             "(numerics.accuracy_met, accuracy_note)."},
+    {.key = NULL},
+};
+const rd_block rd_block_contact_numerics = {
+    "ContactNumerics",
+    "/numerics of a contact scene: Newton's method with load stepping, and the accuracy target.",
+    1, 0, contact_numerics};
 
 void rd_static_scene_defaults(struct rd_scene *s)
 {

@@ -80,6 +80,7 @@ extern const rd_block rd_block_discretization_modal;  /* 3..2000 segments, close
 extern const rd_block rd_block_discretization_static; /* 4..2000, split ring */
 extern const rd_block rd_block_discretization_lift;   /* 4..1000, split ring */
 extern const rd_block rd_block_static_numerics;       /* Newton, in struct rd_static_scene */
+extern const rd_block rd_block_contact_numerics;      /* the same + the accuracy target */
 
 /* The options of pretension and contact (their opts): the static numerics
  * block is shared, so both keep it at the same place. */

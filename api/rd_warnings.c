@@ -200,9 +200,25 @@ static int event_error(json_t *scene, json_t *result, json_t *out)
     return 0;
 }
 
+/* An analysis with an accuracy target (contact's numerics.accuracy) that it
+ * could not meet says so in numerics.accuracy_met / accuracy_note. */
+static int accuracy_not_met(json_t *scene, json_t *result, json_t *out)
+{
+    (void)scene;
+    json_t *numerics = json_object_get(result, "numerics");
+    json_t *met = json_object_get(numerics, "accuracy_met");
+    if (!json_is_false(met))
+        return 0;
+    const char *note = json_string_value(json_object_get(numerics, "accuracy_note"));
+    return warn(out, "accuracy_not_met", "/numerics/accuracy",
+                "the accuracy target %g was not met: %s", number_at(result, "/numerics/accuracy"),
+                note ? note : "the solver stopped refining before its estimates met it.");
+}
+
 /* The rules, in the order their warnings are listed. */
 static int (*const rules[])(json_t *scene, json_t *result, json_t *out) = {
     density, youngs_modulus, poisson, gas_in_bar, bore_diameter, error_estimate, event_error,
+    accuracy_not_met,
 };
 
 int rd_warnings_add(json_t *result)

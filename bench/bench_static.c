@@ -9,6 +9,11 @@
  *       and the change of the pressure profile vs 20 points; fitted cost
  *       exponents (t ~ n^p over n >= 80).
  *   bench_static --once N   one contact solve at N segments (callgrind).
+ *   bench_static --battery  contact in distorted bores (orders 2, 3, 4, 6;
+ *       0.1, 1, 3, 10 x the thin-ring bound, capped at 0.4 % of the
+ *       diameter; phases 0 and 17 deg) at default settings against the
+ *       independent reference (tests/core/contact_reference.c, 1440 cells):
+ *       true errors, the solver's estimates, wall time (median of 3).
  *
  * The x_a limit is the Richardson extrapolation from n = 2000 and 1000
  * (order 2, checked in tests/core/test_static.c).
@@ -21,6 +26,7 @@
 
 #include "bench_util.h"
 
+#include "contact_reference.h"
 #include "rd_static.h"
 
 static void die(const char *what, const rd_error *err)
@@ -82,6 +88,117 @@ static double profile_change(const rd_contact_result *a, const rd_contact_result
     return worst;
 }
 
+/* Largest edge error of the reference's gaps deeper than 0.1 um against the
+ * overlapping gap of the solver (a missed gap: its width). */
+static double edge_error(const rd_contact_result *c, const ref_result *r)
+{
+    double worst = 0;
+    for (int a = 0; a < r->n_gaps; a++) {
+        const ref_gap *g = &r->gaps[a];
+        if (g->max_clearance <= 1e-7)
+            continue;
+        double best = g->end_deg - g->start_deg;
+        for (int b = 0; b < c->n_gaps; b++) {
+            const rd_contact_gap *h = &c->gaps[b];
+            if (h->end_deg < g->start_deg || h->start_deg > g->end_deg)
+                continue;
+            best = fmin(best, fmax(fabs(g->start_deg - h->start_deg),
+                                   fabs(g->end_deg - h->end_deg)));
+        }
+        worst = fmax(worst, best);
+    }
+    return worst;
+}
+
+/* est / err within x3 (both below `floor`: counted as tracking). */
+static int tracks(double est, double err, double floor)
+{
+    if (err <= floor && est <= floor)
+        return 1;
+    return est <= 3.0 * err && err <= 3.0 * est;
+}
+
+static void battery(const rd_ring_params *p)
+{
+    rd_ring_section sec;
+    rd_ring_section_get(p, 0, &sec);
+    const int orders[] = {2, 3, 4, 6};
+    const double facs[] = {0.1, 1, 3, 10}, phases[] = {0, 17};
+    double p0 = 2 * p->tangential_force / (p->diameter * p->axial_height);
+    double floor_m = 10 * p0 / rd_contact_default_stiffness(p);
+    int total = 0, ok[4] = {0}, track[4] = {0}, fast = 0;
+    printf("## contact in distorted bores, default settings, vs the curved-beam reference\n\n");
+    printf("| k | A / bound | phase | n | met | wall (s) | contact fraction: error (estimate) "
+           "| largest gap: error (estimate) | gap edges, deg | binned pressure / p0 |\n"
+           "|---|---|---|---|---|---|---|---|---|---|\n");
+    for (int oi = 0; oi < 4; oi++)
+        for (int fi = 0; fi < 4; fi++)
+            for (int pi = 0; pi < 2; pi++) {
+                int k = orders[oi];
+                double bound = p->tangential_force * pow(sec.R, 3) /
+                               (p->youngs_modulus * sec.I_inplane * pow(k * k - 1.0, 2));
+                double A = fmin(facs[fi] * bound, 0.004 * p->diameter);
+                rd_contact_opts o;
+                rd_contact_opts_default(&o);
+                o.n_distortion = 1;
+                o.distortion[0] = (rd_distortion){k, A, phases[pi]};
+                ref_result r;
+                if (ref_contact_solve(p, &o, 1440, RD_CONTACT_BIN_DEG, floor_m, &r) != 0) {
+                    printf("| %d | %.2g | %g | reference failed |\n", k, A / bound, phases[pi]);
+                    continue;
+                }
+                rd_contact_result c;
+                memset(&c, 0, sizeof c);
+                double t[3];
+                int reps = 0, rc = 0;
+                rd_error err;
+                while (reps < 3 && rc == 0 && (reps == 0 || t[0] < 2.0)) {
+                    rd_static_opts so;
+                    rd_static_opts_default(&so);
+                    rd_error_init(&err);
+                    rd_contact_result_cleanup(&c);
+                    double t0 = bench_now();
+                    rc = rd_contact_solve(p, 20, &o, &so, NULL, &c, &err);
+                    t[reps++] = bench_now() - t0;
+                }
+                if (rc != 0) {
+                    printf("| %d | %.2g | %g | failed: %s |\n", k, A / bound, phases[pi],
+                           err.message);
+                    continue;
+                }
+                double wall = bench_median(t, reps), dp = 0;
+                for (int b = 0; b < RD_CONTACT_BINS; b++)
+                    dp = fmax(dp, fabs(c.bin_pressure[b] - r.bin_pressure[b]) / p0);
+                double dcf = fabs(c.contact_fraction - r.contact_fraction);
+                double dg = r.max_clearance > 1e-7
+                                ? fabs(c.max_clearance - r.max_clearance) / r.max_clearance
+                                : NAN;
+                double eg = c.max_clearance > 0 ? c.estimates.max_clearance / c.max_clearance : NAN;
+                double de = edge_error(&c, &r);
+                total++;
+                ok[0] += dcf <= 0.02;
+                ok[1] += !(dg > 0.05);
+                ok[2] += de <= 1.0;
+                ok[3] += dp <= 0.02;
+                track[0] += tracks(c.estimates.contact_fraction, dcf, 1e-3);
+                track[1] += isnan(dg) || tracks(eg, dg, 1e-3);
+                track[2] += tracks(c.estimates.gap_edges_deg, de, 0.05);
+                track[3] += tracks(c.estimates.pressure, dp, 1e-3);
+                fast += wall <= 0.2;
+                printf("| %d | %.2g | %g | %d | %s | %.3f | %.4f (%.4f) | %+.1f %% (%.1f %%) | "
+                       "%.2f (%.2f) | %.3f (%.3f) |\n",
+                       k, A / bound, phases[pi], c.stats.segments, c.accuracy_met ? "yes" : "no",
+                       wall, dcf, c.estimates.contact_fraction, 100 * dg, 100 * eg, de,
+                       c.estimates.gap_edges_deg, dp, c.estimates.pressure);
+                rd_contact_result_cleanup(&c);
+            }
+    printf("\n%d bores. Within the targets: contact fraction (0.02) %d, largest gap (5 %%) %d, "
+           "edges (1 deg) %d, binned pressure (0.02 p0) %d; wall <= 0.2 s: %d.\n"
+           "Estimate within x3 of the true error: contact fraction %d, largest gap %d, edges %d, "
+           "pressure %d.\n",
+           total, ok[0], ok[1], ok[2], ok[3], fast, track[0], track[1], track[2], track[3]);
+}
+
 int main(int argc, char **argv)
 {
     rd_ring_params p;
@@ -98,6 +215,10 @@ int main(int argc, char **argv)
         if (rd_contact_solve(&p, atoi(argv[2]), &co, &so, NULL, &r, &err))
             die("contact", &err);
         rd_contact_result_cleanup(&r);
+        return 0;
+    }
+    if (argc == 2 && strcmp(argv[1], "--battery") == 0) {
+        battery(&p);
         return 0;
     }
     double p0 = 2 * p.tangential_force / (p.diameter * p.axial_height);

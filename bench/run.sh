@@ -42,6 +42,8 @@ echo
 echo "## contact: instructions vs n (callgrind, one round-bore solve, 10 points per segment)"
 instructions bench_static
 echo
+"$b/bench/bench_static" --battery
+echo
 echo "## lift: cost per engine cycle vs n, and flank-change accuracy vs rtol"
 "$b/bench/bench_lift"
 echo

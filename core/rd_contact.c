@@ -22,10 +22,27 @@
 #include <stdlib.h>
 #include <string.h>
 
-/* Contact applies the bore over lambda 1/2..1 (rd_static_force_factor). */
+/* The load path (lambda 0..1): F_t over 0..RD_CONTACT_LF with the bore
+ * still the ring's closed shape, then the bore's departure from it over
+ * RD_CONTACT_LF..BORE_DONE, the contact law smoothed over EPS_WIDE times its
+ * length meanwhile (a Newton step then sees contacts change over a length
+ * comparable to its own, not 1e-10 m), then the smoothing brought down to
+ * eps geometrically; measured: half the Newton iterations of the unsmoothed
+ * path on the hard bores of bench_static --battery, the answer unchanged
+ * within the residual tolerance. */
+#define BORE_DONE 0.8
+#define EPS_WIDE 1000.0
+
 static double bore_factor(const rd_static_problem *pb)
 {
-    return fmax(0.0, 2.0 * pb->lambda - 1.0);
+    return fmin(1.0, fmax(0.0, (pb->lambda - RD_CONTACT_LF) / (BORE_DONE - RD_CONTACT_LF)));
+}
+
+/* The law's smoothing length at the current load factor. */
+static double eps_now(const rd_static_problem *pb)
+{
+    double s = fmin(1.0, fmax(0.0, (1.0 - pb->lambda) / (1.0 - BORE_DONE)));
+    return pb->eps * pow(EPS_WIDE, s);
 }
 
 /* Bore radius and its derivative at theta, at the current load factor. */
@@ -46,10 +63,10 @@ static void bore_radius(const rd_static_problem *pb, double theta, double *r, do
 /* The smooth contact law p(delta) = k eps ln(1 + exp(delta / eps)). */
 static double contact_pressure(const rd_static_problem *pb, double delta)
 {
-    double z = delta / pb->eps;
+    double e = eps_now(pb), z = delta / e;
     if (z > 0)
-        return pb->k * (delta + pb->eps * log1p(exp(-z)));
-    return pb->k * pb->eps * log1p(exp(z));
+        return pb->k * (delta + e * log1p(exp(-z)));
+    return pb->k * e * log1p(exp(z));
 }
 
 /* Predictor for a contact load step: every segment moves radially with the
@@ -73,6 +90,8 @@ void rd_contact_opts_default(rd_contact_opts *o)
 {
     memset(o, 0, sizeof *o);
     o->points_per_segment = 10;
+    o->accuracy = 0.01;
+    o->max_segments = 320;
 }
 
 double rd_contact_default_stiffness(const rd_ring_params *p)
@@ -131,6 +150,14 @@ int rd_contact_validate(const rd_contact_opts *o, const rd_ring_params *p, rd_er
         return rd_error_set(err, RD_EINVAL, "/contact/points_per_segment",
                             "/contact/points_per_segment = %d is out of range: allowed 1 to %d.",
                             o->points_per_segment, RD_CONTACT_POINTS_MAX);
+    if (!isfinite(o->accuracy) || o->accuracy < 1e-4 || o->accuracy > 0.5)
+        return rd_error_set(err, RD_EINVAL, "/numerics/accuracy",
+                            "/numerics/accuracy = %g is out of range: allowed 1e-4 to 0.5.",
+                            o->accuracy);
+    if (o->max_segments < 4 || o->max_segments > RD_STATIC_SEGMENTS_MAX)
+        return rd_error_set(err, RD_EINVAL, "/contact/max_segments",
+                            "/contact/max_segments = %d is out of range: allowed 4 to %d.",
+                            o->max_segments, RD_STATIC_SEGMENTS_MAX);
     double k0 = rd_contact_default_stiffness(p);
     if (o->stiffness != 0.0 &&
         (!isfinite(o->stiffness) || o->stiffness < 1e-3 * k0 || o->stiffness > 1e2 * k0))
@@ -203,15 +230,25 @@ static int contact_setup(rd_static_problem *pb, const rd_ring_params *p, const r
  * segment share whatever misfit the straight-sided segment has against a
  * curved bore, so how the pressure splits between them is an artifact of
  * rigid segments; the resultant is not. */
-static void segment_output(const rd_static_problem *pb, int i, rd_contact_result *out)
+static void segment_output(const rd_static_problem *pb, int i, rd_contact_result *out,
+                           double *t_deg, double *clear)
 {
     int m = pb->m;
     double force = 0.0, closest = INFINITY, mid[3], c_mid[3], rb, drb;
+    double ref = rd_ring_get_segment_angle(pb->ring, i) * 180.0 / M_PI;
     for (int k = 0; k < m; k++) {
-        double y[3];
+        double y[3], a;
         rd_static_point_at(pb, i, pb->cp + 3 * (m * i + k), y);
-        bore_radius(pb, atan2(y[1], y[0]), &rb, &drb);
+        a = atan2(y[1], y[0]);
+        bore_radius(pb, a, &rb, &drb);
         double delta = hypot(y[0], y[1]) - rb;
+        /* continuous along the ring: a free end may move past 0 deg */
+        a = a * 180.0 / M_PI - ref;
+        a -= 360.0 * floor((a + 180.0) / 360.0);
+        t_deg[m * i + k] = ref + a;
+        clear[m * i + k] = -delta;
+        if (-delta < closest)
+            out->max_clearance_angle_deg = t_deg[m * i + k]; /* scratch: closest point */
         force += contact_pressure(pb, delta) * pb->area;
         closest = fmin(closest, -delta);
         out->max_penetration = fmax(out->max_penetration, delta);
@@ -228,35 +265,66 @@ static void segment_output(const rd_static_problem *pb, int i, rd_contact_result
     out->bore_radius[i] = rb;
 }
 
+/* Light gaps, contact fraction, tip forces and bins (rd_contact_post.c)
+ * from the point clearances t, c. */
+static int contact_summaries(const rd_static_problem *pb, const double *t, const double *c,
+                             const double *ts, rd_contact_result *out)
+{
+    int n = pb->n;
+    double phi = rd_ring_segment_phi(pb->ring) * 180.0 / M_PI;
+    double *lo = malloc((size_t)n * sizeof *lo), *force = malloc((size_t)n * sizeof *force);
+    if (!lo || !force) {
+        free(lo);
+        free(force);
+        return RD_ENOMEM;
+    }
+    for (int i = 0; i < n; i++) {
+        lo[i] = rd_ring_get_segment_angle(pb->ring, i) * 180.0 / M_PI - 0.5 * phi;
+        force[i] = out->pressure[i] * pb->h * pb->r_o * rd_ring_segment_phi(pb->ring);
+    }
+    out->gap_floor = 10.0 * pb->p0 / pb->k;
+    rd_contact_gaps(ts, out->clearance, n, t, c, pb->m, lo[0], lo[n - 1] + phi, out->gap_floor,
+                    out);
+    /* a free end's concentrated force: its segment's resultant beyond what
+     * the neighbour's pressure would put on it */
+    out->tip_force[0] = out->clearance[0] <= 0.0 ? force[0] - force[1] : 0.0;
+    out->tip_force[1] = out->clearance[n - 1] <= 0.0 ? force[n - 1] - force[n - 2] : 0.0;
+    rd_contact_bins(lo, phi, force, n, pb->h * pb->r_o, out);
+    free(lo);
+    free(force);
+    return RD_OK;
+}
+
 /* The result of a solved problem: profiles, summaries, bounds. */
 static int contact_outputs(const rd_ring_params *p, const rd_contact_opts *o,
                            const rd_static_problem *pb, rd_contact_result *out)
 {
-    int n = pb->n;
+    int n = pb->n, rc;
     out->points = n;
     out->angle_deg = malloc((size_t)n * sizeof *out->angle_deg);
     out->pressure = malloc((size_t)n * sizeof *out->pressure);
     out->clearance = malloc((size_t)n * sizeof *out->clearance);
     out->bore_radius = malloc((size_t)n * sizeof *out->bore_radius);
-    if (!out->angle_deg || !out->pressure || !out->clearance || !out->bore_radius)
-        return RD_ENOMEM;
-    double sum = 0.0, in_contact = 0.0;
-    out->max_clearance = 0.0;
-    out->max_clearance_angle_deg = NAN;
+    double *t = malloc((size_t)n * pb->m * sizeof *t), *c = malloc((size_t)n * pb->m * sizeof *c);
+    double *ts = malloc((size_t)n * sizeof *ts);
+    rc = RD_ENOMEM;
+    if (!out->angle_deg || !out->pressure || !out->clearance || !out->bore_radius || !t || !c ||
+        !ts)
+        goto out;
+    double sum = 0.0;
     out->max_penetration = 0.0;
     for (int i = 0; i < n; i++) {
-        segment_output(pb, i, out);
+        segment_output(pb, i, out, t, c);
+        ts[i] = out->max_clearance_angle_deg;
         sum += out->pressure[i];
-        if (out->clearance[i] <= 0.0)
-            in_contact += 1.0;
-        if (out->clearance[i] > out->max_clearance) {
-            out->max_clearance = out->clearance[i];
-            out->max_clearance_angle_deg = out->angle_deg[i];
-        }
     }
     out->mean_pressure = sum / n;
     out->uniform_pressure = pb->p0;
-    out->contact_fraction = in_contact / n;
+    rc = contact_summaries(pb, t, c, ts, out);
+out:
+    free(t);
+    free(c);
+    free(ts);
     out->stiffness = pb->k;
     out->conformability = rd_ring_conformability(p);
     rd_ring_section sec;
@@ -267,7 +335,7 @@ static int contact_outputs(const rd_ring_params *p, const rd_contact_opts *o,
                                : p->tangential_force * pow(sec.R, 3) /
                                      (p->youngs_modulus * sec.I_inplane * pow(kk * kk - 1.0, 2));
     }
-    return RD_OK;
+    return rc;
 }
 
 static int contact_once(const rd_ring_params *p, int segments, const rd_contact_opts *o,
@@ -306,52 +374,109 @@ void rd_contact_result_cleanup(rd_contact_result *r)
     r->angle_deg = r->pressure = r->clearance = r->bore_radius = NULL;
 }
 
-/* Pressure of a result at angle a (deg), linear between its points. */
-static double pressure_at(const rd_contact_result *r, double a)
+/* Does the estimate e meet the target a (see rd_contact_opts.accuracy)? */
+static int meets(const rd_contact_estimates *e, const rd_contact_result *r, double a)
 {
-    int np = r->points;
-    if (a <= r->angle_deg[0])
-        return r->pressure[0];
-    for (int q = 1; q < np; q++)
-        if (a <= r->angle_deg[q]) {
-            double t = (a - r->angle_deg[q - 1]) / (r->angle_deg[q] - r->angle_deg[q - 1]);
-            return (1.0 - t) * r->pressure[q - 1] + t * r->pressure[q];
-        }
-    return r->pressure[np - 1];
+    /* a largest gap certainly under 0.1 um is held to nothing relative */
+    int gap_ok = e->max_clearance <= 5.0 * a * r->max_clearance ||
+                 r->max_clearance + e->max_clearance <= 1e-7;
+    return e->pressure <= a && e->contact_fraction <= 2.0 * a && gap_ok &&
+           e->gap_edges_deg <= 100.0 * a;
 }
 
-/* The accuracy driver's view of one contact run. */
+/* The refinement: level pairs (n, 2n), (2n, 4n), ... through rd_accuracy,
+ * the coarse level of each pair the fine one of the last. */
 typedef struct contact_run {
     const rd_ring_params *p;
-    int segments, ref_segments;
     const rd_contact_opts *o;
     const rd_static_opts *so;
-    rd_contact_result *out, ref;
+    int n[2];
+    rd_contact_result level[2]; /* coarse, fine of the current pair */
+    int have_coarse;
 } contact_run;
 
 static int contact_level(void *ctx, int level, const rd_monitor *mon, rd_error *err)
 {
     contact_run *run = ctx;
-    if (level == 0)
-        return contact_once(run->p, run->segments, run->o, run->so, mon, run->out, err);
-    return contact_once(run->p, run->ref_segments, run->o, run->so, mon, &run->ref, err);
+    if (level == 0 && run->have_coarse)
+        return RD_OK;
+    rd_contact_result_cleanup(&run->level[level]);
+    return contact_once(run->p, run->n[level], run->o, run->so, mon, &run->level[level], err);
 }
 
-/* RMS difference of the pressure profiles, relative to p0, on the main
- * solution's points (angles increase along the ring). */
 static int contact_compare(void *ctx, rd_error *err)
 {
     (void)err;
     contact_run *run = ctx;
-    rd_contact_result *out = run->out;
-    double s2 = 0.0;
-    for (int q = 0; q < out->points; q++) {
-        double d = out->pressure[q] - pressure_at(&run->ref, out->angle_deg[q]);
-        s2 += d * d;
-    }
-    out->stats.reference_segments = run->ref_segments;
-    out->stats.error_estimate = sqrt(s2 / out->points) / out->uniform_pressure;
+    rd_contact_estimate(&run->level[1], &run->level[0], &run->level[1].estimates);
+    run->level[1].stats.reference_segments = run->n[0];
     return RD_OK;
+}
+
+/* A monitor over [f0, f1] of the parent's range. */
+typedef struct span_mon {
+    const rd_monitor *parent;
+    double f0, f1;
+} span_mon;
+
+static int span_report(void *ctx, double f)
+{
+    const span_mon *s = ctx;
+    return s->parent->report(s->parent->ctx, s->f0 + (s->f1 - s->f0) * f);
+}
+
+/* Pairs until the estimates meet the target, the segment cap stops it, or
+ * a finer solve fails (then the last good level stands, and says so). */
+static int refine(contact_run *run, const rd_monitor *mon, rd_error *err)
+{
+    int cap = run->o->max_segments, rc = RD_OK;
+    double a = run->o->accuracy, f0 = 0.0;
+    for (;;) {
+        rd_contact_result *best;
+        char what[48];
+        snprintf(what, sizeof what, "%d segments", run->n[1]);
+        rd_accuracy_plan plan = {.solve = contact_level, .compare = contact_compare, .ctx = run,
+                                 .estimate = 1, .main_share = run->have_coarse ? 0.01 : 0.34,
+                                 .reference = what};
+        int last = 2 * run->n[1] > cap;
+        span_mon sm = {mon, f0, last ? 1.0 : f0 + 0.5 * (1.0 - f0)};
+        rd_monitor sub = {span_report, &sm};
+        rd_error e2;
+        rd_error_init(&e2);
+        rc = rd_accuracy_run(&plan, mon && mon->report ? &sub : NULL, NULL, &e2);
+        best = run->level[0].points > 0 ? &run->level[0] : NULL;
+        if (rc != RD_OK && best && rc != RD_ECANCELED && rc != RD_ETIMEOUT) {
+            /* a finer solve failed: the last good level stands, and says so */
+            snprintf(best->accuracy_note, sizeof best->accuracy_note,
+                     "The refinement stopped at %d segments: %.200s", run->n[0], e2.message);
+            best->accuracy = a;
+            best->accuracy_met = 0;
+            return RD_OK;
+        }
+        if (rc != RD_OK)
+            return rd_error_set(err, rc, e2.path, "%s", e2.message);
+        rd_contact_result *fine = &run->level[1];
+        fine->accuracy = a;
+        fine->accuracy_met = meets(&fine->estimates, fine, a);
+        if (fine->accuracy_met || last) {
+            if (!fine->accuracy_met)
+                snprintf(fine->accuracy_note, sizeof fine->accuracy_note,
+                         "The error estimates at %d segments miss the accuracy target %g; "
+                         "refining further would pass /contact/max_segments = %d.",
+                         run->n[1], a, cap);
+            rd_contact_result_cleanup(&run->level[0]);
+            run->level[0] = *fine;
+            memset(fine, 0, sizeof *fine);
+            return RD_OK;
+        }
+        rd_contact_result_cleanup(&run->level[0]);
+        run->level[0] = *fine;
+        memset(fine, 0, sizeof *fine);
+        run->have_coarse = 1;
+        run->n[0] = run->n[1];
+        run->n[1] *= 2;
+        f0 = sm.f1;
+    }
 }
 
 int rd_contact_solve(const rd_ring_params *p, int segments, const rd_contact_opts *o,
@@ -364,18 +489,24 @@ int rd_contact_solve(const rd_ring_params *p, int segments, const rd_contact_opt
     if ((rc = rd_ring_validate(p, segments, 0, err)) ||
         (rc = rd_static_validate(so, segments, 0, err)) || (rc = rd_contact_validate(o, p, err)))
         return rc;
-    int m = rd_accuracy_refined_segments(segments, RD_STATIC_SEGMENTS_MAX);
-    contact_run run = {
-        .p = p, .segments = segments, .ref_segments = m, .o = o, .so = so, .out = out};
-    char what[32];
-    snprintf(what, sizeof what, "%d segments", m);
-    rd_accuracy_plan plan = {.solve = contact_level,
-                             .compare = contact_compare,
-                             .ctx = &run,
-                             .estimate = so->estimate_error,
-                             .main_share = 0.34,
-                             .reference = what};
-    rc = rd_accuracy_run(&plan, mon, NULL, err);
-    rd_contact_result_cleanup(&run.ref);
+    contact_run run = {.p = p, .o = o, .so = so, .n = {segments, 2 * segments}};
+    if (2 * segments > RD_STATIC_SEGMENTS_MAX) /* the estimate from n / 2 */
+        run.n[0] = segments / 2, run.n[1] = segments;
+    if (!so->estimate_error) {
+        rc = contact_once(p, segments, o, so, mon, out, err);
+        out->estimates = (rd_contact_estimates){NAN, NAN, NAN, NAN};
+        out->accuracy_met = -1;
+        return rc;
+    }
+    rc = refine(&run, mon, err);
+    if (rc == RD_OK) {
+        *out = run.level[0];
+        if (out->stats.reference_segments == 0) /* the first finer solve failed */
+            out->estimates = (rd_contact_estimates){NAN, NAN, NAN, NAN};
+        out->stats.error_estimate = out->estimates.pressure;
+        memset(&run.level[0], 0, sizeof run.level[0]);
+    }
+    rd_contact_result_cleanup(&run.level[0]);
+    rd_contact_result_cleanup(&run.level[1]);
     return rc;
 }

@@ -162,15 +162,14 @@ void rd_static_add_force(const double *Q, const double c[3], const double F[3], 
     }
 }
 
-/* The load path.  Pretension: F_t and F_l grow with lambda.  Contact: the
- * pretension first (lambda 0..1/2, the bore still the ring's closed shape,
- * so the ring is pressed on it throughout), then the bore's departure from
- * that shape (lambda 1/2..1) with the ring already pressed on it: a bore
- * moving away from an unloaded ring would leave it floating, and Newton
- * with it. */
+/* The load path of F_t.  Pretension: F_t and F_l grow with lambda.
+ * Contact: F_t first (lambda 0..RD_CONTACT_LF, the bore still the ring's
+ * closed shape, so the ring is pressed on it throughout), then the bore
+ * (rd_contact.c): a bore moving away from an unloaded ring would leave it
+ * floating, and Newton with it. */
 double rd_static_force_factor(const rd_static_problem *pb)
 {
-    return pb->kind == RD_STATIC_CONTACT ? fmin(1.0, 2.0 * pb->lambda) : pb->lambda;
+    return pb->kind == RD_STATIC_CONTACT ? fmin(1.0, pb->lambda / RD_CONTACT_LF) : pb->lambda;
 }
 
 /* External generalized force on segment i (6 values) at state (x, Q); other

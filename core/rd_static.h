@@ -40,10 +40,12 @@
  * Solution: Newton's method on all 6n equations with load stepping
  * (pretension: lambda scales F_t and F_l; contact: F_t first, then the
  * bore's departure from the ring's closed shape, each segment moved with
- * the bore as a predictor), backtracking line search, Levenberg-Marquardt
- * damping when a plain step fails, a central-difference tangent assembled
- * element by element into LAPACK band storage (dgbtrf/dgbtrs; the field
- * method's one off-band block by the Woodbury identity).
+ * the bore as a predictor, the law smoothed 1000 times wider until the bore
+ * is in place and then narrowed to eps), backtracking line search,
+ * Levenberg-Marquardt damping when a plain step fails, a central-difference
+ * tangent assembled element by element into LAPACK band storage
+ * (dgbtrf/dgbtrs; the field method's one off-band block by the Woodbury
+ * identity).
  * Convergence: largest force residual <= tol * F_ref and largest moment
  * residual <= tol * F_ref * R, tol raised to the rounding floor of the
  * stiffest spring when that is larger (reported as numerics.tolerance).
@@ -84,7 +86,32 @@ typedef struct rd_contact_opts {
     int points_per_segment; /* m, 1..RD_CONTACT_POINTS_MAX, default 10 (bench_static:
                                5 moves a distorted bore's pressures by ~0.2 p0, 10 by ~0.05) */
     double stiffness;       /* k, Pa/m; 0 = default (see rd_contact_default_stiffness) */
+    double accuracy;        /* a: refine n until the error estimates meet a (pressure, of
+                               p0), 2a (contact fraction), 5a (largest light gap, relative;
+                               or the gap is certainly under 0.1 um) and 100a deg (gap
+                               edges); default 0.01, 1e-4..0.5 */
+    int max_segments;       /* refinement stops here (the first pair n, 2n always runs);
+                               default 320, 4..RD_STATIC_SEGMENTS_MAX */
 } rd_contact_opts;
+
+#define RD_CONTACT_BIN_DEG 10.0 /* width of the pressure bins, from the gap middle */
+#define RD_CONTACT_BINS 36
+#define RD_CONTACT_GAPS_MAX 64
+
+/* A light gap: a run of the running face off the bore. */
+typedef struct rd_contact_gap {
+    double start_deg, end_deg;   /* edges, deg from the gap middle (start < end) */
+    double max_clearance;        /* largest clearance, m */
+    double max_clearance_deg;    /* where */
+} rd_contact_gap;
+
+/* Error estimates of a contact result (NAN when not estimated). */
+typedef struct rd_contact_estimates {
+    double pressure;         /* largest binned-pressure error / p0 */
+    double contact_fraction; /* absolute */
+    double max_clearance;    /* m */
+    double gap_edges_deg;    /* deg */
+} rd_contact_estimates;
 
 /* Counters and accuracy common to both analyses. */
 typedef struct rd_static_stats {
@@ -125,7 +152,8 @@ typedef struct rd_contact_result {
     double *bore_radius;        /* bore radius at the segment's middle, m */
     double mean_pressure;       /* mean of the segment pressures, Pa */
     double uniform_pressure;    /* 2 F_t / (d h) (1.3), Pa */
-    double contact_fraction;    /* share of segments touching the bore */
+    double contact_fraction;    /* contact length / running-face length (point clearances,
+                                   edges located between points) */
     double max_clearance;       /* largest segment clearance (light gap), m, >= 0 */
     double max_clearance_angle_deg; /* where; NAN when the ring touches everywhere */
     double max_penetration;     /* m: what the contact stiffness allows */
@@ -134,6 +162,22 @@ typedef struct rd_contact_result {
     /* Thin-ring conformability bound of each distortion order:
      * F_t R^3 / (E I (k^2 - 1)^2), m (NAN for k = 1). */
     double bound[RD_DISTORTION_MAX];
+    /* Light gaps deeper than gap_floor (10 p0 / k: the law's penetration
+     * scale), in angle order; edges where the clearance crosses zero. */
+    int n_gaps;
+    rd_contact_gap gaps[RD_CONTACT_GAPS_MAX];
+    double gap_floor;           /* m */
+    double tip_force[2];        /* concentrated force at the first / last free end, N */
+    double bin_pressure[RD_CONTACT_BINS]; /* mean pressure over the ring's arc in each
+                                   RD_CONTACT_BIN_DEG bin, Pa */
+    /* Accuracy: estimates of the reported values' errors from the last two
+     * refinement levels (the reported level is the finer), the target, and
+     * whether it was met (if not, why, in accuracy_note). */
+    rd_contact_estimates estimates;
+    double accuracy;
+    int accuracy_met;           /* 1 met, 0 not (see accuracy_note), -1 not estimated */
+    int levels;                 /* solves made */
+    char accuracy_note[256];
 } rd_contact_result;
 
 void rd_static_opts_default(rd_static_opts *o);

@@ -18,6 +18,8 @@
 
 enum { RD_STATIC_PRETENSION = 0, RD_STATIC_CONTACT = 1 };
 
+#define RD_CONTACT_LF 0.4 /* contact: load factor at which F_t is fully applied */
+
 /* ---- 3-vectors and 3x3 matrices (row-major) ------------------------------- */
 
 static inline double rd_dot3(const double a[3], const double b[3])
@@ -110,5 +112,17 @@ void rd_pretension_gap_face_load(const rd_static_problem *pb, int i, const doubl
 void rd_contact_segment_load(const rd_static_problem *pb, int i, const double *x, const double *Q,
                              double f[6]);
 void rd_contact_follow_bore(rd_static_problem *pb, double l0, double l1);
+
+/* rd_contact_post.c: light gaps and contact fraction from the segments'
+ * closest points (angles ts, deg, increasing; clearances cs, m) and all m n
+ * contact points (t, c), the free ends at tip0 < tip1 deg; binned pressure from the segments' forces
+ * (N) spread over their arcs [lo_i, lo_i + seg_deg]; the error estimates of
+ * the finer of two levels. */
+void rd_contact_gaps(const double *ts, const double *cs, int n, const double *t, const double *c,
+                     int m, double tip0, double tip1, double gap_floor, rd_contact_result *out);
+void rd_contact_bins(const double *seg_lo_deg, double seg_deg, const double *force, int n,
+                     double h_ro, rd_contact_result *out);
+void rd_contact_estimate(const rd_contact_result *fine, const rd_contact_result *coarse,
+                         rd_contact_estimates *e);
 
 #endif

@@ -1,0 +1,192 @@
+/*
+ * rd_contact_post — what a conformability study reads from a solved contact
+ * problem, and the error estimates between two refinement levels
+ * (rd_contact.c calls these; declarations in rd_static_internal.h).
+ *
+ * Light gaps.  The clearances c_q of the contact points (m per segment,
+ * spacing phi / m, angles increasing along the ring) are scanned for runs
+ * with c_q > 0.  An edge between a touching point a and the first lifted
+ * point b lies where the clearance leaves zero: behind an edge that carries
+ * a concentrated force the clearance grows as the cube of the distance, so
+ * with c_b and the next c_{b+1}, r = (c_{b+1} / c_b)^(1/3) puts the edge
+ * y = d / (r - 1) before b (d the point spacing), kept within [a, b].  A run
+ * reaching a free end starts (ends) at that end's face.  The largest
+ * clearance of a run is the parabola's peak through its largest point and
+ * the two neighbours.  Runs no deeper than the floor (the contact law's
+ * penetration scale) are contact.  Contact fraction = 1 - gap length / span.
+ *
+ * Bins.  Each segment's resultant contact force is spread evenly over its
+ * running-face arc; a bin's pressure is the force on the ring arc inside it
+ * over h r_o times that arc.
+ *
+ * Estimates of the fine level f's errors from it and the coarse level c
+ * (n / 2), res = half a segment of f (the edge locator's resolution):
+ *   pressure  = max(max_bins |p_f - p_c| / (3 p0), the binned share of a
+ *               concentrated force within res of a bin boundary);
+ *   fraction  = max(|cf_f - cf_c|, (edges not at a free end) res / 360);
+ *   gap       = |g_f - g_c| / 3 + f's largest penetration (the law's
+ *               compliance under concentrated forces);
+ *   edges     = max(the largest edge move of either level's gaps against the
+ *               other's overlapping gap (none: its width), res).
+ * The divisor 3 is Richardson's for order 2 in n.
+ */
+#include "rd_static_internal.h"
+
+#include <math.h>
+
+/* Edge between a touching point at ta and the first lifted point tb (gap
+ * c1), c2 the next point's gap; angles in deg, either direction. */
+static double cube_edge(double ta, double tb, double c1, double c2)
+{
+    double r = c1 > 0.0 && c2 > c1 ? cbrt(c2 / c1) : 3.0;
+    double x = -1.0 / (r - 1.0);
+    x = x < -1.0 ? -1.0 : (x > 0.0 ? 0.0 : x);
+    return tb + x * (tb - ta);
+}
+
+/* Peak of the parabola through (t[k-1..k+1], c[k-1..k+1]), if k is inside. */
+static void peak(const double *t, const double *c, int k, int lo, int hi, double *cm, double *tm)
+{
+    *cm = c[k];
+    *tm = t[k];
+    if (k <= lo || k >= hi)
+        return;
+    double a = c[k - 1], b = c[k], d = c[k + 1], den = a - 2.0 * b + d;
+    if (!(den < 0.0))
+        return;
+    double x = 0.5 * (a - d) / den; /* in point spacings, |x| <= 1/2 at a maximum */
+    if (fabs(x) > 1.0)
+        return;
+    *cm = b - 0.25 * (a - d) * x;
+    *tm = t[k] + x * 0.5 * (t[k + 1] - t[k - 1]);
+}
+
+/* The run of lifted segments lo..hi of n; ts, cs their closest points'
+ * angles and clearances, t, c all m n points. */
+static void one_gap(const double *ts, const double *cs, int n, const double *t, const double *c,
+                    int m, int lo, int hi, double tip0, double tip1, rd_contact_gap *g)
+{
+    g->start_deg = lo == 0 ? tip0
+                           : cube_edge(ts[lo - 1], ts[lo], cs[lo], lo < hi ? cs[lo + 1] : 0.0);
+    g->end_deg = hi == n - 1
+                     ? tip1
+                     : -cube_edge(-ts[hi + 1], -ts[hi], cs[hi], hi > lo ? cs[hi - 1] : 0.0);
+    int k = m * lo;
+    for (int q = m * lo; q < m * (hi + 1); q++)
+        if (c[q] > c[k])
+            k = q;
+    peak(t, c, k, m * lo, m * (hi + 1) - 1, &g->max_clearance, &g->max_clearance_deg);
+}
+
+void rd_contact_gaps(const double *ts, const double *cs, int n, const double *t, const double *c,
+                     int m, double tip0, double tip1, double gap_floor, rd_contact_result *out)
+{
+    double length = 0.0;
+    out->n_gaps = 0;
+    out->max_clearance = 0.0;
+    out->max_clearance_angle_deg = NAN;
+    for (int i = 0; i < n;) {
+        if (!(cs[i] > 0.0)) {
+            i++;
+            continue;
+        }
+        int lo = i;
+        while (i < n && cs[i] > 0.0)
+            i++;
+        rd_contact_gap g;
+        one_gap(ts, cs, n, t, c, m, lo, i - 1, tip0, tip1, &g);
+        if (!(g.max_clearance > gap_floor))
+            continue;
+        length += g.end_deg - g.start_deg;
+        if (out->n_gaps < RD_CONTACT_GAPS_MAX)
+            out->gaps[out->n_gaps++] = g;
+        if (g.max_clearance > out->max_clearance) {
+            out->max_clearance = g.max_clearance;
+            out->max_clearance_angle_deg = g.max_clearance_deg;
+        }
+    }
+    out->contact_fraction = fmax(0.0, 1.0 - length / (tip1 - tip0));
+}
+
+void rd_contact_bins(const double *seg_lo_deg, double seg_deg, const double *force, int n,
+                     double h_ro, rd_contact_result *out)
+{
+    double f[RD_CONTACT_BINS] = {0}, cover[RD_CONTACT_BINS] = {0}, w = RD_CONTACT_BIN_DEG;
+    for (int i = 0; i < n; i++) {
+        double lo = seg_lo_deg[i], hi = lo + seg_deg;
+        for (int k = (int)(lo / w); k < RD_CONTACT_BINS && k * w < hi; k++) {
+            double ov = fmin(hi, (k + 1) * w) - fmax(lo, k * w);
+            if (ov > 0.0) {
+                f[k] += force[i] * ov / seg_deg;
+                cover[k] += ov;
+            }
+        }
+    }
+    for (int k = 0; k < RD_CONTACT_BINS; k++)
+        out->bin_pressure[k] = cover[k] > 0.0 ? f[k] / (h_ro * cover[k] * M_PI / 180.0) : 0.0;
+}
+
+/* Largest edge move of fine's gaps against coarse's overlapping gaps. */
+static double edge_moves(const rd_contact_result *f, const rd_contact_result *c)
+{
+    double worst = 0.0;
+    for (int a = 0; a < f->n_gaps; a++) {
+        const rd_contact_gap *g = &f->gaps[a];
+        double best = g->end_deg - g->start_deg;
+        for (int b = 0; b < c->n_gaps; b++) {
+            const rd_contact_gap *h = &c->gaps[b];
+            if (h->end_deg < g->start_deg || h->start_deg > g->end_deg)
+                continue;
+            best = fmin(best, fmax(fabs(g->start_deg - h->start_deg),
+                                   fabs(g->end_deg - h->end_deg)));
+        }
+        worst = fmax(worst, best);
+    }
+    return worst;
+}
+
+/* The binned pressure's share of a concentrated force near a bin boundary
+ * (the force sits within `res` deg of where the bins split it): half of each
+ * segment's force in excess of its neighbours', over p0, summed per
+ * boundary; the largest. */
+static double boundary_share(const rd_contact_result *f, double res)
+{
+    int n = f->points;
+    double phi = 360.0 / n, worst = 0.0;
+    for (int b = 1; b < RD_CONTACT_BINS; b++) {
+        double at = b * RD_CONTACT_BIN_DEG, sum = 0.0;
+        for (int i = 0; i < n; i++) {
+            if (fabs(f->angle_deg[i] - at) > 0.5 * phi + res)
+                continue;
+            double nb = 0.5 * ((i > 0 ? f->pressure[i - 1] : 0.0) +
+                               (i < n - 1 ? f->pressure[i + 1] : 0.0));
+            sum += fmax(0.0, f->pressure[i] - nb) * phi / RD_CONTACT_BIN_DEG;
+        }
+        worst = fmax(worst, 0.5 * sum / f->uniform_pressure);
+    }
+    return worst;
+}
+
+void rd_contact_estimate(const rd_contact_result *f, const rd_contact_result *c,
+                         rd_contact_estimates *e)
+{
+    /* the edge locator's resolution: half a segment of the finer level */
+    double res = 180.0 / f->points, dp = 0.0;
+    int edges = 0;
+    for (int k = 0; k < RD_CONTACT_BINS; k++)
+        dp = fmax(dp, fabs(f->bin_pressure[k] - c->bin_pressure[k]));
+    for (int g = 0; g < f->n_gaps; g++)
+        edges += (g > 0 || f->gaps[g].start_deg > 1.0) + (g < f->n_gaps - 1 || f->gaps[g].end_deg < 359.0);
+    /* a gap the coarse level missed (or the reverse) counts by its width */
+    e->gap_edges_deg = fmax(edge_moves(f, c), edge_moves(c, f));
+    if (f->n_gaps > 0)
+        e->gap_edges_deg = fmax(e->gap_edges_deg, res);
+    e->contact_fraction = fmax(fabs(f->contact_fraction - c->contact_fraction),
+                               edges * res / 360.0);
+    /* plus the law's compliance: where the forces concentrate (a free end,
+     * a gap edge) the ring sinks by up to max_penetration into the bore, and
+     * a light gap beside it closes by about as much (measured against the
+     * reference and at 10 and 100 times the stiffness: 0.5 to 2 times) */
+    e->max_clearance = fabs(f->max_clearance - c->max_clearance) / 3.0 + f->max_penetration;
+    e->pressure = fmax(dp / f->uniform_pressure / 3.0, boundary_share(f, res));
+}

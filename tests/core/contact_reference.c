@@ -1,0 +1,259 @@
+/*
+ * contact_reference.c — see contact_reference.h.
+ *
+ * Unknowns per node j at theta_j = s + j D (s the half closed-gap angle,
+ * D = span / N): u (tangential, +e_theta, m), w (radial, outward, m), beta
+ * (section rotation, +z, rad); DOF 3j + {0, 1, 2}.  Strains on the centroid
+ * circle of radius R, ' = d/dtheta:
+ *   eps = (u' + w) / R,  gamma = (u - w') / R - beta,  kappa = beta' / R,
+ * (a rigid rotation c: u = c R, beta = c; a translation: u = -a sin,
+ * w = a cos: all three vanish), energy 1/2 int (EA eps^2 + GA/f_s gamma^2 +
+ * EI kappa^2) R dtheta, each cell's integrand at its middle (linear
+ * interpolation; one point integrates the shear and membrane terms without
+ * locking).  Loads: F_t along +e_theta at the first end, -e_theta at the
+ * last (the gap faces pushed apart).  Held: u = 0 at theta = pi (the
+ * anti-rotation pin).  Contact at each node: gap g_j = r_b(theta_j) - r_o -
+ * w_j >= 0, node force lambda_j >= 0 (inward on w), lambda_j g_j = 0.
+ * Active set: A = {j : lambda_j - c g_j > 0}, w_j = r_b - r_o prescribed on
+ * A, solved by elimination with a banded Cholesky (LAPACK dpbsv); repeated
+ * until A no longer changes.
+ */
+#include "contact_reference.h"
+
+#include <lapacke.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#ifndef M_PI
+#define M_PI 3.14159265358979323846
+#endif
+
+#define KD 5 /* half bandwidth: node j couples with j +- 1 */
+
+typedef struct model {
+    int N, ndof;
+    double R, ro, s, D, h, EA, GAs, EI, Ft;
+    double *K;  /* full band, lower, (KD + 1) x ndof, column-major */
+    double *g0; /* bore radius - r_o at each node */
+} model;
+
+static double kij(const model *m, int i, int j)
+{
+    if (i < j) {
+        int t = i;
+        i = j;
+        j = t;
+    }
+    return i - j > KD ? 0.0 : m->K[(size_t)j * (KD + 1) + (i - j)];
+}
+
+/* Cell stiffness: B rows (eps, gamma, kappa) at the middle, 6 DOFs. */
+static void assemble(model *m)
+{
+    double R = m->R, D = m->D;
+    for (int c = 0; c < m->N; c++) {
+        double B[3][6] = {{0}};
+        /* eps = (u' + w) / R */
+        B[0][0] = -1.0 / (D * R), B[0][3] = 1.0 / (D * R), B[0][1] = 0.5 / R, B[0][4] = 0.5 / R;
+        /* gamma = (u - w') / R - beta */
+        B[1][0] = 0.5 / R, B[1][3] = 0.5 / R, B[1][1] = 1.0 / (D * R), B[1][4] = -1.0 / (D * R);
+        B[1][2] = -0.5, B[1][5] = -0.5;
+        /* kappa = beta' / R */
+        B[2][2] = -1.0 / (D * R), B[2][5] = 1.0 / (D * R);
+        double C[3] = {m->EA, m->GAs, m->EI};
+        for (int a = 0; a < 6; a++)
+            for (int b = 0; b <= a; b++) {
+                double v = 0.0;
+                for (int q = 0; q < 3; q++)
+                    v += B[q][a] * C[q] * B[q][b];
+                int ri = 3 * c + a, cj = 3 * c + b;
+                m->K[(size_t)cj * (KD + 1) + (ri - cj)] += v * R * D;
+            }
+    }
+}
+
+/* Solves with the DOFs in `fixed` prescribed to `val`; returns u and the
+ * reactions (K u - f at the fixed DOFs). */
+static int solve_fixed(const model *m, const char *fixed, const double *val, const double *f,
+                       double *u, double *react, double *ab)
+{
+    int n = m->ndof;
+    for (int j = 0; j < n; j++) {
+        u[j] = fixed[j] ? val[j] : f[j];
+        for (int d = 0; d <= KD && j + d < n; d++)
+            ab[(size_t)j * (KD + 1) + d] = m->K[(size_t)j * (KD + 1) + d];
+    }
+    for (int j = 0; j < n; j++) {
+        if (!fixed[j])
+            continue;
+        for (int i = (j > KD ? j - KD : 0); i < n && i <= j + KD; i++)
+            if (!fixed[i])
+                u[i] -= kij(m, i, j) * val[j];
+        for (int d = 0; d <= KD && j + d < n; d++)
+            ab[(size_t)j * (KD + 1) + d] = d == 0 ? 1.0 : 0.0;
+        for (int d = 1; d <= KD && j - d >= 0; d++)
+            ab[(size_t)(j - d) * (KD + 1) + d] = 0.0;
+    }
+    if (LAPACKE_dpbsv(LAPACK_COL_MAJOR, 'L', n, KD, 1, ab, KD + 1, u, n) != 0)
+        return -1;
+    for (int i = 0; i < n; i++) {
+        react[i] = 0.0;
+        if (!fixed[i])
+            continue;
+        for (int j = (i > KD ? i - KD : 0); j < n && j <= i + KD; j++)
+            react[i] += kij(m, i, j) * u[j];
+        react[i] -= f[i];
+    }
+    return 0;
+}
+
+static double bore(const rd_contact_opts *o, double th)
+{
+    double r = 0.0;
+    for (int k = 0; k < o->n_distortion; k++) {
+        const rd_distortion *d = &o->distortion[k];
+        r += d->amplitude * cos(d->order * (th - d->phase_deg * M_PI / 180.0));
+    }
+    return r;
+}
+
+/* Lift-off point between node a (in contact) and its neighbour b (gap g1),
+ * with g2 the gap one node further: the gap grows as the cube of the
+ * distance from an edge that carries a point force; the cube root fit,
+ * clamped to the cell. */
+static double edge(double ta, double tb, double g1, double g2)
+{
+    /* g1 = c y^3, g2 = c (y + D)^3, y = tb - edge: y = D / (r - 1) */
+    double r = g1 > 0.0 && g2 > g1 ? cbrt(g2 / g1) : 3.0;
+    double x = -1.0 / (r - 1.0);
+    x = x < -1.0 ? -1.0 : (x > 0.0 ? 0.0 : x);
+    return tb + x * (tb - ta);
+}
+
+static void post(const model *m, const char *act, const double *u, const double *lam,
+                 double bin_deg, double gap_floor, ref_result *out)
+{
+    int N = m->N;
+    double span = 2.0 * M_PI - 2.0 * m->s, gap_len = 0.0;
+    out->n_gaps = 0;
+    out->max_clearance = 0.0;
+    out->max_clearance_deg = NAN;
+    for (int j = 0; j <= N;) {
+        if (act[j]) {
+            j++;
+            continue;
+        }
+        int a = j;
+        while (j <= N && !act[j])
+            j++;
+        int b = j - 1; /* nodes a..b lifted */
+        double th = m->s + a * m->D, te = m->s + b * m->D;
+        double gA = m->g0[a] - u[3 * a + 1], gB = m->g0[b] - u[3 * b + 1];
+        double start = a == 0 ? m->s
+                              : edge(th - m->D, th, gA, a + 1 <= b ? m->g0[a + 1] - u[3 * a + 4] : 0);
+        double end = b == N ? te
+                            : -edge(-(te + m->D), -te, gB,
+                                    b - 1 >= a ? m->g0[b - 1] - u[3 * b - 2] : 0);
+        double best = 0.0, at = th;
+        for (int q = a; q <= b; q++)
+            if (m->g0[q] - u[3 * q + 1] > best)
+                best = m->g0[q] - u[3 * q + 1], at = m->s + q * m->D;
+        if (best <= gap_floor)
+            continue;
+        gap_len += end - start;
+        ref_gap *g = out->n_gaps < 64 ? &out->gaps[out->n_gaps++] : NULL;
+        if (g)
+            *g = (ref_gap){start * 180 / M_PI, end * 180 / M_PI, best, at * 180 / M_PI};
+        if (best > out->max_clearance)
+            out->max_clearance = best, out->max_clearance_deg = at * 180 / M_PI;
+    }
+    out->contact_fraction = 1.0 - gap_len / span;
+    out->tip_force[0] = act[0] ? lam[0] - 0.5 * lam[1] : 0.0;
+    out->tip_force[1] = act[N] ? lam[N] - 0.5 * lam[N - 1] : 0.0;
+    /* bins: node forces spread over their tributary arcs */
+    out->bins = (int)lround(360.0 / bin_deg);
+    double wb = bin_deg * M_PI / 180.0, force[REF_BINS_MAX] = {0}, cover[REF_BINS_MAX] = {0};
+    for (int j = 0; j <= N; j++) {
+        double lo = m->s + (j - 0.5) * m->D, hi = lo + m->D;
+        lo = fmax(lo, m->s), hi = fmin(hi, 2 * M_PI - m->s);
+        for (int k = 0; k < out->bins; k++) {
+            double ov = fmin(hi, (k + 1) * wb) - fmax(lo, k * wb);
+            if (ov > 0) {
+                force[k] += lam[j] * ov / (hi - lo);
+                cover[k] += ov;
+            }
+        }
+    }
+    for (int k = 0; k < out->bins; k++)
+        out->bin_pressure[k] = cover[k] > 0 ? force[k] / (m->h * m->ro * cover[k]) : 0.0;
+}
+
+int ref_contact_solve(const rd_ring_params *p, const rd_contact_opts *o, int cells, double bin_deg,
+                      double gap_floor, ref_result *out)
+{
+    model m = {0};
+    double E = p->youngs_modulus, G = E / (2.0 * (1.0 + p->poisson_ratio));
+    double b = p->radial_width, h = p->axial_height, A = b * h;
+    m.N = cells, m.ndof = 3 * (cells + 1);
+    m.R = 0.5 * (p->diameter - b), m.ro = 0.5 * p->diameter, m.h = h;
+    m.s = p->closed_gap / (2.0 * m.R), m.D = (2.0 * M_PI - 2.0 * m.s) / cells;
+    m.EA = E * A, m.GAs = G * A / 1.2, m.EI = E * h * b * b * b / 12.0, m.Ft = p->tangential_force;
+    double dD = (o->bore_diameter > 0 ? 0.5 * o->bore_diameter : m.ro) - m.ro;
+    int n = m.ndof, rc = -1;
+    m.K = calloc((size_t)n * (KD + 1), sizeof *m.K);
+    m.g0 = malloc((size_t)(cells + 1) * sizeof *m.g0);
+    double *ab = malloc((size_t)n * (KD + 1) * sizeof *ab), *u = malloc(n * sizeof *u);
+    double *f = calloc(n, sizeof *f), *val = calloc(n, sizeof *val), *re = malloc(n * sizeof *re);
+    double *lam = calloc(cells + 1, sizeof *lam);
+    char *fixed = calloc(n, 1), *act = malloc(cells + 1);
+    if (!m.K || !m.g0 || !ab || !u || !f || !val || !re || !lam || !fixed || !act)
+        goto out;
+    assemble(&m);
+    /* a foundation 1e-12 of the ring's radial stiffness under every node,
+     * so an active set too small to hold the ring (an iterate of a bore
+     * that touches it at two points) stays solvable; it moves the answer
+     * by ~1e-12 relative */
+    for (int j = 0; j <= cells; j++)
+        m.K[(size_t)(3 * j + 1) * (KD + 1)] += 1e-12 * m.EA / m.R * m.D;
+    for (int j = 0; j <= cells; j++) {
+        m.g0[j] = dD + bore(o, m.s + j * m.D);
+        act[j] = 1;
+    }
+    f[0] = m.Ft, f[3 * cells] = -m.Ft;
+    fixed[3 * (cells / 2)] = 1; /* u = 0 at theta = pi (cells even) */
+    double c = 2.0 * m.Ft / p->diameter * m.D / 1e-6; /* node force per m of gap */
+    for (int it = 0; it < 500; it++) {
+        for (int j = 0; j <= cells; j++) {
+            fixed[3 * j + 1] = act[j];
+            val[3 * j + 1] = m.g0[j];
+        }
+        if (solve_fixed(&m, fixed, val, f, u, re, ab) != 0)
+            goto out;
+        int changed = 0;
+        for (int j = 0; j <= cells; j++) {
+            lam[j] = act[j] ? -re[3 * j + 1] : 0.0; /* the bore pushes inward */
+            double g = m.g0[j] - u[3 * j + 1];
+            char now = lam[j] - c * g > 0.0;
+            changed += now != act[j];
+            act[j] = now;
+        }
+        out->iterations = it + 1;
+        if (!changed) {
+            rc = 0;
+            break;
+        }
+    }
+    if (rc == 0) {
+        for (int j = 0; j <= cells; j++)
+            if (!act[j])
+                lam[j] = 0.0;
+        out->cells = cells;
+        out->p0 = 2.0 * m.Ft / (p->diameter * h);
+        post(&m, act, u, lam, bin_deg, gap_floor, out);
+    }
+out:
+    free(m.K), free(m.g0), free(ab), free(u), free(f), free(val), free(re), free(lam);
+    free(fixed), free(act);
+    return rc;
+}

@@ -1,0 +1,40 @@
+/*
+ * contact_reference — an independent solution of the split ring in a
+ * distorted bore, for tests and benches (not part of ringdyn): a linear
+ * curved Timoshenko beam (extension, shear, bending) on its centroid circle,
+ * N two-node cells with one-point integration, and frictionless unilateral
+ * contact at every node against a rigid bore, solved exactly (gap >= 0,
+ * force >= 0, gap * force = 0) by a primal-dual active-set iteration.
+ * Written apart from core's segment-chain model: it shares only the input.
+ */
+#ifndef CONTACT_REFERENCE_H
+#define CONTACT_REFERENCE_H
+
+#include "rd_static.h"
+
+#define REF_BINS_MAX 72
+
+typedef struct ref_gap {
+    double start_deg, end_deg;    /* edges, deg from the gap middle */
+    double max_clearance, at_deg; /* largest clearance (m) and where */
+} ref_gap;
+
+typedef struct ref_result {
+    int cells, iterations;
+    double contact_fraction; /* contact length / ring span */
+    int n_gaps;
+    ref_gap gaps[64];
+    double max_clearance, max_clearance_deg;
+    double tip_force[2];            /* concentrated force at the two free ends, N */
+    int bins;                       /* angular bins of bin_deg from 0 deg */
+    double bin_pressure[REF_BINS_MAX]; /* mean contact pressure per bin, Pa (0 where no ring) */
+    double p0;
+} ref_result;
+
+/* Solves on `cells` cells (even); bins of bin_deg; light gaps no deeper
+ * than gap_floor (m) count as contact.  Returns 0, or -1 (no convergence,
+ * out of memory, singular). */
+int ref_contact_solve(const rd_ring_params *p, const rd_contact_opts *o, int cells, double bin_deg,
+                      double gap_floor, ref_result *out);
+
+#endif
