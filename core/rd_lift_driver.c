@@ -4,8 +4,9 @@
  * state machine), output sampling, solver counters, the work bound, progress
  * and cancellation.
  *
- * Integration: SUNDIALS CVODE, BDF of order <= 2, Newton with a band matrix
- * and band LU and the analytic Jacobian (rd_lift_cv_jac), so each step costs
+ * Integration: SUNDIALS CVODE, BDF of order <= 2, Newton with the analytic
+ * Jacobian's blocks, the system solved in second-order form by band LU of
+ * half the size (rd_lift_newton.c), so each step costs
  * O(n).  Order <= 2: the undamped elastic modes of a finely cut ring are
  * fast and on the imaginary axis, where BDF3-5 are unstable (n = 200 took
  * 70x more steps); BDF2 is A-stable.  The Jacobian is re-evaluated and
@@ -50,8 +51,6 @@
 
 #include <cvode/cvode.h>
 #include <sundials/sundials_context.h>
-#include <sunlinsol/sunlinsol_band.h>
-#include <sunlinsol/sunlinsol_dense.h>
 #include <sunmatrix/sunmatrix_band.h>
 #include <sunmatrix/sunmatrix_dense.h>
 
@@ -71,8 +70,9 @@ typedef struct driver {
     double *full;      /* 12 n: the full state of a sample (reduced forms) */
     SUNContext sunctx;
     N_Vector y, abstol;
-    SUNMatrix A;
+    SUNMatrix S;       /* the Newton matrix, owned by LS */
     SUNLinearSolver LS;
+    rd_lift_newton *nw;
     void *cv;
     double *seg;       /* n: per-segment lift of the current sample */
     double deg_per_s;  /* crank degrees per second */
@@ -116,11 +116,19 @@ static int drv_rhs(sunrealtype t, N_Vector y, N_Vector yd, void *user)
     return d->form.rhs(t, y, yd, d->form.user);
 }
 
-static int drv_jac(sunrealtype t, N_Vector y, N_Vector fy, SUNMatrix J, void *user, N_Vector t1,
-                   N_Vector t2, N_Vector t3)
+static int drv_linsys(sunrealtype t, N_Vector y, N_Vector fy, SUNMatrix S, sunbooleantype jok,
+                      sunbooleantype *jcur, sunrealtype gamma, void *user, N_Vector t1,
+                      N_Vector t2, N_Vector t3)
 {
+    (void)fy;
+    (void)S;
+    (void)t1;
+    (void)t2;
+    (void)t3;
     driver *d = user;
-    return d->form.jac(t, y, fy, J, d->form.user, t1, t2, t3);
+    int cur = 0, rc = rd_lift_newton_linsys(d->nw, t, y, jok, &cur, gamma);
+    *jcur = cur ? SUNTRUE : SUNFALSE;
+    return rc;
 }
 
 static void cv_silent(int code, const char *module, const char *function, char *msg, void *user)
@@ -169,8 +177,6 @@ static void driver_free(driver *d)
         CVodeFree(&d->cv);
     if (d->LS)
         SUNLinSolFree(d->LS);
-    if (d->A)
-        SUNMatDestroy(d->A);
     if (d->y)
         N_VDestroy(d->y);
     if (d->abstol)
@@ -191,8 +197,8 @@ static int cv_configure(driver *d, double rtol, rd_error *err)
         (flag = CVodeInit(d->cv, drv_rhs, 0.0, d->y)) ||
         (flag = CVodeSVtolerances(d->cv, rtol, d->abstol)) ||
         (flag = CVodeSetUserData(d->cv, d)) ||
-        (flag = CVodeSetLinearSolver(d->cv, d->LS, d->A)) ||
-        (flag = CVodeSetJacFn(d->cv, drv_jac)) ||
+        (flag = CVodeSetLinearSolver(d->cv, d->LS, d->S)) ||
+        (flag = CVodeSetLinSysFn(d->cv, drv_linsys)) ||
         (flag = CVodeSetMaxOrd(d->cv, MAX_ORDER)) ||
         (flag = CVodeSetMaxStep(d->cv, HMAX_DEG / d->deg_per_s)) ||
         (flag = CVodeSetLSetupFrequency(d->cv, 1)) || /* fresh Newton matrix each step */
@@ -232,14 +238,9 @@ static int driver_open(driver *d, const rd_ring *ring, const rd_lift_params *p,
         return rd_error_set(err, RD_ENOMEM, "", "Could not create the SUNDIALS context.");
     d->y = N_VNew_Serial(N, d->sunctx);
     d->abstol = N_VNew_Serial(N, d->sunctx);
-    if (d->y)
-        d->A = d->form.dense ? SUNDenseMatrix(N, N, d->sunctx)
-                             : SUNBandMatrix(N, RD_LIFT_MU, RD_LIFT_ML, d->sunctx);
-    if (d->A)
-        d->LS = d->form.dense ? SUNLinSol_Dense(d->y, d->A, d->sunctx)
-                              : SUNLinSol_Band(d->y, d->A, d->sunctx);
+    d->LS = rd_lift_newton_create(&d->form, d->sunctx, &d->S, &d->nw);
     d->cv = CVodeCreate(CV_BDF, d->sunctx);
-    if (!d->y || !d->abstol || !d->A || !d->LS || !d->cv)
+    if (!d->y || !d->abstol || !d->LS || !d->cv)
         return rd_error_set(err, RD_ENOMEM, "", "Out of memory setting up CVODE for %d segments.",
                             n);
     if ((rc = d->form.initial(d->form.user, setup, atol, N_VGetArrayPointer(d->y),

@@ -16,6 +16,8 @@
  *                     contribution df_i/dq_i, df_i/dv_i: inertia and
  *                     gravity, flank contacts, bore contact and friction,
  *                     groove back, gas faces
+ *   rd_lift_newton.c  the Newton systems in second-order form (half the
+ *                     unknowns, band LU of I - gamma B - gamma^2 A)
  *   rd_lift_driver.c  the CVODE driver: set-up, events (root finding and
  *                     the flank state machine), output sampling, counters,
  *                     the work bound and cancellation, the Jacobian check
@@ -54,6 +56,7 @@
 #define RD_LIFT_MODEL_H
 
 #include <nvector/nvector_serial.h>
+#include <sundials/sundials_linearsolver.h>
 #include <sundials/sundials_matrix.h>
 #include <cvode/cvode.h>
 
@@ -156,7 +159,14 @@ typedef struct rd_lift_form {
     void *user;
     rd_lift_model *m;  /* the model whose constants (ca, eps, omega, p) apply */
     CVRhsFn rhs;
-    CVLsJacFn jac;
+    CVLsJacFn jac;     /* the Jacobian as a matrix (the Jacobian check only) */
+    /* The Newton system in second-order form (rd_lift_newton.c): the state
+     * is N / (2 block) blocks of [q (block values), v (block values)] with
+     * q' = v; `blocks` puts at (t, y) d(v')/dq, row block i's blocks i-1, i,
+     * i+1 (block x block row-major each, zero outside the ring) into A
+     * (N / (2 block) x 3 x block^2) and d(v')/dv (block diagonal) into B. */
+    int block;
+    void (*blocks)(void *user, double t, const double *y, double *A, double *B);
     /* mean lift L; the per-segment lifts into seg (n values) when not NULL */
     double (*lift)(void *user, const double *y, double *seg);
     /* the loads at (t, y): sets m->fz_ext and m->friction */
@@ -167,6 +177,18 @@ typedef struct rd_lift_form {
     int (*initial)(void *user, const rd_lift_setup *setup, double atol, double *y,
                    double *abstol, rd_error *err);
 } rd_lift_form;
+
+/* The Newton solver of a form (rd_lift_newton.c): a DIRECT SUNLinearSolver
+ * over the second-order system matrix *S (owned by the solver, to be given
+ * to CVodeSetLinearSolver with it), and its handle for the linear-system
+ * function: rd_lift_newton_linsys evaluates the form's blocks at (t, y)
+ * unless jok (CVODE allows reuse), sets *jcur, and assembles S for gamma.
+ * NULL when out of memory.  `form` must outlive the solver. */
+typedef struct rd_lift_newton rd_lift_newton;
+SUNLinearSolver rd_lift_newton_create(const rd_lift_form *form, SUNContext ctx, SUNMatrix *S,
+                                      rd_lift_newton **nw);
+int rd_lift_newton_linsys(rd_lift_newton *nw, double t, N_Vector y, int jok, int *jcur,
+                          double gamma);
 
 /* The full model as a formulation (rd_lift_model.c). */
 void rd_lift_full_form(rd_lift_model *m, rd_lift_form *form);

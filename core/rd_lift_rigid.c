@@ -107,6 +107,33 @@ static void project(const rigid *r, const double *D, double *P)
         }
 }
 
+/* The second-order blocks (rd_lift_model.h): one block of NX, A = M_x^-1
+ * (n Phi^T Dq Phi - K_x), B = M_x^-1 n Phi^T Dv Phi (no neighbours). */
+static void rigid_blocks(void *user, double t, const double *y, double *A, double *B)
+{
+    rigid *r = user;
+    double Gq[NX * NX], Gv[NX * NX];
+    segment_state(r, y);
+    rd_lift_forces_segment(r->m, t, 0, r->q, r->v, r->f, r->Dq, r->Dv);
+    project(r, r->Dq, Gq);
+    project(r, r->Dv, Gv);
+    Gq[NX * 1 + 1] -= r->k_twist;
+    double *Ad = A + NX * NX; /* the diagonal block of row block 0 */
+    memset(A, 0, 3 * NX * NX * sizeof *A);
+    for (int a = 0; a < NX; a++)
+        for (int b = 0; b < NX; b++) {
+            double sq = 0.0, sv = 0.0;
+            for (int c = 0; c < NX; c++) {
+                sq += r->Minv[NX * a + c] * Gq[NX * c + b];
+                sv += r->Minv[NX * a + c] * Gv[NX * c + b];
+            }
+            Ad[NX * a + b] = sq;
+            B[NX * a + b] = sv;
+        }
+}
+
+/* The Jacobian as a dense 6x6 matrix from the blocks (the Jacobian check's
+ * view of what the Newton solver uses). */
 static int rigid_jac(sunrealtype t, N_Vector yv, N_Vector fy, SUNMatrix J, void *user,
                      N_Vector t1, N_Vector t2, N_Vector t3)
 {
@@ -114,25 +141,15 @@ static int rigid_jac(sunrealtype t, N_Vector yv, N_Vector fy, SUNMatrix J, void 
     (void)t1;
     (void)t2;
     (void)t3;
-    rigid *r = user;
-    double Gq[NX * NX], Gv[NX * NX];
-    segment_state(r, N_VGetArrayPointer(yv));
-    rd_lift_forces_segment(r->m, t, 0, r->q, r->v, r->f, r->Dq, r->Dv);
-    project(r, r->Dq, Gq);
-    project(r, r->Dv, Gv);
-    Gq[NX * 1 + 1] -= r->k_twist;
+    double A[3 * NX * NX], B[NX * NX];
+    rigid_blocks(user, t, N_VGetArrayPointer(yv), A, B);
     if (SUNMatZero(J))
         return -1;
     for (int a = 0; a < NX; a++) {
         SM_ELEMENT_D(J, a, NX + a) = 1.0;
         for (int b = 0; b < NX; b++) {
-            double sq = 0.0, sv = 0.0;
-            for (int c = 0; c < NX; c++) {
-                sq += r->Minv[NX * a + c] * Gq[NX * c + b];
-                sv += r->Minv[NX * a + c] * Gv[NX * c + b];
-            }
-            SM_ELEMENT_D(J, NX + a, b) = sq;
-            SM_ELEMENT_D(J, NX + a, NX + b) = sv;
+            SM_ELEMENT_D(J, NX + a, b) = A[NX * NX + NX * a + b];
+            SM_ELEMENT_D(J, NX + a, NX + b) = B[NX * a + b];
         }
     }
     return 0;
@@ -269,6 +286,8 @@ int rd_lift_rigid_open(rd_lift_model *m, rd_lift_form *form, rd_error *err)
                            .m = m,
                            .rhs = rigid_rhs,
                            .jac = rigid_jac,
+                           .block = NX,
+                           .blocks = rigid_blocks,
                            .lift = rigid_lift,
                            .loads = rigid_loads,
                            .expand = rigid_expand,
