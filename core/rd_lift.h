@@ -75,6 +75,15 @@ typedef struct rd_friction_params {
     double hydrodynamic_slope;    /* Stribeck: K of 2.9 */
 } rd_friction_params;
 
+/* The landing law (rd_lift_landing.c): the oil squeeze film between a ring
+ * face and the groove flank it approaches.  Off by default (the flanks are
+ * then the dry penalty contact alone). */
+typedef struct rd_squeeze_params {
+    int on;            /* 1: modelled */
+    double viscosity;  /* oil dynamic viscosity mu, Pa s */
+    double min_film;   /* h_min, m: the film left at contact (roughness) */
+} rd_squeeze_params;
+
 /* Gas pressures vs crank angle, Pa, linear interpolation, periodic over 720
  * deg.  Borrowed arrays of `points` values each; points == 0: no gas. */
 typedef struct rd_gas_params {
@@ -92,6 +101,7 @@ typedef struct rd_lift_params {
     int gravity;               /* 1: g = 9.80665 m/s^2 along -z */
     rd_friction_params friction;
     rd_gas_params gas;
+    rd_squeeze_params squeeze; /* landing law on the flanks */
     double contact_stiffness;  /* flank/bore penalty, Pa/m; 0 = default */
     double step_deg;           /* output sampling, crank degrees */
     double rtol, atol;         /* CVODE tolerances (atol on lift, m) */

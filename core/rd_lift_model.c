@@ -77,6 +77,7 @@ static void model_constants(rd_lift_model *c, const rd_ring_params *rp, const rd
     c->so_lim = p->friction.sommerfeld_transition;
     c->kh = p->friction.hydrodynamic_slope;
     c->h = rp->axial_height;
+    rd_lift_landing_init(c, rp, p);
 }
 
 static int model_alloc(rd_lift_model *c, rd_error *err)

@@ -16,6 +16,7 @@
  *                     contribution df_i/dq_i, df_i/dv_i: inertia and
  *                     gravity, flank contacts, bore contact and friction,
  *                     groove back, gas faces
+ *   rd_lift_landing.c the landing law: the oil squeeze film on the flanks
  *   rd_lift_newton.c  the Newton systems in second-order form (half the
  *                     unknowns, band LU of I - gamma B - gamma^2 A)
  *   rd_lift_driver.c  the CVODE driver: set-up, events (root finding and
@@ -87,6 +88,8 @@ typedef struct rd_lift_model {
     double g_on;           /* gravity, m/s^2, or 0 */
     double p0, delta_pre;  /* pretension pressure and bore preload penetration */
     double ureg, mu, eta, so_lim, kh, h, L_run;
+    int sq_on;             /* the squeeze-film landing law (rd_lift_landing.c) */
+    double sq_coef, sq_hmin, sq_vreg; /* mu b^2 (Pa s m^2), h_min (m), v_r (m/s) */
     rd_band K;
     double *Minv;          /* n x 36 row-major */
     double *Mez;           /* n x 6: M_i e_z */
@@ -121,6 +124,14 @@ static inline double rd_lift_dot6(const double *a, const double *b)
 /* Inverse of the contacts' elastic part: the penetration where k sp(delta)
  * = p (rd_lift_forces.c). */
 double rd_lift_contact_inverse(const rd_lift_model *m, double p);
+
+/* The squeeze-film landing law (rd_lift_landing.c): its constants from the
+ * scene (after ca and omega are set), and its pressure (Pa) at a flank
+ * point with gap `gap` (m) closing at `closing` (m/s), with the partial
+ * derivatives dp/dgap, dp/dclosing. */
+void rd_lift_landing_init(rd_lift_model *m, const rd_ring_params *rp, const rd_lift_params *p);
+double rd_lift_squeeze(const rd_lift_model *m, double gap, double closing, double *p_gap,
+                       double *p_closing);
 
 /* Generalized forces on all segments (without -K q) into m->fbuf; with Dq,
  * Dv (n x 36 each) also their local derivatives df_i/dq_i, df_i/dv_i.  Sets
