@@ -33,6 +33,7 @@ struct lift_opts {
 static const char *const kinematics_names[] = {"exact", "approximate", NULL}; /* enum rd_kinematics */
 static const char *const friction_names[] = {"coulomb", "stribeck", NULL};   /* model - 1 */
 static const char *const area_names[] = {"fixed", "dynamic", NULL};          /* enum rd_gas_area */
+static const char *const landing_names[] = {"penalty", "plastic", NULL}; /* enum rd_lift_landing */
 
 static const rd_field engine_fields[] = {
     {"speed_rpm", RD_F_NUMBER, LO(lift.engine.speed_rpm), RD_MIN(1), RD_MAX(30000),
@@ -138,6 +139,11 @@ static const rd_field contact_fields[] = {
      .echo = echo_stiffness,
      .desc = "Penalty stiffness k, Pa/m. 0 = a default from the scene's largest flank load and "
              "the crank speed (echoed as the value used); otherwise 1e3 to 1e20."},
+    {"landing", RD_F_CHOICE, LO(lift.landing), .choices = landing_names,
+     .desc = "penalty: a landing is integrated through the damped penalty (default). plastic: "
+             "the ring's axial (rigid: and tilt) rate towards the flank is arrested when it "
+             "reaches it, then the penalty carries the load; fewer steps, flank changes moved "
+             "by up to ~0.05 deg on the examples."},
     {.key = NULL},
 };
 static const rd_block contact_block = {

@@ -205,6 +205,10 @@ static int validate_physics(const rd_lift_params *p, rd_error *err)
          (rc = check_range(f->hydrodynamic_slope, 0.0, 1e12,
                            "/physics/friction/hydrodynamic_slope", "", err))))
         return rc;
+    if (p->landing != RD_LANDING_PENALTY && p->landing != RD_LANDING_PLASTIC)
+        return rd_error_set(err, RD_EINVAL, "/contact/landing",
+                            "/contact/landing = %d is unknown: use penalty or plastic.",
+                            p->landing);
     const rd_squeeze_params *q = &p->squeeze;
     if (q->on != 0 && q->on != 1)
         return rd_error_set(err, RD_EINVAL, "/physics/squeeze_film",

@@ -62,6 +62,7 @@
 #define MAX_ORDER 2      /* BDF order bound (header comment) */
 #define STEP_CHUNK 2000  /* segment-steps between monitor calls (header comment) */
 #define N_ROOTS 5
+#define N_COUNTERS 8     /* the solver counters of rd_lift_result */
 
 /* One integration's solver objects and bookkeeping. */
 typedef struct driver {
@@ -77,6 +78,7 @@ typedef struct driver {
     double *seg;       /* n: per-segment lift of the current sample */
     double deg_per_s;  /* crank degrees per second */
     long chunk;        /* steps per CVode call between monitor calls */
+    long base[N_COUNTERS]; /* counters before the last CVODE restart (plastic landings) */
     char cv_msg[200];  /* CVODE's last error message */
 } driver;
 
@@ -322,15 +324,49 @@ static flank_track initial_flank(driver *d)
 
 /* ---------------------------------------------------------- stepping */
 
+/* CVODE's counters (rd_lift_result order: steps, rhs, Jacobians, set-ups,
+ * Newton iterations and failures, error-test failures, root evaluations)
+ * plus those before its last restart. */
+static int read_counters(const driver *d, long *c)
+{
+    int flag;
+    if ((flag = CVodeGetNumSteps(d->cv, &c[0])) || (flag = CVodeGetNumRhsEvals(d->cv, &c[1])) ||
+        (flag = CVodeGetNumJacEvals(d->cv, &c[2])) ||
+        (flag = CVodeGetNumLinSolvSetups(d->cv, &c[3])) ||
+        (flag = CVodeGetNumNonlinSolvIters(d->cv, &c[4])) ||
+        (flag = CVodeGetNumNonlinSolvConvFails(d->cv, &c[5])) ||
+        (flag = CVodeGetNumErrTestFails(d->cv, &c[6])) ||
+        (flag = CVodeGetNumGEvals(d->cv, &c[7])))
+        return flag;
+    for (int k = 0; k < N_COUNTERS; k++)
+        c[k] += d->base[k];
+    return 0;
+}
+
+/* A plastic landing (rd_lift.h): the form arrests the ring's velocity
+ * towards the flank, and CVODE restarts from that state at the root (its
+ * counters carry over in d->base). */
+static int land_plastic(driver *d, double t, int upper, rd_error *err)
+{
+    int flag;
+    if ((flag = read_counters(d, d->base)))
+        return cv_fail(d, flag, "counter query", err);
+    d->form.impact(d->form.user, N_VGetArrayPointer(d->y), upper);
+    if ((flag = CVodeReInit(d->cv, t, d->y)))
+        return cv_fail(d, flag, "restart", err);
+    return RD_OK;
+}
+
 /* The error of a failed or exhausted integration, dated at the crank angle
  * the integrator really reached. */
 static int step_error(driver *d, int flag, rd_error *err)
 {
     double tc = 0.0, total = d->m.p->engine.cycles * 720.0;
-    long nst = 0;
+    long c[N_COUNTERS], nst;
     int f2;
-    if ((f2 = CVodeGetCurrentTime(d->cv, &tc)) || (f2 = CVodeGetNumSteps(d->cv, &nst)))
+    if ((f2 = CVodeGetCurrentTime(d->cv, &tc)) || (f2 = read_counters(d, c)))
         return cv_fail(d, f2, "query", err);
+    nst = c[0];
     if (flag == CV_TOO_MUCH_WORK)
         return rd_error_set(err, RD_ELIMIT, "/numerics/max_steps",
                             "The integration used its /numerics/max_steps = %ld steps by crank "
@@ -351,11 +387,11 @@ static int advance(driver *d, double tout, flank_track *tr, rd_lift_run *o,
 {
     double *yy = N_VGetArrayPointer(d->y), t = 0.0;
     for (;;) {
-        long nst = 0;
+        long c[N_COUNTERS];
         int flag, rc;
-        if ((flag = CVodeGetNumSteps(d->cv, &nst)))
+        if ((flag = read_counters(d, c)))
             return cv_fail(d, flag, "query", err);
-        long left = d->m.p->max_steps - nst;
+        long left = d->m.p->max_steps - c[0];
         if (left <= 0)
             return step_error(d, CV_TOO_MUCH_WORK, err);
         if ((flag = CVodeSetMaxNumSteps(d->cv, left < d->chunk ? left : d->chunk)))
@@ -366,7 +402,12 @@ static int advance(driver *d, double tout, flank_track *tr, rd_lift_run *o,
             if ((flag = CVodeGetRootInfo(d->cv, rf)))
                 return cv_fail(d, flag, "query", err);
             d->form.loads(d->form.user, t, yy);
+            int was = tr->state;
             if ((rc = track_roots(tr, rf, t, d->deg_per_s, d->m.fz_ext, o, err)))
+                return rc;
+            if (was == RD_FLANK_FREE && tr->state != RD_FLANK_FREE &&
+                d->m.p->landing == RD_LANDING_PLASTIC &&
+                (rc = land_plastic(d, t, tr->state == RD_FLANK_UPPER, err)))
                 return rc;
             continue;
         }
@@ -427,16 +468,18 @@ static void store_sample(driver *d, int k, double deg, double tout, rd_lift_run 
 
 static int store_counters(driver *d, rd_lift_result *r, rd_error *err)
 {
-    int flag;
-    if ((flag = CVodeGetNumSteps(d->cv, &r->steps)) ||
-        (flag = CVodeGetNumRhsEvals(d->cv, &r->rhs_evals)) ||
-        (flag = CVodeGetNumJacEvals(d->cv, &r->jac_evals)) ||
-        (flag = CVodeGetNumLinSolvSetups(d->cv, &r->lin_setups)) ||
-        (flag = CVodeGetNumNonlinSolvIters(d->cv, &r->nonlin_iters)) ||
-        (flag = CVodeGetNumNonlinSolvConvFails(d->cv, &r->nonlin_fails)) ||
-        (flag = CVodeGetNumErrTestFails(d->cv, &r->err_test_fails)) ||
-        (flag = CVodeGetNumGEvals(d->cv, &r->root_evals)))
+    long c[N_COUNTERS];
+    int flag = read_counters(d, c);
+    if (flag)
         return cv_fail(d, flag, "counter query", err);
+    r->steps = c[0];
+    r->rhs_evals = c[1];
+    r->jac_evals = c[2];
+    r->lin_setups = c[3];
+    r->nonlin_iters = c[4];
+    r->nonlin_fails = c[5];
+    r->err_test_fails = c[6];
+    r->root_evals = c[7];
     return RD_OK;
 }
 

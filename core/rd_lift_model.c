@@ -348,6 +348,22 @@ static void full_loads(void *user, double t, const double *y)
     rd_lift_forces(user, t, y, NULL, NULL);
 }
 
+/* Plastic landing of the full ring: the mean axial rate of the segments
+ * (equal masses) towards the flank is removed from every segment, so the
+ * ring's rigid axial motion stops and its elastic motion keeps going. */
+static void full_impact(void *user, double *y, int upper)
+{
+    rd_lift_model *c = user;
+    double mean = 0.0;
+    for (int i = 0; i < c->n; i++)
+        mean += V(y, i)[2];
+    mean /= c->n;
+    if (upper ? mean <= 0.0 : mean >= 0.0)
+        return;
+    for (int i = 0; i < c->n; i++)
+        V(y, i)[2] -= mean;
+}
+
 /* atol on the translations (m), atol / R on the rotations, and atol w_v on
  * their rates (rd_lift_driver.c); the seated ring at rest unless given. */
 static int full_initial(void *user, const rd_lift_setup *setup, double atol, double *y,
@@ -383,6 +399,7 @@ void rd_lift_full_form(rd_lift_model *m, rd_lift_form *form)
                            .jac = rd_lift_cv_jac,
                            .block = 6,
                            .blocks = full_blocks,
+                           .impact = full_impact,
                            .lift = full_lift,
                            .loads = full_loads,
                            .expand = NULL,

@@ -184,6 +184,9 @@ typedef struct rd_lift_form {
     void (*loads)(void *user, double t, const double *y);
     /* the 12 n full state of y into full; NULL: y is the full state */
     void (*expand)(void *user, const double *y, double *full);
+    /* A plastic landing (rd_lift.h enum rd_lift_landing): arrests in y the
+     * ring's axial velocity towards the flank (upper: 1 the upper flank). */
+    void (*impact)(void *user, double *y, int upper);
     /* the initial state and absolute tolerances (atol on translations, m) */
     int (*initial)(void *user, const rd_lift_setup *setup, double atol, double *y,
                    double *abstol, rd_error *err);
