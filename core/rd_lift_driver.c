@@ -51,6 +51,8 @@
 
 #include <cvode/cvode.h>
 #include <sundials/sundials_context.h>
+#include <sunlinsol/sunlinsol_band.h>
+#include <sunlinsol/sunlinsol_dense.h>
 #include <sunmatrix/sunmatrix_band.h>
 #include <sunmatrix/sunmatrix_dense.h>
 
@@ -71,7 +73,8 @@ typedef struct driver {
     double *full;      /* 12 n: the full state of a sample (reduced forms) */
     SUNContext sunctx;
     N_Vector y, abstol;
-    SUNMatrix S;       /* the Newton matrix, owned by LS */
+    SUNMatrix S;       /* the Newton matrix, owned by LS (second-order forms) */
+    SUNMatrix A;       /* owned: the Newton matrix of a form without blocks */
     SUNLinearSolver LS;
     rd_lift_newton *nw;
     void *cv;
@@ -133,6 +136,15 @@ static int drv_linsys(sunrealtype t, N_Vector y, N_Vector fy, SUNMatrix S, sunbo
     return rc;
 }
 
+/* A form without second-order blocks: CVODE forms I - gamma J from the
+ * form's matrix Jacobian (dense or band). */
+static int drv_jac(sunrealtype t, N_Vector y, N_Vector fy, SUNMatrix J, void *user, N_Vector t1,
+                   N_Vector t2, N_Vector t3)
+{
+    driver *d = user;
+    return d->form.jac(t, y, fy, J, d->form.user, t1, t2, t3);
+}
+
 static void cv_silent(int code, const char *module, const char *function, char *msg, void *user)
 {
     (void)code;
@@ -179,6 +191,8 @@ static void driver_free(driver *d)
         CVodeFree(&d->cv);
     if (d->LS)
         SUNLinSolFree(d->LS);
+    if (d->A)
+        SUNMatDestroy(d->A);
     if (d->y)
         N_VDestroy(d->y);
     if (d->abstol)
@@ -199,8 +213,8 @@ static int cv_configure(driver *d, double rtol, rd_error *err)
         (flag = CVodeInit(d->cv, drv_rhs, 0.0, d->y)) ||
         (flag = CVodeSVtolerances(d->cv, rtol, d->abstol)) ||
         (flag = CVodeSetUserData(d->cv, d)) ||
-        (flag = CVodeSetLinearSolver(d->cv, d->LS, d->S)) ||
-        (flag = CVodeSetLinSysFn(d->cv, drv_linsys)) ||
+        (flag = CVodeSetLinearSolver(d->cv, d->LS, d->A ? d->A : d->S)) ||
+        (flag = d->A ? CVodeSetJacFn(d->cv, drv_jac) : CVodeSetLinSysFn(d->cv, drv_linsys)) ||
         (flag = CVodeSetMaxOrd(d->cv, MAX_ORDER)) ||
         (flag = CVodeSetMaxStep(d->cv, HMAX_DEG / d->deg_per_s)) ||
         (flag = CVodeSetLSetupFrequency(d->cv, 1)) || /* fresh Newton matrix each step */
@@ -240,7 +254,15 @@ static int driver_open(driver *d, const rd_ring *ring, const rd_lift_params *p,
         return rd_error_set(err, RD_ENOMEM, "", "Could not create the SUNDIALS context.");
     d->y = N_VNew_Serial(N, d->sunctx);
     d->abstol = N_VNew_Serial(N, d->sunctx);
-    d->LS = rd_lift_newton_create(&d->form, d->sunctx, &d->S, &d->nw);
+    if (d->form.blocks) {
+        d->LS = rd_lift_newton_create(&d->form, d->sunctx, &d->S, &d->nw);
+    } else if (d->y) {
+        d->A = d->form.dense ? SUNDenseMatrix(N, N, d->sunctx)
+                             : SUNBandMatrix(N, RD_LIFT_MU, RD_LIFT_ML, d->sunctx);
+        if (d->A)
+            d->LS = d->form.dense ? SUNLinSol_Dense(d->y, d->A, d->sunctx)
+                                  : SUNLinSol_Band(d->y, d->A, d->sunctx);
+    }
     d->cv = CVodeCreate(CV_BDF, d->sunctx);
     if (!d->y || !d->abstol || !d->LS || !d->cv)
         return rd_error_set(err, RD_ENOMEM, "", "Out of memory setting up CVODE for %d segments.",

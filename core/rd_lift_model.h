@@ -175,7 +175,8 @@ typedef struct rd_lift_form {
      * is N / (2 block) blocks of [q (block values), v (block values)] with
      * q' = v; `blocks` puts at (t, y) d(v')/dq, row block i's blocks i-1, i,
      * i+1 (block x block row-major each, zero outside the ring) into A
-     * (N / (2 block) x 3 x block^2) and d(v')/dv (block diagonal) into B. */
+     * (N / (2 block) x 3 x block^2) and d(v')/dv (block diagonal) into B.
+     * blocks NULL: CVODE's dense or band Newton matrix from `jac` instead. */
     int block;
     void (*blocks)(void *user, double t, const double *y, double *A, double *B);
     /* mean lift L; the per-segment lifts into seg (n values) when not NULL */
