@@ -44,6 +44,7 @@
 typedef struct rigid {
     rd_lift_model *m;
     double phi[NX][6];    /* segment 0's displacement per unit z, theta, r */
+    int idx[NX][6], nnz[NX]; /* the non-zero entries of each phi */
     double Minv[NX * NX]; /* inverse generalized mass, row-major */
     double k_twist;       /* N m / rad: phi_theta^T K phi_theta */
     double q[6], v[6], f[6], Dq[36], Dv[36]; /* segment 0 scratch */
@@ -95,14 +96,17 @@ static int rigid_rhs(sunrealtype t, N_Vector yv, N_Vector ydv, void *user)
     return 0;
 }
 
-/* n phi_a^T D phi_b into P (NX x NX). */
+/* n phi_a^T D phi_b into P (NX x NX); each shape has at most two non-zero
+ * entries (shapes()), so only those are visited. */
 static void project(const rigid *r, const double *D, double *P)
 {
     for (int a = 0; a < NX; a++)
         for (int b = 0; b < NX; b++) {
             double s = 0.0;
-            for (int k = 0; k < 6; k++)
-                s += r->phi[a][k] * rd_lift_dot6(D + 6 * k, r->phi[b]);
+            for (int u = 0; u < r->nnz[a]; u++)
+                for (int w = 0; w < r->nnz[b]; w++)
+                    s += r->phi[a][r->idx[a][u]] * D[6 * r->idx[a][u] + r->idx[b][w]] *
+                         r->phi[b][r->idx[b][w]];
             P[NX * a + b] = r->m->n * s;
         }
 }
@@ -293,6 +297,10 @@ int rd_lift_rigid_open(rd_lift_model *m, rd_lift_form *form, rd_error *err)
         return rd_error_set(err, RD_ENOMEM, "", "Out of memory for the rigid lift model.");
     r->m = m;
     shapes(m, 0, r->phi);
+    for (int a = 0; a < NX; a++)
+        for (int k = 0; k < 6; k++)
+            if (r->phi[a][k] != 0.0)
+                r->idx[a][r->nnz[a]++] = k;
     *form = (rd_lift_form){.name = "rigid",
                            .N = 2 * NX,
                            .dense = 1,
