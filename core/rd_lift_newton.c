@@ -51,7 +51,9 @@ static void assemble(rd_lift_newton *nw)
 {
     int bs = nw->bs, bb = bs * bs;
     double g = nw->gamma, g2 = g * g;
-    SUNMatZero_Band(nw->S);
+    /* the band storage is one contiguous array: memset, not SUNMatZero_Band's
+     * element loop (5 % of a full-model step) */
+    memset(SM_DATA_B(nw->S), 0, (size_t)SM_LDATA_B(nw->S) * sizeof(double));
     for (int i = 0; i < nw->nb; i++) {
         sunindextype r0 = (sunindextype)i * bs;
         const double *Bi = nw->B + (size_t)bb * i;
