@@ -20,7 +20,7 @@
 
 struct lift_opts {
     rd_lift_params lift;
-    int friction_given, gas_given;
+    int friction_given, gas_given, squeeze_given;
     int friction_model;         /* index into friction_names */
     int max_steps;              /* /numerics/max_steps */
     struct rd_table gas_table[4]; /* crank_deg, above, behind, below */
@@ -33,6 +33,7 @@ struct lift_opts {
 static const char *const kinematics_names[] = {"exact", "approximate", NULL}; /* enum rd_kinematics */
 static const char *const friction_names[] = {"coulomb", "stribeck", NULL};   /* model - 1 */
 static const char *const area_names[] = {"fixed", "dynamic", NULL};          /* enum rd_gas_area */
+static const char *const landing_names[] = {"penalty", "plastic", NULL}; /* enum rd_lift_landing */
 
 static const rd_field engine_fields[] = {
     {"speed_rpm", RD_F_NUMBER, LO(lift.engine.speed_rpm), RD_MIN(1), RD_MAX(30000),
@@ -98,16 +99,31 @@ static const rd_block gas_block = {
     "length (2 to 100000 points), interpolated linearly and periodic over 720 deg.",
     1, 0, gas_fields};
 
+static const rd_field squeeze_fields[] = {
+    {"viscosity", RD_F_NUMBER, LO(lift.squeeze.viscosity), RD_MIN(1e-08), RD_MAX(10),
+     .desc = "Dynamic viscosity mu of the oil in the flank gaps, Pa s (from 1e-8: a vanishing film for comparisons)."},
+    {"min_film", RD_F_NUMBER, LO(lift.squeeze.min_film), RD_MIN(1e-09), RD_MAX(1e-04),
+     .desc = "Film h_min left at contact (roughness), m: the gap in the law is h_min + h."},
+    {.key = NULL},
+};
+static const rd_block squeeze_block = {
+    "SqueezeFilm",
+    "/physics/squeeze_film: the landing law, the oil squeeze film between a ring face and the "
+    "flank it approaches, p = mu b^2 V / (h_min + h)^3 (Reynolds, parallel plates of width b "
+    "closing at V; no pressure while the gap opens); present = modelled.",
+    1, 0, squeeze_fields};
+
 static const rd_field physics_fields[] = {
     {"gravity", RD_F_BOOL, LO(lift.gravity), .desc = "Gravity, g = 9.80665 m/s^2 along -z."},
     {"friction", RD_F_OPTBLOCK, LO(friction_given), .block = &friction_block},
     {"gas", RD_F_OPTBLOCK, LO(gas_given), .block = &gas_block},
+    {"squeeze_film", RD_F_OPTBLOCK, LO(squeeze_given), .block = &squeeze_block},
     {.key = NULL},
 };
 static const rd_block physics_block = {
     "Physics",
     "/physics (lift): the forces besides piston inertia. An absent entry means that effect is "
-    "not modelled (friction and gas are switched on by naming their block).",
+    "not modelled (friction, gas and squeeze_film are switched on by naming their block).",
     1, 0, physics_fields};
 
 /* The echo gives the stiffness used, where the scene's 0 means "default". */
@@ -123,6 +139,11 @@ static const rd_field contact_fields[] = {
      .echo = echo_stiffness,
      .desc = "Penalty stiffness k, Pa/m. 0 = a default from the scene's largest flank load and "
              "the crank speed (echoed as the value used); otherwise 1e3 to 1e20."},
+    {"landing", RD_F_CHOICE, LO(lift.landing), .choices = landing_names,
+     .desc = "penalty: a landing is integrated through the damped penalty (default). plastic: "
+             "the ring's axial (rigid: and tilt) rate towards the flank is arrested when it "
+             "reaches it, then the penalty carries the load; fewer steps, flank changes moved "
+             "by up to ~0.05 deg on the examples."},
     {.key = NULL},
 };
 static const rd_block contact_block = {
@@ -236,6 +257,7 @@ static int finish(struct rd_scene *s, rd_error *err)
                             "/discretization/closed = true joins the gap, but the lift analysis "
                             "models the split ring in its groove: use closed = false.");
     l->friction.model = o->friction_given ? o->friction_model + 1 : RD_FRICTION_NONE;
+    l->squeeze.on = o->squeeze_given;
     l->max_steps = o->max_steps;
     l->gas.points = 0;
     if (o->gas_given) {

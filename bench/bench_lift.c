@@ -15,10 +15,12 @@
  *   bench_lift --models EXAMPLES_DIR [--reps R]
  *     3. The two lift examples, one cycle each, as the scene asks (its n,
  *        rtol, and the error estimate on, as the API runs it): numerics.model
- *        auto, rigid and full; wall time (median of R >= 3), CVODE steps,
- *        Jacobian evaluations and factorizations (linear-solver set-ups) of
- *        the main run, and the flank changes' largest difference from the
- *        full model at n = 40, rtol 1e-8 (atol 1e-11 m).
+ *        auto, rigid and full, each with the default penalty landing and with
+ *        contact.landing = plastic; wall time (median of R >= 3, including
+ *        the error estimate's second run), CVODE steps, Jacobian evaluations
+ *        and factorizations (linear-solver set-ups) of the main run, and the
+ *        flank changes' largest difference from the full model at n = 40,
+ *        rtol 1e-8 (atol 1e-11 m, penalty landing).
  *
  * Wall times on a shared 2-core machine are noisy: medians of repeats.
  */
@@ -118,8 +120,8 @@ static int models(const char *dir, int reps)
     printf("One 720 deg cycle of each lift example, its own n and rtol, error estimate on;\n"
            "wall = median of %d runs (Release); steps, Jacobians, factorizations: the main run;\n"
            "change = largest flank-change difference from full n = 40, rtol 1e-8.\n\n"
-           "| example | model | used | dof | wall [ms/cycle] | steps | Jacobians | "
-           "factorizations | change vs full n=40 [deg] |\n|---|---|---|---|---|---|---|---|---|\n",
+           "| example | model | landing | used | dof | wall [ms/cycle] | steps | Jacobians | "
+           "factorizations | change vs full n=40 [deg] |\n|---|---|---|---|---|---|---|---|---|---|\n",
            reps);
     for (int f = 0; f < 2; f++) {
         gcase c;
@@ -134,15 +136,17 @@ static int models(const char *dir, int reps)
         p.atol = 1e-11;
         if (timed_p(&c.ring, 40, &p, 1, &ref))
             return 1;
-        for (int k = 0; k < 3; k++) {
+        for (int k = 0; k < 6; k++) {
             p = c.p;
             p.estimate_error = 1;
-            p.model = kinds[k];
+            p.model = kinds[k / 2];
+            p.landing = k % 2 ? RD_LANDING_PLASTIC : RD_LANDING_PENALTY;
             if (timed_p(&c.ring, c.n, &p, reps, &r))
                 return 1;
-            printf("| %s | %s | %s | %d | %.2f | %ld | %ld | %ld | %.4f |\n", files[f],
-                   rd_lift_model_name(kinds[k]), rd_lift_model_name(r.model), r.dof,
-                   1e3 * r.wall, r.steps, r.jac, r.setups, event_change(&r, &ref));
+            printf("| %s | %s | %s | %s | %d | %.2f | %ld | %ld | %ld | %.4f |\n", files[f],
+                   rd_lift_model_name(kinds[k / 2]), k % 2 ? "plastic" : "penalty",
+                   rd_lift_model_name(r.model), r.dof, 1e3 * r.wall, r.steps, r.jac, r.setups,
+                   event_change(&r, &ref));
             fflush(stdout);
         }
         for (int k = 0; k < 4; k++)

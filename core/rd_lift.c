@@ -91,6 +91,9 @@ void rd_lift_params_default(rd_lift_params *p)
     p->friction.viscosity = 0.01;
     p->friction.sommerfeld_transition = 1e7;
     p->friction.hydrodynamic_slope = 2e4;
+    p->squeeze.on = 0;
+    p->squeeze.viscosity = 0.01; /* the Stribeck default's oil */
+    p->squeeze.min_film = 1e-6;  /* ~3 x the combined flank roughness (Ra 0.2-0.4 um) */
     p->gas.points = 0;
     p->gas.active_area = RD_GAS_AREA_FIXED;
     p->contact_stiffness = 0.0;
@@ -201,6 +204,20 @@ static int validate_physics(const rd_lift_params *p, rd_error *err)
                            "/physics/friction/sommerfeld_transition", "", err)) ||
          (rc = check_range(f->hydrodynamic_slope, 0.0, 1e12,
                            "/physics/friction/hydrodynamic_slope", "", err))))
+        return rc;
+    if (p->landing != RD_LANDING_PENALTY && p->landing != RD_LANDING_PLASTIC)
+        return rd_error_set(err, RD_EINVAL, "/contact/landing",
+                            "/contact/landing = %d is unknown: use penalty or plastic.",
+                            p->landing);
+    const rd_squeeze_params *q = &p->squeeze;
+    if (q->on != 0 && q->on != 1)
+        return rd_error_set(err, RD_EINVAL, "/physics/squeeze_film",
+                            "/physics/squeeze_film on = %d: use 0 or 1.", q->on);
+    if (q->on &&
+        ((rc = check_range(q->viscosity, 1e-8, 10.0, "/physics/squeeze_film/viscosity", "Pa s",
+                           err)) ||
+         (rc = check_range(q->min_film, 1e-9, 1e-4, "/physics/squeeze_film/min_film", "m",
+                           err))))
         return rc;
     return RD_OK;
 }

@@ -29,6 +29,10 @@
 enum rd_kinematics { RD_KINEMATICS_EXACT = 0, RD_KINEMATICS_APPROXIMATE = 1 };
 enum rd_friction_model { RD_FRICTION_NONE = 0, RD_FRICTION_COULOMB = 1, RD_FRICTION_STRIBECK = 2 };
 enum rd_gas_area { RD_GAS_AREA_FIXED = 0, RD_GAS_AREA_DYNAMIC = 1 };
+/* How a landing on a flank is integrated: through the damped penalty alone,
+ * or as a plastic impact (the ring's axial velocity towards the flank
+ * arrested at the instant it reaches it, then the penalty carries the load). */
+enum rd_lift_landing { RD_LANDING_PENALTY = 0, RD_LANDING_PLASTIC = 1 };
 enum rd_flank { RD_FLANK_LOWER = 0, RD_FLANK_UPPER = 1, RD_FLANK_FREE = 2 };
 /* Which equations are integrated (numerics.model): the full flexible ring
  * (6 n DOFs), the rigid ring (axial lift, twist, radial: exact for
@@ -75,6 +79,15 @@ typedef struct rd_friction_params {
     double hydrodynamic_slope;    /* Stribeck: K of 2.9 */
 } rd_friction_params;
 
+/* The landing law (rd_lift_landing.c): the oil squeeze film between a ring
+ * face and the groove flank it approaches.  Off by default (the flanks are
+ * then the dry penalty contact alone). */
+typedef struct rd_squeeze_params {
+    int on;            /* 1: modelled */
+    double viscosity;  /* oil dynamic viscosity mu, Pa s */
+    double min_film;   /* h_min, m: the film left at contact (roughness) */
+} rd_squeeze_params;
+
 /* Gas pressures vs crank angle, Pa, linear interpolation, periodic over 720
  * deg.  Borrowed arrays of `points` values each; points == 0: no gas. */
 typedef struct rd_gas_params {
@@ -92,7 +105,9 @@ typedef struct rd_lift_params {
     int gravity;               /* 1: g = 9.80665 m/s^2 along -z */
     rd_friction_params friction;
     rd_gas_params gas;
+    rd_squeeze_params squeeze; /* landing law on the flanks */
     double contact_stiffness;  /* flank/bore penalty, Pa/m; 0 = default */
+    int landing;               /* enum rd_lift_landing */
     double step_deg;           /* output sampling, crank degrees */
     double rtol, atol;         /* CVODE tolerances (atol on lift, m) */
     long max_steps;            /* bound on CVODE steps for the whole run */

@@ -4,8 +4,9 @@
  * state machine), output sampling, solver counters, the work bound, progress
  * and cancellation.
  *
- * Integration: SUNDIALS CVODE, BDF of order <= 2, Newton with a band matrix
- * and band LU and the analytic Jacobian (rd_lift_cv_jac), so each step costs
+ * Integration: SUNDIALS CVODE, BDF of order <= 2, Newton with the analytic
+ * Jacobian's blocks, the system solved in second-order form by band LU of
+ * half the size (rd_lift_newton.c), so each step costs
  * O(n).  Order <= 2: the undamped elastic modes of a finely cut ring are
  * fast and on the imaginary axis, where BDF3-5 are unstable (n = 200 took
  * 70x more steps); BDF2 is A-stable.  The Jacobian is re-evaluated and
@@ -63,6 +64,7 @@
 #define MAX_ORDER 2      /* BDF order bound (header comment) */
 #define STEP_CHUNK 2000  /* segment-steps between monitor calls (header comment) */
 #define N_ROOTS 5
+#define N_COUNTERS 8     /* the solver counters of rd_lift_result */
 
 /* One integration's solver objects and bookkeeping. */
 typedef struct driver {
@@ -71,12 +73,15 @@ typedef struct driver {
     double *full;      /* 12 n: the full state of a sample (reduced forms) */
     SUNContext sunctx;
     N_Vector y, abstol;
-    SUNMatrix A;
+    SUNMatrix S;       /* the Newton matrix, owned by LS (second-order forms) */
+    SUNMatrix A;       /* owned: the Newton matrix of a form without blocks */
     SUNLinearSolver LS;
+    rd_lift_newton *nw;
     void *cv;
     double *seg;       /* n: per-segment lift of the current sample */
     double deg_per_s;  /* crank degrees per second */
     long chunk;        /* steps per CVode call between monitor calls */
+    long base[N_COUNTERS]; /* counters before the last CVODE restart (plastic landings) */
     char cv_msg[200];  /* CVODE's last error message */
 } driver;
 
@@ -116,6 +121,23 @@ static int drv_rhs(sunrealtype t, N_Vector y, N_Vector yd, void *user)
     return d->form.rhs(t, y, yd, d->form.user);
 }
 
+static int drv_linsys(sunrealtype t, N_Vector y, N_Vector fy, SUNMatrix S, sunbooleantype jok,
+                      sunbooleantype *jcur, sunrealtype gamma, void *user, N_Vector t1,
+                      N_Vector t2, N_Vector t3)
+{
+    (void)fy;
+    (void)S;
+    (void)t1;
+    (void)t2;
+    (void)t3;
+    driver *d = user;
+    int cur = 0, rc = rd_lift_newton_linsys(d->nw, t, y, jok, &cur, gamma);
+    *jcur = cur ? SUNTRUE : SUNFALSE;
+    return rc;
+}
+
+/* A form without second-order blocks: CVODE forms I - gamma J from the
+ * form's matrix Jacobian (dense or band). */
 static int drv_jac(sunrealtype t, N_Vector y, N_Vector fy, SUNMatrix J, void *user, N_Vector t1,
                    N_Vector t2, N_Vector t3)
 {
@@ -191,8 +213,8 @@ static int cv_configure(driver *d, double rtol, rd_error *err)
         (flag = CVodeInit(d->cv, drv_rhs, 0.0, d->y)) ||
         (flag = CVodeSVtolerances(d->cv, rtol, d->abstol)) ||
         (flag = CVodeSetUserData(d->cv, d)) ||
-        (flag = CVodeSetLinearSolver(d->cv, d->LS, d->A)) ||
-        (flag = CVodeSetJacFn(d->cv, drv_jac)) ||
+        (flag = CVodeSetLinearSolver(d->cv, d->LS, d->A ? d->A : d->S)) ||
+        (flag = d->A ? CVodeSetJacFn(d->cv, drv_jac) : CVodeSetLinSysFn(d->cv, drv_linsys)) ||
         (flag = CVodeSetMaxOrd(d->cv, MAX_ORDER)) ||
         (flag = CVodeSetMaxStep(d->cv, HMAX_DEG / d->deg_per_s)) ||
         (flag = CVodeSetLSetupFrequency(d->cv, 1)) || /* fresh Newton matrix each step */
@@ -232,14 +254,17 @@ static int driver_open(driver *d, const rd_ring *ring, const rd_lift_params *p,
         return rd_error_set(err, RD_ENOMEM, "", "Could not create the SUNDIALS context.");
     d->y = N_VNew_Serial(N, d->sunctx);
     d->abstol = N_VNew_Serial(N, d->sunctx);
-    if (d->y)
+    if (d->form.blocks) {
+        d->LS = rd_lift_newton_create(&d->form, d->sunctx, &d->S, &d->nw);
+    } else if (d->y) {
         d->A = d->form.dense ? SUNDenseMatrix(N, N, d->sunctx)
                              : SUNBandMatrix(N, RD_LIFT_MU, RD_LIFT_ML, d->sunctx);
-    if (d->A)
-        d->LS = d->form.dense ? SUNLinSol_Dense(d->y, d->A, d->sunctx)
-                              : SUNLinSol_Band(d->y, d->A, d->sunctx);
+        if (d->A)
+            d->LS = d->form.dense ? SUNLinSol_Dense(d->y, d->A, d->sunctx)
+                                  : SUNLinSol_Band(d->y, d->A, d->sunctx);
+    }
     d->cv = CVodeCreate(CV_BDF, d->sunctx);
-    if (!d->y || !d->abstol || !d->A || !d->LS || !d->cv)
+    if (!d->y || !d->abstol || !d->LS || !d->cv)
         return rd_error_set(err, RD_ENOMEM, "", "Out of memory setting up CVODE for %d segments.",
                             n);
     if ((rc = d->form.initial(d->form.user, setup, atol, N_VGetArrayPointer(d->y),
@@ -321,15 +346,49 @@ static flank_track initial_flank(driver *d)
 
 /* ---------------------------------------------------------- stepping */
 
+/* CVODE's counters (rd_lift_result order: steps, rhs, Jacobians, set-ups,
+ * Newton iterations and failures, error-test failures, root evaluations)
+ * plus those before its last restart. */
+static int read_counters(const driver *d, long *c)
+{
+    int flag;
+    if ((flag = CVodeGetNumSteps(d->cv, &c[0])) || (flag = CVodeGetNumRhsEvals(d->cv, &c[1])) ||
+        (flag = CVodeGetNumJacEvals(d->cv, &c[2])) ||
+        (flag = CVodeGetNumLinSolvSetups(d->cv, &c[3])) ||
+        (flag = CVodeGetNumNonlinSolvIters(d->cv, &c[4])) ||
+        (flag = CVodeGetNumNonlinSolvConvFails(d->cv, &c[5])) ||
+        (flag = CVodeGetNumErrTestFails(d->cv, &c[6])) ||
+        (flag = CVodeGetNumGEvals(d->cv, &c[7])))
+        return flag;
+    for (int k = 0; k < N_COUNTERS; k++)
+        c[k] += d->base[k];
+    return 0;
+}
+
+/* A plastic landing (rd_lift.h): the form arrests the ring's velocity
+ * towards the flank, and CVODE restarts from that state at the root (its
+ * counters carry over in d->base). */
+static int land_plastic(driver *d, double t, int upper, rd_error *err)
+{
+    int flag;
+    if ((flag = read_counters(d, d->base)))
+        return cv_fail(d, flag, "counter query", err);
+    d->form.impact(d->form.user, N_VGetArrayPointer(d->y), upper);
+    if ((flag = CVodeReInit(d->cv, t, d->y)))
+        return cv_fail(d, flag, "restart", err);
+    return RD_OK;
+}
+
 /* The error of a failed or exhausted integration, dated at the crank angle
  * the integrator really reached. */
 static int step_error(driver *d, int flag, rd_error *err)
 {
     double tc = 0.0, total = d->m.p->engine.cycles * 720.0;
-    long nst = 0;
+    long c[N_COUNTERS], nst;
     int f2;
-    if ((f2 = CVodeGetCurrentTime(d->cv, &tc)) || (f2 = CVodeGetNumSteps(d->cv, &nst)))
+    if ((f2 = CVodeGetCurrentTime(d->cv, &tc)) || (f2 = read_counters(d, c)))
         return cv_fail(d, f2, "query", err);
+    nst = c[0];
     if (flag == CV_TOO_MUCH_WORK)
         return rd_error_set(err, RD_ELIMIT, "/numerics/max_steps",
                             "The integration used its /numerics/max_steps = %ld steps by crank "
@@ -350,11 +409,11 @@ static int advance(driver *d, double tout, flank_track *tr, rd_lift_run *o,
 {
     double *yy = N_VGetArrayPointer(d->y), t = 0.0;
     for (;;) {
-        long nst = 0;
+        long c[N_COUNTERS];
         int flag, rc;
-        if ((flag = CVodeGetNumSteps(d->cv, &nst)))
+        if ((flag = read_counters(d, c)))
             return cv_fail(d, flag, "query", err);
-        long left = d->m.p->max_steps - nst;
+        long left = d->m.p->max_steps - c[0];
         if (left <= 0)
             return step_error(d, CV_TOO_MUCH_WORK, err);
         if ((flag = CVodeSetMaxNumSteps(d->cv, left < d->chunk ? left : d->chunk)))
@@ -365,7 +424,12 @@ static int advance(driver *d, double tout, flank_track *tr, rd_lift_run *o,
             if ((flag = CVodeGetRootInfo(d->cv, rf)))
                 return cv_fail(d, flag, "query", err);
             d->form.loads(d->form.user, t, yy);
+            int was = tr->state;
             if ((rc = track_roots(tr, rf, t, d->deg_per_s, d->m.fz_ext, o, err)))
+                return rc;
+            if (was == RD_FLANK_FREE && tr->state != RD_FLANK_FREE &&
+                d->m.p->landing == RD_LANDING_PLASTIC &&
+                (rc = land_plastic(d, t, tr->state == RD_FLANK_UPPER, err)))
                 return rc;
             continue;
         }
@@ -426,16 +490,18 @@ static void store_sample(driver *d, int k, double deg, double tout, rd_lift_run 
 
 static int store_counters(driver *d, rd_lift_result *r, rd_error *err)
 {
-    int flag;
-    if ((flag = CVodeGetNumSteps(d->cv, &r->steps)) ||
-        (flag = CVodeGetNumRhsEvals(d->cv, &r->rhs_evals)) ||
-        (flag = CVodeGetNumJacEvals(d->cv, &r->jac_evals)) ||
-        (flag = CVodeGetNumLinSolvSetups(d->cv, &r->lin_setups)) ||
-        (flag = CVodeGetNumNonlinSolvIters(d->cv, &r->nonlin_iters)) ||
-        (flag = CVodeGetNumNonlinSolvConvFails(d->cv, &r->nonlin_fails)) ||
-        (flag = CVodeGetNumErrTestFails(d->cv, &r->err_test_fails)) ||
-        (flag = CVodeGetNumGEvals(d->cv, &r->root_evals)))
+    long c[N_COUNTERS];
+    int flag = read_counters(d, c);
+    if (flag)
         return cv_fail(d, flag, "counter query", err);
+    r->steps = c[0];
+    r->rhs_evals = c[1];
+    r->jac_evals = c[2];
+    r->lin_setups = c[3];
+    r->nonlin_iters = c[4];
+    r->nonlin_fails = c[5];
+    r->err_test_fails = c[6];
+    r->root_evals = c[7];
     return RD_OK;
 }
 

@@ -42,6 +42,8 @@
  *     a lag 2 zeta / w_c = 3.3e-4 rad = 0.02 deg of crank.
  * Both effects shift the flank-change angles by far less than the flight
  * times (degrees); test_lift checks the angles over 2 decades of k.
+ * Optional landing law (/physics/squeeze_film): the oil squeeze film on
+ * each flank point, added after the penalty (rd_lift_landing.c).
  *
  *
  * Friction (model != NONE), on each bore point, axial.  Sliding velocity of
@@ -276,6 +278,22 @@ static void add_inertia_gravity(const rd_lift_model *c, const force_env *env, se
         s->f[k] = c->Mez[6 * s->i + k] * env->acc;
 }
 
+/* The squeeze films (rd_lift_landing.c) under and over a face point at
+ * axial displacement w (rate wd): the lower gap w closes at -wd, the upper
+ * gap c_a - w at wd; their power on the ring is dissipation. */
+static void add_squeeze(rd_lift_model *c, seg_view *s, const double *a, double w, double wd,
+                        double A)
+{
+    double lg, lv, ug, uv;
+    double pl = rd_lift_squeeze(c, w, -wd, &lg, &lv);
+    double pu = rd_lift_squeeze(c, c->ca - w, wd, &ug, &uv);
+    add6(s->f, a, (pl - pu) * A);
+    if (c->energy)
+        c->energy->damping_power += (pl - pu) * A * wd;
+    rank1(s->dq, A * (lg + ug), a, a);
+    rank1(s->dv, -A * (lv + uv), a, a);
+}
+
 /* Lower and upper flank contacts at the face points; with dynamic gas areas
  * also the sealing weights and their gradients. */
 static void add_flanks(rd_lift_model *c, const force_env *env, seg_view *s)
@@ -294,6 +312,8 @@ static void add_flanks(rd_lift_model *c, const force_env *env, seg_view *s)
         }
         rank1(s->dq, -A * (pl_d + pu_d), a, a);
         rank1(s->dv, -A * (pl_dd + pu_dd), a, a);
+        if (c->sq_on)
+            add_squeeze(c, s, a, w, wd, A);
         if (env->dynamic) {
             double sl_d, su_d;
             s->seal_lo += A * smoothstep(-w / c->d0, &sl_d);

@@ -77,6 +77,7 @@ static void model_constants(rd_lift_model *c, const rd_ring_params *rp, const rd
     c->so_lim = p->friction.sommerfeld_transition;
     c->kh = p->friction.hydrodynamic_slope;
     c->h = rp->axial_height;
+    rd_lift_landing_init(c, rp, p);
 }
 
 static int model_alloc(rd_lift_model *c, rd_error *err)
@@ -256,41 +257,33 @@ int rd_lift_cv_rhs(sunrealtype t, N_Vector yv, N_Vector ydv, void *user)
     return 0;
 }
 
-/* Jacobian d(ydot)/dy, band (MU, ML):
- *   d(dq_i/dt)/dv_i = I,
- *   d(dv_i/dt)/dq_j = -M_i^-1 K_ij (+ M_i^-1 df_i/dq_i for j = i),
- *   d(dv_i/dt)/dv_i = M_i^-1 df_i/dv_i.
- * The constant -M_i^-1 K_ij are precomputed (c->MK). */
-static void jac_segment(const rd_lift_model *c, int i, SUNMatrix J)
+/* The second-order blocks (rd_lift_model.h, rd_lift_form.blocks):
+ *   A_ij = -M_i^-1 K_ij (+ M_i^-1 df_i/dq_i for j = i),  B_i = M_i^-1 df_i/dv_i. */
+static void full_blocks(void *user, double t, const double *y, double *A, double *B)
 {
-    sunindextype rq = 12 * (sunindextype)i, rv = rq + 6;
-    const double *Mi = c->Minv + 36 * (size_t)i;
-    const double *dq = c->Dq + 36 * (size_t)i, *dv = c->Dv + 36 * (size_t)i;
-    for (int k = 0; k < 6; k++)
-        SM_ELEMENT_B(J, rq + k, rv + k) = 1.0;
-    for (int j = i - 1; j <= i + 1; j++) {
-        if (j < 0 || j >= c->n)
-            continue;
-        const double *B = c->MK + 36 * (3 * (size_t)i + (j - i + 1));
-        sunindextype cq = 12 * (sunindextype)j;
+    rd_lift_model *c = user;
+    rd_lift_forces(c, t, y, c->Dq, c->Dv);
+    for (int i = 0; i < c->n; i++) {
+        const double *Mi = c->Minv + 36 * (size_t)i;
+        const double *dq = c->Dq + 36 * (size_t)i, *dv = c->Dv + 36 * (size_t)i;
+        double *Ai = A + 108 * (size_t)i, *Bi = B + 36 * (size_t)i;
+        memcpy(Ai, c->MK + 108 * (size_t)i, 108 * sizeof *Ai);
         for (int r = 0; r < 6; r++)
             for (int k = 0; k < 6; k++) {
-                double v = B[6 * r + k];
-                if (j == i)
-                    for (int m = 0; m < 6; m++)
-                        v += Mi[6 * r + m] * dq[6 * m + k];
-                SM_ELEMENT_B(J, rv + r, cq + k) = v;
+                double aq = 0.0, av = 0.0;
+                for (int m = 0; m < 6; m++) {
+                    aq += Mi[6 * r + m] * dq[6 * m + k];
+                    av += Mi[6 * r + m] * dv[6 * m + k];
+                }
+                Ai[36 + 6 * r + k] += aq;
+                Bi[6 * r + k] = av;
             }
     }
-    for (int r = 0; r < 6; r++)
-        for (int k = 0; k < 6; k++) {
-            double v = 0.0;
-            for (int m = 0; m < 6; m++)
-                v += Mi[6 * r + m] * dv[6 * m + k];
-            SM_ELEMENT_B(J, rv + r, rv + k) = v;
-        }
 }
 
+/* Jacobian d(ydot)/dy as a band matrix (MU, ML) from the blocks (the
+ * Jacobian check's view of what the Newton solver uses):
+ *   d(dq_i/dt)/dv_i = I,  d(dv_i/dt)/dq_j = A_ij,  d(dv_i/dt)/dv_i = B_i. */
 int rd_lift_cv_jac(sunrealtype t, N_Vector yv, N_Vector fy, SUNMatrix J, void *user,
                    N_Vector t1, N_Vector t2, N_Vector t3)
 {
@@ -299,11 +292,29 @@ int rd_lift_cv_jac(sunrealtype t, N_Vector yv, N_Vector fy, SUNMatrix J, void *u
     (void)t2;
     (void)t3;
     rd_lift_model *c = user;
-    rd_lift_forces(c, t, N_VGetArrayPointer(yv), c->Dq, c->Dv);
-    if (SUNMatZero(J))
-        return -1; /* unrecoverable: CVODE reports a failed linear set-up */
-    for (int i = 0; i < c->n; i++)
-        jac_segment(c, i, J);
+    double *A = malloc(144 * (size_t)c->n * sizeof *A), *B = A ? A + 108 * (size_t)c->n : NULL;
+    if (!A || SUNMatZero(J)) {
+        free(A);
+        return -1; /* unrecoverable */
+    }
+    full_blocks(c, t, N_VGetArrayPointer(yv), A, B);
+    for (int i = 0; i < c->n; i++) {
+        sunindextype rq = 12 * (sunindextype)i, rv = rq + 6;
+        for (int k = 0; k < 6; k++)
+            SM_ELEMENT_B(J, rq + k, rv + k) = 1.0;
+        for (int j = i - 1; j <= i + 1; j++) {
+            if (j < 0 || j >= c->n)
+                continue;
+            const double *Aij = A + 36 * (3 * (size_t)i + (j - i + 1));
+            for (int r = 0; r < 6; r++)
+                for (int k = 0; k < 6; k++)
+                    SM_ELEMENT_B(J, rv + r, 12 * (sunindextype)j + k) = Aij[6 * r + k];
+        }
+        for (int r = 0; r < 6; r++)
+            for (int k = 0; k < 6; k++)
+                SM_ELEMENT_B(J, rv + r, rv + k) = B[36 * (size_t)i + 6 * r + k];
+    }
+    free(A);
     return 0;
 }
 
@@ -335,6 +346,22 @@ static double full_lift(void *user, const double *y, double *seg)
 static void full_loads(void *user, double t, const double *y)
 {
     rd_lift_forces(user, t, y, NULL, NULL);
+}
+
+/* Plastic landing of the full ring: the mean axial rate of the segments
+ * (equal masses) towards the flank is removed from every segment, so the
+ * ring's rigid axial motion stops and its elastic motion keeps going. */
+static void full_impact(void *user, double *y, int upper)
+{
+    rd_lift_model *c = user;
+    double mean = 0.0;
+    for (int i = 0; i < c->n; i++)
+        mean += V(y, i)[2];
+    mean /= c->n;
+    if (upper ? mean <= 0.0 : mean >= 0.0)
+        return;
+    for (int i = 0; i < c->n; i++)
+        V(y, i)[2] -= mean;
 }
 
 /* atol on the translations (m), atol / R on the rotations, and atol w_v on
@@ -370,6 +397,9 @@ void rd_lift_full_form(rd_lift_model *m, rd_lift_form *form)
                            .m = m,
                            .rhs = rd_lift_cv_rhs,
                            .jac = rd_lift_cv_jac,
+                           .block = 6,
+                           .blocks = full_blocks,
+                           .impact = full_impact,
                            .lift = full_lift,
                            .loads = full_loads,
                            .expand = NULL,

@@ -16,6 +16,9 @@
  *                     contribution df_i/dq_i, df_i/dv_i: inertia and
  *                     gravity, flank contacts, bore contact and friction,
  *                     groove back, gas faces
+ *   rd_lift_landing.c the landing law: the oil squeeze film on the flanks
+ *   rd_lift_newton.c  the Newton systems in second-order form (half the
+ *                     unknowns, band LU of I - gamma B - gamma^2 A)
  *   rd_lift_driver.c  the CVODE driver: set-up, events (root finding and
  *                     the flank state machine), output sampling, counters,
  *                     the work bound and cancellation, the Jacobian check
@@ -54,6 +57,7 @@
 #define RD_LIFT_MODEL_H
 
 #include <nvector/nvector_serial.h>
+#include <sundials/sundials_linearsolver.h>
 #include <sundials/sundials_matrix.h>
 #include <cvode/cvode.h>
 
@@ -84,6 +88,8 @@ typedef struct rd_lift_model {
     double g_on;           /* gravity, m/s^2, or 0 */
     double p0, delta_pre;  /* pretension pressure and bore preload penetration */
     double ureg, mu, eta, so_lim, kh, h, L_run;
+    int sq_on;             /* the squeeze-film landing law (rd_lift_landing.c) */
+    double sq_coef, sq_hmin, sq_vreg; /* mu b^2 (Pa s m^2), h_min (m), v_r (m/s) */
     rd_band K;
     double *Minv;          /* n x 36 row-major */
     double *Mez;           /* n x 6: M_i e_z */
@@ -118,6 +124,14 @@ static inline double rd_lift_dot6(const double *a, const double *b)
 /* Inverse of the contacts' elastic part: the penetration where k sp(delta)
  * = p (rd_lift_forces.c). */
 double rd_lift_contact_inverse(const rd_lift_model *m, double p);
+
+/* The squeeze-film landing law (rd_lift_landing.c): its constants from the
+ * scene (after ca and omega are set), and its pressure (Pa) at a flank
+ * point with gap `gap` (m) closing at `closing` (m/s), with the partial
+ * derivatives dp/dgap, dp/dclosing. */
+void rd_lift_landing_init(rd_lift_model *m, const rd_ring_params *rp, const rd_lift_params *p);
+double rd_lift_squeeze(const rd_lift_model *m, double gap, double closing, double *p_gap,
+                       double *p_closing);
 
 /* Generalized forces on all segments (without -K q) into m->fbuf; with Dq,
  * Dv (n x 36 each) also their local derivatives df_i/dq_i, df_i/dv_i.  Sets
@@ -156,17 +170,40 @@ typedef struct rd_lift_form {
     void *user;
     rd_lift_model *m;  /* the model whose constants (ca, eps, omega, p) apply */
     CVRhsFn rhs;
-    CVLsJacFn jac;
+    CVLsJacFn jac;     /* the Jacobian as a matrix (the Jacobian check only) */
+    /* The Newton system in second-order form (rd_lift_newton.c): the state
+     * is N / (2 block) blocks of [q (block values), v (block values)] with
+     * q' = v; `blocks` puts at (t, y) d(v')/dq, row block i's blocks i-1, i,
+     * i+1 (block x block row-major each, zero outside the ring) into A
+     * (N / (2 block) x 3 x block^2) and d(v')/dv (block diagonal) into B.
+     * blocks NULL: CVODE's dense or band Newton matrix from `jac` instead. */
+    int block;
+    void (*blocks)(void *user, double t, const double *y, double *A, double *B);
     /* mean lift L; the per-segment lifts into seg (n values) when not NULL */
     double (*lift)(void *user, const double *y, double *seg);
     /* the loads at (t, y): sets m->fz_ext and m->friction */
     void (*loads)(void *user, double t, const double *y);
     /* the 12 n full state of y into full; NULL: y is the full state */
     void (*expand)(void *user, const double *y, double *full);
+    /* A plastic landing (rd_lift.h enum rd_lift_landing): arrests in y the
+     * ring's axial velocity towards the flank (upper: 1 the upper flank). */
+    void (*impact)(void *user, double *y, int upper);
     /* the initial state and absolute tolerances (atol on translations, m) */
     int (*initial)(void *user, const rd_lift_setup *setup, double atol, double *y,
                    double *abstol, rd_error *err);
 } rd_lift_form;
+
+/* The Newton solver of a form (rd_lift_newton.c): a DIRECT SUNLinearSolver
+ * over the second-order system matrix *S (owned by the solver, to be given
+ * to CVodeSetLinearSolver with it), and its handle for the linear-system
+ * function: rd_lift_newton_linsys evaluates the form's blocks at (t, y)
+ * unless jok (CVODE allows reuse), sets *jcur, and assembles S for gamma.
+ * NULL when out of memory.  `form` must outlive the solver. */
+typedef struct rd_lift_newton rd_lift_newton;
+SUNLinearSolver rd_lift_newton_create(const rd_lift_form *form, SUNContext ctx, SUNMatrix *S,
+                                      rd_lift_newton **nw);
+int rd_lift_newton_linsys(rd_lift_newton *nw, double t, N_Vector y, int jok, int *jcur,
+                          double gamma);
 
 /* The full model as a formulation (rd_lift_model.c). */
 void rd_lift_full_form(rd_lift_model *m, rd_lift_form *form);
