@@ -204,6 +204,7 @@ function summary(result, events) {
 
 function costLine(n) {
   const parts = [];
+  if (n.model && n.model.name) parts.push(`${n.model.name} model`);
   if (n.segments !== undefined) parts.push(`${n.segments} segments`);
   if (n.dof !== undefined) parts.push(`${n.dof} DOF`);
   if (n.steps !== undefined) parts.push(`${n.steps} steps`);
@@ -386,6 +387,8 @@ function costTable(result) {
     rows: [
       ['Error estimate (lift)', percent(n.error_estimate), { id: 'lf-error', title: n.error_method }],
       ['Event angle change in the check run', isNum(n.event_error_deg) ? `${sig(n.event_error_deg, 2)}°` : undefined],
+      ['Ring model', n.model ? `${n.model.name} (${n.model.dof} DOF)` : undefined, { id: 'lf-model', title: n.model ? n.model.why : undefined }],
+      ['Why this model', n.model ? n.model.why : undefined],
       ['Segments / DOF', `${n.segments ?? '—'} / ${n.dof ?? '—'}`],
       ['Steps', n.steps],
       ['RHS evaluations', n.rhs_evals],

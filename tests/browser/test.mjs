@@ -487,7 +487,7 @@ test('lift form: the friction and gas toggles put their blocks in the scene or l
     assert.deepEqual(scene.groove, { axial_clearance: 3e-5, radial_clearance: 5e-4 });
     assert.deepEqual(scene.physics, { gravity: false }, 'friction and gas off: absent');
     assert.deepEqual(scene.output, { step_deg: 1 });
-    assert.deepEqual(scene.numerics, { rtol: 1e-6, atol: 1e-9, error_estimate: true });
+    assert.deepEqual(scene.numerics, { model: 'auto', accuracy_deg: 0.1, rtol: 1e-6, atol: 1e-9, error_estimate: true });
     assert.equal(await page.isDisabled('#f-lf-friction-coefficient'), true, 'friction fields off with their toggle');
 
     await page.check('#f-lf-friction');
@@ -860,8 +860,10 @@ for (const width of [1280, 390]) {
       assert.equal(await page.isVisible('#result-stale'), false);
 
       // The long job: progress from the first second, then Cancel before 1 s is out.
+      // The full ring, so that it is long (auto would run the rigid ring here: seconds).
       await page.fill('#f-segments', '20');
       await page.fill('#f-lf-cycles', '40');
+      await page.selectOption('#f-lf-model', 'full');
       const t0 = Date.now();
       await page.getByRole('button', { name: 'Run lift analysis' }).click();
       await page.waitForFunction(() => /^Job \S+ running — \d+ % · .* elapsed/.test(document.getElementById('status-text').textContent), null, { timeout: 1000 });
