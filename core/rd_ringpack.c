@@ -82,6 +82,11 @@ static int validate_ring(const rd_ringpack_ring *r, int i, double bore, rd_error
                             "share one bore.",
                             f, r->ring.diameter, bore);
     rc = rc ? rc : range(r->ring.closed_gap, 0.0, 0.01, FIELD("ring/closed_gap"), "m", err);
+    if (!rc && !(r->groove.axial_clearance > 0.0))
+        return rd_error_set(err, RD_EINVAL, FIELD("groove/axial_clearance"),
+                            "%s = %g m: the groove (ring height + axial clearance) must be "
+                            "taller than the ring; allowed 1e-07 to 0.005 m.",
+                            f, r->groove.axial_clearance);
     rc = rc ? rc : range(r->groove.axial_clearance, 1e-7, 0.005,
                          FIELD("groove/axial_clearance"), "m", err);
     rc = rc ? rc : range(r->groove.radial_clearance, 1e-6, 0.01,
@@ -140,7 +145,9 @@ static int validate_table(const rd_ringpack_params *p, rd_error *err)
 int rd_ringpack_validate(const rd_ringpack_params *p, rd_error *err)
 {
     const rd_engine_params *e = &p->engine;
-    int rc = range(e->speed_rpm, 1.0, 30000.0, "/engine/speed_rpm", "rpm", err);
+    int rc = range(p->step_deg, 0.01, 90.0, "/output/step_deg", "deg", err);
+    rc = rc ? rc : range((double)p->max_steps, 100.0, 1e9, "/numerics/max_steps", "", err);
+    rc = rc ? rc : range(e->speed_rpm, 1.0, 30000.0, "/engine/speed_rpm", "rpm", err);
     rc = rc ? rc : range(e->crank_radius, 0.001, 1.0, "/engine/crank_radius", "m", err);
     rc = rc ? rc : range(e->rod_length, e->crank_radius / 0.9, 10.0, "/engine/rod_length", "m",
                          err);
@@ -167,7 +174,6 @@ int rd_ringpack_validate(const rd_ringpack_params *p, rd_error *err)
     rc = rc ? rc : range(p->T_lands, 200.0, 1500.0, "/gas_temperature_k/lands", "K", err);
     rc = rc ? rc : range(p->T_crankcase, 200.0, 1500.0, "/gas_temperature_k/crankcase", "K",
                          err);
-    rc = rc ? rc : range(p->step_deg, 0.01, 90.0, "/output/step_deg", "deg", err);
     rc = rc ? rc : range(p->rtol, 1e-12, 0.01, "/numerics/rtol", "", err);
     rc = rc ? rc : range(p->atol, 1e-16, 1e-5, "/numerics/atol", "m", err);
     if (rc)
@@ -182,7 +188,7 @@ int rd_ringpack_validate(const rd_ringpack_params *p, rd_error *err)
 static const char *const land_names[] = {"top_land", "second_land", "third_land"};
 static const char *const groove_names[] = {"groove_1", "groove_2", "groove_3"};
 
-static void ring_geometry(rp_model *m, int i)
+static void ring_geometry(rd_ringpack_model *m, int i)
 {
     const rd_ringpack_ring *r = &m->p->rings[i];
     double d = r->ring.diameter, b = r->ring.radial_width, h = r->ring.axial_height;
@@ -207,7 +213,7 @@ static void ring_geometry(rp_model *m, int i)
     m->to[3 + 3 * i] = rp_below(m, i);
 }
 
-static int cylinder_trace(rp_model *m, rd_error *err)
+static int cylinder_trace(rd_ringpack_model *m, rd_error *err)
 {
     const rd_ringpack_params *p = m->p;
     if (p->cylinder_kind == RD_CYLINDER_TABLE) {
@@ -226,7 +232,7 @@ static int cylinder_trace(rp_model *m, rd_error *err)
                                 "/cylinder_pressure/synthetic", m->cyl_deg, m->cyl_pa, err);
 }
 
-int rp_model_init(rp_model *m, const rd_ringpack_params *p, rd_error *err)
+int rd_ringpack_model_init(rd_ringpack_model *m, const rd_ringpack_params *p, rd_error *err)
 {
     memset(m, 0, sizeof *m);
     m->p = p;
@@ -247,7 +253,7 @@ int rp_model_init(rp_model *m, const rd_ringpack_params *p, rd_error *err)
     return cylinder_trace(m, err);
 }
 
-void rp_model_cleanup(rp_model *m)
+void rd_ringpack_model_cleanup(rd_ringpack_model *m)
 {
     if (m->cyl_owned)
         free(m->cyl_deg);
@@ -255,7 +261,7 @@ void rp_model_cleanup(rp_model *m)
     m->cyl_owned = 0;
 }
 
-void rp_pressures(const rp_model *m, double t, const double *y, double *pv)
+void rd_ringpack_pressures(const rd_ringpack_model *m, double t, const double *y, double *pv)
 {
     double deg = t * m->omega * 180.0 / M_PI;
     pv[0] = rd_gasflow_table(m->cyl_n, m->cyl_deg, m->cyl_pa, deg);
@@ -264,7 +270,7 @@ void rp_pressures(const rp_model *m, double t, const double *y, double *pv)
     pv[m->V + 1] = m->p->crankcase_pa;
 }
 
-void rp_flows(const rp_model *m, const double *pv, const double *y, double *mdot)
+void rd_ringpack_flows(const rd_ringpack_model *m, const double *pv, const double *y, double *mdot)
 {
     const double k = RD_GASFLOW_KAPPA, Rg = RD_GASFLOW_R;
     for (int f = 0; f < m->F; f++) {
@@ -284,7 +290,7 @@ void rp_flows(const rp_model *m, const double *pv, const double *y, double *mdot
     }
 }
 
-double rp_ring_force(const rp_model *m, int i, double t, const double *y, const double *pv)
+double rd_ringpack_ring_force(const rd_ringpack_model *m, int i, double t, const double *y, const double *pv)
 {
     (void)y;
     double above = pv[2 * i + 1], below = pv[rp_below(m, i)];
@@ -299,12 +305,12 @@ double rp_ring_force(const rp_model *m, int i, double t, const double *y, const 
     return m->mass[i] * (a_p - (m->p->gravity ? GRAVITY : 0.0)) + m->area[i] * (below - above);
 }
 
-void rp_rhs(const rp_model *m, double t, const double *y, double *yd)
+void rd_ringpack_rhs(const rd_ringpack_model *m, double t, const double *y, double *yd)
 {
     double pv[RD_RINGPACK_VOLUMES_MAX], mdot[RD_RINGPACK_FLOWS_MAX];
     double dm[RD_RINGPACK_VOLUMES_MAX] = {0};
-    rp_pressures(m, t, y, pv);
-    rp_flows(m, pv, y, mdot);
+    rd_ringpack_pressures(m, t, y, pv);
+    rd_ringpack_flows(m, pv, y, mdot);
     for (int f = 0; f < m->F; f++) {
         dm[m->from[f]] -= mdot[f];
         dm[m->to[f]] += mdot[f];
@@ -314,7 +320,7 @@ void rp_rhs(const rp_model *m, double t, const double *y, double *yd)
     for (int i = 0; i < m->R; i++) {
         int free_ = m->mode[i] == RD_FLANK_FREE;
         RP_Z(m, yd, i) = free_ ? RP_ZD(m, y, i) : 0.0;
-        RP_ZD(m, yd, i) = free_ ? rp_ring_force(m, i, t, y, pv) / m->mass[i] : 0.0;
+        RP_ZD(m, yd, i) = free_ ? rd_ringpack_ring_force(m, i, t, y, pv) / m->mass[i] : 0.0;
     }
     double in = mdot[0], cc = dm[m->V + 1];
     RP_CUM(m, yd, 0) = fmax(in, 0.0);
@@ -323,7 +329,7 @@ void rp_rhs(const rp_model *m, double t, const double *y, double *yd)
     RP_CUM(m, yd, 3) = fmax(-cc, 0.0);
 }
 
-void rp_describe(const rp_model *m, rd_ringpack_result *r)
+void rd_ringpack_describe(const rd_ringpack_model *m, rd_ringpack_result *r)
 {
     r->n_rings = m->R;
     r->n_volumes = m->V + 2;

@@ -27,7 +27,7 @@
 #define RESTARTS_MAX 200000  /* flank changes allowed in a run */
 
 typedef struct drv {
-    rp_model m;
+    rd_ringpack_model m;
     SUNContext ctx;
     N_Vector y, abstol;
     SUNMatrix A;
@@ -46,7 +46,7 @@ static int cv_rhs(sunrealtype t, N_Vector y, N_Vector yd, void *user)
 {
     drv *d = user;
     double *f = N_VGetArrayPointer(yd);
-    rp_rhs(&d->m, t, N_VGetArrayPointer(y), f);
+    rd_ringpack_rhs(&d->m, t, N_VGetArrayPointer(y), f);
     for (int k = 0; k < d->m.N; k++)
         if (!isfinite(f[k]))
             return 1;
@@ -56,10 +56,10 @@ static int cv_rhs(sunrealtype t, N_Vector y, N_Vector yd, void *user)
 static int cv_roots(sunrealtype t, N_Vector yv, sunrealtype *g, void *user)
 {
     drv *d = user;
-    const rp_model *m = &d->m;
+    const rd_ringpack_model *m = &d->m;
     const double *y = N_VGetArrayPointer(yv);
     double pv[RD_RINGPACK_VOLUMES_MAX];
-    rp_pressures(m, t, y, pv);
+    rd_ringpack_pressures(m, t, y, pv);
     for (int i = 0; i < m->R; i++) {
         g[2 * i] = g[2 * i + 1] = 1.0;
         if (m->p->rings[i].pinned != RD_PIN_FREE)
@@ -68,7 +68,7 @@ static int cv_roots(sunrealtype t, N_Vector yv, sunrealtype *g, void *user)
             g[2 * i] = RP_Z(m, y, i);
             g[2 * i + 1] = m->ca[i] - RP_Z(m, y, i);
         } else {
-            g[2 * i] = rp_ring_force(m, i, t, y, pv);
+            g[2 * i] = rd_ringpack_ring_force(m, i, t, y, pv);
         }
     }
     return 0;
@@ -105,14 +105,14 @@ static void drv_close(drv *d)
     if (d->ctx)
         SUNContext_Free(&d->ctx);
     free(d->prev);
-    rp_model_cleanup(&d->m);
+    rd_ringpack_model_cleanup(&d->m);
 }
 
 /* Initial state (every volume at the crankcase pressure, rings at rest on
  * their flank) and tolerances. */
 static void initial_state(drv *d, double rtol, double atol)
 {
-    const rp_model *m = &d->m;
+    const rd_ringpack_model *m = &d->m;
     double *y = N_VGetArrayPointer(d->y), *ab = N_VGetArrayPointer(d->abstol), vsum = 0.0;
     for (int v = 0; v < m->V; v++) {
         y[v] = m->p->crankcase_pa;
@@ -133,7 +133,7 @@ static void initial_state(drv *d, double rtol, double atol)
 
 static int drv_open(drv *d, const rd_ringpack_params *p, double rtol, double atol, rd_error *err)
 {
-    int rc = rp_model_init(&d->m, p, err), flag;
+    int rc = rd_ringpack_model_init(&d->m, p, err), flag;
     if (rc)
         return rc;
     sunindextype N = d->m.N;
@@ -186,8 +186,8 @@ static int push_event(drv *d, int i, double t, int kind, rd_error *err)
 static int ring_switch(drv *d, int i, double t, double *y, const double *pv, int fired,
                        rd_error *err)
 {
-    rp_model *m = &d->m;
-    double F = rp_ring_force(m, i, t, y, pv), z = RP_Z(m, y, i), a = m->ca[i];
+    rd_ringpack_model *m = &d->m;
+    double F = rd_ringpack_ring_force(m, i, t, y, pv), z = RP_Z(m, y, i), a = m->ca[i];
     int mode = m->mode[i], rc = RD_OK;
     if (!fired || m->p->rings[i].pinned != RD_PIN_FREE)
         return RD_OK;
@@ -224,7 +224,7 @@ static int at_root(drv *d, double t, int all, rd_error *err)
     double pv[RD_RINGPACK_VOLUMES_MAX], *y = N_VGetArrayPointer(d->y);
     if (!all && (flag = CVodeGetRootInfo(d->cv, found)))
         return cv_fail(d, flag, "root info", err);
-    rp_pressures(&d->m, t, y, pv);
+    rd_ringpack_pressures(&d->m, t, y, pv);
     for (int i = 0; !rc && i < d->m.R; i++)
         rc = ring_switch(d, i, t, y, pv, all || found[2 * i] || found[2 * i + 1], err);
     if (rc)
@@ -241,7 +241,7 @@ static int at_root(drv *d, double t, int all, rd_error *err)
 
 /* ------------------------------------------------------------ sampling */
 
-static double stored_mass(const rp_model *m, const double *y)
+static double stored_mass(const rd_ringpack_model *m, const double *y)
 {
     double s = 0.0;
     for (int v = 1; v <= m->V; v++)
@@ -252,12 +252,12 @@ static double stored_mass(const rp_model *m, const double *y)
 /* Sample j of the run (0 .. C S) at time t. */
 static void record(drv *d, int j, double t)
 {
-    rp_model *m = &d->m;
+    rd_ringpack_model *m = &d->m;
     rd_ringpack_result *r = d->res;
     const double *y = N_VGetArrayPointer(d->y);
     double pv[RD_RINGPACK_VOLUMES_MAX], mdot[RD_RINGPACK_FLOWS_MAX];
     int S = d->S, nv = m->V + 2, k = j - (d->C - 1) * S, kp = j - (d->C - 2) * S;
-    rp_pressures(m, t, y, pv);
+    rd_ringpack_pressures(m, t, y, pv);
     int b = j - (d->C - 2) * S; /* cycle boundaries: b = 0, S, 2 S */
     if (b >= 0 && b % S == 0) {
         memcpy(d->cum[b / S], &RP_CUM(m, y, 0), 4 * sizeof(double));
@@ -267,7 +267,7 @@ static void record(drv *d, int j, double t)
         d->prev[(size_t)v * (S + 1) + kp] = pv[v];
     if (k < 0)
         return;
-    rp_flows(m, pv, y, mdot);
+    rd_ringpack_flows(m, pv, y, mdot);
     r->crank_deg[k] = 720.0 * k / S;
     for (int v = 0; v < nv; v++)
         r->pressure[(size_t)v * (S + 1) + k] = pv[v];
@@ -293,7 +293,7 @@ static int alloc_result(drv *d, rd_ringpack_result *r, rd_error *err)
     d->prev = malloc(n * nv * sizeof *d->prev);
     if (!r->crank_deg || !r->pressure || !r->lift || !r->flank || !r->flow || !d->prev)
         return rd_error_set(err, RD_ENOMEM, "", "Out of memory for the ring pack's output.");
-    rp_describe(&d->m, r);
+    rd_ringpack_describe(&d->m, r);
     return RD_OK;
 }
 

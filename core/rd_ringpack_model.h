@@ -13,7 +13,7 @@
 #define RP_ZD(m, y, i) ((y)[2 * (m)->R + 2 * (i) + 1])
 #define RP_CUM(m, y, k) ((y)[4 * (m)->R + (k)])      /* k: 0 in, 1 back, 2 cc in, 3 cc out */
 
-typedef struct rp_model {
+typedef struct rd_ringpack_model {
     const rd_ringpack_params *p;
     int R, V, N, F;                     /* rings, state volumes, states, flows */
     double omega;                       /* rad/s */
@@ -27,26 +27,26 @@ typedef struct rp_model {
     double gap_area[RD_RINGPACK_RINGS_MAX], top_area, cd[RD_RINGPACK_RINGS_MAX];
     int from[RD_RINGPACK_FLOWS_MAX], to[RD_RINGPACK_FLOWS_MAX]; /* network indices */
     int mode[RD_RINGPACK_RINGS_MAX];       /* enum rd_flank: lower, upper, free */
-} rp_model;
+} rd_ringpack_model;
 
 /* Network index of the volume below ring i (land_{i+1} or the crankcase). */
-static inline int rp_below(const rp_model *m, int i)
+static inline int rp_below(const rd_ringpack_model *m, int i)
 {
     return i + 1 < m->R ? 2 * (i + 1) + 1 : m->V + 1;
 }
 
 /* Builds the network of a valid scene (the synthetic trace included). */
-int rp_model_init(rp_model *m, const rd_ringpack_params *p, rd_error *err);
-void rp_model_cleanup(rp_model *m);
+int rd_ringpack_model_init(rd_ringpack_model *m, const rd_ringpack_params *p, rd_error *err);
+void rd_ringpack_model_cleanup(rd_ringpack_model *m);
 /* Pressures of every network volume at (t, y) into pv (V + 2 values). */
-void rp_pressures(const rp_model *m, double t, const double *y, double *pv);
+void rd_ringpack_pressures(const rd_ringpack_model *m, double t, const double *y, double *pv);
 /* Mass flows (kg/s, F values, signed from -> to) at pressures pv, lifts of y. */
-void rp_flows(const rp_model *m, const double *pv, const double *y, double *mdot);
+void rd_ringpack_flows(const rd_ringpack_model *m, const double *pv, const double *y, double *mdot);
 /* Net axial force on ring i (N, +z up) at (t, y, pv). */
-double rp_ring_force(const rp_model *m, int i, double t, const double *y, const double *pv);
+double rd_ringpack_ring_force(const rd_ringpack_model *m, int i, double t, const double *y, const double *pv);
 /* dy/dt. */
-void rp_rhs(const rp_model *m, double t, const double *y, double *yd);
+void rd_ringpack_rhs(const rd_ringpack_model *m, double t, const double *y, double *yd);
 /* Names and volumes into the result. */
-void rp_describe(const rp_model *m, rd_ringpack_result *r);
+void rd_ringpack_describe(const rd_ringpack_model *m, rd_ringpack_result *r);
 
 #endif
