@@ -23,7 +23,7 @@ void rd_ringpack_params_default(rd_ringpack_params *p)
     p->engine.crank_radius = 0.04345;
     p->engine.rod_length = 0.130;
     p->engine.kinematics = RD_KINEMATICS_EXACT;
-    p->engine.cycles = 4.0;
+    p->engine.cycles = 6.0;
     p->n_rings = 1;
     for (int i = 0; i < RD_RINGPACK_RINGS_MAX; i++) {
         rd_ringpack_ring *r = &p->rings[i];

@@ -329,8 +329,58 @@ static void test_against_lift(void)
     rd_lift_result_cleanup(&l);
 }
 
+/* The error estimate (rtol/10 run) against the true error (a run at
+ * rtol 1e-11), for both quantities it covers, on a battery of scenes:
+ * within a factor 3 either way (the standards' bar). */
+static void test_error_estimate(void)
+{
+    struct { int rings, motored; double rpm, rtol; } cases[] = {
+        {1, 0, 2400, 1e-4}, {3, 0, 2400, 1e-5}, {3, 1, 2400, 1e-5}, {3, 0, 6000, 1e-4},
+        {2, 0, 4000, 1e-5}};
+    for (int c = 0; c < 5; c++) {
+        rd_ringpack_params p;
+        rd_ringpack_result r, ref;
+        three_rings(&p);
+        p.n_rings = cases[c].rings;
+        p.engine.speed_rpm = cases[c].rpm;
+        p.engine.cycles = 3;
+        if (cases[c].motored)
+            p.cylinder_kind = p.synthetic.kind = RD_CYLINDER_MOTORED;
+        p.rtol = 1e-11;
+        p.atol = 1e-14;
+        int ok = run(&p, &ref, "reference") == RD_OK;
+        p.rtol = cases[c].rtol;
+        p.atol = 1e-9;
+        p.estimate_error = 1;
+        ok = ok && run(&p, &r, "estimated") == RD_OK;
+        if (ok) {
+            double peak = 0.0, dp = 0.0;
+            for (size_t k = 0; k < (size_t)r.samples * r.n_volumes; k++) {
+                peak = fmax(peak, ref.pressure[k]);
+                dp = fmax(dp, fabs(r.pressure[k] - ref.pressure[k]));
+            }
+            double truth = fmax(dp / peak, fabs(r.blowby_kg - ref.blowby_kg) / fabs(ref.blowby_kg));
+            double de = 0.0; /* the flank changes' true shift, matched in order */
+            int same = 1;
+            for (int i = 0; i < r.n_rings; i++) {
+                same &= r.n_events[i] == ref.n_events[i];
+                for (int e = 0; same && e < r.n_events[i]; e++)
+                    de = fmax(de, fabs(r.events[i][e].crank_deg - ref.events[i][e].crank_deg));
+            }
+            CHECK(same && isfinite(r.event_error_deg) && r.event_error_deg <= 3.0 * de &&
+                      r.event_error_deg >= de / 3.0,
+                  "case %d: event estimate %.3g deg, true %.3g deg", c, r.event_error_deg, de);
+            CHECK(r.error_estimate <= 3.0 * truth && r.error_estimate >= truth / 3.0,
+                  "case %d: estimate %.3g, true error %.3g", c, r.error_estimate, truth);
+        }
+        rd_ringpack_result_cleanup(&r);
+        rd_ringpack_result_cleanup(&ref);
+    }
+}
+
 int main(void)
 {
+    test_error_estimate();
     test_against_lift();
     test_orifice();
     test_series(1, 3e5);   /* unchoked */
