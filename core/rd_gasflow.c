@@ -68,6 +68,42 @@ double rd_gasflow_table(int n, const double *x, const double *y, double deg)
     return y[lo] + w * (y[hi] - y[lo]);
 }
 
+/* Fritsch-Butland slope at point k of a periodic table (the point before
+ * x[0] is x[n-2] - 720, the one after x[n-1] is x[1] + 720): zero at a
+ * local extremum, else a weighted harmonic mean of the two secants, which
+ * keeps the cubic monotone between monotone points. */
+static double trace_slope(int n, const double *x, const double *y, int k)
+{
+    int a = k > 0 ? k - 1 : n - 2, b = k < n - 1 ? k + 1 : 1;
+    double xa = k > 0 ? x[a] : x[a] - 720.0, xb = k < n - 1 ? x[b] : x[b] + 720.0;
+    double ha = x[k] - xa, hb = xb - x[k];
+    double da = (y[k] - y[a]) / ha, db = (y[b] - y[k]) / hb;
+    if (n < 3 || da * db <= 0.0)
+        return 0.0;
+    double wa = 2.0 * hb + ha, wb = hb + 2.0 * ha;
+    return (wa + wb) / (wa / da + wb / db);
+}
+
+double rd_gasflow_trace(int n, const double *x, const double *y, double deg)
+{
+    double t = fmod(deg, 720.0);
+    if (t < 0.0)
+        t += 720.0;
+    int lo = 0, hi = n - 1; /* x[lo] <= t <= x[hi] */
+    while (hi - lo > 1) {
+        int mid = (lo + hi) / 2;
+        if (x[mid] <= t)
+            lo = mid;
+        else
+            hi = mid;
+    }
+    double h = x[hi] - x[lo], u = (t - x[lo]) / h;
+    double m0 = trace_slope(n, x, y, lo) * h, m1 = trace_slope(n, x, y, hi) * h;
+    double u2 = u * u, u3 = u2 * u; /* cubic Hermite basis */
+    return (2 * u3 - 3 * u2 + 1) * y[lo] + (u3 - 2 * u2 + u) * m0 + (-2 * u3 + 3 * u2) * y[hi] +
+           (u3 - u2) * m1;
+}
+
 /* ------------------------------------------------------ synthetic trace */
 
 int rd_gasflow_synthetic_validate(const rd_cylinder_synthetic *s, const char *path,

@@ -264,7 +264,7 @@ void rd_ringpack_model_cleanup(rd_ringpack_model *m)
 void rd_ringpack_pressures(const rd_ringpack_model *m, double t, const double *y, double *pv)
 {
     double deg = t * m->omega * 180.0 / M_PI;
-    pv[0] = rd_gasflow_table(m->cyl_n, m->cyl_deg, m->cyl_pa, deg);
+    pv[0] = rd_gasflow_trace(m->cyl_n, m->cyl_deg, m->cyl_pa, deg);
     for (int v = 0; v < m->V; v++)
         pv[v + 1] = RP_P(m, y, v);
     pv[m->V + 1] = m->p->crankcase_pa;

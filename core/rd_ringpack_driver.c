@@ -217,6 +217,25 @@ static int ring_switch(drv *d, int i, double t, double *y, const double *pv, int
     return rc;
 }
 
+/* Adds CVODE's counters since its last (re)start to the result's (a restart
+ * zeroes them). */
+static void counters(drv *d, rd_ringpack_result *r)
+{
+    long v;
+    if (!CVodeGetNumSteps(d->cv, &v))
+        r->steps += v;
+    if (!CVodeGetNumRhsEvals(d->cv, &v))
+        r->rhs_evals += v;
+    if (!CVodeGetNumJacEvals(d->cv, &v))
+        r->jac_evals += v;
+    if (!CVodeGetNumGEvals(d->cv, &v))
+        r->root_evals += v;
+    if (!CVodeGetNumErrTestFails(d->cv, &v))
+        r->err_test_fails += v;
+    if (!CVodeGetNumNonlinSolvConvFails(d->cv, &v))
+        r->nonlin_fails += v;
+}
+
 /* Mode changes at a root (or at the start: all == 1), then the restart. */
 static int at_root(drv *d, double t, int all, rd_error *err)
 {
@@ -234,6 +253,7 @@ static int at_root(drv *d, double t, int all, rd_error *err)
                             "More than %d flank changes near crank angle %.2f deg: a ring "
                             "chatters on its flank; pin it or change the clearances.",
                             RESTARTS_MAX, t * d->deg_per_s);
+    counters(d, d->res);
     if ((flag = CVodeReInit(d->cv, t, d->y)))
         return cv_fail(d, flag, "restart", err);
     return RD_OK;
@@ -354,22 +374,6 @@ static void balance(drv *d)
     r->periodicity = change;
 }
 
-static void counters(drv *d, rd_ringpack_result *r)
-{
-    long v;
-    if (!CVodeGetNumSteps(d->cv, &v))
-        r->steps = v;
-    if (!CVodeGetNumRhsEvals(d->cv, &v))
-        r->rhs_evals = v;
-    if (!CVodeGetNumJacEvals(d->cv, &v))
-        r->jac_evals = v;
-    if (!CVodeGetNumGEvals(d->cv, &v))
-        r->root_evals = v;
-    if (!CVodeGetNumErrTestFails(d->cv, &v))
-        r->err_test_fails = v;
-    if (!CVodeGetNumNonlinSolvConvFails(d->cv, &v))
-        r->nonlin_fails = v;
-}
 
 /* One run at (rtol, atol) into r. */
 static int run_once(const rd_ringpack_params *p, double rtol, double atol, const rd_monitor *mon,

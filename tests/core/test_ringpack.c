@@ -63,6 +63,33 @@ static void test_orifice(void)
               nozzle(cd, A, pu, T, pu * rl), 1e-7, "band edge");
 }
 
+/* The cylinder trace's interpolation: through the points, within its
+ * neighbours' range, and with a continuous slope at the points. */
+static void test_trace(void)
+{
+    static double x[RD_GASFLOW_POINTS], y[RD_GASFLOW_POINTS];
+    rd_ringpack_params p;
+    rd_ringpack_params_default(&p);
+    rd_error err;
+    rd_error_init(&err);
+    CHECK(rd_gasflow_synthetic(&p.synthetic, &p.engine, 0.0765, "", x, y, &err) == RD_OK, "trace");
+    int bad_node = 0, bad_range = 0, bad_c1 = 0;
+    for (int k = 1; k < RD_GASFLOW_POINTS - 1; k += 7) {
+        bad_node |= rd_gasflow_trace(RD_GASFLOW_POINTS, x, y, x[k]) != y[k];
+        double mid = rd_gasflow_trace(RD_GASFLOW_POINTS, x, y, 0.5 * (x[k] + x[k + 1]));
+        bad_range |= mid < fmin(y[k], y[k + 1]) * (1 - 1e-12) || mid > fmax(y[k], y[k + 1]) * (1 + 1e-12);
+        /* one-sided slopes 1e-6 deg each side of the node: equal to 1e-3 of the
+         * local secant scale (a kink would differ by O(1)) */
+        double e = 1e-6, f0 = rd_gasflow_trace(RD_GASFLOW_POINTS, x, y, x[k]);
+        double sl = (f0 - rd_gasflow_trace(RD_GASFLOW_POINTS, x, y, x[k] - e)) / e;
+        double sr = (rd_gasflow_trace(RD_GASFLOW_POINTS, x, y, x[k] + e) - f0) / e;
+        double scale = fabs(y[k + 1] - y[k - 1]) / (x[k + 1] - x[k - 1]) + 1.0;
+        bad_c1 |= fabs(sl - sr) > 1e-3 * scale;
+    }
+    CHECK(!bad_node && !bad_range && !bad_c1, "trace: nodes %d, range %d, C1 %d", bad_node,
+          bad_range, bad_c1);
+}
+
 /* Pressure table: constant p over 0..720. */
 static double cdeg[2] = {0.0, 720.0}, cpa[2];
 
@@ -380,6 +407,7 @@ static void test_error_estimate(void)
 
 int main(void)
 {
+    test_trace();
     test_error_estimate();
     test_against_lift();
     test_orifice();
