@@ -14,7 +14,7 @@ const COLORS = ['#b3261e', '#e07b00', '#6b7580', '#1f6feb', '#0b7d5a', '#7a3fb8'
 export const ringpack = {
   id: 'ringpack',
   label: 'Ring pack',
-  runLabel: 'Run ring pack',
+  runLabel: 'Run ringpack analysis',
 
   render(result, job, container) {
     const crank = nums(result.crank_deg);
