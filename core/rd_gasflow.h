@@ -73,14 +73,14 @@ typedef struct rd_cylinder_synthetic {
 
 /* Checks the synthetic inputs (paths under `path`, e.g.
  * "/cylinder_pressure/synthetic"); the fired peak must exceed the motored
- * one p_in eps^n, which needs the bore. */
+ * one p_in eps^n by 5 %. */
 int rd_gasflow_synthetic_validate(const rd_cylinder_synthetic *s, const char *path,
                                   rd_error *err);
 
 /* Writes the synthetic trace: RD_GASFLOW_POINTS angles (0, 0.25, ..., 720)
  * into crank_deg and pressures into p (caller's arrays).  bore: the cylinder
- * diameter, m; e: crank radius, rod length, kinematics.  Fails (naming
- * `path`/peak_pa) when the fired peak is not above the motored one. */
+ * diameter, m; e: crank radius, rod length, kinematics.  Validates first
+ * (rd_gasflow_synthetic_validate). */
 int rd_gasflow_synthetic(const rd_cylinder_synthetic *s, const rd_engine_params *e, double bore,
                          const char *path, double *crank_deg, double *p, rd_error *err);
 

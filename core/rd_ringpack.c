@@ -136,8 +136,7 @@ static int validate_table(const rd_ringpack_params *p, rd_error *err)
         !(p->table_deg[n - 1] >= 720.0 && p->table_deg[n - 1] <= 720.0 + 1e-9))
         return rd_error_set(err, RD_EINVAL, at,
                             "%s runs from %g to %g deg but must cover the whole cycle: first "
-                            "angle 0, last 720 (a periodic trace, equal pressures at both "
-                            "ends).",
+                            "angle 0, last 720 (the trace repeats every 720 deg).",
                             at, p->table_deg[0], p->table_deg[n - 1]);
     return RD_OK;
 }
