@@ -339,6 +339,13 @@ static int integrate(drv *d, const rd_monitor *mon, rd_error *err)
             }
         }
         record(d, j, t);
+        long now = 0;
+        if (!CVodeGetNumSteps(d->cv, &now) && d->res->steps + now > d->m.p->max_steps)
+            return rd_error_set(err, RD_ELIMIT, "/numerics/max_steps",
+                                "The run needed more than /numerics/max_steps = %ld CVODE steps "
+                                "by crank angle %.2f deg (of %d cycles); raise it, or loosen "
+                                "/numerics/rtol.",
+                                d->m.p->max_steps, t * d->deg_per_s, d->C);
         if ((rc = rd_monitor_report(mon, (double)j / total, err)))
             return rc;
     }

@@ -88,6 +88,22 @@ static void test_trace(void)
     }
     CHECK(!bad_node && !bad_range && !bad_c1, "trace: nodes %d, range %d, C1 %d", bad_node,
           bad_range, bad_c1);
+    /* the generator: the fired peak is the asked one (to the bisection's
+     * 2^-60) where asked (within the 0.25 deg grid); the motored one is the
+     * closed form p_in eps^1.32 at TDC (V(0) = V_c), up to round-off */
+    int at = 0;
+    for (int k = 0; k < RD_GASFLOW_POINTS; k++)
+        at = y[k] > y[at] ? k : at;
+    CHECK_REL(y[at], p.synthetic.peak_pa, 1e-9, "fired peak");
+    CHECK_ABS(x[at], p.synthetic.peak_crank_deg, 0.25 + 1e-9, "fired peak angle");
+    p.synthetic.kind = RD_CYLINDER_MOTORED;
+    CHECK(rd_gasflow_synthetic(&p.synthetic, &p.engine, 0.0765, "", x, y, &err) == RD_OK, "motored");
+    for (int k = 0; k < RD_GASFLOW_POINTS; k++)
+        at = y[k] > y[at] ? k : at;
+    CHECK_REL(y[at], p.synthetic.intake_pa * pow(p.synthetic.compression_ratio, 1.32), 1e-12,
+              "motored peak");
+    CHECK(x[at] == 0.0 || x[at] == 720.0, "motored peak at TDC: %g", x[at]);
+    CHECK_REL(y[RD_GASFLOW_POINTS / 2], p.synthetic.intake_pa, 1e-15, "intake pressure at 360");
 }
 
 /* Pressure table: constant p over 0..720. */
@@ -274,6 +290,15 @@ static void test_extremes(void)
                     gapflow = fmax(gapflow, fabs(r.flow[(size_t)f * r.samples + k]));
         CHECK(gapflow == 0.0, "sealed: no end-gap flow (%g)", gapflow);
     }
+    rd_ringpack_result_cleanup(&r);
+    /* the work bound covers the whole run, across the restarts */
+    three_rings(&p);
+    p.max_steps = 500;
+    rd_error err;
+    rd_error_init(&err);
+    int rc = rd_ringpack_solve(&p, NULL, &r, &err);
+    CHECK(rc == RD_ELIMIT && strcmp(err.path, "/numerics/max_steps") == 0, "work bound: %d %s", rc,
+          err.message);
     rd_ringpack_result_cleanup(&r);
     struct { const char *what; double gap, clear, rpm, peak; } cases[] = {
         {"1 mm gaps", 1e-3, 0, 0, 0}, {"1 um clearances", 0, 1e-6, 0, 0},
