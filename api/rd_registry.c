@@ -18,6 +18,7 @@ extern const rd_analysis_def rd_an_modal;
 extern const rd_analysis_def rd_an_pretension;
 extern const rd_analysis_def rd_an_contact;
 extern const rd_analysis_def rd_an_lift;
+extern const rd_analysis_def rd_an_ringpack;
 
 /* In enum rd_analysis order; a new analysis goes at the end. */
 const rd_analysis_def *const rd_registry[] = {
@@ -25,6 +26,7 @@ const rd_analysis_def *const rd_registry[] = {
     &rd_an_pretension,
     &rd_an_contact,
     &rd_an_lift,
+    &rd_an_ringpack,
     NULL,
 };
 

@@ -42,7 +42,8 @@ enum rd_analysis {
     RD_ANALYSIS_MODAL = 0,
     RD_ANALYSIS_PRETENSION,
     RD_ANALYSIS_CONTACT,
-    RD_ANALYSIS_LIFT
+    RD_ANALYSIS_LIFT,
+    RD_ANALYSIS_RINGPACK
 };
 
 /* An array of numbers read from the scene (malloc'd). */

@@ -341,6 +341,9 @@ void rd_schema_allowed(const rd_field *f, char *buf, size_t size)
         snprintf(buf, size, "an array of at most %d {order, amplitude, phase_deg}",
                  RD_DISTORTION_MAX);
         break;
+    case RD_F_ITEMS:
+        snprintf(buf, size, "an array of objects");
+        break;
     case RD_F_STRING:
         snprintf(buf, size, "a string");
         break;
@@ -605,6 +608,10 @@ static int parse_field(const rd_field *f, char *at, json_t *v, const char *path,
         return parse_table(f, v, path, (struct rd_table *)at, s, err);
     case RD_F_DISTORTION:
         return parse_distortion(f, v, path, (rd_contact_opts *)at, s, err);
+    case RD_F_ITEMS:
+        if (!json_is_array(v))
+            return type_issue(s, err, path, "an array of objects", v);
+        return f->parse(f, v, path, s, err);
     case RD_F_ANALYSIS:
         return RD_OK;
     }
@@ -647,7 +654,8 @@ int rd_schema_parse(json_t *obj, const rd_block *block, const char *const *also,
         if (!v)
             continue; /* absent: the default stays */
         rd_schema_path_join(child, sizeof child, path, f->key);
-        int r = parse_field(f, base + f->offset, v, child, s, err);
+        char *at = f->in_opts ? (char *)s->opts : base;
+        int r = parse_field(f, at + f->offset, v, child, s, err);
         if (rc == RD_OK)
             rc = r;
         if (r == RD_ENOMEM)
@@ -734,10 +742,13 @@ static json_t *field_echo(const rd_field *f, const char *at, const struct rd_sce
         }
         return o;
     }
-    case RD_F_TABLE:
-        return table_echo((const struct rd_table *)at);
+    case RD_F_TABLE: /* one that was not given (valid ones have items) is not echoed */
+        *skip = ((const struct rd_table *)at)->n == 0;
+        return *skip ? NULL : table_echo((const struct rd_table *)at);
     case RD_F_DISTORTION:
         return distortion_echo((const rd_contact_opts *)at);
+    case RD_F_ITEMS: /* echoed by its hook */
+        break;
     }
     return NULL;
 }
@@ -747,7 +758,8 @@ int rd_schema_echo(const rd_block *block, const struct rd_scene *s, json_t *out)
     const char *base = cbase_of(block, s);
     for (const rd_field *f = block->fields; f->key; f++) {
         int skip;
-        json_t *v = field_echo(f, base + f->offset, s, &skip);
+        const char *at = f->in_opts ? (const char *)s->opts : base;
+        json_t *v = field_echo(f, at + f->offset, s, &skip);
         if (!skip && set_new(out, f->key, v) != 0)
             return -1;
     }
@@ -817,6 +829,7 @@ static const char *type_name(enum rd_field_type t)
         return "boolean";
     case RD_F_TABLE:
     case RD_F_DISTORTION:
+    case RD_F_ITEMS:
         return "array";
     default:
         return "string";
@@ -856,11 +869,11 @@ static int field_keywords(json_t *o, const rd_field *f, const char *at,
         bad |= set_new(o, "enum", json_pack("[b]", 0));
     if (f->type == RD_F_TABLE)
         bad |= set_new(o, "items", json_pack("{s:s}", "type", "number"));
-    if (f->type == RD_F_DISTORTION) {
+    if (f->type == RD_F_DISTORTION || f->type == RD_F_ITEMS) {
         rd_field item = {.key = f->key, .block = f->block};
         bad |= set_new(o, "items", block_ref(&item, defaults, components));
     }
-    int count = f->type == RD_F_TABLE || f->type == RD_F_DISTORTION;
+    int count = f->type == RD_F_TABLE || f->type == RD_F_DISTORTION || f->type == RD_F_ITEMS;
     return bad | add_default(o, f, at) | add_bounds(o, f, count);
 }
 
@@ -872,7 +885,10 @@ json_t *rd_schema_field_openapi(const rd_field *f, const rd_block *in,
         return block_ref(f, defaults, components);
     if (in->items && f->offset + sizeof(double) > sizeof zero_item)
         return NULL; /* an item larger than zero_item: widen it */
-    const char *at = (in->items ? zero_item : cbase_of(in, defaults)) + f->offset;
+    const char *at = (in->items     ? zero_item
+                      : f->in_opts ? (const char *)defaults->opts
+                                   : cbase_of(in, defaults)) +
+                     f->offset;
     json_t *o = json_object();
     if (!o || set_new(o, "type", json_string(type_name(f->type))) != 0 ||
         field_keywords(o, f, at, defaults, components) != 0) {

@@ -41,8 +41,12 @@ enum rd_field_type {
     RD_F_OPTBLOCK,   /* RD_F_BLOCK whose presence sets the int at `offset` to 1 */
     RD_F_TABLE,      /* struct rd_table: an array of numbers, malloc'd;
                         min/max count its items */
-    RD_F_DISTORTION  /* rd_contact_opts at `offset`: an array of `block` items
+    RD_F_DISTORTION, /* rd_contact_opts at `offset`: an array of `block` items
                         ({order, amplitude, phase_deg}); max counts the items */
+    RD_F_ITEMS       /* an array of `block` objects read by the field's `parse`
+                        hook and echoed by its `echo` (items whose blocks nest
+                        shared ones, as the ring pack's rings); min/max count
+                        the items; OpenAPI: items = `block` */
 };
 
 /* How a bound is meant: none, inclusive, exclusive. */
@@ -58,6 +62,8 @@ typedef struct rd_field {
     unsigned char has_min, has_max; /* RD_BOUND_* */
     unsigned char required;        /* the block needs it (no default) */
     unsigned char only_false;      /* RD_F_BOOL that this analysis only allows false */
+    unsigned char in_opts;         /* the offset is into the analysis' opts although the
+                                      block's are not (a top-level option) */
     const char *desc;              /* the OpenAPI description */
     const char *extra;             /* RD_F_BLOCK: JSON schema combined with the block's
                                       (allOf), for what this analysis adds to a shared one */
@@ -65,6 +71,9 @@ typedef struct rd_field {
      * default computed from the ring", echoed as the value used); a new
      * reference, NULL on out of memory. */
     struct json_t *(*echo)(const struct rd_scene *s);
+    /* RD_F_ITEMS: parses the array `v` at `path` into the scene. */
+    int (*parse)(const struct rd_field *f, struct json_t *v, const char *path,
+                 struct rd_scene *s, rd_error *err);
 } rd_field;
 
 /* Bounds, for the tables: {"key", RD_F_NUMBER, AT(x), RD_MIN(0.001), RD_MAX(5.0), ...}. */

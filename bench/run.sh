@@ -6,7 +6,7 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 b=${1:-build-bench}
 cmake -S . -B "$b" -DCMAKE_BUILD_TYPE=Release -DRINGDYN_TESTS=OFF >/dev/null
-cmake --build "$b" -j2 --target bench_modal bench_static bench_lift >/dev/null
+cmake --build "$b" -j2 --target bench_modal bench_static bench_lift bench_ringpack >/dev/null
 
 # instructions BENCH: callgrind instruction counts of `BENCH --once n` for
 # n = 100..800 and the exponent between each pair of sizes.
@@ -49,3 +49,6 @@ echo "## lift: cost per engine cycle vs n, and flank-change accuracy vs rtol"
 echo
 echo "## lift: models (auto, rigid, full) on the lift examples"
 "$b/bench/bench_lift" --models examples
+echo
+echo "## ringpack: cost per engine cycle, three rigid rings (target <= 50 ms)"
+"$b/bench/bench_ringpack"

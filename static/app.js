@@ -12,11 +12,12 @@ import { modal } from './modal.js';
 import { pretension } from './pretension.js';
 import { contact } from './contact.js';
 import { lift } from './lift.js';
+import { ringpack } from './ringpack.js';
 import { curlText, pythonText, saveBlob } from './script.js';
 import { watchCharts, addExportButtons } from './charts.js';
 import { setupSweeps } from './sweep.js';
 
-const ANALYSES = [modal, pretension, contact, lift];
+const ANALYSES = [modal, pretension, contact, lift, ringpack];
 
 // How long the submit request waits for the result before the page polls
 // (API.md ?wait=, 0..300 s).  0: the job's id, progress and Cancel are there

@@ -228,14 +228,14 @@ static void test_json_errors(void)
 static void test_analysis(void)
 {
     expect_error("{}", RD_EINVAL, "/analysis",
-                 "\"analysis\" is missing (available: modal, pretension, contact, lift)");
+                 "\"analysis\" is missing (available: modal, pretension, contact, lift, ringpack)");
     expect_error("{\"ring\":{}}", RD_EINVAL, "/analysis", "missing");
     expect_error("{\"analysis\":42}", RD_EINVAL, "/analysis",
                  "/analysis must be a string, got number 42");
     expect_error("{\"analysis\":null}", RD_EINVAL, "/analysis", "must be a string, got null");
     expect_error("{\"analysis\":\"modes\"}", RD_EINVAL, "/analysis",
-                 "unknown analysis \"modes\" (allowed: modal, pretension, contact, lift; "
-                 "available in this version: modal, pretension, contact, lift)");
+                 "unknown analysis \"modes\" (allowed: modal, pretension, contact, lift, ringpack; "
+                 "available in this version: modal, pretension, contact, lift, ringpack)");
     expect_error("{\"analysis\":\"Modal\"}", RD_EINVAL, "/analysis", "unknown analysis");
     /* the analysis is decided before anything else is looked at: it picks
      * the schema, so a block one analysis reads is an error in another's
@@ -310,7 +310,8 @@ static void test_unknown_fields(void)
     expect_error("{\"analysis\":\"modal\",\"rnig\":{}}", RD_EINVAL, "/rnig",
                  "unknown field \"rnig\" in the scene (known: analysis, name, description, ring, "
                  "discretization, modal, pretension, bore, engine, groove, physics, output, "
-                 "numerics, contact)");
+                 "numerics, contact, rings, cylinder_pressure, crankcase_pressure_pa, "
+                 "gas_temperature_k)");
     expect_error(
         "{\"analysis\":\"modal\",\"ring\":{\"diameter\":0.07,\"diametre\":0.07}}", RD_EINVAL,
         "/ring/diametre",

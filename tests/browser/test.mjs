@@ -354,9 +354,9 @@ const runsOf = (flank) => flank.filter((f, i) => i === 0 || f !== flank[i - 1]);
 test('four analysis tabs: arrow keys move between them, each shows its own labelled fields', { timeout: 60000 }, async () => {
   await page.goto(`${BASE}/`);
   await page.waitForSelector('#tab-modal[aria-selected="true"]');
-  assert.deepEqual(await page.$$eval('#tabs [role="tab"]', (ts) => ts.map((t) => t.textContent)), ['Modal', 'Pretension', 'Contact', 'Lift']);
+  assert.deepEqual(await page.$$eval('#tabs [role="tab"]', (ts) => ts.map((t) => t.textContent)), ['Modal', 'Pretension', 'Contact', 'Lift', 'Ring pack']);
   await page.focus('#tab-modal');
-  for (const id of ['pretension', 'contact', 'lift', 'modal']) {
+  for (const id of ['pretension', 'contact', 'lift', 'ringpack', 'modal']) {
     await page.keyboard.press('ArrowRight');
     assert.equal(await page.evaluate(() => document.activeElement.id), `tab-${id}`);
     assert.equal(await page.getAttribute(`#tab-${id}`, 'aria-selected'), 'true');
@@ -1422,6 +1422,37 @@ for (const width of [1280, 390]) {
     }
   });
 }
+
+// ---- ring pack (issue 15) ---------------------------------------------------
+
+test('ring pack tab: a live two-cycle run draws every volume\'s pressure, the lifts and the blow-by', { timeout: 120000 }, async () => {
+  const skip = await unavailable('ringpack');
+  if (skip) return;
+  await page.goto(`${BASE}/`);
+  await page.waitForSelector('#tab-modal[aria-selected="true"]');
+  await selectTab('ringpack');
+  await page.fill('#f-rp-cycles', '2');
+  await page.fill('#f-rp-speed', '3000');
+  await runAnalysis('Run ringpack analysis');
+  await page.waitForSelector('#rp-pressure');
+  const job = await shownJob();
+  const r = job.result;
+  assert.equal(r.analysis, 'ringpack');
+  assert.equal(r.scene.engine.cycles, 2);
+  assert.equal(r.scene.engine.speed_rpm, 3000);
+  // one path per volume, one point per sample (cylinder first, crankcase last)
+  const paths = await page.$$eval('#rp-pressure path[data-points]', (ps) => ps.map((p) => Number(p.dataset.points)));
+  assert.deepEqual(paths, r.volumes.map(() => r.crank_deg.length));
+  assert.equal(r.volumes[0].name, 'cylinder');
+  assert.equal(r.volumes.at(-1).name, 'crankcase');
+  const lifts = await page.$$eval('#rp-lift path[data-points]', (ps) => ps.length);
+  assert.equal(lifts, r.rings.length);
+  assert.ok(await page.$('#rp-blowby path[data-points]'));
+  const summary = await page.textContent('#rp-summary');
+  assert.match(summary, /Blow-by [\d.e+-]+ L\/min/);
+  assert.ok(summary.includes(String(Number(r.blowby.l_per_min.toPrecision(3)))), `${summary} vs ${r.blowby.l_per_min}`);
+  await shot('ringdyn-ringpack.png', { fullPage: true });
+});
 
 test('no console errors or uncaught exceptions', () => {
   assert.deepEqual(pageErrors, []);

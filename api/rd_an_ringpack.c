@@ -1,0 +1,536 @@
+/*
+ * rd_an_ringpack — the ring pack analysis in the api (issue 15: gas
+ * pressures between the rings, their lifts and the blow-by from one
+ * cylinder pressure; core/rd_ringpack.h): scene schema, runner, result
+ * object and CSV table (rd_registry.h).  Absolute pressures throughout
+ * (the lift analysis' gas tables are gauge).
+ *
+ * Options (struct pack_opts): core's rd_ringpack_params plus what only the
+ * scene knows.  `rings` is an array of items whose blocks nest the shared
+ * ring block; each item is parsed (and echoed) through a temporary scene
+ * whose `ring` is the item's ring and whose opts are a pack_opts holding
+ * the item in `proto` — so `proto` must stay the first member: the item
+ * blocks' offsets point there, and the OpenAPI defaults are read from the
+ * defaults-filled scene's proto.
+ */
+#include <jansson.h>
+#include <math.h>
+#include <stddef.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "rd_registry.h"
+#include "rd_ringpack.h"
+#include "rd_scene.h"
+
+struct pack_opts {
+    rd_ringpack_ring proto; /* first: one ring item while parsing or echoing it */
+    rd_ringpack_params pack;
+    int synthetic_given, synthetic_kind; /* kind: index into synthetic_names */
+    int model;                           /* index into model_names */
+    int max_steps;
+    struct rd_table table[2];            /* crank_deg, pressure_pa */
+};
+
+#define PO(member) offsetof(struct pack_opts, member)
+
+/* ---- scene ---------------------------------------------------------------- */
+
+static const char *const kinematics_names[] = {"exact", "approximate", NULL};
+static const char *const pin_names[] = {"none", "lower", "upper", NULL}; /* enum rd_ringpack_pin */
+static const char *const synthetic_names[] = {"fired", "motored", NULL};
+static const char *const model_names[] = {"auto", "rigid", "full", "modal", NULL};
+
+static const rd_field engine_fields[] = {
+    {"speed_rpm", RD_F_NUMBER, PO(pack.engine.speed_rpm), RD_MIN(1), RD_MAX(30000),
+     .desc = "Crank speed, rpm."},
+    {"crank_radius", RD_F_NUMBER, PO(pack.engine.crank_radius), RD_MIN(0.001), RD_MAX(1.0),
+     .desc = "Crank radius r (half the stroke), m."},
+    {"rod_length", RD_F_NUMBER, PO(pack.engine.rod_length), RD_MAX(10.0),
+     .desc = "Connecting rod length l, m; from r / 0.9 to 10 m."},
+    {"kinematics", RD_F_CHOICE, PO(pack.engine.kinematics), .choices = kinematics_names,
+     .desc = "exact slider-crank, or the approximate series (thesis 1.6-1.8)."},
+    {"cycles", RD_F_NUMBER, PO(pack.engine.cycles), RD_MIN(2), RD_MAX(RD_RINGPACK_CYCLES_MAX),
+     .desc = "Whole 4-stroke cycles simulated from rest (all volumes at the crankcase "
+             "pressure); the last is reported and compared with the one before "
+             "(periodicity)."},
+    {.key = NULL},
+};
+static const rd_block engine_block = {"PackEngine", "/engine (ringpack): piston kinematics.", 1,
+                                      0, engine_fields};
+
+static const rd_field groove_fields[] = {
+    {"axial_clearance", RD_F_NUMBER, PO(proto.groove.axial_clearance), RD_MIN(1e-07),
+     RD_MAX(0.005),
+     .desc = "Groove height minus ring height, m (> 0: a ring as tall as its groove or taller "
+             "is refused), smaller than the ring's height."},
+    {"radial_clearance", RD_F_NUMBER, PO(proto.groove.radial_clearance), RD_MIN(1e-06),
+     RD_MAX(0.01), .desc = "Ring inner face to groove back, m (sizes the groove's gas volume)."},
+    {.key = NULL},
+};
+static const rd_block groove_block = {"PackGroove", "The ring's groove.", 1, 0, groove_fields};
+
+static const rd_field land_fields[] = {
+    {"height", RD_F_NUMBER, PO(proto.land_height), RD_MIN(1e-05), RD_MAX(0.1),
+     .desc = "Height of the piston land above the ring, m (the top land for the first ring)."},
+    {"radial_clearance", RD_F_NUMBER, PO(proto.land_clearance), RD_MIN(1e-07),
+     .desc = "Piston-to-liner radial clearance of that land, m, up to a quarter of the bore; "
+             "sets its volume pi h c (d - c) and the end gap's flow area (closed gap x c)."},
+    {.key = NULL},
+};
+static const rd_block land_block = {"PackLand", "The land (crevice) above the ring.", 1, 0,
+                                    land_fields};
+
+static const rd_field item_fields[] = {
+    {"ring", RD_F_BLOCK, 0, .block = &rd_block_ring,
+     .desc = "The ring block: section (rectangle), closed gap (its end gap in the bore), density. "
+             "All rings share the bore: every diameter equals the first ring's."},
+    {"groove", RD_F_BLOCK, 0, .block = &groove_block},
+    {"land", RD_F_BLOCK, 0, .block = &land_block},
+    {"gap_angle_deg", RD_F_NUMBER, PO(proto.gap_angle_deg), RD_MIN(-360), RD_MAX(360),
+     .desc = "Where the end gap sits around the bore, deg; recorded (the rigid ring is "
+             "axisymmetric and does not use it)."},
+    {"discharge_coefficient", RD_F_NUMBER, PO(proto.discharge_coefficient), RD_MIN(0),
+     RD_MAX(1), .desc = "C_d of the ring's passages (end gap, flanks; the first ring's also for "
+                        "the top-land entry), -."},
+    {"pinned", RD_F_CHOICE, PO(proto.pinned), .choices = pin_names,
+     .desc = "lower / upper: the ring stays on that flank; none (or null): it moves."},
+    {.key = NULL},
+};
+static const rd_block item_block = {"PackRing", "One ring of the pack, top ring first.", 1, 0,
+                                    item_fields};
+
+static const rd_field synthetic_fields[] = {
+    {"kind", RD_F_CHOICE, PO(synthetic_kind), .choices = synthetic_names,
+     .desc = "motored: polytropic compression and expansion (n = 1.32); fired: plus a Wiebe "
+             "heat release (a = 5, m = 2, 50 deg) scaled to peak_pa at peak_crank_deg."},
+    {"peak_pa", RD_F_NUMBER, PO(pack.synthetic.peak_pa), RD_MAX(1e8),
+     .desc = "Fired: peak cylinder pressure, Pa, absolute; above 1.05 x the motored peak "
+             "intake_pa x compression_ratio^1.32."},
+    {"peak_crank_deg", RD_F_NUMBER, PO(pack.synthetic.peak_crank_deg), RD_MIN(0), RD_MAX(60),
+     .desc = "Fired: crank angle of the peak, deg after firing TDC."},
+    {"compression_ratio", RD_F_NUMBER, PO(pack.synthetic.compression_ratio), RD_MIN(2),
+     RD_MAX(40), .desc = "Geometric compression ratio, -."},
+    {"intake_pa", RD_F_NUMBER, PO(pack.synthetic.intake_pa), RD_MIN(1e4), RD_MAX(1e7),
+     .desc = "Pressure at inlet closing (BDC) and during exhaust and intake, Pa, absolute."},
+    {.key = NULL},
+};
+static const rd_block synthetic_block = {
+    "SyntheticCylinderPressure",
+    "A generated cylinder pressure (README \"Ring pack\"): single zone, no wall heat loss, "
+    "blowdown blended to intake_pa from 130 to 180 deg.",
+    1, 0, synthetic_fields};
+
+static const rd_field cylinder_fields[] = {
+    {"crank_deg", RD_F_TABLE, PO(table[0]), RD_MIN(2), RD_MAX(RD_LIFT_TABLE_MAX),
+     .desc = "Crank angles, deg, strictly increasing from 0 to 720 (0 = firing TDC)."},
+    {"pressure_pa", RD_F_TABLE, PO(table[1]), RD_MIN(2), RD_MAX(RD_LIFT_TABLE_MAX),
+     .desc = "Cylinder pressure at those angles, Pa, ABSOLUTE, each 1e3 to 1e9."},
+    {"synthetic", RD_F_OPTBLOCK, PO(synthetic_given), .block = &synthetic_block},
+    {.key = NULL},
+};
+static const rd_block cylinder_block = {
+    "CylinderPressure",
+    "/cylinder_pressure: either a table (crank_deg and pressure_pa, absolute, linear, periodic "
+    "over 720 deg) or synthetic; absent or {}: synthetic with its defaults (fired).",
+    1, 0, cylinder_fields};
+
+static const rd_field temperature_fields[] = {
+    {"lands", RD_F_NUMBER, PO(pack.T_lands), RD_MIN(200), RD_MAX(1500),
+     .desc = "Gas temperature in the lands and grooves (and of gas entering the top land), K."},
+    {"crankcase", RD_F_NUMBER, PO(pack.T_crankcase), RD_MIN(200), RD_MAX(1500),
+     .desc = "Crankcase gas temperature, K."},
+    {.key = NULL},
+};
+static const rd_block temperature_block = {"GasTemperature", "/gas_temperature_k.", 1, 0,
+                                           temperature_fields};
+
+static const rd_field output_fields[] = {
+    {"step_deg", RD_F_NUMBER, PO(pack.step_deg), RD_MIN(0.01), RD_MAX(90),
+     .desc = "Crank-angle step of the output samples, deg (rounded so 720 / step is whole)."},
+    {.key = NULL},
+};
+static const rd_block output_block = {"PackOutput", "/output (ringpack).", 1, 0, output_fields};
+
+static const rd_field numerics_fields[] = {
+    {"model", RD_F_CHOICE, PO(model), .choices = model_names,
+     .desc = "The rings' model: auto and rigid integrate the rigid ring (axial lift, hard "
+             "flank stops), exact for the pack's axisymmetric scenes; full and modal are not "
+             "available in the pack yet (refused)."},
+    {"rtol", RD_F_NUMBER, PO(pack.rtol), RD_MIN(1e-12), RD_MAX(0.01),
+     .desc = "Relative tolerance."},
+    {"atol", RD_F_NUMBER, PO(pack.atol), RD_MIN(1e-16), RD_MAX(1e-05),
+     .desc = "Absolute tolerance on the lifts, m (rtol x the crankcase pressure on pressures)."},
+    {"max_steps", RD_F_INTEGER, PO(max_steps), RD_MIN(100), RD_MAX(1000000000),
+     .desc = "CVODE steps allowed for the whole run."},
+    {"error_estimate", RD_F_BOOL, PO(pack.estimate_error),
+     .desc = "Estimate the error by a second run at rtol/10 and atol/10."},
+    {.key = NULL},
+};
+static const rd_block numerics_block = {"PackNumerics", "/numerics of a ringpack scene.", 1, 0,
+                                        numerics_fields};
+
+static int parse_rings(const rd_field *f, json_t *v, const char *path, rd_scene *s,
+                       rd_error *err);
+static json_t *echo_rings(const rd_scene *s);
+
+static const rd_field scene_fields[] = {
+    {"analysis", RD_F_ANALYSIS, 0, .desc = "Which analysis to run; decides which blocks are "
+                                           "read."},
+    {"name", RD_F_STRING, offsetof(struct rd_scene, name),
+     .desc = "Free text, echoed in the result; absent when not given."},
+    {"description", RD_F_STRING, offsetof(struct rd_scene, description),
+     .desc = "Free text, echoed in the result; absent when not given."},
+    {"engine", RD_F_BLOCK, 0, .block = &engine_block},
+    {"rings", RD_F_ITEMS, 0, .block = &item_block, RD_MIN(1), RD_MAX(RD_RINGPACK_RINGS_MAX),
+     .parse = parse_rings, .echo = echo_rings,
+     .desc = "1 to 3 rings, top ring first; absent: one thesis ring."},
+    {"cylinder_pressure", RD_F_BLOCK, 0, .block = &cylinder_block},
+    {"crankcase_pressure_pa", RD_F_NUMBER, PO(pack.crankcase_pa), RD_MIN(1e3), RD_MAX(1e7),
+     .in_opts = 1, .desc = "Crankcase pressure, Pa, ABSOLUTE."},
+    {"gas_temperature_k", RD_F_BLOCK, 0, .block = &temperature_block},
+    {"output", RD_F_BLOCK, 0, .block = &output_block},
+    {"numerics", RD_F_BLOCK, 0, .block = &numerics_block},
+    {.key = NULL},
+};
+static const rd_block scene_block = {
+    "RingpackScene",
+    "The ring pack (issue 15, thesis 2.4.4): the gas pressures in the lands and grooves "
+    "between 1 to 3 rings computed from one cylinder pressure by a compressible orifice "
+    "network coupled both ways with the rings' axial motion, and the blow-by into the "
+    "crankcase. All pressures are ABSOLUTE (the lift analysis' tables are gauge). Reads "
+    "engine, rings, cylinder_pressure, crankcase_pressure_pa, gas_temperature_k, output and "
+    "numerics (PackNumerics); not the top-level ring.",
+    0, 0, scene_fields};
+
+/* One item through a temporary scene (file comment). */
+static int parse_ring(json_t *item, const char *at, rd_scene *s, int i, rd_error *err)
+{
+    struct pack_opts *o = s->opts, slot;
+    if (!json_is_object(item))
+        return rd_schema_type_error(err, at, "an object {ring, groove, land, ...}", item);
+    json_t *copy = json_copy(item);
+    if (!copy)
+        return rd_error_set(err, RD_ENOMEM, at, "out of memory while reading %s", at);
+    int none = json_is_null(json_object_get(copy, "pinned"));
+    if (none) /* the contract's null: not pinned */
+        json_object_del(copy, "pinned");
+    memset(&slot, 0, sizeof slot);
+    slot.proto = o->proto; /* the defaults */
+    rd_scene tmp = *s;
+    tmp.opts = &slot;
+    tmp.ring = slot.proto.ring;
+    int rc = rd_schema_parse(copy, &item_block, NULL, at, &tmp, err);
+    json_decref(copy);
+    slot.proto.ring = tmp.ring;
+    if (none)
+        slot.proto.pinned = RD_PIN_FREE;
+    o->pack.rings[i] = slot.proto;
+    return rc;
+}
+
+static int parse_rings(const rd_field *f, json_t *v, const char *path, rd_scene *s,
+                       rd_error *err)
+{
+    struct pack_opts *o = s->opts;
+    size_t n = json_array_size(v);
+    if (n < (size_t)f->min || n > (size_t)f->max)
+        return rd_error_set(err, n ? RD_ELIMIT : RD_EINVAL, path,
+                            "%s has %zu rings; allowed %d to %d.", path, n, (int)f->min,
+                            (int)f->max);
+    for (size_t i = 0; i < n; i++) {
+        char at[RD_ERROR_PATH_MAX];
+        snprintf(at, sizeof at, "%s/%zu", path, i);
+        int rc = parse_ring(json_array_get(v, i), at, s, (int)i, err);
+        if (rc != RD_OK)
+            return rc;
+    }
+    o->pack.n_rings = (int)n;
+    return RD_OK;
+}
+
+static json_t *echo_rings(const rd_scene *s)
+{
+    const struct pack_opts *o = s->opts;
+    json_t *a = json_array();
+    for (int i = 0; a && i < o->pack.n_rings; i++) {
+        struct pack_opts slot;
+        memset(&slot, 0, sizeof slot);
+        slot.proto = o->pack.rings[i];
+        rd_scene tmp = *s;
+        tmp.opts = &slot;
+        tmp.ring = slot.proto.ring;
+        json_t *item = json_object();
+        int bad = !item || rd_schema_echo(&item_block, &tmp, item) != 0;
+        if (!bad && slot.proto.pinned == RD_PIN_FREE)
+            bad = json_object_set_new(item, "pinned", json_null());
+        if (bad || json_array_append_new(a, item) != 0) {
+            if (bad)
+                json_decref(item);
+            json_decref(a);
+            a = NULL;
+        }
+    }
+    return a;
+}
+
+static void defaults(struct rd_scene *s)
+{
+    struct pack_opts *o = s->opts;
+    rd_ringpack_params_default(&o->pack);
+    o->proto = o->pack.rings[0];
+    o->max_steps = (int)o->pack.max_steps;
+    o->synthetic_kind = 0;
+    o->model = 0;
+}
+
+static void cleanup(void *opts)
+{
+    struct pack_opts *o = opts;
+    free(o->table[0].v);
+    free(o->table[1].v);
+}
+
+/* A table or the synthetic trace, never both; the table's two columns alike. */
+static int cylinder_finish(struct pack_opts *o, rd_error *err)
+{
+    rd_ringpack_params *p = &o->pack;
+    int has = (o->table[0].v != NULL) + (o->table[1].v != NULL);
+    p->synthetic.kind = o->synthetic_kind ? RD_CYLINDER_MOTORED : RD_CYLINDER_FIRED;
+    if (has == 0) { /* synthetic, echoed as such */
+        p->cylinder_kind = p->synthetic.kind;
+        o->synthetic_given = 1;
+        return RD_OK;
+    }
+    const char *miss = o->table[0].v ? "/cylinder_pressure/pressure_pa" : "/cylinder_pressure/crank_deg";
+    if (o->synthetic_given)
+        return rd_error_set(err, RD_EINVAL, "/cylinder_pressure/synthetic",
+                            "/cylinder_pressure gives both a table and synthetic: use one.");
+    if (has == 1)
+        return rd_error_set(err, RD_EINVAL, miss,
+                            "%s is missing: a cylinder pressure table needs crank_deg and "
+                            "pressure_pa of the same length.", miss);
+    if (o->table[0].n != o->table[1].n)
+        return rd_error_set(err, RD_EINVAL, "/cylinder_pressure/pressure_pa",
+                            "/cylinder_pressure/pressure_pa has %d values but crank_deg has %d; "
+                            "they must have the same length.", o->table[1].n, o->table[0].n);
+    p->cylinder_kind = RD_CYLINDER_TABLE;
+    p->table_points = o->table[0].n;
+    p->table_deg = o->table[0].v;
+    p->table_pa = o->table[1].v;
+    return RD_OK;
+}
+
+static int finish(struct rd_scene *s, rd_error *err)
+{
+    struct pack_opts *o = s->opts;
+    if (o->model >= 2)
+        return rd_error_set(err, RD_EINVAL, "/numerics/model",
+                            "/numerics/model = \"%s\" is not available in the ring pack yet: "
+                            "use \"auto\" or \"rigid\" (the rigid ring, exact for the pack's "
+                            "axisymmetric scenes).", model_names[o->model]);
+    o->pack.max_steps = o->max_steps;
+    int rc = cylinder_finish(o, err);
+    return rc ? rc : rd_ringpack_validate(&o->pack, err);
+}
+
+/* ---- result --------------------------------------------------------------- */
+
+static const char *const flank_names[] = {"lower", "upper", "free"};
+static const char *const event_names[] = {"leave_lower", "reach_upper", "leave_upper",
+                                          "reach_lower"};
+
+static json_t *volumes_json(const rd_ringpack_result *r)
+{
+    json_t *a = json_array();
+    int N = r->samples, bad = !a;
+    for (int v = 0; !bad && v < r->n_volumes; v++) {
+        int fixed = v > 0 && v < r->n_volumes - 1;
+        bad |= json_array_append_new(
+            a, json_pack("{s:s, s:o, s:o}", "name", r->volume_name[v], "pressure_pa",
+                         rd_result_reals(r->pressure + (size_t)v * N, N, 1, 1.0), "volume_m3",
+                         fixed ? rd_result_real(r->volume_m3[v]) : json_null()));
+    }
+    if (bad) {
+        json_decref(a);
+        return NULL;
+    }
+    return a;
+}
+
+static json_t *ring_json(const rd_ringpack_result *r, int i)
+{
+    int N = r->samples, bad = 0;
+    json_t *flank = json_array(), *events = json_array();
+    bad |= !flank || !events;
+    for (int k = 0; !bad && k < N; k++) {
+        int f = r->flank[(size_t)i * N + k];
+        bad |= json_array_append_new(flank, json_string(f >= 0 && f < 3 ? flank_names[f] : "free"));
+    }
+    for (int e = 0; !bad && e < r->n_events[i]; e++) {
+        int kind = r->events[i][e].kind;
+        bad |= json_array_append_new(
+            events, json_pack("{s:o, s:s}", "crank_deg", rd_result_real(r->events[i][e].crank_deg),
+                              "event", kind >= 0 && kind < 4 ? event_names[kind] : "unknown"));
+    }
+    if (bad) {
+        json_decref(flank);
+        json_decref(events);
+        return NULL;
+    }
+    return json_pack("{s:o, s:o, s:o}", "lift", rd_result_reals(r->lift + (size_t)i * N, N, 1, 1.0),
+                     "flank", flank, "events", events);
+}
+
+static json_t *flows_json(const rd_ringpack_result *r)
+{
+    json_t *a = json_array();
+    int N = r->samples, bad = !a;
+    for (int f = 0; !bad && f < r->n_flows; f++)
+        bad |= json_array_append_new(
+            a, json_pack("{s:s, s:s, s:s, s:o}", "name", r->flow_name[f], "from",
+                         r->volume_name[r->flow_from[f]], "to", r->volume_name[r->flow_to[f]],
+                         "mass_flow_kg_s", rd_result_reals(r->flow + (size_t)f * N, N, 1, 1.0)));
+    if (bad) {
+        json_decref(a);
+        return NULL;
+    }
+    return a;
+}
+
+/* The CSV table's columns: fixed names for up to three rings, null where a
+ * ring or volume is absent. */
+static json_t *table_json(const rd_ringpack_result *r)
+{
+    static const char *const pcol[] = {"cylinder_pa", "top_land_pa", "groove_1_pa",
+                                       "second_land_pa", "groove_2_pa", "third_land_pa",
+                                       "groove_3_pa"};
+    static const char *const lcol[] = {"lift_1_m", "lift_2_m", "lift_3_m"};
+    int N = r->samples, bad = 0;
+    json_t *t = json_object(), *nulls = json_array(), *cc = json_array();
+    bad |= !t || !nulls || !cc;
+    for (int k = 0; !bad && k < N; k++) {
+        double in = 0.0; /* into the crankcase: the last ring's lower flank and end gap */
+        for (int f = 0; f < r->n_flows; f++)
+            if (r->flow_to[f] == r->n_volumes - 1)
+                in += r->flow[(size_t)f * N + k];
+        bad |= json_array_append_new(nulls, json_null()) || json_array_append_new(cc, rd_result_real(in));
+    }
+    bad |= !t || json_object_set_new(t, "crank_deg", rd_result_reals(r->crank_deg, N, 1, 1.0));
+    for (int v = 0; !bad && v < 7; v++)
+        bad |= json_object_set_new(t, pcol[v], v < r->n_volumes - 1
+                                                   ? rd_result_reals(r->pressure + (size_t)v * N, N, 1, 1.0)
+                                                   : json_copy(nulls));
+    for (int i = 0; !bad && i < 3; i++)
+        bad |= json_object_set_new(t, lcol[i], i < r->n_rings
+                                                   ? rd_result_reals(r->lift + (size_t)i * N, N, 1, 1.0)
+                                                   : json_copy(nulls));
+    bad |= json_object_set(t, "blowby_kg_s", cc);
+    json_decref(nulls);
+    json_decref(cc);
+    if (bad) {
+        json_decref(t);
+        return NULL;
+    }
+    return t;
+}
+
+static json_t *pack_numerics(const rd_scene *scene, const rd_ringpack_result *r, double wall_s)
+{
+    const struct pack_opts *o = scene->opts;
+    int estimated = isfinite(r->error_estimate);
+    return json_pack(
+        "{s:s, s:i, s:o, s:s, s:I, s:I, s:I, s:I, s:I, s:I, s:I, s:o, s:o, s:o, s:o, s:o, s:i}",
+        "model", "rigid",
+        "dof", 4 * r->n_rings + 4,
+        "wall_s", rd_result_real(wall_s),
+        "solver", "SUNDIALS CVODE, BDF with a dense Newton linear solver (difference-quotient "
+                  "Jacobian), root finding for the flank changes, restarted at each",
+        "steps", (json_int_t)r->steps,
+        "rhs_evals", (json_int_t)r->rhs_evals,
+        "jac_evals", (json_int_t)r->jac_evals,
+        "root_evals", (json_int_t)r->root_evals,
+        "restarts", (json_int_t)r->restarts,
+        "error_test_fails", (json_int_t)r->err_test_fails,
+        "nonlinear_failures", (json_int_t)r->nonlin_fails,
+        "rtol", rd_result_real(o->pack.rtol),
+        "atol", rd_result_real(o->pack.atol),
+        "error_estimate", rd_result_real(r->error_estimate),
+        "event_error_deg", rd_result_real(r->event_error_deg),
+        "error_method", estimated ? json_string("second run at rtol/10 and atol/10: the larger of "
+                                                "the blow-by's relative change and the largest "
+                                                "pressure change over the cylinder peak; the "
+                                                "largest shift of a matched flank change (null "
+                                                "when the runs' flank changes differ in number)")
+                                  : json_null(),
+        "cycles", r->cycles);
+}
+
+static json_t *pack_result(const rd_scene *scene, const rd_ringpack_result *r, double wall_s)
+{
+    json_t *rings = json_array();
+    for (int i = 0; rings && i < r->n_rings; i++)
+        if (json_array_append_new(rings, ring_json(r, i)) != 0) {
+            json_decref(rings);
+            rings = NULL;
+        }
+    return json_pack(
+        "{s:s, s:o, s:o, s:o, s:o, s:o, s:{s:o, s:o, s:o, s:o, s:o}, s:o, s:o, s:o}",
+        "analysis", rd_scene_analysis(scene),
+        "scene", rd_scene_echo(scene),
+        "crank_deg", rd_result_reals(r->crank_deg, r->samples, 1, 1.0),
+        "volumes", volumes_json(r),
+        "rings", rings,
+        "flows", flows_json(r),
+        "blowby",
+        "kg_per_cycle", rd_result_real(r->blowby_kg),
+        "l_per_min", rd_result_real(r->blowby_l_per_min),
+        "reverse_kg_per_cycle", rd_result_real(r->reverse_kg),
+        "inflow_kg_per_cycle", rd_result_real(r->inflow_kg),
+        "mass_balance_residual", rd_result_real(r->mass_residual),
+        "periodicity", rd_result_real(r->periodicity),
+        "table", table_json(r),
+        "numerics", pack_numerics(scene, r, wall_s));
+}
+
+static int run(const rd_scene *s, const rd_monitor *mon, json_t **out, rd_error *err)
+{
+    const struct pack_opts *o = s->opts;
+    rd_ringpack_result res;
+    double t0 = rd_clock_s();
+    int rc = rd_ringpack_solve(&o->pack, mon, &res, err);
+    if (rc == RD_OK)
+        *out = pack_result(s, &res, rd_clock_s() - t0);
+    rd_ringpack_result_cleanup(&res);
+    return rc;
+}
+
+static const rd_csv_column csv_columns[] = {
+    {"crank_deg", "crank_deg", 0},
+    {"cylinder_pa", "cylinder_pa", 0},
+    {"top_land_pa", "top_land_pa", 0},
+    {"groove_1_pa", "groove_1_pa", 0},
+    {"second_land_pa", "second_land_pa", 0},
+    {"groove_2_pa", "groove_2_pa", 0},
+    {"third_land_pa", "third_land_pa", 0},
+    {"groove_3_pa", "groove_3_pa", 0},
+    {"lift_1_m", "lift_1_m", 0},
+    {"lift_2_m", "lift_2_m", 0},
+    {"lift_3_m", "lift_3_m", 0},
+    {"blowby_kg_s", "blowby_kg_s", 0},
+    {NULL, NULL, 0},
+};
+static const rd_csv_table csv = {"table", NULL, csv_columns};
+
+const rd_analysis_def rd_an_ringpack = {
+    .name = "ringpack",
+    .scene = &scene_block,
+    .opts_size = sizeof(struct pack_opts),
+    .defaults = defaults,
+    .finish = finish,
+    .cleanup = cleanup,
+    .run = run,
+    .csv = &csv,
+    .page = "ringpack.js",
+};

@@ -1,0 +1,272 @@
+/*
+ * rd_gasflow.c — orifice flow and the cylinder pressure trace (equations in
+ * rd_gasflow.h).
+ */
+#include "rd_gasflow.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "rd_internal.h"
+
+double rd_gasflow_critical_ratio(double kappa)
+{
+    return pow(2.0 / (kappa + 1.0), kappa / (kappa - 1.0));
+}
+
+/* mdot sqrt(R T_u) / (C_d A p_u) at pressure ratio r (0 < r <= 1), without
+ * the linear band. */
+static double flow_function(double r, double kappa, double r_c)
+{
+    if (r <= r_c)
+        return sqrt(kappa) * pow(2.0 / (kappa + 1.0), (kappa + 1.0) / (2.0 * (kappa - 1.0)));
+    double v = pow(r, 2.0 / kappa) - pow(r, (kappa + 1.0) / kappa);
+    return sqrt(2.0 * kappa / (kappa - 1.0) * (v > 0.0 ? v : 0.0));
+}
+
+double rd_gasflow_orifice(double cd, double area, double p_a, double T_a, double p_b,
+                          double T_b, double kappa, double R)
+{
+    if (!(area > 0.0) || !(cd > 0.0))
+        return 0.0;
+    int forward = p_a >= p_b;
+    double pu = forward ? p_a : p_b, pd = forward ? p_b : p_a, Tu = forward ? T_a : T_b;
+    if (!(pu > 0.0))
+        return 0.0;
+    double r = pd > 0.0 ? pd / pu : 0.0, r_c = rd_gasflow_critical_ratio(kappa);
+    double r_lin = 1.0 - RD_GASFLOW_LINEAR_BAND, psi;
+    if (r > r_lin) /* linear in (1 - r) through the value at r_lin */
+        psi = flow_function(r_lin, kappa, r_c) * (1.0 - r) / RD_GASFLOW_LINEAR_BAND;
+    else
+        psi = flow_function(r, kappa, r_c);
+    double mdot = cd * area * pu / sqrt(R * Tu) * psi;
+    return forward ? mdot : -mdot;
+}
+
+/* ------------------------------------------------------- pressure tables */
+
+double rd_gasflow_table(int n, const double *x, const double *y, double deg)
+{
+    double t = fmod(deg, 720.0);
+    if (t < 0.0)
+        t += 720.0;
+    if (t <= x[0])
+        return y[0];
+    if (t >= x[n - 1])
+        return y[n - 1];
+    int lo = 0, hi = n - 1; /* x[lo] <= t < x[hi] */
+    while (hi - lo > 1) {
+        int mid = (lo + hi) / 2;
+        if (x[mid] <= t)
+            lo = mid;
+        else
+            hi = mid;
+    }
+    double w = (t - x[lo]) / (x[hi] - x[lo]);
+    return y[lo] + w * (y[hi] - y[lo]);
+}
+
+/* Fritsch-Butland slope at point k of a periodic table (the point before
+ * x[0] is x[n-2] - 720, the one after x[n-1] is x[1] + 720): zero at a
+ * local extremum, else a weighted harmonic mean of the two secants, which
+ * keeps the cubic monotone between monotone points. */
+static double trace_slope(int n, const double *x, const double *y, int k)
+{
+    int a = k > 0 ? k - 1 : n - 2, b = k < n - 1 ? k + 1 : 1;
+    double xa = k > 0 ? x[a] : x[a] - 720.0, xb = k < n - 1 ? x[b] : x[b] + 720.0;
+    double ha = x[k] - xa, hb = xb - x[k];
+    double da = (y[k] - y[a]) / ha, db = (y[b] - y[k]) / hb;
+    if (n < 3 || da * db <= 0.0)
+        return 0.0;
+    double wa = 2.0 * hb + ha, wb = hb + 2.0 * ha;
+    return (wa + wb) / (wa / da + wb / db);
+}
+
+double rd_gasflow_trace(int n, const double *x, const double *y, double deg)
+{
+    double t = fmod(deg, 720.0);
+    if (t < 0.0)
+        t += 720.0;
+    int lo = 0, hi = n - 1; /* x[lo] <= t <= x[hi] */
+    while (hi - lo > 1) {
+        int mid = (lo + hi) / 2;
+        if (x[mid] <= t)
+            lo = mid;
+        else
+            hi = mid;
+    }
+    double h = x[hi] - x[lo], u = (t - x[lo]) / h;
+    double m0 = trace_slope(n, x, y, lo) * h, m1 = trace_slope(n, x, y, hi) * h;
+    double u2 = u * u, u3 = u2 * u; /* cubic Hermite basis */
+    return (2 * u3 - 3 * u2 + 1) * y[lo] + (u3 - 2 * u2 + u) * m0 + (-2 * u3 + 3 * u2) * y[hi] +
+           (u3 - u2) * m1;
+}
+
+/* ------------------------------------------------------ synthetic trace */
+
+int rd_gasflow_synthetic_validate(const rd_cylinder_synthetic *s, const char *path,
+                                  rd_error *err)
+{
+    char f[RD_ERROR_PATH_MAX];
+#define BAD(key, cond, range)                                                                   \
+    do {                                                                                        \
+        snprintf(f, sizeof f, "%s/%s", path, key);                                              \
+        if (!(cond))                                                                            \
+            return rd_error_set(err, RD_EINVAL, f, "%s must be %s.", f, range);                 \
+    } while (0)
+    BAD("compression_ratio", s->compression_ratio >= 2.0 && s->compression_ratio <= 40.0,
+        "from 2 to 40");
+    BAD("intake_pa", s->intake_pa >= 1e4 && s->intake_pa <= 1e7, "from 1e4 to 1e7 Pa (absolute)");
+    if (s->kind == RD_CYLINDER_MOTORED)
+        return RD_OK;
+    BAD("peak_crank_deg", s->peak_crank_deg >= 0.0 && s->peak_crank_deg <= 60.0,
+        "from 0 to 60 deg after firing TDC");
+    double motored = s->intake_pa * pow(s->compression_ratio, RD_GASFLOW_POLYTROPIC);
+    snprintf(f, sizeof f, "%s/peak_pa", path);
+    if (!(s->peak_pa > 1.05 * motored && s->peak_pa <= 1e8))
+        return rd_error_set(err, RD_EINVAL, f,
+                            "%s = %g Pa must exceed the motored peak (intake_pa * "
+                            "compression_ratio^%g = %g Pa) by 5 %% and be at most 1e8 Pa.",
+                            f, s->peak_pa, RD_GASFLOW_POLYTROPIC, motored);
+#undef BAD
+    return RD_OK;
+}
+
+/* The geometry of the trace: volumes per grid angle. */
+typedef struct trace {
+    const rd_engine_params *e;
+    double Ap, Vc;
+} trace;
+
+static double volume(const trace *tr, double deg, double *dV)
+{
+    rd_engine_params unit = *tr->e;
+    unit.speed_rpm = 60.0 / (2.0 * M_PI); /* omega = 1: v = ds/dalpha */
+    double s, v;
+    rd_lift_piston(&unit, deg * M_PI / 180.0, &s, &v, NULL);
+    if (dV)
+        *dV = tr->Ap * v * M_PI / 180.0; /* per degree */
+    return tr->Vc + tr->Ap * s;
+}
+
+/* Wiebe burn rate dx_b/dtheta, 1/deg. */
+static double burn_rate(double deg, double theta0)
+{
+    double x = (deg - theta0) / RD_GASFLOW_BURN_DEG, m = RD_GASFLOW_WIEBE_M;
+    if (x <= 0.0)
+        return 0.0;
+    return RD_GASFLOW_WIEBE_A * (m + 1.0) / RD_GASFLOW_BURN_DEG * pow(x, m) *
+           exp(-RD_GASFLOW_WIEBE_A * pow(x, m + 1.0));
+}
+
+/* dp_unit/dtheta for Q = 1 J. */
+static double unit_rate(const trace *tr, double deg, double p, double theta0)
+{
+    double dV, V = volume(tr, deg, &dV), n = RD_GASFLOW_POLYTROPIC;
+    return (n - 1.0) / V * burn_rate(deg, theta0) - n * p / V * dV;
+}
+
+#define HALF (RD_GASFLOW_POINTS / 2) /* grid index of 360 deg from -180 */
+
+/* p_unit on the grid -180..180 deg (HALF + 1 points), RK4. */
+static void unit_trace(const trace *tr, double theta0, double *pu)
+{
+    double h = RD_GASFLOW_STEP_DEG, p = 0.0;
+    pu[0] = 0.0;
+    for (int k = 0; k < HALF; k++) {
+        double t = -180.0 + k * h;
+        double k1 = unit_rate(tr, t, p, theta0);
+        double k2 = unit_rate(tr, t + 0.5 * h, p + 0.5 * h * k1, theta0);
+        double k3 = unit_rate(tr, t + 0.5 * h, p + 0.5 * h * k2, theta0);
+        double k4 = unit_rate(tr, t + h, p + h * k3, theta0);
+        p += h / 6.0 * (k1 + 2.0 * k2 + 2.0 * k3 + k4);
+        pu[k + 1] = p;
+    }
+}
+
+/* The peak of pm + Q pu: value, grid index. */
+static double peak_of(const double *pm, const double *pu, double Q, int *at)
+{
+    double best = -1.0;
+    for (int k = 0; k <= HALF; k++)
+        if (pm[k] + Q * pu[k] > best) {
+            best = pm[k] + Q * pu[k];
+            *at = k;
+        }
+    return best;
+}
+
+/* The heat Q giving the asked peak for the burn start theta0; the peak's
+ * angle (deg after TDC) into *peak_deg. */
+static double heat_for_peak(const trace *tr, double theta0, double target, const double *pm,
+                            double *pu, double *peak_deg)
+{
+    int at = 0;
+    unit_trace(tr, theta0, pu);
+    double lo = 0.0, hi = 1.0;
+    while (peak_of(pm, pu, hi, &at) < target && hi < 1e12)
+        hi *= 2.0;
+    for (int it = 0; it < 60; it++) {
+        double mid = 0.5 * (lo + hi);
+        if (peak_of(pm, pu, mid, &at) < target)
+            lo = mid;
+        else
+            hi = mid;
+    }
+    peak_of(pm, pu, hi, &at);
+    *peak_deg = -180.0 + at * RD_GASFLOW_STEP_DEG;
+    return hi;
+}
+
+/* Smooth 0 -> 1 over [a, b]. */
+static double smoothstep(double x, double a, double b)
+{
+    double u = (x - a) / (b - a);
+    u = u < 0.0 ? 0.0 : u > 1.0 ? 1.0 : u;
+    return u * u * (3.0 - 2.0 * u);
+}
+
+int rd_gasflow_synthetic(const rd_cylinder_synthetic *s, const rd_engine_params *e, double bore,
+                         const char *path, double *crank_deg, double *p, rd_error *err)
+{
+    int rc = rd_gasflow_synthetic_validate(s, path, err);
+    if (rc)
+        return rc;
+    trace tr = {e, M_PI * bore * bore / 4.0, 0.0};
+    tr.Vc = tr.Ap * 2.0 * e->crank_radius / (s->compression_ratio - 1.0);
+    double *pm = malloc(2 * (size_t)(HALF + 1) * sizeof *pm), *pu = pm ? pm + HALF + 1 : NULL;
+    if (!pm)
+        return rd_error_set(err, RD_ENOMEM, "", "Out of memory for the synthetic pressure.");
+    double Vb = volume(&tr, 180.0, NULL), Q = 0.0;
+    for (int k = 0; k <= HALF; k++)
+        pm[k] = s->intake_pa *
+                pow(Vb / volume(&tr, -180.0 + k * RD_GASFLOW_STEP_DEG, NULL),
+                    RD_GASFLOW_POLYTROPIC);
+    memset(pu, 0, (size_t)(HALF + 1) * sizeof *pu);
+    if (s->kind == RD_CYLINDER_FIRED) { /* bisect the burn start on the peak angle */
+        double lo = s->peak_crank_deg - 90.0, hi = s->peak_crank_deg, at;
+        for (int it = 0; it < 40; it++) {
+            double mid = 0.5 * (lo + hi);
+            heat_for_peak(&tr, mid, s->peak_pa, pm, pu, &at);
+            if (at < s->peak_crank_deg)
+                lo = mid;
+            else
+                hi = mid;
+        }
+        Q = heat_for_peak(&tr, 0.5 * (lo + hi), s->peak_pa, pm, pu, &at);
+    }
+    for (int j = 0; j < RD_GASFLOW_POINTS; j++) {
+        double deg = j * RD_GASFLOW_STEP_DEG, rel = deg <= 360.0 ? deg : deg - 720.0;
+        crank_deg[j] = deg;
+        p[j] = s->intake_pa;
+        if (rel >= -180.0 && rel <= 180.0) {
+            int k = (int)lround((rel + 180.0) / RD_GASFLOW_STEP_DEG);
+            double w = smoothstep(rel, RD_GASFLOW_EVO_DEG, 180.0);
+            p[j] = (1.0 - w) * (pm[k] + Q * pu[k]) + w * s->intake_pa;
+        }
+    }
+    free(pm);
+    return RD_OK;
+}

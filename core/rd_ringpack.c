@@ -1,0 +1,353 @@
+/*
+ * rd_ringpack.c — the ring pack's parameters, validation and model: the gas
+ * network's volumes and passages, the rings' forces and the right-hand side
+ * (equations and state layout in rd_ringpack.h; the CVODE driver is
+ * rd_ringpack_driver.c).
+ */
+#include "rd_ringpack.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "rd_internal.h"
+#include "rd_ringpack_model.h"
+
+#define GRAVITY 9.80665
+
+void rd_ringpack_params_default(rd_ringpack_params *p)
+{
+    memset(p, 0, sizeof *p);
+    p->engine.speed_rpm = 2400.0;
+    p->engine.crank_radius = 0.04345;
+    p->engine.rod_length = 0.130;
+    p->engine.kinematics = RD_KINEMATICS_EXACT;
+    p->engine.cycles = 6.0;
+    p->n_rings = 1;
+    for (int i = 0; i < RD_RINGPACK_RINGS_MAX; i++) {
+        rd_ringpack_ring *r = &p->rings[i];
+        rd_ring_params_default(&r->ring);
+        r->groove.axial_clearance = 3e-5;
+        r->groove.radial_clearance = 5e-4;
+        r->land_height = 0.004;
+        r->land_clearance = 3e-4;
+        r->discharge_coefficient = 0.7;
+        r->pinned = RD_PIN_FREE;
+    }
+    p->cylinder_kind = RD_CYLINDER_FIRED;
+    p->synthetic.kind = RD_CYLINDER_FIRED;
+    p->synthetic.peak_pa = 6e6;
+    p->synthetic.peak_crank_deg = 15.0;
+    p->synthetic.compression_ratio = 10.5;
+    p->synthetic.intake_pa = 1e5;
+    p->crankcase_pa = 1e5;
+    p->T_lands = 450.0;
+    p->T_crankcase = 380.0;
+    p->gravity = 1;
+    p->step_deg = 1.0;
+    p->rtol = 1e-6;
+    p->atol = 1e-9;
+    p->max_steps = 2000000;
+    p->estimate_error = 1;
+}
+
+double rd_ringpack_standard_density(void)
+{
+    return 101325.0 / (RD_GASFLOW_R * 293.15);
+}
+
+/* v in [lo, hi], else an error naming `path`. */
+static int range(double v, double lo, double hi, const char *path, const char *unit,
+                 rd_error *err)
+{
+    if (isfinite(v) && v >= lo && v <= hi)
+        return RD_OK;
+    return rd_error_set(err, RD_EINVAL, path, "%s = %g %s is out of range: allowed %g to %g %s.",
+                        path, v, unit, lo, hi, unit);
+}
+
+static int validate_ring(const rd_ringpack_ring *r, int i, double bore, rd_error *err)
+{
+    char at[16], f[RD_ERROR_PATH_MAX];
+    snprintf(at, sizeof at, "/rings/%d", i % 10);
+    int rc = RD_OK;
+#define FIELD(key) (snprintf(f, sizeof f, "%s/%s", at, key), f)
+    if (r->ring.section != RD_SECTION_RECTANGLE)
+        return rd_error_set(err, RD_EINVAL, FIELD("ring/section"),
+                            "%s must be rectangle: the ring seals with its flat faces.", f);
+    if (fabs(r->ring.diameter - bore) > 1e-9 * bore)
+        return rd_error_set(err, RD_EINVAL, FIELD("ring/diameter"),
+                            "%s = %g m differs from the top ring's %g m: the rings of a pack "
+                            "share one bore.",
+                            f, r->ring.diameter, bore);
+    rc = rc ? rc : range(r->ring.closed_gap, 0.0, 0.01, FIELD("ring/closed_gap"), "m", err);
+    if (!rc && !(r->groove.axial_clearance > 0.0))
+        return rd_error_set(err, RD_EINVAL, FIELD("groove/axial_clearance"),
+                            "%s = %g m: the groove (ring height + axial clearance) must be "
+                            "taller than the ring; allowed 1e-07 to 0.005 m.",
+                            f, r->groove.axial_clearance);
+    rc = rc ? rc : range(r->groove.axial_clearance, 1e-7, 0.005,
+                         FIELD("groove/axial_clearance"), "m", err);
+    rc = rc ? rc : range(r->groove.radial_clearance, 1e-6, 0.01,
+                         FIELD("groove/radial_clearance"), "m", err);
+    rc = rc ? rc : range(r->discharge_coefficient, 0.0, 1.0, FIELD("discharge_coefficient"),
+                         "", err);
+    rc = rc ? rc : range(r->gap_angle_deg, -360.0, 360.0, FIELD("gap_angle_deg"), "deg", err);
+    if (!rc && !(r->land_height > 0.0 && r->land_clearance > 0.0))
+        return rd_error_set(err, RD_EINVAL,
+                            FIELD(r->land_height > 0.0 ? "land/radial_clearance" : "land/height"),
+                            "%s must be > 0: the land's gas volume pi h c (d - c) must be "
+                            "positive (height %g m, radial clearance %g m).",
+                            f, r->land_height, r->land_clearance);
+    rc = rc ? rc : range(r->land_height, 1e-5, 0.1, FIELD("land/height"), "m", err);
+    rc = rc ? rc : range(r->land_clearance, 1e-7, 0.25 * bore, FIELD("land/radial_clearance"),
+                         "m", err);
+    if (!rc && r->groove.axial_clearance >= r->ring.axial_height)
+        return rd_error_set(err, RD_EINVAL, FIELD("groove/axial_clearance"),
+                            "%s = %g m is not smaller than the ring's height %g m: the groove "
+                            "(ring height + axial clearance) would be more than twice as tall "
+                            "as the ring, outside this model.",
+                            f, r->groove.axial_clearance, r->ring.axial_height);
+#undef FIELD
+    return rc;
+}
+
+static int validate_table(const rd_ringpack_params *p, rd_error *err)
+{
+    const char *at = "/cylinder_pressure/crank_deg";
+    int n = p->table_points;
+    if (n < 2 || !p->table_deg || !p->table_pa)
+        return rd_error_set(err, RD_EINVAL, at, "%s needs at least 2 points.", at);
+    for (int k = 0; k < n; k++) {
+        char f[RD_ERROR_PATH_MAX];
+        snprintf(f, sizeof f, "/cylinder_pressure/pressure_pa/%d", k);
+        int rc = range(p->table_pa[k], 1e3, 1e9, f, "Pa (absolute)", err);
+        if (rc)
+            return rc;
+        if (k > 0 && !(p->table_deg[k] > p->table_deg[k - 1])) {
+            snprintf(f, sizeof f, "%s/%d", at, k);
+            return rd_error_set(err, RD_EINVAL, f, "%s = %g must exceed the angle before it "
+                                "(%g): the angles must increase strictly.",
+                                f, p->table_deg[k], p->table_deg[k - 1]);
+        }
+    }
+    if (!(p->table_deg[0] <= 0.0 && p->table_deg[0] >= -1e-9) ||
+        !(p->table_deg[n - 1] >= 720.0 && p->table_deg[n - 1] <= 720.0 + 1e-9))
+        return rd_error_set(err, RD_EINVAL, at,
+                            "%s runs from %g to %g deg but must cover the whole cycle: first "
+                            "angle 0, last 720 (the trace repeats every 720 deg).",
+                            at, p->table_deg[0], p->table_deg[n - 1]);
+    return RD_OK;
+}
+
+int rd_ringpack_validate(const rd_ringpack_params *p, rd_error *err)
+{
+    const rd_engine_params *e = &p->engine;
+    int rc = range(p->step_deg, 0.01, 90.0, "/output/step_deg", "deg", err);
+    rc = rc ? rc : range((double)p->max_steps, 100.0, 1e9, "/numerics/max_steps", "", err);
+    rc = rc ? rc : range(e->speed_rpm, 1.0, 30000.0, "/engine/speed_rpm", "rpm", err);
+    rc = rc ? rc : range(e->crank_radius, 0.001, 1.0, "/engine/crank_radius", "m", err);
+    rc = rc ? rc : range(e->rod_length, e->crank_radius / 0.9, 10.0, "/engine/rod_length", "m",
+                         err);
+    rc = rc ? rc : range(e->cycles, 2.0, RD_RINGPACK_CYCLES_MAX, "/engine/cycles", "", err);
+    if (!rc && e->cycles != floor(e->cycles))
+        return rd_error_set(err, RD_EINVAL, "/engine/cycles",
+                            "/engine/cycles = %g must be a whole number of cycles (2 to 50): the "
+                            "last two are compared for the periodic state.", e->cycles);
+    if (!rc && (p->n_rings < 1 || p->n_rings > RD_RINGPACK_RINGS_MAX))
+        return rd_error_set(err, RD_EINVAL, "/rings", "/rings has %d rings; allowed 1 to %d.",
+                            p->n_rings, RD_RINGPACK_RINGS_MAX);
+    for (int i = 0; !rc && i < p->n_rings; i++) {
+        rd_error re;
+        rd_error_init(&re);
+        if ((rc = rd_ring_validate(&p->rings[i].ring, 4, 0, &re))) { /* its paths are /ring/... */
+            char at[RD_ERROR_PATH_MAX];
+            snprintf(at, sizeof at, "/rings/%d%.100s", i % 10, re.path);
+            return rd_error_set(err, rc, at, "/rings/%d: %.400s", i, re.message);
+        }
+        rc = validate_ring(&p->rings[i], i, p->rings[0].ring.diameter, err);
+    }
+    rc = rc ? rc : range(p->crankcase_pa, 1e3, 1e7, "/crankcase_pressure_pa", "Pa (absolute)",
+                         err);
+    rc = rc ? rc : range(p->T_lands, 200.0, 1500.0, "/gas_temperature_k/lands", "K", err);
+    rc = rc ? rc : range(p->T_crankcase, 200.0, 1500.0, "/gas_temperature_k/crankcase", "K",
+                         err);
+    rc = rc ? rc : range(p->rtol, 1e-12, 0.01, "/numerics/rtol", "", err);
+    rc = rc ? rc : range(p->atol, 1e-16, 1e-5, "/numerics/atol", "m", err);
+    if (rc)
+        return rc;
+    if (p->cylinder_kind == RD_CYLINDER_TABLE)
+        return validate_table(p, err);
+    return rd_gasflow_synthetic_validate(&p->synthetic, "/cylinder_pressure/synthetic", err);
+}
+
+/* ------------------------------------------------------------------ model */
+
+static const char *const land_names[] = {"top_land", "second_land", "third_land"};
+static const char *const groove_names[] = {"groove_1", "groove_2", "groove_3"};
+
+static void ring_geometry(rd_ringpack_model *m, int i)
+{
+    const rd_ringpack_ring *r = &m->p->rings[i];
+    double d = r->ring.diameter, b = r->ring.radial_width, h = r->ring.axial_height;
+    double a = r->groove.axial_clearance, c = r->land_clearance;
+    double r_in = 0.5 * d - b, r_b = r_in - r->groove.radial_clearance;
+    m->ca[i] = a;
+    m->area[i] = b * (M_PI * (d - b) - r->ring.closed_gap);
+    m->mass[i] = r->ring.density * h * m->area[i];
+    m->circ[i] = M_PI * d;
+    m->gap_area[i] = r->ring.closed_gap * c;
+    m->cd[i] = r->discharge_coefficient;
+    m->vol[2 * i + 1] = M_PI * r->land_height * c * (d - c);
+    m->vol[2 * i + 2] = M_PI * (r_in * r_in - r_b * r_b) * (h + a) +
+                        M_PI * (0.25 * d * d - r_in * r_in) * a;
+    m->temp[2 * i + 1] = m->temp[2 * i + 2] = m->p->T_lands;
+    /* flows 1 + 3i .. 3 + 3i: upper flank, lower flank, end gap */
+    m->from[1 + 3 * i] = 2 * i + 1;
+    m->to[1 + 3 * i] = 2 * i + 2;
+    m->from[2 + 3 * i] = 2 * i + 2;
+    m->to[2 + 3 * i] = rp_below(m, i);
+    m->from[3 + 3 * i] = 2 * i + 1;
+    m->to[3 + 3 * i] = rp_below(m, i);
+}
+
+static int cylinder_trace(rd_ringpack_model *m, rd_error *err)
+{
+    const rd_ringpack_params *p = m->p;
+    if (p->cylinder_kind == RD_CYLINDER_TABLE) {
+        m->cyl_n = p->table_points;
+        m->cyl_deg = (double *)p->table_deg;
+        m->cyl_pa = (double *)p->table_pa;
+        return RD_OK;
+    }
+    m->cyl_n = RD_GASFLOW_POINTS;
+    m->cyl_owned = 1;
+    m->cyl_deg = malloc(2 * (size_t)RD_GASFLOW_POINTS * sizeof(double));
+    if (!m->cyl_deg)
+        return rd_error_set(err, RD_ENOMEM, "", "Out of memory for the cylinder pressure.");
+    m->cyl_pa = m->cyl_deg + RD_GASFLOW_POINTS;
+    return rd_gasflow_synthetic(&p->synthetic, &p->engine, p->rings[0].ring.diameter,
+                                "/cylinder_pressure/synthetic", m->cyl_deg, m->cyl_pa, err);
+}
+
+int rd_ringpack_model_init(rd_ringpack_model *m, const rd_ringpack_params *p, rd_error *err)
+{
+    memset(m, 0, sizeof *m);
+    m->p = p;
+    m->R = p->n_rings;
+    m->V = 2 * m->R;
+    m->N = 4 * m->R + 4;
+    m->F = 1 + 3 * m->R;
+    m->omega = p->engine.speed_rpm * 2.0 * M_PI / 60.0;
+    m->temp[0] = p->T_lands; /* gas entering the top land takes its temperature */
+    m->temp[m->V + 1] = p->T_crankcase;
+    m->top_area = M_PI * p->rings[0].ring.diameter * p->rings[0].land_clearance;
+    m->from[0] = 0;
+    m->to[0] = 1;
+    for (int i = 0; i < m->R; i++) {
+        ring_geometry(m, i);
+        m->mode[i] = p->rings[i].pinned == RD_PIN_UPPER ? RD_FLANK_UPPER : RD_FLANK_LOWER;
+    }
+    return cylinder_trace(m, err);
+}
+
+void rd_ringpack_model_cleanup(rd_ringpack_model *m)
+{
+    if (m->cyl_owned)
+        free(m->cyl_deg);
+    m->cyl_deg = m->cyl_pa = NULL;
+    m->cyl_owned = 0;
+}
+
+void rd_ringpack_pressures(const rd_ringpack_model *m, double t, const double *y, double *pv)
+{
+    double deg = t * m->omega * 180.0 / M_PI;
+    pv[0] = rd_gasflow_trace(m->cyl_n, m->cyl_deg, m->cyl_pa, deg);
+    for (int v = 0; v < m->V; v++)
+        pv[v + 1] = RP_P(m, y, v);
+    pv[m->V + 1] = m->p->crankcase_pa;
+}
+
+void rd_ringpack_flows(const rd_ringpack_model *m, const double *pv, const double *y, double *mdot)
+{
+    const double k = RD_GASFLOW_KAPPA, Rg = RD_GASFLOW_R;
+    for (int f = 0; f < m->F; f++) {
+        double area;
+        if (f == 0) {
+            area = m->top_area;
+        } else {
+            int i = (f - 1) / 3, kind = (f - 1) % 3;
+            double z = RP_Z(m, y, i);
+            area = kind == 0   ? m->circ[i] * fmax(m->ca[i] - z, 0.0)
+                   : kind == 1 ? m->circ[i] * fmax(z, 0.0)
+                               : m->gap_area[i];
+        }
+        int a = m->from[f], b = m->to[f];
+        double cd = f == 0 ? m->cd[0] : m->cd[(f - 1) / 3];
+        mdot[f] = rd_gasflow_orifice(cd, area, pv[a], m->temp[a], pv[b], m->temp[b], k, Rg);
+    }
+}
+
+double rd_ringpack_ring_force(const rd_ringpack_model *m, int i, double t, const double *y, const double *pv)
+{
+    (void)y;
+    double above = pv[2 * i + 1], below = pv[rp_below(m, i)];
+    const rd_gas_params *g = m->p->face_tables;
+    if (g) { /* the test hook: the lift analysis' gauge tables */
+        double deg = t * m->omega * 180.0 / M_PI;
+        above = rd_gasflow_table(g->points, g->crank_deg, g->above, deg);
+        below = rd_gasflow_table(g->points, g->crank_deg, g->below, deg);
+    }
+    double a_p;
+    rd_lift_piston(&m->p->engine, m->omega * t, NULL, NULL, &a_p);
+    return m->mass[i] * (a_p - (m->p->gravity ? GRAVITY : 0.0)) + m->area[i] * (below - above);
+}
+
+void rd_ringpack_rhs(const rd_ringpack_model *m, double t, const double *y, double *yd)
+{
+    double pv[RD_RINGPACK_VOLUMES_MAX], mdot[RD_RINGPACK_FLOWS_MAX];
+    double dm[RD_RINGPACK_VOLUMES_MAX] = {0};
+    rd_ringpack_pressures(m, t, y, pv);
+    rd_ringpack_flows(m, pv, y, mdot);
+    for (int f = 0; f < m->F; f++) {
+        dm[m->from[f]] -= mdot[f];
+        dm[m->to[f]] += mdot[f];
+    }
+    for (int v = 1; v <= m->V; v++)
+        yd[v - 1] = RD_GASFLOW_R * m->temp[v] / m->vol[v] * dm[v];
+    for (int i = 0; i < m->R; i++) {
+        int free_ = m->mode[i] == RD_FLANK_FREE;
+        RP_Z(m, yd, i) = free_ ? RP_ZD(m, y, i) : 0.0;
+        RP_ZD(m, yd, i) = free_ ? rd_ringpack_ring_force(m, i, t, y, pv) / m->mass[i] : 0.0;
+    }
+    double in = mdot[0], cc = dm[m->V + 1];
+    RP_CUM(m, yd, 0) = fmax(in, 0.0);
+    RP_CUM(m, yd, 1) = fmax(-in, 0.0);
+    RP_CUM(m, yd, 2) = fmax(cc, 0.0);
+    RP_CUM(m, yd, 3) = fmax(-cc, 0.0);
+}
+
+void rd_ringpack_describe(const rd_ringpack_model *m, rd_ringpack_result *r)
+{
+    r->n_rings = m->R;
+    r->n_volumes = m->V + 2;
+    r->n_flows = m->F;
+    r->volume_name[0] = "cylinder";
+    r->volume_name[m->V + 1] = "crankcase";
+    for (int i = 0; i < m->R; i++) {
+        r->volume_name[2 * i + 1] = land_names[i];
+        r->volume_name[2 * i + 2] = groove_names[i];
+    }
+    for (int v = 0; v < m->V + 2; v++)
+        r->volume_m3[v] = (v == 0 || v == m->V + 1) ? 0.0 : m->vol[v];
+    static const char *const kind[] = {"upper_flank", "lower_flank", "end_gap"};
+    snprintf(r->flow_name[0], sizeof r->flow_name[0], "cylinder_to_top_land");
+    for (int f = 1; f < m->F; f++)
+        snprintf(r->flow_name[f], sizeof r->flow_name[f], "ring_%d_%s", (f - 1) / 3 + 1,
+                 kind[(f - 1) % 3]);
+    for (int f = 0; f < m->F; f++) {
+        r->flow_from[f] = m->from[f];
+        r->flow_to[f] = m->to[f];
+    }
+}

@@ -1,0 +1,141 @@
+/*
+ * rd_ringpack — the ring pack and blow-by (issue 15; thesis 2.4.4, eqs.
+ * 2.22-2.25; MODEL.md "Ring pack and blow-by"): the gas pressures between 1
+ * to 3 rings computed from one cylinder pressure, coupled both ways with the
+ * rings' axial motion in their grooves.
+ *
+ * Network (absolute pressures throughout; the lift analysis' tables are
+ * gauge).  For rings i = 1..R (top first) the gas volumes are
+ *   land_i    the crevice between piston land and liner above ring i
+ *             (land_1 = top land), V = pi h c (d - c), h its height, c its
+ *             piston-to-liner clearance, d the bore;
+ *   groove_i  the groove space the ring does not fill: behind it
+ *             pi (r_in^2 - r_b^2)(h_r + a) plus the axial clearance over the
+ *             faces pi (d^2/4 - r_in^2) a, with r_in = d/2 - b the ring's inner
+ *             radius, r_b = r_in - radial clearance, h_r the ring height, a
+ *             the axial clearance (constant: the ring moving up fills the
+ *             space above it and frees the same below);
+ * bounded by the cylinder (the input trace) above and the crankcase (a
+ * constant pressure) below ring R.  Each volume holds ideal gas at its
+ * given temperature (lands and grooves T_l, crankcase T_c):
+ *   p V = m R_g T   and   dp/dt = R_g T / V * sum of the mass flows in.
+ * Passages (rd_gasflow_orifice, discharge coefficient C_d of the ring):
+ *   cylinder -> land_1         area pi d c_1 (the top land's clearance);
+ *   ring i upper flank, land_i -> groove_i,  area pi d max(a - z_i, 0);
+ *   ring i lower flank, groove_i -> below_i, area pi d max(z_i, 0);
+ *   ring i end gap,     land_i -> below_i,   area g_i c_i (closed gap times
+ *                                            the land clearance);
+ * below_i = land_{i+1}, or the crankcase under the last ring.  Gas entering
+ * the crevices takes the crevice temperature (Namazian & Heywood 1982), so
+ * the cylinder -> land flow uses T_l whichever way it goes.
+ *
+ * Rings: rigid, axial only (the pack's default model, the one the lift
+ * analysis' rigid model reduces to for axisymmetric scenes without
+ * friction): lift z_i (0 = seated on the lower flank, a = on the upper),
+ *   m_i z_i'' = m_i s''(t) - m_i g + A_i (p_above - p_below),
+ * s the piston's distance below TDC (rd_lift_piston; m s'' is the inertia
+ * pseudo-force in the piston frame), A_i = b (pi (d - b) - g) the face area
+ * and m_i = rho h A_i the mass; p_above = p(land_i), p_below = p(below_i)
+ * (the lift analysis' "fixed" active areas).  The flanks are hard stops:
+ * a ring stays seated while the net force presses it on the flank, leaves
+ * when it changes sign, and lands inelastically (the oil film absorbs the
+ * impact; MODEL.md "lift models").  Changes are located by CVODE's root
+ * finding and the integration restarts there.  A pinned ring stays on its
+ * flank.  Friction is not modelled.
+ *
+ * State (N = 2R + 2R + 4): y = [p(land_1), p(groove_1), ..., p(groove_R),
+ * z_1, z_1', ..., z_R, z_R', M_in, M_back, M_cc, M_cc_back], the last four
+ * the cumulative masses in from the cylinder, back into it, into the
+ * crankcase and out of it (kg).  CVODE BDF, dense Newton (DQ Jacobian).
+ * Since every flow leaves one state volume and enters another, BDF keeps
+ * the linear invariant sum m_v + M_back - M_in + M_cc - M_cc_back exactly
+ * (to round-off): the mass balance the tests check.
+ */
+#ifndef RD_RINGPACK_H
+#define RD_RINGPACK_H
+
+#include "rd_error.h"
+#include "rd_gasflow.h"
+#include "rd_lift.h"
+#include "rd_ring.h"
+
+#define RD_RINGPACK_RINGS_MAX 3
+#define RD_RINGPACK_VOLUMES_MAX (2 * RD_RINGPACK_RINGS_MAX + 2) /* with cylinder, crankcase */
+#define RD_RINGPACK_FLOWS_MAX (3 * RD_RINGPACK_RINGS_MAX + 1)
+#define RD_RINGPACK_CYCLES_MAX 50
+
+enum rd_ringpack_pin { RD_PIN_FREE = 0, RD_PIN_LOWER = 1, RD_PIN_UPPER = 2 };
+
+typedef struct rd_ringpack_ring {
+    rd_ring_params ring;      /* section, closed gap, density */
+    rd_groove_params groove;
+    double land_height;       /* the land above the ring, m */
+    double land_clearance;    /* its piston-to-liner radial clearance, m */
+    double gap_angle_deg;     /* where the gap sits (recorded; the rigid ring ignores it) */
+    double discharge_coefficient; /* C_d of its passages, 0..1 */
+    int pinned;               /* enum rd_ringpack_pin */
+} rd_ringpack_ring;
+
+typedef struct rd_ringpack_params {
+    rd_engine_params engine;  /* cycles: whole cycles, 2..50 */
+    int n_rings;              /* 1..3 */
+    rd_ringpack_ring rings[RD_RINGPACK_RINGS_MAX];
+    int cylinder_kind;        /* enum rd_cylinder_kind */
+    int table_points;         /* RD_CYLINDER_TABLE: the trace, borrowed */
+    const double *table_deg;  /* strictly increasing, 0 .. 720 covered */
+    const double *table_pa;   /* absolute, Pa, > 0 */
+    rd_cylinder_synthetic synthetic;
+    double crankcase_pa;      /* absolute, Pa */
+    double T_lands, T_crankcase; /* K */
+    int gravity;              /* 1: g along -z */
+    double step_deg;          /* output sampling (rounded so 720 / step is whole) */
+    double rtol, atol;        /* atol on the lifts, m */
+    long max_steps;           /* CVODE steps for the whole run */
+    int estimate_error;       /* 1: second run at rtol/10, atol/10 */
+    /* Test hook: the ring faces' pressures from these gauge tables (above,
+     * below; plus crankcase_pa) instead of the network's.  NULL normally. */
+    const rd_gas_params *face_tables;
+} rd_ringpack_params;
+
+typedef struct rd_ringpack_result {
+    int samples, n_rings, n_volumes, n_flows, cycles;
+    double *crank_deg;   /* samples: the last cycle, 0..720 */
+    double *pressure;    /* n_volumes x samples: cylinder, land_1, groove_1, ..., crankcase */
+    double *lift;        /* n_rings x samples, m */
+    int *flank;          /* n_rings x samples, enum rd_flank */
+    double *flow;        /* n_flows x samples, kg/s, positive from `flow_from` to `flow_to` */
+    rd_lift_event *events[RD_RINGPACK_RINGS_MAX]; /* the last cycle's, crank_deg in 0..720 */
+    int n_events[RD_RINGPACK_RINGS_MAX];
+    const char *volume_name[RD_RINGPACK_VOLUMES_MAX]; /* static strings */
+    double volume_m3[RD_RINGPACK_VOLUMES_MAX];        /* 0 for cylinder and crankcase */
+    char flow_name[RD_RINGPACK_FLOWS_MAX][32];
+    int flow_from[RD_RINGPACK_FLOWS_MAX], flow_to[RD_RINGPACK_FLOWS_MAX]; /* volume indices */
+    /* Last cycle's balance, kg per cycle */
+    double inflow_kg;        /* from the cylinder into the top land */
+    double reverse_kg;       /* from the top land back into the cylinder */
+    double blowby_kg;        /* net into the crankcase */
+    double blowby_l_per_min; /* at 1.01325 bar and 20 C */
+    double stored_change_kg; /* gas held in the volumes, end minus start of the cycle */
+    double mass_residual;    /* |in - back - blowby - stored change| / throughput */
+    double periodicity;      /* relative change of the last cycle against the one before */
+    /* CVODE's work over the whole run (summed over the restarts) */
+    long steps, rhs_evals, jac_evals, root_evals, restarts, err_test_fails, nonlin_fails;
+    double error_estimate;   /* from the rtol/10 run; NAN if none */
+    double event_error_deg;  /* largest flank-change angle change in that run; NAN if none */
+} rd_ringpack_result;
+
+/* The defaults: one thesis ring in the thesis engine at 2400 rpm, 6 cycles,
+ * a fired synthetic trace (60 bar at 15 deg), 1 bar crankcase, 450/380 K. */
+void rd_ringpack_params_default(rd_ringpack_params *p);
+/* Every value, naming the scene field ("/rings/1/groove/axial_clearance"). */
+int rd_ringpack_validate(const rd_ringpack_params *p, rd_error *err);
+/* Runs; `out` is overwritten and owns its arrays (rd_ringpack_result_cleanup,
+ * also after a failure).  The monitor reports progress and may cancel. */
+int rd_ringpack_solve(const rd_ringpack_params *p, const rd_monitor *mon, rd_ringpack_result *out,
+                      rd_error *err);
+void rd_ringpack_result_cleanup(rd_ringpack_result *r);
+
+/* Standard density of the blow-by gas, kg/m^3: 101325 / (R_g 293.15). */
+double rd_ringpack_standard_density(void);
+
+#endif

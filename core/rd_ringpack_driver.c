@@ -1,0 +1,476 @@
+/*
+ * rd_ringpack_driver.c — the ring pack's CVODE driver (equations and state
+ * layout in rd_ringpack.h): set-up, the flank state machine at CVODE's
+ * roots, the output of the last cycle, the balance and periodicity of the
+ * last two cycles, and the error estimate (rd_accuracy: the run again at
+ * rtol/10, atol/10).
+ *
+ * Roots, two per ring: a seated ring watches its net force F (it leaves
+ * when F stops pressing it on the flank), a free ring watches z and a - z
+ * (it lands).  At a root the ring's mode changes, the state is set on the
+ * flank (z = 0 or a, z' = 0: an inelastic landing) and CVODE restarts.
+ */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include <cvode/cvode.h>
+#include <nvector/nvector_serial.h>
+#include <sunlinsol/sunlinsol_dense.h>
+#include <sunmatrix/sunmatrix_dense.h>
+
+#include "rd_accuracy.h"
+#include "rd_internal.h"
+#include "rd_ringpack_model.h"
+
+#define HMAX_DEG 2.0         /* largest step, crank degrees */
+#define RESTARTS_MAX 200000  /* flank changes allowed in a run */
+
+typedef struct drv {
+    rd_ringpack_model m;
+    SUNContext ctx;
+    N_Vector y, abstol;
+    SUNMatrix A;
+    SUNLinearSolver LS;
+    void *cv;
+    double deg_per_s;
+    double *prev;            /* n_volumes x samples: the cycle before the last */
+    double cum[3][4];        /* cumulative masses at the starts of the last two cycles, end */
+    double stored[3];        /* gas in the volumes then, kg */
+    int S, C;                /* samples per cycle (intervals), cycles */
+    rd_ringpack_result *res;
+    int cap[RD_RINGPACK_RINGS_MAX];
+} drv;
+
+static int cv_rhs(sunrealtype t, N_Vector y, N_Vector yd, void *user)
+{
+    drv *d = user;
+    double *f = N_VGetArrayPointer(yd);
+    rd_ringpack_rhs(&d->m, t, N_VGetArrayPointer(y), f);
+    for (int k = 0; k < d->m.N; k++)
+        if (!isfinite(f[k]))
+            return 1;
+    return 0;
+}
+
+static int cv_roots(sunrealtype t, N_Vector yv, sunrealtype *g, void *user)
+{
+    drv *d = user;
+    const rd_ringpack_model *m = &d->m;
+    const double *y = N_VGetArrayPointer(yv);
+    double pv[RD_RINGPACK_VOLUMES_MAX];
+    rd_ringpack_pressures(m, t, y, pv);
+    for (int i = 0; i < m->R; i++) {
+        g[2 * i] = g[2 * i + 1] = 1.0;
+        if (m->p->rings[i].pinned != RD_PIN_FREE)
+            continue;
+        if (m->mode[i] == RD_FLANK_FREE) {
+            g[2 * i] = RP_Z(m, y, i);
+            g[2 * i + 1] = m->ca[i] - RP_Z(m, y, i);
+        } else {
+            g[2 * i] = rd_ringpack_ring_force(m, i, t, y, pv);
+        }
+    }
+    return 0;
+}
+
+static void cv_silent(int code, const char *module, const char *fn, char *msg, void *user)
+{
+    (void)code, (void)module, (void)fn, (void)msg, (void)user;
+}
+
+static int cv_fail(drv *d, int flag, const char *what, rd_error *err)
+{
+    double t = 0.0;
+    if (d->cv)
+        CVodeGetCurrentTime(d->cv, &t);
+    return rd_error_set(err, flag == CV_TOO_MUCH_WORK ? RD_ELIMIT : RD_ENOCONV, "",
+                        "CVODE failed (%s, flag %d: %s) near crank angle %.2f deg; try a "
+                        "smaller /numerics/rtol or check the pack's clearances.",
+                        what, flag, CVodeGetReturnFlagName(flag), t * d->deg_per_s);
+}
+
+static void drv_close(drv *d)
+{
+    if (d->cv)
+        CVodeFree(&d->cv);
+    if (d->LS)
+        SUNLinSolFree(d->LS);
+    if (d->A)
+        SUNMatDestroy(d->A);
+    if (d->y)
+        N_VDestroy(d->y);
+    if (d->abstol)
+        N_VDestroy(d->abstol);
+    if (d->ctx)
+        SUNContext_Free(&d->ctx);
+    free(d->prev);
+    rd_ringpack_model_cleanup(&d->m);
+}
+
+/* Initial state (every volume at the crankcase pressure, rings at rest on
+ * their flank) and tolerances. */
+static void initial_state(drv *d, double rtol, double atol)
+{
+    const rd_ringpack_model *m = &d->m;
+    double *y = N_VGetArrayPointer(d->y), *ab = N_VGetArrayPointer(d->abstol), vsum = 0.0;
+    for (int v = 0; v < m->V; v++) {
+        y[v] = m->p->crankcase_pa;
+        ab[v] = rtol * m->p->crankcase_pa;
+        vsum += m->vol[v + 1];
+    }
+    for (int i = 0; i < m->R; i++) {
+        RP_Z(m, y, i) = m->mode[i] == RD_FLANK_UPPER ? m->ca[i] : 0.0;
+        RP_ZD(m, y, i) = 0.0;
+        RP_Z(m, ab, i) = atol;
+        RP_ZD(m, ab, i) = atol * m->omega;
+    }
+    for (int k = 0; k < 4; k++) {
+        RP_CUM(m, y, k) = 0.0;
+        RP_CUM(m, ab, k) = rtol * m->p->crankcase_pa * vsum / (RD_GASFLOW_R * m->p->T_lands);
+    }
+}
+
+static int drv_open(drv *d, const rd_ringpack_params *p, double rtol, double atol, rd_error *err)
+{
+    int rc = rd_ringpack_model_init(&d->m, p, err), flag;
+    if (rc)
+        return rc;
+    sunindextype N = d->m.N;
+    d->deg_per_s = d->m.omega * 180.0 / M_PI;
+    if (SUNContext_Create(NULL, &d->ctx))
+        return rd_error_set(err, RD_ENOMEM, "", "Could not create the SUNDIALS context.");
+    d->y = N_VNew_Serial(N, d->ctx);
+    d->abstol = N_VNew_Serial(N, d->ctx);
+    d->A = SUNDenseMatrix(N, N, d->ctx);
+    d->LS = d->y && d->A ? SUNLinSol_Dense(d->y, d->A, d->ctx) : NULL;
+    d->cv = CVodeCreate(CV_BDF, d->ctx);
+    if (!d->y || !d->abstol || !d->A || !d->LS || !d->cv)
+        return rd_error_set(err, RD_ENOMEM, "", "Out of memory setting up CVODE for the pack.");
+    initial_state(d, rtol, atol);
+    if ((flag = CVodeSetErrHandlerFn(d->cv, cv_silent, d)) ||
+        (flag = CVodeInit(d->cv, cv_rhs, 0.0, d->y)) ||
+        (flag = CVodeSVtolerances(d->cv, rtol, d->abstol)) ||
+        (flag = CVodeSetUserData(d->cv, d)) ||
+        (flag = CVodeSetLinearSolver(d->cv, d->LS, d->A)) ||
+        (flag = CVodeSetMaxStep(d->cv, HMAX_DEG / d->deg_per_s)) ||
+        (flag = CVodeSetMaxNumSteps(d->cv, p->max_steps)) ||
+        (flag = CVodeRootInit(d->cv, 2 * d->m.R, cv_roots)) ||
+        (flag = CVodeSetNoInactiveRootWarn(d->cv)))
+        return cv_fail(d, flag, "set-up", err);
+    return RD_OK;
+}
+
+/* ------------------------------------------------------------- events */
+
+static int push_event(drv *d, int i, double t, int kind, rd_error *err)
+{
+    double deg = t * d->deg_per_s - 720.0 * (d->C - 1);
+    rd_ringpack_result *r = d->res;
+    if (deg < 0.0) /* only the last cycle's are reported */
+        return RD_OK;
+    if (r->n_events[i] == d->cap[i]) {
+        int cap = d->cap[i] ? 2 * d->cap[i] : 16;
+        rd_lift_event *e = realloc(r->events[i], (size_t)cap * sizeof *e);
+        if (!e)
+            return rd_error_set(err, RD_ENOMEM, "", "Out of memory recording flank changes.");
+        r->events[i] = e;
+        d->cap[i] = cap;
+    }
+    r->events[i][r->n_events[i]++] = (rd_lift_event){deg, kind};
+    return RD_OK;
+}
+
+/* The new mode of ring i at (t, y): `fired` says its root was found (or,
+ * at the start, that the check is due). */
+static int ring_switch(drv *d, int i, double t, double *y, const double *pv, int fired,
+                       rd_error *err)
+{
+    rd_ringpack_model *m = &d->m;
+    double F = rd_ringpack_ring_force(m, i, t, y, pv), z = RP_Z(m, y, i), a = m->ca[i];
+    int mode = m->mode[i], rc = RD_OK;
+    if (!fired || m->p->rings[i].pinned != RD_PIN_FREE)
+        return RD_OK;
+    if (mode == RD_FLANK_LOWER && F >= 0.0) {
+        m->mode[i] = RD_FLANK_FREE;
+        rc = push_event(d, i, t, RD_EVENT_LEAVE_LOWER, err);
+    } else if (mode == RD_FLANK_UPPER && F <= 0.0) {
+        m->mode[i] = RD_FLANK_FREE;
+        rc = push_event(d, i, t, RD_EVENT_LEAVE_UPPER, err);
+    } else if (mode == RD_FLANK_FREE && z <= 0.5 * a) {
+        RP_Z(m, y, i) = 0.0;
+        RP_ZD(m, y, i) = fmax(RP_ZD(m, y, i), 0.0);
+        if (F <= 0.0) {
+            m->mode[i] = RD_FLANK_LOWER;
+            RP_ZD(m, y, i) = 0.0;
+            rc = push_event(d, i, t, RD_EVENT_REACH_LOWER, err);
+        }
+    } else if (mode == RD_FLANK_FREE) {
+        RP_Z(m, y, i) = a;
+        RP_ZD(m, y, i) = fmin(RP_ZD(m, y, i), 0.0);
+        if (F >= 0.0) {
+            m->mode[i] = RD_FLANK_UPPER;
+            RP_ZD(m, y, i) = 0.0;
+            rc = push_event(d, i, t, RD_EVENT_REACH_UPPER, err);
+        }
+    }
+    return rc;
+}
+
+/* Adds CVODE's counters since its last (re)start to the result's (a restart
+ * zeroes them). */
+static void counters(drv *d, rd_ringpack_result *r)
+{
+    long v;
+    if (!CVodeGetNumSteps(d->cv, &v))
+        r->steps += v;
+    if (!CVodeGetNumRhsEvals(d->cv, &v))
+        r->rhs_evals += v;
+    if (!CVodeGetNumJacEvals(d->cv, &v))
+        r->jac_evals += v;
+    if (!CVodeGetNumGEvals(d->cv, &v))
+        r->root_evals += v;
+    if (!CVodeGetNumErrTestFails(d->cv, &v))
+        r->err_test_fails += v;
+    if (!CVodeGetNumNonlinSolvConvFails(d->cv, &v))
+        r->nonlin_fails += v;
+}
+
+/* Mode changes at a root (or at the start: all == 1), then the restart. */
+static int at_root(drv *d, double t, int all, rd_error *err)
+{
+    int found[2 * RD_RINGPACK_RINGS_MAX] = {0}, flag, rc = RD_OK;
+    double pv[RD_RINGPACK_VOLUMES_MAX], *y = N_VGetArrayPointer(d->y);
+    if (!all && (flag = CVodeGetRootInfo(d->cv, found)))
+        return cv_fail(d, flag, "root info", err);
+    rd_ringpack_pressures(&d->m, t, y, pv);
+    for (int i = 0; !rc && i < d->m.R; i++)
+        rc = ring_switch(d, i, t, y, pv, all || found[2 * i] || found[2 * i + 1], err);
+    if (rc)
+        return rc;
+    if (!all && ++d->res->restarts > RESTARTS_MAX)
+        return rd_error_set(err, RD_ELIMIT, "",
+                            "More than %d flank changes near crank angle %.2f deg: a ring "
+                            "chatters on its flank; pin it or change the clearances.",
+                            RESTARTS_MAX, t * d->deg_per_s);
+    counters(d, d->res);
+    if ((flag = CVodeReInit(d->cv, t, d->y)))
+        return cv_fail(d, flag, "restart", err);
+    return RD_OK;
+}
+
+/* ------------------------------------------------------------ sampling */
+
+static double stored_mass(const rd_ringpack_model *m, const double *y)
+{
+    double s = 0.0;
+    for (int v = 1; v <= m->V; v++)
+        s += RP_P(m, y, v - 1) * m->vol[v] / (RD_GASFLOW_R * m->temp[v]);
+    return s;
+}
+
+/* Sample j of the run (0 .. C S) at time t. */
+static void record(drv *d, int j, double t)
+{
+    rd_ringpack_model *m = &d->m;
+    rd_ringpack_result *r = d->res;
+    const double *y = N_VGetArrayPointer(d->y);
+    double pv[RD_RINGPACK_VOLUMES_MAX], mdot[RD_RINGPACK_FLOWS_MAX];
+    int S = d->S, nv = m->V + 2, k = j - (d->C - 1) * S, kp = j - (d->C - 2) * S;
+    rd_ringpack_pressures(m, t, y, pv);
+    int b = j - (d->C - 2) * S; /* cycle boundaries: b = 0, S, 2 S */
+    if (b >= 0 && b % S == 0) {
+        memcpy(d->cum[b / S], &RP_CUM(m, y, 0), 4 * sizeof(double));
+        d->stored[b / S] = stored_mass(m, y);
+    }
+    for (int v = 0; kp >= 0 && kp <= S && v < nv; v++)
+        d->prev[(size_t)v * (S + 1) + kp] = pv[v];
+    if (k < 0)
+        return;
+    rd_ringpack_flows(m, pv, y, mdot);
+    r->crank_deg[k] = 720.0 * k / S;
+    for (int v = 0; v < nv; v++)
+        r->pressure[(size_t)v * (S + 1) + k] = pv[v];
+    for (int i = 0; i < m->R; i++) {
+        r->lift[(size_t)i * (S + 1) + k] = RP_Z(m, y, i);
+        r->flank[(size_t)i * (S + 1) + k] = m->mode[i];
+    }
+    for (int f = 0; f < m->F; f++)
+        r->flow[(size_t)f * (S + 1) + k] = mdot[f];
+}
+
+static int alloc_result(drv *d, rd_ringpack_result *r, rd_error *err)
+{
+    size_t n = (size_t)d->S + 1;
+    int nv = d->m.V + 2;
+    r->samples = d->S + 1;
+    r->cycles = d->C;
+    r->crank_deg = malloc(n * sizeof *r->crank_deg);
+    r->pressure = malloc(n * nv * sizeof *r->pressure);
+    r->lift = malloc(n * d->m.R * sizeof *r->lift);
+    r->flank = malloc(n * d->m.R * sizeof *r->flank);
+    r->flow = malloc(n * d->m.F * sizeof *r->flow);
+    d->prev = malloc(n * nv * sizeof *d->prev);
+    if (!r->crank_deg || !r->pressure || !r->lift || !r->flank || !r->flow || !d->prev)
+        return rd_error_set(err, RD_ENOMEM, "", "Out of memory for the ring pack's output.");
+    rd_ringpack_describe(&d->m, r);
+    return RD_OK;
+}
+
+/* The whole run: C cycles, sampled at every output angle. */
+static int integrate(drv *d, const rd_monitor *mon, rd_error *err)
+{
+    double t = 0.0, dt = 720.0 / d->S / d->deg_per_s;
+    int total = d->C * d->S, rc = at_root(d, 0.0, 1, err), flag;
+    if (rc)
+        return rc;
+    record(d, 0, 0.0);
+    for (int j = 1; j <= total; j++) {
+        double tout = j * dt;
+        while (t < tout) {
+            flag = CVode(d->cv, tout, d->y, &t, CV_NORMAL);
+            if (flag == CV_ROOT_RETURN) {
+                if ((rc = at_root(d, t, 0, err)))
+                    return rc;
+            } else if (flag < 0) {
+                return cv_fail(d, flag, "integration", err);
+            } else {
+                t = tout;
+            }
+        }
+        record(d, j, t);
+        long now = 0;
+        if (!CVodeGetNumSteps(d->cv, &now) && d->res->steps + now > d->m.p->max_steps)
+            return rd_error_set(err, RD_ELIMIT, "/numerics/max_steps",
+                                "The run needed more than /numerics/max_steps = %ld CVODE steps "
+                                "by crank angle %.2f deg (of %d cycles); raise it, or loosen "
+                                "/numerics/rtol.",
+                                d->m.p->max_steps, t * d->deg_per_s, d->C);
+        if ((rc = rd_monitor_report(mon, (double)j / total, err)))
+            return rc;
+    }
+    return RD_OK;
+}
+
+/* Balance of the last cycle and its change against the one before. */
+static void balance(drv *d)
+{
+    rd_ringpack_result *r = d->res;
+    const double *a = d->cum[1], *b = d->cum[2], *o = d->cum[0];
+    int S = d->S, nv = d->m.V + 2;
+    r->inflow_kg = b[0] - a[0];
+    r->reverse_kg = b[1] - a[1];
+    r->blowby_kg = (b[2] - a[2]) - (b[3] - a[3]);
+    r->stored_change_kg = d->stored[2] - d->stored[1];
+    double thru = fmax(r->inflow_kg + r->reverse_kg, 1e-300);
+    r->mass_residual = fabs(r->inflow_kg - r->reverse_kg - r->blowby_kg - r->stored_change_kg) /
+                       thru;
+    r->blowby_l_per_min = r->blowby_kg * (d->m.p->engine.speed_rpm / 2.0) /
+                          rd_ringpack_standard_density() * 1000.0;
+    double before = (a[2] - o[2]) - (a[3] - o[3]), change = 0.0;
+    change = fabs(r->blowby_kg - before) / fmax(fabs(r->blowby_kg), 1e-300);
+    for (int v = 1; v < nv - 1; v++) {
+        double top = 0.0, diff = 0.0;
+        for (int k = 0; k <= S; k++) {
+            double p = r->pressure[(size_t)v * (S + 1) + k];
+            top = fmax(top, p);
+            diff = fmax(diff, fabs(p - d->prev[(size_t)v * (S + 1) + k]));
+        }
+        change = fmax(change, diff / top);
+    }
+    r->periodicity = change;
+}
+
+
+/* One run at (rtol, atol) into r. */
+static int run_once(const rd_ringpack_params *p, double rtol, double atol, const rd_monitor *mon,
+                    rd_ringpack_result *r, rd_error *err)
+{
+    drv d;
+    memset(&d, 0, sizeof d);
+    d.res = r;
+    d.C = (int)p->engine.cycles;
+    d.S = (int)lround(720.0 / p->step_deg);
+    int rc = drv_open(&d, p, rtol, atol, err);
+    rc = rc ? rc : alloc_result(&d, r, err);
+    rc = rc ? rc : integrate(&d, mon, err);
+    if (!rc) {
+        counters(&d, r);
+        balance(&d);
+    }
+    drv_close(&d);
+    return rc;
+}
+
+/* ------------------------------------------------------- accuracy driver */
+
+typedef struct acc {
+    const rd_ringpack_params *p;
+    rd_ringpack_result *out, ref;
+} acc;
+
+static int acc_solve(void *ctx, int level, const rd_monitor *mon, rd_error *err)
+{
+    acc *a = ctx;
+    double f = level ? 0.1 : 1.0;
+    return run_once(a->p, a->p->rtol * f, a->p->atol * f, mon, level ? &a->ref : a->out, err);
+}
+
+/* The estimate: the larger of the blow-by's relative change and the
+ * largest pressure change relative to the cylinder peak; the events'
+ * largest angle change when both runs have the same flank changes. */
+static int acc_compare(void *ctx, rd_error *err)
+{
+    (void)err;
+    acc *a = ctx;
+    rd_ringpack_result *r = a->out, *q = &a->ref;
+    size_t n = (size_t)r->samples * r->n_volumes;
+    double peak = 0.0, dp = 0.0, de = 0.0;
+    for (size_t k = 0; k < n; k++) {
+        peak = fmax(peak, r->pressure[k]);
+        dp = fmax(dp, fabs(r->pressure[k] - q->pressure[k]));
+    }
+    r->error_estimate = fmax(dp / peak, fabs(r->blowby_kg - q->blowby_kg) /
+                                            fmax(fabs(q->blowby_kg), 1e-300));
+    for (int i = 0; i < r->n_rings; i++) {
+        if (r->n_events[i] != q->n_events[i]) {
+            de = NAN;
+            break;
+        }
+        for (int e = 0; e < r->n_events[i]; e++)
+            de = fmax(de, fabs(r->events[i][e].crank_deg - q->events[i][e].crank_deg));
+    }
+    r->event_error_deg = de;
+    return RD_OK;
+}
+
+int rd_ringpack_solve(const rd_ringpack_params *p, const rd_monitor *mon, rd_ringpack_result *out,
+                      rd_error *err)
+{
+    memset(out, 0, sizeof *out);
+    out->error_estimate = out->event_error_deg = NAN;
+    int rc = rd_ringpack_validate(p, err);
+    if (rc)
+        return rc;
+    acc a = {p, out, {0}};
+    rd_accuracy_plan plan = {.solve = acc_solve, .compare = acc_compare, .ctx = &a,
+                             .estimate = p->estimate_error, .main_share = 0.5,
+                             .reference = "rtol/10, atol/10"};
+    rc = rd_accuracy_run(&plan, mon, NULL, err);
+    rd_ringpack_result_cleanup(&a.ref);
+    return rc;
+}
+
+void rd_ringpack_result_cleanup(rd_ringpack_result *r)
+{
+    if (!r)
+        return;
+    free(r->crank_deg);
+    free(r->pressure);
+    free(r->lift);
+    free(r->flank);
+    free(r->flow);
+    for (int i = 0; i < RD_RINGPACK_RINGS_MAX; i++)
+        free(r->events[i]);
+    memset(r, 0, sizeof *r);
+}

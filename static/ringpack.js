@@ -1,0 +1,103 @@
+// The ring pack analysis: renders a ringpack `result` (issue 15) as the
+// absolute gas pressures of every volume against crank angle (the cylinder
+// first, the crankcase last), each ring's lift, the mass flow into the
+// crankcase (the blow-by), and tables of the balance and the solver's cost.
+// A pure function of the result: optional fields may be missing.
+
+import { svg, scale, ticks, axes, pathD, stepTicks, legend } from './svg.js';
+import { h, fill, isNum, sig, seconds, kvTable, resultLinks, nums, um } from './html.js';
+
+const W = 720;
+const BOX = { left: 64, width: W - 64 - 16 };
+const COLORS = ['#b3261e', '#e07b00', '#6b7580', '#1f6feb', '#0b7d5a', '#7a3fb8', '#9a6700', '#333'];
+
+export const ringpack = {
+  id: 'ringpack',
+  label: 'Ring pack',
+  runLabel: 'Run ringpack analysis',
+
+  render(result, job, container) {
+    const crank = nums(result.crank_deg);
+    const volumes = Array.isArray(result.volumes) ? result.volumes : [];
+    const rings = Array.isArray(result.rings) ? result.rings : [];
+    const b = result.blowby || {};
+    const rpm = result.scene?.engine?.speed_rpm;
+    const figs = crank.length < 2 ? [h('p', { class: 'hint', id: 'rp-empty' }, 'This result has no samples to draw.')] : [
+      h('figure', { class: 'plot wide' }, pressurePlot(crank, volumes),
+        h('figcaption', {}, 'Absolute gas pressures of the last cycle against crank angle (0° = firing TDC): the cylinder (the input trace), the lands and grooves from the top down, the crankcase.')),
+      h('figure', { class: 'plot wide' }, liftPlot(crank, rings),
+        h('figcaption', {}, 'Each ring\'s lift above its groove\'s lower flank (rigid rings).')),
+      h('figure', { class: 'plot wide' }, blowbyPlot(crank, result),
+        h('figcaption', {}, 'Mass flow into the crankcase (the blow-by; negative: back out of it).')),
+    ];
+    fill(container,
+      h('h3', {}, `Ring pack — ${rings.length} ring${rings.length === 1 ? '' : 's'}${isNum(rpm) ? ` at ${sig(rpm, 5)} rpm` : ''}`),
+      h('p', { id: 'rp-summary' }, `Blow-by ${isNum(b.l_per_min) ? sig(b.l_per_min) : '—'} L/min (${isNum(b.kg_per_cycle) ? sig(b.kg_per_cycle) : '—'} kg per cycle, at 1.01325 bar and 20 °C); back into the cylinder ${isNum(b.reverse_kg_per_cycle) ? sig(b.reverse_kg_per_cycle) : '—'} kg per cycle; last cycle against the one before: ${isNum(result.periodicity) ? sig(result.periodicity, 2) : '—'}.`),
+      resultLinks(job, 'ringpack', 'Ring pack table (CSV)'),
+      h('div', { id: 'rp-plots' }, figs),
+      h('div', { class: 'table-wrap' }, costTable(result)),
+    );
+  },
+};
+
+function crankAxis(crank) {
+  const c0 = Math.min(...crank), c1 = Math.max(...crank);
+  return { x: scale(c0, c1, BOX.left, BOX.left + BOX.width), ticks: stepTicks(c0, c1, [90, 180, 360, 720], 12) };
+}
+
+// One chart of several series [{label, values}] against crank angle.
+function chart(id, crank, series, yLabel, factor, label) {
+  const H = 260;
+  const box = { ...BOX, top: 40, height: H - 40 - 50 };
+  const { x, ticks: xTicks } = crankAxis(crank);
+  const all = series.flatMap((s) => s.values.map((v) => v * factor));
+  const lo = Math.min(0, ...all), hi = Math.max(1e-12, ...all);
+  const pad = (hi - lo) * 0.06 || 1;
+  const y = scale(lo, hi + pad, box.top + box.height, box.top);
+  return svg('svg', { id, class: 'chart', viewBox: `0 0 ${W} ${H}`, role: 'img', 'aria-label': label },
+    legend(series.map((s, i) => [svg('path', { d: 'M-2,0H12', style: `stroke:${COLORS[i % COLORS.length]};stroke-width:2` }), s.label]), { x: box.left, y: 14 }),
+    axes({ box, x, y, xTicks, yTicks: ticks(lo, hi + pad, 4), xLabel: 'crank angle (deg)', yLabel, yFormat: (v) => String(Number(v.toPrecision(4))) }),
+    series.map((s, i) => svg('path', {
+      id: `${id}-${i}`, 'data-points': s.values.length, style: `fill:none;stroke:${COLORS[i % COLORS.length]};stroke-width:1.6`,
+      d: pathD(s.values.map((v, k) => [x(crank[k]), y(v * factor)])),
+    })));
+}
+
+function pressurePlot(crank, volumes) {
+  const series = volumes.map((v) => ({ label: v.name, values: nums(v.pressure_pa) })).filter((s) => s.values.length === crank.length);
+  const peak = (s) => Math.max(...s.values) / 1e5;
+  return chart('rp-pressure', crank, series, 'pressure (bar, absolute)', 1e-5,
+    `Gas pressures against crank angle: ${series.map((s) => `${s.label} peak ${sig(peak(s))} bar`).join('; ')}.`);
+}
+
+function liftPlot(crank, rings) {
+  const series = rings.map((r, i) => ({ label: `ring ${i + 1}`, values: nums(r.lift) })).filter((s) => s.values.length === crank.length);
+  return chart('rp-lift', crank, series, 'lift (µm)', 1e6,
+    `Ring lifts against crank angle: ${series.map((s) => `${s.label} up to ${um(Math.max(...s.values))} µm`).join('; ')}.`);
+}
+
+function blowbyPlot(crank, result) {
+  const flows = (Array.isArray(result.flows) ? result.flows : []).filter((f) => f.to === 'crankcase');
+  const total = crank.map((_, k) => flows.reduce((s, f) => s + (nums(f.mass_flow_kg_s)[k] ?? 0), 0));
+  return chart('rp-blowby', crank, [{ label: 'into the crankcase', values: total }], 'mass flow (g/s)', 1e3,
+    `Blow-by mass flow against crank angle, up to ${sig(Math.max(...total) * 1e3)} g/s.`);
+}
+
+function costTable(result) {
+  const n = result.numerics || {};
+  const b = result.blowby || {};
+  return kvTable({
+    id: 'rp-cost', caption: 'Balance and cost',
+    rows: [
+      ['Into the top land per cycle', isNum(b.inflow_kg_per_cycle) ? `${sig(b.inflow_kg_per_cycle)} kg` : '—'],
+      ['Mass balance residual (of the throughput)', isNum(b.mass_balance_residual) ? sig(b.mass_balance_residual, 2) : '—'],
+      ['Model', n.model ?? '—'],
+      ['Cycles', n.cycles ?? '—'],
+      ['CVODE steps', n.steps ?? '—'],
+      ['Restarts at flank changes', n.restarts ?? '—'],
+      ['Error estimate', isNum(n.error_estimate) ? sig(n.error_estimate, 2) : '—'],
+      ['Event angle error', isNum(n.event_error_deg) ? `${sig(n.event_error_deg, 2)}°` : '—'],
+      ['Wall time', isNum(n.wall_s) ? seconds(n.wall_s) : '—'],
+    ],
+  });
+}
