@@ -30,8 +30,8 @@ static json_t *echo_stiffness(const rd_scene *s)
 }
 
 static const rd_field distortion_fields[] = {
-    {"order", RD_F_INTEGER, offsetof(rd_distortion, order), RD_MIN(1), RD_MAX(64),
-     .required = 1, .desc = "Fourier order k; a JSON integer (20.0 is refused here)."},
+    {"order", RD_F_INTEGER, offsetof(rd_distortion, order), RD_MIN(1), RD_MAX(64), .required = 1,
+     .desc = "Fourier order k; a JSON integer (20.0 is refused here)."},
     {"amplitude", RD_F_NUMBER, offsetof(rd_distortion, amplitude), .required = 1,
      .desc = "Radius change A_k, m; |A_k| at most 1 % of the ring diameter."},
     {"phase_deg", RD_F_NUMBER, offsetof(rd_distortion, phase_deg), RD_MIN(-360), RD_MAX(360),
@@ -45,7 +45,8 @@ static const rd_field bore_fields[] = {
     {"diameter", RD_F_NUMBER, ST(contact.bore_diameter), RD_MIN(0.0), .echo = echo_bore_diameter,
      .desc = "Bore diameter D, m; absent or 0 = the ring's diameter; otherwise within 2 % of it "
              "(0.98 d to 1.02 d). The echo gives the diameter used."},
-    {"distortion", RD_F_DISTORTION, ST(contact), .block = &distortion_block, RD_MAX(RD_DISTORTION_MAX),
+    {"distortion", RD_F_DISTORTION, ST(contact), .block = &distortion_block,
+     RD_MAX(RD_DISTORTION_MAX),
      .desc = "Fourier terms of the bore's out-of-roundness, at most 16; the sum of |amplitude| "
              "is at most 1 % of the ring diameter. Default: none (a round bore)."},
     {.key = NULL},
@@ -102,11 +103,11 @@ static json_t *distortion_bounds(const rd_scene *scene, const rd_contact_result 
     json_t *dist = json_array();
     for (int k = 0; dist && k < o->contact.n_distortion; k++) {
         const rd_distortion *d = &o->contact.distortion[k];
-        if (json_array_append_new(dist, json_pack("{s:i, s:o, s:o, s:o}", "order", d->order,
-                                                  "amplitude", rd_result_real(d->amplitude),
-                                                  "phase_deg", rd_result_real(d->phase_deg),
-                                                  "conformability_bound",
-                                                  rd_result_real(res->bound[k]))) != 0) {
+        if (json_array_append_new(dist,
+                                  json_pack("{s:i, s:o, s:o, s:o}", "order", d->order, "amplitude",
+                                            rd_result_real(d->amplitude), "phase_deg",
+                                            rd_result_real(d->phase_deg), "conformability_bound",
+                                            rd_result_real(res->bound[k]))) != 0) {
             json_decref(dist);
             dist = NULL;
         }
@@ -127,33 +128,33 @@ static int contact_accuracy(json_t *out, const rd_contact_result *res)
     for (int g = 0; !bad && g < res->n_gaps; g++) {
         const rd_contact_gap *p = &res->gaps[g];
         bad |= json_array_append_new(
-            gaps, json_pack("{s:o, s:o, s:o, s:o}", "start_deg", rd_result_real(p->start_deg),
-                            "end_deg", rd_result_real(p->end_deg), "max_clearance",
-                            rd_result_real(p->max_clearance), "max_clearance_angle_deg",
-                            rd_result_real(p->max_clearance_deg)));
+            gaps,
+            json_pack("{s:o, s:o, s:o, s:o}", "start_deg", rd_result_real(p->start_deg), "end_deg",
+                      rd_result_real(p->end_deg), "max_clearance", rd_result_real(p->max_clearance),
+                      "max_clearance_angle_deg", rd_result_real(p->max_clearance_deg)));
     }
     bad |= json_object_set_new(out, "light_gaps", gaps);
     bad |= json_object_set_new(out, "tip_forces_n", rd_result_reals(res->tip_force, 2, 1, 1.0));
-    bad |= json_object_set_new(
-        out, "pressure_bins",
-        json_pack("{s:f, s:o}", "bin_deg", RD_CONTACT_BIN_DEG, "pressure_pa",
-                  rd_result_reals(res->bin_pressure, RD_CONTACT_BINS, 1, 1.0)));
+    bad |=
+        json_object_set_new(out, "pressure_bins",
+                            json_pack("{s:f, s:o}", "bin_deg", RD_CONTACT_BIN_DEG, "pressure_pa",
+                                      rd_result_reals(res->bin_pressure, RD_CONTACT_BINS, 1, 1.0)));
     if (bad)
         return 1;
     const rd_contact_estimates *e = &res->estimates;
-    bad |= json_object_set_new(
-        num, "error_estimates",
-        json_pack("{s:o, s:o, s:o, s:o}", "pressure", rd_result_real(e->pressure),
-                  "contact_fraction", rd_result_real(e->contact_fraction), "max_clearance",
-                  rd_result_real(e->max_clearance), "gap_edges_deg",
-                  rd_result_real(e->gap_edges_deg)));
-    bad |= json_object_set_new(
-        num, "accuracy", rd_result_real(res->accuracy_met < 0 ? NAN : res->accuracy));
+    bad |= json_object_set_new(num, "error_estimates",
+                               json_pack("{s:o, s:o, s:o, s:o}", "pressure",
+                                         rd_result_real(e->pressure), "contact_fraction",
+                                         rd_result_real(e->contact_fraction), "max_clearance",
+                                         rd_result_real(e->max_clearance), "gap_edges_deg",
+                                         rd_result_real(e->gap_edges_deg)));
+    bad |= json_object_set_new(num, "accuracy",
+                               rd_result_real(res->accuracy_met < 0 ? NAN : res->accuracy));
     bad |= json_object_set_new(
         num, "accuracy_met", res->accuracy_met < 0 ? json_null() : json_boolean(res->accuracy_met));
-    bad |= json_object_set_new(num, "accuracy_note", res->accuracy_note[0]
-                                                         ? json_string(res->accuracy_note)
-                                                         : json_null());
+    bad |=
+        json_object_set_new(num, "accuracy_note",
+                            res->accuracy_note[0] ? json_string(res->accuracy_note) : json_null());
     return bad;
 }
 
@@ -163,26 +164,22 @@ static json_t *contact_result(const rd_scene *scene, const rd_contact_result *re
     json_t *out = json_pack(
         "{s:s, s:o, s:o, s:o, s:o, s:o, s:o, s:o, s:o, s:o, s:o, s:o, s:o, s:o, s:o, s:o,"
         " s:o}",
-        "analysis", rd_scene_analysis(scene),
-        "scene", rd_scene_echo(scene),
-        "angle_deg", rd_result_reals(res->angle_deg, n, 1, 1.0),
-        "pressure_pa", rd_result_reals(res->pressure, n, 1, 1.0),
-        "clearance", rd_result_reals(res->clearance, n, 1, 1.0),
-        "bore_radius", rd_result_reals(res->bore_radius, n, 1, 1.0),
-        "mean_pressure_pa", rd_result_real(res->mean_pressure),
-        "uniform_pressure_pa", rd_result_real(res->uniform_pressure),
-        "contact_fraction", rd_result_real(res->contact_fraction),
-        "max_clearance", rd_result_real(res->max_clearance),
-        "max_clearance_angle_deg", rd_result_real(res->max_clearance_angle_deg),
-        "max_penetration", rd_result_real(res->max_penetration),
-        "contact_stiffness", rd_result_real(res->stiffness),
-        "conformability", rd_result_real(res->conformability),
-        "distortion", distortion_bounds(scene, res),
-        "support", rd_static_result_support(&res->stats),
-        "numerics", rd_static_result_numerics(&res->stats, wall_s,
-                                              "Largest difference of the binned pressure, "
-                                              "relative to the uniform pressure, at the last two "
-                                              "refinement levels,"));
+        "analysis", rd_scene_analysis(scene), "scene", rd_scene_echo(scene), "angle_deg",
+        rd_result_reals(res->angle_deg, n, 1, 1.0), "pressure_pa",
+        rd_result_reals(res->pressure, n, 1, 1.0), "clearance",
+        rd_result_reals(res->clearance, n, 1, 1.0), "bore_radius",
+        rd_result_reals(res->bore_radius, n, 1, 1.0), "mean_pressure_pa",
+        rd_result_real(res->mean_pressure), "uniform_pressure_pa",
+        rd_result_real(res->uniform_pressure), "contact_fraction",
+        rd_result_real(res->contact_fraction), "max_clearance", rd_result_real(res->max_clearance),
+        "max_clearance_angle_deg", rd_result_real(res->max_clearance_angle_deg), "max_penetration",
+        rd_result_real(res->max_penetration), "contact_stiffness", rd_result_real(res->stiffness),
+        "conformability", rd_result_real(res->conformability), "distortion",
+        distortion_bounds(scene, res), "support", rd_static_result_support(&res->stats), "numerics",
+        rd_static_result_numerics(&res->stats, wall_s,
+                                  "Largest difference of the binned pressure, "
+                                  "relative to the uniform pressure, at the last two "
+                                  "refinement levels,"));
     if (out && contact_accuracy(out, res) != 0) {
         json_decref(out);
         out = NULL;

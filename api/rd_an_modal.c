@@ -20,7 +20,7 @@
 #include "rd_ring.h"
 #include "rd_scene.h"
 
-#define PI 3.14159265358979323846
+#define PI         3.14159265358979323846
 #define AT(member) offsetof(struct rd_scene, member)
 
 /* ---- scene ---------------------------------------------------------------- */
@@ -34,8 +34,8 @@ static const rd_field modal_fields[] = {
              "2n > 2000) and Richardson extrapolation."},
     {.key = NULL},
 };
-static const rd_block modal_block = {"ModalOptions", "/modal: what the modal analysis computes.",
-                                     0, 0, modal_fields};
+static const rd_block modal_block = {"ModalOptions", "/modal: what the modal analysis computes.", 0,
+                                     0, modal_fields};
 
 static const rd_field scene_fields[] = {
     RD_SCENE_COMMON(rd_block_discretization_modal),
@@ -72,11 +72,11 @@ static json_t *mode_shape(const rd_mode *m, int n, double R)
 {
     if (!m->shape)
         return json_null();
-    return json_pack("{s:o, s:o, s:o, s:o}",
-                     "radial", rd_result_reals(&SHAPE(m, 0, S_RADIAL), n, 6, 1.0),
-                     "tangential", rd_result_reals(&SHAPE(m, 0, S_TANGENTIAL), n, 6, 1.0),
-                     "axial", rd_result_reals(&SHAPE(m, 0, S_AXIAL), n, 6, 1.0),
-                     "twist", rd_result_reals(&SHAPE(m, 0, S_ROT_TANGENTIAL), n, 6, R));
+    return json_pack("{s:o, s:o, s:o, s:o}", "radial",
+                     rd_result_reals(&SHAPE(m, 0, S_RADIAL), n, 6, 1.0), "tangential",
+                     rd_result_reals(&SHAPE(m, 0, S_TANGENTIAL), n, 6, 1.0), "axial",
+                     rd_result_reals(&SHAPE(m, 0, S_AXIAL), n, 6, 1.0), "twist",
+                     rd_result_reals(&SHAPE(m, 0, S_ROT_TANGENTIAL), n, 6, R));
 }
 
 static json_t *modal_modes(const rd_modal_result *res, int n, double R)
@@ -85,16 +85,14 @@ static json_t *modal_modes(const rd_modal_result *res, int n, double R)
     for (int k = 0; modes && k < res->n_modes; k++) {
         const rd_mode *m = &res->modes[k];
         /* json_pack steals every "o" value, also when it fails. */
-        json_t *mode = json_pack(
-            "{s:i, s:o, s:s, s:o, s:o, s:o, s:o, s:o}",
-            "mode", k + 1,
-            "frequency_hz", rd_result_real(m->frequency_hz),
-            "kind", m->kind == RD_MODE_IN_PLANE ? "in_plane" : "out_of_plane",
-            "in_plane_energy_fraction", rd_result_real(m->in_plane_fraction),
-            "error_estimate", rd_result_real(m->error_estimate),
-            "frequency_extrapolated_hz", rd_result_real(m->frequency_extrapolated_hz),
-            "residual", rd_result_real(m->residual),
-            "shape", mode_shape(m, n, R));
+        json_t *mode =
+            json_pack("{s:i, s:o, s:s, s:o, s:o, s:o, s:o, s:o}", "mode", k + 1, "frequency_hz",
+                      rd_result_real(m->frequency_hz), "kind",
+                      m->kind == RD_MODE_IN_PLANE ? "in_plane" : "out_of_plane",
+                      "in_plane_energy_fraction", rd_result_real(m->in_plane_fraction),
+                      "error_estimate", rd_result_real(m->error_estimate),
+                      "frequency_extrapolated_hz", rd_result_real(m->frequency_extrapolated_hz),
+                      "residual", rd_result_real(m->residual), "shape", mode_shape(m, n, R));
         if (json_array_append_new(modes, mode) != 0) {
             json_decref(modes);
             modes = NULL;
@@ -110,24 +108,19 @@ static json_t *modal_numerics(const rd_modal_result *res, double wall_s)
     snprintf(method, sizeof method,
              "Richardson extrapolation from a second solve at %d segments, convergence order 2",
              res->reference_segments);
-    return json_pack("{s:i, s:i, s:o, s:s, s:i, s:i, s:o, s:o, s:o, s:o}",
-                     "segments", res->segments,
-                     "dof", res->dof,
-                     "wall_s", rd_result_real(wall_s),
-                     "solver", modal_solver,
-                     "iterations", res->iterations,
-                     "block_size", res->block_size,
-                     "max_residual", rd_result_real(res->max_residual),
-                     "reference_segments",
-                         estimated ? json_integer(res->reference_segments) : json_null(),
-                     "error_estimate", rd_result_real(res->error_estimate),
-                     "error_method", estimated ? json_string(method) : json_null());
+    return json_pack("{s:i, s:i, s:o, s:s, s:i, s:i, s:o, s:o, s:o, s:o}", "segments",
+                     res->segments, "dof", res->dof, "wall_s", rd_result_real(wall_s), "solver",
+                     modal_solver, "iterations", res->iterations, "block_size", res->block_size,
+                     "max_residual", rd_result_real(res->max_residual), "reference_segments",
+                     estimated ? json_integer(res->reference_segments) : json_null(),
+                     "error_estimate", rd_result_real(res->error_estimate), "error_method",
+                     estimated ? json_string(method) : json_null());
 }
 
 /* The result object (API.md "Results", rd_api.h); `ring` is the model that
  * was solved (segment angles, centroid radius). */
-static json_t *modal_result(const rd_scene *scene, const rd_ring *ring,
-                            const rd_modal_result *res, double wall_s)
+static json_t *modal_result(const rd_scene *scene, const rd_ring *ring, const rd_modal_result *res,
+                            double wall_s)
 {
     int n = rd_ring_get_segments(ring);
     double R = rd_ring_get_section(ring)->R;
@@ -140,13 +133,10 @@ static json_t *modal_result(const rd_scene *scene, const rd_ring *ring,
             angles = NULL;
         }
     }
-    return json_pack("{s:s, s:o, s:i, s:o, s:o, s:o}",
-                     "analysis", rd_scene_analysis(scene),
-                     "scene", rd_scene_echo(scene),
-                     "rigid_body_modes", res->rigid_body_modes,
-                     "segment_angle_deg", angles,
-                     "modes", modal_modes(res, n, R),
-                     "numerics", modal_numerics(res, wall_s));
+    return json_pack("{s:s, s:o, s:i, s:o, s:o, s:o}", "analysis", rd_scene_analysis(scene),
+                     "scene", rd_scene_echo(scene), "rigid_body_modes", res->rigid_body_modes,
+                     "segment_angle_deg", angles, "modes", modal_modes(res, n, R), "numerics",
+                     modal_numerics(res, wall_s));
 }
 
 /* The ring model (for the segment angles and R) and the eigen-solve with
@@ -162,8 +152,8 @@ static int run(const rd_scene *s, const rd_monitor *mon, json_t **out, rd_error 
     rd_error_init(&ring_err);
     ring = rd_ring_create(&s->ring, s->segments, s->closed, &ring_err);
     if (!ring) {
-        rc = rd_error_set(err, ring_err.code != RD_OK ? ring_err.code : RD_EINTERNAL,
-                          ring_err.path, "%s", ring_err.message);
+        rc = rd_error_set(err, ring_err.code != RD_OK ? ring_err.code : RD_EINTERNAL, ring_err.path,
+                          "%s", ring_err.message);
         goto out;
     }
     double t0 = rd_clock_s();

@@ -12,7 +12,7 @@
 #include "rd_scene.h"
 #include "rd_static.h"
 
-#define PI 3.14159265358979323846
+#define PI         3.14159265358979323846
 #define ST(member) offsetof(struct rd_static_scene, member)
 
 /* Indexed by enum rd_pretension_method. */
@@ -71,23 +71,18 @@ static json_t *pretension_result(const rd_scene *scene, const rd_pretension_resu
     }
     out = json_pack(
         "{s:s, s:o, s:o, s:o, s:o, s:o, s:o, s:o, s:{s:o, s:o, s:o, s:o, s:o, s:o}, s:o}",
-        "analysis", rd_scene_analysis(scene),
-        "scene", rd_scene_echo(scene),
-        "gap_opening_inner", rd_result_real(res->gap_opening_inner),
-        "lateral_opening", rd_result_real(res->lateral_opening),
-        "gap_opening_neutral", rd_result_real(res->gap_opening_neutral),
-        "free_gap_formula", rd_result_real(res->free_gap_formula),
-        "conformability", rd_result_real(res->conformability),
-        "support", rd_static_result_support(&res->stats),
-        "shape",
-            "angle_deg", rd_result_reals(res->angle_deg, np, 1, 1.0),
-            "x", rd_result_reals(res->x, np, 1, 1.0),
-            "y", rd_result_reals(res->y, np, 1, 1.0),
-            "z", rd_result_reals(res->z, np, 1, 1.0),
-            "reference_x", rd_result_reals(rx, np, 1, 1.0),
-            "reference_y", rd_result_reals(ry, np, 1, 1.0),
-        "numerics", rd_static_result_numerics(&res->stats, wall_s,
-                                              "Richardson extrapolation (order 2) of x_a and x_c"));
+        "analysis", rd_scene_analysis(scene), "scene", rd_scene_echo(scene), "gap_opening_inner",
+        rd_result_real(res->gap_opening_inner), "lateral_opening",
+        rd_result_real(res->lateral_opening), "gap_opening_neutral",
+        rd_result_real(res->gap_opening_neutral), "free_gap_formula",
+        rd_result_real(res->free_gap_formula), "conformability",
+        rd_result_real(res->conformability), "support", rd_static_result_support(&res->stats),
+        "shape", "angle_deg", rd_result_reals(res->angle_deg, np, 1, 1.0), "x",
+        rd_result_reals(res->x, np, 1, 1.0), "y", rd_result_reals(res->y, np, 1, 1.0), "z",
+        rd_result_reals(res->z, np, 1, 1.0), "reference_x", rd_result_reals(rx, np, 1, 1.0),
+        "reference_y", rd_result_reals(ry, np, 1, 1.0), "numerics",
+        rd_static_result_numerics(&res->stats, wall_s,
+                                  "Richardson extrapolation (order 2) of x_a and x_c"));
 out:
     free(rx);
     free(ry);
@@ -99,8 +94,8 @@ static int run(const rd_scene *s, const rd_monitor *mon, json_t **out, rd_error 
     const struct rd_static_scene *o = s->opts;
     rd_pretension_result res;
     double t0 = rd_clock_s();
-    int rc = rd_pretension_solve(&s->ring, s->segments, &o->pretension, &o->statics, mon, &res,
-                                 err);
+    int rc =
+        rd_pretension_solve(&s->ring, s->segments, &o->pretension, &o->statics, mon, &res, err);
     if (rc == RD_OK)
         *out = pretension_result(s, &res, rd_clock_s() - t0);
     rd_pretension_result_cleanup(&res);

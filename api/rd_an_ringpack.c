@@ -30,7 +30,7 @@ struct pack_opts {
     int synthetic_given, synthetic_kind; /* kind: index into synthetic_names */
     int model;                           /* index into model_names */
     int max_steps;
-    struct rd_table table[2];            /* crank_deg, pressure_pa */
+    struct rd_table table[2]; /* crank_deg, pressure_pa */
 };
 
 #define PO(member) offsetof(struct pack_opts, member)
@@ -57,12 +57,11 @@ static const rd_field engine_fields[] = {
              "(periodicity)."},
     {.key = NULL},
 };
-static const rd_block engine_block = {"PackEngine", "/engine (ringpack): piston kinematics.", 1,
-                                      0, engine_fields};
+static const rd_block engine_block = {"PackEngine", "/engine (ringpack): piston kinematics.", 1, 0,
+                                      engine_fields};
 
 static const rd_field groove_fields[] = {
-    {"axial_clearance", RD_F_NUMBER, PO(proto.groove.axial_clearance), RD_MIN(1e-07),
-     RD_MAX(0.005),
+    {"axial_clearance", RD_F_NUMBER, PO(proto.groove.axial_clearance), RD_MIN(1e-07), RD_MAX(0.005),
      .desc = "Groove height minus ring height, m (> 0: a ring as tall as its groove or taller "
              "is refused), smaller than the ring's height."},
     {"radial_clearance", RD_F_NUMBER, PO(proto.groove.radial_clearance), RD_MIN(1e-06),
@@ -91,9 +90,9 @@ static const rd_field item_fields[] = {
     {"gap_angle_deg", RD_F_NUMBER, PO(proto.gap_angle_deg), RD_MIN(-360), RD_MAX(360),
      .desc = "Where the end gap sits around the bore, deg; recorded (the rigid ring is "
              "axisymmetric and does not use it)."},
-    {"discharge_coefficient", RD_F_NUMBER, PO(proto.discharge_coefficient), RD_MIN(0),
-     RD_MAX(1), .desc = "C_d of the ring's passages (end gap, flanks; the first ring's also for "
-                        "the top-land entry), -."},
+    {"discharge_coefficient", RD_F_NUMBER, PO(proto.discharge_coefficient), RD_MIN(0), RD_MAX(1),
+     .desc = "C_d of the ring's passages (end gap, flanks; the first ring's also for "
+             "the top-land entry), -."},
     {"pinned", RD_F_CHOICE, PO(proto.pinned), .choices = pin_names,
      .desc = "lower / upper: the ring stays on that flank; none (or null): it moves."},
     {.key = NULL},
@@ -110,8 +109,8 @@ static const rd_field synthetic_fields[] = {
              "intake_pa x compression_ratio^1.32."},
     {"peak_crank_deg", RD_F_NUMBER, PO(pack.synthetic.peak_crank_deg), RD_MIN(0), RD_MAX(60),
      .desc = "Fired: crank angle of the peak, deg after firing TDC."},
-    {"compression_ratio", RD_F_NUMBER, PO(pack.synthetic.compression_ratio), RD_MIN(2),
-     RD_MAX(40), .desc = "Geometric compression ratio, -."},
+    {"compression_ratio", RD_F_NUMBER, PO(pack.synthetic.compression_ratio), RD_MIN(2), RD_MAX(40),
+     .desc = "Geometric compression ratio, -."},
     {"intake_pa", RD_F_NUMBER, PO(pack.synthetic.intake_pa), RD_MIN(1e4), RD_MAX(1e7),
      .desc = "Pressure at inlet closing (BDC) and during exhaust and intake, Pa, absolute."},
     {.key = NULL},
@@ -171,13 +170,13 @@ static const rd_field numerics_fields[] = {
 static const rd_block numerics_block = {"PackNumerics", "/numerics of a ringpack scene.", 1, 0,
                                         numerics_fields};
 
-static int parse_rings(const rd_field *f, json_t *v, const char *path, rd_scene *s,
-                       rd_error *err);
+static int parse_rings(const rd_field *f, json_t *v, const char *path, rd_scene *s, rd_error *err);
 static json_t *echo_rings(const rd_scene *s);
 
 static const rd_field scene_fields[] = {
-    {"analysis", RD_F_ANALYSIS, 0, .desc = "Which analysis to run; decides which blocks are "
-                                           "read."},
+    {"analysis", RD_F_ANALYSIS, 0,
+     .desc = "Which analysis to run; decides which blocks are "
+             "read."},
     {"name", RD_F_STRING, offsetof(struct rd_scene, name),
      .desc = "Free text, echoed in the result; absent when not given."},
     {"description", RD_F_STRING, offsetof(struct rd_scene, description),
@@ -230,8 +229,7 @@ static int parse_ring(json_t *item, const char *at, rd_scene *s, int i, rd_error
     return rc;
 }
 
-static int parse_rings(const rd_field *f, json_t *v, const char *path, rd_scene *s,
-                       rd_error *err)
+static int parse_rings(const rd_field *f, json_t *v, const char *path, rd_scene *s, rd_error *err)
 {
     struct pack_opts *o = s->opts;
     size_t n = json_array_size(v);
@@ -303,18 +301,21 @@ static int cylinder_finish(struct pack_opts *o, rd_error *err)
         o->synthetic_given = 1;
         return RD_OK;
     }
-    const char *miss = o->table[0].v ? "/cylinder_pressure/pressure_pa" : "/cylinder_pressure/crank_deg";
+    const char *miss =
+        o->table[0].v ? "/cylinder_pressure/pressure_pa" : "/cylinder_pressure/crank_deg";
     if (o->synthetic_given)
         return rd_error_set(err, RD_EINVAL, "/cylinder_pressure/synthetic",
                             "/cylinder_pressure gives both a table and synthetic: use one.");
     if (has == 1)
         return rd_error_set(err, RD_EINVAL, miss,
                             "%s is missing: a cylinder pressure table needs crank_deg and "
-                            "pressure_pa of the same length.", miss);
+                            "pressure_pa of the same length.",
+                            miss);
     if (o->table[0].n != o->table[1].n)
         return rd_error_set(err, RD_EINVAL, "/cylinder_pressure/pressure_pa",
                             "/cylinder_pressure/pressure_pa has %d values but crank_deg has %d; "
-                            "they must have the same length.", o->table[1].n, o->table[0].n);
+                            "they must have the same length.",
+                            o->table[1].n, o->table[0].n);
     p->cylinder_kind = RD_CYLINDER_TABLE;
     p->table_points = o->table[0].n;
     p->table_deg = o->table[0].v;
@@ -329,7 +330,8 @@ static int finish(struct rd_scene *s, rd_error *err)
         return rd_error_set(err, RD_EINVAL, "/numerics/model",
                             "/numerics/model = \"%s\" is not available in the ring pack yet: "
                             "use \"auto\" or \"rigid\" (the rigid ring, exact for the pack's "
-                            "axisymmetric scenes).", model_names[o->model]);
+                            "axisymmetric scenes).",
+                            model_names[o->model]);
     o->pack.max_steps = o->max_steps;
     int rc = cylinder_finish(o, err);
     return rc ? rc : rd_ringpack_validate(&o->pack, err);
@@ -403,7 +405,7 @@ static json_t *flows_json(const rd_ringpack_result *r)
  * ring or volume is absent. */
 static json_t *table_json(const rd_ringpack_result *r)
 {
-    static const char *const pcol[] = {"cylinder_pa", "top_land_pa", "groove_1_pa",
+    static const char *const pcol[] = {"cylinder_pa",    "top_land_pa", "groove_1_pa",
                                        "second_land_pa", "groove_2_pa", "third_land_pa",
                                        "groove_3_pa"};
     static const char *const lcol[] = {"lift_1_m", "lift_2_m", "lift_3_m"};
@@ -415,17 +417,20 @@ static json_t *table_json(const rd_ringpack_result *r)
         for (int f = 0; f < r->n_flows; f++)
             if (r->flow_to[f] == r->n_volumes - 1)
                 in += r->flow[(size_t)f * N + k];
-        bad |= json_array_append_new(nulls, json_null()) || json_array_append_new(cc, rd_result_real(in));
+        bad |= json_array_append_new(nulls, json_null()) ||
+               json_array_append_new(cc, rd_result_real(in));
     }
     bad |= !t || json_object_set_new(t, "crank_deg", rd_result_reals(r->crank_deg, N, 1, 1.0));
     for (int v = 0; !bad && v < 7; v++)
-        bad |= json_object_set_new(t, pcol[v], v < r->n_volumes - 1
-                                                   ? rd_result_reals(r->pressure + (size_t)v * N, N, 1, 1.0)
-                                                   : json_copy(nulls));
+        bad |= json_object_set_new(t, pcol[v],
+                                   v < r->n_volumes - 1
+                                       ? rd_result_reals(r->pressure + (size_t)v * N, N, 1, 1.0)
+                                       : json_copy(nulls));
     for (int i = 0; !bad && i < 3; i++)
-        bad |= json_object_set_new(t, lcol[i], i < r->n_rings
-                                                   ? rd_result_reals(r->lift + (size_t)i * N, N, 1, 1.0)
-                                                   : json_copy(nulls));
+        bad |=
+            json_object_set_new(t, lcol[i],
+                                i < r->n_rings ? rd_result_reals(r->lift + (size_t)i * N, N, 1, 1.0)
+                                               : json_copy(nulls));
     bad |= json_object_set(t, "blowby_kg_s", cc);
     json_decref(nulls);
     json_decref(cc);
@@ -442,28 +447,21 @@ static json_t *pack_numerics(const rd_scene *scene, const rd_ringpack_result *r,
     int estimated = isfinite(r->error_estimate);
     return json_pack(
         "{s:s, s:i, s:o, s:s, s:I, s:I, s:I, s:I, s:I, s:I, s:I, s:o, s:o, s:o, s:o, s:o, s:i}",
-        "model", "rigid",
-        "dof", 4 * r->n_rings + 4,
-        "wall_s", rd_result_real(wall_s),
-        "solver", "SUNDIALS CVODE, BDF with a dense Newton linear solver (difference-quotient "
-                  "Jacobian), root finding for the flank changes, restarted at each",
-        "steps", (json_int_t)r->steps,
-        "rhs_evals", (json_int_t)r->rhs_evals,
-        "jac_evals", (json_int_t)r->jac_evals,
-        "root_evals", (json_int_t)r->root_evals,
-        "restarts", (json_int_t)r->restarts,
-        "error_test_fails", (json_int_t)r->err_test_fails,
-        "nonlinear_failures", (json_int_t)r->nonlin_fails,
-        "rtol", rd_result_real(o->pack.rtol),
-        "atol", rd_result_real(o->pack.atol),
-        "error_estimate", rd_result_real(r->error_estimate),
-        "event_error_deg", rd_result_real(r->event_error_deg),
-        "error_method", estimated ? json_string("second run at rtol/10 and atol/10: the larger of "
-                                                "the blow-by's relative change and the largest "
-                                                "pressure change over the cylinder peak; the "
-                                                "largest shift of a matched flank change (null "
-                                                "when the runs' flank changes differ in number)")
-                                  : json_null(),
+        "model", "rigid", "dof", 4 * r->n_rings + 4, "wall_s", rd_result_real(wall_s), "solver",
+        "SUNDIALS CVODE, BDF with a dense Newton linear solver (difference-quotient "
+        "Jacobian), root finding for the flank changes, restarted at each",
+        "steps", (json_int_t)r->steps, "rhs_evals", (json_int_t)r->rhs_evals, "jac_evals",
+        (json_int_t)r->jac_evals, "root_evals", (json_int_t)r->root_evals, "restarts",
+        (json_int_t)r->restarts, "error_test_fails", (json_int_t)r->err_test_fails,
+        "nonlinear_failures", (json_int_t)r->nonlin_fails, "rtol", rd_result_real(o->pack.rtol),
+        "atol", rd_result_real(o->pack.atol), "error_estimate", rd_result_real(r->error_estimate),
+        "event_error_deg", rd_result_real(r->event_error_deg), "error_method",
+        estimated ? json_string("second run at rtol/10 and atol/10: the larger of "
+                                "the blow-by's relative change and the largest "
+                                "pressure change over the cylinder peak; the "
+                                "largest shift of a matched flank change (null "
+                                "when the runs' flank changes differ in number)")
+                  : json_null(),
         "cycles", r->cycles);
 }
 
@@ -476,22 +474,15 @@ static json_t *pack_result(const rd_scene *scene, const rd_ringpack_result *r, d
             rings = NULL;
         }
     return json_pack(
-        "{s:s, s:o, s:o, s:o, s:o, s:o, s:{s:o, s:o, s:o, s:o, s:o}, s:o, s:o, s:o}",
-        "analysis", rd_scene_analysis(scene),
-        "scene", rd_scene_echo(scene),
-        "crank_deg", rd_result_reals(r->crank_deg, r->samples, 1, 1.0),
-        "volumes", volumes_json(r),
-        "rings", rings,
-        "flows", flows_json(r),
-        "blowby",
-        "kg_per_cycle", rd_result_real(r->blowby_kg),
-        "l_per_min", rd_result_real(r->blowby_l_per_min),
-        "reverse_kg_per_cycle", rd_result_real(r->reverse_kg),
-        "inflow_kg_per_cycle", rd_result_real(r->inflow_kg),
-        "mass_balance_residual", rd_result_real(r->mass_residual),
-        "periodicity", rd_result_real(r->periodicity),
-        "table", table_json(r),
-        "numerics", pack_numerics(scene, r, wall_s));
+        "{s:s, s:o, s:o, s:o, s:o, s:o, s:{s:o, s:o, s:o, s:o, s:o}, s:o, s:o, s:o}", "analysis",
+        rd_scene_analysis(scene), "scene", rd_scene_echo(scene), "crank_deg",
+        rd_result_reals(r->crank_deg, r->samples, 1, 1.0), "volumes", volumes_json(r), "rings",
+        rings, "flows", flows_json(r), "blowby", "kg_per_cycle", rd_result_real(r->blowby_kg),
+        "l_per_min", rd_result_real(r->blowby_l_per_min), "reverse_kg_per_cycle",
+        rd_result_real(r->reverse_kg), "inflow_kg_per_cycle", rd_result_real(r->inflow_kg),
+        "mass_balance_residual", rd_result_real(r->mass_residual), "periodicity",
+        rd_result_real(r->periodicity), "table", table_json(r), "numerics",
+        pack_numerics(scene, r, wall_s));
 }
 
 static int run(const rd_scene *s, const rd_monitor *mon, json_t **out, rd_error *err)

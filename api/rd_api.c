@@ -28,8 +28,8 @@ const char *rd_api_version(void)
 char *rd_api_openapi_json(const char *template_json, rd_error *err)
 {
     json_t *doc = rd_registry_openapi(rd_registry, template_json, err);
-    char *text = doc ? json_dumps(doc, JSON_INDENT(2) | JSON_REAL_PRECISION(RD_SCENE_REAL_DIGITS))
-                     : NULL;
+    char *text =
+        doc ? json_dumps(doc, JSON_INDENT(2) | JSON_REAL_PRECISION(RD_SCENE_REAL_DIGITS)) : NULL;
     if (doc && !text)
         rd_error_set(err, RD_ENOMEM, "", "out of memory while writing the OpenAPI document");
     json_decref(doc);
@@ -39,8 +39,8 @@ char *rd_api_openapi_json(const char *template_json, rd_error *err)
 char *rd_api_json_pretty(const char *json)
 {
     json_t *v = json_loads(json ? json : "", JSON_DECODE_ANY, NULL);
-    char *text = v ? json_dumps(v, JSON_INDENT(2) | JSON_REAL_PRECISION(RD_SCENE_REAL_DIGITS))
-                   : NULL;
+    char *text =
+        v ? json_dumps(v, JSON_INDENT(2) | JSON_REAL_PRECISION(RD_SCENE_REAL_DIGITS)) : NULL;
     json_decref(v);
     return text;
 }
@@ -88,10 +88,8 @@ char *rd_api_error_json(const rd_error *err)
         utf8_sanitize(m[0] ? m : rd_error_summary(code), message);
         utf8_sanitize(p, path);
     }
-    json_t *body = json_pack("{s:{s:s, s:s, s:s*}}", "error",
-                             "code", rd_error_code_name(code),
-                             "message", message,
-                             "path", path[0] ? path : NULL);
+    json_t *body = json_pack("{s:{s:s, s:s, s:s*}}", "error", "code", rd_error_code_name(code),
+                             "message", message, "path", path[0] ? path : NULL);
     char *text = body ? json_dumps(body, JSON_COMPACT) : NULL;
     json_decref(body);
     return text;
@@ -101,10 +99,10 @@ char *rd_api_error_json(const rd_error *err)
 static json_t *issue_json(int code, const char *path, const char *message, const char *allowed,
                           const char *dym, json_t *root)
 {
-    char m[RD_ERROR_MESSAGE_MAX], a[sizeof ((rd_issue *)0)->allowed];
+    char m[RD_ERROR_MESSAGE_MAX], a[sizeof((rd_issue *)0)->allowed];
     utf8_sanitize(message, m);
-    json_t *o = json_pack("{s:s, s:s, s:s}", "code", rd_error_code_name(code), "path", path,
-                          "message", m);
+    json_t *o =
+        json_pack("{s:s, s:s, s:s}", "code", rd_error_code_name(code), "path", path, "message", m);
     json_t *value = root && path[0] ? rd_jsonptr_get(root, path) : NULL;
     int bad = !o || (value && json_object_set(o, "value", value) != 0);
     if (!bad && allowed && allowed[0]) {
@@ -135,12 +133,11 @@ static char *error_body(const rd_error *err, const rd_issues *issues, json_t *ro
     for (int i = 0; issues && i < issues->n && !same; i++)
         if (strcmp(issues->item[i].path, path) == 0)
             same = &issues->item[i];
-    int bad = !error || !list ||
-              json_array_append_new(list, issue_json(err->code, path,
-                                                     json_string_value(json_object_get(error,
-                                                                                       "message")),
-                                                     same ? same->allowed : NULL,
-                                                     same ? same->did_you_mean : NULL, root));
+    int bad =
+        !error || !list ||
+        json_array_append_new(
+            list, issue_json(err->code, path, json_string_value(json_object_get(error, "message")),
+                             same ? same->allowed : NULL, same ? same->did_you_mean : NULL, root));
     for (int i = 0; !bad && issues && i < issues->n; i++) {
         const rd_issue *it = &issues->item[i];
         if (strcmp(it->path, path) != 0)

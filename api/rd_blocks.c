@@ -62,9 +62,11 @@ static const rd_field modal_discretization[] = {
 const rd_block rd_block_discretization_modal = {
     "ModalDiscretization", "Discretization of a modal scene.", 0, 0, modal_discretization};
 
-#define SPLIT_ONLY                                                                               \
-    {"closed", RD_F_BOOL, AT(closed), .only_false = 1,                                           \
-     .desc = "Must be false (true is 422 invalid_scene)."}
+#define SPLIT_ONLY                                                                            \
+    {                                                                                         \
+        "closed", RD_F_BOOL, AT(closed), .only_false = 1,                                     \
+                                         .desc = "Must be false (true is 422 invalid_scene)." \
+    }
 
 static const rd_field static_discretization[] = {
     {"segments", RD_F_INTEGER, AT(segments), RD_MIN(4), RD_MAX(2000),
@@ -91,39 +93,45 @@ const rd_block rd_block_discretization_lift = {
 #define ST(member) offsetof(struct rd_static_scene, member)
 
 /* The Newton fields pretension and contact share; contact adds its accuracy target. */
-#define STATIC_NUMERICS_FIELDS \
-    {"tolerance", RD_F_NUMBER, ST(statics.tol), RD_MIN(1e-13), RD_MAX(0.001), \
-     .desc = "Relative residual tolerance: largest force residual <= tolerance * F_ref, moment " \
-             "residual <= tolerance * F_ref * R. Raised to the ring's rounding floor when that " \
-             "is larger (result numerics.tolerance gives the one used)."}, \
-    {"max_iterations", RD_F_INTEGER, ST(statics.max_iterations), RD_MIN(1), RD_MAX(100000), \
-     .desc = "Newton iterations allowed over all load steps."}, \
-    {"error_estimate", RD_F_BOOL, ST(statics.estimate_error), \
-     .desc = "Estimate the discretization error by a second solve at 2n segments (n/2 above " \
-             "1000)."},
+#define STATIC_NUMERICS_FIELDS                                                                    \
+    {"tolerance",                                                                                 \
+     RD_F_NUMBER,                                                                                 \
+     ST(statics.tol),                                                                             \
+     RD_MIN(1e-13),                                                                               \
+     RD_MAX(0.001),                                                                               \
+     .desc = "Relative residual tolerance: largest force residual <= tolerance * F_ref, moment "  \
+             "residual <= tolerance * F_ref * R. Raised to the ring's rounding floor when that "  \
+             "is larger (result numerics.tolerance gives the one used)."},                        \
+        {"max_iterations",                                                                        \
+         RD_F_INTEGER,                                                                            \
+         ST(statics.max_iterations),                                                              \
+         RD_MIN(1),                                                                               \
+         RD_MAX(100000),                                                                          \
+         .desc = "Newton iterations allowed over all load steps."},                               \
+        {"error_estimate", RD_F_BOOL, ST(statics.estimate_error),                                 \
+         .desc = "Estimate the discretization error by a second solve at 2n segments (n/2 above " \
+                 "1000)."},
 
 static const rd_field static_numerics[] = {
-    STATIC_NUMERICS_FIELDS
-    {.key = NULL},
+    STATIC_NUMERICS_FIELDS{.key = NULL},
 };
 const rd_block rd_block_static_numerics = {
-    "StaticNumerics",
-    "/numerics of a pretension scene: Newton's method with load stepping.", 1, 0,
+    "StaticNumerics", "/numerics of a pretension scene: Newton's method with load stepping.", 1, 0,
     static_numerics};
 
 static const rd_field contact_numerics[] = {
-    STATIC_NUMERICS_FIELDS
-    {"accuracy", RD_F_NUMBER, ST(contact.accuracy), RD_MIN(1e-4), RD_MAX(0.5),
-     .desc = "Target relative accuracy of the pressure (relative to 2 F_t / (d h)), held to the "
-             "same standard for the light-gap quantities: the solve refines n, 2n, 4n ... up to "
-             "contact.max_segments until its error estimates meet it, or says why not "
-             "(numerics.accuracy_met, accuracy_note)."},
+    STATIC_NUMERICS_FIELDS{
+        "accuracy", RD_F_NUMBER, ST(contact.accuracy), RD_MIN(1e-4), RD_MAX(0.5),
+        .desc = "Target relative accuracy of the pressure (relative to 2 F_t / (d h)), held to the "
+                "same standard for the light-gap quantities: the solve refines n, 2n, 4n ... up to "
+                "contact.max_segments until its error estimates meet it, or says why not "
+                "(numerics.accuracy_met, accuracy_note)."},
     {.key = NULL},
 };
 const rd_block rd_block_contact_numerics = {
     "ContactNumerics",
-    "/numerics of a contact scene: Newton's method with load stepping, and the accuracy target.",
-    1, 0, contact_numerics};
+    "/numerics of a contact scene: Newton's method with load stepping, and the accuracy target.", 1,
+    0, contact_numerics};
 
 void rd_static_scene_defaults(struct rd_scene *s)
 {
@@ -144,22 +152,17 @@ json_t *rd_static_result_numerics(const rd_static_stats *st, double wall_s, cons
 {
     char method[192];
     int estimated = st->reference_segments > 0;
-    snprintf(method, sizeof method,
-             "%s from a second solve at %d segments", what, st->reference_segments);
-    return json_pack("{s:i, s:i, s:o, s:s, s:i, s:i, s:o, s:o, s:o, s:o, s:o, s:o}",
-                     "segments", st->segments,
-                     "dof", st->dof,
-                     "wall_s", rd_result_real(wall_s),
-                     "solver", static_solver,
-                     "load_steps", st->load_steps,
-                     "iterations", st->iterations,
-                     "residual", rd_result_real(st->residual),
-                     "tolerance", rd_result_real(st->tolerance),
-                     "strain_energy", rd_result_real(st->strain_energy),
-                     "reference_segments",
-                         estimated ? json_integer(st->reference_segments) : json_null(),
-                     "error_estimate", rd_result_real(st->error_estimate),
-                     "error_method", estimated ? json_string(method) : json_null());
+    snprintf(method, sizeof method, "%s from a second solve at %d segments", what,
+             st->reference_segments);
+    return json_pack("{s:i, s:i, s:o, s:s, s:i, s:i, s:o, s:o, s:o, s:o, s:o, s:o}", "segments",
+                     st->segments, "dof", st->dof, "wall_s", rd_result_real(wall_s), "solver",
+                     static_solver, "load_steps", st->load_steps, "iterations", st->iterations,
+                     "residual", rd_result_real(st->residual), "tolerance",
+                     rd_result_real(st->tolerance), "strain_energy",
+                     rd_result_real(st->strain_energy), "reference_segments",
+                     estimated ? json_integer(st->reference_segments) : json_null(),
+                     "error_estimate", rd_result_real(st->error_estimate), "error_method",
+                     estimated ? json_string(method) : json_null());
 }
 
 json_t *rd_static_result_support(const rd_static_stats *st)

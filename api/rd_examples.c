@@ -208,9 +208,8 @@ char *rd_api_examples_json(const char *dir, rd_error *err)
         if (load_example(dir, names[i], &root, err) != RD_OK)
             goto out;
         const char *description = json_string_value(json_object_get(root, "description"));
-        json_t *entry = json_pack("{s:s, s:s, s:o}", "name", names[i],
-                                  "description", description ? description : "",
-                                  "scene", root);
+        json_t *entry = json_pack("{s:s, s:s, s:o}", "name", names[i], "description",
+                                  description ? description : "", "scene", root);
         root = NULL; /* stolen by json_pack, also when it fails */
         if (json_array_append_new(list, entry) != 0) {
             json_decref(list);
@@ -258,7 +257,8 @@ char *rd_api_example_scene(const char *dir, const char *name, rd_error *err)
         rd_schema_quote(q, sizeof q, name ? name : "");
         rd_error_set(err, RD_ENOTFOUND, "",
                      "no example named %s (names use A-Z, a-z, 0-9, _ and -; GET "
-                     "/api/v1/examples lists them)", q);
+                     "/api/v1/examples lists them)",
+                     q);
         goto out;
     }
     if (load_example(dir, name, &root, err) != RD_OK)

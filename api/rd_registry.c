@@ -22,16 +22,11 @@ extern const rd_analysis_def rd_an_ringpack;
 
 /* In enum rd_analysis order; a new analysis goes at the end. */
 const rd_analysis_def *const rd_registry[] = {
-    &rd_an_modal,
-    &rd_an_pretension,
-    &rd_an_contact,
-    &rd_an_lift,
-    &rd_an_ringpack,
-    NULL,
+    &rd_an_modal, &rd_an_pretension, &rd_an_contact, &rd_an_lift, &rd_an_ringpack, NULL,
 };
 
-const rd_analysis_def *rd_registry_find(const rd_analysis_def *const *registry,
-                                        const char *name, int *index)
+const rd_analysis_def *rd_registry_find(const rd_analysis_def *const *registry, const char *name,
+                                        int *index)
 {
     for (int i = 0; registry[i]; i++)
         if (strcmp(registry[i]->name, name) == 0) {
@@ -63,9 +58,8 @@ int rd_registry_ignored(const rd_analysis_def *const *registry, const rd_analysi
 {
     /* The order "known:" lists them in (the contract's order); keys of
      * later analyses follow in registry order. */
-    static const char *const contract[] = {"modal",   "pretension", "bore",     "engine",
-                                           "groove",  "physics",    "output",   "numerics",
-                                           "contact", NULL};
+    static const char *const contract[] = {"modal",   "pretension", "bore",     "engine",  "groove",
+                                           "physics", "output",     "numerics", "contact", NULL};
     int n = 0;
     for (int i = 0; contract[i] && n < max - 1; i++) {
         int read_elsewhere = 0;
@@ -140,14 +134,14 @@ static json_t *scene_schema(const rd_analysis_def *const *registry)
      * are the branches' business; validators that merge the discriminated
      * branch with this schema (Redocly's example check) otherwise judge the
      * branch's own keys as unevaluated here. */
-    json_t *o = bad ? NULL
-                    : json_pack("{s:s, s:[s], s:s, s:{s:{s:s, s:s, s:O}}, s:b, s:{s:s, s:O}, s:O}",
-                                "type", "object", "required", "analysis", "description",
-                                scene_description, "properties", "analysis", "type", "string",
-                                "description",
-                                "Which analysis to run; decides which blocks are read.", "enum",
-                                names, "additionalProperties", 1, "discriminator",
-                                "propertyName", "analysis", "mapping", mapping, "oneOf", one_of);
+    json_t *o =
+        bad ? NULL
+            : json_pack("{s:s, s:[s], s:s, s:{s:{s:s, s:s, s:O}}, s:b, s:{s:s, s:O}, s:O}", "type",
+                        "object", "required", "analysis", "description", scene_description,
+                        "properties", "analysis", "type", "string", "description",
+                        "Which analysis to run; decides which blocks are read.", "enum", names,
+                        "additionalProperties", 1, "discriminator", "propertyName", "analysis",
+                        "mapping", mapping, "oneOf", one_of);
     json_decref(names);
     json_decref(mapping);
     json_decref(one_of);

@@ -32,9 +32,9 @@ struct json_t;
 struct rd_scene;
 
 typedef struct rd_analysis_def {
-    const char *name;         /* the scene's "analysis" */
-    const rd_block *scene;    /* top level; its name is the OpenAPI component */
-    size_t opts_size;         /* bytes of struct rd_scene.opts (0: none) */
+    const char *name;      /* the scene's "analysis" */
+    const rd_block *scene; /* top level; its name is the OpenAPI component */
+    size_t opts_size;      /* bytes of struct rd_scene.opts (0: none) */
     /* Fills the analysis' defaults (s->opts is zeroed, the common fields
      * hold theirs); may be NULL. */
     void (*defaults)(struct rd_scene *s);
@@ -46,17 +46,17 @@ typedef struct rd_analysis_def {
      * out of memory, which the caller reports. */
     int (*run)(const struct rd_scene *s, const rd_monitor *mon, struct json_t **result,
                rd_error *err);
-    const rd_csv_table *csv;  /* the main table, or NULL */
-    const char *csv_none;     /* why there is no table (csv NULL) */
-    const char *page;         /* "modal.js": its tab in static/, or "none" */
+    const rd_csv_table *csv; /* the main table, or NULL */
+    const char *csv_none;    /* why there is no table (csv NULL) */
+    const char *page;        /* "modal.js": its tab in static/, or "none" */
 } rd_analysis_def;
 
 /* The built-in registry, NULL-ended, in enum rd_analysis order. */
 extern const rd_analysis_def *const rd_registry[];
 
 /* The entry named `name` in `registry`, its index in *index; NULL if none. */
-const rd_analysis_def *rd_registry_find(const rd_analysis_def *const *registry,
-                                        const char *name, int *index);
+const rd_analysis_def *rd_registry_find(const rd_analysis_def *const *registry, const char *name,
+                                        int *index);
 
 /* The top-level keys that analyses of `registry` other than `an` read and
  * `an` does not: known to `an`'s scenes but ignored.  Written to keys[]
@@ -101,15 +101,23 @@ struct json_t *rd_static_result_support(const rd_static_stats *st);
 /* The fields every analysis reads first: analysis, name, description, ring
  * and its discretization block.  _WITH adds to the shared ring what this
  * analysis requires of it (a description and a JSON schema, allOf). */
-#define RD_SCENE_COMMON_WITH(ring_desc, ring_extra, discretization)                              \
-    {"analysis", RD_F_ANALYSIS, 0, .desc = "Which analysis to run; decides which blocks are "    \
-                                           "read."},                                            \
-        {"name", RD_F_STRING, offsetof(struct rd_scene, name),                                   \
-         .desc = "Free text, echoed in the result; absent when not given."},                     \
-        {"description", RD_F_STRING, offsetof(struct rd_scene, description),                     \
-         .desc = "Free text, echoed in the result; absent when not given."},                     \
-        {"ring", RD_F_BLOCK, 0, .block = &rd_block_ring, .desc = (ring_desc), .extra = (ring_extra)},     \
-        {"discretization", RD_F_BLOCK, 0, .block = &(discretization)}
+#define RD_SCENE_COMMON_WITH(ring_desc, ring_extra, discretization)          \
+    {"analysis", RD_F_ANALYSIS, 0,                                           \
+     .desc = "Which analysis to run; decides which blocks are "              \
+             "read."},                                                       \
+        {"name", RD_F_STRING, offsetof(struct rd_scene, name),               \
+         .desc = "Free text, echoed in the result; absent when not given."}, \
+        {"description", RD_F_STRING, offsetof(struct rd_scene, description), \
+         .desc = "Free text, echoed in the result; absent when not given."}, \
+        {"ring",                                                             \
+         RD_F_BLOCK,                                                         \
+         0,                                                                  \
+         .block = &rd_block_ring,                                            \
+         .desc = (ring_desc),                                                \
+         .extra = (ring_extra)},                                             \
+    {                                                                        \
+        "discretization", RD_F_BLOCK, 0, .block = &(discretization)          \
+    }
 #define RD_SCENE_COMMON(discretization) RD_SCENE_COMMON_WITH(NULL, NULL, discretization)
 
 #endif

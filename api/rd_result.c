@@ -21,8 +21,8 @@
 
 #include "rd_api.h"
 #include "rd_registry.h"
-#include "rd_warnings.h"
 #include "rd_scene.h"
+#include "rd_warnings.h"
 
 double rd_clock_s(void)
 {
@@ -158,7 +158,8 @@ static int csv_rows(json_t *result, const rd_csv_table *t, int ncols, strbuf *b,
     if (!json_is_array(rows))
         return rd_error_set(err, RD_EINTERNAL, "", "malformed %s result: /%s is not an array",
                             analysis, t->rows);
-    json_array_foreach(rows, i, row) {
+    json_array_foreach(rows, i, row)
+    {
         for (int c = 0; c < ncols; c++) {
             const rd_csv_column *col = &t->columns[c];
             if (csv_cell(b, col, json_object_get(row, col->key), c + 1 < ncols ? "," : "\n"))
@@ -183,16 +184,18 @@ static int csv_arrays(json_t *result, const rd_csv_table *t, int ncols, strbuf *
         if (c == 0)
             rows = json_array_size(a);
         else if (json_array_size(a) != rows)
-            return rd_error_set(err, RD_EINTERNAL, "", "malformed %s result: /%s has %zu rows, "
-                                "not %zu", analysis, t->columns[c].key, json_array_size(a), rows);
+            return rd_error_set(err, RD_EINTERNAL, "",
+                                "malformed %s result: /%s has %zu rows, "
+                                "not %zu",
+                                analysis, t->columns[c].key, json_array_size(a), rows);
     }
     for (size_t i = 0; i < rows; i++)
         for (int c = 0; c < ncols; c++) {
             const rd_csv_column *col = &t->columns[c];
             json_t *v = json_array_get(json_object_get(holder, col->key), i);
             if (csv_cell(b, col, v, c + 1 < ncols ? "," : "\n"))
-                return rd_error_set(err, RD_EINTERNAL, "", "malformed %s result: /%s/%zu",
-                                    analysis, col->key, i);
+                return rd_error_set(err, RD_EINTERNAL, "", "malformed %s result: /%s/%zu", analysis,
+                                    col->key, i);
         }
     return RD_OK;
 }

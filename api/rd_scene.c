@@ -73,8 +73,8 @@ static int parse_analysis(const rd_analysis_def *const *registry, json_t *root, 
     rd_schema_quote(q, sizeof q, json_string_value(v));
     rd_issues_add(issues, RD_EINVAL, "/analysis", all, dym, "unknown analysis %s%s", q, hint);
     return rd_error_set(err, RD_EINVAL, "/analysis",
-                        "unknown analysis %s (allowed: %s; available in this version: %s)", q,
-                        all, all);
+                        "unknown analysis %s (allowed: %s; available in this version: %s)", q, all,
+                        all);
 }
 
 /* A zeroed scene of `an` with the common and the analysis' defaults:

@@ -55,16 +55,16 @@ struct rd_table {
 struct rd_scene {
     int analysis;                     /* index into the registry it was parsed with */
     const struct rd_analysis_def *an; /* that registry entry */
-    char *name;          /* optional metadata, NULL when absent; owned */
-    char *description;   /* optional metadata, NULL when absent; owned */
-    rd_ring_params ring; /* /ring */
-    int segments;        /* /discretization/segments */
-    int closed;          /* /discretization/closed: 1 joins the gap */
-    rd_modal_opts modal; /* /modal: the modal analysis' options (a member, not
+    char *name;                       /* optional metadata, NULL when absent; owned */
+    char *description;                /* optional metadata, NULL when absent; owned */
+    rd_ring_params ring;              /* /ring */
+    int segments;                     /* /discretization/segments */
+    int closed;                       /* /discretization/closed: 1 joins the gap */
+    rd_modal_opts modal;              /* /modal: the modal analysis' options (a member, not
                             in opts, because callers and tests read it here) */
-    void *opts;          /* the analysis' own options (an->opts_size bytes,
+    void *opts;                       /* the analysis' own options (an->opts_size bytes,
                             owned; an->cleanup frees what it holds) */
-    struct rd_issues *issues; /* while parsing: where every problem is listed
+    struct rd_issues *issues;         /* while parsing: where every problem is listed
                                  (rd_schema_parse), or NULL; NULL afterwards */
 };
 

@@ -80,7 +80,6 @@ int rd_schema_utf8_len(const unsigned char *s)
     return n;
 }
 
-
 void rd_schema_quote(char *buf, size_t size, const char *s)
 {
     size_t n = utf8_prefix(s, QUOTE_MAX);
@@ -235,14 +234,13 @@ static int type_issue(struct rd_scene *s, rd_error *err, const char *path, const
 }
 
 /* A JSON type error at field `f`, allowed values as the table says them. */
-static int field_type_issue(struct rd_scene *s, rd_error *err, const rd_field *f,
-                            const char *path, const char *want, const json_t *v)
+static int field_type_issue(struct rd_scene *s, rd_error *err, const rd_field *f, const char *path,
+                            const char *want, const json_t *v)
 {
     char got[QUOTE_MAX + 32], allowed[160];
     rd_schema_describe(v, got, sizeof got);
     rd_schema_allowed(f, allowed, sizeof allowed);
-    return report(s, err, RD_EINVAL, path, allowed, NULL, "%s must be %s, got %s", path, want,
-                  got);
+    return report(s, err, RD_EINVAL, path, allowed, NULL, "%s must be %s, got %s", path, want, got);
 }
 
 /* Edit distance with swaps of neighbours (optimal string alignment);
@@ -307,8 +305,8 @@ static void bound_text(char *buf, size_t size, const rd_field *f)
     size_t n = 0;
     buf[0] = '\0';
     if (f->has_min)
-        n += (size_t)snprintf(buf, size, "%s %.15g", f->has_min == RD_BOUND_EX ? ">" : ">=",
-                              f->min);
+        n +=
+            (size_t)snprintf(buf, size, "%s %.15g", f->has_min == RD_BOUND_EX ? ">" : ">=", f->min);
     if (f->has_max && n < size)
         snprintf(buf + n, size - n, "%s%s %.15g", n ? " and " : "",
                  f->has_max == RD_BOUND_EX ? "<" : "<=", f->max);
@@ -382,10 +380,10 @@ const rd_field *rd_schema_find(const rd_block *block, const char *path)
  * listed (core's validator will say it in its own words). */
 static void range_issue(const rd_field *f, double x, const char *path, struct rd_scene *s)
 {
-    int low = (f->has_min == RD_BOUND_IN && x < f->min) ||
-              (f->has_min == RD_BOUND_EX && x <= f->min);
-    int high = (f->has_max == RD_BOUND_IN && x > f->max) ||
-               (f->has_max == RD_BOUND_EX && x >= f->max);
+    int low =
+        (f->has_min == RD_BOUND_IN && x < f->min) || (f->has_min == RD_BOUND_EX && x <= f->min);
+    int high =
+        (f->has_max == RD_BOUND_IN && x > f->max) || (f->has_max == RD_BOUND_EX && x >= f->max);
     if (!s->issues || !(low || high))
         return;
     char allowed[160];
@@ -445,9 +443,9 @@ static int parse_table(const rd_field *f, json_t *v, const char *path, struct rd
     t->n = 0;
     t->v = malloc(n * sizeof *t->v);
     if (!t->v)
-        return report(s, err, RD_ENOMEM, path, NULL, NULL, "out of memory while reading %s",
-                      path);
-    json_array_foreach(v, i, x) {
+        return report(s, err, RD_ENOMEM, path, NULL, NULL, "out of memory while reading %s", path);
+    json_array_foreach(v, i, x)
+    {
         if (!json_is_number(x)) {
             char item[RD_ERROR_PATH_MAX + 24];
             snprintf(item, sizeof item, "%s/%zu", path, i);
@@ -472,7 +470,8 @@ static int item_unknown_keys(const rd_block *items, json_t *item, const char *at
     const char *key;
     json_t *x;
     int rc = RD_OK;
-    json_object_foreach(item, key, x) {
+    json_object_foreach(item, key, x)
+    {
         if (find_field(items->fields, key))
             continue;
         list_known(known, sizeof known, items->fields, NULL);
@@ -539,7 +538,8 @@ static int parse_distortion(const rd_field *f, json_t *v, const char *path, rd_c
                       "%s has %zu entries; at most %d are allowed.", path, json_array_size(v),
                       RD_DISTORTION_MAX);
     c->n_distortion = 0;
-    json_array_foreach(v, i, item) {
+    json_array_foreach(v, i, item)
+    {
         char at[RD_ERROR_PATH_MAX + 24];
         snprintf(at, sizeof at, "%s/%zu", path, i);
         int r = parse_distortion_item(f->block, item, at, &c->distortion[i], s, err);
@@ -562,13 +562,13 @@ static int parse_choice(const rd_field *f, json_t *v, const char *path, int *out
         }
     rd_schema_allowed(f, want, sizeof want);
     rd_schema_describe(v, got, sizeof got);
-    const char *dym = json_is_string(v) ? rd_schema_closest(json_string_value(v), f->choices)
-                                        : NULL;
+    const char *dym =
+        json_is_string(v) ? rd_schema_closest(json_string_value(v), f->choices) : NULL;
     return report(s, err, RD_EINVAL, path, want, dym, "%s must be %s, got %s", path, want, got);
 }
 
-static int parse_field(const rd_field *f, char *at, json_t *v, const char *path,
-                       struct rd_scene *s, rd_error *err)
+static int parse_field(const rd_field *f, char *at, json_t *v, const char *path, struct rd_scene *s,
+                       rd_error *err)
 {
     switch (f->type) {
     case RD_F_NUMBER:
@@ -627,7 +627,8 @@ static int unknown_keys(json_t *obj, const rd_block *block, const char *const *a
     const char *key;
     json_t *v;
     int rc = RD_OK;
-    json_object_foreach(obj, key, v) {
+    json_object_foreach(obj, key, v)
+    {
         if (find_field(block->fields, key) || in_list(also, key))
             continue;
         list_known(known, sizeof known, block->fields, also);
@@ -641,8 +642,8 @@ static int unknown_keys(json_t *obj, const rd_block *block, const char *const *a
     return rc;
 }
 
-int rd_schema_parse(json_t *obj, const rd_block *block, const char *const *also,
-                    const char *path, struct rd_scene *s, rd_error *err)
+int rd_schema_parse(json_t *obj, const rd_block *block, const char *const *also, const char *path,
+                    struct rd_scene *s, rd_error *err)
 {
     char child[RD_ERROR_PATH_MAX];
     /* Unknown keys first: a typo is the likeliest cause of anything else
@@ -691,9 +692,9 @@ static json_t *distortion_echo(const rd_contact_opts *c)
     json_t *a = json_array();
     for (int i = 0; a && i < c->n_distortion; i++) {
         const rd_distortion *d = &c->distortion[i];
-        if (json_array_append_new(a, json_pack("{s:i, s:o, s:o}", "order", d->order,
-                                               "amplitude", rd_result_real(d->amplitude),
-                                               "phase_deg", rd_result_real(d->phase_deg))) != 0) {
+        if (json_array_append_new(a, json_pack("{s:i, s:o, s:o}", "order", d->order, "amplitude",
+                                               rd_result_real(d->amplitude), "phase_deg",
+                                               rd_result_real(d->phase_deg))) != 0) {
             json_decref(a);
             a = NULL;
         }
@@ -773,13 +774,15 @@ static int add_bounds(json_t *o, const rd_field *f, int count)
     int bad = 0;
     const char *lo = count ? "minItems" : "minimum", *hi = count ? "maxItems" : "maximum";
     if (f->has_min)
-        bad |= set_new(o, lo, count || f->type == RD_F_INTEGER ? json_integer((json_int_t)f->min)
-                                                                 : json_real(f->min));
+        bad |= set_new(o, lo,
+                       count || f->type == RD_F_INTEGER ? json_integer((json_int_t)f->min)
+                                                        : json_real(f->min));
     if (f->has_min == RD_BOUND_EX)
         bad |= set_new(o, "exclusiveMinimum", json_true());
     if (f->has_max)
-        bad |= set_new(o, hi, count || f->type == RD_F_INTEGER ? json_integer((json_int_t)f->max)
-                                                                 : json_real(f->max));
+        bad |= set_new(o, hi,
+                       count || f->type == RD_F_INTEGER ? json_integer((json_int_t)f->max)
+                                                        : json_real(f->max));
     if (f->has_max == RD_BOUND_EX)
         bad |= set_new(o, "exclusiveMaximum", json_true());
     return bad;
@@ -850,8 +853,8 @@ static json_t *block_ref(const rd_field *f, const struct rd_scene *defaults, jso
     snprintf(ref, sizeof ref, "#/components/schemas/%s", b->name);
     if (!f->extra)
         return json_pack("{s:s}", "$ref", ref);
-    return json_pack("{s:s, s:[{s:s}, o]}", "description", f->desc ? f->desc : "", "allOf",
-                     "$ref", ref, json_loads(f->extra, 0, NULL));
+    return json_pack("{s:s, s:[{s:s}, o]}", "description", f->desc ? f->desc : "", "allOf", "$ref",
+                     ref, json_loads(f->extra, 0, NULL));
 }
 
 /* The keywords of a non-block field after "type"; nonzero on out of memory. */
@@ -885,7 +888,7 @@ json_t *rd_schema_field_openapi(const rd_field *f, const rd_block *in,
         return block_ref(f, defaults, components);
     if (in->items && f->offset + sizeof(double) > sizeof zero_item)
         return NULL; /* an item larger than zero_item: widen it */
-    const char *at = (in->items     ? zero_item
+    const char *at = (in->items    ? zero_item
                       : f->in_opts ? (const char *)defaults->opts
                                    : cbase_of(in, defaults)) +
                      f->offset;
@@ -908,9 +911,10 @@ json_t *rd_schema_block_openapi(const rd_block *block, const struct rd_scene *de
         if (!bad && f->required)
             bad |= json_array_append_new(required, json_string(f->key));
     }
-    json_t *o = bad ? NULL : json_pack("{s:s, s:s, s:b, s:O}", "type", "object", "description",
-                                       block->desc ? block->desc : "", "additionalProperties",
-                                       0, "properties", props);
+    json_t *o = bad ? NULL
+                    : json_pack("{s:s, s:s, s:b, s:O}", "type", "object", "description",
+                                block->desc ? block->desc : "", "additionalProperties", 0,
+                                "properties", props);
     if (o && json_array_size(required) > 0 && json_object_set(o, "required", required) != 0) {
         json_decref(o);
         o = NULL;

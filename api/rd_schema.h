@@ -55,40 +55,40 @@ enum { RD_BOUND_NONE = 0, RD_BOUND_IN = 1, RD_BOUND_EX = 2 };
 typedef struct rd_field {
     const char *key;
     enum rd_field_type type;
-    size_t offset;                 /* into the block's base (see rd_block.in_opts) */
-    const struct rd_block *block;  /* RD_F_BLOCK, RD_F_OPTBLOCK, RD_F_DISTORTION */
-    const char *const *choices;    /* RD_F_CHOICE: allowed strings, NULL-ended */
-    double min, max;               /* the static range core enforces */
+    size_t offset;                  /* into the block's base (see rd_block.in_opts) */
+    const struct rd_block *block;   /* RD_F_BLOCK, RD_F_OPTBLOCK, RD_F_DISTORTION */
+    const char *const *choices;     /* RD_F_CHOICE: allowed strings, NULL-ended */
+    double min, max;                /* the static range core enforces */
     unsigned char has_min, has_max; /* RD_BOUND_* */
-    unsigned char required;        /* the block needs it (no default) */
-    unsigned char only_false;      /* RD_F_BOOL that this analysis only allows false */
-    unsigned char in_opts;         /* the offset is into the analysis' opts although the
+    unsigned char required;         /* the block needs it (no default) */
+    unsigned char only_false;       /* RD_F_BOOL that this analysis only allows false */
+    unsigned char in_opts;          /* the offset is into the analysis' opts although the
                                       block's are not (a top-level option) */
-    const char *desc;              /* the OpenAPI description */
-    const char *extra;             /* RD_F_BLOCK: JSON schema combined with the block's
+    const char *desc;               /* the OpenAPI description */
+    const char *extra;              /* RD_F_BLOCK: JSON schema combined with the block's
                                       (allOf), for what this analysis adds to a shared one */
     /* The echoed value when it is not the stored one (a 0 meaning "the
      * default computed from the ring", echoed as the value used); a new
      * reference, NULL on out of memory. */
     struct json_t *(*echo)(const struct rd_scene *s);
     /* RD_F_ITEMS: parses the array `v` at `path` into the scene. */
-    int (*parse)(const struct rd_field *f, struct json_t *v, const char *path,
-                 struct rd_scene *s, rd_error *err);
+    int (*parse)(const struct rd_field *f, struct json_t *v, const char *path, struct rd_scene *s,
+                 rd_error *err);
 } rd_field;
 
 /* Bounds, for the tables: {"key", RD_F_NUMBER, AT(x), RD_MIN(0.001), RD_MAX(5.0), ...}. */
-#define RD_MIN(x) .min = (x), .has_min = RD_BOUND_IN
+#define RD_MIN(x)  .min = (x), .has_min = RD_BOUND_IN
 #define RD_XMIN(x) .min = (x), .has_min = RD_BOUND_EX
-#define RD_MAX(x) .max = (x), .has_max = RD_BOUND_IN
+#define RD_MAX(x)  .max = (x), .has_max = RD_BOUND_IN
 #define RD_XMAX(x) .max = (x), .has_max = RD_BOUND_EX
 
 typedef struct rd_block {
-    const char *name;        /* OpenAPI component name; NULL = written inline */
+    const char *name; /* OpenAPI component name; NULL = written inline */
     const char *desc;
-    int in_opts;             /* offsets are into the analysis' opts, not the scene */
-    int items;               /* the block of one array item (offsets into the item;
+    int in_opts;            /* offsets are into the analysis' opts, not the scene */
+    int items;              /* the block of one array item (offsets into the item;
                                 its optional fields default to 0) */
-    const rd_field *fields;  /* ended by a NULL key */
+    const rd_field *fields; /* ended by a NULL key */
 } rd_block;
 
 /* Every problem of a scene, not only the first (the "errors" of an error
@@ -155,8 +155,7 @@ int rd_schema_echo(const rd_block *block, const struct rd_scene *s, struct json_
  * component is added to `components` if missing.  New reference, NULL on
  * out of memory. */
 struct json_t *rd_schema_field_openapi(const rd_field *f, const rd_block *in,
-                                       const struct rd_scene *defaults,
-                                       struct json_t *components);
+                                       const struct rd_scene *defaults, struct json_t *components);
 
 /* The OpenAPI object schema of `block` (type, description,
  * additionalProperties false, properties, required). */
@@ -170,8 +169,7 @@ int rd_schema_utf8_len(const unsigned char *s);
 /* Messages quote user text: `"text"` cut to a readable length. */
 void rd_schema_quote(char *buf, size_t size, const char *s);
 /* "<path> must be <want>, got <what v is>" (RD_EINVAL). */
-int rd_schema_type_error(rd_error *err, const char *path, const char *want,
-                         const struct json_t *v);
+int rd_schema_type_error(rd_error *err, const char *path, const char *want, const struct json_t *v);
 /* parent + "/" + key as a JSON Pointer (RFC 6901 escapes). */
 void rd_schema_path_join(char *out, size_t size, const char *parent, const char *key);
 /* The JSON value of `v` described for a message (type and value). */

@@ -67,14 +67,15 @@ static void fidelity_error_path(const char *spec_text, rd_error *err)
     if (sscanf(err->path, "/parameters/%u%n", &k, &used) != 1)
         return;
     json_t *spec = json_loads(spec_text, 0, NULL);
-    const char *param =
-        json_string_value(json_object_get(json_array_get(json_object_get(spec, "parameters"), k), "path"));
+    const char *param = json_string_value(
+        json_object_get(json_array_get(json_object_get(spec, "parameters"), k), "path"));
     const char *rest = err->path + used;
     if (strncmp(rest, "/values", 7) == 0)
         rest += 7;
     for (size_t f = 0; param && f < sizeof fidelity_fields / sizeof fidelity_fields[0]; f++)
         if (strcmp(param, fidelity_fields[f].param) == 0) {
-            snprintf(path, sizeof path, "%s%.*s", fidelity_fields[f].field, (int)sizeof path - 10, rest);
+            snprintf(path, sizeof path, "%s%.*s", fidelity_fields[f].field, (int)sizeof path - 10,
+                     rest);
             memcpy(err->path, path, sizeof path);
         }
     json_decref(spec);
@@ -91,10 +92,11 @@ static int parse_fidelity(json_t *req, size_t max_points, rd_sweep_request *out,
     {
         if (strcmp(key, "fidelity") && strcmp(key, "segments") && strcmp(key, "rtol") &&
             strcmp(key, "models")) {
-            rd_error_set(err, RD_EREQUEST, "",
-                         "A fidelity request has no field \"%.60s\"; it takes fidelity (the scene), "
-                         "segments, rtol and models.",
-                         key);
+            rd_error_set(
+                err, RD_EREQUEST, "",
+                "A fidelity request has no field \"%.60s\"; it takes fidelity (the scene), "
+                "segments, rtol and models.",
+                key);
             snprintf(err->path, sizeof err->path, "/%.100s", key);
             return RD_EREQUEST;
         }
@@ -190,8 +192,8 @@ char *rd_sweep_request_failed_row(const rd_sweep_request *req, size_t i, const r
         bad = json_array_append_new(row, v ? json_deep_copy(v) : json_null()) != 0;
     }
     if (!bad && json_array_append_new(row, json_string(rd_error_code_name(why->code))) == 0 &&
-        json_array_append_new(row, json_string(why->message[0] ? why->message
-                                                               : rd_error_summary(why->code))) == 0)
+        json_array_append_new(
+            row, json_string(why->message[0] ? why->message : rd_error_summary(why->code))) == 0)
         text = json_dumps(row, DUMP_FLAGS);
     if (!text && scene_text)
         rd_error_set(err, RD_ENOMEM, "", "out of memory at point %zu", i);

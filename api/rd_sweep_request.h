@@ -26,9 +26,9 @@
 #define RD_SWEEP_REQUEST_LIST_MAX 64
 
 typedef struct rd_sweep_request {
-    rd_sweep *sweep;   /* owned; rd_sweep_request_cleanup frees it */
-    int fidelity;      /* 1: a fidelity sweep (its table goes through rd_sweep_fidelity_table) */
-    size_t n_params;   /* the table's leading parameter columns */
+    rd_sweep *sweep; /* owned; rd_sweep_request_cleanup frees it */
+    int fidelity;    /* 1: a fidelity sweep (its table goes through rd_sweep_fidelity_table) */
+    size_t n_params; /* the table's leading parameter columns */
 } rd_sweep_request;
 
 /* Parses and validates a request body (spec or fidelity request) with the

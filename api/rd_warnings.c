@@ -30,26 +30,27 @@
 #include <stdarg.h>
 #include <stdio.h>
 
-#define ERROR_LIMIT 0.05      /* relative error above which a result is flagged */
-#define EVENT_LIMIT_DEG 5.0   /* flank-change timing uncertainty, deg */
-#define BORE_MISMATCH 0.01    /* |bore - ring diameter| / ring diameter */
-#define BAR_LIKE_PA 1000.0    /* every gas table below this: typed in bar */
-#define BAR_LIKE_ONE_PA 200.0 /* one table below this while another is real */
-#define REAL_GAS_PA 1.0e4     /* a table above this was typed in Pa */
+#define ERROR_LIMIT     0.05   /* relative error above which a result is flagged */
+#define EVENT_LIMIT_DEG 5.0    /* flank-change timing uncertainty, deg */
+#define BORE_MISMATCH   0.01   /* |bore - ring diameter| / ring diameter */
+#define BAR_LIKE_PA     1000.0 /* every gas table below this: typed in bar */
+#define BAR_LIKE_ONE_PA 200.0  /* one table below this while another is real */
+#define REAL_GAS_PA     1.0e4  /* a table above this was typed in Pa */
 
 /* Appends {code, path, message}; nonzero on out of memory. */
 #if defined(__GNUC__)
 __attribute__((format(printf, 4, 5)))
 #endif
-static int warn(json_t *out, const char *code, const char *path, const char *fmt, ...)
+static int
+warn(json_t *out, const char *code, const char *path, const char *fmt, ...)
 {
     char message[400];
     va_list ap;
     va_start(ap, fmt);
     vsnprintf(message, sizeof message, fmt, ap);
     va_end(ap);
-    return json_array_append_new(out, json_pack("{s:s, s:s, s:s}", "code", code, "path", path,
-                                                "message", message));
+    return json_array_append_new(
+        out, json_pack("{s:s, s:s, s:s}", "code", code, "path", path, "message", message));
 }
 
 /* The number at `ptr` (a JSON Pointer without escapes) under `root`; NAN when absent. */
@@ -79,11 +80,13 @@ static int density(json_t *scene, json_t *result, json_t *out)
     if (rho < 1000.0)
         return warn(out, "density_unit", path,
                     "density %g kg/m^3 is below 1000 kg/m^3 (lighter than water): typed in "
-                    "g/cm^3? Steel is 7850 kg/m^3.", rho);
+                    "g/cm^3? Steel is 7850 kg/m^3.",
+                    rho);
     if (rho > 25000.0)
         return warn(out, "density_unit", path,
                     "density %g kg/m^3 is above 25000 kg/m^3, denser than any solid: a unit or "
-                    "a digit too many? Steel is 7850 kg/m^3.", rho);
+                    "a digit too many? Steel is 7850 kg/m^3.",
+                    rho);
     return 0;
 }
 
@@ -95,11 +98,13 @@ static int youngs_modulus(json_t *scene, json_t *result, json_t *out)
     if (e < 1.0e9)
         return warn(out, "youngs_modulus_unit", path,
                     "Young's modulus %g Pa is below 1 GPa, softer than any ring material: a "
-                    "unit slip (kPa, MPa, GPa typed as Pa)? Steel is 2.1e11 Pa (210 GPa).", e);
+                    "unit slip (kPa, MPa, GPa typed as Pa)? Steel is 2.1e11 Pa (210 GPa).",
+                    e);
     if (e > 1.5e12)
         return warn(out, "youngs_modulus_unit", path,
                     "Young's modulus %g Pa is above 1500 GPa, stiffer than diamond: a unit or a "
-                    "digit too many? Steel is 2.1e11 Pa.", e);
+                    "digit too many? Steel is 2.1e11 Pa.",
+                    e);
     return 0;
 }
 
@@ -111,7 +116,8 @@ static int poisson(json_t *scene, json_t *result, json_t *out)
     if (nu < 0.0)
         return warn(out, "poisson_ratio_negative", path,
                     "Poisson's ratio %g is negative (an auxetic material); metals are near "
-                    "0.3: a lost digit or sign?", nu);
+                    "0.3: a lost digit or sign?",
+                    nu);
     return 0;
 }
 
@@ -121,7 +127,8 @@ static double table_peak(json_t *gas, const char *key)
     json_t *t = json_object_get(gas, key), *x;
     size_t i;
     double peak = json_is_array(t) ? 0.0 : NAN;
-    json_array_foreach(t, i, x) {
+    json_array_foreach(t, i, x)
+    {
         if (json_is_number(x) && fabs(json_number_value(x)) > peak)
             peak = fabs(json_number_value(x));
     }
@@ -156,7 +163,8 @@ static int gas_in_bar(json_t *scene, json_t *result, json_t *out)
         snprintf(path, sizeof path, "/physics/gas/%s", keys[k]);
         bad = warn(out, "gas_pressure_unit", path,
                    "the gas pressure %s peaks at %g Pa%s: typed in bar? Pressures are gauge "
-                   "pressures in Pa (1 bar = 1e5 Pa).", keys[k], peak[k],
+                   "pressures in Pa (1 bar = 1e5 Pa).",
+                   keys[k], peak[k],
                    one_small && !all_small ? " while another side reaches 1e4 Pa and more" : "");
     }
     return bad;
@@ -170,7 +178,8 @@ static int bore_diameter(json_t *scene, json_t *result, json_t *out)
         return warn(out, "bore_diameter_mismatch", "/bore/diameter",
                     "the bore diameter %g m differs from the ring's nominal diameter %g m by "
                     "%.1f %% (more than 1 %%): a ring is made for its bore, so a ring 1 %% off "
-                    "is another ring; a typo?", bore, d, 100.0 * fabs(bore - d) / d);
+                    "is another ring; a typo?",
+                    bore, d, 100.0 * fabs(bore - d) / d);
     return 0;
 }
 
@@ -183,7 +192,8 @@ static int error_estimate(json_t *scene, json_t *result, json_t *out)
     if (e > ERROR_LIMIT)
         return warn(out, "error_estimate_high", "/numerics/error_estimate",
                     "the estimated relative error of this result is %.1f %% (above 5 %%): %s "
-                    "before trusting it.", 100.0 * e,
+                    "before trusting it.",
+                    100.0 * e,
                     by_segments ? "refine (more segments, /discretization/segments)"
                                 : "tighten the tolerances (/numerics/rtol and atol)");
     return 0;
@@ -196,7 +206,8 @@ static int event_error(json_t *scene, json_t *result, json_t *out)
     if (e > EVENT_LIMIT_DEG)
         return warn(out, "event_error_high", "/numerics/event_error_deg",
                     "the flank changes are located to within %.1f deg only (above 5 deg): tighten "
-                    "the tolerances (/numerics/rtol and atol).", e);
+                    "the tolerances (/numerics/rtol and atol).",
+                    e);
     return 0;
 }
 
@@ -217,8 +228,8 @@ static int accuracy_not_met(json_t *scene, json_t *result, json_t *out)
 
 /* The rules, in the order their warnings are listed. */
 static int (*const rules[])(json_t *scene, json_t *result, json_t *out) = {
-    density, youngs_modulus, poisson, gas_in_bar, bore_diameter, error_estimate, event_error,
-    accuracy_not_met,
+    density,       youngs_modulus, poisson,     gas_in_bar,
+    bore_diameter, error_estimate, event_error, accuracy_not_met,
 };
 
 int rd_warnings_add(json_t *result)

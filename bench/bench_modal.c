@@ -129,11 +129,12 @@ static int accuracy_table(const rd_ring_params *pp, const rd_modal_opts *o, int 
         return 1;
     }
     printf("Thesis ring, first %d elastic modes; limit = Richardson(n=2000, 1000); times are "
-           "medians (wall / CPU of the calling thread).\n\n", modes);
+           "medians (wall / CPU of the calling thread).\n\n",
+           modes);
     printf("| n | DOF | solve wall / CPU [ms] | Lanczos steps | with estimate wall / CPU [ms] | "
            "max true error | max estimated error | max error of extrapolated f |\n"
            "|---|---|---|---|---|---|---|---|\n");
-    static const int ns[] = {4,   6,   8,   10,  12,  16,   20,  30, 40,
+    static const int ns[] = {4,  6,   8,   10,  12,  16,  20,   30,  40,
                              60, 100, 150, 200, 300, 500, 1000, 2000};
     double lx[32], ly[32], t_at[3] = {0, 0, 0};
     int nfit = 0;
@@ -216,4 +217,3 @@ int main(int argc, char **argv)
 
     return accuracy_table(&p, &o, max_n);
 }
-

@@ -54,11 +54,17 @@ int main(int argc, char **argv)
             once = 1;
     }
     reps = reps < 3 ? 3 : reps > 50 ? 50 : reps;
-    struct { const char *what; double rpm; int motored; double peak_deg; } cases[] = {
-        {"motored 2400 rpm", 2400, 1, 15}, {"full load 2400 rpm", 2400, 0, 15},
-        {"full load 6000 rpm", 6000, 0, 18}};
+    struct {
+        const char *what;
+        double rpm;
+        int motored;
+        double peak_deg;
+    } cases[] = {{"motored 2400 rpm", 2400, 1, 15},
+                 {"full load 2400 rpm", 2400, 0, 15},
+                 {"full load 6000 rpm", 6000, 0, 18}};
     printf("| case | ms per cycle (median of %d) | steps/cycle | rhs/cycle | restarts/cycle "
-           "| blow-by L/min | periodicity |\n|---|---|---|---|---|---|---|\n", reps);
+           "| blow-by L/min | periodicity |\n|---|---|---|---|---|---|---|\n",
+           reps);
     for (int c = 0; c < (once ? 1 : 3); c++) {
         rd_ringpack_params p;
         thesis_pack(&p, cases[c].rpm, cases[c].motored, cases[c].peak_deg);

@@ -102,8 +102,8 @@ static double edge_error(const rd_contact_result *c, const ref_result *r)
             const rd_contact_gap *h = &c->gaps[b];
             if (h->end_deg < g->start_deg || h->start_deg > g->end_deg)
                 continue;
-            best = fmin(best, fmax(fabs(g->start_deg - h->start_deg),
-                                   fabs(g->end_deg - h->end_deg)));
+            best =
+                fmin(best, fmax(fabs(g->start_deg - h->start_deg), fabs(g->end_deg - h->end_deg)));
         }
         worst = fmax(worst, best);
     }
@@ -250,7 +250,8 @@ int main(int argc, char **argv)
     }
     printf("\ncost exponent (t ~ n^p, n >= 80): p = %.2f\n\n", bench_exponent(xs, ts, k));
 
-    printf("## contact, round bore (%d points per segment, the default)\n\n", co.points_per_segment);
+    printf("## contact, round bore (%d points per segment, the default)\n\n",
+           co.points_per_segment);
     printf("| n | mean pressure / p0 - 1 | Newton iterations | wall (ms) |\n|---|---|---|---|\n");
     rd_contact_result c, c20;
     memset(&c, 0, sizeof c);
@@ -286,8 +287,8 @@ int main(int argc, char **argv)
         co.points_per_segment = cd.points_per_segment = ms[i];
         double t = time_contact(&p, 40, &co, &c);
         double td = time_contact(&p, 40, &cd, &d);
-        printf("| %d | %.2f | %.1e | %.2f | %.1e |\n", ms[i], t * 1e3,
-               profile_change(&c, &c20, p0), td * 1e3, profile_change(&d, &d20, p0));
+        printf("| %d | %.2f | %.1e | %.2f | %.1e |\n", ms[i], t * 1e3, profile_change(&c, &c20, p0),
+               td * 1e3, profile_change(&d, &d20, p0));
     }
     rd_pretension_result_cleanup(&r1);
     rd_pretension_result_cleanup(&r2);

@@ -31,7 +31,7 @@
  * path on the hard bores of bench_static --battery, the answer unchanged
  * within the residual tolerance. */
 #define BORE_DONE 0.8
-#define EPS_WIDE 1000.0
+#define EPS_WIDE  1000.0
 
 static double bore_factor(const rd_static_problem *pb)
 {
@@ -435,8 +435,11 @@ static int refine(contact_run *run, const rd_monitor *mon, rd_error *err)
         rd_contact_result *best;
         char what[48];
         snprintf(what, sizeof what, "%d segments", run->n[1]);
-        rd_accuracy_plan plan = {.solve = contact_level, .compare = contact_compare, .ctx = run,
-                                 .estimate = 1, .main_share = run->have_coarse ? 0.01 : 0.34,
+        rd_accuracy_plan plan = {.solve = contact_level,
+                                 .compare = contact_compare,
+                                 .ctx = run,
+                                 .estimate = 1,
+                                 .main_share = run->have_coarse ? 0.01 : 0.34,
                                  .reference = what};
         int last = 2 * run->n[1] > cap;
         span_mon sm = {mon, f0, last ? 1.0 : f0 + 0.5 * (1.0 - f0)};

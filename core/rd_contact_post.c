@@ -66,11 +66,10 @@ static void peak(const double *t, const double *c, int k, int lo, int hi, double
 static void one_gap(const double *ts, const double *cs, int n, const double *t, const double *c,
                     int m, int lo, int hi, double tip0, double tip1, rd_contact_gap *g)
 {
-    g->start_deg = lo == 0 ? tip0
-                           : cube_edge(ts[lo - 1], ts[lo], cs[lo], lo < hi ? cs[lo + 1] : 0.0);
-    g->end_deg = hi == n - 1
-                     ? tip1
-                     : -cube_edge(-ts[hi + 1], -ts[hi], cs[hi], hi > lo ? cs[hi - 1] : 0.0);
+    g->start_deg =
+        lo == 0 ? tip0 : cube_edge(ts[lo - 1], ts[lo], cs[lo], lo < hi ? cs[lo + 1] : 0.0);
+    g->end_deg =
+        hi == n - 1 ? tip1 : -cube_edge(-ts[hi + 1], -ts[hi], cs[hi], hi > lo ? cs[hi - 1] : 0.0);
     int k = m * lo;
     for (int q = m * lo; q < m * (hi + 1); q++)
         if (c[q] > c[k])
@@ -137,8 +136,8 @@ static double edge_moves(const rd_contact_result *f, const rd_contact_result *c)
             const rd_contact_gap *h = &c->gaps[b];
             if (h->end_deg < g->start_deg || h->start_deg > g->end_deg)
                 continue;
-            best = fmin(best, fmax(fabs(g->start_deg - h->start_deg),
-                                   fabs(g->end_deg - h->end_deg)));
+            best =
+                fmin(best, fmax(fabs(g->start_deg - h->start_deg), fabs(g->end_deg - h->end_deg)));
         }
         worst = fmax(worst, best);
     }
@@ -158,8 +157,8 @@ static double boundary_share(const rd_contact_result *f, double res)
         for (int i = 0; i < n; i++) {
             if (fabs(f->angle_deg[i] - at) > 0.5 * phi + res)
                 continue;
-            double nb = 0.5 * ((i > 0 ? f->pressure[i - 1] : 0.0) +
-                               (i < n - 1 ? f->pressure[i + 1] : 0.0));
+            double nb =
+                0.5 * ((i > 0 ? f->pressure[i - 1] : 0.0) + (i < n - 1 ? f->pressure[i + 1] : 0.0));
             sum += fmax(0.0, f->pressure[i] - nb) * phi / RD_CONTACT_BIN_DEG;
         }
         worst = fmax(worst, 0.5 * sum / f->uniform_pressure);
@@ -176,13 +175,14 @@ void rd_contact_estimate(const rd_contact_result *f, const rd_contact_result *c,
     for (int k = 0; k < RD_CONTACT_BINS; k++)
         dp = fmax(dp, fabs(f->bin_pressure[k] - c->bin_pressure[k]));
     for (int g = 0; g < f->n_gaps; g++)
-        edges += (g > 0 || f->gaps[g].start_deg > 1.0) + (g < f->n_gaps - 1 || f->gaps[g].end_deg < 359.0);
+        edges += (g > 0 || f->gaps[g].start_deg > 1.0) +
+                 (g < f->n_gaps - 1 || f->gaps[g].end_deg < 359.0);
     /* a gap the coarse level missed (or the reverse) counts by its width */
     e->gap_edges_deg = fmax(edge_moves(f, c), edge_moves(c, f));
     if (f->n_gaps > 0)
         e->gap_edges_deg = fmax(e->gap_edges_deg, res);
-    e->contact_fraction = fmax(fabs(f->contact_fraction - c->contact_fraction),
-                               edges * res / 360.0);
+    e->contact_fraction =
+        fmax(fabs(f->contact_fraction - c->contact_fraction), edges * res / 360.0);
     /* plus the law's compliance: where the forces concentrate (a free end,
      * a gap edge) the ring sinks by up to max_penetration into the bore, and
      * a light gap beside it closes by about as much (measured against the

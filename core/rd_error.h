@@ -16,22 +16,22 @@
 #include <stddef.h>
 
 /* X(name, value, code string, summary) */
-#define RD_ERRNO_MAP(X)                                                         \
-    X(OK, 0, "ok", "success")                                                   \
-    X(EINVAL, -1, "invalid_scene", "the scene is invalid")                      \
-    X(ELIMIT, -2, "limit_exceeded", "the scene asks for more work than allowed")\
-    X(EJSON, -3, "invalid_json", "the body is not valid JSON")                  \
-    X(ENOMEM, -4, "out_of_memory", "out of memory")                             \
-    X(ENOCONV, -5, "not_converged", "the solver did not converge")              \
-    X(ENUMERIC, -6, "numerical_failure", "a numerical library call failed")     \
-    X(ECANCELED, -7, "cancelled", "the job was cancelled")                      \
-    X(EINTERNAL, -8, "internal_error", "internal error")                        \
-    X(EREQUEST, -9, "invalid_request", "the request is malformed")              \
-    X(ENOTFOUND, -10, "not_found", "no such resource")                          \
-    X(EMETHOD, -11, "method_not_allowed", "method not allowed on this path")    \
-    X(ETOOLARGE, -12, "payload_too_large", "the body is larger than allowed")   \
-    X(EMEDIA, -13, "unsupported_media_type", "the body must be application/json")\
-    X(EBUSY, -14, "queue_full", "the job queue is full, retry later")           \
+#define RD_ERRNO_MAP(X)                                                           \
+    X(OK, 0, "ok", "success")                                                     \
+    X(EINVAL, -1, "invalid_scene", "the scene is invalid")                        \
+    X(ELIMIT, -2, "limit_exceeded", "the scene asks for more work than allowed")  \
+    X(EJSON, -3, "invalid_json", "the body is not valid JSON")                    \
+    X(ENOMEM, -4, "out_of_memory", "out of memory")                               \
+    X(ENOCONV, -5, "not_converged", "the solver did not converge")                \
+    X(ENUMERIC, -6, "numerical_failure", "a numerical library call failed")       \
+    X(ECANCELED, -7, "cancelled", "the job was cancelled")                        \
+    X(EINTERNAL, -8, "internal_error", "internal error")                          \
+    X(EREQUEST, -9, "invalid_request", "the request is malformed")                \
+    X(ENOTFOUND, -10, "not_found", "no such resource")                            \
+    X(EMETHOD, -11, "method_not_allowed", "method not allowed on this path")      \
+    X(ETOOLARGE, -12, "payload_too_large", "the body is larger than allowed")     \
+    X(EMEDIA, -13, "unsupported_media_type", "the body must be application/json") \
+    X(EBUSY, -14, "queue_full", "the job queue is full, retry later")             \
     X(ETIMEOUT, -15, "time_limit", "the job ran longer than allowed")
 
 enum rd_status {
@@ -40,7 +40,7 @@ enum rd_status {
 #undef RD_ENUM_
 };
 
-#define RD_ERROR_PATH_MAX 128
+#define RD_ERROR_PATH_MAX    128
 #define RD_ERROR_MESSAGE_MAX 512
 
 typedef struct rd_error {

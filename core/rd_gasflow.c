@@ -26,8 +26,8 @@ static double flow_function(double r, double kappa, double r_c)
     return sqrt(2.0 * kappa / (kappa - 1.0) * (v > 0.0 ? v : 0.0));
 }
 
-double rd_gasflow_orifice(double cd, double area, double p_a, double T_a, double p_b,
-                          double T_b, double kappa, double R)
+double rd_gasflow_orifice(double cd, double area, double p_a, double T_a, double p_b, double T_b,
+                          double kappa, double R)
 {
     if (!(area > 0.0) || !(cd > 0.0))
         return 0.0;
@@ -106,15 +106,14 @@ double rd_gasflow_trace(int n, const double *x, const double *y, double deg)
 
 /* ------------------------------------------------------ synthetic trace */
 
-int rd_gasflow_synthetic_validate(const rd_cylinder_synthetic *s, const char *path,
-                                  rd_error *err)
+int rd_gasflow_synthetic_validate(const rd_cylinder_synthetic *s, const char *path, rd_error *err)
 {
     char f[RD_ERROR_PATH_MAX];
-#define BAD(key, cond, range)                                                                   \
-    do {                                                                                        \
-        snprintf(f, sizeof f, "%s/%s", path, key);                                              \
-        if (!(cond))                                                                            \
-            return rd_error_set(err, RD_EINVAL, f, "%s must be %s.", f, range);                 \
+#define BAD(key, cond, range)                                                   \
+    do {                                                                        \
+        snprintf(f, sizeof f, "%s/%s", path, key);                              \
+        if (!(cond))                                                            \
+            return rd_error_set(err, RD_EINVAL, f, "%s must be %s.", f, range); \
     } while (0)
     BAD("compression_ratio", s->compression_ratio >= 2.0 && s->compression_ratio <= 40.0,
         "from 2 to 40");
@@ -241,9 +240,8 @@ int rd_gasflow_synthetic(const rd_cylinder_synthetic *s, const rd_engine_params 
         return rd_error_set(err, RD_ENOMEM, "", "Out of memory for the synthetic pressure.");
     double Vb = volume(&tr, 180.0, NULL), Q = 0.0;
     for (int k = 0; k <= HALF; k++)
-        pm[k] = s->intake_pa *
-                pow(Vb / volume(&tr, -180.0 + k * RD_GASFLOW_STEP_DEG, NULL),
-                    RD_GASFLOW_POLYTROPIC);
+        pm[k] = s->intake_pa * pow(Vb / volume(&tr, -180.0 + k * RD_GASFLOW_STEP_DEG, NULL),
+                                   RD_GASFLOW_POLYTROPIC);
     memset(pu, 0, (size_t)(HALF + 1) * sizeof *pu);
     if (s->kind == RD_CYLINDER_FIRED) { /* bisect the burn start on the peak angle */
         double lo = s->peak_crank_deg - 90.0, hi = s->peak_crank_deg, at;

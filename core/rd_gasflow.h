@@ -40,16 +40,16 @@
 #include "rd_error.h"
 #include "rd_lift.h"
 
-#define RD_GASFLOW_KAPPA 1.35       /* heat capacity ratio of the hot gas, - */
-#define RD_GASFLOW_R 287.0          /* specific gas constant of air, J/(kg K) */
-#define RD_GASFLOW_LINEAR_BAND 1e-4 /* 1 - r below which the flow is linear */
-#define RD_GASFLOW_POLYTROPIC 1.32  /* synthetic trace's compression exponent */
-#define RD_GASFLOW_WIEBE_A 5.0
-#define RD_GASFLOW_WIEBE_M 2.0
-#define RD_GASFLOW_BURN_DEG 50.0
-#define RD_GASFLOW_EVO_DEG 130.0    /* blowdown starts */
-#define RD_GASFLOW_STEP_DEG 0.25    /* synthetic table spacing */
-#define RD_GASFLOW_POINTS 2881      /* 720 / 0.25 + 1 */
+#define RD_GASFLOW_KAPPA       1.35  /* heat capacity ratio of the hot gas, - */
+#define RD_GASFLOW_R           287.0 /* specific gas constant of air, J/(kg K) */
+#define RD_GASFLOW_LINEAR_BAND 1e-4  /* 1 - r below which the flow is linear */
+#define RD_GASFLOW_POLYTROPIC  1.32  /* synthetic trace's compression exponent */
+#define RD_GASFLOW_WIEBE_A     5.0
+#define RD_GASFLOW_WIEBE_M     2.0
+#define RD_GASFLOW_BURN_DEG    50.0
+#define RD_GASFLOW_EVO_DEG     130.0 /* blowdown starts */
+#define RD_GASFLOW_STEP_DEG    0.25  /* synthetic table spacing */
+#define RD_GASFLOW_POINTS      2881  /* 720 / 0.25 + 1 */
 
 /* Critical pressure ratio (2/(k+1))^(k/(k-1)). */
 double rd_gasflow_critical_ratio(double kappa);
@@ -57,8 +57,8 @@ double rd_gasflow_critical_ratio(double kappa);
 /* Mass flow (kg/s) from side a to side b through an orifice of area A (m^2)
  * with discharge coefficient cd; negative when the gas flows from b to a.
  * The upstream side's temperature applies.  A <= 0 or cd <= 0 gives 0. */
-double rd_gasflow_orifice(double cd, double area, double p_a, double T_a, double p_b,
-                          double T_b, double kappa, double R);
+double rd_gasflow_orifice(double cd, double area, double p_a, double T_a, double p_b, double T_b,
+                          double kappa, double R);
 
 enum rd_cylinder_kind { RD_CYLINDER_TABLE = 0, RD_CYLINDER_MOTORED = 1, RD_CYLINDER_FIRED = 2 };
 
@@ -74,8 +74,7 @@ typedef struct rd_cylinder_synthetic {
 /* Checks the synthetic inputs (paths under `path`, e.g.
  * "/cylinder_pressure/synthetic"); the fired peak must exceed the motored
  * one p_in eps^n by 5 %. */
-int rd_gasflow_synthetic_validate(const rd_cylinder_synthetic *s, const char *path,
-                                  rd_error *err);
+int rd_gasflow_synthetic_validate(const rd_cylinder_synthetic *s, const char *path, rd_error *err);
 
 /* Writes the synthetic trace: RD_GASFLOW_POINTS angles (0, 0.25, ..., 720)
  * into crank_deg and pressures into p (caller's arrays).  bore: the cylinder

@@ -44,7 +44,7 @@
 #include <string.h>
 
 #define COL(X, N, j) ((X) + (size_t)(j) * (size_t)(N))
-#define HT(w, i, j) ((w)->H[(size_t)(i) + (size_t)(j) * (size_t)(w)->cap])
+#define HT(w, i, j)  ((w)->H[(size_t)(i) + (size_t)(j) * (size_t)(w)->cap])
 
 /* A new direction shorter than BREAKDOWN times Op q_j (M-norms) is rounding
  * noise of an invariant Krylov space, not a direction of Op. */
@@ -59,16 +59,16 @@
 
 typedef struct lz {
     const rd_lanczos_problem *pb;
-    int N, b, cap, k, r; /* basis capacity and size; deflated null vectors */
-    int D;               /* N - r: dimension of the deflated space */
-    double prev_expl;    /* largest explicit residual / floor at the previous check */
-    rd_band A;           /* Cholesky factor of K + sigma M */
-    double *Z, *MZ;      /* N x r: null vectors, M-orthonormal, and M Z */
-    double *Q, *MQ;      /* N x cap: Lanczos basis and M Q */
-    double *H;           /* cap x cap */
-    double *v, *mv, *coef; /* N, N, cap: work vector, M v, its coefficients */
-    double *theta, *S, *ab; /* Ritz values and vectors of T_s, T_s in band storage */
-    double *t1, *t2;     /* N scratch */
+    int N, b, cap, k, r;           /* basis capacity and size; deflated null vectors */
+    int D;                         /* N - r: dimension of the deflated space */
+    double prev_expl;              /* largest explicit residual / floor at the previous check */
+    rd_band A;                     /* Cholesky factor of K + sigma M */
+    double *Z, *MZ;                /* N x r: null vectors, M-orthonormal, and M Z */
+    double *Q, *MQ;                /* N x cap: Lanczos basis and M Q */
+    double *H;                     /* cap x cap */
+    double *v, *mv, *coef;         /* N, N, cap: work vector, M v, its coefficients */
+    double *theta, *S, *ab;        /* Ritz values and vectors of T_s, T_s in band storage */
+    double *t1, *t2;               /* N scratch */
     double *X, *KX, *MX, *Kr, *Mr; /* polish: N x want (three), want x want (two) */
     uint64_t rng;
 } lz;
@@ -242,8 +242,8 @@ static int lz_alloc(lz *w, rd_error *err)
     w->Mr = malloc(want * want * sizeof(double));
     if (!w->Z || !w->MZ || !w->Q || !w->MQ || !w->H || !w->v || !w->mv || !w->t1 || !w->t2 ||
         !w->coef || !w->theta || !w->S || !w->ab || !w->X || !w->KX || !w->MX || !w->Kr || !w->Mr)
-        return rd_error_set(err, RD_ENOMEM, "", "Out of memory for the Lanczos basis (%d x %d).",
-                            N, w->cap);
+        return rd_error_set(err, RD_ENOMEM, "", "Out of memory for the Lanczos basis (%d x %d).", N,
+                            w->cap);
     return RD_OK;
 }
 
@@ -443,8 +443,8 @@ static int start(lz *w, rd_lanczos_result *out, rd_error *err)
     w->D = w->N - w->r;
     if (pb->want < 1 || pb->want > w->D)
         return rd_error_set(err, RD_EINTERNAL, "",
-                            "Lanczos asked for %d eigenpairs of a %d-dimensional space.",
-                            pb->want, w->D);
+                            "Lanczos asked for %d eigenpairs of a %d-dimensional space.", pb->want,
+                            w->D);
     if (w->cap > w->D)
         w->cap = w->D;
     out->lambda = malloc((size_t)pb->want * sizeof *out->lambda);

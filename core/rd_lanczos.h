@@ -19,11 +19,11 @@ typedef struct rd_lanczos_problem {
     const rd_band *K, *M; /* borrowed, N x N, same N */
     const double *null;   /* r candidate null vectors of K (N x r, column-major), or NULL */
     int r;
-    double shift;         /* sigma > 0: A = K + sigma M is positive definite */
-    double zero;          /* eigenvalues below this count as (extra) zero modes */
-    int want;             /* lowest eigenpairs wanted above `zero`, 1..N - r */
-    int block;            /* block size b, 1 or 2 (2: eigenvalues may come in pairs) */
-    int max_steps;        /* Lanczos steps (expanded basis vectors) allowed; at most 600 are
+    double shift;  /* sigma > 0: A = K + sigma M is positive definite */
+    double zero;   /* eigenvalues below this count as (extra) zero modes */
+    int want;      /* lowest eigenpairs wanted above `zero`, 1..N - r */
+    int block;     /* block size b, 1 or 2 (2: eigenvalues may come in pairs) */
+    int max_steps; /* Lanczos steps (expanded basis vectors) allowed; at most 600 are
                            * taken, the basis is kept whole */
     /* A pair is converged when ||K x - lambda M x|| / (lambda ||M x||) <=
      * floor_abs / lambda + tol (its rounding floor plus the tolerance). */

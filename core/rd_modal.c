@@ -124,19 +124,19 @@ typedef struct part {
     int dofs[6], ndof; /* DOF k (0..5) of every segment */
     int N, *map;       /* part index -> band index of the full problem */
     rd_band K, M;
-    double *Z;         /* N x nz rigid motions restricted to the part */
+    double *Z; /* N x nz rigid motions restricted to the part */
     int nz;
     rd_lanczos_result res;
 } part;
 
 typedef struct solve_ws {
-    rd_band K, M;      /* the full problem, band ordering */
+    rd_band K, M; /* the full problem, band ordering */
     int N, nparts, block;
     part parts[2];
-    double noise;      /* Rayleigh-quotient rounding level, 10 eps lambda_max */
-    double lambda_ref; /* shift: first thin-ring eigenvalue */
-    double tau;        /* zero-mode threshold 1e-6 lambda_ref */
-    int *inv;          /* N: band index -> part index (scratch) */
+    double noise;            /* Rayleigh-quotient rounding level, 10 eps lambda_max */
+    double lambda_ref;       /* shift: first thin-ring eigenvalue */
+    double tau;              /* zero-mode threshold 1e-6 lambda_ref */
+    int *inv;                /* N: band index -> part index (scratch) */
     double *x, *tmp1, *tmp2; /* N scratch */
 } solve_ws;
 
@@ -353,13 +353,20 @@ static int solve_part(solve_ws *w, int p, int want, const rd_modal_opts *o, cons
      * the wanted modes reach that far up, take the whole (small) space. */
     if (3 * want > room)
         want = room;
-    rd_lanczos_problem pb = {
-        .K = &pt->K, .M = &pt->M, .null = pt->Z, .r = pt->nz,
-        .shift = w->lambda_ref, .zero = w->tau,
-        .want = want < room ? want : room, .block = w->block,
-        .max_steps = o->max_iterations,
-        .floor_abs = RESIDUAL_FLOOR * w->noise, .tol = o->tol,
-        .mon = mon, .mon_lo = (double)p / w->nparts, .mon_hi = (double)(p + 1) / w->nparts};
+    rd_lanczos_problem pb = {.K = &pt->K,
+                             .M = &pt->M,
+                             .null = pt->Z,
+                             .r = pt->nz,
+                             .shift = w->lambda_ref,
+                             .zero = w->tau,
+                             .want = want < room ? want : room,
+                             .block = w->block,
+                             .max_steps = o->max_iterations,
+                             .floor_abs = RESIDUAL_FLOOR * w->noise,
+                             .tol = o->tol,
+                             .mon = mon,
+                             .mon_lo = (double)p / w->nparts,
+                             .mon_hi = (double)(p + 1) / w->nparts};
     return rd_lanczos_solve(&pb, &pt->res, err);
 }
 
@@ -381,8 +388,8 @@ static int collect_modes(const rd_ring *ring, solve_ws *w, int total, rd_modal_r
                 best = p;
         }
         if (best < 0)
-            return rd_error_set(err, RD_EINTERNAL, "", "The modal solver found %d of %d modes.",
-                                e, total);
+            return rd_error_set(err, RD_EINTERNAL, "", "The modal solver found %d of %d modes.", e,
+                                total);
         const part *pt = &w->parts[best];
         const double *xp = pt->res.x + (size_t)next[best] * pt->N;
         memset(w->x, 0, (size_t)w->N * sizeof *w->x);
@@ -531,8 +538,8 @@ int rd_modal_solve(const rd_ring_params *p, int segments, int closed, const rd_m
     char what[48];
     snprintf(what, sizeof what, "%d segments", m);
     modal_levels L = {p, {segments, m}, closed, o, {out, &ref}};
-    rd_accuracy_plan plan = {level_solve, level_compare, &L, o->estimate_error,
-                             (double)segments / (segments + m), what};
+    rd_accuracy_plan plan = {
+        level_solve, level_compare, &L, o->estimate_error, (double)segments / (segments + m), what};
     rc = rd_accuracy_run(&plan, mon, NULL, err);
     rd_modal_result_cleanup(&ref);
     if (rc != RD_OK)

@@ -40,10 +40,10 @@ typedef struct rd_modal_opts {
 
 typedef struct rd_mode {
     double frequency_hz;
-    int kind;                      /* enum rd_mode_kind */
-    double in_plane_fraction;      /* share of kinetic energy in in-plane DOFs */
-    double residual;               /* ||K phi - w^2 M phi|| / (w^2 ||M phi||) */
-    double error_estimate;         /* relative, vs n -> infinity; NAN if not estimated */
+    int kind;                         /* enum rd_mode_kind */
+    double in_plane_fraction;         /* share of kinetic energy in in-plane DOFs */
+    double residual;                  /* ||K phi - w^2 M phi|| / (w^2 ||M phi||) */
+    double error_estimate;            /* relative, vs n -> infinity; NAN if not estimated */
     double frequency_extrapolated_hz; /* Richardson estimate of the limit; NAN if none */
     /* Shape per segment in the segment's local cylindrical frame, normalized so
      * the largest translation is 1 (sign: the first translation, in segment
@@ -55,15 +55,15 @@ typedef struct rd_mode {
 
 typedef struct rd_modal_result {
     int segments, dof;
-    int rigid_body_modes;       /* eigenvalues found at zero (6 for a free ring) */
+    int rigid_body_modes; /* eigenvalues found at zero (6 for a free ring) */
     int n_modes;
-    rd_mode *modes;             /* n_modes elastic modes, ascending */
-    int iterations;             /* Lanczos steps of the main solve (sum over its parts) */
-    int block_size;             /* Lanczos block size: 2 for a closed ring, else 1 */
-    double max_residual;        /* largest mode residual */
-    int reference_segments;     /* m of the error-estimate solve; 0 if none */
-    double error_estimate;      /* largest per-mode estimate; NAN if none */
-    double factor_s;            /* wall time of the factorizations, s */
+    rd_mode *modes;         /* n_modes elastic modes, ascending */
+    int iterations;         /* Lanczos steps of the main solve (sum over its parts) */
+    int block_size;         /* Lanczos block size: 2 for a closed ring, else 1 */
+    double max_residual;    /* largest mode residual */
+    int reference_segments; /* m of the error-estimate solve; 0 if none */
+    double error_estimate;  /* largest per-mode estimate; NAN if none */
+    double factor_s;        /* wall time of the factorizations, s */
 } rd_modal_result;
 
 void rd_modal_opts_default(rd_modal_opts *o);

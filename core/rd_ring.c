@@ -34,8 +34,8 @@
  * mass at P + c:  v_com = u' - [c]x theta', hence
  *   M_i = [[ m I,  -m [c]x ], [ m [c]x,  I_com - m [c]x [c]x ]].
  */
-#include "rd_internal.h"
 #include "rd_ring.h"
+#include "rd_internal.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -45,14 +45,14 @@ struct rd_ring {
     rd_ring_params p;
     rd_ring_section s;
     int n, closed, joints;
-    double phi;        /* segment angle, rad */
-    double *alpha;     /* n mid-angles from the gap middle, rad */
-    double *P;         /* 3n reference points */
+    double phi;    /* segment angle, rad */
+    double *alpha; /* n mid-angles from the gap middle, rad */
+    double *P;     /* 3n reference points */
     rd_segment_mass mass;
-    double *Mseg;      /* n x 36, row-major per segment */
-    double Kc[36];     /* local cantilever stiffness, row-major */
-    double *T;         /* joints x (6 x 12) transfer matrices, local components */
-    int *pos;          /* band position of each segment */
+    double *Mseg;  /* n x 36, row-major per segment */
+    double Kc[36]; /* local cantilever stiffness, row-major */
+    double *T;     /* joints x (6 x 12) transfer matrices, local components */
+    int *pos;      /* band position of each segment */
 };
 
 #define M6(A, r, c) ((A)[6 * (r) + (c)])
@@ -75,8 +75,9 @@ static int check_range(double v, double lo, double hi, const char *path, const c
                        rd_error *err)
 {
     if (!isfinite(v) || v < lo || v > hi)
-        return rd_error_set(err, RD_EINVAL, path, "%s = %g %s is out of range: allowed %g to %g %s.",
-                            path, v, unit, lo, hi, unit);
+        return rd_error_set(err, RD_EINVAL, path,
+                            "%s = %g %s is out of range: allowed %g to %g %s.", path, v, unit, lo,
+                            hi, unit);
     return RD_OK;
 }
 
@@ -111,8 +112,8 @@ int rd_ring_validate(const rd_ring_params *p, int segments, int closed, rd_error
         return rc;
     if ((rc = check_range(p->tangential_force, 0.0, 1e5, "/ring/tangential_force", "N", err)))
         return rc;
-    if ((rc = check_range(p->youngs_modulus, 1e6, 1e15, "/ring/material/youngs_modulus", "Pa",
-                          err)))
+    if ((rc =
+             check_range(p->youngs_modulus, 1e6, 1e15, "/ring/material/youngs_modulus", "Pa", err)))
         return rc;
     if (!isfinite(p->poisson_ratio) || p->poisson_ratio <= -1.0 || p->poisson_ratio >= 0.5)
         return rd_error_set(err, RD_EINVAL, "/ring/material/poisson_ratio",
@@ -209,8 +210,8 @@ void rd_ring_segment_mass_get(const rd_ring_params *p, double phi, rd_segment_ma
     double rc = 2.0 * rho * S2 * sin(0.5 * phi) / m;
     out->mass = m;
     out->com_radius = rc;
-    out->I_rr = yy + zz;                  /* about the radial axis through the COM */
-    out->I_tt = xx + zz - m * rc * rc;    /* parallel-axis shift by rc */
+    out->I_rr = yy + zz;               /* about the radial axis through the COM */
+    out->I_tt = xx + zz - m * rc * rc; /* parallel-axis shift by rc */
     out->I_zz = xx + yy - m * rc * rc;
 }
 
@@ -382,13 +383,34 @@ void rd_ring_free(rd_ring *ring)
     free(ring);
 }
 
-int rd_ring_get_segments(const rd_ring *ring) { return ring->n; }
-int rd_ring_get_dof(const rd_ring *ring) { return 6 * ring->n; }
-int rd_ring_is_closed(const rd_ring *ring) { return ring->closed; }
-int rd_ring_get_joints(const rd_ring *ring) { return ring->joints; }
-const rd_ring_params *rd_ring_get_params(const rd_ring *ring) { return &ring->p; }
-const rd_ring_section *rd_ring_get_section(const rd_ring *ring) { return &ring->s; }
-double rd_ring_get_segment_angle(const rd_ring *ring, int i) { return ring->alpha[i]; }
+int rd_ring_get_segments(const rd_ring *ring)
+{
+    return ring->n;
+}
+int rd_ring_get_dof(const rd_ring *ring)
+{
+    return 6 * ring->n;
+}
+int rd_ring_is_closed(const rd_ring *ring)
+{
+    return ring->closed;
+}
+int rd_ring_get_joints(const rd_ring *ring)
+{
+    return ring->joints;
+}
+const rd_ring_params *rd_ring_get_params(const rd_ring *ring)
+{
+    return &ring->p;
+}
+const rd_ring_section *rd_ring_get_section(const rd_ring *ring)
+{
+    return &ring->s;
+}
+double rd_ring_get_segment_angle(const rd_ring *ring, int i)
+{
+    return ring->alpha[i];
+}
 const rd_segment_mass *rd_ring_get_segment_mass(const rd_ring *ring, int i)
 {
     (void)i;
@@ -399,12 +421,27 @@ const double *rd_ring_segment_mass_matrix(const rd_ring *ring, int i)
     return ring->Mseg + 36 * i;
 }
 
-const double *rd_ring_reference_point(const rd_ring *ring, int i) { return ring->P + 3 * i; }
-const double *rd_ring_joint_stiffness(const rd_ring *ring) { return ring->Kc; }
-double rd_ring_segment_phi(const rd_ring *ring) { return ring->phi; }
+const double *rd_ring_reference_point(const rd_ring *ring, int i)
+{
+    return ring->P + 3 * i;
+}
+const double *rd_ring_joint_stiffness(const rd_ring *ring)
+{
+    return ring->Kc;
+}
+double rd_ring_segment_phi(const rd_ring *ring)
+{
+    return ring->phi;
+}
 
-int rd_ring_band_index(const rd_ring *ring, int i, int k) { return 6 * ring->pos[i] + k; }
-int rd_ring_band_kd(const rd_ring *ring) { return ring->closed ? 17 : 11; }
+int rd_ring_band_index(const rd_ring *ring, int i, int k)
+{
+    return 6 * ring->pos[i] + k;
+}
+int rd_ring_band_kd(const rd_ring *ring)
+{
+    return ring->closed ? 17 : 11;
+}
 
 /* Ke = T^T Kc T (12x12, row-major) for joint j. */
 static void joint_stiffness(const rd_ring *ring, int j, double Ke[144])

@@ -48,21 +48,21 @@ enum rd_section_shape { RD_SECTION_RECTANGLE = 0, RD_SECTION_CIRCLE = 1 };
 
 /* Section and material constants derived from the parameters. */
 typedef struct rd_ring_section {
-    double R;       /* centroid radius, m */
-    double area;    /* A = b h */
-    double I_inplane;  /* I about the axial direction: h b^3 / 12 (in-plane bending) */
-    double I_outplane; /* I about the radial direction: b h^3 / 12 (out-of-plane bending) */
-    double J;       /* Saint-Venant torsion constant (rectangle: series; circle: pi a^4/2) */
-    double G;       /* shear modulus E / (2 (1 + nu)) */
+    double R;            /* centroid radius, m */
+    double area;         /* A = b h */
+    double I_inplane;    /* I about the axial direction: h b^3 / 12 (in-plane bending) */
+    double I_outplane;   /* I about the radial direction: b h^3 / 12 (out-of-plane bending) */
+    double J;            /* Saint-Venant torsion constant (rectangle: series; circle: pi a^4/2) */
+    double G;            /* shear modulus E / (2 (1 + nu)) */
     double shear_factor; /* form factor for shear: 6/5 rectangle, 10/9 circle (Tab. 3.1) */
-    double span;    /* angle covered by the ring, rad */
+    double span;         /* angle covered by the ring, rad */
 } rd_ring_section;
 
 /* Mass properties of one rigid segment, in the segment's local cylindrical
  * frame at its mid-angle (e_r radial outward, e_t tangential, e_z axial). */
 typedef struct rd_segment_mass {
-    double mass;       /* kg */
-    double com_radius; /* radius of the centre of mass, m */
+    double mass;             /* kg */
+    double com_radius;       /* radius of the centre of mass, m */
     double I_rr, I_tt, I_zz; /* principal moments about the centre of mass, kg m^2 */
 } rd_segment_mass;
 
@@ -95,7 +95,7 @@ rd_ring *rd_ring_create(const rd_ring_params *p, int segments, int closed, rd_er
 void rd_ring_free(rd_ring *ring);
 
 int rd_ring_get_segments(const rd_ring *ring);
-int rd_ring_get_dof(const rd_ring *ring);          /* 6 n */
+int rd_ring_get_dof(const rd_ring *ring); /* 6 n */
 int rd_ring_is_closed(const rd_ring *ring);
 const rd_ring_params *rd_ring_get_params(const rd_ring *ring);
 const rd_ring_section *rd_ring_get_section(const rd_ring *ring);

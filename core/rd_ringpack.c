@@ -58,8 +58,7 @@ double rd_ringpack_standard_density(void)
 }
 
 /* v in [lo, hi], else an error naming `path`. */
-static int range(double v, double lo, double hi, const char *path, const char *unit,
-                 rd_error *err)
+static int range(double v, double lo, double hi, const char *path, const char *unit, rd_error *err)
 {
     if (isfinite(v) && v >= lo && v <= hi)
         return RD_OK;
@@ -87,12 +86,14 @@ static int validate_ring(const rd_ringpack_ring *r, int i, double bore, rd_error
                             "%s = %g m: the groove (ring height + axial clearance) must be "
                             "taller than the ring; allowed 1e-07 to 0.005 m.",
                             f, r->groove.axial_clearance);
-    rc = rc ? rc : range(r->groove.axial_clearance, 1e-7, 0.005,
-                         FIELD("groove/axial_clearance"), "m", err);
-    rc = rc ? rc : range(r->groove.radial_clearance, 1e-6, 0.01,
-                         FIELD("groove/radial_clearance"), "m", err);
-    rc = rc ? rc : range(r->discharge_coefficient, 0.0, 1.0, FIELD("discharge_coefficient"),
-                         "", err);
+    rc = rc ? rc
+            : range(r->groove.axial_clearance, 1e-7, 0.005, FIELD("groove/axial_clearance"), "m",
+                    err);
+    rc = rc ? rc
+            : range(r->groove.radial_clearance, 1e-6, 0.01, FIELD("groove/radial_clearance"), "m",
+                    err);
+    rc = rc ? rc
+            : range(r->discharge_coefficient, 0.0, 1.0, FIELD("discharge_coefficient"), "", err);
     rc = rc ? rc : range(r->gap_angle_deg, -360.0, 360.0, FIELD("gap_angle_deg"), "deg", err);
     if (!rc && !(r->land_height > 0.0 && r->land_clearance > 0.0))
         return rd_error_set(err, RD_EINVAL,
@@ -101,8 +102,8 @@ static int validate_ring(const rd_ringpack_ring *r, int i, double bore, rd_error
                             "positive (height %g m, radial clearance %g m).",
                             f, r->land_height, r->land_clearance);
     rc = rc ? rc : range(r->land_height, 1e-5, 0.1, FIELD("land/height"), "m", err);
-    rc = rc ? rc : range(r->land_clearance, 1e-7, 0.25 * bore, FIELD("land/radial_clearance"),
-                         "m", err);
+    rc = rc ? rc
+            : range(r->land_clearance, 1e-7, 0.25 * bore, FIELD("land/radial_clearance"), "m", err);
     if (!rc && r->groove.axial_clearance >= r->ring.axial_height)
         return rd_error_set(err, RD_EINVAL, FIELD("groove/axial_clearance"),
                             "%s = %g m is not smaller than the ring's height %g m: the groove "
@@ -127,7 +128,8 @@ static int validate_table(const rd_ringpack_params *p, rd_error *err)
             return rc;
         if (k > 0 && !(p->table_deg[k] > p->table_deg[k - 1])) {
             snprintf(f, sizeof f, "%s/%d", at, k);
-            return rd_error_set(err, RD_EINVAL, f, "%s = %g must exceed the angle before it "
+            return rd_error_set(err, RD_EINVAL, f,
+                                "%s = %g must exceed the angle before it "
                                 "(%g): the angles must increase strictly.",
                                 f, p->table_deg[k], p->table_deg[k - 1]);
         }
@@ -148,13 +150,14 @@ int rd_ringpack_validate(const rd_ringpack_params *p, rd_error *err)
     rc = rc ? rc : range((double)p->max_steps, 100.0, 1e9, "/numerics/max_steps", "", err);
     rc = rc ? rc : range(e->speed_rpm, 1.0, 30000.0, "/engine/speed_rpm", "rpm", err);
     rc = rc ? rc : range(e->crank_radius, 0.001, 1.0, "/engine/crank_radius", "m", err);
-    rc = rc ? rc : range(e->rod_length, e->crank_radius / 0.9, 10.0, "/engine/rod_length", "m",
-                         err);
+    rc =
+        rc ? rc : range(e->rod_length, e->crank_radius / 0.9, 10.0, "/engine/rod_length", "m", err);
     rc = rc ? rc : range(e->cycles, 2.0, RD_RINGPACK_CYCLES_MAX, "/engine/cycles", "", err);
     if (!rc && e->cycles != floor(e->cycles))
         return rd_error_set(err, RD_EINVAL, "/engine/cycles",
                             "/engine/cycles = %g must be a whole number of cycles (2 to 50): the "
-                            "last two are compared for the periodic state.", e->cycles);
+                            "last two are compared for the periodic state.",
+                            e->cycles);
     if (!rc && (p->n_rings < 1 || p->n_rings > RD_RINGPACK_RINGS_MAX))
         return rd_error_set(err, RD_EINVAL, "/rings", "/rings has %d rings; allowed 1 to %d.",
                             p->n_rings, RD_RINGPACK_RINGS_MAX);
@@ -168,11 +171,9 @@ int rd_ringpack_validate(const rd_ringpack_params *p, rd_error *err)
         }
         rc = validate_ring(&p->rings[i], i, p->rings[0].ring.diameter, err);
     }
-    rc = rc ? rc : range(p->crankcase_pa, 1e3, 1e7, "/crankcase_pressure_pa", "Pa (absolute)",
-                         err);
+    rc = rc ? rc : range(p->crankcase_pa, 1e3, 1e7, "/crankcase_pressure_pa", "Pa (absolute)", err);
     rc = rc ? rc : range(p->T_lands, 200.0, 1500.0, "/gas_temperature_k/lands", "K", err);
-    rc = rc ? rc : range(p->T_crankcase, 200.0, 1500.0, "/gas_temperature_k/crankcase", "K",
-                         err);
+    rc = rc ? rc : range(p->T_crankcase, 200.0, 1500.0, "/gas_temperature_k/crankcase", "K", err);
     rc = rc ? rc : range(p->rtol, 1e-12, 0.01, "/numerics/rtol", "", err);
     rc = rc ? rc : range(p->atol, 1e-16, 1e-5, "/numerics/atol", "m", err);
     if (rc)
@@ -200,8 +201,8 @@ static void ring_geometry(rd_ringpack_model *m, int i)
     m->gap_area[i] = r->ring.closed_gap * c;
     m->cd[i] = r->discharge_coefficient;
     m->vol[2 * i + 1] = M_PI * r->land_height * c * (d - c);
-    m->vol[2 * i + 2] = M_PI * (r_in * r_in - r_b * r_b) * (h + a) +
-                        M_PI * (0.25 * d * d - r_in * r_in) * a;
+    m->vol[2 * i + 2] =
+        M_PI * (r_in * r_in - r_b * r_b) * (h + a) + M_PI * (0.25 * d * d - r_in * r_in) * a;
     m->temp[2 * i + 1] = m->temp[2 * i + 2] = m->p->T_lands;
     /* flows 1 + 3i .. 3 + 3i: upper flank, lower flank, end gap */
     m->from[1 + 3 * i] = 2 * i + 1;
@@ -289,7 +290,8 @@ void rd_ringpack_flows(const rd_ringpack_model *m, const double *pv, const doubl
     }
 }
 
-double rd_ringpack_ring_force(const rd_ringpack_model *m, int i, double t, const double *y, const double *pv)
+double rd_ringpack_ring_force(const rd_ringpack_model *m, int i, double t, const double *y,
+                              const double *pv)
 {
     (void)y;
     double above = pv[2 * i + 1], below = pv[rp_below(m, i)];

@@ -59,39 +59,39 @@
 #include "rd_lift.h"
 #include "rd_ring.h"
 
-#define RD_RINGPACK_RINGS_MAX 3
+#define RD_RINGPACK_RINGS_MAX   3
 #define RD_RINGPACK_VOLUMES_MAX (2 * RD_RINGPACK_RINGS_MAX + 2) /* with cylinder, crankcase */
-#define RD_RINGPACK_FLOWS_MAX (3 * RD_RINGPACK_RINGS_MAX + 1)
-#define RD_RINGPACK_CYCLES_MAX 50
+#define RD_RINGPACK_FLOWS_MAX   (3 * RD_RINGPACK_RINGS_MAX + 1)
+#define RD_RINGPACK_CYCLES_MAX  50
 
 enum rd_ringpack_pin { RD_PIN_FREE = 0, RD_PIN_LOWER = 1, RD_PIN_UPPER = 2 };
 
 typedef struct rd_ringpack_ring {
-    rd_ring_params ring;      /* section, closed gap, density */
+    rd_ring_params ring; /* section, closed gap, density */
     rd_groove_params groove;
-    double land_height;       /* the land above the ring, m */
-    double land_clearance;    /* its piston-to-liner radial clearance, m */
-    double gap_angle_deg;     /* where the gap sits (recorded; the rigid ring ignores it) */
+    double land_height;           /* the land above the ring, m */
+    double land_clearance;        /* its piston-to-liner radial clearance, m */
+    double gap_angle_deg;         /* where the gap sits (recorded; the rigid ring ignores it) */
     double discharge_coefficient; /* C_d of its passages, 0..1 */
-    int pinned;               /* enum rd_ringpack_pin */
+    int pinned;                   /* enum rd_ringpack_pin */
 } rd_ringpack_ring;
 
 typedef struct rd_ringpack_params {
-    rd_engine_params engine;  /* cycles: whole cycles, 2..50 */
-    int n_rings;              /* 1..3 */
+    rd_engine_params engine; /* cycles: whole cycles, 2..50 */
+    int n_rings;             /* 1..3 */
     rd_ringpack_ring rings[RD_RINGPACK_RINGS_MAX];
-    int cylinder_kind;        /* enum rd_cylinder_kind */
-    int table_points;         /* RD_CYLINDER_TABLE: the trace, borrowed */
-    const double *table_deg;  /* strictly increasing, 0 .. 720 covered */
-    const double *table_pa;   /* absolute, Pa, > 0 */
+    int cylinder_kind;       /* enum rd_cylinder_kind */
+    int table_points;        /* RD_CYLINDER_TABLE: the trace, borrowed */
+    const double *table_deg; /* strictly increasing, 0 .. 720 covered */
+    const double *table_pa;  /* absolute, Pa, > 0 */
     rd_cylinder_synthetic synthetic;
-    double crankcase_pa;      /* absolute, Pa */
+    double crankcase_pa;         /* absolute, Pa */
     double T_lands, T_crankcase; /* K */
-    int gravity;              /* 1: g along -z */
-    double step_deg;          /* output sampling (rounded so 720 / step is whole) */
-    double rtol, atol;        /* atol on the lifts, m */
-    long max_steps;           /* CVODE steps for the whole run */
-    int estimate_error;       /* 1: second run at rtol/10, atol/10 */
+    int gravity;                 /* 1: g along -z */
+    double step_deg;             /* output sampling (rounded so 720 / step is whole) */
+    double rtol, atol;           /* atol on the lifts, m */
+    long max_steps;              /* CVODE steps for the whole run */
+    int estimate_error;          /* 1: second run at rtol/10, atol/10 */
     /* Test hook: the ring faces' pressures from these gauge tables (above,
      * below; plus crankcase_pa) instead of the network's.  NULL normally. */
     const rd_gas_params *face_tables;
@@ -99,11 +99,11 @@ typedef struct rd_ringpack_params {
 
 typedef struct rd_ringpack_result {
     int samples, n_rings, n_volumes, n_flows, cycles;
-    double *crank_deg;   /* samples: the last cycle, 0..720 */
-    double *pressure;    /* n_volumes x samples: cylinder, land_1, groove_1, ..., crankcase */
-    double *lift;        /* n_rings x samples, m */
-    int *flank;          /* n_rings x samples, enum rd_flank */
-    double *flow;        /* n_flows x samples, kg/s, positive from `flow_from` to `flow_to` */
+    double *crank_deg; /* samples: the last cycle, 0..720 */
+    double *pressure;  /* n_volumes x samples: cylinder, land_1, groove_1, ..., crankcase */
+    double *lift;      /* n_rings x samples, m */
+    int *flank;        /* n_rings x samples, enum rd_flank */
+    double *flow;      /* n_flows x samples, kg/s, positive from `flow_from` to `flow_to` */
     rd_lift_event *events[RD_RINGPACK_RINGS_MAX]; /* the last cycle's, crank_deg in 0..720 */
     int n_events[RD_RINGPACK_RINGS_MAX];
     const char *volume_name[RD_RINGPACK_VOLUMES_MAX]; /* static strings */
@@ -120,8 +120,8 @@ typedef struct rd_ringpack_result {
     double periodicity;      /* relative change of the last cycle against the one before */
     /* CVODE's work over the whole run (summed over the restarts) */
     long steps, rhs_evals, jac_evals, root_evals, restarts, err_test_fails, nonlin_fails;
-    double error_estimate;   /* from the rtol/10 run; NAN if none */
-    double event_error_deg;  /* largest flank-change angle change in that run; NAN if none */
+    double error_estimate;  /* from the rtol/10 run; NAN if none */
+    double event_error_deg; /* largest flank-change angle change in that run; NAN if none */
 } rd_ringpack_result;
 
 /* The defaults: one thesis ring in the thesis engine at 2400 rpm, 6 cycles,

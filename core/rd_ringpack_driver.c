@@ -23,8 +23,8 @@
 #include "rd_internal.h"
 #include "rd_ringpack_model.h"
 
-#define HMAX_DEG 2.0         /* largest step, crank degrees */
-#define RESTARTS_MAX 200000  /* flank changes allowed in a run */
+#define HMAX_DEG     2.0    /* largest step, crank degrees */
+#define RESTARTS_MAX 200000 /* flank changes allowed in a run */
 
 typedef struct drv {
     rd_ringpack_model m;
@@ -34,10 +34,10 @@ typedef struct drv {
     SUNLinearSolver LS;
     void *cv;
     double deg_per_s;
-    double *prev;            /* n_volumes x samples: the cycle before the last */
-    double cum[3][4];        /* cumulative masses at the starts of the last two cycles, end */
-    double stored[3];        /* gas in the volumes then, kg */
-    int S, C;                /* samples per cycle (intervals), cycles */
+    double *prev;     /* n_volumes x samples: the cycle before the last */
+    double cum[3][4]; /* cumulative masses at the starts of the last two cycles, end */
+    double stored[3]; /* gas in the volumes then, kg */
+    int S, C;         /* samples per cycle (intervals), cycles */
     rd_ringpack_result *res;
     int cap[RD_RINGPACK_RINGS_MAX];
 } drv;
@@ -150,8 +150,7 @@ static int drv_open(drv *d, const rd_ringpack_params *p, double rtol, double ato
     initial_state(d, rtol, atol);
     if ((flag = CVodeSetErrHandlerFn(d->cv, cv_silent, d)) ||
         (flag = CVodeInit(d->cv, cv_rhs, 0.0, d->y)) ||
-        (flag = CVodeSVtolerances(d->cv, rtol, d->abstol)) ||
-        (flag = CVodeSetUserData(d->cv, d)) ||
+        (flag = CVodeSVtolerances(d->cv, rtol, d->abstol)) || (flag = CVodeSetUserData(d->cv, d)) ||
         (flag = CVodeSetLinearSolver(d->cv, d->LS, d->A)) ||
         (flag = CVodeSetMaxStep(d->cv, HMAX_DEG / d->deg_per_s)) ||
         (flag = CVodeSetMaxNumSteps(d->cv, p->max_steps)) ||
@@ -363,10 +362,10 @@ static void balance(drv *d)
     r->blowby_kg = (b[2] - a[2]) - (b[3] - a[3]);
     r->stored_change_kg = d->stored[2] - d->stored[1];
     double thru = fmax(r->inflow_kg + r->reverse_kg, 1e-300);
-    r->mass_residual = fabs(r->inflow_kg - r->reverse_kg - r->blowby_kg - r->stored_change_kg) /
-                       thru;
-    r->blowby_l_per_min = r->blowby_kg * (d->m.p->engine.speed_rpm / 2.0) /
-                          rd_ringpack_standard_density() * 1000.0;
+    r->mass_residual =
+        fabs(r->inflow_kg - r->reverse_kg - r->blowby_kg - r->stored_change_kg) / thru;
+    r->blowby_l_per_min =
+        r->blowby_kg * (d->m.p->engine.speed_rpm / 2.0) / rd_ringpack_standard_density() * 1000.0;
     double before = (a[2] - o[2]) - (a[3] - o[3]), change = 0.0;
     change = fabs(r->blowby_kg - before) / fmax(fabs(r->blowby_kg), 1e-300);
     for (int v = 1; v < nv - 1; v++) {
@@ -380,7 +379,6 @@ static void balance(drv *d)
     }
     r->periodicity = change;
 }
-
 
 /* One run at (rtol, atol) into r. */
 static int run_once(const rd_ringpack_params *p, double rtol, double atol, const rd_monitor *mon,
@@ -430,8 +428,8 @@ static int acc_compare(void *ctx, rd_error *err)
         peak = fmax(peak, r->pressure[k]);
         dp = fmax(dp, fabs(r->pressure[k] - q->pressure[k]));
     }
-    r->error_estimate = fmax(dp / peak, fabs(r->blowby_kg - q->blowby_kg) /
-                                            fmax(fabs(q->blowby_kg), 1e-300));
+    r->error_estimate =
+        fmax(dp / peak, fabs(r->blowby_kg - q->blowby_kg) / fmax(fabs(q->blowby_kg), 1e-300));
     for (int i = 0; i < r->n_rings; i++) {
         if (r->n_events[i] != q->n_events[i]) {
             de = NAN;
@@ -453,8 +451,11 @@ int rd_ringpack_solve(const rd_ringpack_params *p, const rd_monitor *mon, rd_rin
     if (rc)
         return rc;
     acc a = {p, out, {0}};
-    rd_accuracy_plan plan = {.solve = acc_solve, .compare = acc_compare, .ctx = &a,
-                             .estimate = p->estimate_error, .main_share = 0.5,
+    rd_accuracy_plan plan = {.solve = acc_solve,
+                             .compare = acc_compare,
+                             .ctx = &a,
+                             .estimate = p->estimate_error,
+                             .main_share = 0.5,
                              .reference = "rtol/10, atol/10"};
     rc = rd_accuracy_run(&plan, mon, NULL, err);
     rd_ringpack_result_cleanup(&a.ref);

@@ -8,25 +8,25 @@
 #include "rd_ringpack.h"
 
 /* State access. */
-#define RP_P(m, y, v) ((y)[(v)])                    /* pressure of state volume v (0..2R-1) */
-#define RP_Z(m, y, i) ((y)[2 * (m)->R + 2 * (i)])   /* lift of ring i */
-#define RP_ZD(m, y, i) ((y)[2 * (m)->R + 2 * (i) + 1])
-#define RP_CUM(m, y, k) ((y)[4 * (m)->R + (k)])      /* k: 0 in, 1 back, 2 cc in, 3 cc out */
+#define RP_P(m, y, v)   ((y)[(v)])                  /* pressure of state volume v (0..2R-1) */
+#define RP_Z(m, y, i)   ((y)[2 * (m)->R + 2 * (i)]) /* lift of ring i */
+#define RP_ZD(m, y, i)  ((y)[2 * (m)->R + 2 * (i) + 1])
+#define RP_CUM(m, y, k) ((y)[4 * (m)->R + (k)]) /* k: 0 in, 1 back, 2 cc in, 3 cc out */
 
 typedef struct rd_ringpack_model {
     const rd_ringpack_params *p;
-    int R, V, N, F;                     /* rings, state volumes, states, flows */
-    double omega;                       /* rad/s */
-    double *cyl_deg, *cyl_pa;           /* the cylinder trace (owned when synthetic) */
+    int R, V, N, F;           /* rings, state volumes, states, flows */
+    double omega;             /* rad/s */
+    double *cyl_deg, *cyl_pa; /* the cylinder trace (owned when synthetic) */
     int cyl_n, cyl_owned;
-    double vol[RD_RINGPACK_VOLUMES_MAX];   /* by network index: 0 cylinder .. V+1 crankcase */
+    double vol[RD_RINGPACK_VOLUMES_MAX]; /* by network index: 0 cylinder .. V+1 crankcase */
     double temp[RD_RINGPACK_VOLUMES_MAX];
-    double ca[RD_RINGPACK_RINGS_MAX];      /* axial clearances */
+    double ca[RD_RINGPACK_RINGS_MAX]; /* axial clearances */
     double mass[RD_RINGPACK_RINGS_MAX], area[RD_RINGPACK_RINGS_MAX];
-    double circ[RD_RINGPACK_RINGS_MAX];    /* pi d: the flank passages' width */
+    double circ[RD_RINGPACK_RINGS_MAX]; /* pi d: the flank passages' width */
     double gap_area[RD_RINGPACK_RINGS_MAX], top_area, cd[RD_RINGPACK_RINGS_MAX];
     int from[RD_RINGPACK_FLOWS_MAX], to[RD_RINGPACK_FLOWS_MAX]; /* network indices */
-    int mode[RD_RINGPACK_RINGS_MAX];       /* enum rd_flank: lower, upper, free */
+    int mode[RD_RINGPACK_RINGS_MAX]; /* enum rd_flank: lower, upper, free */
 } rd_ringpack_model;
 
 /* Network index of the volume below ring i (land_{i+1} or the crankcase). */
@@ -43,7 +43,8 @@ void rd_ringpack_pressures(const rd_ringpack_model *m, double t, const double *y
 /* Mass flows (kg/s, F values, signed from -> to) at pressures pv, lifts of y. */
 void rd_ringpack_flows(const rd_ringpack_model *m, const double *pv, const double *y, double *mdot);
 /* Net axial force on ring i (N, +z up) at (t, y, pv). */
-double rd_ringpack_ring_force(const rd_ringpack_model *m, int i, double t, const double *y, const double *pv);
+double rd_ringpack_ring_force(const rd_ringpack_model *m, int i, double t, const double *y,
+                              const double *pv);
 /* dy/dt. */
 void rd_ringpack_rhs(const rd_ringpack_model *m, double t, const double *y, double *yd);
 /* Names and volumes into the result. */

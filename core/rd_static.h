@@ -58,8 +58,8 @@
 
 enum rd_pretension_method { RD_PRETENSION_FORCE = 0, RD_PRETENSION_FIELD = 1 };
 
-#define RD_DISTORTION_MAX 16
-#define RD_CONTACT_POINTS_MAX 64
+#define RD_DISTORTION_MAX      16
+#define RD_CONTACT_POINTS_MAX  64
 #define RD_STATIC_SEGMENTS_MAX 2000
 
 typedef struct rd_static_opts {
@@ -74,13 +74,13 @@ typedef struct rd_pretension_opts {
 } rd_pretension_opts;
 
 typedef struct rd_distortion {
-    int order;          /* k >= 1 */
-    double amplitude;   /* A_k, m (radius change) */
-    double phase_deg;   /* phi_k, degrees from the gap middle */
+    int order;        /* k >= 1 */
+    double amplitude; /* A_k, m (radius change) */
+    double phase_deg; /* phi_k, degrees from the gap middle */
 } rd_distortion;
 
 typedef struct rd_contact_opts {
-    double bore_diameter;   /* D, m; 0 = the ring's diameter */
+    double bore_diameter; /* D, m; 0 = the ring's diameter */
     int n_distortion;
     rd_distortion distortion[RD_DISTORTION_MAX];
     int points_per_segment; /* m, 1..RD_CONTACT_POINTS_MAX, default 10 (bench_static:
@@ -94,15 +94,15 @@ typedef struct rd_contact_opts {
                                default 320, 4..RD_STATIC_SEGMENTS_MAX */
 } rd_contact_opts;
 
-#define RD_CONTACT_BIN_DEG 10.0 /* width of the pressure bins, from the gap middle */
-#define RD_CONTACT_BINS 36
+#define RD_CONTACT_BIN_DEG  10.0 /* width of the pressure bins, from the gap middle */
+#define RD_CONTACT_BINS     36
 #define RD_CONTACT_GAPS_MAX 64
 
 /* A light gap: a run of the running face off the bore. */
 typedef struct rd_contact_gap {
-    double start_deg, end_deg;   /* edges, deg from the gap middle (start < end) */
-    double max_clearance;        /* largest clearance, m */
-    double max_clearance_deg;    /* where */
+    double start_deg, end_deg; /* edges, deg from the gap middle (start < end) */
+    double max_clearance;      /* largest clearance, m */
+    double max_clearance_deg;  /* where */
 } rd_contact_gap;
 
 /* Error estimates of a contact result (NAN when not estimated). */
@@ -116,13 +116,13 @@ typedef struct rd_contact_estimates {
 /* Counters and accuracy common to both analyses. */
 typedef struct rd_static_stats {
     int segments, dof;
-    int load_steps;        /* accepted load steps */
-    int iterations;        /* Newton iterations, all steps, the main solve */
-    double residual;       /* final relative residual */
-    double tolerance;      /* residual tolerance used: the requested one, or the
+    int load_steps;         /* accepted load steps */
+    int iterations;         /* Newton iterations, all steps, the main solve */
+    double residual;        /* final relative residual */
+    double tolerance;       /* residual tolerance used: the requested one, or the
                               rounding floor of this ring if that is larger */
-    double support_force;  /* |force| the support/pin carries, N */
-    double support_moment; /* |moment| it carries, N m */
+    double support_force;   /* |force| the support/pin carries, N */
+    double support_moment;  /* |moment| it carries, N m */
     int reference_segments; /* segments of the error-estimate solve; 0 if none */
     double error_estimate;  /* relative, of the headline quantity; NAN if none */
     double strain_energy;   /* J */
@@ -145,20 +145,20 @@ typedef struct rd_contact_result {
     rd_static_stats stats;
     /* Per segment (the contact points of one rigid segment share its misfit
      * against a curved bore, so only their resultant is meaningful): */
-    int points;                 /* = segments */
-    double *angle_deg;          /* position angle of the segment's running-face middle, deg */
-    double *pressure;           /* resultant contact force / (h * segment's running-face arc), Pa */
-    double *clearance;          /* closest approach of its points to the bore, m (<= 0: touching) */
-    double *bore_radius;        /* bore radius at the segment's middle, m */
-    double mean_pressure;       /* mean of the segment pressures, Pa */
-    double uniform_pressure;    /* 2 F_t / (d h) (1.3), Pa */
-    double contact_fraction;    /* contact length / running-face length (point clearances,
+    int points;              /* = segments */
+    double *angle_deg;       /* position angle of the segment's running-face middle, deg */
+    double *pressure;        /* resultant contact force / (h * segment's running-face arc), Pa */
+    double *clearance;       /* closest approach of its points to the bore, m (<= 0: touching) */
+    double *bore_radius;     /* bore radius at the segment's middle, m */
+    double mean_pressure;    /* mean of the segment pressures, Pa */
+    double uniform_pressure; /* 2 F_t / (d h) (1.3), Pa */
+    double contact_fraction; /* contact length / running-face length (point clearances,
                                    edges located between points) */
-    double max_clearance;       /* largest segment clearance (light gap), m, >= 0 */
+    double max_clearance;    /* largest segment clearance (light gap), m, >= 0 */
     double max_clearance_angle_deg; /* where; NAN when the ring touches everywhere */
-    double max_penetration;     /* m: what the contact stiffness allows */
-    double stiffness;           /* k used, Pa/m */
-    double conformability;      /* k of (1.4) */
+    double max_penetration;         /* m: what the contact stiffness allows */
+    double stiffness;               /* k used, Pa/m */
+    double conformability;          /* k of (1.4) */
     /* Thin-ring conformability bound of each distortion order:
      * F_t R^3 / (E I (k^2 - 1)^2), m (NAN for k = 1). */
     double bound[RD_DISTORTION_MAX];
@@ -166,8 +166,8 @@ typedef struct rd_contact_result {
      * scale), in angle order; edges where the clearance crosses zero. */
     int n_gaps;
     rd_contact_gap gaps[RD_CONTACT_GAPS_MAX];
-    double gap_floor;           /* m */
-    double tip_force[2];        /* concentrated force at the first / last free end, N */
+    double gap_floor;                     /* m */
+    double tip_force[2];                  /* concentrated force at the first / last free end, N */
     double bin_pressure[RD_CONTACT_BINS]; /* mean pressure over the ring's arc in each
                                    RD_CONTACT_BIN_DEG bin, Pa */
     /* Accuracy: estimates of the reported values' errors from the last two
@@ -175,8 +175,8 @@ typedef struct rd_contact_result {
      * whether it was met (if not, why, in accuracy_note). */
     rd_contact_estimates estimates;
     double accuracy;
-    int accuracy_met;           /* 1 met, 0 not (see accuracy_note), -1 not estimated */
-    int levels;                 /* solves made */
+    int accuracy_met; /* 1 met, 0 not (see accuracy_note), -1 not estimated */
+    int levels;       /* solves made */
     char accuracy_note[256];
 } rd_contact_result;
 
@@ -200,8 +200,8 @@ double rd_ring_free_gap_formula(const rd_ring_params *p);
 
 /* Solve; results own their arrays (cleanup also after a failure). */
 int rd_pretension_solve(const rd_ring_params *p, int segments, const rd_pretension_opts *o,
-                        const rd_static_opts *so, const rd_monitor *mon,
-                        rd_pretension_result *out, rd_error *err);
+                        const rd_static_opts *so, const rd_monitor *mon, rd_pretension_result *out,
+                        rd_error *err);
 int rd_contact_solve(const rd_ring_params *p, int segments, const rd_contact_opts *o,
                      const rd_static_opts *so, const rd_monitor *mon, rd_contact_result *out,
                      rd_error *err);

@@ -9,17 +9,16 @@
 
 static int check_passed_, check_failed_;
 
-#define CHECK(cond, ...)                                                     \
-    do {                                                                     \
-        if (cond) {                                                          \
-            check_passed_++;                                                 \
-        } else {                                                             \
-            check_failed_++;                                                 \
-            fprintf(stderr, "%s:%d: CHECK(%s) failed: ", __FILE__, __LINE__, \
-                    #cond);                                                  \
-            fprintf(stderr, __VA_ARGS__);                                    \
-            fputc('\n', stderr);                                             \
-        }                                                                    \
+#define CHECK(cond, ...)                                                             \
+    do {                                                                             \
+        if (cond) {                                                                  \
+            check_passed_++;                                                         \
+        } else {                                                                     \
+            check_failed_++;                                                         \
+            fprintf(stderr, "%s:%d: CHECK(%s) failed: ", __FILE__, __LINE__, #cond); \
+            fprintf(stderr, __VA_ARGS__);                                            \
+            fputc('\n', stderr);                                                     \
+        }                                                                            \
     } while (0)
 
 /* |got - want| <= tol * max(|want|, tiny): a relative tolerance. */
@@ -38,16 +37,16 @@ static int check_passed_, check_failed_;
     } while (0)
 
 /* |got - want| <= tol: an absolute tolerance. */
-#define CHECK_ABS(got, want, tol, ...)                                               \
-    do {                                                                             \
-        double g_ = (got), w_ = (want), t_ = (tol);                                  \
-        int ok_ = isfinite(g_) && fabs(g_ - w_) <= t_;                               \
-        CHECK(ok_, "%s = %.12g, want %.12g +- %.3g ", #got, g_, w_, t_);            \
-        if (!ok_) {                                                                  \
-            fprintf(stderr, "    ");                                                 \
-            fprintf(stderr, __VA_ARGS__);                                            \
-            fputc('\n', stderr);                                                     \
-        }                                                                            \
+#define CHECK_ABS(got, want, tol, ...)                                   \
+    do {                                                                 \
+        double g_ = (got), w_ = (want), t_ = (tol);                      \
+        int ok_ = isfinite(g_) && fabs(g_ - w_) <= t_;                   \
+        CHECK(ok_, "%s = %.12g, want %.12g +- %.3g ", #got, g_, w_, t_); \
+        if (!ok_) {                                                      \
+            fprintf(stderr, "    ");                                     \
+            fprintf(stderr, __VA_ARGS__);                                \
+            fputc('\n', stderr);                                         \
+        }                                                                \
     } while (0)
 
 static inline int check_done(void)

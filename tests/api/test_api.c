@@ -503,7 +503,7 @@ static void test_run_modal(void)
     CHECK(r != NULL, "result is JSON");
     if (r) {
         /* top-level keys, in the documented order (warnings last: rd_warnings.c) */
-        static const char *const keys[] = {"analysis", "scene",    "rigid_body_modes",
+        static const char *const keys[] = {"analysis",          "scene", "rigid_body_modes",
                                            "segment_angle_deg", "modes", "numerics",
                                            "warnings"};
         size_t k = 0;

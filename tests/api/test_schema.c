@@ -107,16 +107,15 @@ static void test_registry(void)
         CHECK(strcmp(rd_scene_analysis_name(i), an->name) == 0, "enum order: %s", an->name);
         CHECK(an->scene && an->scene->name && an->scene->fields, "%s: a scene schema", an->name);
         CHECK(an->run != NULL, "%s: a runner", an->name);
-        CHECK(json_is_object(json_object_get(schemas, an->scene->name)), "%s: OpenAPI %s",
-              an->name, an->scene->name);
+        CHECK(json_is_object(json_object_get(schemas, an->scene->name)), "%s: OpenAPI %s", an->name,
+              an->scene->name);
         snprintf(ref, sizeof ref, "#/components/schemas/%s", an->scene->name);
         json_t *mapping = json_object_get(
             json_object_get(json_object_get(schemas, "Scene"), "discriminator"), "mapping");
         const char *got = json_string_value(json_object_get(mapping, an->name));
         CHECK(got && strcmp(got, ref) == 0, "%s: in the Scene discriminator", an->name);
         CHECK(count_examples(an->name) >= 1, "%s: at least one example in examples/", an->name);
-        CHECK(an->csv || (an->csv_none && *an->csv_none), "%s: a CSV table or why none",
-              an->name);
+        CHECK(an->csv || (an->csv_none && *an->csv_none), "%s: a CSV table or why none", an->name);
         CHECK(an->page != NULL, "%s: a page tab or \"none\"", an->name);
         if (an->page && strcmp(an->page, "none") != 0) {
             char rel[256], import[300];
@@ -141,12 +140,12 @@ static int check_refs(json_t *doc, json_t *v)
     if (json_is_array(v)) {
         size_t i;
         json_t *x;
-        json_array_foreach(v, i, x)
-            refs += check_refs(doc, x);
+        json_array_foreach(v, i, x) refs += check_refs(doc, x);
     } else if (json_is_object(v)) {
         const char *key;
         json_t *x;
-        json_object_foreach(v, key, x) {
+        json_object_foreach(v, key, x)
+        {
             if (strcmp(key, "$ref") == 0 && json_is_string(x)) {
                 char ptr[256], *save = NULL;
                 snprintf(ptr, sizeof ptr, "%s", json_string_value(x) + 1); /* after '#' */
@@ -174,8 +173,7 @@ static void test_openapi_refs(void)
 
 /* ---- every field, with its path ------------------------------------------- */
 
-typedef void (*field_fn)(const rd_analysis_def *an, const rd_field *f, const char *path,
-                         int item);
+typedef void (*field_fn)(const rd_analysis_def *an, const rd_field *f, const char *path, int item);
 
 /* Calls fn for every field of `block` (recursively); item: inside an array
  * item (the path then has "/0"). */
@@ -238,7 +236,8 @@ static void merge(json_t *to, json_t *from)
 {
     const char *key;
     json_t *v;
-    json_object_foreach(from, key, v) {
+    json_object_foreach(from, key, v)
+    {
         json_t *have = json_object_get(to, key);
         if (json_is_object(have) && json_is_object(v))
             merge(have, v);
@@ -281,8 +280,8 @@ static int probes;
 /* One bound: at the edge (inclusive) the field itself is not refused (a
  * rule tying it to another field may still refuse the scene, at that
  * other field); one step outside it is refused, at the field's path. */
-static void probe_bound(const rd_analysis_def *an, const rd_field *f, const char *path,
-                        double edge, int kind, int below)
+static void probe_bound(const rd_analysis_def *an, const rd_field *f, const char *path, double edge,
+                        int kind, int below)
 {
     char at[RD_ERROR_PATH_MAX];
     double dir = below ? -1.0 : 1.0;
@@ -294,8 +293,8 @@ static void probe_bound(const rd_analysis_def *an, const rd_field *f, const char
         in = edge;
     }
     int rc = probe(an, path, value(f, in), at);
-    CHECK(rc == RD_OK || strcmp(at, path) != 0, "%s %s = %.17g (inside): refused at %s",
-          an->name, path, in, at);
+    CHECK(rc == RD_OK || strcmp(at, path) != 0, "%s %s = %.17g (inside): refused at %s", an->name,
+          path, in, at);
     rc = probe(an, path, value(f, out), at);
     CHECK(rc != RD_OK && strcmp(at, path) == 0, "%s %s = %.17g (outside): status %d at \"%s\"",
           an->name, path, out, rc, at);
@@ -314,8 +313,8 @@ static void extra_bound(const rd_analysis_def *an, const char *path, double *min
         json_t *p = json_object_get(json_object_get(extra, "properties"), path + n + 2);
         if (json_is_number(json_object_get(p, "minimum"))) {
             *min = json_number_value(json_object_get(p, "minimum"));
-            *kind = json_is_true(json_object_get(p, "exclusiveMinimum")) ? RD_BOUND_EX
-                                                                         : RD_BOUND_IN;
+            *kind =
+                json_is_true(json_object_get(p, "exclusiveMinimum")) ? RD_BOUND_EX : RD_BOUND_IN;
         }
         json_decref(extra);
     }
@@ -370,9 +369,8 @@ static const json_t *resolve(json_t *schemas, json_t *schema)
 {
     const char *ref = json_string_value(json_object_get(schema, "$ref"));
     if (!ref)
-        ref = json_string_value(json_object_get(json_array_get(json_object_get(schema, "allOf"),
-                                                                0),
-                                                "$ref"));
+        ref = json_string_value(
+            json_object_get(json_array_get(json_object_get(schema, "allOf"), 0), "$ref"));
     return ref ? json_object_get(schemas, ref + strlen("#/components/schemas/")) : schema;
 }
 
@@ -380,12 +378,12 @@ static int defaults_checked;
 
 /* Every "default" of `schema` against the echo (fields whose echo is a
  * computed value, `echo` hooks, say so in their description). */
-static void compare_defaults(json_t *schemas, const json_t *schema, json_t *echo,
-                             const char *path)
+static void compare_defaults(json_t *schemas, const json_t *schema, json_t *echo, const char *path)
 {
     const char *key;
     json_t *prop;
-    json_object_foreach(json_object_get(schema, "properties"), key, prop) {
+    json_object_foreach(json_object_get(schema, "properties"), key, prop)
+    {
         char child[256];
         snprintf(child, sizeof child, "%s/%s", path, key);
         const json_t *sub = resolve(schemas, prop);
@@ -396,9 +394,8 @@ static void compare_defaults(json_t *schemas, const json_t *schema, json_t *echo
         if (!want || (desc && strstr(desc, "The echo gives")) ||
             (desc && strstr(desc, "echoed as the value used")))
             continue;
-        int same = json_equal(want, got) ||
-                   (json_is_number(want) && json_is_number(got) &&
-                    json_number_value(want) == json_number_value(got));
+        int same = json_equal(want, got) || (json_is_number(want) && json_is_number(got) &&
+                                             json_number_value(want) == json_number_value(got));
         CHECK(same, "%s: OpenAPI default differs from the echo of a bare scene", child);
         defaults_checked++;
     }
@@ -486,8 +483,8 @@ static void test_readme(void)
             rd_scene *s = NULL;
             rd_error err;
             rd_error_init(&err);
-            CHECK(rd_scene_parse_value(v, &s, &err) == RD_OK, "README scene: %s at %s",
-                  err.message, err.path);
+            CHECK(rd_scene_parse_value(v, &s, &err) == RD_OK, "README scene: %s at %s", err.message,
+                  err.path);
             rd_scene_free(s);
             scenes++;
         }
@@ -575,8 +572,8 @@ static int toy_run(const rd_scene *s, const rd_monitor *mon, json_t **out, rd_er
         json_array_append_new(k, json_integer(i));
         json_array_append_new(y, json_real(o->gain * i));
     }
-    *out = json_pack("{s:s, s:o, s:o, s:o}", "analysis", "toy", "scene", rd_scene_echo(s), "k",
-                     k, "y", y);
+    *out = json_pack("{s:s, s:o, s:o, s:o}", "analysis", "toy", "scene", rd_scene_echo(s), "k", k,
+                     "y", y);
     return RD_OK;
 }
 
@@ -607,7 +604,7 @@ static int parse_in(const rd_analysis_def *const *registry, const char *body, rd
 static void test_toy(void)
 {
     const rd_analysis_def *registry[] = {rd_registry[0], rd_registry[1], rd_registry[2],
-                                         rd_registry[3], &toy, NULL};
+                                         rd_registry[3], &toy,           NULL};
     rd_scene *s = NULL;
     rd_error err;
 
@@ -620,12 +617,13 @@ static void test_toy(void)
     free(echo);
     rd_scene_free(s);
     s = NULL;
-    CHECK(parse_in(registry, "{\"analysis\":\"toy\",\"toy\":{\"gian\":1}}", &s,
-                   &err) == RD_EINVAL &&
+    CHECK(parse_in(registry, "{\"analysis\":\"toy\",\"toy\":{\"gian\":1}}", &s, &err) ==
+                  RD_EINVAL &&
               strcmp(err.path, "/toy/gian") == 0 && strstr(err.message, "known: gain, count"),
           "toy typo: %s", err.message);
     CHECK(parse_in(registry, "{\"analysis\":\"toy\",\"toy\":{\"gain\":11}}", &s, &err) ==
-                  RD_EINVAL && strcmp(err.path, "/toy/gain") == 0,
+                  RD_EINVAL &&
+              strcmp(err.path, "/toy/gain") == 0,
           "toy range: %s", err.message);
     /* the built-in analyses now know (and ignore) the toy's block */
     CHECK(parse_in(registry, "{\"analysis\":\"modal\",\"toy\":{\"x\":1}}", &s, &err) == RD_OK,
@@ -642,9 +640,9 @@ static void test_toy(void)
     CHECK(json_real_value(json_object_get(gain, "default")) == 2.0 &&
               json_real_value(json_object_get(gain, "maximum")) == 10.0,
           "ToyOptions.gain: default and maximum");
-    CHECK(json_object_get(json_object_get(json_object_get(schemas_of(doc), "ModalScene"),
-                                          "properties"),
-                          "toy") != NULL,
+    CHECK(json_object_get(
+              json_object_get(json_object_get(schemas_of(doc), "ModalScene"), "properties"),
+              "toy") != NULL,
           "ModalScene lists /toy as ignored");
     json_decref(doc);
 
@@ -684,15 +682,20 @@ static void test_example_names(void)
     write_file(path, "{\"analysis\":\"modal\"}");
     snprintf(path, sizeof path, "%s/a.b.json", dir); /* present, but not a servable name */
     write_file(path, "{\"analysis\":\"modal\"}");
-    snprintf(path, sizeof path, "%s/d.json", dir);   /* a directory */
+    snprintf(path, sizeof path, "%s/d.json", dir); /* a directory */
     CHECK(mkdir(path, 0700) == 0, "mkdir %s", path);
     static const struct {
         const char *name;
         int code, status;
     } cases[] = {
-        {"ok", RD_OK, 200},           {"a.b", RD_ENOTFOUND, 404},   {"a.b.json", RD_ENOTFOUND, 404},
-        {"d", RD_ENOTFOUND, 404},     {"nothing", RD_ENOTFOUND, 404}, {"bad\xff", RD_EREQUEST, 400},
-        {"bad\x01", RD_EREQUEST, 400}, {"caf\xc3\xa9", RD_ENOTFOUND, 404},
+        {"ok", RD_OK, 200},
+        {"a.b", RD_ENOTFOUND, 404},
+        {"a.b.json", RD_ENOTFOUND, 404},
+        {"d", RD_ENOTFOUND, 404},
+        {"nothing", RD_ENOTFOUND, 404},
+        {"bad\xff", RD_EREQUEST, 400},
+        {"bad\x01", RD_EREQUEST, 400},
+        {"caf\xc3\xa9", RD_ENOTFOUND, 404},
     };
     for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
         rd_error err;
@@ -700,8 +703,7 @@ static void test_example_names(void)
         char *text = rd_api_example_scene(dir, cases[i].name, &err);
         int code = text ? RD_OK : err.code;
         CHECK(code == cases[i].code && rd_api_http_status(code) == cases[i].status,
-              "example \"%s\": %d (%s), want %d", cases[i].name, code, err.message,
-              cases[i].code);
+              "example \"%s\": %d (%s), want %d", cases[i].name, code, err.message, cases[i].code);
         free(text);
     }
     rmdir(path);

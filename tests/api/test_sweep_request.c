@@ -22,10 +22,11 @@ static int parse(const char *body, rd_sweep_request *req, rd_error *err)
 
 static void test_spec(void)
 {
-    const char *spec = "{\"base\": {\"analysis\": \"modal\", \"discretization\": {\"segments\": 10}},"
-                       " \"parameters\": [{\"path\": \"/ring/radial_width\", \"values\": [0.0025, 0.003]},"
-                       " {\"path\": \"/ring/tangential_force\", \"range\": {\"start\": 8, \"stop\": 12, "
-                       "\"count\": 3}}], \"outputs\": [\"/modes/0/frequency_hz\"]}";
+    const char *spec =
+        "{\"base\": {\"analysis\": \"modal\", \"discretization\": {\"segments\": 10}},"
+        " \"parameters\": [{\"path\": \"/ring/radial_width\", \"values\": [0.0025, 0.003]},"
+        " {\"path\": \"/ring/tangential_force\", \"range\": {\"start\": 8, \"stop\": 12, "
+        "\"count\": 3}}], \"outputs\": [\"/modes/0/frequency_hz\"]}";
     rd_sweep_request req;
     rd_error err;
     CHECK(parse(spec, &req, &err) == RD_OK, "a spec parses: %s", err.message);
@@ -46,16 +47,19 @@ static void test_spec(void)
     rd_error_init(&why);
     rd_error_set(&why, RD_ETIMEOUT, "", "Point 4 ran longer than 0.5 s.");
     char *failed = rd_sweep_request_failed_row(&req, 4, &why, &err);
-    json_t *a = ran ? json_loads(ran, 0, NULL) : NULL, *b = failed ? json_loads(failed, 0, NULL) : NULL;
+    json_t *a = ran ? json_loads(ran, 0, NULL) : NULL,
+           *b = failed ? json_loads(failed, 0, NULL) : NULL;
     CHECK(json_array_size(a) == 5 && json_array_size(b) == 5, "both rows have the 5 columns");
     CHECK(json_equal(json_array_get(a, 0), json_array_get(b, 0)) &&
               json_equal(json_array_get(a, 1), json_array_get(b, 1)),
           "the parameter values match the run's: %s vs %s", ran ? ran : "-", failed ? failed : "-");
     CHECK(json_is_null(json_array_get(b, 2)), "the output is null");
-    CHECK(strcmp(json_string_value(json_array_get(b, 3)) ? json_string_value(json_array_get(b, 3)) : "",
+    CHECK(strcmp(json_string_value(json_array_get(b, 3)) ? json_string_value(json_array_get(b, 3))
+                                                         : "",
                  "time_limit") == 0,
           "status time_limit");
-    CHECK(strcmp(json_string_value(json_array_get(b, 4)) ? json_string_value(json_array_get(b, 4)) : "",
+    CHECK(strcmp(json_string_value(json_array_get(b, 4)) ? json_string_value(json_array_get(b, 4))
+                                                         : "",
                  "Point 4 ran longer than 0.5 s.") == 0,
           "the message");
     rd_error_init(&err);
@@ -88,8 +92,8 @@ static void test_fidelity(void)
     free(spec);
     rd_sweep_request_cleanup(&req);
 
-    CHECK(parse("{\"fidelity\": {\"analysis\": \"modal\"}, \"segments\": [5, 10, 20]}", &req, &err) ==
-                  RD_OK &&
+    CHECK(parse("{\"fidelity\": {\"analysis\": \"modal\"}, \"segments\": [5, 10, 20]}", &req,
+                &err) == RD_OK &&
               rd_sweep_points(req.sweep) == 3,
           "segments replace the ladder");
     rd_sweep_request_cleanup(&req);
@@ -108,17 +112,21 @@ static void test_errors(void)
         const char *body, *path;
         int code;
     } cases[] = {
-        {"{\"fidelity\": {\"analysis\": \"modal\"}, \"segments\": [5, 2]}", "/segments/1", RD_EREQUEST},
+        {"{\"fidelity\": {\"analysis\": \"modal\"}, \"segments\": [5, 2]}", "/segments/1",
+         RD_EREQUEST},
         {"{\"fidelity\": {\"analysis\": \"lift\"}, \"rtol\": [1e-4, 0.5]}", "/rtol/1", RD_EREQUEST},
-        {"{\"fidelity\": {\"analysis\": \"modal\"}, \"models\": [\"x\"]}", "/models/0", RD_EREQUEST},
+        {"{\"fidelity\": {\"analysis\": \"modal\"}, \"models\": [\"x\"]}", "/models/0",
+         RD_EREQUEST},
         {"{\"fidelity\": {\"analysis\": \"modal\", \"ring\": {\"diameter\": -1}}}",
          "/fidelity/ring/diameter", RD_EREQUEST},
         {"{\"fidelity\": {\"analysis\": \"modal\"}, \"segmnts\": [5]}", "/segmnts", RD_EREQUEST},
         {"{\"fidelity\": 3}", "/fidelity", RD_EREQUEST},
         {"{\"fidelity\": {\"analysis\": \"modal\"}, \"segments\": 5}", "/segments", RD_EREQUEST},
-        {"{\"fidelity\": {\"analysis\": \"modal\"}, \"segments\": [\"a\"]}", "/segments/0", RD_EREQUEST},
+        {"{\"fidelity\": {\"analysis\": \"modal\"}, \"segments\": [\"a\"]}", "/segments/0",
+         RD_EREQUEST},
         {"{\"fidelity\": {\"analysis\": \"modal\"}, \"segments\": []}", "/segments", RD_EREQUEST},
-        {"{\"base\": {\"analysis\": \"modal\"}, \"parameters\": [{\"path\": \"/ring/tangential_force\","
+        {"{\"base\": {\"analysis\": \"modal\"}, \"parameters\": [{\"path\": "
+         "\"/ring/tangential_force\","
          " \"values\": []}], \"outputs\": [\"/modes/0/frequency_hz\"]}",
          "/parameters/0/values", RD_EREQUEST},
         {"{\"base\": ", "", RD_EJSON},

@@ -44,7 +44,8 @@ static void codes_of(json_t *warnings, char *buf, size_t size, const char *name)
     size_t i, n = 0;
     json_t *w;
     buf[0] = '\0';
-    json_array_foreach(warnings, i, w) {
+    json_array_foreach(warnings, i, w)
+    {
         const char *code = json_string_value(json_object_get(w, "code"));
         CHECK(code && json_is_string(json_object_get(w, "path")) &&
                   json_is_string(json_object_get(w, "message")),
@@ -118,18 +119,24 @@ static void test_edges(void)
     synthetic("{\"scene\": {}, \"numerics\": {\"event_error_deg\": 5.1}}", "event_error_high");
     /* gas: a side without gas (all zero) is no slip; a real set is silent */
     synthetic("{\"scene\": {\"physics\": {\"gas\": {\"above\": [0, 0], \"behind\": [0, 0], "
-              "\"below\": [0, 0]}}}}", "");
+              "\"below\": [0, 0]}}}}",
+              "");
     synthetic("{\"scene\": {\"physics\": {\"gas\": {\"above\": [-5000, 6e6], \"behind\": [0, 5e6], "
-              "\"below\": [-1500, 1.4e6]}}}}", "");
+              "\"below\": [-1500, 1.4e6]}}}}",
+              "");
     synthetic("{\"scene\": {\"physics\": {\"gas\": {\"above\": [0, 999], \"behind\": [0, 0], "
-              "\"below\": [0, 0]}}}}", "gas_pressure_unit");
+              "\"below\": [0, 0]}}}}",
+              "gas_pressure_unit");
     synthetic("{\"scene\": {\"physics\": {\"gas\": {\"above\": [0, 1000], \"behind\": [0, 0], "
-              "\"below\": [0, 0]}}}}", "");
+              "\"below\": [0, 0]}}}}",
+              "");
     /* a crankcase side of a few hundred Pa next to real cylinder pressures is plausible */
     synthetic("{\"scene\": {\"physics\": {\"gas\": {\"above\": [0, 6e6], \"behind\": [0, 5e6], "
-              "\"below\": [0, 500]}}}}", "");
+              "\"below\": [0, 500]}}}}",
+              "");
     synthetic("{\"scene\": {\"physics\": {\"gas\": {\"above\": [0, 6e6], \"behind\": [0, 5e6], "
-              "\"below\": [0, 199]}}}}", "gas_pressure_unit");
+              "\"below\": [0, 199]}}}}",
+              "gas_pressure_unit");
 }
 
 int main(int argc, char **argv)

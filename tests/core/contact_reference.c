@@ -150,11 +150,11 @@ static void post(const model *m, const char *act, const double *u, const double 
         int b = j - 1; /* nodes a..b lifted */
         double th = m->s + a * m->D, te = m->s + b * m->D;
         double gA = m->g0[a] - u[3 * a + 1], gB = m->g0[b] - u[3 * b + 1];
-        double start = a == 0 ? m->s
-                              : edge(th - m->D, th, gA, a + 1 <= b ? m->g0[a + 1] - u[3 * a + 4] : 0);
-        double end = b == N ? te
-                            : -edge(-(te + m->D), -te, gB,
-                                    b - 1 >= a ? m->g0[b - 1] - u[3 * b - 2] : 0);
+        double start =
+            a == 0 ? m->s : edge(th - m->D, th, gA, a + 1 <= b ? m->g0[a + 1] - u[3 * a + 4] : 0);
+        double end =
+            b == N ? te
+                   : -edge(-(te + m->D), -te, gB, b - 1 >= a ? m->g0[b - 1] - u[3 * b - 2] : 0);
         double best = 0.0, at = th;
         for (int q = a; q <= b; q++)
             if (m->g0[q] - u[3 * q + 1] > best)
@@ -221,7 +221,7 @@ int ref_contact_solve(const rd_ring_params *p, const rd_contact_opts *o, int cel
         act[j] = 1;
     }
     f[0] = m.Ft, f[3 * cells] = -m.Ft;
-    fixed[3 * (cells / 2)] = 1; /* u = 0 at theta = pi (cells even) */
+    fixed[3 * (cells / 2)] = 1;                       /* u = 0 at theta = pi (cells even) */
     double c = 2.0 * m.Ft / p->diameter * m.D / 1e-6; /* node force per m of gap */
     for (int it = 0; it < 500; it++) {
         for (int j = 0; j <= cells; j++) {

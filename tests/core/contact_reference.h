@@ -25,8 +25,8 @@ typedef struct ref_result {
     int n_gaps;
     ref_gap gaps[64];
     double max_clearance, max_clearance_deg;
-    double tip_force[2];            /* concentrated force at the two free ends, N */
-    int bins;                       /* angular bins of bin_deg from 0 deg */
+    double tip_force[2];               /* concentrated force at the two free ends, N */
+    int bins;                          /* angular bins of bin_deg from 0 deg */
     double bin_pressure[REF_BINS_MAX]; /* mean contact pressure per bin, Pa (0 where no ring) */
     double p0;
 } ref_result;

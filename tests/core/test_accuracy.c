@@ -27,7 +27,8 @@ static int toy_solve(void *ctx, int level, const rd_monitor *mon, rd_error *err)
         if (rd_monitor_report(mon, 0.5 * k, err))
             return RD_ECANCELED;
     if (level == t->fail_level)
-        return rd_error_set(err, t->fail_code, "/numerics/rtol", "level %d did not converge.", level);
+        return rd_error_set(err, t->fail_code, "/numerics/rtol", "level %d did not converge.",
+                            level);
     int n = level ? 20 : 10;
     t->value[level] = M_PI + 3.0 / ((double)n * n);
     return RD_OK;
@@ -116,7 +117,8 @@ int main(void)
     f = rd_accuracy_richardson(1.0 / 16, 4, 1.0 / 64, 8, 2.0, &rel);
     CHECK_ABS(f, 0.0, 1e-15, "zero limit");
     CHECK_REL(rel, 1.0 / 16, 1e-12, "zero limit: absolute error");
-    CHECK(rd_accuracy_refined_segments(20, 2000) == 40 && rd_accuracy_refined_segments(1500, 2000) == 750,
+    CHECK(rd_accuracy_refined_segments(20, 2000) == 40 &&
+              rd_accuracy_refined_segments(1500, 2000) == 750,
           "refined segment counts");
     return check_done();
 }

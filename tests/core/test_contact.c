@@ -76,8 +76,7 @@ static void test_reference(void)
             double a0 = b * 10 * PI / 180, a1 = (b + 1) * 10 * PI / 180;
             double thin = 1 - 0.5 * (sin(k * a1) - sin(k * a0)) / (k * (a1 - a0));
             CHECK(fabs(r.bin_pressure[b] / r.p0 - thin) < 0.03,
-                  "order %d bin %d: %.4f p0, thin ring %.4f", k, b, r.bin_pressure[b] / r.p0,
-                  thin);
+                  "order %d bin %d: %.4f p0, thin ring %.4f", k, b, r.bin_pressure[b] / r.p0, thin);
         }
     }
 }
@@ -96,8 +95,8 @@ static double edge_error(const rd_contact_result *c, const ref_result *r)
             const rd_contact_gap *h = &c->gaps[b];
             if (h->end_deg < g->start_deg || h->start_deg > g->end_deg)
                 continue;
-            best = fmin(best, fmax(fabs(g->start_deg - h->start_deg),
-                                   fabs(g->end_deg - h->end_deg)));
+            best =
+                fmin(best, fmax(fabs(g->start_deg - h->start_deg), fabs(g->end_deg - h->end_deg)));
         }
         worst = fmax(worst, best);
     }
@@ -256,16 +255,16 @@ static void test_estimates(void)
                 double dcf = fabs(c.contact_fraction - r.contact_fraction);
                 double dedge = edge_error(&c, &r);
                 CHECK(c.estimates.contact_fraction >= dcf / 3 || dcf < 1e-3,
-                      "k=%d x%g ph %g: contact fraction error %.4f, estimate %.4f", k,
-                      factors[fi], phases[pi], dcf, c.estimates.contact_fraction);
+                      "k=%d x%g ph %g: contact fraction error %.4f, estimate %.4f", k, factors[fi],
+                      phases[pi], dcf, c.estimates.contact_fraction);
                 CHECK(c.estimates.gap_edges_deg >= dedge / 3,
                       "k=%d x%g ph %g: edge error %.3f deg, estimate %.3f", k, factors[fi],
                       phases[pi], dedge, c.estimates.gap_edges_deg);
                 if (r.max_clearance > 1e-7) {
                     double dg = fabs(c.max_clearance - r.max_clearance);
                     CHECK(c.estimates.max_clearance >= dg / 3,
-                          "k=%d x%g ph %g: largest gap error %.3g m, estimate %.3g", k,
-                          factors[fi], phases[pi], dg, c.estimates.max_clearance);
+                          "k=%d x%g ph %g: largest gap error %.3g m, estimate %.3g", k, factors[fi],
+                          phases[pi], dg, c.estimates.max_clearance);
                 }
                 rd_contact_result_cleanup(&c);
             }

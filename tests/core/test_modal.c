@@ -14,7 +14,7 @@
 #include "rd_internal.h"
 #include "rd_modal.h"
 
-#define PI 3.14159265358979323846
+#define PI  3.14159265358979323846
 #define EPS 2.220446049250313e-16
 
 static int solve(const rd_ring_params *p, int n, int closed, int modes, int estimate,
@@ -206,8 +206,7 @@ static void test_split_vs_coupled(void)
             for (int c = 0; c < 2; c++) {
                 o.coupled = c;
                 rd_error_init(&err);
-                CHECK(rd_modal_solve_ring(ring, &o, NULL, &r[c], &err) == RD_OK, "%s",
-                      err.message);
+                CHECK(rd_modal_solve_ring(ring, &o, NULL, &r[c], &err) == RD_OK, "%s", err.message);
             }
             CHECK(r[0].rigid_body_modes == 6 && r[1].rigid_body_modes == 6, "rigid %d %d",
                   r[0].rigid_body_modes, r[1].rigid_body_modes);
@@ -261,8 +260,8 @@ static void test_thin_ring_limit(int section)
     for (int i = 0; i < 3; i++) {
         CHECK(fabs(dev[1][i]) < 5e-5, "R/b=200: deviation from thin ring %g (section %d)",
               dev[1][i], section);
-        CHECK_REL(dev[0][i] / dev[1][i], 100.0, 0.05,
-                  "deviation scales as (b/R)^2 (section %d)", section);
+        CHECK_REL(dev[0][i] / dev[1][i], 100.0, 0.05, "deviation scales as (b/R)^2 (section %d)",
+                  section);
         CHECK(dev[0][i] < 0, "shear and rotary inertia lower the frequency");
     }
 }
@@ -360,8 +359,7 @@ static void test_thesis_observations(void)
               fine.modes[i].frequency_hz);
         CHECK(fabs(r20.modes[i].frequency_hz / fine.modes[i].frequency_hz - 1) < 0.05,
               "n = 20 within 5 %% (mode %d)", i + 1);
-        CHECK(i == 0 || fine.modes[i].frequency_hz > fine.modes[i - 1].frequency_hz,
-              "ascending");
+        CHECK(i == 0 || fine.modes[i].frequency_hz > fine.modes[i - 1].frequency_hz, "ascending");
         CHECK(fabs(fine.modes[i].in_plane_fraction - (want == RD_MODE_IN_PLANE)) < 1e-9,
               "in-plane and out-of-plane motions decouple: fraction %g",
               fine.modes[i].in_plane_fraction);
@@ -404,8 +402,8 @@ static void test_convergence_and_estimate(void)
             /* honest estimate: within 10 % of the true error once n >= 10.
              * Richardson with order 2 leaves the next term, O(n^-2) relative
              * to the error itself; at n = 10 the measured gap is ~1 %. */
-            CHECK_REL(r.modes[i].error_estimate, err, 0.10, "estimate vs true, n=%d mode %d",
-                      ns[a], i + 1);
+            CHECK_REL(r.modes[i].error_estimate, err, 0.10, "estimate vs true, n=%d mode %d", ns[a],
+                      i + 1);
             if (a > 0) {
                 double order = log(err_prev[i] / err) / log(2.0);
                 /* pre-asymptotic below n = 80 (higher modes have few
@@ -445,10 +443,12 @@ static int nth_kind(const rd_modal_result *r, int kind, int k)
  * frequency must also beat f_n. */
 static void test_estimate_battery(void)
 {
-    struct { double b_over_h; int section, closed; } rings[] = {
-        {2.9 / 1.2, RD_SECTION_RECTANGLE, 0}, {2.9 / 1.2, RD_SECTION_RECTANGLE, 1},
-        {0.3, RD_SECTION_RECTANGLE, 0}, {10.0, RD_SECTION_RECTANGLE, 0},
-        {1.0, RD_SECTION_CIRCLE, 1}, {1.0, RD_SECTION_CIRCLE, 0}};
+    struct {
+        double b_over_h;
+        int section, closed;
+    } rings[] = {{2.9 / 1.2, RD_SECTION_RECTANGLE, 0}, {2.9 / 1.2, RD_SECTION_RECTANGLE, 1},
+                 {0.3, RD_SECTION_RECTANGLE, 0},       {10.0, RD_SECTION_RECTANGLE, 0},
+                 {1.0, RD_SECTION_CIRCLE, 1},          {1.0, RD_SECTION_CIRCLE, 0}};
     static const int ns[] = {10, 14, 20, 28, 40, 60, 100, 300};
     double worst_ratio = 1.0;
     for (size_t g = 0; g < sizeof rings / sizeof rings[0]; g++) {
@@ -513,8 +513,8 @@ static void test_extremes(void)
             double factor = which == 0 ? sqrt(scales[s]) : 1 / sqrt(scales[s]);
             for (int i = 0; i < 6; i++)
                 CHECK_REL(r.modes[i].frequency_hz, factor * base.modes[i].frequency_hz, 1e-9,
-                          "sqrt(E/rho) scaling, %s x %g mode %d", which ? "rho" : "E",
-                          scales[s], i + 1);
+                          "sqrt(E/rho) scaling, %s x %g mode %d", which ? "rho" : "E", scales[s],
+                          i + 1);
             CHECK(r.rigid_body_modes == 6, "rigid modes %d", r.rigid_body_modes);
             rd_modal_result_cleanup(&r);
         }
@@ -529,8 +529,7 @@ static void test_extremes(void)
             rd_modal_result r;
             if (solve(&q, 60, closed, 12, 1, &r))
                 continue;
-            CHECK(r.rigid_body_modes == 6, "b/h=%g: %d rigid modes", ratios[k],
-                  r.rigid_body_modes);
+            CHECK(r.rigid_body_modes == 6, "b/h=%g: %d rigid modes", ratios[k], r.rigid_body_modes);
             for (int i = 0; i < 12; i++) {
                 CHECK(isfinite(r.modes[i].frequency_hz) && r.modes[i].frequency_hz > 0,
                       "b/h=%g finite", ratios[k]);
@@ -538,8 +537,8 @@ static void test_extremes(void)
                       "b/h=%g ordered", ratios[k]);
             }
             /* 12 modes on 60 segments: ~1 % for the 12th (the n^-2 law) */
-            CHECK(isfinite(r.error_estimate) && r.error_estimate < 0.05,
-                  "b/h=%g: estimate %g", ratios[k], r.error_estimate);
+            CHECK(isfinite(r.error_estimate) && r.error_estimate < 0.05, "b/h=%g: estimate %g",
+                  ratios[k], r.error_estimate);
             rd_modal_result_cleanup(&r);
         }
 
@@ -571,8 +570,8 @@ static void test_cost_predict(void)
         double t0 = rd_modal_cost_predict(&o, n, 0);
         o.estimate_error = 1;
         double t1 = rd_modal_cost_predict(&o, n, 0);
-        CHECK(isfinite(t0) && t0 > 0.0 && t1 > t0, "n=%d: %g without, %g with the estimate", n,
-              t0, t1);
+        CHECK(isfinite(t0) && t0 > 0.0 && t1 > t0, "n=%d: %g without, %g with the estimate", n, t0,
+              t1);
         CHECK(t0 > prev, "grows with n: %g after %g (n=%d)", t0, prev, n);
         prev = t0;
     }

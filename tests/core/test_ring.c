@@ -8,7 +8,7 @@
 #include "check.h"
 #include "rd_ring.h"
 
-#define PI 3.14159265358979323846
+#define PI  3.14159265358979323846
 #define EPS 2.220446049250313e-16
 
 static void test_torsion_constant(void)
@@ -169,8 +169,8 @@ static void test_stiffness(int closed, int n)
     double e_def = rd_ring_strain_energy(ring, q);
     /* d = u_B - u_A - th_A x dP rounds to ~eps |u|, so the energy ratio is
      * ~eps^2 = 5e-32; 1e-20 leaves room yet any wrong term in T gives ~1e-2. */
-    CHECK(e_rigid <= 1e-20 * e_def && e_def > 0,
-          "rigid-motion energy %g vs deformation energy %g", e_rigid, e_def);
+    CHECK(e_rigid <= 1e-20 * e_def && e_def > 0, "rigid-motion energy %g vs deformation energy %g",
+          e_rigid, e_def);
 
     /* 1/2 q^T K q == element-wise energy for a pseudo-random q */
     for (int i = 0; i < N; i++)
@@ -215,8 +215,8 @@ static void test_axial_spring(void)
     for (int i = 6; i < n; i++)
         for (int k = 0; k < 6; k++)
             q[6 * i + k] = part[6 * i + k];
-    CHECK_REL(rd_ring_strain_energy(ring, q), 0.5 * p.youngs_modulus * s->area / L * d * d,
-              1e-12, "axial spring energy");
+    CHECK_REL(rd_ring_strain_energy(ring, q), 0.5 * p.youngs_modulus * s->area / L * d * d, 1e-12,
+              "axial spring energy");
     rd_ring_free(ring);
 }
 
@@ -250,8 +250,7 @@ static void test_validation(void)
         int rc = rd_ring_validate(&p, 20, 0, &err);
         CHECK(rc == RD_EINVAL && strcmp(err.path, bad[i].path) == 0,
               "value %g: rc %d path '%s' want '%s'", bad[i].value, rc, err.path, bad[i].path);
-        CHECK(strstr(err.message, "allowed") != NULL, "message names the range: %s",
-              err.message);
+        CHECK(strstr(err.message, "allowed") != NULL, "message names the range: %s", err.message);
     }
     rd_ring_params_default(&p);
     rd_error_init(&err);

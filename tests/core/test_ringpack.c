@@ -17,7 +17,7 @@
 #define M_PI 3.14159265358979323846
 #endif
 #define KAPPA RD_GASFLOW_KAPPA
-#define RG RD_GASFLOW_R
+#define RG    RD_GASFLOW_R
 
 /* The textbook orifice written out again (Heywood, Internal Combustion
  * Engine Fundamentals, App. C): mass flow from pu to pd, unchoked or
@@ -77,7 +77,8 @@ static void test_trace(void)
     for (int k = 1; k < RD_GASFLOW_POINTS - 1; k += 7) {
         bad_node |= rd_gasflow_trace(RD_GASFLOW_POINTS, x, y, x[k]) != y[k];
         double mid = rd_gasflow_trace(RD_GASFLOW_POINTS, x, y, 0.5 * (x[k] + x[k + 1]));
-        bad_range |= mid < fmin(y[k], y[k + 1]) * (1 - 1e-12) || mid > fmax(y[k], y[k + 1]) * (1 + 1e-12);
+        bad_range |=
+            mid < fmin(y[k], y[k + 1]) * (1 - 1e-12) || mid > fmax(y[k], y[k + 1]) * (1 + 1e-12);
         /* one-sided slopes 1e-6 deg each side of the node: equal to 1e-3 of the
          * local secant scale (a kink would differ by O(1)) */
         double e = 1e-6, f0 = rd_gasflow_trace(RD_GASFLOW_POINTS, x, y, x[k]);
@@ -97,7 +98,8 @@ static void test_trace(void)
     CHECK_REL(y[at], p.synthetic.peak_pa, 1e-9, "fired peak");
     CHECK_ABS(x[at], p.synthetic.peak_crank_deg, 0.25 + 1e-9, "fired peak angle");
     p.synthetic.kind = RD_CYLINDER_MOTORED;
-    CHECK(rd_gasflow_synthetic(&p.synthetic, &p.engine, 0.0765, "", x, y, &err) == RD_OK, "motored");
+    CHECK(rd_gasflow_synthetic(&p.synthetic, &p.engine, 0.0765, "", x, y, &err) == RD_OK,
+          "motored");
     for (int k = 0; k < RD_GASFLOW_POINTS; k++)
         at = y[k] > y[at] ? k : at;
     CHECK_REL(y[at], p.synthetic.intake_pa * pow(p.synthetic.compression_ratio, 1.32), 1e-12,
@@ -270,8 +272,8 @@ static void check_sane(const rd_ringpack_result *r, const char *what)
         bad |= !(r->pressure[k] > 0.0) || !isfinite(r->pressure[k]);
     for (size_t k = 0; k < (size_t)r->samples * r->n_rings; k++)
         bad |= !isfinite(r->lift[k]);
-    CHECK(!bad && isfinite(r->blowby_kg) && r->mass_residual <= 1e-6, "%s: sane (resid %.3g)",
-          what, r->mass_residual);
+    CHECK(!bad && isfinite(r->blowby_kg) && r->mass_residual <= 1e-6, "%s: sane (resid %.3g)", what,
+          r->mass_residual);
 }
 
 static void test_extremes(void)
@@ -300,9 +302,13 @@ static void test_extremes(void)
     CHECK(rc == RD_ELIMIT && strcmp(err.path, "/numerics/max_steps") == 0, "work bound: %d %s", rc,
           err.message);
     rd_ringpack_result_cleanup(&r);
-    struct { const char *what; double gap, clear, rpm, peak; } cases[] = {
-        {"1 mm gaps", 1e-3, 0, 0, 0}, {"1 um clearances", 0, 1e-6, 0, 0},
-        {"10000 rpm", 0, 0, 10000, 0}, {"200 bar", 0, 0, 0, 2e7}};
+    struct {
+        const char *what;
+        double gap, clear, rpm, peak;
+    } cases[] = {{"1 mm gaps", 1e-3, 0, 0, 0},
+                 {"1 um clearances", 0, 1e-6, 0, 0},
+                 {"10000 rpm", 0, 0, 10000, 0},
+                 {"200 bar", 0, 0, 0, 2e7}};
     for (int c = 0; c < 4; c++) {
         three_rings(&p);
         for (int i = 0; i < 3; i++) {
@@ -366,8 +372,8 @@ static void test_against_lift(void)
             if (l.events[e].crank_deg < 720.0)
                 continue;
             int ok = n < r.n_events[0] && r.events[0][n].kind == l.events[e].kind;
-            double diff = ok ? fabs(r.events[0][n].crank_deg - (l.events[e].crank_deg - 720.0))
-                             : 1e9;
+            double diff =
+                ok ? fabs(r.events[0][n].crank_deg - (l.events[e].crank_deg - 720.0)) : 1e9;
             /* 0.1 deg: leaving a flank is a sign change of the same force
              * (agrees to 1e-3 deg); a landing differs by the lift model's
              * penalty contact (penetration F/(k A) and its damping), 0.05 deg */
@@ -386,9 +392,14 @@ static void test_against_lift(void)
  * within a factor 3 either way (the standards' bar). */
 static void test_error_estimate(void)
 {
-    struct { int rings, motored; double rpm, rtol; } cases[] = {
-        {1, 0, 2400, 1e-4}, {3, 0, 2400, 1e-5}, {3, 1, 2400, 1e-5}, {3, 0, 6000, 1e-4},
-        {2, 0, 4000, 1e-5}};
+    struct {
+        int rings, motored;
+        double rpm, rtol;
+    } cases[] = {{1, 0, 2400, 1e-4},
+                 {3, 0, 2400, 1e-5},
+                 {3, 1, 2400, 1e-5},
+                 {3, 0, 6000, 1e-4},
+                 {2, 0, 4000, 1e-5}};
     for (int c = 0; c < 5; c++) {
         rd_ringpack_params p;
         rd_ringpack_result r, ref;
@@ -436,8 +447,8 @@ int main(void)
     test_error_estimate();
     test_against_lift();
     test_orifice();
-    test_series(1, 3e5);   /* unchoked */
-    test_series(2, 3e6);   /* the first passages choked */
+    test_series(1, 3e5); /* unchoked */
+    test_series(2, 3e6); /* the first passages choked */
     test_series(3, 6e6);
     test_mass();
     test_extremes();

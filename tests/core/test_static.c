@@ -40,8 +40,8 @@ static int pretension(const rd_ring_params *p, int n, int method, double Fl, int
     return rc;
 }
 
-static int contact(const rd_ring_params *p, int n, const rd_contact_opts *o,
-                   rd_contact_result *r, rd_error *err)
+static int contact(const rd_ring_params *p, int n, const rd_contact_opts *o, rd_contact_result *r,
+                   rd_error *err)
 {
     rd_static_opts so = opts(0);
     rd_error_init(err);
@@ -93,7 +93,8 @@ static void test_small_load_limits(void)
     rd_ring_params p;
     rd_ring_params_default(&p);
     double b = p.radial_width, h = p.axial_height, E = p.youngs_modulus;
-    double G = E / (2 * (1 + p.poisson_ratio)), R = (p.diameter - b) / 2, s = p.closed_gap / (2 * R);
+    double G = E / (2 * (1 + p.poisson_ratio)), R = (p.diameter - b) / 2,
+           s = p.closed_gap / (2 * R);
     double A = b * h, kappa = 1.2;
 
     /* In plane: F_t small enough that the answer is linear (the response is
@@ -198,8 +199,8 @@ static void test_thesis_tables(void)
     p.tangential_force = 0.0;
     if (pretension(&p, 20, RD_PRETENSION_FORCE, Fl[0], 0, &r) != RD_OK)
         return;
-    CHECK(r.lateral_opening > 1.1 * xc_force[0], "no pretension: x_c %g vs %g",
-          r.lateral_opening, xc_force[0]);
+    CHECK(r.lateral_opening > 1.1 * xc_force[0], "no pretension: x_c %g vs %g", r.lateral_opening,
+          xc_force[0]);
     rd_pretension_result_cleanup(&r);
     /* field method under lateral load: far from the force method (the
      * thesis' point, Tab. 3.4), whatever the sign */
@@ -227,8 +228,8 @@ static void test_thesis_tables(void)
         if (pretension(&p, n, RD_PRETENSION_FIELD, 5.0, 0, &r) != RD_OK)
             return;
         CHECK(r.lateral_opening > 0.01 && r.stats.iterations < 40 * r.stats.load_steps,
-              "field, F_l = 5 N, n = %d: x_c %g, %d iterations in %d steps", n,
-              r.lateral_opening, r.stats.iterations, r.stats.load_steps);
+              "field, F_l = 5 N, n = %d: x_c %g, %d iterations in %d steps", n, r.lateral_opening,
+              r.stats.iterations, r.stats.load_steps);
         rd_pretension_result_cleanup(&r);
     }
 }
@@ -259,8 +260,8 @@ static void test_round_bore(void)
     for (int i = 0; i < n; i++)
         if (fabs(r.pressure[i] - interior) > fabs(r.pressure[worst] - interior))
             worst = i;
-    CHECK(worst < 3 || worst > n - 4, "largest deviation at segment %d of %d (%.1f deg)", worst,
-          n, r.angle_deg[worst]);
+    CHECK(worst < 3 || worst > n - 4, "largest deviation at segment %d of %d (%.1f deg)", worst, n,
+          r.angle_deg[worst]);
     rd_contact_result_cleanup(&r);
 
     /* independence from the contact stiffness: the pressures converge as
@@ -344,8 +345,8 @@ static void test_distorted_bore(void)
              * F_t R^3 / (E I (k^2 - 1)^2).  Below it (x0.8) no light gap; above
              * it (x1.3) light gaps. */
             if (f == 0)
-                CHECK(lifted == 0, "order %d at 0.8 x bound (%g m): %d segments lifted", kk,
-                      bound, lifted);
+                CHECK(lifted == 0, "order %d at 0.8 x bound (%g m): %d segments lifted", kk, bound,
+                      lifted);
             else
                 CHECK(lifted > 0 && r.max_clearance > 0,
                       "order %d at 1.3 x bound (%g m): no light gap", kk, bound);
@@ -434,8 +435,9 @@ static void test_extremes_and_errors(void)
     /* zero pretension, no lateral force: nothing moves */
     p.tangential_force = 0;
     if (pretension(&p, 20, RD_PRETENSION_FORCE, 0, 0, &pr) == RD_OK) {
-        CHECK_ABS(pr.gap_opening_neutral, 2 * (p.diameter - p.radial_width) / 2 *
-                                              sin(p.closed_gap / (p.diameter - p.radial_width)),
+        CHECK_ABS(pr.gap_opening_neutral,
+                  2 * (p.diameter - p.radial_width) / 2 *
+                      sin(p.closed_gap / (p.diameter - p.radial_width)),
                   1e-15, "zero load keeps the closed gap");
         rd_pretension_result_cleanup(&pr);
     }

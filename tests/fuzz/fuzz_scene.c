@@ -33,33 +33,111 @@ size_t LLVMFuzzerMutate(uint8_t *data, size_t size, size_t max_size);
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
 size_t LLVMFuzzerCustomMutator(uint8_t *data, size_t size, size_t max_size, unsigned int seed);
 
-static const char *const keys[] = {
-    "above", "active_area", "amplitude", "analysis", "atol", "axial_clearance", "axial_height",
-    "behind", "below", "bore", "closed", "closed_gap", "coefficient", "contact", "crank_deg",
-    "crank_radius", "cycles", "density", "description", "diameter", "discretization", "distortion",
-    "engine", "error_estimate", "friction", "gas", "gravity", "groove", "hydrodynamic_slope",
-    "kinematics", "lateral_force", "material", "max_iterations", "max_steps", "method", "modal",
-    "model", "modes", "name", "numerics", "order", "output", "phase_deg", "physics",
-    "points_per_segment", "poisson_ratio", "pretension", "radial_clearance", "radial_width", "ring",
-    "rod_length", "rtol", "section", "segments", "sommerfeld_transition", "speed_rpm", "step_deg",
-    "stiffness", "tangential_force", "tolerance", "viscosity", "youngs_modulus"};
+static const char *const keys[] = {"above",
+                                   "active_area",
+                                   "amplitude",
+                                   "analysis",
+                                   "atol",
+                                   "axial_clearance",
+                                   "axial_height",
+                                   "behind",
+                                   "below",
+                                   "bore",
+                                   "closed",
+                                   "closed_gap",
+                                   "coefficient",
+                                   "contact",
+                                   "crank_deg",
+                                   "crank_radius",
+                                   "cycles",
+                                   "density",
+                                   "description",
+                                   "diameter",
+                                   "discretization",
+                                   "distortion",
+                                   "engine",
+                                   "error_estimate",
+                                   "friction",
+                                   "gas",
+                                   "gravity",
+                                   "groove",
+                                   "hydrodynamic_slope",
+                                   "kinematics",
+                                   "lateral_force",
+                                   "material",
+                                   "max_iterations",
+                                   "max_steps",
+                                   "method",
+                                   "modal",
+                                   "model",
+                                   "modes",
+                                   "name",
+                                   "numerics",
+                                   "order",
+                                   "output",
+                                   "phase_deg",
+                                   "physics",
+                                   "points_per_segment",
+                                   "poisson_ratio",
+                                   "pretension",
+                                   "radial_clearance",
+                                   "radial_width",
+                                   "ring",
+                                   "rod_length",
+                                   "rtol",
+                                   "section",
+                                   "segments",
+                                   "sommerfeld_transition",
+                                   "speed_rpm",
+                                   "step_deg",
+                                   "stiffness",
+                                   "tangential_force",
+                                   "tolerance",
+                                   "viscosity",
+                                   "youngs_modulus"};
 
-static const char *const words[] = {"modal",  "pretension", "contact",   "lift",     "rectangle",
-                                    "circle", "force",      "field",     "coulomb",  "stribeck",
-                                    "fixed",  "dynamic",    "exact",     "approximate", ""};
+static const char *const words[] = {"modal",  "pretension", "contact", "lift",        "rectangle",
+                                    "circle", "force",      "field",   "coulomb",     "stribeck",
+                                    "fixed",  "dynamic",    "exact",   "approximate", ""};
 
 /* Boundaries of the schema's ranges and of the number types. */
-static const double numbers[] = {0,     -0.0,   1,      -1,     2,      3,     4,      0.5,
-                                 1e-5,  1e-7,   1e-12,  1e-13,  1e-16,  1e-300, 1e300, -1e300,
-                                 0.001, 0.005,  0.01,   5,      10,     16,    17,     20,
-                                 50,    60,     61,     64,     65,     90,    360,    -360,
-                                 1000,  1001,   2000,   2001,   30000,  1e5,   1e6,    1e12,
-                                 1e15,  1e20,   4.9e-324, 2147483648.0, 9007199254740993.0, 0.499999};
+static const double numbers[] = {
+    0,       -0.0,  1,     -1,    2,      3,     4,        0.5,          1e-5,
+    1e-7,    1e-12, 1e-13, 1e-16, 1e-300, 1e300, -1e300,   0.001,        0.005,
+    0.01,    5,     10,    16,    17,     20,    50,       60,           61,
+    64,      65,    90,    360,   -360,   1000,  1001,     2000,         2001,
+    30000,   1e5,   1e6,   1e12,  1e15,   1e20,  4.9e-324, 2147483648.0, 9007199254740993.0,
+    0.499999};
 
-static const json_int_t integers[] = {0,    1,    -1,     2,      3,      4,     5,          16,
-                                     17,   20,   59,     60,     61,     64,    65,         99,
-                                     100,  1000, 1001,   1999,   2000,   2001,  100000,     100001,
-                                     2147483647, -2147483648LL, 1000000000, 1000000001, 9007199254740993LL};
+static const json_int_t integers[] = {0,
+                                      1,
+                                      -1,
+                                      2,
+                                      3,
+                                      4,
+                                      5,
+                                      16,
+                                      17,
+                                      20,
+                                      59,
+                                      60,
+                                      61,
+                                      64,
+                                      65,
+                                      99,
+                                      100,
+                                      1000,
+                                      1001,
+                                      1999,
+                                      2000,
+                                      2001,
+                                      100000,
+                                      100001,
+                                      2147483647,
+                                      -2147483648LL,
+                                      1000000000,
+                                      1000000001,
+                                      9007199254740993LL};
 
 struct rng {
     uint64_t s;
@@ -165,7 +243,8 @@ static json_t *table(struct rng *r)
     size_t n = pick(r, 4) == 0 ? 1 + pick(r, 2000) : pick(r, 6);
     double x = numbers[pick(r, 20)];
     for (size_t i = 0; a && i < n; i++)
-        json_array_append_new(a, json_real(x += (pick(r, 8) == 0 ? -1.0 : 1.0) * (double)(1 + pick(r, 90))));
+        json_array_append_new(
+            a, json_real(x += (pick(r, 8) == 0 ? -1.0 : 1.0) * (double)(1 + pick(r, 90))));
     return a;
 }
 
@@ -181,14 +260,16 @@ static void mutate(json_t *root, struct rng *r)
         break;
     case 1:
         replace(at, json_is_number(at->value) ? tweak_number(r, json_number_value(at->value))
-                                                    : random_value(r));
+                                              : random_value(r));
         break;
     case 2: /* drop a key */
         if (at->parent && json_is_object(at->parent))
             json_object_del(at->parent, at->key);
         break;
     case 3: { /* add a schema key to some object */
-        json_t *obj = json_is_object(at->value) ? at->value : (at->parent && json_is_object(at->parent) ? at->parent : root);
+        json_t *obj = json_is_object(at->value)
+                          ? at->value
+                          : (at->parent && json_is_object(at->parent) ? at->parent : root);
         const char *key = keys[pick(r, sizeof keys / sizeof keys[0])];
         json_t *v = pick(r, 3) == 0 ? json_object() : random_value(r);
         if (v && pick(r, 4) == 0 && json_is_object(v))
@@ -204,7 +285,8 @@ static void mutate(json_t *root, struct rng *r)
         break;
     case 6: /* arrays: grow, shrink, or a whole table */
         if (json_is_array(at->value) && json_array_size(at->value) > 0 && pick(r, 2))
-            json_array_append(at->value, json_array_get(at->value, pick(r, json_array_size(at->value))));
+            json_array_append(at->value,
+                              json_array_get(at->value, pick(r, json_array_size(at->value))));
         else if (json_is_array(at->value) && json_array_size(at->value) > 0)
             json_array_remove(at->value, pick(r, json_array_size(at->value)));
         else
