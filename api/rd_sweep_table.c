@@ -232,7 +232,7 @@ char *rd_sweep_chunk_name(size_t c, size_t k)
 
 char *rd_sweep_chunk_head(const rd_sweep *s, size_t c, size_t k)
 {
-    size_t first, end;
+    size_t first = 0, end = 0;
     if (rd_sweep_chunk_range(s, c, k, &first, &end, NULL) != RD_OK)
         return NULL;
     char *cols = rd_sweep_columns_json(s);
