@@ -1,12 +1,13 @@
 #!/usr/bin/env bash
 # Installs the Debian packages ringdyn needs, only those that are missing.
 #   scripts/install-deps.sh          build + run dependencies
-#   scripts/install-deps.sh --test   also what the test suite needs (curl, chromium, node/npm, python3)
+#   scripts/install-deps.sh --test   also what the test suite needs (curl, chromium, node/npm, python3,
+#                                    clang with libFuzzer for the fuzz test, clang-format for the style check)
 set -euo pipefail
 pkgs=(build-essential cmake pkg-config libmicrohttpd-dev libjansson-dev libsqlite3-dev libsundials-dev
       liblapack-dev liblapacke-dev curl)
 if [ "${1:-}" = "--test" ]; then
-  pkgs+=(chromium nodejs npm valgrind python3)
+  pkgs+=(chromium nodejs npm valgrind python3 clang clang-format libclang-rt-14-dev)
 fi
 missing=()
 for p in "${pkgs[@]}"; do
