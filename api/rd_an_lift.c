@@ -143,7 +143,8 @@ static const rd_field numerics_fields[] = {
     {"model", RD_F_CHOICE, LO(lift.model), .choices = model_names,
      .desc = "Which equations are integrated: auto (the cheapest model the scene allows and the "
              "accuracy target admits), rigid (the ring as one body: axial lift, twist, radial; "
-             "exact for axisymmetric scenes without friction), modal (not available yet) or "
+             "exact for axisymmetric scenes without friction), modal (rigid-body motion, the m "
+             "lowest elastic modes and 4 static correction shapes of the segmented ring) or "
              "full (the flexible ring, 6n DOFs)."},
     {"modes", RD_F_INTEGER, LO(lift.modes), RD_MIN(0), RD_MAX(RD_LIFT_MODES_MAX),
      .desc = "Elastic modes of the modal model; 0 = chosen automatically."},

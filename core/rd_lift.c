@@ -263,10 +263,17 @@ static int validate_numerics(const rd_lift_params *p, int segments, rd_error *er
         return rd_error_set(err, RD_EINVAL, "/numerics/model",
                             "/numerics/model = %d is unknown: use auto, rigid, modal or full.",
                             p->model);
-    if (p->model == RD_LIFT_MODEL_MODAL)
-        return rd_error_set(err, RD_EINVAL, "/numerics/model",
-                            "/numerics/model = modal is not available yet: use auto, rigid or "
-                            "full.");
+    if (p->model == RD_LIFT_MODEL_MODAL && segments > RD_LIFT_MODAL_SEGMENTS_MAX)
+        return rd_error_set(err, RD_ELIMIT, "/numerics/model",
+                            "/numerics/model = modal solves the ring's modes densely and allows "
+                            "at most %d segments (/discretization/segments = %d): use fewer "
+                            "segments or the full model.",
+                            RD_LIFT_MODAL_SEGMENTS_MAX, segments);
+    if (p->modes > 6 * segments - 6)
+        return rd_error_set(err, RD_EINVAL, "/numerics/modes",
+                            "/numerics/modes = %d is out of range: a ring of %d segments has "
+                            "%d elastic modes.",
+                            p->modes, segments, 6 * segments - 6);
     if ((rc = check_range(p->accuracy_deg, 1e-4, 10.0, "/numerics/accuracy_deg", "deg", err)))
         return rc;
     if (p->modes < 0 || p->modes > RD_LIFT_MODES_MAX)
@@ -449,7 +456,12 @@ void rd_lift_result_cleanup(rd_lift_result *r)
  * others), so it is not used.  auto takes the rigid model with friction
  * only when the target allows that error with a factor 2 margin. */
 #define RIGID_FRICTION_ERROR_DEG 1.0
-static void choose_model(const rd_lift_params *p, rd_lift_result *out)
+#define MODAL_DEFAULT_MODES 12
+static int modal_default_modes(int n)
+{
+    return MODAL_DEFAULT_MODES < 6 * n - 6 ? MODAL_DEFAULT_MODES : 6 * n - 6;
+}
+static void choose_model(const rd_lift_params *p, int n, rd_lift_result *out)
 {
     const char *sym = "the scene is axisymmetric (round bore, aligned groove, loads uniform "
                       "around the ring)";
@@ -461,6 +473,12 @@ static void choose_model(const rd_lift_params *p, rd_lift_result *out)
                       : "");
     else if (p->model == RD_LIFT_MODEL_FULL)
         snprintf(out->why, sizeof out->why, "asked for (numerics.model = full)");
+    else if (p->model == RD_LIFT_MODEL_MODAL) {
+        out->model = RD_LIFT_MODEL_MODAL;
+        out->modes = p->modes ? p->modes : modal_default_modes(n);
+        snprintf(out->why, sizeof out->why, "asked for (numerics.model = modal, %d elastic modes%s)",
+                 out->modes, p->modes ? "" : " by default");
+    }
     else if (!fric || p->accuracy_deg >= 2.0 * RIGID_FRICTION_ERROR_DEG) {
         out->model = RD_LIFT_MODEL_RIGID;
         snprintf(out->why, sizeof out->why, "auto: %s%s", sym,
@@ -471,7 +489,8 @@ static void choose_model(const rd_lift_params *p, rd_lift_result *out)
         snprintf(out->why, sizeof out->why,
                  "auto: friction twists the split ring non-uniformly, which the rigid ring "
                  "misses by up to ~1 deg on flank changes, more than numerics.accuracy_deg = "
-                 "%g; the modal model is not available yet",
+                 "%g (numerics.model = modal is available by request; auto does not pick it "
+                 "yet)",
                  p->accuracy_deg);
 }
 
@@ -492,8 +511,8 @@ static int solve_level(void *ctx, int level, const rd_monitor *mon, rd_error *er
     r->rtol = scale * s->p->rtol;
     r->atol = scale * s->p->atol;
     r->res = level ? NULL : s->out;
-    return rd_lift_integrate(s->ring, s->p, s->setup, s->out->model == RD_LIFT_MODEL_RIGID, mon,
-                             r, err);
+    r->modes = s->out->modes;
+    return rd_lift_integrate(s->ring, s->p, s->setup, s->out->model, mon, r, err);
 }
 
 /* error_estimate: largest lift difference / clearance; event error: the
@@ -561,9 +580,11 @@ int rd_lift_solve_setup(const rd_ring_params *rp, int segments, const rd_lift_pa
     int S = lift_samples(p);
     if ((rc = result_alloc(out, S, segments, err)))
         goto out;
-    choose_model(p, out);
+    choose_model(p, segments, out);
     if (out->model == RD_LIFT_MODEL_RIGID)
         out->dof = 3; /* axial lift, twist, radial */
+    else if (out->model == RD_LIFT_MODEL_MODAL)
+        out->dof = 6 + out->modes; /* rigid-body and elastic modes */
     for (int l = 0; l < 2; l++) {
         s.run[l].samples = S;
         s.run[l].lift = l == 0 || p->estimate_error ? malloc((size_t)S * sizeof(double)) : NULL;
@@ -577,6 +598,8 @@ int rd_lift_solve_setup(const rd_ring_params *rp, int segments, const rd_lift_pa
                              .estimate = p->estimate_error, .main_share = 0.4,
                              .reference = "rtol/10 and atol/10"};
     rc = rd_accuracy_run(&plan, mon, NULL, err);
+    if (out->model == RD_LIFT_MODEL_MODAL && s.run[0].dof > 0)
+        out->dof = s.run[0].dof; /* with the correction shapes kept */
     out->n_events = s.run[0].n_events;
     out->events = s.run[0].events;
     s.run[0].events = NULL;

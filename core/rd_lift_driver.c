@@ -179,8 +179,8 @@ static void driver_free(driver *d)
         SUNContext_Free(&d->sunctx);
     free(d->seg);
     free(d->full);
-    if (d->form.user && d->form.user != &d->m)
-        rd_lift_rigid_close(&d->form);
+    if (d->form.close)
+        d->form.close(&d->form);
     rd_lift_model_cleanup(&d->m);
 }
 
@@ -204,21 +204,25 @@ static int cv_configure(driver *d, double rtol, rd_error *err)
     return RD_OK;
 }
 
+int rd_lift_form_open(rd_lift_model *m, int model, int modes, rd_lift_form *form, rd_error *err)
+{
+    if (model == RD_LIFT_MODEL_RIGID)
+        return rd_lift_rigid_open(m, form, err);
+    if (model == RD_LIFT_MODEL_MODAL)
+        return rd_lift_modal_open(m, modes, form, err);
+    rd_lift_full_form(m, form);
+    return RD_OK;
+}
+
 static int driver_open(driver *d, const rd_ring *ring, const rd_lift_params *p,
-                       const rd_lift_setup *setup, int rigid, double rtol, double atol,
-                       rd_error *err)
+                       const rd_lift_setup *setup, int model, const rd_lift_run *o, rd_error *err)
 {
     memset(d, 0, sizeof *d);
     int rc = rd_lift_model_init(&d->m, ring, p, setup, err);
-    if (rc)
+    if (rc || (rc = rd_lift_form_open(&d->m, model, o->modes, &d->form, err)))
         return rc;
     int n = d->m.n;
-    if (rigid)
-        rc = rd_lift_rigid_open(&d->m, &d->form, err);
-    else
-        rd_lift_full_form(&d->m, &d->form);
-    if (rc)
-        return rc;
+    int rigid = model == RD_LIFT_MODEL_RIGID;
     sunindextype N = d->form.N;
     d->deg_per_s = d->m.omega * 180.0 / M_PI;
     d->chunk = STEP_CHUNK / n > 1 ? STEP_CHUNK / n : 1;
@@ -242,10 +246,10 @@ static int driver_open(driver *d, const rd_ring *ring, const rd_lift_params *p,
     if (!d->y || !d->abstol || !d->A || !d->LS || !d->cv)
         return rd_error_set(err, RD_ENOMEM, "", "Out of memory setting up CVODE for %d segments.",
                             n);
-    if ((rc = d->form.initial(d->form.user, setup, atol, N_VGetArrayPointer(d->y),
+    if ((rc = d->form.initial(d->form.user, setup, o->atol, N_VGetArrayPointer(d->y),
                               N_VGetArrayPointer(d->abstol), err)))
         return rc;
-    return cv_configure(d, rtol, err);
+    return cv_configure(d, o->rtol, err);
 }
 
 /* ---------------------------------------------------------------- events */
@@ -440,12 +444,13 @@ static int store_counters(driver *d, rd_lift_result *r, rd_error *err)
 }
 
 int rd_lift_integrate(const rd_ring *ring, const rd_lift_params *p, const rd_lift_setup *setup,
-                      int rigid, const rd_monitor *mon, rd_lift_run *o, rd_error *err)
+                      int model, const rd_monitor *mon, rd_lift_run *o, rd_error *err)
 {
     driver d;
-    int rc = driver_open(&d, ring, p, setup, rigid, o->rtol, o->atol, err);
+    int rc = driver_open(&d, ring, p, setup, model, o, err);
     if (rc)
         goto out;
+    o->dof = (int)(d.form.N / 2);
     flank_track tr = initial_flank(&d);
     int S = o->samples;
     double total = p->engine.cycles * 720.0;
@@ -481,6 +486,8 @@ static double jac_entry(const rd_lift_form *f, SUNMatrix J, sunindextype i, suni
 static double fd_step(const rd_lift_form *f, sunindextype j)
 {
     const rd_lift_model *c = f->m;
+    if (f->fd_step)
+        return f->fd_step(f->user, j);
     if (f->dense) /* rigid: z, theta, r, then their rates */
         return j >= 3 ? 1e-4 * c->ureg : (j == 1 ? 2e-2 * c->d0 : 1e-3 * c->d0);
     return (j % 12) < 6 ? (j % 12 < 3 ? 1e-3 * c->d0 : 2e-2 * c->d0) : 1e-4 * c->ureg;
@@ -529,11 +536,7 @@ int rd_lift_jacobian_check(const rd_ring_params *rp, int segments, const rd_lift
         return err ? err->code : RD_ENOMEM;
     if ((rc = rd_lift_model_init(&c, ring, p, NULL, err)))
         goto out;
-    if (p->model == RD_LIFT_MODEL_RIGID)
-        rc = rd_lift_rigid_open(&c, &form, err);
-    else
-        rd_lift_full_form(&c, &form);
-    if (rc)
+    if ((rc = rd_lift_form_open(&c, p->model, p->modes, &form, err)))
         goto out;
     sunindextype N = form.N;
     if (SUNContext_Create(NULL, &sunctx) || !(y = N_VNew_Serial(N, sunctx)) ||
@@ -560,8 +563,8 @@ out:
         N_VDestroy(f2);
     if (sunctx)
         SUNContext_Free(&sunctx);
-    if (form.user && form.user != &c)
-        rd_lift_rigid_close(&form);
+    if (form.close)
+        form.close(&form);
     rd_lift_model_cleanup(&c);
     rd_ring_free(ring);
     return rc;

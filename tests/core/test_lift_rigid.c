@@ -286,7 +286,9 @@ static void test_validation(void)
     p.model = 7;
     expect_invalid(&p, "/numerics/model", "unknown");
     p.model = RD_LIFT_MODEL_MODAL;
-    expect_invalid(&p, "/numerics/model", "not available yet");
+    p.modes = 43; /* 8 segments: 6 x 8 - 6 = 42 elastic modes */
+    expect_invalid(&p, "/numerics/modes", "42 elastic modes");
+    p.modes = 0;
     p.model = RD_LIFT_MODEL_AUTO;
     p.accuracy_deg = 0.0;
     expect_invalid(&p, "/numerics/accuracy_deg", "out of range");
