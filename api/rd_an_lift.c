@@ -292,6 +292,9 @@ static json_t *lift_numerics(const rd_scene *scene, const rd_lift_result *res, d
         "solver", res->model == RD_LIFT_MODEL_RIGID
                       ? "SUNDIALS CVODE, BDF with a dense Newton linear solver (the rigid ring's "
                         "6 states), root finding for the flank changes"
+                  : res->model == RD_LIFT_MODEL_MODAL
+                      ? "SUNDIALS CVODE, BDF with a dense Newton linear solver (2 x dof modal "
+                        "states), root finding for the flank changes"
                       : "SUNDIALS CVODE, BDF with a banded Newton linear solver, root finding for "
                         "the flank changes",
         "steps", (json_int_t)res->steps,
@@ -314,7 +317,10 @@ static json_t *lift_numerics(const rd_scene *scene, const rd_lift_result *res, d
 
 /* {"analysis", "scene", "crank_deg", "lift", "lift_min", "lift_max",
  *  "lift_segments", "twist_rad", "friction_force", "flank", "events",
- *  "numerics"} */
+ *  "numerics", "partial", "crank_deg_reached", "warning"}: a run stopped by
+ *  /numerics/max_steps after whole cycles succeeds with those cycles,
+ *  partial = true, the angle reached and the warning (README "Partial
+ *  results"); warning is null otherwise. */
 static json_t *lift_result(const rd_scene *scene, const rd_lift_result *res, double wall_s)
 {
     int N = res->samples;
@@ -325,7 +331,8 @@ static json_t *lift_result(const rd_scene *scene, const rd_lift_result *res, dou
         json_decref(events);
         return NULL;
     }
-    return json_pack("{s:s, s:o, s:o, s:o, s:o, s:o, s:o, s:o, s:o, s:o, s:o, s:o}",
+    return json_pack("{s:s, s:o, s:o, s:o, s:o, s:o, s:o, s:o, s:o, s:o, s:o, s:o, s:b, s:o, "
+                     "s:o}",
                      "analysis", rd_scene_analysis(scene),
                      "scene", rd_scene_echo(scene),
                      "crank_deg", rd_result_reals(res->crank_deg, N, 1, 1.0),
@@ -337,7 +344,10 @@ static json_t *lift_result(const rd_scene *scene, const rd_lift_result *res, dou
                      "friction_force", rd_result_reals(res->friction_force, N, 1, 1.0),
                      "flank", flank,
                      "events", events,
-                     "numerics", lift_numerics(scene, res, wall_s));
+                     "numerics", lift_numerics(scene, res, wall_s),
+                     "partial", res->partial,
+                     "crank_deg_reached", rd_result_real(res->crank_deg_reached),
+                     "warning", res->partial ? json_string(res->warning) : json_null());
 }
 
 static int run(const rd_scene *s, const rd_monitor *mon, json_t **out, rd_error *err)

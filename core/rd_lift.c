@@ -512,16 +512,46 @@ typedef struct lift_solve {
     rd_lift_run run[2]; /* level 0: the scene; level 1: rtol/10, atol/10 */
 } lift_solve;
 
+/* A level-0 run stopped by /numerics/max_steps keeps its whole cycles, if
+ * any (rd_lift_result.partial): the samples and events up to their end. */
+static int keep_partial(lift_solve *s, rd_error *err)
+{
+    const rd_lift_run *r = &s->run[0];
+    double step = s->p->step_deg, stored = (r->done - 1) * step;
+    int cycles = (int)floor(fmin(r->reached_deg, stored) / 720.0 + 1e-9);
+    if (cycles < 1)
+        return RD_ELIMIT; /* nothing whole to return: the error stands */
+    rd_lift_result *out = s->out;
+    double end = 720.0 * cycles;
+    out->partial = 1;
+    out->crank_deg_reached = r->reached_deg;
+    out->samples = (int)floor(end / step + 1e-9) + 1;
+    snprintf(out->warning, sizeof out->warning,
+             "Partial result: /numerics/max_steps = %ld ran out at crank angle %.1f deg of "
+             "%.1f; the %d complete cycle%s (to %.0f deg) are returned.  To finish the run, "
+             "raise max_steps or make it cheaper: fewer cycles, a cheaper model "
+             "(/numerics/model), or a looser /numerics/rtol.",
+             s->p->max_steps, r->reached_deg, 720.0 * s->p->engine.cycles, cycles,
+             cycles > 1 ? "s" : "", end);
+    rd_error_init(err);
+    return RD_OK;
+}
+
 static int solve_level(void *ctx, int level, const rd_monitor *mon, rd_error *err)
 {
     lift_solve *s = ctx;
     rd_lift_run *r = &s->run[level];
     double scale = level ? 0.1 : 1.0;
+    if (level == 1 && s->out->partial)
+        return RD_OK; /* no estimate for a partial result: its reference would stop too */
     r->rtol = scale * s->p->rtol;
     r->atol = scale * s->p->atol;
     r->res = level ? NULL : s->out;
     r->modes = s->out->modes;
-    return rd_lift_integrate(s->ring, s->p, s->setup, s->out->model, mon, r, err);
+    int rc = rd_lift_integrate(s->ring, s->p, s->setup, s->out->model, mon, r, err);
+    if (level == 0 && rc == RD_ELIMIT && r->done > 0 && r->reached_deg > 0.0)
+        rc = keep_partial(s, err);
+    return rc;
 }
 
 /* error_estimate: largest lift difference / clearance; event error: the
@@ -533,6 +563,8 @@ static int compare_levels(void *ctx, rd_error *err)
     lift_solve *s = ctx;
     const rd_lift_run *a = &s->run[0], *b = &s->run[1];
     double e = 0.0;
+    if (s->out->partial)
+        return RD_OK;
     for (int k = 0; k < a->samples; k++)
         e = fmax(e, fabs(a->lift[k] - b->lift[k]));
     s->out->error_estimate = e / s->p->groove.axial_clearance;
@@ -612,6 +644,11 @@ int rd_lift_solve_setup(const rd_ring_params *rp, int segments, const rd_lift_pa
     out->n_events = s.run[0].n_events;
     out->events = s.run[0].events;
     s.run[0].events = NULL;
+    if (rc == RD_OK && !out->partial)
+        out->crank_deg_reached = 720.0 * p->engine.cycles;
+    while (out->partial && out->n_events > 0 &&
+           out->events[out->n_events - 1].crank_deg > out->crank_deg[out->samples - 1])
+        out->n_events--; /* events after the last whole cycle */
 out:
     for (int l = 0; l < 2; l++) {
         free(s.run[l].lift);

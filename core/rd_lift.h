@@ -125,6 +125,13 @@ typedef struct rd_lift_result {
     int model;                    /* enum rd_lift_model_kind actually integrated */
     int modes;                    /* elastic modes of a modal model; 0 otherwise */
     char why[320];                /* why that model (the scene content that decided it) */
+    /* A run stopped by /numerics/max_steps after at least one whole cycle
+     * returns those cycles (samples and events up to their end) with
+     * partial = 1, the crank angle the integrator reached, and the reason
+     * and what would make the run cheaper in `warning`; no error estimate. */
+    int partial;
+    double crank_deg_reached;     /* deg; the end of the run when not partial */
+    char warning[400];            /* empty when not partial */
     double error_estimate;        /* relative lift error from the rtol/10 run; NAN if none */
     double event_error_deg;       /* largest event-angle change in that run; NAN if none */
 } rd_lift_result;

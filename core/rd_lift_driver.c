@@ -338,7 +338,8 @@ static int step_error(driver *d, int flag, rd_error *err)
         return rd_error_set(err, RD_ELIMIT, "/numerics/max_steps",
                             "The integration used its /numerics/max_steps = %ld steps by crank "
                             "angle %.3f deg (of %.1f): the ring's motion needs more work than "
-                            "allowed; raise max_steps or loosen rtol.",
+                            "allowed; raise max_steps, or make the run cheaper: fewer cycles, a "
+                            "cheaper model (/numerics/model) or a looser /numerics/rtol.",
                             d->m.p->max_steps, tc * d->deg_per_s, total);
     return rd_error_set(err, RD_ENOCONV, "",
                         "The lift integration failed at crank angle %.4f deg after %ld steps: "
@@ -456,8 +457,13 @@ int rd_lift_integrate(const rd_ring *ring, const rd_lift_params *p, const rd_lif
     double total = p->engine.cycles * 720.0;
     for (int k = 0; k < S; k++) {
         double deg = fmin(k * p->step_deg, total), tout = deg / d.deg_per_s;
-        if (k > 0 && (rc = advance(&d, tout, &tr, o, mon, (double)k / S, err)))
+        if (k > 0 && (rc = advance(&d, tout, &tr, o, mon, (double)k / S, err))) {
+            double tc = 0.0;
+            o->done = k;
+            if (rc == RD_ELIMIT && CVodeGetCurrentTime(d.cv, &tc) == CV_SUCCESS)
+                o->reached_deg = tc * d.deg_per_s; /* a partial result may keep the samples */
             goto out;
+        }
         store_sample(&d, k, deg, tout, o, setup);
         if ((rc = rd_monitor_report(mon, (k + 1.0) / S, err)))
             goto out;

@@ -203,6 +203,10 @@ typedef struct rd_lift_run {
     double rtol, atol;
     int modes;           /* elastic modes of the modal model */
     int dof;             /* out: degrees of freedom integrated (states / 2) */
+    /* out, when /numerics/max_steps ran out (RD_ELIMIT): the samples stored
+     * (0 .. done - 1) and the crank angle the integrator reached, deg */
+    int done;
+    double reached_deg;
     rd_lift_result *res; /* may be NULL */
     double *lift;        /* samples values */
     int samples;

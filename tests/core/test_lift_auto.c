@@ -152,8 +152,59 @@ static void test_rigid_friction_misses(void)
     rd_lift_result_cleanup(&rf);
 }
 
+/* Partial results: a 3-cycle run whose max_steps runs out in its third
+ * cycle returns its first two cycles, identical to the complete run's
+ * (same steps: the bound only stops the integration), marked partial with
+ * the angle reached; a bound that stops it inside the first cycle is the
+ * max_steps error, which says what would make the run cheaper. */
+static void test_partial(void)
+{
+    for (int model = RD_LIFT_MODEL_FULL; model <= RD_LIFT_MODEL_RIGID; model++) {
+        rd_lift_params p;
+        rd_lift_result a, b;
+        rd_error err;
+        scene(&p, 1000.0, 3e-5, 0, RD_FRICTION_NONE, 1e-6);
+        p.engine.cycles = 3.0;
+        p.estimate_error = 1;
+        int rc = run(&p, model, &a, &err);
+        CHECK(rc == RD_OK && !a.partial && a.crank_deg_reached == 2160.0,
+              "complete run: rc %d partial %d %s", rc, a.partial, err.message);
+        p.max_steps = (long)(0.8 * a.steps); /* ~2.4 cycles: periodic steps per cycle */
+        rc = run(&p, model, &b, &err);
+        CHECK(rc == RD_OK && b.partial && b.samples == 2 * 144 + 1 &&
+                  b.crank_deg_reached > 1440.0 && b.crank_deg_reached < 2160.0 &&
+                  strstr(b.warning, "fewer cycles") && isnan(b.error_estimate),
+              "%s partial: rc %d partial %d samples %d reached %g (%s) %s",
+              rd_lift_model_name(model), rc, b.partial, b.samples, b.crank_deg_reached,
+              b.warning, err.message);
+        int same = rc == RD_OK;
+        for (int k = 0; same && k < b.samples; k++)
+            same = b.lift[k] == a.lift[k] && b.crank_deg[k] == a.crank_deg[k];
+        int ev = 0;
+        while (ev < a.n_events && a.events[ev].crank_deg <= 1440.0)
+            ev++;
+        same = same && b.n_events == ev;
+        for (int k = 0; same && k < ev; k++)
+            same = b.events[k].crank_deg == a.events[k].crank_deg;
+        CHECK(same, "%s partial: its cycles differ from the complete run's (%d vs %d events)",
+              rd_lift_model_name(model), b.n_events, ev);
+        fprintf(stderr, "    partial (%s): %ld steps for 3 cycles; bound %ld stopped at %.1f deg\n",
+                rd_lift_model_name(model), a.steps, p.max_steps, b.crank_deg_reached);
+        rd_lift_result_cleanup(&b);
+        p.max_steps = (long)(0.2 * a.steps); /* inside the first cycle */
+        rc = run(&p, model, &b, &err);
+        CHECK(rc == RD_ELIMIT && !strcmp(err.path, "/numerics/max_steps") &&
+                  strstr(err.message, "fewer cycles") && strstr(err.message, "rtol"),
+              "%s: max_steps in the first cycle: rc %d %s: %s", rd_lift_model_name(model), rc,
+              err.path, err.message);
+        rd_lift_result_cleanup(&a);
+        rd_lift_result_cleanup(&b);
+    }
+}
+
 int main(void)
 {
+    test_partial();
     test_battery_friction();
     test_rigid_friction_misses();
     test_battery_frictionless();
