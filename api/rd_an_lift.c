@@ -317,10 +317,10 @@ static json_t *lift_numerics(const rd_scene *scene, const rd_lift_result *res, d
 
 /* {"analysis", "scene", "crank_deg", "lift", "lift_min", "lift_max",
  *  "lift_segments", "twist_rad", "friction_force", "flank", "events",
- *  "numerics", "partial", "crank_deg_reached", "warning"}: a run stopped by
+ *  "numerics", "partial", "crank_deg_reached", "warnings"}: a run stopped by
  *  /numerics/max_steps after whole cycles succeeds with those cycles,
- *  partial = true, the angle reached and the warning (README "Partial
- *  results"); warning is null otherwise. */
+ *  partial = true, the angle reached and a warning (README "Lift", partial
+ *  results; the page lists result.warnings); warnings is [] otherwise. */
 static json_t *lift_result(const rd_scene *scene, const rd_lift_result *res, double wall_s)
 {
     int N = res->samples;
@@ -347,7 +347,7 @@ static json_t *lift_result(const rd_scene *scene, const rd_lift_result *res, dou
                      "numerics", lift_numerics(scene, res, wall_s),
                      "partial", res->partial,
                      "crank_deg_reached", rd_result_real(res->crank_deg_reached),
-                     "warning", res->partial ? json_string(res->warning) : json_null());
+                     "warnings", res->partial ? json_pack("[s]", res->warning) : json_array());
 }
 
 static int run(const rd_scene *s, const rd_monitor *mon, json_t **out, rd_error *err)

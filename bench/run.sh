@@ -47,3 +47,6 @@ echo "## lift: cost per engine cycle vs n, and flank-change accuracy vs rtol"
 echo
 echo "## lift: models (auto, rigid, full) on the lift examples"
 "$b/bench/bench_lift" --models examples
+echo
+echo "## lift: the modal model against the full model it reduces (lift examples)"
+"$b/bench/bench_lift" --modal examples
