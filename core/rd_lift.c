@@ -148,6 +148,38 @@ static int check_table(const double *v, int n, const char *path, rd_error *err)
     return RD_OK;
 }
 
+/* engine.piston_tilt_deg and the engine.piston_tilt table. */
+static int validate_tilt(const rd_engine_params *e, rd_error *err)
+{
+    int rc;
+    if ((rc = check_range(e->piston_tilt_deg, -RD_LIFT_TILT_MAX_DEG, RD_LIFT_TILT_MAX_DEG,
+                          "/engine/piston_tilt_deg", "deg", err)))
+        return rc;
+    if (e->tilt_points < 0 || e->tilt_points > RD_LIFT_TABLE_MAX)
+        return rd_error_set(err, RD_EINVAL, "/engine/piston_tilt/crank_deg",
+                            "/engine/piston_tilt has %d points: allowed 1 to %d.", e->tilt_points,
+                            RD_LIFT_TABLE_MAX);
+    double big = 0.0;
+    for (int i = 0; i < e->tilt_points; i++) {
+        double a = e->tilt_crank_deg[i], b = e->tilt_deg[i];
+        if (!isfinite(a) || a < 0.0 || a > 720.0 || (i > 0 && !(a > e->tilt_crank_deg[i - 1])))
+            return rd_error_set(err, RD_EINVAL, "/engine/piston_tilt/crank_deg",
+                                "/engine/piston_tilt/crank_deg[%d] = %g deg: the crank angles "
+                                "must be strictly increasing within 0 to 720 deg.",
+                                i, a);
+        if (!isfinite(b))
+            return rd_error_set(err, RD_EINVAL, "/engine/piston_tilt/tilt_deg",
+                                "/engine/piston_tilt/tilt_deg[%d] is not a finite number.", i);
+        big = fmax(big, fabs(b));
+    }
+    if (fabs(e->piston_tilt_deg) + big > RD_LIFT_TILT_MAX_DEG)
+        return rd_error_set(err, RD_EINVAL, "/engine/piston_tilt/tilt_deg",
+                            "/engine/piston_tilt_deg + the largest /engine/piston_tilt/tilt_deg "
+                            "= %g deg: the tilt is allowed up to %g deg (small-angle model).",
+                            fabs(e->piston_tilt_deg) + big, RD_LIFT_TILT_MAX_DEG);
+    return RD_OK;
+}
+
 static int validate_engine(const rd_engine_params *e, rd_error *err)
 {
     int rc;
@@ -263,6 +295,11 @@ static int validate_numerics(const rd_lift_params *p, int segments, rd_error *er
         return rd_error_set(err, RD_EINVAL, "/numerics/model",
                             "/numerics/model = %d is unknown: use auto, rigid, modal or full.",
                             p->model);
+    if (p->model == RD_LIFT_MODEL_RIGID && rd_lift_tilted(&p->engine))
+        return rd_error_set(err, RD_EINVAL, "/numerics/model",
+                            "/numerics/model = rigid cannot represent a tilted piston "
+                            "(/engine/piston_tilt_deg, /engine/piston_tilt): the flank gap varies "
+                            "around the ring; use auto, modal or full.");
     if (p->model == RD_LIFT_MODEL_MODAL && segments > RD_LIFT_MODAL_SEGMENTS_MAX)
         return rd_error_set(err, RD_ELIMIT, "/numerics/model",
                             "/numerics/model = modal solves the ring's modes densely and allows "
@@ -316,7 +353,8 @@ int rd_lift_validate(const rd_lift_params *p, const rd_ring_params *ring, int se
                             "/discretization/segments = %d is out of range for a lift analysis: "
                             "allowed 4 to %d.",
                             segments, RD_LIFT_SEGMENTS_MAX);
-    if ((rc = validate_engine(&p->engine, err)) || (rc = validate_physics(p, err)) ||
+    if ((rc = validate_engine(&p->engine, err)) || (rc = validate_tilt(&p->engine, err)) ||
+        (rc = validate_physics(p, err)) ||
         (rc = validate_gas(&p->gas, err)) || (rc = validate_numerics(p, segments, err)))
         return rc;
     return RD_OK;
@@ -490,6 +528,11 @@ static void choose_model(const rd_lift_params *p, int n, rd_lift_result *out)
         snprintf(out->why, sizeof out->why,
                  "asked for (numerics.model = modal, %d elastic modes%s)", out->modes,
                  p->modes ? "" : " by default");
+    } else if (rd_lift_tilted(&p->engine)) {
+        snprintf(out->why, sizeof out->why,
+                 "auto: the piston tilt makes the flank gap vary around the ring, which the "
+                 "rigid ring cannot represent, and the modal model is not cheaper than the full "
+                 "ring at the accuracy target");
     } else if (!fric) {
         out->model = RD_LIFT_MODEL_RIGID;
         snprintf(out->why, sizeof out->why,

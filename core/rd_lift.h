@@ -53,6 +53,7 @@ enum rd_lift_event_kind {
 #define RD_LIFT_TABLE_MAX 100000   /* points of a gas pressure table */
 #define RD_LIFT_SEGMENTS_MAX 1000
 #define RD_LIFT_MODES_MAX 60
+#define RD_LIFT_TILT_MAX_DEG 2.0
 
 typedef struct rd_engine_params {
     double speed_rpm;    /* 1 .. 30000 */
@@ -60,6 +61,15 @@ typedef struct rd_engine_params {
     double rod_length;   /* l, m, > crank_radius */
     int kinematics;      /* enum rd_kinematics */
     double cycles;       /* 4-stroke cycles simulated, > 0 */
+    /* Piston tilt about its pin axis (the axis in the ring plane at 90 deg
+     * from the gap middle), deg, positive raising the groove on the gap's
+     * side: the constant piston_tilt_deg plus a table vs crank angle
+     * (tilt_points values at tilt_crank_deg, strictly increasing within
+     * [0, 720], periodic, a C1 cubic spline: rd_lift_tilt_at); |tilt| <=
+     * RD_LIFT_TILT_MAX_DEG.  Borrowed arrays; tilt_points == 0: no table. */
+    double piston_tilt_deg;
+    int tilt_points;
+    const double *tilt_crank_deg, *tilt_deg;
 } rd_engine_params;
 
 typedef struct rd_groove_params {
@@ -156,5 +166,12 @@ double rd_lift_contact_stiffness_default(const rd_ring_params *ring, const rd_li
  * acceleration d2s/dt2 (m/s^2) at crank angle alpha (rad), thesis 1.6-1.8 or
  * the exact slider-crank. */
 void rd_lift_piston(const rd_engine_params *e, double alpha, double *s, double *v, double *a);
+
+/* The piston tilt (deg) at crank angle `deg` and its first and second
+ * derivatives with respect to the crank angle (deg/deg, deg/deg^2)
+ * (rd_lift_tilt.c). */
+void rd_lift_tilt_at(const rd_engine_params *e, double deg, double *beta, double *d1, double *d2);
+/* 1 if the scene tilts the piston (a constant or a table). */
+int rd_lift_tilted(const rd_engine_params *e);
 
 #endif

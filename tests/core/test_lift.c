@@ -83,7 +83,7 @@ static void print_events(const char *what, const evlist *e)
 
 static void test_kinematics(void)
 {
-    rd_engine_params e = {1000.0, 0.04345, 0.130, RD_KINEMATICS_EXACT, 1.0};
+    rd_engine_params e = {1000.0, 0.04345, 0.130, RD_KINEMATICS_EXACT, 1.0, 0.0, 0, NULL, NULL};
     double w = 1000.0 * 2.0 * PI / 60.0, r = e.crank_radius;
     /* TDC: s = 0, v = 0, a = r w^2 (1 + lambda) for both forms */
     for (int kin = 0; kin < 2; kin++) {
