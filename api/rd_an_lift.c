@@ -24,6 +24,8 @@ struct lift_opts {
     int friction_model;         /* index into friction_names */
     int max_steps;              /* /numerics/max_steps */
     struct rd_table gas_table[4]; /* crank_deg, above, behind, below */
+    int tilt_given;
+    struct rd_table tilt_table[2]; /* crank_deg, tilt_deg */
 };
 
 #define LO(member) offsetof(struct lift_opts, member)
@@ -33,6 +35,20 @@ struct lift_opts {
 static const char *const kinematics_names[] = {"exact", "approximate", NULL}; /* enum rd_kinematics */
 static const char *const friction_names[] = {"coulomb", "stribeck", NULL};   /* model - 1 */
 static const char *const area_names[] = {"fixed", "dynamic", NULL};          /* enum rd_gas_area */
+
+static const rd_field tilt_fields[] = {
+    {"crank_deg", RD_F_TABLE, LO(tilt_table[0]), RD_MIN(1), RD_MAX(RD_LIFT_TABLE_MAX),
+     .required = 1, .desc = "Crank angles, deg, strictly increasing within 0..720."},
+    {"tilt_deg", RD_F_TABLE, LO(tilt_table[1]), RD_MIN(1), RD_MAX(RD_LIFT_TABLE_MAX),
+     .required = 1, .desc = "Piston tilt at those angles, deg (added to piston_tilt_deg)."},
+    {.key = NULL},
+};
+static const rd_block tilt_block = {
+    "PistonTilt",
+    "/engine/piston_tilt: the piston's tilt about its pin axis vs crank angle; present = "
+    "modelled. Two tables of the same length, a periodic (720 deg) C1 cubic spline through them; "
+    "|piston_tilt_deg| + the largest |tilt_deg| at most 2 deg.",
+    1, 0, tilt_fields};
 
 static const rd_field engine_fields[] = {
     {"speed_rpm", RD_F_NUMBER, LO(lift.engine.speed_rpm), RD_MIN(1), RD_MAX(30000),
@@ -45,6 +61,11 @@ static const rd_field engine_fields[] = {
      .desc = "exact slider-crank, or the approximate series (thesis 1.6-1.8)."},
     {"cycles", RD_F_NUMBER, LO(lift.engine.cycles), RD_XMIN(0), RD_MAX(50),
      .desc = "4-stroke cycles (720 deg each) simulated; any real > 0."},
+    {"piston_tilt_deg", RD_F_NUMBER, LO(lift.engine.piston_tilt_deg), RD_MIN(-2), RD_MAX(2),
+     .desc = "Constant piston tilt about the pin axis (the axis in the ring plane at 90 deg from "
+             "the gap middle), deg, positive raising the groove on the gap's side. A tilted "
+             "scene never runs the rigid model (the flank gap varies around the ring)."},
+    {"piston_tilt", RD_F_OPTBLOCK, LO(tilt_given), .block = &tilt_block},
     {.key = NULL},
 };
 static const rd_block engine_block = {"Engine", "/engine (lift): piston kinematics.", 1, 0,
@@ -199,6 +220,27 @@ static void cleanup(void *opts)
     struct lift_opts *o = opts;
     for (int k = 0; k < 4; k++)
         free(o->gas_table[k].v);
+    for (int k = 0; k < 2; k++)
+        free(o->tilt_table[k].v);
+}
+
+/* The tilt tables: both, of the same length; rd_lift_params borrows them. */
+static int tilt_finish(struct lift_opts *o, rd_error *err)
+{
+    rd_engine_params *e = &o->lift.engine;
+    e->tilt_points = 0;
+    if (!o->tilt_given)
+        return RD_OK;
+    if (!o->tilt_table[0].v || !o->tilt_table[1].v ||
+        o->tilt_table[1].n != o->tilt_table[0].n)
+        return rd_error_set(err, RD_EINVAL, "/engine/piston_tilt/tilt_deg",
+                            "/engine/piston_tilt needs crank_deg and tilt_deg of the same length "
+                            "(got %d and %d values).",
+                            o->tilt_table[0].n, o->tilt_table[1].n);
+    e->tilt_points = o->tilt_table[0].n;
+    e->tilt_crank_deg = o->tilt_table[0].v;
+    e->tilt_deg = o->tilt_table[1].v;
+    return RD_OK;
 }
 
 /* The gas tables: all four, of the same length; rd_lift_params borrows them. */
@@ -244,6 +286,9 @@ static int finish(struct rd_scene *s, rd_error *err)
         if (rc != RD_OK)
             return rc;
     }
+    int rc = tilt_finish(o, err);
+    if (rc != RD_OK)
+        return rc;
     return rd_lift_validate(l, &s->ring, s->segments, err);
 }
 

@@ -1,7 +1,7 @@
 /*
  * rd_lift_tilt.c — the piston's tilt about its pin axis vs crank angle
  * (engine.piston_tilt_deg and the engine.piston_tilt table; the forces it
- * causes: rd_lift_forces.c, MODEL.md "lift").
+ * causes: rd_lift_forces.c, add_inertia_gravity and add_bore).
  *
  * beta(alpha) = piston_tilt_deg + table(alpha), deg, with the table a
  * periodic (720 deg) cubic Hermite spline through its points, the tangent at
