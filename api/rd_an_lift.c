@@ -17,6 +17,7 @@
 #include "rd_lift.h"
 #include "rd_registry.h"
 #include "rd_scene.h"
+#include "rd_static.h"
 
 struct lift_opts {
     rd_lift_params lift;
@@ -26,6 +27,7 @@ struct lift_opts {
     struct rd_table gas_table[4]; /* crank_deg, above, behind, below */
     int tilt_given;
     struct rd_table tilt_table[2]; /* crank_deg, tilt_deg */
+    rd_contact_opts bore;          /* /bore (its diameter and distortion only) */
 };
 
 #define LO(member) offsetof(struct lift_opts, member)
@@ -49,6 +51,35 @@ static const rd_block tilt_block = {
     "modelled. Two tables of the same length, a periodic (720 deg) C1 cubic spline through them; "
     "|piston_tilt_deg| + the largest |tilt_deg| at most 2 deg.",
     1, 0, tilt_fields};
+
+static const rd_field distortion_fields[] = {
+    {"order", RD_F_INTEGER, offsetof(rd_distortion, order), RD_MIN(1), RD_MAX(64),
+     .required = 1, .desc = "Fourier order k; a JSON integer."},
+    {"amplitude", RD_F_NUMBER, offsetof(rd_distortion, amplitude), .required = 1,
+     .desc = "Radius change A_k, m; the sum of |A_k| at most 1 % of the ring diameter."},
+    {"phase_deg", RD_F_NUMBER, offsetof(rd_distortion, phase_deg), RD_MIN(-360), RD_MAX(360),
+     .desc = "Phase phi_k, degrees from the gap middle."},
+    {.key = NULL},
+};
+static const rd_block distortion_block = {
+    "LiftBoreDistortion", "One Fourier term of the bore distortion (lift).", 0, 1,
+    distortion_fields};
+
+static const rd_field bore_fields[] = {
+    {"diameter", RD_F_NUMBER, LO(bore.bore_diameter), RD_MIN(0.0),
+     .desc = "Bore diameter D, m; 0 = the ring's diameter; otherwise within 2 % of it."},
+    {"distortion", RD_F_DISTORTION, LO(bore), .block = &distortion_block,
+     RD_MAX(RD_LIFT_DISTORTION_MAX),
+     .desc = "Fourier terms of the bore's out-of-roundness, at most 16. The radial contact "
+             "pressure, hence the friction, then varies around the ring; the ring starts from "
+             "its static equilibrium in this bore, and the scene never runs the rigid model."},
+    {.key = NULL},
+};
+static const rd_block bore_block = {
+    "LiftBore",
+    "/bore (lift): r_b(theta) = D/2 + sum A_k cos(k (theta - phi_k)), as in the contact "
+    "analysis. Default: the round bore of the ring's diameter.",
+    1, 0, bore_fields};
 
 static const rd_field engine_fields[] = {
     {"speed_rpm", RD_F_NUMBER, LO(lift.engine.speed_rpm), RD_MIN(1), RD_MAX(30000),
@@ -192,6 +223,7 @@ static const rd_field scene_fields[] = {
                          rd_block_discretization_lift),
     {"engine", RD_F_BLOCK, 0, .block = &engine_block},
     {"groove", RD_F_BLOCK, 0, .block = &groove_block},
+    {"bore", RD_F_BLOCK, 0, .block = &bore_block},
     {"physics", RD_F_BLOCK, 0, .block = &physics_block},
     {"contact", RD_F_BLOCK, 0, .block = &contact_block},
     {"output", RD_F_BLOCK, 0, .block = &output_block},
@@ -203,8 +235,8 @@ static const rd_block scene_block = {
     "Axial motion (lift) of the flexible ring in its piston groove over engine cycles (thesis "
     "3.5): piston inertia always, plus gravity, bore friction and gas pressures when physics "
     "names them. Reads ring (section must be rectangle), discretization (4..1000 segments, "
-    "split ring only), engine, groove, physics, contact (LiftContact), output and numerics "
-    "(LiftNumerics). Output size: cycles * 720 / step_deg + 1 samples, at most 200000, and "
+    "split ring only), engine, groove, bore (LiftBore), physics, contact (LiftContact), output and "
+    "numerics (LiftNumerics). Output size: cycles * 720 / step_deg + 1 samples, at most 200000, and "
     "samples x segments at most 2e7 (limit_exceeded at /output/step_deg otherwise).",
     0, 0, scene_fields};
 
@@ -289,6 +321,13 @@ static int finish(struct rd_scene *s, rd_error *err)
     int rc = tilt_finish(o, err);
     if (rc != RD_OK)
         return rc;
+    l->bore.diameter = o->bore.bore_diameter;
+    l->bore.n_distortion = o->bore.n_distortion;
+    for (int k = 0; k < o->bore.n_distortion && k < RD_LIFT_DISTORTION_MAX; k++) {
+        l->bore.distortion[k].order = o->bore.distortion[k].order;
+        l->bore.distortion[k].amplitude = o->bore.distortion[k].amplitude;
+        l->bore.distortion[k].phase_deg = o->bore.distortion[k].phase_deg;
+    }
     return rd_lift_validate(l, &s->ring, s->segments, err);
 }
 

@@ -180,6 +180,44 @@ static int validate_tilt(const rd_engine_params *e, rd_error *err)
     return RD_OK;
 }
 
+/* bore.diameter and bore.distortion, as in the contact analysis. */
+static int validate_bore(const rd_lift_bore *b, const rd_ring_params *ring, rd_error *err)
+{
+    double d = ring->diameter, sum = 0.0;
+    if (!isfinite(b->diameter) || (b->diameter != 0.0 && (b->diameter < 0.98 * d ||
+                                                          b->diameter > 1.02 * d)))
+        return rd_error_set(err, RD_EINVAL, "/bore/diameter",
+                            "/bore/diameter = %g m is out of range: 0 (the ring's diameter) or "
+                            "%g to %g m (within 2 %% of it).",
+                            b->diameter, 0.98 * d, 1.02 * d);
+    if (b->n_distortion < 0 || b->n_distortion > RD_LIFT_DISTORTION_MAX)
+        return rd_error_set(err, RD_ELIMIT, "/bore/distortion",
+                            "/bore/distortion has %d terms; at most %d are allowed.",
+                            b->n_distortion, RD_LIFT_DISTORTION_MAX);
+    for (int k = 0; k < b->n_distortion; k++) {
+        char path[64];
+        int rc;
+        snprintf(path, sizeof path, "/bore/distortion/%d/order", k);
+        if (b->distortion[k].order < 1 || b->distortion[k].order > 64)
+            return rd_error_set(err, RD_EINVAL, path,
+                                "%s = %d is out of range: allowed 1 to 64.", path,
+                                b->distortion[k].order);
+        snprintf(path, sizeof path, "/bore/distortion/%d/phase_deg", k);
+        if ((rc = check_range(b->distortion[k].phase_deg, -360.0, 360.0, path, "deg", err)))
+            return rc;
+        snprintf(path, sizeof path, "/bore/distortion/%d/amplitude", k);
+        if ((rc = check_range(b->distortion[k].amplitude, -0.01 * d, 0.01 * d, path, "m", err)))
+            return rc;
+        sum += fabs(b->distortion[k].amplitude);
+    }
+    if (sum > 0.01 * d)
+        return rd_error_set(err, RD_EINVAL, "/bore/distortion",
+                            "/bore/distortion: the amplitudes sum to %g m; at most 1 %% of the "
+                            "ring diameter (%g m) is allowed.",
+                            sum, 0.01 * d);
+    return RD_OK;
+}
+
 static int validate_engine(const rd_engine_params *e, rd_error *err)
 {
     int rc;
@@ -275,7 +313,8 @@ static int validate_gas(const rd_gas_params *g, rd_error *err)
 }
 
 /* Contact stiffness, output sampling, tolerances and the work bounds. */
-static int validate_numerics(const rd_lift_params *p, int segments, rd_error *err)
+static int validate_numerics(const rd_lift_params *p, int segments, double ring_d,
+                             rd_error *err)
 {
     int rc;
     const rd_engine_params *e = &p->engine;
@@ -295,6 +334,11 @@ static int validate_numerics(const rd_lift_params *p, int segments, rd_error *er
         return rd_error_set(err, RD_EINVAL, "/numerics/model",
                             "/numerics/model = %d is unknown: use auto, rigid, modal or full.",
                             p->model);
+    if (p->model == RD_LIFT_MODEL_RIGID && rd_lift_bore_distorted(&p->bore, ring_d))
+        return rd_error_set(err, RD_EINVAL, "/numerics/model",
+                            "/numerics/model = rigid cannot represent a distorted bore "
+                            "(/bore/distortion, /bore/diameter): the contact pressure varies "
+                            "around the ring; use auto, modal or full.");
     if (p->model == RD_LIFT_MODEL_RIGID && rd_lift_tilted(&p->engine))
         return rd_error_set(err, RD_EINVAL, "/numerics/model",
                             "/numerics/model = rigid cannot represent a tilted piston "
@@ -354,8 +398,9 @@ int rd_lift_validate(const rd_lift_params *p, const rd_ring_params *ring, int se
                             "allowed 4 to %d.",
                             segments, RD_LIFT_SEGMENTS_MAX);
     if ((rc = validate_engine(&p->engine, err)) || (rc = validate_tilt(&p->engine, err)) ||
+        (rc = validate_bore(&p->bore, ring, err)) ||
         (rc = validate_physics(p, err)) ||
-        (rc = validate_gas(&p->gas, err)) || (rc = validate_numerics(p, segments, err)))
+        (rc = validate_gas(&p->gas, err)) || (rc = validate_numerics(p, segments, ring->diameter, err)))
         return rc;
     return RD_OK;
 }
@@ -475,9 +520,11 @@ void rd_lift_result_cleanup(rd_lift_result *r)
 /* The model a scene gets (numerics.model; auto: the cheapest the scene
  * allows at the accuracy target) and why, into out->model and out->why.
  *
- * Every lift scene today is axisymmetric: a round bore (lift ignores the
- * bore block), a groove aligned with the ring, loads uniform around it.
- * On such a scene the rigid model (rd_lift_rigid.c) is exact except for what
+ * A distorted bore (rd_lift_bore.c) or a tilted piston (rd_lift_tilt.c)
+ * makes the contact pressure or the flank gap vary around the ring: the rigid
+ * ring cannot represent it (asked for, it is refused in validation) and auto
+ * runs the full ring.  Otherwise the scene is axisymmetric: a round bore, a
+ * groove aligned with the ring, loads uniform around it.  On such a scene the rigid model (rd_lift_rigid.c) is exact except for what
  * the split ring's free ends do.  Without friction that is nothing
  * measurable: its flank changes agree with the full model's within 0.035
  * deg (thesis_lift_1000rpm, and the gas example without friction: 0.007
@@ -511,7 +558,7 @@ static int modal_default_modes(int n)
 {
     return MODAL_DEFAULT_MODES < 6 * n - 6 ? MODAL_DEFAULT_MODES : 6 * n - 6;
 }
-static void choose_model(const rd_lift_params *p, int n, rd_lift_result *out)
+static void choose_model(const rd_lift_params *p, int n, double ring_d, rd_lift_result *out)
 {
     int fric = p->friction.model != RD_FRICTION_NONE;
     out->model = p->model == RD_LIFT_MODEL_RIGID ? RD_LIFT_MODEL_RIGID : RD_LIFT_MODEL_FULL;
@@ -528,6 +575,11 @@ static void choose_model(const rd_lift_params *p, int n, rd_lift_result *out)
         snprintf(out->why, sizeof out->why,
                  "asked for (numerics.model = modal, %d elastic modes%s)", out->modes,
                  p->modes ? "" : " by default");
+    } else if (rd_lift_bore_distorted(&p->bore, ring_d)) {
+        snprintf(out->why, sizeof out->why,
+                 "auto: the bore is distorted, so the contact pressure and the friction vary "
+                 "around the ring, which the rigid ring cannot represent, and the modal model is "
+                 "not cheaper than the full ring at the accuracy target");
     } else if (rd_lift_tilted(&p->engine)) {
         snprintf(out->why, sizeof out->why,
                  "auto: the piston tilt makes the flank gap vary around the ring, which the "
@@ -651,6 +703,7 @@ int rd_lift_solve_setup(const rd_ring_params *rp, int segments, const rd_lift_pa
                         rd_error *err)
 {
     lift_solve s = {.p = p, .setup = setup, .out = out};
+    double *y0 = NULL;
     int rc;
     memset(out, 0, sizeof *out);
     out->error_estimate = NAN;
@@ -664,7 +717,7 @@ int rd_lift_solve_setup(const rd_ring_params *rp, int segments, const rd_lift_pa
     int S = lift_samples(p);
     if ((rc = result_alloc(out, S, segments, err)))
         goto out;
-    choose_model(p, segments, out);
+    choose_model(p, segments, rp->diameter, out);
     if (out->model == RD_LIFT_MODEL_RIGID)
         out->dof = 3; /* axial lift, twist, radial */
     else if (out->model == RD_LIFT_MODEL_MODAL)
@@ -676,6 +729,19 @@ int rd_lift_solve_setup(const rd_ring_params *rp, int segments, const rd_lift_pa
             rc = rd_error_set(err, RD_ENOMEM, "", "Out of memory for %d lift samples.", S);
             goto out;
         }
+    }
+    /* a distorted bore: both runs start from the ring's static equilibrium in it */
+    rd_lift_setup su = setup ? *setup : (rd_lift_setup){0};
+    if (rd_lift_bore_distorted(&p->bore, rp->diameter) && !su.y0) {
+        y0 = malloc(12 * (size_t)segments * sizeof *y0);
+        if (!y0) {
+            rc = rd_error_set(err, RD_ENOMEM, "", "Out of memory for the bore start.");
+            goto out;
+        }
+        if ((rc = rd_lift_bore_static(ring, p, y0, err)))
+            goto out;
+        su.y0 = y0;
+        s.setup = &su;
     }
     /* the reference run at rtol/10 typically costs 1.5-2x the main run */
     rd_accuracy_plan plan = {.solve = solve_level, .compare = compare_levels, .ctx = &s,
@@ -698,6 +764,7 @@ out:
         free(s.run[l].events);
     }
     rd_ring_free(ring);
+    free(y0);
     return rc;
 }
 

@@ -96,8 +96,24 @@ typedef struct rd_gas_params {
     int active_area;         /* enum rd_gas_area */
 } rd_gas_params;
 
+/* The bore in lift (as in the contact analysis, rd_static.h): radius
+ * r_b(theta) = D/2 + sum A_k cos(k (theta - phi_k)), theta from the gap
+ * middle; D = 0: the ring's diameter.  A round bore of the ring's diameter
+ * (the default) is the installed reference; otherwise the ring starts from
+ * its static equilibrium in this bore (rd_lift_bore.c). */
+#define RD_LIFT_DISTORTION_MAX 16
+typedef struct rd_lift_bore {
+    double diameter;
+    int n_distortion;
+    struct {
+        int order;
+        double amplitude, phase_deg;
+    } distortion[RD_LIFT_DISTORTION_MAX];
+} rd_lift_bore;
+
 typedef struct rd_lift_params {
     rd_engine_params engine;
+    rd_lift_bore bore;
     rd_groove_params groove;
     int gravity;               /* 1: g = 9.80665 m/s^2 along -z */
     rd_friction_params friction;
@@ -171,6 +187,8 @@ void rd_lift_piston(const rd_engine_params *e, double alpha, double *s, double *
  * derivatives with respect to the crank angle (deg/deg, deg/deg^2)
  * (rd_lift_tilt.c). */
 void rd_lift_tilt_at(const rd_engine_params *e, double deg, double *beta, double *d1, double *d2);
+/* 1 if the bore is not the round bore of the ring's diameter. */
+int rd_lift_bore_distorted(const rd_lift_bore *b, double ring_diameter);
 /* 1 if the scene tilts the piston (a constant or a table). */
 int rd_lift_tilted(const rd_engine_params *e);
 

@@ -331,6 +331,8 @@ static void add_bore(rd_lift_model *c, const force_env *env, seg_view *s, double
         const double *d = c->bo_d + o, *e = c->bo_e + o;
         radial_dir(d, e, b);
         double ur = dot6(b, s->q), urd = dot6(b, s->v), P_d, P_dd;
+        if (c->bo_gap) /* a distorted bore: its offset at the point (rd_lift_bore.c) */
+            ur -= c->bo_gap[ARC_POINTS * (size_t)s->i + k];
         double N = c->bo_area *
                    contact_pressure(c, c->delta_pre + ur, urd, c->c_rad, &P_d, &P_dd);
         add6(s->f, b, c->p0 * c->bo_area - N);

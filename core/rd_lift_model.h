@@ -93,6 +93,8 @@ typedef struct rd_lift_model {
     double *ba_d;          /* n x ARC_POINTS x 2: back point offsets */
     double bo_area, ba_area; /* per point */
     double *cen_d;         /* n x 2: face centroid offsets */
+    double *bo_gap;        /* n x ARC_POINTS: the bore's outward offset at each bore
+                            * point (rd_lift_bore.c), NULL for the round bore */
     double *e_r;           /* n x 2: segment radial unit */
     double *e_t;           /* n x 2: segment tangential unit */
     double face_area, back_chord_area;
@@ -181,6 +183,12 @@ void rd_lift_full_form(rd_lift_model *m, rd_lift_form *form);
  * form's user is freed by rd_lift_rigid_close. */
 int rd_lift_rigid_open(rd_lift_model *m, rd_lift_form *form, rd_error *err);
 void rd_lift_rigid_close(rd_lift_form *form);
+
+/* The bore (rd_lift_bore.c): the per-point offsets of a distorted bore into
+ * m->bo_gap (NULL for a round one), and the static equilibrium of the
+ * installed ring in it (y0: 12 n values, the rates 0). */
+int rd_lift_bore_init(rd_lift_model *m, rd_error *err);
+int rd_lift_bore_static(const rd_ring *ring, const rd_lift_params *p, double *y0, rd_error *err);
 
 /* The modal model (rd_lift_modal.c): the 6 rigid-body and `modes` lowest
  * elastic modes of the ring (1 <= modes <= 6 n - 6; n at most

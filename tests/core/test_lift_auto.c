@@ -17,6 +17,8 @@
  * With friction auto must run the full ring at every target, because the
  * rigid ring misses there: one scene checks that the reason still holds
  * (8000 rpm, 30 um: rigid - full measured 3.19 deg, required > 1 deg).
+ * Distorted bores and tilted pistons (with and without friction) must get
+ * the full ring: the rigid ring cannot represent them.
  * Cost: ~4 s CPU in a Release build, ~20 s under ASan. */
 #include <stdlib.h>
 #include <string.h>
@@ -134,6 +136,34 @@ static void test_battery_friction(void)
             }
 }
 
+/* Distorted bores and tilted pistons: auto runs the full ring at every
+ * target, with and without friction (a choice only: the rigid ring cannot
+ * represent them, test_lift_bore and test_lift_tilt compare the models). */
+static void test_battery_flexible_scenes(void)
+{
+    for (int what = 0; what < 2; what++)
+        for (int fric = 0; fric < 2; fric++) {
+            rd_lift_params p;
+            rd_lift_result r;
+            rd_error err;
+            scene(&p, 3000.0, 3e-5, fric, fric ? RD_FRICTION_COULOMB : RD_FRICTION_NONE, 1e-6);
+            p.engine.cycles = 0.02;
+            p.accuracy_deg = 10.0;
+            if (what == 0) {
+                p.bore.n_distortion = 1;
+                p.bore.distortion[0].order = 2;
+                p.bore.distortion[0].amplitude = 5e-6;
+            } else
+                p.engine.piston_tilt_deg = 0.05;
+            int rc = run(&p, RD_LIFT_MODEL_AUTO, &r, &err);
+            CHECK(rc == RD_OK && r.model == RD_LIFT_MODEL_FULL &&
+                      strstr(r.why, what ? "tilt" : "distorted"),
+                  "%s, friction %d: rc %d model %d (%s) %s", what ? "tilt" : "distortion", fric,
+                  rc, r.model, r.why, err.message);
+            rd_lift_result_cleanup(&r);
+        }
+}
+
 /* Why: the rigid ring with friction misses by more than 1 deg at 8000 rpm. */
 static void test_rigid_friction_misses(void)
 {
@@ -205,6 +235,7 @@ static void test_partial(void)
 int main(void)
 {
     test_partial();
+    test_battery_flexible_scenes();
     test_battery_friction();
     test_rigid_friction_misses();
     test_battery_frictionless();
