@@ -573,8 +573,13 @@ static void choose_model(const rd_lift_params *p, int n, double ring_d, rd_lift_
         out->model = RD_LIFT_MODEL_MODAL;
         out->modes = p->modes ? p->modes : modal_default_modes(n);
         snprintf(out->why, sizeof out->why,
-                 "asked for (numerics.model = modal, %d elastic modes%s)", out->modes,
-                 p->modes ? "" : " by default");
+                 "asked for (numerics.model = modal, %d elastic modes%s)%s", out->modes,
+                 p->modes ? "" : " by default",
+                 rd_lift_bore_distorted(&p->bore, ring_d) && out->modes < 6 * n - 6
+                     ? "; with a distorted bore its truncated basis cannot hold the stiff bore "
+                       "contact's equilibrium: flank changes measured up to 100 deg off the "
+                       "full model's, use full"
+                     : "");
     } else if (rd_lift_bore_distorted(&p->bore, ring_d)) {
         snprintf(out->why, sizeof out->why,
                  "auto: the bore is distorted, so the contact pressure and the friction vary "

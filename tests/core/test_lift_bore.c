@@ -167,6 +167,19 @@ static void test_validation(void)
     rc = rd_lift_validate(&p, &rp, 8, &err);
     CHECK(rc == RD_EINVAL && !strcmp(err.path, "/bore/distortion/0/amplitude"),
           "amplitude 2 %%: %s", err.message);
+    /* modal with fewer than all modes on a distorted bore says to use full
+     * (measured far off: README) */
+    p.bore.distortion[0].amplitude = 5e-6;
+    p.model = RD_LIFT_MODEL_MODAL;
+    p.modes = 6;
+    p.engine.cycles = 0.01;
+    p.estimate_error = 0;
+    rd_lift_result r;
+    rd_error_init(&err);
+    rc = rd_lift_solve(&rp, 8, &p, NULL, &r, &err);
+    CHECK(rc == RD_OK && strstr(r.why, "use full"), "modal on a distorted bore: %s (%s)", r.why,
+          err.message);
+    rd_lift_result_cleanup(&r);
 }
 
 int main(void)
