@@ -17,6 +17,7 @@
 #include "rd_lift.h"
 #include "rd_registry.h"
 #include "rd_scene.h"
+#include "rd_static.h"
 
 struct lift_opts {
     rd_lift_params lift;
@@ -24,6 +25,9 @@ struct lift_opts {
     int friction_model;         /* index into friction_names */
     int max_steps;              /* /numerics/max_steps */
     struct rd_table gas_table[4]; /* crank_deg, above, behind, below */
+    int tilt_given;
+    struct rd_table tilt_table[2]; /* crank_deg, tilt_deg */
+    rd_contact_opts bore;          /* /bore (its diameter and distortion only) */
 };
 
 #define LO(member) offsetof(struct lift_opts, member)
@@ -34,6 +38,49 @@ static const char *const kinematics_names[] = {"exact", "approximate", NULL}; /*
 static const char *const friction_names[] = {"coulomb", "stribeck", NULL};   /* model - 1 */
 static const char *const area_names[] = {"fixed", "dynamic", NULL};          /* enum rd_gas_area */
 static const char *const landing_names[] = {"penalty", "plastic", NULL}; /* enum rd_lift_landing */
+
+static const rd_field tilt_fields[] = {
+    {"crank_deg", RD_F_TABLE, LO(tilt_table[0]), RD_MIN(1), RD_MAX(RD_LIFT_TABLE_MAX),
+     .required = 1, .desc = "Crank angles, deg, strictly increasing within 0..720."},
+    {"tilt_deg", RD_F_TABLE, LO(tilt_table[1]), RD_MIN(1), RD_MAX(RD_LIFT_TABLE_MAX),
+     .required = 1, .desc = "Piston tilt at those angles, deg (added to piston_tilt_deg)."},
+    {.key = NULL},
+};
+static const rd_block tilt_block = {
+    "PistonTilt",
+    "/engine/piston_tilt: the piston's tilt about its pin axis vs crank angle; present = "
+    "modelled. Two tables of the same length, a periodic (720 deg) C1 cubic spline through them; "
+    "|piston_tilt_deg| + the largest |tilt_deg| at most 2 deg.",
+    1, 0, tilt_fields};
+
+static const rd_field distortion_fields[] = {
+    {"order", RD_F_INTEGER, offsetof(rd_distortion, order), RD_MIN(1), RD_MAX(64),
+     .required = 1, .desc = "Fourier order k; a JSON integer."},
+    {"amplitude", RD_F_NUMBER, offsetof(rd_distortion, amplitude), .required = 1,
+     .desc = "Radius change A_k, m; the sum of |A_k| at most 1 % of the ring diameter."},
+    {"phase_deg", RD_F_NUMBER, offsetof(rd_distortion, phase_deg), RD_MIN(-360), RD_MAX(360),
+     .desc = "Phase phi_k, degrees from the gap middle."},
+    {.key = NULL},
+};
+static const rd_block distortion_block = {
+    "LiftBoreDistortion", "One Fourier term of the bore distortion (lift).", 0, 1,
+    distortion_fields};
+
+static const rd_field bore_fields[] = {
+    {"diameter", RD_F_NUMBER, LO(bore.bore_diameter), RD_MIN(0.0),
+     .desc = "Bore diameter D, m; 0 = the ring's diameter; otherwise within 2 % of it."},
+    {"distortion", RD_F_DISTORTION, LO(bore), .block = &distortion_block,
+     RD_MAX(RD_LIFT_DISTORTION_MAX),
+     .desc = "Fourier terms of the bore's out-of-roundness, at most 16. The radial contact "
+             "pressure, hence the friction, then varies around the ring; the ring starts from "
+             "its static equilibrium in this bore, and the scene never runs the rigid model."},
+    {.key = NULL},
+};
+static const rd_block bore_block = {
+    "LiftBore",
+    "/bore (lift): r_b(theta) = D/2 + sum A_k cos(k (theta - phi_k)), as in the contact "
+    "analysis. Default: the round bore of the ring's diameter.",
+    1, 0, bore_fields};
 
 static const rd_field engine_fields[] = {
     {"speed_rpm", RD_F_NUMBER, LO(lift.engine.speed_rpm), RD_MIN(1), RD_MAX(30000),
@@ -46,6 +93,11 @@ static const rd_field engine_fields[] = {
      .desc = "exact slider-crank, or the approximate series (thesis 1.6-1.8)."},
     {"cycles", RD_F_NUMBER, LO(lift.engine.cycles), RD_XMIN(0), RD_MAX(50),
      .desc = "4-stroke cycles (720 deg each) simulated; any real > 0."},
+    {"piston_tilt_deg", RD_F_NUMBER, LO(lift.engine.piston_tilt_deg), RD_MIN(-2), RD_MAX(2),
+     .desc = "Constant piston tilt about the pin axis (the axis in the ring plane at 90 deg from "
+             "the gap middle), deg, positive raising the groove on the gap's side. A tilted "
+             "scene never runs the rigid model (the flank gap varies around the ring)."},
+    {"piston_tilt", RD_F_OPTBLOCK, LO(tilt_given), .block = &tilt_block},
     {.key = NULL},
 };
 static const rd_block engine_block = {"Engine", "/engine (lift): piston kinematics.", 1, 0,
@@ -164,7 +216,8 @@ static const rd_field numerics_fields[] = {
     {"model", RD_F_CHOICE, LO(lift.model), .choices = model_names,
      .desc = "Which equations are integrated: auto (the cheapest model the scene allows and the "
              "accuracy target admits), rigid (the ring as one body: axial lift, twist, radial; "
-             "exact for axisymmetric scenes without friction), modal (not available yet) or "
+             "exact for axisymmetric scenes without friction), modal (rigid-body motion, the m "
+             "lowest elastic modes and 4 static correction shapes of the segmented ring) or "
              "full (the flexible ring, 6n DOFs)."},
     {"modes", RD_F_INTEGER, LO(lift.modes), RD_MIN(0), RD_MAX(RD_LIFT_MODES_MAX),
      .desc = "Elastic modes of the modal model; 0 = chosen automatically."},
@@ -191,6 +244,7 @@ static const rd_field scene_fields[] = {
                          rd_block_discretization_lift),
     {"engine", RD_F_BLOCK, 0, .block = &engine_block},
     {"groove", RD_F_BLOCK, 0, .block = &groove_block},
+    {"bore", RD_F_BLOCK, 0, .block = &bore_block},
     {"physics", RD_F_BLOCK, 0, .block = &physics_block},
     {"contact", RD_F_BLOCK, 0, .block = &contact_block},
     {"output", RD_F_BLOCK, 0, .block = &output_block},
@@ -202,8 +256,8 @@ static const rd_block scene_block = {
     "Axial motion (lift) of the flexible ring in its piston groove over engine cycles (thesis "
     "3.5): piston inertia always, plus gravity, bore friction and gas pressures when physics "
     "names them. Reads ring (section must be rectangle), discretization (4..1000 segments, "
-    "split ring only), engine, groove, physics, contact (LiftContact), output and numerics "
-    "(LiftNumerics). Output size: cycles * 720 / step_deg + 1 samples, at most 200000, and "
+    "split ring only), engine, groove, bore (LiftBore), physics, contact (LiftContact), output and "
+    "numerics (LiftNumerics). Output size: cycles * 720 / step_deg + 1 samples, at most 200000, and "
     "samples x segments at most 2e7 (limit_exceeded at /output/step_deg otherwise).",
     0, 0, scene_fields};
 
@@ -219,6 +273,27 @@ static void cleanup(void *opts)
     struct lift_opts *o = opts;
     for (int k = 0; k < 4; k++)
         free(o->gas_table[k].v);
+    for (int k = 0; k < 2; k++)
+        free(o->tilt_table[k].v);
+}
+
+/* The tilt tables: both, of the same length; rd_lift_params borrows them. */
+static int tilt_finish(struct lift_opts *o, rd_error *err)
+{
+    rd_engine_params *e = &o->lift.engine;
+    e->tilt_points = 0;
+    if (!o->tilt_given)
+        return RD_OK;
+    if (!o->tilt_table[0].v || !o->tilt_table[1].v ||
+        o->tilt_table[1].n != o->tilt_table[0].n)
+        return rd_error_set(err, RD_EINVAL, "/engine/piston_tilt/tilt_deg",
+                            "/engine/piston_tilt needs crank_deg and tilt_deg of the same length "
+                            "(got %d and %d values).",
+                            o->tilt_table[0].n, o->tilt_table[1].n);
+    e->tilt_points = o->tilt_table[0].n;
+    e->tilt_crank_deg = o->tilt_table[0].v;
+    e->tilt_deg = o->tilt_table[1].v;
+    return RD_OK;
 }
 
 /* The gas tables: all four, of the same length; rd_lift_params borrows them. */
@@ -264,6 +339,16 @@ static int finish(struct rd_scene *s, rd_error *err)
         int rc = gas_finish(o, err);
         if (rc != RD_OK)
             return rc;
+    }
+    int rc = tilt_finish(o, err);
+    if (rc != RD_OK)
+        return rc;
+    l->bore.diameter = o->bore.bore_diameter;
+    l->bore.n_distortion = o->bore.n_distortion;
+    for (int k = 0; k < o->bore.n_distortion && k < RD_LIFT_DISTORTION_MAX; k++) {
+        l->bore.distortion[k].order = o->bore.distortion[k].order;
+        l->bore.distortion[k].amplitude = o->bore.distortion[k].amplitude;
+        l->bore.distortion[k].phase_deg = o->bore.distortion[k].phase_deg;
     }
     return rd_lift_validate(l, &s->ring, s->segments, err);
 }
@@ -313,6 +398,9 @@ static json_t *lift_numerics(const rd_scene *scene, const rd_lift_result *res, d
         "solver", res->model == RD_LIFT_MODEL_RIGID
                       ? "SUNDIALS CVODE, BDF with a dense Newton linear solver (the rigid ring's "
                         "6 states), root finding for the flank changes"
+                  : res->model == RD_LIFT_MODEL_MODAL
+                      ? "SUNDIALS CVODE, BDF with a dense Newton linear solver (2 x dof modal "
+                        "states), root finding for the flank changes"
                       : "SUNDIALS CVODE, BDF with a banded Newton linear solver, root finding for "
                         "the flank changes",
         "steps", (json_int_t)res->steps,
@@ -335,7 +423,10 @@ static json_t *lift_numerics(const rd_scene *scene, const rd_lift_result *res, d
 
 /* {"analysis", "scene", "crank_deg", "lift", "lift_min", "lift_max",
  *  "lift_segments", "twist_rad", "friction_force", "flank", "events",
- *  "numerics"} */
+ *  "numerics", "partial", "crank_deg_reached", "warnings"}: a run stopped by
+ *  /numerics/max_steps after whole cycles succeeds with those cycles,
+ *  partial = true, the angle reached and a warning (README "Lift", partial
+ *  results; the page lists result.warnings); warnings is [] otherwise. */
 static json_t *lift_result(const rd_scene *scene, const rd_lift_result *res, double wall_s)
 {
     int N = res->samples;
@@ -346,7 +437,8 @@ static json_t *lift_result(const rd_scene *scene, const rd_lift_result *res, dou
         json_decref(events);
         return NULL;
     }
-    return json_pack("{s:s, s:o, s:o, s:o, s:o, s:o, s:o, s:o, s:o, s:o, s:o, s:o}",
+    return json_pack("{s:s, s:o, s:o, s:o, s:o, s:o, s:o, s:o, s:o, s:o, s:o, s:o, s:b, s:o, "
+                     "s:o}",
                      "analysis", rd_scene_analysis(scene),
                      "scene", rd_scene_echo(scene),
                      "crank_deg", rd_result_reals(res->crank_deg, N, 1, 1.0),
@@ -358,7 +450,10 @@ static json_t *lift_result(const rd_scene *scene, const rd_lift_result *res, dou
                      "friction_force", rd_result_reals(res->friction_force, N, 1, 1.0),
                      "flank", flank,
                      "events", events,
-                     "numerics", lift_numerics(scene, res, wall_s));
+                     "numerics", lift_numerics(scene, res, wall_s),
+                     "partial", res->partial,
+                     "crank_deg_reached", rd_result_real(res->crank_deg_reached),
+                     "warnings", res->partial ? json_pack("[s]", res->warning) : json_array());
 }
 
 static int run(const rd_scene *s, const rd_monitor *mon, json_t **out, rd_error *err)

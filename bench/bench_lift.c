@@ -21,6 +21,12 @@
  *        and factorizations (linear-solver set-ups) of the main run, and the
  *        flank changes' largest difference from the full model at n = 40,
  *        rtol 1e-8 (atol 1e-11 m, penalty landing).
+ *   bench_lift --modal EXAMPLES_DIR [--reps R]
+ *     4. The modal model against the full model it reduces: the two
+ *        examples, one cycle, their n and rtol, no error estimate; the full
+ *        model, then modal with m = 4, 8, 16, 32 elastic modes: dof, wall
+ *        time, steps, and the flank changes' largest difference from the
+ *        full model at the same n and rtol.
  *
  * Wall times on a shared 2-core machine are noisy: medians of repeats.
  */
@@ -155,10 +161,52 @@ static int models(const char *dir, int reps)
     return 0;
 }
 
+/* Table 4 (file comment). */
+static int modal_table(const char *dir, int reps)
+{
+    static const char *files[] = {"thesis_lift_1000rpm.json", "thesis_lift_gas_6000rpm.json"};
+    static const int ms[] = {4, 8, 16, 32};
+    printf("One 720 deg cycle of each lift example, its own n and rtol, no error estimate;\n"
+           "wall = median of %d runs (Release); change = largest flank-change difference from\n"
+           "the full model at the same n and rtol (NAN: a different list of flank changes).\n\n"
+           "| example | model | modes | dof | wall [ms/cycle] | steps | change vs full [deg] |\n"
+           "|---|---|---|---|---|---|---|\n",
+           reps);
+    for (int f = 0; f < 2; f++) {
+        gcase c;
+        if (!load_example(&c, dir, files[f])) {
+            fprintf(stderr, "cannot read %s/%s\n", dir, files[f]);
+            return 1;
+        }
+        c.p.engine.cycles = 1.0;
+        c.p.estimate_error = 0;
+        run ref, r;
+        rd_lift_params p = c.p;
+        p.model = RD_LIFT_MODEL_FULL;
+        if (timed_p(&c.ring, c.n, &p, reps, &ref))
+            return 1;
+        printf("| %s | full | - | %d | %.2f | %ld | 0 |\n", files[f], ref.dof, 1e3 * ref.wall,
+               ref.steps);
+        for (int k = 0; k < 4; k++) {
+            p = c.p;
+            p.model = RD_LIFT_MODEL_MODAL;
+            p.modes = ms[k];
+            if (timed_p(&c.ring, c.n, &p, reps, &r))
+                return 1;
+            printf("| %s | modal | %d | %d | %.2f | %ld | %.4f |\n", files[f], ms[k], r.dof,
+                   1e3 * r.wall, r.steps, event_change(&r, &ref));
+            fflush(stdout);
+        }
+        for (int k = 0; k < 4; k++)
+            free(c.gas[k]);
+    }
+    return 0;
+}
+
 int main(int argc, char **argv)
 {
     int max_n = 1000, reps = 3, once = 0;
-    const char *examples = NULL;
+    const char *examples = NULL, *modal_dir = NULL;
     for (int i = 1; i < argc; i++) {
         if (!strcmp(argv[i], "--max-n") && i + 1 < argc)
             max_n = atoi(argv[++i]);
@@ -168,9 +216,11 @@ int main(int argc, char **argv)
             once = atoi(argv[++i]);
         else if (!strcmp(argv[i], "--models") && i + 1 < argc)
             examples = argv[++i];
+        else if (!strcmp(argv[i], "--modal") && i + 1 < argc)
+            modal_dir = argv[++i];
         else {
             fprintf(stderr, "usage: bench_lift [--max-n N] [--reps R] | --once N | "
-                            "--models EXAMPLES_DIR [--reps R]\n");
+                            "--models EXAMPLES_DIR [--reps R] | --modal EXAMPLES_DIR [--reps R]\n");
             return 2;
         }
     }
@@ -178,6 +228,8 @@ int main(int argc, char **argv)
         reps = 3;
     if (examples)
         return models(examples, reps);
+    if (modal_dir)
+        return modal_table(modal_dir, reps);
     rd_ring_params rp;
     rd_ring_params_default(&rp);
     if (once) {

@@ -50,5 +50,8 @@ echo
 echo "## lift: models (auto, rigid, full) on the lift examples"
 "$b/bench/bench_lift" --models examples
 echo
+echo "## lift: the modal model against the full model it reduces (lift examples)"
+"$b/bench/bench_lift" --modal examples
+echo
 echo "## ringpack: cost per engine cycle, three rigid rings (target <= 50 ms)"
 "$b/bench/bench_ringpack"

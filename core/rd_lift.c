@@ -151,6 +151,76 @@ static int check_table(const double *v, int n, const char *path, rd_error *err)
     return RD_OK;
 }
 
+/* engine.piston_tilt_deg and the engine.piston_tilt table. */
+static int validate_tilt(const rd_engine_params *e, rd_error *err)
+{
+    int rc;
+    if ((rc = check_range(e->piston_tilt_deg, -RD_LIFT_TILT_MAX_DEG, RD_LIFT_TILT_MAX_DEG,
+                          "/engine/piston_tilt_deg", "deg", err)))
+        return rc;
+    if (e->tilt_points < 0 || e->tilt_points > RD_LIFT_TABLE_MAX)
+        return rd_error_set(err, RD_EINVAL, "/engine/piston_tilt/crank_deg",
+                            "/engine/piston_tilt has %d points: allowed 1 to %d.", e->tilt_points,
+                            RD_LIFT_TABLE_MAX);
+    double big = 0.0;
+    for (int i = 0; i < e->tilt_points; i++) {
+        double a = e->tilt_crank_deg[i], b = e->tilt_deg[i];
+        if (!isfinite(a) || a < 0.0 || a > 720.0 || (i > 0 && !(a > e->tilt_crank_deg[i - 1])))
+            return rd_error_set(err, RD_EINVAL, "/engine/piston_tilt/crank_deg",
+                                "/engine/piston_tilt/crank_deg[%d] = %g deg: the crank angles "
+                                "must be strictly increasing within 0 to 720 deg.",
+                                i, a);
+        if (!isfinite(b))
+            return rd_error_set(err, RD_EINVAL, "/engine/piston_tilt/tilt_deg",
+                                "/engine/piston_tilt/tilt_deg[%d] is not a finite number.", i);
+        big = fmax(big, fabs(b));
+    }
+    if (fabs(e->piston_tilt_deg) + big > RD_LIFT_TILT_MAX_DEG)
+        return rd_error_set(err, RD_EINVAL, "/engine/piston_tilt/tilt_deg",
+                            "/engine/piston_tilt_deg + the largest /engine/piston_tilt/tilt_deg "
+                            "= %g deg: the tilt is allowed up to %g deg (small-angle model).",
+                            fabs(e->piston_tilt_deg) + big, RD_LIFT_TILT_MAX_DEG);
+    return RD_OK;
+}
+
+/* bore.diameter and bore.distortion, as in the contact analysis. */
+static int validate_bore(const rd_lift_bore *b, const rd_ring_params *ring, rd_error *err)
+{
+    double d = ring->diameter, sum = 0.0;
+    if (!isfinite(b->diameter) || (b->diameter != 0.0 && (b->diameter < 0.98 * d ||
+                                                          b->diameter > 1.02 * d)))
+        return rd_error_set(err, RD_EINVAL, "/bore/diameter",
+                            "/bore/diameter = %g m is out of range: 0 (the ring's diameter) or "
+                            "%g to %g m (within 2 %% of it).",
+                            b->diameter, 0.98 * d, 1.02 * d);
+    if (b->n_distortion < 0 || b->n_distortion > RD_LIFT_DISTORTION_MAX)
+        return rd_error_set(err, RD_ELIMIT, "/bore/distortion",
+                            "/bore/distortion has %d terms; at most %d are allowed.",
+                            b->n_distortion, RD_LIFT_DISTORTION_MAX);
+    for (int k = 0; k < b->n_distortion; k++) {
+        char path[64];
+        int rc;
+        snprintf(path, sizeof path, "/bore/distortion/%d/order", k);
+        if (b->distortion[k].order < 1 || b->distortion[k].order > 64)
+            return rd_error_set(err, RD_EINVAL, path,
+                                "%s = %d is out of range: allowed 1 to 64.", path,
+                                b->distortion[k].order);
+        snprintf(path, sizeof path, "/bore/distortion/%d/phase_deg", k);
+        if ((rc = check_range(b->distortion[k].phase_deg, -360.0, 360.0, path, "deg", err)))
+            return rc;
+        snprintf(path, sizeof path, "/bore/distortion/%d/amplitude", k);
+        if ((rc = check_range(b->distortion[k].amplitude, -0.01 * d, 0.01 * d, path, "m", err)))
+            return rc;
+        sum += fabs(b->distortion[k].amplitude);
+    }
+    if (sum > 0.01 * d)
+        return rd_error_set(err, RD_EINVAL, "/bore/distortion",
+                            "/bore/distortion: the amplitudes sum to %g m; at most 1 %% of the "
+                            "ring diameter (%g m) is allowed.",
+                            sum, 0.01 * d);
+    return RD_OK;
+}
+
 static int validate_engine(const rd_engine_params *e, rd_error *err)
 {
     int rc;
@@ -260,7 +330,8 @@ static int validate_gas(const rd_gas_params *g, rd_error *err)
 }
 
 /* Contact stiffness, output sampling, tolerances and the work bounds. */
-static int validate_numerics(const rd_lift_params *p, int segments, rd_error *err)
+static int validate_numerics(const rd_lift_params *p, int segments, double ring_d,
+                             rd_error *err)
 {
     int rc;
     const rd_engine_params *e = &p->engine;
@@ -280,10 +351,27 @@ static int validate_numerics(const rd_lift_params *p, int segments, rd_error *er
         return rd_error_set(err, RD_EINVAL, "/numerics/model",
                             "/numerics/model = %d is unknown: use auto, rigid, modal or full.",
                             p->model);
-    if (p->model == RD_LIFT_MODEL_MODAL)
+    if (p->model == RD_LIFT_MODEL_RIGID && rd_lift_bore_distorted(&p->bore, ring_d))
         return rd_error_set(err, RD_EINVAL, "/numerics/model",
-                            "/numerics/model = modal is not available yet: use auto, rigid or "
-                            "full.");
+                            "/numerics/model = rigid cannot represent a distorted bore "
+                            "(/bore/distortion, /bore/diameter): the contact pressure varies "
+                            "around the ring; use auto, modal or full.");
+    if (p->model == RD_LIFT_MODEL_RIGID && rd_lift_tilted(&p->engine))
+        return rd_error_set(err, RD_EINVAL, "/numerics/model",
+                            "/numerics/model = rigid cannot represent a tilted piston "
+                            "(/engine/piston_tilt_deg, /engine/piston_tilt): the flank gap varies "
+                            "around the ring; use auto, modal or full.");
+    if (p->model == RD_LIFT_MODEL_MODAL && segments > RD_LIFT_MODAL_SEGMENTS_MAX)
+        return rd_error_set(err, RD_ELIMIT, "/numerics/model",
+                            "/numerics/model = modal solves the ring's modes densely and allows "
+                            "at most %d segments (/discretization/segments = %d): use fewer "
+                            "segments or the full model.",
+                            RD_LIFT_MODAL_SEGMENTS_MAX, segments);
+    if (p->modes > 6 * segments - 6)
+        return rd_error_set(err, RD_EINVAL, "/numerics/modes",
+                            "/numerics/modes = %d is out of range: a ring of %d segments has "
+                            "%d elastic modes.",
+                            p->modes, segments, 6 * segments - 6);
     if ((rc = check_range(p->accuracy_deg, 1e-4, 10.0, "/numerics/accuracy_deg", "deg", err)))
         return rc;
     if (p->modes < 0 || p->modes > RD_LIFT_MODES_MAX)
@@ -326,8 +414,10 @@ int rd_lift_validate(const rd_lift_params *p, const rd_ring_params *ring, int se
                             "/discretization/segments = %d is out of range for a lift analysis: "
                             "allowed 4 to %d.",
                             segments, RD_LIFT_SEGMENTS_MAX);
-    if ((rc = validate_engine(&p->engine, err)) || (rc = validate_physics(p, err)) ||
-        (rc = validate_gas(&p->gas, err)) || (rc = validate_numerics(p, segments, err)))
+    if ((rc = validate_engine(&p->engine, err)) || (rc = validate_tilt(&p->engine, err)) ||
+        (rc = validate_bore(&p->bore, ring, err)) ||
+        (rc = validate_physics(p, err)) ||
+        (rc = validate_gas(&p->gas, err)) || (rc = validate_numerics(p, segments, ring->diameter, err)))
         return rc;
     return RD_OK;
 }
@@ -447,49 +537,87 @@ void rd_lift_result_cleanup(rd_lift_result *r)
 /* The model a scene gets (numerics.model; auto: the cheapest the scene
  * allows at the accuracy target) and why, into out->model and out->why.
  *
- * Every lift scene today is axisymmetric: a round bore (lift ignores the
- * bore block), a groove aligned with the ring, loads uniform around it.
- * On such a scene the rigid model (rd_lift_rigid.c) is exact except for what
+ * A distorted bore (rd_lift_bore.c) or a tilted piston (rd_lift_tilt.c)
+ * makes the contact pressure or the flank gap vary around the ring: the rigid
+ * ring cannot represent it (asked for, it is refused in validation) and auto
+ * runs the full ring.  Otherwise the scene is axisymmetric: a round bore, a
+ * groove aligned with the ring, loads uniform around it.  On such a scene the rigid model (rd_lift_rigid.c) is exact except for what
  * the split ring's free ends do.  Without friction that is nothing
  * measurable: its flank changes agree with the full model's within 0.035
  * deg (thesis_lift_1000rpm, and the gas example without friction: 0.007
  * deg; test_lift_rigid).  Friction on the running face puts a couple on the
  * ring that the split ring, with its free ends, does not take uniformly,
  * and the rigid ring then misses flank changes by up to
- * RIGID_FRICTION_ERROR_DEG (measured: 0.94 deg at 1000 rpm Coulomb, where a
+ * ~1 deg on the thesis scenes (measured: 0.94 deg at 1000 rpm Coulomb, where a
  * leave decided by the twist's edge lift moves by ~0.8 deg per 3 % of twist
  * stiffness; 0.91 deg on the 6000 rpm gas example, where the full ring's
  * landings come later because its lift spreads around the circumference in
  * flight, lift_max - lift_min up to 0.09 of the clearance; 0.92 deg at 3000
- * rpm Stribeck).  A twist-stiffness sensitivity run as an error
- * indicator caught only the first kind (0.90 deg; 0.01-0.03 deg on the
- * others), so it is not used.  auto takes the rigid model with friction
- * only when the target allows that error with a factor 2 margin. */
-#define RIGID_FRICTION_ERROR_DEG 1.0
-static void choose_model(const rd_lift_params *p, rd_lift_result *out)
+ * rpm Stribeck).  Over a wider battery (test_lift_auto: 100-8000 rpm,
+ * clearances 5-100 um, gas on and off, n = 6) the rigid ring with friction
+ * misses by up to 3.7 deg (8000 rpm, 100 um) and at 100 rpm with gas and a
+ * 100 um clearance sees 8 flank changes where the full ring sees 12; so no
+ * accuracy target admits it and auto gives friction scenes the full model.
+ * (A twist-stiffness sensitivity run as an error indicator caught only the
+ * first kind of miss, 0.90 deg; 0.01-0.03 deg on the others.)
+ *
+ * The modal model (rd_lift_modal.c) is not picked by auto: measured against
+ * the full model on friction scenes (tests/core/test_lift_modal.c, README
+ * "Lift models") it converges in m, but slowly where the flank contacts
+ * matter: at n = 20, 1000 rpm Coulomb, m = 1..16 modes miss a twist-driven
+ * leave by ~1.0 deg and m = 32 by 0.07 deg; on a 6000 rpm gas + Coulomb
+ * scene its landings come 1-3 deg late even at m = 32.  At the m that meets
+ * 0.1 deg its dense Newton matrix (2 (10 + m)) costs more per step than the
+ * full model's band one, so it is never the cheapest model meeting the
+ * target; it is there by request (numerics.model = modal). */
+#define MODAL_DEFAULT_MODES 12
+static int modal_default_modes(int n)
 {
-    const char *sym = "the scene is axisymmetric (round bore, aligned groove, loads uniform "
-                      "around the ring)";
+    return MODAL_DEFAULT_MODES < 6 * n - 6 ? MODAL_DEFAULT_MODES : 6 * n - 6;
+}
+static void choose_model(const rd_lift_params *p, int n, double ring_d, rd_lift_result *out)
+{
     int fric = p->friction.model != RD_FRICTION_NONE;
     out->model = p->model == RD_LIFT_MODEL_RIGID ? RD_LIFT_MODEL_RIGID : RD_LIFT_MODEL_FULL;
     if (p->model == RD_LIFT_MODEL_RIGID)
         snprintf(out->why, sizeof out->why, "asked for (numerics.model = rigid)%s",
-                 fric ? "; with friction its flank changes can miss the full model's by ~1 deg"
+                 fric ? "; with friction its flank changes can miss the full model's by "
+                        "several degrees"
                       : "");
     else if (p->model == RD_LIFT_MODEL_FULL)
         snprintf(out->why, sizeof out->why, "asked for (numerics.model = full)");
-    else if (!fric || p->accuracy_deg >= 2.0 * RIGID_FRICTION_ERROR_DEG) {
+    else if (p->model == RD_LIFT_MODEL_MODAL) {
+        out->model = RD_LIFT_MODEL_MODAL;
+        out->modes = p->modes ? p->modes : modal_default_modes(n);
+        snprintf(out->why, sizeof out->why,
+                 "asked for (numerics.model = modal, %d elastic modes%s)%s", out->modes,
+                 p->modes ? "" : " by default",
+                 rd_lift_bore_distorted(&p->bore, ring_d) && out->modes < 6 * n - 6
+                     ? "; with a distorted bore its truncated basis cannot hold the stiff bore "
+                       "contact's equilibrium: flank changes measured up to 100 deg off the "
+                       "full model's, use full"
+                     : "");
+    } else if (rd_lift_bore_distorted(&p->bore, ring_d)) {
+        snprintf(out->why, sizeof out->why,
+                 "auto: the bore is distorted, so the contact pressure and the friction vary "
+                 "around the ring, which the rigid ring cannot represent, and the modal model is "
+                 "not cheaper than the full ring at the accuracy target");
+    } else if (rd_lift_tilted(&p->engine)) {
+        snprintf(out->why, sizeof out->why,
+                 "auto: the piston tilt makes the flank gap vary around the ring, which the "
+                 "rigid ring cannot represent, and the modal model is not cheaper than the full "
+                 "ring at the accuracy target");
+    } else if (!fric) {
         out->model = RD_LIFT_MODEL_RIGID;
-        snprintf(out->why, sizeof out->why, "auto: %s%s", sym,
-                 fric ? "; friction twists the split ring, but the accuracy target allows the "
-                        "rigid ring's ~1 deg on twist-driven flank changes"
-                      : " and without friction the rigid ring is exact for it");
+        snprintf(out->why, sizeof out->why,
+                 "auto: the scene is axisymmetric (round bore, aligned groove, loads uniform "
+                 "around the ring) and without friction the rigid ring is exact for it");
     } else
         snprintf(out->why, sizeof out->why,
                  "auto: friction twists the split ring non-uniformly, which the rigid ring "
-                 "misses by up to ~1 deg on flank changes, more than numerics.accuracy_deg = "
-                 "%g; the modal model is not available yet",
-                 p->accuracy_deg);
+                 "misses by up to several degrees on flank changes, and the modal model needs "
+                 "more modes than make it cheaper than the full ring (numerics.model = modal "
+                 "by request)");
 }
 
 /* The two solves of the accuracy driver and what they keep. */
@@ -501,16 +629,46 @@ typedef struct lift_solve {
     rd_lift_run run[2]; /* level 0: the scene; level 1: rtol/10, atol/10 */
 } lift_solve;
 
+/* A level-0 run stopped by /numerics/max_steps keeps its whole cycles, if
+ * any (rd_lift_result.partial): the samples and events up to their end. */
+static int keep_partial(lift_solve *s, rd_error *err)
+{
+    const rd_lift_run *r = &s->run[0];
+    double step = s->p->step_deg, stored = (r->done - 1) * step;
+    int cycles = (int)floor(fmin(r->reached_deg, stored) / 720.0 + 1e-9);
+    if (cycles < 1)
+        return RD_ELIMIT; /* nothing whole to return: the error stands */
+    rd_lift_result *out = s->out;
+    double end = 720.0 * cycles;
+    out->partial = 1;
+    out->crank_deg_reached = r->reached_deg;
+    out->samples = (int)floor(end / step + 1e-9) + 1;
+    snprintf(out->warning, sizeof out->warning,
+             "Partial result: /numerics/max_steps = %ld ran out at crank angle %.1f deg of "
+             "%.1f; the %d complete cycle%s (to %.0f deg) are returned.  To finish the run, "
+             "raise max_steps or make it cheaper: fewer cycles, a cheaper model "
+             "(/numerics/model), or a looser /numerics/rtol.",
+             s->p->max_steps, r->reached_deg, 720.0 * s->p->engine.cycles, cycles,
+             cycles > 1 ? "s" : "", end);
+    rd_error_init(err);
+    return RD_OK;
+}
+
 static int solve_level(void *ctx, int level, const rd_monitor *mon, rd_error *err)
 {
     lift_solve *s = ctx;
     rd_lift_run *r = &s->run[level];
     double scale = level ? 0.1 : 1.0;
+    if (level == 1 && s->out->partial)
+        return RD_OK; /* no estimate for a partial result: its reference would stop too */
     r->rtol = scale * s->p->rtol;
     r->atol = scale * s->p->atol;
     r->res = level ? NULL : s->out;
-    return rd_lift_integrate(s->ring, s->p, s->setup, s->out->model == RD_LIFT_MODEL_RIGID, mon,
-                             r, err);
+    r->modes = s->out->modes;
+    int rc = rd_lift_integrate(s->ring, s->p, s->setup, s->out->model, mon, r, err);
+    if (level == 0 && rc == RD_ELIMIT && r->done > 0 && r->reached_deg > 0.0)
+        rc = keep_partial(s, err);
+    return rc;
 }
 
 /* error_estimate: largest lift difference / clearance; event error: the
@@ -522,6 +680,8 @@ static int compare_levels(void *ctx, rd_error *err)
     lift_solve *s = ctx;
     const rd_lift_run *a = &s->run[0], *b = &s->run[1];
     double e = 0.0;
+    if (s->out->partial)
+        return RD_OK;
     for (int k = 0; k < a->samples; k++)
         e = fmax(e, fabs(a->lift[k] - b->lift[k]));
     s->out->error_estimate = e / s->p->groove.axial_clearance;
@@ -565,6 +725,7 @@ int rd_lift_solve_setup(const rd_ring_params *rp, int segments, const rd_lift_pa
                         rd_error *err)
 {
     lift_solve s = {.p = p, .setup = setup, .out = out};
+    double *y0 = NULL;
     int rc;
     memset(out, 0, sizeof *out);
     out->error_estimate = NAN;
@@ -578,9 +739,11 @@ int rd_lift_solve_setup(const rd_ring_params *rp, int segments, const rd_lift_pa
     int S = lift_samples(p);
     if ((rc = result_alloc(out, S, segments, err)))
         goto out;
-    choose_model(p, out);
+    choose_model(p, segments, rp->diameter, out);
     if (out->model == RD_LIFT_MODEL_RIGID)
         out->dof = 3; /* axial lift, twist, radial */
+    else if (out->model == RD_LIFT_MODEL_MODAL)
+        out->dof = 6 + out->modes; /* rigid-body and elastic modes */
     for (int l = 0; l < 2; l++) {
         s.run[l].samples = S;
         s.run[l].lift = l == 0 || p->estimate_error ? malloc((size_t)S * sizeof(double)) : NULL;
@@ -589,20 +752,41 @@ int rd_lift_solve_setup(const rd_ring_params *rp, int segments, const rd_lift_pa
             goto out;
         }
     }
+    /* a distorted bore: both runs start from the ring's static equilibrium in it */
+    rd_lift_setup su = setup ? *setup : (rd_lift_setup){0};
+    if (rd_lift_bore_distorted(&p->bore, rp->diameter) && !su.y0) {
+        y0 = malloc(12 * (size_t)segments * sizeof *y0);
+        if (!y0) {
+            rc = rd_error_set(err, RD_ENOMEM, "", "Out of memory for the bore start.");
+            goto out;
+        }
+        if ((rc = rd_lift_bore_static(ring, p, y0, err)))
+            goto out;
+        su.y0 = y0;
+        s.setup = &su;
+    }
     /* the reference run at rtol/10 typically costs 1.5-2x the main run */
     rd_accuracy_plan plan = {.solve = solve_level, .compare = compare_levels, .ctx = &s,
                              .estimate = p->estimate_error, .main_share = 0.4,
                              .reference = "rtol/10 and atol/10"};
     rc = rd_accuracy_run(&plan, mon, NULL, err);
+    if (out->model == RD_LIFT_MODEL_MODAL && s.run[0].dof > 0)
+        out->dof = s.run[0].dof; /* with the correction shapes kept */
     out->n_events = s.run[0].n_events;
     out->events = s.run[0].events;
     s.run[0].events = NULL;
+    if (rc == RD_OK && !out->partial)
+        out->crank_deg_reached = 720.0 * p->engine.cycles;
+    while (out->partial && out->n_events > 0 &&
+           out->events[out->n_events - 1].crank_deg > out->crank_deg[out->samples - 1])
+        out->n_events--; /* events after the last whole cycle */
 out:
     for (int l = 0; l < 2; l++) {
         free(s.run[l].lift);
         free(s.run[l].events);
     }
     rd_ring_free(ring);
+    free(y0);
     return rc;
 }
 

@@ -57,6 +57,7 @@ enum rd_lift_event_kind {
 #define RD_LIFT_TABLE_MAX 100000   /* points of a gas pressure table */
 #define RD_LIFT_SEGMENTS_MAX 1000
 #define RD_LIFT_MODES_MAX 60
+#define RD_LIFT_TILT_MAX_DEG 2.0
 
 typedef struct rd_engine_params {
     double speed_rpm;    /* 1 .. 30000 */
@@ -64,6 +65,15 @@ typedef struct rd_engine_params {
     double rod_length;   /* l, m, > crank_radius */
     int kinematics;      /* enum rd_kinematics */
     double cycles;       /* 4-stroke cycles simulated, > 0 */
+    /* Piston tilt about its pin axis (the axis in the ring plane at 90 deg
+     * from the gap middle), deg, positive raising the groove on the gap's
+     * side: the constant piston_tilt_deg plus a table vs crank angle
+     * (tilt_points values at tilt_crank_deg, strictly increasing within
+     * [0, 720], periodic, a C1 cubic spline: rd_lift_tilt_at); |tilt| <=
+     * RD_LIFT_TILT_MAX_DEG.  Borrowed arrays; tilt_points == 0: no table. */
+    double piston_tilt_deg;
+    int tilt_points;
+    const double *tilt_crank_deg, *tilt_deg;
 } rd_engine_params;
 
 typedef struct rd_groove_params {
@@ -99,8 +109,24 @@ typedef struct rd_gas_params {
     int active_area;         /* enum rd_gas_area */
 } rd_gas_params;
 
+/* The bore in lift (as in the contact analysis, rd_static.h): radius
+ * r_b(theta) = D/2 + sum A_k cos(k (theta - phi_k)), theta from the gap
+ * middle; D = 0: the ring's diameter.  A round bore of the ring's diameter
+ * (the default) is the installed reference; otherwise the ring starts from
+ * its static equilibrium in this bore (rd_lift_bore.c). */
+#define RD_LIFT_DISTORTION_MAX 16
+typedef struct rd_lift_bore {
+    double diameter;
+    int n_distortion;
+    struct {
+        int order;
+        double amplitude, phase_deg;
+    } distortion[RD_LIFT_DISTORTION_MAX];
+} rd_lift_bore;
+
 typedef struct rd_lift_params {
     rd_engine_params engine;
+    rd_lift_bore bore;
     rd_groove_params groove;
     int gravity;               /* 1: g = 9.80665 m/s^2 along -z */
     rd_friction_params friction;
@@ -140,6 +166,13 @@ typedef struct rd_lift_result {
     int model;                    /* enum rd_lift_model_kind actually integrated */
     int modes;                    /* elastic modes of a modal model; 0 otherwise */
     char why[320];                /* why that model (the scene content that decided it) */
+    /* A run stopped by /numerics/max_steps after at least one whole cycle
+     * returns those cycles (samples and events up to their end) with
+     * partial = 1, the crank angle the integrator reached, and the reason
+     * and what would make the run cheaper in `warning`; no error estimate. */
+    int partial;
+    double crank_deg_reached;     /* deg; the end of the run when not partial */
+    char warning[400];            /* empty when not partial */
     double error_estimate;        /* relative lift error from the rtol/10 run; NAN if none */
     double event_error_deg;       /* largest event-angle change in that run; NAN if none */
 } rd_lift_result;
@@ -164,5 +197,14 @@ double rd_lift_contact_stiffness_default(const rd_ring_params *ring, const rd_li
  * acceleration d2s/dt2 (m/s^2) at crank angle alpha (rad), thesis 1.6-1.8 or
  * the exact slider-crank. */
 void rd_lift_piston(const rd_engine_params *e, double alpha, double *s, double *v, double *a);
+
+/* The piston tilt (deg) at crank angle `deg` and its first and second
+ * derivatives with respect to the crank angle (deg/deg, deg/deg^2)
+ * (rd_lift_tilt.c). */
+void rd_lift_tilt_at(const rd_engine_params *e, double deg, double *beta, double *d1, double *d2);
+/* 1 if the bore is not the round bore of the ring's diameter. */
+int rd_lift_bore_distorted(const rd_lift_bore *b, double ring_diameter);
+/* 1 if the scene tilts the piston (a constant or a table). */
+int rd_lift_tilted(const rd_engine_params *e);
 
 #endif

@@ -201,8 +201,8 @@ static void driver_free(driver *d)
         SUNContext_Free(&d->sunctx);
     free(d->seg);
     free(d->full);
-    if (d->form.user && d->form.user != &d->m)
-        rd_lift_rigid_close(&d->form);
+    if (d->form.close)
+        d->form.close(&d->form);
     rd_lift_model_cleanup(&d->m);
 }
 
@@ -226,21 +226,25 @@ static int cv_configure(driver *d, double rtol, rd_error *err)
     return RD_OK;
 }
 
+int rd_lift_form_open(rd_lift_model *m, int model, int modes, rd_lift_form *form, rd_error *err)
+{
+    if (model == RD_LIFT_MODEL_RIGID)
+        return rd_lift_rigid_open(m, form, err);
+    if (model == RD_LIFT_MODEL_MODAL)
+        return rd_lift_modal_open(m, modes, form, err);
+    rd_lift_full_form(m, form);
+    return RD_OK;
+}
+
 static int driver_open(driver *d, const rd_ring *ring, const rd_lift_params *p,
-                       const rd_lift_setup *setup, int rigid, double rtol, double atol,
-                       rd_error *err)
+                       const rd_lift_setup *setup, int model, const rd_lift_run *o, rd_error *err)
 {
     memset(d, 0, sizeof *d);
     int rc = rd_lift_model_init(&d->m, ring, p, setup, err);
-    if (rc)
+    if (rc || (rc = rd_lift_form_open(&d->m, model, o->modes, &d->form, err)))
         return rc;
     int n = d->m.n;
-    if (rigid)
-        rc = rd_lift_rigid_open(&d->m, &d->form, err);
-    else
-        rd_lift_full_form(&d->m, &d->form);
-    if (rc)
-        return rc;
+    int rigid = model == RD_LIFT_MODEL_RIGID;
     sunindextype N = d->form.N;
     d->deg_per_s = d->m.omega * 180.0 / M_PI;
     d->chunk = STEP_CHUNK / n > 1 ? STEP_CHUNK / n : 1;
@@ -267,10 +271,10 @@ static int driver_open(driver *d, const rd_ring *ring, const rd_lift_params *p,
     if (!d->y || !d->abstol || !d->LS || !d->cv)
         return rd_error_set(err, RD_ENOMEM, "", "Out of memory setting up CVODE for %d segments.",
                             n);
-    if ((rc = d->form.initial(d->form.user, setup, atol, N_VGetArrayPointer(d->y),
+    if ((rc = d->form.initial(d->form.user, setup, o->atol, N_VGetArrayPointer(d->y),
                               N_VGetArrayPointer(d->abstol), err)))
         return rc;
-    return cv_configure(d, rtol, err);
+    return cv_configure(d, o->rtol, err);
 }
 
 /* ---------------------------------------------------------------- events */
@@ -393,7 +397,8 @@ static int step_error(driver *d, int flag, rd_error *err)
         return rd_error_set(err, RD_ELIMIT, "/numerics/max_steps",
                             "The integration used its /numerics/max_steps = %ld steps by crank "
                             "angle %.3f deg (of %.1f): the ring's motion needs more work than "
-                            "allowed; raise max_steps or loosen rtol.",
+                            "allowed; raise max_steps, or make the run cheaper: fewer cycles, a "
+                            "cheaper model (/numerics/model) or a looser /numerics/rtol.",
                             d->m.p->max_steps, tc * d->deg_per_s, total);
     return rd_error_set(err, RD_ENOCONV, "",
                         "The lift integration failed at crank angle %.4f deg after %ld steps: "
@@ -506,19 +511,25 @@ static int store_counters(driver *d, rd_lift_result *r, rd_error *err)
 }
 
 int rd_lift_integrate(const rd_ring *ring, const rd_lift_params *p, const rd_lift_setup *setup,
-                      int rigid, const rd_monitor *mon, rd_lift_run *o, rd_error *err)
+                      int model, const rd_monitor *mon, rd_lift_run *o, rd_error *err)
 {
     driver d;
-    int rc = driver_open(&d, ring, p, setup, rigid, o->rtol, o->atol, err);
+    int rc = driver_open(&d, ring, p, setup, model, o, err);
     if (rc)
         goto out;
+    o->dof = (int)(d.form.N / 2);
     flank_track tr = initial_flank(&d);
     int S = o->samples;
     double total = p->engine.cycles * 720.0;
     for (int k = 0; k < S; k++) {
         double deg = fmin(k * p->step_deg, total), tout = deg / d.deg_per_s;
-        if (k > 0 && (rc = advance(&d, tout, &tr, o, mon, (double)k / S, err)))
+        if (k > 0 && (rc = advance(&d, tout, &tr, o, mon, (double)k / S, err))) {
+            double tc = 0.0;
+            o->done = k;
+            if (rc == RD_ELIMIT && CVodeGetCurrentTime(d.cv, &tc) == CV_SUCCESS)
+                o->reached_deg = tc * d.deg_per_s; /* a partial result may keep the samples */
             goto out;
+        }
         store_sample(&d, k, deg, tout, o, setup);
         if ((rc = rd_monitor_report(mon, (k + 1.0) / S, err)))
             goto out;
@@ -547,6 +558,8 @@ static double jac_entry(const rd_lift_form *f, SUNMatrix J, sunindextype i, suni
 static double fd_step(const rd_lift_form *f, sunindextype j)
 {
     const rd_lift_model *c = f->m;
+    if (f->fd_step)
+        return f->fd_step(f->user, j);
     if (f->dense) /* rigid: z, theta, r, then their rates */
         return j >= 3 ? 1e-4 * c->ureg : (j == 1 ? 2e-2 * c->d0 : 1e-3 * c->d0);
     return (j % 12) < 6 ? (j % 12 < 3 ? 1e-3 * c->d0 : 2e-2 * c->d0) : 1e-4 * c->ureg;
@@ -595,11 +608,7 @@ int rd_lift_jacobian_check(const rd_ring_params *rp, int segments, const rd_lift
         return err ? err->code : RD_ENOMEM;
     if ((rc = rd_lift_model_init(&c, ring, p, NULL, err)))
         goto out;
-    if (p->model == RD_LIFT_MODEL_RIGID)
-        rc = rd_lift_rigid_open(&c, &form, err);
-    else
-        rd_lift_full_form(&c, &form);
-    if (rc)
+    if ((rc = rd_lift_form_open(&c, p->model, p->modes, &form, err)))
         goto out;
     sunindextype N = form.N;
     if (SUNContext_Create(NULL, &sunctx) || !(y = N_VNew_Serial(N, sunctx)) ||
@@ -626,8 +635,8 @@ out:
         N_VDestroy(f2);
     if (sunctx)
         SUNContext_Free(&sunctx);
-    if (form.user && form.user != &c)
-        rd_lift_rigid_close(&form);
+    if (form.close)
+        form.close(&form);
     rd_lift_model_cleanup(&c);
     rd_ring_free(ring);
     return rc;

@@ -257,6 +257,8 @@ static void rank1(double *D, double s, const double *a, const double *b)
  * force call. */
 typedef struct force_env {
     double sd, acc;          /* piston velocity ds/dt; pseudo-acceleration s'' - g */
+    int tilt;                /* the piston tilts (rd_lift_tilt.c) */
+    double cb, sb, bd, bdd;  /* cos, sin of the tilt; its rate (1/s), acceleration (1/s^2) */
     double pa, pbh, pbl;     /* gas: above, behind, below, Pa */
     int gas, dynamic, fric;  /* which elements the scene asks for */
 } force_env;
@@ -271,11 +273,26 @@ typedef struct seg_view {
     double seal_lo, seal_up, g_lo[6], g_up[6];
 } seg_view;
 
-/* Inertia pseudo-force and gravity: M_i e_z (s'' - g); no state dependence. */
+/* Inertia pseudo-force and gravity: M_i e_z (s'' - g); no state dependence.
+ * A tilted piston: the state is measured in the tilted groove's frame
+ * (rotated by beta about the pin axis y: a frame point at x rises by
+ * beta x), so the cylinder axis there is (sin beta, 0, cos beta) and the
+ * pseudo-force is M_i (sin beta e_x + cos beta e_z)(s'' - g), plus the
+ * frame's Euler force -beta'' M_i phi_i with phi_i = (0, 0, x_i, 0, -1, 0)
+ * its motion per unit tilt at P_i (x_i = R e_r,x); the centrifugal and
+ * Coriolis terms, beta'^2 and beta' v, are dropped (second order). */
 static void add_inertia_gravity(const rd_lift_model *c, const force_env *env, seg_view *s)
 {
+    if (!env->tilt) {
+        for (int k = 0; k < 6; k++)
+            s->f[k] = c->Mez[6 * s->i + k] * env->acc;
+        return;
+    }
+    const double *Mi = rd_ring_segment_mass_matrix(c->ring, s->i);
+    double x = rd_ring_get_section(c->ring)->R * c->e_r[2 * s->i];
     for (int k = 0; k < 6; k++)
-        s->f[k] = c->Mez[6 * s->i + k] * env->acc;
+        s->f[k] = (env->cb * Mi[6 * k + 2] + env->sb * Mi[6 * k]) * env->acc -
+                  env->bdd * (x * Mi[6 * k + 2] - Mi[6 * k + 4]);
 }
 
 /* The squeeze films (rd_lift_landing.c) under and over a face point at
@@ -334,6 +351,8 @@ static void add_bore(rd_lift_model *c, const force_env *env, seg_view *s, double
         const double *d = c->bo_d + o, *e = c->bo_e + o;
         radial_dir(d, e, b);
         double ur = dot6(b, s->q), urd = dot6(b, s->v), P_d, P_dd;
+        if (c->bo_gap) /* a distorted bore: its offset at the point (rd_lift_bore.c) */
+            ur -= c->bo_gap[ARC_POINTS * (size_t)s->i + k];
         double N = c->bo_area *
                    contact_pressure(c, c->delta_pre + ur, urd, c->c_rad, &P_d, &P_dd);
         add6(s->f, b, c->p0 * c->bo_area - N);
@@ -346,6 +365,8 @@ static void add_bore(rd_lift_model *c, const force_env *env, seg_view *s, double
         if (env->fric) {
             axial_dir(d, a);
             double F_N, F_u, u = dot6(a, s->v) - env->sd;
+            if (env->tilt) /* the groove frame's own axial speed at the point, beta' x */
+                u += env->bd * (rd_ring_get_section(c->ring)->R * c->e_r[2 * s->i] + d[0]);
             double F = friction_force(c, N, u, &F_N, &F_u);
             add6(s->f, a, F);
             if (c->energy)
@@ -404,6 +425,15 @@ static void force_env_at(const rd_lift_model *c, double t, force_env *env)
     if (!c->piston_fixed)
         rd_lift_piston(&p->engine, c->omega * t, &s, &env->sd, &sdd);
     env->acc = sdd - c->g_on;
+    env->tilt = rd_lift_tilted(&p->engine);
+    if (env->tilt) {
+        double b, b1, b2, dps = c->omega * 180.0 / M_PI, r = M_PI / 180.0;
+        rd_lift_tilt_at(&p->engine, deg, &b, &b1, &b2);
+        env->cb = cos(b * r);
+        env->sb = sin(b * r);
+        env->bd = b1 * dps * r;
+        env->bdd = b2 * dps * dps * r;
+    }
     env->gas = p->gas.points > 0;
     env->dynamic = env->gas && p->gas.active_area == RD_GAS_AREA_DYNAMIC;
     env->fric = p->friction.model != RD_FRICTION_NONE;

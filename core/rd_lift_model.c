@@ -45,6 +45,7 @@ void rd_lift_model_cleanup(rd_lift_model *c)
     free(c->bo_e);
     free(c->ba_d);
     free(c->cen_d);
+    free(c->bo_gap);
     free(c->e_r);
     free(c->e_t);
     free(c->qbuf);
@@ -226,7 +227,7 @@ int rd_lift_model_init(rd_lift_model *c, const rd_ring *ring, const rd_lift_para
     }
     for (int i = 0; i < c->n; i++)
         model_stiffness_blocks(c, i);
-    return RD_OK;
+    return rd_lift_bore_init(c, err);
 }
 
 /* ------------------------------------------------ right-hand side, Jacobian */

@@ -99,6 +99,8 @@ typedef struct rd_lift_model {
     double *ba_d;          /* n x ARC_POINTS x 2: back point offsets */
     double bo_area, ba_area; /* per point */
     double *cen_d;         /* n x 2: face centroid offsets */
+    double *bo_gap;        /* n x ARC_POINTS: the bore's outward offset at each bore
+                            * point (rd_lift_bore.c), NULL for the round bore */
     double *e_r;           /* n x 2: segment radial unit */
     double *e_t;           /* n x 2: segment tangential unit */
     double face_area, back_chord_area;
@@ -191,6 +193,11 @@ typedef struct rd_lift_form {
     /* the initial state and absolute tolerances (atol on translations, m) */
     int (*initial)(void *user, const rd_lift_setup *setup, double atol, double *y,
                    double *abstol, rd_error *err);
+    /* the central-difference step of state j for the Jacobian check; NULL:
+     * the driver's rule for the full and rigid layouts */
+    double (*fd_step)(void *user, sunindextype j);
+    /* frees `user`; NULL: nothing to free (the full model) */
+    void (*close)(struct rd_lift_form *form);
 } rd_lift_form;
 
 /* The Newton solver of a form (rd_lift_newton.c): a DIRECT SUNLinearSolver
@@ -214,12 +221,37 @@ void rd_lift_full_form(rd_lift_model *m, rd_lift_form *form);
 int rd_lift_rigid_open(rd_lift_model *m, rd_lift_form *form, rd_error *err);
 void rd_lift_rigid_close(rd_lift_form *form);
 
-/* One integration of the full model at tolerances (rtol, atol): `res`
+/* The bore (rd_lift_bore.c): the per-point offsets of a distorted bore into
+ * m->bo_gap (NULL for a round one), and the static equilibrium of the
+ * installed ring in it (y0: 12 n values, the rates 0). */
+int rd_lift_bore_init(rd_lift_model *m, rd_error *err);
+int rd_lift_bore_static(const rd_ring *ring, const rd_lift_params *p, double *y0, rd_error *err);
+
+/* The modal model (rd_lift_modal.c): the 6 rigid-body and `modes` lowest
+ * elastic modes of the ring (1 <= modes <= 6 n - 6; n at most
+ * RD_LIFT_MODAL_SEGMENTS_MAX, its modes are solved densely).  The form's
+ * close frees it (also after a failed open). */
+#define RD_LIFT_MODAL_SEGMENTS_MAX 200
+int rd_lift_modal_open(rd_lift_model *m, int modes, rd_lift_form *form, rd_error *err);
+void rd_lift_modal_close(rd_lift_form *form);
+
+/* The formulation of `model` (enum rd_lift_model_kind, not auto) on m
+ * (rd_lift_driver.c); on failure the form is safe to close. */
+int rd_lift_form_open(rd_lift_model *m, int model, int modes, rd_lift_form *form, rd_error *err);
+
+/* One integration of `model` (enum rd_lift_model_kind, not auto; modal with
+ * run->modes) at tolerances (rtol, atol): `res`
  * (optional) receives the per-sample results and the counters, `lift`
  * (samples values) the mean lift, *events / *n_events the flank changes
  * (owned by the caller after the call, also on failure) (rd_lift_driver.c). */
 typedef struct rd_lift_run {
     double rtol, atol;
+    int modes;           /* elastic modes of the modal model */
+    int dof;             /* out: degrees of freedom integrated (states / 2) */
+    /* out, when /numerics/max_steps ran out (RD_ELIMIT): the samples stored
+     * (0 .. done - 1) and the crank angle the integrator reached, deg */
+    int done;
+    double reached_deg;
     rd_lift_result *res; /* may be NULL */
     double *lift;        /* samples values */
     int samples;
@@ -227,6 +259,6 @@ typedef struct rd_lift_run {
     int n_events, cap_events;
 } rd_lift_run;
 int rd_lift_integrate(const rd_ring *ring, const rd_lift_params *p, const rd_lift_setup *setup,
-                      int rigid, const rd_monitor *mon, rd_lift_run *run, rd_error *err);
+                      int model, const rd_monitor *mon, rd_lift_run *run, rd_error *err);
 
 #endif

@@ -314,7 +314,8 @@ int rd_lift_rigid_open(rd_lift_model *m, rd_lift_form *form, rd_error *err)
                            .lift = rigid_lift,
                            .loads = rigid_loads,
                            .expand = rigid_expand,
-                           .initial = rigid_initial};
+                           .initial = rigid_initial,
+                           .close = rd_lift_rigid_close};
     if ((rc = rigid_mass(r, err)) || (rc = rigid_twist_stiffness(r, err)))
         return rc; /* the caller closes the form */
     return RD_OK;

@@ -1004,6 +1004,8 @@ for (const width of [1280, 390]) {
       assert.match(await page.textContent('#tools-status'), /Loaded lift\.json/);
       // A file without a scene: an error that says so, the form unchanged.
       await page.setInputFiles('#load-scene-file', { name: 'notes.json', mimeType: 'application/json', buffer: Buffer.from('{"hello": 1}') });
+      // The file is read asynchronously: wait for the message rather than reading it at once.
+      await page.waitForFunction(() => /holds no scene/.test(document.getElementById('error').textContent), null, { timeout: 10000 });
       assert.match(await page.textContent('#error'), /notes\.json holds no scene/);
       assert.equal(await page.inputValue('#f-lf-speed'), '3000');
       await page.click('#copy-python');

@@ -202,8 +202,8 @@ static void test_rigid_extremes(void)
     }
 }
 
-/* auto: the rigid ring without friction, the full ring with friction at the
- * default target, the rigid ring again when the target allows ~1 deg. */
+/* auto: the rigid ring without friction, the full ring with friction at
+ * any target. */
 static void test_auto(void)
 {
     rd_lift_params p;
@@ -224,9 +224,11 @@ static void test_auto(void)
               strstr(r.why, "friction") != NULL,
           "auto, friction: rc %d model %d why '%s'", rc, r.model, r.why);
     rd_lift_result_cleanup(&r);
-    p.accuracy_deg = 2.0;
+    /* no target admits the rigid ring with friction (it misses by up to
+     * 3.7 deg and can miss flank changes: test_lift_auto) */
+    p.accuracy_deg = 10.0;
     rc = run(&p, RD_LIFT_MODEL_AUTO, 8, &r, &err);
-    CHECK(rc == RD_OK && r.model == RD_LIFT_MODEL_RIGID, "auto, friction, 2 deg: model %d",
+    CHECK(rc == RD_OK && r.model == RD_LIFT_MODEL_FULL, "auto, friction, 10 deg: model %d",
           r.model);
     rd_lift_result_cleanup(&r);
 }
@@ -286,7 +288,9 @@ static void test_validation(void)
     p.model = 7;
     expect_invalid(&p, "/numerics/model", "unknown");
     p.model = RD_LIFT_MODEL_MODAL;
-    expect_invalid(&p, "/numerics/model", "not available yet");
+    p.modes = 43; /* 8 segments: 6 x 8 - 6 = 42 elastic modes */
+    expect_invalid(&p, "/numerics/modes", "42 elastic modes");
+    p.modes = 0;
     p.model = RD_LIFT_MODEL_AUTO;
     p.accuracy_deg = 0.0;
     expect_invalid(&p, "/numerics/accuracy_deg", "out of range");
