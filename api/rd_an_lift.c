@@ -22,8 +22,8 @@
 struct lift_opts {
     rd_lift_params lift;
     int friction_given, gas_given, squeeze_given;
-    int friction_model;         /* index into friction_names */
-    int max_steps;              /* /numerics/max_steps */
+    int friction_model;           /* index into friction_names */
+    int max_steps;                /* /numerics/max_steps */
     struct rd_table gas_table[4]; /* crank_deg, above, behind, below */
     int tilt_given;
     struct rd_table tilt_table[2]; /* crank_deg, tilt_deg */
@@ -34,16 +34,17 @@ struct lift_opts {
 
 /* ---- scene ---------------------------------------------------------------- */
 
-static const char *const kinematics_names[] = {"exact", "approximate", NULL}; /* enum rd_kinematics */
-static const char *const friction_names[] = {"coulomb", "stribeck", NULL};   /* model - 1 */
-static const char *const area_names[] = {"fixed", "dynamic", NULL};          /* enum rd_gas_area */
+static const char *const kinematics_names[] = {"exact", "approximate",
+                                               NULL};                      /* enum rd_kinematics */
+static const char *const friction_names[] = {"coulomb", "stribeck", NULL}; /* model - 1 */
+static const char *const area_names[] = {"fixed", "dynamic", NULL};        /* enum rd_gas_area */
 static const char *const landing_names[] = {"penalty", "plastic", NULL}; /* enum rd_lift_landing */
 
 static const rd_field tilt_fields[] = {
     {"crank_deg", RD_F_TABLE, LO(tilt_table[0]), RD_MIN(1), RD_MAX(RD_LIFT_TABLE_MAX),
      .required = 1, .desc = "Crank angles, deg, strictly increasing within 0..720."},
-    {"tilt_deg", RD_F_TABLE, LO(tilt_table[1]), RD_MIN(1), RD_MAX(RD_LIFT_TABLE_MAX),
-     .required = 1, .desc = "Piston tilt at those angles, deg (added to piston_tilt_deg)."},
+    {"tilt_deg", RD_F_TABLE, LO(tilt_table[1]), RD_MIN(1), RD_MAX(RD_LIFT_TABLE_MAX), .required = 1,
+     .desc = "Piston tilt at those angles, deg (added to piston_tilt_deg)."},
     {.key = NULL},
 };
 static const rd_block tilt_block = {
@@ -54,17 +55,17 @@ static const rd_block tilt_block = {
     1, 0, tilt_fields};
 
 static const rd_field distortion_fields[] = {
-    {"order", RD_F_INTEGER, offsetof(rd_distortion, order), RD_MIN(1), RD_MAX(64),
-     .required = 1, .desc = "Fourier order k; a JSON integer."},
+    {"order", RD_F_INTEGER, offsetof(rd_distortion, order), RD_MIN(1), RD_MAX(64), .required = 1,
+     .desc = "Fourier order k; a JSON integer."},
     {"amplitude", RD_F_NUMBER, offsetof(rd_distortion, amplitude), .required = 1,
      .desc = "Radius change A_k, m; the sum of |A_k| at most 1 % of the ring diameter."},
     {"phase_deg", RD_F_NUMBER, offsetof(rd_distortion, phase_deg), RD_MIN(-360), RD_MAX(360),
      .desc = "Phase phi_k, degrees from the gap middle."},
     {.key = NULL},
 };
-static const rd_block distortion_block = {
-    "LiftBoreDistortion", "One Fourier term of the bore distortion (lift).", 0, 1,
-    distortion_fields};
+static const rd_block distortion_block = {"LiftBoreDistortion",
+                                          "One Fourier term of the bore distortion (lift).", 0, 1,
+                                          distortion_fields};
 
 static const rd_field bore_fields[] = {
     {"diameter", RD_F_NUMBER, LO(bore.bore_diameter), RD_MIN(0.0),
@@ -104,10 +105,10 @@ static const rd_block engine_block = {"Engine", "/engine (lift): piston kinemati
                                       engine_fields};
 
 static const rd_field groove_fields[] = {
-    {"axial_clearance", RD_F_NUMBER, LO(lift.groove.axial_clearance), RD_MIN(1e-07),
-     RD_MAX(0.005), .desc = "Groove height minus ring height, m."},
-    {"radial_clearance", RD_F_NUMBER, LO(lift.groove.radial_clearance), RD_MIN(1e-06),
-     RD_MAX(0.01), .desc = "Ring inner face to groove back, m."},
+    {"axial_clearance", RD_F_NUMBER, LO(lift.groove.axial_clearance), RD_MIN(1e-07), RD_MAX(0.005),
+     .desc = "Groove height minus ring height, m."},
+    {"radial_clearance", RD_F_NUMBER, LO(lift.groove.radial_clearance), RD_MIN(1e-06), RD_MAX(0.01),
+     .desc = "Ring inner face to groove back, m."},
     {.key = NULL},
 };
 static const rd_block groove_block = {"Groove", "/groove (lift).", 1, 0, groove_fields};
@@ -132,9 +133,11 @@ static const rd_block friction_block = {
     "gives all five fields.",
     1, 0, friction_fields};
 
-#define GAS_TABLE(key, k, text)                                                                  \
-    {key, RD_F_TABLE, LO(gas_table[k]), RD_MIN(2), RD_MAX(RD_LIFT_TABLE_MAX), .required = 1,     \
-     .desc = text}
+#define GAS_TABLE(key, k, text)                                                                 \
+    {                                                                                           \
+        key, RD_F_TABLE, LO(gas_table[k]), RD_MIN(2), RD_MAX(RD_LIFT_TABLE_MAX), .required = 1, \
+                                                                                 .desc = text   \
+    }
 static const rd_field gas_fields[] = {
     GAS_TABLE("crank_deg", 0, "Crank angles, deg, strictly increasing within 0..720."),
     GAS_TABLE("above", 1, "Gauge pressure on the top face, Pa, each -1e6 to 1e9."),
@@ -153,7 +156,8 @@ static const rd_block gas_block = {
 
 static const rd_field squeeze_fields[] = {
     {"viscosity", RD_F_NUMBER, LO(lift.squeeze.viscosity), RD_MIN(1e-08), RD_MAX(10),
-     .desc = "Dynamic viscosity mu of the oil in the flank gaps, Pa s (from 1e-8: a vanishing film for comparisons)."},
+     .desc = "Dynamic viscosity mu of the oil in the flank gaps, Pa s (from 1e-8: a vanishing film "
+             "for comparisons)."},
     {"min_film", RD_F_NUMBER, LO(lift.squeeze.min_film), RD_MIN(1e-09), RD_MAX(1e-04),
      .desc = "Film h_min left at contact (roughness), m: the gap in the law is h_min + h."},
     {.key = NULL},
@@ -257,7 +261,8 @@ static const rd_block scene_block = {
     "3.5): piston inertia always, plus gravity, bore friction and gas pressures when physics "
     "names them. Reads ring (section must be rectangle), discretization (4..1000 segments, "
     "split ring only), engine, groove, bore (LiftBore), physics, contact (LiftContact), output and "
-    "numerics (LiftNumerics). Output size: cycles * 720 / step_deg + 1 samples, at most 200000, and "
+    "numerics (LiftNumerics). Output size: cycles * 720 / step_deg + 1 samples, at most 200000, "
+    "and "
     "samples x segments at most 2e7 (limit_exceeded at /output/step_deg otherwise).",
     0, 0, scene_fields};
 
@@ -284,8 +289,7 @@ static int tilt_finish(struct lift_opts *o, rd_error *err)
     e->tilt_points = 0;
     if (!o->tilt_given)
         return RD_OK;
-    if (!o->tilt_table[0].v || !o->tilt_table[1].v ||
-        o->tilt_table[1].n != o->tilt_table[0].n)
+    if (!o->tilt_table[0].v || !o->tilt_table[1].v || o->tilt_table[1].n != o->tilt_table[0].n)
         return rd_error_set(err, RD_EINVAL, "/engine/piston_tilt/tilt_deg",
                             "/engine/piston_tilt needs crank_deg and tilt_deg of the same length "
                             "(got %d and %d values).",
@@ -369,17 +373,16 @@ static int lift_series(const rd_lift_result *res, json_t **segs, json_t **flank,
     bad |= !*segs || !*flank || !*events;
     for (int k = 0; !bad && k < N; k++) {
         int f = res->flank[k];
-        bad |= json_array_append_new(*segs, rd_result_reals(res->lift_segments + (size_t)k * n,
-                                                            n, 1, 1.0));
-        bad |= json_array_append_new(*flank, json_string(f >= 0 && f < 3 ? flank_names[f]
-                                                                         : "free"));
+        bad |= json_array_append_new(
+            *segs, rd_result_reals(res->lift_segments + (size_t)k * n, n, 1, 1.0));
+        bad |=
+            json_array_append_new(*flank, json_string(f >= 0 && f < 3 ? flank_names[f] : "free"));
     }
     for (int k = 0; !bad && k < res->n_events; k++) {
         int e = res->events[k].kind;
-        bad |= json_array_append_new(*events,
-                                     json_pack("{s:o, s:s}", "crank_deg",
-                                               rd_result_real(res->events[k].crank_deg), "event",
-                                               e >= 0 && e < 4 ? event_names[e] : "unknown"));
+        bad |= json_array_append_new(
+            *events, json_pack("{s:o, s:s}", "crank_deg", rd_result_real(res->events[k].crank_deg),
+                               "event", e >= 0 && e < 4 ? event_names[e] : "unknown"));
     }
     return bad ? -1 : 0;
 }
@@ -389,36 +392,31 @@ static json_t *lift_numerics(const rd_scene *scene, const rd_lift_result *res, d
     const struct lift_opts *o = scene->opts;
     int estimated = isfinite(res->error_estimate);
     return json_pack(
-        "{s:i, s:i, s:o, s:o, s:s, s:I, s:I, s:I, s:I, s:I, s:I, s:I, s:I, s:o, s:o, s:o, s:o, s:o}",
-        "segments", res->segments,
-        "dof", res->dof,
-        "model", json_pack("{s:s, s:i, s:i, s:s}", "name", rd_lift_model_name(res->model), "dof",
-                           res->dof, "modes", res->modes, "why", res->why),
-        "wall_s", rd_result_real(wall_s),
-        "solver", res->model == RD_LIFT_MODEL_RIGID
-                      ? "SUNDIALS CVODE, BDF with a dense Newton linear solver (the rigid ring's "
-                        "6 states), root finding for the flank changes"
-                  : res->model == RD_LIFT_MODEL_MODAL
-                      ? "SUNDIALS CVODE, BDF with a dense Newton linear solver (2 x dof modal "
-                        "states), root finding for the flank changes"
-                      : "SUNDIALS CVODE, BDF with a banded Newton linear solver, root finding for "
-                        "the flank changes",
-        "steps", (json_int_t)res->steps,
-        "rhs_evals", (json_int_t)res->rhs_evals,
-        "jac_evals", (json_int_t)res->jac_evals,
-        "linear_setups", (json_int_t)res->lin_setups,
-        "nonlinear_iterations", (json_int_t)res->nonlin_iters,
-        "nonlinear_failures", (json_int_t)res->nonlin_fails,
-        "error_test_fails", (json_int_t)res->err_test_fails,
-        "root_evals", (json_int_t)res->root_evals,
-        "rtol", rd_result_real(o->lift.rtol),
-        "atol", rd_result_real(o->lift.atol),
-        "error_estimate", rd_result_real(res->error_estimate),
-        "event_error_deg", rd_result_real(res->event_error_deg),
-        "error_method", estimated ? json_string("second run at rtol/10 and atol/10: largest lift "
-                                                "difference over the axial clearance, and the "
-                                                "largest shift of a matched flank change")
-                                  : json_null());
+        "{s:i, s:i, s:o, s:o, s:s, s:I, s:I, s:I, s:I, s:I, s:I, s:I, s:I, s:o, s:o, s:o, s:o, "
+        "s:o}",
+        "segments", res->segments, "dof", res->dof, "model",
+        json_pack("{s:s, s:i, s:i, s:s}", "name", rd_lift_model_name(res->model), "dof", res->dof,
+                  "modes", res->modes, "why", res->why),
+        "wall_s", rd_result_real(wall_s), "solver",
+        res->model == RD_LIFT_MODEL_RIGID
+            ? "SUNDIALS CVODE, BDF with a dense Newton linear solver (the rigid ring's "
+              "6 states), root finding for the flank changes"
+        : res->model == RD_LIFT_MODEL_MODAL
+            ? "SUNDIALS CVODE, BDF with a dense Newton linear solver (2 x dof modal "
+              "states), root finding for the flank changes"
+            : "SUNDIALS CVODE, BDF with a banded Newton linear solver, root finding for "
+              "the flank changes",
+        "steps", (json_int_t)res->steps, "rhs_evals", (json_int_t)res->rhs_evals, "jac_evals",
+        (json_int_t)res->jac_evals, "linear_setups", (json_int_t)res->lin_setups,
+        "nonlinear_iterations", (json_int_t)res->nonlin_iters, "nonlinear_failures",
+        (json_int_t)res->nonlin_fails, "error_test_fails", (json_int_t)res->err_test_fails,
+        "root_evals", (json_int_t)res->root_evals, "rtol", rd_result_real(o->lift.rtol), "atol",
+        rd_result_real(o->lift.atol), "error_estimate", rd_result_real(res->error_estimate),
+        "event_error_deg", rd_result_real(res->event_error_deg), "error_method",
+        estimated ? json_string("second run at rtol/10 and atol/10: largest lift "
+                                "difference over the axial clearance, and the "
+                                "largest shift of a matched flank change")
+                  : json_null());
 }
 
 /* {"analysis", "scene", "crank_deg", "lift", "lift_min", "lift_max",
@@ -439,21 +437,16 @@ static json_t *lift_result(const rd_scene *scene, const rd_lift_result *res, dou
     }
     return json_pack("{s:s, s:o, s:o, s:o, s:o, s:o, s:o, s:o, s:o, s:o, s:o, s:o, s:b, s:o, "
                      "s:o}",
-                     "analysis", rd_scene_analysis(scene),
-                     "scene", rd_scene_echo(scene),
-                     "crank_deg", rd_result_reals(res->crank_deg, N, 1, 1.0),
-                     "lift", rd_result_reals(res->lift, N, 1, 1.0),
-                     "lift_min", rd_result_reals(res->lift_min, N, 1, 1.0),
-                     "lift_max", rd_result_reals(res->lift_max, N, 1, 1.0),
-                     "lift_segments", segs,
-                     "twist_rad", rd_result_reals(res->twist, N, 1, 1.0),
-                     "friction_force", rd_result_reals(res->friction_force, N, 1, 1.0),
-                     "flank", flank,
-                     "events", events,
-                     "numerics", lift_numerics(scene, res, wall_s),
-                     "partial", res->partial,
-                     "crank_deg_reached", rd_result_real(res->crank_deg_reached),
-                     "warnings", res->partial ? json_pack("[s]", res->warning) : json_array());
+                     "analysis", rd_scene_analysis(scene), "scene", rd_scene_echo(scene),
+                     "crank_deg", rd_result_reals(res->crank_deg, N, 1, 1.0), "lift",
+                     rd_result_reals(res->lift, N, 1, 1.0), "lift_min",
+                     rd_result_reals(res->lift_min, N, 1, 1.0), "lift_max",
+                     rd_result_reals(res->lift_max, N, 1, 1.0), "lift_segments", segs, "twist_rad",
+                     rd_result_reals(res->twist, N, 1, 1.0), "friction_force",
+                     rd_result_reals(res->friction_force, N, 1, 1.0), "flank", flank, "events",
+                     events, "numerics", lift_numerics(scene, res, wall_s), "partial", res->partial,
+                     "crank_deg_reached", rd_result_real(res->crank_deg_reached), "warnings",
+                     res->partial ? json_pack("[s]", res->warning) : json_array());
 }
 
 static int run(const rd_scene *s, const rd_monitor *mon, json_t **out, rd_error *err)
@@ -469,14 +462,10 @@ static int run(const rd_scene *s, const rd_monitor *mon, json_t **out, rd_error 
 }
 
 static const rd_csv_column csv_columns[] = {
-    {"crank_deg", "crank_deg", 0},
-    {"lift_m", "lift", 0},
-    {"lift_min_m", "lift_min", 0},
-    {"lift_max_m", "lift_max", 0},
-    {"twist_rad", "twist_rad", 0},
-    {"friction_force_n", "friction_force", 0},
-    {"flank", "flank", 1},
-    {NULL, NULL, 0},
+    {"crank_deg", "crank_deg", 0}, {"lift_m", "lift", 0},
+    {"lift_min_m", "lift_min", 0}, {"lift_max_m", "lift_max", 0},
+    {"twist_rad", "twist_rad", 0}, {"friction_force_n", "friction_force", 0},
+    {"flank", "flank", 1},         {NULL, NULL, 0},
 };
 static const rd_csv_table csv = {NULL, NULL, csv_columns};
 

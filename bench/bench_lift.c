@@ -123,12 +123,13 @@ static int models(const char *dir, int reps)
 {
     static const char *files[] = {"thesis_lift_1000rpm.json", "thesis_lift_gas_6000rpm.json"};
     static const int kinds[] = {RD_LIFT_MODEL_AUTO, RD_LIFT_MODEL_RIGID, RD_LIFT_MODEL_FULL};
-    printf("One 720 deg cycle of each lift example, its own n and rtol, error estimate on;\n"
-           "wall = median of %d runs (Release); steps, Jacobians, factorizations: the main run;\n"
-           "change = largest flank-change difference from full n = 40, rtol 1e-8.\n\n"
-           "| example | model | landing | used | dof | wall [ms/cycle] | steps | Jacobians | "
-           "factorizations | change vs full n=40 [deg] |\n|---|---|---|---|---|---|---|---|---|---|\n",
-           reps);
+    printf(
+        "One 720 deg cycle of each lift example, its own n and rtol, error estimate on;\n"
+        "wall = median of %d runs (Release); steps, Jacobians, factorizations: the main run;\n"
+        "change = largest flank-change difference from full n = 40, rtol 1e-8.\n\n"
+        "| example | model | landing | used | dof | wall [ms/cycle] | steps | Jacobians | "
+        "factorizations | change vs full n=40 [deg] |\n|---|---|---|---|---|---|---|---|---|---|\n",
+        reps);
     for (int f = 0; f < 2; f++) {
         gcase c;
         if (!load_example(&c, dir, files[f])) {
@@ -235,8 +236,8 @@ int main(int argc, char **argv)
     if (once) {
         run r;
         int rc = timed(&rp, once, 1e-6, 1, &r);
-        printf("n=%d rc=%d steps=%ld rhs=%ld jac=%ld events=%d\n", once, rc, r.steps, r.rhs,
-               r.jac, r.n_events);
+        printf("n=%d rc=%d steps=%ld rhs=%ld jac=%ld events=%d\n", once, rc, r.steps, r.rhs, r.jac,
+               r.n_events);
         return rc ? 1 : 0;
     }
 
@@ -265,8 +266,7 @@ int main(int argc, char **argv)
         char ev[512] = "";
         size_t len = 0;
         for (int i = 0; i < r->n_events && len + 16 < sizeof ev; i++)
-            len += (size_t)snprintf(ev + len, sizeof ev - len, "%s%.3f", i ? " " : "",
-                                    r->deg[i]);
+            len += (size_t)snprintf(ev + len, sizeof ev - len, "%s%.3f", i ? " " : "", r->deg[i]);
         printf("| %d | %d | %.3f | %ld | %ld | %ld | %s | %.4f |\n", ns[k], 6 * ns[k], r->wall,
                r->steps, r->rhs, r->jac, ev, event_change(r, fine));
         if (ns[k] >= 32) {
@@ -281,8 +281,9 @@ int main(int argc, char **argv)
     run ref;
     if (timed(&rp, 20, 1e-10, 1, &ref))
         return 1;
-    printf("\nn = 20: flank-change angle error vs rtol (atol = 1e-3 m x rtol), reference rtol "
-           "1e-10\n\n| rtol | wall [s/cycle] | steps | max angle error [deg] |\n|---|---|---|---|\n");
+    printf(
+        "\nn = 20: flank-change angle error vs rtol (atol = 1e-3 m x rtol), reference rtol "
+        "1e-10\n\n| rtol | wall [s/cycle] | steps | max angle error [deg] |\n|---|---|---|---|\n");
     for (double rtol = 1e-4; rtol > 0.5e-8; rtol /= 10) {
         run r;
         if (timed(&rp, 20, rtol, reps, &r))

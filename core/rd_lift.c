@@ -63,11 +63,11 @@
 #include "rd_accuracy.h"
 #include "rd_lift_model.h"
 
-#define LOAD_PENETRATION 1e-3     /* largest load penetration / c_a for the default k */
-#define CONTACT_FREQ_RATIO 3e4    /* flank contact frequency / crank frequency */
-#define UREG_FRACTION 1e-3        /* u_reg / mean piston speed */
-#define MEMORY_BOUND 2e6 /* samples x segments: 16 MB here, ~40 MB as JSON text */
-#define GRAVITY RD_LIFT_GRAVITY
+#define LOAD_PENETRATION   1e-3 /* largest load penetration / c_a for the default k */
+#define CONTACT_FREQ_RATIO 3e4  /* flank contact frequency / crank frequency */
+#define UREG_FRACTION      1e-3 /* u_reg / mean piston speed */
+#define MEMORY_BOUND       2e6  /* samples x segments: 16 MB here, ~40 MB as JSON text */
+#define GRAVITY            RD_LIFT_GRAVITY
 
 /* ---------------------------------------------------------------- params */
 
@@ -127,8 +127,9 @@ static int check_range(double v, double lo, double hi, const char *path, const c
                        rd_error *err)
 {
     if (!isfinite(v) || v < lo || v > hi)
-        return rd_error_set(err, RD_EINVAL, path, "%s = %g %s is out of range: allowed %g to %g %s.",
-                            path, v, unit, lo, hi, unit);
+        return rd_error_set(err, RD_EINVAL, path,
+                            "%s = %g %s is out of range: allowed %g to %g %s.", path, v, unit, lo,
+                            hi, unit);
     return RD_OK;
 }
 
@@ -187,8 +188,8 @@ static int validate_tilt(const rd_engine_params *e, rd_error *err)
 static int validate_bore(const rd_lift_bore *b, const rd_ring_params *ring, rd_error *err)
 {
     double d = ring->diameter, sum = 0.0;
-    if (!isfinite(b->diameter) || (b->diameter != 0.0 && (b->diameter < 0.98 * d ||
-                                                          b->diameter > 1.02 * d)))
+    if (!isfinite(b->diameter) ||
+        (b->diameter != 0.0 && (b->diameter < 0.98 * d || b->diameter > 1.02 * d)))
         return rd_error_set(err, RD_EINVAL, "/bore/diameter",
                             "/bore/diameter = %g m is out of range: 0 (the ring's diameter) or "
                             "%g to %g m (within 2 %% of it).",
@@ -202,9 +203,8 @@ static int validate_bore(const rd_lift_bore *b, const rd_ring_params *ring, rd_e
         int rc;
         snprintf(path, sizeof path, "/bore/distortion/%d/order", k);
         if (b->distortion[k].order < 1 || b->distortion[k].order > 64)
-            return rd_error_set(err, RD_EINVAL, path,
-                                "%s = %d is out of range: allowed 1 to 64.", path,
-                                b->distortion[k].order);
+            return rd_error_set(err, RD_EINVAL, path, "%s = %d is out of range: allowed 1 to 64.",
+                                path, b->distortion[k].order);
         snprintf(path, sizeof path, "/bore/distortion/%d/phase_deg", k);
         if ((rc = check_range(b->distortion[k].phase_deg, -360.0, 360.0, path, "deg", err)))
             return rc;
@@ -252,8 +252,8 @@ static int validate_physics(const rd_lift_params *p, rd_error *err)
     int rc;
     if ((rc = check_range(p->groove.axial_clearance, 1e-7, 5e-3, "/groove/axial_clearance", "m",
                           err)) ||
-        (rc = check_range(p->groove.radial_clearance, 1e-6, 1e-2, "/groove/radial_clearance",
-                          "m", err)))
+        (rc = check_range(p->groove.radial_clearance, 1e-6, 1e-2, "/groove/radial_clearance", "m",
+                          err)))
         return rc;
     if (p->gravity != 0 && p->gravity != 1)
         return rd_error_set(err, RD_EINVAL, "/physics/gravity",
@@ -268,12 +268,11 @@ static int validate_physics(const rd_lift_params *p, rd_error *err)
         (rc = check_range(f->coefficient, 0.0, 10.0, "/physics/friction/coefficient", "", err)))
         return rc;
     if (f->model == RD_FRICTION_STRIBECK &&
-        ((rc = check_range(f->viscosity, 1e-5, 10.0, "/physics/friction/viscosity", "Pa s",
-                           err)) ||
+        ((rc = check_range(f->viscosity, 1e-5, 10.0, "/physics/friction/viscosity", "Pa s", err)) ||
          (rc = check_range(f->sommerfeld_transition, 0.0, 1e15,
                            "/physics/friction/sommerfeld_transition", "", err)) ||
-         (rc = check_range(f->hydrodynamic_slope, 0.0, 1e12,
-                           "/physics/friction/hydrodynamic_slope", "", err))))
+         (rc = check_range(f->hydrodynamic_slope, 0.0, 1e12, "/physics/friction/hydrodynamic_slope",
+                           "", err))))
         return rc;
     if (p->landing != RD_LANDING_PENALTY && p->landing != RD_LANDING_PLASTIC)
         return rd_error_set(err, RD_EINVAL, "/contact/landing",
@@ -286,8 +285,7 @@ static int validate_physics(const rd_lift_params *p, rd_error *err)
     if (q->on &&
         ((rc = check_range(q->viscosity, 1e-8, 10.0, "/physics/squeeze_film/viscosity", "Pa s",
                            err)) ||
-         (rc = check_range(q->min_film, 1e-9, 1e-4, "/physics/squeeze_film/min_film", "m",
-                           err))))
+         (rc = check_range(q->min_film, 1e-9, 1e-4, "/physics/squeeze_film/min_film", "m", err))))
         return rc;
     return RD_OK;
 }
@@ -298,10 +296,9 @@ static int validate_gas(const rd_gas_params *g, rd_error *err)
     if (g->points == 0)
         return RD_OK;
     if (g->points < 2 || g->points > RD_LIFT_TABLE_MAX)
-        return rd_error_set(err, g->points > RD_LIFT_TABLE_MAX ? RD_ELIMIT : RD_EINVAL,
-                            "/physics/gas/crank_deg",
-                            "/physics/gas/crank_deg has %d points: allowed 2 to %d.",
-                            g->points, RD_LIFT_TABLE_MAX);
+        return rd_error_set(
+            err, g->points > RD_LIFT_TABLE_MAX ? RD_ELIMIT : RD_EINVAL, "/physics/gas/crank_deg",
+            "/physics/gas/crank_deg has %d points: allowed 2 to %d.", g->points, RD_LIFT_TABLE_MAX);
     if (!g->crank_deg)
         return rd_error_set(err, RD_EINVAL, "/physics/gas/crank_deg",
                             "/physics/gas/crank_deg is missing.");
@@ -330,8 +327,7 @@ static int validate_gas(const rd_gas_params *g, rd_error *err)
 }
 
 /* Contact stiffness, output sampling, tolerances and the work bounds. */
-static int validate_numerics(const rd_lift_params *p, int segments, double ring_d,
-                             rd_error *err)
+static int validate_numerics(const rd_lift_params *p, int segments, double ring_d, rd_error *err)
 {
     int rc;
     const rd_engine_params *e = &p->engine;
@@ -380,8 +376,7 @@ static int validate_numerics(const rd_lift_params *p, int segments, double ring_
                             p->modes, RD_LIFT_MODES_MAX);
     if (p->estimate_error != 0 && p->estimate_error != 1)
         return rd_error_set(err, RD_EINVAL, "/numerics/error_estimate",
-                            "/numerics/error_estimate = %d: use true or false.",
-                            p->estimate_error);
+                            "/numerics/error_estimate = %d: use true or false.", p->estimate_error);
     double samples = ceil(e->cycles * 720.0 / p->step_deg - 1e-9) + 1.0;
     if (samples > RD_LIFT_SAMPLES_MAX)
         return rd_error_set(err, RD_ELIMIT, "/output/step_deg",
@@ -396,7 +391,6 @@ static int validate_numerics(const rd_lift_params *p, int segments, double ring_
                             samples, segments, samples * segments, MEMORY_BOUND);
     return RD_OK;
 }
-
 
 int rd_lift_validate(const rd_lift_params *p, const rd_ring_params *ring, int segments,
                      rd_error *err)
@@ -415,9 +409,9 @@ int rd_lift_validate(const rd_lift_params *p, const rd_ring_params *ring, int se
                             "allowed 4 to %d.",
                             segments, RD_LIFT_SEGMENTS_MAX);
     if ((rc = validate_engine(&p->engine, err)) || (rc = validate_tilt(&p->engine, err)) ||
-        (rc = validate_bore(&p->bore, ring, err)) ||
-        (rc = validate_physics(p, err)) ||
-        (rc = validate_gas(&p->gas, err)) || (rc = validate_numerics(p, segments, ring->diameter, err)))
+        (rc = validate_bore(&p->bore, ring, err)) || (rc = validate_physics(p, err)) ||
+        (rc = validate_gas(&p->gas, err)) ||
+        (rc = validate_numerics(p, segments, ring->diameter, err)))
         return rc;
     return RD_OK;
 }
@@ -431,9 +425,9 @@ void rd_lift_piston(const rd_engine_params *e, double alpha, double *s, double *
     double sa = sin(alpha), ca = cos(alpha);
     double s_, ds, dds; /* s and its derivatives with respect to alpha */
     if (e->kinematics == RD_KINEMATICS_APPROXIMATE) {
-        s_ = r * (1.0 - ca + 0.25 * lam * (1.0 - cos(2.0 * alpha)));        /* (1.6) */
-        ds = r * (sa + 0.5 * lam * sin(2.0 * alpha));                        /* (1.7) / w */
-        dds = r * (ca + lam * cos(2.0 * alpha));                             /* (1.8) / w^2 */
+        s_ = r * (1.0 - ca + 0.25 * lam * (1.0 - cos(2.0 * alpha))); /* (1.6) */
+        ds = r * (sa + 0.5 * lam * sin(2.0 * alpha));                /* (1.7) / w */
+        dds = r * (ca + lam * cos(2.0 * alpha));                     /* (1.8) / w^2 */
     } else {
         double Q = sqrt(1.0 - lam * lam * sa * sa);
         /* l (1 - Q) = l lam^2 sin^2 / (1 + Q): no cancellation */
@@ -451,7 +445,10 @@ void rd_lift_piston(const rd_engine_params *e, double alpha, double *s, double *
 
 /* ------------------------------------------------------- default stiffness */
 
-double rd_lift_omega(const rd_engine_params *e) { return e->speed_rpm * 2.0 * M_PI / 60.0; }
+double rd_lift_omega(const rd_engine_params *e)
+{
+    return e->speed_rpm * 2.0 * M_PI / 60.0;
+}
 
 static double table_max_abs(const rd_gas_params *g, const double *v)
 {
@@ -713,8 +710,8 @@ static int result_alloc(rd_lift_result *out, int S, int n, rd_error *err)
     out->twist = malloc((size_t)S * sizeof(double));
     out->friction_force = malloc((size_t)S * sizeof(double));
     out->flank = malloc((size_t)S * sizeof(int));
-    if (!out->crank_deg || !out->lift || !out->lift_min || !out->lift_max ||
-        !out->lift_segments || !out->twist || !out->friction_force || !out->flank)
+    if (!out->crank_deg || !out->lift || !out->lift_min || !out->lift_max || !out->lift_segments ||
+        !out->twist || !out->friction_force || !out->flank)
         return rd_error_set(err, RD_ENOMEM, "", "Out of memory for %d lift samples x %d segments.",
                             S, n);
     return RD_OK;
@@ -766,8 +763,11 @@ int rd_lift_solve_setup(const rd_ring_params *rp, int segments, const rd_lift_pa
         s.setup = &su;
     }
     /* the reference run at rtol/10 typically costs 1.5-2x the main run */
-    rd_accuracy_plan plan = {.solve = solve_level, .compare = compare_levels, .ctx = &s,
-                             .estimate = p->estimate_error, .main_share = 0.4,
+    rd_accuracy_plan plan = {.solve = solve_level,
+                             .compare = compare_levels,
+                             .ctx = &s,
+                             .estimate = p->estimate_error,
+                             .main_share = 0.4,
                              .reference = "rtol/10 and atol/10"};
     rc = rd_accuracy_run(&plan, mon, NULL, err);
     if (out->model == RD_LIFT_MODEL_MODAL && s.run[0].dof > 0)
@@ -795,4 +795,3 @@ int rd_lift_solve(const rd_ring_params *ring, int segments, const rd_lift_params
 {
     return rd_lift_solve_setup(ring, segments, p, NULL, mon, out, err);
 }
-

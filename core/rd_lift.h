@@ -52,11 +52,11 @@ enum rd_lift_event_kind {
 };
 
 /* Limits shared by validation and documentation. */
-#define RD_LIFT_CYCLES_MAX 50.0    /* 4-stroke cycles (720 deg each) */
-#define RD_LIFT_SAMPLES_MAX 200000 /* output samples (cycles * 720 / step_deg + 1) */
-#define RD_LIFT_TABLE_MAX 100000   /* points of a gas pressure table */
+#define RD_LIFT_CYCLES_MAX   50.0   /* 4-stroke cycles (720 deg each) */
+#define RD_LIFT_SAMPLES_MAX  200000 /* output samples (cycles * 720 / step_deg + 1) */
+#define RD_LIFT_TABLE_MAX    100000 /* points of a gas pressure table */
 #define RD_LIFT_SEGMENTS_MAX 1000
-#define RD_LIFT_MODES_MAX 60
+#define RD_LIFT_MODES_MAX    60
 #define RD_LIFT_TILT_MAX_DEG 2.0
 
 typedef struct rd_engine_params {
@@ -82,9 +82,9 @@ typedef struct rd_groove_params {
 } rd_groove_params;
 
 typedef struct rd_friction_params {
-    int model;          /* enum rd_friction_model; NONE = not modelled */
-    double coefficient; /* Coulomb coefficient (also C_Coulomb of 2.9) */
-    double viscosity;   /* Stribeck: oil dynamic viscosity eta, Pa s */
+    int model;                    /* enum rd_friction_model; NONE = not modelled */
+    double coefficient;           /* Coulomb coefficient (also C_Coulomb of 2.9) */
+    double viscosity;             /* Stribeck: oil dynamic viscosity eta, Pa s */
     double sommerfeld_transition; /* Stribeck: So_lim of 2.9 */
     double hydrodynamic_slope;    /* Stribeck: K of 2.9 */
 } rd_friction_params;
@@ -93,9 +93,9 @@ typedef struct rd_friction_params {
  * face and the groove flank it approaches.  Off by default (the flanks are
  * then the dry penalty contact alone). */
 typedef struct rd_squeeze_params {
-    int on;            /* 1: modelled */
-    double viscosity;  /* oil dynamic viscosity mu, Pa s */
-    double min_film;   /* h_min, m: the film left at contact (roughness) */
+    int on;           /* 1: modelled */
+    double viscosity; /* oil dynamic viscosity mu, Pa s */
+    double min_film;  /* h_min, m: the film left at contact (roughness) */
 } rd_squeeze_params;
 
 /* Gas pressures vs crank angle, Pa, linear interpolation, periodic over 720
@@ -128,7 +128,7 @@ typedef struct rd_lift_params {
     rd_engine_params engine;
     rd_lift_bore bore;
     rd_groove_params groove;
-    int gravity;               /* 1: g = 9.80665 m/s^2 along -z */
+    int gravity; /* 1: g = 9.80665 m/s^2 along -z */
     rd_friction_params friction;
     rd_gas_params gas;
     rd_squeeze_params squeeze; /* landing law on the flanks */
@@ -139,8 +139,8 @@ typedef struct rd_lift_params {
     long max_steps;            /* bound on CVODE steps for the whole run */
     int estimate_error;        /* 1: second run at rtol/10 for the error estimate */
     int model;                 /* enum rd_lift_model_kind */
-    int modes;                 /* elastic modes of the modal model, 0 = auto, <= RD_LIFT_MODES_MAX */
-    double accuracy_deg;       /* target on the flank-change angles, deg (auto) */
+    int modes;           /* elastic modes of the modal model, 0 = auto, <= RD_LIFT_MODES_MAX */
+    double accuracy_deg; /* target on the flank-change angles, deg (auto) */
 } rd_lift_params;
 
 typedef struct rd_lift_event {
@@ -163,18 +163,18 @@ typedef struct rd_lift_result {
     /* Solver work (CVODE counters) */
     long steps, rhs_evals, jac_evals, lin_setups, nonlin_iters, nonlin_fails, err_test_fails,
         root_evals;
-    int model;                    /* enum rd_lift_model_kind actually integrated */
-    int modes;                    /* elastic modes of a modal model; 0 otherwise */
-    char why[320];                /* why that model (the scene content that decided it) */
+    int model;     /* enum rd_lift_model_kind actually integrated */
+    int modes;     /* elastic modes of a modal model; 0 otherwise */
+    char why[320]; /* why that model (the scene content that decided it) */
     /* A run stopped by /numerics/max_steps after at least one whole cycle
      * returns those cycles (samples and events up to their end) with
      * partial = 1, the crank angle the integrator reached, and the reason
      * and what would make the run cheaper in `warning`; no error estimate. */
     int partial;
-    double crank_deg_reached;     /* deg; the end of the run when not partial */
-    char warning[400];            /* empty when not partial */
-    double error_estimate;        /* relative lift error from the rtol/10 run; NAN if none */
-    double event_error_deg;       /* largest event-angle change in that run; NAN if none */
+    double crank_deg_reached; /* deg; the end of the run when not partial */
+    char warning[400];        /* empty when not partial */
+    double error_estimate;    /* relative lift error from the rtol/10 run; NAN if none */
+    double event_error_deg;   /* largest event-angle change in that run; NAN if none */
 } rd_lift_result;
 
 void rd_lift_params_default(rd_lift_params *p);

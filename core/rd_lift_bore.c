@@ -26,9 +26,9 @@
 
 #include "rd_lift_model.h"
 
-#define EPS_M 1e-10       /* regularization of the Newton matrix (header comment) */
+#define EPS_M      1e-10 /* regularization of the Newton matrix (header comment) */
 #define NEWTON_MAX 60
-#define RES_TOL 1e-9      /* converged: residual below this x p0 x (bore point area) */
+#define RES_TOL    1e-9 /* converged: residual below this x p0 x (bore point area) */
 
 int rd_lift_bore_distorted(const rd_lift_bore *b, double ring_diameter)
 {

@@ -58,13 +58,13 @@
 
 #include "rd_lift_model.h"
 
-#define Q RD_LIFT_Q
-#define V RD_LIFT_V
-#define HMAX_DEG 1.0     /* largest step, crank degrees */
-#define MAX_ORDER 2      /* BDF order bound (header comment) */
-#define STEP_CHUNK 2000  /* segment-steps between monitor calls (header comment) */
-#define N_ROOTS 5
-#define N_COUNTERS 8     /* the solver counters of rd_lift_result */
+#define Q          RD_LIFT_Q
+#define V          RD_LIFT_V
+#define HMAX_DEG   1.0  /* largest step, crank degrees */
+#define MAX_ORDER  2    /* BDF order bound (header comment) */
+#define STEP_CHUNK 2000 /* segment-steps between monitor calls (header comment) */
+#define N_ROOTS    5
+#define N_COUNTERS 8 /* the solver counters of rd_lift_result */
 
 /* One integration's solver objects and bookkeeping. */
 typedef struct driver {
@@ -73,16 +73,16 @@ typedef struct driver {
     double *full;      /* 12 n: the full state of a sample (reduced forms) */
     SUNContext sunctx;
     N_Vector y, abstol;
-    SUNMatrix S;       /* the Newton matrix, owned by LS (second-order forms) */
-    SUNMatrix A;       /* owned: the Newton matrix of a form without blocks */
+    SUNMatrix S; /* the Newton matrix, owned by LS (second-order forms) */
+    SUNMatrix A; /* owned: the Newton matrix of a form without blocks */
     SUNLinearSolver LS;
     rd_lift_newton *nw;
     void *cv;
-    double *seg;       /* n: per-segment lift of the current sample */
-    double deg_per_s;  /* crank degrees per second */
-    long chunk;        /* steps per CVode call between monitor calls */
+    double *seg;           /* n: per-segment lift of the current sample */
+    double deg_per_s;      /* crank degrees per second */
+    long chunk;            /* steps per CVode call between monitor calls */
     long base[N_COUNTERS]; /* counters before the last CVODE restart (plastic landings) */
-    char cv_msg[200];  /* CVODE's last error message */
+    char cv_msg[200];      /* CVODE's last error message */
 } driver;
 
 /* Flank tracking between root returns: the committed flank and the time a
@@ -122,8 +122,8 @@ static int drv_rhs(sunrealtype t, N_Vector y, N_Vector yd, void *user)
 }
 
 static int drv_linsys(sunrealtype t, N_Vector y, N_Vector fy, SUNMatrix S, sunbooleantype jok,
-                      sunbooleantype *jcur, sunrealtype gamma, void *user, N_Vector t1,
-                      N_Vector t2, N_Vector t3)
+                      sunbooleantype *jcur, sunrealtype gamma, void *user, N_Vector t1, N_Vector t2,
+                      N_Vector t3)
 {
     (void)fy;
     (void)S;
@@ -211,8 +211,7 @@ static int cv_configure(driver *d, double rtol, rd_error *err)
     int flag, rootdir[N_ROOTS] = {-1, +1, -1, +1, 0};
     if ((flag = CVodeSetErrHandlerFn(d->cv, cv_silent, d)) ||
         (flag = CVodeInit(d->cv, drv_rhs, 0.0, d->y)) ||
-        (flag = CVodeSVtolerances(d->cv, rtol, d->abstol)) ||
-        (flag = CVodeSetUserData(d->cv, d)) ||
+        (flag = CVodeSVtolerances(d->cv, rtol, d->abstol)) || (flag = CVodeSetUserData(d->cv, d)) ||
         (flag = CVodeSetLinearSolver(d->cv, d->LS, d->A ? d->A : d->S)) ||
         (flag = d->A ? CVodeSetJacFn(d->cv, drv_jac) : CVodeSetLinSysFn(d->cv, drv_linsys)) ||
         (flag = CVodeSetMaxOrd(d->cv, MAX_ORDER)) ||
@@ -297,8 +296,8 @@ static int push_event(rd_lift_run *o, double deg, int kind, rd_error *err)
 
 /* A seated ring: a leave needs the load to turn away (rf[load] with sign
  * `away`) and then the lift to confirm it (rf[confirm] > 0). */
-static int track_seated(flank_track *tr, const int *rf, int away, int confirm, int kind,
-                        double t, double deg_per_s, rd_lift_run *o, rd_error *err)
+static int track_seated(flank_track *tr, const int *rf, int away, int confirm, int kind, double t,
+                        double deg_per_s, rd_lift_run *o, rd_error *err)
 {
     if (rf[4] == away)
         tr->cand = t;
@@ -361,8 +360,7 @@ static int read_counters(const driver *d, long *c)
         (flag = CVodeGetNumLinSolvSetups(d->cv, &c[3])) ||
         (flag = CVodeGetNumNonlinSolvIters(d->cv, &c[4])) ||
         (flag = CVodeGetNumNonlinSolvConvFails(d->cv, &c[5])) ||
-        (flag = CVodeGetNumErrTestFails(d->cv, &c[6])) ||
-        (flag = CVodeGetNumGEvals(d->cv, &c[7])))
+        (flag = CVodeGetNumErrTestFails(d->cv, &c[6])) || (flag = CVodeGetNumGEvals(d->cv, &c[7])))
         return flag;
     for (int k = 0; k < N_COUNTERS; k++)
         c[k] += d->base[k];
@@ -409,8 +407,8 @@ static int step_error(driver *d, int flag, rd_error *err)
 
 /* Integrates to tout in chunks of d->chunk steps, handling the roots on the
  * way and asking the monitor between chunks (at progress `frac`). */
-static int advance(driver *d, double tout, flank_track *tr, rd_lift_run *o,
-                   const rd_monitor *mon, double frac, rd_error *err)
+static int advance(driver *d, double tout, flank_track *tr, rd_lift_run *o, const rd_monitor *mon,
+                   double frac, rd_error *err)
 {
     double *yy = N_VGetArrayPointer(d->y), t = 0.0;
     for (;;) {
@@ -479,8 +477,8 @@ static void store_sample(driver *d, int k, double deg, double tout, rd_lift_run 
         res->twist[k] = tw / n;
         d->form.loads(d->form.user, tout, yy);
         res->friction_force[k] = c->friction;
-        res->flank[k] = L < c->eps ? RD_FLANK_LOWER
-                                   : (L > c->ca - c->eps ? RD_FLANK_UPPER : RD_FLANK_FREE);
+        res->flank[k] =
+            L < c->eps ? RD_FLANK_LOWER : (L > c->ca - c->eps ? RD_FLANK_UPPER : RD_FLANK_FREE);
     }
     if (setup && setup->sample)
         setup->sample(setup->ctx, tout, yf);

@@ -81,11 +81,11 @@
 
 #include "rd_lift_model.h"
 
-#define ARC_POINTS RD_LIFT_ARC_POINTS
+#define ARC_POINTS   RD_LIFT_ARC_POINTS
 #define FLANK_POINTS RD_LIFT_FLANK_POINTS
-#define Q RD_LIFT_Q
-#define V RD_LIFT_V
-#define dot6 rd_lift_dot6
+#define Q            RD_LIFT_Q
+#define V            RD_LIFT_V
+#define dot6         rd_lift_dot6
 
 static double gas_at(const rd_gas_params *g, const double *val, double deg)
 {
@@ -256,11 +256,11 @@ static void rank1(double *D, double s, const double *a, const double *b)
 /* The time-dependent inputs of all elements at one time, computed once per
  * force call. */
 typedef struct force_env {
-    double sd, acc;          /* piston velocity ds/dt; pseudo-acceleration s'' - g */
-    int tilt;                /* the piston tilts (rd_lift_tilt.c) */
-    double cb, sb, bd, bdd;  /* cos, sin of the tilt; its rate (1/s), acceleration (1/s^2) */
-    double pa, pbh, pbl;     /* gas: above, behind, below, Pa */
-    int gas, dynamic, fric;  /* which elements the scene asks for */
+    double sd, acc;         /* piston velocity ds/dt; pseudo-acceleration s'' - g */
+    int tilt;               /* the piston tilts (rd_lift_tilt.c) */
+    double cb, sb, bd, bdd; /* cos, sin of the tilt; its rate (1/s), acceleration (1/s^2) */
+    double pa, pbh, pbl;    /* gas: above, behind, below, Pa */
+    int gas, dynamic, fric; /* which elements the scene asks for */
 } force_env;
 
 /* One segment's view: its state, its force and local Jacobian blocks (dq,
@@ -353,8 +353,7 @@ static void add_bore(rd_lift_model *c, const force_env *env, seg_view *s, double
         double ur = dot6(b, s->q), urd = dot6(b, s->v), P_d, P_dd;
         if (c->bo_gap) /* a distorted bore: its offset at the point (rd_lift_bore.c) */
             ur -= c->bo_gap[ARC_POINTS * (size_t)s->i + k];
-        double N = c->bo_area *
-                   contact_pressure(c, c->delta_pre + ur, urd, c->c_rad, &P_d, &P_dd);
+        double N = c->bo_area * contact_pressure(c, c->delta_pre + ur, urd, c->c_rad, &P_d, &P_dd);
         add6(s->f, b, c->p0 * c->bo_area - N);
         if (c->energy) {
             book_contact(c, N / c->bo_area, c->delta_pre + ur, urd, c->bo_area);

@@ -30,8 +30,8 @@ typedef struct rd_lift_setup {
     /* Initial state, 12 n values, per segment [q_i (6), v_i (6)] (the state
      * layout of rd_lift.c); borrowed.  NULL: seated at rest (q = v = 0). */
     const double *y0;
-    int piston_fixed;   /* 1: the piston does not move (no inertia pseudo-force) */
-    double ureg_scale;  /* multiplies the friction regularization velocity; 0 = 1 */
+    int piston_fixed;  /* 1: the piston does not move (no inertia pseudo-force) */
+    double ureg_scale; /* multiplies the friction regularization velocity; 0 = 1 */
     /* Called at every output sample with the time (s) and the state (12 n);
      * NULL: not called. */
     void (*sample)(void *ctx, double t, const double *y);

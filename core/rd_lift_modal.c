@@ -41,20 +41,21 @@
 
 #include "rd_lift_model.h"
 
-#define RIGID_MODES 6
-#define CORRECTIONS 4      /* shapes added to the modes (correction_shapes) */
+#define RIGID_MODES    6
+#define CORRECTIONS    4    /* shapes added to the modes (correction_shapes) */
 #define SHIFT_FRACTION 1e-6 /* sigma / first elastic eigenvalue of the static solves */
-#define GS_DROP 1e-6        /* a correction shape whose M-norm falls below this\n                             * fraction by orthogonalisation is in the span already */
+#define GS_DROP \
+    1e-6 /* a correction shape whose M-norm falls below this\n                             * fraction by orthogonalisation is in the span already */
 
 typedef struct modal {
     rd_lift_model *m;
-    int r;         /* 6 + elastic modes */
-    size_t N;      /* 6 n */
-    double *Phi;   /* N x r, row-major: row 6 i + k = segment i's DOF k */
-    double *lam;   /* r: w_a^2, 1/s^2 */
-    double *scale; /* r: largest displacement per unit coordinate, m */
-    double *full;  /* 12 n: the expanded state */
-    double *T;     /* 6 x r scratch */
+    int r;           /* 6 + elastic modes */
+    size_t N;        /* 6 n */
+    double *Phi;     /* N x r, row-major: row 6 i + k = segment i's DOF k */
+    double *lam;     /* r: w_a^2, 1/s^2 */
+    double *scale;   /* r: largest displacement per unit coordinate, m */
+    double *full;    /* 12 n: the expanded state */
+    double *T;       /* 6 x r scratch */
     double *Gq, *Gv; /* r x r */
 } modal;
 
@@ -136,8 +137,8 @@ static void project_block(modal *s, int i, const double *D, double *G)
         }
 }
 
-static int modal_jac(sunrealtype t, N_Vector yv, N_Vector fy, SUNMatrix J, void *user,
-                     N_Vector t1, N_Vector t2, N_Vector t3)
+static int modal_jac(sunrealtype t, N_Vector yv, N_Vector fy, SUNMatrix J, void *user, N_Vector t1,
+                     N_Vector t2, N_Vector t3)
 {
     (void)fy;
     (void)t1;
@@ -206,8 +207,8 @@ static void project_state(const modal *s, const double *full, double *y)
 
 /* Tolerances (header comment); the seated ring at rest, or the projection
  * of a given full initial state. */
-static int modal_initial(void *user, const rd_lift_setup *setup, double atol, double *y,
-                         double *at, rd_error *err)
+static int modal_initial(void *user, const rd_lift_setup *setup, double atol, double *y, double *at,
+                         rd_error *err)
 {
     (void)err;
     modal *s = user;
@@ -265,8 +266,8 @@ static int modal_matrix(const rd_lift_model *m, double *A, double *L, rd_error *
     /* rows: L_i^-1 block; columns: L_j^-T, both by triangular solves */
     int info = 0;
     for (int i = 0; i < m->n && !info; i++)
-        info = LAPACKE_dtrtrs(LAPACK_ROW_MAJOR, 'L', 'N', 'N', 6, (lapack_int)N,
-                              L + 36 * (size_t)i, 6, A + 6 * (size_t)i * N, (lapack_int)N);
+        info = LAPACKE_dtrtrs(LAPACK_ROW_MAJOR, 'L', 'N', 'N', 6, (lapack_int)N, L + 36 * (size_t)i,
+                              6, A + 6 * (size_t)i * N, (lapack_int)N);
     if (!info) { /* A := A L^-T: each row's block j solves x L_j^T = a, i.e. L_j x = a */
         double *col = malloc(N * sizeof *col);
         if (!col)
@@ -274,8 +275,8 @@ static int modal_matrix(const rd_lift_model *m, double *A, double *L, rd_error *
         for (size_t row = 0; row < N && !info; row++) {
             for (int j = 0; j < m->n && !info; j++) {
                 memcpy(col, A + row * N + 6 * (size_t)j, 6 * sizeof *col);
-                info = LAPACKE_dtrtrs(LAPACK_ROW_MAJOR, 'L', 'N', 'N', 6, 1,
-                                      L + 36 * (size_t)j, 6, col, 1);
+                info = LAPACKE_dtrtrs(LAPACK_ROW_MAJOR, 'L', 'N', 'N', 6, 1, L + 36 * (size_t)j, 6,
+                                      col, 1);
                 memcpy(A + row * N + 6 * (size_t)j, col, 6 * sizeof *col);
             }
         }
@@ -302,8 +303,8 @@ static int lowest_modes(const rd_lift_model *m, int r0, double *Z, rd_error *err
     }
     if ((rc = modal_matrix(m, A, L, err)))
         goto out;
-    int info = LAPACKE_dsyevr(LAPACK_ROW_MAJOR, 'V', 'I', 'U', (lapack_int)N, A, (lapack_int)N,
-                              0.0, 0.0, 1, r0, 0.0, &found, w, Z, r0, supp);
+    int info = LAPACKE_dsyevr(LAPACK_ROW_MAJOR, 'V', 'I', 'U', (lapack_int)N, A, (lapack_int)N, 0.0,
+                              0.0, 1, r0, 0.0, &found, w, Z, r0, supp);
     if (info != 0 || found != r0) {
         rc = rd_error_set(err, RD_ENUMERIC, "",
                           "The lift model's modal eigen-solve failed (LAPACK info %d, %d of %d "
@@ -561,10 +562,17 @@ int rd_lift_modal_open(rd_lift_model *m, int modes, rd_lift_form *form, rd_error
         return rd_error_set(err, RD_ENOMEM, "", "Out of memory for the modal lift model.");
     s->m = m;
     s->N = 6 * (size_t)n;
-    *form = (rd_lift_form){.name = "modal", .dense = 1, .user = s, .m = m,
-                           .rhs = modal_rhs, .jac = modal_jac, .lift = modal_lift,
-                           .loads = modal_loads, .expand = modal_expand,
-                           .initial = modal_initial, .fd_step = modal_fd_step,
+    *form = (rd_lift_form){.name = "modal",
+                           .dense = 1,
+                           .user = s,
+                           .m = m,
+                           .rhs = modal_rhs,
+                           .jac = modal_jac,
+                           .lift = modal_lift,
+                           .loads = modal_loads,
+                           .expand = modal_expand,
+                           .initial = modal_initial,
+                           .fd_step = modal_fd_step,
                            .close = rd_lift_modal_close};
     int rc = modal_build(s, modes, err); /* on failure the caller closes the form */
     form->N = 2 * (sunindextype)s->r;

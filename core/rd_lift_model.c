@@ -27,13 +27,13 @@
 
 #include "rd_lift_model.h"
 
-#define ARC_POINTS RD_LIFT_ARC_POINTS
-#define FLANK_POINTS RD_LIFT_FLANK_POINTS
-#define Q RD_LIFT_Q
-#define V RD_LIFT_V
+#define ARC_POINTS      RD_LIFT_ARC_POINTS
+#define FLANK_POINTS    RD_LIFT_FLANK_POINTS
+#define Q               RD_LIFT_Q
+#define V               RD_LIFT_V
 #define SMOOTH_FRACTION 1e-4 /* d0 / c_a: quadratic start of the penalty */
-#define EVENT_FRACTION 1e-2  /* eps / c_a: smallest hop that is a flank change */
-#define DAMPING_RATIO 5.0    /* zeta of the contacts: landings do not rebound */
+#define EVENT_FRACTION  1e-2 /* eps / c_a: smallest hop that is a flank change */
+#define DAMPING_RATIO   5.0  /* zeta of the contacts: landings do not rebound */
 
 void rd_lift_model_cleanup(rd_lift_model *c)
 {
@@ -100,8 +100,7 @@ static int model_alloc(rd_lift_model *c, rd_error *err)
     c->Dv = malloc(36 * n * sizeof *c->Dv);
     if (!c->Minv || !c->Mez || !c->fl_d || !c->bo_d || !c->bo_e || !c->ba_d || !c->cen_d ||
         !c->e_r || !c->e_t || !c->qbuf || !c->fbuf || !c->MK || !c->Dq || !c->Dv)
-        return rd_error_set(err, RD_ENOMEM, "", "Out of memory for a %d-segment lift model.",
-                            c->n);
+        return rd_error_set(err, RD_ENOMEM, "", "Out of memory for a %d-segment lift model.", c->n);
     return RD_OK;
 }
 
@@ -285,8 +284,8 @@ static void full_blocks(void *user, double t, const double *y, double *A, double
 /* Jacobian d(ydot)/dy as a band matrix (MU, ML) from the blocks (the
  * Jacobian check's view of what the Newton solver uses):
  *   d(dq_i/dt)/dv_i = I,  d(dv_i/dt)/dq_j = A_ij,  d(dv_i/dt)/dv_i = B_i. */
-int rd_lift_cv_jac(sunrealtype t, N_Vector yv, N_Vector fy, SUNMatrix J, void *user,
-                   N_Vector t1, N_Vector t2, N_Vector t3)
+int rd_lift_cv_jac(sunrealtype t, N_Vector yv, N_Vector fy, SUNMatrix J, void *user, N_Vector t1,
+                   N_Vector t2, N_Vector t3)
 {
     (void)fy;
     (void)t1;
@@ -367,8 +366,8 @@ static void full_impact(void *user, double *y, int upper)
 
 /* atol on the translations (m), atol / R on the rotations, and atol w_v on
  * their rates (rd_lift_driver.c); the seated ring at rest unless given. */
-static int full_initial(void *user, const rd_lift_setup *setup, double atol, double *y,
-                        double *at, rd_error *err)
+static int full_initial(void *user, const rd_lift_setup *setup, double atol, double *y, double *at,
+                        rd_error *err)
 {
     (void)err;
     const rd_lift_model *c = user;

@@ -56,20 +56,20 @@
 #ifndef RD_LIFT_MODEL_H
 #define RD_LIFT_MODEL_H
 
+#include <cvode/cvode.h>
 #include <nvector/nvector_serial.h>
 #include <sundials/sundials_linearsolver.h>
 #include <sundials/sundials_matrix.h>
-#include <cvode/cvode.h>
 
 #include "rd_internal.h"
 #include "rd_lift.h"
 #include "rd_lift_internal.h"
 
-#define RD_LIFT_GRAVITY 9.80665
-#define RD_LIFT_ARC_POINTS 3 /* contact positions along a segment's arc */
+#define RD_LIFT_GRAVITY      9.80665
+#define RD_LIFT_ARC_POINTS   3 /* contact positions along a segment's arc */
 #define RD_LIFT_FLANK_POINTS (2 * RD_LIFT_ARC_POINTS)
-#define RD_LIFT_MU 11        /* upper half bandwidth of the Jacobian */
-#define RD_LIFT_ML 23        /* lower half bandwidth */
+#define RD_LIFT_MU           11 /* upper half bandwidth of the Jacobian */
+#define RD_LIFT_ML           23 /* lower half bandwidth */
 
 /* State access, cvRoberts style. */
 #define RD_LIFT_Q(y, i) ((y) + 12 * (size_t)(i))
@@ -81,34 +81,34 @@ typedef struct rd_lift_model {
     const rd_ring *ring;
     const rd_lift_params *p;
     int n, piston_fixed;
-    double omega;          /* crank speed, rad/s */
-    double ca, cr;         /* axial and radial clearances */
+    double omega;  /* crank speed, rad/s */
+    double ca, cr; /* axial and radial clearances */
     double k, d0, c_flank, c_rad;
-    double eps;            /* event threshold on the mean lift */
-    double g_on;           /* gravity, m/s^2, or 0 */
-    double p0, delta_pre;  /* pretension pressure and bore preload penetration */
+    double eps;           /* event threshold on the mean lift */
+    double g_on;          /* gravity, m/s^2, or 0 */
+    double p0, delta_pre; /* pretension pressure and bore preload penetration */
     double ureg, mu, eta, so_lim, kh, h, L_run;
-    int sq_on;             /* the squeeze-film landing law (rd_lift_landing.c) */
+    int sq_on;                        /* the squeeze-film landing law (rd_lift_landing.c) */
     double sq_coef, sq_hmin, sq_vreg; /* mu b^2 (Pa s m^2), h_min (m), v_r (m/s) */
     rd_band K;
-    double *Minv;          /* n x 36 row-major */
-    double *Mez;           /* n x 6: M_i e_z */
-    double *fl_d;          /* n x FLANK_POINTS x 2: in-plane offsets of flank points */
+    double *Minv; /* n x 36 row-major */
+    double *Mez;  /* n x 6: M_i e_z */
+    double *fl_d; /* n x FLANK_POINTS x 2: in-plane offsets of flank points */
     double fl_area[RD_LIFT_FLANK_POINTS];
-    double *bo_d, *bo_e;   /* n x ARC_POINTS x 2: bore point offsets, radial unit */
-    double *ba_d;          /* n x ARC_POINTS x 2: back point offsets */
+    double *bo_d, *bo_e;     /* n x ARC_POINTS x 2: bore point offsets, radial unit */
+    double *ba_d;            /* n x ARC_POINTS x 2: back point offsets */
     double bo_area, ba_area; /* per point */
-    double *cen_d;         /* n x 2: face centroid offsets */
-    double *bo_gap;        /* n x ARC_POINTS: the bore's outward offset at each bore
+    double *cen_d;           /* n x 2: face centroid offsets */
+    double *bo_gap;          /* n x ARC_POINTS: the bore's outward offset at each bore
                             * point (rd_lift_bore.c), NULL for the round bore */
-    double *e_r;           /* n x 2: segment radial unit */
-    double *e_t;           /* n x 2: segment tangential unit */
+    double *e_r;             /* n x 2: segment radial unit */
+    double *e_t;             /* n x 2: segment tangential unit */
     double face_area, back_chord_area;
-    double *qbuf, *fbuf;   /* 12 n and 6 n scratch */
-    double *MK;            /* n x 3 x 36: -M_i^-1 K_ij, j = i-1, i, i+1 */
-    double *Dq, *Dv;       /* n x 36: local force derivatives (Jacobian) */
-    double friction;       /* total axial friction of the last force call, N */
-    double fz_ext;         /* total axial force on the ring except the flanks, N */
+    double *qbuf, *fbuf;    /* 12 n and 6 n scratch */
+    double *MK;             /* n x 3 x 36: -M_i^-1 K_ij, j = i-1, i, i+1 */
+    double *Dq, *Dv;        /* n x 36: local force derivatives (Jacobian) */
+    double friction;        /* total axial friction of the last force call, N */
+    double fz_ext;          /* total axial force on the ring except the flanks, N */
     rd_lift_energy *energy; /* non-NULL: the forces accumulate the bookkeeping */
 } rd_lift_model;
 
@@ -150,8 +150,8 @@ void rd_lift_forces_segment(rd_lift_model *m, double t, int i, const double *q, 
  * rhs: ydot = (v, M^-1 (f - K q)) per segment; 1 (recoverable) if not
  * finite.  jac: d(ydot)/dy into the band matrix J (RD_LIFT_MU, RD_LIFT_ML). */
 int rd_lift_cv_rhs(sunrealtype t, N_Vector y, N_Vector yd, void *user);
-int rd_lift_cv_jac(sunrealtype t, N_Vector y, N_Vector fy, SUNMatrix J, void *user,
-                   N_Vector t1, N_Vector t2, N_Vector t3);
+int rd_lift_cv_jac(sunrealtype t, N_Vector y, N_Vector fy, SUNMatrix J, void *user, N_Vector t1,
+                   N_Vector t2, N_Vector t3);
 
 /* Mean lift L (mean over segments of the bottom face's axial position);
  * per-segment values into seg (n values) when not NULL. */
@@ -166,13 +166,13 @@ double rd_lift_accel_scale(const rd_ring_params *rp, const rd_lift_params *p);
  * 12 n states, or a reduced one (rd_lift_rigid.c) built on the same model's
  * geometry and force elements.  `user` is passed to every function. */
 typedef struct rd_lift_form {
-    const char *name;  /* "full", "rigid" */
-    sunindextype N;    /* number of states */
-    int dense;         /* 1: dense Newton matrix; 0: band (RD_LIFT_MU, RD_LIFT_ML) */
+    const char *name; /* "full", "rigid" */
+    sunindextype N;   /* number of states */
+    int dense;        /* 1: dense Newton matrix; 0: band (RD_LIFT_MU, RD_LIFT_ML) */
     void *user;
-    rd_lift_model *m;  /* the model whose constants (ca, eps, omega, p) apply */
+    rd_lift_model *m; /* the model whose constants (ca, eps, omega, p) apply */
     CVRhsFn rhs;
-    CVLsJacFn jac;     /* the Jacobian as a matrix (the Jacobian check only) */
+    CVLsJacFn jac; /* the Jacobian as a matrix (the Jacobian check only) */
     /* The Newton system in second-order form (rd_lift_newton.c): the state
      * is N / (2 block) blocks of [q (block values), v (block values)] with
      * q' = v; `blocks` puts at (t, y) d(v')/dq, row block i's blocks i-1, i,
@@ -191,8 +191,8 @@ typedef struct rd_lift_form {
      * ring's axial velocity towards the flank (upper: 1 the upper flank). */
     void (*impact)(void *user, double *y, int upper);
     /* the initial state and absolute tolerances (atol on translations, m) */
-    int (*initial)(void *user, const rd_lift_setup *setup, double atol, double *y,
-                   double *abstol, rd_error *err);
+    int (*initial)(void *user, const rd_lift_setup *setup, double atol, double *y, double *abstol,
+                   rd_error *err);
     /* the central-difference step of state j for the Jacobian check; NULL:
      * the driver's rule for the full and rigid layouts */
     double (*fd_step)(void *user, sunindextype j);
@@ -246,8 +246,8 @@ int rd_lift_form_open(rd_lift_model *m, int model, int modes, rd_lift_form *form
  * (owned by the caller after the call, also on failure) (rd_lift_driver.c). */
 typedef struct rd_lift_run {
     double rtol, atol;
-    int modes;           /* elastic modes of the modal model */
-    int dof;             /* out: degrees of freedom integrated (states / 2) */
+    int modes; /* elastic modes of the modal model */
+    int dof;   /* out: degrees of freedom integrated (states / 2) */
     /* out, when /numerics/max_steps ran out (RD_ELIMIT): the samples stored
      * (0 .. done - 1) and the crank angle the integrator reached, deg */
     int done;

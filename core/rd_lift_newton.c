@@ -37,13 +37,13 @@
 
 struct rd_lift_newton {
     const rd_lift_form *form;
-    int nb, bs;            /* blocks and block size */
-    sunindextype N2;       /* nb bs: unknowns of S */
-    double *A, *B;         /* nb x 3 x bs^2 and nb x bs^2, the form's blocks */
-    double gamma;          /* of the last set-up */
-    SUNMatrix S;           /* band (2 bs - 1, 2 bs - 1), owned */
-    SUNLinearSolver lu;    /* SUNDIALS band LU of S, owned */
-    N_Vector r, xv;        /* N2 scratch */
+    int nb, bs;         /* blocks and block size */
+    sunindextype N2;    /* nb bs: unknowns of S */
+    double *A, *B;      /* nb x 3 x bs^2 and nb x bs^2, the form's blocks */
+    double gamma;       /* of the last set-up */
+    SUNMatrix S;        /* band (2 bs - 1, 2 bs - 1), owned */
+    SUNLinearSolver lu; /* SUNDIALS band LU of S, owned */
+    N_Vector r, xv;     /* N2 scratch */
 };
 
 /* S = I - gamma B - gamma^2 A into its band storage (all of it written). */

@@ -43,10 +43,10 @@
 
 typedef struct rigid {
     rd_lift_model *m;
-    double phi[NX][6];    /* segment 0's displacement per unit z, theta, r */
-    int idx[NX][6], nnz[NX]; /* the non-zero entries of each phi */
-    double Minv[NX * NX]; /* inverse generalized mass, row-major */
-    double k_twist;       /* N m / rad: phi_theta^T K phi_theta */
+    double phi[NX][6];                       /* segment 0's displacement per unit z, theta, r */
+    int idx[NX][6], nnz[NX];                 /* the non-zero entries of each phi */
+    double Minv[NX * NX];                    /* inverse generalized mass, row-major */
+    double k_twist;                          /* N m / rad: phi_theta^T K phi_theta */
     double q[6], v[6], f[6], Dq[36], Dv[36]; /* segment 0 scratch */
 } rigid;
 
@@ -138,8 +138,8 @@ static void rigid_blocks(void *user, double t, const double *y, double *A, doubl
 
 /* The Jacobian as a dense 6x6 matrix from the blocks (the Jacobian check's
  * view of what the Newton solver uses). */
-static int rigid_jac(sunrealtype t, N_Vector yv, N_Vector fy, SUNMatrix J, void *user,
-                     N_Vector t1, N_Vector t2, N_Vector t3)
+static int rigid_jac(sunrealtype t, N_Vector yv, N_Vector fy, SUNMatrix J, void *user, N_Vector t1,
+                     N_Vector t2, N_Vector t3)
 {
     (void)fy;
     (void)t1;
@@ -219,8 +219,8 @@ static void rigid_expand(void *user, const double *y, double *full)
 
 /* Tolerances as the full model's (atol on z and r, atol / R on theta, and
  * atol w_v on the rates); the ring starts seated at rest. */
-static int rigid_initial(void *user, const rd_lift_setup *setup, double atol, double *y,
-                         double *at, rd_error *err)
+static int rigid_initial(void *user, const rd_lift_setup *setup, double atol, double *y, double *at,
+                         rd_error *err)
 {
     rigid *r = user;
     const rd_lift_model *m = r->m;

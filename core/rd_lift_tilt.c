@@ -59,7 +59,8 @@ void rd_lift_tilt_at(const rd_engine_params *e, double deg, double *beta, double
     *beta += (2 * s3 - 3 * s2 + 1) * ya + (s3 - 2 * s2 + s) * ma + (-2 * s3 + 3 * s2) * yb +
              (s3 - s2) * mb;
     *d1 = ((6 * s2 - 6 * s) * ya + (3 * s2 - 4 * s + 1) * ma + (-6 * s2 + 6 * s) * yb +
-           (3 * s2 - 2 * s) * mb) / h;
+           (3 * s2 - 2 * s) * mb) /
+          h;
     *d2 = ((12 * s - 6) * ya + (6 * s - 4) * ma + (-12 * s + 6) * yb + (6 * s - 2) * mb) / (h * h);
 }
 

@@ -42,8 +42,8 @@ static void map_physics(gcase *c, json_t *ph)
     json_t *fr = json_object_get(ph, "friction");
     if (fr) {
         const char *m = json_string_value(json_object_get(fr, "model"));
-        c->p.friction.model = !m                      ? RD_FRICTION_NONE
-                              : !strcmp(m, "coulomb") ? RD_FRICTION_COULOMB
+        c->p.friction.model = !m                       ? RD_FRICTION_NONE
+                              : !strcmp(m, "coulomb")  ? RD_FRICTION_COULOMB
                               : !strcmp(m, "stribeck") ? RD_FRICTION_STRIBECK
                                                        : RD_FRICTION_NONE;
         c->p.friction.coefficient = num(fr, "coefficient", c->p.friction.coefficient);
@@ -96,8 +96,8 @@ static int load_example(gcase *c, const char *dir, const char *file)
     c->p.engine.rod_length = num(e, "rod_length", c->p.engine.rod_length);
     c->p.engine.cycles = num(e, "cycles", c->p.engine.cycles);
     const char *kin = json_string_value(json_object_get(e, "kinematics"));
-    c->p.engine.kinematics = kin && !strcmp(kin, "approximate") ? RD_KINEMATICS_APPROXIMATE
-                                                               : RD_KINEMATICS_EXACT;
+    c->p.engine.kinematics =
+        kin && !strcmp(kin, "approximate") ? RD_KINEMATICS_APPROXIMATE : RD_KINEMATICS_EXACT;
     json_t *g = json_object_get(s, "groove");
     c->p.groove.axial_clearance = num(g, "axial_clearance", c->p.groove.axial_clearance);
     c->p.groove.radial_clearance = num(g, "radial_clearance", c->p.groove.radial_clearance);

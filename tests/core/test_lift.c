@@ -21,8 +21,8 @@
 #include "rd_lift_internal.h"
 #include "rd_modal.h"
 
-#define PI 3.14159265358979323846
-#define G0 9.80665
+#define PI     3.14159265358979323846
+#define G0     9.80665
 #define MAX_EV 64
 
 typedef struct evlist {
@@ -277,8 +277,8 @@ static void test_rigid_limit(void)
     rd_ring_params_default(&rp);
     for (int run = 0; run < 6; run++) {
         int grav = run % 2, model = run < 2   ? RD_LIFT_MODEL_FULL
-                                   : run < 4 ? RD_LIFT_MODEL_RIGID
-                                             : RD_LIFT_MODEL_MODAL;
+                                    : run < 4 ? RD_LIFT_MODEL_RIGID
+                                              : RD_LIFT_MODEL_MODAL;
         rd_lift_params p;
         lift_params(&p, 1000.0, 1.0);
         p.gravity = grav;
@@ -458,8 +458,9 @@ static void test_free_vibration(void)
     if (mode->kind != RD_MODE_OUT_OF_PLANE)
         mode = &mr.modes[1];
     double *y0 = calloc(12 * (size_t)n, sizeof *y0);
-    energy_ctx ec = {ring, n, calloc(6 * (size_t)n, sizeof(double)),
-                     calloc(6 * (size_t)n, sizeof(double)), 0, 0, 0};
+    energy_ctx ec = {
+        ring, n, calloc(6 * (size_t)n, sizeof(double)), calloc(6 * (size_t)n, sizeof(double)), 0,
+        0,    0};
     double drift[3], periods = 0.0;
     for (int j = 0; j < 3; j++) { /* full at rtol 1e-8 and 1e-6, modal (6 modes) at 1e-8 */
         rd_lift_params p;
@@ -504,8 +505,9 @@ static void test_free_vibration(void)
     CHECK(drift[2] < 1e-3, "modal: energy drift %g at rtol 1e-8", drift[2]);
     CHECK(drift[1] > 10.0 * drift[0], "energy drift %g at rtol 1e-6 not 10x above %g at 1e-8",
           drift[1], drift[0]);
-    fprintf(stderr, "    free vibration (%.0f Hz, %.1f periods): energy drift %.3g (rtol 1e-8), "
-                    "%.3g (rtol 1e-6); modal (6 modes, rtol 1e-8) %.3g\n",
+    fprintf(stderr,
+            "    free vibration (%.0f Hz, %.1f periods): energy drift %.3g (rtol 1e-8), "
+            "%.3g (rtol 1e-6); modal (6 modes, rtol 1e-8) %.3g\n",
             mode->frequency_hz, periods, drift[0], drift[1], drift[2]);
     rd_modal_result_cleanup(&mr);
     free(y0);
@@ -628,11 +630,8 @@ static void test_energy_friction(void)
         y0[12 * i + 2] = 0.5 * ca;
         y0[12 * i + 8] = -V0;
     }
-    rd_lift_setup su = {.y0 = y0,
-                        .piston_fixed = 1,
-                        .sample = balance_state,
-                        .energy = balance_energy,
-                        .ctx = bc};
+    rd_lift_setup su = {
+        .y0 = y0, .piston_fixed = 1, .sample = balance_state, .energy = balance_energy, .ctx = bc};
     rd_lift_result r;
     int rc = solve(&rp, n, &p, &su, &r, &err);
     CHECK(rc == RD_OK, "energy with friction: %s", err.message);
@@ -642,10 +641,8 @@ static void test_energy_friction(void)
             lo = fmin(lo, r.lift_min[k]);
             hi = fmax(hi, r.lift_max[k]);
         }
-        CHECK(lo > 0.1 * ca && hi < 0.9 * ca, "the sliding ring touched a flank: %g..%g", lo,
-              hi);
-        CHECK(bc->count == r.samples, "energy callback: %d samples of %d", bc->count,
-              r.samples);
+        CHECK(lo > 0.1 * ca && hi < 0.9 * ca, "the sliding ring touched a flank: %g..%g", lo, hi);
+        CHECK(bc->count == r.samples, "energy callback: %d samples of %d", bc->count, r.samples);
         int S = bc->count, K = 2 * ((S - 1) / 2); /* last even sample, for the 2h rule */
         double e0 = bc->e[0], ekin0 = 0.5 * m * V0 * V0;
         double drop = e0 - bc->e[S - 1], worst = 0.0, wf = 0.0, wd = 0.0;
@@ -657,16 +654,18 @@ static void test_energy_friction(void)
         double w1 = balance_work(bc, bc->pf, K, 1), w2 = balance_work(bc, bc->pf, K, 2);
         double quad = fabs(w1 - w2) / 3.0;
         /* with the Richardson-corrected work the time integration error remains */
-        double integ = fabs(bc->e[K] - e0 - (w1 + (w1 - w2) / 3.0) - balance_work(bc, bc->pd, K, 1));
+        double integ =
+            fabs(bc->e[K] - e0 - (w1 + (w1 - w2) / 3.0) - balance_work(bc, bc->pd, K, 1));
         double miss = fabs(bc->e[S - 1] - e0 - wd); /* the balance without friction */
         CHECK(worst < 2e-5 * drop, "energy balance with friction: error %.3g J of a drop %.3g J",
               worst, drop);
         CHECK(quad < 1e-5 * drop, "friction work quadrature error %.3g J of %.3g J", quad, drop);
-        CHECK(miss > 0.99 * drop, "without the friction work the balance misses only %.3g J",
-              miss);
+        CHECK(miss > 0.99 * drop, "without the friction work the balance misses only %.3g J", miss);
         CHECK_REL(drop, ekin0, 1e-2, "energy drop vs 1/2 m V0^2");
-        CHECK(integ < 1e-5 * drop, "energy balance with the corrected friction work: error "
-              "%.3g J of a drop %.3g J", integ, drop);
+        CHECK(integ < 1e-5 * drop,
+              "energy balance with the corrected friction work: error "
+              "%.3g J of a drop %.3g J",
+              integ, drop);
         CHECK(fabs(bc->pf[S - 1]) < 1e-2 * decel * m * V0,
               "the ring did not stop: friction power %g W at the end", bc->pf[S - 1]);
         CHECK_ABS(r.lift[S - 1], 0.25 * ca, 0.02 * ca, "lift after the slide (c_a/2 - c_a/4)");
@@ -725,8 +724,7 @@ static void test_jacobian(void)
          * in its regularized range */
         int rc = rd_lift_jacobian_check(&rp, n, &p, 3e-6, y, &e, &err);
         CHECK(rc == RD_OK, "jacobian check: %s", err.message);
-        CHECK(e < 1e-4, "friction model %d: analytic Jacobian differs by %g (relative)", model,
-              e);
+        CHECK(e < 1e-4, "friction model %d: analytic Jacobian differs by %g (relative)", model, e);
         free(y);
     }
 }
@@ -791,8 +789,7 @@ static void test_thesis(void)
             for (int z = 0; z < 2; z++)
                 dmin = fmin(dmin, fabs(best - zeros[z]));
             if (e->crank_deg > 1e-9)
-                CHECK(dmin < 0.5, "leave at %.3f deg is not at a sign change of s''",
-                      e->crank_deg);
+                CHECK(dmin < 0.5, "leave at %.3f deg is not at a sign change of s''", e->crank_deg);
             leaves++;
         } else if (i > 0) {
             double gap = e->crank_deg - r.events[i - 1].crank_deg;
@@ -823,8 +820,7 @@ static void test_thesis(void)
     /* ... and without gravity the same engine does lift it (the check can fail) */
     p.gravity = 0;
     rc = solve(&rp, 8, &p, NULL, &r, &err);
-    CHECK(rc == RD_OK && r.n_events > 0, "40 rpm without gravity: %d flank changes",
-          r.n_events);
+    CHECK(rc == RD_OK && r.n_events > 0, "40 rpm without gravity: %d flank changes", r.n_events);
     rd_lift_result_cleanup(&r);
 
     /* 3.5.3: a gas pressure above (and behind) the ring holds it down: 5 bar
@@ -872,13 +868,14 @@ static void check_outcome(int rc, const rd_lift_result *r, const rd_error *err, 
     if (rc == RD_OK) {
         int ok = 1;
         for (int k = 0; k < r->samples; k++)
-            ok &= isfinite(r->lift[k]) && r->lift_min[k] > -0.1 * ca &&
-                  r->lift_max[k] < 1.1 * ca;
+            ok &= isfinite(r->lift[k]) && r->lift_min[k] > -0.1 * ca && r->lift_max[k] < 1.1 * ca;
         CHECK(ok, "%s: result not finite or outside the groove", what);
     } else {
         CHECK(rc == RD_ENOCONV || rc == RD_ELIMIT, "%s: unexpected status %d", what, rc);
-        CHECK(strstr(err->message, "crank angle") != NULL, "%s: message without the crank "
-              "angle: %s", what, err->message);
+        CHECK(strstr(err->message, "crank angle") != NULL,
+              "%s: message without the crank "
+              "angle: %s",
+              what, err->message);
     }
 }
 
@@ -918,8 +915,9 @@ static void test_stiffness(void)
         }
         rd_lift_result_cleanup(&r);
     }
-    fprintf(stderr, "    stiffness k0 = %.3g Pa/m: largest event shift over k0/10..10 k0 %.4f deg\n",
-            k0, worst);
+    fprintf(stderr,
+            "    stiffness k0 = %.3g Pa/m: largest event shift over k0/10..10 k0 %.4f deg\n", k0,
+            worst);
 }
 
 static void test_extremes(void)
@@ -931,9 +929,12 @@ static void test_extremes(void)
         double rpm, cycles, ca;
         int n;
     } cases[] = {
-        {"1 rpm", 1.0, 0.1, 3e-5, 8},       {"20000 rpm", 20000.0, 0.25, 3e-5, 8},
-        {"clearance 1e-6", 1000.0, 0.25, 1e-6, 8}, {"clearance 1e-3", 1000.0, 0.25, 1e-3, 8},
-        {"n = 4", 1000.0, 0.25, 3e-5, 4},   {"n = 500", 1000.0, 0.03, 3e-5, 500},
+        {"1 rpm", 1.0, 0.1, 3e-5, 8},
+        {"20000 rpm", 20000.0, 0.25, 3e-5, 8},
+        {"clearance 1e-6", 1000.0, 0.25, 1e-6, 8},
+        {"clearance 1e-3", 1000.0, 0.25, 1e-3, 8},
+        {"n = 4", 1000.0, 0.25, 3e-5, 4},
+        {"n = 500", 1000.0, 0.03, 3e-5, 500},
     };
     for (size_t j = 0; j < sizeof cases / sizeof cases[0]; j++) {
         rd_lift_params p;
@@ -1077,10 +1078,10 @@ static void test_validation(void)
     rd_error err;
     rd_error_init(&err);
     CHECK(rd_lift_validate(&p, &rp, 20, &err) == RD_OK, "defaults: %s", err.message);
-#define BAD(field, value, path, code) \
-    do {                              \
-        q = p;                        \
-        q.field = value;              \
+#define BAD(field, value, path, code)       \
+    do {                                    \
+        q = p;                              \
+        q.field = value;                    \
         expect_invalid(&q, 20, path, code); \
     } while (0)
     BAD(engine.speed_rpm, 0.5, "/engine/speed_rpm", RD_EINVAL);
@@ -1148,11 +1149,11 @@ static double now(void)
     return t.tv_sec + 1e-9 * t.tv_nsec;
 }
 
-#define RUN(f)                                                         \
-    do {                                                               \
-        double t0_ = now();                                            \
-        f();                                                           \
-        fprintf(stderr, "  %-22s %.2f s\n", #f, now() - t0_);          \
+#define RUN(f)                                                \
+    do {                                                      \
+        double t0_ = now();                                   \
+        f();                                                  \
+        fprintf(stderr, "  %-22s %.2f s\n", #f, now() - t0_); \
     } while (0)
 
 int main(void)

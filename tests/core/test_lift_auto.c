@@ -38,8 +38,8 @@ static void gas_tables(rd_lift_params *p)
         gas_tab[2][i] = 58e5 * exp(-pow((d - 22.0) / 25.0, 2));
         gas_tab[3][i] = 0.3 * 58e5 * exp(-pow((d - 40.0) / 30.0, 2));
     }
-    p->gas = (rd_gas_params){GAS_POINTS, gas_tab[0], gas_tab[1], gas_tab[2], gas_tab[3],
-                             RD_GAS_AREA_DYNAMIC};
+    p->gas = (rd_gas_params){GAS_POINTS, gas_tab[0], gas_tab[1],
+                             gas_tab[2], gas_tab[3], RD_GAS_AREA_DYNAMIC};
 }
 
 static double event_diff(const rd_lift_result *a, const rd_lift_result *b)
@@ -95,12 +95,10 @@ static void test_battery_frictionless(void)
                 rd_error err;
                 scene(&p, rpms[a], cas[c], g, RD_FRICTION_NONE, 1e-8);
                 int rc = run(&p, RD_LIFT_MODEL_AUTO, &ra, &err);
-                CHECK(rc == RD_OK, "auto %g rpm %g m gas %d: %s", rpms[a], cas[c], g,
-                      err.message);
+                CHECK(rc == RD_OK, "auto %g rpm %g m gas %d: %s", rpms[a], cas[c], g, err.message);
                 scene(&p, rpms[a], cas[c], g, RD_FRICTION_NONE, 1e-7);
                 int rc2 = run(&p, RD_LIFT_MODEL_FULL, &rf, &err);
-                CHECK(rc2 == RD_OK, "full %g rpm %g m gas %d: %s", rpms[a], cas[c], g,
-                      err.message);
+                CHECK(rc2 == RD_OK, "full %g rpm %g m gas %d: %s", rpms[a], cas[c], g, err.message);
                 if (rc == RD_OK && rc2 == RD_OK) {
                     double d = event_diff(&ra, &rf);
                     CHECK(d <= p.accuracy_deg,
@@ -158,8 +156,8 @@ static void test_battery_flexible_scenes(void)
             int rc = run(&p, RD_LIFT_MODEL_AUTO, &r, &err);
             CHECK(rc == RD_OK && r.model == RD_LIFT_MODEL_FULL &&
                       strstr(r.why, what ? "tilt" : "distorted"),
-                  "%s, friction %d: rc %d model %d (%s) %s", what ? "tilt" : "distortion", fric,
-                  rc, r.model, r.why, err.message);
+                  "%s, friction %d: rc %d model %d (%s) %s", what ? "tilt" : "distortion", fric, rc,
+                  r.model, r.why, err.message);
             rd_lift_result_cleanup(&r);
         }
 }
@@ -205,8 +203,8 @@ static void test_partial(void)
                   b.crank_deg_reached > 1440.0 && b.crank_deg_reached < 2160.0 &&
                   strstr(b.warning, "fewer cycles") && isnan(b.error_estimate),
               "%s partial: rc %d partial %d samples %d reached %g (%s) %s",
-              rd_lift_model_name(model), rc, b.partial, b.samples, b.crank_deg_reached,
-              b.warning, err.message);
+              rd_lift_model_name(model), rc, b.partial, b.samples, b.crank_deg_reached, b.warning,
+              err.message);
         int same = rc == RD_OK;
         for (int k = 0; same && k < b.samples; k++)
             same = b.lift[k] == a.lift[k] && b.crank_deg[k] == a.crank_deg[k];

@@ -94,8 +94,10 @@ static void test_static_start(void)
         }
         CHECK(worst < bound, "n = %d: the start misses the bore by %g m (bound %g m)", n, worst,
               bound);
-        fprintf(stderr, "    distorted bore (orders 2, 4; 5 um), n = %d: the start follows it "
-                "within %.3g m (bound %.3g m)\n", n, worst, bound);
+        fprintf(stderr,
+                "    distorted bore (orders 2, 4; 5 um), n = %d: the start follows it "
+                "within %.3g m (bound %.3g m)\n",
+                n, worst, bound);
         rd_lift_result_cleanup(&r);
         free(q);
     }
@@ -134,8 +136,10 @@ static void test_modal_full(void)
                     ? 1e9
                     : fmax(d, fabs(a.events[i].crank_deg - b.events[i].crank_deg));
         CHECK(d < 0.01, "distorted: all-mode modal vs full flank changes differ by %g deg", d);
-        fprintf(stderr, "    distorted Coulomb scene: %d flank changes, modal(all) - full <= "
-                "%.4f deg\n", b.n_events, d);
+        fprintf(stderr,
+                "    distorted Coulomb scene: %d flank changes, modal(all) - full <= "
+                "%.4f deg\n",
+                b.n_events, d);
     }
     rd_lift_result_cleanup(&a);
     rd_lift_result_cleanup(&b);

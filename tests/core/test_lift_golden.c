@@ -37,9 +37,9 @@
 #include "lift_example.h"
 #include "rd_lift.h"
 
-#define GRID_DEG 10.0
+#define GRID_DEG   10.0
 #define EV_TOL_DEG 1e-3
-#define LIFT_TOL 1e-6 /* x the axial clearance */
+#define LIFT_TOL   1e-6 /* x the axial clearance */
 
 /* The extremes of test_lift (test_extremes, test_stiffness) and one run with
  * the error estimate; returns the number of cases written into c. */
@@ -109,8 +109,8 @@ static void record_of(const gcase *c, grec *g)
             double d = r.crank_deg[k];
             if (fabs(d / GRID_DEG - floor(d / GRID_DEG + 0.5)) > 1e-9)
                 continue;
-            double row[6] = {d, r.lift[k], r.lift_min[k], r.lift_max[k], r.twist[k],
-                             r.friction_force[k]};
+            double row[6] = {d,          r.lift[k],          r.lift_min[k], r.lift_max[k],
+                             r.twist[k], r.friction_force[k]};
             memcpy(g->s[g->n_s++], row, sizeof row);
         }
     }
@@ -124,8 +124,8 @@ static void write_rec(FILE *f, const gcase *c, const grec *g)
     for (int j = 0; j < g->n_ev; j++)
         fprintf(f, "ev %d %.17g\n", g->kind[j], g->ev[j]);
     for (int k = 0; k < g->n_s; k++)
-        fprintf(f, "s %.17g %.17g %.17g %.17g %.17g %.17g\n", g->s[k][0], g->s[k][1],
-                g->s[k][2], g->s[k][3], g->s[k][4], g->s[k][5]);
+        fprintf(f, "s %.17g %.17g %.17g %.17g %.17g %.17g\n", g->s[k][0], g->s[k][1], g->s[k][2],
+                g->s[k][3], g->s[k][4], g->s[k][5]);
 }
 
 /* Reads the record of case `name` from the golden file; 0 if absent. */
@@ -149,9 +149,8 @@ static int read_rec(FILE *f, const char *name, grec *g)
                 return 0;
         for (int k = 0; k < g->n_s; k++) {
             double *s = g->s[k];
-            if (!fgets(line, sizeof line, f) ||
-                sscanf(line, "s %lf %lf %lf %lf %lf %lf", &s[0], &s[1], &s[2], &s[3], &s[4],
-                       &s[5]) != 6)
+            if (!fgets(line, sizeof line, f) || sscanf(line, "s %lf %lf %lf %lf %lf %lf", &s[0],
+                                                       &s[1], &s[2], &s[3], &s[4], &s[5]) != 6)
                 return 0;
         }
         return 1;
@@ -165,8 +164,8 @@ static int compare(const gcase *c, const grec *want, const grec *got)
     double ca = c->p.groove.axial_clearance, b = c->ring.radial_width;
     CHECK(got->rc == want->rc, "%s: status %d, golden %d", c->name, got->rc, want->rc);
     CHECK(got->n_ev == want->n_ev && got->n_s == want->n_s,
-          "%s: %d events %d samples, golden %d and %d", c->name, got->n_ev, got->n_s,
-          want->n_ev, want->n_s);
+          "%s: %d events %d samples, golden %d and %d", c->name, got->n_ev, got->n_s, want->n_ev,
+          want->n_s);
     if (got->n_ev != want->n_ev || got->n_s != want->n_s)
         return 0;
     int same = got->rc == want->rc && memcmp(&got->est, &want->est, sizeof got->est) == 0;
@@ -190,11 +189,11 @@ static int compare(const gcase *c, const grec *want, const grec *got)
     CHECK(dtw <= LIFT_TOL * ca / (0.5 * b), "%s: twist moved by %g rad", c->name, dtw);
     CHECK(df <= LIFT_TOL * fmax_, "%s: friction moved by %g N", c->name, df);
     if (!isnan(want->est))
-        CHECK(fabs(got->est - want->est) <= LIFT_TOL, "%s: error estimate %g, golden %g",
-              c->name, got->est, want->est);
+        CHECK(fabs(got->est - want->est) <= LIFT_TOL, "%s: error estimate %g, golden %g", c->name,
+              got->est, want->est);
     if (!isnan(want->ev_err))
-        CHECK(fabs(got->ev_err - want->ev_err) <= EV_TOL_DEG,
-              "%s: event error %g deg, golden %g", c->name, got->ev_err, want->ev_err);
+        CHECK(fabs(got->ev_err - want->ev_err) <= EV_TOL_DEG, "%s: event error %g deg, golden %g",
+              c->name, got->ev_err, want->ev_err);
     fprintf(stderr, "  %-28s %s (events %.2g deg, lift %.2g c_a)\n", c->name,
             same ? "bit-identical" : "within tolerance", dev, dl / ca);
     return same;

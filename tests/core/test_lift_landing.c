@@ -45,8 +45,8 @@ static void test_closed_form(void)
     p.rtol = 1e-8;
     p.atol = 1e-12;
     double ca = p.groove.axial_clearance, h0 = 0.5 * ca, hm = p.squeeze.min_film;
-    double b = rp.radial_width, rate = 2.0 * rp.density * rp.axial_height * G0 /
-                                      (p.squeeze.viscosity * b * b);
+    double b = rp.radial_width,
+           rate = 2.0 * rp.density * rp.axial_height * G0 / (p.squeeze.viscosity * b * b);
     double t_land = (1.0 / (hm * hm) - 1.0 / ((hm + h0) * (hm + h0))) / rate;
     double *y0 = calloc(12 * (size_t)n, sizeof *y0);
     for (int i = 0; i < n; i++)
@@ -81,8 +81,10 @@ static void test_closed_form(void)
          * the mean slows: measured 9e-4 relative; 2e-3 */
         CHECK(fabs(got - t_land) < 2e-3 * t_land, "landing at %.6g s, closed form %.6g s", got,
               t_land);
-        fprintf(stderr, "    squeeze sink: h_e(t) within %.2g of the closed form; landing %.6g s "
-                "(closed form %.6g s)\n", worst, got, t_land);
+        fprintf(stderr,
+                "    squeeze sink: h_e(t) within %.2g of the closed form; landing %.6g s "
+                "(closed form %.6g s)\n",
+                worst, got, t_land);
     }
     rd_lift_result_cleanup(&r);
     free(y0);
@@ -106,7 +108,8 @@ static void test_jacobian(void)
         p.squeeze.viscosity = 1e-3;
         p.squeeze.min_film = 1e-6;
         p.model = model ? RD_LIFT_MODEL_RIGID : RD_LIFT_MODEL_FULL;
-        double ca = p.groove.axial_clearance, vr = 1e-2 * ca * 1000.0 * 2.0 * 3.14159265358979323846 / 60.0;
+        double ca = p.groove.axial_clearance,
+               vr = 1e-2 * ca * 1000.0 * 2.0 * 3.14159265358979323846 / 60.0;
         double err_max = 1e9;
         rd_error err;
         rd_error_init(&err);
@@ -220,8 +223,10 @@ static void test_plastic(void)
             }
             CHECK(d < 0.05, "%s: the plastic landing moves flank changes by %.3g deg",
                   model ? "rigid" : "full", d);
-            fprintf(stderr, "    %s: plastic landing moves flank changes by %.3g deg; steps %ld "
-                    "(penalty %ld)\n", model ? "rigid" : "full", d, r[1].steps, r[0].steps);
+            fprintf(stderr,
+                    "    %s: plastic landing moves flank changes by %.3g deg; steps %ld "
+                    "(penalty %ld)\n",
+                    model ? "rigid" : "full", d, r[1].steps, r[0].steps);
         }
         for (int k = 0; k < 2; k++)
             rd_lift_result_cleanup(&r[k]);
@@ -241,8 +246,7 @@ static void test_validation(void)
     rd_error_init(&err);
     int rc = rd_lift_validate(&p, &rp, 8, &err);
     CHECK(rc == RD_EINVAL, "min_film 0 accepted");
-    CHECK(strstr(err.path, "/physics/squeeze_film/min_film") != NULL, "error names %s",
-          err.path);
+    CHECK(strstr(err.path, "/physics/squeeze_film/min_film") != NULL, "error names %s", err.path);
     p.squeeze.min_film = 1e-6;
     p.squeeze.viscosity = 100.0;
     rd_error_init(&err);

@@ -82,8 +82,10 @@ static void test_all_modes(void)
             CHECK(dl < 1e-3, "friction %d: lift differs by %g c_a", fric, dl);
             CHECK(a.model == RD_LIFT_MODEL_MODAL && a.modes == 18 && a.dof == 24,
                   "model %d modes %d dof %d", a.model, a.modes, a.dof);
-            fprintf(stderr, "    all modes, friction %d: %d flank changes, modal - full <= %.4f "
-                    "deg, lift %.2e c_a\n", fric, a.n_events, d, dl);
+            fprintf(stderr,
+                    "    all modes, friction %d: %d flank changes, modal - full <= %.4f "
+                    "deg, lift %.2e c_a\n",
+                    fric, a.n_events, d, dl);
         }
         rd_lift_result_cleanup(&a);
         rd_lift_result_cleanup(&b);
@@ -117,8 +119,10 @@ static void test_convergence(void)
         rc = run(&p, RD_LIFT_MODEL_MODAL, ms[j], 8, &a, &err);
         CHECK(rc == RD_OK, "modal m = %d: %s", ms[j], err.message);
         e[j] = rc == RD_OK ? event_diff(&a, &f) : 1e9;
-        fprintf(stderr, "    n = 8, Coulomb, m = %2d: modal - full <= %.4f deg (%ld steps, "
-                "full %ld)\n", ms[j], e[j], a.steps, f.steps);
+        fprintf(stderr,
+                "    n = 8, Coulomb, m = %2d: modal - full <= %.4f deg (%ld steps, "
+                "full %ld)\n",
+                ms[j], e[j], a.steps, f.steps);
         rd_lift_result_cleanup(&a);
     }
     CHECK(e[3] < 0.03 && e[3] < 0.25 * e[0], "m = 32: %g deg vs m = 4: %g deg", e[3], e[0]);
@@ -178,8 +182,7 @@ static void test_validation(void)
           "modes 19 on 4 segments: rc %d %s: %s", rc, err.path, err.message);
     p.modes = 18;
     rd_error_init(&err);
-    CHECK(rd_lift_validate(&p, &rp, 4, &err) == RD_OK, "modes 18 on 4 segments: %s",
-          err.message);
+    CHECK(rd_lift_validate(&p, &rp, 4, &err) == RD_OK, "modes 18 on 4 segments: %s", err.message);
     rd_error_init(&err);
     rc = rd_lift_validate(&p, &rp, 201, &err);
     CHECK(rc == RD_ELIMIT && !strcmp(err.path, "/numerics/model"), "modal at 201 segments: %s",

@@ -109,18 +109,18 @@ static void test_rigid_vs_full(void)
             double d = event_diff(&a, &b), dl = 0.0;
             for (int k = 0; k < a.samples; k++)
                 dl = fmax(dl, fabs(a.lift[k] - b.lift[k]));
-            CHECK(d < 0.03, "%s: rigid flank changes differ from full by %g deg", cases[j].what,
-                  d);
-            CHECK(dl < 0.01 * p.groove.axial_clearance, "%s: lift differs by %g c_a",
-                  cases[j].what, dl / p.groove.axial_clearance);
+            CHECK(d < 0.03, "%s: rigid flank changes differ from full by %g deg", cases[j].what, d);
+            CHECK(dl < 0.01 * p.groove.axial_clearance, "%s: lift differs by %g c_a", cases[j].what,
+                  dl / p.groove.axial_clearance);
             CHECK(a.model == RD_LIFT_MODEL_RIGID && a.dof == 3 && b.model == RD_LIFT_MODEL_FULL,
                   "%s: models %d/%d dof %d", cases[j].what, a.model, b.model, a.dof);
             for (int i = 0; getenv("RD_VERBOSE") && i < a.n_events && i < b.n_events; i++)
                 fprintf(stderr, "      %d %.4f %.4f\n", a.events[i].kind, a.events[i].crank_deg,
                         b.events[i].crank_deg);
-            fprintf(stderr, "    %-22s %d flank changes, rigid - full <= %.4f deg, lift %.4f c_a, "
-                    "steps %ld vs %ld\n", cases[j].what, a.n_events, d,
-                    dl / p.groove.axial_clearance, a.steps, b.steps);
+            fprintf(stderr,
+                    "    %-22s %d flank changes, rigid - full <= %.4f deg, lift %.4f c_a, "
+                    "steps %ld vs %ld\n",
+                    cases[j].what, a.n_events, d, dl / p.groove.axial_clearance, a.steps, b.steps);
         }
         rd_lift_result_cleanup(&a);
         rd_lift_result_cleanup(&b);
@@ -258,7 +258,7 @@ static void test_rigid_jacobian(void)
             double ca = p.groove.axial_clearance, d0 = 1e-4 * ca;
             double z[4] = {-0.3 * d0, -4.0 * d0, ca + 0.4 * d0, ca + 5.0 * d0};
             double y[6] = {z[st], (st % 2 ? 1e-9 : -2e-9), 1e-8 * (st - 1), (st - 1.5) * 1e-4,
-                           1e-6, 1e-5 * (st - 2)};
+                           1e-6,  1e-5 * (st - 2)};
             double e = 1e9;
             rd_error err;
             rd_error_init(&err);

@@ -176,9 +176,10 @@ static void test_modal_full_tilted(void)
          * per degree of crank against its inertia: its segments spread by
          * more than 1 % of the clearance in flight */
         CHECK(spread > 0.01 * p.groove.axial_clearance, "tilted: segments' spread %g m", spread);
-        fprintf(stderr, "    tilted Coulomb scene: %d flank changes, modal(all) - full <= %.4f "
-                "deg, lift spread %.3f c_a\n", b.n_events, d,
-                spread / p.groove.axial_clearance);
+        fprintf(stderr,
+                "    tilted Coulomb scene: %d flank changes, modal(all) - full <= %.4f "
+                "deg, lift spread %.3f c_a\n",
+                b.n_events, d, spread / p.groove.axial_clearance);
     }
     rd_lift_result_cleanup(&a);
     rd_lift_result_cleanup(&b);
