@@ -48,7 +48,8 @@ static const char schema[] =
     " scene TEXT,"
     " error TEXT,"
     " body BLOB,"
-    " body_len INTEGER NOT NULL DEFAULT 0);"
+    " body_len INTEGER NOT NULL DEFAULT 0,"
+    " name TEXT, cache_key TEXT, idem_key TEXT, idem_hash TEXT);"
     "CREATE INDEX IF NOT EXISTS jobs_finished ON jobs (finished_ns);"
     /* Finished sweeps (rd_sweeps): written once when final, never changed. */
     "CREATE TABLE IF NOT EXISTS sweeps ("
@@ -57,6 +58,9 @@ static const char schema[] =
     " meta TEXT NOT NULL,"
     " body TEXT NOT NULL,"
     " csv TEXT NOT NULL);";
+
+/* Columns added after the first release, for stores an older server wrote. */
+static const char *const added_columns[] = {"name", "cache_key", "idem_key", "idem_hash"};
 
 static int db_fail(sqlite3 *db, int src, const char *what, rd_error *err)
 {
@@ -68,6 +72,31 @@ static int exec(sqlite3 *db, const char *sql, rd_error *err)
 {
     int rc = sqlite3_exec(db, sql, NULL, NULL, NULL);
     return rc == SQLITE_OK ? RD_OK : db_fail(db, rc, sql, err);
+}
+
+/* Adds the columns of added_columns that an older store lacks (TEXT, NULL). */
+static int add_columns(sqlite3 *db, rd_error *err)
+{
+    for (size_t i = 0; i < sizeof added_columns / sizeof added_columns[0]; i++) {
+        char sql[128];
+        snprintf(sql, sizeof sql, "SELECT 1 FROM pragma_table_info('jobs') WHERE name = '%s'",
+                 added_columns[i]);
+        sqlite3_stmt *st;
+        int rc = sqlite3_prepare_v2(db, sql, -1, &st, NULL);
+        if (rc != SQLITE_OK)
+            return db_fail(db, rc, "table_info", err);
+        rc = sqlite3_step(st);
+        sqlite3_finalize(st);
+        if (rc == SQLITE_ROW)
+            continue;
+        if (rc != SQLITE_DONE)
+            return db_fail(db, rc, "table_info", err);
+        snprintf(sql, sizeof sql, "ALTER TABLE jobs ADD COLUMN %s TEXT", added_columns[i]);
+        int status = exec(db, sql, err);
+        if (status != RD_OK)
+            return status;
+    }
+    return RD_OK;
 }
 
 /* mkdir -p with mode 0700 for the directories it creates. */
@@ -155,7 +184,7 @@ int rd_store_create(const char *dir, rd_store **out, rd_error *err)
     if ((status = exec(s->db, "PRAGMA auto_vacuum=INCREMENTAL", err)) ||
         (status = exec(s->db, memory ? "PRAGMA journal_mode=MEMORY" : "PRAGMA journal_mode=WAL", err)) ||
         (status = exec(s->db, "PRAGMA synchronous=NORMAL", err)) ||
-        (status = exec(s->db, schema, err)))
+        (status = exec(s->db, schema, err)) || (status = add_columns(s->db, err)))
         goto out;
     int e = pthread_mutex_init(&s->mu, NULL);
     if (e != 0)
@@ -208,8 +237,9 @@ int rd_store_insert(rd_store *store, const rd_store_row *row, const char *scene,
     sqlite3_stmt *st;
     pthread_mutex_lock(&store->mu);
     int status = prepare(store->db,
-                         "INSERT INTO jobs (id, analysis, status, progress, created_ns, scene) "
-                         "VALUES (?, ?, ?, ?, ?, ?)",
+                         "INSERT INTO jobs (id, analysis, status, progress, created_ns, "
+                         "started_ns, scene, name, cache_key, idem_key, idem_hash) "
+                         "VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?)",
                          &st, err);
     if (status == RD_OK) {
         int b = sqlite3_bind_text(st, 1, row->id, -1, SQLITE_STATIC);
@@ -217,7 +247,12 @@ int rd_store_insert(rd_store *store, const rd_store_row *row, const char *scene,
         b = b ? b : sqlite3_bind_text(st, 3, row->status, -1, SQLITE_STATIC);
         b = b ? b : sqlite3_bind_double(st, 4, row->progress);
         b = b ? b : sqlite3_bind_int64(st, 5, row->created_ns);
-        b = b ? b : bind_text(st, 6, scene);
+        b = b ? b : sqlite3_bind_int64(st, 6, row->started_ns);
+        b = b ? b : bind_text(st, 7, scene);
+        b = b ? b : bind_text(st, 8, row->name);
+        b = b ? b : bind_text(st, 9, row->cache_key);
+        b = b ? b : bind_text(st, 10, row->idem_key);
+        b = b ? b : bind_text(st, 11, row->idem_hash);
         status = run(store->db, st, "insert", b, err);
     }
     pthread_mutex_unlock(&store->mu);
@@ -288,7 +323,8 @@ int rd_store_load(rd_store *store, int (*each)(void *ctx, const rd_store_row *ro
     pthread_mutex_lock(&store->mu);
     int status = prepare(store->db,
                          "SELECT id, analysis, status, progress, created_ns, started_ns, "
-                         "finished_ns, error, body_len FROM jobs ORDER BY seq",
+                         "finished_ns, error, body_len, name, cache_key, idem_key, idem_hash "
+                         "FROM jobs ORDER BY seq",
                          &st, err);
     int rc = SQLITE_DONE;
     while (status == RD_OK && (rc = sqlite3_step(st)) == SQLITE_ROW) {
@@ -303,6 +339,10 @@ int rd_store_load(rd_store *store, int (*each)(void *ctx, const rd_store_row *ro
         row.finished_ns = sqlite3_column_int64(st, 6);
         row.error = (const char *)sqlite3_column_text(st, 7);
         row.body_len = (size_t)sqlite3_column_int64(st, 8);
+        row.name = (const char *)sqlite3_column_text(st, 9);
+        row.cache_key = (const char *)sqlite3_column_text(st, 10);
+        row.idem_key = (const char *)sqlite3_column_text(st, 11);
+        row.idem_hash = (const char *)sqlite3_column_text(st, 12);
         if (!row.status) {
             status = rd_error_set(err, RD_EINTERNAL, "", "Job store: a row without a status.");
             break;
@@ -312,6 +352,17 @@ int rd_store_load(rd_store *store, int (*each)(void *ctx, const rd_store_row *ro
     if (status == RD_OK && rc != SQLITE_DONE)
         status = db_fail(store->db, rc, "load", err);
     sqlite3_finalize(st);
+    pthread_mutex_unlock(&store->mu);
+    return status;
+}
+
+int rd_store_delete(rd_store *store, const char *id, rd_error *err)
+{
+    sqlite3_stmt *st;
+    pthread_mutex_lock(&store->mu);
+    int status = prepare(store->db, "DELETE FROM jobs WHERE id = ?", &st, err);
+    if (status == RD_OK)
+        status = run(store->db, st, "delete", sqlite3_bind_text(st, 1, id, -1, SQLITE_STATIC), err);
     pthread_mutex_unlock(&store->mu);
     return status;
 }
