@@ -1353,6 +1353,10 @@ static enum MHD_Result finish_submit(rd_http *h, struct MHD_Connection *c, struc
         return sweep_reply(h, c, rq, &sr);
     }
 
+    rd_jobs_submit_opts opts = {0};
+    opts.idem_key = MHD_lookup_connection_value(c, MHD_HEADER_KIND, "Idempotency-Key");
+    if (opts.idem_key) /* "the same body": the same bytes */
+        rd_jobs_hash(rq->body ? rq->body : "", rq->body ? rq->len : 0, opts.idem_hash);
     rd_scene *scene = NULL;
     int rc = rd_scene_parse(rq->body ? rq->body : "", rq->len, &scene, &err);
     free(rq->body);
@@ -1362,10 +1366,6 @@ static enum MHD_Result finish_submit(rd_http *h, struct MHD_Connection *c, struc
             rd_error_set(&err, rc, "", "%s.", rd_error_summary(rc));
         return send_error(h, c, rq, &err, NULL);
     }
-    rd_jobs_submit_opts opts = {0};
-    opts.idem_key = MHD_lookup_connection_value(c, MHD_HEADER_KIND, "Idempotency-Key");
-    if (opts.idem_key)
-        rd_jobs_hash(rq->body ? rq->body : "", rq->len, opts.idem_hash);
     opts.use_cache = !no_cache_asked(c);
     opts.time_limit_s = rq->time_limit_s;
     if (rq->has_wait && rq->wait_s > 0)

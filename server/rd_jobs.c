@@ -115,6 +115,10 @@ struct rd_jobs {
     int in_solver; /* workers inside rd_scene_run */
     struct body *recent; /* the body read last, held one reference longer (see keep_recent_locked) */
     uint64_t next_seq;   /* the seq of the next job pushed */
+    /* Moving average of (run time / predicted cost) over the succeeded runs
+     * that had a prediction: the cost model is fitted to a reference
+     * machine, this scales it to the one we run on (and its load). */
+    double cost_scale;
 };
 
 /* What a request reads of a job, copied under `mu`. */
@@ -126,7 +130,7 @@ struct snap {
     struct timespec created, started, finished;
     char *error; /* a copy, or NULL */
     char *name;  /* a copy, or NULL */
-    double predicted_s;
+    double predicted_s; /* scaled by cost_scale */
 };
 
 struct run_ctx {
@@ -431,7 +435,7 @@ static int new_id_locked(rd_jobs *jobs, char *id, rd_error *err)
     return rd_error_set(err, RD_EINTERNAL, "", "Could not find a free job id.");
 }
 
-static int snapshot_locked(const struct job *job, struct snap *s)
+static int snapshot_locked(const rd_jobs *jobs, const struct job *job, struct snap *s)
 {
     memcpy(s->id, job->id, sizeof s->id);
     memcpy(s->analysis, job->analysis, sizeof s->analysis);
@@ -442,7 +446,7 @@ static int snapshot_locked(const struct job *job, struct snap *s)
     s->finished = job->finished;
     s->error = NULL;
     s->name = NULL;
-    s->predicted_s = job->predicted_s;
+    s->predicted_s = job->predicted_s * (jobs->cost_scale > 0 ? jobs->cost_scale : 1);
     if (is_final(job->status) && job->error && !(s->error = strdup(job->error)))
         return -1;
     if (job->name && !(s->name = strdup(job->name))) {
@@ -470,9 +474,9 @@ static json_t *iso_time(const struct timespec *ts)
     return json_string(buf);
 }
 
-/* Seconds a running job still needs: from its progress and elapsed time
- * once it has reported some progress, else from the predicted cost; null
- * when neither says anything. */
+/* Seconds a running job still needs: from the predicted cost while the run
+ * is within it, else from its progress and elapsed time; null when neither
+ * says anything. */
 static json_t *eta(const struct snap *s)
 {
     struct timespec now;
@@ -481,11 +485,14 @@ static json_t *eta(const struct snap *s)
                      1e-9 * (double)(now.tv_nsec - s->started.tv_nsec);
     if (!(elapsed >= 0))
         elapsed = 0;
+    /* The cost model (scaled to this machine by the runs so far) first: the
+     * progress of a modal run moves in uneven steps, so the rate it implies
+     * is rough.  Once the run outlasts the model, the progress rate. */
+    if (s->predicted_s > elapsed)
+        return json_real(s->predicted_s - elapsed);
     /* Below 1 % the rate is mostly start-up cost: it would overstate. */
     if (s->progress >= 0.01 && s->progress < 1)
         return json_real(elapsed * (1 - s->progress) / s->progress);
-    if (s->predicted_s >= 0)
-        return json_real(s->predicted_s > elapsed ? s->predicted_s - elapsed : 0);
     return json_null();
 }
 
@@ -558,7 +565,7 @@ static int view_and_release(rd_jobs *jobs, struct job *job, char **json, int *fi
                             rd_error *err)
 {
     struct snap s;
-    int bad = snapshot_locked(job, &s);
+    int bad = snapshot_locked(jobs, job, &s);
     pthread_mutex_unlock(&jobs->mu);
     if (finished)
         *finished = is_final(s.status);
@@ -800,7 +807,7 @@ static void run_job(rd_jobs *jobs, struct job *job, rd_scene *scene, int pooled)
     int detached = is_final(job->status);
     struct snap s;
     memset(&s, 0, sizeof s);
-    int bad = detached ? 0 : snapshot_locked(job, &s);
+    int bad = detached ? 0 : snapshot_locked(jobs, job, &s);
     pthread_mutex_unlock(&jobs->mu);
 
     if (!detached && !bad) {
@@ -840,6 +847,10 @@ static void run_job(rd_jobs *jobs, struct job *job, rd_scene *scene, int pooled)
         job->finished = s.finished;
         set_status_locked(jobs, job, status);
         jobs->mean_run_s = 0.7 * jobs->mean_run_s + 0.3 * (t1 - t0);
+        if (status == RD_JOB_SUCCEEDED && job->predicted_s > 0) {
+            double ratio = (t1 - t0) / job->predicted_s;
+            jobs->cost_scale = jobs->cost_scale > 0 ? 0.8 * jobs->cost_scale + 0.2 * ratio : ratio;
+        }
         retain_locked(jobs);
         pthread_cond_broadcast(&jobs->done);
     }
@@ -1393,7 +1404,7 @@ int rd_jobs_list(rd_jobs *jobs, const rd_jobs_filter *f, char **json, rd_error *
             break;
         }
         struct snap s;
-        bad |= snapshot_locked(j, &s);
+        bad |= snapshot_locked(jobs, j, &s);
         if (!bad)
             bad |= json_array_append_new(list, job_object(&s));
         free(s.error);
