@@ -1,7 +1,13 @@
 /*
  * bench_http — many concurrent clients against a live ringdyn-server.
  *
- *   bench_http PORT CLIENTS SECONDS SERVER_PID [SCENE_JSON]
+ *   bench_http PORT CLIENTS SECONDS SERVER_PID [SCENE_JSON [MODE]]
+ *
+ * MODE "close" (the default) is described below.  MODE "keepalive" and
+ * "keepalive-nocache": each client keeps one connection open and submits
+ * on it again and again (HTTP/1.1 keep-alive); "keepalive" lets the result
+ * cache answer (all but the first submission are hits), "keepalive-nocache"
+ * sends Cache-Control: no-cache so that every submission is computed.
  *
  * CLIENTS threads, client i bound to source address 127.0.0.(2 + i % 50)
  * (loopback; so the server's per-address limit sees 50 addresses, as it
@@ -13,6 +19,7 @@
  * submissions (200: the job finished within the wait), the count of each
  * outcome, and the server's peak RSS (VmHWM of SERVER_PID).
  */
+#define _GNU_SOURCE /* strcasestr */
 #include <arpa/inet.h>
 #include <errno.h>
 #include <netinet/in.h>
@@ -48,6 +55,8 @@ static void sleep_s(double s)
 static int port;
 static double end_time;
 static const char *scene = "{\"analysis\":\"modal\"}";
+static int keepalive;     /* MODE keepalive*: one connection per client */
+static int nocache;       /* MODE keepalive-nocache */
 
 static int connect_from(int index)
 {
@@ -103,16 +112,70 @@ static int submit(int index, char *buf, int *retry_after)
     return status;
 }
 
+/* Reads one answer (headers, then Content-Length bytes) from a kept
+ * connection; the status, or 0 on a transport failure. */
+static int read_answer(int fd, char *buf)
+{
+    size_t got = 0;
+    char *end = NULL;
+    while (!end) {
+        ssize_t r = recv(fd, buf + got, ANSWER_MAX - 1 - got, 0);
+        if (r <= 0)
+            return 0;
+        got += (size_t)r;
+        buf[got] = '\0';
+        end = strstr(buf, "\r\n\r\n");
+        if (!end && got >= ANSWER_MAX - 1)
+            return 0;
+    }
+    const char *cl = strcasestr(buf, "\r\nContent-Length: ");
+    size_t want = (size_t)(end + 4 - buf) + (cl ? strtoul(cl + 18, NULL, 10) : 0);
+    if (want >= ANSWER_MAX)
+        return 0;
+    while (got < want) {
+        ssize_t r = recv(fd, buf + got, want - got, 0);
+        if (r <= 0)
+            return 0;
+        got += (size_t)r;
+    }
+    int status = 0;
+    return sscanf(buf, "HTTP/1.1 %d", &status) == 1 ? status : 0;
+}
+
+/* One submission on the kept connection *fd (opened when -1, closed and
+ * set to -1 after a failure). */
+static int submit_kept(int index, int *fd, char *buf)
+{
+    if (*fd < 0 && (*fd = connect_from(index)) < 0)
+        return 0;
+    /* One send: head and body in two would meet Nagle and delayed ACK (40 ms). */
+    char request[4096];
+    size_t body_len = strlen(scene);
+    int n = snprintf(request, sizeof request,
+                     "POST /api/v1/jobs?wait=60 HTTP/1.1\r\nHost: 127.0.0.1\r\n"
+                     "Content-Type: application/json\r\nContent-Length: %zu\r\n%s\r\n%s",
+                     body_len, nocache ? "Cache-Control: no-cache\r\n" : "", scene);
+    int status = 0;
+    if (n > 0 && (size_t)n < sizeof request && send(*fd, request, (size_t)n, MSG_NOSIGNAL) == n)
+        status = read_answer(*fd, buf);
+    if (status == 0) {
+        close(*fd);
+        *fd = -1;
+    }
+    return status;
+}
+
 static void *client_main(void *arg)
 {
     struct client *c = arg;
     char *buf = malloc(ANSWER_MAX);
     if (!buf)
         return NULL;
+    int fd = -1;
     while (bench_now() < end_time) {
         int retry = 1;
         double t0 = bench_now();
-        int status = submit(c->index, buf, &retry);
+        int status = keepalive ? submit_kept(c->index, &fd, buf) : submit(c->index, buf, &retry);
         double t1 = bench_now();
         if (status == 200) {
             c->ok++;
@@ -132,6 +195,8 @@ static void *client_main(void *arg)
             c->other++;
         }
     }
+    if (fd >= 0)
+        close(fd);
     free(buf);
     return NULL;
 }
@@ -153,7 +218,7 @@ static long peak_rss_kb(const char *pid)
 int main(int argc, char **argv)
 {
     if (argc < 5) {
-        fprintf(stderr, "usage: %s PORT CLIENTS SECONDS SERVER_PID [SCENE_JSON]\n", argv[0]);
+        fprintf(stderr, "usage: %s PORT CLIENTS SECONDS SERVER_PID [SCENE_JSON [MODE]]\n", argv[0]);
         return 2;
     }
     port = atoi(argv[1]);
@@ -161,6 +226,12 @@ int main(int argc, char **argv)
     double seconds = atof(argv[3]);
     if (argc > 5)
         scene = argv[5];
+    if (argc > 6) {
+        keepalive = strncmp(argv[6], "keepalive", 9) == 0;
+        nocache = strcmp(argv[6], "keepalive-nocache") == 0;
+        if (!keepalive && strcmp(argv[6], "close") != 0)
+            return 2;
+    }
     if (port <= 0 || nclients < 1 || !(seconds > 0))
         return 2;
     struct client *cs = calloc((size_t)nclients, sizeof *cs);
@@ -197,7 +268,7 @@ int main(int argc, char **argv)
         p50 = lat[nlat / 2];
         p99 = lat[(int)(0.99 * (nlat - 1))];
     }
-    printf("clients=%d seconds=%.1f jobs_per_s=%.1f p50_ms=%.1f p99_ms=%.1f ok_200=%ld "
+    printf("clients=%d seconds=%.1f jobs_per_s=%.1f p50_ms=%.3f p99_ms=%.3f ok_200=%ld "
            "accepted_202=%ld busy_429=%ld other=%ld failed=%ld peak_rss_mb=%.1f\n",
            nclients, elapsed, (double)ok / elapsed, 1e3 * p50, 1e3 * p99, ok, accepted, busy, other,
            failed, peak_rss_kb(argv[4]) / 1024.0);
