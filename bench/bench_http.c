@@ -17,7 +17,10 @@
  * client would: wait its Retry-After, then submit again.  Prints one line of
  * key=value: finished jobs per second, latency percentiles of the answered
  * submissions (200: the job finished within the wait), the count of each
- * outcome, and the server's peak RSS (VmHWM of SERVER_PID).
+ * outcome, the server's peak RSS (VmHWM of SERVER_PID) and the CPU time
+ * it used (user + system) with the answers per CPU second: on a shared,
+ * loaded machine the latter says what the server costs, the rate only what
+ * it got.
  */
 #define _GNU_SOURCE /* strcasestr */
 #include <arpa/inet.h>
@@ -215,6 +218,23 @@ static long peak_rss_kb(const char *pid)
     return kb;
 }
 
+/* CPU seconds (user + system) the process has used so far; -1 unknown. */
+static double cpu_seconds(const char *pid)
+{
+    char path[64], line[1024];
+    snprintf(path, sizeof path, "/proc/%s/stat", pid);
+    FILE *f = fopen(path, "r");
+    if (!f)
+        return -1;
+    char *ok = fgets(line, sizeof line, f);
+    fclose(f);
+    const char *p = ok ? strrchr(line, ')') : NULL; /* the command may hold spaces */
+    unsigned long long ut = 0, st = 0;
+    if (!p || sscanf(p + 2, "%*c %*d %*d %*d %*d %*d %*u %*u %*u %*u %*u %llu %llu", &ut, &st) != 2)
+        return -1;
+    return (double)(ut + st) / (double)sysconf(_SC_CLK_TCK);
+}
+
 int main(int argc, char **argv)
 {
     if (argc < 5) {
@@ -237,6 +257,7 @@ int main(int argc, char **argv)
     struct client *cs = calloc((size_t)nclients, sizeof *cs);
     if (!cs)
         return 1;
+    double cpu0 = cpu_seconds(argv[4]);
     double t0 = bench_now();
     end_time = t0 + seconds;
     for (int i = 0; i < nclients; i++) {
@@ -262,6 +283,7 @@ int main(int argc, char **argv)
         free(cs[i].lat);
     }
     double elapsed = bench_now() - t0;
+    double cpu = cpu_seconds(argv[4]) - cpu0;
     double p50 = 0, p99 = 0;
     if (nlat > 0) {
         bench_median(lat, nlat); /* sorts */
@@ -269,9 +291,10 @@ int main(int argc, char **argv)
         p99 = lat[(int)(0.99 * (nlat - 1))];
     }
     printf("clients=%d seconds=%.1f jobs_per_s=%.1f p50_ms=%.3f p99_ms=%.3f ok_200=%ld "
-           "accepted_202=%ld busy_429=%ld other=%ld failed=%ld peak_rss_mb=%.1f\n",
+           "accepted_202=%ld busy_429=%ld other=%ld failed=%ld peak_rss_mb=%.1f server_cpu_s=%.2f "
+           "jobs_per_server_cpu_s=%.1f\n",
            nclients, elapsed, (double)ok / elapsed, 1e3 * p50, 1e3 * p99, ok, accepted, busy, other,
-           failed, peak_rss_kb(argv[4]) / 1024.0);
+           failed, peak_rss_kb(argv[4]) / 1024.0, cpu, cpu > 0 ? (double)ok / cpu : 0.0);
     free(lat);
     free(cs);
     return 0;

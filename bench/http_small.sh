@@ -38,6 +38,6 @@ for run in $(seq 1 "$RUNS"); do
 done
 for mode in keepalive-nocache keepalive; do
   printf 'median of %d runs, %s:' "$RUNS" "$mode"
-  for key in jobs_per_s p50_ms p99_ms ok_200 other failed; do printf ' %s=%s' "$key" "$(median "$key" "$WORK/$mode")"; done
+  for key in jobs_per_s p50_ms p99_ms ok_200 other failed server_cpu_s jobs_per_server_cpu_s; do printf ' %s=%s' "$key" "$(median "$key" "$WORK/$mode")"; done
   echo
 done

@@ -372,6 +372,24 @@ static void forget_locked(void *ctx, const char *id)
     }
 }
 
+/* Would rd_store_retain delete anything?  The list mirrors the store's
+ * rows, so the answer comes from memory, and the store (a query over every
+ * finished row) is asked only when some limit is passed: a job ending is
+ * then no store read at all. */
+static int over_limits_locked(const rd_jobs *jobs, int64_t oldest)
+{
+    size_t n = 0, bytes = 0;
+    for (const struct job *j = jobs->head; j; j = j->next)
+        if (is_final(j->status)) {
+            n++;
+            bytes += j->body_len;
+            if (n > (size_t)jobs->cfg.keep_max || bytes > jobs->cfg.keep_bytes ||
+                to_ns(&j->finished) < oldest)
+                return 1;
+        }
+    return 0;
+}
+
 static void retain_locked(rd_jobs *jobs)
 {
     rd_error err;
@@ -379,6 +397,8 @@ static void retain_locked(rd_jobs *jobs)
     int64_t oldest = jobs->cfg.keep_age_s > 0
                          ? real_now_ns() - (int64_t)(jobs->cfg.keep_age_s * 1e9)
                          : INT64_MIN;
+    if (!over_limits_locked(jobs, oldest))
+        return;
     if (rd_store_retain(jobs->cfg.store, (size_t)jobs->cfg.keep_max, jobs->cfg.keep_bytes, oldest,
                         forget_locked, jobs, &err) != RD_OK)
         log_store_error("retention", &err);
@@ -832,11 +852,29 @@ static void run_job(rd_jobs *jobs, struct job *job, rd_scene *scene, int pooled)
         }
     }
     free(result);
-    free(body);
     free(s.error);
     free(s.name);
+    /* The JSON just stored is what the client waiting for the job reads
+     * next: it becomes the job's shared body (held as the recent one), so
+     * that read costs no trip to the store. */
+    struct body *kept = status == RD_JOB_SUCCEEDED && body ? calloc(1, sizeof *kept) : NULL;
+    struct body *dropped = NULL;
+    if (kept) {
+        kept->jobs = jobs;
+        kept->data = body;
+        kept->pub.data = body;
+        kept->pub.len = body_len;
+    } else {
+        free(body);
+    }
 
     pthread_mutex_lock(&jobs->mu);
+    if (kept && !detached && !job->body) {
+        kept->owner = job;
+        job->body = kept;
+        dropped = keep_recent_locked(jobs, kept);
+        kept = NULL;
+    }
     if (!detached) {
         free(job->error);
         job->error = error;
@@ -856,6 +894,8 @@ static void run_job(rd_jobs *jobs, struct job *job, rd_scene *scene, int pooled)
     }
     release_locked(job);
     pthread_mutex_unlock(&jobs->mu);
+    body_free(kept); /* not taken (detached) */
+    body_free(dropped);
     free(error);
 
     if (!detached && jobs->cfg.on_final)

@@ -51,6 +51,10 @@ static const char schema[] =
     " body_len INTEGER NOT NULL DEFAULT 0,"
     " name TEXT, cache_key TEXT, idem_key TEXT, idem_hash TEXT);"
     "CREATE INDEX IF NOT EXISTS jobs_finished ON jobs (finished_ns);"
+    /* Covers the retention query (select_expired), which runs whenever a job
+     * ends: read from the table, each row's columns after `body` would cost
+     * a walk through the body's overflow pages. */
+    "CREATE INDEX IF NOT EXISTS jobs_retain ON jobs (finished_ns, seq, status, body_len, id);"
     /* Finished sweeps (rd_sweeps): written once when final, never changed. */
     "CREATE TABLE IF NOT EXISTS sweeps ("
     " seq INTEGER PRIMARY KEY AUTOINCREMENT,"
