@@ -31,7 +31,8 @@ for run in $(seq 1 "$RUNS"); do
     PORT=$(grep -o '[0-9]*$' "$WORK/out")
     echo "$mode: $("$b/bench/bench_http" "$PORT" "$CLIENTS" "$DURATION" "$SPID" "$SCENE" "$mode" |
                      tee -a "$WORK/$mode")"
-    kill -TERM "$SPID"
+    if ! kill -0 "$SPID" 2>/dev/null; then echo "the server died; its stderr:" >&2; cat "$WORK/err" >&2; fi
+    kill -TERM "$SPID" 2>/dev/null || true
     wait "$SPID" || true
     SPID=""
   done

@@ -56,6 +56,8 @@
 
 /* How long DELETE waits for a running job to acknowledge the cancellation. */
 #define CANCEL_WAIT_S 5.0
+/* How long rd_jobs_shutdown waits for the callbacks of runs that just ended. */
+#define NOTIFY_WAIT_S 2.0
 /* How long rd_jobs_free waits for idle workers to leave. */
 #define IDLE_WAIT_S 1.0
 /* Run time assumed for Retry-After before any job has finished. */
@@ -119,6 +121,10 @@ struct rd_jobs {
      * that had a prediction: the cost model is fitted to a reference
      * machine, this scales it to the one we run on (and its load). */
     double cost_scale;
+    /* Runs that have ended but not yet returned from on_final/on_finish:
+     * rd_jobs_shutdown waits for them, so that no callback reaches a caller
+     * (the HTTP server) after shutdown has returned and it is being freed. */
+    int notifying;
 };
 
 /* What a request reads of a job, copied under `mu`. */
@@ -890,6 +896,7 @@ static void run_job(rd_jobs *jobs, struct job *job, rd_scene *scene, int pooled)
             jobs->cost_scale = jobs->cost_scale > 0 ? 0.8 * jobs->cost_scale + 0.2 * ratio : ratio;
         }
         retain_locked(jobs);
+        jobs->notifying++;
         pthread_cond_broadcast(&jobs->done);
     }
     release_locked(job);
@@ -898,10 +905,16 @@ static void run_job(rd_jobs *jobs, struct job *job, rd_scene *scene, int pooled)
     body_free(dropped);
     free(error);
 
-    if (!detached && jobs->cfg.on_final)
-        jobs->cfg.on_final(jobs->cfg.on_final_ctx);
-    if (!detached && jobs->cfg.on_finish)
-        jobs->cfg.on_finish(jobs->cfg.on_finish_ctx, job_analysis, status, t1 - t0);
+    if (!detached) {
+        if (jobs->cfg.on_final)
+            jobs->cfg.on_final(jobs->cfg.on_final_ctx);
+        if (jobs->cfg.on_finish)
+            jobs->cfg.on_finish(jobs->cfg.on_finish_ctx, job_analysis, status, t1 - t0);
+        pthread_mutex_lock(&jobs->mu);
+        jobs->notifying--;
+        pthread_cond_broadcast(&jobs->done);
+        pthread_mutex_unlock(&jobs->mu);
+    }
 }
 
 static void *worker_main(void *arg)
@@ -1080,6 +1093,12 @@ void rd_jobs_shutdown(rd_jobs *jobs, double wait_s)
         if (j->status == RD_JOB_RUNNING)
             end_locked(jobs, j, RD_JOB_INTERRUPTED, interrupted_json("running"));
     pthread_cond_broadcast(&jobs->done);
+    /* Callbacks of runs that ended meanwhile take microseconds; the bound
+     * only guards against a callback that blocks. */
+    struct timespec notified = mono_deadline(NOTIFY_WAIT_S);
+    while (jobs->notifying > 0)
+        if (pthread_cond_timedwait(&jobs->done, &jobs->mu, &notified) == ETIMEDOUT)
+            break;
     pthread_mutex_unlock(&jobs->mu);
     if (jobs->cfg.on_final)
         jobs->cfg.on_final(jobs->cfg.on_final_ctx);

@@ -29,10 +29,20 @@
  * server on the same directory) before failing. */
 #define BUSY_TIMEOUT_MS 5000
 
+/* Statements of the per-job path (insert, update, read, delete) are
+ * prepared once and kept, reset after each use: preparing costs about as
+ * much as running them. */
+#define KEPT_MAX 8
+
 struct rd_store {
     sqlite3 *db;
     int lock_fd; /* DIR/jobs.lock, write-locked while we live; -1 for :memory: */
     pthread_mutex_t mu;
+    struct {
+        const char *sql; /* the literal's address is the key */
+        sqlite3_stmt *st;
+    } kept[KEPT_MAX];
+    int nkept;
 };
 
 static const char schema[] =
@@ -65,6 +75,8 @@ static const char schema[] =
 
 /* Columns added after the first release, for stores an older server wrote. */
 static const char *const added_columns[] = {"name", "cache_key", "idem_key", "idem_hash"};
+
+static const char delete_sql[] = "DELETE FROM jobs WHERE id = ?";
 
 static int db_fail(sqlite3 *db, int src, const char *what, rd_error *err)
 {
@@ -209,7 +221,9 @@ void rd_store_free(rd_store *store)
 {
     if (!store)
         return;
-    sqlite3_close(store->db); /* every statement is finalized where it is used */
+    for (int i = 0; i < store->nkept; i++)
+        sqlite3_finalize(store->kept[i].st);
+    sqlite3_close(store->db); /* every other statement is finalized where it is used */
     if (store->lock_fd >= 0)
         close(store->lock_fd);
     pthread_mutex_destroy(&store->mu);
@@ -231,6 +245,40 @@ static int run(sqlite3 *db, sqlite3_stmt *st, const char *what, int bind_rc, rd_
     return rc == SQLITE_DONE ? RD_OK : db_fail(db, rc, what, err);
 }
 
+/* A kept statement for the string literal `sql` (mu held): prepared on its
+ * first use; give it back with done_kept, never finalize it. */
+static int prepare_kept(rd_store *store, const char *sql, sqlite3_stmt **st, rd_error *err)
+{
+    for (int i = 0; i < store->nkept; i++)
+        if (store->kept[i].sql == sql) {
+            *st = store->kept[i].st;
+            return RD_OK;
+        }
+    if (store->nkept == KEPT_MAX)
+        return rd_error_set(err, RD_EINTERNAL, "", "Job store: too many kept statements.");
+    int rc = sqlite3_prepare_v3(store->db, sql, -1, SQLITE_PREPARE_PERSISTENT, st, NULL);
+    if (rc != SQLITE_OK)
+        return db_fail(store->db, rc, sql, err);
+    store->kept[store->nkept].sql = sql;
+    store->kept[store->nkept++].st = *st;
+    return RD_OK;
+}
+
+/* Ready for the next use: no row in progress, no bound pointer left behind. */
+static void done_kept(sqlite3_stmt *st)
+{
+    sqlite3_reset(st);
+    sqlite3_clear_bindings(st);
+}
+
+/* run() for a kept statement. */
+static int run_kept(sqlite3 *db, sqlite3_stmt *st, const char *what, int bind_rc, rd_error *err)
+{
+    int rc = bind_rc == SQLITE_OK ? sqlite3_step(st) : bind_rc;
+    done_kept(st);
+    return rc == SQLITE_DONE ? RD_OK : db_fail(db, rc, what, err);
+}
+
 static int bind_text(sqlite3_stmt *st, int i, const char *s)
 {
     return s ? sqlite3_bind_text(st, i, s, -1, SQLITE_STATIC) : sqlite3_bind_null(st, i);
@@ -240,7 +288,7 @@ int rd_store_insert(rd_store *store, const rd_store_row *row, const char *scene,
 {
     sqlite3_stmt *st;
     pthread_mutex_lock(&store->mu);
-    int status = prepare(store->db,
+    int status = prepare_kept(store,
                          "INSERT INTO jobs (id, analysis, status, progress, created_ns, "
                          "started_ns, scene, name, cache_key, idem_key, idem_hash) "
                          "VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?)",
@@ -257,7 +305,7 @@ int rd_store_insert(rd_store *store, const rd_store_row *row, const char *scene,
         b = b ? b : bind_text(st, 9, row->cache_key);
         b = b ? b : bind_text(st, 10, row->idem_key);
         b = b ? b : bind_text(st, 11, row->idem_hash);
-        status = run(store->db, st, "insert", b, err);
+        status = run_kept(store->db, st, "insert", b, err);
     }
     pthread_mutex_unlock(&store->mu);
     return status;
@@ -267,7 +315,7 @@ int rd_store_update(rd_store *store, const rd_store_row *row, const char *body, 
 {
     sqlite3_stmt *st;
     pthread_mutex_lock(&store->mu);
-    int status = prepare(store->db,
+    int status = prepare_kept(store,
                          body ? "UPDATE jobs SET status = ?, progress = ?, started_ns = ?, "
                                 "finished_ns = ?, error = ?, body = ?, body_len = ? WHERE id = ?"
                               : "UPDATE jobs SET status = ?, progress = ?, started_ns = ?, "
@@ -286,7 +334,7 @@ int rd_store_update(rd_store *store, const rd_store_row *row, const char *body, 
             next = 8;
         }
         b = b ? b : sqlite3_bind_text(st, next, row->id, -1, SQLITE_STATIC);
-        status = run(store->db, st, "update", b, err);
+        status = run_kept(store->db, st, "update", b, err);
     }
     pthread_mutex_unlock(&store->mu);
     return status;
@@ -364,9 +412,9 @@ int rd_store_delete(rd_store *store, const char *id, rd_error *err)
 {
     sqlite3_stmt *st;
     pthread_mutex_lock(&store->mu);
-    int status = prepare(store->db, "DELETE FROM jobs WHERE id = ?", &st, err);
+    int status = prepare_kept(store, delete_sql, &st, err);
     if (status == RD_OK)
-        status = run(store->db, st, "delete", sqlite3_bind_text(st, 1, id, -1, SQLITE_STATIC), err);
+        status = run_kept(store->db, st, "delete", sqlite3_bind_text(st, 1, id, -1, SQLITE_STATIC), err);
     pthread_mutex_unlock(&store->mu);
     return status;
 }
@@ -377,7 +425,7 @@ int rd_store_read_body(rd_store *store, const char *id, char **body, size_t *len
     *len = 0;
     sqlite3_stmt *st;
     pthread_mutex_lock(&store->mu);
-    int status = prepare(store->db, "SELECT body FROM jobs WHERE id = ? AND body IS NOT NULL", &st, err);
+    int status = prepare_kept(store, "SELECT body FROM jobs WHERE id = ? AND body IS NOT NULL", &st, err);
     if (status == RD_OK) {
         int rc = sqlite3_bind_text(st, 1, id, -1, SQLITE_STATIC);
         rc = rc ? rc : sqlite3_step(st);
@@ -400,7 +448,7 @@ int rd_store_read_body(rd_store *store, const char *id, char **body, size_t *len
         } else {
             status = db_fail(store->db, rc, "read", err);
         }
-        sqlite3_finalize(st);
+        done_kept(st);
     }
     pthread_mutex_unlock(&store->mu);
     return status;
@@ -460,9 +508,9 @@ int rd_store_retain(rd_store *store, size_t keep_max, size_t keep_bytes, int64_t
     if (status == RD_OK && n > 0 && (status = exec(store->db, "BEGIN IMMEDIATE", err)) == RD_OK) {
         for (size_t i = 0; i < n && status == RD_OK; i++) {
             sqlite3_stmt *st;
-            status = prepare(store->db, "DELETE FROM jobs WHERE id = ?", &st, err);
+            status = prepare_kept(store, delete_sql, &st, err);
             if (status == RD_OK)
-                status = run(store->db, st, "delete",
+                status = run_kept(store->db, st, "delete",
                              sqlite3_bind_text(st, 1, ids[i], -1, SQLITE_STATIC), err);
         }
         if (status == RD_OK)
