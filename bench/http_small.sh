@@ -24,7 +24,7 @@ median() { # median KEY FILE
 }
 for run in $(seq 1 "$RUNS"); do
   for mode in keepalive-nocache keepalive; do
-    rm -rf "$WORK/data"
+    rm -rf "$WORK/data" "$WORK/out" # out: the '>' below truncates it only once the server has forked
     "$b/server/ringdyn-server" --port 0 --data "$WORK/data" >"$WORK/out" 2>"$WORK/err" &
     SPID=$!
     for _ in $(seq 1 100); do grep -q listening "$WORK/out" && break; sleep 0.1; done

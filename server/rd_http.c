@@ -140,6 +140,7 @@ struct request {
     int gzip;         /* the client accepts gzip */
     const char *cache; /* X-Ringdyn-Cache of a submission: "hit", "miss", "bypass", or NULL */
     double time_limit_s; /* ?time_limit_s=, 0 when not given */
+    int replayed;        /* the Idempotency-Key named an earlier job with this body */
 };
 
 enum route {
@@ -1307,7 +1308,9 @@ static enum MHD_Result answer_submit(rd_http *h, struct MHD_Connection *c, struc
     char location[64];
     snprintf(location, sizeof location, "/api/v1/jobs/%s", id);
     if (r && (MHD_add_response_header(r, MHD_HTTP_HEADER_LOCATION, location) != MHD_YES ||
-              (rq->cache && MHD_add_response_header(r, "X-Ringdyn-Cache", rq->cache) != MHD_YES))) {
+              (rq->cache && MHD_add_response_header(r, "X-Ringdyn-Cache", rq->cache) != MHD_YES) ||
+              (rq->replayed &&
+               MHD_add_response_header(r, "Idempotent-Replayed", "true") != MHD_YES))) {
         MHD_destroy_response(r);
         r = NULL;
     }
@@ -1382,7 +1385,9 @@ static enum MHD_Result finish_submit(rd_http *h, struct MHD_Connection *c, struc
         return send_server_error(h, c, rq, MHD_HTTP_CONFLICT, "idempotency_conflict", message, NULL,
                                  NULL);
     }
-    rq->cache = out.cached ? "hit" : opts.use_cache ? "miss" : "bypass";
+    /* A replay says so (Idempotent-Replayed), not what the cache did. */
+    rq->cache = out.replayed ? NULL : out.cached ? "hit" : opts.use_cache ? "miss" : "bypass";
+    rq->replayed = out.replayed;
     if (!out.replayed)
         rd_metrics_count_cache(h->metrics, out.cached, !opts.use_cache);
     if (out.ran_inline)

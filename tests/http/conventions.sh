@@ -88,6 +88,7 @@ FIRST=$(json /id)
 same "Idempotency-Key: a first POST makes a job" "$STATUS $(json /status)" "200 succeeded"
 post_key '/api/v1/jobs?wait=60' key-1 "$BODY_A"
 same "  the retried POST (same key, same body) answers the same job" "$(json /id)" "$FIRST"
+same "  and says it is a replay (Idempotent-Replayed: true)" "$(header Idempotent-Replayed)" true
 post_key '/api/v1/jobs' key-1 "$BODY_B"
 same "  the same key with another body -> 409 idempotency_conflict" "$STATUS $(json /error/code)" \
   "409 idempotency_conflict"
