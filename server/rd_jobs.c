@@ -405,7 +405,11 @@ static void retain_locked(rd_jobs *jobs)
                          : INT64_MIN;
     if (!over_limits_locked(jobs, oldest))
         return;
-    if (rd_store_retain(jobs->cfg.store, (size_t)jobs->cfg.keep_max, jobs->cfg.keep_bytes, oldest,
+    /* Once a limit is passed, trim an eighth below it: the store's pass (a
+     * transaction, page frees, a WAL commit) then runs once every
+     * keep_max / 8 jobs, not after every job, when the server is full. */
+    size_t keep_max = (size_t)jobs->cfg.keep_max, keep_bytes = jobs->cfg.keep_bytes;
+    if (rd_store_retain(jobs->cfg.store, keep_max - keep_max / 8, keep_bytes - keep_bytes / 8, oldest,
                         forget_locked, jobs, &err) != RD_OK)
         log_store_error("retention", &err);
 }

@@ -9,7 +9,8 @@
  * the jobs the last process left queued or running become `interrupted`.
  * Retention (applied in the store): at most `keep_max` finished jobs,
  * `keep_bytes` of results and `keep_age_s` of age (the newest finished job
- * always stays); at most `queue_max` queued jobs; running jobs are bounded
+ * always stays; once a limit is passed, an eighth below it is kept); at
+ * most `queue_max` queued jobs; running jobs are bounded
  * by the worker count.  Jobs are rendered as the JSON of API.md.
  *
  * A succeeded job's JSON (with its `result`) is rendered once when it ends,
