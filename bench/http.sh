@@ -16,10 +16,10 @@ SPID=""
 trap '[ -n "$SPID" ] && kill "$SPID" 2>/dev/null; rm -rf "$WORK"' EXIT
 
 for run in $(seq 1 "$RUNS"); do
-  rm -rf "$WORK/data"
+  rm -rf "$WORK/data" "$WORK/out" # out: the '>' below truncates it only once the server has forked
   "$b/server/ringdyn-server" --port 0 --data "$WORK/data" >"$WORK/out" 2>"$WORK/err" &
   SPID=$!
-  for _ in $(seq 1 100); do grep -q listening "$WORK/out" && break; sleep 0.1; done
+  for _ in $(seq 1 100); do grep -q listening "$WORK/out" 2>/dev/null && break; sleep 0.1; done
   PORT=$(grep -o '[0-9]*$' "$WORK/out")
   "$b/bench/bench_http" "$PORT" "$CLIENTS" "$DURATION" "$SPID" | tee -a "$WORK/runs"
   kill -TERM "$SPID"

@@ -4,7 +4,7 @@
 #   scripts/install-deps.sh --test   also what the test suite needs (curl, chromium, node/npm, python3,
 #                                    clang with libFuzzer for the fuzz test, clang-format for the style check)
 set -euo pipefail
-pkgs=(build-essential cmake pkg-config libmicrohttpd-dev libjansson-dev libsqlite3-dev libsundials-dev
+pkgs=(build-essential cmake pkg-config libmicrohttpd-dev libjansson-dev libsqlite3-dev zlib1g-dev libsundials-dev
       liblapack-dev liblapacke-dev curl)
 if [ "${1:-}" = "--test" ]; then
   pkgs+=(chromium nodejs npm valgrind python3 clang clang-format libclang-rt-14-dev)

@@ -277,10 +277,9 @@ static void on_job_final(void *ctx)
         rd_http_job_ended(*http);
 }
 
-static void on_job_finish(void *ctx, int status, double run_seconds)
+static void on_job_finish(void *ctx, const char *analysis, int status, double run_seconds)
 {
-    (void)status;
-    rd_metrics_observe_job(ctx, run_seconds);
+    rd_metrics_observe_job(ctx, analysis, rd_jobs_status_name(status), run_seconds);
 }
 
 int main(int argc, char **argv)
@@ -361,7 +360,8 @@ int main(int argc, char **argv)
                          .n_allow_hosts = opt.n_allow_hosts,
                          .token = token,
                          .limits = opt.limits,
-                         .sweeps = sweeps};
+                         .sweeps = sweeps,
+                         .job_timeout_s = opt.job_timeout};
     if (rd_http_create(&hc, jobs, metrics, &http, &err) != RD_OK)
         goto fail;
 

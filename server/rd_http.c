@@ -49,6 +49,7 @@
 #include <microhttpd.h>
 
 #include "rd_api.h"
+#include "rd_gzip.h"
 #include "rd_openapi.h"
 
 /* Connections the kernel queues before MHD accepts them. */
@@ -65,6 +66,15 @@
 #define LIST_LIMIT_MAX 1000
 /* Room for a job id or example name taken from a path. */
 #define PATH_ARG_MAX 80
+/* A submission that waits (?wait) runs on the HTTP thread, with no queue and
+ * no worker hand-off, when its predicted cost (rd_scene_cost_predict) is below
+ * this: the model is within a factor 2, so such a run holds the thread a few
+ * ms at most, about what one large response takes to write. */
+#define INLINE_BELOW_S 0.002
+/* Longest Idempotency-Key accepted, bytes. */
+#define IDEM_KEY_MAX 200
+/* What a cached answer puts before the cached job's JSON (minus its '{'). */
+static const char cached_prefix[] = "{\"cached\":true,";
 
 static const char json_media[] = "application/json";
 static const char oom_body[] =
@@ -84,6 +94,7 @@ struct rd_http {
     size_t n_allow;
     char *token;            /* bearer token, or NULL */
     rd_http_limits limits;
+    double job_timeout_s; /* the job pool's time limit: the cap of ?time_limit_s= */
     pthread_mutex_t mu;  /* guards everything below */
     pthread_cond_t idle; /* in_flight dropped to 0 */
     int in_flight;       /* requests between their first call and on_completed */
@@ -126,6 +137,10 @@ struct request {
     int too_large; /* the body passed RD_API_BODY_MAX: the rest is dropped */
     int no_memory;
     int sweep;        /* a POST /api/v1/sweeps; with WAIT_SWEEP: a wait that answers it */
+    int gzip;         /* the client accepts gzip */
+    const char *cache; /* X-Ringdyn-Cache of a submission: "hit", "miss", "bypass", or NULL */
+    double time_limit_s; /* ?time_limit_s=, 0 when not given */
+    int replayed;        /* the Idempotency-Key named an earlier job with this body */
 };
 
 enum route {
@@ -559,33 +574,69 @@ static enum MHD_Result send_response(rd_http *h, struct MHD_Connection *c, struc
     return ok;
 }
 
-/* A response owning the malloc'd `body` (NULL in, NULL out). */
-static struct MHD_Response *text_response(char *body, const char *content_type)
+/* `len` bytes at `data` gzipped for a client that accepts it, when that is
+ * worth it: a malloc'd copy in *gz, else NULL. */
+static void maybe_gzip(const struct request *rq, const char *data, size_t len, char **gz,
+                       size_t *gz_len)
+{
+    *gz = NULL;
+    if (rq->gzip && len >= RD_GZIP_MIN_BYTES && rd_gzip(data, len, gz, gz_len) != 0)
+        *gz = NULL; /* out of memory: send it as it is */
+}
+
+static int add_gzip_headers(struct MHD_Response *r)
+{
+    return MHD_add_response_header(r, MHD_HTTP_HEADER_CONTENT_ENCODING, "gzip") == MHD_YES &&
+           MHD_add_response_header(r, MHD_HTTP_HEADER_VARY, "Accept-Encoding") == MHD_YES;
+}
+
+/* A response owning the malloc'd `body` (NULL in, NULL out), gzipped when
+ * the client accepts it and the body is large enough. */
+static struct MHD_Response *text_response(const struct request *rq, char *body,
+                                          const char *content_type)
 {
     if (!body)
         return NULL;
-    struct MHD_Response *r =
-        MHD_create_response_from_buffer(strlen(body), body, MHD_RESPMEM_MUST_FREE);
+    size_t len = strlen(body), gz_len = 0;
+    char *gz;
+    maybe_gzip(rq, body, len, &gz, &gz_len);
+    if (gz) {
+        free(body);
+        body = gz;
+        len = gz_len;
+    }
+    struct MHD_Response *r = MHD_create_response_from_buffer(len, body, MHD_RESPMEM_MUST_FREE);
     if (!r) {
         free(body);
         return NULL;
     }
     if (MHD_add_response_header(r, MHD_HTTP_HEADER_CONTENT_TYPE, content_type) != MHD_YES ||
-        MHD_add_response_header(r, MHD_HTTP_HEADER_CACHE_CONTROL, "no-store") != MHD_YES) {
+        MHD_add_response_header(r, MHD_HTTP_HEADER_CACHE_CONTROL, "no-store") != MHD_YES ||
+        (gz && !add_gzip_headers(r))) {
         MHD_destroy_response(r);
         return NULL;
     }
     return r;
 }
 
-/* A job's answer: its shared JSON (a succeeded job: one copy for all the
- * requests sending it, released when MHD is done) or the rendered `json`. */
-static struct MHD_Response *job_response(rd_jobs_body *body, char *json)
+/* A cached job's shared JSON with "cached":true as its first member: two
+ * pieces sent as they are (no copy), or, gzipped, one per-request copy. */
+static struct MHD_Response *cached_response(const struct request *rq, rd_jobs_body *body)
 {
-    if (!body)
-        return text_response(json, json_media);
-    struct MHD_Response *r = MHD_create_response_from_buffer_with_free_callback_cls(
-        body->len, (void *)body->data, rd_jobs_body_release, body);
+    if (rq->gzip && body->len >= RD_GZIP_MIN_BYTES) {
+        size_t n = sizeof cached_prefix - 1 + body->len - 1;
+        char *joined = malloc(n + 1);
+        if (joined) {
+            memcpy(joined, cached_prefix, sizeof cached_prefix - 1);
+            memcpy(joined + sizeof cached_prefix - 1, body->data + 1, body->len - 1);
+            joined[n] = '\0';
+        }
+        rd_jobs_body_release(body);
+        return text_response(rq, joined, json_media);
+    }
+    struct MHD_IoVec iov[2] = {{cached_prefix, sizeof cached_prefix - 1},
+                               {body->data + 1, body->len - 1}};
+    struct MHD_Response *r = MHD_create_response_from_iovec(iov, 2, rd_jobs_body_release, body);
     if (!r) {
         rd_jobs_body_release(body);
         return NULL;
@@ -598,10 +649,42 @@ static struct MHD_Response *job_response(rd_jobs_body *body, char *json)
     return r;
 }
 
+/* A job's answer: its shared JSON (a succeeded job: one copy for all the
+ * requests sending it, released when MHD is done; gzipped once per body) or
+ * the rendered `json`.  `cached`: the answer comes from the result cache. */
+static struct MHD_Response *job_response(const struct request *rq, rd_jobs_body *body, char *json,
+                                         int cached)
+{
+    if (!body)
+        return text_response(rq, json, json_media);
+    if (cached)
+        return cached_response(rq, body);
+    const char *data = body->data;
+    size_t len = body->len;
+    int gz = rq->gzip && len >= RD_GZIP_MIN_BYTES && rd_jobs_body_gzip(body, &data, &len) == RD_OK;
+    if (!gz) {
+        data = body->data;
+        len = body->len;
+    }
+    struct MHD_Response *r = MHD_create_response_from_buffer_with_free_callback_cls(
+        len, (void *)data, rd_jobs_body_release, body);
+    if (!r) {
+        rd_jobs_body_release(body);
+        return NULL;
+    }
+    if ((gz && !add_gzip_headers(r)) ||
+        MHD_add_response_header(r, MHD_HTTP_HEADER_CONTENT_TYPE, json_media) != MHD_YES ||
+        MHD_add_response_header(r, MHD_HTTP_HEADER_CACHE_CONTROL, "no-store") != MHD_YES) {
+        MHD_destroy_response(r); /* releases the body */
+        return NULL;
+    }
+    return r;
+}
+
 static enum MHD_Result send_text(rd_http *h, struct MHD_Connection *c, struct request *rq,
                                  int status, char *body, const char *content_type)
 {
-    return send_response(h, c, rq, status, text_response(body, content_type));
+    return send_response(h, c, rq, status, text_response(rq, body, content_type));
 }
 
 /* The contract's error body; `allow` (may be NULL) for 405. */
@@ -614,7 +697,7 @@ static enum MHD_Result send_error(rd_http *h, struct MHD_Connection *c, struct r
         rd_error_set(&fallback, RD_EINTERNAL, "", "Internal error.");
         err = &fallback;
     }
-    struct MHD_Response *r = text_response(rd_api_error_json(err), json_media);
+    struct MHD_Response *r = text_response(rq, rd_api_error_json(err), json_media);
     if (r && allow)
         MHD_add_response_header(r, MHD_HTTP_HEADER_ALLOW, allow);
     if (r && err->code == RD_EBUSY) {
@@ -657,7 +740,7 @@ static enum MHD_Result send_server_error(rd_http *h, struct MHD_Connection *c, s
     json_t *o = json_pack("{s:{s:s, s:s}}", "error", "code", code, "message", message);
     char *body = o ? json_dumps(o, JSON_COMPACT) : NULL;
     json_decref(o);
-    struct MHD_Response *r = text_response(body, json_media);
+    struct MHD_Response *r = text_response(rq, body, json_media);
     if (r && header && MHD_add_response_header(r, header, value) != MHD_YES) {
         MHD_destroy_response(r);
         r = NULL;
@@ -939,6 +1022,7 @@ static enum MHD_Result get_metrics(rd_http *h, struct MHD_Connection *c, struct 
     g.connections = h->nconns;
     g.deadline_closed = h->deadline_closed;
     pthread_mutex_unlock(&h->mu);
+    g.version = rd_api_version();
     char *text = rd_metrics_render(h->metrics, names, counts, RD_JOB_NSTATUS, &g);
     return send_text(h, c, rq, MHD_HTTP_OK, text, "text/plain; version=0.0.4; charset=utf-8");
 }
@@ -994,16 +1078,41 @@ static enum MHD_Result list_jobs(rd_http *h, struct MHD_Connection *c, struct re
 {
     rd_error err;
     rd_error_init(&err);
+    char buf[64];
     long limit = LIST_LIMIT_DEFAULT;
+    rd_jobs_filter f = {0};
+    f.status = -1;
     const char *s = MHD_lookup_connection_value(c, MHD_GET_ARGUMENT_KIND, "limit");
-    if (s && !parse_count(s, 1, LIST_LIMIT_MAX, &limit)) {
-        char buf[32];
+    if (s && !parse_count(s, 1, LIST_LIMIT_MAX, &limit))
         return send_fail(h, c, rq, RD_EREQUEST,
                          "The query parameter limit must be a whole number from 1 to %d, not \"%s\".",
                          LIST_LIMIT_MAX, printable(s, buf, sizeof buf));
+    f.limit = (size_t)limit;
+    if ((s = MHD_lookup_connection_value(c, MHD_GET_ARGUMENT_KIND, "status"))) {
+        for (int i = 0; i < RD_JOB_NSTATUS && f.status < 0; i++)
+            if (strcmp(s, rd_jobs_status_name(i)) == 0)
+                f.status = i;
+        if (f.status < 0)
+            return send_fail(h, c, rq, RD_EREQUEST,
+                             "The query parameter status must be one of queued, running, succeeded, "
+                             "failed, cancelled, interrupted, not \"%s\".",
+                             printable(s, buf, sizeof buf));
+    }
+    f.analysis = MHD_lookup_connection_value(c, MHD_GET_ARGUMENT_KIND, "analysis");
+    f.name = MHD_lookup_connection_value(c, MHD_GET_ARGUMENT_KIND, "name");
+    if ((s = MHD_lookup_connection_value(c, MHD_GET_ARGUMENT_KIND, "cursor"))) {
+        char *end;
+        errno = 0;
+        unsigned long long v = strtoull(s, &end, 10);
+        if (!*s || *end || errno || v == 0 || strspn(s, "0123456789") != strlen(s))
+            return send_fail(h, c, rq, RD_EREQUEST,
+                             "The query parameter cursor must be the next_cursor of an earlier "
+                             "page, not \"%s\".",
+                             printable(s, buf, sizeof buf));
+        f.before = (uint64_t)v;
     }
     char *body = NULL;
-    if (rd_jobs_list(h->jobs, (size_t)limit, &body, &err) != RD_OK)
+    if (rd_jobs_list(h->jobs, &f, &body, &err) != RD_OK)
         return send_error(h, c, rq, &err, NULL);
     return send_text(h, c, rq, MHD_HTTP_OK, body, json_media);
 }
@@ -1019,7 +1128,7 @@ static enum MHD_Result job_route(rd_http *h, struct MHD_Connection *c, struct re
         rc = rd_jobs_result_csv(h->jobs, id, &body, &err);
         if (rc != RD_OK)
             return send_error(h, c, rq, &err, NULL);
-        struct MHD_Response *r = text_response(body, "text/csv; charset=utf-8");
+        struct MHD_Response *r = text_response(rq, body, "text/csv; charset=utf-8");
         if (r) {
             char disposition[64];
             snprintf(disposition, sizeof disposition, "inline; filename=\"%.16s.csv\"", id);
@@ -1029,15 +1138,22 @@ static enum MHD_Result job_route(rd_http *h, struct MHD_Connection *c, struct re
     }
     rd_jobs_body *shared = NULL;
     if (strcmp(method, MHD_HTTP_METHOD_DELETE) == 0) {
-        if ((rc = rd_jobs_request_cancel(h->jobs, id, &err)) != RD_OK)
+        /* A final job is deleted (204); a queued or running one is
+         * cancelled and answered as it then is, as before. */
+        int deleted = 0;
+        if ((rc = rd_jobs_delete(h->jobs, id, &deleted, &err)) != RD_OK)
             return send_error(h, c, rq, &err, NULL);
+        if (deleted)
+            return send_response(
+                h, c, rq, MHD_HTTP_NO_CONTENT,
+                MHD_create_response_from_buffer(0, (void *)"", MHD_RESPMEM_PERSISTENT));
         if (!rd_jobs_is_final(h->jobs, id)) /* running: wait for it to stop */
             return suspend_for(h, c, rq, WAIT_CANCEL, id, CANCEL_WAIT_S);
     }
     rc = rd_jobs_get(h->jobs, id, 0, &shared, &body, NULL, &err);
     if (rc != RD_OK)
         return send_error(h, c, rq, &err, NULL);
-    return send_response(h, c, rq, MHD_HTTP_OK, job_response(shared, body));
+    return send_response(h, c, rq, MHD_HTTP_OK, job_response(rq, shared, body, 0));
 }
 
 /* An rd_sweeps answer as a response, or a suspended wait (status 0). */
@@ -1049,7 +1165,7 @@ static enum MHD_Result sweep_reply(rd_http *h, struct MHD_Connection *c, struct 
         return suspend_for(h, c, rq, WAIT_SWEEP, sr->wait_id, sr->wait_s);
     }
     struct MHD_Response *r =
-        sr->body ? text_response(sr->body, sr->content_type)
+        sr->body ? text_response(rq, sr->body, sr->content_type)
                  : MHD_create_response_from_buffer(0, (void *)"", MHD_RESPMEM_PERSISTENT);
     sr->body = NULL;
     char seconds[16];
@@ -1086,6 +1202,24 @@ static enum MHD_Result sweep_route(rd_http *h, struct MHD_Connection *c, struct 
     return sweep_reply(h, c, rq, &sr);
 }
 
+/* Cache-Control: no-cache (or no-store) among the request's directives. */
+static int no_cache_asked(struct MHD_Connection *c)
+{
+    const char *cc = MHD_lookup_connection_value(c, MHD_HEADER_KIND, MHD_HTTP_HEADER_CACHE_CONTROL);
+    if (!cc)
+        return 0;
+    for (const char *p = cc; *p;) {
+        while (*p == ' ' || *p == '\t' || *p == ',')
+            p++;
+        size_t n = strcspn(p, ", \t=");
+        if ((n == 8 && strncasecmp(p, "no-cache", 8) == 0) ||
+            (n == 8 && strncasecmp(p, "no-store", 8) == 0))
+            return 1;
+        p += strcspn(p, ",");
+    }
+    return 0;
+}
+
 /* First call of POST /api/v1/jobs: everything that can be refused before
  * the body is read. */
 static enum MHD_Result begin_submit(rd_http *h, struct MHD_Connection *c, struct request *rq)
@@ -1105,6 +1239,18 @@ static enum MHD_Result begin_submit(rd_http *h, struct MHD_Connection *c, struct
                              RD_HTTP_WAIT_MAX, printable(wait, buf, sizeof buf));
         rq->has_wait = 1;
     }
+    const char *limit = MHD_lookup_connection_value(c, MHD_GET_ARGUMENT_KIND, "time_limit_s");
+    if (limit && !rq->sweep &&
+        (!parse_seconds(limit, h->job_timeout_s, &rq->time_limit_s) || rq->time_limit_s <= 0))
+        return send_fail(h, c, rq, RD_EREQUEST,
+                         "The query parameter time_limit_s must be a number of seconds above 0 and "
+                         "at most the server's limit of %g, not \"%s\".",
+                         h->job_timeout_s, printable(limit, buf, sizeof buf));
+    const char *key = MHD_lookup_connection_value(c, MHD_HEADER_KIND, "Idempotency-Key");
+    if (key && !rq->sweep && (!*key || strlen(key) > IDEM_KEY_MAX || has_control_char(key)))
+        return send_fail(h, c, rq, RD_EREQUEST,
+                         "The Idempotency-Key header must be 1 to %d printable characters.",
+                         IDEM_KEY_MAX);
     const char *length = MHD_lookup_connection_value(c, MHD_HEADER_KIND, MHD_HTTP_HEADER_CONTENT_LENGTH);
     if (length) {
         char *end;
@@ -1160,10 +1306,13 @@ static enum MHD_Result answer_submit(rd_http *h, struct MHD_Connection *c, struc
     int finished = 0;
     if (rd_jobs_get(h->jobs, id, 0, &shared, &body, &finished, &err) != RD_OK)
         return send_error(h, c, rq, &err, NULL);
-    struct MHD_Response *r = job_response(shared, body);
+    struct MHD_Response *r = job_response(rq, shared, body, rq->cache && strcmp(rq->cache, "hit") == 0);
     char location[64];
     snprintf(location, sizeof location, "/api/v1/jobs/%s", id);
-    if (r && MHD_add_response_header(r, MHD_HTTP_HEADER_LOCATION, location) != MHD_YES) {
+    if (r && (MHD_add_response_header(r, MHD_HTTP_HEADER_LOCATION, location) != MHD_YES ||
+              (rq->cache && MHD_add_response_header(r, "X-Ringdyn-Cache", rq->cache) != MHD_YES) ||
+              (rq->replayed &&
+               MHD_add_response_header(r, "Idempotent-Replayed", "true") != MHD_YES))) {
         MHD_destroy_response(r);
         r = NULL;
     }
@@ -1189,7 +1338,7 @@ static enum MHD_Result answer_waiter(rd_http *h, struct MHD_Connection *c, struc
     rd_jobs_body *shared = NULL;
     if (rd_jobs_get(h->jobs, rq->job_id, 0, &shared, &body, NULL, &err) != RD_OK)
         return send_error(h, c, rq, &err, NULL);
-    return send_response(h, c, rq, MHD_HTTP_OK, job_response(shared, body));
+    return send_response(h, c, rq, MHD_HTTP_OK, job_response(rq, shared, body, 0));
 }
 
 /* Last call of POST /api/v1/jobs: parse, queue, maybe wait. */
@@ -1209,6 +1358,10 @@ static enum MHD_Result finish_submit(rd_http *h, struct MHD_Connection *c, struc
         return sweep_reply(h, c, rq, &sr);
     }
 
+    rd_jobs_submit_opts opts = {0};
+    opts.idem_key = MHD_lookup_connection_value(c, MHD_HEADER_KIND, "Idempotency-Key");
+    if (opts.idem_key) /* "the same body": the same bytes */
+        rd_jobs_hash(rq->body ? rq->body : "", rq->body ? rq->len : 0, opts.idem_hash);
     rd_scene *scene = NULL;
     char *errors = NULL; /* the error body with every problem (rd_api.h) */
     int rc = rd_scene_parse_report(rq->body ? rq->body : "", rq->len, &scene, &err, &errors);
@@ -1222,13 +1375,66 @@ static enum MHD_Result finish_submit(rd_http *h, struct MHD_Connection *c, struc
             rd_error_set(&err, rc, "", "%s.", rd_error_summary(rc));
         return send_error(h, c, rq, &err, NULL);
     }
-    char id[RD_JOBS_ID_LEN + 1];
-    if (rd_jobs_submit(h->jobs, scene, id, &err) != RD_OK) /* takes the scene */
+    opts.use_cache = !no_cache_asked(c);
+    opts.time_limit_s = rq->time_limit_s;
+    if (rq->has_wait && rq->wait_s > 0)
+        opts.inline_below_s = INLINE_BELOW_S;
+    rd_jobs_submitted out;
+    if (rd_jobs_submit(h->jobs, scene, &opts, &out, &err) != RD_OK) /* takes the scene */
         return send_error(h, c, rq, &err, NULL);
+    if (out.conflict) {
+        char message[256];
+        snprintf(message, sizeof message,
+                 "The Idempotency-Key was first sent with another body (it made job %s); send that "
+                 "body again to get that job, or use a new key for a new scene.",
+                 out.id);
+        return send_server_error(h, c, rq, MHD_HTTP_CONFLICT, "idempotency_conflict", message, NULL,
+                                 NULL);
+    }
+    /* A replay says so (Idempotent-Replayed), not what the cache did. */
+    rq->cache = out.replayed ? NULL : out.cached ? "hit" : opts.use_cache ? "miss" : "bypass";
+    rq->replayed = out.replayed;
+    if (!out.replayed)
+        rd_metrics_count_cache(h->metrics, out.cached, !opts.use_cache);
+    if (out.ran_inline)
+        rd_metrics_count_inline(h->metrics);
 
-    if (rq->has_wait && rq->wait_s > 0 && !rd_jobs_is_final(h->jobs, id))
-        return suspend_for(h, c, rq, WAIT_SUBMIT, id, rq->wait_s);
-    return answer_submit(h, c, rq, id);
+    if (rq->has_wait && rq->wait_s > 0 && !rd_jobs_is_final(h->jobs, out.id))
+        return suspend_for(h, c, rq, WAIT_SUBMIT, out.id, rq->wait_s);
+    return answer_submit(h, c, rq, out.id);
+}
+
+/* The query parameters a route reads with this method, comma-separated
+ * (every other one is refused: a typo must not pass silently). */
+static const char *allowed_params(enum route r, const char *method)
+{
+    int post = strcmp(method, MHD_HTTP_METHOD_POST) == 0;
+    switch (r) {
+    case ROUTE_JOBS:
+        return post ? "wait, time_limit_s" : "limit, status, analysis, name, cursor";
+    case ROUTE_SWEEPS:
+        return post ? "wait" : "limit";
+    default:
+        return "";
+    }
+}
+
+struct param_scan {
+    const char *allowed;
+    const char *unknown; /* the first parameter not allowed */
+};
+
+static enum MHD_Result scan_param(void *cls, enum MHD_ValueKind kind, const char *key,
+                                  const char *value)
+{
+    (void)kind;
+    (void)value;
+    struct param_scan *scan = cls;
+    if (!method_allowed(scan->allowed, key)) { /* the same comma-list match */
+        scan->unknown = key;
+        return MHD_NO;
+    }
+    return MHD_YES;
 }
 
 /* First call of every request: route, check the method, answer (or, for a
@@ -1270,6 +1476,18 @@ static enum MHD_Result begin_request(rd_http *h, struct MHD_Connection *c, struc
                      printable(method, buf, sizeof buf), printable(url, where, sizeof where), allow);
         return send_error(h, c, rq, &err, allow);
     }
+    const char *params = allowed_params(route, method);
+    struct param_scan scan = {params, NULL};
+    MHD_get_connection_values(c, MHD_GET_ARGUMENT_KIND, scan_param, &scan);
+    if (scan.unknown) {
+        char buf[64], where[128];
+        return send_fail(h, c, rq, RD_EREQUEST, "Unknown query parameter \"%s\" on %s %s; %s%s.",
+                         printable(scan.unknown, buf, sizeof buf), method,
+                         printable(url, where, sizeof where),
+                         *params ? "allowed: " : "it takes none", params);
+    }
+    rq->gzip = rd_gzip_accepted(
+        MHD_lookup_connection_value(c, MHD_HEADER_KIND, MHD_HTTP_HEADER_ACCEPT_ENCODING));
     switch (route) {
     case ROUTE_JOBS:
         if (strcmp(method, MHD_HTTP_METHOD_POST) == 0)
@@ -1462,6 +1680,7 @@ int rd_http_create(const rd_http_config *cfg, rd_jobs *jobs, rd_metrics *metrics
     h->jobs = jobs;
     h->metrics = metrics;
     h->sweeps = cfg->sweeps;
+    h->job_timeout_s = cfg->job_timeout_s;
     h->quiesced_fd = MHD_INVALID_SOCKET;
     pthread_condattr_t attr;
     pthread_condattr_init(&attr);

@@ -49,6 +49,7 @@ typedef struct rd_http_config {
     const char *token;
     rd_http_limits limits;
     rd_sweeps *sweeps; /* /api/v1/sweeps*, borrowed; NULL: those routes are 404 */
+    double job_timeout_s; /* the job pool's run time limit: the largest ?time_limit_s= */
 } rd_http_config;
 
 typedef struct rd_http rd_http;

@@ -51,8 +51,13 @@
 
 #include <jansson.h>
 
+#include "rd_gzip.h"
+#include "rd_scene_facts.h"
+
 /* How long DELETE waits for a running job to acknowledge the cancellation. */
 #define CANCEL_WAIT_S 5.0
+/* How long rd_jobs_shutdown waits for the callbacks of runs that just ended. */
+#define NOTIFY_WAIT_S 2.0
 /* How long rd_jobs_free waits for idle workers to leave. */
 #define IDLE_WAIT_S 1.0
 /* Run time assumed for Retry-After before any job has finished. */
@@ -64,6 +69,8 @@ struct body {
     struct job *owner; /* the job whose `body` this is, NULL once it is gone */
     int refs;
     char *data;
+    char *gz;      /* its gzip, made once by rd_jobs_body_gzip, or NULL */
+    size_t gz_len;
 };
 
 struct job {
@@ -82,6 +89,14 @@ struct job {
     size_t body_len;  /* bytes of the stored JSON of a succeeded job */
     struct body *body; /* that JSON while some request sends it, else NULL */
     char *error;      /* error body, once failed, cancelled or interrupted */
+    uint64_t seq;     /* submission order in this process (list cursors), from 1 */
+    char *name;       /* the scene's name, or NULL */
+    int has_key;      /* `key` is set: a succeeded job is a result cache entry */
+    uint64_t key[2];  /* rd_jobs_hash of the canonical scene */
+    char *idem_key;   /* the client's Idempotency-Key, or NULL */
+    uint64_t idem_hash[2]; /* rd_jobs_hash of the body it came with */
+    double timeout_s; /* this job's run time limit */
+    double predicted_s; /* rd_scene_cost_predict, NAN when unknown */
 };
 
 struct rd_jobs {
@@ -100,8 +115,16 @@ struct rd_jobs {
     int nworkers; /* started successfully */
     int active;   /* workers not yet returned */
     int in_solver; /* workers inside rd_scene_run */
-    int notifying; /* workers inside on_final/on_finish (shutdown waits for them) */
     struct body *recent; /* the body read last, held one reference longer (see keep_recent_locked) */
+    uint64_t next_seq;   /* the seq of the next job pushed */
+    /* Moving average of (run time / predicted cost) over the succeeded runs
+     * that had a prediction: the cost model is fitted to a reference
+     * machine, this scales it to the one we run on (and its load). */
+    double cost_scale;
+    /* Runs that have ended but not yet returned from on_final/on_finish:
+     * rd_jobs_shutdown waits for them, so that no callback reaches a caller
+     * (the HTTP server) after shutdown has returned and it is being freed. */
+    int notifying;
 };
 
 /* What a request reads of a job, copied under `mu`. */
@@ -112,6 +135,8 @@ struct snap {
     double progress;
     struct timespec created, started, finished;
     char *error; /* a copy, or NULL */
+    char *name;  /* a copy, or NULL */
+    double predicted_s; /* scaled by cost_scale */
 };
 
 struct run_ctx {
@@ -180,6 +205,38 @@ static int64_t real_now_ns(void)
     struct timespec ts;
     clock_gettime(CLOCK_REALTIME, &ts);
     return to_ns(&ts);
+}
+
+void rd_jobs_hash(const char *data, size_t len, uint64_t out[2])
+{
+    uint64_t a = 0xcbf29ce484222325u; /* FNV-1a 64 offset basis and prime */
+    uint64_t b = 0x9e3779b97f4a7c15u;
+    for (size_t i = 0; i < len; i++) {
+        unsigned char c = (unsigned char)data[i];
+        a = (a ^ c) * 0x100000001b3u;
+        b = (b ^ c) * 0xff51afd7ed558ccdu;
+        b ^= b >> 29;
+    }
+    out[0] = a;
+    out[1] = b ^ (uint64_t)len;
+}
+
+/* A 128-bit key as 32 hex digits (buf: 33 bytes). */
+static void format_key(const uint64_t key[2], char *buf)
+{
+    snprintf(buf, 33, "%016llx%016llx", (unsigned long long)key[0], (unsigned long long)key[1]);
+}
+
+static int parse_key(const char *text, uint64_t key[2])
+{
+    char half[17];
+    if (strlen(text) != 32 || strspn(text, "0123456789abcdef") != 32)
+        return 0;
+    memcpy(half, text, 16);
+    half[16] = '\0';
+    key[0] = strtoull(half, NULL, 16);
+    key[1] = strtoull(text + 16, NULL, 16);
+    return 1;
 }
 
 static int id_is_wellformed(const char *id)
@@ -266,6 +323,8 @@ static void job_free(struct job *job)
         job->body->owner = NULL;
     rd_scene_free(job->scene);
     free(job->error);
+    free(job->name);
+    free(job->idem_key);
     free(job);
 }
 
@@ -284,6 +343,7 @@ static void set_status_locked(rd_jobs *jobs, struct job *job, int status)
 
 static void push_locked(rd_jobs *jobs, struct job *job)
 {
+    job->seq = ++jobs->next_seq;
     job->next = jobs->head;
     if (jobs->head)
         jobs->head->prev = job;
@@ -318,6 +378,24 @@ static void forget_locked(void *ctx, const char *id)
     }
 }
 
+/* Would rd_store_retain delete anything?  The list mirrors the store's
+ * rows, so the answer comes from memory, and the store (a query over every
+ * finished row) is asked only when some limit is passed: a job ending is
+ * then no store read at all. */
+static int over_limits_locked(const rd_jobs *jobs, int64_t oldest)
+{
+    size_t n = 0, bytes = 0;
+    for (const struct job *j = jobs->head; j; j = j->next)
+        if (is_final(j->status)) {
+            n++;
+            bytes += j->body_len;
+            if (n > (size_t)jobs->cfg.keep_max || bytes > jobs->cfg.keep_bytes ||
+                to_ns(&j->finished) < oldest)
+                return 1;
+        }
+    return 0;
+}
+
 static void retain_locked(rd_jobs *jobs)
 {
     rd_error err;
@@ -325,7 +403,13 @@ static void retain_locked(rd_jobs *jobs)
     int64_t oldest = jobs->cfg.keep_age_s > 0
                          ? real_now_ns() - (int64_t)(jobs->cfg.keep_age_s * 1e9)
                          : INT64_MIN;
-    if (rd_store_retain(jobs->cfg.store, (size_t)jobs->cfg.keep_max, jobs->cfg.keep_bytes, oldest,
+    if (!over_limits_locked(jobs, oldest))
+        return;
+    /* Once a limit is passed, trim an eighth below it: the store's pass (a
+     * transaction, page frees, a WAL commit) then runs once every
+     * keep_max / 8 jobs, not after every job, when the server is full. */
+    size_t keep_max = (size_t)jobs->cfg.keep_max, keep_bytes = jobs->cfg.keep_bytes;
+    if (rd_store_retain(jobs->cfg.store, keep_max - keep_max / 8, keep_bytes - keep_bytes / 8, oldest,
                         forget_locked, jobs, &err) != RD_OK)
         log_store_error("retention", &err);
 }
@@ -381,7 +465,7 @@ static int new_id_locked(rd_jobs *jobs, char *id, rd_error *err)
     return rd_error_set(err, RD_EINTERNAL, "", "Could not find a free job id.");
 }
 
-static int snapshot_locked(const struct job *job, struct snap *s)
+static int snapshot_locked(const rd_jobs *jobs, const struct job *job, struct snap *s)
 {
     memcpy(s->id, job->id, sizeof s->id);
     memcpy(s->analysis, job->analysis, sizeof s->analysis);
@@ -391,8 +475,15 @@ static int snapshot_locked(const struct job *job, struct snap *s)
     s->started = job->started;
     s->finished = job->finished;
     s->error = NULL;
+    s->name = NULL;
+    s->predicted_s = job->predicted_s * (jobs->cost_scale > 0 ? jobs->cost_scale : 1);
     if (is_final(job->status) && job->error && !(s->error = strdup(job->error)))
         return -1;
+    if (job->name && !(s->name = strdup(job->name))) {
+        free(s->error);
+        s->error = NULL;
+        return -1;
+    }
     return 0;
 }
 
@@ -413,6 +504,28 @@ static json_t *iso_time(const struct timespec *ts)
     return json_string(buf);
 }
 
+/* Seconds a running job still needs: from the predicted cost while the run
+ * is within it, else from its progress and elapsed time; null when neither
+ * says anything. */
+static json_t *eta(const struct snap *s)
+{
+    struct timespec now;
+    clock_gettime(CLOCK_REALTIME, &now);
+    double elapsed = (double)(now.tv_sec - s->started.tv_sec) +
+                     1e-9 * (double)(now.tv_nsec - s->started.tv_nsec);
+    if (!(elapsed >= 0))
+        elapsed = 0;
+    /* The cost model (scaled to this machine by the runs so far) first: the
+     * progress of a modal run moves in uneven steps, so the rate it implies
+     * is rough.  Once the run outlasts the model, the progress rate. */
+    if (s->predicted_s > elapsed)
+        return json_real(s->predicted_s - elapsed);
+    /* Below 1 % the rate is mostly start-up cost: it would overstate. */
+    if (s->progress >= 0.01 && s->progress < 1)
+        return json_real(elapsed * (1 - s->progress) / s->progress);
+    return json_null();
+}
+
 /* The job object without `result`; NULL when out of memory. */
 static json_t *job_object(const struct snap *s)
 {
@@ -424,9 +537,12 @@ static json_t *job_object(const struct snap *s)
     bad |= json_object_set_new(o, "status", json_string(rd_jobs_status_name(s->status)));
     bad |= json_object_set_new(o, "progress", json_real(s->progress));
     bad |= json_object_set_new(o, "analysis", json_string(s->analysis));
+    bad |= json_object_set_new(o, "name", s->name ? json_string(s->name) : json_null());
     bad |= json_object_set_new(o, "created", iso_time(&s->created));
     bad |= json_object_set_new(o, "started", iso_time(&s->started));
     bad |= json_object_set_new(o, "finished", iso_time(&s->finished));
+    if (s->status == RD_JOB_RUNNING)
+        bad |= json_object_set_new(o, "eta_s", eta(s));
     if (s->error) {
         /* The error body is {"error": {...}}; the job carries the inner object. */
         json_t *body = json_loads(s->error, 0, NULL);
@@ -479,12 +595,13 @@ static int view_and_release(rd_jobs *jobs, struct job *job, char **json, int *fi
                             rd_error *err)
 {
     struct snap s;
-    int bad = snapshot_locked(job, &s);
+    int bad = snapshot_locked(jobs, job, &s);
     pthread_mutex_unlock(&jobs->mu);
     if (finished)
         *finished = is_final(s.status);
     *json = bad ? NULL : render_head(&s);
     free(s.error);
+    free(s.name);
     pthread_mutex_lock(&jobs->mu);
     release_locked(job);
     pthread_mutex_unlock(&jobs->mu);
@@ -499,6 +616,7 @@ static void body_free(struct body *b)
 {
     if (b) {
         free(b->data);
+        free(b->gz);
         free(b);
     }
 }
@@ -645,7 +763,7 @@ static int final_status(rd_jobs *jobs, struct job *job, int rc, const char *resu
         *error = error_json(RD_ETIMEOUT,
                             "The job ran longer than the time limit of %g s and was stopped "
                             "(at %.0f %% progress).",
-                            jobs->cfg.timeout_s, 100.0 * progress);
+                            job->timeout_s, 100.0 * progress);
         return RD_JOB_FAILED;
     }
     if (err->code == RD_OK)
@@ -693,7 +811,7 @@ static int store_end(rd_jobs *jobs, const struct snap *s, int status, const char
  * the store row first (with the rendered JSON of a success), then the
  * status in memory.  A job that shutdown already ended `interrupted` keeps
  * that end; what its run produced is dropped. */
-static void run_job(rd_jobs *jobs, struct job *job, rd_scene *scene)
+static void run_job(rd_jobs *jobs, struct job *job, rd_scene *scene, int pooled)
 {
     struct run_ctx ctx = {jobs, job};
     rd_monitor mon = {report_progress, &ctx};
@@ -701,6 +819,8 @@ static void run_job(rd_jobs *jobs, struct job *job, rd_scene *scene)
     rd_error_init(&err);
     char *result = NULL, *error = NULL, *body = NULL;
     size_t body_len = 0;
+    char job_analysis[sizeof job->analysis];
+    memcpy(job_analysis, job->analysis, sizeof job_analysis); /* job may be freed below */
 
     double t0 = mono_now();
     int rc = rd_scene_run(scene, &mon, &result, &err);
@@ -709,13 +829,15 @@ static void run_job(rd_jobs *jobs, struct job *job, rd_scene *scene)
     int status = final_status(jobs, job, rc, result, &err, &error);
 
     pthread_mutex_lock(&jobs->mu);
-    jobs->in_solver--;
-    pthread_cond_broadcast(&jobs->idle);
+    if (pooled) {
+        jobs->in_solver--;
+        pthread_cond_broadcast(&jobs->idle);
+    }
     note_stop_latency_locked(jobs, job, t1);
     int detached = is_final(job->status);
     struct snap s;
     memset(&s, 0, sizeof s);
-    int bad = detached ? 0 : snapshot_locked(job, &s);
+    int bad = detached ? 0 : snapshot_locked(jobs, job, &s);
     pthread_mutex_unlock(&jobs->mu);
 
     if (!detached && !bad) {
@@ -740,10 +862,29 @@ static void run_job(rd_jobs *jobs, struct job *job, rd_scene *scene)
         }
     }
     free(result);
-    free(body);
     free(s.error);
+    free(s.name);
+    /* The JSON just stored is what the client waiting for the job reads
+     * next: it becomes the job's shared body (held as the recent one), so
+     * that read costs no trip to the store. */
+    struct body *kept = status == RD_JOB_SUCCEEDED && body ? calloc(1, sizeof *kept) : NULL;
+    struct body *dropped = NULL;
+    if (kept) {
+        kept->jobs = jobs;
+        kept->data = body;
+        kept->pub.data = body;
+        kept->pub.len = body_len;
+    } else {
+        free(body);
+    }
 
     pthread_mutex_lock(&jobs->mu);
+    if (kept && !detached && !job->body) {
+        kept->owner = job;
+        job->body = kept;
+        dropped = keep_recent_locked(jobs, kept);
+        kept = NULL;
+    }
     if (!detached) {
         free(job->error);
         job->error = error;
@@ -754,24 +895,30 @@ static void run_job(rd_jobs *jobs, struct job *job, rd_scene *scene)
         job->finished = s.finished;
         set_status_locked(jobs, job, status);
         jobs->mean_run_s = 0.7 * jobs->mean_run_s + 0.3 * (t1 - t0);
+        if (status == RD_JOB_SUCCEEDED && job->predicted_s > 0) {
+            double ratio = (t1 - t0) / job->predicted_s;
+            jobs->cost_scale = jobs->cost_scale > 0 ? 0.8 * jobs->cost_scale + 0.2 * ratio : ratio;
+        }
         retain_locked(jobs);
-        jobs->notifying++; /* counted before `done` so shutdown cannot miss it */
+        jobs->notifying++;
         pthread_cond_broadcast(&jobs->done);
     }
     release_locked(job);
     pthread_mutex_unlock(&jobs->mu);
+    body_free(kept); /* not taken (detached) */
+    body_free(dropped);
     free(error);
 
-    if (detached)
-        return;
-    if (jobs->cfg.on_final)
-        jobs->cfg.on_final(jobs->cfg.on_final_ctx);
-    if (jobs->cfg.on_finish)
-        jobs->cfg.on_finish(jobs->cfg.on_finish_ctx, status, t1 - t0);
-    pthread_mutex_lock(&jobs->mu);
-    jobs->notifying--;
-    pthread_cond_broadcast(&jobs->done);
-    pthread_mutex_unlock(&jobs->mu);
+    if (!detached) {
+        if (jobs->cfg.on_final)
+            jobs->cfg.on_final(jobs->cfg.on_final_ctx);
+        if (jobs->cfg.on_finish)
+            jobs->cfg.on_finish(jobs->cfg.on_finish_ctx, job_analysis, status, t1 - t0);
+        pthread_mutex_lock(&jobs->mu);
+        jobs->notifying--;
+        pthread_cond_broadcast(&jobs->done);
+        pthread_mutex_unlock(&jobs->mu);
+    }
 }
 
 static void *worker_main(void *arg)
@@ -791,14 +938,14 @@ static void *worker_main(void *arg)
         job->refs++;
         set_status_locked(jobs, job, RD_JOB_RUNNING);
         clock_gettime(CLOCK_REALTIME, &job->started);
-        job->deadline = mono_now() + jobs->cfg.timeout_s;
+        job->deadline = mono_now() + job->timeout_s;
         rd_scene *scene = job->scene;
         job->scene = NULL;
         update_store(jobs, job, NULL); /* small: status and start time */
         jobs->in_solver++;
         pthread_mutex_unlock(&jobs->mu);
 
-        run_job(jobs, job, scene);
+        run_job(jobs, job, scene, 1);
     }
 }
 
@@ -823,8 +970,15 @@ static int load_row(void *ctx, const rd_store_row *row)
     job->finished = from_ns(row->finished_ns);
     job->body_len = row->body_len;
     job->refs = 1;
-    if (row->error && !(job->error = strdup(row->error))) {
-        free(job);
+    job->timeout_s = jobs->cfg.timeout_s;
+    job->predicted_s = NAN;
+    job->has_key = row->cache_key && parse_key(row->cache_key, job->key);
+    if (row->idem_hash) /* a malformed one stays zero and matches no body: a conflict */
+        (void)parse_key(row->idem_hash, job->idem_hash);
+    if ((row->error && !(job->error = strdup(row->error))) ||
+        (row->name && !(job->name = strdup(row->name))) ||
+        (row->idem_key && !(job->idem_key = strdup(row->idem_key)))) {
+        job_free(job);
         return RD_ENOMEM;
     }
     push_locked(jobs, job);
@@ -942,14 +1096,13 @@ void rd_jobs_shutdown(rd_jobs *jobs, double wait_s)
     for (struct job *j = jobs->head; j; j = j->next)
         if (j->status == RD_JOB_RUNNING)
             end_locked(jobs, j, RD_JOB_INTERRUPTED, interrupted_json("running"));
-    /* A worker that ended its job just before may still be telling on_final
-     * (the HTTP server, which main frees next): wait for it; it takes
-     * microseconds, so the bound only guards against a stuck callback. */
-    struct timespec notify_deadline = mono_deadline(1.0);
-    while (jobs->notifying > 0)
-        if (pthread_cond_timedwait(&jobs->done, &jobs->mu, &notify_deadline) == ETIMEDOUT)
-            break;
     pthread_cond_broadcast(&jobs->done);
+    /* Callbacks of runs that ended meanwhile take microseconds; the bound
+     * only guards against a callback that blocks. */
+    struct timespec notified = mono_deadline(NOTIFY_WAIT_S);
+    while (jobs->notifying > 0)
+        if (pthread_cond_timedwait(&jobs->done, &jobs->mu, &notified) == ETIMEDOUT)
+            break;
     pthread_mutex_unlock(&jobs->mu);
     if (jobs->cfg.on_final)
         jobs->cfg.on_final(jobs->cfg.on_final_ctx);
@@ -994,56 +1147,142 @@ void rd_jobs_free(rd_jobs *jobs)
     free(jobs);
 }
 
-int rd_jobs_submit(rd_jobs *jobs, rd_scene *scene, char *id, rd_error *err)
+/* An earlier job that answers a submission (mu held): the one holding its
+ * Idempotency-Key (a replay, or a conflict when the body differs), else,
+ * with the cache on, a succeeded job of the same canonical scene. */
+static struct job *earlier_answer_locked(rd_jobs *jobs, const rd_jobs_submit_opts *o,
+                                         const uint64_t key[2], rd_jobs_submitted *out)
 {
-    int rc = RD_OK;
+    if (o->idem_key)
+        for (struct job *j = jobs->head; j; j = j->next)
+            if (j->idem_key && strcmp(j->idem_key, o->idem_key) == 0) {
+                int same = j->idem_hash[0] == o->idem_hash[0] && j->idem_hash[1] == o->idem_hash[1];
+                out->replayed = same;
+                out->conflict = !same;
+                return j;
+            }
+    if (o->use_cache)
+        for (struct job *j = jobs->head; j; j = j->next)
+            if (j->status == RD_JOB_SUCCEEDED && j->has_key && j->key[0] == key[0] &&
+                j->key[1] == key[1]) {
+                out->cached = 1;
+                return j;
+            }
+    return NULL;
+}
+
+/* A new job for `scene` (not yet listed; takes the scene), or NULL when out
+ * of memory (the scene is then freed). */
+static struct job *new_job(rd_jobs *jobs, rd_scene *scene, const rd_jobs_submit_opts *o)
+{
     struct job *job = calloc(1, sizeof *job);
-    char *echo = job ? rd_scene_to_json(scene) : NULL;
-    if (!job || !echo) {
-        free(job);
-        rd_scene_free(scene);
-        return rd_error_set(err, RD_ENOMEM, "", "Out of memory.");
+    char *canon = job ? rd_scene_canonical_json(scene) : NULL;
+    const char *name = rd_scene_name(scene);
+    if (job)
+        job->scene = scene;
+    if (!canon || (name && !(job->name = strdup(name))) ||
+        (o->idem_key && !(job->idem_key = strdup(o->idem_key)))) {
+        free(canon);
+        if (job)
+            job_free(job);
+        else
+            rd_scene_free(scene);
+        return NULL;
     }
+    rd_jobs_hash(canon, strlen(canon), job->key);
+    job->has_key = 1;
+    free(canon);
+    memcpy(job->idem_hash, o->idem_hash, sizeof job->idem_hash);
     const char *analysis = rd_scene_analysis(scene);
     snprintf(job->analysis, sizeof job->analysis, "%s", analysis ? analysis : "");
-    job->scene = scene;
+    job->timeout_s = o->time_limit_s > 0 && o->time_limit_s < jobs->cfg.timeout_s
+                         ? o->time_limit_s
+                         : jobs->cfg.timeout_s;
+    job->predicted_s = rd_scene_cost_predict(scene);
     job->refs = 1;
     job->status = RD_JOB_QUEUED;
     clock_gettime(CLOCK_REALTIME, &job->created);
+    return job;
+}
+
+/* Writes a new job's row (mu held). */
+static int insert_row_locked(rd_jobs *jobs, const struct job *job, const char *echo, rd_error *err)
+{
+    char key[33], idem[33];
+    rd_store_row row;
+    store_row(job, &row);
+    format_key(job->key, key);
+    format_key(job->idem_hash, idem);
+    row.name = job->name;
+    row.cache_key = key;
+    row.idem_key = job->idem_key;
+    row.idem_hash = job->idem_key ? idem : NULL;
+    rd_error store_err;
+    rd_error_init(&store_err);
+    if (rd_store_insert(jobs->cfg.store, &row, echo, &store_err) == RD_OK)
+        return RD_OK;
+    log_store_error("insert", &store_err);
+    return rd_error_set(err, store_err.code == RD_ENOMEM ? RD_ENOMEM : RD_EINTERNAL, "",
+                        "The job could not be written to the job store.");
+}
+
+int rd_jobs_submit(rd_jobs *jobs, rd_scene *scene, const rd_jobs_submit_opts *o,
+                   rd_jobs_submitted *out, rd_error *err)
+{
+    int rc = RD_OK;
+    memset(out, 0, sizeof *out);
+    char *echo = rd_scene_to_json(scene);
+    struct job *job = echo ? new_job(jobs, scene, o) : NULL;
+    if (!job) {
+        if (!echo)
+            rd_scene_free(scene);
+        free(echo);
+        return rd_error_set(err, RD_ENOMEM, "", "Out of memory.");
+    }
+    /* NaN (no cost model) is never below the threshold: such jobs queue. */
+    int run_inline = o->inline_below_s > 0 && job->predicted_s < o->inline_below_s;
 
     pthread_mutex_lock(&jobs->mu);
+    struct job *earlier;
     if (jobs->stopping) {
         rc = rd_error_set(err, RD_EBUSY, "", "The server is shutting down and takes no new jobs.");
-        goto out;
-    }
-    if (jobs->counts[RD_JOB_QUEUED] >= (size_t)jobs->cfg.queue_max) {
+    } else if ((earlier = earlier_answer_locked(jobs, o, job->key, out))) {
+        memcpy(out->id, earlier->id, sizeof out->id);
+    } else if (!run_inline && jobs->counts[RD_JOB_QUEUED] >= (size_t)jobs->cfg.queue_max) {
         rc = rd_error_set(err, RD_EBUSY, "",
                           "The job queue is full (%d jobs waiting for %d workers); retry later.",
                           jobs->cfg.queue_max, jobs->cfg.threads);
-        goto out;
+    } else if ((rc = new_id_locked(jobs, job->id, err)) == RD_OK) {
+        if (run_inline) { /* running from the start, with the run's own reference */
+            job->status = RD_JOB_RUNNING;
+            job->started = job->created;
+            job->deadline = mono_now() + job->timeout_s;
+            job->refs++;
+        }
+        if ((rc = insert_row_locked(jobs, job, echo, err)) == RD_OK) {
+            push_locked(jobs, job);
+            memcpy(out->id, job->id, sizeof out->id);
+            if (!run_inline)
+                pthread_cond_signal(&jobs->work);
+        }
     }
-    if ((rc = new_id_locked(jobs, job->id, err)) != RD_OK)
-        goto out;
-    rd_store_row row;
-    store_row(job, &row);
-    rd_error store_err;
-    rd_error_init(&store_err);
-    if (rd_store_insert(jobs->cfg.store, &row, echo, &store_err) != RD_OK) {
-        log_store_error("insert", &store_err);
-        rc = rd_error_set(err, store_err.code == RD_ENOMEM ? RD_ENOMEM : RD_EINTERNAL, "",
-                          "The job could not be written to the job store.");
-        goto out;
+    int listed = rc == RD_OK && !out->cached && !out->replayed && !out->conflict;
+    rd_scene *taken = NULL;
+    if (listed && run_inline) {
+        taken = job->scene;
+        job->scene = NULL;
     }
-    push_locked(jobs, job);
-    memcpy(id, job->id, RD_JOBS_ID_LEN + 1);
-    pthread_cond_signal(&jobs->work);
-    job = NULL;
-out:
     pthread_mutex_unlock(&jobs->mu);
     free(echo);
-    if (job)
+    if (!listed) {
         job_free(job);
-    return rc;
+        return rc;
+    }
+    if (run_inline) {
+        run_job(jobs, job, taken, 0); /* drops the run's reference */
+        out->ran_inline = 1;
+    }
+    return RD_OK;
 }
 
 /* Locks the store and finds job `id`, taking a reference: on RD_OK *out is the
@@ -1203,30 +1442,106 @@ int rd_jobs_result_csv(rd_jobs *jobs, const char *id, char **csv, rd_error *err)
     return RD_OK;
 }
 
-int rd_jobs_list(rd_jobs *jobs, size_t limit, char **json, rd_error *err)
+static int matches(const struct job *j, const rd_jobs_filter *f)
+{
+    return (f->before == 0 || j->seq < f->before) && (f->status < 0 || j->status == f->status) &&
+           (!f->analysis || strcmp(j->analysis, f->analysis) == 0) &&
+           (!f->name || (j->name && strcmp(j->name, f->name) == 0));
+}
+
+int rd_jobs_list(rd_jobs *jobs, const rd_jobs_filter *f, char **json, rd_error *err)
 {
     *json = NULL;
     json_t *list = json_array();
     json_t *root = json_object();
     int bad = !list || !root;
+    uint64_t last = 0;
+    int more = 0;
     pthread_mutex_lock(&jobs->mu);
     size_t n = 0;
-    for (struct job *j = jobs->head; j && n < limit && !bad; j = j->next, n++) {
+    for (struct job *j = jobs->head; j && !bad; j = j->next) {
+        if (!matches(j, f))
+            continue;
+        if (n == f->limit) { /* one more matches: there is a next page */
+            more = 1;
+            break;
+        }
         struct snap s;
-        bad |= snapshot_locked(j, &s);
+        bad |= snapshot_locked(jobs, j, &s);
         if (!bad)
             bad |= json_array_append_new(list, job_object(&s));
         free(s.error);
+        free(s.name);
+        last = j->seq;
+        n++;
     }
     pthread_mutex_unlock(&jobs->mu);
+    char cursor[24];
+    snprintf(cursor, sizeof cursor, "%llu", (unsigned long long)last);
     if (!bad) {
         bad |= json_object_set(root, "jobs", list);
+        bad |= json_object_set_new(root, "next_cursor", more ? json_string(cursor) : json_null());
         *json = bad ? NULL : json_dumps(root, JSON_COMPACT | JSON_REAL_PRECISION(6));
     }
     json_decref(list);
     json_decref(root);
     if (!*json)
         return rd_error_set(err, RD_ENOMEM, "", "Out of memory while listing jobs.");
+    return RD_OK;
+}
+
+int rd_jobs_delete(rd_jobs *jobs, const char *id, int *deleted, rd_error *err)
+{
+    *deleted = 0;
+    struct job *job;
+    int acquired = acquire_locked(jobs, id, &job, err);
+    if (acquired != RD_OK)
+        return acquired;
+    if (!is_final(job->status)) {
+        release_locked(job);
+        pthread_mutex_unlock(&jobs->mu);
+        return rd_jobs_request_cancel(jobs, id, err);
+    }
+    rd_error store_err;
+    rd_error_init(&store_err);
+    int rc = rd_store_delete(jobs->cfg.store, id, &store_err);
+    if (rc == RD_OK) { /* the row is gone first: a restart cannot bring the job back */
+        unlink_locked(jobs, job);
+        release_locked(job); /* the list's reference */
+        *deleted = 1;
+    } else {
+        log_store_error("delete", &store_err);
+        rc = rd_error_set(err, RD_EINTERNAL, "", "Job %s could not be deleted from the job store.",
+                          id);
+    }
+    release_locked(job);
+    pthread_mutex_unlock(&jobs->mu);
+    return rc;
+}
+
+int rd_jobs_body_gzip(rd_jobs_body *pub, const char **data, size_t *len)
+{
+    struct body *b = (struct body *)pub;
+    rd_jobs *jobs = b->jobs;
+    pthread_mutex_lock(&jobs->mu);
+    int have = b->gz != NULL;
+    pthread_mutex_unlock(&jobs->mu);
+    if (!have) { /* compressed without the lock; a racing reader's copy is dropped */
+        char *gz;
+        size_t n;
+        if (rd_gzip(b->data, pub->len, &gz, &n) != 0)
+            return RD_ENOMEM;
+        pthread_mutex_lock(&jobs->mu);
+        if (!b->gz) {
+            b->gz = gz;
+            b->gz_len = n;
+            gz = NULL;
+        }
+        pthread_mutex_unlock(&jobs->mu);
+        free(gz);
+    }
+    *data = b->gz; /* never changes once set, and lives as long as the body */
+    *len = b->gz_len;
     return RD_OK;
 }
 

@@ -9,7 +9,8 @@
  * the jobs the last process left queued or running become `interrupted`.
  * Retention (applied in the store): at most `keep_max` finished jobs,
  * `keep_bytes` of results and `keep_age_s` of age (the newest finished job
- * always stays); at most `queue_max` queued jobs; running jobs are bounded
+ * always stays; once a limit is passed, an eighth below it is kept); at
+ * most `queue_max` queued jobs; running jobs are bounded
  * by the worker count.  Jobs are rendered as the JSON of API.md.
  *
  * A succeeded job's JSON (with its `result`) is rendered once when it ends,
@@ -24,6 +25,7 @@
 #define RD_JOBS_H
 
 #include <stddef.h>
+#include <stdint.h>
 
 #include "rd_api.h"
 #include "rd_error.h"
@@ -53,9 +55,10 @@ typedef struct rd_jobs_config {
     double keep_age_s; /* and none older than this (0: no age limit) */
     double timeout_s; /* run time limit per job, > 0 */
     rd_store *store;  /* borrowed; must outlive the pool */
-    /* Called by a worker after each job that ran, with its final status and
-     * run time; no lock is held.  May be NULL. */
-    void (*on_finish)(void *ctx, int status, double run_seconds);
+    /* Called after each job that ran (by its worker, or by the thread that
+     * ran it inline), with its analysis, final status and run time; no lock
+     * is held.  May be NULL. */
+    void (*on_finish)(void *ctx, const char *analysis, int status, double run_seconds);
     void *on_finish_ctx;
     /* Called (no lock held) whenever a job reaches a final state, so that
      * requests waiting for it can be woken.  May be NULL. */
@@ -93,10 +96,44 @@ void rd_jobs_shutdown(rd_jobs *jobs, double wait_s);
  * follow.  NULL is a no-op. */
 void rd_jobs_free(rd_jobs *jobs);
 
-/* Queues a parsed scene.  Takes ownership of `scene` in every case.  On
- * success writes the new id (RD_JOBS_ID_LEN + 1 bytes with the NUL).
+/* How a scene is submitted (zero: as before these existed). */
+typedef struct rd_jobs_submit_opts {
+    /* The client's Idempotency-Key (NULL: none) and a hash of the request
+     * body it came with (rd_jobs_hash).  A key already held by a kept job
+     * answers with that job (same body hash) or a conflict (another). */
+    const char *idem_key;
+    uint64_t idem_hash[2];
+    /* Look the canonical scene up among the succeeded jobs kept (the result
+     * cache) and answer with the one that computed it. */
+    int use_cache;
+    /* The job's run time limit, s: 0 for the pool's timeout_s; larger values
+     * are capped at it. */
+    double time_limit_s;
+    /* > 0: when the scene's predicted cost (rd_scene_cost_predict) is below
+     * this many seconds, run it at once on the calling thread (no queue, no
+     * worker) before returning. */
+    double inline_below_s;
+} rd_jobs_submit_opts;
+
+typedef struct rd_jobs_submitted {
+    char id[RD_JOBS_ID_LEN + 1]; /* the job that answers the submission */
+    int cached;      /* an earlier job with the same canonical scene answers it */
+    int replayed;    /* the Idempotency-Key named this earlier job (same body) */
+    int conflict;    /* the Idempotency-Key names job `id`, sent with another body:
+                        nothing was submitted */
+    int ran_inline;  /* it ran on the calling thread and is final */
+} rd_jobs_submitted;
+
+/* Two independent 64-bit hashes of `len` bytes (FNV-1a and a
+ * multiply-xorshift): the 128-bit keys of the result cache and of
+ * Idempotency-Key bodies. */
+void rd_jobs_hash(const char *data, size_t len, uint64_t out[2]);
+
+/* Queues a parsed scene (or answers it from an earlier job, or runs it
+ * inline: see the options).  Takes ownership of `scene` in every case.
  * RD_EBUSY when the queue is full or the pool is shutting down. */
-int rd_jobs_submit(rd_jobs *jobs, rd_scene *scene, char *id, rd_error *err);
+int rd_jobs_submit(rd_jobs *jobs, rd_scene *scene, const rd_jobs_submit_opts *opts,
+                   rd_jobs_submitted *out, rd_error *err);
 
 /* The job: {"id", "status", "progress", "analysis", "created", "started",
  * "finished", "result" | "error"}.  Waits up to `wait_s` seconds (0: not at
@@ -127,8 +164,28 @@ int rd_jobs_cancel(rd_jobs *jobs, const char *id, rd_jobs_body **body, char **js
  * an unknown id or a job without a result (the message gives its status). */
 int rd_jobs_result_csv(rd_jobs *jobs, const char *id, char **csv, rd_error *err);
 
-/* {"jobs": [...]}: at most `limit` jobs, newest first, without results. */
-int rd_jobs_list(rd_jobs *jobs, size_t limit, char **json, rd_error *err);
+/* Which jobs a list shows. */
+typedef struct rd_jobs_filter {
+    size_t limit;         /* at most this many, >= 1 */
+    int status;           /* enum rd_job_status, or -1 for any */
+    const char *analysis; /* exact, or NULL for any */
+    const char *name;     /* the scene's name, exact, or NULL for any */
+    uint64_t before;      /* a cursor: only jobs submitted before the one it names; 0 = none */
+} rd_jobs_filter;
+
+/* {"jobs": [...], "next_cursor": "N" | null}: the jobs `f` selects, newest
+ * first, without results; next_cursor, when more match, is the `before` of
+ * the next page (decimal; valid while this process runs). */
+int rd_jobs_list(rd_jobs *jobs, const rd_jobs_filter *f, char **json, rd_error *err);
+
+/* DELETE: a final job is deleted (memory and store; *deleted = 1); a queued
+ * or running one is asked to stop as rd_jobs_request_cancel (*deleted = 0).
+ * RD_ENOTFOUND for an unknown id. */
+int rd_jobs_delete(rd_jobs *jobs, const char *id, int *deleted, rd_error *err);
+
+/* The gzip of a shared body, made once per body (the first caller pays) and
+ * kept with it: *data and *len are valid while the body is held.  RD_ENOMEM. */
+int rd_jobs_body_gzip(rd_jobs_body *body, const char **data, size_t *len);
 
 /* Current number of jobs in each state (RD_JOB_NSTATUS entries). */
 void rd_jobs_get_counts(rd_jobs *jobs, size_t *counts);

@@ -22,12 +22,32 @@
 static const double duration_bounds[] = {0.01, 0.05, 0.1, 0.25, 0.5, 1, 2.5, 5, 10, 30, 60, 120, 300};
 #define NBOUNDS (sizeof duration_bounds / sizeof duration_bounds[0])
 
+/* Series of the labelled run histogram: (analysis, outcome) pairs are few
+ * (the registry's analyses x four final states); beyond this many, runs are
+ * counted under analysis="other". */
+#define MAX_SERIES 48
+
+struct series {
+    char analysis[32];
+    char outcome[16];
+    uint64_t buckets[NBOUNDS]; /* cumulative */
+    uint64_t count;
+    double sum;
+};
+
+enum { CACHE_HIT, CACHE_MISS, CACHE_BYPASS, CACHE_NKINDS };
+static const char *const cache_names[CACHE_NKINDS] = {"hit", "miss", "bypass"};
+
 struct rd_metrics {
     pthread_mutex_t mu;
     uint64_t http[HTTP_STATUS_MAX - HTTP_STATUS_MIN + 1];
     uint64_t duration_buckets[NBOUNDS]; /* cumulative: runs <= bound */
     uint64_t duration_count;
     double duration_sum;
+    struct series series[MAX_SERIES];
+    size_t nseries;
+    uint64_t cache[CACHE_NKINDS];
+    uint64_t inline_runs;
 };
 
 rd_metrics *rd_metrics_create(void)
@@ -59,11 +79,51 @@ void rd_metrics_count_http(rd_metrics *m, int status)
     pthread_mutex_unlock(&m->mu);
 }
 
-void rd_metrics_observe_job(rd_metrics *m, double seconds)
+/* The series of (analysis, outcome), made on first use (mu held). */
+static struct series *series_locked(rd_metrics *m, const char *analysis, const char *outcome)
+{
+    if (m->nseries == MAX_SERIES)
+        analysis = "other";
+    for (size_t i = 0; i < m->nseries; i++)
+        if (strcmp(m->series[i].analysis, analysis) == 0 && strcmp(m->series[i].outcome, outcome) == 0)
+            return &m->series[i];
+    if (m->nseries == MAX_SERIES) /* "other" with a new outcome: fold into the last */
+        return &m->series[MAX_SERIES - 1];
+    struct series *s = &m->series[m->nseries++];
+    snprintf(s->analysis, sizeof s->analysis, "%s", analysis);
+    snprintf(s->outcome, sizeof s->outcome, "%s", outcome);
+    return s;
+}
+
+void rd_metrics_count_cache(rd_metrics *m, int hit, int bypass)
+{
+    if (!m)
+        return;
+    pthread_mutex_lock(&m->mu);
+    m->cache[bypass ? CACHE_BYPASS : hit ? CACHE_HIT : CACHE_MISS]++;
+    pthread_mutex_unlock(&m->mu);
+}
+
+void rd_metrics_count_inline(rd_metrics *m)
+{
+    if (!m)
+        return;
+    pthread_mutex_lock(&m->mu);
+    m->inline_runs++;
+    pthread_mutex_unlock(&m->mu);
+}
+
+void rd_metrics_observe_job(rd_metrics *m, const char *analysis, const char *outcome, double seconds)
 {
     if (!m || !(seconds >= 0)) /* also rejects NaN */
         return;
     pthread_mutex_lock(&m->mu);
+    struct series *se = series_locked(m, analysis, outcome);
+    for (size_t i = 0; i < NBOUNDS; i++)
+        if (seconds <= duration_bounds[i])
+            se->buckets[i]++;
+    se->count++;
+    se->sum += seconds;
     for (size_t i = 0; i < NBOUNDS; i++)
         if (seconds <= duration_bounds[i])
             m->duration_buckets[i]++;
@@ -118,6 +178,10 @@ char *rd_metrics_render(rd_metrics *m, const char *const *state_names, const siz
                         size_t n, const rd_metrics_gauges *g)
 {
     struct text t = {0};
+    text_printf(&t, "# HELP ringdyn_build_info The server's version (the value is always 1).\n"
+                    "# TYPE ringdyn_build_info gauge\n"
+                    "ringdyn_build_info{version=\"%s\"} 1\n",
+                g->version ? g->version : "unknown");
     text_printf(&t, "# HELP ringdyn_stop_latency_seconds Time from a DELETE, the time limit or a "
                     "shutdown to the solver's return: the last run stopped, and the largest.\n"
                     "# TYPE ringdyn_stop_latency_seconds gauge\n"
@@ -149,6 +213,38 @@ char *rd_metrics_render(rd_metrics *m, const char *const *state_names, const siz
     text_printf(&t, "ringdyn_job_duration_seconds_sum %.9g\n", m->duration_sum);
     text_printf(&t, "ringdyn_job_duration_seconds_count %llu\n", (unsigned long long)m->duration_count);
 
+    text_printf(&t, "# HELP ringdyn_job_run_seconds Run time of the jobs that ran, by analysis "
+                    "and outcome (counted when they end; kept however jobs are evicted).\n"
+                    "# TYPE ringdyn_job_run_seconds histogram\n");
+    for (size_t k = 0; k < m->nseries; k++) {
+        const struct series *se = &m->series[k];
+        for (size_t i = 0; i < NBOUNDS; i++)
+            text_printf(&t, "ringdyn_job_run_seconds_bucket{analysis=\"%s\",outcome=\"%s\",le=\"%g\"} %llu\n",
+                        se->analysis, se->outcome, duration_bounds[i], (unsigned long long)se->buckets[i]);
+        text_printf(&t, "ringdyn_job_run_seconds_bucket{analysis=\"%s\",outcome=\"%s\",le=\"+Inf\"} %llu\n",
+                    se->analysis, se->outcome, (unsigned long long)se->count);
+        text_printf(&t, "ringdyn_job_run_seconds_sum{analysis=\"%s\",outcome=\"%s\"} %.9g\n",
+                    se->analysis, se->outcome, se->sum);
+        text_printf(&t, "ringdyn_job_run_seconds_count{analysis=\"%s\",outcome=\"%s\"} %llu\n",
+                    se->analysis, se->outcome, (unsigned long long)se->count);
+    }
+    text_printf(&t, "# HELP ringdyn_jobs_total Jobs that ran, by analysis and outcome.\n"
+                    "# TYPE ringdyn_jobs_total counter\n");
+    for (size_t k = 0; k < m->nseries; k++)
+        text_printf(&t, "ringdyn_jobs_total{analysis=\"%s\",outcome=\"%s\"} %llu\n",
+                    m->series[k].analysis, m->series[k].outcome,
+                    (unsigned long long)m->series[k].count);
+    text_printf(&t, "# HELP ringdyn_result_cache_total Job submissions by what the result cache "
+                    "did: answered (hit), missed, or was told not to look (bypass).\n"
+                    "# TYPE ringdyn_result_cache_total counter\n");
+    for (int k = 0; k < CACHE_NKINDS; k++)
+        text_printf(&t, "ringdyn_result_cache_total{result=\"%s\"} %llu\n", cache_names[k],
+                    (unsigned long long)m->cache[k]);
+    text_printf(&t, "# HELP ringdyn_inline_runs_total Jobs run on the HTTP thread (predicted small, "
+                    "client waiting).\n"
+                    "# TYPE ringdyn_inline_runs_total counter\n"
+                    "ringdyn_inline_runs_total %llu\n",
+                (unsigned long long)m->inline_runs);
     text_printf(&t, "# HELP ringdyn_http_requests_total HTTP responses sent, by status code.\n"
                     "# TYPE ringdyn_http_requests_total counter\n");
     for (int s = HTTP_STATUS_MIN; s <= HTTP_STATUS_MAX; s++)

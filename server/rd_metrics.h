@@ -21,20 +21,31 @@ void rd_metrics_free(rd_metrics *m);
 /* Counts one HTTP response with this status (100..599; others are ignored). */
 void rd_metrics_count_http(rd_metrics *m, int status);
 
-/* Records the run time (start to finish, seconds) of a job that ran. */
-void rd_metrics_observe_job(rd_metrics *m, double seconds);
+/* Records the run time (start to finish, seconds) of a job that ran, with
+ * its analysis and outcome (final status name): the unlabelled histogram
+ * and the labelled ones, which only ever grow (they survive eviction). */
+void rd_metrics_observe_job(rd_metrics *m, const char *analysis, const char *outcome, double seconds);
+
+/* Counts one submission by what the result cache did. */
+void rd_metrics_count_cache(rd_metrics *m, int hit, int bypass);
+
+/* Counts one job run inline on the HTTP thread. */
+void rd_metrics_count_inline(rd_metrics *m);
 
 /* Gauges that live elsewhere, passed in by the caller at render time. */
 typedef struct rd_metrics_gauges {
     double stop_last_s, stop_max_s; /* rd_jobs_get_stop_latency */
     size_t connections;             /* open HTTP connections */
     size_t deadline_closed;         /* connections closed by the request deadline */
+    const char *version;            /* for ringdyn_build_info */
 } rd_metrics_gauges;
 
 /* The exposition text: ringdyn_jobs{state} from the caller's `n` state names
  * and counts, the gauges `g`, ringdyn_job_duration_seconds (histogram) and
  * ringdyn_http_requests_total{status}.  malloc'd, caller frees; NULL when out
- * of memory. */
+ * of memory.  Also ringdyn_build_info{version}, ringdyn_job_run_seconds and
+ * ringdyn_jobs_total{analysis,outcome}, ringdyn_result_cache_total{result},
+ * ringdyn_inline_runs_total. */
 char *rd_metrics_render(rd_metrics *m, const char *const *state_names, const size_t *state_counts,
                         size_t n, const rd_metrics_gauges *g);
 

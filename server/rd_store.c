@@ -29,10 +29,20 @@
  * server on the same directory) before failing. */
 #define BUSY_TIMEOUT_MS 5000
 
+/* Statements of the per-job path (insert, update, read, delete) are
+ * prepared once and kept, reset after each use: preparing costs about as
+ * much as running them. */
+#define KEPT_MAX 8
+
 struct rd_store {
     sqlite3 *db;
     int lock_fd; /* DIR/jobs.lock, write-locked while we live; -1 for :memory: */
     pthread_mutex_t mu;
+    struct {
+        const char *sql; /* the literal's address is the key */
+        sqlite3_stmt *st;
+    } kept[KEPT_MAX];
+    int nkept;
 };
 
 static const char schema[] =
@@ -48,8 +58,13 @@ static const char schema[] =
     " scene TEXT,"
     " error TEXT,"
     " body BLOB,"
-    " body_len INTEGER NOT NULL DEFAULT 0);"
+    " body_len INTEGER NOT NULL DEFAULT 0,"
+    " name TEXT, cache_key TEXT, idem_key TEXT, idem_hash TEXT);"
     "CREATE INDEX IF NOT EXISTS jobs_finished ON jobs (finished_ns);"
+    /* Covers the retention query (select_expired), which runs whenever a job
+     * ends: read from the table, each row's columns after `body` would cost
+     * a walk through the body's overflow pages. */
+    "CREATE INDEX IF NOT EXISTS jobs_retain ON jobs (finished_ns, seq, status, body_len, id);"
     /* Finished sweeps (rd_sweeps): written once when final, never changed. */
     "CREATE TABLE IF NOT EXISTS sweeps ("
     " seq INTEGER PRIMARY KEY AUTOINCREMENT,"
@@ -57,6 +72,11 @@ static const char schema[] =
     " meta TEXT NOT NULL,"
     " body TEXT NOT NULL,"
     " csv TEXT NOT NULL);";
+
+/* Columns added after the first release, for stores an older server wrote. */
+static const char *const added_columns[] = {"name", "cache_key", "idem_key", "idem_hash"};
+
+static const char delete_sql[] = "DELETE FROM jobs WHERE id = ?";
 
 static int db_fail(sqlite3 *db, int src, const char *what, rd_error *err)
 {
@@ -68,6 +88,31 @@ static int exec(sqlite3 *db, const char *sql, rd_error *err)
 {
     int rc = sqlite3_exec(db, sql, NULL, NULL, NULL);
     return rc == SQLITE_OK ? RD_OK : db_fail(db, rc, sql, err);
+}
+
+/* Adds the columns of added_columns that an older store lacks (TEXT, NULL). */
+static int add_columns(sqlite3 *db, rd_error *err)
+{
+    for (size_t i = 0; i < sizeof added_columns / sizeof added_columns[0]; i++) {
+        char sql[128];
+        snprintf(sql, sizeof sql, "SELECT 1 FROM pragma_table_info('jobs') WHERE name = '%s'",
+                 added_columns[i]);
+        sqlite3_stmt *st;
+        int rc = sqlite3_prepare_v2(db, sql, -1, &st, NULL);
+        if (rc != SQLITE_OK)
+            return db_fail(db, rc, "table_info", err);
+        rc = sqlite3_step(st);
+        sqlite3_finalize(st);
+        if (rc == SQLITE_ROW)
+            continue;
+        if (rc != SQLITE_DONE)
+            return db_fail(db, rc, "table_info", err);
+        snprintf(sql, sizeof sql, "ALTER TABLE jobs ADD COLUMN %s TEXT", added_columns[i]);
+        int status = exec(db, sql, err);
+        if (status != RD_OK)
+            return status;
+    }
+    return RD_OK;
 }
 
 /* mkdir -p with mode 0700 for the directories it creates. */
@@ -155,7 +200,7 @@ int rd_store_create(const char *dir, rd_store **out, rd_error *err)
     if ((status = exec(s->db, "PRAGMA auto_vacuum=INCREMENTAL", err)) ||
         (status = exec(s->db, memory ? "PRAGMA journal_mode=MEMORY" : "PRAGMA journal_mode=WAL", err)) ||
         (status = exec(s->db, "PRAGMA synchronous=NORMAL", err)) ||
-        (status = exec(s->db, schema, err)))
+        (status = exec(s->db, schema, err)) || (status = add_columns(s->db, err)))
         goto out;
     int e = pthread_mutex_init(&s->mu, NULL);
     if (e != 0)
@@ -176,7 +221,9 @@ void rd_store_free(rd_store *store)
 {
     if (!store)
         return;
-    sqlite3_close(store->db); /* every statement is finalized where it is used */
+    for (int i = 0; i < store->nkept; i++)
+        sqlite3_finalize(store->kept[i].st);
+    sqlite3_close(store->db); /* every other statement is finalized where it is used */
     if (store->lock_fd >= 0)
         close(store->lock_fd);
     pthread_mutex_destroy(&store->mu);
@@ -198,6 +245,40 @@ static int run(sqlite3 *db, sqlite3_stmt *st, const char *what, int bind_rc, rd_
     return rc == SQLITE_DONE ? RD_OK : db_fail(db, rc, what, err);
 }
 
+/* A kept statement for the string literal `sql` (mu held): prepared on its
+ * first use; give it back with done_kept, never finalize it. */
+static int prepare_kept(rd_store *store, const char *sql, sqlite3_stmt **st, rd_error *err)
+{
+    for (int i = 0; i < store->nkept; i++)
+        if (store->kept[i].sql == sql) {
+            *st = store->kept[i].st;
+            return RD_OK;
+        }
+    if (store->nkept == KEPT_MAX)
+        return rd_error_set(err, RD_EINTERNAL, "", "Job store: too many kept statements.");
+    int rc = sqlite3_prepare_v3(store->db, sql, -1, SQLITE_PREPARE_PERSISTENT, st, NULL);
+    if (rc != SQLITE_OK)
+        return db_fail(store->db, rc, sql, err);
+    store->kept[store->nkept].sql = sql;
+    store->kept[store->nkept++].st = *st;
+    return RD_OK;
+}
+
+/* Ready for the next use: no row in progress, no bound pointer left behind. */
+static void done_kept(sqlite3_stmt *st)
+{
+    sqlite3_reset(st);
+    sqlite3_clear_bindings(st);
+}
+
+/* run() for a kept statement. */
+static int run_kept(sqlite3 *db, sqlite3_stmt *st, const char *what, int bind_rc, rd_error *err)
+{
+    int rc = bind_rc == SQLITE_OK ? sqlite3_step(st) : bind_rc;
+    done_kept(st);
+    return rc == SQLITE_DONE ? RD_OK : db_fail(db, rc, what, err);
+}
+
 static int bind_text(sqlite3_stmt *st, int i, const char *s)
 {
     return s ? sqlite3_bind_text(st, i, s, -1, SQLITE_STATIC) : sqlite3_bind_null(st, i);
@@ -207,9 +288,10 @@ int rd_store_insert(rd_store *store, const rd_store_row *row, const char *scene,
 {
     sqlite3_stmt *st;
     pthread_mutex_lock(&store->mu);
-    int status = prepare(store->db,
-                         "INSERT INTO jobs (id, analysis, status, progress, created_ns, scene) "
-                         "VALUES (?, ?, ?, ?, ?, ?)",
+    int status = prepare_kept(store,
+                         "INSERT INTO jobs (id, analysis, status, progress, created_ns, "
+                         "started_ns, scene, name, cache_key, idem_key, idem_hash) "
+                         "VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?)",
                          &st, err);
     if (status == RD_OK) {
         int b = sqlite3_bind_text(st, 1, row->id, -1, SQLITE_STATIC);
@@ -217,8 +299,13 @@ int rd_store_insert(rd_store *store, const rd_store_row *row, const char *scene,
         b = b ? b : sqlite3_bind_text(st, 3, row->status, -1, SQLITE_STATIC);
         b = b ? b : sqlite3_bind_double(st, 4, row->progress);
         b = b ? b : sqlite3_bind_int64(st, 5, row->created_ns);
-        b = b ? b : bind_text(st, 6, scene);
-        status = run(store->db, st, "insert", b, err);
+        b = b ? b : sqlite3_bind_int64(st, 6, row->started_ns);
+        b = b ? b : bind_text(st, 7, scene);
+        b = b ? b : bind_text(st, 8, row->name);
+        b = b ? b : bind_text(st, 9, row->cache_key);
+        b = b ? b : bind_text(st, 10, row->idem_key);
+        b = b ? b : bind_text(st, 11, row->idem_hash);
+        status = run_kept(store->db, st, "insert", b, err);
     }
     pthread_mutex_unlock(&store->mu);
     return status;
@@ -228,7 +315,7 @@ int rd_store_update(rd_store *store, const rd_store_row *row, const char *body, 
 {
     sqlite3_stmt *st;
     pthread_mutex_lock(&store->mu);
-    int status = prepare(store->db,
+    int status = prepare_kept(store,
                          body ? "UPDATE jobs SET status = ?, progress = ?, started_ns = ?, "
                                 "finished_ns = ?, error = ?, body = ?, body_len = ? WHERE id = ?"
                               : "UPDATE jobs SET status = ?, progress = ?, started_ns = ?, "
@@ -247,7 +334,7 @@ int rd_store_update(rd_store *store, const rd_store_row *row, const char *body, 
             next = 8;
         }
         b = b ? b : sqlite3_bind_text(st, next, row->id, -1, SQLITE_STATIC);
-        status = run(store->db, st, "update", b, err);
+        status = run_kept(store->db, st, "update", b, err);
     }
     pthread_mutex_unlock(&store->mu);
     return status;
@@ -288,7 +375,8 @@ int rd_store_load(rd_store *store, int (*each)(void *ctx, const rd_store_row *ro
     pthread_mutex_lock(&store->mu);
     int status = prepare(store->db,
                          "SELECT id, analysis, status, progress, created_ns, started_ns, "
-                         "finished_ns, error, body_len FROM jobs ORDER BY seq",
+                         "finished_ns, error, body_len, name, cache_key, idem_key, idem_hash "
+                         "FROM jobs ORDER BY seq",
                          &st, err);
     int rc = SQLITE_DONE;
     while (status == RD_OK && (rc = sqlite3_step(st)) == SQLITE_ROW) {
@@ -303,6 +391,10 @@ int rd_store_load(rd_store *store, int (*each)(void *ctx, const rd_store_row *ro
         row.finished_ns = sqlite3_column_int64(st, 6);
         row.error = (const char *)sqlite3_column_text(st, 7);
         row.body_len = (size_t)sqlite3_column_int64(st, 8);
+        row.name = (const char *)sqlite3_column_text(st, 9);
+        row.cache_key = (const char *)sqlite3_column_text(st, 10);
+        row.idem_key = (const char *)sqlite3_column_text(st, 11);
+        row.idem_hash = (const char *)sqlite3_column_text(st, 12);
         if (!row.status) {
             status = rd_error_set(err, RD_EINTERNAL, "", "Job store: a row without a status.");
             break;
@@ -316,13 +408,24 @@ int rd_store_load(rd_store *store, int (*each)(void *ctx, const rd_store_row *ro
     return status;
 }
 
+int rd_store_delete(rd_store *store, const char *id, rd_error *err)
+{
+    sqlite3_stmt *st;
+    pthread_mutex_lock(&store->mu);
+    int status = prepare_kept(store, delete_sql, &st, err);
+    if (status == RD_OK)
+        status = run_kept(store->db, st, "delete", sqlite3_bind_text(st, 1, id, -1, SQLITE_STATIC), err);
+    pthread_mutex_unlock(&store->mu);
+    return status;
+}
+
 int rd_store_read_body(rd_store *store, const char *id, char **body, size_t *len, rd_error *err)
 {
     *body = NULL;
     *len = 0;
     sqlite3_stmt *st;
     pthread_mutex_lock(&store->mu);
-    int status = prepare(store->db, "SELECT body FROM jobs WHERE id = ? AND body IS NOT NULL", &st, err);
+    int status = prepare_kept(store, "SELECT body FROM jobs WHERE id = ? AND body IS NOT NULL", &st, err);
     if (status == RD_OK) {
         int rc = sqlite3_bind_text(st, 1, id, -1, SQLITE_STATIC);
         rc = rc ? rc : sqlite3_step(st);
@@ -345,7 +448,7 @@ int rd_store_read_body(rd_store *store, const char *id, char **body, size_t *len
         } else {
             status = db_fail(store->db, rc, "read", err);
         }
-        sqlite3_finalize(st);
+        done_kept(st);
     }
     pthread_mutex_unlock(&store->mu);
     return status;
@@ -405,9 +508,9 @@ int rd_store_retain(rd_store *store, size_t keep_max, size_t keep_bytes, int64_t
     if (status == RD_OK && n > 0 && (status = exec(store->db, "BEGIN IMMEDIATE", err)) == RD_OK) {
         for (size_t i = 0; i < n && status == RD_OK; i++) {
             sqlite3_stmt *st;
-            status = prepare(store->db, "DELETE FROM jobs WHERE id = ?", &st, err);
+            status = prepare_kept(store, delete_sql, &st, err);
             if (status == RD_OK)
-                status = run(store->db, st, "delete",
+                status = run_kept(store->db, st, "delete",
                              sqlite3_bind_text(st, 1, ids[i], -1, SQLITE_STATIC), err);
         }
         if (status == RD_OK)

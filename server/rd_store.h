@@ -33,6 +33,10 @@ typedef struct rd_store_row {
     int64_t created_ns, started_ns, finished_ns; /* CLOCK_REALTIME, 0 = not yet */
     const char *error;  /* error body, or NULL */
     size_t body_len;    /* bytes of `body`, 0 without one */
+    /* Written by insert only (NULL = none): the scene's name, the result
+     * cache key (32 hex digits of the canonical scene's hash), the client's
+     * Idempotency-Key and the hash of the body it came with. */
+    const char *name, *cache_key, *idem_key, *idem_hash;
 } rd_store_row;
 
 typedef struct rd_store rd_store;
@@ -59,6 +63,9 @@ int rd_store_mark(rd_store *store, const char *from_a, const char *from_b, const
  * during the call).  A non-zero return from `each` stops with that status. */
 int rd_store_load(rd_store *store, int (*each)(void *ctx, const rd_store_row *row), void *ctx,
                   rd_error *err);
+
+/* Deletes the row of job `id` (an unknown id is no error). */
+int rd_store_delete(rd_store *store, const char *id, rd_error *err);
 
 /* The stored body of job `id`: malloc'd, *len bytes (+ a NUL), or RD_ENOTFOUND. */
 int rd_store_read_body(rd_store *store, const char *id, char **body, size_t *len, rd_error *err);

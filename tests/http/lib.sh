@@ -73,7 +73,9 @@ req() {
   STATUS=$(curl -sS --path-as-is --max-time 90 "${how[@]}" -o "$WORK/body" -D "$WORK/headers" \
              -w '%{http_code}' "${CURL_EXTRA[@]}" "$@" "$BASE$path" 2>"$WORK/curl.err") || STATUS=000
 }
-post() { req POST "$1" -H 'Content-Type: application/json' --data-binary "$2"; }
+# post PATH BODY: a new job every time (the result cache would answer a
+# repeated scene with the earlier job; cache.sh tests the cache).
+post() { req POST "$1" -H 'Content-Type: application/json' -H 'Cache-Control: no-cache' --data-binary "$2"; }
 # json POINTER [FILE]: the value, or "" when absent.
 json() { "$JQ" "$1" "${2:-$WORK/body}" 2>/dev/null || true; }
 jcount() { "$JQ" -n "$1" "${2:-$WORK/body}" 2>/dev/null || echo 0; }

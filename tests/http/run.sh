@@ -312,7 +312,9 @@ if [ -n "$RUNNING" ]; then
   done
   same "DELETE running job -> cancelled" "$(json /status)" cancelled
   req DELETE "/api/v1/jobs/$RUNNING"
-  same "DELETE on a finished job leaves it" "$STATUS $(json /status)" "200 cancelled"
+  same "DELETE on a finished (cancelled) job deletes it" "$STATUS" 204
+  req DELETE "/api/v1/jobs/$RUNNING"
+  expect_error "DELETE again" 404 not_found
 else
   bad "a running job to cancel" "states of ${ACCEPTED[*]:-none}"
 fi

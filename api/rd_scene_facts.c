@@ -1,0 +1,36 @@
+/*
+ * rd_scene_facts — name, canonical text and predicted cost of a parsed
+ * scene (rd_scene_facts.h), for the server's list, result cache and inline
+ * runs.
+ */
+#include "rd_scene_facts.h"
+
+#include <math.h>
+#include <string.h>
+
+#include <jansson.h>
+
+#include "rd_modal.h"
+#include "rd_scene.h"
+
+const char *rd_scene_name(const rd_scene *scene)
+{
+    return scene->name;
+}
+
+char *rd_scene_canonical_json(const rd_scene *scene)
+{
+    json_t *echo = rd_scene_echo(scene);
+    /* 17 digits: every double prints as the one text that reads back to it. */
+    size_t flags = JSON_COMPACT | JSON_SORT_KEYS | JSON_REAL_PRECISION(17);
+    char *text = echo ? json_dumps(echo, flags) : NULL;
+    json_decref(echo);
+    return text;
+}
+
+double rd_scene_cost_predict(const rd_scene *scene)
+{
+    if (strcmp(rd_scene_analysis(scene), "modal") != 0)
+        return NAN;
+    return rd_modal_cost_predict(&scene->modal, scene->segments, scene->closed);
+}
