@@ -58,8 +58,8 @@ static void sleep_s(double s)
 static int port;
 static double end_time;
 static const char *scene = "{\"analysis\":\"modal\"}";
-static int keepalive;     /* MODE keepalive*: one connection per client */
-static int nocache;       /* MODE keepalive-nocache */
+static int keepalive; /* MODE keepalive*: one connection per client */
+static int nocache;   /* MODE keepalive-nocache */
 
 static int connect_from(int index)
 {

@@ -42,10 +42,10 @@
  * that ends in time keeps its result), then how long answers still being
  * sent may take; together under 1 s. */
 #define STOP_WAIT_S 0.4
-#define DRAIN_S 0.4
+#define DRAIN_S     0.4
 /* Sweeps queued or running at once, and finished sweeps kept (memory and store). */
 #define SWEEPS_QUEUE_MAX 8
-#define SWEEPS_KEEP_MAX 32
+#define SWEEPS_KEEP_MAX  32
 
 struct options {
     const char *host;
@@ -68,45 +68,47 @@ struct options {
 
 static void usage(FILE *f)
 {
-    fprintf(f,
-            "usage: ringdyn-server --port N [options]\n"
-            "  --port N          TCP port, 0 for any free port (required)\n"
-            "  --host ADDR       address to bind (default 127.0.0.1; 0.0.0.0 for all interfaces)\n"
-            "  --static DIR      serve the web page from DIR at / and /static/\n"
-            "  --examples DIR    example scenes (*.json) for /api/v1/examples\n"
-            "  --threads N       worker threads running jobs (default 2, 1..64)\n"
-            "  --queue N         jobs that may wait for a worker (default 32, 1..10000)\n"
-            "  --job-timeout S   run time limit per job in seconds (default 120)\n"
-            "  --keep-jobs N     finished jobs kept for GET (default 256, 1..100000)\n"
-            "  --keep-mb N       and at most N MiB of their results (default 512, 1..65536;\n"
-            "                    the newest finished job is always kept)\n"
-            "  --keep-days D     and none finished more than D days ago (default 30; 0: no limit)\n"
-            "  --data DIR        the job store (SQLite, WAL) lives in DIR/jobs.sqlite3; default\n"
-            "                    $XDG_STATE_HOME/ringdyn or ~/.local/state/ringdyn; ':memory:'\n"
-            "                    keeps nothing across restarts.  Finished jobs survive a restart;\n"
-            "                    jobs queued or running when the server stopped end 'interrupted'\n"
-            "  --sweep-max-points N  points a sweep may have (default 10000, 1..1000000); a larger\n"
-            "                    one is refused with the cluster path (ringdyn sweep run --chunks K).\n"
-            "                    Sweeps run on --threads workers of their own; finished ones are stored\n"
-            "connections (libmicrohttpd's epoll event loop; an open connection holds no thread):\n"
-            "  --http-threads N  event-loop threads (default 4, 1..64)\n"
-            "  --max-connections N  open connections in all (default 1000, 1..100000);\n"
-            "                    more are closed at once when accepted\n"
-            "  --max-per-ip N    open connections from one client address (default 64, 1..100000)\n"
-            "  --request-deadline S  a request's header and body must arrive within S seconds of\n"
-            "                    the connection's start or of the previous answer (default 10,\n"
-            "                    0.1..3600); a slower one is closed without an answer.  An idle\n"
-            "                    keep-alive connection is closed after S as well\n"
-            "  --idle-timeout S  a connection with no traffic at all is closed after S seconds,\n"
-            "                    also while an answer is being sent (default 30, 1..3600)\n"
-            "access:\n"
-            "  --allow-host NAME serve requests whose Host header names NAME (any port); repeatable.\n"
-            "                    127.0.0.1, localhost, [::1] and the bound address are always\n"
-            "                    served; any other Host gets 403 (DNS rebinding guard)\n"
-            "  --token-file FILE require 'Authorization: Bearer TOKEN' on /api/v1/jobs*,\n"
-            "                    /api/v1/examples* and /metrics; TOKEN is the file's first line\n"
-            "                    (16..4096 printable characters).  Required with a --host that\n"
-            "                    is not a loopback address\n");
+    fprintf(
+        f,
+        "usage: ringdyn-server --port N [options]\n"
+        "  --port N          TCP port, 0 for any free port (required)\n"
+        "  --host ADDR       address to bind (default 127.0.0.1; 0.0.0.0 for all interfaces)\n"
+        "  --static DIR      serve the web page from DIR at / and /static/\n"
+        "  --examples DIR    example scenes (*.json) for /api/v1/examples\n"
+        "  --threads N       worker threads running jobs (default 2, 1..64)\n"
+        "  --queue N         jobs that may wait for a worker (default 32, 1..10000)\n"
+        "  --job-timeout S   run time limit per job in seconds (default 120)\n"
+        "  --keep-jobs N     finished jobs kept for GET (default 256, 1..100000)\n"
+        "  --keep-mb N       and at most N MiB of their results (default 512, 1..65536;\n"
+        "                    the newest finished job is always kept)\n"
+        "  --keep-days D     and none finished more than D days ago (default 30; 0: no limit)\n"
+        "  --data DIR        the job store (SQLite, WAL) lives in DIR/jobs.sqlite3; default\n"
+        "                    $XDG_STATE_HOME/ringdyn or ~/.local/state/ringdyn; ':memory:'\n"
+        "                    keeps nothing across restarts.  Finished jobs survive a restart;\n"
+        "                    jobs queued or running when the server stopped end 'interrupted'\n"
+        "  --sweep-max-points N  points a sweep may have (default 10000, 1..1000000); a larger\n"
+        "                    one is refused with the cluster path (ringdyn sweep run --chunks K).\n"
+        "                    Sweeps run on --threads workers of their own; finished ones are "
+        "stored\n"
+        "connections (libmicrohttpd's epoll event loop; an open connection holds no thread):\n"
+        "  --http-threads N  event-loop threads (default 4, 1..64)\n"
+        "  --max-connections N  open connections in all (default 1000, 1..100000);\n"
+        "                    more are closed at once when accepted\n"
+        "  --max-per-ip N    open connections from one client address (default 64, 1..100000)\n"
+        "  --request-deadline S  a request's header and body must arrive within S seconds of\n"
+        "                    the connection's start or of the previous answer (default 10,\n"
+        "                    0.1..3600); a slower one is closed without an answer.  An idle\n"
+        "                    keep-alive connection is closed after S as well\n"
+        "  --idle-timeout S  a connection with no traffic at all is closed after S seconds,\n"
+        "                    also while an answer is being sent (default 30, 1..3600)\n"
+        "access:\n"
+        "  --allow-host NAME serve requests whose Host header names NAME (any port); repeatable.\n"
+        "                    127.0.0.1, localhost, [::1] and the bound address are always\n"
+        "                    served; any other Host gets 403 (DNS rebinding guard)\n"
+        "  --token-file FILE require 'Authorization: Bearer TOKEN' on /api/v1/jobs*,\n"
+        "                    /api/v1/examples* and /metrics; TOKEN is the file's first line\n"
+        "                    (16..4096 printable characters).  Required with a --host that\n"
+        "                    is not a loopback address\n");
 }
 
 static int parse_long(const char *s, long min, long max, long *out)
@@ -284,9 +286,15 @@ static void on_job_finish(void *ctx, const char *analysis, int status, double ru
 
 int main(int argc, char **argv)
 {
-    struct options opt = {.host = "127.0.0.1", .port = -1, .threads = 2, .queue = 32,
-                          .job_timeout = 120.0, .keep_jobs = 256, .keep_mb = 512,
-                          .keep_days = 30, .sweep_max_points = RD_SWEEPS_POINTS_DEFAULT,
+    struct options opt = {.host = "127.0.0.1",
+                          .port = -1,
+                          .threads = 2,
+                          .queue = 32,
+                          .job_timeout = 120.0,
+                          .keep_jobs = 256,
+                          .keep_mb = 512,
+                          .keep_days = 30,
+                          .sweep_max_points = RD_SWEEPS_POINTS_DEFAULT,
                           .limits = {.threads = 4,
                                      .connections_max = 1000,
                                      .per_ip_max = 64,
@@ -324,9 +332,11 @@ int main(int argc, char **argv)
         fprintf(stderr, "ringdyn-server: out of memory\n");
         goto out;
     }
-    const char *data_dir = opt.data_dir ? opt.data_dir : default_data_dir(data_buf, sizeof data_buf);
+    const char *data_dir =
+        opt.data_dir ? opt.data_dir : default_data_dir(data_buf, sizeof data_buf);
     if (!data_dir) {
-        fprintf(stderr, "ringdyn-server: neither HOME nor XDG_STATE_HOME is set: give --data DIR\n");
+        fprintf(stderr,
+                "ringdyn-server: neither HOME nor XDG_STATE_HOME is set: give --data DIR\n");
         goto out;
     }
     if (rd_store_create(data_dir, &store, &err) != RD_OK)
@@ -344,9 +354,13 @@ int main(int argc, char **argv)
                          .on_final_ctx = &http};
     if (rd_jobs_create(&jc, &jobs, &err) != RD_OK)
         goto fail;
-    rd_sweeps_config sc = {.threads = (int)opt.threads, .max_points = (size_t)opt.sweep_max_points,
-                           .timeout_s = opt.job_timeout, .queue_max = SWEEPS_QUEUE_MAX,
-                           .keep_max = SWEEPS_KEEP_MAX, .store = store, .on_final = on_job_final,
+    rd_sweeps_config sc = {.threads = (int)opt.threads,
+                           .max_points = (size_t)opt.sweep_max_points,
+                           .timeout_s = opt.job_timeout,
+                           .queue_max = SWEEPS_QUEUE_MAX,
+                           .keep_max = SWEEPS_KEEP_MAX,
+                           .store = store,
+                           .on_final = on_job_final,
                            .on_final_ctx = &http};
     if (rd_sweeps_create(&sc, &sweeps, &err) != RD_OK)
         goto fail;
@@ -365,7 +379,8 @@ int main(int argc, char **argv)
     if (rd_http_create(&hc, jobs, metrics, &http, &err) != RD_OK)
         goto fail;
 
-    printf("ringdyn-server listening on http://%s:%d\n", rd_http_get_host(http), rd_http_get_port(http));
+    printf("ringdyn-server listening on http://%s:%d\n", rd_http_get_host(http),
+           rd_http_get_port(http));
     fflush(stdout);
     fprintf(stderr,
             "ringdyn-server %s: %ld workers, queue %ld, job time limit %g s, keeps %ld finished "

@@ -13,8 +13,8 @@
 
 #include <zlib.h>
 
-#define GZIP_LEVEL 1
-#define GZIP_WINDOW (15 + 16) /* 2^15 window, +16: gzip wrapper, not zlib */
+#define GZIP_LEVEL     1
+#define GZIP_WINDOW    (15 + 16) /* 2^15 window, +16: gzip wrapper, not zlib */
 #define GZIP_MEM_LEVEL 8
 
 int rd_gzip(const char *in, size_t len, char **out, size_t *out_len)

@@ -63,7 +63,7 @@
 #define CANCEL_WAIT_S 5.0
 /* GET /api/v1/jobs: default and largest ?limit=. */
 #define LIST_LIMIT_DEFAULT 50
-#define LIST_LIMIT_MAX 1000
+#define LIST_LIMIT_MAX     1000
 /* Room for a job id or example name taken from a path. */
 #define PATH_ARG_MAX 80
 /* A submission that waits (?wait) runs on the HTTP thread, with no queue and
@@ -90,15 +90,15 @@ struct rd_http {
     char *examples_dir;     /* realpath of the examples dir, or NULL */
     char host[INET6_ADDRSTRLEN + 2];
     int port;
-    char **allow;           /* Host names served (lower case, IPv6 in brackets) */
+    char **allow; /* Host names served (lower case, IPv6 in brackets) */
     size_t n_allow;
-    char *token;            /* bearer token, or NULL */
+    char *token; /* bearer token, or NULL */
     rd_http_limits limits;
     double job_timeout_s; /* the job pool's time limit: the cap of ?time_limit_s= */
-    pthread_mutex_t mu;  /* guards everything below */
-    pthread_cond_t idle; /* in_flight dropped to 0 */
-    int in_flight;       /* requests between their first call and on_completed */
-    pthread_cond_t wake; /* for the timer thread: a job ended, a waiter came, or stop */
+    pthread_mutex_t mu;   /* guards everything below */
+    pthread_cond_t idle;  /* in_flight dropped to 0 */
+    int in_flight;        /* requests between their first call and on_completed */
+    pthread_cond_t wake;  /* for the timer thread: a job ended, a waiter came, or stop */
     int poked, stop;
     pthread_t timer;
     int timer_started;
@@ -122,23 +122,23 @@ enum wait_kind { WAIT_NONE, WAIT_SUBMIT, WAIT_CANCEL, WAIT_SWEEP };
 /* Per-request state, kept by MHD in *req_cls between calls. */
 struct request {
     struct MHD_Connection *c;
-    struct conn *conn;       /* may be NULL */
+    struct conn *conn;           /* may be NULL */
     struct request *prev, *next; /* in rd_http.waiters while suspended */
-    enum wait_kind waiting;  /* suspended until its job ends or `until` */
-    int resumed;             /* the timer thread resumed it */
-    double until;            /* CLOCK_MONOTONIC */
+    enum wait_kind waiting;      /* suspended until its job ends or `until` */
+    int resumed;                 /* the timer thread resumed it */
+    double until;                /* CLOCK_MONOTONIC */
     char job_id[RD_JOBS_ID_LEN + 1];
-    int started;   /* the headers have been handled */
-    int replied;   /* a response is queued: drop whatever body follows */
-    int has_wait;  /* ?wait= was given */
+    int started;  /* the headers have been handled */
+    int replied;  /* a response is queued: drop whatever body follows */
+    int has_wait; /* ?wait= was given */
     double wait_s;
-    char *body;    /* POST body so far, NUL-terminated, <= RD_API_BODY_MAX bytes */
+    char *body; /* POST body so far, NUL-terminated, <= RD_API_BODY_MAX bytes */
     size_t len, cap;
     int too_large; /* the body passed RD_API_BODY_MAX: the rest is dropped */
     int no_memory;
-    int sweep;        /* a POST /api/v1/sweeps; with WAIT_SWEEP: a wait that answers it */
-    int gzip;         /* the client accepts gzip */
-    const char *cache; /* X-Ringdyn-Cache of a submission: "hit", "miss", "bypass", or NULL */
+    int sweep;           /* a POST /api/v1/sweeps; with WAIT_SWEEP: a wait that answers it */
+    int gzip;            /* the client accepts gzip */
+    const char *cache;   /* X-Ringdyn-Cache of a submission: "hit", "miss", "bypass", or NULL */
     double time_limit_s; /* ?time_limit_s=, 0 when not given */
     int replayed;        /* the Idempotency-Key named an earlier job with this body */
 };
@@ -307,9 +307,9 @@ static enum route match_route(const char *url, char *arg, size_t argsz)
     static const struct {
         const char *path;
         enum route route;
-    } fixed[] = {{"/api/v1/jobs", ROUTE_JOBS},       {"/api/v1/examples", ROUTE_EXAMPLES},
-                 {"/api/v1/health", ROUTE_HEALTH},   {"/api/v1/openapi.json", ROUTE_OPENAPI},
-                 {"/metrics", ROUTE_METRICS},        {"/api/v1/sweeps", ROUTE_SWEEPS}};
+    } fixed[] = {{"/api/v1/jobs", ROUTE_JOBS},     {"/api/v1/examples", ROUTE_EXAMPLES},
+                 {"/api/v1/health", ROUTE_HEALTH}, {"/api/v1/openapi.json", ROUTE_OPENAPI},
+                 {"/metrics", ROUTE_METRICS},      {"/api/v1/sweeps", ROUTE_SWEEPS}};
     arg[0] = '\0';
     for (size_t i = 0; i < sizeof fixed / sizeof fixed[0]; i++)
         if (strcmp(url, fixed[i].path) == 0)
@@ -711,8 +711,8 @@ static enum MHD_Result send_error(rd_http *h, struct MHD_Connection *c, struct r
 #if defined(__GNUC__)
 __attribute__((format(printf, 5, 6)))
 #endif
-static enum MHD_Result send_fail(rd_http *h, struct MHD_Connection *c, struct request *rq, int code,
-                                 const char *fmt, ...)
+static enum MHD_Result
+send_fail(rd_http *h, struct MHD_Connection *c, struct request *rq, int code, const char *fmt, ...)
 {
     rd_error err;
     rd_error_init(&err);
@@ -727,7 +727,8 @@ static enum MHD_Result send_not_found(rd_http *h, struct MHD_Connection *c, stru
                                       const char *url)
 {
     char buf[128];
-    return send_fail(h, c, rq, RD_ENOTFOUND, "There is nothing at %s.", printable(url, buf, sizeof buf));
+    return send_fail(h, c, rq, RD_ENOTFOUND, "There is nothing at %s.",
+                     printable(url, buf, sizeof buf));
 }
 
 /* An error the status table of core/rd_error.h has no code for (401, 403,
@@ -872,7 +873,8 @@ static int token_matches(const char *given, size_t given_len, const char *want, 
 /* "Bearer TOKEN" (scheme in any case) carrying our token. */
 static int authorized(const rd_http *h, struct MHD_Connection *c)
 {
-    const char *auth = MHD_lookup_connection_value(c, MHD_HEADER_KIND, MHD_HTTP_HEADER_AUTHORIZATION);
+    const char *auth =
+        MHD_lookup_connection_value(c, MHD_HEADER_KIND, MHD_HTTP_HEADER_AUTHORIZATION);
     if (!auth || strncasecmp(auth, "Bearer ", 7) != 0)
         return 0;
     const char *t = auth + 7;
@@ -890,14 +892,22 @@ static const char *content_type_for(const char *path)
 {
     static const struct {
         const char *ext, *type;
-    } types[] = {{"html", "text/html; charset=utf-8"}, {"htm", "text/html; charset=utf-8"},
-                 {"js", "text/javascript; charset=utf-8"}, {"mjs", "text/javascript; charset=utf-8"},
-                 {"css", "text/css; charset=utf-8"},   {"svg", "image/svg+xml"},
-                 {"json", "application/json"},         {"png", "image/png"},
-                 {"jpg", "image/jpeg"},                {"jpeg", "image/jpeg"},
-                 {"ico", "image/x-icon"},              {"txt", "text/plain; charset=utf-8"},
-                 {"csv", "text/csv; charset=utf-8"},   {"map", "application/json"},
-                 {"woff2", "font/woff2"},              {"wasm", "application/wasm"}};
+    } types[] = {{"html", "text/html; charset=utf-8"},
+                 {"htm", "text/html; charset=utf-8"},
+                 {"js", "text/javascript; charset=utf-8"},
+                 {"mjs", "text/javascript; charset=utf-8"},
+                 {"css", "text/css; charset=utf-8"},
+                 {"svg", "image/svg+xml"},
+                 {"json", "application/json"},
+                 {"png", "image/png"},
+                 {"jpg", "image/jpeg"},
+                 {"jpeg", "image/jpeg"},
+                 {"ico", "image/x-icon"},
+                 {"txt", "text/plain; charset=utf-8"},
+                 {"csv", "text/csv; charset=utf-8"},
+                 {"map", "application/json"},
+                 {"woff2", "font/woff2"},
+                 {"wasm", "application/wasm"}};
     const char *slash = strrchr(path, '/');
     const char *dot = strrchr(slash ? slash : path, '.');
     if (dot)
@@ -959,7 +969,8 @@ static enum MHD_Result serve_static(rd_http *h, struct MHD_Connection *c, struct
     }
     sprintf(full, "%s/%s", h->static_root, rel);
     resolved = realpath(full, NULL);
-    if (!resolved || strncmp(resolved, h->static_root, root_len) != 0 || resolved[root_len] != '/') {
+    if (!resolved || strncmp(resolved, h->static_root, root_len) != 0 ||
+        resolved[root_len] != '/') {
         ret = send_not_found(h, c, rq, url);
         goto out;
     }
@@ -973,7 +984,8 @@ static enum MHD_Result serve_static(rd_http *h, struct MHD_Connection *c, struct
     if (!method_allowed("GET, HEAD", method)) {
         rd_error err;
         rd_error_init(&err);
-        rd_error_set(&err, RD_EMETHOD, "", "Method %.16s is not allowed here; use GET or HEAD.", method);
+        rd_error_set(&err, RD_EMETHOD, "", "Method %.16s is not allowed here; use GET or HEAD.",
+                     method);
         ret = send_error(h, c, rq, &err, "GET, HEAD");
         goto out;
     }
@@ -1084,19 +1096,21 @@ static enum MHD_Result list_jobs(rd_http *h, struct MHD_Connection *c, struct re
     f.status = -1;
     const char *s = MHD_lookup_connection_value(c, MHD_GET_ARGUMENT_KIND, "limit");
     if (s && !parse_count(s, 1, LIST_LIMIT_MAX, &limit))
-        return send_fail(h, c, rq, RD_EREQUEST,
-                         "The query parameter limit must be a whole number from 1 to %d, not \"%s\".",
-                         LIST_LIMIT_MAX, printable(s, buf, sizeof buf));
+        return send_fail(
+            h, c, rq, RD_EREQUEST,
+            "The query parameter limit must be a whole number from 1 to %d, not \"%s\".",
+            LIST_LIMIT_MAX, printable(s, buf, sizeof buf));
     f.limit = (size_t)limit;
     if ((s = MHD_lookup_connection_value(c, MHD_GET_ARGUMENT_KIND, "status"))) {
         for (int i = 0; i < RD_JOB_NSTATUS && f.status < 0; i++)
             if (strcmp(s, rd_jobs_status_name(i)) == 0)
                 f.status = i;
         if (f.status < 0)
-            return send_fail(h, c, rq, RD_EREQUEST,
-                             "The query parameter status must be one of queued, running, succeeded, "
-                             "failed, cancelled, interrupted, not \"%s\".",
-                             printable(s, buf, sizeof buf));
+            return send_fail(
+                h, c, rq, RD_EREQUEST,
+                "The query parameter status must be one of queued, running, succeeded, "
+                "failed, cancelled, interrupted, not \"%s\".",
+                printable(s, buf, sizeof buf));
     }
     f.analysis = MHD_lookup_connection_value(c, MHD_GET_ARGUMENT_KIND, "analysis");
     f.name = MHD_lookup_connection_value(c, MHD_GET_ARGUMENT_KIND, "name");
@@ -1191,9 +1205,10 @@ static enum MHD_Result sweep_route(rd_http *h, struct MHD_Connection *c, struct 
     const char *s = MHD_lookup_connection_value(c, MHD_GET_ARGUMENT_KIND, "limit");
     if (route == ROUTE_SWEEPS && s && !parse_count(s, 1, LIST_LIMIT_MAX, &limit)) {
         char buf[32];
-        return send_fail(h, c, rq, RD_EREQUEST,
-                         "The query parameter limit must be a whole number from 1 to %d, not \"%s\".",
-                         LIST_LIMIT_MAX, printable(s, buf, sizeof buf));
+        return send_fail(
+            h, c, rq, RD_EREQUEST,
+            "The query parameter limit must be a whole number from 1 to %d, not \"%s\".",
+            LIST_LIMIT_MAX, printable(s, buf, sizeof buf));
     }
     if (route == ROUTE_SWEEPS)
         rd_sweeps_list(h->sweeps, (size_t)limit, &sr);
@@ -1225,7 +1240,8 @@ static int no_cache_asked(struct MHD_Connection *c)
 static enum MHD_Result begin_submit(rd_http *h, struct MHD_Connection *c, struct request *rq)
 {
     char buf[64];
-    const char *type = MHD_lookup_connection_value(c, MHD_HEADER_KIND, MHD_HTTP_HEADER_CONTENT_TYPE);
+    const char *type =
+        MHD_lookup_connection_value(c, MHD_HEADER_KIND, MHD_HTTP_HEADER_CONTENT_TYPE);
     if (!is_json_media_type(type))
         return send_fail(h, c, rq, RD_EMEDIA,
                          "The body must be sent as Content-Type: application/json, not %s.",
@@ -1251,7 +1267,8 @@ static enum MHD_Result begin_submit(rd_http *h, struct MHD_Connection *c, struct
         return send_fail(h, c, rq, RD_EREQUEST,
                          "The Idempotency-Key header must be 1 to %d printable characters.",
                          IDEM_KEY_MAX);
-    const char *length = MHD_lookup_connection_value(c, MHD_HEADER_KIND, MHD_HTTP_HEADER_CONTENT_LENGTH);
+    const char *length =
+        MHD_lookup_connection_value(c, MHD_HEADER_KIND, MHD_HTTP_HEADER_CONTENT_LENGTH);
     if (length) {
         char *end;
         errno = 0;
@@ -1306,13 +1323,14 @@ static enum MHD_Result answer_submit(rd_http *h, struct MHD_Connection *c, struc
     int finished = 0;
     if (rd_jobs_get(h->jobs, id, 0, &shared, &body, &finished, &err) != RD_OK)
         return send_error(h, c, rq, &err, NULL);
-    struct MHD_Response *r = job_response(rq, shared, body, rq->cache && strcmp(rq->cache, "hit") == 0);
+    struct MHD_Response *r =
+        job_response(rq, shared, body, rq->cache && strcmp(rq->cache, "hit") == 0);
     char location[64];
     snprintf(location, sizeof location, "/api/v1/jobs/%s", id);
-    if (r && (MHD_add_response_header(r, MHD_HTTP_HEADER_LOCATION, location) != MHD_YES ||
-              (rq->cache && MHD_add_response_header(r, "X-Ringdyn-Cache", rq->cache) != MHD_YES) ||
-              (rq->replayed &&
-               MHD_add_response_header(r, "Idempotent-Replayed", "true") != MHD_YES))) {
+    if (r &&
+        (MHD_add_response_header(r, MHD_HTTP_HEADER_LOCATION, location) != MHD_YES ||
+         (rq->cache && MHD_add_response_header(r, "X-Ringdyn-Cache", rq->cache) != MHD_YES) ||
+         (rq->replayed && MHD_add_response_header(r, "Idempotent-Replayed", "true") != MHD_YES))) {
         MHD_destroy_response(r);
         r = NULL;
     }
@@ -1473,7 +1491,8 @@ static enum MHD_Result begin_request(rd_http *h, struct MHD_Connection *c, struc
         rd_error err;
         rd_error_init(&err);
         rd_error_set(&err, RD_EMETHOD, "", "Method %s is not allowed on %s; allowed: %s.",
-                     printable(method, buf, sizeof buf), printable(url, where, sizeof where), allow);
+                     printable(method, buf, sizeof buf), printable(url, where, sizeof where),
+                     allow);
         return send_error(h, c, rq, &err, allow);
     }
     const char *params = allowed_params(route, method);
@@ -1618,10 +1637,11 @@ static int add_allowed(rd_http *h, const char *name, rd_error *err)
     char buf[256];
     const char *lower = host_name(name, buf, sizeof buf);
     if (!lower || strlen(lower) != strlen(name)) /* a port was given */
-        return rd_error_set(err, RD_EINVAL, "",
-                            "--allow-host %s: not a host name (give the name without a port; IPv6 in "
-                            "brackets).",
-                            name);
+        return rd_error_set(
+            err, RD_EINVAL, "",
+            "--allow-host %s: not a host name (give the name without a port; IPv6 in "
+            "brackets).",
+            name);
     char **grown = realloc(h->allow, (h->n_allow + 1) * sizeof *grown);
     if (!grown)
         return rd_error_set(err, RD_ENOMEM, "", "Out of memory.");
@@ -1661,8 +1681,8 @@ static int resolve_dir(const char *option, const char *dir, char **out, rd_error
     if (!path || stat(path, &st) != 0 || !S_ISDIR(st.st_mode)) {
         int e = errno;
         free(path);
-        return rd_error_set(err, RD_EINVAL, "", "%s %s: not a readable directory (%s).", option, dir,
-                            path ? "not a directory" : strerror(e));
+        return rd_error_set(err, RD_EINVAL, "", "%s %s: not a readable directory (%s).", option,
+                            dir, path ? "not a directory" : strerror(e));
     }
     *out = path;
     return RD_OK;

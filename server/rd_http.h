@@ -48,7 +48,7 @@ typedef struct rd_http_config {
      * Required when `host` is not a loopback address. */
     const char *token;
     rd_http_limits limits;
-    rd_sweeps *sweeps; /* /api/v1/sweeps*, borrowed; NULL: those routes are 404 */
+    rd_sweeps *sweeps;    /* /api/v1/sweeps*, borrowed; NULL: those routes are 404 */
     double job_timeout_s; /* the job pool's run time limit: the largest ?time_limit_s= */
 } rd_http_config;
 

@@ -64,12 +64,12 @@
 #define RUN_ESTIMATE_INITIAL_S 1.0
 
 struct body {
-    rd_jobs_body pub;  /* first: the public view is a pointer to it */
+    rd_jobs_body pub; /* first: the public view is a pointer to it */
     rd_jobs *jobs;
     struct job *owner; /* the job whose `body` this is, NULL once it is gone */
     int refs;
     char *data;
-    char *gz;      /* its gzip, made once by rd_jobs_body_gzip, or NULL */
+    char *gz; /* its gzip, made once by rd_jobs_body_gzip, or NULL */
     size_t gz_len;
 };
 
@@ -78,25 +78,25 @@ struct job {
     int refs;
     char id[RD_JOBS_ID_LEN + 1];
     char analysis[32];
-    int status;       /* enum rd_job_status */
-    double progress;  /* 0..1 */
-    int cancel;       /* DELETE asked a running job to stop */
-    int timed_out;    /* the monitor saw the deadline pass */
+    int status;        /* enum rd_job_status */
+    double progress;   /* 0..1 */
+    int cancel;        /* DELETE asked a running job to stop */
+    int timed_out;     /* the monitor saw the deadline pass */
     double stop_asked; /* CLOCK_MONOTONIC of the DELETE, the deadline, or the shutdown; 0 = none */
-    double deadline;  /* CLOCK_MONOTONIC seconds, set when the run starts */
+    double deadline;   /* CLOCK_MONOTONIC seconds, set when the run starts */
     struct timespec created, started, finished; /* CLOCK_REALTIME; zero = not yet */
-    rd_scene *scene;  /* owned until a worker takes it */
-    size_t body_len;  /* bytes of the stored JSON of a succeeded job */
-    struct body *body; /* that JSON while some request sends it, else NULL */
-    char *error;      /* error body, once failed, cancelled or interrupted */
-    uint64_t seq;     /* submission order in this process (list cursors), from 1 */
-    char *name;       /* the scene's name, or NULL */
-    int has_key;      /* `key` is set: a succeeded job is a result cache entry */
-    uint64_t key[2];  /* rd_jobs_hash of the canonical scene */
-    char *idem_key;   /* the client's Idempotency-Key, or NULL */
+    rd_scene *scene;                            /* owned until a worker takes it */
+    size_t body_len;                            /* bytes of the stored JSON of a succeeded job */
+    struct body *body;     /* that JSON while some request sends it, else NULL */
+    char *error;           /* error body, once failed, cancelled or interrupted */
+    uint64_t seq;          /* submission order in this process (list cursors), from 1 */
+    char *name;            /* the scene's name, or NULL */
+    int has_key;           /* `key` is set: a succeeded job is a result cache entry */
+    uint64_t key[2];       /* rd_jobs_hash of the canonical scene */
+    char *idem_key;        /* the client's Idempotency-Key, or NULL */
     uint64_t idem_hash[2]; /* rd_jobs_hash of the body it came with */
-    double timeout_s; /* this job's run time limit */
-    double predicted_s; /* rd_scene_cost_predict, NAN when unknown */
+    double timeout_s;      /* this job's run time limit */
+    double predicted_s;    /* rd_scene_cost_predict, NAN when unknown */
 };
 
 struct rd_jobs {
@@ -110,13 +110,14 @@ struct rd_jobs {
     int stopping;
     double mean_run_s; /* moving average of run times, for Retry-After */
     double stop_last_s, stop_max_s;
-    int random_fd;     /* /dev/urandom, for ids */
+    int random_fd; /* /dev/urandom, for ids */
     pthread_t *workers;
-    int nworkers; /* started successfully */
-    int active;   /* workers not yet returned */
+    int nworkers;  /* started successfully */
+    int active;    /* workers not yet returned */
     int in_solver; /* workers inside rd_scene_run */
-    struct body *recent; /* the body read last, held one reference longer (see keep_recent_locked) */
-    uint64_t next_seq;   /* the seq of the next job pushed */
+    struct body
+        *recent;       /* the body read last, held one reference longer (see keep_recent_locked) */
+    uint64_t next_seq; /* the seq of the next job pushed */
     /* Moving average of (run time / predicted cost) over the succeeded runs
      * that had a prediction: the cost model is fitted to a reference
      * machine, this scales it to the one we run on (and its load). */
@@ -134,8 +135,8 @@ struct snap {
     int status;
     double progress;
     struct timespec created, started, finished;
-    char *error; /* a copy, or NULL */
-    char *name;  /* a copy, or NULL */
+    char *error;        /* a copy, or NULL */
+    char *name;         /* a copy, or NULL */
     double predicted_s; /* scaled by cost_scale */
 };
 
@@ -144,8 +145,8 @@ struct run_ctx {
     struct job *job;
 };
 
-static const char *const status_names[RD_JOB_NSTATUS] = {"queued",    "running",  "succeeded",
-                                                          "failed",    "cancelled", "interrupted"};
+static const char *const status_names[RD_JOB_NSTATUS] = {"queued", "running",   "succeeded",
+                                                         "failed", "cancelled", "interrupted"};
 
 const char *rd_jobs_status_name(int status)
 {
@@ -243,7 +244,8 @@ static int id_is_wellformed(const char *id)
 {
     size_t n = 0;
     for (; id[n]; n++)
-        if (n >= RD_JOBS_ID_LEN || !((id[n] >= '0' && id[n] <= '9') || (id[n] >= 'a' && id[n] <= 'f')))
+        if (n >= RD_JOBS_ID_LEN ||
+            !((id[n] >= '0' && id[n] <= '9') || (id[n] >= 'a' && id[n] <= 'f')))
             return 0;
     return n == RD_JOBS_ID_LEN;
 }
@@ -253,14 +255,16 @@ static int not_found(rd_error *err, const char *id)
     if (!id_is_wellformed(id))
         return rd_error_set(err, RD_ENOTFOUND, "", "There is no job with this id.");
     return rd_error_set(err, RD_ENOTFOUND, "",
-                        "There is no job %s (the server keeps only the most recent finished jobs).", id);
+                        "There is no job %s (the server keeps only the most recent finished jobs).",
+                        id);
 }
 
 /* An error body from rd_api_error_json, or NULL when out of memory. */
 #if defined(__GNUC__)
 __attribute__((format(printf, 2, 3)))
 #endif
-static char *error_json(int code, const char *fmt, ...)
+static char *
+error_json(int code, const char *fmt, ...)
 {
     rd_error err;
     rd_error_init(&err);
@@ -409,8 +413,8 @@ static void retain_locked(rd_jobs *jobs)
      * transaction, page frees, a WAL commit) then runs once every
      * keep_max / 8 jobs, not after every job, when the server is full. */
     size_t keep_max = (size_t)jobs->cfg.keep_max, keep_bytes = jobs->cfg.keep_bytes;
-    if (rd_store_retain(jobs->cfg.store, keep_max - keep_max / 8, keep_bytes - keep_bytes / 8, oldest,
-                        forget_locked, jobs, &err) != RD_OK)
+    if (rd_store_retain(jobs->cfg.store, keep_max - keep_max / 8, keep_bytes - keep_bytes / 8,
+                        oldest, forget_locked, jobs, &err) != RD_OK)
         log_store_error("retention", &err);
 }
 
@@ -687,7 +691,8 @@ static int body_and_release(rd_jobs *jobs, struct job *job, rd_jobs_body **out, 
     if (rc == RD_ENOTFOUND && !find_locked(jobs, id)) /* retention took it meanwhile */
         rc = not_found(err, id);
     else if (rc == RD_ENOTFOUND) /* a succeeded job's row has a body: ours to explain */
-        rc = rd_error_set(err, RD_EINTERNAL, "", "The result of job %s is missing from the store.", id);
+        rc = rd_error_set(err, RD_EINTERNAL, "", "The result of job %s is missing from the store.",
+                          id);
     else if (rc != RD_OK && read_err.code != RD_OK)
         rc = rd_error_set(err, read_err.code, "", "%s", read_err.message);
     if (rc == RD_OK) {
@@ -994,16 +999,18 @@ static int load_store(rd_jobs *jobs, rd_error *err)
     int64_t now = real_now_ns();
     int n_queued = 0, n_running = 0;
     if (rc == RD_OK)
-        rc = rd_store_mark(jobs->cfg.store, "queued", "queued", "interrupted", now, queued, &n_queued,
-                           err);
+        rc = rd_store_mark(jobs->cfg.store, "queued", "queued", "interrupted", now, queued,
+                           &n_queued, err);
     if (rc == RD_OK)
         rc = rd_store_mark(jobs->cfg.store, "running", "running", "interrupted", now, running,
                            &n_running, err);
     free(queued);
     free(running);
     if (rc == RD_OK && n_queued + n_running > 0)
-        fprintf(stderr, "ringdyn-server: %d queued and %d running jobs of the last run are marked "
-                        "interrupted\n", n_queued, n_running);
+        fprintf(stderr,
+                "ringdyn-server: %d queued and %d running jobs of the last run are marked "
+                "interrupted\n",
+                n_queued, n_running);
     pthread_mutex_lock(&jobs->mu);
     if (rc == RD_OK && (rc = rd_store_load(jobs->cfg.store, load_row, jobs, err)) == RD_ENOMEM)
         rd_error_set(err, RD_ENOMEM, "", "Out of memory loading the job store.");
@@ -1054,7 +1061,8 @@ int rd_jobs_create(const rd_jobs_config *cfg, rd_jobs **out, rd_error *err)
             pthread_mutex_lock(&jobs->mu);
             jobs->active--;
             pthread_mutex_unlock(&jobs->mu);
-            rc = rd_error_set(err, RD_EINTERNAL, "", "Cannot start worker thread: %s.", strerror(e));
+            rc =
+                rd_error_set(err, RD_EINTERNAL, "", "Cannot start worker thread: %s.", strerror(e));
         } else {
             jobs->nworkers++;
         }
@@ -1124,7 +1132,8 @@ void rd_jobs_free(rd_jobs *jobs)
     if (active > 0) {
         /* A solver that does not report cannot be stopped: the process exit
          * ends it.  Freeing the pool under it would be a use after free. */
-        fprintf(stderr, "ringdyn-server: %d worker(s) still in a solver; leaving them to the exit\n",
+        fprintf(stderr,
+                "ringdyn-server: %d worker(s) still in a solver; leaving them to the exit\n",
                 active);
         return;
     }

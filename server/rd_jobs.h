@@ -48,13 +48,13 @@ enum rd_job_status {
 const char *rd_jobs_status_name(int status);
 
 typedef struct rd_jobs_config {
-    int threads;      /* workers, >= 1 */
-    int queue_max;    /* queued (not yet running) jobs accepted at once, >= 1 */
-    int keep_max;     /* finished jobs kept for GET, >= 1 */
+    int threads;       /* workers, >= 1 */
+    int queue_max;     /* queued (not yet running) jobs accepted at once, >= 1 */
+    int keep_max;      /* finished jobs kept for GET, >= 1 */
     size_t keep_bytes; /* and at most this much result text (the newest is always kept) */
     double keep_age_s; /* and none older than this (0: no age limit) */
-    double timeout_s; /* run time limit per job, > 0 */
-    rd_store *store;  /* borrowed; must outlive the pool */
+    double timeout_s;  /* run time limit per job, > 0 */
+    rd_store *store;   /* borrowed; must outlive the pool */
     /* Called after each job that ran (by its worker, or by the thread that
      * ran it inline), with its analysis, final status and run time; no lock
      * is held.  May be NULL. */
@@ -117,11 +117,11 @@ typedef struct rd_jobs_submit_opts {
 
 typedef struct rd_jobs_submitted {
     char id[RD_JOBS_ID_LEN + 1]; /* the job that answers the submission */
-    int cached;      /* an earlier job with the same canonical scene answers it */
-    int replayed;    /* the Idempotency-Key named this earlier job (same body) */
-    int conflict;    /* the Idempotency-Key names job `id`, sent with another body:
+    int cached;                  /* an earlier job with the same canonical scene answers it */
+    int replayed;                /* the Idempotency-Key named this earlier job (same body) */
+    int conflict;                /* the Idempotency-Key names job `id`, sent with another body:
                         nothing was submitted */
-    int ran_inline;  /* it ran on the calling thread and is final */
+    int ran_inline;              /* it ran on the calling thread and is final */
 } rd_jobs_submitted;
 
 /* Two independent 64-bit hashes of `len` bytes (FNV-1a and a

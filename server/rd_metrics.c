@@ -19,7 +19,8 @@
 
 /* Upper bounds (s) of the job-duration buckets: modal runs take milliseconds,
  * long lift runs minutes, and the default time limit is 120 s. */
-static const double duration_bounds[] = {0.01, 0.05, 0.1, 0.25, 0.5, 1, 2.5, 5, 10, 30, 60, 120, 300};
+static const double duration_bounds[] = {0.01, 0.05, 0.1, 0.25, 0.5, 1,  2.5,
+                                         5,    10,   30,  60,   120, 300};
 #define NBOUNDS (sizeof duration_bounds / sizeof duration_bounds[0])
 
 /* Series of the labelled run histogram: (analysis, outcome) pairs are few
@@ -85,7 +86,8 @@ static struct series *series_locked(rd_metrics *m, const char *analysis, const c
     if (m->nseries == MAX_SERIES)
         analysis = "other";
     for (size_t i = 0; i < m->nseries; i++)
-        if (strcmp(m->series[i].analysis, analysis) == 0 && strcmp(m->series[i].outcome, outcome) == 0)
+        if (strcmp(m->series[i].analysis, analysis) == 0 &&
+            strcmp(m->series[i].outcome, outcome) == 0)
             return &m->series[i];
     if (m->nseries == MAX_SERIES) /* "other" with a new outcome: fold into the last */
         return &m->series[MAX_SERIES - 1];
@@ -113,7 +115,8 @@ void rd_metrics_count_inline(rd_metrics *m)
     pthread_mutex_unlock(&m->mu);
 }
 
-void rd_metrics_observe_job(rd_metrics *m, const char *analysis, const char *outcome, double seconds)
+void rd_metrics_observe_job(rd_metrics *m, const char *analysis, const char *outcome,
+                            double seconds)
 {
     if (!m || !(seconds >= 0)) /* also rejects NaN */
         return;
@@ -143,7 +146,8 @@ struct text {
 #if defined(__GNUC__)
 __attribute__((format(printf, 2, 3)))
 #endif
-static void text_printf(struct text *t, const char *fmt, ...)
+static void
+text_printf(struct text *t, const char *fmt, ...)
 {
     if (t->failed)
         return;
@@ -178,24 +182,28 @@ char *rd_metrics_render(rd_metrics *m, const char *const *state_names, const siz
                         size_t n, const rd_metrics_gauges *g)
 {
     struct text t = {0};
-    text_printf(&t, "# HELP ringdyn_build_info The server's version (the value is always 1).\n"
-                    "# TYPE ringdyn_build_info gauge\n"
-                    "ringdyn_build_info{version=\"%s\"} 1\n",
+    text_printf(&t,
+                "# HELP ringdyn_build_info The server's version (the value is always 1).\n"
+                "# TYPE ringdyn_build_info gauge\n"
+                "ringdyn_build_info{version=\"%s\"} 1\n",
                 g->version ? g->version : "unknown");
-    text_printf(&t, "# HELP ringdyn_stop_latency_seconds Time from a DELETE, the time limit or a "
-                    "shutdown to the solver's return: the last run stopped, and the largest.\n"
-                    "# TYPE ringdyn_stop_latency_seconds gauge\n"
-                    "ringdyn_stop_latency_seconds{which=\"last\"} %.6f\n"
-                    "ringdyn_stop_latency_seconds{which=\"max\"} %.6f\n",
+    text_printf(&t,
+                "# HELP ringdyn_stop_latency_seconds Time from a DELETE, the time limit or a "
+                "shutdown to the solver's return: the last run stopped, and the largest.\n"
+                "# TYPE ringdyn_stop_latency_seconds gauge\n"
+                "ringdyn_stop_latency_seconds{which=\"last\"} %.6f\n"
+                "ringdyn_stop_latency_seconds{which=\"max\"} %.6f\n",
                 g->stop_last_s, g->stop_max_s);
-    text_printf(&t, "# HELP ringdyn_connections Open HTTP connections.\n"
-                    "# TYPE ringdyn_connections gauge\n"
-                    "ringdyn_connections %zu\n",
+    text_printf(&t,
+                "# HELP ringdyn_connections Open HTTP connections.\n"
+                "# TYPE ringdyn_connections gauge\n"
+                "ringdyn_connections %zu\n",
                 g->connections);
-    text_printf(&t, "# HELP ringdyn_connections_deadline_total Connections closed because their "
-                    "request did not arrive complete within the request deadline.\n"
-                    "# TYPE ringdyn_connections_deadline_total counter\n"
-                    "ringdyn_connections_deadline_total %zu\n",
+    text_printf(&t,
+                "# HELP ringdyn_connections_deadline_total Connections closed because their "
+                "request did not arrive complete within the request deadline.\n"
+                "# TYPE ringdyn_connections_deadline_total counter\n"
+                "ringdyn_connections_deadline_total %zu\n",
                 g->deadline_closed);
     text_printf(&t, "# HELP ringdyn_jobs Jobs held by the server, by state.\n"
                     "# TYPE ringdyn_jobs gauge\n");
@@ -203,15 +211,17 @@ char *rd_metrics_render(rd_metrics *m, const char *const *state_names, const siz
         text_printf(&t, "ringdyn_jobs{state=\"%s\"} %zu\n", state_names[i], state_counts[i]);
 
     pthread_mutex_lock(&m->mu);
-    text_printf(&t, "# HELP ringdyn_job_duration_seconds Run time of finished jobs, from start to end.\n"
-                    "# TYPE ringdyn_job_duration_seconds histogram\n");
+    text_printf(
+        &t, "# HELP ringdyn_job_duration_seconds Run time of finished jobs, from start to end.\n"
+            "# TYPE ringdyn_job_duration_seconds histogram\n");
     for (size_t i = 0; i < NBOUNDS; i++)
         text_printf(&t, "ringdyn_job_duration_seconds_bucket{le=\"%g\"} %llu\n", duration_bounds[i],
                     (unsigned long long)m->duration_buckets[i]);
     text_printf(&t, "ringdyn_job_duration_seconds_bucket{le=\"+Inf\"} %llu\n",
                 (unsigned long long)m->duration_count);
     text_printf(&t, "ringdyn_job_duration_seconds_sum %.9g\n", m->duration_sum);
-    text_printf(&t, "ringdyn_job_duration_seconds_count %llu\n", (unsigned long long)m->duration_count);
+    text_printf(&t, "ringdyn_job_duration_seconds_count %llu\n",
+                (unsigned long long)m->duration_count);
 
     text_printf(&t, "# HELP ringdyn_job_run_seconds Run time of the jobs that ran, by analysis "
                     "and outcome (counted when they end; kept however jobs are evicted).\n"
@@ -219,10 +229,13 @@ char *rd_metrics_render(rd_metrics *m, const char *const *state_names, const siz
     for (size_t k = 0; k < m->nseries; k++) {
         const struct series *se = &m->series[k];
         for (size_t i = 0; i < NBOUNDS; i++)
-            text_printf(&t, "ringdyn_job_run_seconds_bucket{analysis=\"%s\",outcome=\"%s\",le=\"%g\"} %llu\n",
-                        se->analysis, se->outcome, duration_bounds[i], (unsigned long long)se->buckets[i]);
-        text_printf(&t, "ringdyn_job_run_seconds_bucket{analysis=\"%s\",outcome=\"%s\",le=\"+Inf\"} %llu\n",
-                    se->analysis, se->outcome, (unsigned long long)se->count);
+            text_printf(
+                &t,
+                "ringdyn_job_run_seconds_bucket{analysis=\"%s\",outcome=\"%s\",le=\"%g\"} %llu\n",
+                se->analysis, se->outcome, duration_bounds[i], (unsigned long long)se->buckets[i]);
+        text_printf(
+            &t, "ringdyn_job_run_seconds_bucket{analysis=\"%s\",outcome=\"%s\",le=\"+Inf\"} %llu\n",
+            se->analysis, se->outcome, (unsigned long long)se->count);
         text_printf(&t, "ringdyn_job_run_seconds_sum{analysis=\"%s\",outcome=\"%s\"} %.9g\n",
                     se->analysis, se->outcome, se->sum);
         text_printf(&t, "ringdyn_job_run_seconds_count{analysis=\"%s\",outcome=\"%s\"} %llu\n",
@@ -240,10 +253,11 @@ char *rd_metrics_render(rd_metrics *m, const char *const *state_names, const siz
     for (int k = 0; k < CACHE_NKINDS; k++)
         text_printf(&t, "ringdyn_result_cache_total{result=\"%s\"} %llu\n", cache_names[k],
                     (unsigned long long)m->cache[k]);
-    text_printf(&t, "# HELP ringdyn_inline_runs_total Jobs run on the HTTP thread (predicted small, "
-                    "client waiting).\n"
-                    "# TYPE ringdyn_inline_runs_total counter\n"
-                    "ringdyn_inline_runs_total %llu\n",
+    text_printf(&t,
+                "# HELP ringdyn_inline_runs_total Jobs run on the HTTP thread (predicted small, "
+                "client waiting).\n"
+                "# TYPE ringdyn_inline_runs_total counter\n"
+                "ringdyn_inline_runs_total %llu\n",
                 (unsigned long long)m->inline_runs);
     text_printf(&t, "# HELP ringdyn_http_requests_total HTTP responses sent, by status code.\n"
                     "# TYPE ringdyn_http_requests_total counter\n");

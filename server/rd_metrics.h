@@ -24,7 +24,8 @@ void rd_metrics_count_http(rd_metrics *m, int status);
 /* Records the run time (start to finish, seconds) of a job that ran, with
  * its analysis and outcome (final status name): the unlabelled histogram
  * and the labelled ones, which only ever grow (they survive eviction). */
-void rd_metrics_observe_job(rd_metrics *m, const char *analysis, const char *outcome, double seconds);
+void rd_metrics_observe_job(rd_metrics *m, const char *analysis, const char *outcome,
+                            double seconds);
 
 /* Counts one submission by what the result cache did. */
 void rd_metrics_count_cache(rd_metrics *m, int hit, int bypass);

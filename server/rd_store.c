@@ -15,13 +15,13 @@
 
 #include <errno.h>
 #include <fcntl.h>
-#include <unistd.h>
 #include <pthread.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
 #include <sys/types.h>
+#include <unistd.h>
 
 #include <sqlite3.h>
 
@@ -81,7 +81,8 @@ static const char delete_sql[] = "DELETE FROM jobs WHERE id = ?";
 static int db_fail(sqlite3 *db, int src, const char *what, rd_error *err)
 {
     return rd_error_set(err, src == SQLITE_NOMEM ? RD_ENOMEM : RD_EINTERNAL, "",
-                        "Job store: %s failed: %s.", what, db ? sqlite3_errmsg(db) : sqlite3_errstr(src));
+                        "Job store: %s failed: %s.", what,
+                        db ? sqlite3_errmsg(db) : sqlite3_errstr(src));
 }
 
 static int exec(sqlite3 *db, const char *sql, rd_error *err)
@@ -183,8 +184,8 @@ int rd_store_create(const char *dir, rd_store **out, rd_error *err)
         free(s);
         return err->code;
     }
-    int rc = sqlite3_open_v2(file, &s->db,
-                             SQLITE_OPEN_READWRITE | SQLITE_OPEN_CREATE | SQLITE_OPEN_NOMUTEX, NULL);
+    int rc = sqlite3_open_v2(
+        file, &s->db, SQLITE_OPEN_READWRITE | SQLITE_OPEN_CREATE | SQLITE_OPEN_NOMUTEX, NULL);
     int status = RD_OK;
     if (rc != SQLITE_OK) {
         status = rd_error_set(err, RD_EINVAL, "", "--data %s: cannot open %s: %s.", dir, file,
@@ -198,7 +199,8 @@ int rd_store_create(const char *dir, rd_store **out, rd_error *err)
     /* WAL: readers never block the writer, and a crash is recovered at the
      * next open; NORMAL: no fsync per commit (see rd_store.h). */
     if ((status = exec(s->db, "PRAGMA auto_vacuum=INCREMENTAL", err)) ||
-        (status = exec(s->db, memory ? "PRAGMA journal_mode=MEMORY" : "PRAGMA journal_mode=WAL", err)) ||
+        (status =
+             exec(s->db, memory ? "PRAGMA journal_mode=MEMORY" : "PRAGMA journal_mode=WAL", err)) ||
         (status = exec(s->db, "PRAGMA synchronous=NORMAL", err)) ||
         (status = exec(s->db, schema, err)) || (status = add_columns(s->db, err)))
         goto out;
@@ -289,10 +291,10 @@ int rd_store_insert(rd_store *store, const rd_store_row *row, const char *scene,
     sqlite3_stmt *st;
     pthread_mutex_lock(&store->mu);
     int status = prepare_kept(store,
-                         "INSERT INTO jobs (id, analysis, status, progress, created_ns, "
-                         "started_ns, scene, name, cache_key, idem_key, idem_hash) "
-                         "VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?)",
-                         &st, err);
+                              "INSERT INTO jobs (id, analysis, status, progress, created_ns, "
+                              "started_ns, scene, name, cache_key, idem_key, idem_hash) "
+                              "VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?)",
+                              &st, err);
     if (status == RD_OK) {
         int b = sqlite3_bind_text(st, 1, row->id, -1, SQLITE_STATIC);
         b = b ? b : sqlite3_bind_text(st, 2, row->analysis, -1, SQLITE_STATIC);
@@ -315,12 +317,13 @@ int rd_store_update(rd_store *store, const rd_store_row *row, const char *body, 
 {
     sqlite3_stmt *st;
     pthread_mutex_lock(&store->mu);
-    int status = prepare_kept(store,
-                         body ? "UPDATE jobs SET status = ?, progress = ?, started_ns = ?, "
-                                "finished_ns = ?, error = ?, body = ?, body_len = ? WHERE id = ?"
-                              : "UPDATE jobs SET status = ?, progress = ?, started_ns = ?, "
-                                "finished_ns = ?, error = ? WHERE id = ?",
-                         &st, err);
+    int status =
+        prepare_kept(store,
+                     body ? "UPDATE jobs SET status = ?, progress = ?, started_ns = ?, "
+                            "finished_ns = ?, error = ?, body = ?, body_len = ? WHERE id = ?"
+                          : "UPDATE jobs SET status = ?, progress = ?, started_ns = ?, "
+                            "finished_ns = ?, error = ? WHERE id = ?",
+                     &st, err);
     if (status == RD_OK) {
         int b = sqlite3_bind_text(st, 1, row->status, -1, SQLITE_STATIC);
         b = b ? b : sqlite3_bind_double(st, 2, row->progress);
@@ -414,7 +417,8 @@ int rd_store_delete(rd_store *store, const char *id, rd_error *err)
     pthread_mutex_lock(&store->mu);
     int status = prepare_kept(store, delete_sql, &st, err);
     if (status == RD_OK)
-        status = run_kept(store->db, st, "delete", sqlite3_bind_text(st, 1, id, -1, SQLITE_STATIC), err);
+        status =
+            run_kept(store->db, st, "delete", sqlite3_bind_text(st, 1, id, -1, SQLITE_STATIC), err);
     pthread_mutex_unlock(&store->mu);
     return status;
 }
@@ -425,7 +429,8 @@ int rd_store_read_body(rd_store *store, const char *id, char **body, size_t *len
     *len = 0;
     sqlite3_stmt *st;
     pthread_mutex_lock(&store->mu);
-    int status = prepare_kept(store, "SELECT body FROM jobs WHERE id = ? AND body IS NOT NULL", &st, err);
+    int status =
+        prepare_kept(store, "SELECT body FROM jobs WHERE id = ? AND body IS NOT NULL", &st, err);
     if (status == RD_OK) {
         int rc = sqlite3_bind_text(st, 1, id, -1, SQLITE_STATIC);
         rc = rc ? rc : sqlite3_step(st);
@@ -474,8 +479,8 @@ static int select_expired(sqlite3 *db, size_t keep_max, size_t keep_bytes, int64
     while ((rc = sqlite3_step(st)) == SQLITE_ROW) {
         size_t len = (size_t)sqlite3_column_int64(st, 1);
         int64_t finished = sqlite3_column_int64(st, 2);
-        int expired = kept >= 1 && (kept + 1 > keep_max || bytes + len > keep_bytes ||
-                                     finished < oldest_ns);
+        int expired =
+            kept >= 1 && (kept + 1 > keep_max || bytes + len > keep_bytes || finished < oldest_ns);
         if (!expired) {
             kept++;
             bytes += len;
@@ -511,7 +516,7 @@ int rd_store_retain(rd_store *store, size_t keep_max, size_t keep_bytes, int64_t
             status = prepare_kept(store, delete_sql, &st, err);
             if (status == RD_OK)
                 status = run_kept(store->db, st, "delete",
-                             sqlite3_bind_text(st, 1, ids[i], -1, SQLITE_STATIC), err);
+                                  sqlite3_bind_text(st, 1, ids[i], -1, SQLITE_STATIC), err);
         }
         if (status == RD_OK)
             status = exec(store->db, "COMMIT", err);
@@ -569,7 +574,8 @@ int rd_store_sweep_load(rd_store *store,
 {
     sqlite3_stmt *st;
     pthread_mutex_lock(&store->mu);
-    int status = prepare(store->db, "SELECT id, meta, body, csv FROM sweeps ORDER BY seq", &st, err);
+    int status =
+        prepare(store->db, "SELECT id, meta, body, csv FROM sweeps ORDER BY seq", &st, err);
     int rc = SQLITE_DONE;
     while (status == RD_OK && (rc = sqlite3_step(st)) == SQLITE_ROW) {
         const char *t[4];

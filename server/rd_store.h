@@ -31,8 +31,8 @@ typedef struct rd_store_row {
     const char *status; /* "queued", ... */
     double progress;
     int64_t created_ns, started_ns, finished_ns; /* CLOCK_REALTIME, 0 = not yet */
-    const char *error;  /* error body, or NULL */
-    size_t body_len;    /* bytes of `body`, 0 without one */
+    const char *error;                           /* error body, or NULL */
+    size_t body_len;                             /* bytes of `body`, 0 without one */
     /* Written by insert only (NULL = none): the scene's name, the result
      * cache key (32 hex digits of the canonical scene's hash), the client's
      * Idempotency-Key and the hash of the body it came with. */

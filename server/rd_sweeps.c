@@ -19,9 +19,9 @@
 #include "rd_sweeps.h"
 
 #include <errno.h>
-#include <stdarg.h>
 #include <fcntl.h>
 #include <pthread.h>
+#include <stdarg.h>
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -32,8 +32,8 @@
 #include <jansson.h>
 
 #include "rd_api.h"
-#include "rd_sweep.h"
 #include "rd_store.h"
+#include "rd_sweep.h"
 #include "rd_sweep_request.h"
 
 /* Retry-After for a full sweep queue: a sweep takes minutes, not seconds. */
@@ -108,7 +108,8 @@ static void reply_error(rd_sweeps_reply *r, const rd_error *err)
 #if defined(__GNUC__)
 __attribute__((format(printf, 3, 4)))
 #endif
-static void reply_fail(rd_sweeps_reply *r, int code, const char *fmt, ...)
+static void
+reply_fail(rd_sweeps_reply *r, int code, const char *fmt, ...)
 {
     rd_error err;
     rd_error_init(&err);
@@ -162,7 +163,8 @@ static json_t *sweep_object(const struct sweep *sw)
     bad |= json_object_set_new(o, "id", json_string(sw->id));
     bad |= json_object_set_new(o, "kind", json_string(sw->fidelity ? "fidelity" : "sweep"));
     bad |= json_object_set_new(o, "status", json_string(status_names[sw->status]));
-    bad |= json_object_set_new(o, "progress", json_real(sw->n ? (double)sw->done / (double)sw->n : 1));
+    bad |=
+        json_object_set_new(o, "progress", json_real(sw->n ? (double)sw->done / (double)sw->n : 1));
     bad |= json_object_set_new(o, "points", json_integer((json_int_t)sw->n));
     bad |= json_object_set_new(o, "done", json_integer((json_int_t)sw->done));
     bad |= json_object_set_new(o, "failed", json_integer((json_int_t)sw->failed));
@@ -316,7 +318,8 @@ static void freeze_locked(rd_sweeps *ss, struct sweep *sw)
     sw->body = body;
     sw->csv = csv;
     if (ss->cfg.store && rd_store_sweep_put(ss->cfg.store, sw->id, meta, body, csv, &err) != RD_OK)
-        fprintf(stderr, "ringdyn-server: sweep %s is kept in memory only: %s\n", sw->id, err.message);
+        fprintf(stderr, "ringdyn-server: sweep %s is kept in memory only: %s\n", sw->id,
+                err.message);
     if (sw->running == 0)
         release_rows(sw);
 }
@@ -636,8 +639,7 @@ static void answer(rd_sweeps *ss, const char *id, int submit, int waited, rd_swe
         snprintf(r->location, sizeof r->location, "/api/v1/sweeps/%s", id);
 }
 
-void rd_sweeps_post(rd_sweeps *ss, const char *body, size_t len, double wait_s,
-                    rd_sweeps_reply *r)
+void rd_sweeps_post(rd_sweeps *ss, const char *body, size_t len, double wait_s, rd_sweeps_reply *r)
 {
     rd_error err;
     rd_error_init(&err);
@@ -773,8 +775,7 @@ static void item_delete(rd_sweeps *ss, const char *id, rd_sweeps_reply *r)
     r->wait_s = CANCEL_WAIT_S;
 }
 
-void rd_sweeps_item(rd_sweeps *ss, const char *method, const char *id, int csv,
-                    rd_sweeps_reply *r)
+void rd_sweeps_item(rd_sweeps *ss, const char *method, const char *id, int csv, rd_sweeps_reply *r)
 {
     if (csv)
         item_csv(ss, id, r);

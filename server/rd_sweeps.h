@@ -64,7 +64,7 @@ typedef struct rd_sweeps_reply {
     int retry_after;          /* Retry-After seconds (503), or 0 */
     char wait_id[RD_SWEEPS_ID_LEN + 1];
     double wait_s;
-    int wait_submit;          /* the wait answers a POST (Location; 200 or 202) */
+    int wait_submit; /* the wait answers a POST (Location; 200 or 202) */
 } rd_sweeps_reply;
 
 typedef struct rd_sweeps rd_sweeps;
