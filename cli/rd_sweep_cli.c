@@ -32,9 +32,10 @@
 #include <unistd.h>
 
 #include "rd_api.h"
+#include "rd_cli.h"
 #include "rd_sweep.h"
 
-enum { EXIT_INPUT = 2, EXIT_RUN = 1 };
+enum { EXIT_INPUT = RD_CLI_EXIT_INPUT, EXIT_RUN = RD_CLI_EXIT_RUN };
 
 static const char usage[] =
     "usage: ringdyn sweep count SPEC\n"
@@ -45,31 +46,6 @@ static const char usage[] =
     "                              [--spec] [--csv]\n"
     "       ringdyn sweep fidelity --table TABLE [--csv]\n"
     "I defaults to $JOB_COMPLETION_INDEX or $SLURM_ARRAY_TASK_ID, K to 1.\n";
-
-static volatile sig_atomic_t interrupted;
-
-static void on_sigint(int sig)
-{
-    (void)sig;
-    interrupted = 1;
-}
-
-static int stop_on_signal(void *ctx, double fraction)
-{
-    (void)ctx;
-    (void)fraction;
-    return interrupted != 0;
-}
-
-/* Prints err as error JSON on stderr; returns the exit status it maps to. */
-static int fail(const rd_error *err)
-{
-    char *json = rd_api_error_json(err);
-    fprintf(stderr, "%s\n", json ? json : "{\"error\":{\"code\":\"out_of_memory\"}}");
-    free(json);
-    int status = rd_api_http_status(err->code);
-    return status >= 400 && status < 500 ? EXIT_INPUT : EXIT_RUN;
-}
 
 /* Reads and parses the spec file ("-" for stdin) with the CLI's point limit. */
 static int load_spec(const char *name, rd_sweep **sweep, rd_error *err)
@@ -126,7 +102,7 @@ static int cmd_count(const char *spec)
     rd_error_init(&err);
     rd_sweep *s = NULL;
     if (load_spec(spec, &s, &err) != RD_OK)
-        return fail(&err);
+        return rd_cli_fail(&err);
     char line[64];
     snprintf(line, sizeof line, "%zu", rd_sweep_points(s));
     rd_sweep_free(s);
@@ -140,14 +116,14 @@ static int cmd_scene(const char *spec, const char *index)
     rd_sweep *s = NULL;
     long long i = count_arg(index);
     if (load_spec(spec, &s, &err) != RD_OK)
-        return fail(&err);
+        return rd_cli_fail(&err);
     char *scene = NULL, *pretty = NULL;
     if (i < 0)
         rd_error_set(&err, RD_EREQUEST, "", "the point index must be a number >= 0, got %s", index);
     else
         scene = rd_sweep_point_scene(s, (size_t)i, &err);
     pretty = scene ? rd_api_json_pretty(scene) : NULL;
-    int status = pretty ? print_line(pretty) : fail(&err);
+    int status = pretty ? print_line(pretty) : rd_cli_fail(&err);
     free(pretty);
     free(scene);
     rd_sweep_free(s);
@@ -157,7 +133,7 @@ static int cmd_scene(const char *spec, const char *index)
 /* Runs points [first, end) into the open file `f` after the chunk head. */
 static int run_points(const rd_sweep *s, size_t first, size_t end, FILE *f, rd_error *err)
 {
-    rd_monitor mon = {stop_on_signal, NULL};
+    rd_monitor mon = {rd_cli_stop_requested, NULL};
     for (size_t i = first; i < end; i++) {
         char *row = NULL;
         int rc = rd_sweep_run_point(s, i, &mon, &row, err);
@@ -242,7 +218,7 @@ static int cmd_run(int argc, char **argv)
         rd_error_set(&err, RD_EREQUEST, "",
                      "--index and --chunks must be whole numbers (index "
                      ">= 0, chunks >= 1)");
-        return fail(&err);
+        return rd_cli_fail(&err);
     }
     if (index == -2)
         index = chunks == 1 && env_index() < 0 ? 0 : env_index();
@@ -250,20 +226,15 @@ static int cmd_run(int argc, char **argv)
         rd_error_set(&err, RD_EREQUEST, "",
                      "no chunk index: give --index I, or set "
                      "JOB_COMPLETION_INDEX or SLURM_ARRAY_TASK_ID");
-        return fail(&err);
+        return rd_cli_fail(&err);
     }
     rd_sweep *s = NULL;
     if (load_spec(spec, &s, &err) != RD_OK)
-        return fail(&err);
-    struct sigaction sa;
-    memset(&sa, 0, sizeof sa);
-    sa.sa_handler = on_sigint;
-    sigemptyset(&sa.sa_mask);
-    sigaction(SIGINT, &sa, NULL);
-    sigaction(SIGTERM, &sa, NULL);
+        return rd_cli_fail(&err);
+    rd_cli_catch_signals(1);
     int rc = write_chunk(s, (size_t)index, (size_t)chunks, dir, &err);
     rd_sweep_free(s);
-    return rc == RD_OK ? 0 : fail(&err);
+    return rc == RD_OK ? 0 : rd_cli_fail(&err);
 }
 
 static int cmd_reduce(int argc, char **argv)
@@ -284,7 +255,7 @@ static int cmd_reduce(int argc, char **argv)
     }
     rd_error err;
     rd_error_init(&err);
-    return rd_sweep_reduce(dir, csv, stdout, &err) == RD_OK ? 0 : fail(&err);
+    return rd_sweep_reduce(dir, csv, stdout, &err) == RD_OK ? 0 : rd_cli_fail(&err);
 }
 
 /* Reads a whole file ("-": stdin) of at most `max` bytes. */
@@ -327,7 +298,7 @@ static char *run_all(const rd_sweep *s, rd_error *err)
 {
     size_t n = rd_sweep_points(s);
     char **rows = calloc(n, sizeof *rows), *table = NULL;
-    rd_monitor mon = {stop_on_signal, NULL};
+    rd_monitor mon = {rd_cli_stop_requested, NULL};
     int rc = rows ? RD_OK : rd_error_set(err, RD_ENOMEM, "", "out of memory");
     for (size_t i = 0; rc == RD_OK && i < n; i++)
         rc = rd_sweep_run_point(s, i, &mon, &rows[i], err);
@@ -344,7 +315,7 @@ static int print_fidelity(const char *table, int csv, rd_error *err)
 {
     char *fid = rd_sweep_fidelity_table(table, err);
     char *text = fid && csv ? rd_sweep_csv_from_table(fid, err) : NULL;
-    int status = !fid || (csv && !text) ? fail(err) : 0;
+    int status = !fid || (csv && !text) ? rd_cli_fail(err) : 0;
     if (status == 0 && (fputs(csv ? text : fid, stdout) == EOF || (!csv && puts("") == EOF) ||
                         fflush(stdout) != 0))
         status = print_line(NULL);
@@ -396,23 +367,19 @@ static int cmd_fidelity(int argc, char **argv)
     int status = 0;
     if (read_all(table ? table : scene, table ? (size_t)1 << 30 : RD_API_BODY_MAX, &body, &len,
                  &err) != RD_OK) {
-        status = fail(&err);
+        status = rd_cli_fail(&err);
     } else if (table) {
         status = print_fidelity(body, csv, &err);
     } else if (!(spec = rd_sweep_fidelity_spec(body, len, &o, &err)) ||
                rd_sweep_parse(spec, strlen(spec), RD_SWEEP_POINTS_MAX, &s, &err) != RD_OK) {
-        status = fail(&err);
+        status = rd_cli_fail(&err);
     } else if (spec_only) {
         result = rd_api_json_pretty(spec);
         status = print_line(result);
     } else {
-        struct sigaction sa;
-        memset(&sa, 0, sizeof sa);
-        sa.sa_handler = on_sigint;
-        sigemptyset(&sa.sa_mask);
-        sigaction(SIGINT, &sa, NULL);
+        rd_cli_catch_signals(0);
         result = run_all(s, &err);
-        status = result ? print_fidelity(result, csv, &err) : fail(&err);
+        status = result ? print_fidelity(result, csv, &err) : rd_cli_fail(&err);
     }
     free(result);
     free(spec);

@@ -22,9 +22,10 @@
 #include <string.h>
 
 #include "rd_api.h"
+#include "rd_cli.h"
 #include "rd_sweep_cli.h"
 
-enum { EXIT_INPUT = 2, EXIT_RUN = 1 };
+enum { EXIT_INPUT = RD_CLI_EXIT_INPUT, EXIT_RUN = RD_CLI_EXIT_RUN };
 
 static const char usage[] =
     "usage: ringdyn run [--csv] SCENE   run a scene, print the result JSON (or CSV)\n"
@@ -33,32 +34,6 @@ static const char usage[] =
     "       ringdyn openapi TEMPLATE    print the OpenAPI document built on TEMPLATE\n"
     "       ringdyn --version | --help\n"
     "SCENE is a JSON file, or - for stdin.  Exit status: 0 ok, 2 invalid input, 1 run failed.\n";
-
-static volatile sig_atomic_t interrupted;
-
-static void on_sigint(int sig)
-{
-    (void)sig;
-    interrupted = 1;
-}
-
-/* Monitor callback: a non-zero return asks core to stop (RD_ECANCELED). */
-static int stop_on_sigint(void *ctx, double fraction)
-{
-    (void)ctx;
-    (void)fraction;
-    return interrupted != 0;
-}
-
-/* Prints err as error JSON on stderr; returns the exit status it maps to. */
-static int fail(const rd_error *err)
-{
-    char *json = rd_api_error_json(err);
-    fprintf(stderr, "%s\n", json ? json : "{\"error\":{\"code\":\"out_of_memory\"}}");
-    free(json);
-    int status = rd_api_http_status(err->code);
-    return status >= 400 && status < 500 ? EXIT_INPUT : EXIT_RUN;
-}
 
 /* Reads the whole scene (at most RD_API_BODY_MAX bytes) from a file or stdin. */
 static int read_scene(const char *name, char **buf, size_t *len, rd_error *err)
@@ -93,25 +68,21 @@ static int command(const char *file, int run, int csv)
     char *body = NULL, *result = NULL, *text = NULL;
     rd_result_doc *doc = NULL;
     size_t len;
-    rd_monitor mon = {stop_on_sigint, NULL};
+    rd_monitor mon = {rd_cli_stop_requested, NULL};
     int status = 0;
 
     rd_error_init(&err);
     if (read_scene(file, &body, &len, &err) != RD_OK ||
         rd_scene_parse(body, len, &scene, &err) != RD_OK) {
-        status = fail(&err);
+        status = rd_cli_fail(&err);
         goto out;
     }
     if (!run) {
         result = rd_scene_to_json(scene);
     } else {
-        struct sigaction sa;
-        memset(&sa, 0, sizeof sa);
-        sa.sa_handler = on_sigint;
-        sigemptyset(&sa.sa_mask);
-        sigaction(SIGINT, &sa, NULL);
+        rd_cli_catch_signals(0);
         if (rd_scene_run_doc(scene, &mon, &doc, &err) != RD_OK) {
-            status = fail(&err);
+            status = rd_cli_fail(&err);
             goto out;
         }
         /* the CSV straight from the result document, no JSON text between */
@@ -120,7 +91,7 @@ static int command(const char *file, int run, int csv)
     if (!result) {
         if (err.code == RD_OK)
             rd_error_set(&err, RD_ENOMEM, "", "out of memory while writing the output");
-        status = fail(&err);
+        status = rd_cli_fail(&err);
         goto out;
     }
     /* --csv comes only with run: result is then the CSV text already */
@@ -129,7 +100,7 @@ static int command(const char *file, int run, int csv)
         result = NULL;
     if (!text) {
         rd_error_set(&err, RD_ENOMEM, "", "out of memory while writing the output");
-        status = fail(&err);
+        status = rd_cli_fail(&err);
         goto out;
     }
     fputs(text, stdout);
@@ -160,7 +131,7 @@ static int openapi(const char *file)
         doc = rd_api_openapi_json(template, &err);
     free(template);
     if (!doc)
-        return fail(&err);
+        return rd_cli_fail(&err);
     const char *at = strstr(doc, "@RINGDYN_VERSION@");
     if (at)
         printf("%.*s%s%s\n", (int)(at - doc), doc, rd_api_version(), at + 17);

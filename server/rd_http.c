@@ -49,6 +49,7 @@
 #include <microhttpd.h>
 
 #include "rd_api.h"
+#include "rd_clock.h"
 #include "rd_gzip.h"
 #include "rd_openapi.h"
 
@@ -160,27 +161,6 @@ enum route {
 };
 
 /* ---- small helpers ---- */
-
-static double mono_now(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
-
-static struct timespec mono_deadline(double seconds)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    double whole = floor(seconds);
-    ts.tv_sec += (time_t)whole;
-    ts.tv_nsec += (long)((seconds - whole) * 1e9);
-    if (ts.tv_nsec >= 1000000000L) {
-        ts.tv_sec++;
-        ts.tv_nsec -= 1000000000L;
-    }
-    return ts;
-}
 
 /* A copy of `s` fit for a message: printable ASCII only, at most n-1 bytes.
  * (Error bodies must be valid UTF-8; request text need not be.) */
@@ -414,7 +394,7 @@ static void on_connection(void *cls, struct MHD_Connection *c, void **socket_con
             return;
         }
         k->fd = info->connect_fd;
-        k->since = mono_now();
+        k->since = rd_clock_mono_s();
         pthread_mutex_lock(&h->mu);
         k->next = h->conns;
         if (h->conns)
@@ -460,7 +440,7 @@ static enum MHD_Result suspend_for(rd_http *h, struct MHD_Connection *c, struct 
 {
     set_busy(h, rq);
     rq->waiting = kind;
-    rq->until = mono_now() + seconds;
+    rq->until = rd_clock_mono_s() + seconds;
     memcpy(rq->job_id, id, sizeof rq->job_id);
     MHD_suspend_connection(c);
     pthread_mutex_lock(&h->mu);
@@ -517,15 +497,15 @@ static void resume_all(struct request *ready)
 static void *timer_main(void *arg)
 {
     rd_http *h = arg;
-    double next_expire = mono_now() + EXPIRE_EVERY_S;
+    double next_expire = rd_clock_mono_s() + EXPIRE_EVERY_S;
     pthread_mutex_lock(&h->mu);
     while (!h->stop) {
         if (!h->poked) {
-            struct timespec tick = mono_deadline(TICK_S);
+            struct timespec tick = rd_clock_mono_deadline(TICK_S);
             pthread_cond_timedwait(&h->wake, &h->mu, &tick);
         }
         h->poked = 0;
-        double now = mono_now();
+        double now = rd_clock_mono_s();
         struct request *ready = take_ready_locked(h, now, 0);
         enforce_deadline_locked(h, now);
         pthread_mutex_unlock(&h->mu);
@@ -1603,7 +1583,7 @@ static void on_completed(void *cls, struct MHD_Connection *c, void **req_cls,
     }
     if (rq->conn) { /* the next request on this connection starts now */
         rq->conn->busy = 0;
-        rq->conn->since = mono_now();
+        rq->conn->since = rd_clock_mono_s();
     }
     free(rq);
     *req_cls = NULL;
@@ -1814,7 +1794,7 @@ void rd_http_drain(rd_http *http, double seconds)
 {
     if (!http)
         return;
-    struct timespec deadline = mono_deadline(seconds);
+    struct timespec deadline = rd_clock_mono_deadline(seconds);
     pthread_mutex_lock(&http->mu);
     while (http->in_flight > 0)
         if (pthread_cond_timedwait(&http->idle, &http->mu, &deadline) == ETIMEDOUT)

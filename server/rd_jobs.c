@@ -36,6 +36,7 @@
  * solver's return is measured here (rd_jobs_get_stop_latency).
  */
 #include "rd_jobs.h"
+#include "rd_clock.h"
 
 #include <errno.h>
 #include <fcntl.h>
@@ -166,28 +167,6 @@ static int status_from_name(const char *name)
 static int is_final(int status)
 {
     return status >= RD_JOB_SUCCEEDED;
-}
-
-static double mono_now(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
-
-/* Absolute CLOCK_MONOTONIC time `seconds` from now, for pthread_cond_timedwait. */
-static struct timespec mono_deadline(double seconds)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    double whole = floor(seconds);
-    ts.tv_sec += (time_t)whole;
-    ts.tv_nsec += (long)((seconds - whole) * 1e9);
-    if (ts.tv_nsec >= 1000000000L) {
-        ts.tv_sec++;
-        ts.tv_nsec -= 1000000000L;
-    }
-    return ts;
 }
 
 static int64_t to_ns(const struct timespec *ts)
@@ -496,16 +475,8 @@ static int snapshot_locked(const rd_jobs *jobs, const struct job *job, struct sn
 /* ISO-8601 UTC with milliseconds, or null for a time not reached yet. */
 static json_t *iso_time(const struct timespec *ts)
 {
-    if (ts->tv_sec == 0 && ts->tv_nsec == 0)
-        return json_null();
-    struct tm tm;
-    time_t t = ts->tv_sec;
-    if (!gmtime_r(&t, &tm))
-        return json_null();
     char buf[64];
-    snprintf(buf, sizeof buf, "%04d-%02d-%02dT%02d:%02d:%02d.%03ldZ", tm.tm_year + 1900,
-             tm.tm_mon + 1, tm.tm_mday, tm.tm_hour, tm.tm_min, tm.tm_sec, ts->tv_nsec / 1000000L);
-    return json_string(buf);
+    return rd_clock_iso8601(ts, buf, sizeof buf) == 0 ? json_string(buf) : json_null();
 }
 
 /* Seconds a running job still needs: from the predicted cost while the run
@@ -725,7 +696,7 @@ static int body_and_release(rd_jobs *jobs, struct job *job, rd_jobs_body **out, 
 static int report_progress(void *arg, double fraction)
 {
     struct run_ctx *ctx = arg;
-    double now = mono_now();
+    double now = rd_clock_mono_s();
     pthread_mutex_lock(&ctx->jobs->mu);
     struct job *job = ctx->job;
     if (fraction >= 0 && fraction <= 1) /* NaN fails both */
@@ -827,9 +798,9 @@ static void run_job(rd_jobs *jobs, struct job *job, rd_scene *scene, int pooled)
     char job_analysis[sizeof job->analysis];
     memcpy(job_analysis, job->analysis, sizeof job_analysis); /* job may be freed below */
 
-    double t0 = mono_now();
+    double t0 = rd_clock_mono_s();
     int rc = rd_scene_run(scene, &mon, &result, &err);
-    double t1 = mono_now();
+    double t1 = rd_clock_mono_s();
     rd_scene_free(scene);
     int status = final_status(jobs, job, rc, result, &err, &error);
 
@@ -943,7 +914,7 @@ static void *worker_main(void *arg)
         job->refs++;
         set_status_locked(jobs, job, RD_JOB_RUNNING);
         clock_gettime(CLOCK_REALTIME, &job->started);
-        job->deadline = mono_now() + job->timeout_s;
+        job->deadline = rd_clock_mono_s() + job->timeout_s;
         rd_scene *scene = job->scene;
         job->scene = NULL;
         update_store(jobs, job, NULL); /* small: status and start time */
@@ -1086,7 +1057,7 @@ void rd_jobs_shutdown(rd_jobs *jobs, double wait_s)
         return;
     }
     jobs->stopping = 1;
-    double now = mono_now();
+    double now = rd_clock_mono_s();
     for (struct job *j = jobs->head; j; j = j->next) {
         if (j->status == RD_JOB_QUEUED)
             end_locked(jobs, j, RD_JOB_INTERRUPTED, interrupted_json("queued"));
@@ -1097,7 +1068,7 @@ void rd_jobs_shutdown(rd_jobs *jobs, double wait_s)
     pthread_cond_broadcast(&jobs->done);
     /* Runs that end within wait_s end as they would (a success is kept);
      * the rest are ended interrupted now and their workers left behind. */
-    struct timespec deadline = mono_deadline(wait_s);
+    struct timespec deadline = rd_clock_mono_deadline(wait_s);
     while (jobs->counts[RD_JOB_RUNNING] > 0)
         if (pthread_cond_timedwait(&jobs->done, &jobs->mu, &deadline) == ETIMEDOUT)
             break;
@@ -1107,7 +1078,7 @@ void rd_jobs_shutdown(rd_jobs *jobs, double wait_s)
     pthread_cond_broadcast(&jobs->done);
     /* Callbacks of runs that ended meanwhile take microseconds; the bound
      * only guards against a callback that blocks. */
-    struct timespec notified = mono_deadline(NOTIFY_WAIT_S);
+    struct timespec notified = rd_clock_mono_deadline(NOTIFY_WAIT_S);
     while (jobs->notifying > 0)
         if (pthread_cond_timedwait(&jobs->done, &jobs->mu, &notified) == ETIMEDOUT)
             break;
@@ -1123,7 +1094,7 @@ void rd_jobs_free(rd_jobs *jobs)
     rd_jobs_shutdown(jobs, 0);
     /* Idle workers leave at once; wait (briefly) for them, not for solvers. */
     pthread_mutex_lock(&jobs->mu);
-    struct timespec deadline = mono_deadline(IDLE_WAIT_S);
+    struct timespec deadline = rd_clock_mono_deadline(IDLE_WAIT_S);
     while (jobs->active > jobs->in_solver)
         if (pthread_cond_timedwait(&jobs->idle, &jobs->mu, &deadline) == ETIMEDOUT)
             break;
@@ -1265,7 +1236,7 @@ int rd_jobs_submit(rd_jobs *jobs, rd_scene *scene, const rd_jobs_submit_opts *o,
         if (run_inline) { /* running from the start, with the run's own reference */
             job->status = RD_JOB_RUNNING;
             job->started = job->created;
-            job->deadline = mono_now() + job->timeout_s;
+            job->deadline = rd_clock_mono_s() + job->timeout_s;
             job->refs++;
         }
         if ((rc = insert_row_locked(jobs, job, echo, err)) == RD_OK) {
@@ -1313,7 +1284,7 @@ static int acquire_locked(rd_jobs *jobs, const char *id, struct job **out, rd_er
  * makes every job final within its wait, so a waiter always gets a final job. */
 static void wait_final_locked(rd_jobs *jobs, struct job *job, double seconds)
 {
-    struct timespec deadline = mono_deadline(seconds);
+    struct timespec deadline = rd_clock_mono_deadline(seconds);
     while (!is_final(job->status))
         if (pthread_cond_timedwait(&jobs->done, &jobs->mu, &deadline) == ETIMEDOUT)
             break;
@@ -1371,7 +1342,7 @@ int rd_jobs_request_cancel(rd_jobs *jobs, const char *id, rd_error *err)
         ended = 1;
     } else if (job->status == RD_JOB_RUNNING && !job->cancel) {
         job->cancel = 1;
-        job->stop_asked = mono_now();
+        job->stop_asked = rd_clock_mono_s();
     }
     release_locked(job);
     pthread_mutex_unlock(&jobs->mu);

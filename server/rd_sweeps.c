@@ -32,6 +32,7 @@
 #include <jansson.h>
 
 #include "rd_api.h"
+#include "rd_clock.h"
 #include "rd_store.h"
 #include "rd_sweep.h"
 #include "rd_sweep_request.h"
@@ -81,13 +82,6 @@ struct point_ctx {
     double deadline; /* CLOCK_MONOTONIC */
     int timed_out;
 };
-
-static double mono_now(void)
-{
-    struct timespec t;
-    clock_gettime(CLOCK_MONOTONIC, &t);
-    return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
-}
 
 static int is_final(int status)
 {
@@ -141,16 +135,8 @@ void rd_sweeps_reply_cleanup(rd_sweeps_reply *reply)
 
 static json_t *iso_time(const struct timespec *ts)
 {
-    if (ts->tv_sec == 0 && ts->tv_nsec == 0)
-        return json_null();
-    struct tm tm;
-    time_t t = ts->tv_sec;
-    if (!gmtime_r(&t, &tm))
-        return json_null();
     char buf[64];
-    snprintf(buf, sizeof buf, "%04d-%02d-%02dT%02d:%02d:%02d.%03ldZ", tm.tm_year + 1900,
-             tm.tm_mon + 1, tm.tm_mday, tm.tm_hour, tm.tm_min, tm.tm_sec, ts->tv_nsec / 1000000L);
-    return json_string(buf);
+    return rd_clock_iso8601(ts, buf, sizeof buf) == 0 ? json_string(buf) : json_null();
 }
 
 /* The sweep without its table. */
@@ -358,7 +344,7 @@ static int report(void *arg, double fraction)
     pthread_mutex_lock(&p->ss->mu);
     int stop = p->sw->cancel || p->ss->stopping;
     pthread_mutex_unlock(&p->ss->mu);
-    if (!stop && mono_now() >= p->deadline) {
+    if (!stop && rd_clock_mono_s() >= p->deadline) {
         p->timed_out = 1;
         stop = 1;
     }
@@ -369,7 +355,7 @@ static int report(void *arg, double fraction)
  * being stopped. */
 static char *run_point(rd_sweeps *ss, struct sweep *sw, size_t i)
 {
-    struct point_ctx ctx = {ss, sw, mono_now() + ss->cfg.timeout_s, 0};
+    struct point_ctx ctx = {ss, sw, rd_clock_mono_s() + ss->cfg.timeout_s, 0};
     rd_monitor mon = {report, &ctx};
     rd_error err;
     rd_error_init(&err);
@@ -551,8 +537,8 @@ void rd_sweeps_shutdown(rd_sweeps *ss, double wait_s)
     pthread_mutex_lock(&ss->mu);
     ss->stopping = 1;
     pthread_cond_broadcast(&ss->work);
-    double until = mono_now() + wait_s;
-    while (ss->busy > 0 && mono_now() < until) {
+    double until = rd_clock_mono_s() + wait_s;
+    while (ss->busy > 0 && rd_clock_mono_s() < until) {
         struct timespec t;
         clock_gettime(CLOCK_REALTIME, &t);
         t.tv_nsec += 20000000L; /* the idle condition uses the realtime clock: poll in 20 ms */
