@@ -542,7 +542,10 @@ static enum MHD_Result send_response(rd_http *h, struct MHD_Connection *c, struc
                                             MHD_RESPMEM_PERSISTENT);
         if (!r)
             return MHD_NO;
-        MHD_add_response_header(r, MHD_HTTP_HEADER_CONTENT_TYPE, json_media);
+        if (MHD_add_response_header(r, MHD_HTTP_HEADER_CONTENT_TYPE, json_media) != MHD_YES) {
+            MHD_destroy_response(r);
+            return MHD_NO;
+        }
         status = MHD_HTTP_SERVICE_UNAVAILABLE;
     }
     rq->replied = 1;
@@ -568,6 +571,17 @@ static int add_gzip_headers(struct MHD_Response *r)
 {
     return MHD_add_response_header(r, MHD_HTTP_HEADER_CONTENT_ENCODING, "gzip") == MHD_YES &&
            MHD_add_response_header(r, MHD_HTTP_HEADER_VARY, "Accept-Encoding") == MHD_YES;
+}
+
+/* r with one more header, or NULL (r destroyed) when libmicrohttpd cannot add
+ * it: the caller then answers with the out-of-memory body (send_response). */
+static struct MHD_Response *with_header(struct MHD_Response *r, const char *name, const char *value)
+{
+    if (r && MHD_add_response_header(r, name, value) != MHD_YES) {
+        MHD_destroy_response(r);
+        return NULL;
+    }
+    return r;
 }
 
 /* A response owning the malloc'd `body` (NULL in, NULL out), gzipped when
@@ -678,12 +692,12 @@ static enum MHD_Result send_error(rd_http *h, struct MHD_Connection *c, struct r
         err = &fallback;
     }
     struct MHD_Response *r = text_response(rq, rd_api_error_json(err), json_media);
-    if (r && allow)
-        MHD_add_response_header(r, MHD_HTTP_HEADER_ALLOW, allow);
+    if (allow)
+        r = with_header(r, MHD_HTTP_HEADER_ALLOW, allow);
     if (r && err->code == RD_EBUSY) {
         char seconds[16];
         snprintf(seconds, sizeof seconds, "%d", rd_jobs_get_retry_after(h->jobs));
-        MHD_add_response_header(r, MHD_HTTP_HEADER_RETRY_AFTER, seconds);
+        r = with_header(r, MHD_HTTP_HEADER_RETRY_AFTER, seconds);
     }
     return send_response(h, c, rq, rd_api_http_status(err->code), r);
 }
@@ -975,9 +989,9 @@ static enum MHD_Result serve_static(rd_http *h, struct MHD_Connection *c, struct
         goto out;
     }
     fd = -1; /* the response owns it now */
-    MHD_add_response_header(r, MHD_HTTP_HEADER_CONTENT_TYPE, content_type_for(resolved));
-    MHD_add_response_header(r, MHD_HTTP_HEADER_CACHE_CONTROL, "no-cache");
-    MHD_add_response_header(r, "X-Content-Type-Options", "nosniff");
+    r = with_header(r, MHD_HTTP_HEADER_CONTENT_TYPE, content_type_for(resolved));
+    r = with_header(r, MHD_HTTP_HEADER_CACHE_CONTROL, "no-cache");
+    r = with_header(r, "X-Content-Type-Options", "nosniff");
     ret = send_response(h, c, rq, MHD_HTTP_OK, r);
 out:
     if (fd >= 0)
@@ -1126,7 +1140,7 @@ static enum MHD_Result job_route(rd_http *h, struct MHD_Connection *c, struct re
         if (r) {
             char disposition[64];
             snprintf(disposition, sizeof disposition, "inline; filename=\"%.16s.csv\"", id);
-            MHD_add_response_header(r, "Content-Disposition", disposition);
+            r = with_header(r, "Content-Disposition", disposition);
         }
         return send_response(h, c, rq, MHD_HTTP_OK, r);
     }
@@ -1685,10 +1699,14 @@ int rd_http_create(const rd_http_config *cfg, rd_jobs *jobs, rd_metrics *metrics
     pthread_condattr_t attr;
     pthread_condattr_init(&attr);
     pthread_condattr_setclock(&attr, CLOCK_MONOTONIC);
-    pthread_mutex_init(&h->mu, NULL);
-    pthread_cond_init(&h->idle, &attr);
-    pthread_cond_init(&h->wake, &attr);
+    int sync_failed = pthread_mutex_init(&h->mu, NULL) != 0 ||
+                      pthread_cond_init(&h->idle, &attr) != 0 ||
+                      pthread_cond_init(&h->wake, &attr) != 0;
     pthread_condattr_destroy(&attr);
+    if (sync_failed) {
+        rc = rd_error_set(err, RD_EINTERNAL, "", "Cannot initialise the HTTP server's locks.");
+        goto out;
+    }
     if ((rc = resolve_dir("--static", cfg->static_dir, &h->static_root, err)) != RD_OK ||
         (rc = resolve_dir("--examples", cfg->examples_dir, &h->examples_dir, err)) != RD_OK)
         goto out;

@@ -1013,13 +1013,14 @@ int rd_jobs_create(const rd_jobs_config *cfg, rd_jobs **out, rd_error *err)
     pthread_condattr_t attr;
     pthread_condattr_init(&attr);
     pthread_condattr_setclock(&attr, CLOCK_MONOTONIC);
-    pthread_mutex_init(&jobs->mu, NULL);
-    pthread_cond_init(&jobs->work, &attr);
-    pthread_cond_init(&jobs->done, &attr);
-    pthread_cond_init(&jobs->idle, &attr);
+    int sync_failed =
+        pthread_mutex_init(&jobs->mu, NULL) != 0 || pthread_cond_init(&jobs->work, &attr) != 0 ||
+        pthread_cond_init(&jobs->done, &attr) != 0 || pthread_cond_init(&jobs->idle, &attr) != 0;
     pthread_condattr_destroy(&attr);
 
-    int rc = load_store(jobs, err);
+    int rc = sync_failed
+                 ? rd_error_set(err, RD_EINTERNAL, "", "Cannot initialise the job queue's locks.")
+                 : load_store(jobs, err);
     jobs->workers = rc == RD_OK ? calloc((size_t)cfg->threads, sizeof *jobs->workers) : NULL;
     if (rc == RD_OK && !jobs->workers)
         rc = rd_error_set(err, RD_ENOMEM, "", "Out of memory.");

@@ -490,9 +490,12 @@ int rd_sweeps_create(const rd_sweeps_config *cfg, rd_sweeps **out, rd_error *err
         free(ss);
         return rd_error_set(err, RD_EINTERNAL, "", "Cannot open /dev/urandom: %s.", strerror(e));
     }
-    pthread_mutex_init(&ss->mu, NULL);
-    pthread_cond_init(&ss->work, NULL);
-    pthread_cond_init(&ss->idle, NULL);
+    if (pthread_mutex_init(&ss->mu, NULL) != 0 || pthread_cond_init(&ss->work, NULL) != 0 ||
+        pthread_cond_init(&ss->idle, NULL) != 0) {
+        close(ss->random_fd);
+        free(ss);
+        return rd_error_set(err, RD_EINTERNAL, "", "Cannot initialise the sweeps' locks.");
+    }
     if (cfg->store) {
         if (rd_store_sweep_load(cfg->store, load_one, ss, err) != RD_OK) {
             rd_sweeps_free(ss);
