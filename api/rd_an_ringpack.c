@@ -42,7 +42,8 @@ static const char *const kinematics_names[] = {"exact", "approximate", NULL};
 static const char *const pin_names[] = {"none", "lower", "upper", NULL}; /* enum rd_ringpack_pin */
 static const char *const synthetic_names[] = {"fired", "motored", NULL};
 static const char *const model_names[] = {"auto", "rigid", "full", "modal", NULL};
-static const char *const friction_names[] = {"coulomb", NULL}; /* model - 1 */
+/* model - 1; stribeck is named (as in lift) but refused by rd_ringpack_validate */
+static const char *const friction_names[] = {"coulomb", "stribeck", NULL};
 
 static const rd_field engine_fields[] = {
     {"speed_rpm", RD_F_NUMBER, PO(pack.engine.speed_rpm), RD_MIN(1), RD_MAX(30000),
@@ -158,7 +159,7 @@ static const rd_field friction_fields[] = {
     {"model", RD_F_CHOICE, PO(friction_model), .choices = friction_names,
      .desc = "coulomb: F = -mu N tanh(u / u_reg) on each ring, N its bore normal force (the "
              "pretension plus its groove's gas on the back face), u its sliding speed on the "
-             "liner (the lift analysis' law; Stribeck is not available in the pack)."},
+             "liner (the lift analysis' law). stribeck: refused, not available in the pack yet."},
     {"coefficient", RD_F_NUMBER, PO(pack.friction.coefficient), RD_MIN(0), RD_MAX(10),
      .desc = "Coulomb coefficient mu, -."},
     {.key = NULL},

@@ -178,12 +178,12 @@ int rd_ringpack_validate(const rd_ringpack_params *p, rd_error *err)
     rc = rc ? rc : range(p->T_lands, 200.0, 1500.0, "/gas_temperature_k/lands", "K", err);
     rc = rc ? rc : range(p->T_crankcase, 200.0, 1500.0, "/gas_temperature_k/crankcase", "K", err);
     rc = rc ? rc : range(p->rtol, 1e-12, 0.01, "/numerics/rtol", "", err);
+    if (!rc && p->friction.model != RD_FRICTION_NONE)
+        rc = range(p->friction.coefficient, 0.0, 10.0, "/physics/friction/coefficient", "", err);
     if (!rc && p->friction.model != RD_FRICTION_NONE && p->friction.model != RD_FRICTION_COULOMB)
         return rd_error_set(err, RD_EINVAL, "/physics/friction/model",
                             "/physics/friction/model: only coulomb is available in the ring "
                             "pack (the rigid ring's Stribeck law is not carried over yet).");
-    if (!rc && p->friction.model == RD_FRICTION_COULOMB)
-        rc = range(p->friction.coefficient, 0.0, 10.0, "/physics/friction/coefficient", "", err);
     rc = rc ? rc : range(p->atol, 1e-16, 1e-5, "/numerics/atol", "m", err);
     if (rc)
         return rc;
