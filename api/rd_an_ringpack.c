@@ -29,6 +29,7 @@ struct pack_opts {
     rd_ringpack_params pack;
     int synthetic_given, synthetic_kind; /* kind: index into synthetic_names */
     int model;                           /* index into model_names */
+    int friction_given, friction_model;  /* model: index into friction_names */
     int max_steps;
     struct rd_table table[2]; /* crank_deg, pressure_pa */
 };
@@ -41,6 +42,8 @@ static const char *const kinematics_names[] = {"exact", "approximate", NULL};
 static const char *const pin_names[] = {"none", "lower", "upper", NULL}; /* enum rd_ringpack_pin */
 static const char *const synthetic_names[] = {"fired", "motored", NULL};
 static const char *const model_names[] = {"auto", "rigid", "full", "modal", NULL};
+/* model - 1; stribeck is named (as in lift) but refused by rd_ringpack_validate */
+static const char *const friction_names[] = {"coulomb", "stribeck", NULL};
 
 static const rd_field engine_fields[] = {
     {"speed_rpm", RD_F_NUMBER, PO(pack.engine.speed_rpm), RD_MIN(1), RD_MAX(30000),
@@ -152,6 +155,30 @@ static const rd_field output_fields[] = {
 };
 static const rd_block output_block = {"PackOutput", "/output (ringpack).", 1, 0, output_fields};
 
+static const rd_field friction_fields[] = {
+    {"model", RD_F_CHOICE, PO(friction_model), .choices = friction_names,
+     .desc = "coulomb: F = -mu N tanh(u / u_reg) on each ring, N its bore normal force (the "
+             "pretension plus its groove's gas on the back face), u its sliding speed on the "
+             "liner (the lift analysis' law). stribeck: refused, not available in the pack yet."},
+    {"coefficient", RD_F_NUMBER, PO(pack.friction.coefficient), RD_MIN(0), RD_MAX(10),
+     .desc = "Coulomb coefficient mu, -."},
+    {.key = NULL},
+};
+static const rd_block friction_block = {
+    "PackFriction",
+    "/physics/friction (ringpack): axial liner friction on every ring; present = modelled.", 1, 0,
+    friction_fields};
+
+static const rd_field physics_fields[] = {
+    {"friction", RD_F_OPTBLOCK, PO(friction_given), .block = &friction_block},
+    {.key = NULL},
+};
+static const rd_block physics_block = {
+    "PackPhysics",
+    "/physics (ringpack): the forces on the rings besides inertia, gravity and the gas on the "
+    "faces; an absent entry is not modelled.",
+    1, 0, physics_fields};
+
 static const rd_field numerics_fields[] = {
     {"model", RD_F_CHOICE, PO(model), .choices = model_names,
      .desc = "The rings' model: auto and rigid integrate the rigid ring (axial lift, hard "
@@ -190,6 +217,7 @@ static const rd_field scene_fields[] = {
      .in_opts = 1, .desc = "Crankcase pressure, Pa, ABSOLUTE."},
     {"gas_temperature_k", RD_F_BLOCK, 0, .block = &temperature_block},
     {"output", RD_F_BLOCK, 0, .block = &output_block},
+    {"physics", RD_F_BLOCK, 0, .block = &physics_block},
     {"numerics", RD_F_BLOCK, 0, .block = &numerics_block},
     {.key = NULL},
 };
@@ -199,8 +227,9 @@ static const rd_block scene_block = {
     "between 1 to 3 rings computed from one cylinder pressure by a compressible orifice "
     "network coupled both ways with the rings' axial motion, and the blow-by into the "
     "crankcase. All pressures are ABSOLUTE (the lift analysis' tables are gauge). Reads "
-    "engine, rings, cylinder_pressure, crankcase_pressure_pa, gas_temperature_k, output and "
-    "numerics (PackNumerics); not the top-level ring.",
+    "engine, rings, cylinder_pressure, crankcase_pressure_pa, gas_temperature_k, physics "
+    "(friction), output "
+    "and numerics (PackNumerics); not the top-level ring.",
     0, 0, scene_fields};
 
 /* One item through a temporary scene (file comment). */
@@ -333,6 +362,7 @@ static int finish(struct rd_scene *s, rd_error *err)
                             "axisymmetric scenes).",
                             model_names[o->model]);
     o->pack.max_steps = o->max_steps;
+    o->pack.friction.model = o->friction_given ? o->friction_model + 1 : RD_FRICTION_NONE;
     int rc = cylinder_finish(o, err);
     return rc ? rc : rd_ringpack_validate(&o->pack, err);
 }
@@ -381,8 +411,9 @@ static json_t *ring_json(const rd_ringpack_result *r, int i)
         json_decref(events);
         return NULL;
     }
-    return json_pack("{s:o, s:o, s:o}", "lift", rd_result_reals(r->lift + (size_t)i * N, N, 1, 1.0),
-                     "flank", flank, "events", events);
+    return json_pack("{s:o, s:o, s:o, s:o}", "lift",
+                     rd_result_reals(r->lift + (size_t)i * N, N, 1, 1.0), "flank", flank, "events",
+                     events, "friction_n", rd_result_reals(r->friction + (size_t)i * N, N, 1, 1.0));
 }
 
 static json_t *flows_json(const rd_ringpack_result *r)

@@ -12,6 +12,7 @@
 #include <string.h>
 
 #include "rd_internal.h"
+#include "rd_lift_internal.h"
 #include "rd_ringpack_model.h"
 
 #define GRAVITY 9.80665
@@ -50,6 +51,8 @@ void rd_ringpack_params_default(rd_ringpack_params *p)
     p->atol = 1e-9;
     p->max_steps = 2000000;
     p->estimate_error = 1;
+    p->friction.model = RD_FRICTION_NONE;
+    p->friction.coefficient = 0.1; /* the lift analysis' default */
 }
 
 double rd_ringpack_standard_density(void)
@@ -175,6 +178,12 @@ int rd_ringpack_validate(const rd_ringpack_params *p, rd_error *err)
     rc = rc ? rc : range(p->T_lands, 200.0, 1500.0, "/gas_temperature_k/lands", "K", err);
     rc = rc ? rc : range(p->T_crankcase, 200.0, 1500.0, "/gas_temperature_k/crankcase", "K", err);
     rc = rc ? rc : range(p->rtol, 1e-12, 0.01, "/numerics/rtol", "", err);
+    if (!rc && p->friction.model != RD_FRICTION_NONE)
+        rc = range(p->friction.coefficient, 0.0, 10.0, "/physics/friction/coefficient", "", err);
+    if (!rc && p->friction.model != RD_FRICTION_NONE && p->friction.model != RD_FRICTION_COULOMB)
+        return rd_error_set(err, RD_EINVAL, "/physics/friction/model",
+                            "/physics/friction/model: only coulomb is available in the ring "
+                            "pack (the rigid ring's Stribeck law is not carried over yet).");
     rc = rc ? rc : range(p->atol, 1e-16, 1e-5, "/numerics/atol", "m", err);
     if (rc)
         return rc;
@@ -200,6 +209,8 @@ static void ring_geometry(rd_ringpack_model *m, int i)
     m->circ[i] = M_PI * d;
     m->gap_area[i] = r->ring.closed_gap * c;
     m->cd[i] = r->discharge_coefficient;
+    m->n_pre[i] = 2.0 * r->ring.tangential_force / (d * h) * h * (M_PI * d - r->ring.closed_gap);
+    m->n_back[i] = h * 2.0 * M_PI * r_in;
     m->vol[2 * i + 1] = M_PI * r->land_height * c * (d - c);
     m->vol[2 * i + 2] =
         M_PI * (r_in * r_in - r_b * r_b) * (h + a) + M_PI * (0.25 * d * d - r_in * r_in) * a;
@@ -246,6 +257,10 @@ int rd_ringpack_model_init(rd_ringpack_model *m, const rd_ringpack_params *p, rd
     m->top_area = M_PI * p->rings[0].ring.diameter * p->rings[0].land_clearance;
     m->from[0] = 0;
     m->to[0] = 1;
+    rd_lift_params lp; /* the lift analysis' regularization speed, from the engine alone */
+    rd_lift_params_default(&lp);
+    lp.engine = p->engine;
+    m->ureg = rd_lift_friction_ureg(&lp);
     for (int i = 0; i < m->R; i++) {
         ring_geometry(m, i);
         m->mode[i] = p->rings[i].pinned == RD_PIN_UPPER ? RD_FLANK_UPPER : RD_FLANK_LOWER;
@@ -290,20 +305,43 @@ void rd_ringpack_flows(const rd_ringpack_model *m, const double *pv, const doubl
     }
 }
 
+/* Ring i's gauge pressures above, below and behind (the network's, or the
+ * test hook's tables), Pa. */
+static void face_pressures(const rd_ringpack_model *m, int i, double t, const double *pv,
+                           double out[3])
+{
+    const rd_gas_params *g = m->p->face_tables;
+    out[0] = pv[2 * i + 1];
+    out[1] = pv[rp_below(m, i)];
+    out[2] = pv[2 * i + 2] - m->p->crankcase_pa;
+    if (g) { /* the test hook: the lift analysis' gauge tables */
+        double deg = t * m->omega * 180.0 / M_PI;
+        out[0] = rd_gasflow_table(g->points, g->crank_deg, g->above, deg);
+        out[1] = rd_gasflow_table(g->points, g->crank_deg, g->below, deg);
+        out[2] = rd_gasflow_table(g->points, g->crank_deg, g->behind, deg);
+    }
+}
+
+double rd_ringpack_friction(const rd_ringpack_model *m, int i, double t, const double *y,
+                            const double *pv)
+{
+    if (m->p->friction.model != RD_FRICTION_COULOMB)
+        return 0.0;
+    double f[3], v_p;
+    face_pressures(m, i, t, pv, f);
+    rd_lift_piston(&m->p->engine, m->omega * t, NULL, &v_p, NULL);
+    double N = fmax(m->n_pre[i] + m->n_back[i] * f[2], 0.0);
+    return -m->p->friction.coefficient * N * tanh((RP_ZD(m, y, i) - v_p) / m->ureg);
+}
+
 double rd_ringpack_ring_force(const rd_ringpack_model *m, int i, double t, const double *y,
                               const double *pv)
 {
-    (void)y;
-    double above = pv[2 * i + 1], below = pv[rp_below(m, i)];
-    const rd_gas_params *g = m->p->face_tables;
-    if (g) { /* the test hook: the lift analysis' gauge tables */
-        double deg = t * m->omega * 180.0 / M_PI;
-        above = rd_gasflow_table(g->points, g->crank_deg, g->above, deg);
-        below = rd_gasflow_table(g->points, g->crank_deg, g->below, deg);
-    }
-    double a_p;
+    double f[3], a_p;
+    face_pressures(m, i, t, pv, f);
     rd_lift_piston(&m->p->engine, m->omega * t, NULL, NULL, &a_p);
-    return m->mass[i] * (a_p - (m->p->gravity ? GRAVITY : 0.0)) + m->area[i] * (below - above);
+    return m->mass[i] * (a_p - (m->p->gravity ? GRAVITY : 0.0)) + m->area[i] * (f[1] - f[0]) +
+           rd_ringpack_friction(m, i, t, y, pv);
 }
 
 void rd_ringpack_rhs(const rd_ringpack_model *m, double t, const double *y, double *yd)

@@ -41,7 +41,15 @@
  * when it changes sign, and lands inelastically (the oil film absorbs the
  * impact; MODEL.md "lift models").  Changes are located by CVODE's root
  * finding and the integration restarts there.  A pinned ring stays on its
- * flank.  Friction is not modelled.
+ * flank.
+ * Friction (physics.friction, Coulomb only): the liner's axial friction on
+ * the ring, as the lift analysis' (rd_lift_forces.c) on the uniform ring,
+ *   F_f = -mu N tanh(u / u_reg),  u = z_i' - s'(t)  (sliding speed on the liner),
+ *   N = p0 h L + (p_groove - p_cc) h 2 pi r_in,   p0 = 2 F_t / (d h),
+ * N the ring's bore normal force in radial equilibrium: the pretension over
+ * the running face (L = pi d - g) plus the groove's gas (gauge against the
+ * crankcase) on the back face; u_reg = 1e-3 x the mean piston speed
+ * (rd_lift_friction_ureg).  Added to the axial force above.
  *
  * State (N = 2R + 2R + 4): y = [p(land_1), p(groove_1), ..., p(groove_R),
  * z_1, z_1', ..., z_R, z_R', M_in, M_back, M_cc, M_cc_back], the last four
@@ -92,8 +100,9 @@ typedef struct rd_ringpack_params {
     double rtol, atol;           /* atol on the lifts, m */
     long max_steps;              /* CVODE steps for the whole run */
     int estimate_error;          /* 1: second run at rtol/10, atol/10 */
+    rd_friction_params friction; /* model NONE (default) or COULOMB */
     /* Test hook: the ring faces' pressures from these gauge tables (above,
-     * below; plus crankcase_pa) instead of the network's.  NULL normally. */
+     * below; behind for friction) instead of the network's.  NULL normally. */
     const rd_gas_params *face_tables;
 } rd_ringpack_params;
 
@@ -103,6 +112,7 @@ typedef struct rd_ringpack_result {
     double *pressure;  /* n_volumes x samples: cylinder, land_1, groove_1, ..., crankcase */
     double *lift;      /* n_rings x samples, m */
     int *flank;        /* n_rings x samples, enum rd_flank */
+    double *friction;  /* n_rings x samples, N, +z up (0 without friction) */
     double *flow;      /* n_flows x samples, kg/s, positive from `flow_from` to `flow_to` */
     rd_lift_event *events[RD_RINGPACK_RINGS_MAX]; /* the last cycle's, crank_deg in 0..720 */
     int n_events[RD_RINGPACK_RINGS_MAX];

@@ -293,6 +293,7 @@ static void record(drv *d, int j, double t)
     for (int i = 0; i < m->R; i++) {
         r->lift[(size_t)i * (S + 1) + k] = RP_Z(m, y, i);
         r->flank[(size_t)i * (S + 1) + k] = m->mode[i];
+        r->friction[(size_t)i * (S + 1) + k] = rd_ringpack_friction(m, i, t, y, pv);
     }
     for (int f = 0; f < m->F; f++)
         r->flow[(size_t)f * (S + 1) + k] = mdot[f];
@@ -308,9 +309,11 @@ static int alloc_result(drv *d, rd_ringpack_result *r, rd_error *err)
     r->pressure = malloc(n * nv * sizeof *r->pressure);
     r->lift = malloc(n * d->m.R * sizeof *r->lift);
     r->flank = malloc(n * d->m.R * sizeof *r->flank);
+    r->friction = malloc(n * d->m.R * sizeof *r->friction);
     r->flow = malloc(n * d->m.F * sizeof *r->flow);
     d->prev = malloc(n * nv * sizeof *d->prev);
-    if (!r->crank_deg || !r->pressure || !r->lift || !r->flank || !r->flow || !d->prev)
+    if (!r->crank_deg || !r->pressure || !r->lift || !r->flank || !r->friction || !r->flow ||
+        !d->prev)
         return rd_error_set(err, RD_ENOMEM, "", "Out of memory for the ring pack's output.");
     rd_ringpack_describe(&d->m, r);
     return RD_OK;
@@ -470,6 +473,7 @@ void rd_ringpack_result_cleanup(rd_ringpack_result *r)
     free(r->pressure);
     free(r->lift);
     free(r->flank);
+    free(r->friction);
     free(r->flow);
     for (int i = 0; i < RD_RINGPACK_RINGS_MAX; i++)
         free(r->events[i]);

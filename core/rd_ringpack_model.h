@@ -27,6 +27,8 @@ typedef struct rd_ringpack_model {
     double gap_area[RD_RINGPACK_RINGS_MAX], top_area, cd[RD_RINGPACK_RINGS_MAX];
     int from[RD_RINGPACK_FLOWS_MAX], to[RD_RINGPACK_FLOWS_MAX]; /* network indices */
     int mode[RD_RINGPACK_RINGS_MAX]; /* enum rd_flank: lower, upper, free */
+    /* friction (rd_ringpack.h): N = n_pre + n_back (p_groove - p_cc), N */
+    double n_pre[RD_RINGPACK_RINGS_MAX], n_back[RD_RINGPACK_RINGS_MAX], ureg;
 } rd_ringpack_model;
 
 /* Network index of the volume below ring i (land_{i+1} or the crankcase). */
@@ -45,6 +47,9 @@ void rd_ringpack_flows(const rd_ringpack_model *m, const double *pv, const doubl
 /* Net axial force on ring i (N, +z up) at (t, y, pv). */
 double rd_ringpack_ring_force(const rd_ringpack_model *m, int i, double t, const double *y,
                               const double *pv);
+/* The liner's axial friction on ring i (N, +z up; 0 without friction). */
+double rd_ringpack_friction(const rd_ringpack_model *m, int i, double t, const double *y,
+                            const double *pv);
 /* dy/dt. */
 void rd_ringpack_rhs(const rd_ringpack_model *m, double t, const double *y, double *yd);
 /* Names and volumes into the result. */
