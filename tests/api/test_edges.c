@@ -12,9 +12,9 @@
  *     orders 30 and 64 at the 1 % amplitude ended not_converged.
  * Each edge is run on two rings (the thesis ring, D = 76.5 mm, and a stiffer
  * 100 mm one) with both pretension methods, with the error estimate on (the
- * refined 2n-segment solve must converge too).  Runtime (small n: 4, 5, 8,
- * 20 segments; 22 runs): 15 s in a Release build on the shared 2-core
- * machine, 30 s with ASan + UBSan.
+ * refined 2n-segment solve must converge too).  Runtime (small n: 4, 5, 8
+ * segments, and 20 on the thesis ring only): 19 s of CPU with ASan + UBSan
+ * (33 s wall on the shared, loaded 2-core machine).
  */
 #include <math.h>
 #include <stdio.h>
@@ -102,12 +102,13 @@ int main(void)
 {
     static const struct ring rings[] = {{0.0765, 0.0029, 0.0012}, {0.1, 0.004, 0.003}};
     static const char *const methods[] = {"force", "field"};
-    static const int orders[] = {2, 4, 8, 16, 30, 64};
+    static const int orders[] = {2, 8, 30, 64};
     for (size_t i = 0; i < sizeof rings / sizeof rings[0]; i++) {
         for (int m = 0; m < 2; m++) {
             pretension_edge(&rings[i], methods[m], 4, 0.5);
             pretension_edge(&rings[i], methods[m], 5, 4.0);
-            pretension_edge(&rings[i], methods[m], 20, 4.0);
+            if (i == 0) /* n = 20 (refined 40) on the thesis ring: the costly runs */
+                pretension_edge(&rings[i], methods[m], 20, 4.0);
         }
         for (size_t k = 0; k < sizeof orders / sizeof orders[0]; k++)
             contact_edge(&rings[i], orders[k], 8);
