@@ -33,7 +33,8 @@ static const rd_field distortion_fields[] = {
     {"order", RD_F_INTEGER, offsetof(rd_distortion, order), RD_MIN(1), RD_MAX(64), .required = 1,
      .desc = "Fourier order k; a JSON integer (20.0 is refused here)."},
     {"amplitude", RD_F_NUMBER, offsetof(rd_distortion, amplitude), .required = 1,
-     .desc = "Radius change A_k, m; |A_k| at most 1 % of the ring diameter."},
+     .desc = "Radius change A_k, m; |A_k| at most 1 % of the ring diameter, their sum too, and "
+             "sum |A_k| (k^2 + 2) at most the bore radius (a convex bore)."},
     {"phase_deg", RD_F_NUMBER, offsetof(rd_distortion, phase_deg), RD_MIN(-360), RD_MAX(360),
      .desc = "Phase phi_k, degrees from the gap middle."},
     {.key = NULL},

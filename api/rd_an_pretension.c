@@ -42,14 +42,15 @@ static const rd_block scene_block = {
     "The free (unloaded) shape of the split ring: the closed ring opened by the tangential "
     "force F_t on the gap faces, optionally with a lateral (axial) force (thesis 3.4.1-3.4.2). "
     "Reads ring, discretization (4..2000 segments, split ring only), pretension and numerics "
-    "(StaticNumerics).",
+    "(StaticNumerics).  The load parameter F_t (D - b)^2 / (4 E I) may be at most 4 (0.5 with "
+    "4 segments): beyond it the free-shape solve does not converge.",
     0, 0, scene_fields};
 
 static int finish(struct rd_scene *s, rd_error *err)
 {
     struct rd_static_scene *o = s->opts;
     int rc = rd_static_validate(&o->statics, s->segments, s->closed, err);
-    return rc != RD_OK ? rc : rd_pretension_validate(&o->pretension, &s->ring, err);
+    return rc != RD_OK ? rc : rd_pretension_validate(&o->pretension, &s->ring, s->segments, err);
 }
 
 /* {"analysis", "scene", "gap_opening_inner", "lateral_opening",

@@ -120,7 +120,7 @@ int rd_contact_validate(const rd_contact_opts *o, const rd_ring_params *p, rd_er
         return rd_error_set(err, RD_ELIMIT, "/bore/distortion",
                             "/bore/distortion has %d entries; at most %d are allowed.",
                             o->n_distortion, RD_DISTORTION_MAX);
-    double total = 0.0;
+    double total = 0.0, bend = 0.0;
     for (int k = 0; k < o->n_distortion; k++) {
         const rd_distortion *ds = &o->distortion[k];
         char path[64];
@@ -140,12 +140,23 @@ int rd_contact_validate(const rd_contact_opts *o, const rd_ring_params *p, rd_er
                                 "%s = %g deg is out of range: allowed -360 to 360 deg.", path,
                                 ds->phase_deg);
         total += fabs(ds->amplitude);
+        bend += fabs(ds->amplitude) * (ds->order * ds->order + 2.0);
     }
     if (total > 0.01 * d)
         return rd_error_set(err, RD_EINVAL, "/bore/distortion",
                             "/bore/distortion: the amplitudes add up to %g m; allowed at most "
                             "%g m (1 %% of the diameter).",
                             total, 0.01 * d);
+    /* The bore must stay convex: the curvature of r = R + sum A_k cos(k t) is
+     * positive when sum |A_k| (k^2 + 2) <= R (to first order in A_k / R).  A
+     * petal-shaped bore (order 30 or 64 at the 1 % amplitude) ends Newton's
+     * continuation unconverged; at this edge orders 4..64 converge. */
+    if (bend > 0.5 * d)
+        return rd_error_set(err, RD_EINVAL, "/bore/distortion",
+                            "/bore/distortion: sum of |amplitude| (order^2 + 2) is %g m; allowed "
+                            "at most the bore radius %g m, so that the bore stays convex (a "
+                            "non-convex bore makes the contact solve fail to converge).",
+                            bend, 0.5 * d);
     if (o->points_per_segment < 1 || o->points_per_segment > RD_CONTACT_POINTS_MAX)
         return rd_error_set(err, RD_EINVAL, "/contact/points_per_segment",
                             "/contact/points_per_segment = %d is out of range: allowed 1 to %d.",

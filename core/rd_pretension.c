@@ -77,7 +77,17 @@ void rd_pretension_opts_default(rd_pretension_opts *o)
     o->lateral_force = 0.0;
 }
 
-int rd_pretension_validate(const rd_pretension_opts *o, const rd_ring_params *p, rd_error *err)
+/* Largest load parameter k = F_t (D - b)^2 / (4 E I) (rd_ring_conformability)
+ * whose free shape the solver reaches, with its error estimate (2n
+ * segments) too: found by running both methods on two rings (the thesis
+ * ring and a 100 mm one) at n = 4..160.  Field fails first: from k = 6 at
+ * n = 40, from k = 1 at n = 4 (force from k = 3).  Real rings have k near
+ * 0.03; k = 4 already opens the ring to a gap of several diameters. */
+#define PRETENSION_K_MAX    4.0
+#define PRETENSION_K_MAX_N4 0.5
+
+int rd_pretension_validate(const rd_pretension_opts *o, const rd_ring_params *p, int segments,
+                           rd_error *err)
 {
     if (o->method != RD_PRETENSION_FORCE && o->method != RD_PRETENSION_FIELD)
         return rd_error_set(err, RD_EINVAL, "/pretension/method", "unknown method %d.", o->method);
@@ -87,6 +97,17 @@ int rd_pretension_validate(const rd_pretension_opts *o, const rd_ring_params *p,
                             "/pretension/lateral_force = %g N is out of range: allowed 0 to %g N "
                             "(100 times the tangential force, at least 100 N).",
                             o->lateral_force, hi);
+    double k = rd_ring_conformability(p);
+    double k_max = segments <= 4 ? PRETENSION_K_MAX_N4 : PRETENSION_K_MAX;
+    if (!(k <= k_max))
+        return rd_error_set(
+            err, RD_EINVAL, "/ring",
+            "/ring/tangential_force = %g N is too large for this ring's free shape: the load "
+            "parameter F_t (D - b)^2 / (4 E I) is %.3g, allowed up to %g with %d segments "
+            "(%g with 4), so F_t up to %.4g N here.  Beyond it Newton's continuation from the "
+            "closed ring does not converge (the ring would open to a gap of several diameters).",
+            p->tangential_force, k, k_max, segments, PRETENSION_K_MAX_N4,
+            p->tangential_force * k_max / k);
     return RD_OK;
 }
 
@@ -248,7 +269,8 @@ int rd_pretension_solve(const rd_ring_params *p, int segments, const rd_pretensi
     memset(out, 0, sizeof *out);
     out->stats.error_estimate = NAN;
     if ((rc = rd_ring_validate(p, segments, 0, err)) ||
-        (rc = rd_static_validate(so, segments, 0, err)) || (rc = rd_pretension_validate(o, p, err)))
+        (rc = rd_static_validate(so, segments, 0, err)) ||
+        (rc = rd_pretension_validate(o, p, segments, err)))
         return rc;
     int m = rd_accuracy_refined_segments(segments, RD_STATIC_SEGMENTS_MAX);
     pretension_run run = {

@@ -187,7 +187,8 @@ void rd_contact_opts_default(rd_contact_opts *o);
 /* Range checks, paths "/pretension/...", "/bore/...", "/contact/...",
  * "/numerics/...". */
 int rd_static_validate(const rd_static_opts *o, int segments, int closed, rd_error *err);
-int rd_pretension_validate(const rd_pretension_opts *o, const rd_ring_params *p, rd_error *err);
+int rd_pretension_validate(const rd_pretension_opts *o, const rd_ring_params *p, int segments,
+                           rd_error *err);
 int rd_contact_validate(const rd_contact_opts *o, const rd_ring_params *p, rd_error *err);
 
 /* Default contact stiffness: 1e6 E I / (h R^4), so the penetration under the

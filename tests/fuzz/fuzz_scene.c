@@ -24,16 +24,37 @@
 #include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
+#include <time.h>
 
 #include <jansson.h>
 
 #include "rd_api.h"
+#include "rd_sweep.h"
+#include "rd_sweep_request.h"
 
 size_t LLVMFuzzerMutate(uint8_t *data, size_t size, size_t max_size);
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
 size_t LLVMFuzzerCustomMutator(uint8_t *data, size_t size, size_t max_size, unsigned int seed);
 
-static const char *const keys[] = {"above",
+static const char *const keys[] = {"base",
+                                   "parameters",
+                                   "path",
+                                   "values",
+                                   "range",
+                                   "start",
+                                   "stop",
+                                   "count",
+                                   "scale",
+                                   "integer",
+                                   "combine",
+                                   "outputs",
+                                   "samples",
+                                   "seed",
+                                   "min",
+                                   "max",
+                                   "fidelity",
+                                   "models",
+                                   "above",
                                    "active_area",
                                    "amplitude",
                                    "analysis",
@@ -96,9 +117,34 @@ static const char *const keys[] = {"above",
                                    "viscosity",
                                    "youngs_modulus"};
 
-static const char *const words[] = {"modal",  "pretension", "contact", "lift",        "rectangle",
-                                    "circle", "force",      "field",   "coulomb",     "stribeck",
-                                    "fixed",  "dynamic",    "exact",   "approximate", ""};
+static const char *const words[] = {"modal",
+                                    "pretension",
+                                    "contact",
+                                    "lift",
+                                    "rectangle",
+                                    "circle",
+                                    "force",
+                                    "field",
+                                    "coulomb",
+                                    "stribeck",
+                                    "fixed",
+                                    "dynamic",
+                                    "exact",
+                                    "approximate",
+                                    "product",
+                                    "zip",
+                                    "latin_hypercube",
+                                    "random",
+                                    "log",
+                                    "linear",
+                                    "/discretization/segments",
+                                    "/ring/diameter",
+                                    "/modes/0/frequency_hz",
+                                    "max(/modes/*/frequency_hz)",
+                                    "mean(/lift)",
+                                    "count(/modes)",
+                                    "/numerics/wall_s",
+                                    ""};
 
 /* Boundaries of the schema's ranges and of the number types. */
 static const double numbers[] = {
@@ -332,8 +378,269 @@ size_t LLVMFuzzerCustomMutator(uint8_t *data, size_t size, size_t max_size, unsi
     return n;
 }
 
+/*
+ * Running a fraction of the accepted scenes, so that the analyses' result
+ * writers (JSON, CSV), the warnings and the monitor paths of api/ are
+ * reached too.  A run must stay cheap (the fuzzer's speed is its coverage):
+ * the scene's size knobs are clamped before it runs (at most 12 segments,
+ * 4 contact points per segment, 6 modes, 2 cycles, steps of >= 1 deg,
+ * 2000 steps, 50 iterations) and a monitor cancels any run after
+ * RUN_BUDGET_S of wall time (a cancelled run is a valid outcome: it
+ * exercises the cancel paths).  One accepted input in RUN_EVERY runs.
+ */
+#define RUN_EVERY    8
+#define RUN_BUDGET_S 0.1
+
+static double now_s(void)
+{
+    struct timespec t;
+    clock_gettime(CLOCK_MONOTONIC, &t);
+    return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
+}
+
+static int past_deadline(void *ctx, double fraction)
+{
+    (void)fraction;
+    return now_s() > *(const double *)ctx;
+}
+
+/* FNV-1a of the input: the choice of what runs depends on the input only,
+ * so a finding reproduces. */
+static int run_selected(const uint8_t *data, size_t size)
+{
+    uint32_t h = 2166136261u;
+    for (size_t i = 0; i < size; i++)
+        h = (h ^ data[i]) * 16777619u;
+    return h % RUN_EVERY == 0;
+}
+
+static void clamp_int(json_t *v, json_int_t hi)
+{
+    if (json_is_integer(v) && json_integer_value(v) > hi)
+        json_integer_set(v, hi);
+}
+
+/* Lowers every size knob found anywhere in the scene (see above). */
+static void clamp(json_t *j)
+{
+    const char *key;
+    json_t *v;
+    size_t i;
+    if (json_is_array(j)) {
+        json_array_foreach(j, i, v) clamp(v);
+        return;
+    }
+    json_object_foreach(j, key, v)
+    {
+        if (!strcmp(key, "segments"))
+            clamp_int(v, 12);
+        else if (!strcmp(key, "points_per_segment"))
+            clamp_int(v, 4);
+        else if (!strcmp(key, "modes"))
+            clamp_int(v, 6);
+        else if (!strcmp(key, "max_steps"))
+            clamp_int(v, 2000);
+        else if (!strcmp(key, "max_iterations"))
+            clamp_int(v, 50);
+        else if (!strcmp(key, "cycles") && json_is_number(v) && json_number_value(v) > 2)
+            json_object_set_new(j, key, json_integer(2));
+        else if (!strcmp(key, "step_deg") && json_is_number(v) && json_number_value(v) < 1)
+            json_object_set_new(j, key, json_integer(1));
+        else
+            clamp(v);
+    }
+}
+
+/* The result contract: a run either succeeds with a JSON object whose CSV
+ * (when the analysis has a table) is written from the document and from
+ * the text alike, or fails with a status and a message. */
+static void check_run(const rd_scene *scene)
+{
+    double deadline = now_s() + RUN_BUDGET_S;
+    rd_monitor mon = {past_deadline, &deadline};
+    rd_result_doc *doc = NULL;
+    rd_error err;
+    rd_error_init(&err);
+    if (rd_scene_run_doc(scene, &mon, &doc, &err) != RD_OK) {
+        if (doc || err.code == RD_OK || !err.message[0])
+            abort();
+        return;
+    }
+    char *text = rd_result_doc_json(doc);
+    json_t *o = text ? json_loads(text, 0, NULL) : NULL;
+    if (!json_is_object(o))
+        abort();
+    json_decref(o);
+    rd_error_init(&err);
+    char *csv = rd_result_doc_csv(doc, &err);
+    rd_error_init(&err);
+    char *csv2 = rd_api_result_csv(text, &err);
+    if (!csv != !csv2 || (csv && strcmp(csv, csv2)))
+        abort();
+    char *pretty = rd_api_json_pretty(text);
+    if (!pretty)
+        abort();
+    free(pretty);
+    free(csv);
+    free(csv2);
+    free(text);
+    rd_result_doc_free(doc);
+}
+
+static void check_sweep(const uint8_t *data, size_t size, int run);
+
+static void run_small(const char *body, size_t len)
+{
+    json_t *j = json_loadb(body, len, 0, NULL);
+    if (!json_is_object(j)) {
+        json_decref(j);
+        return;
+    }
+    clamp(j);
+    char *small = json_dumps(j, JSON_COMPACT);
+    /* The same scene as a fidelity request of two cheap levels. */
+    json_t *fid = json_pack("{s:O, s:[i, i]}", "fidelity", j, "segments", 4, 6);
+    const char *analysis = json_string_value(json_object_get(j, "analysis"));
+    if (fid && analysis && !strcmp(analysis, "lift"))
+        json_object_set_new(fid, "rtol", json_pack("[f]", 1e-4));
+    char *fid_text = fid ? json_dumps(fid, JSON_COMPACT) : NULL;
+    if (fid_text)
+        check_sweep((const uint8_t *)fid_text, strlen(fid_text), 1);
+    free(fid_text);
+    json_decref(fid);
+    json_decref(j);
+    rd_scene *scene = NULL;
+    rd_error err;
+    rd_error_init(&err);
+    /* A clamp can make a scene invalid (e.g. fewer segments than rings
+     * need): then there is nothing to run. */
+    if (small && rd_scene_parse(small, strlen(small), &scene, &err) == RD_OK) {
+        check_run(scene);
+        rd_scene_free(scene);
+    }
+    free(small);
+}
+
+/* Once per process: the sweep parser and the example catalogue on the
+ * project's files (cheap, and otherwise unreached by scene bodies). */
+static void once(void)
+{
+    static int done;
+    if (done)
+        return;
+    done = 1;
+    rd_error err;
+    rd_error_init(&err);
+    char *list = rd_api_examples_json(FUZZ_EXAMPLES_DIR, &err);
+    json_t *o = list ? json_loads(list, 0, NULL) : NULL;
+    if (!o)
+        abort();
+    static const char *const names[] = {"thesis_modal", "no_such_example", "../etc",
+                                        "bad\x01"
+                                        "name",
+                                        ""};
+    for (size_t i = 0; i < sizeof names / sizeof names[0]; i++) {
+        rd_error_init(&err);
+        char *scene = rd_api_example_scene(FUZZ_EXAMPLES_DIR, names[i], &err);
+        if (!scene == (err.code == RD_OK))
+            abort();
+        free(scene);
+    }
+    json_decref(o);
+    free(list);
+    FILE *f = fopen(FUZZ_OPENAPI, "rb");
+    char *tmpl = NULL;
+    size_t len = 0;
+    if (!f || rd_api_read_stream(f, 1 << 22, &tmpl, &len) != 0)
+        abort();
+    fclose(f);
+    rd_error_init(&err);
+    char *doc = rd_api_openapi_json(tmpl, &err);
+    if (!doc)
+        abort();
+    free(doc);
+    free(tmpl);
+}
+
+/* A sweep request (spec or fidelity request) that parses: its table
+ * machinery on its first points (at most 2, each run under the same
+ * budget as a scene), the CSV forms, the fidelity table and the chunks. */
+static void check_sweep_table(const rd_sweep_request *req)
+{
+    size_t n = rd_sweep_points(req->sweep), m = n < 2 ? n : 2;
+    char *rows[2] = {NULL, NULL};
+    rd_error err;
+    for (size_t i = 0; i < m; i++) {
+        double deadline = now_s() + RUN_BUDGET_S;
+        rd_monitor mon = {past_deadline, &deadline};
+        rd_error_init(&err);
+        if (rd_sweep_run_point(req->sweep, i, &mon, &rows[i], &err) != RD_OK) {
+            /* The service's row of a point it stopped. */
+            rd_error ferr;
+            rd_error_init(&ferr);
+            rows[i] = rd_sweep_request_failed_row(req, i, &err, &ferr);
+            if (!rows[i])
+                abort();
+        }
+    }
+    rd_error_init(&err);
+    char *table = rd_sweep_table_json(req->sweep, rows, m, &err);
+    rd_error_init(&err);
+    char *csv = rd_sweep_table_csv(req->sweep, rows, m, &err);
+    if (!table || !csv)
+        abort();
+    rd_error_init(&err);
+    char *csv2 = rd_sweep_csv_from_table(table, &err);
+    if (!csv2 || strcmp(csv, csv2))
+        abort();
+    if (req->fidelity) {
+        rd_error_init(&err);
+        free(rd_sweep_fidelity_table(table, &err));
+    }
+    size_t first, end;
+    rd_error_init(&err);
+    if (rd_sweep_chunk_range(req->sweep, 0, m ? m : 1, &first, &end, &err) == RD_OK) {
+        free(rd_sweep_chunk_name(0, m));
+        free(rd_sweep_chunk_head(req->sweep, 0, m));
+    }
+    free(csv2);
+    free(csv);
+    free(table);
+    for (size_t i = 0; i < m; i++)
+        free(rows[i]);
+}
+
+static void check_sweep(const uint8_t *data, size_t size, int run)
+{
+    rd_sweep_request req = {0};
+    rd_error err;
+    rd_error_init(&err);
+    if (rd_sweep_request_parse((const char *)data, size, 64, &req, &err) != RD_OK) {
+        if (req.sweep || !err.message[0] || (err.path[0] && err.path[0] != '/'))
+            abort();
+        return;
+    }
+    if (!rd_sweep_hash(req.sweep) || rd_sweep_points(req.sweep) == 0)
+        abort();
+    char *columns = rd_sweep_columns_json(req.sweep);
+    rd_error_init(&err);
+    char *record = columns ? rd_sweep_csv_record(columns, &err) : NULL;
+    rd_error_init(&err);
+    char *scene = rd_sweep_point_scene(req.sweep, 0, &err);
+    if (!columns || !record || !scene)
+        abort();
+    free(scene);
+    free(record);
+    free(columns);
+    if (run)
+        check_sweep_table(&req);
+    rd_sweep_request_cleanup(&req);
+}
+
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 {
+    once();
+    check_sweep(data, size, run_selected(data, size));
     rd_scene *scene = NULL;
     rd_error err;
     rd_error_init(&err);
@@ -347,11 +654,26 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         json_decref(o);
         free(echo);
         rd_scene_free(scene);
+        if (run_selected(data, size))
+            run_small((const char *)data, size);
         return 0;
     }
     if (scene || err.code == RD_OK || err.code != rc || !err.message[0] ||
         (err.path[0] && err.path[0] != '/'))
         abort();
+    if (rd_api_http_status(err.code) < 400 || rd_api_http_status(err.code) > 599)
+        abort();
+    rd_error rerr;
+    rd_error_init(&rerr);
+    char *report = NULL;
+    if (rd_scene_parse_report((const char *)data, size, &scene, &rerr, &report) == RD_OK ||
+        rerr.code != err.code)
+        abort();
+    json_t *r = report ? json_loads(report, 0, NULL) : NULL;
+    if (!json_is_object(json_object_get(r, "error")))
+        abort();
+    json_decref(r);
+    free(report);
     char *body = rd_api_error_json(&err);
     json_t *o = body ? json_loads(body, 0, NULL) : NULL;
     if (!json_is_object(json_object_get(o, "error")))

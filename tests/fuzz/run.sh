@@ -37,7 +37,7 @@ trap 'rm -rf "$WORK"' EXIT
 if [ -z "$CORPUS" ]; then CORPUS=$WORK/corpus; fi
 mkdir -p "$CORPUS" "$WORK/seeds"
 i=0
-for f in "$ROOT"/examples/*.json "$ROOT"/tests/api/cases/*/request.json; do
+for f in "$ROOT"/examples/*.json "$ROOT"/tests/api/cases/*/request.json "$ROOT"/tests/api/sweeps/*.json; do
   [ -f "$f" ] && cp "$f" "$WORK/seeds/seed$((i += 1)).json"
 done
 # -max_len: room for gas tables and distortion lists; -timeout: a parse of
