@@ -275,7 +275,7 @@ static int driver_open(driver *d, const rd_ring *ring, const rd_lift_params *p,
                                   : SUNLinSol_Band(d->y, d->A, d->sunctx);
     }
     d->cv = CVodeCreate(CV_BDF, d->sunctx);
-    int stick = !p->no_stick && rd_lift_stick_usable(&d->form);
+    int stick = p->stick && rd_lift_stick_usable(&d->form);
     if (stick && d->y) {
         d->yd = N_VNew_Serial(N, d->sunctx);
         d->yk = N_VNew_Serial(N, d->sunctx);

@@ -128,7 +128,7 @@ static void test_rigid_vs_full(void)
 }
 
 /* The sticking phase (rd_lift_stick.c) against the plain integration of
- * the same rigid model (no_stick), a second method for the seated phases
+ * the same rigid model (stick = 0, the default), a second method for the seated phases
  * (quasi-static Newton and a scanned, bisected leave date vs CVODE steps
  * and root finding), at the same tolerances, on the axisymmetric scenes
  * without friction.  Flank changes within 0.01 deg (the issue's bound;
@@ -164,9 +164,10 @@ static void test_stick_vs_plain(void)
             gas_tables(&p, cases[j].area);
         rd_lift_result a, b;
         rd_error err;
+        p.stick = 1;
         int rc = run(&p, RD_LIFT_MODEL_RIGID, 20, &a, &err);
         CHECK(rc == RD_OK, "%s sticking: %s", cases[j].what, err.message);
-        p.no_stick = 1;
+        p.stick = 0;
         int rc2 = run(&p, RD_LIFT_MODEL_RIGID, 20, &b, &err);
         CHECK(rc2 == RD_OK, "%s plain: %s", cases[j].what, err.message);
         if (rc == RD_OK && rc2 == RD_OK) {
