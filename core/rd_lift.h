@@ -141,6 +141,8 @@ typedef struct rd_lift_params {
     int model;                 /* enum rd_lift_model_kind */
     int modes;           /* elastic modes of the modal model, 0 = auto, <= RD_LIFT_MODES_MAX */
     double accuracy_deg; /* target on the flank-change angles, deg (auto) */
+    int stick; /* 1: the rigid model's sticking phase (rd_lift_stick.c); C only, default 0:
+                  it saves steps but not instructions (README) */
 } rd_lift_params;
 
 typedef struct rd_lift_event {

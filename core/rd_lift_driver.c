@@ -57,6 +57,7 @@
 #include <sunmatrix/sunmatrix_dense.h>
 
 #include "rd_lift_model.h"
+#include "rd_lift_stick.h"
 
 #define Q          RD_LIFT_Q
 #define V          RD_LIFT_V
@@ -82,6 +83,9 @@ typedef struct driver {
     double deg_per_s;      /* crank degrees per second */
     long chunk;            /* steps per CVode call between monitor calls */
     long base[N_COUNTERS]; /* counters before the last CVODE restart (plastic landings) */
+    N_Vector yd, yk;       /* the sticking phase's scratch (rd_lift_stick.c); NULL: none */
+    int stick;             /* 1 while the seated ring is advanced quasi-statically */
+    double t_stick;        /* the time the sticking phase has reached, s */
     char cv_msg[200];      /* CVODE's last error message */
 } driver;
 
@@ -195,6 +199,10 @@ static void driver_free(driver *d)
         SUNMatDestroy(d->A);
     if (d->y)
         N_VDestroy(d->y);
+    if (d->yd)
+        N_VDestroy(d->yd);
+    if (d->yk)
+        N_VDestroy(d->yk);
     if (d->abstol)
         N_VDestroy(d->abstol);
     if (d->sunctx)
@@ -267,7 +275,12 @@ static int driver_open(driver *d, const rd_ring *ring, const rd_lift_params *p,
                                   : SUNLinSol_Band(d->y, d->A, d->sunctx);
     }
     d->cv = CVodeCreate(CV_BDF, d->sunctx);
-    if (!d->y || !d->abstol || !d->LS || !d->cv)
+    int stick = p->stick && rd_lift_stick_usable(&d->form);
+    if (stick && d->y) {
+        d->yd = N_VNew_Serial(N, d->sunctx);
+        d->yk = N_VNew_Serial(N, d->sunctx);
+    }
+    if (!d->y || !d->abstol || !d->LS || !d->cv || (stick && (!d->yd || !d->yk)))
         return rd_error_set(err, RD_ENOMEM, "", "Out of memory setting up CVODE for %d segments.",
                             n);
     if ((rc = d->form.initial(d->form.user, setup, o->atol, N_VGetArrayPointer(d->y),
@@ -367,13 +380,24 @@ static int read_counters(const driver *d, long *c)
     return 0;
 }
 
+/* The counters so far into d->base before a CVODE restart (read through a
+ * copy: read_counters adds d->base to its output). */
+static int keep_counters(driver *d)
+{
+    long c[N_COUNTERS];
+    int flag = read_counters(d, c);
+    if (!flag)
+        memcpy(d->base, c, sizeof c);
+    return flag;
+}
+
 /* A plastic landing (rd_lift.h): the form arrests the ring's velocity
  * towards the flank, and CVODE restarts from that state at the root (its
  * counters carry over in d->base). */
 static int land_plastic(driver *d, double t, int upper, rd_error *err)
 {
     int flag;
-    if ((flag = read_counters(d, d->base)))
+    if ((flag = keep_counters(d)))
         return cv_fail(d, flag, "counter query", err);
     d->form.impact(d->form.user, N_VGetArrayPointer(d->y), upper);
     if ((flag = CVodeReInit(d->cv, t, d->y)))
@@ -445,6 +469,56 @@ static int advance(driver *d, double tout, flank_track *tr, rd_lift_run *o, cons
             return step_error(d, flag, err);
         return RD_OK;
     }
+}
+
+/* A seated ring pressed onto its flank and at rest (rates within atol)
+ * enters the sticking phase (rd_lift_stick.c) when its form allows it. */
+static int may_stick(driver *d, const flank_track *tr, double t)
+{
+    const double *yy = N_VGetArrayPointer(d->y), *at = N_VGetArrayPointer(d->abstol);
+    int away = tr->state == RD_FLANK_LOWER ? +1 : -1;
+    if (!d->yd || tr->state == RD_FLANK_FREE || !isnan(tr->cand))
+        return 0;
+    for (sunindextype k = d->form.N / 2; k < d->form.N; k++)
+        if (fabs(yy[k]) > at[k])
+            return 0;
+    d->form.loads(d->form.user, t, yy);
+    return d->m.fz_ext * away < 0.0;
+}
+
+/* advance(), or the sticking phase to tout while the ring sticks: at its
+ * end (the load turned away) the leave candidate is dated and CVODE
+ * restarts from the quasi-static state, its counters carried over. */
+static int advance_or_stick(driver *d, double tout, flank_track *tr, rd_lift_run *o,
+                            const rd_monitor *mon, double frac, rd_error *err)
+{
+    double tl = 0.0;
+    int flag, rc;
+    if (!d->stick) {
+        if ((rc = advance(d, tout, tr, o, mon, frac, err)) || !may_stick(d, tr, tout))
+            return rc;
+        d->stick = 1;
+        d->t_stick = tout;
+        return RD_OK;
+    }
+    N_VScale(1.0, d->y, d->yk);
+    int away = tr->state == RD_FLANK_LOWER ? +1 : -1;
+    int got = rd_lift_stick_advance(&d->form, d->t_stick, tout, away, d->y, d->yd,
+                                    N_VGetArrayPointer(d->abstol), &tl);
+    if (got == 0) {
+        d->t_stick = tout;
+        return RD_OK;
+    }
+    d->stick = 0;
+    if (got < 0) { /* Newton failed: integrate from where the phase stood */
+        N_VScale(1.0, d->yk, d->y);
+        tl = d->t_stick;
+    } else {
+        tr->cand = tl;
+    }
+    if ((flag = keep_counters(d)) || (flag = CVodeReInit(d->cv, tl, d->y)))
+        return cv_fail(d, flag, "restart", err);
+    return advance(d, tout, tr, o, mon, frac, err);
 }
 
 /* The outputs of sample k at time tout (state in d->y). */
@@ -521,7 +595,7 @@ int rd_lift_integrate(const rd_ring *ring, const rd_lift_params *p, const rd_lif
     double total = p->engine.cycles * 720.0;
     for (int k = 0; k < S; k++) {
         double deg = fmin(k * p->step_deg, total), tout = deg / d.deg_per_s;
-        if (k > 0 && (rc = advance(&d, tout, &tr, o, mon, (double)k / S, err))) {
+        if (k > 0 && (rc = advance_or_stick(&d, tout, &tr, o, mon, (double)k / S, err))) {
             double tc = 0.0;
             o->done = k;
             if (rc == RD_ELIMIT && CVodeGetCurrentTime(d.cv, &tc) == CV_SUCCESS)
