@@ -72,54 +72,48 @@ static double number_at(json_t *root, const char *ptr)
     return json_is_number(v) ? json_number_value(v) : NAN;
 }
 
-static int density(json_t *scene, json_t *result, json_t *out)
-{
-    (void)result;
-    const char *path = "/ring/material/density";
-    double rho = number_at(scene, path);
-    if (rho < 1000.0)
-        return warn(out, "density_unit", path,
-                    "density %g kg/m^3 is below 1000 kg/m^3 (lighter than water): typed in "
-                    "g/cm^3? Steel is 7850 kg/m^3.",
-                    rho);
-    if (rho > 25000.0)
-        return warn(out, "density_unit", path,
-                    "density %g kg/m^3 is above 25000 kg/m^3, denser than any solid: a unit or "
-                    "a digit too many? Steel is 7850 kg/m^3.",
-                    rho);
-    return 0;
-}
+/* Material values outside what any ring material has: a unit slip.  Each
+ * message takes the value (%g); NULL means no bound on that side. */
+static const struct material_rule {
+    const char *code, *path;
+    double lo, hi;
+    const char *below, *above;
+} material_rules[] = {
+    {"density_unit", "/ring/material/density", 1000.0, 25000.0,
+     "density %g kg/m^3 is below 1000 kg/m^3 (lighter than water): typed in g/cm^3? Steel is "
+     "7850 kg/m^3.",
+     "density %g kg/m^3 is above 25000 kg/m^3, denser than any solid: a unit or a digit too "
+     "many? Steel is 7850 kg/m^3."},
+    {"youngs_modulus_unit", "/ring/material/youngs_modulus", 1.0e9, 1.5e12,
+     "Young's modulus %g Pa is below 1 GPa, softer than any ring material: a unit slip (kPa, "
+     "MPa, GPa typed as Pa)? Steel is 2.1e11 Pa (210 GPa).",
+     "Young's modulus %g Pa is above 1500 GPa, stiffer than diamond: a unit or a digit too many? "
+     "Steel is 2.1e11 Pa."},
+    {"poisson_ratio_negative", "/ring/material/poisson_ratio", 0.0, INFINITY,
+     "Poisson's ratio %g is negative (an auxetic material); metals are near 0.3: a lost digit or "
+     "sign?",
+     NULL},
+};
 
-static int youngs_modulus(json_t *scene, json_t *result, json_t *out)
+#if defined(__GNUC__)
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wformat-nonliteral"
+#endif
+static int material(json_t *scene, json_t *result, json_t *out)
 {
     (void)result;
-    const char *path = "/ring/material/youngs_modulus";
-    double e = number_at(scene, path);
-    if (e < 1.0e9)
-        return warn(out, "youngs_modulus_unit", path,
-                    "Young's modulus %g Pa is below 1 GPa, softer than any ring material: a "
-                    "unit slip (kPa, MPa, GPa typed as Pa)? Steel is 2.1e11 Pa (210 GPa).",
-                    e);
-    if (e > 1.5e12)
-        return warn(out, "youngs_modulus_unit", path,
-                    "Young's modulus %g Pa is above 1500 GPa, stiffer than diamond: a unit or a "
-                    "digit too many? Steel is 2.1e11 Pa.",
-                    e);
+    for (size_t k = 0; k < sizeof material_rules / sizeof material_rules[0]; k++) {
+        const struct material_rule *r = &material_rules[k];
+        double v = number_at(scene, r->path);
+        const char *fmt = v < r->lo ? r->below : v > r->hi ? r->above : NULL;
+        if (fmt && warn(out, r->code, r->path, fmt, v) != 0)
+            return 1;
+    }
     return 0;
 }
-
-static int poisson(json_t *scene, json_t *result, json_t *out)
-{
-    (void)result;
-    const char *path = "/ring/material/poisson_ratio";
-    double nu = number_at(scene, path);
-    if (nu < 0.0)
-        return warn(out, "poisson_ratio_negative", path,
-                    "Poisson's ratio %g is negative (an auxetic material); metals are near "
-                    "0.3: a lost digit or sign?",
-                    nu);
-    return 0;
-}
+#if defined(__GNUC__)
+#pragma GCC diagnostic pop
+#endif
 
 /* Largest |p| of a gas table; NAN when there is none. */
 static double table_peak(json_t *gas, const char *key)
@@ -228,8 +222,7 @@ static int accuracy_not_met(json_t *scene, json_t *result, json_t *out)
 
 /* The rules, in the order their warnings are listed. */
 static int (*const rules[])(json_t *scene, json_t *result, json_t *out) = {
-    density,       youngs_modulus, poisson,     gas_in_bar,
-    bore_diameter, error_estimate, event_error, accuracy_not_met,
+    material, gas_in_bar, bore_diameter, error_estimate, event_error, accuracy_not_met,
 };
 
 int rd_warnings_add(json_t *result)
