@@ -419,12 +419,23 @@ static json_t *lift_numerics(const rd_scene *scene, const rd_lift_result *res, d
                   : json_null());
 }
 
+/* The warning of a partial result, {code: "partial", path, message}, in the
+ * form of rd_warnings' (which appends its own after it); [] otherwise. */
+static json_t *partial_warnings(const rd_lift_result *res)
+{
+    if (!res->partial)
+        return json_array();
+    const char *path = res->partial_stop == RD_ELIMIT ? "/numerics/max_steps" : "";
+    return json_pack("[{s:s, s:s, s:s}]", "code", "partial", "path", path, "message", res->warning);
+}
+
 /* {"analysis", "scene", "crank_deg", "lift", "lift_min", "lift_max",
  *  "lift_segments", "twist_rad", "friction_force", "flank", "events",
  *  "numerics", "partial", "crank_deg_reached", "warnings"}: a run stopped by
  *  /numerics/max_steps after whole cycles succeeds with those cycles,
  *  partial = true, the angle reached and a warning (README "Lift", partial
- *  results; the page lists result.warnings); warnings is [] otherwise. */
+ *  results; the page lists result.warnings); a run stopped by a cancel or
+ *  the time limit returns the same beside its error (rd_api.h). */
 static json_t *lift_result(const rd_scene *scene, const rd_lift_result *res, double wall_s)
 {
     int N = res->samples;
@@ -435,18 +446,17 @@ static json_t *lift_result(const rd_scene *scene, const rd_lift_result *res, dou
         json_decref(events);
         return NULL;
     }
-    return json_pack("{s:s, s:o, s:o, s:o, s:o, s:o, s:o, s:o, s:o, s:o, s:o, s:o, s:b, s:o, "
-                     "s:o}",
-                     "analysis", rd_scene_analysis(scene), "scene", rd_scene_echo(scene),
-                     "crank_deg", rd_result_reals(res->crank_deg, N, 1, 1.0), "lift",
-                     rd_result_reals(res->lift, N, 1, 1.0), "lift_min",
-                     rd_result_reals(res->lift_min, N, 1, 1.0), "lift_max",
-                     rd_result_reals(res->lift_max, N, 1, 1.0), "lift_segments", segs, "twist_rad",
-                     rd_result_reals(res->twist, N, 1, 1.0), "friction_force",
-                     rd_result_reals(res->friction_force, N, 1, 1.0), "flank", flank, "events",
-                     events, "numerics", lift_numerics(scene, res, wall_s), "partial", res->partial,
-                     "crank_deg_reached", rd_result_real(res->crank_deg_reached), "warnings",
-                     res->partial ? json_pack("[s]", res->warning) : json_array());
+    return json_pack(
+        "{s:s, s:o, s:o, s:o, s:o, s:o, s:o, s:o, s:o, s:o, s:o, s:o, s:b, s:o, "
+        "s:o}",
+        "analysis", rd_scene_analysis(scene), "scene", rd_scene_echo(scene), "crank_deg",
+        rd_result_reals(res->crank_deg, N, 1, 1.0), "lift", rd_result_reals(res->lift, N, 1, 1.0),
+        "lift_min", rd_result_reals(res->lift_min, N, 1, 1.0), "lift_max",
+        rd_result_reals(res->lift_max, N, 1, 1.0), "lift_segments", segs, "twist_rad",
+        rd_result_reals(res->twist, N, 1, 1.0), "friction_force",
+        rd_result_reals(res->friction_force, N, 1, 1.0), "flank", flank, "events", events,
+        "numerics", lift_numerics(scene, res, wall_s), "partial", res->partial, "crank_deg_reached",
+        rd_result_real(res->crank_deg_reached), "warnings", partial_warnings(res));
 }
 
 static int run(const rd_scene *s, const rd_monitor *mon, json_t **out, rd_error *err)
@@ -455,7 +465,7 @@ static int run(const rd_scene *s, const rd_monitor *mon, json_t **out, rd_error 
     rd_lift_result res;
     double t0 = rd_clock_s();
     int rc = rd_lift_solve(&s->ring, s->segments, &o->lift, mon, &res, err);
-    if (rc == RD_OK)
+    if (rc == RD_OK || res.partial) /* a stopped run's whole cycles come with its error */
         *out = lift_result(s, &res, rd_clock_s() - t0);
     rd_lift_result_cleanup(&res);
     return rc;

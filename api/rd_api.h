@@ -43,14 +43,18 @@ char *rd_scene_to_json(const rd_scene *scene);
 /* Runs the analysis.  On success *result_json is the `result` object of
  * API.md ({"analysis", "scene", "numerics", ...}).  `mon` may be NULL; a monitor
  * that asks to stop makes the run return RD_ECANCELED.  Failures during the run
- * (RD_ENOCONV, RD_ENUMERIC, ...) come with a message saying where and why. */
+ * (RD_ENOCONV, RD_ENUMERIC, ...) come with a message saying where and why.
+ * A stopped run that finished part of its work (a lift run's whole cycles)
+ * returns its error code AND a partial result ("partial": true): the caller
+ * frees *result_json whatever the code. */
 int rd_scene_run(const rd_scene *scene, const rd_monitor *mon, char **result_json, rd_error *err);
 
 /* A result built once, as data, from which both its JSON text and its CSV
  * table are written (no re-parsing).  Opaque; free with rd_result_doc_free. */
 typedef struct rd_result_doc rd_result_doc;
 
-/* rd_scene_run, keeping the result as a document (*out, caller frees). */
+/* rd_scene_run, keeping the result as a document (*out, caller frees; set
+ * also with a non-OK code when the run returned a partial result). */
 int rd_scene_run_doc(const rd_scene *scene, const rd_monitor *mon, rd_result_doc **out,
                      rd_error *err);
 /* The result's JSON text (what rd_scene_run returns); NULL when out of memory. */

@@ -230,19 +230,19 @@ int rd_scene_run_doc(const rd_scene *scene, const rd_monitor *mon, rd_result_doc
     json_t *result = NULL;
     *out = NULL;
     int rc = scene->an->run(scene, mon, &result, err);
-    if (rc != RD_OK) {
-        json_decref(result);
+    if (rc != RD_OK && !result)
         return rc;
-    }
     /* warnings never refuse: they only annotate a finished result */
     *out = result && rd_warnings_add(result) == 0 ? malloc(sizeof **out) : NULL;
     if (!*out) {
         json_decref(result);
-        return rd_error_set(err, RD_ENOMEM, "", "out of memory while writing the result");
+        return rc != RD_OK
+                   ? rc
+                   : rd_error_set(err, RD_ENOMEM, "", "out of memory while writing the result");
     }
     (*out)->an = scene->an;
     (*out)->result = result;
-    return RD_OK;
+    return rc; /* not RD_OK: a stopped run's partial result */
 }
 
 char *rd_result_doc_json(const rd_result_doc *doc)
@@ -272,11 +272,11 @@ int rd_scene_run(const rd_scene *scene, const rd_monitor *mon, char **result_jso
     rd_result_doc *doc = NULL;
     *result_json = NULL;
     int rc = rd_scene_run_doc(scene, mon, &doc, err);
-    if (rc != RD_OK)
+    if (!doc)
         return rc;
     *result_json = rd_result_doc_json(doc);
     rd_result_doc_free(doc);
-    if (!*result_json)
+    if (!*result_json && rc == RD_OK)
         rc = rd_error_set(err, RD_ENOMEM, "", "out of memory while writing the result");
     return rc;
 }

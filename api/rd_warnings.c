@@ -227,7 +227,9 @@ static int (*const rules[])(json_t *scene, json_t *result, json_t *out) = {
 
 int rd_warnings_add(json_t *result)
 {
-    json_t *list = json_array();
+    /* the analysis' own warnings first (a lift run's partial result) */
+    json_t *own = json_object_get(result, "warnings");
+    json_t *list = json_is_array(own) ? json_copy(own) : json_array();
     json_t *scene = json_object_get(result, "scene");
     int bad = !list;
     for (size_t k = 0; !bad && k < sizeof rules / sizeof rules[0]; k++)

@@ -60,10 +60,11 @@ static int read_scene(const char *name, char **buf, size_t *len, rd_error *err)
 }
 
 /* `run` and `check`: parse, then print the echo (check) or run and print
- * the result as pretty JSON or CSV. */
+ * the result as pretty JSON or CSV.  A run stopped by a signal prints the
+ * partial result it returned (a lift run's whole cycles), then fails. */
 static int command(const char *file, int run, int csv)
 {
-    rd_error err;
+    rd_error err, stopped;
     rd_scene *scene = NULL;
     char *body = NULL, *result = NULL, *text = NULL;
     rd_result_doc *doc = NULL;
@@ -72,6 +73,7 @@ static int command(const char *file, int run, int csv)
     int status = 0;
 
     rd_error_init(&err);
+    rd_error_init(&stopped);
     if (read_scene(file, &body, &len, &err) != RD_OK ||
         rd_scene_parse(body, len, &scene, &err) != RD_OK) {
         status = rd_cli_fail(&err);
@@ -82,8 +84,12 @@ static int command(const char *file, int run, int csv)
     } else {
         rd_cli_catch_signals(0);
         if (rd_scene_run_doc(scene, &mon, &doc, &err) != RD_OK) {
-            status = rd_cli_fail(&err);
-            goto out;
+            stopped = err;
+            if (!doc) {
+                status = rd_cli_fail(&err);
+                goto out;
+            }
+            rd_error_init(&err); /* a stopped run's partial result is written, then its error */
         }
         /* the CSV straight from the result document, no JSON text between */
         result = csv ? rd_result_doc_csv(doc, &err) : rd_result_doc_json(doc);
@@ -110,6 +116,8 @@ static int command(const char *file, int run, int csv)
         fprintf(stderr, "ringdyn: cannot write the output: %s\n", strerror(errno));
         status = EXIT_RUN;
     }
+    if (stopped.code != RD_OK)
+        status = rd_cli_fail(&stopped);
 out:
     free(text);
     free(result);

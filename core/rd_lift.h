@@ -171,8 +171,13 @@ typedef struct rd_lift_result {
     /* A run stopped by /numerics/max_steps after at least one whole cycle
      * returns those cycles (samples and events up to their end) with
      * partial = 1, the crank angle the integrator reached, and the reason
-     * and what would make the run cheaper in `warning`; no error estimate. */
+     * and what would make the run cheaper in `warning`; no error estimate.
+     * A run stopped by its monitor (cancel, time limit) does the same but
+     * still returns RD_ECANCELED (or RD_ETIMEOUT); stopped in the estimate
+     * run, it keeps every cycle, partial = 1 and no estimate.  The caller
+     * frees the result in every case (rd_lift_result_cleanup). */
     int partial;
+    int partial_stop;         /* what stopped it: RD_ELIMIT, RD_ECANCELED or RD_ETIMEOUT */
     double crank_deg_reached; /* deg; the end of the run when not partial */
     char warning[400];        /* empty when not partial */
     double error_estimate;    /* relative lift error from the rtol/10 run; NAN if none */

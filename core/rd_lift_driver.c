@@ -598,16 +598,28 @@ int rd_lift_integrate(const rd_ring *ring, const rd_lift_params *p, const rd_lif
         if (k > 0 && (rc = advance_or_stick(&d, tout, &tr, o, mon, (double)k / S, err))) {
             double tc = 0.0;
             o->done = k;
-            if (rc == RD_ELIMIT && CVodeGetCurrentTime(d.cv, &tc) == CV_SUCCESS)
+            if (rc != RD_ELIMIT && rc != RD_ECANCELED && rc != RD_ETIMEOUT)
+                goto out;
+            if (CVodeGetCurrentTime(d.cv, &tc) == CV_SUCCESS)
                 o->reached_deg = tc * d.deg_per_s; /* a partial result may keep the samples */
-            goto out;
+            goto stopped;
         }
         store_sample(&d, k, deg, tout, o, setup);
-        if ((rc = rd_monitor_report(mon, (k + 1.0) / S, err)))
-            goto out;
+        if ((rc = rd_monitor_report(mon, (k + 1.0) / S, err))) {
+            o->done = k + 1;
+            o->reached_deg = deg;
+            goto stopped;
+        }
     }
     if (o->res)
         rc = store_counters(&d, o->res, err);
+    goto out;
+stopped: /* the work done so far, for a partial result (its rc stands) */
+    if (o->res) {
+        rd_error ignored;
+        rd_error_init(&ignored);
+        store_counters(&d, o->res, &ignored);
+    }
 out:
     driver_free(&d);
     return rc;

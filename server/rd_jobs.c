@@ -20,7 +20,9 @@
  * Lifetime: a job is freed when its reference count drops to zero.  The
  * list holds one reference; a worker running it and each request reading it
  * hold one more, so retention never frees a job somebody is still reading.
- * A succeeded job's rendered JSON is written to the store when it ends and
+ * A succeeded job's rendered JSON (and that of a stopped job whose run
+ * returned a partial result: a lift run's whole cycles beside its error)
+ * is written to the store when it ends and
  * read back on demand into one `struct body`, which every request sending
  * it shares (reference counted under `mu`); the last release frees it, so
  * a finished job costs no memory while nobody reads it.
@@ -87,7 +89,7 @@ struct job {
     double deadline;   /* CLOCK_MONOTONIC seconds, set when the run starts */
     struct timespec created, started, finished; /* CLOCK_REALTIME; zero = not yet */
     rd_scene *scene;                            /* owned until a worker takes it */
-    size_t body_len;                            /* bytes of the stored JSON of a succeeded job */
+    size_t body_len;       /* bytes of the stored JSON of a job with a result (has_body) */
     struct body *body;     /* that JSON while some request sends it, else NULL */
     char *error;           /* error body, once failed, cancelled or interrupted */
     uint64_t seq;          /* submission order in this process (list cursors), from 1 */
@@ -167,6 +169,13 @@ static int status_from_name(const char *name)
 static int is_final(int status)
 {
     return status >= RD_JOB_SUCCEEDED;
+}
+
+/* A job whose JSON (with `result`) is stored: every succeeded job, and a
+ * stopped one whose run returned a partial result. */
+static int has_body(const struct job *job)
+{
+    return job->status == RD_JOB_SUCCEEDED || (is_final(job->status) && job->body_len > 0);
 }
 
 static int64_t to_ns(const struct timespec *ts)
@@ -630,7 +639,7 @@ static struct body *keep_recent_locked(rd_jobs *jobs, struct body *b)
     return old;
 }
 
-/* Called with `mu` held and a reference on a succeeded `job`: its shared
+/* Called with `mu` held and a reference on a `job` with a body: its shared
  * body, read from the store unless some request holds it already.  Returns
  * with `mu` released and the job's reference dropped. */
 static int body_and_release(rd_jobs *jobs, struct job *job, rd_jobs_body **out, rd_error *err)
@@ -723,8 +732,12 @@ static int final_status(rd_jobs *jobs, struct job *job, int rc, const char *resu
     pthread_mutex_unlock(&jobs->mu);
     /* A DELETE wins even over a run that completed meanwhile: the client was
      * told the job is being cancelled, so it must not turn up succeeded. */
+    /* A stopped run may still return a partial result (a lift run's whole
+     * cycles): the job keeps it beside its error (run_job). */
+    const char *kept =
+        rc != RD_OK && result ? "  Its complete part is in `result` (\"partial\": true)." : "";
     if (cancel) {
-        *error = error_json(RD_ECANCELED, "The job was cancelled by a DELETE request.");
+        *error = error_json(RD_ECANCELED, "The job was cancelled by a DELETE request.%s", kept);
         return RD_JOB_CANCELLED;
     }
     if (rc == RD_OK && result)
@@ -738,8 +751,8 @@ static int final_status(rd_jobs *jobs, struct job *job, int rc, const char *resu
     if (rc == RD_ECANCELED && timed_out) {
         *error = error_json(RD_ETIMEOUT,
                             "The job ran longer than the time limit of %g s and was stopped "
-                            "(at %.0f %% progress).",
-                            job->timeout_s, 100.0 * progress);
+                            "(at %.0f %% progress).%s",
+                            job->timeout_s, 100.0 * progress, kept);
         return RD_JOB_FAILED;
     }
     if (err->code == RD_OK)
@@ -819,10 +832,14 @@ static void run_job(rd_jobs *jobs, struct job *job, rd_scene *scene, int pooled)
     if (!detached && !bad) {
         clock_gettime(CLOCK_REALTIME, &s.finished);
         s.status = status;
-        if (status == RD_JOB_SUCCEEDED) {
+        if (status == RD_JOB_SUCCEEDED)
             s.progress = 1;
-            body = render_with_result(&s, result, &body_len);
-            if (!body) { /* the result exists but cannot be sent: say so in the job */
+        /* a success's result, or the partial result of a run that stopped */
+        if (result && (status == RD_JOB_SUCCEEDED || rc != RD_OK)) {
+            free(s.error); /* the body carries the job's final error beside the result */
+            s.error = error ? strdup(error) : NULL;
+            body = error && !s.error ? NULL : render_with_result(&s, result, &body_len);
+            if (!body && status == RD_JOB_SUCCEEDED) { /* the result exists but cannot be sent */
                 status = RD_JOB_FAILED;
                 error = error_json(RD_ENOMEM, "Out of memory while storing the result.");
             }
@@ -843,7 +860,7 @@ static void run_job(rd_jobs *jobs, struct job *job, rd_scene *scene, int pooled)
     /* The JSON just stored is what the client waiting for the job reads
      * next: it becomes the job's shared body (held as the recent one), so
      * that read costs no trip to the store. */
-    struct body *kept = status == RD_JOB_SUCCEEDED && body ? calloc(1, sizeof *kept) : NULL;
+    struct body *kept = body ? calloc(1, sizeof *kept) : NULL;
     struct body *dropped = NULL;
     if (kept) {
         kept->jobs = jobs;
@@ -865,7 +882,7 @@ static void run_job(rd_jobs *jobs, struct job *job, rd_scene *scene, int pooled)
         free(job->error);
         job->error = error;
         error = NULL;
-        job->body_len = status == RD_JOB_SUCCEEDED ? body_len : 0;
+        job->body_len = body ? body_len : 0;
         if (status == RD_JOB_SUCCEEDED)
             job->progress = 1;
         job->finished = s.finished;
@@ -1291,14 +1308,14 @@ static void wait_final_locked(rd_jobs *jobs, struct job *job, double seconds)
             break;
 }
 
-/* With `mu` held and a reference on `job`: the shared body of a succeeded
- * job, else its rendering.  Returns with `mu` released. */
+/* With `mu` held and a reference on `job`: the shared body of a job with
+ * a result (has_body), else its rendering.  Returns with `mu` released. */
 static int answer_and_release(rd_jobs *jobs, struct job *job, rd_jobs_body **body, char **json,
                               int *finished, rd_error *err)
 {
     if (finished)
         *finished = is_final(job->status);
-    if (job->status == RD_JOB_SUCCEEDED)
+    if (has_body(job))
         return body_and_release(jobs, job, body, err);
     return view_and_release(jobs, job, json, NULL, err);
 }
@@ -1394,7 +1411,7 @@ int rd_jobs_result_csv(rd_jobs *jobs, const char *id, char **csv, rd_error *err)
     int acquired = acquire_locked(jobs, id, &job, err);
     if (acquired != RD_OK)
         return acquired;
-    if (job->status != RD_JOB_SUCCEEDED) {
+    if (!has_body(job)) {
         int rc = rd_error_set(err, RD_ENOTFOUND, "", "Job %s has no result (status %s).", job->id,
                               rd_jobs_status_name(job->status));
         release_locked(job);
