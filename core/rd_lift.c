@@ -627,42 +627,6 @@ typedef struct lift_solve {
     int main_done;      /* level 0 ran every cycle */
 } lift_solve;
 
-/* A level-0 run stopped early keeps its whole cycles, if any
- * (rd_lift_result.partial): the samples and events up to their end.  `why`
- * is the stop: RD_ELIMIT (/numerics/max_steps; the run then succeeds with
- * those cycles) or RD_ECANCELED (the monitor asked to stop: a cancel or a
- * time limit; the stop stands and the cycles come with it).  Returns the
- * code the run ends with; err keeps the stop's message unless it succeeds. */
-static int keep_partial(lift_solve *s, int why, rd_error *err)
-{
-    const rd_lift_run *r = &s->run[0];
-    double step = s->p->step_deg, stored = (r->done - 1) * step;
-    int cycles = (int)floor(fmin(r->reached_deg, stored) / 720.0 + 1e-9);
-    if (cycles < 1)
-        return why; /* nothing whole to return: the error stands */
-    rd_lift_result *out = s->out;
-    double end = 720.0 * cycles;
-    out->partial = 1;
-    out->partial_stop = why;
-    out->crank_deg_reached = r->reached_deg;
-    out->samples = (int)floor(end / step + 1e-9) + 1;
-    char stop[120];
-    if (why == RD_ELIMIT)
-        snprintf(stop, sizeof stop, "/numerics/max_steps = %ld ran out", s->p->max_steps);
-    else
-        snprintf(stop, sizeof stop, "the run was stopped (cancelled or out of time)");
-    snprintf(out->warning, sizeof out->warning,
-             "Partial result: %s at crank angle %.1f deg of %.1f; the %d complete cycle%s (to "
-             "%.0f deg) are returned.  To finish the run, %s or make it cheaper: fewer cycles, "
-             "a cheaper model (/numerics/model), or a looser /numerics/rtol.",
-             stop, r->reached_deg, 720.0 * s->p->engine.cycles, cycles, cycles > 1 ? "s" : "", end,
-             why == RD_ELIMIT ? "raise max_steps" : "allow it more time");
-    if (why != RD_ELIMIT)
-        return why;
-    rd_error_init(err);
-    return RD_OK;
-}
-
 static int solve_level(void *ctx, int level, const rd_monitor *mon, rd_error *err)
 {
     lift_solve *s = ctx;
@@ -677,7 +641,7 @@ static int solve_level(void *ctx, int level, const rd_monitor *mon, rd_error *er
     int rc = rd_lift_integrate(s->ring, s->p, s->setup, s->out->model, mon, r, err);
     if (level == 0 && (rc == RD_ELIMIT || rc == RD_ECANCELED || rc == RD_ETIMEOUT) && r->done > 0 &&
         r->reached_deg > 0.0)
-        rc = keep_partial(s, rc, err);
+        rc = rd_lift_keep_partial(s->out, s->p, &s->run[0], rc, err);
     if (level == 0 && rc == RD_OK && !s->out->partial)
         s->main_done = 1;
     return rc;
@@ -709,22 +673,6 @@ static int compare_levels(void *ctx, rd_error *err)
         s->out->event_error_deg = de;
     }
     return RD_OK;
-}
-
-/* Stopped in the error-estimate run: every cycle is there, the estimate is
- * not; the result is partial (at the run's end) and says so. */
-static void estimate_stopped(rd_lift_result *out, const rd_lift_params *p)
-{
-    out->partial = 1;
-    out->partial_stop = RD_ECANCELED;
-    out->crank_deg_reached = 720.0 * p->engine.cycles;
-    out->error_estimate = NAN;
-    out->event_error_deg = NAN;
-    snprintf(out->warning, sizeof out->warning,
-             "Partial result: the run was stopped (cancelled or out of time) in its error-estimate "
-             "run (rtol/10); every cycle is returned, without an error estimate.  To get one, "
-             "allow it more time or make it cheaper: fewer cycles, a cheaper model "
-             "(/numerics/model), or a looser /numerics/rtol.");
 }
 
 /* The result's arrays for S samples of n segments. */
@@ -802,7 +750,7 @@ int rd_lift_solve_setup(const rd_ring_params *rp, int segments, const rd_lift_pa
                              .reference = "rtol/10 and atol/10"};
     rc = rd_accuracy_run(&plan, mon, NULL, err);
     if ((rc == RD_ECANCELED || rc == RD_ETIMEOUT) && s.main_done)
-        estimate_stopped(out, p);
+        rd_lift_estimate_stopped(out, p);
     if (out->model == RD_LIFT_MODEL_MODAL && s.run[0].dof > 0)
         out->dof = s.run[0].dof; /* with the correction shapes kept */
     out->n_events = s.run[0].n_events;

@@ -248,8 +248,9 @@ typedef struct rd_lift_run {
     double rtol, atol;
     int modes; /* elastic modes of the modal model */
     int dof;   /* out: degrees of freedom integrated (states / 2) */
-    /* out, when /numerics/max_steps ran out (RD_ELIMIT): the samples stored
-     * (0 .. done - 1) and the crank angle the integrator reached, deg */
+    /* out, when /numerics/max_steps ran out (RD_ELIMIT) or the monitor
+     * stopped the run: the samples stored (0 .. done - 1) and the crank
+     * angle the integrator reached, deg */
     int done;
     double reached_deg;
     rd_lift_result *res; /* may be NULL */
@@ -260,5 +261,14 @@ typedef struct rd_lift_run {
 } rd_lift_run;
 int rd_lift_integrate(const rd_ring *ring, const rd_lift_params *p, const rd_lift_setup *setup,
                       int model, const rd_monitor *mon, rd_lift_run *run, rd_error *err);
+
+/* A level-0 run `r` that stopped with `why` (RD_ELIMIT, RD_ECANCELED or
+ * RD_ETIMEOUT) keeps its whole cycles in `out` (partial = 1, samples cut to
+ * the last whole cycle, warning); returns RD_OK for RD_ELIMIT with at least
+ * one whole cycle (err cleared), else `why` (rd_lift_partial.c). */
+int rd_lift_keep_partial(rd_lift_result *out, const rd_lift_params *p, const rd_lift_run *r,
+                         int why, rd_error *err);
+/* A run stopped in its error-estimate run: every cycle, no estimate. */
+void rd_lift_estimate_stopped(rd_lift_result *out, const rd_lift_params *p);
 
 #endif

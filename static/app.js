@@ -206,6 +206,13 @@ async function follow(analysis, start) {
         if (matchMedia('(max-width: 820px)').matches) $('results').scrollIntoView({ block: 'start' });
       }
       setStatus(`Job ${job.id} succeeded${secs}.`);
+    } else if (job.result && job.result.partial) {
+      // A lift job stopped by Cancel or the time limit keeps its whole cycles.
+      state.results.set(analysis.id, { result: job.result, job, stale: '' });
+      if (state.analysis === analysis) showEntry(state.results.get(analysis.id));
+      const upTo = job.result.crank_deg[job.result.crank_deg.length - 1];
+      setStatus(`Job ${job.id} ${job.status}; the cycles it finished (to ${upTo}°) are shown: a partial result.`);
+      if (job.status !== 'cancelled' && job.error) showError(job.error);
     } else if (job.status === 'cancelled') {
       setStatus(`Job ${job.id} cancelled.`);
       staleResult(analysis, `job ${job.id} was cancelled.`);

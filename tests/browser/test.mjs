@@ -876,11 +876,17 @@ for (const width of [1280, 390]) {
       await page.click('#cancel');
       assert.ok(clicked < 1000, `Cancel clicked ${clicked} ms after Run`);
       await page.waitForFunction(() => !document.getElementById('run').disabled, null, { timeout: 20000 });
-      assert.equal(await page.textContent('#status-text'), `Job ${id} cancelled.`);
       const job = await serverJob(id);
       assert.equal(job.status, 'cancelled', 'the server cancelled the job');
       assert.ok(job.progress < 0.5, `cancelled early (progress ${job.progress})`);
-      assert.match(await page.textContent('#result-stale'), new RegExp(`job ${id} was cancelled.*\\(${first}\\)`));
+      if (job.result) { // a whole cycle was done before the cancel: shown as a partial result
+        assert.equal(job.result.partial, true);
+        assert.match(await page.textContent('#status-text'), new RegExp(`^Job ${id} cancelled; the cycles it finished \\(to \\d+°\\) are shown: a partial result\\.$`));
+        assert.equal(await page.isVisible('#result-stale'), false, 'the partial result is current');
+      } else {
+        assert.equal(await page.textContent('#status-text'), `Job ${id} cancelled.`);
+        assert.match(await page.textContent('#result-stale'), new RegExp(`job ${id} was cancelled.*\\(${first}\\)`));
+      }
       assert.equal(await page.isVisible('#error'), false, 'a cancel is not an error');
 
       // Run and Cancel at once: the job has no id yet when Cancel is pressed;
@@ -889,7 +895,7 @@ for (const width of [1280, 390]) {
       await page.click('#cancel');
       await page.waitForFunction(() => !document.getElementById('run').disabled, null, { timeout: 20000 });
       const quick = jobInUrl();
-      assert.match(await page.textContent('#status-text'), new RegExp(`^Job ${quick} cancelled\\.$`));
+      assert.match(await page.textContent('#status-text'), new RegExp(`^Job ${quick} cancelled(\\.|; .* a partial result\\.)$`));
       assert.equal((await serverJob(quick)).status, 'cancelled');
 
       // An ETA once there is progress to go by (the server gives no eta_s yet).
