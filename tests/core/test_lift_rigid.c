@@ -168,6 +168,7 @@ static void test_stick_vs_plain(void)
         int rc = run(&p, RD_LIFT_MODEL_RIGID, 20, &a, &err);
         CHECK(rc == RD_OK, "%s sticking: %s", cases[j].what, err.message);
         p.stick = 0;
+        p.cvode = 1; /* the plain CVODE integration the phase replaces */
         int rc2 = run(&p, RD_LIFT_MODEL_RIGID, 20, &b, &err);
         CHECK(rc2 == RD_OK, "%s plain: %s", cases[j].what, err.message);
         if (rc == RD_OK && rc2 == RD_OK) {
