@@ -601,7 +601,8 @@ static void store_sample(driver *d, int k, double deg, double tout, rd_lift_run 
 {
     rd_lift_model *c = &d->m;
     const double *yy = N_VGetArrayPointer(d->y), *yf = yy;
-    if (d->form.expand) {
+    /* the full state only for what reads it (the reference run stores the lift only) */
+    if (d->form.expand && (o->res || (setup && (setup->sample || setup->energy)))) {
         d->form.expand(d->form.user, yy, d->full);
         yf = d->full;
     }

@@ -43,14 +43,16 @@
 
 #include <nvector/nvector_serial.h>
 
-#define NMAX       (2 * RD_LIFT_SMALL_BLOCK_MAX)
-#define BMAX       RD_LIFT_SMALL_BLOCK_MAX
-#define RMAX       RD_LIFT_SMALL_ROOTS_MAX
-#define NEWTON_MAX 4    /* iterations per stage */
-#define NEWTON_TOL 0.01 /* converged correction, in units of the error tolerance */
-#define FAIL_MAX   12   /* failed attempts in a row before giving up */
-#define REDO_MAX   2    /* redos of one step to end it at a root */
-#define ROOT_ITER  60
+#define NMAX        (2 * RD_LIFT_SMALL_BLOCK_MAX)
+#define BMAX        RD_LIFT_SMALL_BLOCK_MAX
+#define RMAX        RD_LIFT_SMALL_ROOTS_MAX
+#define NEWTON_MAX  4    /* iterations per stage */
+#define NEWTON_TOL  0.01 /* converged correction, in units of the error tolerance */
+#define FAIL_MAX    12   /* failed attempts in a row before giving up */
+#define REDO_MAX    2    /* redos of one step to end it at a root */
+#define ROOT_ITER   60
+#define JAC_AGE_MAX 2   /* steps a Jacobian is kept while Newton converges fast */
+#define RATE_STALE  0.3 /* the convergence rate a kept Jacobian must show */
 
 static const double GAM = 0.58578643762690495; /* 2 - sqrt 2 */
 static const double DCO = 0.29289321881345248; /* g / 2 */
@@ -71,7 +73,7 @@ struct rd_lift_small {
     int piv[BMAX];
     double c_lu;  /* the d h of the factorization in S, 0: none */
     double crate; /* the Newton iteration's last convergence rate (CVODE's crate) */
-    int jac_ok;   /* A, B are at (t, y) */
+    int jac_age;  /* steps since A, B were evaluated (at the start of a step); -1: none */
     double ybuf[NMAX], fbuf[NMAX];
     N_Vector vy, vf; /* wrappers of ybuf, fbuf for the form's and the root callbacks */
     long mxstep;
@@ -232,7 +234,7 @@ static int newton(rd_lift_small *s, double ts, const double *b, double *x)
             return 1;
         if (k > 0) {
             double rate = nd / prev;
-            if (rate > 0.9)
+            if (rate > (s->jac_age > 0 ? RATE_STALE : 0.9))
                 return 1;
             if (nd * rate / (1.0 - rate) <= NEWTON_TOL)
                 return 0;
@@ -250,10 +252,10 @@ static int attempt(rd_lift_small *s, double h, double *y1, double *f1, double *e
 {
     int N = s->N;
     double c = DCO * h, z[NMAX], fz[NMAX], b[NMAX], e[NMAX];
-    if (!s->jac_ok) {
+    if (s->jac_age < 0) {
         s->form->blocks(s->form->user, s->t, s->y, s->A, s->B);
         s->c[C_JAC]++;
-        s->jac_ok = 1;
+        s->jac_age = 0;
         s->c_lu = 0.0;
     }
     if (s->c_lu != c && factor(s, c))
@@ -267,7 +269,7 @@ static int attempt(rd_lift_small *s, double h, double *y1, double *f1, double *e
         interp(s, &sp, s->t + GAM * h, z);
     }
     if (newton(s, s->t + GAM * h, b, z))
-        return 1;
+        return s->jac_age > 0 ? 2 : 1;
     for (int i = 0; i < N; i++) {
         fz[i] = (z[i] - b[i]) / c;
         /* quadratic through y_n, h f_n and z, at the step end */
@@ -275,7 +277,7 @@ static int attempt(rd_lift_small *s, double h, double *y1, double *f1, double *e
         b[i] = s->y[i] + WCO * h * (s->f[i] + fz[i]);
     }
     if (newton(s, s->t + h, b, y1))
-        return 1;
+        return s->jac_age > 0 ? 2 : 1;
     for (int i = 0; i < N; i++)
         f1[i] = (y1[i] - b[i]) / c;
     for (int i = 0; i < N; i++)
@@ -399,7 +401,7 @@ int rd_lift_small_reinit(rd_lift_small *s, double t, const double *y)
     s->t = s->tp = s->tlo = t;
     memcpy(s->y, y, (size_t)s->N * sizeof *y);
     memcpy(s->yp, y, (size_t)s->N * sizeof *y);
-    s->jac_ok = 0;
+    s->jac_age = -1;
     s->c_lu = 0.0;
     s->crate = 1.0;
     if (rhs(s, t, s->y, s->f) || groots(s, t, s->y, s->glo))
@@ -429,7 +431,7 @@ static void accept(rd_lift_small *s, double h, const double *y1, const double *f
     memcpy(s->y, y1, nb);
     memcpy(s->f, f1, nb);
     memcpy(s->ghi, g1, (size_t)s->ng * sizeof *g1);
-    s->jac_ok = 0;
+    s->jac_age = s->jac_age >= 0 && s->jac_age < JAC_AGE_MAX ? s->jac_age + 1 : -1;
     s->c[C_STEPS]++;
 }
 
@@ -443,7 +445,12 @@ static int step(rd_lift_small *s)
         double h = fmin(s->h, s->hmax);
         if (h < 10.0 * DBL_EPSILON * fmax(fabs(s->t), 1e-3))
             return CV_ERR_FAILURE;
-        if (attempt(s, h, y1, f1, &err) || !isfinite(err)) {
+        int a = attempt(s, h, y1, f1, &err);
+        if (a == 2) { /* a kept Jacobian did not converge: a fresh one, same h */
+            s->jac_age = -1;
+            continue;
+        }
+        if (a || !isfinite(err)) {
             s->c[C_NFAIL]++;
             s->h = 0.25 * h;
             if (++fails > FAIL_MAX)
@@ -453,6 +460,8 @@ static int step(rd_lift_small *s)
         }
         if (err > 1.0) {
             s->c[C_ETFAIL]++;
+            if (s->jac_age > 0)
+                s->jac_age = -1;
             s->h = h * fmax(0.2, 0.9 * pow(err, -1.0 / 3.0));
             if (++fails > FAIL_MAX)
                 return CV_ERR_FAILURE;
@@ -475,6 +484,8 @@ static int step(rd_lift_small *s)
             }
         }
         accept(s, h, y1, f1, g1);
+        if (rejected || redo)
+            s->jac_age = -1;
         s->h = redo ? h : h * fac; /* after a root the next step restarts from its size */
         return CV_SUCCESS;
     }
