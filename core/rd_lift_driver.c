@@ -2,7 +2,9 @@
  * rd_lift_driver.c — the CVODE driver of the full lift model (file map:
  * rd_lift_model.h): integrator set-up, events (root finding and the flank
  * state machine), output sampling, solver counters, the work bound, progress
- * and cancellation.
+ * and cancellation.  The rigid form is stepped by rd_lift_small.c instead
+ * (CVODE's calls, small_open), unless the sticking phase or rd_lift_params
+ * .cvode asks for CVODE.
  *
  * Integration: SUNDIALS CVODE, BDF of order <= 2, Newton with the analytic
  * Jacobian's blocks, the system solved in second-order form by band LU of

@@ -499,11 +499,12 @@ int rd_lift_small_solve(rd_lift_small *s, double tout, double *y, double *t)
 {
     long taken = 0;
     for (;;) {
-        /* roots in what is left of the last step */
+        /* roots in what is left of the last step; one after tout waits (CVODE's order) */
+        double tr = INFINITY;
         if (s->tlo < s->t) {
             span sp = last_step(s);
-            double tr = earliest_root(s, &sp, s->tlo, s->glo, s->ghi);
-            if (tr <= s->t) {
+            tr = earliest_root(s, &sp, s->tlo, s->glo, s->ghi);
+            if (tr <= s->t && tr <= tout) {
                 interp(s, &sp, tr, y);
                 if (groots(s, tr, y, s->glo))
                     return CV_RHSFUNC_FAIL;
@@ -511,8 +512,10 @@ int rd_lift_small_solve(rd_lift_small *s, double tout, double *y, double *t)
                 *t = tr;
                 return CV_ROOT_RETURN;
             }
-            s->tlo = s->t;
-            memcpy(s->glo, s->ghi, (size_t)s->ng * sizeof *s->ghi);
+            if (tr > s->t) {
+                s->tlo = s->t;
+                memcpy(s->glo, s->ghi, (size_t)s->ng * sizeof *s->ghi);
+            }
         }
         if (s->t >= tout) {
             span sp = last_step(s);
