@@ -626,7 +626,9 @@ static void store_sample(driver *d, int k, double deg, double tout, rd_lift_run 
         res->lift_min[k] = lo;
         res->lift_max[k] = hi;
         res->twist[k] = tw / n;
-        d->form.loads(d->form.user, tout, yy);
+        c->friction = 0.0; /* the loads only for a scene with friction */
+        if (c->p->friction.model != RD_FRICTION_NONE)
+            d->form.loads(d->form.user, tout, yy);
         res->friction_force[k] = c->friction;
         res->flank[k] =
             L < c->eps ? RD_FLANK_LOWER : (L > c->ca - c->eps ? RD_FLANK_UPPER : RD_FLANK_FREE);

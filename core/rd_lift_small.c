@@ -65,9 +65,9 @@
 #define NEWTON_MAX  4    /* iterations per stage */
 #define NEWTON_TOL  0.01 /* converged correction, in units of the error tolerance */
 #define FAIL_MAX    12   /* failed attempts in a row before giving up */
-#define ROOT_ITER   60
-#define JAC_AGE_MAX 2   /* steps a Jacobian is kept while Newton converges fast */
-#define RATE_STALE  0.3 /* the convergence rate a kept Jacobian must show */
+#define ROOT_ITER   60   /* Illinois iterations (superlinear: ~10 reach the tolerance) */
+#define JAC_AGE_MAX 2    /* steps a Jacobian is kept while Newton converges fast */
+#define RATE_STALE  0.3  /* the convergence rate a kept Jacobian must show */
 
 static const double GAM = 0.58578643762690495; /* 2 - sqrt 2 */
 static const double DCO = 0.29289321881345248; /* g / 2 */
@@ -86,9 +86,8 @@ struct rd_lift_small {
     double tlo, glo[RMAX], ghi[RMAX]; /* roots searched up to tlo; g at tlo and t */
     double A[3 * BMAX * BMAX], B[BMAX * BMAX], S[BMAX * BMAX];
     int piv[BMAX];
-    double c_lu;  /* the d h of the factorization in S, 0: none */
-    double crate; /* the Newton iteration's last convergence rate (CVODE's crate) */
-    int jac_age;  /* steps since A, B were evaluated (at the start of a step); -1: none */
+    double c_lu; /* the d h of the factorization in S, 0: none */
+    int jac_age; /* steps since A, B were evaluated (at the start of a step); -1: none */
     double ybuf[NMAX], fbuf[NMAX];
     N_Vector vy, vf; /* wrappers of ybuf, fbuf for the form's and the root callbacks */
     long mxstep;
@@ -417,7 +416,6 @@ int rd_lift_small_reinit(rd_lift_small *s, double t, const double *y)
     memcpy(s->yp, y, (size_t)s->N * sizeof *y);
     s->jac_age = -1;
     s->c_lu = 0.0;
-    s->crate = 1.0;
     if (rhs(s, t, s->y, s->f) || groots(s, t, s->y, s->glo))
         return CV_RHSFUNC_FAIL;
     memcpy(s->fp, s->f, (size_t)s->N * sizeof *s->f);
@@ -500,10 +498,9 @@ int rd_lift_small_solve(rd_lift_small *s, double tout, double *y, double *t)
     long taken = 0;
     for (;;) {
         /* roots in what is left of the last step; one after tout waits (CVODE's order) */
-        double tr = INFINITY;
         if (s->tlo < s->t) {
             span sp = last_step(s);
-            tr = earliest_root(s, &sp, s->tlo, s->glo, s->ghi);
+            double tr = earliest_root(s, &sp, s->tlo, s->glo, s->ghi);
             if (tr <= s->t && tr <= tout) {
                 interp(s, &sp, tr, y);
                 if (groots(s, tr, y, s->glo))
