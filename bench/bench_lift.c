@@ -12,6 +12,12 @@
  *     2. n = 20: the flank-change angles' error vs rtol (1e-4 .. 1e-8, atol =
  *        1e-3 m x rtol) against a reference run at rtol 1e-10, and the cost.
  *   bench_lift --once N    one cycle, for instruction counts (callgrind).
+ *   bench_lift --example-once FILE [--once-reps R] [--rigid] [--plastic]
+ *                          one cycle of a lift example as the scene asks (its
+ *                          n, rtol, model, error estimate on), for instruction
+ *                          counts (callgrind); prints the median wall time of R
+ *                          runs (default 1), its counters and events;
+ *                          --rigid / --plastic: that model / landing law.
  *   bench_lift --models EXAMPLES_DIR [--reps R]
  *     3. The two lift examples, one cycle each, as the scene asks (its n,
  *        rtol, and the error estimate on, as the API runs it): numerics.model
@@ -162,6 +168,30 @@ static int models(const char *dir, int reps)
     return 0;
 }
 
+/* One cycle of an example as the API runs it (file comment). */
+static int example_once(const char *file, int reps, int model, int landing)
+{
+    gcase c;
+    if (!load_example(&c, ".", file)) {
+        fprintf(stderr, "cannot read %s\n", file);
+        return 1;
+    }
+    c.p.engine.cycles = 1.0;
+    c.p.estimate_error = 1;
+    c.p.model = model; /* auto: the API's default (load_example asks for full) */
+    c.p.landing = landing;
+    run r;
+    int rc = timed_p(&c.ring, c.n, &c.p, reps, &r);
+    printf("%s: rc=%d model=%s wall=%.3f ms steps=%ld rhs=%ld jac=%ld setups=%ld events:", file, rc,
+           rd_lift_model_name(r.model), 1e3 * r.wall, r.steps, r.rhs, r.jac, r.setups);
+    for (int i = 0; i < r.n_events; i++)
+        printf(" %.4f", r.deg[i]);
+    printf("\n");
+    for (int k = 0; k < 4; k++)
+        free(c.gas[k]);
+    return rc ? 1 : 0;
+}
+
 /* Table 4 (file comment). */
 static int modal_table(const char *dir, int reps)
 {
@@ -206,8 +236,9 @@ static int modal_table(const char *dir, int reps)
 
 int main(int argc, char **argv)
 {
-    int max_n = 1000, reps = 3, once = 0;
-    const char *examples = NULL, *modal_dir = NULL;
+    int max_n = 1000, reps = 3, once = 0, once_reps = 1, once_model = RD_LIFT_MODEL_AUTO,
+        once_landing = RD_LANDING_PENALTY;
+    const char *examples = NULL, *modal_dir = NULL, *example = NULL;
     for (int i = 1; i < argc; i++) {
         if (!strcmp(argv[i], "--max-n") && i + 1 < argc)
             max_n = atoi(argv[++i]);
@@ -217,16 +248,28 @@ int main(int argc, char **argv)
             once = atoi(argv[++i]);
         else if (!strcmp(argv[i], "--models") && i + 1 < argc)
             examples = argv[++i];
+        else if (!strcmp(argv[i], "--example-once") && i + 1 < argc)
+            example = argv[++i];
+        else if (!strcmp(argv[i], "--once-reps") && i + 1 < argc)
+            once_reps = atoi(argv[++i]);
+        else if (!strcmp(argv[i], "--rigid"))
+            once_model = RD_LIFT_MODEL_RIGID;
+        else if (!strcmp(argv[i], "--plastic"))
+            once_landing = RD_LANDING_PLASTIC;
         else if (!strcmp(argv[i], "--modal") && i + 1 < argc)
             modal_dir = argv[++i];
         else {
-            fprintf(stderr, "usage: bench_lift [--max-n N] [--reps R] | --once N | "
-                            "--models EXAMPLES_DIR [--reps R] | --modal EXAMPLES_DIR [--reps R]\n");
+            fprintf(stderr,
+                    "usage: bench_lift [--max-n N] [--reps R] | --once N | --example-once FILE "
+                    "[--once-reps R] [--rigid] [--plastic] | "
+                    "--models EXAMPLES_DIR [--reps R] | --modal EXAMPLES_DIR [--reps R]\n");
             return 2;
         }
     }
     if (reps < 3)
         reps = 3;
+    if (example)
+        return example_once(example, once_reps, once_model, once_landing);
     if (examples)
         return models(examples, reps);
     if (modal_dir)

@@ -143,6 +143,8 @@ typedef struct rd_lift_params {
     double accuracy_deg; /* target on the flank-change angles, deg (auto) */
     int stick; /* 1: the rigid model's sticking phase (rd_lift_stick.c); C only, default 0:
                   it saves steps but not instructions (README) */
+    int cvode; /* 1: CVODE for every model; C only, default 0: the rigid model is integrated
+                  by rd_lift_small.c (the tests compare the two) */
 } rd_lift_params;
 
 typedef struct rd_lift_event {

@@ -2,14 +2,16 @@
  * rd_lift_driver.c — the CVODE driver of the full lift model (file map:
  * rd_lift_model.h): integrator set-up, events (root finding and the flank
  * state machine), output sampling, solver counters, the work bound, progress
- * and cancellation.
+ * and cancellation.  The rigid form is stepped by rd_lift_small.c instead
+ * (CVODE's calls, small_open), unless the sticking phase or rd_lift_params
+ * .cvode asks for CVODE.
  *
  * Integration: SUNDIALS CVODE, BDF of order <= 2, Newton with the analytic
  * Jacobian's blocks, the system solved in second-order form by band LU of
- * half the size (rd_lift_newton.c), so each step costs
- * O(n).  Order <= 2: the undamped elastic modes of a finely cut ring are
- * fast and on the imaginary axis, where BDF3-5 are unstable (n = 200 took
- * 70x more steps); BDF2 is A-stable.  The Jacobian is re-evaluated and
+ * half the size (rd_lift_newton.c), so each step costs O(n).  Order <= 2:
+ * the undamped elastic modes of a finely cut ring are fast and on the
+ * imaginary axis, where BDF3-5 are unstable (n = 200 took 70x more steps);
+ * BDF2 is A-stable.  The Jacobian is re-evaluated and
  * factored at every step: a Newton matrix kept from a closed contact carries
  * that penalty's stiffness after the contact opened, and the modified Newton
  * iteration then converges falsely and holds the ring on the flank (landings
@@ -17,9 +19,8 @@
  * 1-DOF and stiffness checks fail at rtol 1e-6).  Tolerances: rtol; atol on
  * the translations (m), atol / R on the rotations, and atol w_v on their
  * rates with w_v = sqrt(a_ref / c_a), the rate of a flight across the
- * clearance under the scene's largest acceleration a_ref.  The step is
- * bounded by 1 crank degree so no gas-table feature or short contact is
- * stepped over.
+ * clearance under the scene's largest acceleration a_ref.  Steps <= 1 crank
+ * degree, so no gas-table feature or short contact is stepped over.
  *
  * Work bound and cancellation: CVODE is called with at most STEP_CHUNK / n
  * steps per call (about 45 ms: a step costs ~22 us per segment, issue 10's
@@ -57,11 +58,13 @@
 #include <sunmatrix/sunmatrix_dense.h>
 
 #include "rd_lift_model.h"
+#include "rd_lift_small.h"
 #include "rd_lift_stick.h"
 
 #define Q          RD_LIFT_Q
 #define V          RD_LIFT_V
 #define HMAX_DEG   1.0  /* largest step, crank degrees */
+#define HMAX_SMALL 10.0 /* largest step of rd_lift_small without a gas table, deg */
 #define MAX_ORDER  2    /* BDF order bound (header comment) */
 #define STEP_CHUNK 2000 /* segment-steps between monitor calls (header comment) */
 #define N_ROOTS    5
@@ -79,6 +82,7 @@ typedef struct driver {
     SUNLinearSolver LS;
     rd_lift_newton *nw;
     void *cv;
+    rd_lift_small *sm;     /* the small forms' integrator (rd_lift_small.c), instead of cv */
     double *seg;           /* n: per-segment lift of the current sample */
     double deg_per_s;      /* crank degrees per second */
     long chunk;            /* steps per CVode call between monitor calls */
@@ -193,6 +197,7 @@ static void driver_free(driver *d)
 {
     if (d->cv)
         CVodeFree(&d->cv);
+    rd_lift_small_free(d->sm);
     if (d->LS)
         SUNLinSolFree(d->LS);
     if (d->A)
@@ -243,6 +248,26 @@ int rd_lift_form_open(rd_lift_model *m, int model, int modes, rd_lift_form *form
     return RD_OK;
 }
 
+/* The small forms' integrator (rd_lift_small.c) with the driver's roots.
+ * Its steps are bounded by 1 crank degree when a gas table may hold a
+ * feature a step could pass over, else by 10 (the roots are looked at
+ * least that often; the seated phases then take ~1 step per 10 deg). */
+static int small_open(driver *d, const rd_lift_setup *setup, const rd_lift_run *o, rd_error *err)
+{
+    int rc, rootdir[N_ROOTS] = {-1, +1, -1, +1, 0};
+    if (!d->y || !d->abstol)
+        return rd_error_set(err, RD_ENOMEM, "", "Out of memory setting up the lift integrator.");
+    if ((rc = d->form.initial(d->form.user, setup, o->atol, N_VGetArrayPointer(d->y),
+                              N_VGetArrayPointer(d->abstol), err)))
+        return rc;
+    double hmax = (d->m.p->gas.points > 0 ? HMAX_DEG : HMAX_SMALL) / d->deg_per_s;
+    d->sm = rd_lift_small_create(&d->form, d->sunctx, 0.0, N_VGetArrayPointer(d->y), o->rtol,
+                                 N_VGetArrayPointer(d->abstol), hmax, N_ROOTS, roots, rootdir, d);
+    if (!d->sm)
+        return rd_error_set(err, RD_ENOMEM, "", "Out of memory setting up the lift integrator.");
+    return RD_OK;
+}
+
 static int driver_open(driver *d, const rd_ring *ring, const rd_lift_params *p,
                        const rd_lift_setup *setup, int model, const rd_lift_run *o, rd_error *err)
 {
@@ -265,6 +290,9 @@ static int driver_open(driver *d, const rd_ring *ring, const rd_lift_params *p,
         return rd_error_set(err, RD_ENOMEM, "", "Could not create the SUNDIALS context.");
     d->y = N_VNew_Serial(N, d->sunctx);
     d->abstol = N_VNew_Serial(N, d->sunctx);
+    if (!(p->stick && rd_lift_stick_usable(&d->form)) && !p->cvode &&
+        rd_lift_small_usable(&d->form))
+        return small_open(d, setup, o, err);
     if (d->form.blocks) {
         d->LS = rd_lift_newton_create(&d->form, d->sunctx, &d->S, &d->nw);
     } else if (d->y) {
@@ -274,8 +302,8 @@ static int driver_open(driver *d, const rd_ring *ring, const rd_lift_params *p,
             d->LS = d->form.dense ? SUNLinSol_Dense(d->y, d->A, d->sunctx)
                                   : SUNLinSol_Band(d->y, d->A, d->sunctx);
     }
-    d->cv = CVodeCreate(CV_BDF, d->sunctx);
     int stick = p->stick && rd_lift_stick_usable(&d->form);
+    d->cv = CVodeCreate(CV_BDF, d->sunctx);
     if (stick && d->y) {
         d->yd = N_VNew_Serial(N, d->sunctx);
         d->yk = N_VNew_Serial(N, d->sunctx);
@@ -368,6 +396,12 @@ static flank_track initial_flank(driver *d)
 static int read_counters(const driver *d, long *c)
 {
     int flag;
+    if (d->sm) {
+        rd_lift_small_counters(d->sm, c);
+        for (int k = 0; k < N_COUNTERS; k++)
+            c[k] += d->base[k];
+        return 0;
+    }
     if ((flag = CVodeGetNumSteps(d->cv, &c[0])) || (flag = CVodeGetNumRhsEvals(d->cv, &c[1])) ||
         (flag = CVodeGetNumJacEvals(d->cv, &c[2])) ||
         (flag = CVodeGetNumLinSolvSetups(d->cv, &c[3])) ||
@@ -391,12 +425,53 @@ static int keep_counters(driver *d)
     return flag;
 }
 
+static int step_error(driver *d, int flag, rd_error *err);
+
+/* The integrator's own time (CVODE's or rd_lift_small's), s. */
+static int current_time(const driver *d, double *tc)
+{
+    if (d->sm) {
+        *tc = rd_lift_small_time(d->sm);
+        return CV_SUCCESS;
+    }
+    return CVodeGetCurrentTime(d->cv, tc);
+}
+
+/* One call of the integrator towards tout with at most max_steps steps
+ * (CVODE's CV_NORMAL conventions, rd_lift_small.h), and its root info. */
+static int integrator_solve(driver *d, double tout, long max_steps, double *t)
+{
+    int flag;
+    if (d->sm) {
+        rd_lift_small_set_max_steps(d->sm, max_steps);
+        return rd_lift_small_solve(d->sm, tout, N_VGetArrayPointer(d->y), t);
+    }
+    if ((flag = CVodeSetMaxNumSteps(d->cv, max_steps)))
+        return flag;
+    return CVode(d->cv, tout, d->y, t, CV_NORMAL);
+}
+
+static int root_info(const driver *d, int *rf)
+{
+    if (d->sm) {
+        rd_lift_small_root_info(d->sm, rf);
+        return CV_SUCCESS;
+    }
+    return CVodeGetRootInfo(d->cv, rf);
+}
+
 /* A plastic landing (rd_lift.h): the form arrests the ring's velocity
  * towards the flank, and CVODE restarts from that state at the root (its
  * counters carry over in d->base). */
 static int land_plastic(driver *d, double t, int upper, rd_error *err)
 {
     int flag;
+    if (d->sm) { /* its counters run on over a restart */
+        d->form.impact(d->form.user, N_VGetArrayPointer(d->y), upper);
+        if ((flag = rd_lift_small_reinit(d->sm, t, N_VGetArrayPointer(d->y))))
+            return step_error(d, flag, err);
+        return RD_OK;
+    }
     if ((flag = keep_counters(d)))
         return cv_fail(d, flag, "counter query", err);
     d->form.impact(d->form.user, N_VGetArrayPointer(d->y), upper);
@@ -412,7 +487,7 @@ static int step_error(driver *d, int flag, rd_error *err)
     double tc = 0.0, total = d->m.p->engine.cycles * 720.0;
     long c[N_COUNTERS], nst;
     int f2;
-    if ((f2 = CVodeGetCurrentTime(d->cv, &tc)) || (f2 = read_counters(d, c)))
+    if ((f2 = current_time(d, &tc)) || (f2 = read_counters(d, c)))
         return cv_fail(d, f2, "query", err);
     nst = c[0];
     if (flag == CV_TOO_MUCH_WORK)
@@ -443,12 +518,12 @@ static int advance(driver *d, double tout, flank_track *tr, rd_lift_run *o, cons
         long left = d->m.p->max_steps - c[0];
         if (left <= 0)
             return step_error(d, CV_TOO_MUCH_WORK, err);
-        if ((flag = CVodeSetMaxNumSteps(d->cv, left < d->chunk ? left : d->chunk)))
+        flag = integrator_solve(d, tout, left < d->chunk ? left : d->chunk, &t);
+        if (flag == CV_ILL_INPUT)
             return cv_fail(d, flag, "set-up", err);
-        flag = CVode(d->cv, tout, d->y, &t, CV_NORMAL);
         if (flag == CV_ROOT_RETURN) {
             int rf[N_ROOTS];
-            if ((flag = CVodeGetRootInfo(d->cv, rf)))
+            if ((flag = root_info(d, rf)))
                 return cv_fail(d, flag, "query", err);
             d->form.loads(d->form.user, t, yy);
             int was = tr->state;
@@ -527,7 +602,8 @@ static void store_sample(driver *d, int k, double deg, double tout, rd_lift_run 
 {
     rd_lift_model *c = &d->m;
     const double *yy = N_VGetArrayPointer(d->y), *yf = yy;
-    if (d->form.expand) {
+    /* the full state only for what reads it (the reference run stores the lift only) */
+    if (d->form.expand && (o->res || (setup && (setup->sample || setup->energy)))) {
         d->form.expand(d->form.user, yy, d->full);
         yf = d->full;
     }
@@ -549,7 +625,9 @@ static void store_sample(driver *d, int k, double deg, double tout, rd_lift_run 
         res->lift_min[k] = lo;
         res->lift_max[k] = hi;
         res->twist[k] = tw / n;
-        d->form.loads(d->form.user, tout, yy);
+        c->friction = 0.0; /* the loads only for a scene with friction */
+        if (c->p->friction.model != RD_FRICTION_NONE)
+            d->form.loads(d->form.user, tout, yy);
         res->friction_force[k] = c->friction;
         res->flank[k] =
             L < c->eps ? RD_FLANK_LOWER : (L > c->ca - c->eps ? RD_FLANK_UPPER : RD_FLANK_FREE);
@@ -597,28 +675,23 @@ int rd_lift_integrate(const rd_ring *ring, const rd_lift_params *p, const rd_lif
         double deg = fmin(k * p->step_deg, total), tout = deg / d.deg_per_s;
         if (k > 0 && (rc = advance_or_stick(&d, tout, &tr, o, mon, (double)k / S, err))) {
             double tc = 0.0;
-            o->done = k;
-            if (rc != RD_ELIMIT && rc != RD_ECANCELED && rc != RD_ETIMEOUT)
-                goto out;
-            if (CVodeGetCurrentTime(d.cv, &tc) == CV_SUCCESS)
-                o->reached_deg = tc * d.deg_per_s; /* a partial result may keep the samples */
-            goto stopped;
+            o->done = k; /* a stopped run's partial result may keep the samples */
+            if (current_time(&d, &tc) == CV_SUCCESS)
+                o->reached_deg = tc * d.deg_per_s;
+            break;
         }
         store_sample(&d, k, deg, tout, o, setup);
         if ((rc = rd_monitor_report(mon, (k + 1.0) / S, err))) {
             o->done = k + 1;
             o->reached_deg = deg;
-            goto stopped;
+            break;
         }
     }
-    if (o->res)
-        rc = store_counters(&d, o->res, err);
-    goto out;
-stopped: /* the work done so far, for a partial result (its rc stands) */
-    if (o->res) {
-        rd_error ignored;
-        rd_error_init(&ignored);
-        store_counters(&d, o->res, &ignored);
+    /* the work done, also by a run stopped early (for its partial result) */
+    if (o->res && (rc == RD_OK || rc == RD_ELIMIT || rc == RD_ECANCELED || rc == RD_ETIMEOUT)) {
+        rd_error ignored = {0};
+        int c = store_counters(&d, o->res, rc ? &ignored : err);
+        rc = rc ? rc : c;
     }
 out:
     driver_free(&d);

@@ -133,10 +133,12 @@ static void test_rigid_vs_full(void)
  * and root finding), at the same tolerances, on the axisymmetric scenes
  * without friction.  Flank changes within 0.01 deg (the issue's bound;
  * measured 1.5e-4 deg: both runs' own error at rtol 1e-8).  Seated samples
- * (both on the same flank, L < eps = 1 % c_a): lift within 2e-5 c_a
- * (measured 7.3e-6: these include the first rise off the flank before a
- * leave is confirmed, where the flights start 1e-4 deg apart; the brief's
- * 1e-6 holds only on the strictly pressed samples).  Free samples: within
+ * (both on the same flank, L < eps = 1 % c_a): lift within 2e-4 c_a
+ * (measured 7.3e-6 while the twist's tolerance was atol / R, 7.3e-5 with
+ * atol / (b / 2) (rd_lift_rigid.c): these include the first rise off the
+ * flank before a leave is confirmed, where the flights start 1e-4 deg apart;
+ * the brief's 1e-6 holds only on the strictly pressed samples; 2e-4 c_a is
+ * still 0.0007 deg of a flight).  Free samples: within
  * 0.3 % c_a (0.01 deg at a flight speed of ~0.3 c_a per degree; measured
  * 5.5e-5).  And the phase must have run: fewer steps. */
 static void test_stick_vs_plain(void)
@@ -168,6 +170,7 @@ static void test_stick_vs_plain(void)
         int rc = run(&p, RD_LIFT_MODEL_RIGID, 20, &a, &err);
         CHECK(rc == RD_OK, "%s sticking: %s", cases[j].what, err.message);
         p.stick = 0;
+        p.cvode = 1; /* the plain CVODE integration the phase replaces */
         int rc2 = run(&p, RD_LIFT_MODEL_RIGID, 20, &b, &err);
         CHECK(rc2 == RD_OK, "%s plain: %s", cases[j].what, err.message);
         if (rc == RD_OK && rc2 == RD_OK) {
@@ -180,13 +183,138 @@ static void test_stick_vs_plain(void)
                     df = fmax(df, e);
             }
             CHECK(d < 0.01, "%s: sticking moves flank changes by %g deg", cases[j].what, d);
-            CHECK(ds < 2e-5, "%s: seated lift differs by %g c_a", cases[j].what, ds);
+            CHECK(ds < 2e-4, "%s: seated lift differs by %g c_a", cases[j].what, ds);
             CHECK(df < 3e-3, "%s: free lift differs by %g c_a", cases[j].what, df);
             CHECK(a.steps < b.steps, "%s: steps %ld vs %ld", cases[j].what, a.steps, b.steps);
             fprintf(stderr,
                     "    %-22s %d flank changes, stick - plain <= %.2e deg, lift seated %.1e, "
                     "free %.1e c_a, steps %ld vs %ld\n",
                     cases[j].what, a.n_events, d, ds, df, a.steps, b.steps);
+        }
+        rd_lift_result_cleanup(&a);
+        rd_lift_result_cleanup(&b);
+    }
+}
+
+/* The rigid model's own integrator (rd_lift_small.c, TR-BDF2, steps ending
+ * at every root) against CVODE's BDF (rd_lift_params.cvode), a separately
+ * written method, on the same equations: a battery of scenes, the
+ * integrator at rtol 1e-8 against CVODE converged at rtol 1e-10 (its flank
+ * changes move by < 1e-4 deg from 1e-9 to 1e-10 on these scenes).  Flank
+ * changes within 0.005 deg and the lift within 3e-3 of the clearance (a
+ * flight crosses ~0.3 c_a per degree, so 0.005 deg is 1.5e-3 c_a; twice
+ * that for the lift at a sample just after a landing, where the settling
+ * of the stiff contact is least accurate).  With Coulomb friction 0.02 deg:
+ * its leave near 316 deg is decided by the twist's edge lift and converges
+ * slowly in rtol (measured at rtol 1e-8: 0.007 deg off this integrator,
+ * 0.009 deg CVODE). */
+static void test_small_vs_cvode(void)
+{
+    struct {
+        const char *what;
+        double rpm, ca;
+        int gravity, gas, fric, landing;
+    } cases[] = {
+        {"1000 rpm inertia", 1000.0, 3e-5, 0, 0, RD_FRICTION_NONE, RD_LANDING_PENALTY},
+        {"1000 rpm plastic", 1000.0, 3e-5, 0, 0, RD_FRICTION_NONE, RD_LANDING_PLASTIC},
+        {"100 rpm gravity 100 um", 100.0, 1e-4, 1, 0, RD_FRICTION_NONE, RD_LANDING_PENALTY},
+        {"8000 rpm 5 um", 8000.0, 5e-6, 1, 0, RD_FRICTION_NONE, RD_LANDING_PENALTY},
+        {"6000 rpm gas fixed", 6000.0, 3e-5, 1, RD_GAS_AREA_FIXED + 1, RD_FRICTION_NONE,
+         RD_LANDING_PENALTY},
+        {"6000 rpm gas dynamic", 6000.0, 3e-5, 1, RD_GAS_AREA_DYNAMIC + 1, RD_FRICTION_NONE,
+         RD_LANDING_PENALTY},
+        {"1000 rpm Coulomb", 1000.0, 3e-5, 0, 0, RD_FRICTION_COULOMB, RD_LANDING_PENALTY},
+        {"3000 rpm Stribeck gas", 3000.0, 3e-5, 1, RD_GAS_AREA_FIXED + 1, RD_FRICTION_STRIBECK,
+         RD_LANDING_PENALTY},
+    };
+    for (size_t j = 0; j < sizeof cases / sizeof cases[0]; j++) {
+        rd_lift_params p;
+        rd_lift_params_default(&p);
+        p.engine.speed_rpm = cases[j].rpm;
+        p.engine.cycles = 1.0;
+        p.groove.axial_clearance = cases[j].ca;
+        p.gravity = cases[j].gravity;
+        p.friction.model = cases[j].fric;
+        p.landing = cases[j].landing;
+        p.estimate_error = 0;
+        p.rtol = 1e-8;
+        p.atol = 1e-11;
+        if (cases[j].gas)
+            gas_tables(&p, cases[j].gas - 1);
+        rd_lift_result a, b;
+        rd_error err;
+        int rc = run(&p, RD_LIFT_MODEL_RIGID, 20, &a, &err);
+        CHECK(rc == RD_OK, "%s small: %s", cases[j].what, err.message);
+        p.cvode = 1;
+        p.rtol = 1e-10;
+        p.atol = 1e-13;
+        int rc2 = run(&p, RD_LIFT_MODEL_RIGID, 20, &b, &err);
+        CHECK(rc2 == RD_OK, "%s CVODE: %s", cases[j].what, err.message);
+        if (rc == RD_OK && rc2 == RD_OK) {
+            double d = event_diff(&a, &b), dl = 0.0;
+            for (int k = 0; k < a.samples; k++)
+                dl = fmax(dl, fabs(a.lift[k] - b.lift[k]) / cases[j].ca);
+            CHECK(a.n_events > 0 || cases[j].rpm < 200.0, "%s: no flank change", cases[j].what);
+            double tol = cases[j].fric == RD_FRICTION_COULOMB ? 0.02 : 0.005;
+            CHECK(d < tol, "%s: flank changes differ by %g deg", cases[j].what, d);
+            CHECK(dl < 3e-3, "%s: lift differs by %g c_a", cases[j].what, dl);
+            fprintf(stderr,
+                    "    %-24s %2d flank changes, small - CVODE 1e-10 <= %.1e deg, lift %.1e c_a, "
+                    "steps %ld vs %ld\n",
+                    cases[j].what, a.n_events, d, dl, a.steps, b.steps);
+        }
+        rd_lift_result_cleanup(&a);
+        rd_lift_result_cleanup(&b);
+    }
+}
+
+/* The rigid model's error estimate (the rerun at rtol/10) is a claim: on a
+ * battery at the default rtol 1e-6 it must track the true error (against
+ * the same model converged at rtol 1e-10) within x3, for the flank-change
+ * angles and for the lift.  Measured ratios 0.77-1.15: the integrator's
+ * global error goes as ~rtol^(2/3), so the rerun's difference is ~0.78 of
+ * the error. */
+static void test_estimate_tracks(void)
+{
+    struct {
+        double rpm, ca;
+        int gravity, landing;
+    } cases[] = {
+        {1000.0, 3e-5, 0, RD_LANDING_PENALTY}, {300.0, 3e-5, 1, RD_LANDING_PENALTY},
+        {8000.0, 5e-6, 1, RD_LANDING_PENALTY}, {6000.0, 1e-4, 1, RD_LANDING_PENALTY},
+        {3000.0, 3e-5, 0, RD_LANDING_PLASTIC},
+    };
+    for (size_t j = 0; j < sizeof cases / sizeof cases[0]; j++) {
+        rd_lift_params p;
+        rd_lift_params_default(&p);
+        p.engine.speed_rpm = cases[j].rpm;
+        p.engine.cycles = 1.0;
+        p.groove.axial_clearance = cases[j].ca;
+        p.gravity = cases[j].gravity;
+        p.landing = cases[j].landing;
+        rd_lift_result a, b;
+        rd_error err;
+        int rc = run(&p, RD_LIFT_MODEL_RIGID, 20, &a, &err);
+        CHECK(rc == RD_OK, "%g rpm: %s", cases[j].rpm, err.message);
+        p.estimate_error = 0;
+        p.rtol = 1e-10;
+        p.atol = 1e-13;
+        int rc2 = run(&p, RD_LIFT_MODEL_RIGID, 20, &b, &err);
+        CHECK(rc2 == RD_OK, "%g rpm reference: %s", cases[j].rpm, err.message);
+        if (rc == RD_OK && rc2 == RD_OK) {
+            double de = event_diff(&a, &b), dl = 0.0;
+            for (int k = 0; k < a.samples; k++)
+                dl = fmax(dl, fabs(a.lift[k] - b.lift[k]) / cases[j].ca);
+            CHECK(a.n_events > 0 && de < 1e9, "%g rpm: flank changes differ", cases[j].rpm);
+            CHECK(a.event_error_deg <= 3.0 * de && a.event_error_deg >= de / 3.0,
+                  "%g rpm: event estimate %.3g deg, true %.3g deg", cases[j].rpm, a.event_error_deg,
+                  de);
+            CHECK(a.error_estimate <= 3.0 * dl && a.error_estimate >= dl / 3.0,
+                  "%g rpm: lift estimate %.3g, true %.3g c_a", cases[j].rpm, a.error_estimate, dl);
+            fprintf(stderr,
+                    "    %5.0f rpm estimate / true: flank changes %.3g / %.3g deg, lift %.3g / "
+                    "%.3g c_a\n",
+                    cases[j].rpm, a.event_error_deg, de, a.error_estimate, dl);
         }
         rd_lift_result_cleanup(&a);
         rd_lift_result_cleanup(&b);
@@ -372,6 +500,8 @@ int main(void)
     test_rigid_extremes();
     test_rigid_vs_full();
     test_stick_vs_plain();
+    test_small_vs_cvode();
+    test_estimate_tracks();
     test_default_answers();
     return check_done();
 }
