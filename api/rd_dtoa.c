@@ -20,17 +20,15 @@
  * products are exact rather than from truncated tables.)
  *
  * Exact 128-bit products hold for 0 <= -q <= 31 (u 5^31 < 2^128) and for
- * 0 < q <= 27 with e2 - q <= 72: |x| from about 1e-14 to 1e44, the numbers
- * a result holds.  Outside it (and for an exact tie in rd_dtoa_digits) the
- * text comes from the C library's correctly rounded printf, whose digits
- * then go through the same layout.
+ * 0 < q <= 27 with -64 <= e2 - q <= 72 (u << (e2 - q) divided by 5^q, or u
+ * by 5^q << (q - e2)): |x| from about 1e-14 to 1e44, the numbers a result
+ * holds.  Outside it the text comes from the C library's correctly
+ * rounded printf, whose digits then go through the same layout.
  *
- * rd_dtoa_digits(x, P) for P <= 15 and normal x: the P-digit rounding of x
- * is the shortest digits D when D has at most P digits (the P-digit grid is
- * coarser than the ulp, so D, within half an ulp of x, is the grid point
- * nearest x); else it is D rounded to P digits, unless D is itself a
- * rounding tie (no P-digit tie can lie strictly between x and D: it would
- * be a shorter, or an equally short and nearer, point of the interval).
+ * rd_dtoa_digits(x, P) needs no shortest digits: with q such that x 10^-q
+ * has P digits before the point, w = floor(2 x 10^-q) (the same exact
+ * product) holds the P digits and the half bit, and its exactness tells an
+ * exact tie (rounded to even, as printf rounds) from a remainder above it.
  */
 #include "rd_dtoa.h"
 
@@ -78,14 +76,35 @@ typedef struct decimal {
     int n, e10;
 } decimal;
 
+/* 10^k, k = 0..19. */
+static const uint64_t ten_pow[20] = {1u,
+                                     10u,
+                                     100u,
+                                     1000u,
+                                     10000u,
+                                     100000u,
+                                     1000000u,
+                                     10000000u,
+                                     100000000u,
+                                     1000000000u,
+                                     10000000000u,
+                                     100000000000u,
+                                     1000000000000u,
+                                     10000000000000u,
+                                     100000000000000u,
+                                     1000000000000000u,
+                                     10000000000000000u,
+                                     100000000000000000u,
+                                     1000000000000000000u,
+                                     10000000000000000000u};
+
+/* Decimal digits of d (1 for 0): t = floor(bits log10 2) (1233/4096 is
+ * log10 2 rounded down, exact enough below 2^64) is the count or one short. */
 static int count_digits(uint64_t d)
 {
-    int n = 1;
-    while (d >= 10) {
-        d /= 10;
-        n++;
-    }
-    return n;
+    d |= 1;
+    int t = ((64 - __builtin_clzll(d)) * 1233) >> 12;
+    return t + (d >= ten_pow[t]);
 }
 
 static void strip_zeros(decimal *v)
@@ -119,11 +138,17 @@ static int scale(uint64_t u, int e2, int q, uint64_t *v, int *exact)
         }
         return 0;
     }
-    if (q > 27 || e2 - q < 0 || e2 - q > 72)
+    if (q > 27 || e2 - q > 72 || q - e2 > 64)
         return -1;
-    u128 num = (u128)u << (e2 - q);
-    *v = (uint64_t)(num / pow5[q]);
-    *exact = num % pow5[q] == 0;
+    if (e2 >= q) {
+        u128 num = (u128)u << (e2 - q);
+        *v = (uint64_t)(num / pow5[q]);
+        *exact = num % pow5[q] == 0;
+    } else { /* u / (5^q 2^(q - e2)) */
+        u128 den = (u128)pow5[q] << (q - e2);
+        *v = (uint64_t)(u / den);
+        *exact = u % den == 0;
+    }
     return 0;
 }
 
@@ -225,7 +250,15 @@ static int layout(int neg, const decimal *v, int expo, char *buf)
             *p++ = '.';
             p = put_digits(p, dig + 1, n - 1);
         }
-        p += sprintf(p, "e%d", x10);
+        *p++ = 'e';
+        if (x10 < 0)
+            *p++ = '-';
+        int ax = abs(x10);
+        if (ax >= 100)
+            *p++ = (char)('0' + ax / 100);
+        if (ax >= 10)
+            *p++ = (char)('0' + ax / 10 % 10);
+        *p++ = (char)('0' + ax % 10);
     } else if (x10 < 0) {
         *p++ = '0', *p++ = '.';
         for (int i = 0; i < -x10 - 1; i++)
@@ -247,8 +280,9 @@ static int layout(int neg, const decimal *v, int expo, char *buf)
 static int zero_or_special(double x, char *buf)
 {
     const char *text = !isfinite(x) ? "null" : signbit(x) ? "-0" : "0";
-    strcpy(buf, text);
-    return (int)strlen(text);
+    int n = !isfinite(x) ? 4 : signbit(x) ? 2 : 1;
+    memcpy(buf, text, (size_t)n + 1);
+    return n;
 }
 
 int rd_dtoa_shortest(double x, char *buf)
@@ -265,24 +299,40 @@ int rd_dtoa_shortest(double x, char *buf)
     return layout(signbit(x) != 0, &v, expo_len < fixed_len, buf);
 }
 
-/* The shortest digits rounded to p (<= 15) digits for a normal x > 0;
- * -1 when the fast way does not apply. */
-static int round_exact(double x, int p, decimal *v)
+/* x > 0 (finite) rounded to p <= 17 digits, exactly: q such that x 10^-q
+ * has p digits before the point, then w = floor(2 x 10^-q) and whether it
+ * is exact give the digits (w / 2) and the rounding: up when the dropped
+ * part is over a half, or exactly a half and the digits odd (printf's ties
+ * to even).  -1 outside the exact range. */
+static int round_direct(double x, int p, decimal *v)
 {
-    if (x < 0x1p-1022 || shortest_exact(x, v) != 0)
-        return -1;
-    if (v->n <= p)
+    uint64_t bits;
+    memcpy(&bits, &x, sizeof bits);
+    uint64_t frac = bits & ((UINT64_C(1) << 52) - 1);
+    int bexp = (int)((bits >> 52) & 0x7ff);
+    uint64_t m = bexp ? frac | (UINT64_C(1) << 52) : frac;
+    int e = bexp ? bexp - 1075 : -1074;
+    int lg2 = 63 - __builtin_clzll(m) + e;              /* 2^lg2 <= x < 2^(lg2+1) */
+    int x10 = (int)floor(lg2 * 0.30102999566398119521); /* log10 x's floor, or one short */
+    for (int attempt = 0; attempt < 2; attempt++, x10++) {
+        int q = x10 - (p - 1), exact;
+        uint64_t w;
+        if (scale(2 * m, e, q, &w, &exact) != 0)
+            return -1;
+        uint64_t d = w >> 1;
+        if (d >= ten_pow[p])
+            continue; /* x10 was one short */
+        d += (w & 1) && (!exact || (d & 1));
+        if (d == ten_pow[p]) { /* rounded up to the next power of ten */
+            d = ten_pow[p - 1];
+            q++;
+        }
+        v->d = d;
+        v->e10 = q;
+        strip_zeros(v);
         return 0;
-    uint64_t div = 1;
-    for (int i = 0; i < v->n - p; i++)
-        div *= 10;
-    uint64_t rem = v->d % div;
-    if (2 * rem == div)
-        return -1; /* D is a tie: which side x lies on decides */
-    v->d = v->d / div + (2 * rem > div);
-    v->e10 += v->n - p;
-    strip_zeros(v);
-    return 0;
+    }
+    return -1;
 }
 
 int rd_dtoa_digits(double x, int digits, char *buf)
@@ -292,7 +342,7 @@ int rd_dtoa_digits(double x, int digits, char *buf)
     int p = digits < 1 ? 1 : digits > 17 ? 17 : digits;
     decimal v;
     double a = fabs(x);
-    if (p > 15 || round_exact(a, p, &v) != 0)
+    if (round_direct(a, p, &v) != 0)
         printf_digits(a, p, &v);
     int x10 = v.e10 + v.n - 1;
     return layout(signbit(x) != 0, &v, x10 < -4 || x10 >= p, buf);
