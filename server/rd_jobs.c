@@ -53,6 +53,7 @@
 #include <jansson.h>
 
 #include "rd_gzip.h"
+#include "rd_json.h"
 #include "rd_scene_facts.h"
 
 /* How long DELETE waits for a running job to acknowledge the cancellation. */
@@ -562,7 +563,7 @@ static json_t *job_object(const struct snap *s)
 static char *render_head(const struct snap *s)
 {
     json_t *o = job_object(s);
-    char *head = o ? json_dumps(o, JSON_COMPACT | JSON_REAL_PRECISION(6)) : NULL;
+    char *head = o ? rd_json_dumps(o, 6, 0) : NULL; /* json_dumps's bytes, faster */
     json_decref(o);
     return head;
 }
