@@ -7,8 +7,9 @@
  *   rd_dtoa_shortest  the fewest significant digits that strtod reads back
  *                     as x (of those, the ones nearest x), in whichever of
  *                     fixed and exponent notation is shorter;
- *   rd_dtoa_digits    x rounded to `digits` significant digits: the text
- *                     printf("%.<digits>g") gives, exponent respelled as above.
+ *   rd_dtoa_digits    x rounded to `digits` (1..17, clamped) significant
+ *                     digits: the text printf("%.<digits>g") gives, exponent
+ *                     respelled as above.
  * Both write at most RD_DTOA_SIZE bytes with the NUL into `buf` and return
  * the length; a non-finite x gives "null" (JSON has no spelling for it). */
 #ifndef RD_DTOA_H
