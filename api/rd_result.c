@@ -20,6 +20,7 @@
 #include <time.h>
 
 #include "rd_api.h"
+#include "rd_json.h"
 #include "rd_registry.h"
 #include "rd_scene.h"
 #include "rd_warnings.h"
@@ -247,7 +248,7 @@ int rd_scene_run_doc(const rd_scene *scene, const rd_monitor *mon, rd_result_doc
 
 char *rd_result_doc_json(const rd_result_doc *doc)
 {
-    return json_dumps(doc->result, JSON_COMPACT | JSON_REAL_PRECISION(RD_RESULT_REAL_DIGITS));
+    return rd_json_dumps(doc->result, RD_RESULT_REAL_DIGITS, 0);
 }
 
 char *rd_result_doc_csv(const rd_result_doc *doc, rd_error *err)

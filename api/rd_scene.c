@@ -14,6 +14,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "rd_json.h"
 #include "rd_registry.h"
 #include "rd_schema.h"
 
@@ -243,8 +244,7 @@ json_t *rd_scene_echo(const rd_scene *s)
 char *rd_scene_to_json(const rd_scene *scene)
 {
     json_t *echo = rd_scene_echo(scene);
-    size_t flags = JSON_COMPACT | JSON_REAL_PRECISION(RD_SCENE_REAL_DIGITS);
-    char *text = echo ? json_dumps(echo, flags) : NULL;
+    char *text = echo ? rd_json_dumps(echo, RD_SCENE_REAL_DIGITS, 0) : NULL;
     json_decref(echo);
     return text;
 }

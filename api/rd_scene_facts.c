@@ -10,6 +10,7 @@
 
 #include <jansson.h>
 
+#include "rd_json.h"
 #include "rd_modal.h"
 #include "rd_scene.h"
 
@@ -21,9 +22,9 @@ const char *rd_scene_name(const rd_scene *scene)
 char *rd_scene_canonical_json(const rd_scene *scene)
 {
     json_t *echo = rd_scene_echo(scene);
-    /* 17 digits: every double prints as the one text that reads back to it. */
-    size_t flags = JSON_COMPACT | JSON_SORT_KEYS | JSON_REAL_PRECISION(17);
-    char *text = echo ? json_dumps(echo, flags) : NULL;
+    /* shortest round trip: every double prints as the one text that reads
+     * back to it */
+    char *text = echo ? rd_json_dumps(echo, 0, 1) : NULL;
     json_decref(echo);
     return text;
 }

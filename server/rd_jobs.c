@@ -55,6 +55,7 @@
 #include <jansson.h>
 
 #include "rd_gzip.h"
+#include "rd_json.h"
 #include "rd_scene_facts.h"
 
 /* How long DELETE waits for a running job to acknowledge the cancellation. */
@@ -100,6 +101,9 @@ struct job {
     uint64_t idem_hash[2]; /* rd_jobs_hash of the body it came with */
     double timeout_s;      /* this job's run time limit */
     double predicted_s;    /* rd_scene_cost_predict, NAN when unknown */
+    /* An inline run's echoed scene until its row is written, once, when it
+     * ends (one store write per small job, not two); NULL: the row exists. */
+    char *unstored_echo;
 };
 
 struct rd_jobs {
@@ -317,6 +321,7 @@ static void job_free(struct job *job)
     free(job->error);
     free(job->name);
     free(job->idem_key);
+    free(job->unstored_echo);
     free(job);
 }
 
@@ -406,14 +411,36 @@ static void retain_locked(rd_jobs *jobs)
         log_store_error("retention", &err);
 }
 
-static void update_store(rd_jobs *jobs, const struct job *job, const char *body)
+/* What only an insert writes: name, cache key, idempotency key (key and
+ * idem are the caller's buffers for the hex texts). */
+static void row_identity(const struct job *job, rd_store_row *row, char key[33], char idem[33])
+{
+    format_key(job->key, key);
+    format_key(job->idem_hash, idem);
+    row->name = job->name;
+    row->cache_key = key;
+    row->idem_key = job->idem_key;
+    row->idem_hash = job->idem_key ? idem : NULL;
+}
+
+/* The job's state into its row (mu held): an update, or the insert of an
+ * inline job that has no row yet. */
+static void update_store(rd_jobs *jobs, struct job *job, const char *body)
 {
     rd_store_row row;
+    char key[33], idem[33];
     rd_error err;
     rd_error_init(&err);
     store_row(job, &row);
-    if (rd_store_update(jobs->cfg.store, &row, body, &err) != RD_OK)
+    if (job->unstored_echo) {
+        row_identity(job, &row, key, idem);
+        if (rd_store_insert(jobs->cfg.store, &row, job->unstored_echo, body, &err) != RD_OK)
+            log_store_error("insert", &err);
+        free(job->unstored_echo);
+        job->unstored_echo = NULL;
+    } else if (rd_store_update(jobs->cfg.store, &row, body, &err) != RD_OK) {
         log_store_error("update", &err);
+    }
 }
 
 /* Ends a job that is not running (queued), or detaches a running one from
@@ -545,7 +572,7 @@ static json_t *job_object(const struct snap *s)
 static char *render_head(const struct snap *s)
 {
     json_t *o = job_object(s);
-    char *head = o ? json_dumps(o, JSON_COMPACT | JSON_REAL_PRECISION(6)) : NULL;
+    char *head = o ? rd_json_dumps(o, 6, 0) : NULL; /* json_dumps's bytes, faster */
     json_decref(o);
     return head;
 }
@@ -773,11 +800,14 @@ static void note_stop_latency_locked(rd_jobs *jobs, const struct job *job, doubl
         jobs->stop_max_s = latency;
 }
 
-/* Writes the end of a run (snapshot `s` with status, error and body) to the store. */
-static int store_end(rd_jobs *jobs, const struct snap *s, int status, const char *error,
-                     const char *body, size_t body_len)
+/* Writes the end of a run (snapshot `s` with status, error and body) to the
+ * store: an update, or with `echo` (an inline run's; `job` is read for its
+ * fixed fields only) the job's one insert. */
+static int store_end(rd_jobs *jobs, const struct job *job, const char *echo, const struct snap *s,
+                     int status, const char *error, const char *body, size_t body_len)
 {
     rd_store_row row;
+    char key[33], idem[33];
     memset(&row, 0, sizeof row);
     memcpy(row.id, s->id, sizeof row.id);
     memcpy(row.analysis, s->analysis, sizeof row.analysis);
@@ -790,7 +820,10 @@ static int store_end(rd_jobs *jobs, const struct snap *s, int status, const char
     row.body_len = body ? body_len : 0;
     rd_error err;
     rd_error_init(&err);
-    int rc = rd_store_update(jobs->cfg.store, &row, body, &err);
+    if (echo)
+        row_identity(job, &row, key, idem);
+    int rc = echo ? rd_store_insert(jobs->cfg.store, &row, echo, body, &err)
+                  : rd_store_update(jobs->cfg.store, &row, body, &err);
     if (rc != RD_OK)
         log_store_error("writing a finished job", &err);
     return rc;
@@ -827,6 +860,11 @@ static void run_job(rd_jobs *jobs, struct job *job, rd_scene *scene, int pooled)
     struct snap s;
     memset(&s, 0, sizeof s);
     int bad = detached ? 0 : snapshot_locked(jobs, job, &s);
+    char *echo = NULL; /* an inline run's row, ours to write (end_locked wrote a detached one's) */
+    if (!detached) {
+        echo = job->unstored_echo;
+        job->unstored_echo = NULL;
+    }
     pthread_mutex_unlock(&jobs->mu);
 
     if (!detached && !bad) {
@@ -844,16 +882,17 @@ static void run_job(rd_jobs *jobs, struct job *job, rd_scene *scene, int pooled)
                 error = error_json(RD_ENOMEM, "Out of memory while storing the result.");
             }
         }
-        if (store_end(jobs, &s, status, error, body, body_len) != RD_OK && body) {
+        if (store_end(jobs, job, echo, &s, status, error, body, body_len) != RD_OK && body) {
             free(body);
             body = NULL;
             free(error);
             status = RD_JOB_FAILED;
             error = error_json(RD_EINTERNAL, "The result could not be written to the job store "
                                              "(the server's log says why).");
-            store_end(jobs, &s, status, error, NULL, 0);
+            store_end(jobs, job, echo, &s, status, error, NULL, 0);
         }
     }
+    free(echo);
     free(result);
     free(s.error);
     free(s.name);
@@ -1209,15 +1248,10 @@ static int insert_row_locked(rd_jobs *jobs, const struct job *job, const char *e
     char key[33], idem[33];
     rd_store_row row;
     store_row(job, &row);
-    format_key(job->key, key);
-    format_key(job->idem_hash, idem);
-    row.name = job->name;
-    row.cache_key = key;
-    row.idem_key = job->idem_key;
-    row.idem_hash = job->idem_key ? idem : NULL;
+    row_identity(job, &row, key, idem);
     rd_error store_err;
     rd_error_init(&store_err);
-    if (rd_store_insert(jobs->cfg.store, &row, echo, &store_err) == RD_OK)
+    if (rd_store_insert(jobs->cfg.store, &row, echo, NULL, &store_err) == RD_OK)
         return RD_OK;
     log_store_error("insert", &store_err);
     return rd_error_set(err, store_err.code == RD_ENOMEM ? RD_ENOMEM : RD_EINTERNAL, "",
@@ -1257,7 +1291,13 @@ int rd_jobs_submit(rd_jobs *jobs, rd_scene *scene, const rd_jobs_submit_opts *o,
             job->deadline = rd_clock_mono_s() + job->timeout_s;
             job->refs++;
         }
-        if ((rc = insert_row_locked(jobs, job, echo, err)) == RD_OK) {
+        if (run_inline) { /* the row is written once, when the run ends */
+            job->unstored_echo = echo;
+            echo = NULL;
+        } else {
+            rc = insert_row_locked(jobs, job, echo, err);
+        }
+        if (rc == RD_OK) {
             push_locked(jobs, job);
             memcpy(out->id, job->id, sizeof out->id);
             if (!run_inline)

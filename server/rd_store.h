@@ -47,8 +47,11 @@ typedef struct rd_store rd_store;
 int rd_store_create(const char *dir, rd_store **out, rd_error *err);
 void rd_store_free(rd_store *store); /* NULL is a no-op */
 
-/* A new row (status queued). */
-int rd_store_insert(rd_store *store, const rd_store_row *row, const char *scene, rd_error *err);
+/* A new row, every field of `row` written: a queued job's, or a finished
+ * job's in one write (an inline run's) with, when `body` is not NULL, its
+ * body (`row->body_len` bytes). */
+int rd_store_insert(rd_store *store, const rd_store_row *row, const char *scene, const char *body,
+                    rd_error *err);
 
 /* Rewrites status, progress, times and error of an existing row and, when
  * `body` is not NULL, stores it (`row->body_len` bytes). */
