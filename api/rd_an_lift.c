@@ -58,7 +58,8 @@ static const rd_field distortion_fields[] = {
     {"order", RD_F_INTEGER, offsetof(rd_distortion, order), RD_MIN(1), RD_MAX(64), .required = 1,
      .desc = "Fourier order k; a JSON integer."},
     {"amplitude", RD_F_NUMBER, offsetof(rd_distortion, amplitude), .required = 1,
-     .desc = "Radius change A_k, m; the sum of |A_k| at most 1 % of the ring diameter."},
+     .desc = "Radius change A_k, m; the sum of |A_k| at most 1 % of the ring diameter, and "
+             "sum |A_k| (k^2 + 2) at most the bore radius (a convex bore, as in contact)."},
     {"phase_deg", RD_F_NUMBER, offsetof(rd_distortion, phase_deg), RD_MIN(-360), RD_MAX(360),
      .desc = "Phase phi_k, degrees from the gap middle."},
     {.key = NULL},
@@ -194,7 +195,10 @@ static const rd_field contact_fields[] = {
     {"stiffness", RD_F_NUMBER, LO(lift.contact_stiffness), RD_MIN(0.0), RD_MAX(1e20),
      .echo = echo_stiffness,
      .desc = "Penalty stiffness k, Pa/m. 0 = a default from the scene's largest flank load and "
-             "the crank speed (echoed as the value used); otherwise 1e3 to 1e20."},
+             "the crank speed (echoed as the value used); otherwise 1e3 to 1e20, and for the "
+             "scene at least 10 P / c_a (P the largest flank pressure: the ring sinks into the "
+             "flank by at most 10 % of the axial clearance) and at most 1e3 times the "
+             "default."},
     {"landing", RD_F_CHOICE, LO(lift.landing), .choices = landing_names,
      .desc = "penalty: a landing is integrated through the damped penalty (default). plastic: "
              "the ring's axial (rigid: and tilt) rate towards the flank is arrested when it "

@@ -45,7 +45,9 @@ static const rd_field scene_fields[] = {
 static const rd_block scene_block = {
     "ModalScene",
     "Free-free natural frequencies and mode shapes of the segmented ring (thesis 3.3). Reads "
-    "ring, discretization (3..2000 segments; closed allowed) and modal.",
+    "ring, discretization (3..2000 segments; closed allowed) and modal.  The slenderness "
+    "n R / min(b, h) x sqrt(max(1, G / E)) (R = (d - b) / 2, G = E / (2 (1 + nu))) may be at "
+    "most 3e5 with the error estimate, 3e6 without: beyond it rounding swamps the low modes.",
     0, 0, scene_fields};
 
 static void defaults(struct rd_scene *s)
@@ -56,7 +58,10 @@ static void defaults(struct rd_scene *s)
 
 static int finish(struct rd_scene *s, rd_error *err)
 {
-    return rd_modal_validate(&s->modal, s->segments, err);
+    int rc = rd_modal_validate(&s->modal, s->segments, err);
+    return rc != RD_OK
+               ? rc
+               : rd_modal_validate_ring(&s->ring, s->segments, s->modal.estimate_error, err);
 }
 
 /* ---- result --------------------------------------------------------------- */

@@ -45,9 +45,19 @@ static const char *const model_names[] = {"auto", "rigid", "full", "modal", NULL
 /* model - 1; stribeck is named (as in lift) but refused by rd_ringpack_validate */
 static const char *const friction_names[] = {"coulomb", "stribeck", NULL};
 
+/* The ranges the pack's solver was found to converge on (README "Limits"):
+ * rtol up to 1e-5 (at 3e-5 the 1 rpm scene fails, at 1e-3..1e-2 pressures go
+ * negative); with friction, rtol up to 1e-6 and at least 100 rpm (below,
+ * its regularization speed, 1e-3 x the mean piston speed, makes the
+ * friction force too stiff: CVODE fails at 30 rpm with mu = 10, at 1 rpm
+ * already with mu = 0.05). */
+#define RTOL_MAX          1e-5
+#define FRICTION_RTOL_MAX 1e-6
+#define FRICTION_RPM_MIN  100.0
+
 static const rd_field engine_fields[] = {
     {"speed_rpm", RD_F_NUMBER, PO(pack.engine.speed_rpm), RD_MIN(1), RD_MAX(30000),
-     .desc = "Crank speed, rpm."},
+     .desc = "Crank speed, rpm; at least 100 with physics.friction."},
     {"crank_radius", RD_F_NUMBER, PO(pack.engine.crank_radius), RD_MIN(0.001), RD_MAX(1.0),
      .desc = "Crank radius r (half the stroke), m."},
     {"rod_length", RD_F_NUMBER, PO(pack.engine.rod_length), RD_MAX(10.0),
@@ -184,8 +194,10 @@ static const rd_field numerics_fields[] = {
      .desc = "The rings' model: auto and rigid integrate the rigid ring (axial lift, hard "
              "flank stops), exact for the pack's axisymmetric scenes; full and modal are not "
              "available in the pack yet (refused)."},
-    {"rtol", RD_F_NUMBER, PO(pack.rtol), RD_MIN(1e-12), RD_MAX(0.01),
-     .desc = "Relative tolerance."},
+    {"rtol", RD_F_NUMBER, PO(pack.rtol), RD_MIN(1e-12), RD_MAX(RTOL_MAX),
+     .desc = "Relative tolerance, at most 1e-5 (1e-6 with friction): looser, the rings' flank "
+             "stops and the gas network go unstable (negative pressures, CVODE failures at 1 "
+             "rpm)."},
     {"atol", RD_F_NUMBER, PO(pack.atol), RD_MIN(1e-16), RD_MAX(1e-05),
      .desc = "Absolute tolerance on the lifts, m (rtol x the crankcase pressure on pressures)."},
     {"max_steps", RD_F_INTEGER, PO(max_steps), RD_MIN(100), RD_MAX(1000000000),
@@ -352,6 +364,28 @@ static int cylinder_finish(struct pack_opts *o, rd_error *err)
     return RD_OK;
 }
 
+/* The ranges above that core's validator (wider) does not know. */
+static int solver_ranges(const struct pack_opts *o, rd_error *err)
+{
+    if (o->pack.rtol > RTOL_MAX)
+        return rd_error_set(err, RD_EINVAL, "/numerics/rtol",
+                            "/numerics/rtol = %g is out of range: allowed 1e-12 to %g (looser, the "
+                            "rings' flank stops and the gas network go unstable: negative "
+                            "pressures, CVODE failures).",
+                            o->pack.rtol, RTOL_MAX);
+    if (!o->friction_given)
+        return RD_OK;
+    if (o->pack.engine.speed_rpm < FRICTION_RPM_MIN || o->pack.rtol > FRICTION_RTOL_MAX)
+        return rd_error_set(err, RD_EINVAL, "/physics/friction",
+                            "/physics/friction needs /engine/speed_rpm >= %g (got %g) and "
+                            "/numerics/rtol <= %g (got %g): below that speed the friction's "
+                            "regularization speed (1e-3 x the mean piston speed) makes it too "
+                            "stiff, and looser tolerances let CVODE fail.",
+                            FRICTION_RPM_MIN, o->pack.engine.speed_rpm, FRICTION_RTOL_MAX,
+                            o->pack.rtol);
+    return RD_OK;
+}
+
 static int finish(struct rd_scene *s, rd_error *err)
 {
     struct pack_opts *o = s->opts;
@@ -364,7 +398,8 @@ static int finish(struct rd_scene *s, rd_error *err)
     o->pack.max_steps = o->max_steps;
     o->pack.friction.model = o->friction_given ? o->friction_model + 1 : RD_FRICTION_NONE;
     int rc = cylinder_finish(o, err);
-    return rc ? rc : rd_ringpack_validate(&o->pack, err);
+    rc = rc ? rc : rd_ringpack_validate(&o->pack, err);
+    return rc ? rc : solver_ranges(o, err);
 }
 
 /* ---- result --------------------------------------------------------------- */

@@ -55,7 +55,9 @@ const rd_block rd_block_ring = {
 
 static const rd_field modal_discretization[] = {
     {"segments", RD_F_INTEGER, AT(segments), RD_MIN(3), RD_MAX(2000),
-     .desc = "Number of rigid segments n."},
+     .desc = "Number of rigid segments n; at most 3e5 min(b, h) / (R sqrt(max(1, G / E))) "
+             "with the error estimate, 3e6 min(b, h) / (...) without (the modal slenderness "
+             "limit)."},
     {"closed", RD_F_BOOL, AT(closed), .desc = "Join the gap (a closed ring)."},
     {.key = NULL},
 };

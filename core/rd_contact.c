@@ -101,6 +101,23 @@ double rd_contact_default_stiffness(const rd_ring_params *p)
     return 1e6 * p->youngs_modulus * s.I_inplane / (p->axial_height * pow(s.R, 4));
 }
 
+double rd_bore_bend_term(int order, double amplitude)
+{
+    return fabs(amplitude) * ((double)order * order + 2.0);
+}
+
+int rd_bore_convex_validate(double bend, double d, rd_error *err)
+{
+    if (!(bend > 0.5 * d))
+        return RD_OK;
+    return rd_error_set(err, RD_EINVAL, "/bore/distortion",
+                        "/bore/distortion: sum of |amplitude| (order^2 + 2) is %.7g m; allowed "
+                        "at most the bore radius %.7g m, so that the bore stays convex (a "
+                        "non-convex bore makes the contact solve fail to converge and is outside "
+                        "the lift model's contact geometry).",
+                        bend, 0.5 * d);
+}
+
 int rd_contact_validate(const rd_contact_opts *o, const rd_ring_params *p, rd_error *err)
 {
     double d = p->diameter;
@@ -140,23 +157,18 @@ int rd_contact_validate(const rd_contact_opts *o, const rd_ring_params *p, rd_er
                                 "%s = %g deg is out of range: allowed -360 to 360 deg.", path,
                                 ds->phase_deg);
         total += fabs(ds->amplitude);
-        bend += fabs(ds->amplitude) * (ds->order * ds->order + 2.0);
+        bend += rd_bore_bend_term(ds->order, ds->amplitude);
     }
     if (total > 0.01 * d)
         return rd_error_set(err, RD_EINVAL, "/bore/distortion",
                             "/bore/distortion: the amplitudes add up to %g m; allowed at most "
                             "%g m (1 %% of the diameter).",
                             total, 0.01 * d);
-    /* The bore must stay convex: the curvature of r = R + sum A_k cos(k t) is
-     * positive when sum |A_k| (k^2 + 2) <= R (to first order in A_k / R).  A
-     * petal-shaped bore (order 30 or 64 at the 1 % amplitude) ends Newton's
-     * continuation unconverged; at this edge orders 4..64 converge. */
-    if (bend > 0.5 * d)
-        return rd_error_set(err, RD_EINVAL, "/bore/distortion",
-                            "/bore/distortion: sum of |amplitude| (order^2 + 2) is %g m; allowed "
-                            "at most the bore radius %g m, so that the bore stays convex (a "
-                            "non-convex bore makes the contact solve fail to converge).",
-                            bend, 0.5 * d);
+    /* A petal-shaped bore (order 30 or 64 at the 1 % amplitude) ends Newton's
+     * continuation unconverged; at the convex edge orders 4..64 converge. */
+    int rc = rd_bore_convex_validate(bend, d, err);
+    if (rc != RD_OK)
+        return rc;
     if (o->points_per_segment < 1 || o->points_per_segment > RD_CONTACT_POINTS_MAX)
         return rd_error_set(err, RD_EINVAL, "/contact/points_per_segment",
                             "/contact/points_per_segment = %d is out of range: allowed 1 to %d.",

@@ -63,11 +63,14 @@
 #include "rd_accuracy.h"
 #include "rd_lift_model.h"
 
-#define LOAD_PENETRATION   1e-3 /* largest load penetration / c_a for the default k */
-#define CONTACT_FREQ_RATIO 3e4  /* flank contact frequency / crank frequency */
-#define UREG_FRACTION      1e-3 /* u_reg / mean piston speed */
-#define MEMORY_BOUND       2e6  /* samples x segments: 16 MB here, ~40 MB as JSON text */
-#define GRAVITY            RD_LIFT_GRAVITY
+#define LOAD_PENETRATION 1e-3 /* largest load penetration / c_a for the default k */
+/* the range of a given k (validate_stiffness) */
+#define STIFFNESS_PENETRATION_MAX 0.1  /* largest load penetration / c_a */
+#define STIFFNESS_DEFAULT_MAX     1e3  /* k / the default k */
+#define CONTACT_FREQ_RATIO        3e4  /* flank contact frequency / crank frequency */
+#define UREG_FRACTION             1e-3 /* u_reg / mean piston speed */
+#define MEMORY_BOUND              2e6  /* samples x segments: 16 MB here, ~40 MB as JSON text */
+#define GRAVITY                   RD_LIFT_GRAVITY
 
 /* ---------------------------------------------------------------- params */
 
@@ -184,43 +187,6 @@ static int validate_tilt(const rd_engine_params *e, rd_error *err)
     return RD_OK;
 }
 
-/* bore.diameter and bore.distortion, as in the contact analysis. */
-static int validate_bore(const rd_lift_bore *b, const rd_ring_params *ring, rd_error *err)
-{
-    double d = ring->diameter, sum = 0.0;
-    if (!isfinite(b->diameter) ||
-        (b->diameter != 0.0 && (b->diameter < 0.98 * d || b->diameter > 1.02 * d)))
-        return rd_error_set(err, RD_EINVAL, "/bore/diameter",
-                            "/bore/diameter = %g m is out of range: 0 (the ring's diameter) or "
-                            "%g to %g m (within 2 %% of it).",
-                            b->diameter, 0.98 * d, 1.02 * d);
-    if (b->n_distortion < 0 || b->n_distortion > RD_LIFT_DISTORTION_MAX)
-        return rd_error_set(err, RD_ELIMIT, "/bore/distortion",
-                            "/bore/distortion has %d terms; at most %d are allowed.",
-                            b->n_distortion, RD_LIFT_DISTORTION_MAX);
-    for (int k = 0; k < b->n_distortion; k++) {
-        char path[64];
-        int rc;
-        snprintf(path, sizeof path, "/bore/distortion/%d/order", k);
-        if (b->distortion[k].order < 1 || b->distortion[k].order > 64)
-            return rd_error_set(err, RD_EINVAL, path, "%s = %d is out of range: allowed 1 to 64.",
-                                path, b->distortion[k].order);
-        snprintf(path, sizeof path, "/bore/distortion/%d/phase_deg", k);
-        if ((rc = check_range(b->distortion[k].phase_deg, -360.0, 360.0, path, "deg", err)))
-            return rc;
-        snprintf(path, sizeof path, "/bore/distortion/%d/amplitude", k);
-        if ((rc = check_range(b->distortion[k].amplitude, -0.01 * d, 0.01 * d, path, "m", err)))
-            return rc;
-        sum += fabs(b->distortion[k].amplitude);
-    }
-    if (sum > 0.01 * d)
-        return rd_error_set(err, RD_EINVAL, "/bore/distortion",
-                            "/bore/distortion: the amplitudes sum to %g m; at most 1 %% of the "
-                            "ring diameter (%g m) is allowed.",
-                            sum, 0.01 * d);
-    return RD_OK;
-}
-
 static int validate_engine(const rd_engine_params *e, rd_error *err)
 {
     int rc;
@@ -326,14 +292,43 @@ static int validate_gas(const rd_gas_params *g, rd_error *err)
     return RD_OK;
 }
 
+static double flank_pressure_scale(const rd_ring_params *ring, const rd_lift_params *p);
+
+/* A given contact stiffness, against the scene: the largest flank pressure
+ * P may push the ring in by at most 10 % of the axial clearance (a softer
+ * flank lets it sink through: 2000 clearances at k = 1e3 on the thesis
+ * scene), and k may be at most 1e3 times the default (stiffer, the error
+ * estimate's two runs stop agreeing on the flank changes: 1e4 times). */
+static int validate_stiffness(const rd_lift_params *p, const rd_ring_params *ring, rd_error *err)
+{
+    double k = p->contact_stiffness;
+    int rc = check_range(k, 1e3, 1e20, "/contact/stiffness", "Pa/m (or 0 for the default)", err);
+    if (rc != RD_OK)
+        return rc;
+    double lo =
+        flank_pressure_scale(ring, p) / (STIFFNESS_PENETRATION_MAX * p->groove.axial_clearance);
+    double hi = STIFFNESS_DEFAULT_MAX * rd_lift_contact_stiffness_default(ring, p);
+    if (!(k >= lo && k <= hi))
+        return rd_error_set(err, RD_EINVAL, "/contact", /* a rule of the scene, not the field */
+                            "/contact/stiffness = %g Pa/m is out of range for this scene: allowed "
+                            "%.4g to %.4g Pa/m (or 0 for the default %.4g).  Below, the largest "
+                            "flank pressure (%.4g Pa) pushes the ring into the flank by more than "
+                            "%g of the axial clearance; above %g times the default the error "
+                            "estimate's runs no longer agree on the flank changes.",
+                            k, lo, hi, rd_lift_contact_stiffness_default(ring, p),
+                            flank_pressure_scale(ring, p), STIFFNESS_PENETRATION_MAX,
+                            STIFFNESS_DEFAULT_MAX);
+    return RD_OK;
+}
+
 /* Contact stiffness, output sampling, tolerances and the work bounds. */
-static int validate_numerics(const rd_lift_params *p, int segments, double ring_d, rd_error *err)
+static int validate_numerics(const rd_lift_params *p, const rd_ring_params *ring, int segments,
+                             rd_error *err)
 {
     int rc;
     const rd_engine_params *e = &p->engine;
-    if (p->contact_stiffness != 0.0 &&
-        (rc = check_range(p->contact_stiffness, 1e3, 1e20, "/contact/stiffness",
-                          "Pa/m (or 0 for the default)", err)))
+    double ring_d = ring->diameter;
+    if (p->contact_stiffness != 0.0 && (rc = validate_stiffness(p, ring, err)))
         return rc;
     if ((rc = check_range(p->step_deg, 1e-3, 90.0, "/output/step_deg", "deg", err)) ||
         (rc = check_range(p->rtol, 1e-12, 1e-2, "/numerics/rtol", "", err)) ||
@@ -409,9 +404,8 @@ int rd_lift_validate(const rd_lift_params *p, const rd_ring_params *ring, int se
                             "allowed 4 to %d.",
                             segments, RD_LIFT_SEGMENTS_MAX);
     if ((rc = validate_engine(&p->engine, err)) || (rc = validate_tilt(&p->engine, err)) ||
-        (rc = validate_bore(&p->bore, ring, err)) || (rc = validate_physics(p, err)) ||
-        (rc = validate_gas(&p->gas, err)) ||
-        (rc = validate_numerics(p, segments, ring->diameter, err)))
+        (rc = rd_lift_bore_validate(&p->bore, ring, err)) || (rc = validate_physics(p, err)) ||
+        (rc = validate_gas(&p->gas, err)) || (rc = validate_numerics(p, ring, segments, err)))
         return rc;
     return RD_OK;
 }

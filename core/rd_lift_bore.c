@@ -17,22 +17,82 @@
  * K - df/dq + eps M (K positive semi-definite, -df/dq of the contacts
  * positive semi-definite, eps M = EPS_M x the largest K_ii / M_ii on the
  * diagonal only fixes the free ring's rigid-body directions, along which the
- * residual is zero) with step halving while the residual grows.  The run
- * starts there at rest.
+ * residual is zero), each step searched along its direction until the
+ * energy's slope vanishes (line_search: the residual is minus the gradient
+ * of a convex energy), converged when the residual is below RES_TOL x the
+ * larger of p0 and the contact pressure of the bore's largest offset.  The
+ * run starts there at rest.  (Halving the step while the residual's size
+ * grew, measured against p0 alone, stalled in a bore 0.01 % larger or
+ * smaller than the ring and never converged without pretension.)
+ *
+ * Validation (rd_lift_bore_validate): the ranges of the bore block, with the
+ * contact analysis' convex-bore rule (rd_bore_convex_validate, rd_static.h).
  */
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "rd_lift_model.h"
+#include "rd_static.h"
 
 #define EPS_M      1e-10 /* regularization of the Newton matrix (header comment) */
-#define NEWTON_MAX 60
-#define RES_TOL    1e-9 /* converged: residual below this x p0 x (bore point area) */
+#define NEWTON_MAX 100
+#define RES_TOL    1e-9 /* converged: residual below this x pressure scale x (bore point area) */
+#define SEARCH_MAX 40   /* regula falsi steps of the line search */
+#define SEARCH_TOL 1e-3 /* the search's slope, relative to its start: enough for Newton */
 
 int rd_lift_bore_distorted(const rd_lift_bore *b, double ring_diameter)
 {
     return (b->diameter > 0.0 && b->diameter != ring_diameter) || b->n_distortion > 0;
+}
+
+/* Range checks of a value: finite and within [lo, hi]. */
+static int bore_range(double v, double lo, double hi, const char *path, const char *unit,
+                      rd_error *err)
+{
+    if (!isfinite(v) || v < lo || v > hi)
+        return rd_error_set(err, RD_EINVAL, path,
+                            "%s = %g %s is out of range: allowed %g to %g %s.", path, v, unit, lo,
+                            hi, unit);
+    return RD_OK;
+}
+
+int rd_lift_bore_validate(const rd_lift_bore *b, const rd_ring_params *ring, rd_error *err)
+{
+    double d = ring->diameter, sum = 0.0, bend = 0.0;
+    if (!isfinite(b->diameter) ||
+        (b->diameter != 0.0 && (b->diameter < 0.98 * d || b->diameter > 1.02 * d)))
+        return rd_error_set(err, RD_EINVAL, "/bore/diameter",
+                            "/bore/diameter = %g m is out of range: 0 (the ring's diameter) or "
+                            "%g to %g m (within 2 %% of it).",
+                            b->diameter, 0.98 * d, 1.02 * d);
+    if (b->n_distortion < 0 || b->n_distortion > RD_LIFT_DISTORTION_MAX)
+        return rd_error_set(err, RD_ELIMIT, "/bore/distortion",
+                            "/bore/distortion has %d terms; at most %d are allowed.",
+                            b->n_distortion, RD_LIFT_DISTORTION_MAX);
+    for (int k = 0; k < b->n_distortion; k++) {
+        char path[64];
+        int rc;
+        snprintf(path, sizeof path, "/bore/distortion/%d/order", k);
+        if (b->distortion[k].order < 1 || b->distortion[k].order > 64)
+            return rd_error_set(err, RD_EINVAL, path, "%s = %d is out of range: allowed 1 to 64.",
+                                path, b->distortion[k].order);
+        snprintf(path, sizeof path, "/bore/distortion/%d/phase_deg", k);
+        if ((rc = bore_range(b->distortion[k].phase_deg, -360.0, 360.0, path, "deg", err)))
+            return rc;
+        snprintf(path, sizeof path, "/bore/distortion/%d/amplitude", k);
+        if ((rc = bore_range(b->distortion[k].amplitude, -0.01 * d, 0.01 * d, path, "m", err)))
+            return rc;
+        sum += fabs(b->distortion[k].amplitude);
+        bend += rd_bore_bend_term(b->distortion[k].order, b->distortion[k].amplitude);
+    }
+    if (sum > 0.01 * d)
+        return rd_error_set(err, RD_EINVAL, "/bore/distortion",
+                            "/bore/distortion: the amplitudes sum to %g m; at most 1 %% of the "
+                            "ring diameter (%g m) is allowed.",
+                            sum, 0.01 * d);
+    return rd_bore_convex_validate(bend, d, err); /* the contact analysis' rule */
 }
 
 int rd_lift_bore_init(rd_lift_model *c, rd_error *err)
@@ -76,6 +136,57 @@ static double residual(rd_lift_model *c, const double *y, double *r, double *tmp
     return s;
 }
 
+/* The trial state ytry = y + lam dq (dq in band order) and its residual r;
+ * returns r . dq, the energy's slope along dq with the sign flipped. */
+static double slope_at(rd_lift_model *c, const double *y, const double *dq, double lam,
+                       double *ytry, double *r, double *tmp, double R, double *res)
+{
+    memcpy(ytry, y, 12 * (size_t)c->n * sizeof *ytry);
+    for (int i = 0; i < c->n; i++)
+        for (int k = 0; k < 6; k++)
+            RD_LIFT_Q(ytry, i)[k] += lam * dq[rd_ring_band_index(c->ring, i, k)];
+    *res = residual(c, ytry, r, tmp, R);
+    double s = 0.0;
+    for (int i = 0; i < c->n; i++)
+        for (int k = 0; k < 6; k++)
+            s += r[6 * i + k] * dq[rd_ring_band_index(c->ring, i, k)];
+    return s;
+}
+
+/* The step along the Newton direction dq: the residual is minus the gradient
+ * of a convex energy (the linear K, penalty contacts affine in q, constant
+ * pretension), so its slope r(lam) . dq falls with lam from r . J^-1 r > 0.
+ * The full step when the slope is still >= 0 there, else the slope's root by
+ * regula falsi (Illinois): the energy falls at every step, where halving
+ * on the residual's size stalled as contacts switched (a ring in a bore
+ * larger or smaller than itself).  Leaves the state in ytry and its residual
+ * in r; returns the residual's size. */
+static double line_search(rd_lift_model *c, const double *y, const double *dq, double *ytry,
+                          double *r, double *tmp, double R)
+{
+    double res, lo = 0.0, hi = 1.0, s_lo = INFINITY;
+    double s_hi = slope_at(c, y, dq, 1.0, ytry, r, tmp, R, &res);
+    if (!(s_hi < 0.0))
+        return res;
+    s_lo = slope_at(c, y, dq, 0.0, ytry, r, tmp, R, &res);
+    double lam = 1.0;
+    for (int it = 0, side = 0; it < SEARCH_MAX && s_lo > 0.0; it++) {
+        lam = (lo * s_hi - hi * s_lo) / (s_hi - s_lo);
+        double s = slope_at(c, y, dq, lam, ytry, r, tmp, R, &res);
+        if (fabs(s) <= SEARCH_TOL * s_lo || hi - lo <= 1e-12 * hi)
+            return res;
+        if (s > 0.0) {
+            lo = lam, s_lo = s;
+            s_hi *= side == 1 ? 0.5 : 1.0, side = 1;
+        } else {
+            hi = lam, s_hi = s;
+            s_lo *= side == -1 ? 0.5 : 1.0, side = -1;
+        }
+    }
+    slope_at(c, y, dq, lam, ytry, r, tmp, R, &res);
+    return res;
+}
+
 /* J = K - Dq + eps M (upper band), from the last residual's Dq. */
 static void newton_matrix(const rd_lift_model *c, rd_band *J, double eps)
 {
@@ -106,7 +217,15 @@ static int static_newton(rd_lift_model *c, double *y, rd_error *err)
             double m = rd_ring_segment_mass_matrix(c->ring, i)[7 * k];
             eps = fmax(eps, EPS_M * RD_BAND_AT(&c->K, g, g) / m);
         }
-    double tol = RES_TOL * c->p0 * c->bo_area, res = rc ? 0.0 : residual(c, y, r, tmp, R);
+    /* the pressure scale: the pretension, or the contact pressure of the
+     * bore's largest offset when that is larger (a ring without pretension,
+     * or one pressed into a smaller bore, whose forces p0 would measure
+     * below their rounding) */
+    double gmax = 0.0;
+    for (size_t j = 0; j < (size_t)c->n * RD_LIFT_ARC_POINTS; j++)
+        gmax = fmax(gmax, fabs(c->bo_gap[j]));
+    double tol = RES_TOL * fmax(c->p0, c->k * gmax) * c->bo_area;
+    double res = rc ? 0.0 : residual(c, y, r, tmp, R);
     int it = 0;
     for (; !rc && res > tol && it < NEWTON_MAX; it++) {
         newton_matrix(c, &J, eps);
@@ -117,18 +236,9 @@ static int static_newton(rd_lift_model *c, double *y, rd_error *err)
                 tmp[rd_ring_band_index(c->ring, i, k)] = r[6 * i + k];
         if ((rc = rd_band_solve(&J, 1, tmp, err)))
             break;
-        double lam = 1.0, rnew = INFINITY;
-        for (int h = 0; h < 30 && !(rnew < res); h++, lam *= 0.5) {
-            memcpy(ytry, y, 12 * (size_t)c->n * sizeof *ytry);
-            for (int i = 0; i < c->n; i++)
-                for (int k = 0; k < 6; k++)
-                    RD_LIFT_Q(ytry, i)[k] += lam * tmp[rd_ring_band_index(c->ring, i, k)];
-            rnew = residual(c, ytry, r, tmp + N, R);
-        }
-        if (!(rnew < res))
-            break;
+        /* the energy falls at every step, the residual's size need not */
+        res = line_search(c, y, tmp, ytry, r, tmp + N, R);
         memcpy(y, ytry, 12 * (size_t)c->n * sizeof *y);
-        res = rnew;
     }
     if (!rc && res > tol)
         rc = rd_error_set(err, RD_ENOCONV, "/bore",

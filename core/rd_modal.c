@@ -81,6 +81,46 @@ int rd_modal_validate(const rd_modal_opts *o, int segments, rd_error *err)
     return RD_OK;
 }
 
+double rd_modal_slenderness(const rd_ring_params *p, int segments)
+{
+    double R = 0.5 * (p->diameter - p->radial_width);
+    double g = 1.0 / (2.0 * (1.0 + p->poisson_ratio)); /* G / E */
+    return segments * R / fmin(p->radial_width, p->axial_height) * sqrt(fmax(1.0, g));
+}
+
+/* The edges were found by solving rings of D = 0.0765 and 5 m, square and
+ * flat (b/h = 1, 20) sections, split and closed, nu from -0.9999 to 0.4999,
+ * at n = 10..2000 (README "Limits").  With the estimate: up to 3e5 every
+ * error estimate agrees within 10 % with the one of a ring 4 times less
+ * slender; at 5e5 one is 3.7 times too large (n = 1000), at 2e6 100 times.
+ * Without it: up to 3e6 the frequencies (scaled by b / R^2) move by at most
+ * 6e-4 against a ring 30 times less slender, at 1e7 by up to 3e-3 (split
+ * rings; closed ones stay below 1e-4), at 1e8 by up to 7 %. */
+int rd_modal_validate_ring(const rd_ring_params *p, int segments, int estimate_error, rd_error *err)
+{
+    double s = rd_modal_slenderness(p, segments);
+    double s_max = estimate_error ? RD_MODAL_SLENDERNESS_MAX : RD_MODAL_SLENDERNESS_MAX_FREQ;
+    if (s <= s_max)
+        return RD_OK;
+    int n_max = (int)floor(segments * s_max / s);
+    const char *why = "the eigen-solve's condition number grows as its square, and beyond it "
+                      "rounding in the stiff axial and shear springs swamps the soft bending "
+                      "modes";
+    const char *what = estimate_error ? " with /modal/error_estimate (3e6 without it)" : "";
+    if (n_max < RD_SEGMENTS_MIN)
+        return rd_error_set(err, RD_EINVAL, "/ring",
+                            "/ring is too slender for the modal analysis: n R / min(b, h) x "
+                            "sqrt(max(1, G / E)) is %.3g at %d segments, allowed up to %g%s even "
+                            "at %d segments; %s.  Use a thicker section (radial_width, "
+                            "axial_height), a smaller diameter or poisson_ratio above -0.5.",
+                            s, segments, s_max, what, RD_SEGMENTS_MIN, why);
+    return rd_error_set(err, RD_EINVAL, "/discretization/segments",
+                        "/discretization/segments = %d is too many for this ring in the modal "
+                        "analysis: the slenderness n R / min(b, h) x sqrt(max(1, G / E)) is "
+                        "%.3g, allowed up to %g%s, so at most %d segments here; %s.",
+                        segments, s, s_max, what, n_max, why);
+}
+
 double rd_modal_thin_ring_inplane_hz(const rd_ring_params *p, int k)
 {
     rd_ring_section s;
@@ -532,7 +572,8 @@ int rd_modal_solve(const rd_ring_params *p, int segments, int closed, const rd_m
     memset(out, 0, sizeof *out);
     int rc;
     if ((rc = rd_ring_validate(p, segments, closed, err)) ||
-        (rc = rd_modal_validate(o, segments, err)))
+        (rc = rd_modal_validate(o, segments, err)) ||
+        (rc = rd_modal_validate_ring(p, segments, o->estimate_error, err)))
         return rc;
     int m = rd_accuracy_refined_segments(segments, RD_SEGMENTS_MAX);
     char what[48];

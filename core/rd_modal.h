@@ -70,6 +70,21 @@ void rd_modal_opts_default(rd_modal_opts *o);
 /* Checks opts against the ring (paths "/modal/modes"). */
 int rd_modal_validate(const rd_modal_opts *o, int segments, rd_error *err);
 
+/* The ring's slenderness at n segments, n R / min(b, h) x sqrt(max(1, G / E)):
+ * the eigen-solve's condition number (stiffest spring over softest mode)
+ * grows as its square, and so does the rounding error of the low modes.
+ * rd_modal_validate_ring refuses a ring above RD_MODAL_SLENDERNESS_MAX when
+ * the error estimate is wanted (it needs the difference of two solves to
+ * well below the discretization error) and above
+ * RD_MODAL_SLENDERNESS_MAX_FREQ without it (frequencies to about 1e-3);
+ * path "/discretization/segments", or "/ring" when even 3 segments are too
+ * many. */
+#define RD_MODAL_SLENDERNESS_MAX      3e5
+#define RD_MODAL_SLENDERNESS_MAX_FREQ 3e6
+double rd_modal_slenderness(const rd_ring_params *p, int segments);
+int rd_modal_validate_ring(const rd_ring_params *p, int segments, int estimate_error,
+                           rd_error *err);
+
 /* Solves; `out` is overwritten and owns its arrays (free with
  * rd_modal_result_cleanup, also after a failure). */
 int rd_modal_solve(const rd_ring_params *p, int segments, int closed, const rd_modal_opts *o,
