@@ -537,20 +537,18 @@ void rd_lift_result_cleanup(rd_lift_result *r)
  * measurable: its flank changes agree with the full model's within 0.035
  * deg (thesis_lift_1000rpm, and the gas example without friction: 0.007
  * deg; test_lift_rigid).  Friction on the running face puts a couple on the
- * ring that the split ring, with its free ends, does not take uniformly,
- * and the rigid ring then misses flank changes by up to
- * ~1 deg on the thesis scenes (measured: 0.94 deg at 1000 rpm Coulomb, where a
- * leave decided by the twist's edge lift moves by ~0.8 deg per 3 % of twist
- * stiffness; 0.91 deg on the 6000 rpm gas example, where the full ring's
- * landings come later because its lift spreads around the circumference in
- * flight, lift_max - lift_min up to 0.09 of the clearance; 0.92 deg at 3000
- * rpm Stribeck).  Over a wider battery (test_lift_auto: 100-8000 rpm,
- * clearances 5-100 um, gas on and off, n = 6) the rigid ring with friction
- * misses by up to 3.7 deg (8000 rpm, 100 um) and at 100 rpm with gas and a
- * 100 um clearance sees 8 flank changes where the full ring sees 12; so no
- * accuracy target admits it and auto gives friction scenes the full model.
- * (A twist-stiffness sensitivity run as an error indicator caught only the
- * first kind of miss, 0.90 deg; 0.01-0.03 deg on the others.)
+ * ring that the split ring, with its free ends, does not take uniformly.
+ * Seated, the ends twist more: the rigid ring takes that with the seated
+ * split ring's twist stiffness (rd_lift_rigid.c), which brings a leave
+ * decided by the twist's edge lift (1000 rpm Coulomb) from 0.95 to 0.27 deg
+ * of full n = 40.  In flight, the ends answer a leave with a wave the middle
+ * does not, and the full ring's landings wait for the part that lags: 0.8-0.9
+ * deg after the rigid ring's on the 6000 rpm gas example, 3.1 deg at 8000
+ * rpm (test_lift_auto), up to 5.9 deg and a different number of flank
+ * changes over a 48-scene battery (README "Models").  No uniform stiffness
+ * holds that, and the Ritz bases tried (static and Krylov shapes of the
+ * split ring, 10-14 dof) land later still; so no accuracy target admits the
+ * rigid ring with friction and auto gives friction scenes the full model.
  *
  * The modal model (rd_lift_modal.c) is not picked by auto: measured against
  * the full model on friction scenes (tests/core/test_lift_modal.c, README
@@ -605,10 +603,10 @@ static void choose_model(const rd_lift_params *p, int n, double ring_d, rd_lift_
                  "around the ring) and without friction the rigid ring is exact for it");
     } else
         snprintf(out->why, sizeof out->why,
-                 "auto: friction twists the split ring non-uniformly, which the rigid ring "
-                 "misses by up to several degrees on flank changes, and the modal model needs "
-                 "more modes than make it cheaper than the full ring (numerics.model = modal "
-                 "by request)");
+                 "auto: with friction the split ring's free ends lift differently from its "
+                 "middle in flight, which delays its landings by up to several degrees against "
+                 "the rigid ring's, and the modal model needs more modes than make it cheaper "
+                 "than the full ring (numerics.model = modal by request)");
 }
 
 /* The two solves of the accuracy driver and what they keep. */

@@ -57,4 +57,10 @@ double rd_lift_friction_ureg(const rd_lift_params *p);
 int rd_lift_jacobian_check(const rd_ring_params *ring, int segments, const rd_lift_params *p,
                            double t, const double *y, double *max_err, rd_error *err);
 
+/* The rigid model's twist stiffnesses of a valid scene (rd_lift_rigid.c),
+ * N m / rad: k[0] of the uniform twist shape, k[1], k[2] of the split ring
+ * seated on its inner, outer edge under a uniform couple. */
+int rd_lift_twist_stiffness(const rd_ring_params *ring, int segments, const rd_lift_params *p,
+                            double k[3], rd_error *err);
+
 #endif

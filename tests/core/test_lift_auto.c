@@ -13,10 +13,12 @@
  * with the full model's at tight tolerances (rigid rtol 1e-8, full 1e-7, so
  * the integration errors, ~0.01 deg for the full model at 1e-7, stay well
  * under the 0.1 deg target and the difference measures the model).
- * Measured: at most 0.041 deg (1000 rpm, gas, 5 um).
+ * Measured: at most 0.027 deg (0.041 deg before the rigid ring took the
+ * seated split ring's twist stiffness, rd_lift_rigid.c).
  * With friction auto must run the full ring at every target, because the
  * rigid ring misses there: one scene checks that the reason still holds
- * (8000 rpm, 30 um: rigid - full measured 3.19 deg, required > 1 deg).
+ * (8000 rpm, 30 um: rigid - full measured 3.08 deg, required > 1 deg: the
+ * in-flight spread of the split ring's lift, README "Lift").
  * Distorted bores and tilted pistons (with and without friction) must get
  * the full ring: the rigid ring cannot represent them.
  * Cost: ~4 s CPU in a Release build, ~20 s under ASan. */
