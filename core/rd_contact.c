@@ -399,9 +399,73 @@ out:
     return rc;
 }
 
+/* A solved level's shape, for the next level's start: per segment its
+ * reference angle (rad), radial and tangential displacement (m) and turn
+ * about the axis (rad). */
+typedef struct warm_state {
+    int n;
+    double *ang, *ur, *ut, *rz;
+} warm_state;
+
+static void warm_free(warm_state *w)
+{
+    free(w->ang);
+    free(w->ur);
+    free(w->ut);
+    free(w->rz);
+    memset(w, 0, sizeof *w);
+}
+
+static int warm_save(const rd_static_problem *pb, warm_state *w)
+{
+    warm_free(w);
+    size_t sz = (size_t)pb->n * sizeof(double);
+    w->ang = malloc(sz), w->ur = malloc(sz), w->ut = malloc(sz), w->rz = malloc(sz);
+    if (!w->ang || !w->ur || !w->ut || !w->rz)
+        return RD_ENOMEM;
+    w->n = pb->n;
+    for (int i = 0; i < pb->n; i++) {
+        const double *P = rd_ring_reference_point(pb->ring, i), *x = pb->x + 3 * i;
+        double a = rd_ring_get_segment_angle(pb->ring, i), d[2] = {x[0] - P[0], x[1] - P[1]};
+        w->ang[i] = a;
+        w->ur[i] = d[0] * cos(a) + d[1] * sin(a);
+        w->ut[i] = -d[0] * sin(a) + d[1] * cos(a);
+        w->rz[i] = atan2(pb->Q[9 * i + 3], pb->Q[9 * i]);
+    }
+    return RD_OK;
+}
+
+/* The state of pb interpolated (linearly in the angle, extrapolated past
+ * the end segments) from a coarser level's shape.  The contact is planar
+ * (in-plane loads, the support holding the axial motion and the tilts), so
+ * a turn about the axis is the whole rotation. */
+static void warm_start(rd_static_problem *pb, const warm_state *w)
+{
+    for (int i = 0, j = 0; i < pb->n; i++) {
+        double a = rd_ring_get_segment_angle(pb->ring, i);
+        while (j < w->n - 2 && w->ang[j + 1] < a)
+            j++;
+        double t = (a - w->ang[j]) / (w->ang[j + 1] - w->ang[j]);
+        double ur = w->ur[j] + t * (w->ur[j + 1] - w->ur[j]);
+        double ut = w->ut[j] + t * (w->ut[j + 1] - w->ut[j]);
+        double rz = w->rz[j] + t * (w->rz[j + 1] - w->rz[j]);
+        const double *P = rd_ring_reference_point(pb->ring, i);
+        double *x = pb->x + 3 * i, *Q = pb->Q + 9 * i;
+        x[0] = P[0] + ur * cos(a) - ut * sin(a);
+        x[1] = P[1] + ur * sin(a) + ut * cos(a);
+        x[2] = P[2];
+        double R[9] = {cos(rz), -sin(rz), 0, sin(rz), cos(rz), 0, 0, 0, 1};
+        memcpy(Q, R, sizeof R);
+    }
+    /* the bore in place, the law still wide: the path's last part */
+    pb->lambda_start = BORE_DONE;
+}
+
+/* One solve at `segments`; from the coarser shape `from` if it has one,
+ * the solved shape left in `to` if given. */
 static int contact_once(const rd_ring_params *p, int segments, const rd_contact_opts *o,
-                        const rd_static_opts *so, const rd_monitor *mon, rd_contact_result *out,
-                        rd_error *err)
+                        const rd_static_opts *so, const rd_monitor *mon, const warm_state *from,
+                        warm_state *to, rd_contact_result *out, rd_error *err)
 {
     rd_static_problem pb;
     int rc;
@@ -411,10 +475,13 @@ static int contact_once(const rd_ring_params *p, int segments, const rd_contact_
     if ((rc = rd_static_problem_init(&pb, ring, RD_STATIC_CONTACT)) != RD_OK ||
         (rc = contact_setup(&pb, p, o)) != RD_OK)
         goto out;
+    if (from && from->n >= 2)
+        warm_start(&pb, from);
     if ((rc = rd_static_solve_path(&pb, so, mon, &out->stats, err)) != RD_OK)
         goto out;
     rd_static_stats_fill(&pb, &out->stats);
-    rc = contact_outputs(p, o, &pb, out);
+    if ((rc = contact_outputs(p, o, &pb, out)) == RD_OK && to)
+        rc = warm_save(&pb, to);
 out:
     if (rc == RD_ENOMEM)
         rc = rd_error_set(err, RD_ENOMEM, "", "Out of memory for the %d-segment contact solve.",
@@ -454,6 +521,7 @@ typedef struct contact_run {
     int n[2];
     rd_contact_result level[2]; /* coarse, fine of the current pair */
     int have_coarse;
+    warm_state shape[2]; /* the levels' solved shapes: the finer starts from the coarser */
 } contact_run;
 
 static int contact_level(void *ctx, int level, const rd_monitor *mon, rd_error *err)
@@ -462,7 +530,9 @@ static int contact_level(void *ctx, int level, const rd_monitor *mon, rd_error *
     if (level == 0 && run->have_coarse)
         return RD_OK;
     rd_contact_result_cleanup(&run->level[level]);
-    return contact_once(run->p, run->n[level], run->o, run->so, mon, &run->level[level], err);
+    return contact_once(run->p, run->n[level], run->o, run->so, mon,
+                        level == 1 ? &run->shape[0] : NULL, &run->shape[level], &run->level[level],
+                        err);
 }
 
 static int contact_compare(void *ctx, rd_error *err)
@@ -537,6 +607,9 @@ static int refine(contact_run *run, const rd_monitor *mon, rd_error *err)
         run->level[0] = *fine;
         memset(fine, 0, sizeof *fine);
         run->have_coarse = 1;
+        warm_free(&run->shape[0]);
+        run->shape[0] = run->shape[1];
+        memset(&run->shape[1], 0, sizeof run->shape[1]);
         run->n[0] = run->n[1];
         run->n[1] *= 2;
         f0 = sm.f1;
@@ -557,7 +630,7 @@ int rd_contact_solve(const rd_ring_params *p, int segments, const rd_contact_opt
     if (2 * segments > RD_STATIC_SEGMENTS_MAX) /* the estimate from n / 2 */
         run.n[0] = segments / 2, run.n[1] = segments;
     if (!so->estimate_error) {
-        rc = contact_once(p, segments, o, so, mon, out, err);
+        rc = contact_once(p, segments, o, so, mon, NULL, NULL, out, err);
         out->estimates = (rd_contact_estimates){NAN, NAN, NAN, NAN};
         out->accuracy_met = -1;
         return rc;
@@ -572,5 +645,7 @@ int rd_contact_solve(const rd_ring_params *p, int segments, const rd_contact_opt
     }
     rd_contact_result_cleanup(&run.level[0]);
     rd_contact_result_cleanup(&run.level[1]);
+    warm_free(&run.shape[0]);
+    warm_free(&run.shape[1]);
     return rc;
 }

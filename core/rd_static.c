@@ -619,8 +619,8 @@ static int load_steps(rd_static_problem *pb, work *w, double tol, int *budget_io
                       rd_static_stats *st)
 {
     int n = pb->n, budget = *budget_io;
-    double lam = 0.0, dlam = 1.0, res = 0.0;
-    pb->lambda = 0.0;
+    double lam = pb->lambda_start, dlam = 1.0, res = 0.0;
+    pb->lambda = lam;
     while (lam < 1.0) {
         double target = fmin(1.0, lam + dlam);
         memcpy(w->x0, pb->x, (size_t)3 * n * sizeof *pb->x);

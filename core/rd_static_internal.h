@@ -54,6 +54,7 @@ typedef struct rd_static_problem {
     double *x;   /* 3n */
     double *Q;   /* 9n */
     double lambda;
+    double lambda_start; /* where the load path starts (a warm start: past 0) */
     /* gap-face loads */
     double Ft, Fl;
     int method;
