@@ -317,7 +317,7 @@ static void segment_output(const rd_static_problem *pb, int i, rd_contact_result
 /* Light gaps, contact fraction, tip forces and bins (rd_contact_post.c)
  * from the point clearances t, c. */
 static int contact_summaries(const rd_static_problem *pb, const double *t, const double *c,
-                             const double *ts, const double *at, rd_contact_result *out)
+                             const double *ts, double *at, rd_contact_result *out)
 {
     int n = pb->n;
     double phi = rd_ring_segment_phi(pb->ring) * 180.0 / M_PI;
@@ -331,9 +331,22 @@ static int contact_summaries(const rd_static_problem *pb, const double *t, const
         lo[i] = rd_ring_get_segment_angle(pb->ring, i) * 180.0 / M_PI - 0.5 * phi;
         force[i] = out->pressure[i] * pb->h * pb->r_o * rd_ring_segment_phi(pb->ring);
     }
-    /* Clearances below the floor are not light gaps: the law's penetration
-     * scale, or the misfit of a rigid segment's face (an arc of radius r_o)
-     * against the bore's curvature, up to (sum |A_k| k^2 + |D/2 - r_o|) /
+    /* A segment's force acts at its points' force centroid only where it is
+     * concentrated (over twice either neighbour's: a free end, a gap edge, a
+     * point-like contact); elsewhere the split between its points is the
+     * rigid face's artefact (it moves with the stiffness: 0.04 p0 in the bins
+     * at 10 x), so its force is spread over its whole arc. */
+    for (int i = 0; i < n; i++) {
+        double nb = fmax(i > 0 ? force[i - 1] : 0.0, i < n - 1 ? force[i + 1] : 0.0);
+        if (!(force[i] > 2.0 * nb))
+            at[i] = lo[i] + 0.5 * phi;
+    }
+    /* Clearances below the floor are not light gaps: ten times the default
+     * law's penetration under p0 (a property of the ring, not of the chosen
+     * stiffness: with the multipliers the ring does not sink into the bore
+     * at any stiffness, so the floor must not move with it), or the misfit
+     * of a rigid segment's face (an arc of radius r_o) against the bore's
+     * curvature, up to (sum |A_k| k^2 + |D/2 - r_o|) /
      * r_o^2 times L^2 / 8 over a segment of length L: where the ring follows
      * the bore the faces touch it at their ends or middles only, with gaps
      * of that size between (~20 nm at 1 x the bound, n = 160-320), which a
@@ -342,7 +355,9 @@ static int contact_summaries(const rd_static_problem *pb, const double *t, const
     for (int k = 0; k < pb->co->n_distortion; k++)
         bend += fabs(pb->co->distortion[k].amplitude) * pb->co->distortion[k].order *
                 pb->co->distortion[k].order;
-    out->gap_floor = fmax(10.0 * pb->p0 / pb->k, bend / (pb->r_o * pb->r_o) * L * L / 8.0);
+    out->gap_floor =
+        fmax(10.0 * pb->p0 / rd_contact_default_stiffness(rd_ring_get_params(pb->ring)),
+             bend / (pb->r_o * pb->r_o) * L * L / 8.0);
     rd_contact_gaps(ts, out->clearance, n, t, c, pb->m, lo[0], lo[n - 1] + phi, out->gap_floor,
                     out);
     /* a free end's concentrated force: its segment's resultant beyond what
@@ -477,7 +492,16 @@ static int contact_once(const rd_ring_params *p, int segments, const rd_contact_
         goto out;
     if (from && from->n >= 2)
         warm_start(&pb, from);
-    if ((rc = rd_static_solve_path(&pb, so, mon, &out->stats, err)) != RD_OK)
+    rc = rd_static_solve_path(&pb, so, mon, &out->stats, err);
+    if (rc == RD_ENOCONV && from && from->n >= 2) {
+        /* the coarser shape was too far off: the whole load path instead */
+        rd_static_problem_cleanup(&pb);
+        rd_ring_free(ring);
+        if (err)
+            rd_error_init(err);
+        return contact_once(p, segments, o, so, mon, NULL, to, out, err);
+    }
+    if (rc != RD_OK)
         goto out;
     rd_static_stats_fill(&pb, &out->stats);
     if ((rc = contact_outputs(p, o, &pb, out)) == RD_OK && to)
