@@ -20,9 +20,10 @@
  * segment, not per point: the points of a rigid segment cannot all touch a
  * curved bore, so per-point multipliers converge slowly (measured: 30 outer
  * iterations not enough; per segment 3-4).  Outputs per segment: pressure
- * (resultant / (h r_o phi)), closest approach, bore radius.  Error estimate:
- * the RMS difference of the pressure profiles at n and 2n, over p0, by
- * rd_accuracy.
+ * (resultant / (h r_o phi)), closest approach, bore radius.  Error
+ * estimates: levels n, 2n, 4n ... through rd_accuracy until they meet the
+ * target, each level started from the coarser one's shape; the estimates
+ * themselves are in rd_contact_post.c.
  */
 #include "rd_accuracy.h"
 #include "rd_static_internal.h"
