@@ -9,10 +9,21 @@
  * points of a segment (running face, mid-height) carries the smooth law
  *   p(delta) = k eps ln(1 + exp(delta / eps)),  eps = 0.05 p0 / k,
  * delta = rho - r_b(theta) its penetration, over its tributary area h r_o
- * phi / m, along the bore's outward normal.  Outputs per segment: pressure
- * (resultant / (h r_o phi)), closest approach, bore radius.  Error estimate:
- * the RMS difference of the pressure profiles at n and 2n, over p0, by
- * rd_accuracy.
+ * phi / m, along the bore's outward normal.  Augmented Lagrangian: at the
+ * full load, delta is shifted by lambda_i / k, one multiplier per segment,
+ * updated (Uzawa, rd_static.c) as lambda_i <- max(0, lambda_i + k dbar_i),
+ * dbar_i the force-weighted mean penetration of the segment's points, until
+ * no lambda moves by more than 0.1 p0: the segment-level penetration goes to
+ * zero at the law's own stiffness (the plain penalty's compliance cost the
+ * largest light gap 5 % and spread the free ends' forces over ~2.6 deg, the
+ * beam-on-foundation length (E I / (k h))^(1/4)).  One multiplier per
+ * segment, not per point: the points of a rigid segment cannot all touch a
+ * curved bore, so per-point multipliers converge slowly (measured: 30 outer
+ * iterations not enough; per segment 3-4).  Outputs per segment: pressure
+ * (resultant / (h r_o phi)), closest approach, bore radius.  Error
+ * estimates: levels n, 2n, 4n ... through rd_accuracy until they meet the
+ * target, each level started from the coarser one's shape; the estimates
+ * themselves are in rd_contact_post.c.
  */
 #include "rd_accuracy.h"
 #include "rd_static_internal.h"
@@ -60,9 +71,13 @@ static void bore_radius(const rd_static_problem *pb, double theta, double *r, do
     *dr = mu * da;
 }
 
-/* The smooth contact law p(delta) = k eps ln(1 + exp(delta / eps)). */
-static double contact_pressure(const rd_static_problem *pb, double delta)
+/* The smooth contact law p(delta) = k eps ln(1 + exp(delta / eps)) at
+ * point q, its penetration shifted by the point's multiplier: delta +
+ * lambda_q / k (the augmented Lagrangian; lambda = 0 is the plain penalty). */
+static double contact_pressure(const rd_static_problem *pb, double delta, int q)
 {
+    if (pb->mult)
+        delta += pb->mult[q] / pb->k;
     double e = eps_now(pb), z = delta / e;
     if (z > 0)
         return pb->k * (delta + e * log1p(exp(-z)));
@@ -84,6 +99,26 @@ void rd_contact_follow_bore(rd_static_problem *pb, double l0, double l1)
         x[0] += (r1 - r0) * cos(th);
         x[1] += (r1 - r0) * sin(th);
     }
+}
+
+double rd_contact_update_multipliers(rd_static_problem *pb)
+{
+    double change = 0.0;
+    for (int i = 0; i < pb->n; i++) {
+        double sp = 0.0, spd = 0.0;
+        for (int k = 0; k < pb->m; k++) {
+            double y[3], rb, drb;
+            rd_static_point_at(pb, i, pb->cp + 3 * (pb->m * i + k), y);
+            bore_radius(pb, atan2(y[1], y[0]), &rb, &drb);
+            double d = hypot(y[0], y[1]) - rb, p = contact_pressure(pb, d, i);
+            sp += p;
+            spd += p * d;
+        }
+        double next = sp > 0.0 ? fmax(0.0, pb->mult[i] + pb->k * spd / sp) : 0.0;
+        change = fmax(change, fabs(next - pb->mult[i]));
+        pb->mult[i] = next;
+    }
+    return change / pb->p0;
 }
 
 void rd_contact_opts_default(rd_contact_opts *o)
@@ -202,7 +237,7 @@ void rd_contact_segment_load(const rd_static_problem *pb, int i, const double *x
             y[q] = x[q] + arm[q];
         double rho = hypot(y[0], y[1]), th = atan2(y[1], y[0]), rb, drb;
         bore_radius(pb, th, &rb, &drb);
-        double p = contact_pressure(pb, rho - rb);
+        double p = contact_pressure(pb, rho - rb, i);
         /* outward bore normal ~ grad(rho - r_b(theta)) = e_rho - r_b'/rho e_theta */
         double er[2] = {y[0] / rho, y[1] / rho}, et[2] = {-er[1], er[0]};
         double nv[3] = {er[0] - drb / rho * et[0], er[1] - drb / rho * et[1], 0.0};
@@ -233,7 +268,8 @@ static int contact_setup(rd_static_problem *pb, const rd_ring_params *p, const r
     double mask[6] = {0, 1, 1, 1, 1, 0};
     memcpy(pb->mask, mask, sizeof mask);
     pb->cp = malloc((size_t)3 * n * m * sizeof *pb->cp);
-    if (!pb->cp)
+    pb->mult = calloc((size_t)n, sizeof *pb->mult);
+    if (!pb->cp || !pb->mult)
         return RD_ENOMEM;
     for (int i = 0; i < n; i++) {
         const double *P = rd_ring_reference_point(ring, i);
@@ -254,10 +290,10 @@ static int contact_setup(rd_static_problem *pb, const rd_ring_params *p, const r
  * curved bore, so how the pressure splits between them is an artifact of
  * rigid segments; the resultant is not. */
 static void segment_output(const rd_static_problem *pb, int i, rd_contact_result *out,
-                           double *t_deg, double *clear)
+                           double *t_deg, double *clear, double *at)
 {
     int m = pb->m;
-    double force = 0.0, closest = INFINITY, mid[3], c_mid[3], rb, drb;
+    double moment = 0.0, force = 0.0, closest = INFINITY, mid[3], c_mid[3], rb, drb;
     double ref = rd_ring_get_segment_angle(pb->ring, i) * 180.0 / M_PI;
     for (int k = 0; k < m; k++) {
         double y[3], a;
@@ -272,7 +308,9 @@ static void segment_output(const rd_static_problem *pb, int i, rd_contact_result
         clear[m * i + k] = -delta;
         if (-delta < closest)
             out->max_clearance_angle_deg = t_deg[m * i + k]; /* scratch: closest point */
-        force += contact_pressure(pb, delta) * pb->area;
+        double fq = contact_pressure(pb, delta, i) * pb->area;
+        force += fq;
+        moment += fq * t_deg[m * i + k];
         closest = fmin(closest, -delta);
         out->max_penetration = fmax(out->max_penetration, delta);
     }
@@ -284,6 +322,7 @@ static void segment_output(const rd_static_problem *pb, int i, rd_contact_result
     bore_radius(pb, th, &rb, &drb);
     out->angle_deg[i] = deg < 0.0 ? deg + 360.0 : deg;
     out->pressure[i] = force / (m * pb->area);
+    *at = force > 0.0 ? moment / force : rd_ring_get_segment_angle(pb->ring, i) * 180.0 / M_PI;
     out->clearance[i] = closest;
     out->bore_radius[i] = rb;
 }
@@ -291,7 +330,7 @@ static void segment_output(const rd_static_problem *pb, int i, rd_contact_result
 /* Light gaps, contact fraction, tip forces and bins (rd_contact_post.c)
  * from the point clearances t, c. */
 static int contact_summaries(const rd_static_problem *pb, const double *t, const double *c,
-                             const double *ts, rd_contact_result *out)
+                             const double *ts, double *at, rd_contact_result *out)
 {
     int n = pb->n;
     double phi = rd_ring_segment_phi(pb->ring) * 180.0 / M_PI;
@@ -305,14 +344,40 @@ static int contact_summaries(const rd_static_problem *pb, const double *t, const
         lo[i] = rd_ring_get_segment_angle(pb->ring, i) * 180.0 / M_PI - 0.5 * phi;
         force[i] = out->pressure[i] * pb->h * pb->r_o * rd_ring_segment_phi(pb->ring);
     }
-    out->gap_floor = 10.0 * pb->p0 / pb->k;
+    /* A segment's force acts at its points' force centroid only where it is
+     * concentrated (over twice either neighbour's: a free end, a gap edge, a
+     * point-like contact); elsewhere the split between its points is the
+     * rigid face's artefact (it moves with the stiffness: 0.04 p0 in the bins
+     * at 10 x), so its force is spread over its whole arc. */
+    for (int i = 0; i < n; i++) {
+        double nb = fmax(i > 0 ? force[i - 1] : 0.0, i < n - 1 ? force[i + 1] : 0.0);
+        if (!(force[i] > 2.0 * nb))
+            at[i] = lo[i] + 0.5 * phi;
+    }
+    /* Clearances below the floor are not light gaps: ten times the default
+     * law's penetration under p0 (a property of the ring, not of the chosen
+     * stiffness: with the multipliers the ring does not sink into the bore
+     * at any stiffness, so the floor must not move with it), or the misfit
+     * of a rigid segment's face (an arc of radius r_o) against the bore's
+     * curvature, up to (sum |A_k| k^2 + |D/2 - r_o|) /
+     * r_o^2 times L^2 / 8 over a segment of length L: where the ring follows
+     * the bore the faces touch it at their ends or middles only, with gaps
+     * of that size between (~20 nm at 1 x the bound, n = 160-320), which a
+     * bending ring would not have. */
+    double bend = fabs(pb->bore_dr), L = pb->r_o * rd_ring_segment_phi(pb->ring);
+    for (int k = 0; k < pb->co->n_distortion; k++)
+        bend += fabs(pb->co->distortion[k].amplitude) * pb->co->distortion[k].order *
+                pb->co->distortion[k].order;
+    out->gap_floor =
+        fmax(10.0 * pb->p0 / rd_contact_default_stiffness(rd_ring_get_params(pb->ring)),
+             bend / (pb->r_o * pb->r_o) * L * L / 8.0);
     rd_contact_gaps(ts, out->clearance, n, t, c, pb->m, lo[0], lo[n - 1] + phi, out->gap_floor,
                     out);
     /* a free end's concentrated force: its segment's resultant beyond what
      * the neighbour's pressure would put on it */
     out->tip_force[0] = out->clearance[0] <= 0.0 ? force[0] - force[1] : 0.0;
     out->tip_force[1] = out->clearance[n - 1] <= 0.0 ? force[n - 1] - force[n - 2] : 0.0;
-    rd_contact_bins(lo, phi, force, n, pb->h * pb->r_o, out);
+    rd_contact_bins(lo, phi, force, at, n, pb->h * pb->r_o, out);
     free(lo);
     free(force);
     return RD_OK;
@@ -329,22 +394,23 @@ static int contact_outputs(const rd_ring_params *p, const rd_contact_opts *o,
     out->clearance = malloc((size_t)n * sizeof *out->clearance);
     out->bore_radius = malloc((size_t)n * sizeof *out->bore_radius);
     double *t = malloc((size_t)n * pb->m * sizeof *t), *c = malloc((size_t)n * pb->m * sizeof *c);
-    double *ts = malloc((size_t)n * sizeof *ts);
+    double *ts = malloc((size_t)n * sizeof *ts), *at = malloc((size_t)n * sizeof *at);
     rc = RD_ENOMEM;
     if (!out->angle_deg || !out->pressure || !out->clearance || !out->bore_radius || !t || !c ||
-        !ts)
+        !ts || !at)
         goto out;
     double sum = 0.0;
     out->max_penetration = 0.0;
     for (int i = 0; i < n; i++) {
-        segment_output(pb, i, out, t, c);
+        segment_output(pb, i, out, t, c, at + i);
         ts[i] = out->max_clearance_angle_deg;
         sum += out->pressure[i];
     }
     out->mean_pressure = sum / n;
     out->uniform_pressure = pb->p0;
-    rc = contact_summaries(pb, t, c, ts, out);
+    rc = contact_summaries(pb, t, c, ts, at, out);
 out:
+    free(at);
     free(t);
     free(c);
     free(ts);
@@ -361,9 +427,73 @@ out:
     return rc;
 }
 
+/* A solved level's shape, for the next level's start: per segment its
+ * reference angle (rad), radial and tangential displacement (m) and turn
+ * about the axis (rad). */
+typedef struct warm_state {
+    int n;
+    double *ang, *ur, *ut, *rz;
+} warm_state;
+
+static void warm_free(warm_state *w)
+{
+    free(w->ang);
+    free(w->ur);
+    free(w->ut);
+    free(w->rz);
+    memset(w, 0, sizeof *w);
+}
+
+static int warm_save(const rd_static_problem *pb, warm_state *w)
+{
+    warm_free(w);
+    size_t sz = (size_t)pb->n * sizeof(double);
+    w->ang = malloc(sz), w->ur = malloc(sz), w->ut = malloc(sz), w->rz = malloc(sz);
+    if (!w->ang || !w->ur || !w->ut || !w->rz)
+        return RD_ENOMEM;
+    w->n = pb->n;
+    for (int i = 0; i < pb->n; i++) {
+        const double *P = rd_ring_reference_point(pb->ring, i), *x = pb->x + 3 * i;
+        double a = rd_ring_get_segment_angle(pb->ring, i), d[2] = {x[0] - P[0], x[1] - P[1]};
+        w->ang[i] = a;
+        w->ur[i] = d[0] * cos(a) + d[1] * sin(a);
+        w->ut[i] = -d[0] * sin(a) + d[1] * cos(a);
+        w->rz[i] = atan2(pb->Q[9 * i + 3], pb->Q[9 * i]);
+    }
+    return RD_OK;
+}
+
+/* The state of pb interpolated (linearly in the angle, extrapolated past
+ * the end segments) from a coarser level's shape.  The contact is planar
+ * (in-plane loads, the support holding the axial motion and the tilts), so
+ * a turn about the axis is the whole rotation. */
+static void warm_start(rd_static_problem *pb, const warm_state *w)
+{
+    for (int i = 0, j = 0; i < pb->n; i++) {
+        double a = rd_ring_get_segment_angle(pb->ring, i);
+        while (j < w->n - 2 && w->ang[j + 1] < a)
+            j++;
+        double t = (a - w->ang[j]) / (w->ang[j + 1] - w->ang[j]);
+        double ur = w->ur[j] + t * (w->ur[j + 1] - w->ur[j]);
+        double ut = w->ut[j] + t * (w->ut[j + 1] - w->ut[j]);
+        double rz = w->rz[j] + t * (w->rz[j + 1] - w->rz[j]);
+        const double *P = rd_ring_reference_point(pb->ring, i);
+        double *x = pb->x + 3 * i, *Q = pb->Q + 9 * i;
+        x[0] = P[0] + ur * cos(a) - ut * sin(a);
+        x[1] = P[1] + ur * sin(a) + ut * cos(a);
+        x[2] = P[2];
+        double R[9] = {cos(rz), -sin(rz), 0, sin(rz), cos(rz), 0, 0, 0, 1};
+        memcpy(Q, R, sizeof R);
+    }
+    /* the bore in place, the law still wide: the path's last part */
+    pb->lambda_start = BORE_DONE;
+}
+
+/* One solve at `segments`; from the coarser shape `from` if it has one,
+ * the solved shape left in `to` if given. */
 static int contact_once(const rd_ring_params *p, int segments, const rd_contact_opts *o,
-                        const rd_static_opts *so, const rd_monitor *mon, rd_contact_result *out,
-                        rd_error *err)
+                        const rd_static_opts *so, const rd_monitor *mon, const warm_state *from,
+                        warm_state *to, rd_contact_result *out, rd_error *err)
 {
     rd_static_problem pb;
     int rc;
@@ -373,10 +503,22 @@ static int contact_once(const rd_ring_params *p, int segments, const rd_contact_
     if ((rc = rd_static_problem_init(&pb, ring, RD_STATIC_CONTACT)) != RD_OK ||
         (rc = contact_setup(&pb, p, o)) != RD_OK)
         goto out;
-    if ((rc = rd_static_solve_path(&pb, so, mon, &out->stats, err)) != RD_OK)
+    if (from && from->n >= 2)
+        warm_start(&pb, from);
+    rc = rd_static_solve_path(&pb, so, mon, &out->stats, err);
+    if (rc == RD_ENOCONV && from && from->n >= 2) {
+        /* the coarser shape was too far off: the whole load path instead */
+        rd_static_problem_cleanup(&pb);
+        rd_ring_free(ring);
+        if (err)
+            rd_error_init(err);
+        return contact_once(p, segments, o, so, mon, NULL, to, out, err);
+    }
+    if (rc != RD_OK)
         goto out;
     rd_static_stats_fill(&pb, &out->stats);
-    rc = contact_outputs(p, o, &pb, out);
+    if ((rc = contact_outputs(p, o, &pb, out)) == RD_OK && to)
+        rc = warm_save(&pb, to);
 out:
     if (rc == RD_ENOMEM)
         rc = rd_error_set(err, RD_ENOMEM, "", "Out of memory for the %d-segment contact solve.",
@@ -416,6 +558,7 @@ typedef struct contact_run {
     int n[2];
     rd_contact_result level[2]; /* coarse, fine of the current pair */
     int have_coarse;
+    warm_state shape[2]; /* the levels' solved shapes: the finer starts from the coarser */
 } contact_run;
 
 static int contact_level(void *ctx, int level, const rd_monitor *mon, rd_error *err)
@@ -424,7 +567,9 @@ static int contact_level(void *ctx, int level, const rd_monitor *mon, rd_error *
     if (level == 0 && run->have_coarse)
         return RD_OK;
     rd_contact_result_cleanup(&run->level[level]);
-    return contact_once(run->p, run->n[level], run->o, run->so, mon, &run->level[level], err);
+    return contact_once(run->p, run->n[level], run->o, run->so, mon,
+                        level == 1 ? &run->shape[0] : NULL, &run->shape[level], &run->level[level],
+                        err);
 }
 
 static int contact_compare(void *ctx, rd_error *err)
@@ -499,6 +644,9 @@ static int refine(contact_run *run, const rd_monitor *mon, rd_error *err)
         run->level[0] = *fine;
         memset(fine, 0, sizeof *fine);
         run->have_coarse = 1;
+        warm_free(&run->shape[0]);
+        run->shape[0] = run->shape[1];
+        memset(&run->shape[1], 0, sizeof run->shape[1]);
         run->n[0] = run->n[1];
         run->n[1] *= 2;
         f0 = sm.f1;
@@ -519,7 +667,7 @@ int rd_contact_solve(const rd_ring_params *p, int segments, const rd_contact_opt
     if (2 * segments > RD_STATIC_SEGMENTS_MAX) /* the estimate from n / 2 */
         run.n[0] = segments / 2, run.n[1] = segments;
     if (!so->estimate_error) {
-        rc = contact_once(p, segments, o, so, mon, out, err);
+        rc = contact_once(p, segments, o, so, mon, NULL, NULL, out, err);
         out->estimates = (rd_contact_estimates){NAN, NAN, NAN, NAN};
         out->accuracy_met = -1;
         return rc;
@@ -534,5 +682,7 @@ int rd_contact_solve(const rd_ring_params *p, int segments, const rd_contact_opt
     }
     rd_contact_result_cleanup(&run.level[0]);
     rd_contact_result_cleanup(&run.level[1]);
+    warm_free(&run.shape[0]);
+    warm_free(&run.shape[1]);
     return rc;
 }

@@ -287,3 +287,36 @@ int rd_pretension_solve(const rd_ring_params *p, int segments, const rd_pretensi
     rd_pretension_result_cleanup(&run.ref);
     return rc;
 }
+
+/* ---- the static solver's options (shared with rd_contact.c) ---------------- */
+
+void rd_static_opts_default(rd_static_opts *o)
+{
+    o->tol = 1e-9;
+    o->max_iterations = 2000;
+    o->estimate_error = 1;
+}
+
+int rd_static_validate(const rd_static_opts *o, int segments, int closed, rd_error *err)
+{
+    if (closed)
+        return rd_error_set(err, RD_EINVAL, "/discretization/closed",
+                            "/discretization/closed = true joins the gap, but pretension and "
+                            "contact act on the gap faces: use a split ring (closed = false).");
+    if (segments < 4 || segments > RD_STATIC_SEGMENTS_MAX)
+        return rd_error_set(err, segments > RD_STATIC_SEGMENTS_MAX ? RD_ELIMIT : RD_EINVAL,
+                            "/discretization/segments",
+                            "/discretization/segments = %d is out of range for a static "
+                            "analysis: allowed 4 to %d.",
+                            segments, RD_STATIC_SEGMENTS_MAX);
+    if (!isfinite(o->tol) || o->tol < 1e-13 || o->tol > 1e-3)
+        return rd_error_set(err, RD_EINVAL, "/numerics/tolerance",
+                            "/numerics/tolerance = %g is out of range: allowed 1e-13 to 1e-3.",
+                            o->tol);
+    if (o->max_iterations < 1 || o->max_iterations > 100000)
+        return rd_error_set(err, o->max_iterations > 100000 ? RD_ELIMIT : RD_EINVAL,
+                            "/numerics/max_iterations",
+                            "/numerics/max_iterations = %d is out of range: allowed 1 to 100000.",
+                            o->max_iterations);
+    return RD_OK;
+}

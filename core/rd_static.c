@@ -615,11 +615,12 @@ static int work_alloc(const rd_static_problem *pb, work *w, rd_error *err)
 }
 
 /* The load-stepping loop (rd_static_solve_path). */
-static int load_steps(rd_static_problem *pb, work *w, double tol, int budget, rd_static_stats *st)
+static int load_steps(rd_static_problem *pb, work *w, double tol, int *budget_io,
+                      rd_static_stats *st)
 {
-    int n = pb->n;
-    double lam = 0.0, dlam = 1.0, res = 0.0;
-    pb->lambda = 0.0;
+    int n = pb->n, budget = *budget_io;
+    double lam = pb->lambda_start, dlam = 1.0, res = 0.0;
+    pb->lambda = lam;
     while (lam < 1.0) {
         double target = fmin(1.0, lam + dlam);
         memcpy(w->x0, pb->x, (size_t)3 * n * sizeof *pb->x);
@@ -654,7 +655,35 @@ static int load_steps(rd_static_problem *pb, work *w, double tol, int budget, rd
                 budget <= 0 ? "iteration budget used up" : "load step became too small");
     }
     st->residual = res;
+    *budget_io = budget;
     return rd_monitor_report(w->mon, 1.0, w->err);
+}
+
+/* Contact: the augmented Lagrangian's outer (Uzawa) iterations at the full
+ * load.  Each sets every point's multiplier to its pressure and solves
+ * again from the last state, so the penetration where the ring presses goes
+ * to zero at the law's own stiffness (no stiffer Newton problem); stops when
+ * no multiplier moved by more than UZAWA_TOL p0. */
+#define UZAWA_MAX 30
+#define UZAWA_TOL 0.1
+static int uzawa(rd_static_problem *pb, work *w, double tol, int *budget, rd_static_stats *st,
+                 double *res)
+{
+    for (int it = 0; it < UZAWA_MAX; it++) {
+        double change = rd_contact_update_multipliers(pb);
+        int ok = newton(pb, w, tol, budget, &st->iterations, res);
+        if (ok < 0)
+            return ok;
+        if (!ok)
+            return rd_error_set(w->err, RD_ENOCONV, "",
+                                "The contact solve did not converge: Newton's method stalled in "
+                                "outer iteration %d of the contact multipliers after %d "
+                                "iterations.",
+                                it + 1, st->iterations);
+        if (change <= UZAWA_TOL)
+            return RD_OK;
+    }
+    return RD_OK;
 }
 
 int rd_static_solve_path(rd_static_problem *pb, const rd_static_opts *so, const rd_monitor *mon,
@@ -673,7 +702,10 @@ int rd_static_solve_path(rd_static_problem *pb, const rd_static_opts *so, const 
         st->tolerance = tol;
         st->iterations = 0;
         st->load_steps = 0;
-        rc = load_steps(pb, &w, tol, so->max_iterations, st);
+        int budget = so->max_iterations;
+        rc = load_steps(pb, &w, tol, &budget, st);
+        if (rc == RD_OK && pb->mult)
+            rc = uzawa(pb, &w, tol, &budget, st, &st->residual);
     }
     work_free(&w);
     return rc;
@@ -743,39 +775,7 @@ void rd_static_problem_cleanup(rd_static_problem *pb)
     free(pb->x);
     free(pb->Q);
     free(pb->cp);
-}
-
-/* ---- options and validation ------------------------------------------------ */
-
-void rd_static_opts_default(rd_static_opts *o)
-{
-    o->tol = 1e-9;
-    o->max_iterations = 2000;
-    o->estimate_error = 1;
-}
-
-int rd_static_validate(const rd_static_opts *o, int segments, int closed, rd_error *err)
-{
-    if (closed)
-        return rd_error_set(err, RD_EINVAL, "/discretization/closed",
-                            "/discretization/closed = true joins the gap, but pretension and "
-                            "contact act on the gap faces: use a split ring (closed = false).");
-    if (segments < 4 || segments > RD_STATIC_SEGMENTS_MAX)
-        return rd_error_set(err, segments > RD_STATIC_SEGMENTS_MAX ? RD_ELIMIT : RD_EINVAL,
-                            "/discretization/segments",
-                            "/discretization/segments = %d is out of range for a static "
-                            "analysis: allowed 4 to %d.",
-                            segments, RD_STATIC_SEGMENTS_MAX);
-    if (!isfinite(o->tol) || o->tol < 1e-13 || o->tol > 1e-3)
-        return rd_error_set(err, RD_EINVAL, "/numerics/tolerance",
-                            "/numerics/tolerance = %g is out of range: allowed 1e-13 to 1e-3.",
-                            o->tol);
-    if (o->max_iterations < 1 || o->max_iterations > 100000)
-        return rd_error_set(err, o->max_iterations > 100000 ? RD_ELIMIT : RD_EINVAL,
-                            "/numerics/max_iterations",
-                            "/numerics/max_iterations = %d is out of range: allowed 1 to 100000.",
-                            o->max_iterations);
-    return RD_OK;
+    free(pb->mult);
 }
 
 void rd_static_point_at(const rd_static_problem *pb, int i, const double c[3], double y[3])

@@ -54,6 +54,7 @@ typedef struct rd_static_problem {
     double *x;   /* 3n */
     double *Q;   /* 9n */
     double lambda;
+    double lambda_start; /* where the load path starts (a warm start: past 0) */
     /* gap-face loads */
     double Ft, Fl;
     int method;
@@ -67,6 +68,7 @@ typedef struct rd_static_problem {
     /* contact */
     int m;          /* points per segment */
     double *cp;     /* 3 per point: body offsets */
+    double *mult;   /* per point: the augmented Lagrangian's multiplier, Pa (NULL: none) */
     double area;    /* tributary area of one point, m^2 */
     double r_o;     /* running-face radius of the closed ring */
     double bore_dr; /* D/2 - r_o */
@@ -112,16 +114,19 @@ void rd_pretension_gap_face_load(const rd_static_problem *pb, int i, const doubl
 void rd_contact_segment_load(const rd_static_problem *pb, int i, const double *x, const double *Q,
                              double f[6]);
 void rd_contact_follow_bore(rd_static_problem *pb, double l0, double l1);
+/* rd_contact.c: the augmented Lagrangian's update, lambda_q <- p_q (each
+ * point's current pressure); returns max_q |p_q - lambda_q| / p0 before it. */
+double rd_contact_update_multipliers(rd_static_problem *pb);
 
 /* rd_contact_post.c: light gaps and contact fraction from the segments'
  * closest points (angles ts, deg, increasing; clearances cs, m) and all m n
  * contact points (t, c), the free ends at tip0 < tip1 deg; binned pressure from the segments' forces
- * (N) spread over their arcs [lo_i, lo_i + seg_deg]; the error estimates of
+ * (N) acting at at_deg_i within their arcs [lo_i, lo_i + seg_deg]; the error estimates of
  * the finer of two levels. */
 void rd_contact_gaps(const double *ts, const double *cs, int n, const double *t, const double *c,
                      int m, double tip0, double tip1, double gap_floor, rd_contact_result *out);
-void rd_contact_bins(const double *seg_lo_deg, double seg_deg, const double *force, int n,
-                     double h_ro, rd_contact_result *out);
+void rd_contact_bins(const double *seg_lo_deg, double seg_deg, const double *force,
+                     const double *at_deg, int n, double h_ro, rd_contact_result *out);
 void rd_contact_estimate(const rd_contact_result *fine, const rd_contact_result *coarse,
                          rd_contact_estimates *e);
 

@@ -133,14 +133,19 @@ static void test_battery(void)
                 /* bounds measured on this battery at n = 160 (bench_static
                  * --battery has them at the default settings): the edge
                  * locator is good to about one segment, 2.25 deg, which with
-                 * up to 14 edges bounds the contact fraction */
-                CHECK(fabs(c.contact_fraction - r.contact_fraction) < 0.05,
+                 * up to 14 edges bounds the contact fraction; a run off the
+                 * bore about as deep as the floor (k = 3 at 0.1 x: 9.4 nm
+                 * here, 7.3 in the reference, floor 9.4) may count in one
+                 * and not the other, so its width is allowed too; edges:
+                 * measured at most 1.08 deg here (k = 3 at 3 x) */
+                CHECK(fabs(c.contact_fraction - r.contact_fraction) <
+                          0.02 + c.marginal_gap_deg / 360.0,
                       "k=%d x%g ph %g: contact fraction %.4f, reference %.4f", k, factors[fi],
                       phases[pi], c.contact_fraction, r.contact_fraction);
                 if (r.max_clearance > 1e-7)
                     CHECK_REL(c.max_clearance, r.max_clearance, 0.05,
                               "k=%d x%g ph %g: largest light gap", k, factors[fi], phases[pi]);
-                CHECK(edge_error(&c, &r) < 2.0, "k=%d x%g ph %g: gap edges off by %.2f deg", k,
+                CHECK(edge_error(&c, &r) < 1.5, "k=%d x%g ph %g: gap edges off by %.2f deg", k,
                       factors[fi], phases[pi], edge_error(&c, &r));
                 rd_contact_result_cleanup(&c);
             }

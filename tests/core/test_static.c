@@ -303,14 +303,31 @@ static void test_round_bore(void)
     rd_contact_result_cleanup(&ref);
 }
 
-/* Segments lifted off the bore more than 30 degrees away from the gap (the
- * free ends lift first in any distorted bore). */
+/* Segments lifted off the bore (deeper than the gap floor: a rigid face
+ * touching a curved bore at its ends has nanometre gaps between) more than
+ * 30 degrees away from the gap (the free ends lift first in any distorted
+ * bore). */
 static int lifted_away_from_gap(const rd_contact_result *r)
 {
     int count = 0;
     for (int i = 0; i < r->points; i++)
-        if (r->clearance[i] > 0 && r->angle_deg[i] > 30 && r->angle_deg[i] < 330)
+        if (r->clearance[i] > r->gap_floor && r->angle_deg[i] > 30 && r->angle_deg[i] < 330)
             count++;
+    return count;
+}
+
+/* Light gaps (deeper than the floor) centred more than 30 degrees away
+ * from the gap: at 1.3 x the bound they are shallow (order 6: 13 nm in the
+ * curved-beam reference of test_contact, 35-39 nm here at n = 80, the
+ * floor 29 nm), so a segment's closest approach may stay under the floor
+ * while the gap's peak between its points does not. */
+static int gaps_away_from_gap(const rd_contact_result *r)
+{
+    int count = 0;
+    for (int g = 0; g < r->n_gaps; g++) {
+        double mid = 0.5 * (r->gaps[g].start_deg + r->gaps[g].end_deg);
+        count += mid > 30 && mid < 330;
+    }
     return count;
 }
 
@@ -348,7 +365,7 @@ static void test_distorted_bore(void)
                 CHECK(lifted == 0, "order %d at 0.8 x bound (%g m): %d segments lifted", kk, bound,
                       lifted);
             else
-                CHECK(lifted > 0 && r.max_clearance > 0,
+                CHECK(gaps_away_from_gap(&r) > 0 && r.max_clearance > 0,
                       "order %d at 1.3 x bound (%g m): no light gap", kk, bound);
             rd_contact_result_cleanup(&r);
         }
