@@ -18,7 +18,8 @@
  *                     groove back, gas faces
  *   rd_lift_landing.c the landing law: the oil squeeze film on the flanks
  *   rd_lift_newton.c  the Newton systems in second-order form (half the
- *                     unknowns, band LU of I - gamma B - gamma^2 A)
+ *                     unknowns, block-tridiagonal LU of I - gamma B -
+ *                     gamma^2 A by rd_blocktri.c)
  *   rd_lift_driver.c  the CVODE driver: set-up, events (root finding and
  *                     the flank state machine), output sampling, counters,
  *                     the work bound and cancellation, the Jacobian check
@@ -29,8 +30,12 @@
  * Jacobian structure, and the plan for elements that couple all segments.
  * Today every force element is local: f_i depends on q_i, v_i only, so its
  * contribution is a 6x6 block on the diagonal, and the only coupling is the
- * ring's K (segment i to i +- 1): a band with MU = 11, ML = 23, factored by
- * band LU in O(n).  Two planned elements break locality:
+ * ring's K (segment i to i +- 1; the ring is open, so 0 and n - 1 are not
+ * coupled): block tridiagonal, a band with MU = 11, ML = 23; its Newton
+ * system is solved in second-order form by block-tridiagonal LU in O(n)
+ * (rd_lift_newton.c; "band LU" below stands for that factorization, whose
+ * rd_blocktri_solve gives the extra solves).  Two planned elements break
+ * locality:
  *  - a gas volume shared by the whole ring (a groove-back or inter-ring
  *    land pressure p_g that is a state, dp_g/dt = g(p_g, all flank gaps)):
  *    p_g becomes one extra unknown appended after the 12 n segment states.
