@@ -1,6 +1,8 @@
 /*
  * rd_lift_model.h — the full lift model's pieces, shared by its files (not
- * part of the public API; no caller outside core/ may include this).
+ * part of the public API; no caller outside core/ may include this, except
+ * tests/core/test_blocktri.c and bench/bench_newton.c, which drive the
+ * Newton solver on the model's own matrices).
  *
  * The full model is split by concern (MODEL.md "lift" and rd_lift.h for the
  * physics; each file's comment for its part):
