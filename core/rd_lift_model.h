@@ -147,6 +147,13 @@ double rd_lift_squeeze(const rd_lift_model *m, double gap, double closing, doubl
  * m->friction and m->fz_ext (rd_lift_forces.c). */
 void rd_lift_forces(rd_lift_model *m, double t, const double *y, double *Dq, double *Dv);
 
+/* Only m->friction and m->fz_ext of rd_lift_forces, the same numbers (the
+ * same elements in the same order), without the flank and groove-back
+ * contacts, which do not enter them (the flanks still run with dynamic gas
+ * areas: their sealing weights), and without the Jacobian; m->fbuf is left
+ * partial.  For the root function and the samples (rd_lift_model.c). */
+void rd_lift_loads(rd_lift_model *m, double t, const double *y);
+
 /* The same for one segment i at state (q, v) (6 values each): its force
  * into f (6), its local derivatives into dq, dv (36 each, or NULL), and its
  * friction and axial load without the flanks into m->friction, m->fz_ext. */
