@@ -409,8 +409,8 @@ static json_t *lift_numerics(const rd_scene *scene, const rd_lift_result *res, d
         : res->model == RD_LIFT_MODEL_MODAL
             ? "SUNDIALS CVODE, BDF with a dense Newton linear solver (2 x dof modal "
               "states), root finding for the flank changes"
-            : "SUNDIALS CVODE, BDF with a banded Newton linear solver, root finding for "
-              "the flank changes",
+            : "SUNDIALS CVODE, BDF with a block-tridiagonal Newton linear solver (second-order "
+              "form, 6 n unknowns), root finding for the flank changes",
         "steps", (json_int_t)res->steps, "rhs_evals", (json_int_t)res->rhs_evals, "jac_evals",
         (json_int_t)res->jac_evals, "linear_setups", (json_int_t)res->lin_setups,
         "nonlinear_iterations", (json_int_t)res->nonlin_iters, "nonlinear_failures",

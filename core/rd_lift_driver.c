@@ -7,11 +7,11 @@
  * .cvode asks for CVODE.
  *
  * Integration: SUNDIALS CVODE, BDF of order <= 2, Newton with the analytic
- * Jacobian's blocks, the system solved in second-order form by band LU of
- * half the size (rd_lift_newton.c), so each step costs O(n).  Order <= 2:
- * the undamped elastic modes of a finely cut ring are fast and on the
- * imaginary axis, where BDF3-5 are unstable (n = 200 took 70x more steps);
- * BDF2 is A-stable.  The Jacobian is re-evaluated and
+ * Jacobian's blocks, the system solved in second-order form by block-
+ * tridiagonal LU of half the size (rd_lift_newton.c, rd_blocktri.c), so
+ * each step costs O(n).  Order <= 2: the undamped elastic modes of a finely
+ * cut ring are fast and on the imaginary axis, where BDF3-5 are unstable
+ * (n = 200 took 70x more steps); BDF2 is A-stable.  The Jacobian is re-evaluated and
  * factored at every step: a Newton matrix kept from a closed contact carries
  * that penalty's stiffness after the contact opened, and the modified Newton
  * iteration then converges falsely and holds the ring on the flank (landings
@@ -173,7 +173,7 @@ static const char *cvode_what(int flag)
         return "the Newton iteration failed to converge repeatedly";
     case CV_LSETUP_FAIL:
     case CV_LSOLVE_FAIL:
-        return "the banded linear solver failed (singular Newton matrix)";
+        return "the linear solver failed (singular Newton matrix)";
     case CV_RHSFUNC_FAIL:
     case CV_REPTD_RHSFUNC_ERR:
     case CV_UNREC_RHSFUNC_ERR:

@@ -469,6 +469,25 @@ void rd_lift_forces(rd_lift_model *c, double t, const double *y, double *Dq, dou
     c->fz_ext = fz + ftot;
 }
 
+void rd_lift_loads(rd_lift_model *c, double t, const double *y)
+{
+    force_env env;
+    force_env_at(c, t, &env);
+    double ftot = 0.0, fz = 0.0;
+    for (int i = 0; i < c->n; i++) {
+        seg_view s = {.i = i, .q = Q(y, i), .v = V(y, i), .f = c->fbuf + 6 * i};
+        add_inertia_gravity(c, &env, &s);
+        fz += s.f[2];
+        if (env.dynamic) /* the gas element's sealing weights */
+            add_flanks(c, &env, &s);
+        add_bore(c, &env, &s, &ftot);
+        if (env.gas)
+            fz += add_gas(c, &env, &s);
+    }
+    c->friction = ftot;
+    c->fz_ext = fz + ftot;
+}
+
 void rd_lift_forces_segment(rd_lift_model *c, double t, int i, const double *q, const double *v,
                             double *f, double *dq, double *dv)
 {

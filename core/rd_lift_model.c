@@ -345,7 +345,7 @@ static double full_lift(void *user, const double *y, double *seg)
 
 static void full_loads(void *user, double t, const double *y)
 {
-    rd_lift_forces(user, t, y, NULL, NULL);
+    rd_lift_loads(user, t, y);
 }
 
 /* Plastic landing of the full ring: the mean axial rate of the segments

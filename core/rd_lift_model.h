@@ -1,6 +1,8 @@
 /*
  * rd_lift_model.h — the full lift model's pieces, shared by its files (not
- * part of the public API; no caller outside core/ may include this).
+ * part of the public API; no caller outside core/ may include this, except
+ * tests/core/test_blocktri.c and bench/bench_newton.c, which drive the
+ * Newton solver on the model's own matrices).
  *
  * The full model is split by concern (MODEL.md "lift" and rd_lift.h for the
  * physics; each file's comment for its part):
@@ -18,7 +20,8 @@
  *                     groove back, gas faces
  *   rd_lift_landing.c the landing law: the oil squeeze film on the flanks
  *   rd_lift_newton.c  the Newton systems in second-order form (half the
- *                     unknowns, band LU of I - gamma B - gamma^2 A)
+ *                     unknowns, block-tridiagonal LU of I - gamma B -
+ *                     gamma^2 A by rd_blocktri.c)
  *   rd_lift_driver.c  the CVODE driver: set-up, events (root finding and
  *                     the flank state machine), output sampling, counters,
  *                     the work bound and cancellation, the Jacobian check
@@ -29,8 +32,12 @@
  * Jacobian structure, and the plan for elements that couple all segments.
  * Today every force element is local: f_i depends on q_i, v_i only, so its
  * contribution is a 6x6 block on the diagonal, and the only coupling is the
- * ring's K (segment i to i +- 1): a band with MU = 11, ML = 23, factored by
- * band LU in O(n).  Two planned elements break locality:
+ * ring's K (segment i to i +- 1; the ring is open, so 0 and n - 1 are not
+ * coupled): block tridiagonal, a band with MU = 11, ML = 23; its Newton
+ * system is solved in second-order form by block-tridiagonal LU in O(n)
+ * (rd_lift_newton.c; "band LU" below stands for that factorization, whose
+ * rd_blocktri_solve gives the extra solves).  Two planned elements break
+ * locality:
  *  - a gas volume shared by the whole ring (a groove-back or inter-ring
  *    land pressure p_g that is a state, dp_g/dt = g(p_g, all flank gaps)):
  *    p_g becomes one extra unknown appended after the 12 n segment states.
@@ -139,6 +146,13 @@ double rd_lift_squeeze(const rd_lift_model *m, double gap, double closing, doubl
  * Dv (n x 36 each) also their local derivatives df_i/dq_i, df_i/dv_i.  Sets
  * m->friction and m->fz_ext (rd_lift_forces.c). */
 void rd_lift_forces(rd_lift_model *m, double t, const double *y, double *Dq, double *Dv);
+
+/* Only m->friction and m->fz_ext of rd_lift_forces, the same numbers (the
+ * same elements in the same order), without the flank and groove-back
+ * contacts, which do not enter them (the flanks still run with dynamic gas
+ * areas: their sealing weights), and without the Jacobian; m->fbuf is left
+ * partial.  For the root function and the samples (rd_lift_model.c). */
+void rd_lift_loads(rd_lift_model *m, double t, const double *y);
 
 /* The same for one segment i at state (q, v) (6 values each): its force
  * into f (6), its local derivatives into dq, dv (36 each, or NULL), and its

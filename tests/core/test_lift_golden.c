@@ -29,7 +29,15 @@
  * of the integration error itself, not a change of method: on
  * thesis_lift_1000rpm at rtol 1e-9 the old and new solvers agree within
  * 2e-5 deg, and at rtol 1e-6 the old one missed that reference by 0.031 deg,
- * the new one by 0.003 deg. */
+ * the new one by 0.003 deg.
+ * Re-recorded a second time when S moved from the SUNDIALS band LU to the
+ * block-tridiagonal LU (rd_blocktri.c; the same Newton iteration, rounding
+ * only): the examples' flank changes moved by up to 0.025 deg (1000 rpm) and
+ * 0.0052 deg (gas) and lifts by up to 0.0073 c_a at rtol 1e-6, the extremes
+ * by up to 0.014 deg (stiffness 1e3 x) — again the integration error's size:
+ * at rtol 1e-9 the band and block solvers agree within 1.3e-5 deg (1000
+ * rpm) and 0.001 deg (gas, whose own rtol 1e-9 error is about that),
+ * measured with `ringdyn run` on both builds, one cycle, model full. */
 #include <stdlib.h>
 #include <string.h>
 
