@@ -91,10 +91,7 @@ typedef struct driver {
 
 /* Flank tracking between root returns: the committed flank and the time a
  * pending leave started (the load's sign change), NAN if none. */
-typedef struct flank_track {
-    int state;
-    double cand;
-} flank_track;
+typedef rd_lift_flank_track flank_track;
 
 /* Root functions (directions in rootdir of cv_configure): landing on the
  * lower flank, leave confirmed, landing on the upper flank, leave confirmed,
@@ -341,6 +338,12 @@ static int track_roots(flank_track *tr, const int *rf, double t, double deg_per_
         return push_event(o, t * deg_per_s, RD_EVENT_REACH_UPPER, err);
     }
     return RD_OK;
+}
+
+int rd_lift_track_roots(rd_lift_flank_track *tr, const int *rf, double t, double deg_per_s,
+                        double fz, rd_lift_run *o, rd_error *err)
+{
+    return track_roots(tr, rf, t, deg_per_s, fz, o, err);
 }
 
 /* The event state machine starts where the initial state is (the seated

@@ -73,6 +73,10 @@
 #define RD_RINGPACK_CYCLES_MAX  50
 
 enum rd_ringpack_pin { RD_PIN_FREE = 0, RD_PIN_LOWER = 1, RD_PIN_UPPER = 2 };
+/* The pack's own ring model beside the lift analysis' (enum
+ * rd_lift_model_kind): axial lift only, hard flank stops (above). */
+#define RD_RINGPACK_AXIAL        4
+#define RD_RINGPACK_SEGMENTS_MAX 200
 
 typedef struct rd_ringpack_ring {
     rd_ring_params ring; /* section, closed gap, density */
@@ -82,6 +86,11 @@ typedef struct rd_ringpack_ring {
     double gap_angle_deg;         /* where the gap sits (recorded; the rigid ring ignores it) */
     double discharge_coefficient; /* C_d of its passages, 0..1 */
     int pinned;                   /* enum rd_ringpack_pin */
+    /* The ring's model (rd_ringpack_lift.c): enum rd_lift_model_kind or
+     * RD_RINGPACK_AXIAL; RD_LIFT_MODEL_AUTO: the pack's p->model. */
+    int model;
+    int segments; /* n of the full and modal models, 4..RD_RINGPACK_SEGMENTS_MAX */
+    int modes;    /* elastic modes of the modal model, 0 = 12 */
 } rd_ringpack_ring;
 
 typedef struct rd_ringpack_params {
@@ -101,6 +110,7 @@ typedef struct rd_ringpack_params {
     long max_steps;              /* CVODE steps for the whole run */
     int estimate_error;          /* 1: second run at rtol/10, atol/10 */
     rd_friction_params friction; /* model NONE (default) or COULOMB */
+    int model;                   /* every ring's model unless its own says (rd_ringpack_ring) */
     /* Test hook: the ring faces' pressures from these gauge tables (above,
      * below; behind for friction) instead of the network's.  NULL normally. */
     const rd_gas_params *face_tables;
@@ -130,6 +140,14 @@ typedef struct rd_ringpack_result {
     double periodicity;      /* relative change of the last cycle against the one before */
     /* CVODE's work over the whole run (summed over the restarts) */
     long steps, rhs_evals, jac_evals, root_evals, restarts, err_test_fails, nonlin_fails;
+    /* Per ring: the model integrated (RD_RINGPACK_AXIAL or enum
+     * rd_lift_model_kind), its degrees of freedom, elastic modes, why it was
+     * chosen, and a lift model's flank contact stiffness (Pa/m; 0 axial). */
+    int ring_model[RD_RINGPACK_RINGS_MAX], ring_dof[RD_RINGPACK_RINGS_MAX];
+    int ring_modes[RD_RINGPACK_RINGS_MAX];
+    char ring_why[RD_RINGPACK_RINGS_MAX][240];
+    double ring_stiffness[RD_RINGPACK_RINGS_MAX];
+    int states; /* CVODE's unknowns: 2R pressures, 2R axial slots, 4 masses, the lift rings' */
     double error_estimate;  /* from the rtol/10 run; NAN if none */
     double event_error_deg; /* largest flank-change angle change in that run; NAN if none */
 } rd_ringpack_result;
@@ -144,6 +162,9 @@ int rd_ringpack_validate(const rd_ringpack_params *p, rd_error *err);
 int rd_ringpack_solve(const rd_ringpack_params *p, const rd_monitor *mon, rd_ringpack_result *out,
                       rd_error *err);
 void rd_ringpack_result_cleanup(rd_ringpack_result *r);
+
+/* "axial", or the lift model's name (rd_lift_model_name); NULL if unknown. */
+const char *rd_ringpack_model_name(int model);
 
 /* Standard density of the blow-by gas, kg/m^3: 101325 / (R_g 293.15). */
 double rd_ringpack_standard_density(void);
