@@ -37,6 +37,11 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include <sunlinsol/sunlinsol_band.h>
+#include <sunlinsol/sunlinsol_dense.h>
+#include <sunmatrix/sunmatrix_band.h>
+#include <sunmatrix/sunmatrix_dense.h>
+
 #include "rd_ringpack_model.h"
 
 struct rd_packring {
@@ -52,6 +57,13 @@ struct rd_packring {
     double circ;                 /* pi d */
     rd_lift_flank_track track;
     rd_lift_run events;
+    /* its Newton solver: the second-order one (rd_lift_newton.c) for a form
+     * with blocks, else CVODE's dense or band LU of I - gamma J from the
+     * form's Jacobian, as the lift driver picks (rd_lift_driver.c) */
+    SUNLinearSolver LS;
+    SUNMatrix S, J; /* S: the second-order solver's (owned by LS); J: owned */
+    rd_lift_newton *nw;
+    N_Vector x, b, t1, t2, t3; /* views (x, b) and the Jacobian's scratch */
 };
 
 /* The lift parameters of pack ring i. */
@@ -126,10 +138,14 @@ void rd_packring_close(rd_packring *L)
         L->form.close(&L->form);
     rd_lift_model_cleanup(&L->m);
     rd_ring_free(L->ring);
-    if (L->ys)
-        N_VDestroy(L->ys);
-    if (L->yd)
-        N_VDestroy(L->yd);
+    if (L->LS)
+        SUNLinSolFree(L->LS);
+    if (L->J)
+        SUNMatDestroy(L->J);
+    N_Vector v[] = {L->ys, L->yd, L->x, L->b, L->t1, L->t2, L->t3};
+    for (size_t k = 0; k < sizeof v / sizeof v[0]; k++)
+        if (v[k])
+            N_VDestroy(v[k]);
     free(L->seg);
     free(L->zero);
     free(L->events.events);
@@ -211,8 +227,44 @@ rd_lift_run *rd_packring_events(rd_packring *L)
     return &L->events;
 }
 
-SUNLinearSolver rd_packring_solver(rd_packring *L, SUNContext ctx, SUNMatrix *S,
-                                   rd_lift_newton **nw)
+int rd_packring_solver_open(rd_packring *L, SUNContext ctx)
 {
-    return rd_lift_newton_create(&L->form, ctx, S, nw);
+    sunindextype N = L->form.N;
+    L->x = N_VMake_Serial(N, NULL, ctx);
+    L->b = N_VMake_Serial(N, NULL, ctx);
+    if (!L->x || !L->b)
+        return -1;
+    if (L->form.blocks) {
+        L->LS = rd_lift_newton_create(&L->form, ctx, &L->S, &L->nw);
+        return L->LS ? SUNLinSolInitialize(L->LS) : -1;
+    }
+    L->t1 = N_VNew_Serial(N, ctx);
+    L->t2 = N_VNew_Serial(N, ctx);
+    L->t3 = N_VNew_Serial(N, ctx);
+    L->J =
+        L->form.dense ? SUNDenseMatrix(N, N, ctx) : SUNBandMatrix(N, RD_LIFT_MU, RD_LIFT_ML, ctx);
+    if (!L->t1 || !L->t2 || !L->t3 || !L->J)
+        return -1;
+    L->LS = L->form.dense ? SUNLinSol_Dense(L->t1, L->J, ctx) : SUNLinSol_Band(L->t1, L->J, ctx);
+    L->S = L->J;
+    return L->LS ? SUNLinSolInitialize(L->LS) : -1;
+}
+
+int rd_packring_solver_setup(rd_packring *L, double t, double *y, double gamma)
+{
+    int cur = 0, rc;
+    N_VSetArrayPointer(y, L->b);
+    if (L->nw)
+        rc = rd_lift_newton_linsys(L->nw, t, L->b, 0, &cur, gamma);
+    else if (!(rc = L->form.rhs(t, L->b, L->t1, L->form.user)) &&
+             !(rc = L->form.jac(t, L->b, L->t1, L->J, L->form.user, L->x, L->t2, L->t3)))
+        rc = SUNMatScaleAddI(-gamma, L->J);
+    return rc ? rc : SUNLinSolSetup(L->LS, L->S);
+}
+
+int rd_packring_solver_solve(rd_packring *L, double *x, double *b)
+{
+    N_VSetArrayPointer(x, L->x);
+    N_VSetArrayPointer(b, L->b);
+    return SUNLinSolSolve(L->LS, L->S, L->x, L->b, 0.0);
 }

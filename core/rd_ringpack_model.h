@@ -80,6 +80,9 @@ void rd_ringpack_base_rhs(const rd_ringpack_model *m, double t, const double *y,
 /* dy/dt, all N states; nonzero if a lift model's right-hand side failed. */
 int rd_ringpack_rhs(const rd_ringpack_model *m, double t, const double *y, double *yd);
 
+/* Names and volumes into the result. */
+void rd_ringpack_describe(const rd_ringpack_model *m, rd_ringpack_result *r);
+
 /* ---- rings on the lift models (rd_ringpack_lift.c) ---- */
 
 /* Opens ring i's lift model of kind m->kind[i] (its ring of `segments`, its
@@ -112,11 +115,13 @@ double rd_packring_eps(const rd_packring *L);
  * crank angles). */
 rd_lift_flank_track *rd_packring_track(rd_packring *L);
 rd_lift_run *rd_packring_events(rd_packring *L);
-/* Its Newton solver (rd_lift_newton.c) and matrix. */
-SUNLinearSolver rd_packring_solver(rd_packring *L, SUNContext ctx, SUNMatrix *S,
-                                   rd_lift_newton **nw);
-/* Names and volumes into the result. */
-void rd_ringpack_describe(const rd_ringpack_model *m, rd_ringpack_result *r);
+/* Its own Newton solver (M = I - gamma J of its states at fixed
+ * pressures): opened once (nonzero: out of memory), set up at (t, y,
+ * gamma) (y: its states; nonzero: failed, positive recoverable), and
+ * x = M^-1 b. */
+int rd_packring_solver_open(rd_packring *L, SUNContext ctx);
+int rd_packring_solver_setup(rd_packring *L, double t, double *y, double gamma);
+int rd_packring_solver_solve(rd_packring *L, double *x, double *b);
 
 /* ---- the pack's Newton systems with lift rings (rd_ringpack_newton.c) ---- */
 

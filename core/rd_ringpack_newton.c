@@ -52,10 +52,6 @@
 typedef struct pring {
     rd_packring *L;
     int N, off;
-    SUNLinearSolver LS;
-    SUNMatrix S;
-    rd_lift_newton *nw;
-    N_Vector x, b;       /* views */
     double *X[3];        /* M_ii^-1 c_ik, N each */
     int pcol[3], np;     /* the face pressures' state indices (above, behind, below) */
     int face[3];         /* which face each column is */
@@ -132,12 +128,10 @@ static int ring_block(rd_ringpack_newton *nw, int i, const double *pv)
     rd_ringpack_model *m = nw->m;
     pring *pr = &nw->ring[i];
     double g[3], g1[3], *S = SM_DATA_D(nw->A);
-    int cur = 0, rc;
+    int rc;
     rd_ringpack_faces(m, i, nw->t, pv, g);
     rd_packring_gas(pr->L, g);
-    N_VSetArrayPointer((double *)nw->y + pr->off, pr->b);
-    if ((rc = rd_lift_newton_linsys(pr->nw, nw->t, pr->b, 0, &cur, nw->gamma)) ||
-        (rc = SUNLinSolSetup(pr->LS, pr->S)))
+    if ((rc = rd_packring_solver_setup(pr->L, nw->t, (double *)nw->y + pr->off, nw->gamma)))
         return rc;
     if ((rc = rd_packring_rhs(pr->L, nw->t, (double *)nw->y + pr->off, pr->r0)))
         return rc;
@@ -152,9 +146,7 @@ static int ring_block(rd_ringpack_newton *nw, int i, const double *pv)
             break;
         for (int k = 0; k < pr->N; k++)
             pr->w[k] = -nw->gamma * (pr->r1[k] - pr->r0[k]) / dp;
-        N_VSetArrayPointer(pr->w, pr->b);
-        N_VSetArrayPointer(pr->X[c], pr->x);
-        if ((rc = SUNLinSolSolve(pr->LS, pr->S, pr->x, pr->b, 0.0)))
+        if ((rc = rd_packring_solver_solve(pr->L, pr->X[c], pr->w)))
             break;
         network_along(nw, i, pr->X[c], nw->fb1); /* -M_bi X_ik / gamma */
         double *col = S + (size_t)pr->pcol[c] * nw->N0;
@@ -204,10 +196,7 @@ static SUNLinearSolver_ID pn_id(SUNLinearSolver LS)
 
 static int pn_initialize(SUNLinearSolver LS)
 {
-    rd_ringpack_newton *nw = LS->content;
-    for (int i = 0; i < nw->m->R; i++)
-        if (nw->ring[i].LS && SUNLinSolInitialize(nw->ring[i].LS))
-            return SUNLS_MEM_FAIL;
+    (void)LS;
     return 0;
 }
 
@@ -232,9 +221,7 @@ static int pn_solve(SUNLinearSolver LS, SUNMatrix A, N_Vector xv, N_Vector bv, s
         pring *pr = &nw->ring[i];
         if (!pr->L)
             continue;
-        N_VSetArrayPointer((double *)b + pr->off, pr->b);
-        N_VSetArrayPointer(x + pr->off, pr->x);
-        if ((rc = SUNLinSolSolve(pr->LS, pr->S, pr->x, pr->b, 0.0)))
+        if ((rc = rd_packring_solver_solve(pr->L, x + pr->off, (double *)b + pr->off)))
             return rc;
         network_along(nw, i, x + pr->off, nw->fb1);
         for (int r = 0; r < N0; r++)
@@ -255,12 +242,6 @@ static int pn_solve(SUNLinearSolver LS, SUNMatrix A, N_Vector xv, N_Vector bv, s
 
 static void ring_free(pring *pr)
 {
-    if (pr->LS)
-        SUNLinSolFree(pr->LS);
-    if (pr->x)
-        N_VDestroy(pr->x);
-    if (pr->b)
-        N_VDestroy(pr->b);
     for (int c = 0; c < 3; c++)
         free(pr->X[c]);
     free(pr->r0);
@@ -297,13 +278,10 @@ static int ring_open(rd_ringpack_newton *nw, int i, SUNContext ctx)
     pr->L = m->lr[i];
     pr->N = (int)rd_packring_form(pr->L)->N;
     pr->off = m->off[i];
-    pr->LS = rd_packring_solver(pr->L, ctx, &pr->S, &pr->nw);
-    pr->x = N_VMake_Serial(pr->N, NULL, ctx);
-    pr->b = N_VMake_Serial(pr->N, NULL, ctx);
     pr->r0 = malloc((size_t)pr->N * sizeof(double));
     pr->r1 = malloc((size_t)pr->N * sizeof(double));
     pr->w = malloc((size_t)pr->N * sizeof(double));
-    if (!pr->LS || !pr->x || !pr->b || !pr->r0 || !pr->r1 || !pr->w)
+    if (rd_packring_solver_open(pr->L, ctx) || !pr->r0 || !pr->r1 || !pr->w)
         return -1;
     int cols[3] = {2 * i, 2 * i + 1, i + 1 < m->R ? 2 * i + 2 : -1};
     pr->np = 0;
