@@ -40,11 +40,11 @@
  * gamma-ratio scaling unchanged; the driver asks for a fresh set-up at
  * every step, as the lift driver does).
  */
-#include <lapacke.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
+#include <sunlinsol/sunlinsol_dense.h>
 #include <sunmatrix/sunmatrix_dense.h>
 
 #include "rd_ringpack_model.h"
@@ -62,8 +62,9 @@ struct rd_ringpack_newton {
     rd_ringpack_model *m;
     int N0;
     double gamma, t;
-    SUNMatrix A; /* dense N0 x N0: S, LU-factored in place */
-    lapack_int *piv;
+    SUNMatrix A;        /* dense N0 x N0: S, LU-factored in place */
+    SUNLinearSolver lu; /* SUNDIALS dense LU of S (N0 <= 16: no blocked LAPACK) */
+    N_Vector xb;        /* N0 view */
     int info;
     double *fb0, *fb1, *yb, *typ, *G; /* N0; G: R x 2 x N0 */
     const double *y;                  /* the set-up state */
@@ -83,8 +84,8 @@ static void network_block(rd_ringpack_newton *nw, const double *area)
     memset(S, 0, (size_t)N0 * N0 * sizeof *S);
     for (int j = 0; j < N0; j++) {
         S[(size_t)j * N0 + j] = 1.0;
-        if (j >= 4 * m->R) /* the cumulative masses */
-            continue;
+        if (j >= 4 * m->R || (j >= 2 * m->R && m->lr[(j - 2 * m->R) / 2]))
+            continue; /* the cumulative masses, a lift ring's unused axial slots: zero columns */
         double h = 1e-7 * fmax(fabs(nw->y[j]), nw->typ[j]);
         nw->yb[j] = nw->y[j] + h;
         h = nw->yb[j] - nw->y[j];
@@ -175,9 +176,8 @@ int rd_ringpack_newton_linsys(rd_ringpack_newton *nw, double t, const double *y,
         if (rc)
             return rc;
     }
-    nw->info =
-        (int)LAPACKE_dgetrf(LAPACK_COL_MAJOR, nw->N0, nw->N0, SM_DATA_D(nw->A), nw->N0, nw->piv);
-    return nw->info > 0 ? 1 : nw->info; /* singular: recoverable, CVODE cuts the step */
+    nw->info = SUNLinSolSetup(nw->lu, nw->A);
+    return nw->info ? 1 : 0; /* singular: recoverable, CVODE cuts the step */
 }
 
 /* ------------------------------------------------------------ solver */
@@ -227,10 +227,9 @@ static int pn_solve(SUNLinearSolver LS, SUNMatrix A, N_Vector xv, N_Vector bv, s
         for (int r = 0; r < N0; r++)
             xb[r] += nw->gamma * nw->fb1[r];
     }
-    lapack_int info =
-        LAPACKE_dgetrs(LAPACK_COL_MAJOR, 'N', N0, 1, SM_DATA_D(nw->A), N0, nw->piv, xb, N0);
-    if (info)
-        return SUNLS_PACKAGE_FAIL_UNREC;
+    N_VSetArrayPointer(xb, nw->xb);
+    if ((rc = SUNLinSolSolve(nw->lu, nw->A, nw->xb, nw->xb, 0.0)))
+        return rc;
     for (int i = 0; i < nw->m->R; i++) {
         pring *pr = &nw->ring[i];
         for (int c = 0; pr->L && c < pr->np; c++)
@@ -257,7 +256,10 @@ static int pn_free(SUNLinearSolver LS)
     if (nw) {
         for (int i = 0; i < RD_RINGPACK_RINGS_MAX; i++)
             ring_free(&nw->ring[i]);
-        free(nw->piv);
+        if (nw->lu)
+            SUNLinSolFree(nw->lu);
+        if (nw->xb)
+            N_VDestroy(nw->xb);
         free(nw->fb0);
         free(nw->fb1);
         free(nw->yb);
@@ -319,13 +321,15 @@ SUNLinearSolver rd_ringpack_newton_create(rd_ringpack_model *m, SUNContext ctx, 
     nw->N0 = m->N0;
     nw->A = A;
     size_t N0 = (size_t)m->N0;
-    nw->piv = malloc(N0 * sizeof *nw->piv);
+    nw->xb = N_VMake_Serial(m->N0, NULL, ctx);
+    nw->lu = nw->xb ? SUNLinSol_Dense(nw->xb, A, ctx) : NULL;
     nw->fb0 = malloc(N0 * sizeof(double));
     nw->fb1 = malloc(N0 * sizeof(double));
     nw->yb = malloc(N0 * sizeof(double));
     nw->typ = malloc(N0 * sizeof(double));
     nw->G = malloc(2 * RD_RINGPACK_RINGS_MAX * N0 * sizeof(double));
-    int bad = !nw->piv || !nw->fb0 || !nw->fb1 || !nw->yb || !nw->typ || !nw->G;
+    int bad = !nw->lu || SUNLinSolInitialize(nw->lu) || !nw->fb0 || !nw->fb1 || !nw->yb ||
+              !nw->typ || !nw->G;
     for (int i = 0; !bad && i < m->R; i++)
         bad = m->lr[i] && ring_open(nw, i, ctx);
     if (bad) {
