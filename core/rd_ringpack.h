@@ -29,9 +29,18 @@
  * the crevices takes the crevice temperature (Namazian & Heywood 1982), so
  * the cylinder -> land flow uses T_l whichever way it goes.
  *
- * Rings: rigid, axial only (the pack's default model, the one the lift
- * analysis' rigid model reduces to for axisymmetric scenes without
- * friction): lift z_i (0 = seated on the lower flank, a = on the upper),
+ * Rings, per ring (numerics.model pack-wide, rings[i].model per ring):
+ *  - axial (RD_RINGPACK_AXIAL; auto without friction): the pack's own ring,
+ *    below;
+ *  - rigid, full, modal: the lift analysis' models (rd_lift_model.h), with
+ *    the network's pressures as their gauge face loads and their
+ *    per-segment lifts sizing the flank passages (rd_ringpack_lift.c);
+ *    auto with friction gives rigid (friction's couple twists the ring and
+ *    decides its leaves, which the axial ring cannot represent);
+ *  - a pinned ring is held on its flank whatever the model.
+ * The axial ring: axial only (what the lift analysis' rigid model reduces
+ * to for axisymmetric scenes without friction): lift z_i (0 = seated on the
+ * lower flank, a = on the upper),
  *   m_i z_i'' = m_i s''(t) - m_i g + A_i (p_above - p_below),
  * s the piston's distance below TDC (rd_lift_piston; m s'' is the inertia
  * pseudo-force in the piston frame), A_i = b (pi (d - b) - g) the face area
@@ -51,10 +60,12 @@
  * crankcase) on the back face; u_reg = 1e-3 x the mean piston speed
  * (rd_lift_friction_ureg).  Added to the axial force above.
  *
- * State (N = 2R + 2R + 4): y = [p(land_1), p(groove_1), ..., p(groove_R),
+ * State (N0 = 2R + 2R + 4): y = [p(land_1), p(groove_1), ..., p(groove_R),
  * z_1, z_1', ..., z_R, z_R', M_in, M_back, M_cc, M_cc_back], the last four
  * the cumulative masses in from the cylinder, back into it, into the
- * crankcase and out of it (kg).  CVODE BDF, dense Newton (DQ Jacobian).
+ * crankcase and out of it (kg); then each lift-model ring's own states (its
+ * z_i slots unused).  CVODE BDF; dense Newton (DQ Jacobian) with axial rings
+ * only, else the bordered block elimination of rd_ringpack_newton.c.
  * Since every flow leaves one state volume and enters another, BDF keeps
  * the linear invariant sum m_v + M_back - M_in + M_cc - M_cc_back exactly
  * (to round-off): the mass balance the tests check.

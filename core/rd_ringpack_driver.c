@@ -111,10 +111,11 @@ static int cv_linsys(sunrealtype t, N_Vector y, N_Vector fy, SUNMatrix A, sunboo
                      sunbooleantype *jcur, sunrealtype gamma, void *user, N_Vector t1, N_Vector t2,
                      N_Vector t3)
 {
-    (void)fy, (void)A, (void)jok, (void)t1, (void)t2, (void)t3;
+    (void)A, (void)jok, (void)t1, (void)t2, (void)t3;
     drv *d = user;
     *jcur = SUNTRUE;
-    return rd_ringpack_newton_linsys(d->pn, t, N_VGetArrayPointer(y), gamma);
+    return rd_ringpack_newton_linsys(d->pn, t, N_VGetArrayPointer(y), N_VGetArrayPointer(fy),
+                                     gamma);
 }
 
 static void cv_silent(int code, const char *module, const char *fn, char *msg, void *user)

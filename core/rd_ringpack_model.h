@@ -131,8 +131,10 @@ typedef struct rd_ringpack_newton rd_ringpack_newton;
  * lift rings open. */
 SUNLinearSolver rd_ringpack_newton_create(rd_ringpack_model *m, SUNContext ctx, SUNMatrix A,
                                           rd_ringpack_newton **nw);
-/* The linear-system function's work at (t, y, gamma): every block, the
- * Schur complement and its LU; 0, or nonzero (recoverable: positive). */
-int rd_ringpack_newton_linsys(rd_ringpack_newton *nw, double t, const double *y, double gamma);
+/* The linear-system function's work at (t, y, gamma), fy = f(t, y) (N
+ * values, CVODE's): every block, the Schur complement and its LU; 0, or
+ * nonzero (recoverable: positive). */
+int rd_ringpack_newton_linsys(rd_ringpack_newton *nw, double t, const double *y, const double *fy,
+                              double gamma);
 
 #endif

@@ -52,10 +52,12 @@
 typedef struct pring {
     rd_packring *L;
     int N, off;
-    double *X[3];        /* M_ii^-1 c_ik, N each */
-    int pcol[3], np;     /* the face pressures' state indices (above, behind, below) */
-    int face[3];         /* which face each column is */
-    double *r0, *r1, *w; /* N scratch */
+    double *X[3];    /* M_ii^-1 c_ik, N each */
+    int pcol[3], np; /* the face pressures' state indices (above, behind, below) */
+    int face[3];     /* which face each column is */
+    double *D[3];    /* d f_i / d p_k, N each, once (below) */
+    int have_D;
+    double *r1, *w; /* N scratch */
 } pring;
 
 struct rd_ringpack_newton {
@@ -67,7 +69,7 @@ struct rd_ringpack_newton {
     N_Vector xb;        /* N0 view */
     int info;
     double *fb0, *fb1, *yb, *typ, *G; /* N0; G: R x 2 x N0 */
-    const double *y;                  /* the set-up state */
+    const double *y, *fy;             /* the set-up state and f(t, y) */
     pring ring[RD_RINGPACK_RINGS_MAX];
 };
 
@@ -80,7 +82,7 @@ static void network_block(rd_ringpack_newton *nw, const double *area)
     int N0 = nw->N0;
     double *S = SM_DATA_D(nw->A);
     memcpy(nw->yb, nw->y, (size_t)N0 * sizeof(double));
-    rd_ringpack_base_rhs(m, nw->t, nw->yb, area, nw->fb0);
+    memcpy(nw->fb0, nw->fy, (size_t)N0 * sizeof(double)); /* CVODE's f(t, y): the same sums */
     memset(S, 0, (size_t)N0 * N0 * sizeof *S);
     for (int j = 0; j < N0; j++) {
         S[(size_t)j * N0 + j] = 1.0;
@@ -122,31 +124,49 @@ static void network_along(rd_ringpack_newton *nw, int i, const double *w, double
         out[r] = Gu[r] * du + Gl[r] * dl;
 }
 
+/* d f_i / d p_k of ring i.  The forces are affine in the face pressures
+ * with coefficients of the geometry alone (fixed active areas, the only
+ * ones the pack gives its rings: rd_ringpack_lift.c), so the quotients are
+ * computed once, at the first set-up, against CVODE's f(t, y). */
+static int pressure_columns(rd_ringpack_newton *nw, int i, const double *g)
+{
+    pring *pr = &nw->ring[i];
+    const double *f0 = nw->fy + pr->off;
+    double g1[3];
+    for (int c = 0; c < pr->np; c++) {
+        int f = pr->face[c], rc;
+        double dp = 1e-3 * fmax(fabs(g[f]), nw->m->p->crankcase_pa);
+        memcpy(g1, g, sizeof g1);
+        g1[f] += dp;
+        rd_packring_gas(pr->L, g1);
+        rc = rd_packring_rhs(pr->L, nw->t, (double *)nw->y + pr->off, pr->r1);
+        rd_packring_gas(pr->L, g);
+        if (rc)
+            return rc;
+        for (int k = 0; k < pr->N; k++)
+            pr->D[c][k] = (pr->r1[k] - f0[k]) / dp;
+    }
+    pr->have_D = 1;
+    return 0;
+}
+
 /* Ring i's own Newton matrix, its pressure columns X_ik, and their share
  * of the Schur complement. */
 static int ring_block(rd_ringpack_newton *nw, int i, const double *pv)
 {
     rd_ringpack_model *m = nw->m;
     pring *pr = &nw->ring[i];
-    double g[3], g1[3], *S = SM_DATA_D(nw->A);
+    double g[3], *S = SM_DATA_D(nw->A);
     int rc;
     rd_ringpack_faces(m, i, nw->t, pv, g);
     rd_packring_gas(pr->L, g);
     if ((rc = rd_packring_solver_setup(pr->L, nw->t, (double *)nw->y + pr->off, nw->gamma)))
         return rc;
-    if ((rc = rd_packring_rhs(pr->L, nw->t, (double *)nw->y + pr->off, pr->r0)))
+    if (!pr->have_D && (rc = pressure_columns(nw, i, g)))
         return rc;
     for (int c = 0; c < pr->np; c++) {
-        int f = pr->face[c];
-        double dp = 1e-3 * fmax(fabs(g[f]), m->p->crankcase_pa);
-        memcpy(g1, g, sizeof g1);
-        g1[f] += dp;
-        rd_packring_gas(pr->L, g1);
-        rc = rd_packring_rhs(pr->L, nw->t, (double *)nw->y + pr->off, pr->r1);
-        if (rc)
-            break;
         for (int k = 0; k < pr->N; k++)
-            pr->w[k] = -nw->gamma * (pr->r1[k] - pr->r0[k]) / dp;
+            pr->w[k] = -nw->gamma * pr->D[c][k];
         if ((rc = rd_packring_solver_solve(pr->L, pr->X[c], pr->w)))
             break;
         network_along(nw, i, pr->X[c], nw->fb1); /* -M_bi X_ik / gamma */
@@ -154,16 +174,17 @@ static int ring_block(rd_ringpack_newton *nw, int i, const double *pv)
         for (int r = 0; r < nw->N0; r++)
             col[r] += nw->gamma * nw->fb1[r];
     }
-    rd_packring_gas(pr->L, g);
     return rc;
 }
 
-int rd_ringpack_newton_linsys(rd_ringpack_newton *nw, double t, const double *y, double gamma)
+int rd_ringpack_newton_linsys(rd_ringpack_newton *nw, double t, const double *y, const double *fy,
+                              double gamma)
 {
     rd_ringpack_model *m = nw->m;
     double area[2 * RD_RINGPACK_RINGS_MAX], pv[RD_RINGPACK_VOLUMES_MAX];
     nw->t = t;
     nw->y = y;
+    nw->fy = fy;
     nw->gamma = gamma;
     rd_ringpack_areas(m, y, area);
     rd_ringpack_pressures(m, t, y, pv);
@@ -243,7 +264,8 @@ static void ring_free(pring *pr)
 {
     for (int c = 0; c < 3; c++)
         free(pr->X[c]);
-    free(pr->r0);
+    for (int c = 0; c < 3; c++)
+        free(pr->D[c]);
     free(pr->r1);
     free(pr->w);
 }
@@ -280,10 +302,10 @@ static int ring_open(rd_ringpack_newton *nw, int i, SUNContext ctx)
     pr->L = m->lr[i];
     pr->N = (int)rd_packring_form(pr->L)->N;
     pr->off = m->off[i];
-    pr->r0 = malloc((size_t)pr->N * sizeof(double));
+
     pr->r1 = malloc((size_t)pr->N * sizeof(double));
     pr->w = malloc((size_t)pr->N * sizeof(double));
-    if (rd_packring_solver_open(pr->L, ctx) || !pr->r0 || !pr->r1 || !pr->w)
+    if (rd_packring_solver_open(pr->L, ctx) || !pr->r1 || !pr->w)
         return -1;
     int cols[3] = {2 * i, 2 * i + 1, i + 1 < m->R ? 2 * i + 2 : -1};
     pr->np = 0;
@@ -292,7 +314,9 @@ static int ring_open(rd_ringpack_newton *nw, int i, SUNContext ctx)
             continue;
         pr->pcol[pr->np] = cols[f];
         pr->face[pr->np] = f;
-        if (!(pr->X[pr->np] = malloc((size_t)pr->N * sizeof(double))))
+        pr->X[pr->np] = malloc((size_t)pr->N * sizeof(double));
+        pr->D[pr->np] = malloc((size_t)pr->N * sizeof(double));
+        if (!pr->X[pr->np] || !pr->D[pr->np])
             return -1;
         pr->np++;
     }
