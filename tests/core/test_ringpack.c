@@ -452,12 +452,11 @@ static void test_error_estimate(void)
     struct {
         int rings, motored;
         double rpm, rtol;
-    } cases[] = {{1, 0, 2400, 1e-4},
-                 {3, 0, 2400, 1e-5},
-                 {3, 1, 2400, 1e-5},
-                 {3, 0, 6000, 1e-4},
-                 {2, 0, 4000, 1e-5}};
-    for (int c = 0; c < 5; c++) {
+        int model; /* of the top ring; rigid: the lift model, with friction */
+    } cases[] = {{1, 0, 2400, 1e-4, RD_LIFT_MODEL_AUTO}, {3, 0, 2400, 1e-5, RD_LIFT_MODEL_AUTO},
+                 {3, 1, 2400, 1e-5, RD_LIFT_MODEL_AUTO}, {3, 0, 6000, 1e-4, RD_LIFT_MODEL_AUTO},
+                 {2, 0, 4000, 1e-5, RD_LIFT_MODEL_AUTO}, {1, 0, 2400, 1e-4, RD_LIFT_MODEL_RIGID}};
+    for (int c = 0; c < 6; c++) {
         rd_ringpack_params p;
         rd_ringpack_result r, ref;
         three_rings(&p);
@@ -466,6 +465,10 @@ static void test_error_estimate(void)
         p.engine.cycles = 3;
         if (cases[c].motored)
             p.cylinder_kind = p.synthetic.kind = RD_CYLINDER_MOTORED;
+        if (cases[c].model == RD_LIFT_MODEL_RIGID) {
+            p.rings[0].model = RD_LIFT_MODEL_RIGID;
+            p.friction.model = RD_FRICTION_COULOMB;
+        }
         p.rtol = 1e-11;
         p.atol = 1e-14;
         int ok = run(&p, &ref, "reference") == RD_OK;
