@@ -17,7 +17,8 @@
  *     the top ring's lift analysis run alone (full, n = 20, one cycle) on
  *     the pack's pressures of its last cycle as gauge tables, at the same
  *     contact stiffness: the ratio of the times per cycle (medians).
- *   bench_ringpack --once    one run of each, for instruction counts.
+ *   bench_ringpack --once    one run of each (the first case), for instruction counts.
+ *   --section axial|rigid|flexible   only that table.
  *
  * Wall times on a shared 2-core machine are noisy: medians of repeats.
  */
@@ -171,14 +172,20 @@ static int flexible_table(int reps, int once)
 int main(int argc, char **argv)
 {
     int reps = 3, once = 0;
+    const char *only = "";
     for (int i = 1; i < argc; i++) {
         if (strcmp(argv[i], "--reps") == 0 && i + 1 < argc)
             reps = atoi(argv[++i]);
         else if (strcmp(argv[i], "--once") == 0)
             once = 1;
+        else if (strcmp(argv[i], "--section") == 0 && i + 1 < argc)
+            only = argv[++i];
     }
     reps = once ? 1 : reps < 3 ? 3 : reps > 50 ? 50 : reps;
-    if (rigid_table(RD_LIFT_MODEL_AUTO, reps, once) || rigid_table(RD_LIFT_MODEL_RIGID, reps, once))
+    int all = !*only;
+    if ((all || !strcmp(only, "axial")) && rigid_table(RD_LIFT_MODEL_AUTO, reps, once))
         return 1;
-    return flexible_table(reps, once);
+    if ((all || !strcmp(only, "rigid")) && rigid_table(RD_LIFT_MODEL_RIGID, reps, once))
+        return 1;
+    return all || !strcmp(only, "flexible") ? flexible_table(reps, once) : 0;
 }
