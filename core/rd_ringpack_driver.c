@@ -490,13 +490,41 @@ static int alloc_result(drv *d, rd_ringpack_result *r, rd_error *err)
     return RD_OK;
 }
 
+/* The work bound over the whole run (the restarts zero CVODE's counter). */
+static int work_bound(drv *d, double t, rd_error *err)
+{
+    long now = 0;
+    if (!CVodeGetNumSteps(d->cv, &now) && d->res->steps + now > d->m.p->max_steps)
+        return rd_error_set(err, RD_ELIMIT, "/numerics/max_steps",
+                            "The run needed more than /numerics/max_steps = %ld CVODE steps "
+                            "by crank angle %.2f deg (of %d cycles); raise it, or loosen "
+                            "/numerics/rtol.",
+                            d->m.p->max_steps, t * d->deg_per_s, d->C);
+    return RD_OK;
+}
+
+/* Steps per CVode call with lift rings, so the monitor is asked often: as
+ * the lift driver's (rd_lift_driver.c), 2000 segment-steps (~45 ms); 0:
+ * none (axial rings: a sample costs microseconds). */
+static long step_chunk(const rd_ringpack_model *m)
+{
+    int n = 0;
+    for (int i = 0; i < m->R; i++)
+        if (m->lr[i])
+            n = m->kind[i] == RD_LIFT_MODEL_RIGID
+                    ? (n > 1 ? n : 1)
+                    : (m->p->rings[i].segments > n ? m->p->rings[i].segments : n);
+    return n ? (2000 / n > 1 ? 2000 / n : 1) : 0;
+}
+
 /* The whole run: C cycles, sampled at every output angle. */
 static int integrate(drv *d, const rd_monitor *mon, rd_error *err)
 {
     double t = 0.0, dt = 720.0 / d->S / d->deg_per_s;
     int total = d->C * d->S, rc = at_root(d, 0.0, 1, err), flag;
-    if (rc)
-        return rc;
+    long chunk = step_chunk(&d->m);
+    if (rc || (chunk && (flag = CVodeSetMaxNumSteps(d->cv, chunk))))
+        return rc ? rc : cv_fail(d, flag, "set-up", err);
     record(d, 0, 0.0);
     for (int j = 1; j <= total; j++) {
         double tout = j * dt;
@@ -505,6 +533,10 @@ static int integrate(drv *d, const rd_monitor *mon, rd_error *err)
             if (flag == CV_ROOT_RETURN) {
                 if ((rc = at_root(d, t, 0, err)))
                     return rc;
+            } else if (flag == CV_TOO_MUCH_WORK && chunk) { /* a chunk ended */
+                if ((rc = work_bound(d, t, err)) ||
+                    (rc = rd_monitor_report(mon, (j - 1.0) / total, err)))
+                    return rc;
             } else if (flag < 0) {
                 return cv_fail(d, flag, "integration", err);
             } else {
@@ -512,14 +544,7 @@ static int integrate(drv *d, const rd_monitor *mon, rd_error *err)
             }
         }
         record(d, j, t);
-        long now = 0;
-        if (!CVodeGetNumSteps(d->cv, &now) && d->res->steps + now > d->m.p->max_steps)
-            return rd_error_set(err, RD_ELIMIT, "/numerics/max_steps",
-                                "The run needed more than /numerics/max_steps = %ld CVODE steps "
-                                "by crank angle %.2f deg (of %d cycles); raise it, or loosen "
-                                "/numerics/rtol.",
-                                d->m.p->max_steps, t * d->deg_per_s, d->C);
-        if ((rc = rd_monitor_report(mon, (double)j / total, err)))
+        if ((rc = work_bound(d, t, err)) || (rc = rd_monitor_report(mon, (double)j / total, err)))
             return rc;
     }
     return RD_OK;
