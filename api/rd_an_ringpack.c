@@ -28,7 +28,6 @@ struct pack_opts {
     rd_ringpack_ring proto; /* first: one ring item while parsing or echoing it */
     rd_ringpack_params pack;
     int synthetic_given, synthetic_kind; /* kind: index into synthetic_names */
-    int model;                           /* index into model_names */
     int friction_given, friction_model;  /* model: index into friction_names */
     int max_steps;
     struct rd_table table[2]; /* crank_deg, pressure_pa */
@@ -41,23 +40,32 @@ struct pack_opts {
 static const char *const kinematics_names[] = {"exact", "approximate", NULL};
 static const char *const pin_names[] = {"none", "lower", "upper", NULL}; /* enum rd_ringpack_pin */
 static const char *const synthetic_names[] = {"fired", "motored", NULL};
-static const char *const model_names[] = {"auto", "rigid", "full", "modal", NULL};
+/* enum rd_lift_model_kind order, then RD_RINGPACK_AXIAL */
+static const char *const model_names[] = {"full", "rigid", "modal", "auto", "axial", NULL};
+#define MODEL_DESC                                                                               \
+    "axial: lift only, hard flank stops (the pack's own ring); rigid: the lift analysis' rigid " \
+    "ring (lift, twist, radial motion); full: its flexible ring of `segments` segments; modal: " \
+    "its modal reduction (`modes`); auto: axial without friction, rigid with it (README \"Ring " \
+    "pack\"). A pinned ring is held on its flank (no model)."
+
 /* model - 1; stribeck is named (as in lift) but refused by rd_ringpack_validate */
 static const char *const friction_names[] = {"coulomb", "stribeck", NULL};
 
 /* The ranges the pack's solver was found to converge on (README "Limits"):
  * rtol up to 1e-5 (at 3e-5 the 1 rpm scene fails, at 1e-3..1e-2 pressures go
- * negative); with friction, rtol up to 1e-6 and at least 100 rpm (below,
+ * negative); with friction, rtol up to 1e-6 and at least 300 rpm (below,
  * its regularization speed, 1e-3 x the mean piston speed, makes the
- * friction force too stiff: CVODE fails at 30 rpm with mu = 10, at 1 rpm
- * already with mu = 0.05). */
+ * friction force too stiff: the axial ring fails at 30 rpm with mu = 10, at
+ * 1 rpm already with mu = 0.05; three of the lift's rigid rings, auto's
+ * choice with friction, exceed the default max_steps at 100 rpm with mu = 1
+ * and converge at 300 rpm with mu = 10 in 28 s, Release). */
 #define RTOL_MAX          1e-5
 #define FRICTION_RTOL_MAX 1e-6
-#define FRICTION_RPM_MIN  100.0
+#define FRICTION_RPM_MIN  300.0
 
 static const rd_field engine_fields[] = {
     {"speed_rpm", RD_F_NUMBER, PO(pack.engine.speed_rpm), RD_MIN(1), RD_MAX(30000),
-     .desc = "Crank speed, rpm; at least 100 with physics.friction."},
+     .desc = "Crank speed, rpm; at least 300 with physics.friction."},
     {"crank_radius", RD_F_NUMBER, PO(pack.engine.crank_radius), RD_MIN(0.001), RD_MAX(1.0),
      .desc = "Crank radius r (half the stroke), m."},
     {"rod_length", RD_F_NUMBER, PO(pack.engine.rod_length), RD_MAX(10.0),
@@ -101,13 +109,20 @@ static const rd_field item_fields[] = {
     {"groove", RD_F_BLOCK, 0, .block = &groove_block},
     {"land", RD_F_BLOCK, 0, .block = &land_block},
     {"gap_angle_deg", RD_F_NUMBER, PO(proto.gap_angle_deg), RD_MIN(-360), RD_MAX(360),
-     .desc = "Where the end gap sits around the bore, deg; recorded (the rigid ring is "
-             "axisymmetric and does not use it)."},
+     .desc = "Where the end gap sits around the bore, deg; recorded (every ring's loads are "
+             "uniform around the bore, so it does not enter)."},
     {"discharge_coefficient", RD_F_NUMBER, PO(proto.discharge_coefficient), RD_MIN(0), RD_MAX(1),
      .desc = "C_d of the ring's passages (end gap, flanks; the first ring's also for "
              "the top-land entry), -."},
     {"pinned", RD_F_CHOICE, PO(proto.pinned), .choices = pin_names,
      .desc = "lower / upper: the ring stays on that flank; none (or null): it moves."},
+    /* this ring's model (rd_ringpack_lift.c) */
+    {"model", RD_F_CHOICE, PO(proto.model), .choices = model_names,
+     .desc = "This ring's model; auto: /numerics/model's. " MODEL_DESC},
+    {"segments", RD_F_INTEGER, PO(proto.segments), RD_MIN(4), RD_MAX(RD_RINGPACK_SEGMENTS_MAX),
+     .desc = "Segments n of the ring's full and modal models (and of the rigid model's geometry)."},
+    {"modes", RD_F_INTEGER, PO(proto.modes), RD_MIN(0), RD_MAX(RD_LIFT_MODES_MAX),
+     .desc = "Elastic modes of the modal model, at most 6 n - 6; 0 = 12 (or 6 n - 6)."},
     {.key = NULL},
 };
 static const rd_block item_block = {"PackRing", "One ring of the pack, top ring first.", 1, 0,
@@ -190,10 +205,8 @@ static const rd_block physics_block = {
     1, 0, physics_fields};
 
 static const rd_field numerics_fields[] = {
-    {"model", RD_F_CHOICE, PO(model), .choices = model_names,
-     .desc = "The rings' model: auto and rigid integrate the rigid ring (axial lift, hard "
-             "flank stops), exact for the pack's axisymmetric scenes; full and modal are not "
-             "available in the pack yet (refused)."},
+    {"model", RD_F_CHOICE, PO(pack.model), .choices = model_names,
+     .desc = "Every ring's model unless its own rings/i/model says. " MODEL_DESC},
     {"rtol", RD_F_NUMBER, PO(pack.rtol), RD_MIN(1e-12), RD_MAX(RTOL_MAX),
      .desc = "Relative tolerance, at most 1e-5 (1e-6 with friction): looser, the rings' flank "
              "stops and the gas network go unstable (negative pressures, CVODE failures at 1 "
@@ -321,7 +334,6 @@ static void defaults(struct rd_scene *s)
     o->proto = o->pack.rings[0];
     o->max_steps = (int)o->pack.max_steps;
     o->synthetic_kind = 0;
-    o->model = 0;
 }
 
 static void cleanup(void *opts)
@@ -389,12 +401,6 @@ static int solver_ranges(const struct pack_opts *o, rd_error *err)
 static int finish(struct rd_scene *s, rd_error *err)
 {
     struct pack_opts *o = s->opts;
-    if (o->model >= 2)
-        return rd_error_set(err, RD_EINVAL, "/numerics/model",
-                            "/numerics/model = \"%s\" is not available in the ring pack yet: "
-                            "use \"auto\" or \"rigid\" (the rigid ring, exact for the pack's "
-                            "axisymmetric scenes).",
-                            model_names[o->model]);
     o->pack.max_steps = o->max_steps;
     o->pack.friction.model = o->friction_given ? o->friction_model + 1 : RD_FRICTION_NONE;
     int rc = cylinder_finish(o, err);
@@ -507,15 +513,40 @@ static json_t *table_json(const rd_ringpack_result *r)
     return t;
 }
 
+/* numerics.model: per ring {name, dof, modes, why} (as the lift analysis'
+ * numerics.model). */
+static json_t *ring_models(const rd_ringpack_result *r, int *lifted)
+{
+    json_t *a = json_array();
+    int bad = !a;
+    *lifted = 0;
+    for (int i = 0; !bad && i < r->n_rings; i++) {
+        const char *name = rd_ringpack_model_name(r->ring_model[i]);
+        *lifted |= r->ring_model[i] != RD_RINGPACK_AXIAL;
+        bad |= json_array_append_new(
+            a, json_pack("{s:s, s:i, s:i, s:s}", "name", name ? name : "unknown", "dof",
+                         r->ring_dof[i], "modes", r->ring_modes[i], "why", r->ring_why[i]));
+    }
+    if (bad) {
+        json_decref(a);
+        return NULL;
+    }
+    return a;
+}
+
 static json_t *pack_numerics(const rd_scene *scene, const rd_ringpack_result *r, double wall_s)
 {
     const struct pack_opts *o = scene->opts;
-    int estimated = isfinite(r->error_estimate);
+    int estimated = isfinite(r->error_estimate), lifted;
+    json_t *models = ring_models(r, &lifted);
     return json_pack(
-        "{s:s, s:i, s:o, s:s, s:I, s:I, s:I, s:I, s:I, s:I, s:I, s:o, s:o, s:o, s:o, s:o, s:i}",
-        "model", "rigid", "dof", 4 * r->n_rings + 4, "wall_s", rd_result_real(wall_s), "solver",
-        "SUNDIALS CVODE, BDF with a dense Newton linear solver (difference-quotient "
-        "Jacobian), root finding for the flank changes, restarted at each",
+        "{s:o, s:i, s:o, s:s, s:I, s:I, s:I, s:I, s:I, s:I, s:I, s:o, s:o, s:o, s:o, s:o, s:i}",
+        "model", models, "dof", r->states, "wall_s", rd_result_real(wall_s), "solver",
+        lifted ? "SUNDIALS CVODE, BDF (order <= 2), Newton on the coupled system by block "
+                 "elimination: each lift-model ring's own solver, the network's dense "
+                 "Schur complement; root finding for the flank changes"
+               : "SUNDIALS CVODE, BDF with a dense Newton linear solver (difference-quotient "
+                 "Jacobian), root finding for the flank changes, restarted at each",
         "steps", (json_int_t)r->steps, "rhs_evals", (json_int_t)r->rhs_evals, "jac_evals",
         (json_int_t)r->jac_evals, "root_evals", (json_int_t)r->root_evals, "restarts",
         (json_int_t)r->restarts, "error_test_fails", (json_int_t)r->err_test_fails,

@@ -53,5 +53,5 @@ echo
 echo "## lift: the modal model against the full model it reduces (lift examples)"
 "$b/bench/bench_lift" --modal examples
 echo
-echo "## ringpack: cost per engine cycle, three rigid rings (target <= 50 ms)"
+echo "## ringpack: cost per engine cycle: axial and rigid rings (target <= 50 ms), a full top ring vs its lift run alone (target <= 10x)"
 "$b/bench/bench_ringpack"

@@ -95,10 +95,7 @@ typedef struct driver {
 
 /* Flank tracking between root returns: the committed flank and the time a
  * pending leave started (the load's sign change), NAN if none. */
-typedef struct flank_track {
-    int state;
-    double cand;
-} flank_track;
+typedef rd_lift_flank_track flank_track;
 
 /* Root functions (directions in rootdir of cv_configure): landing on the
  * lower flank, leave confirmed, landing on the upper flank, leave confirmed,
@@ -351,8 +348,8 @@ static int track_seated(flank_track *tr, const int *rf, int away, int confirm, i
     return RD_OK;
 }
 
-static int track_roots(flank_track *tr, const int *rf, double t, double deg_per_s, double fz,
-                       rd_lift_run *o, rd_error *err)
+int rd_lift_track_roots(flank_track *tr, const int *rf, double t, double deg_per_s, double fz,
+                        rd_lift_run *o, rd_error *err)
 {
     if (tr->state == RD_FLANK_LOWER)
         return track_seated(tr, rf, +1, 1, RD_EVENT_LEAVE_LOWER, t, deg_per_s, o, err);
@@ -527,7 +524,7 @@ static int advance(driver *d, double tout, flank_track *tr, rd_lift_run *o, cons
                 return cv_fail(d, flag, "query", err);
             d->form.loads(d->form.user, t, yy);
             int was = tr->state;
-            if ((rc = track_roots(tr, rf, t, d->deg_per_s, d->m.fz_ext, o, err)))
+            if ((rc = rd_lift_track_roots(tr, rf, t, d->deg_per_s, d->m.fz_ext, o, err)))
                 return rc;
             if (was == RD_FLANK_FREE && tr->state != RD_FLANK_FREE &&
                 d->m.p->landing == RD_LANDING_PLASTIC &&

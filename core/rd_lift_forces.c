@@ -433,11 +433,15 @@ static void force_env_at(const rd_lift_model *c, double t, force_env *env)
         env->bd = b1 * dps * r;
         env->bdd = b2 * dps * dps * r;
     }
-    env->gas = p->gas.points > 0;
+    env->gas = p->gas.points > 0 || c->gas_now;
     env->dynamic = env->gas && p->gas.active_area == RD_GAS_AREA_DYNAMIC;
     env->fric = p->friction.model != RD_FRICTION_NONE;
     env->pa = env->pbh = env->pbl = 0.0;
-    if (env->gas) {
+    if (c->gas_now) { /* the caller's pressures (rd_lift_model.h) */
+        env->pa = c->gas_now[0];
+        env->pbh = c->gas_now[1];
+        env->pbl = c->gas_now[2];
+    } else if (env->gas) {
         env->pa = gas_at(&p->gas, p->gas.above, deg);
         env->pbh = gas_at(&p->gas, p->gas.behind, deg);
         env->pbl = gas_at(&p->gas, p->gas.below, deg);

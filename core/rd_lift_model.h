@@ -117,6 +117,10 @@ typedef struct rd_lift_model {
     double friction;        /* total axial friction of the last force call, N */
     double fz_ext;          /* total axial force on the ring except the flanks, N */
     rd_lift_energy *energy; /* non-NULL: the forces accumulate the bookkeeping */
+    /* Non-NULL: the gauge gas pressures (above, behind, below; Pa) of every
+     * force call, instead of p->gas's tables: a caller that computes them
+     * (the ring pack, rd_ringpack_lift.c) sets them before each call. */
+    const double *gas_now;
 } rd_lift_model;
 
 /* Builds the model of a valid scene on `ring` (borrowed, as p).  On failure
@@ -288,5 +292,17 @@ int rd_lift_keep_partial(rd_lift_result *out, const rd_lift_params *p, const rd_
                          int why, rd_error *err);
 /* A run stopped in its error-estimate run: every cycle, no estimate. */
 void rd_lift_estimate_stopped(rd_lift_result *out, const rd_lift_params *p);
+
+/* The flank-change state machine of the events (rd_lift_driver.c header):
+ * the committed flank (enum rd_flank) and the time a pending leave started
+ * (its load's sign change), NAN if none.  rd_lift_track_roots advances it at
+ * a root return: rf the root flags of the five roots L, L - eps, c_a - L,
+ * c_a - L - eps, the load fz (N) at time t (s); events go to run. */
+typedef struct rd_lift_flank_track {
+    int state;
+    double cand;
+} rd_lift_flank_track;
+int rd_lift_track_roots(rd_lift_flank_track *tr, const int *rf, double t, double deg_per_s,
+                        double fz, rd_lift_run *run, rd_error *err);
 
 #endif

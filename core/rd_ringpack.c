@@ -35,6 +35,8 @@ void rd_ringpack_params_default(rd_ringpack_params *p)
         r->land_clearance = 3e-4;
         r->discharge_coefficient = 0.7;
         r->pinned = RD_PIN_FREE;
+        r->model = RD_LIFT_MODEL_AUTO;
+        r->segments = 20;
     }
     p->cylinder_kind = RD_CYLINDER_FIRED;
     p->synthetic.kind = RD_CYLINDER_FIRED;
@@ -53,6 +55,12 @@ void rd_ringpack_params_default(rd_ringpack_params *p)
     p->estimate_error = 1;
     p->friction.model = RD_FRICTION_NONE;
     p->friction.coefficient = 0.1; /* the lift analysis' default */
+    p->model = RD_LIFT_MODEL_AUTO;
+}
+
+const char *rd_ringpack_model_name(int model)
+{
+    return model == RD_RINGPACK_AXIAL ? "axial" : rd_lift_model_name(model);
 }
 
 double rd_ringpack_standard_density(void)
@@ -98,6 +106,15 @@ static int validate_ring(const rd_ringpack_ring *r, int i, double bore, rd_error
     rc = rc ? rc
             : range(r->discharge_coefficient, 0.0, 1.0, FIELD("discharge_coefficient"), "", err);
     rc = rc ? rc : range(r->gap_angle_deg, -360.0, 360.0, FIELD("gap_angle_deg"), "deg", err);
+    rc = rc ? rc : range(r->model, 0, RD_RINGPACK_AXIAL, FIELD("model"), "", err);
+    rc = rc ? rc
+            : range(r->segments, 4, RD_RINGPACK_SEGMENTS_MAX, FIELD("segments"), "segments", err);
+    rc = rc ? rc : range(r->modes, 0, RD_LIFT_MODES_MAX, FIELD("modes"), "modes", err);
+    if (!rc && r->modes > 6 * r->segments - 6)
+        return rd_error_set(err, RD_EINVAL, FIELD("modes"),
+                            "%s = %d: a ring of %d segments has %d elastic modes; allowed 0 "
+                            "(automatic) to %d.",
+                            f, r->modes, r->segments, 6 * r->segments - 6, 6 * r->segments - 6);
     if (!rc && !(r->land_height > 0.0 && r->land_clearance > 0.0))
         return rd_error_set(err, RD_EINVAL,
                             FIELD(r->land_height > 0.0 ? "land/radial_clearance" : "land/height"),
@@ -178,6 +195,7 @@ int rd_ringpack_validate(const rd_ringpack_params *p, rd_error *err)
     rc = rc ? rc : range(p->T_lands, 200.0, 1500.0, "/gas_temperature_k/lands", "K", err);
     rc = rc ? rc : range(p->T_crankcase, 200.0, 1500.0, "/gas_temperature_k/crankcase", "K", err);
     rc = rc ? rc : range(p->rtol, 1e-12, 0.01, "/numerics/rtol", "", err);
+    rc = rc ? rc : range(p->model, 0, RD_RINGPACK_AXIAL, "/numerics/model", "", err);
     if (!rc && p->friction.model != RD_FRICTION_NONE)
         rc = range(p->friction.coefficient, 0.0, 10.0, "/physics/friction/coefficient", "", err);
     if (!rc && p->friction.model != RD_FRICTION_NONE && p->friction.model != RD_FRICTION_COULOMB)
@@ -249,7 +267,7 @@ int rd_ringpack_model_init(rd_ringpack_model *m, const rd_ringpack_params *p, rd
     m->p = p;
     m->R = p->n_rings;
     m->V = 2 * m->R;
-    m->N = 4 * m->R + 4;
+    m->N = m->N0 = 4 * m->R + 4;
     m->F = 1 + 3 * m->R;
     m->omega = p->engine.speed_rpm * 2.0 * M_PI / 60.0;
     m->temp[0] = p->T_lands; /* gas entering the top land takes its temperature */
@@ -265,11 +283,16 @@ int rd_ringpack_model_init(rd_ringpack_model *m, const rd_ringpack_params *p, rd
         ring_geometry(m, i);
         m->mode[i] = p->rings[i].pinned == RD_PIN_UPPER ? RD_FLANK_UPPER : RD_FLANK_LOWER;
     }
+    rd_ringpack_choose(m, NULL);
     return cylinder_trace(m, err);
 }
 
 void rd_ringpack_model_cleanup(rd_ringpack_model *m)
 {
+    for (int i = 0; i < RD_RINGPACK_RINGS_MAX; i++) {
+        rd_packring_close(m->lr[i]);
+        m->lr[i] = NULL;
+    }
     if (m->cyl_owned)
         free(m->cyl_deg);
     m->cyl_deg = m->cyl_pa = NULL;
@@ -285,7 +308,20 @@ void rd_ringpack_pressures(const rd_ringpack_model *m, double t, const double *y
     pv[m->V + 1] = m->p->crankcase_pa;
 }
 
-void rd_ringpack_flows(const rd_ringpack_model *m, const double *pv, const double *y, double *mdot)
+void rd_ringpack_areas(const rd_ringpack_model *m, const double *y, double *area)
+{
+    for (int i = 0; i < m->R; i++) {
+        if (m->lr[i]) {
+            rd_packring_areas(m->lr[i], y + m->off[i], &area[2 * i], &area[2 * i + 1]);
+            continue;
+        }
+        double z = RP_Z(m, y, i);
+        area[2 * i] = m->circ[i] * fmax(m->ca[i] - z, 0.0);
+        area[2 * i + 1] = m->circ[i] * fmax(z, 0.0);
+    }
+}
+
+void rd_ringpack_flows(const rd_ringpack_model *m, const double *pv, const double *fa, double *mdot)
 {
     const double k = RD_GASFLOW_KAPPA, Rg = RD_GASFLOW_R;
     for (int f = 0; f < m->F; f++) {
@@ -294,10 +330,7 @@ void rd_ringpack_flows(const rd_ringpack_model *m, const double *pv, const doubl
             area = m->top_area;
         } else {
             int i = (f - 1) / 3, kind = (f - 1) % 3;
-            double z = RP_Z(m, y, i);
-            area = kind == 0   ? m->circ[i] * fmax(m->ca[i] - z, 0.0)
-                   : kind == 1 ? m->circ[i] * fmax(z, 0.0)
-                               : m->gap_area[i];
+            area = kind == 2 ? m->gap_area[i] : fa[2 * i + kind];
         }
         int a = m->from[f], b = m->to[f];
         double cd = f == 0 ? m->cd[0] : m->cd[(f - 1) / 3];
@@ -305,20 +338,18 @@ void rd_ringpack_flows(const rd_ringpack_model *m, const double *pv, const doubl
     }
 }
 
-/* Ring i's gauge pressures above, below and behind (the network's, or the
- * test hook's tables), Pa. */
-static void face_pressures(const rd_ringpack_model *m, int i, double t, const double *pv,
-                           double out[3])
+void rd_ringpack_faces(const rd_ringpack_model *m, int i, double t, const double *pv, double out[3])
 {
     const rd_gas_params *g = m->p->face_tables;
-    out[0] = pv[2 * i + 1];
-    out[1] = pv[rp_below(m, i)];
-    out[2] = pv[2 * i + 2] - m->p->crankcase_pa;
+    double cc = m->p->crankcase_pa;
+    out[0] = pv[2 * i + 1] - cc;
+    out[1] = pv[2 * i + 2] - cc;
+    out[2] = pv[rp_below(m, i)] - cc;
     if (g) { /* the test hook: the lift analysis' gauge tables */
         double deg = t * m->omega * 180.0 / M_PI;
         out[0] = rd_gasflow_table(g->points, g->crank_deg, g->above, deg);
-        out[1] = rd_gasflow_table(g->points, g->crank_deg, g->below, deg);
-        out[2] = rd_gasflow_table(g->points, g->crank_deg, g->behind, deg);
+        out[1] = rd_gasflow_table(g->points, g->crank_deg, g->behind, deg);
+        out[2] = rd_gasflow_table(g->points, g->crank_deg, g->below, deg);
     }
 }
 
@@ -328,9 +359,9 @@ double rd_ringpack_friction(const rd_ringpack_model *m, int i, double t, const d
     if (m->p->friction.model != RD_FRICTION_COULOMB)
         return 0.0;
     double f[3], v_p;
-    face_pressures(m, i, t, pv, f);
+    rd_ringpack_faces(m, i, t, pv, f);
     rd_lift_piston(&m->p->engine, m->omega * t, NULL, &v_p, NULL);
-    double N = fmax(m->n_pre[i] + m->n_back[i] * f[2], 0.0);
+    double N = fmax(m->n_pre[i] + m->n_back[i] * f[1], 0.0);
     return -m->p->friction.coefficient * N * tanh((RP_ZD(m, y, i) - v_p) / m->ureg);
 }
 
@@ -338,18 +369,19 @@ double rd_ringpack_ring_force(const rd_ringpack_model *m, int i, double t, const
                               const double *pv)
 {
     double f[3], a_p;
-    face_pressures(m, i, t, pv, f);
+    rd_ringpack_faces(m, i, t, pv, f);
     rd_lift_piston(&m->p->engine, m->omega * t, NULL, NULL, &a_p);
-    return m->mass[i] * (a_p - (m->p->gravity ? GRAVITY : 0.0)) + m->area[i] * (f[1] - f[0]) +
+    return m->mass[i] * (a_p - (m->p->gravity ? GRAVITY : 0.0)) + m->area[i] * (f[2] - f[0]) +
            rd_ringpack_friction(m, i, t, y, pv);
 }
 
-void rd_ringpack_rhs(const rd_ringpack_model *m, double t, const double *y, double *yd)
+void rd_ringpack_base_rhs(const rd_ringpack_model *m, double t, const double *y, const double *area,
+                          double *yd)
 {
     double pv[RD_RINGPACK_VOLUMES_MAX], mdot[RD_RINGPACK_FLOWS_MAX];
     double dm[RD_RINGPACK_VOLUMES_MAX] = {0};
     rd_ringpack_pressures(m, t, y, pv);
-    rd_ringpack_flows(m, pv, y, mdot);
+    rd_ringpack_flows(m, pv, area, mdot);
     for (int f = 0; f < m->F; f++) {
         dm[m->from[f]] -= mdot[f];
         dm[m->to[f]] += mdot[f];
@@ -357,7 +389,7 @@ void rd_ringpack_rhs(const rd_ringpack_model *m, double t, const double *y, doub
     for (int v = 1; v <= m->V; v++)
         yd[v - 1] = RD_GASFLOW_R * m->temp[v] / m->vol[v] * dm[v];
     for (int i = 0; i < m->R; i++) {
-        int free_ = m->mode[i] == RD_FLANK_FREE;
+        int free_ = m->mode[i] == RD_FLANK_FREE && !m->lr[i];
         RP_Z(m, yd, i) = free_ ? RP_ZD(m, y, i) : 0.0;
         RP_ZD(m, yd, i) = free_ ? rd_ringpack_ring_force(m, i, t, y, pv) / m->mass[i] : 0.0;
     }
@@ -366,6 +398,62 @@ void rd_ringpack_rhs(const rd_ringpack_model *m, double t, const double *y, doub
     RP_CUM(m, yd, 1) = fmax(-in, 0.0);
     RP_CUM(m, yd, 2) = fmax(cc, 0.0);
     RP_CUM(m, yd, 3) = fmax(-cc, 0.0);
+}
+
+int rd_ringpack_rhs(const rd_ringpack_model *m, double t, const double *y, double *yd)
+{
+    double area[2 * RD_RINGPACK_RINGS_MAX], pv[RD_RINGPACK_VOLUMES_MAX], g[3];
+    rd_ringpack_areas(m, y, area);
+    rd_ringpack_base_rhs(m, t, y, area, yd);
+    if (!m->lifted)
+        return 0;
+    rd_ringpack_pressures(m, t, y, pv);
+    for (int i = 0; i < m->R; i++) {
+        if (!m->lr[i])
+            continue;
+        rd_ringpack_faces(m, i, t, pv, g);
+        rd_packring_gas(m->lr[i], g);
+        int rc = rd_packring_rhs(m->lr[i], t, (double *)y + m->off[i], yd + m->off[i]);
+        if (rc)
+            return rc;
+    }
+    return 0;
+}
+
+/* auto's reasons (rd_ringpack_choose). */
+#define AXIAL_WHY                                                                                \
+    "auto: an axisymmetric pack ring without friction; the axial ring (lift, hard flank stops) " \
+    "meets the lift rigid ring's flank changes within 0.1 deg at a third of its cost"
+#define RIGID_WHY                                                                             \
+    "auto: friction twists the ring and the twist decides when it leaves a flank, which the " \
+    "axial ring cannot represent (9 deg off); the full ring costs ~50x more (numerics.model)"
+
+void rd_ringpack_choose(rd_ringpack_model *m, char (*why)[240])
+{
+    for (int i = 0; i < m->R; i++) {
+        const rd_ringpack_ring *r = &m->p->rings[i];
+        int k = r->model != RD_LIFT_MODEL_AUTO ? r->model : m->p->model;
+        char w[240];
+        if (r->pinned != RD_PIN_FREE) {
+            snprintf(w, sizeof w, "pinned on its %s flank: held there, no motion integrated",
+                     r->pinned == RD_PIN_LOWER ? "lower" : "upper");
+            k = RD_RINGPACK_AXIAL;
+        } else if (k == RD_LIFT_MODEL_AUTO) {
+            int fric = m->p->friction.model != RD_FRICTION_NONE;
+            snprintf(w, sizeof w, "%s", fric ? RIGID_WHY : AXIAL_WHY);
+            k = fric ? RD_LIFT_MODEL_RIGID : RD_RINGPACK_AXIAL;
+        } else {
+            char at[32];
+            if (r->model != RD_LIFT_MODEL_AUTO)
+                snprintf(at, sizeof at, "rings/%d/model", i);
+            else
+                snprintf(at, sizeof at, "numerics/model");
+            snprintf(w, sizeof w, "asked for (%s = %s)", at, rd_ringpack_model_name(k));
+        }
+        m->kind[i] = k;
+        if (why)
+            snprintf(why[i], 240, "%s", w);
+    }
 }
 
 void rd_ringpack_describe(const rd_ringpack_model *m, rd_ringpack_result *r)

@@ -29,9 +29,18 @@
  * the crevices takes the crevice temperature (Namazian & Heywood 1982), so
  * the cylinder -> land flow uses T_l whichever way it goes.
  *
- * Rings: rigid, axial only (the pack's default model, the one the lift
- * analysis' rigid model reduces to for axisymmetric scenes without
- * friction): lift z_i (0 = seated on the lower flank, a = on the upper),
+ * Rings, per ring (numerics.model pack-wide, rings[i].model per ring):
+ *  - axial (RD_RINGPACK_AXIAL; auto without friction): the pack's own ring,
+ *    below;
+ *  - rigid, full, modal: the lift analysis' models (rd_lift_model.h), with
+ *    the network's pressures as their gauge face loads and their
+ *    per-segment lifts sizing the flank passages (rd_ringpack_lift.c);
+ *    auto with friction gives rigid (friction's couple twists the ring and
+ *    decides its leaves, which the axial ring cannot represent);
+ *  - a pinned ring is held on its flank whatever the model.
+ * The axial ring: axial only (what the lift analysis' rigid model reduces
+ * to for axisymmetric scenes without friction): lift z_i (0 = seated on the
+ * lower flank, a = on the upper),
  *   m_i z_i'' = m_i s''(t) - m_i g + A_i (p_above - p_below),
  * s the piston's distance below TDC (rd_lift_piston; m s'' is the inertia
  * pseudo-force in the piston frame), A_i = b (pi (d - b) - g) the face area
@@ -51,10 +60,12 @@
  * crankcase) on the back face; u_reg = 1e-3 x the mean piston speed
  * (rd_lift_friction_ureg).  Added to the axial force above.
  *
- * State (N = 2R + 2R + 4): y = [p(land_1), p(groove_1), ..., p(groove_R),
+ * State (N0 = 2R + 2R + 4): y = [p(land_1), p(groove_1), ..., p(groove_R),
  * z_1, z_1', ..., z_R, z_R', M_in, M_back, M_cc, M_cc_back], the last four
  * the cumulative masses in from the cylinder, back into it, into the
- * crankcase and out of it (kg).  CVODE BDF, dense Newton (DQ Jacobian).
+ * crankcase and out of it (kg); then each lift-model ring's own states (its
+ * z_i slots unused).  CVODE BDF; dense Newton (DQ Jacobian) with axial rings
+ * only, else the bordered block elimination of rd_ringpack_newton.c.
  * Since every flow leaves one state volume and enters another, BDF keeps
  * the linear invariant sum m_v + M_back - M_in + M_cc - M_cc_back exactly
  * (to round-off): the mass balance the tests check.
@@ -73,6 +84,10 @@
 #define RD_RINGPACK_CYCLES_MAX  50
 
 enum rd_ringpack_pin { RD_PIN_FREE = 0, RD_PIN_LOWER = 1, RD_PIN_UPPER = 2 };
+/* The pack's own ring model beside the lift analysis' (enum
+ * rd_lift_model_kind): axial lift only, hard flank stops (above). */
+#define RD_RINGPACK_AXIAL        4
+#define RD_RINGPACK_SEGMENTS_MAX 200
 
 typedef struct rd_ringpack_ring {
     rd_ring_params ring; /* section, closed gap, density */
@@ -82,6 +97,11 @@ typedef struct rd_ringpack_ring {
     double gap_angle_deg;         /* where the gap sits (recorded; the rigid ring ignores it) */
     double discharge_coefficient; /* C_d of its passages, 0..1 */
     int pinned;                   /* enum rd_ringpack_pin */
+    /* The ring's model (rd_ringpack_lift.c): enum rd_lift_model_kind or
+     * RD_RINGPACK_AXIAL; RD_LIFT_MODEL_AUTO: the pack's p->model. */
+    int model;
+    int segments; /* n of the full and modal models, 4..RD_RINGPACK_SEGMENTS_MAX */
+    int modes;    /* elastic modes of the modal model, 0 = 12 */
 } rd_ringpack_ring;
 
 typedef struct rd_ringpack_params {
@@ -101,6 +121,7 @@ typedef struct rd_ringpack_params {
     long max_steps;              /* CVODE steps for the whole run */
     int estimate_error;          /* 1: second run at rtol/10, atol/10 */
     rd_friction_params friction; /* model NONE (default) or COULOMB */
+    int model;                   /* every ring's model unless its own says (rd_ringpack_ring) */
     /* Test hook: the ring faces' pressures from these gauge tables (above,
      * below; behind for friction) instead of the network's.  NULL normally. */
     const rd_gas_params *face_tables;
@@ -130,6 +151,14 @@ typedef struct rd_ringpack_result {
     double periodicity;      /* relative change of the last cycle against the one before */
     /* CVODE's work over the whole run (summed over the restarts) */
     long steps, rhs_evals, jac_evals, root_evals, restarts, err_test_fails, nonlin_fails;
+    /* Per ring: the model integrated (RD_RINGPACK_AXIAL or enum
+     * rd_lift_model_kind), its degrees of freedom, elastic modes, why it was
+     * chosen, and a lift model's flank contact stiffness (Pa/m; 0 axial). */
+    int ring_model[RD_RINGPACK_RINGS_MAX], ring_dof[RD_RINGPACK_RINGS_MAX];
+    int ring_modes[RD_RINGPACK_RINGS_MAX];
+    char ring_why[RD_RINGPACK_RINGS_MAX][240];
+    double ring_stiffness[RD_RINGPACK_RINGS_MAX];
+    int states; /* CVODE's unknowns: 2R pressures, 2R axial slots, 4 masses, the lift rings' */
     double error_estimate;  /* from the rtol/10 run; NAN if none */
     double event_error_deg; /* largest flank-change angle change in that run; NAN if none */
 } rd_ringpack_result;
@@ -144,6 +173,9 @@ int rd_ringpack_validate(const rd_ringpack_params *p, rd_error *err);
 int rd_ringpack_solve(const rd_ringpack_params *p, const rd_monitor *mon, rd_ringpack_result *out,
                       rd_error *err);
 void rd_ringpack_result_cleanup(rd_ringpack_result *r);
+
+/* "axial", or the lift model's name (rd_lift_model_name); NULL if unknown. */
+const char *rd_ringpack_model_name(int model);
 
 /* Standard density of the blow-by gas, kg/m^3: 101325 / (R_g 293.15). */
 double rd_ringpack_standard_density(void);

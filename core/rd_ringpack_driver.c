@@ -24,6 +24,9 @@
 #include "rd_ringpack_model.h"
 
 #define HMAX_DEG     2.0    /* largest step, crank degrees */
+#define HMAX_LIFT    1.0    /* with lift rings: the lift driver's bound */
+#define ORDER_LIFT   2      /* with lift rings: the lift driver's BDF order bound */
+#define NR           5      /* roots per ring (an axial ring uses the first two) */
 #define RESTARTS_MAX 200000 /* flank changes allowed in a run */
 
 typedef struct drv {
@@ -32,6 +35,7 @@ typedef struct drv {
     N_Vector y, abstol;
     SUNMatrix A;
     SUNLinearSolver LS;
+    rd_ringpack_newton *pn; /* with lift rings: the bordered Newton solver */
     void *cv;
     double deg_per_s;
     double *prev;     /* n_volumes x samples: the cycle before the last */
@@ -46,11 +50,34 @@ static int cv_rhs(sunrealtype t, N_Vector y, N_Vector yd, void *user)
 {
     drv *d = user;
     double *f = N_VGetArrayPointer(yd);
-    rd_ringpack_rhs(&d->m, t, N_VGetArrayPointer(y), f);
+    if (rd_ringpack_rhs(&d->m, t, N_VGetArrayPointer(y), f))
+        return 1;
     for (int k = 0; k < d->m.N; k++)
         if (!isfinite(f[k]))
             return 1;
     return 0;
+}
+
+/* A lift ring's roots, the lift driver's (rd_lift_driver.c): L, L - eps,
+ * c_a - L, c_a - L - eps and its load without the flanks; an exact zero
+ * nudged up. */
+static void lift_roots(const rd_ringpack_model *m, int i, double t, const double *y,
+                       const double *pv, double *g)
+{
+    rd_packring *L = m->lr[i];
+    double f[3], up, lo, fz, fr, eps = rd_packring_eps(L), a = m->ca[i];
+    rd_ringpack_faces(m, i, t, pv, f);
+    rd_packring_gas(L, f);
+    double lift = rd_packring_areas(L, y + m->off[i], &up, &lo);
+    rd_packring_loads(L, t, y + m->off[i], &fz, &fr);
+    g[0] = lift;
+    g[1] = lift - eps;
+    g[2] = a - lift;
+    g[3] = a - lift - eps;
+    g[4] = fz;
+    for (int k = 0; k < NR; k++)
+        if (g[k] == 0.0)
+            g[k] = 1e-300;
 }
 
 static int cv_roots(sunrealtype t, N_Vector yv, sunrealtype *g, void *user)
@@ -61,17 +88,34 @@ static int cv_roots(sunrealtype t, N_Vector yv, sunrealtype *g, void *user)
     double pv[RD_RINGPACK_VOLUMES_MAX];
     rd_ringpack_pressures(m, t, y, pv);
     for (int i = 0; i < m->R; i++) {
-        g[2 * i] = g[2 * i + 1] = 1.0;
+        double *gi = g + NR * i;
+        for (int k = 0; k < NR; k++)
+            gi[k] = 1.0;
+        if (m->lr[i]) {
+            lift_roots(m, i, t, y, pv, gi);
+            continue;
+        }
         if (m->p->rings[i].pinned != RD_PIN_FREE)
             continue;
         if (m->mode[i] == RD_FLANK_FREE) {
-            g[2 * i] = RP_Z(m, y, i);
-            g[2 * i + 1] = m->ca[i] - RP_Z(m, y, i);
+            gi[0] = RP_Z(m, y, i);
+            gi[1] = m->ca[i] - RP_Z(m, y, i);
         } else {
-            g[2 * i] = rd_ringpack_ring_force(m, i, t, y, pv);
+            gi[0] = rd_ringpack_ring_force(m, i, t, y, pv);
         }
     }
     return 0;
+}
+
+static int cv_linsys(sunrealtype t, N_Vector y, N_Vector fy, SUNMatrix A, sunbooleantype jok,
+                     sunbooleantype *jcur, sunrealtype gamma, void *user, N_Vector t1, N_Vector t2,
+                     N_Vector t3)
+{
+    (void)A, (void)jok, (void)t1, (void)t2, (void)t3;
+    drv *d = user;
+    *jcur = SUNTRUE;
+    return rd_ringpack_newton_linsys(d->pn, t, N_VGetArrayPointer(y), N_VGetArrayPointer(fy),
+                                     gamma);
 }
 
 static void cv_silent(int code, const char *module, const char *fn, char *msg, void *user)
@@ -110,7 +154,7 @@ static void drv_close(drv *d)
 
 /* Initial state (every volume at the crankcase pressure, rings at rest on
  * their flank) and tolerances. */
-static void initial_state(drv *d, double rtol, double atol)
+static int initial_state(drv *d, double rtol, double atol, rd_error *err)
 {
     const rd_ringpack_model *m = &d->m;
     double *y = N_VGetArrayPointer(d->y), *ab = N_VGetArrayPointer(d->abstol), vsum = 0.0;
@@ -129,6 +173,78 @@ static void initial_state(drv *d, double rtol, double atol)
         RP_CUM(m, y, k) = 0.0;
         RP_CUM(m, ab, k) = rtol * m->p->crankcase_pa * vsum / (RD_GASFLOW_R * m->p->T_lands);
     }
+    for (int i = 0; i < m->R; i++) {
+        int rc = m->lr[i] ? rd_packring_initial(m->lr[i], atol, y + m->off[i], ab + m->off[i], err)
+                          : RD_OK;
+        if (rc)
+            return rc;
+    }
+    return RD_OK;
+}
+
+/* The lift rings' models, their states after the network's; their model
+ * facts into the result. */
+static int open_rings(drv *d, rd_error *err)
+{
+    rd_ringpack_model *m = &d->m;
+    rd_ringpack_result *r = d->res;
+    rd_ringpack_choose(m, r->ring_why);
+    for (int i = 0; i < m->R; i++) {
+        int n = 0, modes = 0, rc;
+        double k = 0.0;
+        r->ring_model[i] = m->kind[i];
+        r->ring_dof[i] = m->p->rings[i].pinned == RD_PIN_FREE ? 1 : 0;
+        if (m->kind[i] == RD_RINGPACK_AXIAL)
+            continue;
+        if ((rc = rd_packring_open(m, i, d->ctx, &n, &modes, &k, err)))
+            return rc;
+        m->off[i] = m->N;
+        m->N += n;
+        m->lifted++;
+        r->ring_dof[i] = n / 2;
+        r->ring_stiffness[i] = k;
+        r->ring_modes[i] = m->kind[i] == RD_LIFT_MODEL_MODAL ? modes : 0;
+    }
+    r->states = m->N;
+    return RD_OK;
+}
+
+/* The Newton solver: with lift rings the bordered one (rd_ringpack_newton.c)
+ * under the lift driver's settings (order <= 2, a fresh matrix each step,
+ * steps <= 1 deg: rd_lift_driver.c says why); else CVODE's dense one with a
+ * difference-quotient Jacobian. */
+static int solver(drv *d, rd_error *err)
+{
+    int flag = 0;
+    if (!d->m.lifted) {
+        d->A = SUNDenseMatrix(d->m.N, d->m.N, d->ctx);
+        d->LS = d->A ? SUNLinSol_Dense(d->y, d->A, d->ctx) : NULL;
+    } else {
+        d->A = SUNDenseMatrix(d->m.N0, d->m.N0, d->ctx);
+        d->LS = d->A ? rd_ringpack_newton_create(&d->m, d->ctx, d->A, &d->pn) : NULL;
+    }
+    if (!d->A || !d->LS)
+        return rd_error_set(err, RD_ENOMEM, "", "Out of memory setting up CVODE for the pack.");
+    if ((flag = CVodeSetLinearSolver(d->cv, d->LS, d->A)))
+        return cv_fail(d, flag, "set-up", err);
+    if (!d->m.lifted)
+        return RD_OK;
+    if ((flag = CVodeSetLinSysFn(d->cv, cv_linsys)) || (flag = CVodeSetMaxOrd(d->cv, ORDER_LIFT)) ||
+        (flag = CVodeSetMaxStep(d->cv, HMAX_LIFT / d->deg_per_s)) ||
+        (flag = CVodeSetLSetupFrequency(d->cv, 1)) || (flag = CVodeSetJacEvalFrequency(d->cv, 1)))
+        return cv_fail(d, flag, "set-up", err);
+    return RD_OK;
+}
+
+/* Root directions: an axial ring's both ways; a lift ring's as the lift
+ * driver's (landing, leave confirmed, landing, leave confirmed, load). */
+static int root_directions(drv *d)
+{
+    int dir[NR * RD_RINGPACK_RINGS_MAX] = {0}, lift[NR] = {-1, +1, -1, +1, 0};
+    for (int i = 0; i < d->m.R; i++)
+        if (d->m.lr[i])
+            memcpy(dir + NR * i, lift, sizeof lift);
+    return CVodeSetRootDirection(d->cv, dir);
 }
 
 static int drv_open(drv *d, const rd_ringpack_params *p, double rtol, double atol, rd_error *err)
@@ -136,28 +252,28 @@ static int drv_open(drv *d, const rd_ringpack_params *p, double rtol, double ato
     int rc = rd_ringpack_model_init(&d->m, p, err), flag;
     if (rc)
         return rc;
-    sunindextype N = d->m.N;
     d->deg_per_s = d->m.omega * 180.0 / M_PI;
     if (SUNContext_Create(NULL, &d->ctx))
         return rd_error_set(err, RD_ENOMEM, "", "Could not create the SUNDIALS context.");
+    if ((rc = open_rings(d, err)))
+        return rc;
+    sunindextype N = d->m.N;
     d->y = N_VNew_Serial(N, d->ctx);
     d->abstol = N_VNew_Serial(N, d->ctx);
-    d->A = SUNDenseMatrix(N, N, d->ctx);
-    d->LS = d->y && d->A ? SUNLinSol_Dense(d->y, d->A, d->ctx) : NULL;
     d->cv = CVodeCreate(CV_BDF, d->ctx);
-    if (!d->y || !d->abstol || !d->A || !d->LS || !d->cv)
+    if (!d->y || !d->abstol || !d->cv)
         return rd_error_set(err, RD_ENOMEM, "", "Out of memory setting up CVODE for the pack.");
-    initial_state(d, rtol, atol);
+    if ((rc = initial_state(d, rtol, atol, err)))
+        return rc;
     if ((flag = CVodeSetErrHandlerFn(d->cv, cv_silent, d)) ||
         (flag = CVodeInit(d->cv, cv_rhs, 0.0, d->y)) ||
         (flag = CVodeSVtolerances(d->cv, rtol, d->abstol)) || (flag = CVodeSetUserData(d->cv, d)) ||
-        (flag = CVodeSetLinearSolver(d->cv, d->LS, d->A)) ||
         (flag = CVodeSetMaxStep(d->cv, HMAX_DEG / d->deg_per_s)) ||
         (flag = CVodeSetMaxNumSteps(d->cv, p->max_steps)) ||
-        (flag = CVodeRootInit(d->cv, 2 * d->m.R, cv_roots)) ||
+        (flag = CVodeRootInit(d->cv, NR * d->m.R, cv_roots)) || (flag = root_directions(d)) ||
         (flag = CVodeSetNoInactiveRootWarn(d->cv)))
         return cv_fail(d, flag, "set-up", err);
-    return RD_OK;
+    return solver(d, err);
 }
 
 /* ------------------------------------------------------------- events */
@@ -235,17 +351,50 @@ static void counters(drv *d, rd_ringpack_result *r)
         r->nonlin_fails += v;
 }
 
-/* Mode changes at a root (or at the start: all == 1), then the restart. */
+/* A lift ring at a root (or at the start: all == 1): the lift driver's
+ * flank state machine (rd_lift_track_roots); no restart (its flanks are
+ * penalty contacts). */
+static int lift_switch(drv *d, int i, double t, const double *y, const double *pv, const int *rf,
+                       int all, rd_error *err)
+{
+    rd_ringpack_model *m = &d->m;
+    rd_packring *L = m->lr[i];
+    double f[3], fz, fr;
+    int any = 0;
+    for (int k = 0; k < NR; k++)
+        any |= rf[k] != 0;
+    if (!all && !any)
+        return RD_OK;
+    rd_ringpack_faces(m, i, t, pv, f);
+    rd_packring_gas(L, f);
+    rd_packring_loads(L, t, y + m->off[i], &fz, &fr);
+    if (all) { /* seated at rest: a load already pulling it away dates a leave at 0 */
+        *rd_packring_track(L) = (rd_lift_flank_track){RD_FLANK_LOWER, fz > 0.0 ? t : NAN};
+        return RD_OK;
+    }
+    return rd_lift_track_roots(rd_packring_track(L), rf, t, d->deg_per_s, fz, rd_packring_events(L),
+                               err);
+}
+
+/* Mode changes at a root (or at the start: all == 1), then the restart
+ * when an axial ring changed. */
 static int at_root(drv *d, double t, int all, rd_error *err)
 {
-    int found[2 * RD_RINGPACK_RINGS_MAX] = {0}, flag, rc = RD_OK;
+    int found[NR * RD_RINGPACK_RINGS_MAX] = {0}, flag, rc = RD_OK, axial = all;
     double pv[RD_RINGPACK_VOLUMES_MAX], *y = N_VGetArrayPointer(d->y);
     if (!all && (flag = CVodeGetRootInfo(d->cv, found)))
         return cv_fail(d, flag, "root info", err);
     rd_ringpack_pressures(&d->m, t, y, pv);
-    for (int i = 0; !rc && i < d->m.R; i++)
-        rc = ring_switch(d, i, t, y, pv, all || found[2 * i] || found[2 * i + 1], err);
-    if (rc)
+    for (int i = 0; !rc && i < d->m.R; i++) {
+        const int *rf = found + NR * i;
+        if (d->m.lr[i]) {
+            rc = lift_switch(d, i, t, y, pv, rf, all, err);
+            continue;
+        }
+        axial |= rf[0] || rf[1];
+        rc = ring_switch(d, i, t, y, pv, all || rf[0] || rf[1], err);
+    }
+    if (rc || !axial)
         return rc;
     if (!all && ++d->res->restarts > RESTARTS_MAX)
         return rd_error_set(err, RD_ELIMIT, "",
@@ -268,6 +417,21 @@ static double stored_mass(const rd_ringpack_model *m, const double *y)
     return s;
 }
 
+/* A lift ring's sample: mean lift, its flank as the lift analysis reports
+ * it (lower below eps, upper above c_a - eps), friction. */
+static void record_lift(const rd_ringpack_model *m, int i, double t, const double *y,
+                        const double *pv, double *lift, int *flank, double *friction)
+{
+    rd_packring *L = m->lr[i];
+    double f[3], up, lo, fz, eps = rd_packring_eps(L);
+    rd_ringpack_faces(m, i, t, pv, f);
+    rd_packring_gas(L, f);
+    *lift = rd_packring_areas(L, y + m->off[i], &up, &lo);
+    rd_packring_loads(L, t, y + m->off[i], &fz, friction);
+    *flank =
+        *lift < eps ? RD_FLANK_LOWER : (*lift > m->ca[i] - eps ? RD_FLANK_UPPER : RD_FLANK_FREE);
+}
+
 /* Sample j of the run (0 .. C S) at time t. */
 static void record(drv *d, int j, double t)
 {
@@ -286,14 +450,21 @@ static void record(drv *d, int j, double t)
         d->prev[(size_t)v * (S + 1) + kp] = pv[v];
     if (k < 0)
         return;
-    rd_ringpack_flows(m, pv, y, mdot);
+    double area[2 * RD_RINGPACK_RINGS_MAX];
+    rd_ringpack_areas(m, y, area);
+    rd_ringpack_flows(m, pv, area, mdot);
     r->crank_deg[k] = 720.0 * k / S;
     for (int v = 0; v < nv; v++)
         r->pressure[(size_t)v * (S + 1) + k] = pv[v];
     for (int i = 0; i < m->R; i++) {
-        r->lift[(size_t)i * (S + 1) + k] = RP_Z(m, y, i);
-        r->flank[(size_t)i * (S + 1) + k] = m->mode[i];
-        r->friction[(size_t)i * (S + 1) + k] = rd_ringpack_friction(m, i, t, y, pv);
+        size_t at = (size_t)i * (S + 1) + k;
+        if (m->lr[i]) {
+            record_lift(m, i, t, y, pv, &r->lift[at], &r->flank[at], &r->friction[at]);
+            continue;
+        }
+        r->lift[at] = RP_Z(m, y, i);
+        r->flank[at] = m->mode[i];
+        r->friction[at] = rd_ringpack_friction(m, i, t, y, pv);
     }
     for (int f = 0; f < m->F; f++)
         r->flow[(size_t)f * (S + 1) + k] = mdot[f];
@@ -319,13 +490,41 @@ static int alloc_result(drv *d, rd_ringpack_result *r, rd_error *err)
     return RD_OK;
 }
 
+/* The work bound over the whole run (the restarts zero CVODE's counter). */
+static int work_bound(drv *d, double t, rd_error *err)
+{
+    long now = 0;
+    if (!CVodeGetNumSteps(d->cv, &now) && d->res->steps + now > d->m.p->max_steps)
+        return rd_error_set(err, RD_ELIMIT, "/numerics/max_steps",
+                            "The run needed more than /numerics/max_steps = %ld CVODE steps "
+                            "by crank angle %.2f deg (of %d cycles); raise it, or loosen "
+                            "/numerics/rtol.",
+                            d->m.p->max_steps, t * d->deg_per_s, d->C);
+    return RD_OK;
+}
+
+/* Steps per CVode call with lift rings, so the monitor is asked often: as
+ * the lift driver's (rd_lift_driver.c), 2000 segment-steps (~45 ms); 0:
+ * none (axial rings: a sample costs microseconds). */
+static long step_chunk(const rd_ringpack_model *m)
+{
+    int n = 0;
+    for (int i = 0; i < m->R; i++)
+        if (m->lr[i])
+            n = m->kind[i] == RD_LIFT_MODEL_RIGID
+                    ? (n > 1 ? n : 1)
+                    : (m->p->rings[i].segments > n ? m->p->rings[i].segments : n);
+    return n ? (2000 / n > 1 ? 2000 / n : 1) : 0;
+}
+
 /* The whole run: C cycles, sampled at every output angle. */
 static int integrate(drv *d, const rd_monitor *mon, rd_error *err)
 {
     double t = 0.0, dt = 720.0 / d->S / d->deg_per_s;
     int total = d->C * d->S, rc = at_root(d, 0.0, 1, err), flag;
-    if (rc)
-        return rc;
+    long chunk = step_chunk(&d->m);
+    if (rc || (chunk && (flag = CVodeSetMaxNumSteps(d->cv, chunk))))
+        return rc ? rc : cv_fail(d, flag, "set-up", err);
     record(d, 0, 0.0);
     for (int j = 1; j <= total; j++) {
         double tout = j * dt;
@@ -334,6 +533,10 @@ static int integrate(drv *d, const rd_monitor *mon, rd_error *err)
             if (flag == CV_ROOT_RETURN) {
                 if ((rc = at_root(d, t, 0, err)))
                     return rc;
+            } else if (flag == CV_TOO_MUCH_WORK && chunk) { /* a chunk ended */
+                if ((rc = work_bound(d, t, err)) ||
+                    (rc = rd_monitor_report(mon, (j - 1.0) / total, err)))
+                    return rc;
             } else if (flag < 0) {
                 return cv_fail(d, flag, "integration", err);
             } else {
@@ -341,14 +544,7 @@ static int integrate(drv *d, const rd_monitor *mon, rd_error *err)
             }
         }
         record(d, j, t);
-        long now = 0;
-        if (!CVodeGetNumSteps(d->cv, &now) && d->res->steps + now > d->m.p->max_steps)
-            return rd_error_set(err, RD_ELIMIT, "/numerics/max_steps",
-                                "The run needed more than /numerics/max_steps = %ld CVODE steps "
-                                "by crank angle %.2f deg (of %d cycles); raise it, or loosen "
-                                "/numerics/rtol.",
-                                d->m.p->max_steps, t * d->deg_per_s, d->C);
-        if ((rc = rd_monitor_report(mon, (double)j / total, err)))
+        if ((rc = work_bound(d, t, err)) || (rc = rd_monitor_report(mon, (double)j / total, err)))
             return rc;
     }
     return RD_OK;
@@ -383,6 +579,23 @@ static void balance(drv *d)
     r->periodicity = change;
 }
 
+/* The lift rings' flank changes of the last cycle into the result. */
+static int lift_events(drv *d, rd_error *err)
+{
+    for (int i = 0; i < d->m.R; i++) {
+        if (!d->m.lr[i])
+            continue;
+        const rd_lift_run *o = rd_packring_events(d->m.lr[i]);
+        for (int e = 0; e < o->n_events; e++) {
+            int rc =
+                push_event(d, i, o->events[e].crank_deg / d->deg_per_s, o->events[e].kind, err);
+            if (rc)
+                return rc;
+        }
+    }
+    return RD_OK;
+}
+
 /* One run at (rtol, atol) into r. */
 static int run_once(const rd_ringpack_params *p, double rtol, double atol, const rd_monitor *mon,
                     rd_ringpack_result *r, rd_error *err)
@@ -398,6 +611,7 @@ static int run_once(const rd_ringpack_params *p, double rtol, double atol, const
     if (!rc) {
         counters(&d, r);
         balance(&d);
+        rc = lift_events(&d, err);
     }
     drv_close(&d);
     return rc;

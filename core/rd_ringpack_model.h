@@ -5,6 +5,7 @@
 #ifndef RD_RINGPACK_MODEL_H
 #define RD_RINGPACK_MODEL_H
 
+#include "rd_lift_model.h"
 #include "rd_ringpack.h"
 
 /* State access. */
@@ -12,6 +13,9 @@
 #define RP_Z(m, y, i)   ((y)[2 * (m)->R + 2 * (i)]) /* lift of ring i */
 #define RP_ZD(m, y, i)  ((y)[2 * (m)->R + 2 * (i) + 1])
 #define RP_CUM(m, y, k) ((y)[4 * (m)->R + (k)]) /* k: 0 in, 1 back, 2 cc in, 3 cc out */
+
+/* A ring on one of the lift analysis' models (rd_ringpack_lift.c). */
+typedef struct rd_packring rd_packring;
 
 typedef struct rd_ringpack_model {
     const rd_ringpack_params *p;
@@ -29,6 +33,12 @@ typedef struct rd_ringpack_model {
     int mode[RD_RINGPACK_RINGS_MAX]; /* enum rd_flank: lower, upper, free */
     /* friction (rd_ringpack.h): N = n_pre + n_back (p_groove - p_cc), N */
     double n_pre[RD_RINGPACK_RINGS_MAX], n_back[RD_RINGPACK_RINGS_MAX], ureg;
+    /* Rings on a lift model: lr[i] (NULL: the axial ring), whose states
+     * follow the N0 = 4R + 4 above at y + off[i]; N counts them all. */
+    int N0, lifted;
+    rd_packring *lr[RD_RINGPACK_RINGS_MAX];
+    int off[RD_RINGPACK_RINGS_MAX];
+    int kind[RD_RINGPACK_RINGS_MAX]; /* RD_RINGPACK_AXIAL or enum rd_lift_model_kind */
 } rd_ringpack_model;
 
 /* Network index of the volume below ring i (land_{i+1} or the crankcase). */
@@ -40,19 +50,91 @@ static inline int rp_below(const rd_ringpack_model *m, int i)
 /* Builds the network of a valid scene (the synthetic trace included). */
 int rd_ringpack_model_init(rd_ringpack_model *m, const rd_ringpack_params *p, rd_error *err);
 void rd_ringpack_model_cleanup(rd_ringpack_model *m);
+/* The model each ring gets (numerics.model per ring and pack-wide; auto:
+ * the cheapest exact for the scene) into kind[], and the reason into why
+ * (RD_RINGPACK_RINGS_MAX x 240, or NULL). */
+void rd_ringpack_choose(rd_ringpack_model *m, char (*why)[240]);
 /* Pressures of every network volume at (t, y) into pv (V + 2 values). */
 void rd_ringpack_pressures(const rd_ringpack_model *m, double t, const double *y, double *pv);
-/* Mass flows (kg/s, F values, signed from -> to) at pressures pv, lifts of y. */
-void rd_ringpack_flows(const rd_ringpack_model *m, const double *pv, const double *y, double *mdot);
+/* The flank passages' areas (m^2) of every ring at y: area[2 i] upper,
+ * area[2 i + 1] lower. */
+void rd_ringpack_areas(const rd_ringpack_model *m, const double *y, double *area);
+/* Mass flows (kg/s, F values, signed from -> to) at pressures pv and flank
+ * areas `area` (rd_ringpack_areas). */
+void rd_ringpack_flows(const rd_ringpack_model *m, const double *pv, const double *area,
+                       double *mdot);
+/* Ring i's gauge pressures above, behind, below (against the crankcase;
+ * the network's, or the test hook's tables), Pa. */
+void rd_ringpack_faces(const rd_ringpack_model *m, int i, double t, const double *pv,
+                       double out[3]);
 /* Net axial force on ring i (N, +z up) at (t, y, pv). */
 double rd_ringpack_ring_force(const rd_ringpack_model *m, int i, double t, const double *y,
                               const double *pv);
 /* The liner's axial friction on ring i (N, +z up; 0 without friction). */
 double rd_ringpack_friction(const rd_ringpack_model *m, int i, double t, const double *y,
                             const double *pv);
-/* dy/dt. */
-void rd_ringpack_rhs(const rd_ringpack_model *m, double t, const double *y, double *yd);
+/* dy/dt of the N0 network and axial-ring states, the flank areas given
+ * (the lift rings' lifts enter only through them). */
+void rd_ringpack_base_rhs(const rd_ringpack_model *m, double t, const double *y, const double *area,
+                          double *yd);
+/* dy/dt, all N states; nonzero if a lift model's right-hand side failed. */
+int rd_ringpack_rhs(const rd_ringpack_model *m, double t, const double *y, double *yd);
+
 /* Names and volumes into the result. */
 void rd_ringpack_describe(const rd_ringpack_model *m, rd_ringpack_result *r);
+
+/* ---- rings on the lift models (rd_ringpack_lift.c) ---- */
+
+/* Opens ring i's lift model of kind m->kind[i] (its ring of `segments`, its
+ * lift parameters from the pack's) with state vectors in ctx; its state
+ * count into *N, a modal model's elastic modes into *modes, its contact
+ * stiffness (Pa/m) into *k. */
+int rd_packring_open(rd_ringpack_model *m, int i, SUNContext ctx, int *N, int *modes, double *k,
+                     rd_error *err);
+void rd_packring_close(rd_packring *L);
+/* Its form (rd_lift_model.h) and model. */
+rd_lift_form *rd_packring_form(rd_packring *L);
+/* Its initial state (seated at rest) and tolerances at y + off, ab + off. */
+int rd_packring_initial(rd_packring *L, double atol, double *y, double *ab, rd_error *err);
+/* Sets its gauge face pressures (above, behind, below), Pa. */
+void rd_packring_gas(rd_packring *L, const double g[3]);
+/* Its states' rates at (t, y) (y, yd: the ring's own states). */
+int rd_packring_rhs(rd_packring *L, double t, double *y, double *yd);
+/* Its mean lift and its flank passages' areas from the per-segment lifts:
+ * upper pi d / n sum clamp(a - L_j, 0, a), lower pi d / n sum clamp(L_j, 0, a). */
+double rd_packring_areas(rd_packring *L, const double *y, double *up, double *lo);
+/* The areas' derivatives along the state direction w at y (the lifts are
+ * linear in the state; the clamps' slopes 1 inside (0, a), else 0). */
+void rd_packring_area_slope(rd_packring *L, const double *y, const double *w, double *du,
+                            double *dl);
+/* Its axial load without the flanks (N, +z up) and friction (N) at (t, y). */
+void rd_packring_loads(rd_packring *L, double t, const double *y, double *fz, double *friction);
+/* Its event threshold eps and clearance. */
+double rd_packring_eps(const rd_packring *L);
+/* The flank-change tracker (rd_lift_track_roots) and its events (absolute
+ * crank angles). */
+rd_lift_flank_track *rd_packring_track(rd_packring *L);
+rd_lift_run *rd_packring_events(rd_packring *L);
+/* Its own Newton solver (M = I - gamma J of its states at fixed
+ * pressures): opened once (nonzero: out of memory), set up at (t, y,
+ * gamma) (y: its states; nonzero: failed, positive recoverable), and
+ * x = M^-1 b. */
+int rd_packring_solver_open(rd_packring *L, SUNContext ctx);
+int rd_packring_solver_setup(rd_packring *L, double t, double *y, double gamma);
+int rd_packring_solver_solve(rd_packring *L, double *x, double *b);
+
+/* ---- the pack's Newton systems with lift rings (rd_ringpack_newton.c) ---- */
+
+typedef struct rd_ringpack_newton rd_ringpack_newton;
+/* A DIRECT SUNLinearSolver over A (dense N0 x N0, the caller's, given to
+ * CVodeSetLinearSolver with it); NULL when out of memory.  m must have its
+ * lift rings open. */
+SUNLinearSolver rd_ringpack_newton_create(rd_ringpack_model *m, SUNContext ctx, SUNMatrix A,
+                                          rd_ringpack_newton **nw);
+/* The linear-system function's work at (t, y, gamma), fy = f(t, y) (N
+ * values, CVODE's): every block, the Schur complement and its LU; 0, or
+ * nonzero (recoverable: positive). */
+int rd_ringpack_newton_linsys(rd_ringpack_newton *nw, double t, const double *y, const double *fy,
+                              double gamma);
 
 #endif

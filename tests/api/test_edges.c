@@ -280,7 +280,7 @@ static void lift_stiffness_edges(void)
     }
 }
 
-/* Ring pack: rtol at its edge (1e-5; 1e-6 with friction at 100 rpm, the
+/* Ring pack: rtol at its edge (1e-5; 1e-6 with friction at 300 rpm, the
  * speed floor) converges, with positive pressures, at 1 rpm and at the
  * pack's default speed with three rings; past either edge the scene is
  * refused. */
@@ -319,15 +319,14 @@ static void pack_edges(void)
     pack(1.0, 1e-5 * (1.0 + 1e-6), 0, 1, &pmin, &err);
     CHECK(err.code == RD_EINVAL && !strcmp(err.path, "/numerics/rtol"),
           "ringpack past rtol 1e-5: %d at %s", err.code, err.path);
-    for (int rings = 1; rings <= 3; rings += 2) {
-        int rc = pack(100.0, 1e-6, 1, rings, &pmin, &err);
-        CHECK(rc == RD_OK && pmin > 0.0, "ringpack friction 100 rpm %d rings: %s", rings,
-              err.message);
-    }
-    pack(100.0 * (1.0 - 1e-9), 1e-6, 1, 1, &pmin, &err);
+    /* one ring (auto: the lift's rigid ring with friction); three rings at
+     * the same edge take ~28 s in Release (README "Limits"), too long here */
+    int rc = pack(300.0, 1e-6, 1, 1, &pmin, &err);
+    CHECK(rc == RD_OK && pmin > 0.0, "ringpack friction 300 rpm 1 ring: %s", err.message);
+    pack(300.0 * (1.0 - 1e-9), 1e-6, 1, 1, &pmin, &err);
     CHECK(err.code == RD_EINVAL && !strcmp(err.path, "/physics/friction"),
-          "ringpack friction below 100 rpm: %d at %s", err.code, err.path);
-    pack(100.0, 1e-6 * (1.0 + 1e-6), 1, 1, &pmin, &err);
+          "ringpack friction below 300 rpm: %d at %s", err.code, err.path);
+    pack(300.0, 1e-6 * (1.0 + 1e-6), 1, 1, &pmin, &err);
     CHECK(err.code == RD_EINVAL && !strcmp(err.path, "/physics/friction"),
           "ringpack friction past rtol 1e-6: %d at %s", err.code, err.path);
 }

@@ -1,0 +1,372 @@
+/*
+ * rd_ringpack_newton.c — the Newton systems of a pack with rings on the lift
+ * models: the bordered elimination planned in rd_lift_model.h ("several
+ * rings in a pack").
+ *
+ * CVODE's BDF Newton iteration solves M x = b, M = I - gamma J.  Order the
+ * state as y = [y_b, y_1, ..., y_R]: y_b the N0 network and axial-ring
+ * states (rd_ringpack_model.h), y_i ring i's lift-model states.  Then
+ *     M = [M_bb  M_b1 ... M_bR]     M_bb  = I - gamma J_bb     (dense, N0 x N0)
+ *         [M_1b  M_11         ]     M_ii  = I - gamma J_ii     (the ring's own,
+ *         [ ...        ...    ]             rd_lift_newton: band LU in O(n))
+ *         [M_Rb           M_RR]     M_ib  = -gamma d f_i / d y_b
+ *                                   M_bi  = -gamma d f_b / d y_i
+ * with the structure the couplings have:
+ *  - a ring's rates depend on y_b only through its three face pressures
+ *    (land above, groove, volume below; the crankcase is no state), so M_ib
+ *    has at most 3 non-zero columns c_ik = -gamma d f_i / d p_k (the forces
+ *    are linear in the pressures: a difference quotient is exact up to
+ *    rounding);
+ *  - the network depends on y_i only through the ring's two flank areas A_a
+ *    (rd_packring_areas), so M_bi w = -gamma sum_a G_ia (dA_ia . w), with
+ *    G_ia = d f_b / d A_ia (the orifice flow is linear in its area: exact
+ *    quotient) and dA_ia . w the areas' derivative along w: the lifts are
+ *    linear in the state, dL_j = L_j(w) - L_j(0), and the clamp's slope is
+ *    1 inside (0, a), 0 outside.
+ * Block elimination (Schur complement on the network):
+ *   setup: X_ik = M_ii^-1 c_ik (3 band solves per ring),
+ *          S = M_bb - sum_i sum_k (M_bi X_ik) e_k^T, dense LU (N0 <= 16);
+ *   solve: z_i = M_ii^-1 b_i,
+ *          S x_b = b_b - sum_i M_bi z_i,
+ *          x_i = z_i - sum_k X_ik x_b[k].
+ * Exact algebra (to the quotients' rounding), so CVODE's Newton iteration is
+ * the coupled system's; O(n) per ring and step.  J_bb is a difference
+ * quotient over the N0 network states (the pack's dense Jacobian as before;
+ * the cumulative masses feed nothing back: their columns are zero).
+ *
+ * Plumbing as rd_lift_newton.c: CVodeSetLinSysFn hands gamma and the state
+ * to rd_ringpack_newton_linsys, which builds everything; the solver is
+ * DIRECT over a dense N0 x N0 matrix that holds S (CVODE's jok reuse and
+ * gamma-ratio scaling unchanged; the driver asks for a fresh set-up at
+ * every step, as the lift driver does).
+ */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include <sunlinsol/sunlinsol_dense.h>
+#include <sunmatrix/sunmatrix_dense.h>
+
+#include "rd_ringpack_model.h"
+
+typedef struct pring {
+    rd_packring *L;
+    int N, off;
+    double *X[3];    /* M_ii^-1 c_ik, N each */
+    int pcol[3], np; /* the face pressures' state indices (above, behind, below) */
+    int face[3];     /* which face each column is */
+    double *D[3];    /* d f_i / d p_k, N each, once (below) */
+    int have_D;
+    double *r1, *w; /* N scratch */
+} pring;
+
+struct rd_ringpack_newton {
+    rd_ringpack_model *m;
+    int N0;
+    double gamma, t;
+    SUNMatrix A;        /* dense N0 x N0: S, LU-factored in place */
+    SUNLinearSolver lu; /* SUNDIALS dense LU of S (N0 <= 16: no blocked LAPACK) */
+    N_Vector xb;        /* N0 view */
+    int info;
+    double *fb0, *fb1, *yb, *typ, *G; /* N0; G: R x 2 x N0 */
+    const double *y, *fy;             /* the set-up state and f(t, y) */
+    pring ring[RD_RINGPACK_RINGS_MAX];
+};
+
+/* ------------------------------------------------------------ set-up */
+
+/* J_bb by difference quotients into S = I - gamma J_bb (column-major). */
+static void network_block(rd_ringpack_newton *nw, const double *area)
+{
+    rd_ringpack_model *m = nw->m;
+    int N0 = nw->N0;
+    double *S = SM_DATA_D(nw->A);
+    memcpy(nw->yb, nw->y, (size_t)N0 * sizeof(double));
+    memcpy(nw->fb0, nw->fy, (size_t)N0 * sizeof(double)); /* CVODE's f(t, y): the same sums */
+    memset(S, 0, (size_t)N0 * N0 * sizeof *S);
+    for (int j = 0; j < N0; j++) {
+        S[(size_t)j * N0 + j] = 1.0;
+        if (j >= 4 * m->R || (j >= 2 * m->R && m->lr[(j - 2 * m->R) / 2]))
+            continue; /* the cumulative masses, a lift ring's unused axial slots: zero columns */
+        double h = 1e-7 * fmax(fabs(nw->y[j]), nw->typ[j]);
+        nw->yb[j] = nw->y[j] + h;
+        h = nw->yb[j] - nw->y[j];
+        rd_ringpack_base_rhs(m, nw->t, nw->yb, area, nw->fb1);
+        nw->yb[j] = nw->y[j];
+        for (int r = 0; r < N0; r++)
+            S[(size_t)j * N0 + r] -= nw->gamma * (nw->fb1[r] - nw->fb0[r]) / h;
+    }
+}
+
+/* G_ia = d f_b / d A_ia (exact quotients: the flows are linear in the areas). */
+static void area_columns(rd_ringpack_newton *nw, int i, const double *area)
+{
+    double a1[2 * RD_RINGPACK_RINGS_MAX];
+    for (int a = 0; a < 2; a++) {
+        memcpy(a1, area, sizeof a1);
+        double dA = 1e-3 * fmax(area[2 * i + a], nw->m->circ[i] * nw->m->ca[i]);
+        a1[2 * i + a] += dA;
+        rd_ringpack_base_rhs(nw->m, nw->t, nw->yb, a1, nw->fb1);
+        double *G = nw->G + (size_t)nw->N0 * (2 * i + a);
+        for (int r = 0; r < nw->N0; r++)
+            G[r] = (nw->fb1[r] - nw->fb0[r]) / dA;
+    }
+}
+
+/* out (N0) = sum_a G_ia dA_ia . w: the network's rates along ring state w. */
+static void network_along(rd_ringpack_newton *nw, int i, const double *w, double *out)
+{
+    pring *pr = &nw->ring[i];
+    double du, dl;
+    rd_packring_area_slope(pr->L, nw->y + pr->off, w, &du, &dl);
+    const double *Gu = nw->G + (size_t)nw->N0 * (2 * i), *Gl = Gu + nw->N0;
+    for (int r = 0; r < nw->N0; r++)
+        out[r] = Gu[r] * du + Gl[r] * dl;
+}
+
+/* d f_i / d p_k of ring i.  The forces are affine in the face pressures
+ * with coefficients of the geometry alone (fixed active areas, the only
+ * ones the pack gives its rings: rd_ringpack_lift.c), so the quotients are
+ * computed once, at the first set-up, against CVODE's f(t, y). */
+static int pressure_columns(rd_ringpack_newton *nw, int i, const double *g)
+{
+    pring *pr = &nw->ring[i];
+    const double *f0 = nw->fy + pr->off;
+    double g1[3];
+    for (int c = 0; c < pr->np; c++) {
+        int f = pr->face[c], rc;
+        double dp = 1e-3 * fmax(fabs(g[f]), nw->m->p->crankcase_pa);
+        memcpy(g1, g, sizeof g1);
+        g1[f] += dp;
+        rd_packring_gas(pr->L, g1);
+        rc = rd_packring_rhs(pr->L, nw->t, (double *)nw->y + pr->off, pr->r1);
+        rd_packring_gas(pr->L, g);
+        if (rc)
+            return rc;
+        for (int k = 0; k < pr->N; k++)
+            pr->D[c][k] = (pr->r1[k] - f0[k]) / dp;
+    }
+    pr->have_D = 1;
+    return 0;
+}
+
+/* Ring i's own Newton matrix, its pressure columns X_ik, and their share
+ * of the Schur complement. */
+static int ring_block(rd_ringpack_newton *nw, int i, const double *pv)
+{
+    rd_ringpack_model *m = nw->m;
+    pring *pr = &nw->ring[i];
+    double g[3], *S = SM_DATA_D(nw->A);
+    int rc;
+    rd_ringpack_faces(m, i, nw->t, pv, g);
+    rd_packring_gas(pr->L, g);
+    if ((rc = rd_packring_solver_setup(pr->L, nw->t, (double *)nw->y + pr->off, nw->gamma)))
+        return rc;
+    if (!pr->have_D && (rc = pressure_columns(nw, i, g)))
+        return rc;
+    for (int c = 0; c < pr->np; c++) {
+        for (int k = 0; k < pr->N; k++)
+            pr->w[k] = -nw->gamma * pr->D[c][k];
+        if ((rc = rd_packring_solver_solve(pr->L, pr->X[c], pr->w)))
+            break;
+        network_along(nw, i, pr->X[c], nw->fb1); /* -M_bi X_ik / gamma */
+        double *col = S + (size_t)pr->pcol[c] * nw->N0;
+        for (int r = 0; r < nw->N0; r++)
+            col[r] += nw->gamma * nw->fb1[r];
+    }
+    return rc;
+}
+
+int rd_ringpack_newton_linsys(rd_ringpack_newton *nw, double t, const double *y, const double *fy,
+                              double gamma)
+{
+    rd_ringpack_model *m = nw->m;
+    double area[2 * RD_RINGPACK_RINGS_MAX], pv[RD_RINGPACK_VOLUMES_MAX];
+    nw->t = t;
+    nw->y = y;
+    nw->fy = fy;
+    nw->gamma = gamma;
+    rd_ringpack_areas(m, y, area);
+    rd_ringpack_pressures(m, t, y, pv);
+    network_block(nw, area);
+    for (int i = 0; i < m->R; i++) {
+        if (!m->lr[i])
+            continue;
+        area_columns(nw, i, area);
+        int rc = ring_block(nw, i, pv);
+        if (rc)
+            return rc;
+    }
+    nw->info = SUNLinSolSetup(nw->lu, nw->A);
+    return nw->info ? 1 : 0; /* singular: recoverable, CVODE cuts the step */
+}
+
+/* ------------------------------------------------------------ solver */
+
+static SUNLinearSolver_Type pn_type(SUNLinearSolver LS)
+{
+    (void)LS;
+    return SUNLINEARSOLVER_DIRECT;
+}
+
+static SUNLinearSolver_ID pn_id(SUNLinearSolver LS)
+{
+    (void)LS;
+    return SUNLINEARSOLVER_CUSTOM;
+}
+
+static int pn_initialize(SUNLinearSolver LS)
+{
+    (void)LS;
+    return 0;
+}
+
+static int pn_setup(SUNLinearSolver LS, SUNMatrix A)
+{
+    (void)A;
+    rd_ringpack_newton *nw = LS->content;
+    return nw->info ? SUNLS_LUFACT_FAIL : 0;
+}
+
+/* x = M^-1 b by the elimination of the header comment. */
+static int pn_solve(SUNLinearSolver LS, SUNMatrix A, N_Vector xv, N_Vector bv, sunrealtype tol)
+{
+    (void)A;
+    (void)tol;
+    rd_ringpack_newton *nw = LS->content;
+    const double *b = N_VGetArrayPointer(bv);
+    double *x = N_VGetArrayPointer(xv), *xb = x;
+    int N0 = nw->N0, rc;
+    memcpy(xb, b, (size_t)N0 * sizeof *xb);
+    for (int i = 0; i < nw->m->R; i++) {
+        pring *pr = &nw->ring[i];
+        if (!pr->L)
+            continue;
+        if ((rc = rd_packring_solver_solve(pr->L, x + pr->off, (double *)b + pr->off)))
+            return rc;
+        network_along(nw, i, x + pr->off, nw->fb1);
+        for (int r = 0; r < N0; r++)
+            xb[r] += nw->gamma * nw->fb1[r];
+    }
+    N_VSetArrayPointer(xb, nw->xb);
+    if ((rc = SUNLinSolSolve(nw->lu, nw->A, nw->xb, nw->xb, 0.0)))
+        return rc;
+    for (int i = 0; i < nw->m->R; i++) {
+        pring *pr = &nw->ring[i];
+        for (int c = 0; pr->L && c < pr->np; c++)
+            for (int k = 0; k < pr->N; k++)
+                x[pr->off + k] -= pr->X[c][k] * xb[pr->pcol[c]];
+    }
+    return 0;
+}
+
+static void ring_free(pring *pr)
+{
+    for (int c = 0; c < 3; c++)
+        free(pr->X[c]);
+    for (int c = 0; c < 3; c++)
+        free(pr->D[c]);
+    free(pr->r1);
+    free(pr->w);
+}
+
+static int pn_free(SUNLinearSolver LS)
+{
+    if (!LS)
+        return 0;
+    rd_ringpack_newton *nw = LS->content;
+    if (nw) {
+        for (int i = 0; i < RD_RINGPACK_RINGS_MAX; i++)
+            ring_free(&nw->ring[i]);
+        if (nw->lu)
+            SUNLinSolFree(nw->lu);
+        if (nw->xb)
+            N_VDestroy(nw->xb);
+        free(nw->fb0);
+        free(nw->fb1);
+        free(nw->yb);
+        free(nw->typ);
+        free(nw->G);
+        free(nw);
+        LS->content = NULL;
+    }
+    SUNLinSolFreeEmpty(LS);
+    return 0;
+}
+
+/* Ring i's part: its own solver, views, scratch, pressure columns. */
+static int ring_open(rd_ringpack_newton *nw, int i, SUNContext ctx)
+{
+    rd_ringpack_model *m = nw->m;
+    pring *pr = &nw->ring[i];
+    pr->L = m->lr[i];
+    pr->N = (int)rd_packring_form(pr->L)->N;
+    pr->off = m->off[i];
+
+    pr->r1 = malloc((size_t)pr->N * sizeof(double));
+    pr->w = malloc((size_t)pr->N * sizeof(double));
+    if (rd_packring_solver_open(pr->L, ctx) || !pr->r1 || !pr->w)
+        return -1;
+    int cols[3] = {2 * i, 2 * i + 1, i + 1 < m->R ? 2 * i + 2 : -1};
+    pr->np = 0;
+    for (int f = 0; f < 3 && !m->p->face_tables; f++) {
+        if (cols[f] < 0)
+            continue;
+        pr->pcol[pr->np] = cols[f];
+        pr->face[pr->np] = f;
+        pr->X[pr->np] = malloc((size_t)pr->N * sizeof(double));
+        pr->D[pr->np] = malloc((size_t)pr->N * sizeof(double));
+        if (!pr->X[pr->np] || !pr->D[pr->np])
+            return -1;
+        pr->np++;
+    }
+    return 0;
+}
+
+SUNLinearSolver rd_ringpack_newton_create(rd_ringpack_model *m, SUNContext ctx, SUNMatrix A,
+                                          rd_ringpack_newton **out)
+{
+    SUNLinearSolver LS = SUNLinSolNewEmpty(ctx);
+    rd_ringpack_newton *nw = calloc(1, sizeof *nw);
+    if (!LS || !nw) {
+        free(nw);
+        if (LS)
+            SUNLinSolFreeEmpty(LS);
+        return NULL;
+    }
+    LS->content = nw;
+    LS->ops->gettype = pn_type;
+    LS->ops->getid = pn_id;
+    LS->ops->initialize = pn_initialize;
+    LS->ops->setup = pn_setup;
+    LS->ops->solve = pn_solve;
+    LS->ops->free = pn_free;
+    nw->m = m;
+    nw->N0 = m->N0;
+    nw->A = A;
+    size_t N0 = (size_t)m->N0;
+    nw->xb = N_VMake_Serial(m->N0, NULL, ctx);
+    nw->lu = nw->xb ? SUNLinSol_Dense(nw->xb, A, ctx) : NULL;
+    nw->fb0 = malloc(N0 * sizeof(double));
+    nw->fb1 = malloc(N0 * sizeof(double));
+    nw->yb = malloc(N0 * sizeof(double));
+    nw->typ = malloc(N0 * sizeof(double));
+    nw->G = malloc(2 * RD_RINGPACK_RINGS_MAX * N0 * sizeof(double));
+    int bad = !nw->lu || SUNLinSolInitialize(nw->lu) || !nw->fb0 || !nw->fb1 || !nw->yb ||
+              !nw->typ || !nw->G;
+    for (int i = 0; !bad && i < m->R; i++)
+        bad = m->lr[i] && ring_open(nw, i, ctx);
+    if (bad) {
+        pn_free(LS);
+        return NULL;
+    }
+    /* typical magnitudes for the quotients' steps: pressures, lifts, rates */
+    for (int j = 0; j < m->N0; j++)
+        nw->typ[j] = m->p->crankcase_pa;
+    for (int i = 0; i < m->R; i++) {
+        RP_Z(m, nw->typ, i) = m->ca[i];
+        RP_ZD(m, nw->typ, i) = m->ca[i] * m->omega;
+    }
+    *out = nw;
+    return LS;
+}
