@@ -1,6 +1,8 @@
 /* rd_error — the status table and the first-error-wins record (rd_error.h). */
 #include "rd_error.h"
 
+#include <math.h>
+
 #include <stdarg.h>
 #include <stdio.h>
 #include <string.h>
@@ -64,4 +66,13 @@ int rd_monitor_report(const rd_monitor *mon, double fraction, rd_error *err)
     if (mon->report(mon->ctx, fraction) != 0)
         return rd_error_set(err, RD_ECANCELED, "", "The job was stopped before it finished.");
     return RD_OK;
+}
+
+int rd_error_range(double v, double lo, double hi, const char *path, const char *unit,
+                   rd_error *err)
+{
+    if (isfinite(v) && v >= lo && v <= hi)
+        return RD_OK;
+    return rd_error_set(err, RD_EINVAL, path, "%s = %g %s is out of range: allowed %g to %g %s.",
+                        path, v, unit, lo, hi, unit);
 }

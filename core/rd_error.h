@@ -61,6 +61,12 @@ int rd_error_set(rd_error *err, int code, const char *path, const char *fmt, ...
 #endif
     ;
 
+/* RD_OK when v is finite and within [lo, hi]; else RD_EINVAL at `path`
+ * with the one wording every range error uses: "<path> = v unit is out of
+ * range: allowed lo to hi unit." */
+int rd_error_range(double v, double lo, double hi, const char *path, const char *unit,
+                   rd_error *err);
+
 /* rd_error_set with a va_list, for callers that forward their own format. */
 int rd_error_setv(rd_error *err, int code, const char *path, const char *fmt, va_list ap);
 

@@ -126,16 +126,6 @@ const char *rd_lift_model_name(int model)
     }
 }
 
-static int check_range(double v, double lo, double hi, const char *path, const char *unit,
-                       rd_error *err)
-{
-    if (!isfinite(v) || v < lo || v > hi)
-        return rd_error_set(err, RD_EINVAL, path,
-                            "%s = %g %s is out of range: allowed %g to %g %s.", path, v, unit, lo,
-                            hi, unit);
-    return RD_OK;
-}
-
 static int lift_samples(const rd_lift_params *p)
 {
     double total = p->engine.cycles * 720.0;
@@ -159,8 +149,8 @@ static int check_table(const double *v, int n, const char *path, rd_error *err)
 static int validate_tilt(const rd_engine_params *e, rd_error *err)
 {
     int rc;
-    if ((rc = check_range(e->piston_tilt_deg, -RD_LIFT_TILT_MAX_DEG, RD_LIFT_TILT_MAX_DEG,
-                          "/engine/piston_tilt_deg", "deg", err)))
+    if ((rc = rd_error_range(e->piston_tilt_deg, -RD_LIFT_TILT_MAX_DEG, RD_LIFT_TILT_MAX_DEG,
+                             "/engine/piston_tilt_deg", "deg", err)))
         return rc;
     if (e->tilt_points < 0 || e->tilt_points > RD_LIFT_TABLE_MAX)
         return rd_error_set(err, RD_EINVAL, "/engine/piston_tilt/crank_deg",
@@ -190,8 +180,8 @@ static int validate_tilt(const rd_engine_params *e, rd_error *err)
 static int validate_engine(const rd_engine_params *e, rd_error *err)
 {
     int rc;
-    if ((rc = check_range(e->speed_rpm, 1.0, 30000.0, "/engine/speed_rpm", "rpm", err)) ||
-        (rc = check_range(e->crank_radius, 1e-3, 1.0, "/engine/crank_radius", "m", err)))
+    if ((rc = rd_error_range(e->speed_rpm, 1.0, 30000.0, "/engine/speed_rpm", "rpm", err)) ||
+        (rc = rd_error_range(e->crank_radius, 1e-3, 1.0, "/engine/crank_radius", "m", err)))
         return rc;
     /* lambda = r / l <= 0.9: the exact slider-crank needs lambda < 1; real
      * engines have 0.2..0.4. */
@@ -216,10 +206,10 @@ static int validate_engine(const rd_engine_params *e, rd_error *err)
 static int validate_physics(const rd_lift_params *p, rd_error *err)
 {
     int rc;
-    if ((rc = check_range(p->groove.axial_clearance, 1e-7, 5e-3, "/groove/axial_clearance", "m",
-                          err)) ||
-        (rc = check_range(p->groove.radial_clearance, 1e-6, 1e-2, "/groove/radial_clearance", "m",
-                          err)))
+    if ((rc = rd_error_range(p->groove.axial_clearance, 1e-7, 5e-3, "/groove/axial_clearance", "m",
+                             err)) ||
+        (rc = rd_error_range(p->groove.radial_clearance, 1e-6, 1e-2, "/groove/radial_clearance",
+                             "m", err)))
         return rc;
     if (p->gravity != 0 && p->gravity != 1)
         return rd_error_set(err, RD_EINVAL, "/physics/gravity",
@@ -231,14 +221,15 @@ static int validate_physics(const rd_lift_params *p, rd_error *err)
                             "/physics/friction/model = %d is unknown: use coulomb or stribeck.",
                             f->model);
     if (f->model != RD_FRICTION_NONE &&
-        (rc = check_range(f->coefficient, 0.0, 10.0, "/physics/friction/coefficient", "", err)))
+        (rc = rd_error_range(f->coefficient, 0.0, 10.0, "/physics/friction/coefficient", "", err)))
         return rc;
     if (f->model == RD_FRICTION_STRIBECK &&
-        ((rc = check_range(f->viscosity, 1e-5, 10.0, "/physics/friction/viscosity", "Pa s", err)) ||
-         (rc = check_range(f->sommerfeld_transition, 0.0, 1e15,
-                           "/physics/friction/sommerfeld_transition", "", err)) ||
-         (rc = check_range(f->hydrodynamic_slope, 0.0, 1e12, "/physics/friction/hydrodynamic_slope",
-                           "", err))))
+        ((rc = rd_error_range(f->viscosity, 1e-5, 10.0, "/physics/friction/viscosity", "Pa s",
+                              err)) ||
+         (rc = rd_error_range(f->sommerfeld_transition, 0.0, 1e15,
+                              "/physics/friction/sommerfeld_transition", "", err)) ||
+         (rc = rd_error_range(f->hydrodynamic_slope, 0.0, 1e12,
+                              "/physics/friction/hydrodynamic_slope", "", err))))
         return rc;
     if (p->landing != RD_LANDING_PENALTY && p->landing != RD_LANDING_PLASTIC)
         return rd_error_set(err, RD_EINVAL, "/contact/landing",
@@ -248,10 +239,10 @@ static int validate_physics(const rd_lift_params *p, rd_error *err)
     if (q->on != 0 && q->on != 1)
         return rd_error_set(err, RD_EINVAL, "/physics/squeeze_film",
                             "/physics/squeeze_film on = %d: use 0 or 1.", q->on);
-    if (q->on &&
-        ((rc = check_range(q->viscosity, 1e-8, 10.0, "/physics/squeeze_film/viscosity", "Pa s",
-                           err)) ||
-         (rc = check_range(q->min_film, 1e-9, 1e-4, "/physics/squeeze_film/min_film", "m", err))))
+    if (q->on && ((rc = rd_error_range(q->viscosity, 1e-8, 10.0, "/physics/squeeze_film/viscosity",
+                                       "Pa s", err)) ||
+                  (rc = rd_error_range(q->min_film, 1e-9, 1e-4, "/physics/squeeze_film/min_film",
+                                       "m", err))))
         return rc;
     return RD_OK;
 }
@@ -302,7 +293,7 @@ static double flank_pressure_scale(const rd_ring_params *ring, const rd_lift_par
 static int validate_stiffness(const rd_lift_params *p, const rd_ring_params *ring, rd_error *err)
 {
     double k = p->contact_stiffness;
-    int rc = check_range(k, 1e3, 1e20, "/contact/stiffness", "Pa/m (or 0 for the default)", err);
+    int rc = rd_error_range(k, 1e3, 1e20, "/contact/stiffness", "Pa/m (or 0 for the default)", err);
     if (rc != RD_OK)
         return rc;
     double lo =
@@ -330,9 +321,9 @@ static int validate_numerics(const rd_lift_params *p, const rd_ring_params *ring
     double ring_d = ring->diameter;
     if (p->contact_stiffness != 0.0 && (rc = validate_stiffness(p, ring, err)))
         return rc;
-    if ((rc = check_range(p->step_deg, 1e-3, 90.0, "/output/step_deg", "deg", err)) ||
-        (rc = check_range(p->rtol, 1e-12, 1e-2, "/numerics/rtol", "", err)) ||
-        (rc = check_range(p->atol, 1e-16, 1e-5, "/numerics/atol", "m", err)))
+    if ((rc = rd_error_range(p->step_deg, 1e-3, 90.0, "/output/step_deg", "deg", err)) ||
+        (rc = rd_error_range(p->rtol, 1e-12, 1e-2, "/numerics/rtol", "", err)) ||
+        (rc = rd_error_range(p->atol, 1e-16, 1e-5, "/numerics/atol", "m", err)))
         return rc;
     if (p->max_steps < 100 || p->max_steps > 1000000000L)
         return rd_error_set(err, RD_EINVAL, "/numerics/max_steps",
@@ -363,7 +354,7 @@ static int validate_numerics(const rd_lift_params *p, const rd_ring_params *ring
                             "/numerics/modes = %d is out of range: a ring of %d segments has "
                             "%d elastic modes.",
                             p->modes, segments, 6 * segments - 6);
-    if ((rc = check_range(p->accuracy_deg, 1e-4, 10.0, "/numerics/accuracy_deg", "deg", err)))
+    if ((rc = rd_error_range(p->accuracy_deg, 1e-4, 10.0, "/numerics/accuracy_deg", "deg", err)))
         return rc;
     if (p->modes < 0 || p->modes > RD_LIFT_MODES_MAX)
         return rd_error_set(err, RD_EINVAL, "/numerics/modes",

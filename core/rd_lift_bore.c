@@ -47,17 +47,6 @@ int rd_lift_bore_distorted(const rd_lift_bore *b, double ring_diameter)
     return (b->diameter > 0.0 && b->diameter != ring_diameter) || b->n_distortion > 0;
 }
 
-/* Range checks of a value: finite and within [lo, hi]. */
-static int bore_range(double v, double lo, double hi, const char *path, const char *unit,
-                      rd_error *err)
-{
-    if (!isfinite(v) || v < lo || v > hi)
-        return rd_error_set(err, RD_EINVAL, path,
-                            "%s = %g %s is out of range: allowed %g to %g %s.", path, v, unit, lo,
-                            hi, unit);
-    return RD_OK;
-}
-
 int rd_lift_bore_validate(const rd_lift_bore *b, const rd_ring_params *ring, rd_error *err)
 {
     double d = ring->diameter, sum = 0.0, bend = 0.0;
@@ -79,10 +68,10 @@ int rd_lift_bore_validate(const rd_lift_bore *b, const rd_ring_params *ring, rd_
             return rd_error_set(err, RD_EINVAL, path, "%s = %d is out of range: allowed 1 to 64.",
                                 path, b->distortion[k].order);
         snprintf(path, sizeof path, "/bore/distortion/%d/phase_deg", k);
-        if ((rc = bore_range(b->distortion[k].phase_deg, -360.0, 360.0, path, "deg", err)))
+        if ((rc = rd_error_range(b->distortion[k].phase_deg, -360.0, 360.0, path, "deg", err)))
             return rc;
         snprintf(path, sizeof path, "/bore/distortion/%d/amplitude", k);
-        if ((rc = bore_range(b->distortion[k].amplitude, -0.01 * d, 0.01 * d, path, "m", err)))
+        if ((rc = rd_error_range(b->distortion[k].amplitude, -0.01 * d, 0.01 * d, path, "m", err)))
             return rc;
         sum += fabs(b->distortion[k].amplitude);
         bend += rd_bore_bend_term(b->distortion[k].order, b->distortion[k].amplitude);

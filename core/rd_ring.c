@@ -70,27 +70,16 @@ void rd_ring_params_default(rd_ring_params *p)
     p->section = RD_SECTION_RECTANGLE;
 }
 
-/* Range check of one value; message names the field, the value, the range. */
-static int check_range(double v, double lo, double hi, const char *path, const char *unit,
-                       rd_error *err)
-{
-    if (!isfinite(v) || v < lo || v > hi)
-        return rd_error_set(err, RD_EINVAL, path,
-                            "%s = %g %s is out of range: allowed %g to %g %s.", path, v, unit, lo,
-                            hi, unit);
-    return RD_OK;
-}
-
 int rd_ring_validate(const rd_ring_params *p, int segments, int closed, rd_error *err)
 {
     int rc = RD_OK;
-    if ((rc = check_range(p->diameter, 1e-3, 5.0, "/ring/diameter", "m", err)))
+    if ((rc = rd_error_range(p->diameter, 1e-3, 5.0, "/ring/diameter", "m", err)))
         return rc;
-    if ((rc = check_range(p->radial_width, 1e-5, 0.25 * p->diameter, "/ring/radial_width",
-                          "m (at most a quarter of the diameter)", err)))
+    if ((rc = rd_error_range(p->radial_width, 1e-5, 0.25 * p->diameter, "/ring/radial_width",
+                             "m (at most a quarter of the diameter)", err)))
         return rc;
-    if ((rc = check_range(p->axial_height, 1e-5, 0.5 * p->diameter, "/ring/axial_height",
-                          "m (at most half the diameter)", err)))
+    if ((rc = rd_error_range(p->axial_height, 1e-5, 0.5 * p->diameter, "/ring/axial_height",
+                             "m (at most half the diameter)", err)))
         return rc;
     double ratio = p->radial_width / p->axial_height;
     if (ratio < 0.05 || ratio > 20.0)
@@ -107,20 +96,20 @@ int rd_ring_validate(const rd_ring_params *p, int segments, int closed, rd_error
                             "diameter); got %g m and %g m.",
                             p->axial_height, p->radial_width);
     if (!closed &&
-        (rc = check_range(p->closed_gap, 0.0, 0.1 * M_PI * p->diameter, "/ring/closed_gap",
-                          "m (at most 10 % of the circumference)", err)))
+        (rc = rd_error_range(p->closed_gap, 0.0, 0.1 * M_PI * p->diameter, "/ring/closed_gap",
+                             "m (at most 10 % of the circumference)", err)))
         return rc;
-    if ((rc = check_range(p->tangential_force, 0.0, 1e5, "/ring/tangential_force", "N", err)))
+    if ((rc = rd_error_range(p->tangential_force, 0.0, 1e5, "/ring/tangential_force", "N", err)))
         return rc;
-    if ((rc =
-             check_range(p->youngs_modulus, 1e6, 1e15, "/ring/material/youngs_modulus", "Pa", err)))
+    if ((rc = rd_error_range(p->youngs_modulus, 1e6, 1e15, "/ring/material/youngs_modulus", "Pa",
+                             err)))
         return rc;
     if (!isfinite(p->poisson_ratio) || p->poisson_ratio <= -1.0 || p->poisson_ratio >= 0.5)
         return rd_error_set(err, RD_EINVAL, "/ring/material/poisson_ratio",
                             "/ring/material/poisson_ratio = %g is out of range: allowed "
                             "-1 < nu < 0.5.",
                             p->poisson_ratio);
-    if ((rc = check_range(p->density, 0.1, 1e7, "/ring/material/density", "kg/m^3", err)))
+    if ((rc = rd_error_range(p->density, 0.1, 1e7, "/ring/material/density", "kg/m^3", err)))
         return rc;
     if (segments < RD_SEGMENTS_MIN || segments > RD_SEGMENTS_MAX)
         return rd_error_set(err, segments > RD_SEGMENTS_MAX ? RD_ELIMIT : RD_EINVAL,

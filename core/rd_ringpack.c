@@ -68,15 +68,6 @@ double rd_ringpack_standard_density(void)
     return 101325.0 / (RD_GASFLOW_R * 293.15);
 }
 
-/* v in [lo, hi], else an error naming `path`. */
-static int range(double v, double lo, double hi, const char *path, const char *unit, rd_error *err)
-{
-    if (isfinite(v) && v >= lo && v <= hi)
-        return RD_OK;
-    return rd_error_set(err, RD_EINVAL, path, "%s = %g %s is out of range: allowed %g to %g %s.",
-                        path, v, unit, lo, hi, unit);
-}
-
 static int validate_ring(const rd_ringpack_ring *r, int i, double bore, rd_error *err)
 {
     char at[16], f[RD_ERROR_PATH_MAX];
@@ -91,25 +82,29 @@ static int validate_ring(const rd_ringpack_ring *r, int i, double bore, rd_error
                             "%s = %g m differs from the top ring's %g m: the rings of a pack "
                             "share one bore.",
                             f, r->ring.diameter, bore);
-    rc = rc ? rc : range(r->ring.closed_gap, 0.0, 0.01, FIELD("ring/closed_gap"), "m", err);
+    rc =
+        rc ? rc : rd_error_range(r->ring.closed_gap, 0.0, 0.01, FIELD("ring/closed_gap"), "m", err);
     if (!rc && !(r->groove.axial_clearance > 0.0))
         return rd_error_set(err, RD_EINVAL, FIELD("groove/axial_clearance"),
                             "%s = %g m: the groove (ring height + axial clearance) must be "
                             "taller than the ring; allowed 1e-07 to 0.005 m.",
                             f, r->groove.axial_clearance);
     rc = rc ? rc
-            : range(r->groove.axial_clearance, 1e-7, 0.005, FIELD("groove/axial_clearance"), "m",
-                    err);
+            : rd_error_range(r->groove.axial_clearance, 1e-7, 0.005,
+                             FIELD("groove/axial_clearance"), "m", err);
     rc = rc ? rc
-            : range(r->groove.radial_clearance, 1e-6, 0.01, FIELD("groove/radial_clearance"), "m",
-                    err);
+            : rd_error_range(r->groove.radial_clearance, 1e-6, 0.01,
+                             FIELD("groove/radial_clearance"), "m", err);
     rc = rc ? rc
-            : range(r->discharge_coefficient, 0.0, 1.0, FIELD("discharge_coefficient"), "", err);
-    rc = rc ? rc : range(r->gap_angle_deg, -360.0, 360.0, FIELD("gap_angle_deg"), "deg", err);
-    rc = rc ? rc : range(r->model, 0, RD_RINGPACK_AXIAL, FIELD("model"), "", err);
+            : rd_error_range(r->discharge_coefficient, 0.0, 1.0, FIELD("discharge_coefficient"), "",
+                             err);
     rc = rc ? rc
-            : range(r->segments, 4, RD_RINGPACK_SEGMENTS_MAX, FIELD("segments"), "segments", err);
-    rc = rc ? rc : range(r->modes, 0, RD_LIFT_MODES_MAX, FIELD("modes"), "modes", err);
+            : rd_error_range(r->gap_angle_deg, -360.0, 360.0, FIELD("gap_angle_deg"), "deg", err);
+    rc = rc ? rc : rd_error_range(r->model, 0, RD_RINGPACK_AXIAL, FIELD("model"), "", err);
+    rc = rc ? rc
+            : rd_error_range(r->segments, 4, RD_RINGPACK_SEGMENTS_MAX, FIELD("segments"),
+                             "segments", err);
+    rc = rc ? rc : rd_error_range(r->modes, 0, RD_LIFT_MODES_MAX, FIELD("modes"), "modes", err);
     if (!rc && r->modes > 6 * r->segments - 6)
         return rd_error_set(err, RD_EINVAL, FIELD("modes"),
                             "%s = %d: a ring of %d segments has %d elastic modes; allowed 0 "
@@ -121,9 +116,10 @@ static int validate_ring(const rd_ringpack_ring *r, int i, double bore, rd_error
                             "%s must be > 0: the land's gas volume pi h c (d - c) must be "
                             "positive (height %g m, radial clearance %g m).",
                             f, r->land_height, r->land_clearance);
-    rc = rc ? rc : range(r->land_height, 1e-5, 0.1, FIELD("land/height"), "m", err);
+    rc = rc ? rc : rd_error_range(r->land_height, 1e-5, 0.1, FIELD("land/height"), "m", err);
     rc = rc ? rc
-            : range(r->land_clearance, 1e-7, 0.25 * bore, FIELD("land/radial_clearance"), "m", err);
+            : rd_error_range(r->land_clearance, 1e-7, 0.25 * bore, FIELD("land/radial_clearance"),
+                             "m", err);
     if (!rc && r->groove.axial_clearance >= r->ring.axial_height)
         return rd_error_set(err, RD_EINVAL, FIELD("groove/axial_clearance"),
                             "%s = %g m is not smaller than the ring's height %g m: the groove "
@@ -143,7 +139,7 @@ static int validate_table(const rd_ringpack_params *p, rd_error *err)
     for (int k = 0; k < n; k++) {
         char f[RD_ERROR_PATH_MAX];
         snprintf(f, sizeof f, "/cylinder_pressure/pressure_pa/%d", k);
-        int rc = range(p->table_pa[k], 1e3, 1e9, f, "Pa (absolute)", err);
+        int rc = rd_error_range(p->table_pa[k], 1e3, 1e9, f, "Pa (absolute)", err);
         if (rc)
             return rc;
         if (k > 0 && !(p->table_deg[k] > p->table_deg[k - 1])) {
@@ -166,13 +162,15 @@ static int validate_table(const rd_ringpack_params *p, rd_error *err)
 int rd_ringpack_validate(const rd_ringpack_params *p, rd_error *err)
 {
     const rd_engine_params *e = &p->engine;
-    int rc = range(p->step_deg, 0.01, 90.0, "/output/step_deg", "deg", err);
-    rc = rc ? rc : range((double)p->max_steps, 100.0, 1e9, "/numerics/max_steps", "", err);
-    rc = rc ? rc : range(e->speed_rpm, 1.0, 30000.0, "/engine/speed_rpm", "rpm", err);
-    rc = rc ? rc : range(e->crank_radius, 0.001, 1.0, "/engine/crank_radius", "m", err);
+    int rc = rd_error_range(p->step_deg, 0.01, 90.0, "/output/step_deg", "deg", err);
+    rc = rc ? rc : rd_error_range((double)p->max_steps, 100.0, 1e9, "/numerics/max_steps", "", err);
+    rc = rc ? rc : rd_error_range(e->speed_rpm, 1.0, 30000.0, "/engine/speed_rpm", "rpm", err);
+    rc = rc ? rc : rd_error_range(e->crank_radius, 0.001, 1.0, "/engine/crank_radius", "m", err);
+    rc = rc ? rc
+            : rd_error_range(e->rod_length, e->crank_radius / 0.9, 10.0, "/engine/rod_length", "m",
+                             err);
     rc =
-        rc ? rc : range(e->rod_length, e->crank_radius / 0.9, 10.0, "/engine/rod_length", "m", err);
-    rc = rc ? rc : range(e->cycles, 2.0, RD_RINGPACK_CYCLES_MAX, "/engine/cycles", "", err);
+        rc ? rc : rd_error_range(e->cycles, 2.0, RD_RINGPACK_CYCLES_MAX, "/engine/cycles", "", err);
     if (!rc && e->cycles != floor(e->cycles))
         return rd_error_set(err, RD_EINVAL, "/engine/cycles",
                             "/engine/cycles = %g must be a whole number of cycles (2 to 50): the "
@@ -191,18 +189,23 @@ int rd_ringpack_validate(const rd_ringpack_params *p, rd_error *err)
         }
         rc = validate_ring(&p->rings[i], i, p->rings[0].ring.diameter, err);
     }
-    rc = rc ? rc : range(p->crankcase_pa, 1e3, 1e7, "/crankcase_pressure_pa", "Pa (absolute)", err);
-    rc = rc ? rc : range(p->T_lands, 200.0, 1500.0, "/gas_temperature_k/lands", "K", err);
-    rc = rc ? rc : range(p->T_crankcase, 200.0, 1500.0, "/gas_temperature_k/crankcase", "K", err);
-    rc = rc ? rc : range(p->rtol, 1e-12, 0.01, "/numerics/rtol", "", err);
-    rc = rc ? rc : range(p->model, 0, RD_RINGPACK_AXIAL, "/numerics/model", "", err);
+    rc = rc ? rc
+            : rd_error_range(p->crankcase_pa, 1e3, 1e7, "/crankcase_pressure_pa", "Pa (absolute)",
+                             err);
+    rc = rc ? rc : rd_error_range(p->T_lands, 200.0, 1500.0, "/gas_temperature_k/lands", "K", err);
+    rc = rc ? rc
+            : rd_error_range(p->T_crankcase, 200.0, 1500.0, "/gas_temperature_k/crankcase", "K",
+                             err);
+    rc = rc ? rc : rd_error_range(p->rtol, 1e-12, 0.01, "/numerics/rtol", "", err);
+    rc = rc ? rc : rd_error_range(p->model, 0, RD_RINGPACK_AXIAL, "/numerics/model", "", err);
     if (!rc && p->friction.model != RD_FRICTION_NONE)
-        rc = range(p->friction.coefficient, 0.0, 10.0, "/physics/friction/coefficient", "", err);
+        rc = rd_error_range(p->friction.coefficient, 0.0, 10.0, "/physics/friction/coefficient", "",
+                            err);
     if (!rc && p->friction.model != RD_FRICTION_NONE && p->friction.model != RD_FRICTION_COULOMB)
         return rd_error_set(err, RD_EINVAL, "/physics/friction/model",
                             "/physics/friction/model: only coulomb is available in the ring "
                             "pack (the rigid ring's Stribeck law is not carried over yet).");
-    rc = rc ? rc : range(p->atol, 1e-16, 1e-5, "/numerics/atol", "m", err);
+    rc = rc ? rc : rd_error_range(p->atol, 1e-16, 1e-5, "/numerics/atol", "m", err);
     if (rc)
         return rc;
     if (p->cylinder_kind == RD_CYLINDER_TABLE)
