@@ -197,24 +197,32 @@ static SUNMatrix_ID hold_id(SUNMatrix M)
     return SUNMATRIX_CUSTOM;
 }
 
+SUNLinearSolver rd_linsol_wrap(SUNContext ctx, void *content,
+                               const struct _generic_SUNLinearSolver_Ops *ops)
+{
+    SUNLinearSolver LS = content ? SUNLinSolNewEmpty(ctx) : NULL;
+    if (!LS)
+        return NULL;
+    *LS->ops = *ops;
+    LS->content = content;
+    return LS;
+}
+
 SUNLinearSolver rd_lift_newton_create(const rd_lift_form *form, SUNContext ctx, SUNMatrix *S,
                                       rd_lift_newton **out)
 {
-    SUNLinearSolver LS = SUNLinSolNewEmpty(ctx);
+    static const struct _generic_SUNLinearSolver_Ops ops = {.gettype = nw_type,
+                                                            .getid = nw_id,
+                                                            .initialize = nw_initialize,
+                                                            .setup = nw_setup,
+                                                            .solve = nw_solve,
+                                                            .free = nw_free};
     rd_lift_newton *nw = calloc(1, sizeof *nw);
-    if (!LS || !nw) {
+    SUNLinearSolver LS = rd_linsol_wrap(ctx, nw, &ops);
+    if (!LS) {
         free(nw);
-        if (LS)
-            SUNLinSolFreeEmpty(LS);
         return NULL;
     }
-    LS->content = nw;
-    LS->ops->gettype = nw_type;
-    LS->ops->getid = nw_id;
-    LS->ops->initialize = nw_initialize;
-    LS->ops->setup = nw_setup;
-    LS->ops->solve = nw_solve;
-    LS->ops->free = nw_free;
     nw->form = form;
     nw->bs = form->block;
     nw->nb = (int)(form->N / (2 * form->block));

@@ -326,21 +326,18 @@ static int ring_open(rd_ringpack_newton *nw, int i, SUNContext ctx)
 SUNLinearSolver rd_ringpack_newton_create(rd_ringpack_model *m, SUNContext ctx, SUNMatrix A,
                                           rd_ringpack_newton **out)
 {
-    SUNLinearSolver LS = SUNLinSolNewEmpty(ctx);
+    static const struct _generic_SUNLinearSolver_Ops ops = {.gettype = pn_type,
+                                                            .getid = pn_id,
+                                                            .initialize = pn_initialize,
+                                                            .setup = pn_setup,
+                                                            .solve = pn_solve,
+                                                            .free = pn_free};
     rd_ringpack_newton *nw = calloc(1, sizeof *nw);
-    if (!LS || !nw) {
+    SUNLinearSolver LS = rd_linsol_wrap(ctx, nw, &ops);
+    if (!LS) {
         free(nw);
-        if (LS)
-            SUNLinSolFreeEmpty(LS);
         return NULL;
     }
-    LS->content = nw;
-    LS->ops->gettype = pn_type;
-    LS->ops->getid = pn_id;
-    LS->ops->initialize = pn_initialize;
-    LS->ops->setup = pn_setup;
-    LS->ops->solve = pn_solve;
-    LS->ops->free = pn_free;
     nw->m = m;
     nw->N0 = m->N0;
     nw->A = A;
