@@ -2,12 +2,15 @@
 # Runs the scene-parser fuzzer for a while on a corpus seeded with the
 # project's scenes (examples/*.json, tests/api/cases/*/request.json).
 #
-#   run.sh [--parse-only] [--runs N] FUZZER SECONDS SOURCE_ROOT [CORPUS_DIR]
+#   run.sh [--parse-only] [--runs N] [--max-len N] FUZZER SECONDS SOURCE_ROOT [CORPUS_DIR]
 #   run.sh --coverage FUZZER_COV SOURCE_ROOT CORPUS_DIR   (api/ coverage of a corpus)
 #
 # --parse-only: RINGDYN_FUZZ_RUN=0, no analysis runs (parse, validate, echo,
-# refusal contract, sweep parse only): thousands of executions a second, for
-# the long run.  --runs N: stop after N executions (or SECONDS, first).
+# refusal contract, sweep parse only): several times faster, for
+# the long run (ASan then keeps no allocation stacks: a finding's report
+# lacks them, rerun its input without the option for them).  --runs N: stop
+# after N executions (or SECONDS, first).  --max-len N: longest input
+# (16384: room for gas tables and distortion lists; less is faster).
 # The dictionary (-dict) is written by the fuzzer from the served OpenAPI
 # document (RINGDYN_FUZZ_DICT), so it follows the schema.
 #
@@ -32,16 +35,19 @@ if [ "${1:-}" = --coverage ]; then
     awk '/validate/ { print "core " $1 ": regions " $4 ", lines " $7 }'
   exit 0
 fi
-RUNS=()
+RUNS=() MAXLEN=16384
 while [ $# -gt 0 ]; do
   case $1 in
-    --parse-only) export RINGDYN_FUZZ_RUN=0; shift ;;
+    --parse-only)
+      export RINGDYN_FUZZ_RUN=0 ASAN_OPTIONS=${ASAN_OPTIONS:-malloc_context_size=0:quarantine_size_mb=16}
+      shift ;;
+    --max-len) MAXLEN=$2; shift 2 ;;
     --runs) RUNS=("-runs=$2"); shift 2 ;;
     *) break ;;
   esac
 done
 if [ $# -lt 3 ]; then
-  echo "usage: $0 [--parse-only] [--runs N] FUZZER SECONDS SOURCE_ROOT [CORPUS_DIR]" >&2
+  echo "usage: $0 [--parse-only] [--runs N] [--max-len N] FUZZER SECONDS SOURCE_ROOT [CORPUS_DIR]" >&2
   exit 2
 fi
 FUZZER=$(realpath "$1") SECONDS_=$2 ROOT=$(realpath "$3") CORPUS=${4:+$(realpath "$4")}
@@ -55,11 +61,10 @@ for f in "$ROOT"/examples/*.json "$ROOT"/tests/api/cases/*/request.json "$ROOT"/
   [ -f "$f" ] && cp "$f" "$WORK/seeds/seed$((i += 1)).json"
 done
 RINGDYN_FUZZ_DICT="$WORK/dict" "$FUZZER" >/dev/null 2>&1
-# -max_len: room for gas tables and distortion lists; -timeout: a parse of
-# one input never takes a second, so 10 s is a hang.
+# -timeout: a parse of one input never takes a second, so 10 s is a hang.
 cd "$WORK"
 rc=0
-"$FUZZER" -max_total_time="$SECONDS_" "${RUNS[@]}" -dict="$WORK/dict" -max_len=16384 \
+"$FUZZER" -max_total_time="$SECONDS_" "${RUNS[@]}" -dict="$WORK/dict" -max_len="$MAXLEN" \
   -timeout=10 -rss_limit_mb=2048 -print_final_stats=1 "$CORPUS" "$WORK/seeds" >"$WORK/log" 2>&1 || rc=$?
 grep -E '^(#[0-9]+.*(INITED|DONE)|stat::|INFO: Loaded|==[0-9]+==|SUMMARY)' "$WORK/log" | tail -n 20 || true
 if [ "$rc" -ne 0 ]; then
