@@ -22,21 +22,26 @@
  * never reach the range checks behind it.  One mutation in eight is
  * libFuzzer's own byte mutation, which keeps the JSON syntax errors covered.
  *
- * Modes: by default a fraction of the accepted scenes also runs (see
- * RUN_EVERY), for coverage of the result writers; RINGDYN_FUZZ_RUN=0 runs
- * none, for the long run of many executions.  RINGDYN_FUZZ_DICT=FILE writes
+ * Modes: by default the accepted scenes and sweeps also run, clamped and
+ * under a CPU budget (see RUN_BUDGET_S), for coverage of the result writers;
+ * RINGDYN_FUZZ_RUN=0 runs none, for the long run of many executions.  RINGDYN_FUZZ_DICT=FILE writes
  * the vocabulary as a libFuzzer dictionary and exits (run.sh uses it).
  */
+#include <errno.h>
 #include <math.h>
 #include <stddef.h>
 #include <stdint.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 #include <time.h>
+#include <unistd.h>
 
 #include <jansson.h>
 
 #include "rd_api.h"
+#include "rd_scene_facts.h"
 #include "rd_sweep.h"
 #include "rd_sweep_request.h"
 
@@ -423,12 +428,21 @@ static void make_sweep(json_t *root, struct rng *r)
         json_t *b = json_object_get(vocab.bounds, leaf);
         json_t *lo = b ? json_array_get(b, pick(r, json_array_size(b))) : json_integer(1);
         json_t *hi = b ? json_array_get(b, pick(r, json_array_size(b))) : json_integer(2);
-        if (pick(r, 2))
+        const char *scale = pick(r, 3) ? "linear" : "log";
+        switch (pick(r, 3)) {
+        case 0:
             json_object_set_new(p, "values", json_pack("[O, O]", lo, hi));
-        else
+            break;
+        case 1:
             json_object_set_new(p, "range",
-                                json_pack("{s:O, s:O, s:i}", "start", lo, "stop", hi, "count",
-                                          (int)(1 + pick(r, 4))));
+                                json_pack("{s:O, s:O, s:i, s:s, s:b}", "start", lo, "stop", hi,
+                                          "count", (int)(1 + pick(r, 4)), "scale", scale, "integer",
+                                          (int)pick(r, 2)));
+            break;
+        default:
+            json_object_set_new(p, "random",
+                                json_pack("{s:O, s:O, s:s}", "min", lo, "max", hi, "scale", scale));
+        }
         if (!b) {
             json_decref(lo);
             json_decref(hi);
@@ -436,9 +450,17 @@ static void make_sweep(json_t *root, struct rng *r)
         json_array_append_new(params, p);
     }
     json_object_set_new(root, "parameters", params);
-    json_object_set_new(root, "outputs", json_pack("[s]", word_of(r, vocab.outputs)));
+    static const char *const aggregates[] = {"max", "min", "mean", "count", "all"};
+    char out[300];
+    snprintf(out, sizeof out, "%s(%s)", aggregates[pick(r, 5)], word_of(r, vocab.outputs));
+    json_object_set_new(root, "outputs",
+                        json_pack("[s, s]", word_of(r, vocab.outputs), pick(r, 2) ? out : "/"));
     if (pick(r, 2))
-        json_object_set_new(root, "combine", json_string(sweep_words[pick(r, 4)]));
+        json_object_set_new(root, "combine", json_string(sweep_words[pick(r, 3)]));
+    if (pick(r, 2))
+        json_object_set_new(root, "samples", json_integer((json_int_t)pick(r, 5)));
+    if (pick(r, 2))
+        json_object_set_new(root, "seed", json_integer((json_int_t)pick(r, 1000)));
 }
 
 static void mutate(json_t *root, struct rng *r)
@@ -573,22 +595,29 @@ size_t LLVMFuzzerCustomMutator(uint8_t *data, size_t size, size_t max_size, unsi
 }
 
 /*
- * Running a fraction of the accepted scenes, so that the analyses' result
+ * Running the accepted scenes and sweeps, so that the analyses' result
  * writers (JSON, CSV), the warnings and the monitor paths of api/ are
  * reached too.  A run must stay cheap (the fuzzer's speed is its coverage):
- * the scene's size knobs are clamped before it runs (at most 12 segments,
- * 4 contact points per segment, 6 modes, 2 cycles, steps of >= 1 deg,
- * 2000 steps, 50 iterations) and a monitor cancels any run after
- * RUN_BUDGET_S of wall time (a cancelled run is a valid outcome: it
- * exercises the cancel paths).  One accepted input in RUN_EVERY runs.
+ * the scene's size knobs are clamped before it runs (at most 8 segments,
+ * 4 contact points per segment, 6 modes, a quarter of a cycle for lift and
+ * the ring pack's least, 2, steps of >= 1 deg, 2000 steps, 50 iterations:
+ * a lift run then takes ~20 ms with its error estimate, a contact run a few
+ * ms) and a monitor cancels any run after
+ * RUN_BUDGET_S of CPU time (a cancelled run is a valid outcome: it
+ * exercises the cancel paths).  A sweep runs its first two points (not
+ * clamped: the budget bounds them).  Which inputs run: run_now.  A scene
+ * that runs also runs as a fidelity request of two levels.
  */
 #define RUN_EVERY    8
+#define RUN_FIRST    12
 #define RUN_BUDGET_S 0.1
 
+/* CPU time, not wall time: a run's outcome (finished or cancelled) is the
+ * same under any load of the machine, so a finding reproduces. */
 static double now_s(void)
 {
     struct timespec t;
-    clock_gettime(CLOCK_MONOTONIC, &t);
+    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
     return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
 }
 
@@ -598,14 +627,30 @@ static int past_deadline(void *ctx, double fraction)
     return now_s() > *(const double *)ctx;
 }
 
-/* FNV-1a of the input: the choice of what runs depends on the input only,
- * so a finding reproduces. */
+/* FNV-1a of the input selects one in RUN_EVERY. */
 static int run_selected(const uint8_t *data, size_t size)
 {
     uint32_t h = 2166136261u;
     for (size_t i = 0; i < size; i++)
         h = (h ^ data[i]) * 16777619u;
     return h % RUN_EVERY == 0;
+}
+
+/* Whether an accepted input of `kind` (its analysis, or "sweep") runs: the
+ * first RUN_FIRST of each kind in the process (the seeds, so that every
+ * analysis and sweep form reaches its writers early; and any input replayed
+ * alone, so a finding reproduces), then those run_selected picks. */
+static int run_now(const char *kind, const uint8_t *data, size_t size)
+{
+    static char kinds[16][16];
+    static int counts[16];
+    for (size_t i = 0; i < 16; i++) {
+        if (!kinds[i][0])
+            snprintf(kinds[i], sizeof kinds[i], "%s", kind);
+        if (!strncmp(kinds[i], kind, sizeof kinds[i] - 1))
+            return counts[i]++ < RUN_FIRST || run_selected(data, size);
+    }
+    return run_selected(data, size);
 }
 
 static void clamp_int(json_t *v, json_int_t hi)
@@ -615,19 +660,19 @@ static void clamp_int(json_t *v, json_int_t hi)
 }
 
 /* Lowers every size knob found anywhere in the scene (see above). */
-static void clamp(json_t *j)
+static void clamp(json_t *j, int cycles_least)
 {
     const char *key;
     json_t *v;
     size_t i;
     if (json_is_array(j)) {
-        json_array_foreach(j, i, v) clamp(v);
+        json_array_foreach(j, i, v) clamp(v, cycles_least);
         return;
     }
     json_object_foreach(j, key, v)
     {
         if (!strcmp(key, "segments"))
-            clamp_int(v, 12);
+            clamp_int(v, 8);
         else if (!strcmp(key, "points_per_segment"))
             clamp_int(v, 4);
         else if (!strcmp(key, "modes"))
@@ -636,12 +681,12 @@ static void clamp(json_t *j)
             clamp_int(v, 2000);
         else if (!strcmp(key, "max_iterations"))
             clamp_int(v, 50);
-        else if (!strcmp(key, "cycles") && json_is_number(v) && json_number_value(v) > 2)
-            json_object_set_new(j, key, json_integer(2));
+        else if (!strcmp(key, "cycles") && json_is_number(v) && json_number_value(v) > 0.25)
+            json_object_set_new(j, key, cycles_least ? json_integer(2) : json_real(0.25));
         else if (!strcmp(key, "step_deg") && json_is_number(v) && json_number_value(v) < 1)
             json_object_set_new(j, key, json_integer(1));
         else
-            clamp(v);
+            clamp(v, cycles_least);
     }
 }
 
@@ -690,7 +735,8 @@ static void run_small(const char *body, size_t len)
         json_decref(j);
         return;
     }
-    clamp(j);
+    const char *an = json_string_value(json_object_get(j, "analysis"));
+    clamp(j, an && !strcmp(an, "ringpack"));
     char *small = json_dumps(j, JSON_COMPACT);
     /* The same scene as a fidelity request of two cheap levels. */
     json_t *fid = json_pack("{s:O, s:[i, i]}", "fidelity", j, "segments", 4, 6);
@@ -759,6 +805,43 @@ int LLVMFuzzerInitialize(int *argc, char ***argv)
     return 0;
 }
 
+/* The rows as the one chunk file of `ringdyn sweep run` (when the points
+ * are the whole sweep), read back by rd_sweep_reduce: its CSV must be the
+ * table's. */
+static void check_reduce(const rd_sweep *sweep, char **rows, size_t m, const char *csv)
+{
+    size_t first, end;
+    rd_error err;
+    rd_error_init(&err);
+    if (m == 0 || rd_sweep_points(sweep) != m ||
+        rd_sweep_chunk_range(sweep, 0, 1, &first, &end, &err) != RD_OK)
+        return;
+    static char dir[64];
+    if (!dir[0] && (snprintf(dir, sizeof dir, "/tmp/ringdyn-fuzz-chunks.%ld", (long)getpid()),
+                    mkdir(dir, 0700) != 0 && errno != EEXIST))
+        abort();
+    char *name = rd_sweep_chunk_name(0, 1), *head = rd_sweep_chunk_head(sweep, 0, 1), path[160];
+    snprintf(path, sizeof path, "%s/%s", dir, name ? name : "");
+    FILE *f = name && head ? fopen(path, "w") : NULL;
+    if (!f)
+        abort();
+    fputs(head, f);
+    for (size_t i = 0; i < m; i++)
+        fprintf(f, "%s%s", i ? ",\n" : "", rows[i]);
+    fputs("]}\n", f);
+    char *out = NULL;
+    size_t len = 0;
+    FILE *o = open_memstream(&out, &len);
+    rd_error_init(&err);
+    if (fclose(f) || !o || rd_sweep_reduce(dir, 1, o, &err) != RD_OK || fclose(o) ||
+        strcmp(out, csv))
+        abort();
+    free(out);
+    remove(path);
+    free(head);
+    free(name);
+}
+
 /* A sweep request (spec or fidelity request) that parses: its table
  * machinery on its first points (at most 2, each run under the same
  * budget as a scene), the CSV forms, the fidelity table and the chunks. */
@@ -794,12 +877,7 @@ static void check_sweep_table(const rd_sweep_request *req)
         rd_error_init(&err);
         free(rd_sweep_fidelity_table(table, &err));
     }
-    size_t first, end;
-    rd_error_init(&err);
-    if (rd_sweep_chunk_range(req->sweep, 0, m ? m : 1, &first, &end, &err) == RD_OK) {
-        free(rd_sweep_chunk_name(0, m));
-        free(rd_sweep_chunk_head(req->sweep, 0, m));
-    }
+    check_reduce(req->sweep, rows, m, csv);
     free(csv2);
     free(csv);
     free(table);
@@ -807,6 +885,7 @@ static void check_sweep_table(const rd_sweep_request *req)
         free(rows[i]);
 }
 
+/* run: 0 no, 1 yes, 2 when run_now says so. */
 static void check_sweep(const uint8_t *data, size_t size, int run)
 {
     rd_sweep_request req = {0};
@@ -829,7 +908,7 @@ static void check_sweep(const uint8_t *data, size_t size, int run)
     free(scene);
     free(record);
     free(columns);
-    if (run)
+    if (run == 2 ? run_now("sweep", data, size) : run)
         check_sweep_table(&req);
     rd_sweep_request_cleanup(&req);
 }
@@ -850,9 +929,30 @@ static void check_echo(const char *echo)
     rd_scene_free(again);
 }
 
+/* The job service's facts (rd_scene_facts.h): the canonical text (the
+ * result cache's key) is a fixed point, as the echo is; the predicted cost
+ * is NAN or a positive number. */
+static void check_facts(const rd_scene *scene)
+{
+    (void)rd_scene_name(scene);
+    double cost = rd_scene_cost_predict(scene);
+    if (!isnan(cost) && !(cost > 0))
+        abort();
+    char *canon = rd_scene_canonical_json(scene), *canon2 = NULL;
+    rd_scene *again = NULL;
+    rd_error err;
+    rd_error_init(&err);
+    if (!canon || rd_scene_parse(canon, strlen(canon), &again, &err) != RD_OK ||
+        !(canon2 = rd_scene_canonical_json(again)) || strcmp(canon, canon2))
+        abort();
+    free(canon2);
+    free(canon);
+    rd_scene_free(again);
+}
+
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 {
-    check_sweep(data, size, run_mode && run_selected(data, size));
+    check_sweep(data, size, run_mode ? 2 : 0);
     rd_scene *scene = NULL;
     rd_error err;
     rd_error_init(&err);
@@ -865,9 +965,10 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
             abort();
         json_decref(o);
         check_echo(echo);
+        check_facts(scene);
         free(echo);
         rd_scene_free(scene);
-        if (run_mode && run_selected(data, size))
+        if (run_mode && run_now(analysis, data, size))
             run_small((const char *)data, size);
         return 0;
     }

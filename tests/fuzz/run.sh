@@ -1,6 +1,8 @@
 #!/usr/bin/env bash
 # Runs the scene-parser fuzzer for a while on a corpus seeded with the
-# project's scenes (examples/*.json, tests/api/cases/*/request.json).
+# project's scenes and sweeps (examples/*.json, tests/api/cases/*/request.json,
+# tests/api/sweeps/*.json, tests/fuzz/seeds/*.json, the bodies of
+# tests/http/battery.txt).
 #
 #   run.sh [--parse-only] [--runs N] [--max-len N] FUZZER SECONDS SOURCE_ROOT [CORPUS_DIR]
 #   run.sh --coverage FUZZER_COV SOURCE_ROOT CORPUS_DIR   (api/ coverage of a corpus)
@@ -57,9 +59,13 @@ trap 'rm -rf "$WORK"' EXIT
 if [ -z "$CORPUS" ]; then CORPUS=$WORK/corpus; fi
 mkdir -p "$CORPUS" "$WORK/seeds"
 i=0
-for f in "$ROOT"/examples/*.json "$ROOT"/tests/api/cases/*/request.json "$ROOT"/tests/api/sweeps/*.json; do
+for f in "$ROOT"/examples/*.json "$ROOT"/tests/api/cases/*/request.json "$ROOT"/tests/api/sweeps/*.json \
+  "$ROOT"/tests/fuzz/seeds/*.json; do
   [ -f "$f" ] && cp "$f" "$WORK/seeds/seed$((i += 1)).json"
 done
+# ... and the scene bodies of the bad-input battery (one a line, "| BODY |").
+grep '| POST /api/v1/jobs | ' "$ROOT"/tests/http/battery.txt | sed 's/^.*| POST \/api\/v1\/jobs | //; s/ | [A-Za-z-]*:.*$//' |
+  while IFS= read -r body; do printf '%s' "$body" >"$WORK/seeds/battery$((i += 1)).json"; done
 RINGDYN_FUZZ_DICT="$WORK/dict" "$FUZZER" >/dev/null 2>&1
 # -timeout: a parse of one input never takes a second, so 10 s is a hang.
 cd "$WORK"
