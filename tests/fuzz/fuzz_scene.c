@@ -553,9 +553,12 @@ static char *splice(json_t *root, struct rng *r)
                      pick(r, 2) ? "null" : "1");
             repl = buf;
             cut = (size_t)(end + 1 - m);
-        } else {
+        } else if (!strncmp(m, "\"\\u0001raw\"", strlen("\"\\u0001raw\""))) {
             repl = raw_tokens[pick(r, sizeof raw_tokens / sizeof raw_tokens[0])];
             cut = strlen("\"\\u0001raw\"");
+        } else {
+            return text; /* a marker a later mutation changed (its value no
+                            longer a string): left as it is, valid JSON */
         }
         size_t head = (size_t)(m - text), tail = strlen(m + cut);
         char *out = malloc(head + strlen(repl) + tail + 1);
