@@ -33,7 +33,8 @@ struct rd_analysis_def;
 
 /* Significant digits of the reals in a scene's JSON text: every decimal a
  * person types (up to 15 digits) is written back unchanged, where 17 would
- * turn 0.0765 into 0.076499999999999999. */
+ * turn 0.0765 into 0.076499999999999999.  A scene with a real that 15
+ * digits do not give back exactly is echoed with 17 (rd_scene_to_json). */
 #define RD_SCENE_REAL_DIGITS 15
 
 /* The analyses of the built-in registry, by index (rd_registry.c keeps

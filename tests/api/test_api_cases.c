@@ -125,10 +125,31 @@ static char *read_all(const char *path, size_t *len)
     return buf;
 }
 
+/* Every accepted scene's echo (rd_scene_to_json, what the server stores
+ * and a client may submit again) parses back into a scene with the same
+ * echo.  Returns 1 when it does. */
+static int echo_round_trips(const rd_scene *scene, const char *name)
+{
+    char *echo = rd_scene_to_json(scene), *again_echo = NULL;
+    rd_scene *again = NULL;
+    rd_error err;
+    rd_error_init(&err);
+    int ok = echo && rd_scene_parse(echo, strlen(echo), &again, &err) == RD_OK &&
+             (again_echo = rd_scene_to_json(again)) && strcmp(echo, again_echo) == 0;
+    if (!ok)
+        fprintf(stderr, "case %s: the echo %.300s does not parse back into itself (%s)\n", name,
+                echo ? echo : "(none)", err.message);
+    free(again_echo);
+    rd_scene_free(again);
+    free(echo);
+    return ok;
+}
+
 /* The answer to `body` as {"status", "error", "errors"[, "errors_omitted"]}
  * (the error body of rd_scene_parse_report, or rd_api_error_json's for a
- * failed run) or {"status", "result"}. */
-static json_t *answer(const char *body, size_t len)
+ * failed run) or {"status", "result"}.  *echo_ok: 0 when the scene was
+ * accepted and its echo does not round-trip (echo_round_trips). */
+static json_t *answer(const char *body, size_t len, const char *name, int *echo_ok)
 {
     rd_error err;
     rd_scene *scene = NULL;
@@ -136,8 +157,10 @@ static json_t *answer(const char *body, size_t len)
     json_t *out = NULL;
 
     rd_error_init(&err);
-    if (rd_scene_parse_report(body, len, &scene, &err, &e) == RD_OK &&
-        rd_scene_run(scene, NULL, &result, &err) == RD_OK) {
+    *echo_ok = 1;
+    if (rd_scene_parse_report(body, len, &scene, &err, &e) == RD_OK)
+        *echo_ok = echo_round_trips(scene, name);
+    if (scene && rd_scene_run(scene, NULL, &result, &err) == RD_OK) {
         out = json_pack("{s:i, s:o}", "status", 200, "result", json_loads(result, 0, NULL));
     } else {
         if (!e)
@@ -220,8 +243,9 @@ static int run_case(const char *dir, const char *name)
         ok = 0;
     }
 
-    json_t *got = answer(body, len);
-    ok = ok && got && match(expected, got, "", &tol, name) && first_is_error(got, name);
+    int echo_ok;
+    json_t *got = answer(body, len, name, &echo_ok);
+    ok = ok && echo_ok && got && match(expected, got, "", &tol, name) && first_is_error(got, name);
     if (json_is_string(needles))
         ok = contains(got, json_string_value(needles), name) && ok;
     size_t i;

@@ -6,29 +6,42 @@
  * body, valid or not: no crash, leak or undefined behaviour (ASan, UBSan);
  * a refusal carries a status, a message and a path that is empty or a JSON
  * Pointer, and rd_api_error_json turns it into valid JSON; an accepted scene
- * names its analysis and echoes as a JSON object.  A violation aborts (a
- * finding).
+ * names its analysis and its echo is canonical (it parses back into a scene
+ * with the same echo).  Every body is also tried as a sweep request.  A
+ * violation aborts (a finding).
  *
  * The mutator (LLVMFuzzerCustomMutator) parses the input as JSON and changes
- * its structure: a field's value to a boundary number, another JSON type or
- * an enum word of the schema; a key removed or one of the schema's keys
- * added; "analysis" switched; an array grown or shrunk.  Byte-level
- * mutations alone rarely keep a body valid JSON, so they would stop at the
- * JSON parser and never reach the range checks behind it.  One mutation in
- * eight is libFuzzer's own byte mutation, which keeps the JSON syntax
- * errors covered.  The schema's key and enum words below are facts of
- * server/openapi.json.
+ * its structure, with a vocabulary read from the served OpenAPI document
+ * (learn_vocabulary): a field's value to one of its schema bounds (+- one
+ * ulp, +- 1 for integers), its enum words, another JSON type; a key removed,
+ * duplicated, or one its object's schema knows added; "analysis" switched;
+ * an array grown or shrunk; a number replaced by a token jansson cannot
+ * write (1e999, NaN, -0, a 20-digit integer, a lone surrogate); the scene
+ * wrapped into a sweep spec over its own fields.  Byte-level mutations alone
+ * rarely keep a body valid JSON, so they would stop at the JSON parser and
+ * never reach the range checks behind it.  One mutation in eight is
+ * libFuzzer's own byte mutation, which keeps the JSON syntax errors covered.
+ *
+ * Modes: by default the accepted scenes and sweeps also run, clamped and
+ * under a CPU budget (see RUN_BUDGET_S), for coverage of the result writers;
+ * RINGDYN_FUZZ_RUN=0 runs none, for the long run of many executions.  RINGDYN_FUZZ_DICT=FILE writes
+ * the vocabulary as a libFuzzer dictionary and exits (run.sh uses it).
  */
+#include <errno.h>
 #include <math.h>
 #include <stddef.h>
 #include <stdint.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 #include <time.h>
+#include <unistd.h>
 
 #include <jansson.h>
 
 #include "rd_api.h"
+#include "rd_scene_facts.h"
 #include "rd_sweep.h"
 #include "rd_sweep_request.h"
 
@@ -36,154 +49,207 @@ size_t LLVMFuzzerMutate(uint8_t *data, size_t size, size_t max_size);
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
 size_t LLVMFuzzerCustomMutator(uint8_t *data, size_t size, size_t max_size, unsigned int seed);
 
-static const char *const keys[] = {"base",
-                                   "parameters",
-                                   "path",
-                                   "values",
-                                   "range",
-                                   "start",
-                                   "stop",
-                                   "count",
-                                   "scale",
-                                   "integer",
-                                   "combine",
-                                   "outputs",
-                                   "samples",
-                                   "seed",
-                                   "min",
-                                   "max",
-                                   "fidelity",
-                                   "models",
-                                   "above",
-                                   "active_area",
-                                   "amplitude",
-                                   "analysis",
-                                   "atol",
-                                   "axial_clearance",
-                                   "axial_height",
-                                   "behind",
-                                   "below",
-                                   "bore",
-                                   "closed",
-                                   "closed_gap",
-                                   "coefficient",
-                                   "contact",
-                                   "crank_deg",
-                                   "crank_radius",
-                                   "cycles",
-                                   "density",
-                                   "description",
-                                   "diameter",
-                                   "discretization",
-                                   "distortion",
-                                   "engine",
-                                   "error_estimate",
-                                   "friction",
-                                   "gas",
-                                   "gravity",
-                                   "groove",
-                                   "hydrodynamic_slope",
-                                   "kinematics",
-                                   "lateral_force",
-                                   "material",
-                                   "max_iterations",
-                                   "max_steps",
-                                   "method",
-                                   "modal",
-                                   "model",
-                                   "modes",
-                                   "name",
-                                   "numerics",
-                                   "order",
-                                   "output",
-                                   "phase_deg",
-                                   "physics",
-                                   "points_per_segment",
-                                   "poisson_ratio",
-                                   "pretension",
-                                   "radial_clearance",
-                                   "radial_width",
-                                   "ring",
-                                   "rod_length",
-                                   "rtol",
-                                   "section",
-                                   "segments",
-                                   "sommerfeld_transition",
-                                   "speed_rpm",
-                                   "step_deg",
-                                   "stiffness",
-                                   "tangential_force",
-                                   "tolerance",
-                                   "viscosity",
-                                   "youngs_modulus"};
+/* What the schema does not say: the sweep spec's own keys and words, and
+ * JSON tokens that jansson's encoder cannot write (spliced into the text). */
+static const char *const sweep_keys[] = {
+    "base",     "parameters", "path",     "values",  "range",       "start", "stop", "count",
+    "scale",    "integer",    "combine",  "outputs", "samples",     "seed",  "min",  "max",
+    "fidelity", "models",     "segments", "rtol",    "description", "name"};
+static const char *const sweep_words[] = {
+    "product", "zip", "latin_hypercube", "random", "log", "linear", "", "max(", "count(", "*"};
+static const char *const raw_tokens[] = {"1e999",
+                                         "-1e999",
+                                         "1e-400",
+                                         "-0",
+                                         "NaN",
+                                         "Infinity",
+                                         "1e308",
+                                         "-1e308",
+                                         "99999999999999999999",
+                                         "-9223372036854775809",
+                                         "9223372036854775807",
+                                         "0e0",
+                                         "\"\\u0000\"",
+                                         "\"\\ud800\"",
+                                         "\"\xc3\x28\""};
 
-static const char *const words[] = {"modal",
-                                    "pretension",
-                                    "contact",
-                                    "lift",
-                                    "rectangle",
-                                    "circle",
-                                    "force",
-                                    "field",
-                                    "coulomb",
-                                    "stribeck",
-                                    "fixed",
-                                    "dynamic",
-                                    "exact",
-                                    "approximate",
-                                    "product",
-                                    "zip",
-                                    "latin_hypercube",
-                                    "random",
-                                    "log",
-                                    "linear",
-                                    "/discretization/segments",
-                                    "/ring/diameter",
-                                    "/modes/0/frequency_hz",
-                                    "max(/modes/*/frequency_hz)",
-                                    "mean(/lift)",
-                                    "count(/modes)",
-                                    "/numerics/wall_s",
-                                    ""};
+/* Generic boundaries of the number types, for fields the schema gives none. */
+static const double numbers[] = {0,       -0.0, 1,        -1,           2,
+                                 0.5,     1e-7, 1e-16,    1e-300,       1e300,
+                                 -1e300,  1e20, 4.9e-324, 2147483648.0, 9007199254740993.0,
+                                 0.499999};
 
-/* Boundaries of the schema's ranges and of the number types. */
-static const double numbers[] = {
-    0,       -0.0,  1,     -1,    2,      3,     4,        0.5,          1e-5,
-    1e-7,    1e-12, 1e-13, 1e-16, 1e-300, 1e300, -1e300,   0.001,        0.005,
-    0.01,    5,     10,    16,    17,     20,    50,       60,           61,
-    64,      65,    90,    360,   -360,   1000,  1001,     2000,         2001,
-    30000,   1e5,   1e6,   1e12,  1e15,   1e20,  4.9e-324, 2147483648.0, 9007199254740993.0,
-    0.499999};
+/*
+ * The vocabulary of the mutator, read at start-up from the OpenAPI document
+ * the server serves (rd_api_openapi_json: written from the schema tables
+ * that parse the scene, so it cannot drift from the parser).  Walking the
+ * scene schemas (ModalScene ... RingpackScene) and the result schemas:
+ *   keys      every property name;
+ *   children  property name -> the property names of its object schema;
+ *   bounds    property name -> its minimum, maximum, default, minItems,
+ *             maxItems, each also one ulp and (integers) one unit either side;
+ *   choices   property name -> its enum words;
+ *   paths     every scene field's JSON Pointer (sweep parameter paths);
+ *   outputs   result pointers with 0 and * for array items, some wrapped in
+ *             an aggregate (sweep outputs).
+ * The same words are the libFuzzer dictionary (RINGDYN_FUZZ_DICT, run.sh).
+ */
+static struct {
+    json_t *doc, *keys, *words, *children, *bounds, *choices, *paths, *outputs;
+} vocab;
 
-static const json_int_t integers[] = {0,
-                                      1,
-                                      -1,
-                                      2,
-                                      3,
-                                      4,
-                                      5,
-                                      16,
-                                      17,
-                                      20,
-                                      59,
-                                      60,
-                                      61,
-                                      64,
-                                      65,
-                                      99,
-                                      100,
-                                      1000,
-                                      1001,
-                                      1999,
-                                      2000,
-                                      2001,
-                                      100000,
-                                      100001,
-                                      2147483647,
-                                      -2147483648LL,
-                                      1000000000,
-                                      1000000001,
-                                      9007199254740993LL};
+static void add_word(json_t *array, const char *w)
+{
+    size_t i;
+    json_t *v;
+    json_array_foreach(array, i, v) if (!strcmp(json_string_value(v), w)) return;
+    json_array_append_new(array, json_string(w));
+}
+
+static json_t *list_of(json_t *map, const char *key)
+{
+    json_t *a = json_object_get(map, key);
+    if (!a) {
+        a = json_array();
+        json_object_set_new(map, key, a);
+    }
+    return a;
+}
+
+static json_t *deref(json_t *schema)
+{
+    const char *ref = json_string_value(json_object_get(schema, "$ref"));
+    const char *prefix = "#/components/schemas/";
+    if (ref && !strncmp(ref, prefix, strlen(prefix)))
+        return json_object_get(json_object_get(json_object_get(vocab.doc, "components"), "schemas"),
+                               ref + strlen(prefix));
+    return schema;
+}
+
+static void add_bound(json_t *list, double x, int integer)
+{
+    json_array_append_new(list, json_real(x));
+    json_array_append_new(list, json_real(nextafter(x, INFINITY)));
+    json_array_append_new(list, json_real(nextafter(x, -INFINITY)));
+    if (integer) {
+        json_array_append_new(list, json_integer((json_int_t)x + 1));
+        json_array_append_new(list, json_integer((json_int_t)x - 1));
+    }
+}
+
+static void learn_field(const char *name, json_t *schema)
+{
+    static const char *const bound_keys[] = {"minimum", "maximum", "default", "minItems",
+                                             "maxItems"};
+    const char *type = json_string_value(json_object_get(schema, "type"));
+    int integer = type && !strcmp(type, "integer");
+    for (size_t i = 0; i < sizeof bound_keys / sizeof bound_keys[0]; i++) {
+        json_t *b = json_object_get(schema, bound_keys[i]);
+        if (json_is_number(b))
+            add_bound(list_of(vocab.bounds, name), json_number_value(b), integer || i > 2);
+    }
+    size_t i;
+    json_t *e;
+    json_array_foreach(json_object_get(schema, "enum"), i, e) if (json_is_string(e))
+    {
+        add_word(list_of(vocab.choices, name), json_string_value(e));
+        add_word(vocab.words, json_string_value(e));
+    }
+}
+
+/* Walks a schema whose value sits at `path` (a scene pointer or, when
+ * `result`, a result pointer with `*` for array items). */
+static void learn(json_t *schema, const char *name, const char *path, int result, int depth)
+{
+    schema = deref(schema);
+    if (!json_is_object(schema) || depth > 8)
+        return;
+    static const char *const alternatives[] = {"allOf", "oneOf", "anyOf"};
+    for (size_t a = 0; a < sizeof alternatives / sizeof alternatives[0]; a++) {
+        size_t i;
+        json_t *s;
+        json_array_foreach(json_object_get(schema, alternatives[a]), i, s)
+            learn(s, name, path, result, depth + 1);
+    }
+    learn_field(name, schema);
+    char sub[512];
+    json_t *items = json_object_get(schema, "items");
+    if (items) {
+        snprintf(sub, sizeof sub, "%s/%s", path, result && depth % 2 ? "*" : "0");
+        learn(items, name, sub, result, depth + 1);
+    }
+    const char *key;
+    json_t *prop;
+    json_object_foreach(json_object_get(schema, "properties"), key, prop)
+    {
+        snprintf(sub, sizeof sub, "%s/%s", path, key);
+        if (!result) {
+            add_word(vocab.keys, key);
+            add_word(list_of(vocab.children, name), key);
+            add_word(vocab.paths, sub);
+        } else {
+            add_word(vocab.outputs, sub);
+        }
+        learn(prop, key, sub, result, depth + 1);
+    }
+}
+
+static void learn_vocabulary(void)
+{
+    FILE *f = fopen(FUZZ_OPENAPI, "rb");
+    char *tmpl = NULL, *text = NULL;
+    size_t len = 0;
+    rd_error err;
+    rd_error_init(&err);
+    if (!f || rd_api_read_stream(f, 1 << 22, &tmpl, &len) != 0 ||
+        !(text = rd_api_openapi_json(tmpl, &err)) || !(vocab.doc = json_loads(text, 0, NULL)))
+        abort();
+    fclose(f);
+    free(tmpl);
+    free(text);
+    vocab.keys = json_array(), vocab.words = json_array(), vocab.paths = json_array();
+    vocab.outputs = json_array(), vocab.children = json_object(), vocab.bounds = json_object();
+    vocab.choices = json_object();
+    json_t *schemas = json_object_get(json_object_get(vocab.doc, "components"), "schemas");
+    const char *name;
+    json_t *s;
+    json_object_foreach(schemas, name, s)
+    {
+        size_t n = strlen(name);
+        if (n > 5 && !strcmp(name + n - 5, "Scene"))
+            learn(s, "", "", 0, 0);
+        else if (n > 6 && !strcmp(name + n - 6, "Result"))
+            learn(s, "", "", 1, 0);
+    }
+    for (size_t i = 0; i < sizeof sweep_keys / sizeof sweep_keys[0]; i++)
+        add_word(vocab.keys, sweep_keys[i]);
+    for (size_t i = 0; i < sizeof sweep_words / sizeof sweep_words[0]; i++)
+        add_word(vocab.words, sweep_words[i]);
+    if (json_array_size(vocab.keys) < 50 || json_array_size(vocab.paths) < 50)
+        abort(); /* the document lost its scene schemas: the harness must say so */
+}
+
+/* The libFuzzer dictionary: every key (quoted, as in the text) and word. */
+static void write_dictionary(const char *file)
+{
+    FILE *f = fopen(file, "w");
+    if (!f)
+        abort();
+    json_t *lists[] = {vocab.keys, vocab.words, vocab.paths, vocab.outputs};
+    for (size_t l = 0; l < sizeof lists / sizeof lists[0]; l++) {
+        size_t i;
+        json_t *w;
+        json_array_foreach(lists[l], i, w)
+        {
+            fputs("\"\\\"", f);
+            for (const char *c = json_string_value(w); *c; c++)
+                fprintf(f, *c == '"' || *c == '\\' ? "\\%c" : "%c", *c);
+            fputs("\\\"\"\n", f);
+        }
+    }
+    if (fclose(f))
+        abort();
+}
 
 struct rng {
     uint64_t s;
@@ -231,21 +297,39 @@ static void collect(json_t *parent, const char *key, size_t index, json_t *value
     }
 }
 
-static json_t *random_value(struct rng *r)
+static const char *word_of(struct rng *r, json_t *list)
 {
-    switch (pick(r, 9)) {
+    size_t n = json_array_size(list);
+    return n ? json_string_value(json_array_get(list, pick(r, n))) : "";
+}
+
+/* A value for the field `key` (NULL: anywhere): mostly what the schema says
+ * of it (a bound, an enum word), else any JSON type. */
+static json_t *random_value(struct rng *r, const char *key)
+{
+    json_t *bounds = key ? json_object_get(vocab.bounds, key) : NULL;
+    json_t *choices = key ? json_object_get(vocab.choices, key) : NULL;
+    switch (pick(r, 10)) {
     case 0:
         return json_null();
     case 1:
         return json_boolean(pick(r, 2));
     case 2:
-        return json_string(words[pick(r, sizeof words / sizeof words[0])]);
+        return json_string(pick(r, 2) ? word_of(r, vocab.words) : word_of(r, vocab.paths));
     case 3:
         return json_object();
     case 4:
         return json_array();
     case 5:
-        return json_integer(integers[pick(r, sizeof integers / sizeof integers[0])]);
+    case 6:
+        if (choices)
+            return json_string(word_of(r, choices));
+        /* fall through */
+    case 7:
+    case 8:
+        if (bounds)
+            return json_copy(json_array_get(bounds, pick(r, json_array_size(bounds))));
+        /* fall through */
     default:
         return json_real(numbers[pick(r, sizeof numbers / sizeof numbers[0])]);
     }
@@ -287,11 +371,96 @@ static json_t *table(struct rng *r)
 {
     json_t *a = json_array();
     size_t n = pick(r, 4) == 0 ? 1 + pick(r, 2000) : pick(r, 6);
-    double x = numbers[pick(r, 20)];
+    double x = numbers[pick(r, sizeof numbers / sizeof numbers[0])];
     for (size_t i = 0; a && i < n; i++)
         json_array_append_new(
             a, json_real(x += (pick(r, 8) == 0 ? -1.0 : 1.0) * (double)(1 + pick(r, 90))));
     return a;
+}
+
+/* The name the schema knows a slot's value by: its key, or for an array
+ * item the array's key. */
+static const char *name_of(const struct slots *s, const struct slot *at)
+{
+    if (at->key)
+        return at->key;
+    for (size_t i = 0; i < s->n; i++)
+        if (s->v[i].value == at->parent)
+            return s->v[i].key;
+    return NULL;
+}
+
+/* Markers that the text splice (splice) turns into a duplicate key or a
+ * raw token jansson could not have written. */
+#define DUP_KEY \
+    "\x01"      \
+    "dup"
+#define RAW_TOKEN "\x01raw"
+
+static void add_key(json_t *root, struct rng *r, const struct slots *s, struct slot *at)
+{
+    json_t *obj = json_is_object(at->value)
+                      ? at->value
+                      : (at->parent && json_is_object(at->parent) ? at->parent : root);
+    const char *name = obj == at->value ? at->key : obj == root ? "" : name_of(s, at);
+    json_t *children = name ? json_object_get(vocab.children, name) : NULL;
+    const char *key = children && pick(r, 4) ? word_of(r, children) : word_of(r, vocab.keys);
+    json_t *v = pick(r, 4) == 0 ? json_object() : random_value(r, key);
+    json_t *grand = json_object_get(vocab.children, key);
+    if (v && json_is_object(v) && grand) {
+        const char *k = word_of(r, grand);
+        json_object_set_new(v, k, random_value(r, k));
+    }
+    json_object_set_new(obj, key, v);
+}
+
+/* A sweep over the scene: the root becomes the base of a spec. */
+static void make_sweep(json_t *root, struct rng *r)
+{
+    json_t *base = json_deep_copy(root);
+    json_object_clear(root);
+    json_object_set_new(root, "base", base);
+    json_t *params = json_array();
+    for (size_t i = 0, n = 1 + pick(r, 3); i < n; i++) {
+        const char *path = word_of(r, vocab.paths);
+        const char *leaf = strrchr(path, '/') + 1;
+        json_t *p = json_pack("{s:s}", "path", path);
+        json_t *b = json_object_get(vocab.bounds, leaf);
+        json_t *lo = b ? json_array_get(b, pick(r, json_array_size(b))) : json_integer(1);
+        json_t *hi = b ? json_array_get(b, pick(r, json_array_size(b))) : json_integer(2);
+        const char *scale = pick(r, 3) ? "linear" : "log";
+        switch (pick(r, 3)) {
+        case 0:
+            json_object_set_new(p, "values", json_pack("[O, O]", lo, hi));
+            break;
+        case 1:
+            json_object_set_new(p, "range",
+                                json_pack("{s:O, s:O, s:i, s:s, s:b}", "start", lo, "stop", hi,
+                                          "count", (int)(1 + pick(r, 4)), "scale", scale, "integer",
+                                          (int)pick(r, 2)));
+            break;
+        default:
+            json_object_set_new(p, "random",
+                                json_pack("{s:O, s:O, s:s}", "min", lo, "max", hi, "scale", scale));
+        }
+        if (!b) {
+            json_decref(lo);
+            json_decref(hi);
+        }
+        json_array_append_new(params, p);
+    }
+    json_object_set_new(root, "parameters", params);
+    static const char *const aggregates[] = {"max", "min", "mean", "count", "all"};
+    char out[300];
+    snprintf(out, sizeof out, "%s(%s)", aggregates[pick(r, 5)], word_of(r, vocab.outputs));
+    json_object_set_new(root, "outputs",
+                        json_pack("[s, s]", word_of(r, vocab.outputs), pick(r, 2) ? out : "/"));
+    if (pick(r, 2))
+        json_object_set_new(root, "combine", json_string(sweep_words[pick(r, 3)]));
+    if (pick(r, 2))
+        json_object_set_new(root, "samples", json_integer((json_int_t)pick(r, 5)));
+    if (pick(r, 2))
+        json_object_set_new(root, "seed", json_integer((json_int_t)pick(r, 1000)));
 }
 
 static void mutate(json_t *root, struct rng *r)
@@ -300,34 +469,26 @@ static void mutate(json_t *root, struct rng *r)
     s.n = 0;
     collect(NULL, NULL, 0, root, &s);
     struct slot *at = &s.v[pick(r, s.n)];
-    switch (pick(r, 8)) {
-    case 0: /* a boundary number */
-        replace(at, json_real(numbers[pick(r, sizeof numbers / sizeof numbers[0])]));
-        break;
+    const char *name = name_of(&s, at);
+    switch (pick(r, 11)) {
+    case 0: /* what the schema says of this field: a bound +- an ulp, a word */
     case 1:
-        replace(at, json_is_number(at->value) ? tweak_number(r, json_number_value(at->value))
-                                              : random_value(r));
+        replace(at, random_value(r, name));
         break;
-    case 2: /* drop a key */
+    case 2:
+        replace(at, json_is_number(at->value) ? tweak_number(r, json_number_value(at->value))
+                                              : random_value(r, NULL));
+        break;
+    case 3: /* drop a key */
         if (at->parent && json_is_object(at->parent))
             json_object_del(at->parent, at->key);
         break;
-    case 3: { /* add a schema key to some object */
-        json_t *obj = json_is_object(at->value)
-                          ? at->value
-                          : (at->parent && json_is_object(at->parent) ? at->parent : root);
-        const char *key = keys[pick(r, sizeof keys / sizeof keys[0])];
-        json_t *v = pick(r, 3) == 0 ? json_object() : random_value(r);
-        if (v && pick(r, 4) == 0 && json_is_object(v))
-            json_object_set_new(v, keys[pick(r, sizeof keys / sizeof keys[0])], random_value(r));
-        json_object_set_new(obj, key, v);
-        break;
-    }
     case 4:
-        json_object_set_new(root, "analysis", json_string(words[pick(r, 5)]));
+        add_key(root, r, &s, at);
         break;
-    case 5: /* an enum word where a string was */
-        replace(at, json_string(words[pick(r, sizeof words / sizeof words[0])]));
+    case 5:
+        json_object_set_new(root, "analysis",
+                            json_string(word_of(r, json_object_get(vocab.choices, "analysis"))));
         break;
     case 6: /* arrays: grow, shrink, or a whole table */
         if (json_is_array(at->value) && json_array_size(at->value) > 0 && pick(r, 2))
@@ -338,12 +499,24 @@ static void mutate(json_t *root, struct rng *r)
         else
             replace(at, table(r));
         break;
+    case 7: /* a key twice, or a token jansson cannot write */
+        if (at->parent && json_is_object(at->parent) && pick(r, 2))
+            json_object_set_new(at->parent, DUP_KEY, json_string(at->key));
+        else
+            replace(at, json_string(RAW_TOKEN));
+        break;
+    case 8:
+        if (!json_object_get(root, "base") && pick(r, 4) == 0)
+            make_sweep(root, r);
+        else
+            add_key(root, r, &s, at);
+        break;
     default: { /* a distortion order list, the contact's own array */
         json_t *d = json_array();
         size_t n = pick(r, 20);
         for (size_t i = 0; d && i < n; i++)
             json_array_append_new(d, json_pack("{s:I, s:f}", "order", (json_int_t)(1 + pick(r, 70)),
-                                               "amplitude", numbers[pick(r, 20)] * 1e-4));
+                                               "amplitude", numbers[pick(r, 10)] * 1e-4));
         json_t *bore = json_object_get(root, "bore");
         if (!json_is_object(bore)) {
             bore = json_object();
@@ -352,6 +525,52 @@ static void mutate(json_t *root, struct rng *r)
         json_object_set_new(bore, "distortion", d);
         break;
     }
+    }
+}
+
+/* Writes the document as text with its markers spliced: "\u0001dup":"k"
+ * becomes "k":<a copy of k's value as the object has it, which the text
+ * holds just before or after>; simplest and still a duplicate key: "k":null.
+ * "\u0001raw" becomes a raw token.  Returns the text (malloc'd) or NULL. */
+static char *splice(json_t *root, struct rng *r)
+{
+    char *text = json_dumps(root, JSON_COMPACT);
+    if (!text)
+        return NULL;
+    for (;;) {
+        char *m = strstr(text, "\"\\u0001");
+        if (!m)
+            return text;
+        const char *repl;
+        char buf[300];
+        size_t cut;
+        if (!strncmp(m, "\"\\u0001dup\":\"", 13)) {
+            char *end = strchr(m + 13, '"');
+            if (!end)
+                return text;
+            snprintf(buf, sizeof buf, "\"%.*s\":%s",
+                     (int)(end - m - 13) < 200 ? (int)(end - m - 13) : 200, m + 13,
+                     pick(r, 2) ? "null" : "1");
+            repl = buf;
+            cut = (size_t)(end + 1 - m);
+        } else if (!strncmp(m, "\"\\u0001raw\"", strlen("\"\\u0001raw\""))) {
+            repl = raw_tokens[pick(r, sizeof raw_tokens / sizeof raw_tokens[0])];
+            cut = strlen("\"\\u0001raw\"");
+        } else {
+            return text; /* a marker a later mutation changed (its value no
+                            longer a string): left as it is, valid JSON */
+        }
+        size_t head = (size_t)(m - text), tail = strlen(m + cut);
+        char *out = malloc(head + strlen(repl) + tail + 1);
+        if (!out) {
+            free(text);
+            return NULL;
+        }
+        memcpy(out, text, head);
+        strcpy(out + head, repl);
+        strcat(out + head, m + cut);
+        free(text);
+        text = out;
     }
 }
 
@@ -366,7 +585,7 @@ size_t LLVMFuzzerCustomMutator(uint8_t *data, size_t size, size_t max_size, unsi
     size_t rounds = 1 + pick(&r, 3);
     for (size_t i = 0; i < rounds; i++)
         mutate(root, &r);
-    char *text = json_dumps(root, JSON_COMPACT);
+    char *text = splice(root, &r);
     json_decref(root);
     size_t n = text ? strlen(text) : 0;
     if (!text || n > max_size) {
@@ -379,22 +598,29 @@ size_t LLVMFuzzerCustomMutator(uint8_t *data, size_t size, size_t max_size, unsi
 }
 
 /*
- * Running a fraction of the accepted scenes, so that the analyses' result
+ * Running the accepted scenes and sweeps, so that the analyses' result
  * writers (JSON, CSV), the warnings and the monitor paths of api/ are
  * reached too.  A run must stay cheap (the fuzzer's speed is its coverage):
- * the scene's size knobs are clamped before it runs (at most 12 segments,
- * 4 contact points per segment, 6 modes, 2 cycles, steps of >= 1 deg,
- * 2000 steps, 50 iterations) and a monitor cancels any run after
- * RUN_BUDGET_S of wall time (a cancelled run is a valid outcome: it
- * exercises the cancel paths).  One accepted input in RUN_EVERY runs.
+ * the scene's size knobs are clamped before it runs (at most 8 segments,
+ * 4 contact points per segment, 6 modes, a quarter of a cycle for lift and
+ * the ring pack's least, 2, steps of >= 1 deg, 2000 steps, 50 iterations:
+ * a lift run then takes ~20 ms with its error estimate, a contact run a few
+ * ms) and a monitor cancels any run after
+ * RUN_BUDGET_S of CPU time (a cancelled run is a valid outcome: it
+ * exercises the cancel paths).  A sweep runs its first two points (not
+ * clamped: the budget bounds them).  Which inputs run: run_now.  A scene
+ * that runs also runs as a fidelity request of two levels.
  */
 #define RUN_EVERY    8
+#define RUN_FIRST    12
 #define RUN_BUDGET_S 0.1
 
+/* CPU time, not wall time: a run's outcome (finished or cancelled) is the
+ * same under any load of the machine, so a finding reproduces. */
 static double now_s(void)
 {
     struct timespec t;
-    clock_gettime(CLOCK_MONOTONIC, &t);
+    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
     return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
 }
 
@@ -404,14 +630,30 @@ static int past_deadline(void *ctx, double fraction)
     return now_s() > *(const double *)ctx;
 }
 
-/* FNV-1a of the input: the choice of what runs depends on the input only,
- * so a finding reproduces. */
+/* FNV-1a of the input selects one in RUN_EVERY. */
 static int run_selected(const uint8_t *data, size_t size)
 {
     uint32_t h = 2166136261u;
     for (size_t i = 0; i < size; i++)
         h = (h ^ data[i]) * 16777619u;
     return h % RUN_EVERY == 0;
+}
+
+/* Whether an accepted input of `kind` (its analysis, or "sweep") runs: the
+ * first RUN_FIRST of each kind in the process (the seeds, so that every
+ * analysis and sweep form reaches its writers early; and any input replayed
+ * alone, so a finding reproduces), then those run_selected picks. */
+static int run_now(const char *kind, const uint8_t *data, size_t size)
+{
+    static char kinds[16][16];
+    static int counts[16];
+    for (size_t i = 0; i < 16; i++) {
+        if (!kinds[i][0])
+            snprintf(kinds[i], sizeof kinds[i], "%s", kind);
+        if (!strncmp(kinds[i], kind, sizeof kinds[i] - 1))
+            return counts[i]++ < RUN_FIRST || run_selected(data, size);
+    }
+    return run_selected(data, size);
 }
 
 static void clamp_int(json_t *v, json_int_t hi)
@@ -421,19 +663,19 @@ static void clamp_int(json_t *v, json_int_t hi)
 }
 
 /* Lowers every size knob found anywhere in the scene (see above). */
-static void clamp(json_t *j)
+static void clamp(json_t *j, int cycles_least)
 {
     const char *key;
     json_t *v;
     size_t i;
     if (json_is_array(j)) {
-        json_array_foreach(j, i, v) clamp(v);
+        json_array_foreach(j, i, v) clamp(v, cycles_least);
         return;
     }
     json_object_foreach(j, key, v)
     {
         if (!strcmp(key, "segments"))
-            clamp_int(v, 12);
+            clamp_int(v, 8);
         else if (!strcmp(key, "points_per_segment"))
             clamp_int(v, 4);
         else if (!strcmp(key, "modes"))
@@ -442,12 +684,12 @@ static void clamp(json_t *j)
             clamp_int(v, 2000);
         else if (!strcmp(key, "max_iterations"))
             clamp_int(v, 50);
-        else if (!strcmp(key, "cycles") && json_is_number(v) && json_number_value(v) > 2)
-            json_object_set_new(j, key, json_integer(2));
+        else if (!strcmp(key, "cycles") && json_is_number(v) && json_number_value(v) > 0.25)
+            json_object_set_new(j, key, cycles_least ? json_integer(2) : json_real(0.25));
         else if (!strcmp(key, "step_deg") && json_is_number(v) && json_number_value(v) < 1)
             json_object_set_new(j, key, json_integer(1));
         else
-            clamp(v);
+            clamp(v, cycles_least);
     }
 }
 
@@ -505,7 +747,8 @@ static void run_small(const char *body, size_t len)
         json_decref(j);
         return;
     }
-    clamp(j);
+    const char *an = json_string_value(json_object_get(j, "analysis"));
+    clamp(j, an && !strcmp(an, "ringpack"));
     char *small = json_dumps(j, JSON_COMPACT);
     /* The same scene as a fidelity request of two cheap levels. */
     json_t *fid = json_pack("{s:O, s:[i, i]}", "fidelity", j, "segments", 4, 6);
@@ -530,14 +773,28 @@ static void run_small(const char *body, size_t len)
     free(small);
 }
 
-/* Once per process: the sweep parser and the example catalogue on the
- * project's files (cheap, and otherwise unreached by scene bodies). */
-static void once(void)
+/* 1 unless RINGDYN_FUZZ_RUN=0: the parse-only mode (parse, validate, echo,
+ * refusal contract, sweep parse) runs no analysis, for the long run of
+ * many executions; the default also runs a fraction, for coverage. */
+static int run_mode = 1;
+
+int LLVMFuzzerInitialize(int *argc, char ***argv);
+
+/* Once per process: the vocabulary, the modes, and the example catalogue on
+ * the project's files (cheap, and otherwise unreached by scene bodies).
+ * RINGDYN_FUZZ_DICT=FILE writes the dictionary and exits. */
+int LLVMFuzzerInitialize(int *argc, char ***argv)
 {
-    static int done;
-    if (done)
-        return;
-    done = 1;
+    (void)argc;
+    (void)argv;
+    learn_vocabulary();
+    const char *dict = getenv("RINGDYN_FUZZ_DICT");
+    if (dict) {
+        write_dictionary(dict);
+        exit(0);
+    }
+    const char *mode = getenv("RINGDYN_FUZZ_RUN");
+    run_mode = !(mode && !strcmp(mode, "0"));
     rd_error err;
     rd_error_init(&err);
     char *list = rd_api_examples_json(FUZZ_EXAMPLES_DIR, &err);
@@ -557,18 +814,44 @@ static void once(void)
     }
     json_decref(o);
     free(list);
-    FILE *f = fopen(FUZZ_OPENAPI, "rb");
-    char *tmpl = NULL;
-    size_t len = 0;
-    if (!f || rd_api_read_stream(f, 1 << 22, &tmpl, &len) != 0)
-        abort();
-    fclose(f);
+    return 0;
+}
+
+/* The rows as the one chunk file of `ringdyn sweep run` (when the points
+ * are the whole sweep), read back by rd_sweep_reduce: its CSV must be the
+ * table's. */
+static void check_reduce(const rd_sweep *sweep, char **rows, size_t m, const char *csv)
+{
+    size_t first, end;
+    rd_error err;
     rd_error_init(&err);
-    char *doc = rd_api_openapi_json(tmpl, &err);
-    if (!doc)
+    if (m == 0 || rd_sweep_points(sweep) != m ||
+        rd_sweep_chunk_range(sweep, 0, 1, &first, &end, &err) != RD_OK)
+        return;
+    static char dir[64];
+    if (!dir[0] && (snprintf(dir, sizeof dir, "/tmp/ringdyn-fuzz-chunks.%ld", (long)getpid()),
+                    mkdir(dir, 0700) != 0 && errno != EEXIST))
         abort();
-    free(doc);
-    free(tmpl);
+    char *name = rd_sweep_chunk_name(0, 1), *head = rd_sweep_chunk_head(sweep, 0, 1), path[160];
+    snprintf(path, sizeof path, "%s/%s", dir, name ? name : "");
+    FILE *f = name && head ? fopen(path, "w") : NULL;
+    if (!f)
+        abort();
+    fputs(head, f);
+    for (size_t i = 0; i < m; i++)
+        fprintf(f, "%s%s", i ? ",\n" : "", rows[i]);
+    fputs("]}\n", f);
+    char *out = NULL;
+    size_t len = 0;
+    FILE *o = open_memstream(&out, &len);
+    rd_error_init(&err);
+    if (fclose(f) || !o || rd_sweep_reduce(dir, 1, o, &err) != RD_OK || fclose(o) ||
+        strcmp(out, csv))
+        abort();
+    free(out);
+    remove(path);
+    free(head);
+    free(name);
 }
 
 /* A sweep request (spec or fidelity request) that parses: its table
@@ -606,12 +889,7 @@ static void check_sweep_table(const rd_sweep_request *req)
         rd_error_init(&err);
         free(rd_sweep_fidelity_table(table, &err));
     }
-    size_t first, end;
-    rd_error_init(&err);
-    if (rd_sweep_chunk_range(req->sweep, 0, m ? m : 1, &first, &end, &err) == RD_OK) {
-        free(rd_sweep_chunk_name(0, m));
-        free(rd_sweep_chunk_head(req->sweep, 0, m));
-    }
+    check_reduce(req->sweep, rows, m, csv);
     free(csv2);
     free(csv);
     free(table);
@@ -619,6 +897,7 @@ static void check_sweep_table(const rd_sweep_request *req)
         free(rows[i]);
 }
 
+/* run: 0 no, 1 yes, 2 when run_now says so. */
 static void check_sweep(const uint8_t *data, size_t size, int run)
 {
     rd_sweep_request req = {0};
@@ -641,15 +920,51 @@ static void check_sweep(const uint8_t *data, size_t size, int run)
     free(scene);
     free(record);
     free(columns);
-    if (run)
+    if (run == 2 ? run_now("sweep", data, size) : run)
         check_sweep_table(&req);
     rd_sweep_request_cleanup(&req);
 }
 
+/* The echo is canonical: it parses back into a scene whose echo is the
+ * same text (every default filled in, every number round-trips). */
+static void check_echo(const char *echo)
+{
+    rd_scene *again = NULL;
+    rd_error err;
+    rd_error_init(&err);
+    if (rd_scene_parse(echo, strlen(echo), &again, &err) != RD_OK)
+        abort();
+    char *echo2 = rd_scene_to_json(again);
+    if (!echo2 || strcmp(echo, echo2))
+        abort();
+    free(echo2);
+    rd_scene_free(again);
+}
+
+/* The job service's facts (rd_scene_facts.h): the canonical text (the
+ * result cache's key) is a fixed point, as the echo is; the predicted cost
+ * is NAN or a positive number. */
+static void check_facts(const rd_scene *scene)
+{
+    (void)rd_scene_name(scene);
+    double cost = rd_scene_cost_predict(scene);
+    if (!isnan(cost) && !(cost > 0))
+        abort();
+    char *canon = rd_scene_canonical_json(scene), *canon2 = NULL;
+    rd_scene *again = NULL;
+    rd_error err;
+    rd_error_init(&err);
+    if (!canon || rd_scene_parse(canon, strlen(canon), &again, &err) != RD_OK ||
+        !(canon2 = rd_scene_canonical_json(again)) || strcmp(canon, canon2))
+        abort();
+    free(canon2);
+    free(canon);
+    rd_scene_free(again);
+}
+
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 {
-    once();
-    check_sweep(data, size, run_selected(data, size));
+    check_sweep(data, size, run_mode ? 2 : 0);
     rd_scene *scene = NULL;
     rd_error err;
     rd_error_init(&err);
@@ -661,9 +976,11 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         if (!analysis || !json_is_object(o))
             abort();
         json_decref(o);
+        check_echo(echo);
+        check_facts(scene);
         free(echo);
         rd_scene_free(scene);
-        if (run_selected(data, size))
+        if (run_mode && run_now(analysis, data, size))
             run_small((const char *)data, size);
         return 0;
     }
