@@ -73,6 +73,8 @@ int rd_error_range(double v, double lo, double hi, const char *path, const char 
 {
     if (isfinite(v) && v >= lo && v <= hi)
         return RD_OK;
-    return rd_error_set(err, RD_EINVAL, path, "%s = %g %s is out of range: allowed %g to %g %s.",
-                        path, v, unit, lo, hi, unit);
+    const char *sp = unit && unit[0] ? " " : ""; /* no unit: no stray spaces */
+    unit = unit ? unit : "";
+    return rd_error_set(err, RD_EINVAL, path, "%s = %g%s%s is out of range: allowed %g to %g%s%s.",
+                        path, v, sp, unit, lo, hi, sp, unit);
 }
