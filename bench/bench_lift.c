@@ -33,9 +33,22 @@
  *        model, then modal with m = 4, 8, 16, 32 elastic modes: dof, wall
  *        time, steps, and the flank changes' largest difference from the
  *        full model at the same n and rtol.
+ *   bench_lift --distorted EXAMPLES_DIR [--reps R]
+ *     5. The distorted-bore examples (lift_distorted, lift_distorted_tilted),
+ *        one cycle each, as the API runs them (auto, their n and rtol, error
+ *        estimate on): the model auto picks, dof, wall time (median of R,
+ *        with the load average), steps, and the per-segment flank changes'
+ *        largest difference from the full model at n = 40, rtol 1e-8 (atol
+ *        1e-11 m); then the same comparison for full at the example's n and
+ *        rtol 1e-8 and for full n = 40 at the example's rtol, which split
+ *        the difference into the segment count's and the tolerance's parts.
+ *        Per-segment flank changes (the analysis reports the mean lift's
+ *        only): tests/core/lift_segments.h; a segment of the coarse ring is compared
+ *        with the reference ring's lift interpolated to its mid-angle.
  *
  * Wall times on a shared 2-core machine are noisy: medians of repeats.
  */
+#define _DEFAULT_SOURCE /* getloadavg (glibc) */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -45,6 +58,7 @@
 #include "bench_util.h"
 
 #include "lift_example.h"
+#include "lift_segments.h"
 #include "rd_lift.h"
 
 #define MAX_EV 32
@@ -234,11 +248,129 @@ static int modal_table(const char *dir, int reps)
     return 0;
 }
 
+/* ---------------------------------------- per-segment flank changes (5.) */
+
+#define FINE_STEP_DEG 0.02 /* output step of the comparison runs (lift_segments.h) */
+
+/* One run sampled every FINE_STEP_DEG, the result kept (free it).  With the
+ * error estimate or without, the main run is the same: its lift_segments
+ * are what is compared. */
+static int fine_run(const rd_ring_params *rp, int n, const rd_lift_params *pp, rd_lift_result *r)
+{
+    rd_lift_params p = *pp;
+    rd_error err;
+    rd_error_init(&err);
+    p.step_deg = FINE_STEP_DEG;
+    if (rd_lift_solve(rp, n, &p, NULL, r, &err)) {
+        fprintf(stderr, "n=%d rtol=%g: %s\n", n, p.rtol, err.message);
+        return 1;
+    }
+    return 0;
+}
+
+/* Largest change of the mean lift's flank changes (NAN: different lists). */
+static double mean_change(const rd_lift_result *a, const rd_lift_result *b)
+{
+    if (a->n_events != b->n_events)
+        return NAN;
+    double d = 0.0;
+    for (int i = 0; i < a->n_events; i++)
+        d = a->events[i].kind != b->events[i].kind
+                ? NAN
+                : fmax(d, fabs(a->events[i].crank_deg - b->events[i].crank_deg));
+    return d;
+}
+
+static void print_cmp(const char *file, const char *what, const rd_lift_result *r,
+                      const rd_lift_result *ref, double ca)
+{
+    seg_cmp c;
+    if (compare_segments(r, ref, ca, &c))
+        return;
+    printf("| %s | %s | %d | %ld | %d | %d | %.4f (segment %d, %s) | %.4f |\n", file, what, r->dof,
+           r->steps, c.events, c.differ, c.max_deg, c.worst_seg,
+           c.worst_seg < 0    ? "-"
+           : c.worst_kind % 2 ? "landing"
+                              : "leave",
+           mean_change(r, ref));
+    fflush(stdout);
+}
+
+/* The full model's comparison rows at (n, rtol) (file comment). */
+static int full_row(const gcase *c, int n, double rtol, const char *what, const rd_lift_result *ref)
+{
+    rd_lift_params p = c->p;
+    rd_lift_result f;
+    p.model = RD_LIFT_MODEL_FULL;
+    p.estimate_error = 0;
+    p.rtol = rtol;
+    p.atol = 1e-3 * rtol;
+    int rc = fine_run(&c->ring, n, &p, &f);
+    if (!rc)
+        print_cmp(c->name, what, &f, ref, c->p.groove.axial_clearance);
+    rd_lift_result_cleanup(&f);
+    return rc;
+}
+
+/* Table 5 (file comment): one example. */
+static int distorted_one(const char *dir, const char *file, int reps)
+{
+    gcase c;
+    if (!load_example(&c, dir, file)) {
+        fprintf(stderr, "cannot read %s/%s\n", dir, file);
+        return 1;
+    }
+    c.p.engine.cycles = 1.0;
+    rd_lift_params p = c.p, pf = c.p;
+    p.model = RD_LIFT_MODEL_AUTO;
+    p.estimate_error = 1;
+    double load[3] = {NAN, NAN, NAN};
+    run r;
+    int rc = timed_p(&c.ring, c.n, &p, reps, &r);
+    if (getloadavg(load, 3) < 1)
+        load[0] = NAN;
+    rd_lift_result ref, a;
+    memset(&ref, 0, sizeof ref);
+    memset(&a, 0, sizeof a);
+    pf.model = RD_LIFT_MODEL_FULL;
+    pf.estimate_error = 0;
+    pf.rtol = 1e-8;
+    pf.atol = 1e-11;
+    if (!rc)
+        rc = fine_run(&c.ring, 40, &pf, &ref) || fine_run(&c.ring, c.n, &p, &a);
+    if (!rc) {
+        printf("\n%s: auto -> %s, dof %d, wall %.0f ms (median of %d, error estimate on; load "
+               "%.1f), steps %ld (sampled every %g deg: %ld); its estimate: lift %.2g of c_a, "
+               "flank changes %.4f deg\n\n",
+               file, rd_lift_model_name(r.model), r.dof, 1e3 * r.wall, reps, load[0], r.steps,
+               FINE_STEP_DEG, a.steps, a.error_estimate, a.event_error_deg);
+        printf("| example | run | dof | steps | per-segment flank changes | segments whose list "
+               "differs | largest per-segment change vs full n=40 rtol 1e-8 [deg] | mean lift's "
+               "[deg] |\n|---|---|---|---|---|---|---|---|\n");
+        print_cmp(file, "auto", &a, &ref, c.p.groove.axial_clearance);
+        rc = full_row(&c, c.n, 1e-8, "full, its n, rtol 1e-8", &ref) ||
+             full_row(&c, 40, c.p.rtol, "full n=40, its rtol", &ref);
+    }
+    rd_lift_result_cleanup(&a);
+    rd_lift_result_cleanup(&ref);
+    free_example(&c);
+    return rc;
+}
+
+static int distorted(const char *dir, int reps)
+{
+    static const char *files[] = {"lift_distorted.json", "lift_distorted_tilted.json"};
+    for (int f = 0; f < 2; f++)
+        if (distorted_one(dir, files[f], reps))
+            return 1;
+    return 0;
+}
+
 int main(int argc, char **argv)
 {
     int max_n = 1000, reps = 3, once = 0, once_reps = 1, once_model = RD_LIFT_MODEL_AUTO,
         once_landing = RD_LANDING_PENALTY;
-    const char *examples = NULL, *modal_dir = NULL, *example = NULL;
+    const char *examples = NULL, *modal_dir = NULL, *example = NULL, *distorted_dir = NULL;
     for (int i = 1; i < argc; i++) {
         if (!strcmp(argv[i], "--max-n") && i + 1 < argc)
             max_n = atoi(argv[++i]);
@@ -258,11 +390,14 @@ int main(int argc, char **argv)
             once_landing = RD_LANDING_PLASTIC;
         else if (!strcmp(argv[i], "--modal") && i + 1 < argc)
             modal_dir = argv[++i];
+        else if (!strcmp(argv[i], "--distorted") && i + 1 < argc)
+            distorted_dir = argv[++i];
         else {
             fprintf(stderr,
                     "usage: bench_lift [--max-n N] [--reps R] | --once N | --example-once FILE "
                     "[--once-reps R] [--rigid] [--plastic] | "
-                    "--models EXAMPLES_DIR [--reps R] | --modal EXAMPLES_DIR [--reps R]\n");
+                    "--models EXAMPLES_DIR [--reps R] | --modal EXAMPLES_DIR [--reps R] | "
+                    "--distorted EXAMPLES_DIR [--reps R]\n");
             return 2;
         }
     }
@@ -274,6 +409,8 @@ int main(int argc, char **argv)
         return models(examples, reps);
     if (modal_dir)
         return modal_table(modal_dir, reps);
+    if (distorted_dir)
+        return distorted(distorted_dir, reps);
     rd_ring_params rp;
     rd_ring_params_default(&rp);
     if (once) {

@@ -1,6 +1,8 @@
 /* lift_example.h — a lift example's scene (examples/NAME.json) read into core
  * parameters with jansson, field by field, independent of api/ (for the
- * golden test and the lift benchmark).  Header-only; static functions. */
+ * golden test and the lift benchmark): ring, discretization, engine (with the
+ * piston tilt), groove, bore, physics, output and numerics.  Header-only;
+ * static functions. */
 #ifndef RD_LIFT_EXAMPLE_H
 #define RD_LIFT_EXAMPLE_H
 
@@ -16,7 +18,8 @@ typedef struct gcase {
     rd_ring_params ring;
     rd_lift_params p;
     int n;
-    double *gas[4]; /* owned tables: crank_deg, above, behind, below */
+    double *gas[4];  /* owned tables: crank_deg, above, behind, below */
+    double *tilt[2]; /* owned piston tilt table: crank_deg, tilt_deg (NULL: none) */
 } gcase;
 
 static double num(json_t *o, const char *key, double dflt)
@@ -64,8 +67,47 @@ static void map_physics(gcase *c, json_t *ph)
     }
 }
 
+/* engine.piston_tilt_deg and the engine.piston_tilt table. */
+static void map_tilt(gcase *c, json_t *e)
+{
+    c->p.engine.piston_tilt_deg = num(e, "piston_tilt_deg", 0.0);
+    json_t *t = json_object_get(e, "piston_tilt");
+    if (!t)
+        return;
+    int pts = 0;
+    c->tilt[0] = table(t, "crank_deg", &pts);
+    c->tilt[1] = table(t, "tilt_deg", &pts);
+    c->p.engine.tilt_points = pts;
+    c->p.engine.tilt_crank_deg = c->tilt[0];
+    c->p.engine.tilt_deg = c->tilt[1];
+}
+
+/* bore.diameter and bore.distortion (at most RD_LIFT_DISTORTION_MAX terms). */
+static void map_bore(gcase *c, json_t *b)
+{
+    c->p.bore.diameter = num(b, "diameter", 0.0);
+    json_t *d = json_object_get(b, "distortion");
+    size_t k = json_array_size(d);
+    for (size_t i = 0; i < k && i < RD_LIFT_DISTORTION_MAX; i++) {
+        json_t *t = json_array_get(d, i);
+        c->p.bore.distortion[i].order = (int)num(t, "order", 0);
+        c->p.bore.distortion[i].amplitude = num(t, "amplitude", 0.0);
+        c->p.bore.distortion[i].phase_deg = num(t, "phase_deg", 0.0);
+        c->p.bore.n_distortion = (int)i + 1;
+    }
+}
+
+/* Frees the tables load_example allocated. */
+static inline void free_example(gcase *c)
+{
+    for (int k = 0; k < 4; k++)
+        free(c->gas[k]);
+    free(c->tilt[0]);
+    free(c->tilt[1]);
+}
+
 /* Reads dir/file into c (the full model, no error estimate); 0 if the file
- * cannot be read.  Free c->gas[0..3] after use. */
+ * cannot be read.  Free its tables after use (free_example). */
 static int load_example(gcase *c, const char *dir, const char *file)
 {
     char path[512];
@@ -98,6 +140,8 @@ static int load_example(gcase *c, const char *dir, const char *file)
     const char *kin = json_string_value(json_object_get(e, "kinematics"));
     c->p.engine.kinematics =
         kin && !strcmp(kin, "approximate") ? RD_KINEMATICS_APPROXIMATE : RD_KINEMATICS_EXACT;
+    map_tilt(c, e);
+    map_bore(c, json_object_get(s, "bore"));
     json_t *g = json_object_get(s, "groove");
     c->p.groove.axial_clearance = num(g, "axial_clearance", c->p.groove.axial_clearance);
     c->p.groove.radial_clearance = num(g, "radial_clearance", c->p.groove.radial_clearance);
