@@ -43,8 +43,9 @@
  *        rtol 1e-8 and for full n = 40 at the example's rtol, which split
  *        the difference into the segment count's and the tolerance's parts.
  *        Per-segment flank changes (the analysis reports the mean lift's
- *        only): tests/core/lift_segments.h; a segment of the coarse ring is compared
- *        with the reference ring's lift interpolated to its mid-angle.
+ *        only): tests/core/lift_segments.h; a segment of the coarse ring is
+ *        compared with the reference ring's flank changes interpolated to its
+ *        mid-angle.
  *
  * Wall times on a shared 2-core machine are noisy: medians of repeats.
  */

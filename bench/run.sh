@@ -53,5 +53,8 @@ echo
 echo "## lift: the modal model against the full model it reduces (lift examples)"
 "$b/bench/bench_lift" --modal examples
 echo
+echo "## lift: the distorted-bore examples, per-segment flank changes of auto vs full n = 40 (target <= 0.2 deg)"
+"$b/bench/bench_lift" --distorted examples
+echo
 echo "## ringpack: cost per engine cycle: axial and rigid rings (target <= 50 ms), a full top ring vs its lift run alone (target <= 10x)"
 "$b/bench/bench_ringpack"

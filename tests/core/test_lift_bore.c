@@ -12,11 +12,17 @@
  *  - the modal model with every mode against the full model on a distorted
  *    Coulomb scene (a change of coordinates, also of the static start);
  *  - auto never runs the rigid ring on a distorted bore, and rigid asked for
- *    one is refused naming the fields. */
+ *    one is refused naming the fields;
+ *  - the per-segment flank changes (lift_segments.h, the benchmark's
+ *    comparison with full n = 40): on histories whose crossings are known in
+ *    closed form, the modal model with every mode against the full model
+ *    segment by segment, and a coarse ring's segment matched to the finer
+ *    ring's lift at its mid-angle. */
 #include <stdlib.h>
 #include <string.h>
 
 #include "check.h"
+#include "lift_segments.h"
 #include "rd_lift.h"
 #include "rd_lift_internal.h"
 
@@ -140,9 +146,126 @@ static void test_modal_full(void)
                 "    distorted Coulomb scene: %d flank changes, modal(all) - full <= "
                 "%.4f deg\n",
                 b.n_events, d);
+        /* segment by segment (lift_segments.h), the same tolerance */
+        seg_cmp c;
+        CHECK(compare_segments(&a, &b, p.groove.axial_clearance, &c) == 0, "out of memory");
+        CHECK(c.events >= 4 * b.segments && c.differ == 0 && c.max_deg < 0.01,
+              "distorted: modal(all) vs full per segment: %d flank changes, %d segments "
+              "differ, largest change %g deg",
+              c.events, c.differ, c.max_deg);
+        fprintf(stderr,
+                "    the same per segment: %d flank changes, modal(all) - full <= %.4f deg\n",
+                c.events, c.max_deg);
     }
     rd_lift_result_cleanup(&a);
     rd_lift_result_cleanup(&b);
+}
+
+/* ------------------------------------------ per-segment flank changes */
+
+#define SEG_CA 3e-5 /* m: the thesis groove's axial clearance */
+
+/* A segment's lift (m) at crank angle t (deg) whose flank changes are known
+ * in closed form: seated on the lower flank (the penalty's nanometre inside
+ * it); a parabolic flight up to the upper flank; a bounce there of 0.3 % of
+ * c_a (within eps: no flank change); a parabolic flight down; a hop of 2 %
+ * of c_a (beyond eps: a leave and a landing); seated again. */
+static double seg_history(double t)
+{
+    double ca = SEG_CA;
+    if (t < 10.0 || (t >= 50.0 && t < 60.0) || t >= 64.0)
+        return -1e-10;
+    if (t < 20.0)
+        return ca * pow((t - 10.0) / 10.0, 2);
+    if (t < 40.0)
+        return ca * (1.0 + 1e-6) -
+               (t >= 30.0 && t < 34.0 ? 3e-3 * ca * sin(PI * (t - 30.0) / 4.0) : 0.0);
+    if (t < 50.0)
+        return ca * (1.0 - pow((t - 40.0) / 10.0, 2));
+    return 2e-2 * ca * sin(PI * (t - 60.0) / 4.0);
+}
+
+/* Its flank changes, from the thresholds of lift_segments.h: leaves at
+ * eps = 1 % of c_a off the flank, landings within 0.5 % of it. */
+static const struct {
+    double deg;
+    int kind;
+} seg_expected[] = {
+    {11.0, RD_EVENT_LEAVE_LOWER}, /* ca x^2 = eps, x = 0.1 */
+    {0.0, RD_EVENT_REACH_UPPER},  /* 10 + 10 sqrt(0.995), set in the test */
+    {41.0, RD_EVENT_LEAVE_UPPER}, {0.0, RD_EVENT_REACH_LOWER}, /* 40 + 10 sqrt(0.995) */
+    {0.0, RD_EVENT_LEAVE_LOWER},                               /* 60 + 4 asin(0.5) / pi */
+    {0.0, RD_EVENT_REACH_LOWER},                               /* 64 - 4 asin(0.25) / pi */
+};
+
+/* A result of n segments whose segment i follows seg_history shifted by
+ * shift(i) deg, sampled every h deg over 0 .. 100 deg. */
+static void seg_result(rd_lift_result *r, int n, double h, double step_shift, double offset)
+{
+    memset(r, 0, sizeof *r);
+    r->segments = n;
+    r->samples = (int)lround(100.0 / h) + 1;
+    r->crank_deg = malloc((size_t)r->samples * sizeof *r->crank_deg);
+    r->lift_segments = malloc((size_t)r->samples * n * sizeof *r->lift_segments);
+    CHECK(r->crank_deg && r->lift_segments, "out of memory");
+    for (int k = 0; r->lift_segments && r->crank_deg && k < r->samples; k++) {
+        r->crank_deg[k] = k * h;
+        for (int i = 0; i < n; i++)
+            r->lift_segments[(size_t)k * n + i] = seg_history(k * h - offset - i * step_shift);
+    }
+}
+
+/* The definition on the closed-form history, sampled every h = 0.01 deg:
+ * each flank change within the linear interpolation's error between
+ * samples, h^2 max|l''| / (8 |l'|) at the crossing, 1.3e-5 deg for the
+ * parabolas (l''/l' <= 1/deg there), less for the hop.  Every crossing lies
+ * at least 0.025 deg (2.5 h) from the history's kinks (the impacts), whose
+ * interpolation across would cost up to h.  Tolerance 1e-4 deg. */
+static void test_segment_events(void)
+{
+    double want[6];
+    for (int i = 0; i < 6; i++)
+        want[i] = seg_expected[i].deg;
+    want[1] = 10.0 + 10.0 * sqrt(0.995);
+    want[3] = 40.0 + 10.0 * sqrt(0.995);
+    want[4] = 60.0 + 4.0 * asin(0.5) / PI;
+    want[5] = 64.0 - 4.0 * asin(0.25) / PI;
+    rd_lift_result r;
+    seg_result(&r, 1, 0.01, 0.0, 0.0);
+    seg_events e;
+    seg_events_of(r.crank_deg, r.lift_segments, r.samples, SEG_CA, &e);
+    CHECK(e.n == 6 && !e.overflow, "closed-form history: %d flank changes, want 6", e.n);
+    double worst = 0.0;
+    for (int i = 0; i < e.n && i < 6; i++) {
+        CHECK(e.kind[i] == seg_expected[i].kind, "flank change %d: kind %d, want %d", i, e.kind[i],
+              seg_expected[i].kind);
+        worst = fmax(worst, fabs(e.deg[i] - want[i]));
+    }
+    CHECK(worst < 1e-4, "closed-form history: flank changes off by %g deg", worst);
+    rd_lift_result_cleanup(&r);
+
+    /* Matching positions: ring a (2 segments) and ref (4), segment i's
+     * history delayed by 0.13 i deg in ref (off the samples' grid); a's
+     * segment j, at ref's position 2j + 1/2, by 0.13 (2j + 1/2) deg, where
+     * ref's flank changes
+     * interpolated between its segments 2j and 2j + 1 are delayed as much:
+     * each of the three within the samples' 1e-4 deg, so tolerance 3e-4 deg.
+     * A segment matched to ref's 2j or 2j + 1 instead would be 0.065 deg
+     * off. */
+    rd_lift_result a, ref;
+    seg_result(&ref, 4, 0.01, 0.13, 0.0);
+    seg_result(&a, 2, 0.01, 0.26, 0.065);
+    seg_cmp c;
+    CHECK(compare_segments(&a, &ref, SEG_CA, &c) == 0, "out of memory");
+    CHECK(c.events == 12 && c.differ == 0 && c.max_deg < 3e-4,
+          "2 vs 4 segments: %d flank changes, %d segments differ, largest change %g deg", c.events,
+          c.differ, c.max_deg);
+    fprintf(stderr,
+            "    per-segment flank changes: closed form within %.2g deg; 2 vs 4 segments at "
+            "the same positions within %.2g deg\n",
+            worst, c.max_deg);
+    rd_lift_result_cleanup(&a);
+    rd_lift_result_cleanup(&ref);
 }
 
 static void test_validation(void)
@@ -191,5 +314,6 @@ int main(void)
     test_validation();
     test_static_start();
     test_modal_full();
+    test_segment_events();
     return check_done();
 }
