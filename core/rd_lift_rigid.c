@@ -250,24 +250,29 @@ static void rigid_loads(void *user, double t, const double *y)
 {
     rigid *r = user;
     segment_state(r, y);
-    rd_lift_forces_segment(r->m, t, 0, r->q, r->v, r->f, NULL, NULL);
+    rd_lift_loads_segment(r->m, t, 0, r->q, r->v, r->f);
     r->m->friction *= r->m->n;
     r->m->fz_ext *= r->m->n;
 }
 
+/* Segment i moves by Phi_i x (header comment): translation r e_r,i + z e_z,
+ * rotation theta e_t,i; only the non-zero terms of shapes() are formed. */
 static void rigid_expand(void *user, const double *y, double *full)
 {
     rigid *r = user;
-    double phi[NX][6];
-    for (int i = 0; i < r->m->n; i++) {
-        shapes(r->m, i, phi);
+    const rd_lift_model *m = r->m;
+    for (int i = 0; i < m->n; i++) {
+        const double *er = m->e_r + 2 * i, *et = m->e_t + 2 * i;
         double *q = RD_LIFT_Q(full, i), *v = RD_LIFT_V(full, i);
-        for (int k = 0; k < 6; k++) {
-            q[k] = v[k] = 0.0;
-            for (int a = 0; a < NX; a++) {
-                q[k] += phi[a][k] * y[a];
-                v[k] += phi[a][k] * y[NX + a];
-            }
+        for (int d = 0; d < 2; d++) { /* d = 0: positions, 1: rates */
+            const double *x = y + NX * d;
+            double *u = d ? v : q;
+            u[0] = er[0] * x[2];
+            u[1] = er[1] * x[2];
+            u[2] = x[0];
+            u[3] = et[0] * x[1];
+            u[4] = et[1] * x[1];
+            u[5] = 0.0;
         }
     }
 }

@@ -123,10 +123,14 @@ static int groots(rd_lift_small *s, double t, const double *x, double *gx)
 
 /* ------------------------------------------------------- linear algebra */
 
+/* The rigid model's block size: factor() and lsolve() are compiled for it
+ * separately (constant n: the loops unrolled, ~2x fewer instructions for
+ * its 3 x 3 system). */
+#define NB_RIGID 3
+
 /* S = I - c B - c^2 A_diag, LU with partial pivoting; 1 if singular. */
-static int factor(rd_lift_small *s, double c)
+static inline int factor_n(rd_lift_small *s, int n, double c)
 {
-    int n = s->nb;
     const double *Ad = s->A + n * n;
     for (int i = 0; i < n; i++)
         for (int j = 0; j < n; j++)
@@ -157,10 +161,14 @@ static int factor(rd_lift_small *s, double c)
     return 0;
 }
 
-/* x = (I - c J)^-1 r in second-order form (file comment); x may be r. */
-static void lsolve(const rd_lift_small *s, const double *r, double *x)
+static int factor(rd_lift_small *s, double c)
 {
-    int n = s->nb;
+    return s->nb == NB_RIGID ? factor_n(s, NB_RIGID, c) : factor_n(s, s->nb, c);
+}
+
+/* x = (I - c J)^-1 r in second-order form (file comment); x may be r. */
+static inline void lsolve_n(const rd_lift_small *s, int n, const double *r, double *x)
+{
     double c = s->c_lu, v[BMAX];
     const double *Ad = s->A + n * n;
     for (int i = 0; i < n; i++) {
@@ -185,6 +193,14 @@ static void lsolve(const rd_lift_small *s, const double *r, double *x)
         x[i] = r[i] + c * v[i];
         x[n + i] = v[i];
     }
+}
+
+static void lsolve(const rd_lift_small *s, const double *r, double *x)
+{
+    if (s->nb == NB_RIGID)
+        lsolve_n(s, NB_RIGID, r, x);
+    else
+        lsolve_n(s, s->nb, r, x);
 }
 
 /* Weighted RMS norm of e with the weights of state y (and y2 if not NULL:
