@@ -111,14 +111,10 @@ static double gas_at(const rd_gas_params *g, const double *val, double deg)
     return val[a] + (val[b] - val[a]) * (deg - x[a]) / (x[b] - x[a]);
 }
 
-/* Contact pressure p(delta, delta') of the header comment, and its partial
- * derivatives p_d = dp/d delta, p_dd = dp/d delta' (for the Jacobian). */
-static double contact_pressure(const rd_lift_model *c, double d, double dd, double cdamp,
-                               double *p_d, double *p_dd)
+/* contact_pressure for a closed contact, d > 0. */
+static double contact_closed(const rd_lift_model *c, double d, double dd, double cdamp, double *p_d,
+                             double *p_dd)
 {
-    *p_d = *p_dd = 0.0;
-    if (d <= 0.0)
-        return 0.0;
     double sp, w, w_d;
     if (d < c->d0) {
         sp = 0.5 * d * d / c->d0;
@@ -136,13 +132,28 @@ static double contact_pressure(const rd_lift_model *c, double d, double dd, doub
         *p_dd = pd_dd;
         return pe + pd;
     }
-    if (pe <= 0.0)
+    if (pe <= 0.0) {
+        *p_d = *p_dd = 0.0;
         return 0.0;
+    }
     /* opening fast: pe phi(x), x = pd / pe, phi = e^{2x + 1} / 2 for x < -1/2 */
     double E = exp(2.0 * pd / pe + 1.0);
     *p_d = 0.5 * pe_d * E + E * (pd_d - pd * pe_d / pe);
     *p_dd = E * pd_dd;
     return 0.5 * pe * E;
+}
+
+/* Contact pressure p(delta, delta') of the header comment, and its partial
+ * derivatives p_d = dp/d delta, p_dd = dp/d delta' (for the Jacobian).  The
+ * open contact, the common case (most points of most calls), inline. */
+static inline double contact_pressure(const rd_lift_model *c, double d, double dd, double cdamp,
+                                      double *p_d, double *p_dd)
+{
+    if (d <= 0.0) {
+        *p_d = *p_dd = 0.0;
+        return 0.0;
+    }
+    return contact_closed(c, d, dd, cdamp, p_d, p_dd);
 }
 
 double rd_lift_contact_inverse(const rd_lift_model *c, double p)
