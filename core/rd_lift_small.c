@@ -82,6 +82,7 @@ struct rd_lift_small {
     int rootdir[RMAX], rf[RMAX];
     double t, h;                      /* time reached, next step size */
     double y[NMAX], f[NMAX];          /* state and derivative at t */
+    double wt[NMAX];                  /* 1 / (rtol |y| + atol): the weights at t */
     double tp, yp[NMAX], fp[NMAX];    /* the last step's start */
     double tlo, glo[RMAX], ghi[RMAX]; /* roots searched up to tlo; g at tlo and t */
     double A[3 * BMAX * BMAX], B[BMAX * BMAX], S[BMAX * BMAX];
@@ -218,6 +219,26 @@ static double wrms(const rd_lift_small *s, const double *e, const double *y, con
     return sqrt(sum / s->N);
 }
 
+/* The weights of the state at t, for the Newton corrections' norm: one set
+ * per step instead of N divisions per Newton iteration (a correction's
+ * norm may differ from wrms's in the last bit). */
+static void set_weights(rd_lift_small *s)
+{
+    for (int i = 0; i < s->N; i++)
+        s->wt[i] = 1.0 / (s->rtol * fabs(s->y[i]) + s->atol[i]);
+}
+
+/* wrms(s, e, s->y, NULL) with the step's weights. */
+static double wnorm(const rd_lift_small *s, const double *e)
+{
+    double sum = 0.0;
+    for (int i = 0; i < s->N; i++) {
+        double w = e[i] * s->wt[i];
+        sum += w * w;
+    }
+    return sqrt(sum / s->N);
+}
+
 /* A step's ends, for its interpolant. */
 typedef struct span {
     double t0, t1;
@@ -259,7 +280,7 @@ static int newton(rd_lift_small *s, double ts, const double *b, double *x)
         for (int i = 0; i < s->N; i++)
             x[i] += r[i];
         s->c[C_NITER]++;
-        double nd = wrms(s, r, s->y, NULL);
+        double nd = wnorm(s, r);
         if (!isfinite(nd))
             return 1;
         if (k > 0) {
@@ -430,6 +451,7 @@ int rd_lift_small_reinit(rd_lift_small *s, double t, const double *y)
     s->t = s->tp = s->tlo = t;
     memcpy(s->y, y, (size_t)s->N * sizeof *y);
     memcpy(s->yp, y, (size_t)s->N * sizeof *y);
+    set_weights(s);
     s->jac_age = -1;
     s->c_lu = 0.0;
     if (rhs(s, t, s->y, s->f) || groots(s, t, s->y, s->glo))
@@ -458,6 +480,7 @@ static void accept(rd_lift_small *s, double h, const double *y1, const double *f
     s->tlo = s->tp;
     memcpy(s->y, y1, nb);
     memcpy(s->f, f1, nb);
+    set_weights(s);
     memcpy(s->ghi, g1, (size_t)s->ng * sizeof *g1);
     s->jac_age = s->jac_age >= 0 && s->jac_age < JAC_AGE_MAX ? s->jac_age + 1 : -1;
     s->c[C_STEPS]++;
