@@ -85,7 +85,6 @@
 #define FLANK_POINTS RD_LIFT_FLANK_POINTS
 #define Q            RD_LIFT_Q
 #define V            RD_LIFT_V
-#define dot6         rd_lift_dot6
 
 static double gas_at(const rd_gas_params *g, const double *val, double deg)
 {
@@ -112,14 +111,10 @@ static double gas_at(const rd_gas_params *g, const double *val, double deg)
     return val[a] + (val[b] - val[a]) * (deg - x[a]) / (x[b] - x[a]);
 }
 
-/* Contact pressure p(delta, delta') of the header comment, and its partial
- * derivatives p_d = dp/d delta, p_dd = dp/d delta' (for the Jacobian). */
-static double contact_pressure(const rd_lift_model *c, double d, double dd, double cdamp,
-                               double *p_d, double *p_dd)
+/* contact_pressure for a closed contact, d > 0. */
+static double contact_closed(const rd_lift_model *c, double d, double dd, double cdamp, double *p_d,
+                             double *p_dd)
 {
-    *p_d = *p_dd = 0.0;
-    if (d <= 0.0)
-        return 0.0;
     double sp, w, w_d;
     if (d < c->d0) {
         sp = 0.5 * d * d / c->d0;
@@ -137,13 +132,28 @@ static double contact_pressure(const rd_lift_model *c, double d, double dd, doub
         *p_dd = pd_dd;
         return pe + pd;
     }
-    if (pe <= 0.0)
+    if (pe <= 0.0) {
+        *p_d = *p_dd = 0.0;
         return 0.0;
+    }
     /* opening fast: pe phi(x), x = pd / pe, phi = e^{2x + 1} / 2 for x < -1/2 */
     double E = exp(2.0 * pd / pe + 1.0);
     *p_d = 0.5 * pe_d * E + E * (pd_d - pd * pe_d / pe);
     *p_dd = E * pd_dd;
     return 0.5 * pe * E;
+}
+
+/* Contact pressure p(delta, delta') of the header comment, and its partial
+ * derivatives p_d = dp/d delta, p_dd = dp/d delta' (for the Jacobian).  The
+ * open contact, the common case (most points of most calls), inline. */
+static inline double contact_pressure(const rd_lift_model *c, double d, double dd, double cdamp,
+                                      double *p_d, double *p_dd)
+{
+    if (d <= 0.0) {
+        *p_d = *p_dd = 0.0;
+        return 0.0;
+    }
+    return contact_closed(c, d, dd, cdamp, p_d, p_dd);
 }
 
 double rd_lift_contact_inverse(const rd_lift_model *c, double p)
@@ -219,38 +229,58 @@ static double friction_force(const rd_lift_model *c, double N, double u, double 
 }
 
 /* Generalized directions: axial force at in-plane offset d, and radial
- * force along e at offset d (so that w = a . q, u_r = b . q). */
-static void axial_dir(const double *d, double a[6])
+ * force along e at offset d (so that w = a . q, u_r = b . q).  Each has
+ * three entries that are not structurally zero (axial: z, rx, ry; radial:
+ * x, y, rz), kept with their indices in ascending order: the sums and
+ * rank-one updates below visit only those, in the order of the full 6-term
+ * sums (the terms left out are exact zeros, so the results are the same to
+ * the bit), at half the work. */
+typedef struct dir3 {
+    int k[3];
+    double a[3];
+} dir3;
+
+static dir3 axial_dir(const double *d)
 {
-    a[0] = a[1] = a[5] = 0.0;
-    a[2] = 1.0;
-    a[3] = d[1];
-    a[4] = -d[0];
+    return (dir3){{2, 3, 4}, {1.0, d[1], -d[0]}};
 }
 
-static void radial_dir(const double *d, const double *e, double b[6])
+static dir3 radial_dir(const double *d, const double *e)
 {
-    b[0] = e[0];
-    b[1] = e[1];
-    b[2] = b[3] = b[4] = 0.0;
-    b[5] = d[0] * e[1] - d[1] * e[0];
+    return (dir3){{0, 1, 5}, {e[0], e[1], d[0] * e[1] - d[1] * e[0]}};
 }
 
-static void add6(double *f, const double *a, double F)
+static double dot3(const dir3 *a, const double *q)
 {
-    for (int k = 0; k < 6; k++)
-        f[k] += F * a[k];
+    return a->a[0] * q[a->k[0]] + a->a[1] * q[a->k[1]] + a->a[2] * q[a->k[2]];
+}
+
+static void add3(double *f, const dir3 *a, double F)
+{
+    for (int u = 0; u < 3; u++)
+        f[a->k[u]] += F * a->a[u];
 }
 
 /* D += s a b^T (6x6 row-major); D may be NULL. */
-static void rank1(double *D, double s, const double *a, const double *b)
+static void rank1(double *D, double s, const dir3 *a, const dir3 *b)
 {
     if (!D || s == 0.0)
         return;
-    for (int r = 0; r < 6; r++)
-        if (a[r] != 0.0)
+    for (int u = 0; u < 3; u++)
+        if (a->a[u] != 0.0)
+            for (int w = 0; w < 3; w++)
+                D[6 * a->k[u] + b->k[w]] += s * a->a[u] * b->a[w];
+}
+
+/* D += s a b^T with a full 6-vector b. */
+static void rank1_full(double *D, double s, const dir3 *a, const double *b)
+{
+    if (!D || s == 0.0)
+        return;
+    for (int u = 0; u < 3; u++)
+        if (a->a[u] != 0.0)
             for (int k = 0; k < 6; k++)
-                D[6 * r + k] += s * a[r] * b[k];
+                D[6 * a->k[u] + k] += s * a->a[u] * b[k];
 }
 
 /* The time-dependent inputs of all elements at one time, computed once per
@@ -298,13 +328,12 @@ static void add_inertia_gravity(const rd_lift_model *c, const force_env *env, se
 /* The squeeze films (rd_lift_landing.c) under and over a face point at
  * axial displacement w (rate wd): the lower gap w closes at -wd, the upper
  * gap c_a - w at wd; their power on the ring is dissipation. */
-static void add_squeeze(rd_lift_model *c, seg_view *s, const double *a, double w, double wd,
-                        double A)
+static void add_squeeze(rd_lift_model *c, seg_view *s, const dir3 *a, double w, double wd, double A)
 {
     double lg, lv, ug, uv;
     double pl = rd_lift_squeeze(c, w, -wd, &lg, &lv);
     double pu = rd_lift_squeeze(c, c->ca - w, wd, &ug, &uv);
-    add6(s->f, a, (pl - pu) * A);
+    add3(s->f, a, (pl - pu) * A);
     if (c->energy)
         c->energy->damping_power += (pl - pu) * A * wd;
     rank1(s->dq, A * (lg + ug), a, a);
@@ -315,28 +344,27 @@ static void add_squeeze(rd_lift_model *c, seg_view *s, const double *a, double w
  * also the sealing weights and their gradients. */
 static void add_flanks(rd_lift_model *c, const force_env *env, seg_view *s)
 {
-    double a[6], pl_d, pl_dd, pu_d, pu_dd;
+    double pl_d, pl_dd, pu_d, pu_dd;
     for (int k = 0; k < FLANK_POINTS; k++) {
-        const double *d = c->fl_d + 2 * (FLANK_POINTS * (size_t)s->i + k);
-        axial_dir(d, a);
-        double w = dot6(a, s->q), wd = dot6(a, s->v), A = c->fl_area[k];
+        dir3 a = axial_dir(c->fl_d + 2 * (FLANK_POINTS * (size_t)s->i + k));
+        double w = dot3(&a, s->q), wd = dot3(&a, s->v), A = c->fl_area[k];
         double plo = contact_pressure(c, -w, -wd, c->c_flank, &pl_d, &pl_dd);
         double pup = contact_pressure(c, w - c->ca, wd, c->c_flank, &pu_d, &pu_dd);
-        add6(s->f, a, (plo - pup) * A);
+        add3(s->f, &a, (plo - pup) * A);
         if (c->energy) {
             book_contact(c, plo, -w, -wd, A);
             book_contact(c, pup, w - c->ca, wd, A);
         }
-        rank1(s->dq, -A * (pl_d + pu_d), a, a);
-        rank1(s->dv, -A * (pl_dd + pu_dd), a, a);
+        rank1(s->dq, -A * (pl_d + pu_d), &a, &a);
+        rank1(s->dv, -A * (pl_dd + pu_dd), &a, &a);
         if (c->sq_on)
-            add_squeeze(c, s, a, w, wd, A);
+            add_squeeze(c, s, &a, w, wd, A);
         if (env->dynamic) {
             double sl_d, su_d;
             s->seal_lo += A * smoothstep(-w / c->d0, &sl_d);
             s->seal_up += A * smoothstep((w - c->ca) / c->d0, &su_d);
-            add6(s->g_lo, a, -A * sl_d / c->d0);
-            add6(s->g_up, a, A * su_d / c->d0);
+            add3(s->g_lo, &a, -A * sl_d / c->d0);
+            add3(s->g_up, &a, A * su_d / c->d0);
         }
     }
 }
@@ -345,35 +373,34 @@ static void add_flanks(rd_lift_model *c, const force_env *env, seg_view *s)
  * driven by its normal force, added point by point to *ftot (N). */
 static void add_bore(rd_lift_model *c, const force_env *env, seg_view *s, double *ftot)
 {
-    double a[6], b[6];
     for (int k = 0; k < ARC_POINTS; k++) {
         size_t o = 2 * (ARC_POINTS * (size_t)s->i + k);
-        const double *d = c->bo_d + o, *e = c->bo_e + o;
-        radial_dir(d, e, b);
-        double ur = dot6(b, s->q), urd = dot6(b, s->v), P_d, P_dd;
+        const double *d = c->bo_d + o;
+        dir3 b = radial_dir(d, c->bo_e + o);
+        double ur = dot3(&b, s->q), urd = dot3(&b, s->v), P_d, P_dd;
         if (c->bo_gap) /* a distorted bore: its offset at the point (rd_lift_bore.c) */
             ur -= c->bo_gap[ARC_POINTS * (size_t)s->i + k];
         double N = c->bo_area * contact_pressure(c, c->delta_pre + ur, urd, c->c_rad, &P_d, &P_dd);
-        add6(s->f, b, c->p0 * c->bo_area - N);
+        add3(s->f, &b, c->p0 * c->bo_area - N);
         if (c->energy) {
             book_contact(c, N / c->bo_area, c->delta_pre + ur, urd, c->bo_area);
             c->energy->contact -= c->p0 * c->bo_area * ur;
         }
-        rank1(s->dq, -c->bo_area * P_d, b, b);
-        rank1(s->dv, -c->bo_area * P_dd, b, b);
+        rank1(s->dq, -c->bo_area * P_d, &b, &b);
+        rank1(s->dv, -c->bo_area * P_dd, &b, &b);
         if (env->fric) {
-            axial_dir(d, a);
-            double F_N, F_u, u = dot6(a, s->v) - env->sd;
+            dir3 a = axial_dir(d);
+            double F_N, F_u, u = dot3(&a, s->v) - env->sd;
             if (env->tilt) /* the groove frame's own axial speed at the point, beta' x */
                 u += env->bd * (rd_ring_get_section(c->ring)->R * c->e_r[2 * s->i] + d[0]);
             double F = friction_force(c, N, u, &F_N, &F_u);
-            add6(s->f, a, F);
+            add3(s->f, &a, F);
             if (c->energy)
                 c->energy->friction_power += F * u;
             *ftot += F;
-            rank1(s->dq, F_N * c->bo_area * P_d, a, b);
-            rank1(s->dv, F_N * c->bo_area * P_dd, a, b);
-            rank1(s->dv, F_u, a, a);
+            rank1(s->dq, F_N * c->bo_area * P_d, &a, &b);
+            rank1(s->dv, F_N * c->bo_area * P_dd, &a, &b);
+            rank1(s->dv, F_u, &a, &a);
         }
     }
 }
@@ -381,18 +408,17 @@ static void add_bore(rd_lift_model *c, const force_env *env, seg_view *s, double
 /* Groove back contact on the inner face. */
 static void add_back(rd_lift_model *c, seg_view *s)
 {
-    double b[6];
     for (int k = 0; k < ARC_POINTS; k++) {
         size_t o = 2 * (ARC_POINTS * (size_t)s->i + k);
-        radial_dir(c->ba_d + o, c->bo_e + o, b);
+        dir3 b = radial_dir(c->ba_d + o, c->bo_e + o);
         double P_d, P_dd;
-        double pen = -dot6(b, s->q) - c->cr;
-        double P = contact_pressure(c, pen, -dot6(b, s->v), c->c_rad, &P_d, &P_dd);
-        add6(s->f, b, P * c->ba_area);
+        double pen = -dot3(&b, s->q) - c->cr;
+        double P = contact_pressure(c, pen, -dot3(&b, s->v), c->c_rad, &P_d, &P_dd);
+        add3(s->f, &b, P * c->ba_area);
         if (c->energy)
-            book_contact(c, P, pen, -dot6(b, s->v), c->ba_area);
-        rank1(s->dq, -c->ba_area * P_d, b, b);
-        rank1(s->dv, -c->ba_area * P_dd, b, b);
+            book_contact(c, P, pen, -dot3(&b, s->v), c->ba_area);
+        rank1(s->dq, -c->ba_area * P_d, &b, &b);
+        rank1(s->dv, -c->ba_area * P_dd, &b, &b);
     }
 }
 
@@ -400,29 +426,44 @@ static void add_back(rd_lift_model *c, seg_view *s)
  * its axial force on the segment, N. */
 static double add_gas(const rd_lift_model *c, const force_env *env, seg_view *s)
 {
-    double a[6], b[6], ptop = env->pa, pbot = env->pbl;
-    axial_dir(c->cen_d + 2 * s->i, a);
+    double ptop = env->pa, pbot = env->pbl;
+    dir3 a = axial_dir(c->cen_d + 2 * s->i);
     if (env->dynamic) {
         double wl = s->seal_lo / c->face_area, wu = s->seal_up / c->face_area;
         pbot += wl * 0.5 * (env->pbh - env->pbl);
         ptop += wu * 0.5 * (env->pbh - env->pa);
         /* d(pbot - ptop) A_face / dq = (pbh - pbl)/2 g_lo - (pbh - pa)/2 g_up */
-        rank1(s->dq, 0.5 * (env->pbh - env->pbl), a, s->g_lo);
-        rank1(s->dq, -0.5 * (env->pbh - env->pa), a, s->g_up);
+        rank1_full(s->dq, 0.5 * (env->pbh - env->pbl), &a, s->g_lo);
+        rank1_full(s->dq, -0.5 * (env->pbh - env->pa), &a, s->g_up);
     }
-    add6(s->f, a, (pbot - ptop) * c->face_area);
-    radial_dir(c->cen_d + 2 * s->i, c->e_r + 2 * s->i, b);
-    add6(s->f, b, env->pbh * c->back_chord_area);
+    add3(s->f, &a, (pbot - ptop) * c->face_area);
+    dir3 b = radial_dir(c->cen_d + 2 * s->i, c->e_r + 2 * s->i);
+    add3(s->f, &b, env->pbh * c->back_chord_area);
     return (pbot - ptop) * c->face_area;
 }
 
-static void force_env_at(const rd_lift_model *c, double t, force_env *env)
+/* The piston's velocity and acceleration at t: the last call's when t is
+ * the same (Newton's iterations at one stage time, the root function at a
+ * step's end: about half the force calls repeat the time before). */
+static void piston_at(rd_lift_model *c, double t, double *sd, double *sdd)
+{
+    if (!c->piston_ok || c->piston_t != t) {
+        double s;
+        rd_lift_piston(&c->p->engine, c->omega * t, &s, &c->piston_sd, &c->piston_sdd);
+        c->piston_t = t;
+        c->piston_ok = 1;
+    }
+    *sd = c->piston_sd;
+    *sdd = c->piston_sdd;
+}
+
+static void force_env_at(rd_lift_model *c, double t, force_env *env)
 {
     const rd_lift_params *p = c->p;
-    double s, sdd = 0.0, deg = c->omega * t * 180.0 / M_PI;
+    double sdd = 0.0, deg = c->omega * t * 180.0 / M_PI;
     env->sd = 0.0;
     if (!c->piston_fixed)
-        rd_lift_piston(&p->engine, c->omega * t, &s, &env->sd, &sdd);
+        piston_at(c, t, &env->sd, &sdd);
     env->acc = sdd - c->g_on;
     env->tilt = rd_lift_tilted(&p->engine);
     if (env->tilt) {
@@ -473,6 +514,21 @@ void rd_lift_forces(rd_lift_model *c, double t, const double *y, double *Dq, dou
     c->fz_ext = fz + ftot;
 }
 
+/* The elements of m->friction and m->fz_ext on one segment (rd_lift_loads):
+ * the flanks only for the dynamic gas areas' sealing weights, the bore only
+ * for the friction its normal force drives. */
+static void add_loads(rd_lift_model *c, const force_env *env, seg_view *s, double *ftot, double *fz)
+{
+    add_inertia_gravity(c, env, s);
+    *fz += s->f[2];
+    if (env->dynamic)
+        add_flanks(c, env, s);
+    if (env->fric)
+        add_bore(c, env, s, ftot);
+    if (env->gas)
+        *fz += add_gas(c, env, s);
+}
+
 void rd_lift_loads(rd_lift_model *c, double t, const double *y)
 {
     force_env env;
@@ -480,14 +536,20 @@ void rd_lift_loads(rd_lift_model *c, double t, const double *y)
     double ftot = 0.0, fz = 0.0;
     for (int i = 0; i < c->n; i++) {
         seg_view s = {.i = i, .q = Q(y, i), .v = V(y, i), .f = c->fbuf + 6 * i};
-        add_inertia_gravity(c, &env, &s);
-        fz += s.f[2];
-        if (env.dynamic) /* the gas element's sealing weights */
-            add_flanks(c, &env, &s);
-        add_bore(c, &env, &s, &ftot);
-        if (env.gas)
-            fz += add_gas(c, &env, &s);
+        add_loads(c, &env, &s, &ftot, &fz);
     }
+    c->friction = ftot;
+    c->fz_ext = fz + ftot;
+}
+
+void rd_lift_loads_segment(rd_lift_model *c, double t, int i, const double *q, const double *v,
+                           double *f)
+{
+    force_env env;
+    force_env_at(c, t, &env);
+    double ftot = 0.0, fz = 0.0;
+    seg_view s = {.i = i, .q = q, .v = v, .f = f};
+    add_loads(c, &env, &s, &ftot, &fz);
     c->friction = ftot;
     c->fz_ext = fz + ftot;
 }

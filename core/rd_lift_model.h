@@ -121,6 +121,10 @@ typedef struct rd_lift_model {
      * force call, instead of p->gas's tables: a caller that computes them
      * (the ring pack, rd_ringpack_lift.c) sets them before each call. */
     const double *gas_now;
+    /* The piston's motion at the last force call's time (rd_lift_forces.c;
+     * the engine is fixed for the model's life). */
+    int piston_ok;
+    double piston_t, piston_sd, piston_sdd;
 } rd_lift_model;
 
 /* Builds the model of a valid scene on `ring` (borrowed, as p).  On failure
@@ -154,11 +158,16 @@ void rd_lift_forces(rd_lift_model *m, double t, const double *y, double *Dq, dou
 /* Only m->friction and m->fz_ext of rd_lift_forces, the same numbers (the
  * same elements in the same order), without the flank and groove-back
  * contacts, which do not enter them (the flanks still run with dynamic gas
- * areas: their sealing weights), and without the Jacobian; m->fbuf is left
- * partial.  For the root function and the samples (rd_lift_model.c). */
+ * areas: their sealing weights; the bore contact only with friction), and
+ * without the Jacobian; m->fbuf is left partial.  For the root function and the samples (rd_lift_model.c). */
 void rd_lift_loads(rd_lift_model *m, double t, const double *y);
 
-/* The same for one segment i at state (q, v) (6 values each): its force
+/* rd_lift_loads for one segment i at state (q, v) (6 values each; f: 6
+ * scratch), the ring's loads being n times its (the rigid model). */
+void rd_lift_loads_segment(rd_lift_model *m, double t, int i, const double *q, const double *v,
+                           double *f);
+
+/* rd_lift_forces for one segment i at state (q, v) (6 values each): its force
  * into f (6), its local derivatives into dq, dv (36 each, or NULL), and its
  * friction and axial load without the flanks into m->friction, m->fz_ext. */
 void rd_lift_forces_segment(rd_lift_model *m, double t, int i, const double *q, const double *v,

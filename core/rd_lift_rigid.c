@@ -101,17 +101,34 @@ static void shapes(const rd_lift_model *m, int i, double phi[NX][6])
     phi[2][1] = m->e_r[2 * i + 1];
 }
 
+/* u = Phi_i x for segment i (radial unit er, tangential unit et): the
+ * translation r e_r + z e_z and the rotation theta e_t (shapes()), only the
+ * non-zero terms formed. */
+static void segment_motion(const double *er, const double *et, const double *x, double *u)
+{
+    u[0] = er[0] * x[2];
+    u[1] = er[1] * x[2];
+    u[2] = x[0];
+    u[3] = et[0] * x[1];
+    u[4] = et[1] * x[1];
+    u[5] = 0.0;
+}
+
 /* Segment 0's state (q, v) of the reduced state y = (x, x'). */
 static void segment_state(rigid *r, const double *y)
 {
-    for (int k = 0; k < 6; k++) {
-        r->q[k] = 0.0;
-        r->v[k] = 0.0;
-        for (int a = 0; a < NX; a++) {
-            r->q[k] += r->phi[a][k] * y[a];
-            r->v[k] += r->phi[a][k] * y[NX + a];
-        }
-    }
+    segment_motion(r->m->e_r, r->m->e_t, y, r->q);
+    segment_motion(r->m->e_r, r->m->e_t, y + NX, r->v);
+}
+
+/* G = n Phi_0^T f (shapes()): the axial force, the couple about e_t and the
+ * radial force, summed over the ring. */
+static void project_force(const rigid *r, const double *f, double *G)
+{
+    const double *er = r->m->e_r, *et = r->m->e_t;
+    G[0] = r->m->n * f[2];
+    G[1] = r->m->n * (et[0] * f[3] + et[1] * f[4]);
+    G[2] = r->m->n * (er[0] * f[0] + er[1] * f[1]);
 }
 
 /* The twist stiffness of the ring seated on the edge the twist presses on
@@ -136,8 +153,7 @@ static int rigid_rhs(sunrealtype t, N_Vector yv, N_Vector ydv, void *user)
     double *yd = N_VGetArrayPointer(ydv), G[NX];
     segment_state(r, y);
     rd_lift_forces_segment(r->m, t, 0, r->q, r->v, r->f, NULL, NULL);
-    for (int a = 0; a < NX; a++)
-        G[a] = r->m->n * rd_lift_dot6(r->phi[a], r->f);
+    project_force(r, r->f, G);
     G[1] -= twist_stiffness(r, y) * y[1];
     for (int a = 0; a < NX; a++) {
         yd[a] = y[NX + a];
@@ -250,25 +266,17 @@ static void rigid_loads(void *user, double t, const double *y)
 {
     rigid *r = user;
     segment_state(r, y);
-    rd_lift_forces_segment(r->m, t, 0, r->q, r->v, r->f, NULL, NULL);
+    rd_lift_loads_segment(r->m, t, 0, r->q, r->v, r->f);
     r->m->friction *= r->m->n;
     r->m->fz_ext *= r->m->n;
 }
 
 static void rigid_expand(void *user, const double *y, double *full)
 {
-    rigid *r = user;
-    double phi[NX][6];
-    for (int i = 0; i < r->m->n; i++) {
-        shapes(r->m, i, phi);
-        double *q = RD_LIFT_Q(full, i), *v = RD_LIFT_V(full, i);
-        for (int k = 0; k < 6; k++) {
-            q[k] = v[k] = 0.0;
-            for (int a = 0; a < NX; a++) {
-                q[k] += phi[a][k] * y[a];
-                v[k] += phi[a][k] * y[NX + a];
-            }
-        }
+    const rd_lift_model *m = ((rigid *)user)->m;
+    for (int i = 0; i < m->n; i++) {
+        segment_motion(m->e_r + 2 * i, m->e_t + 2 * i, y, RD_LIFT_Q(full, i));
+        segment_motion(m->e_r + 2 * i, m->e_t + 2 * i, y + NX, RD_LIFT_V(full, i));
     }
 }
 
