@@ -54,24 +54,10 @@ static const rd_block tilt_block = {
     "|piston_tilt_deg| + the largest |tilt_deg| at most 2 deg.",
     1, 0, tilt_fields};
 
-static const rd_field distortion_fields[] = {
-    {"order", RD_F_INTEGER, offsetof(rd_distortion, order), RD_MIN(1), RD_MAX(64), .required = 1,
-     .desc = "Fourier order k; a JSON integer."},
-    {"amplitude", RD_F_NUMBER, offsetof(rd_distortion, amplitude), .required = 1,
-     .desc = "Radius change A_k, m; the sum of |A_k| at most 1 % of the ring diameter, and "
-             "sum |A_k| (k^2 + 2) at most the bore radius (a convex bore, as in contact)."},
-    {"phase_deg", RD_F_NUMBER, offsetof(rd_distortion, phase_deg), RD_MIN(-360), RD_MAX(360),
-     .desc = "Phase phi_k, degrees from the gap middle."},
-    {.key = NULL},
-};
-static const rd_block distortion_block = {"LiftBoreDistortion",
-                                          "One Fourier term of the bore distortion (lift).", 0, 1,
-                                          distortion_fields};
-
 static const rd_field bore_fields[] = {
     {"diameter", RD_F_NUMBER, LO(bore.bore_diameter), RD_MIN(0.0),
      .desc = "Bore diameter D, m; 0 = the ring's diameter; otherwise within 2 % of it."},
-    {"distortion", RD_F_DISTORTION, LO(bore), .block = &distortion_block,
+    {"distortion", RD_F_DISTORTION, LO(bore), .block = &rd_block_lift_distortion,
      RD_MAX(RD_LIFT_DISTORTION_MAX),
      .desc = "Fourier terms of the bore's out-of-roundness, at most 16. The radial contact "
              "pressure, hence the friction, then varies around the ring; the ring starts from "

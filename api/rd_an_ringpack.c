@@ -23,6 +23,7 @@
 #include "rd_registry.h"
 #include "rd_ringpack.h"
 #include "rd_scene.h"
+#include "rd_static.h"
 
 struct pack_opts {
     rd_ringpack_ring proto; /* first: one ring item while parsing or echoing it */
@@ -31,6 +32,9 @@ struct pack_opts {
     int friction_given, friction_model;  /* model: index into friction_names */
     int max_steps;
     struct rd_table table[2]; /* crank_deg, pressure_pa */
+    int tilt_given;
+    struct rd_table tilt_table[2]; /* crank_deg, tilt_deg */
+    rd_contact_opts bore;          /* /bore (its diameter and distortion only) */
 };
 
 #define PO(member) offsetof(struct pack_opts, member)
@@ -42,11 +46,13 @@ static const char *const pin_names[] = {"none", "lower", "upper", NULL}; /* enum
 static const char *const synthetic_names[] = {"fired", "motored", NULL};
 /* enum rd_lift_model_kind order, then RD_RINGPACK_AXIAL */
 static const char *const model_names[] = {"full", "rigid", "modal", "auto", "axial", NULL};
-#define MODEL_DESC                                                                               \
-    "axial: lift only, hard flank stops (the pack's own ring); rigid: the lift analysis' rigid " \
-    "ring (lift, twist, radial motion); full: its flexible ring of `segments` segments; modal: " \
-    "its modal reduction (`modes`); auto: axial without friction, rigid with it (README \"Ring " \
-    "pack\"). A pinned ring is held on its flank (no model)."
+#define MODEL_DESC                                                                                 \
+    "axial: lift only, hard flank stops (the pack's own ring); rigid: the lift analysis' rigid "   \
+    "ring (lift, twist, radial motion); full: its flexible ring of `segments` segments; modal: "   \
+    "its modal reduction (`modes`); auto: full with a distorted bore or a piston tilt, else "      \
+    "rigid with friction or dynamic active areas, else axial (README \"Ring pack\"); axial and "   \
+    "rigid are refused where the scene needs a flexible ring. A pinned ring is held on its flank " \
+    "(no model)."
 
 /* model - 1; stribeck is named (as in lift) but refused by rd_ringpack_validate */
 static const char *const friction_names[] = {"coulomb", "stribeck", NULL};
@@ -63,6 +69,39 @@ static const char *const friction_names[] = {"coulomb", "stribeck", NULL};
 #define FRICTION_RTOL_MAX 1e-6
 #define FRICTION_RPM_MIN  300.0
 
+static const rd_field tilt_fields[] = {
+    {"crank_deg", RD_F_TABLE, PO(tilt_table[0]), RD_MIN(1), RD_MAX(RD_LIFT_TABLE_MAX),
+     .required = 1, .desc = "Crank angles, deg, strictly increasing within 0..720."},
+    {"tilt_deg", RD_F_TABLE, PO(tilt_table[1]), RD_MIN(1), RD_MAX(RD_LIFT_TABLE_MAX), .required = 1,
+     .desc = "Piston tilt at those angles, deg (added to piston_tilt_deg)."},
+    {.key = NULL},
+};
+static const rd_block tilt_block = {
+    "PackPistonTilt",
+    "/engine/piston_tilt (ringpack): the piston's tilt vs crank angle, as in lift (a periodic C1 "
+    "cubic spline; |piston_tilt_deg| + the largest |tilt_deg| at most 2 deg); present = "
+    "modelled.",
+    1, 0, tilt_fields};
+
+static const rd_field bore_fields[] = {
+    {"diameter", RD_F_NUMBER, PO(bore.bore_diameter), RD_MIN(0.0),
+     .desc = "Bore diameter D, m; 0 = the rings' diameter; otherwise within 2 % of it (the "
+             "lift-model rings run in it; the network's areas and volumes keep the rings' "
+             "diameter)."},
+    {"distortion", RD_F_DISTORTION, PO(bore), .block = &rd_block_lift_distortion,
+     RD_MAX(RD_LIFT_DISTORTION_MAX),
+     .desc = "Fourier terms of the bore's out-of-roundness, at most 16, phases from the bore's "
+             "angle 0 (ring i sees phi_k - gap_angle_deg). Every free ring then needs a flexible "
+             "model (auto: full; axial and rigid are refused) and starts from its static "
+             "equilibrium in this bore, as in lift."},
+    {.key = NULL},
+};
+static const rd_block bore_block = {
+    "PackBore",
+    "/bore (ringpack): the bore all rings run in, r_b(theta) = D/2 + sum A_k cos(k (theta - "
+    "phi_k)), as in lift. Default: the round bore of the rings' diameter.",
+    1, 0, bore_fields};
+
 static const rd_field engine_fields[] = {
     {"speed_rpm", RD_F_NUMBER, PO(pack.engine.speed_rpm), RD_MIN(1), RD_MAX(30000),
      .desc = "Crank speed, rpm; at least 300 with physics.friction."},
@@ -76,6 +115,12 @@ static const rd_field engine_fields[] = {
      .desc = "Whole 4-stroke cycles simulated from rest (all volumes at the crankcase "
              "pressure); the last is reported and compared with the one before "
              "(periodicity)."},
+    {"piston_tilt_deg", RD_F_NUMBER, PO(pack.engine.piston_tilt_deg), RD_MIN(-2), RD_MAX(2),
+     .desc = "Constant piston tilt about the pin axis (in the ring plane, 90 deg from the bore's "
+             "angle 0), deg, positive raising the groove at angle 0. Every free ring then needs a "
+             "flexible model (auto: full; axial and rigid are refused) and its gap at "
+             "gap_angle_deg 0 or 180 (the lift models tilt about the axis 90 deg from the gap)."},
+    {"piston_tilt", RD_F_OPTBLOCK, PO(tilt_given), .block = &tilt_block},
     {.key = NULL},
 };
 static const rd_block engine_block = {"PackEngine", "/engine (ringpack): piston kinematics.", 1, 0,
@@ -109,8 +154,9 @@ static const rd_field item_fields[] = {
     {"groove", RD_F_BLOCK, 0, .block = &groove_block},
     {"land", RD_F_BLOCK, 0, .block = &land_block},
     {"gap_angle_deg", RD_F_NUMBER, PO(proto.gap_angle_deg), RD_MIN(-360), RD_MAX(360),
-     .desc = "Where the end gap sits around the bore, deg; recorded (every ring's loads are "
-             "uniform around the bore, so it does not enter)."},
+     .desc = "Where the end gap's middle sits around the bore, deg from its angle 0: turns "
+             "/bore/distortion into the ring's frame; with a piston tilt 0 or 180 (mod 360). "
+             "Otherwise recorded only (a round bore's loads are uniform around it)."},
     {"discharge_coefficient", RD_F_NUMBER, PO(proto.discharge_coefficient), RD_MIN(0), RD_MAX(1),
      .desc = "C_d of the ring's passages (end gap, flanks; the first ring's also for "
              "the top-land entry), -."},
@@ -194,8 +240,24 @@ static const rd_block friction_block = {
     "/physics/friction (ringpack): axial liner friction on every ring; present = modelled.", 1, 0,
     friction_fields};
 
+static const char *const area_names[] = {"fixed", "dynamic", NULL}; /* enum rd_gas_area */
+
+static const rd_field gas_fields[] = {
+    {"active_area", RD_F_CHOICE, PO(pack.active_area), .choices = area_names,
+     .desc = "As lift's /physics/gas/active_area. fixed: full faces (thesis). dynamic: a face "
+             "sealing on a flank sees the mean of the groove-back pressure and its own side's; "
+             "lift-model rings only (auto: rigid without friction; axial is refused)."},
+    {.key = NULL},
+};
+static const rd_block gas_block = {
+    "PackGas",
+    "/physics/gas (ringpack): how the network's pressures load the rings' faces (the pressures "
+    "themselves are computed, never given).",
+    1, 0, gas_fields};
+
 static const rd_field physics_fields[] = {
     {"friction", RD_F_OPTBLOCK, PO(friction_given), .block = &friction_block},
+    {"gas", RD_F_BLOCK, 0, .block = &gas_block},
     {.key = NULL},
 };
 static const rd_block physics_block = {
@@ -237,6 +299,7 @@ static const rd_field scene_fields[] = {
     {"rings", RD_F_ITEMS, 0, .block = &item_block, RD_MIN(1), RD_MAX(RD_RINGPACK_RINGS_MAX),
      .parse = parse_rings, .echo = echo_rings,
      .desc = "1 to 3 rings, top ring first; absent: one thesis ring."},
+    {"bore", RD_F_BLOCK, 0, .block = &bore_block},
     {"cylinder_pressure", RD_F_BLOCK, 0, .block = &cylinder_block},
     {"crankcase_pressure_pa", RD_F_NUMBER, PO(pack.crankcase_pa), RD_MIN(1e3), RD_MAX(1e7),
      .in_opts = 1, .desc = "Crankcase pressure, Pa, ABSOLUTE."},
@@ -252,8 +315,8 @@ static const rd_block scene_block = {
     "between 1 to 3 rings computed from one cylinder pressure by a compressible orifice "
     "network coupled both ways with the rings' axial motion, and the blow-by into the "
     "crankcase. All pressures are ABSOLUTE (the lift analysis' tables are gauge). Reads "
-    "engine, rings, cylinder_pressure, crankcase_pressure_pa, gas_temperature_k, physics "
-    "(friction), output "
+    "engine (with the piston tilt), rings, bore, cylinder_pressure, crankcase_pressure_pa, "
+    "gas_temperature_k, physics (friction, gas), output "
     "and numerics (PackNumerics); not the top-level ring.",
     0, 0, scene_fields};
 
@@ -339,8 +402,38 @@ static void defaults(struct rd_scene *s)
 static void cleanup(void *opts)
 {
     struct pack_opts *o = opts;
-    free(o->table[0].v);
-    free(o->table[1].v);
+    for (int k = 0; k < 2; k++) {
+        free(o->table[k].v);
+        free(o->tilt_table[k].v);
+    }
+}
+
+/* The tilt tables (both, of the same length; the params borrow them) and
+ * the bore, as in lift (rd_an_lift.c). */
+static int tilt_bore_finish(struct pack_opts *o, rd_error *err)
+{
+    rd_engine_params *e = &o->pack.engine;
+    rd_lift_bore *b = &o->pack.bore;
+    e->tilt_points = 0;
+    if (o->tilt_given &&
+        (!o->tilt_table[0].v || !o->tilt_table[1].v || o->tilt_table[1].n != o->tilt_table[0].n))
+        return rd_error_set(err, RD_EINVAL, "/engine/piston_tilt/tilt_deg",
+                            "/engine/piston_tilt needs crank_deg and tilt_deg of the same length "
+                            "(got %d and %d values).",
+                            o->tilt_table[0].n, o->tilt_table[1].n);
+    if (o->tilt_given) {
+        e->tilt_points = o->tilt_table[0].n;
+        e->tilt_crank_deg = o->tilt_table[0].v;
+        e->tilt_deg = o->tilt_table[1].v;
+    }
+    b->diameter = o->bore.bore_diameter;
+    b->n_distortion = o->bore.n_distortion;
+    for (int k = 0; k < o->bore.n_distortion && k < RD_LIFT_DISTORTION_MAX; k++) {
+        b->distortion[k].order = o->bore.distortion[k].order;
+        b->distortion[k].amplitude = o->bore.distortion[k].amplitude;
+        b->distortion[k].phase_deg = o->bore.distortion[k].phase_deg;
+    }
+    return RD_OK;
 }
 
 /* A table or the synthetic trace, never both; the table's two columns alike. */
@@ -404,6 +497,7 @@ static int finish(struct rd_scene *s, rd_error *err)
     o->pack.max_steps = o->max_steps;
     o->pack.friction.model = o->friction_given ? o->friction_model + 1 : RD_FRICTION_NONE;
     int rc = cylinder_finish(o, err);
+    rc = rc ? rc : tilt_bore_finish(o, err);
     rc = rc ? rc : rd_ringpack_validate(&o->pack, err);
     return rc ? rc : solver_ranges(o, err);
 }

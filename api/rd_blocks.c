@@ -92,6 +92,22 @@ const rd_block rd_block_discretization_lift = {
     "LiftDiscretization", "Discretization of a lift scene: the split ring in its groove.", 0, 0,
     lift_discretization};
 
+/* lift's /bore/distortion items, also the ring pack's (rd_an_lift.c). */
+static const rd_field distortion_fields[] = {
+    {"order", RD_F_INTEGER, offsetof(rd_distortion, order), RD_MIN(1), RD_MAX(64), .required = 1,
+     .desc = "Fourier order k; a JSON integer."},
+    {"amplitude", RD_F_NUMBER, offsetof(rd_distortion, amplitude), .required = 1,
+     .desc = "Radius change A_k, m; the sum of |A_k| at most 1 % of the ring diameter, and "
+             "sum |A_k| (k^2 + 2) at most the bore radius (a convex bore, as in contact)."},
+    {"phase_deg", RD_F_NUMBER, offsetof(rd_distortion, phase_deg), RD_MIN(-360), RD_MAX(360),
+     .desc = "Phase phi_k, deg: in lift from the ring's gap middle; in ringpack from the bore's "
+             "angle 0 (each ring's gap sits at its gap_angle_deg)."},
+    {.key = NULL},
+};
+const rd_block rd_block_lift_distortion = {"LiftBoreDistortion",
+                                           "One Fourier term of the bore distortion (lift).", 0, 1,
+                                           distortion_fields};
+
 #define ST(member) offsetof(struct rd_static_scene, member)
 
 /* The Newton fields pretension and contact share; contact adds its accuracy target. */

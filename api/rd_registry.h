@@ -81,6 +81,9 @@ extern const rd_block rd_block_discretization_static; /* 4..2000, split ring */
 extern const rd_block rd_block_discretization_lift;   /* 4..1000, split ring */
 extern const rd_block rd_block_static_numerics;       /* Newton, in struct rd_static_scene */
 extern const rd_block rd_block_contact_numerics;      /* the same + the accuracy target */
+/* One Fourier term of a lift-model bore's distortion (an item of an
+ * RD_F_DISTORTION field): lift's /bore/distortion and the ring pack's. */
+extern const rd_block rd_block_lift_distortion;
 
 /* The options of pretension and contact (their opts): the static numerics
  * block is shared, so both keep it at the same place. */

@@ -208,9 +208,10 @@ int rd_ringpack_validate(const rd_ringpack_params *p, rd_error *err)
     rc = rc ? rc : rd_error_range(p->atol, 1e-16, 1e-5, "/numerics/atol", "m", err);
     if (rc)
         return rc;
-    if (p->cylinder_kind == RD_CYLINDER_TABLE)
-        return validate_table(p, err);
-    return rd_gasflow_synthetic_validate(&p->synthetic, "/cylinder_pressure/synthetic", err);
+    rc = p->cylinder_kind == RD_CYLINDER_TABLE
+             ? validate_table(p, err)
+             : rd_gasflow_synthetic_validate(&p->synthetic, "/cylinder_pressure/synthetic", err);
+    return rc ? rc : rd_packring_validate(p, err); /* bore, tilt, active areas */
 }
 
 /* ------------------------------------------------------------------ model */
@@ -443,8 +444,10 @@ void rd_ringpack_choose(rd_ringpack_model *m, char (*why)[240])
             k = RD_RINGPACK_AXIAL;
         } else if (k == RD_LIFT_MODEL_AUTO) {
             int fric = m->p->friction.model != RD_FRICTION_NONE;
-            snprintf(w, sizeof w, "%s", fric ? RIGID_WHY : AXIAL_WHY);
-            k = fric ? RD_LIFT_MODEL_RIGID : RD_RINGPACK_AXIAL;
+            const char *need = NULL; /* a distorted bore, a tilt, dynamic areas */
+            k = rd_packring_auto(m->p, &need);
+            snprintf(w, sizeof w, "%s", need ? need : fric ? RIGID_WHY : AXIAL_WHY);
+            k = need ? k : fric ? RD_LIFT_MODEL_RIGID : RD_RINGPACK_AXIAL;
         } else {
             char at[32];
             if (r->model != RD_LIFT_MODEL_AUTO)

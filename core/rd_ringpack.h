@@ -94,7 +94,8 @@ typedef struct rd_ringpack_ring {
     rd_groove_params groove;
     double land_height;           /* the land above the ring, m */
     double land_clearance;        /* its piston-to-liner radial clearance, m */
-    double gap_angle_deg;         /* where the gap sits (recorded; the rigid ring ignores it) */
+    double gap_angle_deg;         /* where the gap sits around the bore, deg: turns the bore's
+                                   * distortion into the ring's frame; with a tilt, 0 or 180 */
     double discharge_coefficient; /* C_d of its passages, 0..1 */
     int pinned;                   /* enum rd_ringpack_pin */
     /* The ring's model (rd_ringpack_lift.c): enum rd_lift_model_kind or
@@ -122,6 +123,16 @@ typedef struct rd_ringpack_params {
     int estimate_error;          /* 1: second run at rtol/10, atol/10 */
     rd_friction_params friction; /* model NONE (default) or COULOMB */
     int model;                   /* every ring's model unless its own says (rd_ringpack_ring) */
+    /* Carried to the lift-model rings (rd_ringpack_lift.c): the bore every
+     * ring runs in (the lift analysis' rd_lift_bore; distortion phases from
+     * the bore's angle 0, each ring's taken from its gap at gap_angle_deg),
+     * the piston tilt (engine.piston_tilt_deg and the table, about the pin
+     * axis at 90 deg from the bore's angle 0, positive raising the groove at
+     * angle 0) and the active areas (enum rd_gas_area).  A distorted bore or a
+     * tilt needs a flexible ring (auto: full), dynamic areas a lift model
+     * (auto: rigid); the axial ring takes none of them. */
+    rd_lift_bore bore;
+    int active_area;
     /* Test hook: the ring faces' pressures from these gauge tables (above,
      * below; behind for friction) instead of the network's.  NULL normally. */
     const rd_gas_params *face_tables;

@@ -32,6 +32,20 @@
  *
  * Events: the lift analysis' definitions and state machine
  * (rd_lift_track_roots, its five roots on the mean lift and the load).
+ *
+ * The scene's bore, tilt and active areas (rd_ringpack.h), in the ring's
+ * frame (angles from its gap middle, as the lift analysis'):
+ *  - the bore r_b = D/2 + sum A_k cos(k (theta_b - phi_k)), theta_b from the
+ *    bore's angle 0; ring i's gap middle at g_i = gap_angle_deg, so in its
+ *    frame theta = theta_b - g_i and phi_k' = phi_k - g_i (mod 360, exact: k
+ *    is whole).  A distorted bore starts the ring from its static
+ *    equilibrium in it (rd_lift_bore_static), as the lift analysis does;
+ *  - the tilt beta about the pin axis at 90 deg from angle 0: the lift
+ *    models tilt about the axis at 90 deg from the gap, so a ring's gap must
+ *    sit on the tilt plane, g_i = 0 (beta' = beta) or 180 (beta' = -beta,
+ *    its gap's side goes down); other angles are refused (rd_packring_validate);
+ *  - active_area: the lift model's own (fixed, or dynamic: a face sealing
+ *    on a flank sees the mean of the groove's pressure and its own side's).
  */
 #include <math.h>
 #include <stdlib.h>
@@ -48,6 +62,8 @@ struct rd_packring {
     rd_ring *ring;
     rd_lift_params lp;
     double tab_deg[2], tab_top[2], tab_zero[2]; /* the stiffness rule's table */
+    double *tilt;                               /* the tilt table negated (gap at 180), owned */
+    double *y0;                                 /* a distorted bore's start (12 n), owned */
     rd_lift_model m;
     rd_lift_form form;
     double gas[3];
@@ -66,13 +82,50 @@ struct rd_packring {
     N_Vector x, b, t1, t2, t3; /* views (x, b) and the Jacobian's scratch */
 };
 
+/* x mod 360 into (-180, 180]. */
+static double wrap_deg(double x)
+{
+    double r = fmod(x, 360.0);
+    return r > 180.0 ? r - 360.0 : r <= -180.0 ? r + 360.0 : r;
+}
+
+/* 1 if ring i's gap sits on the tilt plane's far side (180 deg). */
+static int gap_opposite(const rd_ringpack_ring *r)
+{
+    return fabs(fabs(wrap_deg(r->gap_angle_deg)) - 180.0) < 1e-6;
+}
+
+/* The scene's bore and tilt as ring i sees them (file comment) into lp;
+ * the negated tilt table, when needed, into *neg (owned by the caller). */
+static int ring_frame(const rd_ringpack_params *p, int i, rd_lift_params *lp, double **neg)
+{
+    const rd_ringpack_ring *r = &p->rings[i];
+    lp->engine = p->engine;
+    lp->bore = p->bore;
+    for (int k = 0; k < lp->bore.n_distortion && k < RD_LIFT_DISTORTION_MAX; k++)
+        lp->bore.distortion[k].phase_deg =
+            wrap_deg(p->bore.distortion[k].phase_deg - r->gap_angle_deg);
+    lp->gas.active_area = p->active_area;
+    if (!rd_lift_tilted(&p->engine) || !gap_opposite(r))
+        return 0;
+    lp->engine.piston_tilt_deg = -p->engine.piston_tilt_deg;
+    int n = p->engine.tilt_points;
+    if (n <= 0 || !neg)
+        return 0;
+    if (!(*neg = malloc((size_t)n * sizeof **neg)))
+        return -1;
+    for (int k = 0; k < n; k++)
+        (*neg)[k] = -p->engine.tilt_deg[k];
+    lp->engine.tilt_deg = *neg;
+    return 0;
+}
+
 /* The lift parameters of pack ring i. */
-static void lift_params(const rd_ringpack_model *m, int i, rd_packring *L)
+static int lift_params(const rd_ringpack_model *m, int i, rd_packring *L)
 {
     const rd_ringpack_params *p = m->p;
     rd_lift_params *lp = &L->lp;
     rd_lift_params_default(lp);
-    lp->engine = p->engine;
     lp->groove = p->rings[i].groove;
     lp->gravity = p->gravity;
     lp->friction = p->friction;
@@ -89,8 +142,8 @@ static void lift_params(const rd_ringpack_model *m, int i, rd_packring *L)
     L->tab_deg[1] = 720.0;
     L->tab_top[0] = L->tab_top[1] = peak;
     L->tab_zero[0] = L->tab_zero[1] = 0.0;
-    lp->gas =
-        (rd_gas_params){2, L->tab_deg, L->tab_top, L->tab_zero, L->tab_zero, RD_GAS_AREA_FIXED};
+    lp->gas = (rd_gas_params){2, L->tab_deg, L->tab_top, L->tab_zero, L->tab_zero, p->active_area};
+    return ring_frame(p, i, lp, &L->tilt);
 }
 
 int rd_packring_open(rd_ringpack_model *m, int i, SUNContext ctx, int *N, int *modes_out, double *k,
@@ -101,7 +154,8 @@ int rd_packring_open(rd_ringpack_model *m, int i, SUNContext ctx, int *N, int *m
     if (!L)
         return rd_error_set(err, RD_ENOMEM, "", "Out of memory for ring %d's lift model.", i + 1);
     m->lr[i] = L;
-    lift_params(m, i, L);
+    if (lift_params(m, i, L))
+        return rd_error_set(err, RD_ENOMEM, "", "Out of memory for ring %d's lift model.", i + 1);
     int n = pr->segments;
     int modes = pr->modes ? pr->modes : (12 < 6 * n - 6 ? 12 : 6 * n - 6);
     int rc = rd_lift_validate(&L->lp, &pr->ring, n, err);
@@ -148,6 +202,8 @@ void rd_packring_close(rd_packring *L)
             N_VDestroy(v[k]);
     free(L->seg);
     free(L->zero);
+    free(L->tilt);
+    free(L->y0);
     free(L->events.events);
     free(L);
 }
@@ -159,7 +215,18 @@ rd_lift_form *rd_packring_form(rd_packring *L)
 
 int rd_packring_initial(rd_packring *L, double atol, double *y, double *ab, rd_error *err)
 {
-    return L->form.initial(L->form.user, NULL, atol, y, ab, err);
+    rd_lift_setup su = {0};
+    const rd_ring_params *rp = rd_ring_get_params(L->ring);
+    if (rd_lift_bore_distorted(&L->lp.bore, rp->diameter)) { /* its static equilibrium there */
+        int rc;
+        free(L->y0);
+        if (!(L->y0 = malloc(12 * (size_t)L->m.n * sizeof *L->y0)))
+            return rd_error_set(err, RD_ENOMEM, "", "Out of memory for the bore start.");
+        if ((rc = rd_lift_bore_static(L->ring, &L->lp, L->y0, err)))
+            return rc;
+        su.y0 = L->y0;
+    }
+    return L->form.initial(L->form.user, &su, atol, y, ab, err);
 }
 
 void rd_packring_gas(rd_packring *L, const double g[3])
@@ -267,4 +334,107 @@ int rd_packring_solver_solve(rd_packring *L, double *x, double *b)
     N_VSetArrayPointer(x, L->x);
     N_VSetArrayPointer(b, L->b);
     return SUNLinSolSolve(L->LS, L->S, L->x, L->b, 0.0);
+}
+
+/* ---- what the scene asks of a ring's model ---- */
+
+#define BORE_WHY                                                                                   \
+    "auto: the bore is distorted, so the contact pressure and the friction vary around the ring, " \
+    "which neither the axial nor the rigid ring can represent: the full ring (as the lift "        \
+    "analysis' auto)"
+#define TILT_WHY                                                                                   \
+    "auto: the piston tilt makes the flank gap vary around the ring, which neither the axial nor " \
+    "the rigid ring can represent: the full ring (as the lift analysis' auto)"
+#define DYNAMIC_WHY                                                                              \
+    "auto: dynamic active areas weight each face's pressure by how far it seals on its flank, "  \
+    "which the axial ring's hard stops do not resolve; the rigid ring's penalty flanks do, and " \
+    "it "                                                                                        \
+    "is exact for an axisymmetric pack"
+
+static int needs_flexible(const rd_ringpack_params *p)
+{
+    return rd_lift_bore_distorted(&p->bore, p->rings[0].ring.diameter) ||
+           rd_lift_tilted(&p->engine);
+}
+
+int rd_packring_auto(const rd_ringpack_params *p, const char **why)
+{
+    if (rd_lift_bore_distorted(&p->bore, p->rings[0].ring.diameter)) {
+        *why = BORE_WHY;
+        return RD_LIFT_MODEL_FULL;
+    }
+    if (rd_lift_tilted(&p->engine)) {
+        *why = TILT_WHY;
+        return RD_LIFT_MODEL_FULL;
+    }
+    if (p->active_area == RD_GAS_AREA_DYNAMIC && p->friction.model == RD_FRICTION_NONE) {
+        *why = DYNAMIC_WHY;
+        return RD_LIFT_MODEL_RIGID;
+    }
+    return -1;
+}
+
+/* Ring i's model, asked for (not auto), against what the scene needs. */
+static int validate_model(const rd_ringpack_params *p, int i, rd_error *err)
+{
+    const rd_ringpack_ring *r = &p->rings[i];
+    int k = r->model != RD_LIFT_MODEL_AUTO ? r->model : p->model;
+    char at[32];
+    if (r->model != RD_LIFT_MODEL_AUTO)
+        snprintf(at, sizeof at, "/rings/%d/model", i % 10);
+    else
+        snprintf(at, sizeof at, "/numerics/model");
+    const char *name = rd_ringpack_model_name(k);
+    if (needs_flexible(p) && (k == RD_RINGPACK_AXIAL || k == RD_LIFT_MODEL_RIGID)) {
+        int bore = rd_lift_bore_distorted(&p->bore, r->ring.diameter);
+        return rd_error_set(err, RD_EINVAL, at,
+                            "%s = %s cannot represent %s: the %s varies around the ring; use "
+                            "auto, modal or full.",
+                            at, name,
+                            bore ? "a distorted bore (/bore/distortion, /bore/diameter)"
+                                 : "a tilted piston (/engine/piston_tilt_deg, /engine/piston_tilt)",
+                            bore ? "contact pressure" : "flank gap");
+    }
+    if (p->active_area == RD_GAS_AREA_DYNAMIC && k == RD_RINGPACK_AXIAL)
+        return rd_error_set(err, RD_EINVAL, at,
+                            "%s = axial cannot carry /physics/gas/active_area = dynamic: its hard "
+                            "flank stops have no sealing contact to weight the faces' pressures; "
+                            "use auto, rigid, modal or full.",
+                            at);
+    if (rd_lift_tilted(&p->engine) && fabs(wrap_deg(r->gap_angle_deg)) > 1e-6 && !gap_opposite(r)) {
+        snprintf(at, sizeof at, "/rings/%d/gap_angle_deg", i % 10);
+        return rd_error_set(err, RD_EINVAL, at,
+                            "%s = %g deg with a tilted piston: the lift models tilt the groove "
+                            "about the axis 90 deg from the ring's gap, so the gap must sit on "
+                            "the tilt plane: 0 or 180 deg (or a multiple of 360 from them).",
+                            at, r->gap_angle_deg);
+    }
+    return RD_OK;
+}
+
+int rd_packring_validate(const rd_ringpack_params *p, rd_error *err)
+{
+    if (p->active_area != RD_GAS_AREA_FIXED && p->active_area != RD_GAS_AREA_DYNAMIC)
+        return rd_error_set(err, RD_EINVAL, "/physics/gas/active_area",
+                            "/physics/gas/active_area = %d is unknown: use fixed or dynamic.",
+                            p->active_area);
+    for (int i = 0; i < p->n_rings; i++) {
+        const rd_ringpack_ring *r = &p->rings[i];
+        if (r->pinned != RD_PIN_FREE)
+            continue; /* held on its flank: no model */
+        /* the lift analysis' checks of the tilt (/engine/...) and the bore
+         * (/bore/...) on this ring, as the scene gives them */
+        rd_lift_params lp;
+        rd_lift_params_default(&lp);
+        lp.engine = p->engine;
+        lp.bore = p->bore;
+        lp.groove = r->groove;
+        lp.model = RD_LIFT_MODEL_FULL;
+        int rc = rd_lift_validate(&lp, &r->ring, r->segments, err);
+        if (!rc)
+            rc = validate_model(p, i, err);
+        if (rc)
+            return rc;
+    }
+    return RD_OK;
 }

@@ -85,6 +85,16 @@ void rd_ringpack_describe(const rd_ringpack_model *m, rd_ringpack_result *r);
 
 /* ---- rings on the lift models (rd_ringpack_lift.c) ---- */
 
+/* What the scene needs of auto's choice: the full ring for a distorted
+ * bore or a tilt, the rigid ring for dynamic areas without friction (with
+ * the reason in *why, a static string); -1 when it needs nothing. */
+int rd_packring_auto(const rd_ringpack_params *p, const char **why);
+/* The bore, tilt and active areas against every free ring's model (a
+ * distorted bore or a tilt refuse axial and rigid, dynamic areas axial; a
+ * tilt needs gaps at 0 or 180 deg), with the lift analysis' checks of the
+ * tilt and bore fields. */
+int rd_packring_validate(const rd_ringpack_params *p, rd_error *err);
+
 /* Opens ring i's lift model of kind m->kind[i] (its ring of `segments`, its
  * lift parameters from the pack's) with state vectors in ctx; its state
  * count into *N, a modal model's elastic modes into *modes, its contact

@@ -124,10 +124,11 @@ static void network_along(rd_ringpack_newton *nw, int i, const double *w, double
         out[r] = Gu[r] * du + Gl[r] * dl;
 }
 
-/* d f_i / d p_k of ring i.  The forces are affine in the face pressures
- * with coefficients of the geometry alone (fixed active areas, the only
- * ones the pack gives its rings: rd_ringpack_lift.c), so the quotients are
- * computed once, at the first set-up, against CVODE's f(t, y). */
+/* d f_i / d p_k of ring i.  The forces are affine in the face pressures;
+ * with fixed active areas their coefficients are of the geometry alone, so
+ * the quotients are computed once, at the first set-up, against CVODE's
+ * f(t, y); dynamic areas weight them by the faces' sealing, a function of
+ * the state: then at every set-up. */
 static int pressure_columns(rd_ringpack_newton *nw, int i, const double *g)
 {
     pring *pr = &nw->ring[i];
@@ -162,7 +163,8 @@ static int ring_block(rd_ringpack_newton *nw, int i, const double *pv)
     rd_packring_gas(pr->L, g);
     if ((rc = rd_packring_solver_setup(pr->L, nw->t, (double *)nw->y + pr->off, nw->gamma)))
         return rc;
-    if (!pr->have_D && (rc = pressure_columns(nw, i, g)))
+    if ((!pr->have_D || nw->m->p->active_area == RD_GAS_AREA_DYNAMIC) &&
+        (rc = pressure_columns(nw, i, g)))
         return rc;
     for (int c = 0; c < pr->np; c++) {
         for (int k = 0; k < pr->N; k++)

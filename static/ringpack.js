@@ -1,7 +1,8 @@
 // The ring pack analysis: renders a ringpack `result` (issue 15) as the
 // absolute gas pressures of every volume against crank angle (the cylinder
 // first, the crankcase last), each ring's lift, the mass flow into the
-// crankcase (the blow-by), and tables of the balance and the solver's cost.
+// crankcase (the blow-by), and tables of each ring's model (name, DOF, why),
+// the balance and the solver's cost.
 // A pure function of the result: optional fields may be missing.
 
 import { svg, scale, ticks, axes, pathD, stepTicks, legend } from './svg.js';
@@ -35,6 +36,7 @@ export const ringpack = {
       h('p', { id: 'rp-summary' }, `Blow-by ${isNum(b.l_per_min) ? sig(b.l_per_min) : '—'} L/min (${isNum(b.kg_per_cycle) ? sig(b.kg_per_cycle) : '—'} kg per cycle, at 1.01325 bar and 20 °C); back into the cylinder ${isNum(b.reverse_kg_per_cycle) ? sig(b.reverse_kg_per_cycle) : '—'} kg per cycle; last cycle against the one before: ${isNum(result.periodicity) ? sig(result.periodicity, 2) : '—'}.`),
       resultLinks(job, 'ringpack', 'Ring pack table (CSV)'),
       h('div', { id: 'rp-plots' }, figs),
+      h('div', { class: 'table-wrap' }, modelTable(result)),
       h('div', { class: 'table-wrap' }, costTable(result)),
     );
   },
@@ -83,6 +85,21 @@ function blowbyPlot(crank, result) {
     `Blow-by mass flow against crank angle, up to ${sig(Math.max(...total) * 1e3)} g/s.`);
 }
 
+// Each ring's model from numerics.model [{name, dof, modes, why}]: which
+// equations ran (auto's choice or the one asked for) and why.
+function modelTable(result) {
+  const models = Array.isArray(result.numerics?.model) ? result.numerics.model : [];
+  if (!models.length) return null;
+  const dof = (m) => (isNum(m.dof) ? `${m.dof}${m.modes > 0 ? ` (${m.modes} modes)` : ''}` : '—');
+  return h('table', { class: 'data', id: 'rp-models' },
+    h('caption', {}, 'Ring models'),
+    h('thead', {}, h('tr', {}, h('th', { scope: 'col' }, 'Ring'), h('th', { scope: 'col' }, 'Model'),
+      h('th', { scope: 'col' }, 'DOF'), h('th', { scope: 'col' }, 'Why'))),
+    h('tbody', {}, models.map((m, i) => h('tr', { id: `rp-model-${i + 1}` },
+      h('th', { scope: 'row' }, String(i + 1)), h('td', {}, m.name ?? '—'), h('td', { class: 'num' }, dof(m)),
+      h('td', { class: 'why' }, m.why ?? '')))));
+}
+
 function costTable(result) {
   const n = result.numerics || {};
   const b = result.blowby || {};
@@ -91,7 +108,6 @@ function costTable(result) {
     rows: [
       ['Into the top land per cycle', isNum(b.inflow_kg_per_cycle) ? `${sig(b.inflow_kg_per_cycle)} kg` : '—'],
       ['Mass balance residual (of the throughput)', isNum(b.mass_balance_residual) ? sig(b.mass_balance_residual, 2) : '—'],
-      ['Model', n.model ?? '—'],
       ['Cycles', n.cycles ?? '—'],
       ['CVODE steps', n.steps ?? '—'],
       ['Restarts at flank changes', n.restarts ?? '—'],

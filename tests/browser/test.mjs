@@ -1462,6 +1462,65 @@ test('ring pack tab: a live two-cycle run draws every volume\'s pressure, the li
   await shot('ringdyn-ringpack.png', { fullPage: true });
 });
 
+for (const width of [1280, 390]) {
+  test(`${width} px: ring pack form: the piston tilt, active areas and ring model reach the scene; each ring's model (name, DOF, why) is shown; a refused model names its field`, { timeout: 180000 }, async () => {
+    const skip = await unavailable('ringpack');
+    if (skip) return;
+    await page.setViewportSize({ width, height: 844 });
+    try {
+      await page.getByRole('button', { name: 'Reset to defaults' }).click();
+      await selectTab('ringpack');
+      // the defaults come from the server's schema
+      assert.equal(await page.inputValue('#f-rp-area'), 'fixed');
+      assert.equal(await page.inputValue('#f-rp-model'), 'auto');
+      assert.equal(Number(await page.inputValue('#f-rp-tilt')), 0);
+      await page.fill('#f-rp-cycles', '2');
+      // dynamic active areas: auto runs the lift analysis' rigid ring and says why
+      await page.selectOption('#f-rp-area', 'dynamic');
+      await runAnalysis('Run ringpack analysis');
+      await page.waitForSelector('#rp-models');
+      let r = (await shownJob()).result;
+      assert.equal(r.scene.physics.gas.active_area, 'dynamic');
+      assert.equal(r.scene.numerics.model, 'auto');
+      const rows = await page.$$eval('#rp-models tbody tr', (trs) => trs.map((tr) => [...tr.children].map((c) => c.textContent)));
+      assert.equal(rows.length, r.rings.length);
+      r.numerics.model.forEach((m, i) => {
+        assert.deepEqual(rows[i].slice(0, 2), [String(i + 1), m.name]);
+        assert.ok(rows[i][2].startsWith(String(m.dof)), `DOF ${rows[i][2]} vs ${m.dof}`);
+        assert.equal(rows[i][3], m.why);
+      });
+      assert.equal(rows[0][1], 'rigid');
+      assert.match(rows[0][3], /dynamic active areas/);
+      if (width === 390) {
+        const overflow = await page.evaluate(() => document.documentElement.scrollWidth - window.innerWidth);
+        assert.ok(overflow <= 0, `no sideways scrolling (${overflow} px)`);
+        await settled();
+        assert.deepEqual(await smallText(), [], 'ring pack models');
+      }
+      await shot(`ringdyn-ringpack-models-${width}.png`, { fullPage: true });
+      // a tilt with the axial ring asked for: the server's 422 names /numerics/model, which is marked
+      await page.fill('#f-rp-tilt', '0.1');
+      await page.selectOption('#f-rp-model', 'axial');
+      await runAnalysis('Run ringpack analysis');
+      await page.waitForSelector('#error:not([hidden])');
+      const text = await page.textContent('#error');
+      assert.match(text, /\/numerics\/model = axial cannot represent a tilted piston/);
+      assert.equal(await page.getAttribute('#f-rp-model', 'aria-invalid'), 'true');
+      // auto with the tilt: the full ring
+      await page.selectOption('#f-rp-model', 'auto');
+      await page.selectOption('#f-rp-area', 'fixed');
+      await runAnalysis('Run ringpack analysis');
+      await page.waitForSelector('#rp-models');
+      r = (await shownJob()).result;
+      assert.equal(r.scene.engine.piston_tilt_deg, 0.1);
+      assert.equal(await page.textContent('#rp-model-1 td'), 'full');
+      assert.match(await page.textContent('#rp-model-1 td.why'), /piston tilt/);
+    } finally {
+      await page.setViewportSize({ width: 1280, height: 800 });
+    }
+  });
+}
+
 test('no console errors or uncaught exceptions', () => {
   assert.deepEqual(pageErrors, []);
   assert.deepEqual(consoleErrors.filter((t) => !expectedConsole(t)), []);
