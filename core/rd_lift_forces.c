@@ -513,3 +513,21 @@ void rd_lift_forces_segment(rd_lift_model *c, double t, int i, const double *q, 
     c->friction = ftot;
     c->fz_ext = fz + ftot;
 }
+
+void rd_lift_loads_segment(rd_lift_model *c, double t, int i, const double *q, const double *v,
+                           double *f)
+{
+    force_env env;
+    force_env_at(c, t, &env);
+    double ftot = 0.0, fz = 0.0;
+    seg_view s = {.i = i, .q = q, .v = v, .f = f};
+    add_inertia_gravity(c, &env, &s);
+    fz += s.f[2];
+    if (env.dynamic) /* the gas element's sealing weights */
+        add_flanks(c, &env, &s);
+    add_bore(c, &env, &s, &ftot);
+    if (env.gas)
+        fz += add_gas(c, &env, &s);
+    c->friction = ftot;
+    c->fz_ext = fz + ftot;
+}

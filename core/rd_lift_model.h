@@ -163,6 +163,12 @@ void rd_lift_loads(rd_lift_model *m, double t, const double *y);
  * friction and axial load without the flanks into m->friction, m->fz_ext. */
 void rd_lift_forces_segment(rd_lift_model *m, double t, int i, const double *q, const double *v,
                             double *f, double *dq, double *dv);
+/* rd_lift_loads for one segment i at state (q, v): m->friction and
+ * m->fz_ext as rd_lift_forces_segment gives them (the same elements in the
+ * same order, the flank and groove-back contacts left out as there); f (6)
+ * is scratch, left partial. */
+void rd_lift_loads_segment(rd_lift_model *m, double t, int i, const double *q, const double *v,
+                           double *f);
 
 /* The CVODE callbacks of the model (user data: the rd_lift_model).
  * rhs: ydot = (v, M^-1 (f - K q)) per segment; 1 (recoverable) if not

@@ -228,16 +228,21 @@ static void rigid_impact(void *user, double *y, int upper)
     }
 }
 
-/* Every segment's lift is segment 0's: the mean over its flank points. */
+/* Every segment's lift is segment 0's: the mean over its flank points.
+ * Only q's axial entries are needed: q_k = sum_a phi_a,k x_a as in
+ * segment_state (the same sums, so the same values). */
 static double rigid_lift(void *user, const double *y, double *seg)
 {
     rigid *r = user;
     const rd_lift_model *m = r->m;
-    segment_state(r, y);
+    double q[5] = {0.0};
+    for (int k = 2; k < 5; k++)
+        for (int a = 0; a < NX; a++)
+            q[k] += r->phi[a][k] * y[a];
     double s = 0.0;
     for (int k = 0; k < RD_LIFT_FLANK_POINTS; k++) {
         const double *d = m->fl_d + 2 * k;
-        s += r->q[2] + r->q[3] * d[1] - r->q[4] * d[0];
+        s += q[2] + q[3] * d[1] - q[4] * d[0];
     }
     s /= RD_LIFT_FLANK_POINTS;
     if (seg)
@@ -250,7 +255,7 @@ static void rigid_loads(void *user, double t, const double *y)
 {
     rigid *r = user;
     segment_state(r, y);
-    rd_lift_forces_segment(r->m, t, 0, r->q, r->v, r->f, NULL, NULL);
+    rd_lift_loads_segment(r->m, t, 0, r->q, r->v, r->f);
     r->m->friction *= r->m->n;
     r->m->fz_ext *= r->m->n;
 }

@@ -51,7 +51,7 @@ struct rd_packring {
     rd_lift_model m;
     rd_lift_form form;
     double gas[3];
-    double *seg, *seg_w, *seg_0; /* n per-segment lifts (at y, along w, at 0) */
+    double *seg, *seg_w, *seg_0; /* n per-segment lifts (at y, along w, at 0: once) */
     double *zero;                /* the zero state */
     N_Vector ys, yd;             /* views on the ring's part of the pack's vectors */
     double circ;                 /* pi d */
@@ -123,6 +123,7 @@ int rd_packring_open(rd_ringpack_model *m, int i, SUNContext ctx, int *N, int *m
     L->yd = N_VMake_Serial(L->form.N, NULL, ctx);
     if (!L->seg || !L->zero || !L->ys || !L->yd)
         return rd_error_set(err, RD_ENOMEM, "", "Out of memory for ring %d's lift model.", i + 1);
+    L->form.lift(L->form.user, L->zero, L->seg_0);
     L->track = (rd_lift_flank_track){RD_FLANK_LOWER, NAN};
     *N = (int)L->form.N;
     *modes_out = modes;
@@ -174,13 +175,20 @@ int rd_packring_rhs(rd_packring *L, double t, double *y, double *yd)
     return L->form.rhs(t, L->ys, L->yd, L->form.user);
 }
 
+/* fmin(fmax(x, 0), a) without the library calls (a step of every
+ * right-hand side and root function; NaN gives 0 as there). */
+static double clamp(double x, double a)
+{
+    return x > 0.0 ? (x < a ? x : a) : 0.0;
+}
+
 double rd_packring_areas(rd_packring *L, const double *y, double *up, double *lo)
 {
     double mean = L->form.lift(L->form.user, y, L->seg), a = L->m.ca, su = 0.0, sl = 0.0;
     int n = L->m.n;
     for (int j = 0; j < n; j++) {
-        su += fmin(fmax(a - L->seg[j], 0.0), a);
-        sl += fmin(fmax(L->seg[j], 0.0), a);
+        su += clamp(a - L->seg[j], a);
+        sl += clamp(L->seg[j], a);
     }
     *up = L->circ * su / n;
     *lo = L->circ * sl / n;
@@ -193,8 +201,7 @@ void rd_packring_area_slope(rd_packring *L, const double *y, const double *w, do
     double a = L->m.ca, su = 0.0, sl = 0.0;
     int n = L->m.n;
     L->form.lift(L->form.user, y, L->seg);
-    L->form.lift(L->form.user, w, L->seg_w);
-    L->form.lift(L->form.user, L->zero, L->seg_0);
+    L->form.lift(L->form.user, w, L->seg_w); /* seg_0: the zero state's, at open */
     for (int j = 0; j < n; j++) {
         double open = L->seg[j] > 0.0 && L->seg[j] < a ? 1.0 : 0.0;
         double dL = L->seg_w[j] - L->seg_0[j];
