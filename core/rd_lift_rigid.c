@@ -447,6 +447,7 @@ int rd_lift_rigid_open(rd_lift_model *m, rd_lift_form *form, rd_error *err)
                            .blocks = rigid_blocks,
                            .impact = rigid_impact,
                            .lift = rigid_lift,
+                           .uniform = 1,
                            .loads = rigid_loads,
                            .expand = rigid_expand,
                            .initial = rigid_initial,

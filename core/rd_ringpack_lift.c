@@ -182,13 +182,31 @@ static double clamp(double x, double a)
     return x > 0.0 ? (x < a ? x : a) : 0.0;
 }
 
+/* The form's per-segment lifts at y into seg and their mean; a form whose
+ * segments all lift alike (form.uniform: the rigid ring) gives the mean
+ * only, and the loops below add that one value n times: the same sums as
+ * over n equal entries, so the same areas to the last bit, without n
+ * entries to fill and read at every right-hand side. */
+static double lifts(rd_packring *L, const double *y, double *seg)
+{
+    return L->form.lift(L->form.user, y, L->form.uniform ? NULL : seg);
+}
+
 double rd_packring_areas(rd_packring *L, const double *y, double *up, double *lo)
 {
-    double mean = L->form.lift(L->form.user, y, L->seg), a = L->m.ca, su = 0.0, sl = 0.0;
+    double mean = lifts(L, y, L->seg), a = L->m.ca, su = 0.0, sl = 0.0;
     int n = L->m.n;
-    for (int j = 0; j < n; j++) {
-        su += clamp(a - L->seg[j], a);
-        sl += clamp(L->seg[j], a);
+    if (L->form.uniform) {
+        double cu = clamp(a - mean, a), cl = clamp(mean, a);
+        for (int j = 0; j < n; j++) {
+            su += cu;
+            sl += cl;
+        }
+    } else {
+        for (int j = 0; j < n; j++) {
+            su += clamp(a - L->seg[j], a);
+            sl += clamp(L->seg[j], a);
+        }
     }
     *up = L->circ * su / n;
     *lo = L->circ * sl / n;
@@ -199,12 +217,11 @@ void rd_packring_area_slope(rd_packring *L, const double *y, const double *w, do
                             double *dl)
 {
     double a = L->m.ca, su = 0.0, sl = 0.0;
-    int n = L->m.n;
-    L->form.lift(L->form.user, y, L->seg);
-    L->form.lift(L->form.user, w, L->seg_w); /* seg_0: the zero state's, at open */
+    int n = L->m.n, u = L->form.uniform;
+    double L_y = lifts(L, y, L->seg), L_w = lifts(L, w, L->seg_w); /* seg_0: at open */
     for (int j = 0; j < n; j++) {
-        double open = L->seg[j] > 0.0 && L->seg[j] < a ? 1.0 : 0.0;
-        double dL = L->seg_w[j] - L->seg_0[j];
+        double s = u ? L_y : L->seg[j], open = s > 0.0 && s < a ? 1.0 : 0.0;
+        double dL = (u ? L_w : L->seg_w[j]) - L->seg_0[j];
         su -= open * dL;
         sl += open * dL;
     }

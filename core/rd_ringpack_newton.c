@@ -79,23 +79,26 @@ struct rd_ringpack_newton {
     double xa[NA_MAX];
     sunindextype piv[NA_MAX];
     int info;
-    double *fb1, *J, *G;  /* N0; J: N0 x N0; G: R x 2 x N0 */
+    double *J, *G;        /* J: N0 x N0; G: R x 2 x N0 */
     const double *y, *fy; /* the set-up state and f(t, y) */
     pring ring[RD_RINGPACK_RINGS_MAX];
 };
 
 /* ------------------------------------------------------------ set-up */
 
-/* S = I - gamma J_bb and G (rd_ringpack_base_jacobian). */
+/* G and the active columns of S = I - gamma J_bb (rd_ringpack_base_jacobian);
+ * the other columns are I's and never read. */
 static void network_block(rd_ringpack_newton *nw, const double *area)
 {
     size_t N0 = (size_t)nw->N0;
     double *S = SM_DATA_D(nw->A);
     rd_ringpack_base_jacobian(nw->m, nw->t, nw->y, area, nw->J, nw->G);
-    for (size_t k = 0; k < N0 * N0; k++)
-        S[k] = -nw->gamma * nw->J[k];
-    for (size_t j = 0; j < N0; j++)
+    for (int c = 0; c < nw->na; c++) {
+        size_t j = (size_t)nw->act[c];
+        for (size_t r = 0; r < N0; r++)
+            S[j * N0 + r] = -nw->gamma * nw->J[j * N0 + r];
         S[j * N0 + j] += 1.0;
+    }
 }
 
 /* LU of S_aa (the header comment); nonzero: singular. */
@@ -127,7 +130,8 @@ static void solve_s(rd_ringpack_newton *nw, double *x)
     }
 }
 
-/* out (N0) = sum_a G_ia dA_ia . w: the network's rates along ring state w. */
+/* out (N0) += gamma sum_a G_ia dA_ia . w: gamma times the network's rates
+ * along ring state w (-M_bi w). */
 static void network_along(rd_ringpack_newton *nw, int i, const double *w, double *out)
 {
     pring *pr = &nw->ring[i];
@@ -135,7 +139,7 @@ static void network_along(rd_ringpack_newton *nw, int i, const double *w, double
     rd_packring_area_slope(pr->L, nw->y + pr->off, w, &du, &dl);
     const double *Gu = nw->G + (size_t)nw->N0 * (2 * i), *Gl = Gu + nw->N0;
     for (int r = 0; r < nw->N0; r++)
-        out[r] = Gu[r] * du + Gl[r] * dl;
+        out[r] += nw->gamma * (Gu[r] * du + Gl[r] * dl);
 }
 
 /* d f_i / d p_k of ring i.  The forces are affine in the face pressures
@@ -183,10 +187,7 @@ static int ring_block(rd_ringpack_newton *nw, int i, const double *pv)
             pr->w[k] = -nw->gamma * pr->D[c][k];
         if ((rc = rd_packring_solver_solve(pr->L, pr->X[c], pr->w)))
             break;
-        network_along(nw, i, pr->X[c], nw->fb1); /* -M_bi X_ik / gamma */
-        double *col = S + (size_t)pr->pcol[c] * nw->N0;
-        for (int r = 0; r < nw->N0; r++)
-            col[r] += nw->gamma * nw->fb1[r];
+        network_along(nw, i, pr->X[c], S + (size_t)pr->pcol[c] * nw->N0); /* -M_bi X_ik */
     }
     return rc;
 }
@@ -257,9 +258,7 @@ static int pn_solve(SUNLinearSolver LS, SUNMatrix A, N_Vector xv, N_Vector bv, s
             continue;
         if ((rc = rd_packring_solver_solve(pr->L, x + pr->off, (double *)b + pr->off)))
             return rc;
-        network_along(nw, i, x + pr->off, nw->fb1);
-        for (int r = 0; r < N0; r++)
-            xb[r] += nw->gamma * nw->fb1[r];
+        network_along(nw, i, x + pr->off, xb);
     }
     solve_s(nw, xb);
     for (int i = 0; i < nw->m->R; i++) {
@@ -289,7 +288,6 @@ static int pn_free(SUNLinearSolver LS)
     if (nw) {
         for (int i = 0; i < RD_RINGPACK_RINGS_MAX; i++)
             ring_free(&nw->ring[i]);
-        free(nw->fb1);
         free(nw->J);
         free(nw->G);
         free(nw);
@@ -364,10 +362,9 @@ SUNLinearSolver rd_ringpack_newton_create(rd_ringpack_model *m, SUNContext ctx, 
     nw->N0 = m->N0;
     nw->A = A;
     size_t N0 = (size_t)m->N0;
-    nw->fb1 = malloc(N0 * sizeof(double));
     nw->J = malloc(N0 * N0 * sizeof(double));
     nw->G = malloc(2 * RD_RINGPACK_RINGS_MAX * N0 * sizeof(double));
-    int bad = !nw->fb1 || !nw->J || !nw->G;
+    int bad = !nw->J || !nw->G;
     for (int i = 0; !bad && i < m->R; i++)
         bad = m->lr[i] && ring_open(nw, i, ctx);
     if (bad) {
