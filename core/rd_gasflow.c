@@ -125,13 +125,18 @@ static double trace_slope(int n, const double *x, const double *y, int k)
     return (wa + wb) / (wa / da + wb / db);
 }
 
-/* The interval of t = deg mod 720 (x[lo] <= t <= x[lo + 1]) and t. */
+/* The interval of t = deg mod 720 (x[lo] <= t < x[lo + 1]) and t: where
+ * the points were equally spaced (the synthetic trace's 0.25 deg), else
+ * by bisection. */
 static int trace_interval(int n, const double *x, double deg, double *t)
 {
     *t = fmod(deg, 720.0);
     if (*t < 0.0)
         *t += 720.0;
-    int lo = 0, hi = n - 1;
+    int lo = (int)(*t / 720.0 * (n - 1)), hi = n - 1;
+    if (lo >= 0 && lo < n - 1 && x[lo] <= *t && *t < x[lo + 1])
+        return lo;
+    lo = 0;
     while (hi - lo > 1) {
         int mid = (lo + hi) / 2;
         if (x[mid] <= *t)
