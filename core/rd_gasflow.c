@@ -16,33 +16,74 @@ double rd_gasflow_critical_ratio(double kappa)
     return pow(2.0 / (kappa + 1.0), kappa / (kappa - 1.0));
 }
 
-/* mdot sqrt(R T_u) / (C_d A p_u) at pressure ratio r (0 < r <= 1), without
- * the linear band. */
-static double flow_function(double r, double kappa, double r_c)
+/* The flow function psi = mdot sqrt(R T_u) / (C_d A p_u) at pressure ratio
+ * r (0 <= r <= 1) and its slope dpsi/dr into *slope (rd_gasflow.h):
+ * choked below r_c, the isentropic form above it, linear in 1 - r above
+ * r_lin.  The isentropic form is computed as it always was (two powers):
+ * its rounding is part of the pack's trajectories, whose friction-driven
+ * leaves move by 0.1 deg under a change of the flows' last bits. */
+static double psi_of(const rd_gasflow_law *law, double r, double *slope)
 {
-    if (r <= r_c)
-        return sqrt(kappa) * pow(2.0 / (kappa + 1.0), (kappa + 1.0) / (2.0 * (kappa - 1.0)));
-    double v = pow(r, 2.0 / kappa) - pow(r, (kappa + 1.0) / kappa);
-    return sqrt(2.0 * kappa / (kappa - 1.0) * (v > 0.0 ? v : 0.0));
+    if (r > 1.0 - RD_GASFLOW_LINEAR_BAND) {
+        *slope = -law->psi_lin / RD_GASFLOW_LINEAR_BAND;
+        return law->psi_lin * (1.0 - r) / RD_GASFLOW_LINEAR_BAND;
+    }
+    if (r <= law->r_c) {
+        *slope = 0.0;
+        return law->psi_choked;
+    }
+    double a = pow(r, law->e_a), b = pow(r, law->e_b), v = a - b; /* r^(2/k), r^((k+1)/k) */
+    double psi = sqrt(law->K * (v > 0.0 ? v : 0.0));
+    /* dv/dr = (2/k) r^(2/k) / r - ((k+1)/k) r^((k+1)/k) / r;  dpsi/dr = K dv/dr / (2 psi) */
+    if (slope)
+        *slope = psi > 0.0 ? 0.5 * law->K * (law->e_a * a - law->e_b * b) / (r * psi) : 0.0;
+    return psi;
 }
 
-double rd_gasflow_orifice(double cd, double area, double p_a, double T_a, double p_b, double T_b,
-                          double kappa, double R)
+void rd_gasflow_law_init(rd_gasflow_law *law, double kappa, double R)
 {
-    if (!(area > 0.0) || !(cd > 0.0))
+    double slope;
+    law->kappa = kappa;
+    law->R = R;
+    law->r_c = rd_gasflow_critical_ratio(kappa);
+    law->psi_choked = sqrt(kappa) * pow(2.0 / (kappa + 1.0), (kappa + 1.0) / (2.0 * (kappa - 1.0)));
+    law->e_a = 2.0 / kappa;
+    law->e_b = (kappa + 1.0) / kappa;
+    law->K = 2.0 * kappa / (kappa - 1.0);
+    law->psi_lin = 0.0;
+    law->psi_lin = psi_of(law, 1.0 - RD_GASFLOW_LINEAR_BAND, &slope);
+}
+
+double rd_gasflow_flow(const rd_gasflow_law *law, double cd, double area, double p_a, double T_a,
+                       double p_b, double T_b, double d[3])
+{
+    if (d)
+        d[0] = d[1] = d[2] = 0.0;
+    if (!(cd > 0.0))
         return 0.0;
     int forward = p_a >= p_b;
     double pu = forward ? p_a : p_b, pd = forward ? p_b : p_a, Tu = forward ? T_a : T_b;
     if (!(pu > 0.0))
         return 0.0;
-    double r = pd > 0.0 ? pd / pu : 0.0, r_c = rd_gasflow_critical_ratio(kappa);
-    double r_lin = 1.0 - RD_GASFLOW_LINEAR_BAND, psi;
-    if (r > r_lin) /* linear in (1 - r) through the value at r_lin */
-        psi = flow_function(r_lin, kappa, r_c) * (1.0 - r) / RD_GASFLOW_LINEAR_BAND;
-    else
-        psi = flow_function(r, kappa, r_c);
-    double mdot = cd * area * pu / sqrt(R * Tu) * psi;
+    double r = pd > 0.0 ? pd / pu : 0.0, slope, psi = psi_of(law, r, &slope);
+    double A = area > 0.0 ? area : 0.0, sign = forward ? 1.0 : -1.0;
+    if (d) { /* mdot = sign c A p_u psi(p_d / p_u), c = C_d / sqrt(R T_u) */
+        double c = sign * cd / sqrt(law->R * Tu);
+        double du = c * A * (psi - r * slope), dd = pd > 0.0 ? c * A * slope : 0.0;
+        d[0] = forward ? du : dd;
+        d[1] = forward ? dd : du;
+        d[2] = c * pu * psi;
+    }
+    double mdot = cd * A * pu / sqrt(law->R * Tu) * psi;
     return forward ? mdot : -mdot;
+}
+
+double rd_gasflow_orifice(double cd, double area, double p_a, double T_a, double p_b, double T_b,
+                          double kappa, double R)
+{
+    rd_gasflow_law law;
+    rd_gasflow_law_init(&law, kappa, R);
+    return rd_gasflow_flow(&law, cd, area, p_a, T_a, p_b, T_b, NULL);
 }
 
 /* ------------------------------------------------------- pressure tables */
@@ -84,24 +125,57 @@ static double trace_slope(int n, const double *x, const double *y, int k)
     return (wa + wb) / (wa / da + wb / db);
 }
 
-double rd_gasflow_trace(int n, const double *x, const double *y, double deg)
+/* The interval of t = deg mod 720 (x[lo] <= t < x[lo + 1]) and t: where
+ * the points were equally spaced (the synthetic trace's 0.25 deg), else
+ * by bisection. */
+static int trace_interval(int n, const double *x, double deg, double *t)
 {
-    double t = fmod(deg, 720.0);
-    if (t < 0.0)
-        t += 720.0;
-    int lo = 0, hi = n - 1; /* x[lo] <= t <= x[hi] */
+    *t = fmod(deg, 720.0);
+    if (*t < 0.0)
+        *t += 720.0;
+    int lo = (int)(*t / 720.0 * (n - 1)), hi = n - 1;
+    if (lo >= 0 && lo < n - 1 && x[lo] <= *t && *t < x[lo + 1])
+        return lo;
+    lo = 0;
     while (hi - lo > 1) {
         int mid = (lo + hi) / 2;
-        if (x[mid] <= t)
+        if (x[mid] <= *t)
             lo = mid;
         else
             hi = mid;
     }
+    return lo;
+}
+
+/* The cubic Hermite piece on [x[lo], x[lo + 1]] with end slopes s0, s1. */
+static double hermite(const double *x, const double *y, int lo, double s0, double s1, double t)
+{
+    int hi = lo + 1;
     double h = x[hi] - x[lo], u = (t - x[lo]) / h;
-    double m0 = trace_slope(n, x, y, lo) * h, m1 = trace_slope(n, x, y, hi) * h;
+    double m0 = s0 * h, m1 = s1 * h;
     double u2 = u * u, u3 = u2 * u; /* cubic Hermite basis */
     return (2 * u3 - 3 * u2 + 1) * y[lo] + (u3 - 2 * u2 + u) * m0 + (-2 * u3 + 3 * u2) * y[hi] +
            (u3 - u2) * m1;
+}
+
+double rd_gasflow_trace(int n, const double *x, const double *y, double deg)
+{
+    double t;
+    int lo = trace_interval(n, x, deg, &t);
+    return hermite(x, y, lo, trace_slope(n, x, y, lo), trace_slope(n, x, y, lo + 1), t);
+}
+
+void rd_gasflow_trace_slopes(int n, const double *x, const double *y, double *slope)
+{
+    for (int k = 0; k < n; k++)
+        slope[k] = trace_slope(n, x, y, k);
+}
+
+double rd_gasflow_trace_at(int n, const double *x, const double *y, const double *slope, double deg)
+{
+    double t;
+    int lo = trace_interval(n, x, deg, &t);
+    return hermite(x, y, lo, slope[lo], slope[lo + 1], t);
 }
 
 /* ------------------------------------------------------ synthetic trace */

@@ -60,6 +60,29 @@ double rd_gasflow_critical_ratio(double kappa);
 double rd_gasflow_orifice(double cd, double area, double p_a, double T_a, double p_b, double T_b,
                           double kappa, double R);
 
+/* The orifice law's constants for one gas (k, R), computed once so that a
+ * flow costs at most two powers instead of three (rd_gasflow_law_init). */
+typedef struct rd_gasflow_law {
+    double kappa, R;
+    double r_c;         /* critical ratio */
+    double psi_choked;  /* the flow function below r_c */
+    double psi_lin;     /* its value at r_lin = 1 - RD_GASFLOW_LINEAR_BAND */
+    double e_a, e_b, K; /* 2/k, (k+1)/k, 2k/(k-1) */
+} rd_gasflow_law;
+
+void rd_gasflow_law_init(rd_gasflow_law *law, double kappa, double R);
+
+/* rd_gasflow_orifice with the law's constants (the same value, bit for
+ * bit), and, when d is not NULL, its partial derivatives: d[0] =
+ * d mdot/d p_a, d[1] = d mdot/d p_b (kg/(s Pa)), d[2] = d mdot/d A
+ * (kg/(s m^2), the flow per area: the flow is linear in A >= 0, so at
+ * A = 0 the derivative of the opening orifice).  Derivatives of the branch
+ * the pressures are on; at equal pressures the linear band's (continuous:
+ * the flow is linear in p_a - p_b there).  cd <= 0 or p <= 0 upstream: 0 and
+ * zero derivatives. */
+double rd_gasflow_flow(const rd_gasflow_law *law, double cd, double area, double p_a, double T_a,
+                       double p_b, double T_b, double d[3]);
+
 enum rd_cylinder_kind { RD_CYLINDER_TABLE = 0, RD_CYLINDER_MOTORED = 1, RD_CYLINDER_FIRED = 2 };
 
 /* The synthetic trace's inputs. */
@@ -95,5 +118,12 @@ double rd_gasflow_table(int n, const double *x, const double *y, double deg);
  * ~1e-5 s, does not force a step at every table point as the kinks of a
  * linear interpolation would (4000 steps per cycle instead of ~600). */
 double rd_gasflow_trace(int n, const double *x, const double *y, double deg);
+
+/* The trace's slopes at its n points into slope (dp/ddeg, caller's array),
+ * and the trace evaluated with them: rd_gasflow_trace's value (bit for
+ * bit) without computing two slopes at every call. */
+void rd_gasflow_trace_slopes(int n, const double *x, const double *y, double *slope);
+double rd_gasflow_trace_at(int n, const double *x, const double *y, const double *slope,
+                           double deg);
 
 #endif

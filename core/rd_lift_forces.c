@@ -442,38 +442,43 @@ static double add_gas(const rd_lift_model *c, const force_env *env, seg_view *s)
     return (pbot - ptop) * c->face_area;
 }
 
-/* The piston's velocity and acceleration at t: the last call's when t is
- * the same (Newton's iterations at one stage time, the root function at a
- * step's end: about half the force calls repeat the time before). */
-static void piston_at(rd_lift_model *c, double t, double *sd, double *sdd)
+/* The piston's kinematics at t into env (sd, acc; with a tilting piston
+ * cb, sb, bd, bdd), from the model's copy when its last force call was at
+ * the same t (rd_lift_model.kin_t): the same values. */
+static void kinematics_at(rd_lift_model *c, double t, force_env *env)
 {
-    if (!c->piston_ok || c->piston_t != t) {
-        double s;
-        rd_lift_piston(&c->p->engine, c->omega * t, &s, &c->piston_sd, &c->piston_sdd);
-        c->piston_t = t;
-        c->piston_ok = 1;
+    const rd_lift_params *p = c->p;
+    double *k = c->kin;
+    env->tilt = rd_lift_tilted(&p->engine);
+    if (t != c->kin_t) {
+        double s, sdd = 0.0, deg = c->omega * t * 180.0 / M_PI;
+        k[0] = 0.0;
+        if (!c->piston_fixed)
+            rd_lift_piston(&p->engine, c->omega * t, &s, &k[0], &sdd);
+        k[1] = sdd - c->g_on;
+        if (env->tilt) {
+            double b, b1, b2, dps = c->omega * 180.0 / M_PI, r = M_PI / 180.0;
+            rd_lift_tilt_at(&p->engine, deg, &b, &b1, &b2);
+            k[2] = cos(b * r);
+            k[3] = sin(b * r);
+            k[4] = b1 * dps * r;
+            k[5] = b2 * dps * dps * r;
+        }
+        c->kin_t = t;
     }
-    *sd = c->piston_sd;
-    *sdd = c->piston_sdd;
+    env->sd = k[0];
+    env->acc = k[1];
+    env->cb = k[2];
+    env->sb = k[3];
+    env->bd = k[4];
+    env->bdd = k[5];
 }
 
 static void force_env_at(rd_lift_model *c, double t, force_env *env)
 {
     const rd_lift_params *p = c->p;
-    double sdd = 0.0, deg = c->omega * t * 180.0 / M_PI;
-    env->sd = 0.0;
-    if (!c->piston_fixed)
-        piston_at(c, t, &env->sd, &sdd);
-    env->acc = sdd - c->g_on;
-    env->tilt = rd_lift_tilted(&p->engine);
-    if (env->tilt) {
-        double b, b1, b2, dps = c->omega * 180.0 / M_PI, r = M_PI / 180.0;
-        rd_lift_tilt_at(&p->engine, deg, &b, &b1, &b2);
-        env->cb = cos(b * r);
-        env->sb = sin(b * r);
-        env->bd = b1 * dps * r;
-        env->bdd = b2 * dps * dps * r;
-    }
+    double deg = c->omega * t * 180.0 / M_PI;
+    kinematics_at(c, t, env);
     env->gas = p->gas.points > 0 || c->gas_now;
     env->dynamic = env->gas && p->gas.active_area == RD_GAS_AREA_DYNAMIC;
     env->fric = p->friction.model != RD_FRICTION_NONE;

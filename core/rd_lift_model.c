@@ -208,6 +208,7 @@ int rd_lift_model_init(rd_lift_model *c, const rd_ring *ring, const rd_lift_para
     const rd_ring_section *sec = rd_ring_get_section(ring);
     int rc;
     memset(c, 0, sizeof *c);
+    c->kin_t = NAN;
     c->ring = ring;
     c->p = p;
     c->n = rd_ring_get_segments(ring);

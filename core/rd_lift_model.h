@@ -121,10 +121,11 @@ typedef struct rd_lift_model {
      * force call, instead of p->gas's tables: a caller that computes them
      * (the ring pack, rd_ringpack_lift.c) sets them before each call. */
     const double *gas_now;
-    /* The piston's motion at the last force call's time (rd_lift_forces.c;
-     * the engine is fixed for the model's life). */
-    int piston_ok;
-    double piston_t, piston_sd, piston_sdd;
+    /* The piston's kinematics of the last force call, at time kin_t (NAN:
+     * none): a call at the same time reuses them (a step's Newton
+     * iterations, Jacobian and roots share its time).  Set by the force
+     * calls only. */
+    double kin_t, kin[6]; /* sd, acc, cb, sb, bd, bdd (force_env) */
 } rd_lift_model;
 
 /* Builds the model of a valid scene on `ring` (borrowed, as p).  On failure
@@ -210,6 +211,7 @@ typedef struct rd_lift_form {
     void (*blocks)(void *user, double t, const double *y, double *A, double *B);
     /* mean lift L; the per-segment lifts into seg (n values) when not NULL */
     double (*lift)(void *user, const double *y, double *seg);
+    int uniform; /* 1: every segment's lift is the mean (the rigid form) */
     /* the loads at (t, y): sets m->fz_ext and m->friction */
     void (*loads)(void *user, double t, const double *y);
     /* the 12 n full state of y into full; NULL: y is the full state */

@@ -244,16 +244,21 @@ static void rigid_impact(void *user, double *y, int upper)
     }
 }
 
-/* Every segment's lift is segment 0's: the mean over its flank points. */
+/* Every segment's lift is segment 0's: the mean over its flank points.
+ * Only q's axial entries are needed: q_k = sum_a phi_a,k x_a as in
+ * segment_state (the same sums, so the same values). */
 static double rigid_lift(void *user, const double *y, double *seg)
 {
     rigid *r = user;
     const rd_lift_model *m = r->m;
-    segment_state(r, y);
+    double q[5] = {0.0};
+    for (int k = 2; k < 5; k++)
+        for (int a = 0; a < NX; a++)
+            q[k] += r->phi[a][k] * y[a];
     double s = 0.0;
     for (int k = 0; k < RD_LIFT_FLANK_POINTS; k++) {
         const double *d = m->fl_d + 2 * k;
-        s += r->q[2] + r->q[3] * d[1] - r->q[4] * d[0];
+        s += q[2] + q[3] * d[1] - q[4] * d[0];
     }
     s /= RD_LIFT_FLANK_POINTS;
     if (seg)
@@ -450,6 +455,7 @@ int rd_lift_rigid_open(rd_lift_model *m, rd_lift_form *form, rd_error *err)
                            .blocks = rigid_blocks,
                            .impact = rigid_impact,
                            .lift = rigid_lift,
+                           .uniform = 1,
                            .loads = rigid_loads,
                            .expand = rigid_expand,
                            .initial = rigid_initial,

@@ -265,6 +265,17 @@ static int cylinder_trace(rd_ringpack_model *m, rd_error *err)
                                 "/cylinder_pressure/synthetic", m->cyl_deg, m->cyl_pa, err);
 }
 
+/* The trace's slopes, once (rd_ringpack_pressures reads the trace at
+ * every right-hand side). */
+static int cylinder_slopes(rd_ringpack_model *m, rd_error *err)
+{
+    m->cyl_slope = malloc((size_t)m->cyl_n * sizeof *m->cyl_slope);
+    if (!m->cyl_slope)
+        return rd_error_set(err, RD_ENOMEM, "", "Out of memory for the cylinder pressure.");
+    rd_gasflow_trace_slopes(m->cyl_n, m->cyl_deg, m->cyl_pa, m->cyl_slope);
+    return RD_OK;
+}
+
 int rd_ringpack_model_init(rd_ringpack_model *m, const rd_ringpack_params *p, rd_error *err)
 {
     memset(m, 0, sizeof *m);
@@ -288,7 +299,9 @@ int rd_ringpack_model_init(rd_ringpack_model *m, const rd_ringpack_params *p, rd
         m->mode[i] = p->rings[i].pinned == RD_PIN_UPPER ? RD_FLANK_UPPER : RD_FLANK_LOWER;
     }
     rd_ringpack_choose(m, NULL);
-    return cylinder_trace(m, err);
+    rd_gasflow_law_init(&m->law, RD_GASFLOW_KAPPA, RD_GASFLOW_R);
+    int rc = cylinder_trace(m, err);
+    return rc ? rc : cylinder_slopes(m, err);
 }
 
 void rd_ringpack_model_cleanup(rd_ringpack_model *m)
@@ -299,14 +312,15 @@ void rd_ringpack_model_cleanup(rd_ringpack_model *m)
     }
     if (m->cyl_owned)
         free(m->cyl_deg);
-    m->cyl_deg = m->cyl_pa = NULL;
+    free(m->cyl_slope);
+    m->cyl_deg = m->cyl_pa = m->cyl_slope = NULL;
     m->cyl_owned = 0;
 }
 
 void rd_ringpack_pressures(const rd_ringpack_model *m, double t, const double *y, double *pv)
 {
     double deg = t * m->omega * 180.0 / M_PI;
-    pv[0] = rd_gasflow_trace(m->cyl_n, m->cyl_deg, m->cyl_pa, deg);
+    pv[0] = rd_gasflow_trace_at(m->cyl_n, m->cyl_deg, m->cyl_pa, m->cyl_slope, deg);
     for (int v = 0; v < m->V; v++)
         pv[v + 1] = RP_P(m, y, v);
     pv[m->V + 1] = m->p->crankcase_pa;
@@ -325,20 +339,24 @@ void rd_ringpack_areas(const rd_ringpack_model *m, const double *y, double *area
     }
 }
 
+/* Flow f's area (fa: the flank areas) and discharge coefficient. */
+static double flow_area(const rd_ringpack_model *m, int f, const double *fa, double *cd)
+{
+    if (f == 0) {
+        *cd = m->cd[0];
+        return m->top_area;
+    }
+    int i = (f - 1) / 3, kind = (f - 1) % 3;
+    *cd = m->cd[i];
+    return kind == 2 ? m->gap_area[i] : fa[2 * i + kind];
+}
+
 void rd_ringpack_flows(const rd_ringpack_model *m, const double *pv, const double *fa, double *mdot)
 {
-    const double k = RD_GASFLOW_KAPPA, Rg = RD_GASFLOW_R;
     for (int f = 0; f < m->F; f++) {
-        double area;
-        if (f == 0) {
-            area = m->top_area;
-        } else {
-            int i = (f - 1) / 3, kind = (f - 1) % 3;
-            area = kind == 2 ? m->gap_area[i] : fa[2 * i + kind];
-        }
+        double cd, area = flow_area(m, f, fa, &cd);
         int a = m->from[f], b = m->to[f];
-        double cd = f == 0 ? m->cd[0] : m->cd[(f - 1) / 3];
-        mdot[f] = rd_gasflow_orifice(cd, area, pv[a], m->temp[a], pv[b], m->temp[b], k, Rg);
+        mdot[f] = rd_gasflow_flow(&m->law, cd, area, pv[a], m->temp[a], pv[b], m->temp[b], NULL);
     }
 }
 
@@ -402,6 +420,114 @@ void rd_ringpack_base_rhs(const rd_ringpack_model *m, double t, const double *y,
     RP_CUM(m, yd, 1) = fmax(-in, 0.0);
     RP_CUM(m, yd, 2) = fmax(cc, 0.0);
     RP_CUM(m, yd, 3) = fmax(-cc, 0.0);
+}
+
+/* d F / d pv (V + 2 values into dF) and d F / d z' of axial ring i's
+ * force (rd_ringpack_ring_force): its face areas, and the friction's
+ * normal force (the groove pressure) and tanh (the ring's speed).  The
+ * test hook's tables do not depend on the state. */
+static double force_gradient(const rd_ringpack_model *m, int i, double t, const double *y,
+                             const double *pv, double *dF)
+{
+    int tables = m->p->face_tables != NULL;
+    memset(dF, 0, (size_t)(m->V + 2) * sizeof *dF);
+    if (!tables) {
+        dF[2 * i + 1] -= m->area[i];
+        dF[rp_below(m, i)] += m->area[i];
+    }
+    if (m->p->friction.model != RD_FRICTION_COULOMB)
+        return 0.0;
+    double f[3], v_p, mu = m->p->friction.coefficient;
+    rd_ringpack_faces(m, i, t, pv, f);
+    rd_lift_piston(&m->p->engine, m->omega * t, NULL, &v_p, NULL);
+    double n = m->n_pre[i] + m->n_back[i] * f[1], th = tanh((RP_ZD(m, y, i) - v_p) / m->ureg);
+    if (!tables && n > 0.0)
+        dF[2 * i + 2] -= mu * m->n_back[i] * th;
+    return -mu * fmax(n, 0.0) * (1.0 - th * th) / m->ureg;
+}
+
+/* Axial ring i's columns and row of J: its lift through the flank areas
+ * (G's columns, set), and its motion while free. */
+static void axial_jacobian(const rd_ringpack_model *m, int i, double t, const double *y,
+                           const double *pv, double *J, const double *G)
+{
+    int N0 = m->N0, z = 2 * m->R + 2 * i, zd = z + 1;
+    double dF[RD_RINGPACK_VOLUMES_MAX], lift = RP_Z(m, y, i);
+    double du = m->ca[i] - lift > 0.0 ? -m->circ[i] : 0.0, dl = lift > 0.0 ? m->circ[i] : 0.0;
+    for (int r = 0; r < N0; r++)
+        J[(size_t)z * N0 + r] +=
+            G[(size_t)(2 * i) * N0 + r] * du + G[(size_t)(2 * i + 1) * N0 + r] * dl;
+    if (m->mode[i] != RD_FLANK_FREE)
+        return;
+    double dzd = force_gradient(m, i, t, y, pv, dF);
+    J[(size_t)zd * N0 + z] = 1.0;
+    for (int w = 1; w <= m->V; w++)
+        J[(size_t)(w - 1) * N0 + zd] = dF[w] / m->mass[i];
+    J[(size_t)zd * N0 + zd] += dzd / m->mass[i];
+}
+
+/* The volumes' and the cumulative masses' rows from D = d dm / d pv and
+ * DA = d dm / d area (dm: the net inflow of each network volume, kg/s),
+ * in = the cylinder's inflow and d_in its gradient, cc = the crankcase's. */
+static void network_rows(const rd_ringpack_model *m, double D[][RD_RINGPACK_VOLUMES_MAX],
+                         double DA[][2 * RD_RINGPACK_RINGS_MAX], double in, const double *d_in,
+                         double cc, double *J, double *G)
+{
+    int N0 = m->N0, V = m->V, c0 = 4 * m->R;
+    double scale[RD_RINGPACK_VOLUMES_MAX]; /* dp/dt per net inflow: R T / V */
+    for (int v = 1; v <= V; v++)
+        scale[v] = RD_GASFLOW_R * m->temp[v] / m->vol[v];
+    for (int w = 1; w <= V; w++) { /* pressure columns */
+        double *col = J + (size_t)(w - 1) * N0;
+        for (int v = 1; v <= V; v++)
+            col[v - 1] = scale[v] * D[v][w];
+        col[c0 + 0] = in > 0.0 ? d_in[w] : 0.0; /* fmax(in, 0), fmax(-in, 0) */
+        col[c0 + 1] = in > 0.0 ? 0.0 : -d_in[w];
+        col[c0 + 2] = cc > 0.0 ? D[V + 1][w] : 0.0;
+        col[c0 + 3] = cc > 0.0 ? 0.0 : -D[V + 1][w];
+    }
+    for (int c = 0; c < 2 * m->R; c++) { /* flank area columns */
+        double *col = G + (size_t)c * N0;
+        for (int v = 1; v <= V; v++)
+            col[v - 1] = scale[v] * DA[v][c];
+        col[c0 + 2] = cc > 0.0 ? DA[V + 1][c] : 0.0;
+        col[c0 + 3] = cc > 0.0 ? 0.0 : -DA[V + 1][c];
+    }
+}
+
+void rd_ringpack_base_jacobian(const rd_ringpack_model *m, double t, const double *y,
+                               const double *area, double *J, double *G)
+{
+    enum { NV = RD_RINGPACK_VOLUMES_MAX };
+    double pv[NV], D[NV][NV] = {{0}}, DA[NV][2 * RD_RINGPACK_RINGS_MAX] = {{0}}, d_in[NV] = {0};
+    double d[3], in = 0.0, cc = 0.0;
+    size_t N0 = (size_t)m->N0;
+    rd_ringpack_pressures(m, t, y, pv);
+    memset(J, 0, N0 * N0 * sizeof *J);
+    memset(G, 0, 2 * (size_t)m->R * N0 * sizeof *G);
+    for (int f = 0; f < m->F; f++) {
+        double cd, A = flow_area(m, f, area, &cd);
+        int a = m->from[f], b = m->to[f];
+        double mdot = rd_gasflow_flow(&m->law, cd, A, pv[a], m->temp[a], pv[b], m->temp[b], d);
+        D[a][a] -= d[0];
+        D[a][b] -= d[1];
+        D[b][a] += d[0];
+        D[b][b] += d[1];
+        cc += (b == m->V + 1 ? mdot : 0.0) - (a == m->V + 1 ? mdot : 0.0);
+        if (f == 0) {
+            in = mdot;
+            d_in[a] = d[0];
+            d_in[b] = d[1];
+        } else if ((f - 1) % 3 < 2) { /* a flank passage: its area's column */
+            int c = 2 * ((f - 1) / 3) + (f - 1) % 3;
+            DA[a][c] -= d[2];
+            DA[b][c] += d[2];
+        }
+    }
+    network_rows(m, D, DA, in, d_in, cc, J, G);
+    for (int i = 0; i < m->R; i++)
+        if (!m->lr[i])
+            axial_jacobian(m, i, t, y, pv, J, G);
 }
 
 int rd_ringpack_rhs(const rd_ringpack_model *m, double t, const double *y, double *yd)

@@ -67,7 +67,7 @@ struct rd_packring {
     rd_lift_model m;
     rd_lift_form form;
     double gas[3];
-    double *seg, *seg_w, *seg_0; /* n per-segment lifts (at y, along w, at 0) */
+    double *seg, *seg_w, *seg_0; /* n per-segment lifts (at y, along w, at 0: once) */
     double *zero;                /* the zero state */
     N_Vector ys, yd;             /* views on the ring's part of the pack's vectors */
     double circ;                 /* pi d */
@@ -177,6 +177,7 @@ int rd_packring_open(rd_ringpack_model *m, int i, SUNContext ctx, int *N, int *m
     L->yd = N_VMake_Serial(L->form.N, NULL, ctx);
     if (!L->seg || !L->zero || !L->ys || !L->yd)
         return rd_error_set(err, RD_ENOMEM, "", "Out of memory for ring %d's lift model.", i + 1);
+    L->form.lift(L->form.user, L->zero, L->seg_0);
     L->track = (rd_lift_flank_track){RD_FLANK_LOWER, NAN};
     *N = (int)L->form.N;
     *modes_out = modes;
@@ -241,13 +242,38 @@ int rd_packring_rhs(rd_packring *L, double t, double *y, double *yd)
     return L->form.rhs(t, L->ys, L->yd, L->form.user);
 }
 
+/* fmin(fmax(x, 0), a) without the library calls (a step of every
+ * right-hand side and root function; NaN gives 0 as there). */
+static double clamp(double x, double a)
+{
+    return x > 0.0 ? (x < a ? x : a) : 0.0;
+}
+
+/* The form's per-segment lifts at y into seg and their mean; a form whose
+ * segments all lift alike (form.uniform: the rigid ring) gives the mean
+ * only, and the loops below add that one value n times: the same sums as
+ * over n equal entries, so the same areas to the last bit, without n
+ * entries to fill and read at every right-hand side. */
+static double lifts(rd_packring *L, const double *y, double *seg)
+{
+    return L->form.lift(L->form.user, y, L->form.uniform ? NULL : seg);
+}
+
 double rd_packring_areas(rd_packring *L, const double *y, double *up, double *lo)
 {
-    double mean = L->form.lift(L->form.user, y, L->seg), a = L->m.ca, su = 0.0, sl = 0.0;
+    double mean = lifts(L, y, L->seg), a = L->m.ca, su = 0.0, sl = 0.0;
     int n = L->m.n;
-    for (int j = 0; j < n; j++) {
-        su += fmin(fmax(a - L->seg[j], 0.0), a);
-        sl += fmin(fmax(L->seg[j], 0.0), a);
+    if (L->form.uniform) {
+        double cu = clamp(a - mean, a), cl = clamp(mean, a);
+        for (int j = 0; j < n; j++) {
+            su += cu;
+            sl += cl;
+        }
+    } else {
+        for (int j = 0; j < n; j++) {
+            su += clamp(a - L->seg[j], a);
+            sl += clamp(L->seg[j], a);
+        }
     }
     *up = L->circ * su / n;
     *lo = L->circ * sl / n;
@@ -258,13 +284,11 @@ void rd_packring_area_slope(rd_packring *L, const double *y, const double *w, do
                             double *dl)
 {
     double a = L->m.ca, su = 0.0, sl = 0.0;
-    int n = L->m.n;
-    L->form.lift(L->form.user, y, L->seg);
-    L->form.lift(L->form.user, w, L->seg_w);
-    L->form.lift(L->form.user, L->zero, L->seg_0);
+    int n = L->m.n, u = L->form.uniform;
+    double L_y = lifts(L, y, L->seg), L_w = lifts(L, w, L->seg_w); /* seg_0: at open */
     for (int j = 0; j < n; j++) {
-        double open = L->seg[j] > 0.0 && L->seg[j] < a ? 1.0 : 0.0;
-        double dL = L->seg_w[j] - L->seg_0[j];
+        double s = u ? L_y : L->seg[j], open = s > 0.0 && s < a ? 1.0 : 0.0;
+        double dL = (u ? L_w : L->seg_w[j]) - L->seg_0[j];
         su -= open * dL;
         sl += open * dL;
     }

@@ -22,7 +22,9 @@ typedef struct rd_ringpack_model {
     int R, V, N, F;           /* rings, state volumes, states, flows */
     double omega;             /* rad/s */
     double *cyl_deg, *cyl_pa; /* the cylinder trace (owned when synthetic) */
+    double *cyl_slope;        /* its slopes at its points (rd_gasflow_trace_slopes), owned */
     int cyl_n, cyl_owned;
+    rd_gasflow_law law;                  /* the orifice law's constants (k, R) */
     double vol[RD_RINGPACK_VOLUMES_MAX]; /* by network index: 0 cylinder .. V+1 crankcase */
     double temp[RD_RINGPACK_VOLUMES_MAX];
     double ca[RD_RINGPACK_RINGS_MAX]; /* axial clearances */
@@ -77,6 +79,19 @@ double rd_ringpack_friction(const rd_ringpack_model *m, int i, double t, const d
  * (the lift rings' lifts enter only through them). */
 void rd_ringpack_base_rhs(const rd_ringpack_model *m, double t, const double *y, const double *area,
                           double *yd);
+/* The exact partial derivatives of rd_ringpack_base_rhs at (t, y, area):
+ * J = d f_b / d y_b (N0 x N0, column-major, J[N0 c + r] = d f_r / d y_c)
+ * and G = d f_b / d area (2R columns of N0: ring i's upper flank area in
+ * column 2 i, lower in 2 i + 1), from the orifice flows' derivatives
+ * (rd_gasflow_flow) and the axial rings' forces (affine in the pressures;
+ * the friction's tanh).  An axial ring's lift acts on the flows through
+ * its flank areas (max(a - z, 0), max(z, 0): slope 0 where clamped); that
+ * is in its z column.  Columns of the cumulative masses and of a lift
+ * ring's unused slots are zero, as are their rows' f where constant.  Each
+ * column's entries weighted by V/(R T) (volumes) and +-1 (masses) sum to
+ * zero, as the mass balance needs of a Newton matrix. */
+void rd_ringpack_base_jacobian(const rd_ringpack_model *m, double t, const double *y,
+                               const double *area, double *J, double *G);
 /* dy/dt, all N states; nonzero if a lift model's right-hand side failed. */
 int rd_ringpack_rhs(const rd_ringpack_model *m, double t, const double *y, double *yd);
 

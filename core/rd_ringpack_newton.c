@@ -30,9 +30,16 @@
  *          S x_b = b_b - sum_i M_bi z_i,
  *          x_i = z_i - sum_k X_ik x_b[k].
  * Exact algebra (to the quotients' rounding), so CVODE's Newton iteration is
- * the coupled system's; O(n) per ring and step.  J_bb is a difference
- * quotient over the N0 network states (the pack's dense Jacobian as before;
- * the cumulative masses feed nothing back: their columns are zero).
+ * the coupled system's; O(n) per ring and step.  J_bb and G_ia are the
+ * network's exact partial derivatives (rd_ringpack_base_jacobian: one sweep
+ * of the orifice flows with their derivatives; difference quotients took
+ * one sweep per pressure and per flank area, half the pack's work).
+ * S is block lower triangular: the cumulative masses and a lift ring's
+ * unused axial slots feed nothing back (zero columns; their rows in S are
+ * those of I, plus the masses' dependence on the pressures), so only the
+ * "active" part S_aa (pressures and the axial rings' z, z': 6 x 6 for three
+ * lift rings) is LU-factored, the rest follows by substitution:
+ *   S_aa x_a = b_a,   x_r = b_r - S_ra x_a.
  *
  * Plumbing as rd_lift_newton.c: CVodeSetLinSysFn hands gamma and the state
  * to rd_ringpack_newton_linsys, which builds everything; the solver is
@@ -44,7 +51,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include <sunlinsol/sunlinsol_dense.h>
+#include <sundials/sundials_dense.h>
 #include <sunmatrix/sunmatrix_dense.h>
 
 #include "rd_ringpack_model.h"
@@ -60,60 +67,71 @@ typedef struct pring {
     double *r1, *w; /* N scratch */
 } pring;
 
+#define NA_MAX (4 * RD_RINGPACK_RINGS_MAX) /* active unknowns: pressures, axial z, z' */
+
 struct rd_ringpack_newton {
     rd_ringpack_model *m;
     int N0;
     double gamma, t;
-    SUNMatrix A;        /* dense N0 x N0: S, LU-factored in place */
-    SUNLinearSolver lu; /* SUNDIALS dense LU of S (N0 <= 16: no blocked LAPACK) */
-    N_Vector xb;        /* N0 view */
+    SUNMatrix A;                               /* dense N0 x N0: S (column-major) */
+    int na, act[NA_MAX], rest[NA_MAX + 4], nr; /* active and remaining indices */
+    double Sa[NA_MAX * NA_MAX], *col[NA_MAX];  /* S_aa, LU-factored (SUNDIALS dense LU) */
+    double xa[NA_MAX];
+    sunindextype piv[NA_MAX];
     int info;
-    double *fb0, *fb1, *yb, *typ, *G; /* N0; G: R x 2 x N0 */
-    const double *y, *fy;             /* the set-up state and f(t, y) */
+    double *J, *G;        /* J: N0 x N0; G: R x 2 x N0 */
+    const double *y, *fy; /* the set-up state and f(t, y) */
     pring ring[RD_RINGPACK_RINGS_MAX];
 };
 
 /* ------------------------------------------------------------ set-up */
 
-/* J_bb by difference quotients into S = I - gamma J_bb (column-major). */
+/* G and the active columns of S = I - gamma J_bb (rd_ringpack_base_jacobian);
+ * the other columns are I's and never read. */
 static void network_block(rd_ringpack_newton *nw, const double *area)
 {
-    rd_ringpack_model *m = nw->m;
-    int N0 = nw->N0;
+    size_t N0 = (size_t)nw->N0;
     double *S = SM_DATA_D(nw->A);
-    memcpy(nw->yb, nw->y, (size_t)N0 * sizeof(double));
-    memcpy(nw->fb0, nw->fy, (size_t)N0 * sizeof(double)); /* CVODE's f(t, y): the same sums */
-    memset(S, 0, (size_t)N0 * N0 * sizeof *S);
-    for (int j = 0; j < N0; j++) {
-        S[(size_t)j * N0 + j] = 1.0;
-        if (j >= 4 * m->R || (j >= 2 * m->R && m->lr[(j - 2 * m->R) / 2]))
-            continue; /* the cumulative masses, a lift ring's unused axial slots: zero columns */
-        double h = 1e-7 * fmax(fabs(nw->y[j]), nw->typ[j]);
-        nw->yb[j] = nw->y[j] + h;
-        h = nw->yb[j] - nw->y[j];
-        rd_ringpack_base_rhs(m, nw->t, nw->yb, area, nw->fb1);
-        nw->yb[j] = nw->y[j];
-        for (int r = 0; r < N0; r++)
-            S[(size_t)j * N0 + r] -= nw->gamma * (nw->fb1[r] - nw->fb0[r]) / h;
+    rd_ringpack_base_jacobian(nw->m, nw->t, nw->y, area, nw->J, nw->G);
+    for (int c = 0; c < nw->na; c++) {
+        size_t j = (size_t)nw->act[c];
+        for (size_t r = 0; r < N0; r++)
+            S[j * N0 + r] = -nw->gamma * nw->J[j * N0 + r];
+        S[j * N0 + j] += 1.0;
     }
 }
 
-/* G_ia = d f_b / d A_ia (exact quotients: the flows are linear in the areas). */
-static void area_columns(rd_ringpack_newton *nw, int i, const double *area)
+/* LU of S_aa (the header comment); nonzero: singular. */
+static int factor_active(rd_ringpack_newton *nw)
 {
-    double a1[2 * RD_RINGPACK_RINGS_MAX];
-    for (int a = 0; a < 2; a++) {
-        memcpy(a1, area, sizeof a1);
-        double dA = 1e-3 * fmax(area[2 * i + a], nw->m->circ[i] * nw->m->ca[i]);
-        a1[2 * i + a] += dA;
-        rd_ringpack_base_rhs(nw->m, nw->t, nw->yb, a1, nw->fb1);
-        double *G = nw->G + (size_t)nw->N0 * (2 * i + a);
-        for (int r = 0; r < nw->N0; r++)
-            G[r] = (nw->fb1[r] - nw->fb0[r]) / dA;
+    const double *S = SM_DATA_D(nw->A);
+    int na = nw->na;
+    for (int c = 0; c < na; c++)
+        for (int r = 0; r < na; r++)
+            nw->Sa[c * na + r] = S[(size_t)nw->act[c] * nw->N0 + nw->act[r]];
+    return SUNDlsMat_denseGETRF(nw->col, na, na, nw->piv) != 0;
+}
+
+/* x = S^-1 x in place (the header comment). */
+static void solve_s(rd_ringpack_newton *nw, double *x)
+{
+    const double *S = SM_DATA_D(nw->A);
+    int na = nw->na;
+    size_t N0 = (size_t)nw->N0;
+    for (int k = 0; k < na; k++)
+        nw->xa[k] = x[nw->act[k]];
+    SUNDlsMat_denseGETRS(nw->col, na, nw->piv, nw->xa);
+    for (int k = 0; k < na; k++)
+        x[nw->act[k]] = nw->xa[k];
+    for (int q = 0; q < nw->nr; q++) {
+        int r = nw->rest[q];
+        for (int k = 0; k < na; k++)
+            x[r] -= S[nw->act[k] * N0 + r] * nw->xa[k];
     }
 }
 
-/* out (N0) = sum_a G_ia dA_ia . w: the network's rates along ring state w. */
+/* out (N0) += gamma sum_a G_ia dA_ia . w: gamma times the network's rates
+ * along ring state w (-M_bi w). */
 static void network_along(rd_ringpack_newton *nw, int i, const double *w, double *out)
 {
     pring *pr = &nw->ring[i];
@@ -121,7 +139,7 @@ static void network_along(rd_ringpack_newton *nw, int i, const double *w, double
     rd_packring_area_slope(pr->L, nw->y + pr->off, w, &du, &dl);
     const double *Gu = nw->G + (size_t)nw->N0 * (2 * i), *Gl = Gu + nw->N0;
     for (int r = 0; r < nw->N0; r++)
-        out[r] = Gu[r] * du + Gl[r] * dl;
+        out[r] += nw->gamma * (Gu[r] * du + Gl[r] * dl);
 }
 
 /* d f_i / d p_k of ring i.  The forces are affine in the face pressures;
@@ -171,10 +189,7 @@ static int ring_block(rd_ringpack_newton *nw, int i, const double *pv)
             pr->w[k] = -nw->gamma * pr->D[c][k];
         if ((rc = rd_packring_solver_solve(pr->L, pr->X[c], pr->w)))
             break;
-        network_along(nw, i, pr->X[c], nw->fb1); /* -M_bi X_ik / gamma */
-        double *col = S + (size_t)pr->pcol[c] * nw->N0;
-        for (int r = 0; r < nw->N0; r++)
-            col[r] += nw->gamma * nw->fb1[r];
+        network_along(nw, i, pr->X[c], S + (size_t)pr->pcol[c] * nw->N0); /* -M_bi X_ik */
     }
     return rc;
 }
@@ -194,12 +209,11 @@ int rd_ringpack_newton_linsys(rd_ringpack_newton *nw, double t, const double *y,
     for (int i = 0; i < m->R; i++) {
         if (!m->lr[i])
             continue;
-        area_columns(nw, i, area);
         int rc = ring_block(nw, i, pv);
         if (rc)
             return rc;
     }
-    nw->info = SUNLinSolSetup(nw->lu, nw->A);
+    nw->info = factor_active(nw);
     return nw->info ? 1 : 0; /* singular: recoverable, CVODE cuts the step */
 }
 
@@ -246,13 +260,9 @@ static int pn_solve(SUNLinearSolver LS, SUNMatrix A, N_Vector xv, N_Vector bv, s
             continue;
         if ((rc = rd_packring_solver_solve(pr->L, x + pr->off, (double *)b + pr->off)))
             return rc;
-        network_along(nw, i, x + pr->off, nw->fb1);
-        for (int r = 0; r < N0; r++)
-            xb[r] += nw->gamma * nw->fb1[r];
+        network_along(nw, i, x + pr->off, xb);
     }
-    N_VSetArrayPointer(xb, nw->xb);
-    if ((rc = SUNLinSolSolve(nw->lu, nw->A, nw->xb, nw->xb, 0.0)))
-        return rc;
+    solve_s(nw, xb);
     for (int i = 0; i < nw->m->R; i++) {
         pring *pr = &nw->ring[i];
         for (int c = 0; pr->L && c < pr->np; c++)
@@ -280,14 +290,7 @@ static int pn_free(SUNLinearSolver LS)
     if (nw) {
         for (int i = 0; i < RD_RINGPACK_RINGS_MAX; i++)
             ring_free(&nw->ring[i]);
-        if (nw->lu)
-            SUNLinSolFree(nw->lu);
-        if (nw->xb)
-            N_VDestroy(nw->xb);
-        free(nw->fb0);
-        free(nw->fb1);
-        free(nw->yb);
-        free(nw->typ);
+        free(nw->J);
         free(nw->G);
         free(nw);
         LS->content = NULL;
@@ -325,6 +328,23 @@ static int ring_open(rd_ringpack_newton *nw, int i, SUNContext ctx)
     return 0;
 }
 
+/* The active unknowns (the header comment): the pressures and the axial
+ * rings' z, z'; the rest: the cumulative masses, the lift rings' slots. */
+static void active_set(rd_ringpack_newton *nw)
+{
+    const rd_ringpack_model *m = nw->m;
+    nw->na = nw->nr = 0;
+    for (int j = 0; j < nw->N0; j++) {
+        int slot = j >= 2 * m->R && j < 4 * m->R, lifted = slot && m->lr[(j - 2 * m->R) / 2];
+        if (j < 2 * m->R || (slot && !lifted))
+            nw->act[nw->na++] = j;
+        else
+            nw->rest[nw->nr++] = j;
+    }
+    for (int c = 0; c < nw->na; c++)
+        nw->col[c] = nw->Sa + (size_t)c * nw->na;
+}
+
 SUNLinearSolver rd_ringpack_newton_create(rd_ringpack_model *m, SUNContext ctx, SUNMatrix A,
                                           rd_ringpack_newton **out)
 {
@@ -344,28 +364,16 @@ SUNLinearSolver rd_ringpack_newton_create(rd_ringpack_model *m, SUNContext ctx, 
     nw->N0 = m->N0;
     nw->A = A;
     size_t N0 = (size_t)m->N0;
-    nw->xb = N_VMake_Serial(m->N0, NULL, ctx);
-    nw->lu = nw->xb ? SUNLinSol_Dense(nw->xb, A, ctx) : NULL;
-    nw->fb0 = malloc(N0 * sizeof(double));
-    nw->fb1 = malloc(N0 * sizeof(double));
-    nw->yb = malloc(N0 * sizeof(double));
-    nw->typ = malloc(N0 * sizeof(double));
+    nw->J = malloc(N0 * N0 * sizeof(double));
     nw->G = malloc(2 * RD_RINGPACK_RINGS_MAX * N0 * sizeof(double));
-    int bad = !nw->lu || SUNLinSolInitialize(nw->lu) || !nw->fb0 || !nw->fb1 || !nw->yb ||
-              !nw->typ || !nw->G;
+    int bad = !nw->J || !nw->G;
     for (int i = 0; !bad && i < m->R; i++)
         bad = m->lr[i] && ring_open(nw, i, ctx);
     if (bad) {
         pn_free(LS);
         return NULL;
     }
-    /* typical magnitudes for the quotients' steps: pressures, lifts, rates */
-    for (int j = 0; j < m->N0; j++)
-        nw->typ[j] = m->p->crankcase_pa;
-    for (int i = 0; i < m->R; i++) {
-        RP_Z(m, nw->typ, i) = m->ca[i];
-        RP_ZD(m, nw->typ, i) = m->ca[i] * m->omega;
-    }
+    active_set(nw);
     *out = nw;
     return LS;
 }
