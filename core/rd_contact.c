@@ -427,12 +427,12 @@ static int contact_summaries(const rd_static_problem *pb, const double *t, const
     for (int k = 0; k < pb->co->n_distortion; k++)
         bend += fabs(pb->co->distortion[k].amplitude) * pb->co->distortion[k].order *
                 pb->co->distortion[k].order;
-    double misfit = bend / (pb->r_o * pb->r_o) * L * L / 8.0;
     out->point_spacing_deg = phi / pb->m;
     out->gap_floor =
-        fmax(10.0 * pb->p0 / rd_contact_default_stiffness(rd_ring_get_params(pb->ring)), misfit);
+        fmax(10.0 * pb->p0 / rd_contact_default_stiffness(rd_ring_get_params(pb->ring)),
+             bend / (pb->r_o * pb->r_o) * L * L / 8.0);
     rd_contact_gaps(ts, out->clearance, n, t, c, pb->m, lo[0], lo[n - 1] + phi, out->gap_floor,
-                    misfit, out);
+                    out);
     /* a free end's concentrated force: its segment's resultant beyond what
      * the neighbour's pressure would put on it */
     out->tip_force[0] = out->clearance[0] <= 0.0 ? force[0] - force[1] : 0.0;

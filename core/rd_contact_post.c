@@ -31,7 +31,7 @@
  *               concentrated force within half a segment of a bin boundary);
  *   fraction  = max(|cf_f - cf_c|, sqrt(edges not at a free end) times the
  *               edge estimate / 360, the width of runs as deep as the
- *               floor within x2 (not those a rigid face's misfit explains) / 360);
+ *               floor within x2 / 360);
  *   gap       = |g_f - g_c| / 3 + f's largest penetration (the law's
  *               compliance under concentrated forces);
  *   edges     = max(the largest edge move of either level's gaps against the
@@ -86,16 +86,13 @@ static void one_gap(const double *ts, const double *cs, int n, const double *t, 
 }
 
 void rd_contact_gaps(const double *ts, const double *cs, int n, const double *t, const double *c,
-                     int m, double tip0, double tip1, double gap_floor, double misfit,
-                     rd_contact_result *out)
+                     int m, double tip0, double tip1, double gap_floor, rd_contact_result *out)
 {
     /* the band of depths counted or not by chance: within x2 of the floor,
-     * but not the runs a rigid face's misfit explains, up to twice its bound
-     * (neighbouring faces misfit in opposite senses); they close as n grows
-     * and the reference has none: measured 13-17 nm runs over 35 deg for
-     * order 2 at 1 x the bound (misfit 21 nm), 5.6-6.8 nm over 36 deg for
-     * order 3 (6.6 nm) */
-    double band_lo = fmax(0.5 * gap_floor, 2.0 * misfit);
+     * including the runs a rigid face's misfit makes (order 3 at 1 x the
+     * bound: 5.6-6.8 nm runs over 36 deg against a 9.4 nm floor count as
+     * gaps at 10 x the contact stiffness, 0.13 of the contact fraction) */
+    double band_lo = 0.5 * gap_floor;
     double length = 0.0;
     out->n_gaps = 0;
     out->marginal_gap_deg = 0.0;
