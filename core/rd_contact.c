@@ -247,6 +247,65 @@ void rd_contact_segment_load(const rd_static_problem *pb, int i, const double *x
     }
 }
 
+/* The law at one point with its slope dp/ddelta (the logistic function of
+ * z; e the current smoothing length, hoisted out of the points' loop). */
+static void law_and_slope(const rd_static_problem *pb, double delta, int i, double e, double *p,
+                          double *dp)
+{
+    delta += pb->mult ? pb->mult[i] / pb->k : 0.0;
+    double z = delta / e;
+    if (z > 0) {
+        double q = exp(-z);
+        *p = pb->k * (delta + e * log1p(q));
+        *dp = pb->k / (1.0 + q);
+    } else {
+        double q = exp(z);
+        *p = pb->k * e * log1p(q);
+        *dp = pb->k * q / (1.0 + q);
+    }
+}
+
+void rd_contact_segment_jacobian(const rd_static_problem *pb, int i, const double *x,
+                                 const double *Q, double J[36])
+{
+    double e = eps_now(pb);
+    memset(J, 0, 36 * sizeof *J);
+    for (int k = 0; k < pb->m; k++) {
+        double arm[3], y[3], rb, drb, p, dp;
+        rd_mv3(Q, pb->cp + 3 * (pb->m * i + k), arm);
+        for (int q = 0; q < 3; q++)
+            y[q] = x[q] + arm[q];
+        double rho = hypot(y[0], y[1]);
+        bore_radius(pb, atan2(y[1], y[0]), &rb, &drb);
+        law_and_slope(pb, rho - rb, i, e, &p, &dp);
+        /* n = grad(delta) = e_rho - r_b'/rho e_theta; F = -p A n / |n| */
+        double n[3] = {y[0] / rho + drb / rho * y[1] / rho, y[1] / rho - drb / rho * y[0] / rho, 0};
+        double nn = sqrt(rd_dot3(n, n)),
+               F[3] = {-p * pb->area * n[0] / nn, -p * pb->area * n[1] / nn, 0.0};
+        for (int d = 0; d < 6; d++) {
+            /* dy of a unit step in DOF d, and the arm's turn (rotations only) */
+            double ed[3] = {0, 0, 0}, dy[3], darm[3] = {0, 0, 0}, dF[3], m1[3], m2[3];
+            ed[d % 3] = 1.0;
+            if (d < 3)
+                memcpy(dy, ed, sizeof dy);
+            else {
+                rd_cross3(ed, arm, darm);
+                memcpy(dy, darm, sizeof dy);
+            }
+            /* the normal's own turn is dropped: p / rho against k, ~1e-7 */
+            double s = -pb->area * dp * rd_dot3(n, dy) / nn;
+            for (int q = 0; q < 3; q++)
+                dF[q] = s * n[q];
+            rd_cross3(darm, F, m1);
+            rd_cross3(arm, dF, m2);
+            for (int r = 0; r < 3; r++) {
+                J[r + 6 * d] += dF[r];
+                J[3 + r + 6 * d] += m1[r] + m2[r];
+            }
+        }
+    }
+}
+
 /* The contact problem on `ring`: loads, law, support, contact points. */
 static int contact_setup(rd_static_problem *pb, const rd_ring_params *p, const rd_contact_opts *o)
 {
@@ -368,6 +427,7 @@ static int contact_summaries(const rd_static_problem *pb, const double *t, const
     for (int k = 0; k < pb->co->n_distortion; k++)
         bend += fabs(pb->co->distortion[k].amplitude) * pb->co->distortion[k].order *
                 pb->co->distortion[k].order;
+    out->point_spacing_deg = phi / pb->m;
     out->gap_floor =
         fmax(10.0 * pb->p0 / rd_contact_default_stiffness(rd_ring_get_params(pb->ring)),
              bend / (pb->r_o * pb->r_o) * L * L / 8.0);

@@ -166,11 +166,12 @@ typedef struct rd_contact_result {
      * scale), in angle order; edges where the clearance crosses zero. */
     int n_gaps;
     rd_contact_gap gaps[RD_CONTACT_GAPS_MAX];
-    double gap_floor;        /* m */
-    double marginal_gap_deg; /* width of the runs off the bore whose depth is within x2 of
+    double gap_floor;         /* m */
+    double marginal_gap_deg;  /* width of the runs off the bore whose depth is within x2 of
                                 gap_floor, counted or not: the contact fraction's threshold
                                 uncertainty, deg */
-    double tip_force[2];     /* concentrated force at the first / last free end, N */
+    double point_spacing_deg; /* contact points' spacing, deg: the edge locator's resolution */
+    double tip_force[2];      /* concentrated force at the first / last free end, N */
     double bin_pressure[RD_CONTACT_BINS]; /* mean pressure over the ring's arc in each
                                    RD_CONTACT_BIN_DEG bin, Pa */
     /* Accuracy: estimates of the reported values' errors from the last two

@@ -1,6 +1,6 @@
 /*
  * rd_static_internal.h — what the three static files share (no caller outside
- * core/ may include this):
+ * core/ may include this, but tests/ may, for the contact load's derivative):
  *   rd_static.c      the chain's nonlinear joint mechanics, the residual and
  *                    its tangent, Newton's method and the load stepping;
  *   rd_pretension.c  the free shape under F_t (and F_l) on the gap faces;
@@ -113,6 +113,11 @@ void rd_pretension_gap_face_load(const rd_static_problem *pb, int i, const doubl
  * from load factor l0 to l1). */
 void rd_contact_segment_load(const rd_static_problem *pb, int i, const double *x, const double *Q,
                              double f[6]);
+/* Its derivative: J[r + 6 d] = d f_r / d DOF d of segment i, DOFs (dx,
+ * dpsi) as in rd_static.c (the normal's turn, p / (k rho) ~ 1e-7 of the
+ * rest, left out). */
+void rd_contact_segment_jacobian(const rd_static_problem *pb, int i, const double *x,
+                                 const double *Q, double J[36]);
 void rd_contact_follow_bore(rd_static_problem *pb, double l0, double l1);
 /* rd_contact.c: the augmented Lagrangian's update, lambda_q <- p_q (each
  * point's current pressure); returns max_q |p_q - lambda_q| / p0 before it. */
