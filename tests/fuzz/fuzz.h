@@ -24,6 +24,12 @@ uint32_t fuzz_hash(const uint8_t *data, size_t size, uint32_t salt);
 /* The body with its size knobs clamped for a cheap run (malloc'd), or NULL. */
 char *fuzz_clamped(const char *body, size_t len);
 
+/* A made-up result of the scene `echo` for the warnings' rules: its
+ * numerics (error estimate, event error, accuracy met or not) and its own
+ * warnings picked by `h`; NULL when memory runs out. */
+struct json_t;
+struct json_t *fuzz_result_of(const char *echo, uint32_t h);
+
 /* A monitor that cancels after the run budget of CPU time from now;
  * `deadline` is its state and must outlive the run. */
 rd_monitor fuzz_budget(double *deadline);

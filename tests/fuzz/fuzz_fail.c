@@ -32,6 +32,7 @@
 #include "fuzz.h"
 #include "rd_scene_facts.h"
 #include "rd_sweep_request.h"
+#include "rd_warnings.h"
 
 #define FAIL_SKIP 4
 
@@ -273,6 +274,21 @@ static void step_texts(const char *body, size_t len, outcome *o)
     o->rc = RD_OK;
 }
 
+/* The warnings of a made-up result of the scene (fuzz_result_of). */
+static void step_warnings(const char *body, size_t len, outcome *o)
+{
+    rd_scene *scene = NULL;
+    o->rc = rd_scene_parse(body, len, &scene, &o->err);
+    char *echo = o->rc == RD_OK ? rd_scene_to_json(scene) : NULL;
+    json_t *r = echo ? fuzz_result_of(echo, fuzz_hash((const uint8_t *)body, len, 10)) : NULL;
+    if (o->rc == RD_OK && (!r || rd_warnings_add(r) != 0))
+        o->rc = rd_error_set(&o->err, RD_ENOMEM, "", "out of memory");
+    o->text[0] = o->rc == RD_OK ? json_dumps(r, JSON_COMPACT) : NULL;
+    json_decref(r);
+    free(echo);
+    rd_scene_free(scene);
+}
+
 /* A clamped run of the scene (outcomes depend on the CPU budget: only the
  * contract of a failure is checked, not the texts). */
 static void step_run(const char *small, size_t len, outcome *o)
@@ -421,6 +437,7 @@ void fuzz_fail_pass(const uint8_t *data, size_t size, int ran)
     run_step("scene", step_scene, body, size, fuzz_hash(data, size, 2), 1);
     run_step("sweep", step_sweep, body, size, fuzz_hash(data, size, 3), 1);
     run_step("texts", step_texts, body, size, fuzz_hash(data, size, 4), 1);
+    run_step("warnings", step_warnings, body, size, fuzz_hash(data, size, 11), 1);
     if (!ran)
         return;
     char *small = fuzz_clamped(body, size);

@@ -42,6 +42,7 @@
 #include "rd_scene_facts.h"
 #include "rd_sweep.h"
 #include "rd_sweep_request.h"
+#include "rd_warnings.h"
 
 size_t LLVMFuzzerMutate(uint8_t *data, size_t size, size_t max_size);
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
@@ -950,6 +951,41 @@ static void check_facts(const rd_scene *scene)
     rd_scene_free(again);
 }
 
+json_t *fuzz_result_of(const char *echo, uint32_t h)
+{
+    json_t *scene = json_loads(echo, 0, NULL);
+    json_t *r =
+        json_pack("{s:o, s:{s:f, s:f, s:b, s:f}}", "scene", scene, "numerics", "error_estimate",
+                  (double)(h % 100) / 1000.0, "event_error_deg", (double)(h >> 8 & 15),
+                  "accuracy_met", (int)(h >> 12 & 1), "accuracy", 1e-3);
+    json_t *numerics = json_object_get(r, "numerics");
+    if (h >> 13 & 1)
+        json_object_set_new(numerics, "reference_segments", json_integer(12));
+    if (h >> 14 & 1)
+        json_object_set_new(numerics, "accuracy_note", json_string("note"));
+    if (h >> 15 & 1)
+        json_object_set_new(r, "warnings", json_pack("[{s:s}]", "code", "own"));
+    return r;
+}
+
+/* The result's warnings (rd_warnings.h) over the echo and made-up numerics:
+ * its own (code "own") kept, then {code, path, message} of each rule. */
+static void check_warnings(const char *echo, uint32_t h)
+{
+    json_t *r = fuzz_result_of(echo, h), *w;
+    size_t i;
+    if (!r || rd_warnings_add(r) != 0 || !json_is_array(json_object_get(r, "warnings")))
+        abort();
+    json_array_foreach(json_object_get(r, "warnings"), i, w)
+    {
+        const char *code = json_string_value(json_object_get(w, "code"));
+        if (!code || (strcmp(code, "own") && (!json_is_string(json_object_get(w, "message")) ||
+                                              !json_is_string(json_object_get(w, "path")))))
+            abort();
+    }
+    json_decref(r);
+}
+
 /* The checks of one input (see the top); returns whether it ran. */
 static int check_input(const uint8_t *data, size_t size)
 {
@@ -967,6 +1003,7 @@ static int check_input(const uint8_t *data, size_t size)
         json_decref(o);
         check_echo(echo);
         check_facts(scene);
+        check_warnings(echo, fuzz_hash(data, size, 10));
         free(echo);
         rd_scene_free(scene);
         if (run_mode && run_now(analysis, data, size)) {
