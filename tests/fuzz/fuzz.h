@@ -62,6 +62,11 @@ typedef struct fuzz_sink {
 } fuzz_sink;
 FILE *fuzz_sink_open(fuzz_sink *sink, size_t budget);
 
+/* The OpenAPI document (from template `tmpl`) with an allocation failing
+ * at each of OPENAPI_FAILS points spread over its allocations: the same
+ * document or a 5xx error (once, at start-up: no body reaches it). */
+void fuzz_fail_openapi(const char *tmpl);
+
 /* The second pass over an input (most inputs, see fuzz_fail.c): each step
  * again with its k-th allocation failing.  `ran`: the first pass ran the
  * input (scene or sweep), so the pass may run it too. */

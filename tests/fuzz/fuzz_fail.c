@@ -34,7 +34,8 @@
 #include "rd_sweep_request.h"
 #include "rd_warnings.h"
 
-#define FAIL_SKIP 4
+#define FAIL_SKIP     4
+#define OPENAPI_FAILS 40 /* failure points spread over the OpenAPI document's allocations */
 
 void *__real_malloc(size_t n);
 void *__real_calloc(size_t n, size_t size);
@@ -426,6 +427,26 @@ static void run_step(const char *name, step_fn step, const char *body, size_t le
     }
     outcome_free(&clean);
     outcome_free(&hurt);
+}
+
+void fuzz_fail_openapi(const char *tmpl)
+{
+    rd_error err;
+    rd_error_init(&err);
+    fuzz_fail_arm(0);
+    char *clean = rd_api_openapi_json(tmpl, &err);
+    size_t n = fuzz_fail_disarm();
+    for (size_t i = 0; fail.enabled && clean && i < OPENAPI_FAILS; i++) {
+        rd_error_init(&err);
+        fuzz_fail_arm(1 + i * n / OPENAPI_FAILS);
+        char *text = rd_api_openapi_json(tmpl, &err);
+        fuzz_fail_disarm();
+        if (text ? strcmp(text, clean) && !fail.writer_failed
+                 : rd_api_http_status(err.code) < 500 || !err.message[0])
+            abort();
+        free(text);
+    }
+    free(clean);
 }
 
 void fuzz_fail_pass(const uint8_t *data, size_t size, int ran)

@@ -203,6 +203,7 @@ static void learn_vocabulary(void)
     if (!f || rd_api_read_stream(f, 1 << 22, &tmpl, &len) != 0 ||
         !(text = rd_api_openapi_json(tmpl, &err)) || !(vocab.doc = json_loads(text, 0, NULL)))
         abort();
+    fuzz_fail_openapi(tmpl);
     fclose(f);
     free(tmpl);
     free(text);
