@@ -61,20 +61,29 @@ static json_t *child(json_t *v, const char *tok)
     return NULL;
 }
 
-json_t *rd_jsonptr_get(json_t *root, const char *ptr)
+int rd_jsonptr_lookup(json_t *root, const char *ptr, json_t **out)
 {
+    *out = NULL;
     if (!rd_jsonptr_valid(ptr))
-        return NULL;
+        return -1;
     json_t *v = root;
     const char *at = ptr;
     while (v && *at == '/') {
         at++;
         char *tok = next_token(&at);
         if (!tok)
-            return NULL;
+            return -2;
         v = child(v, tok);
         free(tok);
     }
+    *out = v;
+    return v ? 0 : -1;
+}
+
+json_t *rd_jsonptr_get(json_t *root, const char *ptr)
+{
+    json_t *v;
+    rd_jsonptr_lookup(root, ptr, &v);
     return v;
 }
 

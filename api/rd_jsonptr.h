@@ -21,6 +21,10 @@ int rd_jsonptr_valid(const char *ptr);
  * `ptr` is malformed.  A "*" token is an ordinary key here. */
 json_t *rd_jsonptr_get(json_t *root, const char *ptr);
 
+/* rd_jsonptr_get that tells why nothing was found: 0 (*out is the value),
+ * -1 no such value or `ptr` malformed, -2 out of memory. */
+int rd_jsonptr_lookup(json_t *root, const char *ptr, json_t **out);
+
 /* Sets the value `ptr` names in `root` to `value` (the reference is stolen,
  * also on failure).  Missing object members on the way are created as empty
  * objects; an array element must exist, or the token is the array's length

@@ -497,13 +497,14 @@ static int try_value(const rd_sweep *s, int p, json_t *value, const char *where,
         return spec_error(err, where, "parameter %s = %s gives an invalid scene: %s", path, text,
                           e.message);
     char *echo = rd_scene_to_json(sc);
-    json_t *doc = echo ? json_loads(echo, 0, NULL) : NULL;
-    int read = rd_jsonptr_get(doc, path) != NULL;
+    json_t *doc = echo ? json_loads(echo, 0, NULL) : NULL, *at;
+    int found = rd_jsonptr_lookup(doc, path, &at);
     const char *analysis = rd_scene_analysis(sc);
-    rc = !doc   ? rd_error_set(err, RD_ENOMEM, "", "out of memory while checking the sweep spec")
-         : read ? RD_OK
-                : spec_error(err, where, "parameter %s is not a field that a %s scene reads", path,
-                             analysis);
+    rc = !doc || found == -2
+             ? rd_error_set(err, RD_ENOMEM, "", "out of memory while checking the sweep spec")
+         : found == 0 ? RD_OK
+                      : spec_error(err, where, "parameter %s is not a field that a %s scene reads",
+                                   path, analysis);
     json_decref(doc);
     free(echo);
     rd_scene_free(sc);
@@ -705,7 +706,9 @@ static void fold(json_t *v, double *lo, double *hi, double *sum, size_t *n, json
 static json_t *output_value(const output *o, json_t *result)
 {
     if (o->kind == O_POINTER) {
-        json_t *v = rd_jsonptr_get(result, o->ptr);
+        json_t *v;
+        if (rd_jsonptr_lookup(result, o->ptr, &v) == -2)
+            return NULL;
         return v ? json_incref(v) : json_null();
     }
     json_t *all = json_array();
@@ -729,6 +732,10 @@ static json_t *output_value(const output *o, json_t *result)
         fold(all, &lo, &hi, &sum, &n, list);
         if (o->kind == O_ALL) {
             json_decref(all);
+            if (json_array_size(list) != n) { /* an append ran out of memory */
+                json_decref(list);
+                list = NULL;
+            }
             return list;
         }
         double x = o->kind == O_MAX ? hi : o->kind == O_MIN ? lo : sum / (double)n;

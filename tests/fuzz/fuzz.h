@@ -41,7 +41,7 @@ rd_monitor fuzz_budget(double *deadline);
 void fuzz_fail_init(void);
 
 /* From now on count the allocations of api/, core/, jansson and the
- * harness; k > 0: the k-th fails (returns NULL), once. */
+ * harness; k > 0: the k-th and every later one fail (return NULL). */
 void fuzz_fail_arm(size_t k);
 
 /* Stops counting; returns the count.  fuzz_fail_fired: whether the armed
@@ -68,7 +68,7 @@ FILE *fuzz_sink_open(fuzz_sink *sink, size_t budget);
 void fuzz_fail_openapi(const char *tmpl);
 
 /* The second pass over an input (most inputs, see fuzz_fail.c): each step
- * again with its k-th allocation failing.  `ran`: the first pass ran the
+ * again with its allocations failing from the k-th on.  `ran`: the first pass ran the
  * input (scene or sweep), so the pass may run it too. */
 void fuzz_fail_pass(const uint8_t *data, size_t size, int ran);
 

@@ -7,19 +7,23 @@
  * strdup and strndup (tests/fuzz/CMakeLists.txt), so every call of api/,
  * core/ and the harness reaches the __wrap_ functions below; jansson's
  * allocations come through json_set_alloc_funcs.  While armed, each
- * allocation is counted and the k-th returns NULL (once).  Allocations
- * inside other libraries (libc's own, LAPACK, SUNDIALS) are not counted.
+ * allocation is counted and the k-th and every later one return NULL
+ * (memory that ran out stays out), except inside jansson's parser (see
+ * __wrap_json_loads).  Allocations inside other libraries (libc's own,
+ * LAPACK, SUNDIALS) are not counted.
  *
  * The pass (fuzz_fail_pass), after the ordinary checks of an input: each
  * step (a group of api/ calls on the input) runs once counting its
- * allocations n, then again with allocation k = 1 + hash % n failing.  What
- * must hold for a step whose allocation failed: no crash, leak or UB
- * (ASan); either the same outcome as without the failure (status, message
+ * allocations n, then again with the allocations from k = 1 + hash % n on
+ * failing.  What must hold for a step whose allocations failed: no crash,
+ * leak or UB (ASan); either the same outcome as without the failure (status, message
  * and texts; a text may be NULL, each writer's out-of-memory answer), or an
  * error whose HTTP status is 5xx (out of memory, internal error) with a
  * message: an allocation failure must never pass for the client's mistake
- * (4xx) nor change an accepted scene.  One input in FAIL_SKIP has no pass,
- * so part of the fuzzer's time still goes to the normal paths alone.
+ * (4xx) nor change an accepted scene.  When nothing failed (the step
+ * allocated less than k this time), nothing may differ.  One input in
+ * FAIL_SKIP has no pass, so part of the fuzzer's time still goes to the
+ * normal paths alone.
  */
 #define _GNU_SOURCE /* fopencookie */
 #include <stdio.h>
