@@ -68,8 +68,9 @@ FILE *fuzz_sink_open(fuzz_sink *sink, size_t budget);
 void fuzz_fail_openapi(const char *tmpl);
 
 /* The second pass over an input (most inputs, see fuzz_fail.c): each step
- * again with its allocations failing from the k-th on.  `ran`: the first pass ran the
- * input (scene or sweep), so the pass may run it too. */
+ * again with its allocations failing from the k-th on.  `ran`: the first
+ * pass ran the input (scene or sweep), so the pass may run it too (one in
+ * RUN_FAIL_EVERY). */
 void fuzz_fail_pass(const uint8_t *data, size_t size, int ran);
 
 /* ---- fuzz_files.c ---- */
