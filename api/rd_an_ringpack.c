@@ -20,6 +20,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "rd_json.h"
 #include "rd_registry.h"
 #include "rd_ringpack.h"
 #include "rd_scene.h"
@@ -326,7 +327,7 @@ static int parse_ring(json_t *item, const char *at, rd_scene *s, int i, rd_error
     struct pack_opts *o = s->opts, slot;
     if (!json_is_object(item))
         return rd_schema_type_error(err, at, "an object {ring, groove, land, ...}", item);
-    json_t *copy = json_copy(item);
+    json_t *copy = rd_json_copy(item);
     if (!copy)
         return rd_error_set(err, RD_ENOMEM, at, "out of memory while reading %s", at);
     int none = json_is_null(json_object_get(copy, "pinned"));
@@ -591,12 +592,12 @@ static json_t *table_json(const rd_ringpack_result *r)
         bad |= json_object_set_new(t, pcol[v],
                                    v < r->n_volumes - 1
                                        ? rd_result_reals(r->pressure + (size_t)v * N, N, 1, 1.0)
-                                       : json_copy(nulls));
+                                       : rd_json_copy(nulls));
     for (int i = 0; !bad && i < 3; i++)
         bad |=
             json_object_set_new(t, lcol[i],
                                 i < r->n_rings ? rd_result_reals(r->lift + (size_t)i * N, N, 1, 1.0)
-                                               : json_copy(nulls));
+                                               : rd_json_copy(nulls));
     bad |= json_object_set(t, "blowby_kg_s", cc);
     json_decref(nulls);
     json_decref(cc);

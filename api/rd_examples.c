@@ -99,7 +99,9 @@ static int load_example(const char *dir, const char *name, json_t **root, rd_err
     }
     rd_error_init(&inner);
     rc = rd_scene_parse_value(*root, &scene, &inner);
-    if (rc != RD_OK)
+    if (rc != RD_OK && rd_api_http_status(rc) >= 500) /* out of memory: not the file's fault */
+        rc = rd_error_set(err, rc, "", "%s (example \"%s.json\")", inner.message, name);
+    else if (rc != RD_OK)
         rc = rd_error_set(err, RD_EINVAL, inner.path,
                           "example \"%s.json\" is not a valid scene: %s", name, inner.message);
 out:
@@ -217,7 +219,10 @@ char *rd_api_examples_json(const char *dir, rd_error *err)
         }
     }
     body = list ? json_pack("{s:O}", "examples", list) : NULL;
-    text = body ? json_dumps(body, JSON_COMPACT | JSON_REAL_PRECISION(RD_SCENE_REAL_DIGITS)) : NULL;
+    /* a scene as written, unless 15 digits would change one of its reals
+     * (0.49999999999999994 to 0.5): found by tests/fuzz */
+    text = body ? json_dumps(body, JSON_COMPACT | JSON_REAL_PRECISION(rd_scene_real_digits(body)))
+                : NULL;
     if (!text)
         rd_error_set(err, RD_ENOMEM, "", "out of memory while listing the examples");
 out:
@@ -263,7 +268,7 @@ char *rd_api_example_scene(const char *dir, const char *name, rd_error *err)
     }
     if (load_example(dir, name, &root, err) != RD_OK)
         goto out;
-    text = json_dumps(root, JSON_COMPACT | JSON_REAL_PRECISION(RD_SCENE_REAL_DIGITS));
+    text = json_dumps(root, JSON_COMPACT | JSON_REAL_PRECISION(rd_scene_real_digits(root)));
     if (!text)
         rd_error_set(err, RD_ENOMEM, "", "out of memory while writing example \"%s\"", name);
 out:

@@ -200,3 +200,15 @@ char *rd_json_dumps(const json_t *v, int digits, int sort)
     o.p[o.len] = '\0';
     return o.p;
 }
+
+json_t *rd_json_copy(json_t *v)
+{
+    json_t *c = json_copy(v);
+    size_t want = json_is_object(v) ? json_object_size(v) : json_array_size(v);
+    size_t got = json_is_object(c) ? json_object_size(c) : json_array_size(c);
+    if (c && got != want) {
+        json_decref(c);
+        c = NULL;
+    }
+    return c;
+}

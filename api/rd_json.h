@@ -22,4 +22,10 @@
 
 char *rd_json_dumps(const json_t *v, int digits, int sort);
 
+/* json_copy (a shallow copy of an object or array), or NULL when memory
+ * runs out: jansson's json_copy then returns a copy short of the members
+ * or items it had no memory for (found by tests/fuzz's allocation
+ * failures). */
+json_t *rd_json_copy(json_t *v);
+
 #endif

@@ -61,20 +61,29 @@ static json_t *child(json_t *v, const char *tok)
     return NULL;
 }
 
-json_t *rd_jsonptr_get(json_t *root, const char *ptr)
+int rd_jsonptr_lookup(json_t *root, const char *ptr, json_t **out)
 {
+    *out = NULL;
     if (!rd_jsonptr_valid(ptr))
-        return NULL;
+        return -1;
     json_t *v = root;
     const char *at = ptr;
     while (v && *at == '/') {
         at++;
         char *tok = next_token(&at);
         if (!tok)
-            return NULL;
+            return -2;
         v = child(v, tok);
         free(tok);
     }
+    *out = v;
+    return v ? 0 : -1;
+}
+
+json_t *rd_jsonptr_get(json_t *root, const char *ptr)
+{
+    json_t *v;
+    rd_jsonptr_lookup(root, ptr, &v);
     return v;
 }
 
@@ -86,30 +95,36 @@ int rd_jsonptr_set(json_t *root, const char *ptr, json_t *value)
     }
     json_t *v = root;
     const char *at = ptr;
-    int rc = -1;
+    int rc = -1, oom = !value; /* the path is valid: a failed set or object is memory */
     while (*at == '/') {
         at++;
         char *tok = next_token(&at);
-        if (!tok)
+        if (!tok) {
+            oom = 1;
             break;
+        }
         int last = *at == '\0';
         if (json_is_object(v)) {
             json_t *c = json_object_get(v, tok);
             if (last) {
                 rc = json_object_set(v, tok, value);
+                oom |= rc != 0;
             } else if (!c) {
                 c = json_object();
-                if (c && json_object_set_new(v, tok, c) != 0)
+                if (!c || json_object_set_new(v, tok, c) != 0) {
                     c = NULL;
+                    oom = 1;
+                }
             }
             v = c;
         } else if (json_is_array(v)) {
             long k = array_index(tok);
             size_t n = json_array_size(v);
-            if (last && k >= 0 && (size_t)k < n)
-                rc = json_array_set(v, (size_t)k, value);
-            else if (last && k >= 0 && (size_t)k == n)
-                rc = json_array_append(v, value);
+            if (last && k >= 0 && (size_t)k <= n) {
+                rc = (size_t)k < n ? json_array_set(v, (size_t)k, value)
+                                   : json_array_append(v, value);
+                oom |= rc != 0;
+            }
             v = k >= 0 ? json_array_get(v, (size_t)k) : NULL;
         } else {
             v = NULL;
@@ -119,7 +134,7 @@ int rd_jsonptr_set(json_t *root, const char *ptr, json_t *value)
             break;
     }
     json_decref(value);
-    return rc == 0 ? 0 : -1;
+    return rc == 0 ? 0 : oom ? -2 : -1;
 }
 
 /* Collects from `v` what the rest of the pointer, `at`, names. */

@@ -21,11 +21,15 @@ int rd_jsonptr_valid(const char *ptr);
  * `ptr` is malformed.  A "*" token is an ordinary key here. */
 json_t *rd_jsonptr_get(json_t *root, const char *ptr);
 
+/* rd_jsonptr_get that tells why nothing was found: 0 (*out is the value),
+ * -1 no such value or `ptr` malformed, -2 out of memory. */
+int rd_jsonptr_lookup(json_t *root, const char *ptr, json_t **out);
+
 /* Sets the value `ptr` names in `root` to `value` (the reference is stolen,
  * also on failure).  Missing object members on the way are created as empty
  * objects; an array element must exist, or the token is the array's length
- * (append).  Returns 0, or -1 when `ptr` is "" or malformed, crosses a scalar,
- * indexes an array out of range, or memory runs out. */
+ * (append).  Returns 0; -1 when `ptr` is "" or malformed, crosses a scalar or
+ * indexes an array out of range; -2 when memory runs out (or `value` is NULL). */
 int rd_jsonptr_set(json_t *root, const char *ptr, json_t *value);
 
 /* Appends to `out` (a JSON array) every value `ptr` names in `root`, where a

@@ -271,6 +271,11 @@ static int reals_round_trip(json_t *v)
     return 1;
 }
 
+int rd_scene_real_digits(json_t *v)
+{
+    return reals_round_trip(v) ? RD_SCENE_REAL_DIGITS : 17;
+}
+
 /* The echo is a scene that parses back into the same scene: a value that
  * 15 digits would round (0.49999999999999994 to 0.5, out of its range),
  * found by tests/fuzz, makes the whole echo use 17, which always
@@ -278,7 +283,7 @@ static int reals_round_trip(json_t *v)
 char *rd_scene_to_json(const rd_scene *scene)
 {
     json_t *echo = rd_scene_echo(scene);
-    int digits = reals_round_trip(echo) ? RD_SCENE_REAL_DIGITS : 17;
+    int digits = rd_scene_real_digits(echo);
     char *text = echo ? rd_json_dumps(echo, digits, 0) : NULL;
     json_decref(echo);
     return text;

@@ -78,6 +78,10 @@ const char *rd_scene_analysis_name(int analysis);
  * with every default filled in.  NULL on out of memory. */
 struct json_t *rd_scene_echo(const rd_scene *scene);
 
+/* The digits a scene's reals are written with: RD_SCENE_REAL_DIGITS, or
+ * 17 when one of the reals of `v` would not read back from 15. */
+int rd_scene_real_digits(struct json_t *v);
+
 /* Parses an already decoded JSON value as a scene (steps 2-4 above; a
  * non-object is RD_EJSON).  `value` is borrowed and not modified (it is not
  * const only because jansson's object iteration takes a mutable json_t).

@@ -137,15 +137,19 @@ static json_t *param_value(const rd_sweep *s, int p, size_t i)
 
 /* `scene` (or, when NULL, a deep copy of the base) with `value` written at
  * `path`; value and scene are stolen.  NULL when the path cannot be written
- * (it crosses a scalar or indexes past an array) or memory runs out. */
-static json_t *with_value(const json_t *base, json_t *scene, const char *path, json_t *value)
+ * (it crosses a scalar or indexes past an array) or memory runs out (then
+ * *oom is 1). */
+static json_t *with_value(const json_t *base, json_t *scene, const char *path, json_t *value,
+                          int *oom)
 {
     if (!scene)
         scene = json_deep_copy(base);
-    if (!scene || !value || rd_jsonptr_set(scene, path, value) != 0) {
+    int rc = !scene || !value ? -2 : rd_jsonptr_set(scene, path, value);
+    if (rc != 0) {
         if (!scene || !value)
             json_decref(value);
         json_decref(scene);
+        *oom = rc == -2;
         return NULL;
     }
     return scene;
@@ -155,8 +159,9 @@ static json_t *with_value(const json_t *base, json_t *scene, const char *path, j
 static json_t *point_scene(const rd_sweep *s, size_t i)
 {
     json_t *scene = json_deep_copy(s->base);
+    int oom = 0;
     for (int p = 0; scene && p < s->np; p++)
-        scene = with_value(s->base, scene, s->p[p].path, param_value(s, p, i));
+        scene = with_value(s->base, scene, s->p[p].path, param_value(s, p, i), &oom);
     return scene;
 }
 
@@ -472,7 +477,10 @@ static int try_value(const rd_sweep *s, int p, json_t *value, const char *where,
     const char *path = s->p[p].path;
     char text[64];
     value_text(value, text, sizeof text);
-    json_t *scene = with_value(s->base, NULL, path, value);
+    int oom = 0;
+    json_t *scene = with_value(s->base, NULL, path, value, &oom);
+    if (!scene && oom)
+        return rd_error_set(err, RD_ENOMEM, "", "out of memory while checking the sweep spec");
     if (!scene)
         return spec_error(err, where,
                           "parameter %s cannot be set in the base scene: a part of "
@@ -489,13 +497,14 @@ static int try_value(const rd_sweep *s, int p, json_t *value, const char *where,
         return spec_error(err, where, "parameter %s = %s gives an invalid scene: %s", path, text,
                           e.message);
     char *echo = rd_scene_to_json(sc);
-    json_t *doc = echo ? json_loads(echo, 0, NULL) : NULL;
-    int read = rd_jsonptr_get(doc, path) != NULL;
+    json_t *doc = echo ? json_loads(echo, 0, NULL) : NULL, *at;
+    int found = rd_jsonptr_lookup(doc, path, &at);
     const char *analysis = rd_scene_analysis(sc);
-    rc = !doc   ? rd_error_set(err, RD_ENOMEM, "", "out of memory while checking the sweep spec")
-         : read ? RD_OK
-                : spec_error(err, where, "parameter %s is not a field that a %s scene reads", path,
-                             analysis);
+    rc = !doc || found == -2
+             ? rd_error_set(err, RD_ENOMEM, "", "out of memory while checking the sweep spec")
+         : found == 0 ? RD_OK
+                      : spec_error(err, where, "parameter %s is not a field that a %s scene reads",
+                                   path, analysis);
     json_decref(doc);
     free(echo);
     rd_scene_free(sc);
@@ -697,7 +706,9 @@ static void fold(json_t *v, double *lo, double *hi, double *sum, size_t *n, json
 static json_t *output_value(const output *o, json_t *result)
 {
     if (o->kind == O_POINTER) {
-        json_t *v = rd_jsonptr_get(result, o->ptr);
+        json_t *v;
+        if (rd_jsonptr_lookup(result, o->ptr, &v) == -2)
+            return NULL;
         return v ? json_incref(v) : json_null();
     }
     json_t *all = json_array();
@@ -721,6 +732,10 @@ static json_t *output_value(const output *o, json_t *result)
         fold(all, &lo, &hi, &sum, &n, list);
         if (o->kind == O_ALL) {
             json_decref(all);
+            if (json_array_size(list) != n) { /* an append ran out of memory */
+                json_decref(list);
+                list = NULL;
+            }
             return list;
         }
         double x = o->kind == O_MAX ? hi : o->kind == O_MIN ? lo : sum / (double)n;

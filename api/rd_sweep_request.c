@@ -186,10 +186,10 @@ char *rd_sweep_request_failed_row(const rd_sweep_request *req, size_t i, const r
     char *text = NULL;
     int bad = !scene || !columns || !row || ncols < req->n_params + 2;
     for (size_t k = 0; !bad && k < ncols - 2; k++) {
-        json_t *v = k < req->n_params
-                        ? rd_jsonptr_get(scene, json_string_value(json_array_get(columns, k)))
-                        : NULL;
-        bad = json_array_append_new(row, v ? json_deep_copy(v) : json_null()) != 0;
+        json_t *v = NULL;
+        if (k < req->n_params)
+            bad = rd_jsonptr_lookup(scene, json_string_value(json_array_get(columns, k)), &v) == -2;
+        bad = bad || json_array_append_new(row, v ? json_deep_copy(v) : json_null()) != 0;
     }
     if (!bad && json_array_append_new(row, json_string(rd_error_code_name(why->code))) == 0 &&
         json_array_append_new(

@@ -30,6 +30,8 @@
 #include <stdarg.h>
 #include <stdio.h>
 
+#include "rd_json.h"
+
 #define ERROR_LIMIT     0.05   /* relative error above which a result is flagged */
 #define EVENT_LIMIT_DEG 5.0    /* flank-change timing uncertainty, deg */
 #define BORE_MISMATCH   0.01   /* |bore - ring diameter| / ring diameter */
@@ -229,7 +231,7 @@ int rd_warnings_add(json_t *result)
 {
     /* the analysis' own warnings first (a lift run's partial result) */
     json_t *own = json_object_get(result, "warnings");
-    json_t *list = json_is_array(own) ? json_copy(own) : json_array();
+    json_t *list = json_is_array(own) ? rd_json_copy(own) : json_array();
     json_t *scene = json_object_get(result, "scene");
     int bad = !list;
     for (size_t k = 0; !bad && k < sizeof rules / sizeof rules[0]; k++)

@@ -27,23 +27,22 @@
  * RINGDYN_FUZZ_RUN=0 runs none, for the long run of many executions.  RINGDYN_FUZZ_DICT=FILE writes
  * the vocabulary as a libFuzzer dictionary and exits (run.sh uses it).
  */
-#include <errno.h>
 #include <math.h>
 #include <stddef.h>
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <sys/stat.h>
 #include <time.h>
-#include <unistd.h>
 
 #include <jansson.h>
 
+#include "fuzz.h"
 #include "rd_api.h"
 #include "rd_scene_facts.h"
 #include "rd_sweep.h"
 #include "rd_sweep_request.h"
+#include "rd_warnings.h"
 
 size_t LLVMFuzzerMutate(uint8_t *data, size_t size, size_t max_size);
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
@@ -204,6 +203,7 @@ static void learn_vocabulary(void)
     if (!f || rd_api_read_stream(f, 1 << 22, &tmpl, &len) != 0 ||
         !(text = rd_api_openapi_json(tmpl, &err)) || !(vocab.doc = json_loads(text, 0, NULL)))
         abort();
+    fuzz_fail_openapi(tmpl);
     fclose(f);
     free(tmpl);
     free(text);
@@ -630,13 +630,24 @@ static int past_deadline(void *ctx, double fraction)
     return now_s() > *(const double *)ctx;
 }
 
-/* FNV-1a of the input selects one in RUN_EVERY. */
-static int run_selected(const uint8_t *data, size_t size)
+uint32_t fuzz_hash(const uint8_t *data, size_t size, uint32_t salt)
 {
-    uint32_t h = 2166136261u;
+    uint32_t h = 2166136261u ^ (salt * 0x9E3779B9u);
     for (size_t i = 0; i < size; i++)
         h = (h ^ data[i]) * 16777619u;
-    return h % RUN_EVERY == 0;
+    return h;
+}
+
+rd_monitor fuzz_budget(double *deadline)
+{
+    *deadline = now_s() + RUN_BUDGET_S;
+    return (rd_monitor){past_deadline, deadline};
+}
+
+/* The hash selects one input in RUN_EVERY. */
+static int run_selected(const uint8_t *data, size_t size)
+{
+    return fuzz_hash(data, size, 0) % RUN_EVERY == 0;
 }
 
 /* Whether an accepted input of `kind` (its analysis, or "sweep") runs: the
@@ -698,8 +709,8 @@ static void clamp(json_t *j, int cycles_least)
  * the text alike, or fails with a status and a message. */
 static void check_run(const rd_scene *scene)
 {
-    double deadline = now_s() + RUN_BUDGET_S;
-    rd_monitor mon = {past_deadline, &deadline};
+    double deadline;
+    rd_monitor mon = fuzz_budget(&deadline);
     rd_result_doc *doc = NULL;
     rd_error err;
     rd_error_init(&err);
@@ -738,18 +749,27 @@ static void check_run(const rd_scene *scene)
     rd_result_doc_free(doc);
 }
 
-static void check_sweep(const uint8_t *data, size_t size, int run);
+static int check_sweep(const uint8_t *data, size_t size, int run);
+
+char *fuzz_clamped(const char *body, size_t len)
+{
+    json_t *j = json_loadb(body, len, 0, NULL);
+    const char *an = json_string_value(json_object_get(j, "analysis"));
+    if (json_is_object(j))
+        clamp(j, an && !strcmp(an, "ringpack"));
+    char *small = json_is_object(j) ? json_dumps(j, JSON_COMPACT) : NULL;
+    json_decref(j);
+    return small;
+}
 
 static void run_small(const char *body, size_t len)
 {
-    json_t *j = json_loadb(body, len, 0, NULL);
-    if (!json_is_object(j)) {
-        json_decref(j);
+    char *small = fuzz_clamped(body, len);
+    json_t *j = small ? json_loads(small, 0, NULL) : NULL;
+    if (!j) {
+        free(small);
         return;
     }
-    const char *an = json_string_value(json_object_get(j, "analysis"));
-    clamp(j, an && !strcmp(an, "ringpack"));
-    char *small = json_dumps(j, JSON_COMPACT);
     /* The same scene as a fidelity request of two cheap levels. */
     json_t *fid = json_pack("{s:O, s:[i, i]}", "fidelity", j, "segments", 4, 6);
     const char *analysis = json_string_value(json_object_get(j, "analysis"));
@@ -787,6 +807,7 @@ int LLVMFuzzerInitialize(int *argc, char ***argv)
 {
     (void)argc;
     (void)argv;
+    fuzz_fail_init();
     learn_vocabulary();
     const char *dict = getenv("RINGDYN_FUZZ_DICT");
     if (dict) {
@@ -814,57 +835,23 @@ int LLVMFuzzerInitialize(int *argc, char ***argv)
     }
     json_decref(o);
     free(list);
+    fuzz_files_init();
     return 0;
-}
-
-/* The rows as the one chunk file of `ringdyn sweep run` (when the points
- * are the whole sweep), read back by rd_sweep_reduce: its CSV must be the
- * table's. */
-static void check_reduce(const rd_sweep *sweep, char **rows, size_t m, const char *csv)
-{
-    size_t first, end;
-    rd_error err;
-    rd_error_init(&err);
-    if (m == 0 || rd_sweep_points(sweep) != m ||
-        rd_sweep_chunk_range(sweep, 0, 1, &first, &end, &err) != RD_OK)
-        return;
-    static char dir[64];
-    if (!dir[0] && (snprintf(dir, sizeof dir, "/tmp/ringdyn-fuzz-chunks.%ld", (long)getpid()),
-                    mkdir(dir, 0700) != 0 && errno != EEXIST))
-        abort();
-    char *name = rd_sweep_chunk_name(0, 1), *head = rd_sweep_chunk_head(sweep, 0, 1), path[160];
-    snprintf(path, sizeof path, "%s/%s", dir, name ? name : "");
-    FILE *f = name && head ? fopen(path, "w") : NULL;
-    if (!f)
-        abort();
-    fputs(head, f);
-    for (size_t i = 0; i < m; i++)
-        fprintf(f, "%s%s", i ? ",\n" : "", rows[i]);
-    fputs("]}\n", f);
-    char *out = NULL;
-    size_t len = 0;
-    FILE *o = open_memstream(&out, &len);
-    rd_error_init(&err);
-    if (fclose(f) || !o || rd_sweep_reduce(dir, 1, o, &err) != RD_OK || fclose(o) ||
-        strcmp(out, csv))
-        abort();
-    free(out);
-    remove(path);
-    free(head);
-    free(name);
 }
 
 /* A sweep request (spec or fidelity request) that parses: its table
  * machinery on its first points (at most 2, each run under the same
- * budget as a scene), the CSV forms, the fidelity table and the chunks. */
-static void check_sweep_table(const rd_sweep_request *req)
+ * budget as a scene), the CSV forms, the fidelity table and, when the
+ * points are the whole sweep, its chunk files (fuzz_files_reduce; `h`
+ * picks how they are broken). */
+static void check_sweep_table(const rd_sweep_request *req, uint32_t h)
 {
     size_t n = rd_sweep_points(req->sweep), m = n < 2 ? n : 2;
     char *rows[2] = {NULL, NULL};
     rd_error err;
     for (size_t i = 0; i < m; i++) {
-        double deadline = now_s() + RUN_BUDGET_S;
-        rd_monitor mon = {past_deadline, &deadline};
+        double deadline;
+        rd_monitor mon = fuzz_budget(&deadline);
         rd_error_init(&err);
         if (rd_sweep_run_point(req->sweep, i, &mon, &rows[i], &err) != RD_OK) {
             /* The service's row of a point it stopped. */
@@ -889,7 +876,8 @@ static void check_sweep_table(const rd_sweep_request *req)
         rd_error_init(&err);
         free(rd_sweep_fidelity_table(table, &err));
     }
-    check_reduce(req->sweep, rows, m, csv);
+    if (m > 0 && rd_sweep_points(req->sweep) == m)
+        fuzz_files_reduce(req->sweep, rows, m, csv, table, h);
     free(csv2);
     free(csv);
     free(table);
@@ -897,8 +885,8 @@ static void check_sweep_table(const rd_sweep_request *req)
         free(rows[i]);
 }
 
-/* run: 0 no, 1 yes, 2 when run_now says so. */
-static void check_sweep(const uint8_t *data, size_t size, int run)
+/* run: 0 no, 1 yes, 2 when run_now says so.  Returns whether it ran. */
+static int check_sweep(const uint8_t *data, size_t size, int run)
 {
     rd_sweep_request req = {0};
     rd_error err;
@@ -906,7 +894,7 @@ static void check_sweep(const uint8_t *data, size_t size, int run)
     if (rd_sweep_request_parse((const char *)data, size, 64, &req, &err) != RD_OK) {
         if (req.sweep || !err.message[0] || (err.path[0] && err.path[0] != '/'))
             abort();
-        return;
+        return 0;
     }
     if (!rd_sweep_hash(req.sweep) || rd_sweep_points(req.sweep) == 0)
         abort();
@@ -920,9 +908,11 @@ static void check_sweep(const uint8_t *data, size_t size, int run)
     free(scene);
     free(record);
     free(columns);
-    if (run == 2 ? run_now("sweep", data, size) : run)
-        check_sweep_table(&req);
+    int ran = run == 2 ? run_now("sweep", data, size) : run;
+    if (ran)
+        check_sweep_table(&req, fuzz_hash(data, size, 9));
     rd_sweep_request_cleanup(&req);
+    return ran;
 }
 
 /* The echo is canonical: it parses back into a scene whose echo is the
@@ -962,9 +952,45 @@ static void check_facts(const rd_scene *scene)
     rd_scene_free(again);
 }
 
-int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
+json_t *fuzz_result_of(const char *echo, uint32_t h)
 {
-    check_sweep(data, size, run_mode ? 2 : 0);
+    json_t *scene = json_loads(echo, 0, NULL);
+    json_t *r =
+        json_pack("{s:o, s:{s:f, s:f, s:b, s:f}}", "scene", scene, "numerics", "error_estimate",
+                  (double)(h % 100) / 1000.0, "event_error_deg", (double)(h >> 8 & 15),
+                  "accuracy_met", (int)(h >> 12 & 1), "accuracy", 1e-3);
+    json_t *numerics = json_object_get(r, "numerics");
+    if (h >> 13 & 1)
+        json_object_set_new(numerics, "reference_segments", json_integer(12));
+    if (h >> 14 & 1)
+        json_object_set_new(numerics, "accuracy_note", json_string("note"));
+    if (h >> 15 & 1)
+        json_object_set_new(r, "warnings", json_pack("[{s:s}]", "code", "own"));
+    return r;
+}
+
+/* The result's warnings (rd_warnings.h) over the echo and made-up numerics:
+ * its own (code "own") kept, then {code, path, message} of each rule. */
+static void check_warnings(const char *echo, uint32_t h)
+{
+    json_t *r = fuzz_result_of(echo, h), *w;
+    size_t i;
+    if (!r || rd_warnings_add(r) != 0 || !json_is_array(json_object_get(r, "warnings")))
+        abort();
+    json_array_foreach(json_object_get(r, "warnings"), i, w)
+    {
+        const char *code = json_string_value(json_object_get(w, "code"));
+        if (!code || (strcmp(code, "own") && (!json_is_string(json_object_get(w, "message")) ||
+                                              !json_is_string(json_object_get(w, "path")))))
+            abort();
+    }
+    json_decref(r);
+}
+
+/* The checks of one input (see the top); returns whether it ran. */
+static int check_input(const uint8_t *data, size_t size)
+{
+    int ran = check_sweep(data, size, run_mode ? 2 : 0);
     rd_scene *scene = NULL;
     rd_error err;
     rd_error_init(&err);
@@ -978,11 +1004,14 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         json_decref(o);
         check_echo(echo);
         check_facts(scene);
+        check_warnings(echo, fuzz_hash(data, size, 10));
         free(echo);
         rd_scene_free(scene);
-        if (run_mode && run_now(analysis, data, size))
+        if (run_mode && run_now(analysis, data, size)) {
             run_small((const char *)data, size);
-        return 0;
+            ran = 1;
+        }
+        return ran;
     }
     if (scene || err.code == RD_OK || err.code != rc || !err.message[0] ||
         (err.path[0] && err.path[0] != '/'))
@@ -1006,5 +1035,13 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         abort();
     json_decref(o);
     free(body);
+    return ran;
+}
+
+int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
+{
+    int ran = check_input(data, size);
+    fuzz_files_example(data, size);
+    fuzz_fail_pass(data, size, ran);
     return 0;
 }

@@ -7,6 +7,10 @@
 #   run.sh [--parse-only] [--runs N] [--max-len N] FUZZER SECONDS SOURCE_ROOT [CORPUS_DIR]
 #   run.sh --coverage FUZZER_COV SOURCE_ROOT CORPUS_DIR   (api/ coverage of a corpus)
 #
+# --coverage replays the corpus and the seeds (everything the fuzzer ran:
+# libFuzzer keeps in CORPUS_DIR only the inputs it made, not the seeds that
+# it started from); RINGDYN_FUZZ_COV_SEEDS=0 replays the corpus alone.
+#
 # --parse-only: RINGDYN_FUZZ_RUN=0, no analysis runs (parse, validate, echo,
 # refusal contract, sweep parse only): several times faster, for
 # the long run (ASan then keeps no allocation stacks: a finding's report
@@ -21,11 +25,25 @@
 # status: the fuzzer's (non-zero on a finding, whose input libFuzzer writes
 # as crash-* / leak-* / timeout-* in the current directory).
 set -euo pipefail
+# The seeds into directory $1: the project's scenes and sweeps, then the
+# scene bodies of the bad-input battery (one a line, "| BODY |").
+make_seeds() {
+  local i=0 f
+  mkdir -p "$1"
+  for f in "$ROOT"/examples/*.json "$ROOT"/tests/api/cases/*/request.json "$ROOT"/tests/api/sweeps/*.json \
+    "$ROOT"/tests/fuzz/seeds/*.json; do
+    [ -f "$f" ] && cp "$f" "$1/seed$((i += 1)).json"
+  done
+  grep '| POST /api/v1/jobs | ' "$ROOT"/tests/http/battery.txt | sed 's/^.*| POST \/api\/v1\/jobs | //; s/ | [A-Za-z-]*:.*$//' |
+    while IFS= read -r body; do printf '%s' "$body" >"$1/battery$((i += 1)).json"; done
+}
 if [ "${1:-}" = --coverage ]; then
   COV=$2 ROOT=$3 CORPUS=$4
   WORK=$(mktemp -d "${TMPDIR:-/tmp}/ringdyn-fuzzcov.XXXXXX")
   trap 'rm -rf "$WORK"' EXIT
-  LLVM_PROFILE_FILE="$WORK/cov.profraw" "$COV" -runs=0 "$CORPUS" >/dev/null 2>&1
+  SEEDS=()
+  if [ "${RINGDYN_FUZZ_COV_SEEDS:-1}" != 0 ]; then make_seeds "$WORK/seeds"; SEEDS=("$WORK/seeds"); fi
+  LLVM_PROFILE_FILE="$WORK/cov.profraw" "$COV" -runs=0 "$CORPUS" "${SEEDS[@]}" >/dev/null 2>&1
   PROFDATA=$(command -v llvm-profdata-14 || command -v llvm-profdata)
   LLVMCOV=$(command -v llvm-cov-14 || command -v llvm-cov)
   "$PROFDATA" merge -sparse "$WORK/cov.profraw" -o "$WORK/cov.profdata"
@@ -62,15 +80,8 @@ HERE=$PWD
 WORK=$(mktemp -d "${TMPDIR:-/tmp}/ringdyn-fuzz.XXXXXX")
 trap 'rm -rf "$WORK"' EXIT
 if [ -z "$CORPUS" ]; then CORPUS=$WORK/corpus; fi
-mkdir -p "$CORPUS" "$WORK/seeds"
-i=0
-for f in "$ROOT"/examples/*.json "$ROOT"/tests/api/cases/*/request.json "$ROOT"/tests/api/sweeps/*.json \
-  "$ROOT"/tests/fuzz/seeds/*.json; do
-  [ -f "$f" ] && cp "$f" "$WORK/seeds/seed$((i += 1)).json"
-done
-# ... and the scene bodies of the bad-input battery (one a line, "| BODY |").
-grep '| POST /api/v1/jobs | ' "$ROOT"/tests/http/battery.txt | sed 's/^.*| POST \/api\/v1\/jobs | //; s/ | [A-Za-z-]*:.*$//' |
-  while IFS= read -r body; do printf '%s' "$body" >"$WORK/seeds/battery$((i += 1)).json"; done
+mkdir -p "$CORPUS"
+make_seeds "$WORK/seeds"
 RINGDYN_FUZZ_DICT="$WORK/dict" "$FUZZER" >/dev/null 2>&1
 # -timeout: a parse of one input never takes a second, so 10 s is a hang.
 cd "$WORK"
