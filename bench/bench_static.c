@@ -16,8 +16,11 @@
  *       stiffness: how far each quantity moves, against its estimate.
  *   bench_static --battery  contact in distorted bores (orders 2, 3, 4, 6;
  *       0.1, 1, 3, 10 x the thin-ring bound, capped at 0.4 % of the
- *       diameter; phases 0 and 17 deg) at default settings against the
- *       independent reference (tests/core/contact_reference.c, 1440 cells):
+ *       diameter; phases 0 and 17 deg) at default settings against an
+ *       independent reference (1440 cells; --reference nl, the default:
+ *       tests/core/contact_reference_nl.c, geometrically exact, F_t
+ *       following the end faces as in ringdyn; nl-dead: F_t of fixed
+ *       direction; linear: tests/core/contact_reference.c; also for --bins):
  *       true errors, the solver's estimates, wall and CPU time (median of
  *       3; the CPU time of this one-threaded process is what the solve
  *       costs on a free core when the machine is shared).
