@@ -16,8 +16,11 @@
  *       stiffness: how far each quantity moves, against its estimate.
  *   bench_static --battery  contact in distorted bores (orders 2, 3, 4, 6;
  *       0.1, 1, 3, 10 x the thin-ring bound, capped at 0.4 % of the
- *       diameter; phases 0 and 17 deg) at default settings against the
- *       independent reference (tests/core/contact_reference.c, 1440 cells):
+ *       diameter; phases 0 and 17 deg) at default settings against an
+ *       independent reference (1440 cells; --reference nl, the default:
+ *       tests/core/contact_reference_nl.c, geometrically exact, F_t
+ *       following the end faces as in ringdyn; nl-dead: F_t of fixed
+ *       direction; linear: tests/core/contact_reference.c; also for --bins):
  *       true errors, the solver's estimates, wall and CPU time (median of
  *       3; the CPU time of this one-threaded process is what the solve
  *       costs on a free core when the machine is shared).
@@ -35,6 +38,21 @@
 
 #include "contact_reference.h"
 #include "rd_static.h"
+
+/* The reference the battery and --bins compare with: REF_NL, the
+ * geometrically exact beam (F_t following the end sections, as ringdyn),
+ * REF_NL_DEAD (F_t fixed in direction), REF_LINEAR (contact_reference.c). */
+enum { REF_NL, REF_NL_DEAD, REF_LINEAR };
+static int reference_kind = REF_NL;
+
+static int reference_solve(const rd_ring_params *p, const rd_contact_opts *o, double floor_m,
+                           ref_result *r)
+{
+    if (reference_kind == REF_LINEAR)
+        return ref_contact_solve(p, o, 1440, RD_CONTACT_BIN_DEG, floor_m, r);
+    return ref_contact_solve_nl(p, o, 1440, reference_kind == REF_NL, RD_CONTACT_BIN_DEG, floor_m,
+                                r);
+}
 
 static void die(const char *what, const rd_error *err)
 {
@@ -135,7 +153,10 @@ static void battery(const rd_ring_params *p)
     double p0 = 2 * p->tangential_force / (p->diameter * p->axial_height);
     double floor_m = 10 * p0 / rd_contact_default_stiffness(p);
     int total = 0, ok[4] = {0}, track[4] = {0}, fast = 0;
-    printf("## contact in distorted bores, default settings, vs the curved-beam reference\n\n");
+    printf("## contact in distorted bores, default settings, vs the %s curved-beam reference\n\n",
+           reference_kind == REF_LINEAR ? "linear"
+           : reference_kind == REF_NL   ? "geometrically exact (follower F_t)"
+                                        : "geometrically exact (dead F_t)");
     printf("| k | A / bound | phase | n | met | wall (s) | cpu (s) | contact fraction: error "
            "(estimate) "
            "| largest gap: error (estimate) | gap edges, deg | binned pressure / p0 |\n"
@@ -152,7 +173,7 @@ static void battery(const rd_ring_params *p)
                 o.n_distortion = 1;
                 o.distortion[0] = (rd_distortion){k, A, phases[pi]};
                 ref_result r;
-                if (ref_contact_solve(p, &o, 1440, RD_CONTACT_BIN_DEG, floor_m, &r) != 0) {
+                if (reference_solve(p, &o, floor_m, &r) != 0) {
                     printf("| %d | %.2g | %g | reference failed |\n", k, A / bound, phases[pi]);
                     continue;
                 }
@@ -301,8 +322,7 @@ static void bins_one(const rd_ring_params *p, int k, double fac, double phase, i
     rd_error_init(&err);
     if (fixed_n > 0)
         so.estimate_error = 0;
-    if (ref_contact_solve(p, &o, 1440, RD_CONTACT_BIN_DEG,
-                          10 * p0 / rd_contact_default_stiffness(p), &r) != 0 ||
+    if (reference_solve(p, &o, 10 * p0 / rd_contact_default_stiffness(p), &r) != 0 ||
         rd_contact_solve(p, fixed_n > 0 ? fixed_n : 20, &o, &so, NULL, &c, &err) != RD_OK)
         die("bins", &err);
     printf(
@@ -338,6 +358,23 @@ int main(int argc, char **argv)
     rd_ring_params_default(&p);
     rd_contact_opts co;
     rd_contact_opts_default(&co);
+    /* --reference nl | nl-dead | linear, anywhere: taken out of argv */
+    for (int i = 1; i + 1 < argc; i++) {
+        if (strcmp(argv[i], "--reference") != 0)
+            continue;
+        const char *k = argv[i + 1];
+        reference_kind = strcmp(k, "linear") == 0    ? REF_LINEAR
+                         : strcmp(k, "nl-dead") == 0 ? REF_NL_DEAD
+                         : strcmp(k, "nl") == 0      ? REF_NL
+                                                     : -1;
+        if (reference_kind < 0) {
+            fprintf(stderr, "--reference: nl, nl-dead or linear, not %s\n", k);
+            return 1;
+        }
+        memmove(argv + i, argv + i + 2, (size_t)(argc - i - 1) * sizeof *argv);
+        argc -= 2;
+        break;
+    }
     if (argc == 3 && strcmp(argv[1], "--once") == 0) {
         rd_contact_result r;
         rd_static_opts so;

@@ -131,10 +131,10 @@ static double edge(double ta, double tb, double g1, double g2)
     return tb + x * (tb - ta);
 }
 
-static void post(const model *m, const char *act, const double *u, const double *lam,
-                 double bin_deg, double gap_floor, ref_result *out)
+void ref_post(const ref_mesh *m, const char *act, const double *gap, const double *lam,
+              double bin_deg, double gap_floor, ref_result *out)
 {
-    int N = m->N;
+    int N = m->cells;
     double span = 2.0 * M_PI - 2.0 * m->s, gap_len = 0.0;
     out->n_gaps = 0;
     out->max_clearance = 0.0;
@@ -149,16 +149,13 @@ static void post(const model *m, const char *act, const double *u, const double 
             j++;
         int b = j - 1; /* nodes a..b lifted */
         double th = m->s + a * m->D, te = m->s + b * m->D;
-        double gA = m->g0[a] - u[3 * a + 1], gB = m->g0[b] - u[3 * b + 1];
-        double start =
-            a == 0 ? m->s : edge(th - m->D, th, gA, a + 1 <= b ? m->g0[a + 1] - u[3 * a + 4] : 0);
-        double end =
-            b == N ? te
-                   : -edge(-(te + m->D), -te, gB, b - 1 >= a ? m->g0[b - 1] - u[3 * b - 2] : 0);
+        double gA = gap[a], gB = gap[b];
+        double start = a == 0 ? m->s : edge(th - m->D, th, gA, a + 1 <= b ? gap[a + 1] : 0);
+        double end = b == N ? te : -edge(-(te + m->D), -te, gB, b - 1 >= a ? gap[b - 1] : 0);
         double best = 0.0, at = th;
         for (int q = a; q <= b; q++)
-            if (m->g0[q] - u[3 * q + 1] > best)
-                best = m->g0[q] - u[3 * q + 1], at = m->s + q * m->D;
+            if (gap[q] > best)
+                best = gap[q], at = m->s + q * m->D;
         if (best <= gap_floor)
             continue;
         gap_len += end - start;
@@ -250,7 +247,10 @@ int ref_contact_solve(const rd_ring_params *p, const rd_contact_opts *o, int cel
                 lam[j] = 0.0;
         out->cells = cells;
         out->p0 = 2.0 * m.Ft / (p->diameter * h);
-        post(&m, act, u, lam, bin_deg, gap_floor, out);
+        for (int j = 0; j <= cells; j++)
+            re[j] = m.g0[j] - u[3 * j + 1]; /* the gaps (re is free now) */
+        ref_mesh mesh = {cells, m.s, m.D, m.h, m.ro};
+        ref_post(&mesh, act, re, lam, bin_deg, gap_floor, out);
     }
 out:
     free(m.K), free(m.g0), free(ab), free(u), free(f), free(val), free(re), free(lam);

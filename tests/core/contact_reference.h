@@ -37,4 +37,24 @@ typedef struct ref_result {
 int ref_contact_solve(const rd_ring_params *p, const rd_contact_opts *o, int cells, double bin_deg,
                       double gap_floor, ref_result *out);
 
+/* The same ring, cells, loads and contact as a geometrically exact beam
+ * (contact_reference_nl.c): F_t follows the end sections (follower = 1, as
+ * ringdyn's force method) or keeps its direction (0, as the linear
+ * reference).  Same returns. */
+int ref_contact_solve_nl(const rd_ring_params *p, const rd_contact_opts *o, int cells, int follower,
+                         double bin_deg, double gap_floor, ref_result *out);
+
+/* The nodes' mesh: `cells` cells of D rad from theta = s (the half closed
+ * gap), axial height h and running-face radius ro (m). */
+typedef struct ref_mesh {
+    int cells;
+    double s, D, h, ro;
+} ref_mesh;
+
+/* Fills out's gaps, contact fraction, tip forces and bins from the nodes'
+ * contact states act, gaps (m) and inward contact forces lam (N), shared by
+ * both references so that they are compared through the same binning. */
+void ref_post(const ref_mesh *m, const char *act, const double *gap, const double *lam,
+              double bin_deg, double gap_floor, ref_result *out);
+
 #endif
