@@ -56,7 +56,10 @@
  *        the current estimate |f(n) - f(n, rtol/10)|, the true error against
  *        full at 2n and 4n (rtol 1e-8, atol 1e-11 m) and their ratios, and the
  *        observed order from n/2, n, 2n, 4n at rtol 1e-8; f = the mean lift's
- *        flank changes (deg) and its largest lift difference / clearance.
+ *        flank changes (deg), the same with each landing dated where the mean
+ *        lift comes within 0.5 % of the clearance of the flank ("ev near": the
+ *        runs sampled every 0.05 deg, interpolated), and its largest lift
+ *        difference / clearance (every 1 deg).
  *        Each run's steps and flank changes go to stderr.  --no-4n skips the
  *        4n runs (the costliest), --scene K runs scene K (0-7) alone.
  *
@@ -389,12 +392,35 @@ typedef struct seg_scene {
     int coulomb;                 /* 1: Coulomb friction, coefficient 0.1 */
 } seg_scene;
 
-/* One run's mean lift (step 1 deg) and flank changes, estimate off. */
+#define SEG_STEP_DEG   0.05 /* output step: the threshold landings' resolution (interpolated) */
+#define SEG_SAMPLES    14500
+#define SEG_LIFT_EVERY 20   /* the lift compared every 1 deg, as the result's estimate */
+#define SEG_NEAR       5e-3 /* a threshold landing: the mean lift within this x c_a of the flank */
+
+/* One run's mean lift (every SEG_STEP_DEG), flank changes and the same
+ * with each landing dated where the mean lift comes within SEG_NEAR c_a of
+ * the flank (the leaves as the run dates them), estimate off. */
 typedef struct seg_run {
     int ok, samples, n_events;
-    double lift[800], deg[MAX_EV];
+    double lift[SEG_SAMPLES], deg[MAX_EV], near[MAX_EV];
     int kind[MAX_EV];
 } seg_run;
+
+/* The first crossing of the mean lift into SEG_NEAR c_a of the flank a
+ * landing reaches, after angle a0, interpolated between samples (NAN: none). */
+static double seg_near_landing(const seg_run *o, int kind, double a0, double ca)
+{
+    int upper = kind == RD_EVENT_REACH_UPPER;
+    double lim = upper ? (1.0 - SEG_NEAR) * ca : SEG_NEAR * ca;
+    for (int k = 1; k < o->samples; k++) {
+        double l0 = o->lift[k - 1], l1 = o->lift[k];
+        if (k * SEG_STEP_DEG <= a0)
+            continue;
+        if (upper ? (l1 >= lim && l0 < lim) : (l1 <= lim && l0 > lim))
+            return SEG_STEP_DEG * (k - 1 + (lim - l0) / (l1 - l0));
+    }
+    return NAN;
+}
 
 static void seg_solve(const gcase *c, int n, double rtol, double atol, seg_run *o)
 {
@@ -404,11 +430,11 @@ static void seg_solve(const gcase *c, int n, double rtol, double atol, seg_run *
     rd_error_init(&err);
     p.model = RD_LIFT_MODEL_FULL;
     p.estimate_error = 0;
-    p.step_deg = 1.0;
+    p.step_deg = SEG_STEP_DEG;
     p.rtol = rtol;
     p.atol = atol;
     memset(o, 0, sizeof *o);
-    if (rd_lift_solve(&c->ring, n, &p, NULL, &r, &err) || r.samples > 800) {
+    if (rd_lift_solve(&c->ring, n, &p, NULL, &r, &err) || r.samples > SEG_SAMPLES) {
         fprintf(stderr, "%s n=%d rtol=%g: %s\n", c->name, n, rtol, err.message);
     } else {
         o->ok = 1;
@@ -419,31 +445,40 @@ static void seg_solve(const gcase *c, int n, double rtol, double atol, seg_run *
         for (int i = 0; i < o->n_events; i++) {
             o->deg[i] = r.events[i].crank_deg;
             o->kind[i] = r.events[i].kind;
+            o->near[i] = o->deg[i];
+            if (o->kind[i] % 2) /* a landing: from the leave before it */
+                o->near[i] = seg_near_landing(o, o->kind[i], i ? o->deg[i - 1] : 0.0,
+                                              c->p.groove.axial_clearance);
             fprintf(stderr, " %d:%.3f", o->kind[i], o->deg[i]);
+            if (o->kind[i] % 2)
+                fprintf(stderr, " (near %.3f)", o->near[i]);
         }
         fprintf(stderr, "\n");
     }
     rd_lift_result_cleanup(&r);
 }
 
-/* Largest flank-change difference (NAN: different lists) and largest lift
- * difference over the clearance ca. */
-static void seg_diff(const seg_run *a, const seg_run *b, double ca, double *ev, double *lift)
+/* Largest flank-change difference (NAN: different lists), the same with
+ * the threshold landings, and the largest lift difference (every 1 deg)
+ * over the clearance ca: v[0], v[1], v[2]. */
+static void seg_diff(const seg_run *a, const seg_run *b, double ca, double v[3])
 {
-    *ev = NAN;
-    *lift = NAN;
+    v[0] = v[1] = v[2] = NAN;
     if (!a->ok || !b->ok)
         return;
     double l = 0.0;
-    for (int k = 0; k < a->samples && k < b->samples; k++)
+    for (int k = 0; k < a->samples && k < b->samples; k += SEG_LIFT_EVERY)
         l = fmax(l, fabs(a->lift[k] - b->lift[k]));
-    *lift = l / ca;
+    v[2] = l / ca;
     if (a->n_events != b->n_events)
         return;
-    double d = 0.0;
-    for (int i = 0; i < a->n_events; i++)
+    double d = 0.0, dn = 0.0;
+    for (int i = 0; i < a->n_events; i++) {
         d = a->kind[i] != b->kind[i] ? NAN : fmax(d, fabs(a->deg[i] - b->deg[i]));
-    *ev = d;
+        dn = a->kind[i] != b->kind[i] ? NAN : fmax(dn, fabs(a->near[i] - b->near[i]));
+    }
+    v[0] = d;
+    v[1] = dn;
 }
 
 /* Table 6: for each scene, the full model at its n and rtol (the result),
@@ -467,12 +502,13 @@ static int seg_battery(const char *dir, int with4n, int only, double order)
            "the scene's rtol; p = %.2f), the error against full at 2n it predicts; est_t = |f(n) - "
            "f(n, rtol/10)| (the current estimate); true = |f(n) - f(m, rtol 1e-8)|, m = 2n, 4n; "
            "observed order p = log2(d(n/2, n) / d(n, 2n)) at rtol 1e-8, and the same one n "
-           "up.  ev: the mean lift's flank changes [deg] (NAN: different lists); lift: its "
-           "largest difference / clearance.\n\n"
+           "up.  ev: the mean lift's flank changes [deg] (NAN: different lists); ev near: the "
+           "same with each landing dated where the mean lift comes within %g c_a of the flank; "
+           "lift: its largest difference / clearance (every 1 deg).\n\n"
            "| scene | n | qty | est | est_t | true 2n | true 4n | est/true 2n | est/true 4n | "
            "est_t/true 2n | p (n/2, n, 2n) | p (n, 2n, 4n) |\n"
            "|---|---|---|---|---|---|---|---|---|---|---|---|\n",
-           order);
+           order, SEG_NEAR);
     for (int s = 0; s < (int)(sizeof sc / sizeof sc[0]); s++) {
         gcase c;
         if (only >= 0 && s != only)
@@ -500,19 +536,20 @@ static int seg_battery(const char *dir, int with4n, int only, double order)
             seg_solve(&c, (n / 2) << k, 1e-8, 1e-11, &f[k]);
         if (!with4n)
             f[3].ok = 0;
-        for (int q = 0; q < 2; q++) {
-            double v[7][2];
-            seg_diff(&a, &h, ca, &v[0][0], &v[0][1]);
-            seg_diff(&a, &t, ca, &v[1][0], &v[1][1]);
-            seg_diff(&a, &f[2], ca, &v[2][0], &v[2][1]);
-            seg_diff(&a, &f[3], ca, &v[3][0], &v[3][1]);
-            seg_diff(&f[0], &f[1], ca, &v[4][0], &v[4][1]);
-            seg_diff(&f[1], &f[2], ca, &v[5][0], &v[5][1]);
-            seg_diff(&f[2], &f[3], ca, &v[6][0], &v[6][1]);
+        double v[7][3];
+        seg_diff(&a, &h, ca, v[0]);
+        seg_diff(&a, &t, ca, v[1]);
+        seg_diff(&a, &f[2], ca, v[2]);
+        seg_diff(&a, &f[3], ca, v[3]);
+        seg_diff(&f[0], &f[1], ca, v[4]);
+        seg_diff(&f[1], &f[2], ca, v[5]);
+        seg_diff(&f[2], &f[3], ca, v[6]);
+        for (int q = 0; q < 3; q++) {
+            static const char *qty[3] = {"ev", "ev near", "lift"};
             double est = v[0][q] / div;
             printf("| %s | %d | %s | %.3g | %.3g | %.3g | %.3g | %.2f | %.2f | %.3f | %.2f | %.2f "
                    "|\n",
-                   sc[s].label, n, q ? "lift" : "ev", est, v[1][q], v[2][q], v[3][q], est / v[2][q],
+                   sc[s].label, n, qty[q], est, v[1][q], v[2][q], v[3][q], est / v[2][q],
                    est / v[3][q], v[1][q] / v[2][q], log2(v[4][q] / v[5][q]),
                    log2(v[5][q] / v[6][q]));
         }
