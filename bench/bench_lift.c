@@ -46,6 +46,22 @@
  *        only): tests/core/lift_segments.h; a segment of the coarse ring is
  *        compared with the reference ring's flank changes interpolated to its
  *        mid-angle.
+ *   bench_lift --segment-estimate EXAMPLES_DIR [--order P] [--no-4n] [--scene K]
+ *     6. Would a run at n/2 segments estimate the full model's segment-count
+ *        error?  8 scenes (the three 6000 rpm examples, 1000 rpm with Coulomb
+ *        friction at 30 and 10 um, gas at 3000 rpm and at 60 um, 1000 rpm
+ *        inertia only), one cycle each, full model at the scene's n and rtol:
+ *        the candidate est = |f(n) - f(n/2)| / 2^P (same rtol; P default 1.5,
+ *        the error against full at 2n that an order-P convergence predicts),
+ *        the current estimate |f(n) - f(n, rtol/10)|, the true error against
+ *        full at 2n and 4n (rtol 1e-8, atol 1e-11 m) and their ratios, and the
+ *        observed order from n/2, n, 2n, 4n at rtol 1e-8; f = the mean lift's
+ *        flank changes (deg), the same with each landing dated where the mean
+ *        lift comes within 0.5 % of the clearance of the flank ("ev near": the
+ *        runs sampled every 0.05 deg, interpolated), and its largest lift
+ *        difference / clearance (every 1 deg).
+ *        Each run's steps and flank changes go to stderr.  --no-4n skips the
+ *        4n runs (the costliest), --scene K runs scene K (0-7) alone.
  *
  * Wall times on a shared 2-core machine are noisy: medians of repeats.
  */
@@ -367,11 +383,190 @@ static int distorted(const char *dir, int reps)
     return 0;
 }
 
+/* ------------------------------- the full model's segment-count estimate (6.) */
+
+/* A scene of the battery: an example, then what is changed in it. */
+typedef struct seg_scene {
+    const char *label, *file;
+    double speed_rpm, clearance; /* 0: the example's */
+    int coulomb;                 /* 1: Coulomb friction, coefficient 0.1 */
+} seg_scene;
+
+#define SEG_STEP_DEG   0.05 /* output step: the threshold landings' resolution (interpolated) */
+#define SEG_SAMPLES    14500
+#define SEG_LIFT_EVERY 20   /* the lift compared every 1 deg, as the result's estimate */
+#define SEG_NEAR       5e-3 /* a threshold landing: the mean lift within this x c_a of the flank */
+
+/* One run's mean lift (every SEG_STEP_DEG), flank changes and the same
+ * with each landing dated where the mean lift comes within SEG_NEAR c_a of
+ * the flank (the leaves as the run dates them), estimate off. */
+typedef struct seg_run {
+    int ok, samples, n_events;
+    double lift[SEG_SAMPLES], deg[MAX_EV], near[MAX_EV];
+    int kind[MAX_EV];
+} seg_run;
+
+/* The first crossing of the mean lift into SEG_NEAR c_a of the flank a
+ * landing reaches, after angle a0, interpolated between samples (NAN: none). */
+static double seg_near_landing(const seg_run *o, int kind, double a0, double ca)
+{
+    int upper = kind == RD_EVENT_REACH_UPPER;
+    double lim = upper ? (1.0 - SEG_NEAR) * ca : SEG_NEAR * ca;
+    for (int k = 1; k < o->samples; k++) {
+        double l0 = o->lift[k - 1], l1 = o->lift[k];
+        if (k * SEG_STEP_DEG <= a0)
+            continue;
+        if (upper ? (l1 >= lim && l0 < lim) : (l1 <= lim && l0 > lim))
+            return SEG_STEP_DEG * (k - 1 + (lim - l0) / (l1 - l0));
+    }
+    return NAN;
+}
+
+static void seg_solve(const gcase *c, int n, double rtol, double atol, seg_run *o)
+{
+    rd_lift_params p = c->p;
+    rd_lift_result r;
+    rd_error err;
+    rd_error_init(&err);
+    p.model = RD_LIFT_MODEL_FULL;
+    p.estimate_error = 0;
+    p.step_deg = SEG_STEP_DEG;
+    p.rtol = rtol;
+    p.atol = atol;
+    memset(o, 0, sizeof *o);
+    if (rd_lift_solve(&c->ring, n, &p, NULL, &r, &err) || r.samples > SEG_SAMPLES) {
+        fprintf(stderr, "%s n=%d rtol=%g: %s\n", c->name, n, rtol, err.message);
+    } else {
+        o->ok = 1;
+        o->samples = r.samples;
+        memcpy(o->lift, r.lift, (size_t)r.samples * sizeof *o->lift);
+        o->n_events = r.n_events < MAX_EV ? r.n_events : MAX_EV;
+        fprintf(stderr, "%s n=%d rtol=%g steps %ld:", c->name, n, rtol, r.steps);
+        for (int i = 0; i < o->n_events; i++) {
+            o->deg[i] = r.events[i].crank_deg;
+            o->kind[i] = r.events[i].kind;
+            o->near[i] = o->deg[i];
+            if (o->kind[i] % 2) /* a landing: from the leave before it */
+                o->near[i] = seg_near_landing(o, o->kind[i], i ? o->deg[i - 1] : 0.0,
+                                              c->p.groove.axial_clearance);
+            fprintf(stderr, " %d:%.3f", o->kind[i], o->deg[i]);
+            if (o->kind[i] % 2)
+                fprintf(stderr, " (near %.3f)", o->near[i]);
+        }
+        fprintf(stderr, "\n");
+    }
+    rd_lift_result_cleanup(&r);
+}
+
+/* Largest flank-change difference (NAN: different lists), the same with
+ * the threshold landings, and the largest lift difference (every 1 deg)
+ * over the clearance ca: v[0], v[1], v[2]. */
+static void seg_diff(const seg_run *a, const seg_run *b, double ca, double v[3])
+{
+    v[0] = v[1] = v[2] = NAN;
+    if (!a->ok || !b->ok)
+        return;
+    double l = 0.0;
+    for (int k = 0; k < a->samples && k < b->samples; k += SEG_LIFT_EVERY)
+        l = fmax(l, fabs(a->lift[k] - b->lift[k]));
+    v[2] = l / ca;
+    if (a->n_events != b->n_events)
+        return;
+    double d = 0.0, dn = 0.0;
+    for (int i = 0; i < a->n_events; i++) {
+        d = a->kind[i] != b->kind[i] ? NAN : fmax(d, fabs(a->deg[i] - b->deg[i]));
+        dn = a->kind[i] != b->kind[i] ? NAN : fmax(dn, fabs(a->near[i] - b->near[i]));
+    }
+    v[0] = d;
+    v[1] = dn;
+}
+
+/* Table 6: for each scene, the full model at its n and rtol (the result),
+ * the candidate estimate |f(n) - f(n/2)| at the same rtol, the current one
+ * |f(n) - f(n, rtol/10)|, the true error against full at 2n and 4n, rtol
+ * 1e-8, and the observed order from n/2, n, 2n, 4n at rtol 1e-8. */
+static int seg_battery(const char *dir, int with4n, int only, double order)
+{
+    static const seg_scene sc[] = {
+        {"gas 6000 rpm (example)", "thesis_lift_gas_6000rpm.json", 0, 0, 0},
+        {"distorted bore (example)", "lift_distorted.json", 0, 0, 0},
+        {"tilted piston (example)", "lift_tilted.json", 0, 0, 0},
+        {"1000 rpm Coulomb", "thesis_lift_1000rpm.json", 0, 0, 1},
+        {"1000 rpm Coulomb, 10 um", "thesis_lift_1000rpm.json", 0, 1e-5, 1},
+        {"gas 3000 rpm", "thesis_lift_gas_6000rpm.json", 3000, 0, 0},
+        {"gas 6000 rpm, 60 um", "thesis_lift_gas_6000rpm.json", 0, 6e-5, 0},
+        {"1000 rpm inertia only", "thesis_lift_1000rpm.json", 0, 0, 0},
+    };
+    double div = pow(2.0, order);
+    printf("One cycle, full model, each scene's n and rtol.  est = |f(n) - f(n/2)| / 2^p (both at "
+           "the scene's rtol; p = %.2f), the error against full at 2n it predicts; est_t = |f(n) - "
+           "f(n, rtol/10)| (the current estimate); true = |f(n) - f(m, rtol 1e-8)|, m = 2n, 4n; "
+           "observed order p = log2(d(n/2, n) / d(n, 2n)) at rtol 1e-8, and the same one n "
+           "up.  ev: the mean lift's flank changes [deg] (NAN: different lists); ev near: the "
+           "same with each landing dated where the mean lift comes within %g c_a of the flank; "
+           "lift: its largest difference / clearance (every 1 deg).\n\n"
+           "| scene | n | qty | est | est_t | true 2n | true 4n | est/true 2n | est/true 4n | "
+           "est_t/true 2n | p (n/2, n, 2n) | p (n, 2n, 4n) |\n"
+           "|---|---|---|---|---|---|---|---|---|---|---|---|\n",
+           order, SEG_NEAR);
+    for (int s = 0; s < (int)(sizeof sc / sizeof sc[0]); s++) {
+        gcase c;
+        if (only >= 0 && s != only)
+            continue;
+        if (!load_example(&c, dir, sc[s].file)) {
+            fprintf(stderr, "cannot read %s/%s\n", dir, sc[s].file);
+            return 1;
+        }
+        c.p.engine.cycles = 1.0;
+        if (sc[s].speed_rpm > 0)
+            c.p.engine.speed_rpm = sc[s].speed_rpm;
+        if (sc[s].clearance > 0)
+            c.p.groove.axial_clearance = sc[s].clearance;
+        if (sc[s].coulomb) {
+            c.p.friction.model = RD_FRICTION_COULOMB;
+            c.p.friction.coefficient = 0.1;
+        }
+        int n = c.n;
+        double rtol = c.p.rtol, atol = c.p.atol, ca = c.p.groove.axial_clearance;
+        static seg_run a, h, t, f[4]; /* f: n/2, n, 2n, 4n at rtol 1e-8 */
+        seg_solve(&c, n, rtol, atol, &a);
+        seg_solve(&c, n / 2, rtol, atol, &h);
+        seg_solve(&c, n, 0.1 * rtol, 0.1 * atol, &t);
+        for (int k = 0; k < (with4n ? 4 : 3); k++)
+            seg_solve(&c, (n / 2) << k, 1e-8, 1e-11, &f[k]);
+        if (!with4n)
+            f[3].ok = 0;
+        double v[7][3];
+        seg_diff(&a, &h, ca, v[0]);
+        seg_diff(&a, &t, ca, v[1]);
+        seg_diff(&a, &f[2], ca, v[2]);
+        seg_diff(&a, &f[3], ca, v[3]);
+        seg_diff(&f[0], &f[1], ca, v[4]);
+        seg_diff(&f[1], &f[2], ca, v[5]);
+        seg_diff(&f[2], &f[3], ca, v[6]);
+        for (int q = 0; q < 3; q++) {
+            static const char *qty[3] = {"ev", "ev near", "lift"};
+            double est = v[0][q] / div;
+            printf("| %s | %d | %s | %.3g | %.3g | %.3g | %.3g | %.2f | %.2f | %.3f | %.2f | %.2f "
+                   "|\n",
+                   sc[s].label, n, qty[q], est, v[1][q], v[2][q], v[3][q], est / v[2][q],
+                   est / v[3][q], v[1][q] / v[2][q], log2(v[4][q] / v[5][q]),
+                   log2(v[5][q] / v[6][q]));
+        }
+        fflush(stdout);
+        free_example(&c);
+    }
+    return 0;
+}
+
 int main(int argc, char **argv)
 {
     int max_n = 1000, reps = 3, once = 0, once_reps = 1, once_model = RD_LIFT_MODEL_AUTO,
         once_landing = RD_LANDING_PENALTY;
     const char *examples = NULL, *modal_dir = NULL, *example = NULL, *distorted_dir = NULL;
+    const char *seg_dir = NULL; /* --segment-estimate (6.) */
+    int seg_4n = 1, seg_only = -1;
+    double seg_order = 1.5;
     for (int i = 1; i < argc; i++) {
         if (!strcmp(argv[i], "--max-n") && i + 1 < argc)
             max_n = atoi(argv[++i]);
@@ -393,12 +588,21 @@ int main(int argc, char **argv)
             modal_dir = argv[++i];
         else if (!strcmp(argv[i], "--distorted") && i + 1 < argc)
             distorted_dir = argv[++i];
+        else if (!strcmp(argv[i], "--segment-estimate") && i + 1 < argc)
+            seg_dir = argv[++i];
+        else if (!strcmp(argv[i], "--scene") && i + 1 < argc)
+            seg_only = atoi(argv[++i]);
+        else if (!strcmp(argv[i], "--order") && i + 1 < argc)
+            seg_order = atof(argv[++i]);
+        else if (!strcmp(argv[i], "--no-4n"))
+            seg_4n = 0;
         else {
             fprintf(stderr,
                     "usage: bench_lift [--max-n N] [--reps R] | --once N | --example-once FILE "
                     "[--once-reps R] [--rigid] [--plastic] | "
                     "--models EXAMPLES_DIR [--reps R] | --modal EXAMPLES_DIR [--reps R] | "
-                    "--distorted EXAMPLES_DIR [--reps R]\n");
+                    "--distorted EXAMPLES_DIR [--reps R] | --segment-estimate EXAMPLES_DIR "
+                    "[--order P] [--no-4n] [--scene K]\n");
             return 2;
         }
     }
@@ -412,6 +616,8 @@ int main(int argc, char **argv)
         return modal_table(modal_dir, reps);
     if (distorted_dir)
         return distorted(distorted_dir, reps);
+    if (seg_dir)
+        return seg_battery(seg_dir, seg_4n, seg_only, seg_order);
     rd_ring_params rp;
     rd_ring_params_default(&rp);
     if (once) {

@@ -56,5 +56,8 @@ echo
 echo "## lift: the distorted-bore examples, per-segment flank changes of auto vs full n = 40 (target <= 0.2 deg)"
 "$b/bench/bench_lift" --distorted examples
 echo
+echo "## lift: would a run at n/2 estimate the full model's segment-count error? (target: within x3 of the error vs full at 2n)"
+"$b/bench/bench_lift" --segment-estimate examples
+echo
 echo "## ringpack: cost per engine cycle: axial and rigid rings (target <= 50 ms), a full top ring vs its lift run alone (target <= 10x)"
 "$b/bench/bench_ringpack"
