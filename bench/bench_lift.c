@@ -62,6 +62,21 @@
  *        difference / clearance (every 1 deg).
  *        Each run's steps and flank changes go to stderr.  --no-4n skips the
  *        4n runs (the costliest), --scene K runs scene K (0-7) alone.
+ *   bench_lift --landing-dating EXAMPLES_DIR [--no-80] [--scene K]
+ *     7. Would the rigid ring date the friction scenes' landings as the full
+ *        ring does if a landing were dated where the mean lift comes within a
+ *        fraction of the clearance of the flank, not where it touches it?
+ *        9 scenes (the gas example at 6000, 3000, 8000 rpm; 1000 rpm with
+ *        Coulomb friction at 100, 1000 (30 and 10 um), 3000, 8000 rpm and
+ *        with Stribeck friction at 1000 rpm), one cycle each, rtol 1e-8:
+ *        rigid, full n = 20, 40, 80 (--no-80 skips the costliest), sampled
+ *        every 0.02 deg (--step DEG; n = 80 every 0.04 deg at least: the
+ *        result's cap on per-segment values); each landing dated at touch (the run's event) and
+ *        where the mean lift comes within 1 %, 0.5 %, 0.2 % of the clearance
+ *        of the flank (interpolated; the leaves as the run dates them, after
+ *        1 % confirmation): the largest flank-change difference rigid vs
+ *        full at each n, and full's between n and 2n.  Each run's steps and
+ *        flank changes go to stderr.  --scene K runs scene K (0-8) alone.
  *
  * Wall times on a shared 2-core machine are noisy: medians of repeats.
  */
@@ -559,6 +574,166 @@ static int seg_battery(const char *dir, int with4n, int only, double order)
     return 0;
 }
 
+/* ------------------------- landings dated at a fraction of the clearance (7.) */
+
+/* A scene of the landing-dating battery: an example, then what is changed. */
+typedef struct ld_scene {
+    const char *label, *file;
+    double speed_rpm, clearance; /* 0: the example's */
+    int friction;                /* enum rd_friction_model; -1: the example's */
+} ld_scene;
+
+#define LD_SAMPLES 36100 /* one cycle at 0.02 deg, the finest output step */
+#define LD_NTH     4     /* touch (the run's event), then the fractions below */
+#define LD_RUNS    4     /* rigid, full n = 20, 40, 80 */
+
+static const double ld_frac[LD_NTH] = {0.0, 1e-2, 5e-3, 2e-3};
+
+/* One run's mean lift and flank changes, each landing dated at every
+ * threshold of ld_frac (the leaves as the run dates them). */
+typedef struct ld_run {
+    int ok, samples, n_events;
+    long steps;
+    double step, lift[LD_SAMPLES], deg[LD_NTH][MAX_EV];
+    int kind[MAX_EV];
+} ld_run;
+
+/* The first crossing of the mean lift into frac c_a of the flank a landing
+ * of `kind` reaches, after angle a0, interpolated between samples (NAN: none). */
+static double ld_landing(const ld_run *o, int kind, double a0, double ca, double frac)
+{
+    int upper = kind == RD_EVENT_REACH_UPPER;
+    double lim = upper ? (1.0 - frac) * ca : frac * ca;
+    for (int k = 1; k < o->samples; k++) {
+        double l0 = o->lift[k - 1], l1 = o->lift[k];
+        if (k * o->step <= a0)
+            continue;
+        if (upper ? (l1 >= lim && l0 < lim) : (l1 <= lim && l0 > lim))
+            return o->step * (k - 1 + (lim - l0) / (l1 - l0));
+    }
+    return NAN;
+}
+
+/* n = 0: the rigid ring.  rtol 1e-8, atol 1e-11 m x c_a / 30 um; sampled
+ * every `step` deg (>= 0.02). */
+static void ld_solve(const gcase *c, int n, double step, ld_run *o)
+{
+    rd_lift_params p = c->p;
+    rd_lift_result r;
+    rd_error err;
+    rd_error_init(&err);
+    double ca = c->p.groove.axial_clearance;
+    p.model = n ? RD_LIFT_MODEL_FULL : RD_LIFT_MODEL_RIGID;
+    p.estimate_error = 0;
+    p.step_deg = step;
+    p.rtol = 1e-8;
+    p.atol = 1e-11 * ca / 3e-5;
+    memset(o, 0, sizeof *o);
+    o->step = step;
+    if (rd_lift_solve(&c->ring, n ? n : c->n, &p, NULL, &r, &err) || r.samples > LD_SAMPLES) {
+        fprintf(stderr, "%s n=%d: %s\n", c->name, n, err.message);
+        return;
+    }
+    o->ok = 1;
+    o->samples = r.samples;
+    o->steps = r.steps;
+    memcpy(o->lift, r.lift, (size_t)r.samples * sizeof *o->lift);
+    o->n_events = r.n_events < MAX_EV ? r.n_events : MAX_EV;
+    fprintf(stderr, "%s %s n=%d steps %ld:", c->name, n ? "full" : "rigid", n, r.steps);
+    for (int i = 0; i < o->n_events; i++) {
+        o->kind[i] = r.events[i].kind;
+        for (int t = 0; t < LD_NTH; t++) {
+            o->deg[t][i] = r.events[i].crank_deg;
+            if (t && o->kind[i] % 2) /* a landing: from the flank change before it */
+                o->deg[t][i] =
+                    ld_landing(o, o->kind[i], i ? r.events[i - 1].crank_deg : 0.0, ca, ld_frac[t]);
+        }
+        fprintf(stderr, " %d:%.3f", o->kind[i], o->deg[0][i]);
+        if (o->kind[i] % 2)
+            fprintf(stderr, " (%.3f %.3f %.3f)", o->deg[1][i], o->deg[2][i], o->deg[3][i]);
+    }
+    fprintf(stderr, "\n");
+    rd_lift_result_cleanup(&r);
+}
+
+/* Largest flank-change difference at threshold t, t = LD_NTH: the leaves
+ * alone (NAN: a run failed or the lists differ). */
+static double ld_diff(const ld_run *a, const ld_run *b, int t)
+{
+    if (!a->ok || !b->ok || a->n_events != b->n_events)
+        return NAN;
+    double d = 0.0;
+    for (int i = 0; i < a->n_events; i++)
+        if (a->kind[i] != b->kind[i])
+            return NAN;
+        else if (t < LD_NTH || a->kind[i] % 2 == 0)
+            d = fmax(d, fabs(a->deg[t % LD_NTH][i] - b->deg[t % LD_NTH][i]));
+    return d;
+}
+
+static void ld_apply(gcase *c, const ld_scene *s)
+{
+    c->p.engine.cycles = 1.0;
+    if (s->speed_rpm > 0)
+        c->p.engine.speed_rpm = s->speed_rpm;
+    if (s->clearance > 0)
+        c->p.groove.axial_clearance = s->clearance;
+    if (s->friction >= 0) {
+        c->p.friction.model = s->friction;
+        c->p.friction.coefficient = 0.1;
+    }
+}
+
+/* Table 7: for each scene, rigid vs full n = 20, 40, 80 (rtol 1e-8) at
+ * each landing threshold, and full's convergence in n. */
+static int landing_dating(const char *dir, int with80, int only, double step)
+{
+    static const ld_scene sc[] = {
+        {"gas 6000 rpm (example)", "thesis_lift_gas_6000rpm.json", 0, 0, -1},
+        {"gas 3000 rpm", "thesis_lift_gas_6000rpm.json", 3000, 0, -1},
+        {"gas 8000 rpm", "thesis_lift_gas_6000rpm.json", 8000, 0, -1},
+        {"100 rpm Coulomb", "thesis_lift_1000rpm.json", 100, 0, RD_FRICTION_COULOMB},
+        {"1000 rpm Coulomb", "thesis_lift_1000rpm.json", 0, 0, RD_FRICTION_COULOMB},
+        {"1000 rpm Coulomb, 10 um", "thesis_lift_1000rpm.json", 0, 1e-5, RD_FRICTION_COULOMB},
+        {"3000 rpm Coulomb", "thesis_lift_1000rpm.json", 3000, 0, RD_FRICTION_COULOMB},
+        {"8000 rpm Coulomb", "thesis_lift_1000rpm.json", 8000, 0, RD_FRICTION_COULOMB},
+        {"1000 rpm Stribeck", "thesis_lift_1000rpm.json", 0, 0, RD_FRICTION_STRIBECK},
+    };
+    static const char *th[LD_NTH + 1] = {"touch", "1 %", "0.5 %", "0.2 %", "(leaves alone)"};
+    /* n = 80 at every 0.02 deg exceeds the result's per-segment value cap */
+    double step80 = fmax(step, 0.04);
+    printf("One cycle, rtol 1e-8 (atol 1e-11 m x c_a / 30 um), sampled every %g "
+           "deg (n = 80: every %g deg).  Landings dated where the mean lift touches the flank "
+           "(the run's event) or comes within a fraction of the clearance of it; leaves as the "
+           "run dates them.  Largest flank-change difference [deg] (NAN: different lists).\n\n"
+           "| scene | landing at | rigid - full 20 | rigid - full 40 | rigid - full 80 | full 20 - "
+           "40 | full 40 - 80 |\n|---|---|---|---|---|---|---|\n",
+           step, step80);
+    for (int s = 0; s < (int)(sizeof sc / sizeof sc[0]); s++) {
+        gcase c;
+        if (only >= 0 && s != only)
+            continue;
+        if (!load_example(&c, dir, sc[s].file)) {
+            fprintf(stderr, "cannot read %s/%s\n", dir, sc[s].file);
+            return 1;
+        }
+        ld_apply(&c, &sc[s]);
+        static ld_run r[LD_RUNS]; /* rigid, full 20, 40, 80 */
+        for (int k = 0; k < LD_RUNS; k++) {
+            r[k].ok = 0;
+            if (k < 3 || with80)
+                ld_solve(&c, k ? 10 << k : 0, k == 3 ? step80 : step, &r[k]);
+        }
+        for (int t = 0; t <= LD_NTH; t++)
+            printf("| %s | %s | %.3f | %.3f | %.3f | %.3f | %.3f |\n", t ? "" : sc[s].label, th[t],
+                   ld_diff(&r[0], &r[1], t), ld_diff(&r[0], &r[2], t), ld_diff(&r[0], &r[3], t),
+                   ld_diff(&r[1], &r[2], t), ld_diff(&r[2], &r[3], t));
+        fflush(stdout);
+        free_example(&c);
+    }
+    return 0;
+}
+
 int main(int argc, char **argv)
 {
     int max_n = 1000, reps = 3, once = 0, once_reps = 1, once_model = RD_LIFT_MODEL_AUTO,
@@ -567,6 +742,9 @@ int main(int argc, char **argv)
     const char *seg_dir = NULL; /* --segment-estimate (6.) */
     int seg_4n = 1, seg_only = -1;
     double seg_order = 1.5;
+    const char *ld_dir = NULL; /* --landing-dating (7.) */
+    int ld_80 = 1;
+    double ld_step = 0.02;
     for (int i = 1; i < argc; i++) {
         if (!strcmp(argv[i], "--max-n") && i + 1 < argc)
             max_n = atoi(argv[++i]);
@@ -596,13 +774,20 @@ int main(int argc, char **argv)
             seg_order = atof(argv[++i]);
         else if (!strcmp(argv[i], "--no-4n"))
             seg_4n = 0;
+        else if (!strcmp(argv[i], "--landing-dating") && i + 1 < argc)
+            ld_dir = argv[++i];
+        else if (!strcmp(argv[i], "--no-80"))
+            ld_80 = 0;
+        else if (!strcmp(argv[i], "--step") && i + 1 < argc)
+            ld_step = fmax(atof(argv[++i]), 0.02);
         else {
             fprintf(stderr,
                     "usage: bench_lift [--max-n N] [--reps R] | --once N | --example-once FILE "
                     "[--once-reps R] [--rigid] [--plastic] | "
                     "--models EXAMPLES_DIR [--reps R] | --modal EXAMPLES_DIR [--reps R] | "
                     "--distorted EXAMPLES_DIR [--reps R] | --segment-estimate EXAMPLES_DIR "
-                    "[--order P] [--no-4n] [--scene K]\n");
+                    "[--order P] [--no-4n] [--scene K] | --landing-dating EXAMPLES_DIR [--no-80] "
+                    "[--step DEG] [--scene K]\n");
             return 2;
         }
     }
@@ -618,6 +803,8 @@ int main(int argc, char **argv)
         return distorted(distorted_dir, reps);
     if (seg_dir)
         return seg_battery(seg_dir, seg_4n, seg_only, seg_order);
+    if (ld_dir)
+        return landing_dating(ld_dir, ld_80, seg_only, ld_step);
     rd_ring_params rp;
     rd_ring_params_default(&rp);
     if (once) {
