@@ -23,7 +23,8 @@
  *       direction; linear: tests/core/contact_reference.c; also for --bins):
  *       true errors, the solver's estimates, wall and CPU time (median of
  *       3; the CPU time of this one-threaded process is what the solve
- *       costs on a free core when the machine is shared).
+ *       costs on a free core when the machine is shared); last, the
+ *       reference's CPU time a bore and its active-set passes (range).
  *
  * The x_a limit is the Richardson extrapolation from n = 2000 and 1000
  * (order 2, checked in tests/core/test_static.c).
@@ -152,7 +153,8 @@ static void battery(const rd_ring_params *p)
     const double facs[] = {0.1, 1, 3, 10}, phases[] = {0, 17};
     double p0 = 2 * p->tangential_force / (p->diameter * p->axial_height);
     double floor_m = 10 * p0 / rd_contact_default_stiffness(p);
-    int total = 0, ok[4] = {0}, track[4] = {0}, fast = 0;
+    int total = 0, ok[4] = {0}, track[4] = {0}, fast = 0, ref_passes[2] = {1 << 30, 0};
+    double ref_cpu[2] = {INFINITY, 0};
     printf("## contact in distorted bores, default settings, vs the %s curved-beam reference\n\n",
            reference_kind == REF_LINEAR ? "linear"
            : reference_kind == REF_NL   ? "geometrically exact (follower F_t)"
@@ -173,10 +175,15 @@ static void battery(const rd_ring_params *p)
                 o.n_distortion = 1;
                 o.distortion[0] = (rd_distortion){k, A, phases[pi]};
                 ref_result r;
+                clock_t r0 = clock();
                 if (reference_solve(p, &o, floor_m, &r) != 0) {
                     printf("| %d | %.2g | %g | reference failed |\n", k, A / bound, phases[pi]);
                     continue;
                 }
+                double rcpu = (double)(clock() - r0) / CLOCKS_PER_SEC;
+                ref_cpu[0] = fmin(ref_cpu[0], rcpu), ref_cpu[1] = fmax(ref_cpu[1], rcpu);
+                ref_passes[0] = r.iterations < ref_passes[0] ? r.iterations : ref_passes[0];
+                ref_passes[1] = r.iterations > ref_passes[1] ? r.iterations : ref_passes[1];
                 rd_contact_result c;
                 memset(&c, 0, sizeof c);
                 double t[3], cpu[3];
@@ -230,6 +237,8 @@ static void battery(const rd_ring_params *p)
            "Estimate within x3 of the true error: contact fraction %d, largest gap %d, edges %d, "
            "pressure %d.\n",
            total, ok[0], ok[1], ok[2], ok[3], fast, track[0], track[1], track[2], track[3]);
+    printf("The reference (1440 cells): %.3f-%.3f s CPU a bore, %d-%d active-set passes.\n",
+           ref_cpu[0], ref_cpu[1], ref_passes[0], ref_passes[1]);
 }
 
 /* The battery at the default stiffness k0 and at 10 k0 (default settings

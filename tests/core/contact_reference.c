@@ -186,8 +186,10 @@ void ref_post(const ref_mesh *m, const char *act, const double *gap, const doubl
         out->bin_pressure[k] = cover[k] > 0 ? force[k] / (m->h * m->ro * cover[k]) : 0.0;
 }
 
-int ref_contact_solve(const rd_ring_params *p, const rd_contact_opts *o, int cells, double bin_deg,
-                      double gap_floor, ref_result *out)
+/* The solve behind ref_contact_solve; act_out (cells + 1), when not NULL,
+ * receives the converged contact states. */
+static int solve_linear(const rd_ring_params *p, const rd_contact_opts *o, int cells,
+                        double bin_deg, double gap_floor, ref_result *out, char *act_out)
 {
     model m = {0};
     double E = p->youngs_modulus, G = E / (2.0 * (1.0 + p->poisson_ratio));
@@ -251,9 +253,23 @@ int ref_contact_solve(const rd_ring_params *p, const rd_contact_opts *o, int cel
             re[j] = m.g0[j] - u[3 * j + 1]; /* the gaps (re is free now) */
         ref_mesh mesh = {cells, m.s, m.D, m.h, m.ro};
         ref_post(&mesh, act, re, lam, bin_deg, gap_floor, out);
+        if (act_out)
+            memcpy(act_out, act, (size_t)cells + 1);
     }
 out:
     free(m.K), free(m.g0), free(ab), free(u), free(f), free(val), free(re), free(lam);
     free(fixed), free(act);
     return rc;
+}
+
+int ref_contact_solve(const rd_ring_params *p, const rd_contact_opts *o, int cells, double bin_deg,
+                      double gap_floor, ref_result *out)
+{
+    return solve_linear(p, o, cells, bin_deg, gap_floor, out, NULL);
+}
+
+int ref_contact_active_set(const rd_ring_params *p, const rd_contact_opts *o, int cells, char *act)
+{
+    ref_result r;
+    return solve_linear(p, o, cells, 10.0, 0.0, &r, act);
 }

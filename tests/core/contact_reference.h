@@ -37,6 +37,10 @@ typedef struct ref_result {
 int ref_contact_solve(const rd_ring_params *p, const rd_contact_opts *o, int cells, double bin_deg,
                       double gap_floor, ref_result *out);
 
+/* The linear reference's converged contact states on `cells` cells: act[j]
+ * (cells + 1 of them) is 1 where node j touches the bore.  Same returns. */
+int ref_contact_active_set(const rd_ring_params *p, const rd_contact_opts *o, int cells, char *act);
+
 /* The same ring, cells, loads and contact as a geometrically exact beam
  * (contact_reference_nl.c): F_t follows the end sections (follower = 1, as
  * ringdyn's force method) or keeps its direction (0, as the linear

@@ -1,12 +1,17 @@
-/* test_contact — the ring in a distorted bore against an independent
- * reference (contact_reference.c: a linear curved Timoshenko beam on 1440
- * cells with exact frictionless unilateral contact, written apart from
- * core's segment chain):
+/* test_contact — the ring in a distorted bore against two independent
+ * references written apart from core's segment chain, on 1440 cells with
+ * exact frictionless unilateral contact (contact_reference.c, a linear
+ * curved Timoshenko beam; contact_reference_nl.c, the same beam
+ * geometrically exact, which ringdyn converges to):
  *  - the reference itself against closed forms: uniform pressure 2 F_t/(d h)
  *    in a round bore, the thin-ring pressure p0 (1 - (A / bound) cos k theta)
  *    of a conforming ring below the bound;
  *  - core's light gaps, contact fraction and largest gap on a battery of
- *    bores (orders 3, 4, 6; 0.1 to 10 x the thin-ring bound; two phases);
+ *    bores (orders 3, 4, 6; 0.1 to 10 x the thin-ring bound; two phases)
+ *    at n = 160 against the linear reference;
+ *  - at the default settings on bench_static's battery (orders 2, 3, 4, 6)
+ *    against the exact reference, with tighter bounds, and the binned
+ *    pressure within twice its estimate;
  *  - the accuracy target: met in a round bore, refused with a reason when
  *    the segment cap stops the refinement; the estimates not understating
  *    the true errors (contact fraction, edges, largest gap) by more than x3;
@@ -14,6 +19,7 @@
  *  - the contact load's closed-form derivative (the Newton tangent) against
  *    central differences of the load itself. */
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -150,6 +156,89 @@ static void test_battery(void)
                               "k=%d x%g ph %g: largest light gap", k, factors[fi], phases[pi]);
                 CHECK(edge_error(&c, &r) < 1.5, "k=%d x%g ph %g: gap edges off by %.2f deg", k,
                       factors[fi], phases[pi], edge_error(&c, &r));
+                rd_contact_result_cleanup(&c);
+            }
+}
+
+/* The battery of bench_static --battery at the default settings (n from
+ * 20, a = 0.01, refined to at most 320) against the geometrically exact
+ * reference (contact_reference_nl.c, 1440 cells, F_t following the end
+ * sections as in ringdyn), which ringdyn converges to; its 30 distinct bores
+ * take ~10 s in a sanitizer build (the reference 0.01-0.12 s of it a bore,
+ * started from the linear reference's contact states).  The bounds are
+ * tighter than test_battery's against the linear reference at n = 160
+ * (0.02, 5 %, 1.5 deg), which ringdyn does not converge to. */
+static void test_battery_exact(void)
+{
+    rd_ring_params p;
+    rd_ring_params_default(&p);
+    const int orders[] = {2, 3, 4, 6};
+    const double factors[] = {0.1, 1, 3, 10}, phases[] = {0, 17};
+    rd_static_opts so;
+    rd_static_opts_default(&so);
+    for (int oi = 0; oi < 4; oi++)
+        for (int fi = 0; fi < 4; fi++)
+            for (int pi = 0; pi < 2; pi++) {
+                int k = orders[oi];
+                if (k == 2 && factors[fi] == 10)
+                    continue; /* capped at 0.4 % of d: the 3 x bore again */
+                rd_contact_opts o = bore(&p, k, factors[fi], phases[pi]);
+                ref_result x;
+                rd_contact_result c;
+                rd_error err;
+                rd_error_init(&err);
+                if (ref_contact_solve_nl(&p, &o, 1440, 1, 10.0, floor_of(&p), &x) != 0) {
+                    CHECK(0, "exact reference k=%d x%g ph %g", k, factors[fi], phases[pi]);
+                    continue;
+                }
+                if (rd_contact_solve(&p, 20, &o, &so, NULL, &c, &err) != RD_OK) {
+                    CHECK(0, "k=%d x%g ph %g: %s", k, factors[fi], phases[pi], err.message);
+                    continue;
+                }
+                double dp = 0, dcf = fabs(c.contact_fraction - x.contact_fraction);
+                for (int b = 0; b < RD_CONTACT_BINS; b++)
+                    dp = fmax(dp, fabs(c.bin_pressure[b] - x.bin_pressure[b]) / x.p0);
+                double dg = x.max_clearance > 1e-7 ? c.max_clearance / x.max_clearance - 1 : 0;
+                double de = edge_error(&c, &x);
+                printf("k=%d x%g ph %g, n %d vs exact: contact fraction %.4f (est. %.4f), largest "
+                       "gap %+.2f %%, edges %.2f deg (est. %.2f), bins %.3f p0 (est. %.3f)\n",
+                       k, factors[fi], phases[pi], c.stats.segments, dcf,
+                       c.estimates.contact_fraction, 100 * dg, de, c.estimates.gap_edges_deg, dp,
+                       c.estimates.pressure);
+                /* measured at most 0.0090 (order 6 at 3 x) besides a run
+                 * off the bore as deep as the floor, counted in one and not
+                 * the other (order 3 at 0.1 x, 0 deg: 0.0556, its width 20
+                 * deg): 0.012 is x1.3 the worst, the issue's target 0.02 */
+                CHECK(dcf < 0.012 + c.marginal_gap_deg / 360.0,
+                      "k=%d x%g ph %g: contact fraction %.4f, exact %.4f", k, factors[fi],
+                      phases[pi], c.contact_fraction, x.contact_fraction);
+                /* measured at most 1.3 % (orders 3 and 4 at 1 x, 17 deg,
+                 * gaps of 0.3-1.9 um) where the gap exceeds 0.1 um: 2 % */
+                CHECK(fabs(dg) < 0.02, "k=%d x%g ph %g: largest gap %+.2f %% off", k, factors[fi],
+                      phases[pi], 100 * dg);
+                /* measured at most 0.89 deg (order 2 at 3 x, 0 deg): the
+                 * issue's target of 1 deg, x1.1 the worst */
+                CHECK(de < 1.0, "k=%d x%g ph %g: gap edges off by %.2f deg", k, factors[fi],
+                      phases[pi], de);
+                /* the bins are not all converged (concentrated forces at
+                 * the edges of short patches: up to 2 p0), but the
+                 * pressure's estimate covers them within x2: measured at
+                 * most x1.55 (order 3 at 0.1 x, 0 deg: 0.057 against
+                 * 0.037) */
+                CHECK(dp <= 2 * c.estimates.pressure,
+                      "k=%d x%g ph %g: bins off by %.3f p0, "
+                      "estimate %.3f",
+                      k, factors[fi], phases[pi], dp, c.estimates.pressure);
+                /* the contact fraction's and the edges' estimates do not
+                 * understate the error by more than x3 (as test_estimates
+                 * against the linear reference; measured at most x2.6 and
+                 * x1.75, order 2 at 3 x, 0 deg) */
+                CHECK(c.estimates.contact_fraction >= dcf / 3 || dcf < 1e-3,
+                      "k=%d x%g ph %g: contact fraction error %.4f, estimate %.4f", k, factors[fi],
+                      phases[pi], dcf, c.estimates.contact_fraction);
+                CHECK(c.estimates.gap_edges_deg >= de / 3,
+                      "k=%d x%g ph %g: edge error %.3f deg, estimate %.3f", k, factors[fi],
+                      phases[pi], de, c.estimates.gap_edges_deg);
                 rd_contact_result_cleanup(&c);
             }
 }
@@ -376,5 +465,6 @@ int main(void)
     test_accuracy_target();
     test_stiffness();
     test_battery();
+    test_battery_exact();
     return check_done();
 }
