@@ -403,17 +403,24 @@ static void test_rigid_friction(void)
           first[1] - first[0]);
 }
 
+/* The 3-ring pack of the mass-balance cases: default rings, taller second
+ * and third rings, two cycles, no estimate (short under the sanitizers). */
+static void three_ring_pack(rd_ringpack_params *p)
+{
+    rd_ringpack_params_default(p);
+    p->n_rings = 3;
+    p->engine.cycles = 2;
+    p->estimate_error = 0;
+    p->rings[1].ring.axial_height = 0.0015;
+    p->rings[2].ring.axial_height = 0.0025;
+}
+
 /* (3) on three rings, a flexible top ring (coarse: the balance does not
  * depend on n, and the run stays short under the sanitizers). */
 static void test_mass_flexible(void)
 {
     rd_ringpack_params p;
-    rd_ringpack_params_default(&p);
-    p.n_rings = 3;
-    p.engine.cycles = 2;
-    p.estimate_error = 0;
-    p.rings[1].ring.axial_height = 0.0015;
-    p.rings[2].ring.axial_height = 0.0025;
+    three_ring_pack(&p);
     p.rings[0].model = RD_LIFT_MODEL_FULL;
     p.rings[0].segments = 8;
     p.rings[1].model = RD_LIFT_MODEL_MODAL;
@@ -581,12 +588,7 @@ static void test_dynamic_lift_and_mass(void)
     pack_vs_lift_x(RD_LIFT_MODEL_AUTO, 0.0, &x, "dynamic areas", &dl, &dg);
     CHECK(dl <= TOL_LEAVE && dg <= TOL_LAND, "dynamic: leaves %.4f, landings %.4f deg", dl, dg);
     rd_ringpack_params p;
-    rd_ringpack_params_default(&p);
-    p.n_rings = 3;
-    p.engine.cycles = 2;
-    p.estimate_error = 0;
-    p.rings[1].ring.axial_height = 0.0015;
-    p.rings[2].ring.axial_height = 0.0025;
+    three_ring_pack(&p);
     p.rings[0].segments = p.rings[1].segments = 8;
     p.rings[1].gap_angle_deg = 180.0;
     p.rings[2].pinned = RD_PIN_LOWER;
