@@ -18,34 +18,13 @@
 #include <stdio.h>
 #include <stdlib.h>
 
+#include "lift_battery.h"
 #include "rd_lift.h"
 
-#define GAS_POINTS 361
-static double gas_tab[4][GAS_POINTS];
-
+/* The battery's scene (lift_battery.h), sampled every 1 deg. */
 static void scene(rd_lift_params *p, double rpm, double ca, int gas, int fric, double rtol)
 {
-    rd_lift_params_default(p);
-    p->engine.speed_rpm = rpm;
-    p->engine.cycles = 1.0;
-    p->groove.axial_clearance = ca;
-    p->gravity = 1;
-    p->friction.model = fric;
-    p->estimate_error = 0;
-    p->step_deg = 1.0;
-    p->rtol = rtol;
-    p->atol = 1e-3 * rtol * ca / 3e-5;
-    if (!gas)
-        return;
-    for (int i = 0; i < GAS_POINTS; i++) {
-        double d = 2.0 * i;
-        gas_tab[0][i] = d;
-        gas_tab[1][i] = 58e5 * exp(-pow((d - 20.0) / 25.0, 2));
-        gas_tab[2][i] = 58e5 * exp(-pow((d - 22.0) / 25.0, 2));
-        gas_tab[3][i] = 0.3 * 58e5 * exp(-pow((d - 40.0) / 30.0, 2));
-    }
-    p->gas = (rd_gas_params){GAS_POINTS, gas_tab[0], gas_tab[1],
-                             gas_tab[2], gas_tab[3], RD_GAS_AREA_DYNAMIC};
+    lift_battery_scene(p, rpm, ca, gas, fric, rtol, 1.0);
 }
 
 static int run(const rd_lift_params *p, int model, int n, rd_lift_result *r)

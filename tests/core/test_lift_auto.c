@@ -26,23 +26,8 @@
 #include <string.h>
 
 #include "check.h"
+#include "lift_battery.h"
 #include "rd_lift.h"
-
-#define GAS_POINTS 361
-static double gas_tab[4][GAS_POINTS];
-
-static void gas_tables(rd_lift_params *p)
-{
-    for (int i = 0; i < GAS_POINTS; i++) {
-        double d = 2.0 * i;
-        gas_tab[0][i] = d;
-        gas_tab[1][i] = 58e5 * exp(-pow((d - 20.0) / 25.0, 2));
-        gas_tab[2][i] = 58e5 * exp(-pow((d - 22.0) / 25.0, 2));
-        gas_tab[3][i] = 0.3 * 58e5 * exp(-pow((d - 40.0) / 30.0, 2));
-    }
-    p->gas = (rd_gas_params){GAS_POINTS, gas_tab[0], gas_tab[1],
-                             gas_tab[2], gas_tab[3], RD_GAS_AREA_DYNAMIC};
-}
 
 static double event_diff(const rd_lift_result *a, const rd_lift_result *b)
 {
@@ -57,21 +42,10 @@ static double event_diff(const rd_lift_result *a, const rd_lift_result *b)
     return d;
 }
 
-/* The scene of the battery; atol scales with the clearance (1e-3 rtol c_a). */
+/* The scene of the battery (lift_battery.h), sampled every 5 deg. */
 static void scene(rd_lift_params *p, double rpm, double ca, int gas, int fric, double rtol)
 {
-    rd_lift_params_default(p);
-    p->engine.speed_rpm = rpm;
-    p->engine.cycles = 1.0;
-    p->groove.axial_clearance = ca;
-    p->gravity = 1;
-    p->friction.model = fric;
-    p->estimate_error = 0;
-    p->step_deg = 5.0;
-    p->rtol = rtol;
-    p->atol = 1e-3 * rtol * ca / 3e-5;
-    if (gas)
-        gas_tables(p);
+    lift_battery_scene(p, rpm, ca, gas, fric, rtol, 5.0);
 }
 
 static int run(const rd_lift_params *p, int model, rd_lift_result *r, rd_error *err)

@@ -12,32 +12,9 @@
 #include <string.h>
 
 #include "check.h"
+#include "lift_battery.h"
 #include "rd_lift.h"
 #include "rd_lift_internal.h"
-
-#define GAS_POINTS 361
-
-static double gas_tab[4][GAS_POINTS];
-
-/* A synthetic firing pulse (the shape of the gas example's): 58 bar gauge
- * peak at 20 deg, the groove back 2 deg later, the second land 30 % of it
- * 20 deg later. */
-static void gas_tables(rd_lift_params *p, int area)
-{
-    for (int i = 0; i < GAS_POINTS; i++) {
-        double d = 2.0 * i;
-        gas_tab[0][i] = d;
-        gas_tab[1][i] = 58e5 * exp(-pow((d - 20.0) / 25.0, 2));
-        gas_tab[2][i] = 58e5 * exp(-pow((d - 22.0) / 25.0, 2));
-        gas_tab[3][i] = 0.3 * 58e5 * exp(-pow((d - 40.0) / 30.0, 2));
-    }
-    p->gas.points = GAS_POINTS;
-    p->gas.crank_deg = gas_tab[0];
-    p->gas.above = gas_tab[1];
-    p->gas.behind = gas_tab[2];
-    p->gas.below = gas_tab[3];
-    p->gas.active_area = area;
-}
 
 static int run(const rd_lift_params *p, int model, int n, rd_lift_result *r, rd_error *err)
 {
@@ -94,7 +71,7 @@ static void test_rigid_vs_full(void)
         p.gravity = cases[j].gravity;
         p.estimate_error = 0;
         if (cases[j].gas)
-            gas_tables(&p, cases[j].area);
+            lift_battery_gas_tables(&p, cases[j].area);
         rd_lift_result a, b;
         rd_error err;
         p.rtol = 1e-8;
@@ -163,7 +140,7 @@ static void test_stick_vs_plain(void)
         p.rtol = 1e-8;
         p.atol = 1e-11;
         if (cases[j].gas)
-            gas_tables(&p, cases[j].area);
+            lift_battery_gas_tables(&p, cases[j].area);
         rd_lift_result a, b;
         rd_error err;
         p.stick = 1;
@@ -240,7 +217,7 @@ static void test_small_vs_cvode(void)
         p.rtol = 1e-8;
         p.atol = 1e-11;
         if (cases[j].gas)
-            gas_tables(&p, cases[j].gas - 1);
+            lift_battery_gas_tables(&p, cases[j].gas - 1);
         rd_lift_result a, b;
         rd_error err;
         int rc = run(&p, RD_LIFT_MODEL_RIGID, 20, &a, &err);
@@ -378,7 +355,7 @@ static void test_rigid_extremes(void)
         p.friction.model = cases[j].fric;
         p.estimate_error = 1;
         if (cases[j].gas)
-            gas_tables(&p, RD_GAS_AREA_DYNAMIC);
+            lift_battery_gas_tables(&p, RD_GAS_AREA_DYNAMIC);
         if (cases[j].kfac > 0.0)
             p.contact_stiffness = cases[j].kfac * rd_lift_contact_stiffness_default(&rp, &p);
         rd_lift_result r;
