@@ -137,6 +137,16 @@ static double edge_error(const rd_contact_result *c, const ref_result *r)
     return worst;
 }
 
+/* The thin-ring conformability bound of order k, F_t R^3 / (E I (k^2 - 1)^2)
+ * (the battery's amplitude unit). */
+static double thin_ring_bound(const rd_ring_params *p, int k)
+{
+    rd_ring_section sec;
+    rd_ring_section_get(p, 0, &sec);
+    return p->tangential_force * pow(sec.R, 3) /
+           (p->youngs_modulus * sec.I_inplane * pow(k * k - 1.0, 2));
+}
+
 /* est / err within x3 (both below `floor`: counted as tracking). */
 static int tracks(double est, double err, double floor)
 {
@@ -147,8 +157,6 @@ static int tracks(double est, double err, double floor)
 
 static void battery(const rd_ring_params *p)
 {
-    rd_ring_section sec;
-    rd_ring_section_get(p, 0, &sec);
     const int orders[] = {2, 3, 4, 6};
     const double facs[] = {0.1, 1, 3, 10}, phases[] = {0, 17};
     double p0 = 2 * p->tangential_force / (p->diameter * p->axial_height);
@@ -167,8 +175,7 @@ static void battery(const rd_ring_params *p)
         for (int fi = 0; fi < 4; fi++)
             for (int pi = 0; pi < 2; pi++) {
                 int k = orders[oi];
-                double bound = p->tangential_force * pow(sec.R, 3) /
-                               (p->youngs_modulus * sec.I_inplane * pow(k * k - 1.0, 2));
+                double bound = thin_ring_bound(p, k);
                 double A = fmin(facs[fi] * bound, 0.004 * p->diameter);
                 rd_contact_opts o;
                 rd_contact_opts_default(&o);
@@ -246,8 +253,6 @@ static void battery(const rd_ring_params *p)
  * k0.  Prints the count of bores where every move is within the estimate. */
 static void stiffness_battery(const rd_ring_params *p)
 {
-    rd_ring_section sec;
-    rd_ring_section_get(p, 0, &sec);
     const int orders[] = {2, 3, 4, 6};
     const double facs[] = {0.1, 1, 3, 10}, phases[] = {0, 17};
     int total = 0, within[4] = {0}, failed = 0;
@@ -258,8 +263,7 @@ static void stiffness_battery(const rd_ring_params *p)
         for (int fi = 0; fi < 4; fi++)
             for (int pi = 0; pi < 2; pi++) {
                 int k = orders[oi];
-                double bound = p->tangential_force * pow(sec.R, 3) /
-                               (p->youngs_modulus * sec.I_inplane * pow(k * k - 1.0, 2));
+                double bound = thin_ring_bound(p, k);
                 rd_contact_opts o;
                 rd_contact_opts_default(&o);
                 o.n_distortion = 1;
@@ -314,11 +318,8 @@ static void stiffness_battery(const rd_ring_params *p)
  * gaps, and the segments of the worst bin (what dominates its error). */
 static void bins_one(const rd_ring_params *p, int k, double fac, double phase, int fixed_n)
 {
-    rd_ring_section sec;
-    rd_ring_section_get(p, 0, &sec);
     double p0 = 2 * p->tangential_force / (p->diameter * p->axial_height);
-    double bound = p->tangential_force * pow(sec.R, 3) /
-                   (p->youngs_modulus * sec.I_inplane * pow(k * k - 1.0, 2));
+    double bound = thin_ring_bound(p, k);
     rd_contact_opts o;
     rd_contact_opts_default(&o);
     o.n_distortion = 1;
