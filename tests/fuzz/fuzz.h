@@ -13,6 +13,7 @@
 
 #include "rd_api.h"
 #include "rd_sweep.h"
+#include "rd_sweep_request.h"
 
 /* ---- fuzz_scene.c ---- */
 
@@ -33,6 +34,12 @@ struct json_t *fuzz_result_of(const char *echo, uint32_t h);
 /* A monitor that cancels after the run budget of CPU time from now;
  * `deadline` is its state and must outlive the run. */
 rd_monitor fuzz_budget(double *deadline);
+
+/* A sweep request's first points (at most 2) run each under fuzz_budget,
+ * as the service runs them: rows[i] the point's table row, or the row of a
+ * point it stopped (rd_sweep_request_failed_row), NULL when even that could
+ * not be made.  Returns how many points ran. */
+size_t fuzz_sweep_rows(const rd_sweep_request *req, char *rows[2]);
 
 /* ---- fuzz_fail.c ---- */
 

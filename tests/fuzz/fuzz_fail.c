@@ -325,19 +325,9 @@ static void step_table(const char *body, size_t len, outcome *o)
     o->rc = rd_sweep_request_parse(body, len, 64, &req, &o->err);
     if (o->rc != RD_OK)
         return;
-    size_t n = rd_sweep_points(req.sweep), m = n < 2 ? n : 2;
-    char *rows[2] = {NULL, NULL};
+    char *rows[2];
+    size_t n = rd_sweep_points(req.sweep), m = fuzz_sweep_rows(&req, rows);
     rd_error err;
-    for (size_t i = 0; i < m; i++) {
-        double deadline;
-        rd_monitor mon = fuzz_budget(&deadline);
-        rd_error_init(&err);
-        if (rd_sweep_run_point(req.sweep, i, &mon, &rows[i], &err) != RD_OK) {
-            rd_error ferr;
-            rd_error_init(&ferr);
-            rows[i] = rd_sweep_request_failed_row(&req, i, &err, &ferr);
-        }
-    }
     int all = m > 0 && rows[0] && (m < 2 || rows[1]);
     rd_error_init(&err);
     o->text[0] = all ? rd_sweep_table_json(req.sweep, rows, m, &err) : NULL;

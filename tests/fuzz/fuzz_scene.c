@@ -844,24 +844,33 @@ int LLVMFuzzerInitialize(int *argc, char ***argv)
  * budget as a scene), the CSV forms, the fidelity table and, when the
  * points are the whole sweep, its chunk files (fuzz_files_reduce; `h`
  * picks how they are broken). */
-static void check_sweep_table(const rd_sweep_request *req, uint32_t h)
+size_t fuzz_sweep_rows(const rd_sweep_request *req, char *rows[2])
 {
     size_t n = rd_sweep_points(req->sweep), m = n < 2 ? n : 2;
-    char *rows[2] = {NULL, NULL};
-    rd_error err;
+    rows[0] = rows[1] = NULL;
     for (size_t i = 0; i < m; i++) {
         double deadline;
         rd_monitor mon = fuzz_budget(&deadline);
+        rd_error err;
         rd_error_init(&err);
         if (rd_sweep_run_point(req->sweep, i, &mon, &rows[i], &err) != RD_OK) {
             /* The service's row of a point it stopped. */
             rd_error ferr;
             rd_error_init(&ferr);
             rows[i] = rd_sweep_request_failed_row(req, i, &err, &ferr);
-            if (!rows[i])
-                abort();
         }
     }
+    return m;
+}
+
+static void check_sweep_table(const rd_sweep_request *req, uint32_t h)
+{
+    char *rows[2];
+    size_t m = fuzz_sweep_rows(req, rows);
+    for (size_t i = 0; i < m; i++)
+        if (!rows[i])
+            abort();
+    rd_error err;
     rd_error_init(&err);
     char *table = rd_sweep_table_json(req->sweep, rows, m, &err);
     rd_error_init(&err);
