@@ -17,7 +17,8 @@
  *   bench_static --battery  contact in distorted bores (orders 2, 3, 4, 6;
  *       0.1, 1, 3, 10 x the thin-ring bound, capped at 0.4 % of the
  *       diameter; phases 0 and 17 deg) at default settings against an
- *       independent reference (1440 cells; --reference nl, the default:
+ *       independent reference (--ref-cells, default 2880, and half as many
+ *       for its own bin uncertainty; --reference nl, the default:
  *       tests/core/contact_reference_nl.c, geometrically exact, F_t
  *       following the end faces as in ringdyn; nl-dead: F_t of fixed
  *       direction; linear: tests/core/contact_reference.c; also for --bins):
@@ -45,14 +46,15 @@
  * REF_NL_DEAD (F_t fixed in direction), REF_LINEAR (contact_reference.c). */
 enum { REF_NL, REF_NL_DEAD, REF_LINEAR };
 static int reference_kind = REF_NL;
+static int reference_cells = 2880;
 
 static int reference_solve(const rd_ring_params *p, const rd_contact_opts *o, double floor_m,
                            ref_result *r)
 {
     if (reference_kind == REF_LINEAR)
-        return ref_contact_solve(p, o, 1440, RD_CONTACT_BIN_DEG, floor_m, r);
-    return ref_contact_solve_nl(p, o, 1440, reference_kind == REF_NL, RD_CONTACT_BIN_DEG, floor_m,
-                                r);
+        return ref_contact_solve(p, o, reference_cells, RD_CONTACT_BIN_DEG, floor_m, r);
+    return ref_contact_solve_nl(p, o, reference_cells, reference_kind == REF_NL, RD_CONTACT_BIN_DEG,
+                                floor_m, r);
 }
 
 static void die(const char *what, const rd_error *err)
@@ -161,7 +163,8 @@ static void battery(const rd_ring_params *p)
     const double facs[] = {0.1, 1, 3, 10}, phases[] = {0, 17};
     double p0 = 2 * p->tangential_force / (p->diameter * p->axial_height);
     double floor_m = 10 * p0 / rd_contact_default_stiffness(p);
-    int total = 0, ok[4] = {0}, track[4] = {0}, fast = 0, ref_passes[2] = {1 << 30, 0};
+    int total = 0, ok[4] = {0}, track[4] = {0}, fast = 0, settled = 0, settled_ok = 0,
+        ref_passes[2] = {1 << 30, 0};
     double ref_cpu[2] = {INFINITY, 0};
     printf("## contact in distorted bores, default settings, vs the %s curved-beam reference\n\n",
            reference_kind == REF_LINEAR ? "linear"
@@ -169,8 +172,9 @@ static void battery(const rd_ring_params *p)
                                         : "geometrically exact (dead F_t)");
     printf("| k | A / bound | phase | n | met | wall (s) | cpu (s) | contact fraction: error "
            "(estimate) "
-           "| largest gap: error (estimate) | gap edges, deg | binned pressure / p0 |\n"
-           "|---|---|---|---|---|---|---|---|---|---|---|\n");
+           "| largest gap: error (estimate) | gap edges, deg | binned pressure / p0 | reference's "
+           "own bins / p0 |\n"
+           "|---|---|---|---|---|---|---|---|---|---|---|---|\n");
     for (int oi = 0; oi < 4; oi++)
         for (int fi = 0; fi < 4; fi++)
             for (int pi = 0; pi < 2; pi++) {
@@ -189,6 +193,16 @@ static void battery(const rd_ring_params *p)
                 }
                 double rcpu = (double)(clock() - r0) / CLOCKS_PER_SEC;
                 ref_cpu[0] = fmin(ref_cpu[0], rcpu), ref_cpu[1] = fmax(ref_cpu[1], rcpu);
+                /* the reference's own bin uncertainty: its bins at half the
+                 * cells against these (a point-like contact on a bin boundary
+                 * moves whole p0 between bins with its location) */
+                ref_result rh;
+                int cells = reference_cells;
+                reference_cells /= 2;
+                double ref_dp = reference_solve(p, &o, floor_m, &rh) == 0 ? 0.0 : NAN;
+                reference_cells = cells;
+                for (int b = 0; b < RD_CONTACT_BINS; b++)
+                    ref_dp = fmax(ref_dp, fabs(rh.bin_pressure[b] - r.bin_pressure[b]) / p0);
                 ref_passes[0] = r.iterations < ref_passes[0] ? r.iterations : ref_passes[0];
                 ref_passes[1] = r.iterations > ref_passes[1] ? r.iterations : ref_passes[1];
                 rd_contact_result c;
@@ -226,6 +240,8 @@ static void battery(const rd_ring_params *p)
                 ok[1] += !(dg > 0.05);
                 ok[2] += !(de > 1.0);
                 ok[3] += dp <= 0.02;
+                settled += ref_dp <= 0.02;
+                settled_ok += ref_dp <= 0.02 && dp <= 0.02;
                 track[0] += tracks(c.estimates.contact_fraction, dcf, 1e-3);
                 track[1] += isnan(dg) || tracks(eg, dg, 1e-3);
                 track[2] += isnan(de) || tracks(c.estimates.gap_edges_deg, de, 0.05);
@@ -233,10 +249,10 @@ static void battery(const rd_ring_params *p)
                 fast += cpu_s <= 0.2;
                 printf(
                     "| %d | %.2g | %g | %d | %s | %.3f | %.3f | %.4f (%.4f) | %+.1f %% (%.1f %%) | "
-                    "%.2f (%.2f) | %.3f (%.3f) |\n",
+                    "%.2f (%.2f) | %.3f (%.3f) | %.3f |\n",
                     k, A / bound, phases[pi], c.stats.segments, c.accuracy_met ? "yes" : "no", wall,
                     cpu_s, dcf, c.estimates.contact_fraction, 100 * dg, 100 * eg, de,
-                    c.estimates.gap_edges_deg, dp, c.estimates.pressure);
+                    c.estimates.gap_edges_deg, dp, c.estimates.pressure, ref_dp);
                 rd_contact_result_cleanup(&c);
             }
     printf("\n%d bores. Within the targets: contact fraction (0.02) %d, largest gap (5 %%) %d, "
@@ -244,8 +260,11 @@ static void battery(const rd_ring_params *p)
            "Estimate within x3 of the true error: contact fraction %d, largest gap %d, edges %d, "
            "pressure %d.\n",
            total, ok[0], ok[1], ok[2], ok[3], fast, track[0], track[1], track[2], track[3]);
-    printf("The reference (1440 cells): %.3f-%.3f s CPU a bore, %d-%d active-set passes.\n",
-           ref_cpu[0], ref_cpu[1], ref_passes[0], ref_passes[1]);
+    printf("Binned pressure where the reference's own bins settle within 0.02 p0 (%d cells "
+           "against %d): %d of %d bores within 0.02 p0.\n",
+           reference_cells / 2, reference_cells, settled_ok, settled);
+    printf("The reference (%d cells): %.3f-%.3f s CPU a bore, %d-%d active-set passes.\n",
+           reference_cells, ref_cpu[0], ref_cpu[1], ref_passes[0], ref_passes[1]);
 }
 
 /* The battery at the default stiffness k0 and at 10 k0 (default settings
@@ -379,6 +398,19 @@ int main(int argc, char **argv)
                                                      : -1;
         if (reference_kind < 0) {
             fprintf(stderr, "--reference: nl, nl-dead or linear, not %s\n", k);
+            return 1;
+        }
+        memmove(argv + i, argv + i + 2, (size_t)(argc - i - 1) * sizeof *argv);
+        argc -= 2;
+        break;
+    }
+    /* --ref-cells N (even, 8..REF_CELLS_MAX), anywhere: taken out of argv */
+    for (int i = 1; i + 1 < argc; i++) {
+        if (strcmp(argv[i], "--ref-cells") != 0)
+            continue;
+        reference_cells = atoi(argv[i + 1]);
+        if (reference_cells < 8 || reference_cells % 4) {
+            fprintf(stderr, "--ref-cells: a multiple of 4, at least 8, not %s\n", argv[i + 1]);
             return 1;
         }
         memmove(argv + i, argv + i + 2, (size_t)(argc - i - 1) * sizeof *argv);

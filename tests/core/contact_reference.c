@@ -131,6 +131,17 @@ static double edge(double ta, double tb, double g1, double g2)
     return tb + x * (tb - ta);
 }
 
+/* Length of the arc [a, b] (rad) outside out's gaps. */
+static double on_bore(const ref_result *out, double a, double b)
+{
+    double len = b - a;
+    for (int g = 0; g < out->n_gaps; g++) {
+        double s0 = out->gaps[g].start_deg * M_PI / 180, s1 = out->gaps[g].end_deg * M_PI / 180;
+        len -= fmax(0.0, fmin(b, s1) - fmax(a, s0));
+    }
+    return fmax(0.0, len);
+}
+
 void ref_post(const ref_mesh *m, const char *act, const double *gap, const double *lam,
               double bin_deg, double gap_floor, ref_result *out)
 {
@@ -168,18 +179,20 @@ void ref_post(const ref_mesh *m, const char *act, const double *gap, const doubl
     out->contact_fraction = 1.0 - gap_len / span;
     out->tip_force[0] = act[0] ? lam[0] - 0.5 * lam[1] : 0.0;
     out->tip_force[1] = act[N] ? lam[N] - 0.5 * lam[N - 1] : 0.0;
-    /* bins: node forces spread over their tributary arcs */
+    /* bins: node forces spread over the part of their tributary arcs on
+     * the bore (a node beside a gap edge: up to the edge) */
     out->bins = (int)lround(360.0 / bin_deg);
     double wb = bin_deg * M_PI / 180.0, force[REF_BINS_MAX] = {0}, cover[REF_BINS_MAX] = {0};
     for (int j = 0; j <= N; j++) {
         double lo = m->s + (j - 0.5) * m->D, hi = lo + m->D;
         lo = fmax(lo, m->s), hi = fmin(hi, 2 * M_PI - m->s);
+        double on = on_bore(out, lo, hi);
         for (int k = 0; k < out->bins; k++) {
-            double ov = fmin(hi, (k + 1) * wb) - fmax(lo, k * wb);
-            if (ov > 0) {
-                force[k] += lam[j] * ov / (hi - lo);
-                cover[k] += ov;
-            }
+            double a = fmax(lo, k * wb), b = fmin(hi, (k + 1) * wb);
+            if (b <= a)
+                continue;
+            cover[k] += b - a;
+            force[k] += on > 0.0 ? lam[j] * on_bore(out, a, b) / on : lam[j] * (b - a) / (hi - lo);
         }
     }
     for (int k = 0; k < out->bins; k++)
