@@ -164,7 +164,7 @@ static void battery(const rd_ring_params *p)
     double p0 = 2 * p->tangential_force / (p->diameter * p->axial_height);
     double floor_m = 10 * p0 / rd_contact_default_stiffness(p);
     int total = 0, ok[4] = {0}, track[4] = {0}, fast = 0, settled = 0, settled_ok = 0,
-        ref_passes[2] = {1 << 30, 0};
+        ref_passes[2] = {1 << 30, 0}, its[3] = {1 << 30, 0, 0};
     double ref_cpu[2] = {INFINITY, 0};
     printf("## contact in distorted bores, default settings, vs the %s curved-beam reference\n\n",
            reference_kind == REF_LINEAR ? "linear"
@@ -247,6 +247,9 @@ static void battery(const rd_ring_params *p)
                 track[2] += isnan(de) || tracks(c.estimates.gap_edges_deg, de, 0.05);
                 track[3] += tracks(c.estimates.pressure, dp, 1e-3);
                 fast += cpu_s <= 0.2;
+                its[0] = c.stats.iterations < its[0] ? c.stats.iterations : its[0];
+                its[1] = c.stats.iterations > its[1] ? c.stats.iterations : its[1];
+                its[2] += c.stats.iterations;
                 printf(
                     "| %d | %.2g | %g | %d | %s | %.3f | %.3f | %.4f (%.4f) | %+.1f %% (%.1f %%) | "
                     "%.2f (%.2f) | %.3f (%.3f) | %.3f |\n",
@@ -265,6 +268,8 @@ static void battery(const rd_ring_params *p)
            reference_cells / 2, reference_cells, settled_ok, settled);
     printf("The reference (%d cells): %.3f-%.3f s CPU a bore, %d-%d active-set passes.\n",
            reference_cells, ref_cpu[0], ref_cpu[1], ref_passes[0], ref_passes[1]);
+    printf("Newton iterations of the finest level's solve: %d-%d a bore, %d in all.\n", its[0],
+           its[1], its[2]);
 }
 
 /* The battery at the default stiffness k0 and at 10 k0 (default settings

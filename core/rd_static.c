@@ -36,121 +36,6 @@
 
 #define KL 11 /* half bandwidth of the split ring's tangent, in DOFs */
 
-/* ---- 3x3 rotations (row-major) -------------------------------------------- */
-
-/* out = A^T v */
-static void mtv3(const double A[9], const double v[3], double out[3])
-{
-    double c[3];
-    for (int r = 0; r < 3; r++)
-        c[r] = A[r] * v[0] + A[3 + r] * v[1] + A[6 + r] * v[2];
-    memcpy(out, c, sizeof c);
-}
-
-/* out = A B */
-static void mm3(const double A[9], const double B[9], double out[9])
-{
-    double c[9];
-    for (int r = 0; r < 3; r++)
-        for (int q = 0; q < 3; q++)
-            c[3 * r + q] = A[3 * r] * B[q] + A[3 * r + 1] * B[3 + q] + A[3 * r + 2] * B[6 + q];
-    memcpy(out, c, sizeof c);
-}
-
-/* out = A^T B */
-static void mtm3(const double A[9], const double B[9], double out[9])
-{
-    double c[9];
-    for (int r = 0; r < 3; r++)
-        for (int q = 0; q < 3; q++)
-            c[3 * r + q] = A[r] * B[q] + A[3 + r] * B[3 + q] + A[6 + r] * B[6 + q];
-    memcpy(out, c, sizeof c);
-}
-
-/* Rodrigues: R = exp([w]x). */
-static void rot_exp(const double w[3], double R[9])
-{
-    double th2 = rd_dot3(w, w), th = sqrt(th2), a, b;
-    if (th < 1e-4) {
-        a = 1.0 - th2 / 6.0 * (1.0 - th2 / 20.0);
-        b = 0.5 - th2 / 24.0 * (1.0 - th2 / 30.0);
-    } else {
-        a = sin(th) / th;
-        b = (1.0 - cos(th)) / th2;
-    }
-    double W[9] = {0, -w[2], w[1], w[2], 0, -w[0], -w[1], w[0], 0}, W2[9];
-    mm3(W, W, W2);
-    for (int k = 0; k < 9; k++)
-        R[k] = (k % 4 == 0 ? 1.0 : 0.0) + a * W[k] + b * W2[k];
-}
-
-/* Rotation vector of R (|w| < pi; the chain's relative rotations are far
- * from pi, and the support's are held near zero). */
-static void rot_log(const double R[9], double w[3])
-{
-    double v[3] = {0.5 * (R[7] - R[5]), 0.5 * (R[2] - R[6]), 0.5 * (R[3] - R[1])};
-    double s = sqrt(rd_dot3(v, v)), c = 0.5 * (R[0] + R[4] + R[8] - 1.0);
-    double th = atan2(s, c);
-    double f = s < 1e-8 ? 1.0 + th * th / 6.0 : th / s;
-    for (int k = 0; k < 3; k++)
-        w[k] = f * v[k];
-}
-
-/* out = Jl^-T(psi) v = v + 1/2 psi x v + c psi x (psi x v)  (Jl^-1 with the
- * sign of the middle term flipped), c = 1/th^2 - (1 + cos th)/(2 th sin th). */
-static void jl_inv_t(const double psi[3], const double v[3], double out[3])
-{
-    double th2 = rd_dot3(psi, psi), th = sqrt(th2), c;
-    if (th < 1e-3)
-        c = 1.0 / 12.0 + th2 / 720.0;
-    else
-        c = 1.0 / th2 - (1.0 + cos(th)) / (2.0 * th * sin(th));
-    double pv[3], ppv[3];
-    rd_cross3(psi, v, pv);
-    rd_cross3(psi, pv, ppv);
-    for (int k = 0; k < 3; k++)
-        out[k] = v[k] + 0.5 * pv[k] + c * ppv[k];
-}
-
-static void joint_residual(const rd_static_problem *pb, int j, const double *xA, const double *QA,
-                           const double *xB, const double *QB, double g[12], double *energy)
-{
-    const double *E = pb->E + 9 * j, *dP0 = pb->dP0 + 3 * j, *Kc = pb->Kc;
-    double Dx[3] = {xB[0] - xA[0], xB[1] - xA[1], xB[2] - xA[2]};
-    double dl[3], Rrel[9], psi[3], dt[6], fm[6];
-    mtv3(QA, Dx, dl);
-    for (int k = 0; k < 3; k++)
-        dl[k] -= dP0[k];
-    rd_mv3(E, dl, dt);
-    mtm3(QA, QB, Rrel);
-    rot_log(Rrel, psi);
-    rd_mv3(E, psi, dt + 3);
-    for (int r = 0; r < 6; r++) {
-        fm[r] = 0.0;
-        for (int c = 0; c < 6; c++)
-            fm[r] += Kc[6 * r + c] * dt[c];
-    }
-    if (energy) {
-        double e = 0.0;
-        for (int r = 0; r < 6; r++)
-            e += 0.5 * dt[r] * fm[r];
-        *energy = e;
-    }
-    double Ef[3], F[3], Em[3], Jm[3], Mg[3], FxD[3];
-    mtv3(E, fm, Ef);
-    rd_mv3(QA, Ef, F);
-    mtv3(E, fm + 3, Em);
-    jl_inv_t(psi, Em, Jm);
-    rd_mv3(QA, Jm, Mg);
-    rd_cross3(F, Dx, FxD);
-    for (int k = 0; k < 3; k++) {
-        g[k] = -F[k];
-        g[3 + k] = FxD[k] - Mg[k];
-        g[6 + k] = F[k];
-        g[9 + k] = Mg[k];
-    }
-}
-
 /* Adds (F, (y - x) x F) for a force F at body offset c of a segment at (x, Q). */
 void rd_static_add_force(const double *Q, const double c[3], const double F[3], double f[6])
 {
@@ -199,7 +84,7 @@ static void support_terms(const rd_static_problem *pb, double *g, double *force,
     double et[3] = {0, 0, 0}, er[3] = {0, 0, 0}, psi[2][3];
     for (int q = 0; q < 2; q++) {
         const double *P = rd_ring_reference_point(pb->ring, s[q]);
-        rot_log(pb->Q + 9 * s[q], psi[q]);
+        rd_static_rot_log(pb->Q + 9 * s[q], psi[q]);
         for (int k = 0; k < 3; k++) {
             et[k] += 0.5 * (pb->x[3 * s[q] + k] - P[k]);
             er[k] += 0.5 * psi[q][k];
@@ -218,7 +103,7 @@ static void support_terms(const rd_static_problem *pb, double *g, double *force,
         return;
     for (int q = 0; q < 2; q++) {
         double jm[3];
-        jl_inv_t(psi[q], mr, jm);
+        rd_static_jl_inv_t(psi[q], mr, jm);
         for (int k = 0; k < 3; k++) {
             g[6 * s[q] + k] += 0.5 * ft[k];
             g[6 * s[q] + 3 + k] += 0.5 * jm[k];
@@ -234,8 +119,8 @@ static double residual(const rd_static_problem *pb, double *r)
     memset(r, 0, (size_t)6 * n * sizeof *r);
     for (int j = 0; j < n - 1; j++) {
         double g[12], e;
-        joint_residual(pb, j, pb->x + 3 * j, pb->Q + 9 * j, pb->x + 3 * (j + 1),
-                       pb->Q + 9 * (j + 1), g, &e);
+        rd_static_joint_residual(pb, j, pb->x + 3 * j, pb->Q + 9 * j, pb->x + 3 * (j + 1),
+                                 pb->Q + 9 * (j + 1), g, &e);
         energy += e;
         for (int k = 0; k < 12; k++)
             r[6 * j + k] += g[k];
@@ -273,12 +158,12 @@ static void perturb(const double *x, const double *Q, int k, double h, double xo
     } else {
         double w[3] = {0, 0, 0}, Rw[9];
         w[k - 3] = h;
-        rot_exp(w, Rw);
-        mm3(Rw, Q, Qo);
+        rd_static_rot_exp(w, Rw);
+        rd_mm3(Rw, Q, Qo);
     }
 }
 
-/* Band storage for LAPACKE_dgbsv (column-major, kl = ku = KL). */
+/* Band storage for dgbtrf (column-major, kl = ku = KL). */
 #define LDAB (3 * KL + 1)
 static void band_add(double *ab, int row, int col, double v)
 {
@@ -287,27 +172,23 @@ static void band_add(double *ab, int row, int col, double v)
     ab[(size_t)col * LDAB + (size_t)(2 * KL + row - col)] += v;
 }
 
-/* Central-difference tangent of the whole residual. */
+/* The tangent of the whole residual, in band storage. */
 static void tangent(rd_static_problem *pb, double *ab)
 {
     int n = pb->n;
     double hx = 1e-6 * pb->R, hr = 1e-6;
-    memset(ab, 0, (size_t)LDAB * 6 * n * sizeof *ab);
+    /* rows 0..KL-1 of each column are dgbtrf's fill-in, set by it */
+    for (int c = 0; c < 6 * n; c++)
+        memset(ab + (size_t)c * LDAB + KL, 0, (2 * KL + 1) * sizeof *ab);
+    /* joints: exact (rd_static_joint.c); each 12x12 block lies in the band */
     for (int j = 0; j < n - 1; j++) {
-        double *xs[2] = {pb->x + 3 * j, pb->x + 3 * (j + 1)};
-        double *Qs[2] = {pb->Q + 9 * j, pb->Q + 9 * (j + 1)};
+        double K[144];
+        rd_static_joint_tangent(pb, j, pb->x + 3 * j, pb->Q + 9 * j, pb->x + 3 * (j + 1),
+                                pb->Q + 9 * (j + 1), K);
         for (int col = 0; col < 12; col++) {
-            int side = col / 6, k = col % 6;
-            double h = k < 3 ? hx : hr, gp[12], gm[12], xp[3], Qp[9];
-            const double *xa[2] = {xs[0], xs[1]}, *Qa[2] = {Qs[0], Qs[1]};
-            perturb(xs[side], Qs[side], k, h, xp, Qp);
-            xa[side] = xp;
-            Qa[side] = Qp;
-            joint_residual(pb, j, xa[0], Qa[0], xa[1], Qa[1], gp, NULL);
-            perturb(xs[side], Qs[side], k, -h, xp, Qp);
-            joint_residual(pb, j, xa[0], Qa[0], xa[1], Qa[1], gm, NULL);
+            double *dst = ab + (size_t)(6 * j + col) * LDAB + 2 * KL - col;
             for (int row = 0; row < 12; row++)
-                band_add(ab, 6 * j + row, 6 * j + col, (gp[row] - gm[row]) / (2.0 * h));
+                dst[row] += K[row + 12 * col];
         }
     }
     /* External loads: the contact law's derivative in closed form (differences
@@ -336,11 +217,11 @@ static void tangent(rd_static_problem *pb, double *ab)
     double A[2][9];
     for (int q = 0; q < 2; q++) {
         double psi[3];
-        rot_log(pb->Q + 9 * s[q], psi);
+        rd_static_rot_log(pb->Q + 9 * s[q], psi);
         for (int k = 0; k < 3; k++) {
             double e[3] = {0, 0, 0}, col[3];
             e[k] = 1.0;
-            jl_inv_t(psi, e, col);
+            rd_static_jl_inv_t(psi, e, col);
             for (int r = 0; r < 3; r++)
                 A[q][3 * r + k] = col[r];
         }
@@ -383,8 +264,8 @@ static void apply_step(rd_static_problem *pb, const double *delta, double a)
             pb->x[3 * i + k] += a * delta[6 * i + k];
             w[k] = a * delta[6 * i + 3 + k];
         }
-        rot_exp(w, Rw);
-        mm3(Rw, pb->Q + 9 * i, pb->Q + 9 * i);
+        rd_static_rot_exp(w, Rw);
+        rd_mm3(Rw, pb->Q + 9 * i, pb->Q + 9 * i);
         orthonormalize(pb->Q + 9 * i);
     }
 }
@@ -444,7 +325,7 @@ static int woodbury(rd_static_problem *pb, work *w)
     for (int c = 0; c < 6; c++)
         for (int r = 0; r < 6; r++)
             w->Y[(size_t)c * N + r] = C[r + 6 * c];
-    rc = LAPACKE_dgbtrs(LAPACK_COL_MAJOR, 'N', N, KL, KL, 6, w->ab, LDAB, w->ipiv, w->Y, N);
+    rc = LAPACKE_dgbtrs_work(LAPACK_COL_MAJOR, 'N', N, KL, KL, 6, w->ab, LDAB, w->ipiv, w->Y, N);
     if ((rc = lapack_status(rc, "dgbtrs", w->err)) != 0)
         return rc;
     for (int c = 0; c < 6; c++)
@@ -466,19 +347,28 @@ static int woodbury(rd_static_problem *pb, work *w)
  * segment's rows, V selecting the last segment's DOFs, solved exactly by the
  * Woodbury identity on the band factorization:
  *   delta = z - Y (I + V^T Y)^-1 V^T z,  J_band z = -r,  J_band Y = U.
- * Returns 0, 1 (singular tangent) or < 0 (w->err set). */
+ * LAPACKE's _work routines, without its NaN scan of the band (a quarter of
+ * the factorization's cost): a non-finite tangent shows in the step, which is
+ * checked instead and treated as singular.  (The residual is finite here:
+ * newton checks it first.)  Returns 0, 1 (singular tangent) or < 0 (w->err
+ * set). */
 static int newton_step(rd_static_problem *pb, work *w)
 {
     int N = 6 * pb->n, rc;
-    rc = LAPACKE_dgbtrf(LAPACK_COL_MAJOR, N, N, KL, KL, w->ab, LDAB, w->ipiv);
+    rc = LAPACKE_dgbtrf_work(LAPACK_COL_MAJOR, N, N, KL, KL, w->ab, LDAB, w->ipiv);
     if ((rc = lapack_status(rc, "dgbtrf", w->err)) != 0)
         return rc;
-    rc = LAPACKE_dgbtrs(LAPACK_COL_MAJOR, 'N', N, KL, KL, 1, w->ab, LDAB, w->ipiv, w->delta, N);
+    rc =
+        LAPACKE_dgbtrs_work(LAPACK_COL_MAJOR, 'N', N, KL, KL, 1, w->ab, LDAB, w->ipiv, w->delta, N);
     if ((rc = lapack_status(rc, "dgbtrs", w->err)) != 0)
         return rc;
-    if (!(pb->kind == RD_STATIC_PRETENSION && pb->method == RD_PRETENSION_FIELD && w->Y))
-        return 0;
-    return woodbury(pb, w);
+    if (pb->kind == RD_STATIC_PRETENSION && pb->method == RD_PRETENSION_FIELD && w->Y &&
+        (rc = woodbury(pb, w)) != 0)
+        return rc;
+    for (int k = 0; k < N; k++)
+        if (!isfinite(w->delta[k]))
+            return 1;
+    return 0;
 }
 
 /* Adds mu |J_ii| to the band's diagonal (Marquardt's scaling): a step in a

@@ -1,8 +1,10 @@
 /*
  * rd_static_internal.h — what the three static files share (no caller outside
  * core/ may include this, but tests/ may, for the contact load's derivative):
- *   rd_static.c      the chain's nonlinear joint mechanics, the residual and
- *                    its tangent, Newton's method and the load stepping;
+ *   rd_static.c      the residual and its tangent, Newton's method and the
+ *                    load stepping;
+ *   rd_static_joint.c  one joint's forces and their exact derivative, and the
+ *                    SO(3) maps;
  *   rd_pretension.c  the free shape under F_t (and F_l) on the gap faces;
  *   rd_contact.c     the ring pressed into a round or distorted bore.
  * The model and its equations are in rd_static.h; the state layout in
@@ -39,6 +41,16 @@ static inline void rd_mv3(const double A[9], const double v[3], double out[3])
     double c[3];
     for (int r = 0; r < 3; r++)
         c[r] = A[3 * r] * v[0] + A[3 * r + 1] * v[1] + A[3 * r + 2] * v[2];
+    memcpy(out, c, sizeof c);
+}
+
+/* out = A B */
+static inline void rd_mm3(const double A[9], const double B[9], double out[9])
+{
+    double c[9];
+    for (int r = 0; r < 3; r++)
+        for (int q = 0; q < 3; q++)
+            c[3 * r + q] = A[3 * r] * B[q] + A[3 * r + 1] * B[3 + q] + A[3 * r + 2] * B[6 + q];
     memcpy(out, c, sizeof c);
 }
 
@@ -89,6 +101,24 @@ void rd_static_problem_cleanup(rd_static_problem *pb);
  * effect within one iteration).  Fills the counters of st. */
 int rd_static_solve_path(rd_static_problem *pb, const rd_static_opts *so, const rd_monitor *mon,
                          rd_static_stats *st, rd_error *err);
+
+/* rd_static_joint.c.  Rodrigues: R = exp([w]x). */
+void rd_static_rot_exp(const double w[3], double R[9]);
+/* The rotation vector of R (|w| < pi; the chain's relative rotations are far
+ * from pi, and the support's are held near zero). */
+void rd_static_rot_log(const double R[9], double w[3]);
+/* out = Jl^-T(psi) v (rd_static_joint.c's header). */
+void rd_static_jl_inv_t(const double psi[3], const double v[3], double out[3]);
+/* Joint j's generalized forces g (12: A's force and moment, then B's) at the
+ * states (xA, QA) of segment j and (xB, QB) of segment j + 1, and its strain
+ * energy (J) when `energy` is not NULL. */
+void rd_static_joint_residual(const rd_static_problem *pb, int j, const double *xA,
+                              const double *QA, const double *xB, const double *QB, double g[12],
+                              double *energy);
+/* Their exact derivative: K[r + 12 c] = d g_r / d DOF c, DOFs (dx_A, dpsi_A,
+ * dx_B, dpsi_B) as in rd_static.c. */
+void rd_static_joint_tangent(const rd_static_problem *pb, int j, const double *xA, const double *QA,
+                             const double *xB, const double *QB, double K[144]);
 
 /* Strain energy, support force and moment, sizes, after a solve. */
 void rd_static_stats_fill(rd_static_problem *pb, rd_static_stats *st);
