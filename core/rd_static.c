@@ -15,13 +15,17 @@
  *   F = Q_A E^T f,   Mg = Q_A Jl^-T(psi) E^T m,
  *   g_A = (-F, F x Dx - Mg),   g_B = (F, Mg),
  * Jl^-1 the inverse left Jacobian of SO(3) (a left perturbation w of
- * exp(psi) changes psi by Jl^-1(psi) w).  A force F at the point y of
- * segment i contributes (F, (y - x_i) x F) to f_ext.
+ * exp(psi) changes psi by Jl^-1(psi) w); rd_static_joint.c evaluates it.  A
+ * force F at the point y of segment i contributes (F, (y - x_i) x F) to
+ * f_ext.
  *
- * Tangent: central differences of these element residuals, element by
- * element (12 perturbations per joint, 6 per gap-face segment), the contact
- * load's derivative in closed form (rd_contact_segment_jacobian), assembled in
- * LAPACK general band storage (half bandwidth 11) and factored by dgbtrf.
+ * Tangent: each joint's 12x12 block in closed form, the exact derivative of
+ * g including the turn of Jl^-T(psi) (rd_static_joint.c; central differences
+ * of g, 24 evaluations a joint, were 35 % of a contact solve's instructions),
+ * the contact load's derivative in closed form (rd_contact_segment_jacobian),
+ * the gap faces' loads by central differences (6 perturbations on each of two
+ * segments), the support's exactly; assembled in LAPACK general band storage
+ * (half bandwidth 11) and factored by dgbtrf.
  * The field method couples the first segment's load to the last segment's
  * state, outside the band: that 6x6 block is added exactly by the Woodbury
  * identity on the band factorization (newton_step).

@@ -1,6 +1,6 @@
 /*
- * rd_static_internal.h — what the three static files share (no caller outside
- * core/ may include this, but tests/ may, for the contact load's derivative):
+ * rd_static_internal.h — what the static files share (no caller outside
+ * core/ may include this, but tests/ may, for the derivatives they check):
  *   rd_static.c      the residual and its tangent, Newton's method and the
  *                    load stepping;
  *   rd_static_joint.c  one joint's forces and their exact derivative, and the
