@@ -24,21 +24,27 @@
  * of g, 24 evaluations a joint, were 35 % of a contact solve's instructions),
  * the contact load's derivative in closed form (rd_contact_segment_jacobian),
  * the gap faces' loads by central differences (6 perturbations on each of two
- * segments), the support's exactly; assembled in LAPACK general band storage
- * (half bandwidth 11) and factored by dgbtrf.
- * The field method couples the first segment's load to the last segment's
- * state, outside the band: that 6x6 block is added exactly by the Woodbury
- * identity on the band factorization (newton_step).
+ * segments), the support's exactly; assembled in 6x6 blocks, block
+ * tridiagonal (a joint couples two neighbours, the support holds two
+ * neighbours or one segment), and factored by the block Thomas algorithm
+ * (rd_blocktri.c: a third of the instructions of LAPACK's band LU of half
+ * bandwidth 11).  It pivots only inside the diagonal blocks; its pivot
+ * blocks are the tangents of the sub-chain 0..i with segment i + 1 held, a
+ * cantilever, regular wherever the chain's own stiffness outweighs its load
+ * terms; an exactly singular one counts as a singular tangent (the load step
+ * is cut).  The field method couples the first segment's load to the last
+ * segment's state, outside the three block diagonals: that 6x6 block is
+ * added exactly by the Woodbury identity on the factorization (newton_step).
  */
 #include "rd_static_internal.h"
+
+#include "rd_blocktri.h"
 
 #include <float.h>
 #include <lapacke.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
-
-#define KL 11 /* half bandwidth of the split ring's tangent, in DOFs */
 
 /* Adds (F, (y - x) x F) for a force F at body offset c of a segment at (x, Q). */
 void rd_static_add_force(const double *Q, const double c[3], const double F[3], double f[6])
@@ -167,32 +173,34 @@ static void perturb(const double *x, const double *Q, int k, double h, double xo
     }
 }
 
-/* Band storage for dgbtrf (column-major, kl = ku = KL). */
-#define LDAB (3 * KL + 1)
-static void band_add(double *ab, int row, int col, double v)
+/* The tangent's 6x6 block (row-major) of the rows of segment a and the
+ * columns of segment b, |a - b| <= 1: block row a's D, U or L. */
+static double *block(rd_blocktri *t, int a, int b)
 {
-    if (abs(row - col) > KL)
-        return;
-    ab[(size_t)col * LDAB + (size_t)(2 * KL + row - col)] += v;
+    return (b == a ? t->D : b > a ? t->U : t->L) + (size_t)36 * a;
 }
 
-/* The tangent of the whole residual, in band storage. */
-static void tangent(rd_static_problem *pb, double *ab)
+/* The tangent of the whole residual, in block-tridiagonal storage. */
+static void tangent(rd_static_problem *pb, rd_blocktri *t)
 {
     int n = pb->n;
     double hx = 1e-6 * pb->R, hr = 1e-6;
-    /* rows 0..KL-1 of each column are dgbtrf's fill-in, set by it */
-    for (int c = 0; c < 6 * n; c++)
-        memset(ab + (size_t)c * LDAB + KL, 0, (2 * KL + 1) * sizeof *ab);
-    /* joints: exact (rd_static_joint.c); each 12x12 block lies in the band */
+    /* joints: exact (rd_static_joint.c), K row-major 12x12.  Joint j is the
+     * only one in U_j and L_j+1 and the first in D_j+1: those are set, not
+     * added to, so only D_0 needs clearing (L_0 and U_n-1 are not read). */
+    memset(t->D, 0, 36 * sizeof *t->D);
     for (int j = 0; j < n - 1; j++) {
         double K[144];
         rd_static_joint_tangent(pb, j, pb->x + 3 * j, pb->Q + 9 * j, pb->x + 3 * (j + 1),
                                 pb->Q + 9 * (j + 1), K);
-        for (int col = 0; col < 12; col++) {
-            double *dst = ab + (size_t)(6 * j + col) * LDAB + 2 * KL - col;
-            for (int row = 0; row < 12; row++)
-                dst[row] += K[row + 12 * col];
+        double *AA = block(t, j, j), *AB = block(t, j, j + 1), *BA = block(t, j + 1, j),
+               *BB = block(t, j + 1, j + 1);
+        for (int r = 0; r < 6; r++) {
+            for (int c = 0; c < 6; c++)
+                AA[6 * r + c] += K[12 * r + c];
+            memcpy(AB + 6 * r, K + 12 * r + 6, 6 * sizeof *K);
+            memcpy(BA + 6 * r, K + 12 * (6 + r), 6 * sizeof *K);
+            memcpy(BB + 6 * r, K + 12 * (6 + r) + 6, 6 * sizeof *K);
         }
     }
     /* External loads: the contact law's derivative in closed form (differences
@@ -210,8 +218,7 @@ static void tangent(rd_static_problem *pb, double *ab)
                 rd_pretension_gap_face_load(pb, i, xp, Qp, fm);
             }
             for (int row = 0; row < 6; row++)
-                band_add(ab, 6 * i + row, 6 * i + k,
-                         -J[row + 6 * k] - (fp[row] - fm[row]) / (2.0 * h));
+                t->D[36 * i + 6 * row + k] += -J[row + 6 * k] - (fp[row] - fm[row]) / (2.0 * h);
         }
     }
     /* support: translations 1/4 k_t mask; rotations 1/4 k_r A_a mask A_c^T
@@ -232,14 +239,15 @@ static void tangent(rd_static_problem *pb, double *ab)
     }
     for (int a = 0; a < 2; a++)
         for (int c = 0; c < 2; c++) {
+            double *B = block(t, s[a], s[c]); /* s[0], s[1] equal or neighbours */
             for (int k = 0; k < 3; k++)
-                band_add(ab, 6 * s[a] + k, 6 * s[c] + k, 0.25 * pb->k_t * pb->mask[k]);
+                B[7 * k] += 0.25 * pb->k_t * pb->mask[k];
             for (int r = 0; r < 3; r++)
                 for (int q = 0; q < 3; q++) {
                     double v = 0.0;
                     for (int k = 0; k < 3; k++)
                         v += A[a][3 * r + k] * pb->mask[3 + k] * A[c][3 * q + k];
-                    band_add(ab, 6 * s[a] + 3 + r, 6 * s[c] + 3 + q, 0.25 * pb->k_r * v);
+                    B[6 * (3 + r) + 3 + q] += 0.25 * pb->k_r * v;
                 }
         }
 }
@@ -276,9 +284,9 @@ static void apply_step(rd_static_problem *pb, const double *delta, double a)
 
 /* Scratch of one solve, and what Newton needs to report and be cancelled. */
 typedef struct work {
-    double *r, *delta, *ab, *x0, *Q0, *xs, *Qs;
-    double *Y; /* N x 6: the field method's Woodbury columns; NULL otherwise */
-    int *ipiv;
+    double *r, *delta, *x0, *Q0, *xs, *Qs;
+    double *Y;     /* N x 6: the field method's Woodbury columns; NULL otherwise */
+    rd_blocktri t; /* the tangent, then its factors */
     const rd_monitor *mon;
     double progress; /* accepted load factor, reported as the solve's fraction */
     rd_error *err;
@@ -317,7 +325,7 @@ static int lapack_status(int info, const char *routine, rd_error *err)
     return info > 0 ? 1 : 0;
 }
 
-/* The field method's off-band block by the Woodbury identity (newton_step).
+/* The field method's off-diagonal block by the Woodbury identity (newton_step).
  * Returns 0, 1 (singular) or < 0. */
 static int woodbury(rd_static_problem *pb, work *w)
 {
@@ -329,9 +337,8 @@ static int woodbury(rd_static_problem *pb, work *w)
     for (int c = 0; c < 6; c++)
         for (int r = 0; r < 6; r++)
             w->Y[(size_t)c * N + r] = C[r + 6 * c];
-    rc = LAPACKE_dgbtrs_work(LAPACK_COL_MAJOR, 'N', N, KL, KL, 6, w->ab, LDAB, w->ipiv, w->Y, N);
-    if ((rc = lapack_status(rc, "dgbtrs", w->err)) != 0)
-        return rc;
+    for (int c = 0; c < 6; c++)
+        rd_blocktri_solve(&w->t, w->Y + (size_t)c * N);
     for (int c = 0; c < 6; c++)
         for (int r = 0; r < 6; r++)
             S[r + 6 * c] = (r == c ? 1.0 : 0.0) + w->Y[(size_t)c * N + off + r];
@@ -346,26 +353,20 @@ static int woodbury(rd_static_problem *pb, work *w)
     return 0;
 }
 
-/* Solves J delta = -r (w->delta holds -r on entry) with the band tangent in
- * w->ab.  For the field method J = J_band + U V^T, U = C in the first
- * segment's rows, V selecting the last segment's DOFs, solved exactly by the
- * Woodbury identity on the band factorization:
- *   delta = z - Y (I + V^T Y)^-1 V^T z,  J_band z = -r,  J_band Y = U.
- * LAPACKE's _work routines, without its NaN scan of the band (a quarter of
- * the factorization's cost): a non-finite tangent shows in the step, which is
- * checked instead and treated as singular.  (The residual is finite here:
- * newton checks it first.)  Returns 0, 1 (singular tangent) or < 0 (w->err
- * set). */
+/* Solves J delta = -r (w->delta holds -r on entry) with the factored
+ * block-tridiagonal tangent in w->t.  For the field method J = J_tri + U V^T,
+ * U = C in the first segment's rows, V selecting the last segment's DOFs,
+ * solved exactly by the Woodbury identity on the factorization:
+ *   delta = z - Y (I + V^T Y)^-1 V^T z,  J_tri z = -r,  J_tri Y = U.
+ * A non-finite tangent shows in the step, which is checked and treated as
+ * singular.  (The residual is finite here: newton checks it first.)  Returns
+ * 0, 1 (singular tangent) or < 0 (w->err set). */
 static int newton_step(rd_static_problem *pb, work *w)
 {
     int N = 6 * pb->n, rc;
-    rc = LAPACKE_dgbtrf_work(LAPACK_COL_MAJOR, N, N, KL, KL, w->ab, LDAB, w->ipiv);
-    if ((rc = lapack_status(rc, "dgbtrf", w->err)) != 0)
-        return rc;
-    rc =
-        LAPACKE_dgbtrs_work(LAPACK_COL_MAJOR, 'N', N, KL, KL, 1, w->ab, LDAB, w->ipiv, w->delta, N);
-    if ((rc = lapack_status(rc, "dgbtrs", w->err)) != 0)
-        return rc;
+    if (rd_blocktri_factor(&w->t) != 0)
+        return 1;
+    rd_blocktri_solve(&w->t, w->delta);
     if (pb->kind == RD_STATIC_PRETENSION && pb->method == RD_PRETENSION_FIELD && w->Y &&
         (rc = woodbury(pb, w)) != 0)
         return rc;
@@ -375,15 +376,16 @@ static int newton_step(rd_static_problem *pb, work *w)
     return 0;
 }
 
-/* Adds mu |J_ii| to the band's diagonal (Marquardt's scaling): a step in a
+/* Adds mu |J_ii| to the tangent's diagonal (Marquardt's scaling): a step in a
  * direction the tangent barely resists (a ring losing the bore, a rigid
  * motion nothing holds) stays bounded. */
-static void damp(rd_static_problem *pb, double *ab, double mu)
+static void damp(rd_static_problem *pb, rd_blocktri *t, double mu)
 {
-    for (int k = 0; k < 6 * pb->n; k++) {
-        double *d = &ab[(size_t)k * LDAB + 2 * KL];
-        *d += mu * fabs(*d);
-    }
+    for (int i = 0; i < pb->n; i++)
+        for (int k = 0; k < 6; k++) {
+            double *d = &t->D[36 * i + 7 * k];
+            *d += mu * fabs(*d);
+        }
 }
 
 /* Backtracking on the residual norm along w->delta from the state saved in
@@ -445,9 +447,9 @@ static int newton(rd_static_problem *pb, work *w, double tol, int *budget, int *
             return rc;
         (*budget)--;
         (*iters)++;
-        tangent(pb, w->ab);
+        tangent(pb, &w->t);
         if (mu > 0.0)
-            damp(pb, w->ab, mu);
+            damp(pb, &w->t, mu);
         for (int k = 0; k < N; k++)
             w->delta[k] = -w->r[k];
         if ((rc = newton_step(pb, w)) != 0)
@@ -482,13 +484,12 @@ static void work_free(work *w)
 {
     free(w->r);
     free(w->delta);
-    free(w->ab);
     free(w->x0);
     free(w->Q0);
     free(w->xs);
     free(w->Qs);
     free(w->Y);
-    free(w->ipiv);
+    rd_blocktri_cleanup(&w->t);
 }
 
 static int work_alloc(const rd_static_problem *pb, work *w, rd_error *err)
@@ -496,17 +497,15 @@ static int work_alloc(const rd_static_problem *pb, work *w, rd_error *err)
     int n = pb->n, N = 6 * n;
     w->r = malloc((size_t)N * sizeof *w->r);
     w->delta = malloc((size_t)N * sizeof *w->delta);
-    w->ab = malloc((size_t)LDAB * N * sizeof *w->ab);
     w->x0 = malloc((size_t)3 * n * sizeof *w->x0);
     w->Q0 = malloc((size_t)9 * n * sizeof *w->Q0);
     w->xs = malloc((size_t)3 * n * sizeof *w->xs);
     w->Qs = malloc((size_t)9 * n * sizeof *w->Qs);
-    w->ipiv = malloc((size_t)N * sizeof *w->ipiv);
     int need_y = pb->kind == RD_STATIC_PRETENSION && pb->method == RD_PRETENSION_FIELD;
     if (need_y)
         w->Y = malloc((size_t)6 * N * sizeof *w->Y);
-    if ((need_y && !w->Y) || !w->r || !w->delta || !w->ab || !w->x0 || !w->Q0 || !w->xs || !w->Qs ||
-        !w->ipiv)
+    if ((need_y && !w->Y) || !w->r || !w->delta || !w->x0 || !w->Q0 || !w->xs || !w->Qs ||
+        rd_blocktri_init(&w->t, n, 6) != RD_OK)
         return rd_error_set(err, RD_ENOMEM, "", "Out of memory for the %d-segment static solve.",
                             n);
     return RD_OK;

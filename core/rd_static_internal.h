@@ -115,7 +115,7 @@ void rd_static_jl_inv_t(const double psi[3], const double v[3], double out[3]);
 void rd_static_joint_residual(const rd_static_problem *pb, int j, const double *xA,
                               const double *QA, const double *xB, const double *QB, double g[12],
                               double *energy);
-/* Their exact derivative: K[r + 12 c] = d g_r / d DOF c, DOFs (dx_A, dpsi_A,
+/* Their exact derivative: K[12 r + c] = d g_r / d DOF c, DOFs (dx_A, dpsi_A,
  * dx_B, dpsi_B) as in rd_static.c. */
 void rd_static_joint_tangent(const rd_static_problem *pb, int j, const double *xA, const double *QA,
                              const double *xB, const double *QB, double K[144]);

@@ -197,12 +197,12 @@ static void jl_parts(const double psi[3], const double v[3], double Jt[9], doubl
     mmt3(D, Jt, H);
 }
 
-/* K[r + 12 c] += s * B (3x3 row-major) at block row br, block column bc. */
+/* K[12 r + c] += s * B (3x3 row-major) at block row br, block column bc. */
 static void put3(double K[144], int br, int bc, double s, const double B[9])
 {
     for (int r = 0; r < 3; r++)
         for (int q = 0; q < 3; q++)
-            K[3 * br + r + 12 * (3 * bc + q)] += s * B[3 * r + q];
+            K[12 * (3 * br + r) + 3 * bc + q] += s * B[3 * r + q];
 }
 
 /* The header's dF (a = 0) and dMg (a = 1) by increment b = (u_A, w_A, u_B,

@@ -59,7 +59,7 @@ static void differences(const rd_static_problem *pb, int j, double x[2][3], doub
             rd_static_joint_residual(pb, j, xs[0], Qs[0], xs[1], Qs[1], g[sgn], NULL);
         }
         for (int row = 0; row < 12; row++)
-            Kd[row + 12 * col] = (g[0][row] - g[1][row]) / (2.0 * h);
+            Kd[12 * row + col] = (g[0][row] - g[1][row]) / (2.0 * h);
     }
 }
 
@@ -100,7 +100,7 @@ static double joint_case(rd_static_problem *pb, int j, double turn, double strai
      * and rounding (eps g / h) errors are both ~1e-10 of the entries */
     differences(pb, j, x, Q, 1e-6 * L, 1e-6, Kd);
     for (int q = 0; q < 144; q++) {
-        int row = q % 12, col = q / 12;
+        int row = q / 12, col = q % 12;
         worst = fmax(worst, fabs(K[q] - Kd[q]) / sqrt(fabs(Kd[13 * row]) * fabs(Kd[13 * col])));
     }
     return worst;
