@@ -42,10 +42,11 @@
  * bore's departure from the ring's closed shape, each segment moved with
  * the bore as a predictor, the law smoothed 1000 times wider until the bore
  * is in place and then narrowed to eps), backtracking line search,
- * Levenberg-Marquardt damping when a plain step fails, a central-difference
- * tangent assembled element by element into LAPACK band storage
- * (dgbtrf/dgbtrs; the field method's one off-band block by the Woodbury
- * identity).
+ * Levenberg-Marquardt damping when a plain step fails, the exact tangent
+ * (each joint's and the contact law's in closed form, the gap faces' by
+ * central differences) assembled in 6x6 blocks, block tridiagonal, factored
+ * by the block Thomas algorithm (rd_blocktri.h; the field method's one
+ * off-diagonal block by the Woodbury identity).
  * Convergence: largest force residual <= tol * F_ref and largest moment
  * residual <= tol * F_ref * R, tol raised to the rounding floor of the
  * stiffest spring when that is larger (reported as numerics.tolerance).
