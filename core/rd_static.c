@@ -21,7 +21,7 @@
  * Tangent: central differences of these element residuals, element by
  * element (12 perturbations per joint, 6 per gap-face segment), the contact
  * load's derivative in closed form (rd_contact_segment_jacobian), assembled in
- * LAPACK general band storage (half bandwidth 11) and factored by dgbtrf.
+ * LAPACK general band storage (half bandwidth 17) and factored by dgbtrf.
  * The field method couples the first segment's load to the last segment's
  * state, outside the band: that 6x6 block is added exactly by the Woodbury
  * identity on the band factorization (newton_step).
@@ -34,7 +34,9 @@
 #include <stdlib.h>
 #include <string.h>
 
-#define KL 11 /* half bandwidth of the split ring's tangent, in DOFs */
+/* Half bandwidth of the tangent, in DOFs: a joint couples two segments (11);
+ * a flexible contact face its segment's two neighbours (17). */
+#define KL(pb) ((pb)->cp0 ? 17 : 11)
 
 /* ---- 3x3 rotations (row-major) -------------------------------------------- */
 
@@ -173,25 +175,6 @@ double rd_static_force_factor(const rd_static_problem *pb)
     return pb->kind == RD_STATIC_CONTACT ? fmin(1.0, pb->lambda / RD_CONTACT_LF) : pb->lambda;
 }
 
-/* External generalized force on segment i (6 values) at state (x, Q); other
- * segments' states are read from pb (the field method's pair).  Returns 0
- * when the segment carries no load. */
-static int segment_load(const rd_static_problem *pb, int i, const double *x, const double *Q,
-                        double f[6])
-{
-    int loaded = 0;
-    memset(f, 0, 6 * sizeof *f);
-    if (i == 0 || i == pb->n - 1) {
-        rd_pretension_gap_face_load(pb, i, x, Q, f);
-        loaded = 1;
-    }
-    if (pb->kind == RD_STATIC_CONTACT) {
-        rd_contact_segment_load(pb, i, x, Q, f);
-        loaded = 1;
-    }
-    return loaded;
-}
-
 /* Support residual (added to g for segments pa, pb) and its force/moment. */
 static void support_terms(const rd_static_problem *pb, double *g, double *force, double *moment)
 {
@@ -232,6 +215,7 @@ static double residual(const rd_static_problem *pb, double *r)
     int n = pb->n;
     double energy = 0.0;
     memset(r, 0, (size_t)6 * n * sizeof *r);
+    rd_contact_face_update(pb); /* the contact faces at this state (if any) */
     for (int j = 0; j < n - 1; j++) {
         double g[12], e;
         joint_residual(pb, j, pb->x + 3 * j, pb->Q + 9 * j, pb->x + 3 * (j + 1),
@@ -240,12 +224,14 @@ static double residual(const rd_static_problem *pb, double *r)
         for (int k = 0; k < 12; k++)
             r[6 * j + k] += g[k];
     }
-    for (int i = 0; i < n; i++) {
-        double f[6];
-        if (segment_load(pb, i, pb->x + 3 * i, pb->Q + 9 * i, f))
-            for (int k = 0; k < 6; k++)
-                r[6 * i + k] -= f[k];
+    for (int i = 0; i < n; i += n - 1) { /* the gap faces (segments 0, n - 1) */
+        double f[6] = {0};
+        rd_pretension_gap_face_load(pb, i, pb->x + 3 * i, pb->Q + 9 * i, f);
+        for (int k = 0; k < 6; k++)
+            r[6 * i + k] -= f[k];
     }
+    if (pb->kind == RD_STATIC_CONTACT)
+        rd_contact_loads(pb, r);
     support_terms(pb, r, NULL, NULL);
     return energy;
 }
@@ -278,13 +264,13 @@ static void perturb(const double *x, const double *Q, int k, double h, double xo
     }
 }
 
-/* Band storage for LAPACKE_dgbsv (column-major, kl = ku = KL). */
-#define LDAB (3 * KL + 1)
-static void band_add(double *ab, int row, int col, double v)
+/* Band storage for LAPACKE_dgbsv (column-major, kl = ku = KL(pb)). */
+#define LDAB(pb) (3 * KL(pb) + 1)
+static void band_add(const rd_static_problem *pb, double *ab, int row, int col, double v)
 {
-    if (abs(row - col) > KL)
+    if (abs(row - col) > KL(pb))
         return;
-    ab[(size_t)col * LDAB + (size_t)(2 * KL + row - col)] += v;
+    ab[(size_t)col * LDAB(pb) + (size_t)(2 * KL(pb) + row - col)] += v;
 }
 
 /* Central-difference tangent of the whole residual. */
@@ -292,7 +278,8 @@ static void tangent(rd_static_problem *pb, double *ab)
 {
     int n = pb->n;
     double hx = 1e-6 * pb->R, hr = 1e-6;
-    memset(ab, 0, (size_t)LDAB * 6 * n * sizeof *ab);
+    memset(ab, 0, (size_t)LDAB(pb) * 6 * n * sizeof *ab);
+    rd_contact_face_update(pb); /* the contact faces at this state (if any) */
     for (int j = 0; j < n - 1; j++) {
         double *xs[2] = {pb->x + 3 * j, pb->x + 3 * (j + 1)};
         double *Qs[2] = {pb->Q + 9 * j, pb->Q + 9 * (j + 1)};
@@ -307,15 +294,22 @@ static void tangent(rd_static_problem *pb, double *ab)
             perturb(xs[side], Qs[side], k, -h, xp, Qp);
             joint_residual(pb, j, xa[0], Qa[0], xa[1], Qa[1], gm, NULL);
             for (int row = 0; row < 12; row++)
-                band_add(ab, 6 * j + row, 6 * j + col, (gp[row] - gm[row]) / (2.0 * h));
+                band_add(pb, ab, 6 * j + row, 6 * j + col, (gp[row] - gm[row]) / (2.0 * h));
         }
     }
     /* External loads: the contact law's derivative in closed form (differences
      * inside its bend eps were 63 % of a contact solve), the gap faces' by differences. */
     for (int i = 0; i < n; i++) {
-        double J[36] = {0};
+        double J[36] = {0}, Jf[3][3][36];
         if (pb->kind == RD_STATIC_CONTACT)
             rd_contact_segment_jacobian(pb, i, pb->x + 3 * i, pb->Q + 9 * i, J);
+        if (pb->cp0) /* its points' flexible faces: segments i - 1 .. i + 1 */
+            rd_contact_face_jacobian(pb, i, Jf);
+        for (int q = 0; pb->cp0 && q < 9 * 36; q++) {
+            int b = i - 1 + q / 108, c = i - 1 + q / 36 % 3, e = q % 36;
+            if (b >= 0 && b < n && c >= 0 && c < n)
+                band_add(pb, ab, 6 * b + e % 6, 6 * c + e / 6, -Jf[q / 108][q / 36 % 3][e]);
+        }
         for (int k = 0; k < 6; k++) {
             double h = k < 3 ? hx : hr, fp[6] = {0}, fm[6] = {0}, xp[3], Qp[9];
             if (i == 0 || i == n - 1) {
@@ -325,7 +319,7 @@ static void tangent(rd_static_problem *pb, double *ab)
                 rd_pretension_gap_face_load(pb, i, xp, Qp, fm);
             }
             for (int row = 0; row < 6; row++)
-                band_add(ab, 6 * i + row, 6 * i + k,
+                band_add(pb, ab, 6 * i + row, 6 * i + k,
                          -J[row + 6 * k] - (fp[row] - fm[row]) / (2.0 * h));
         }
     }
@@ -348,13 +342,13 @@ static void tangent(rd_static_problem *pb, double *ab)
     for (int a = 0; a < 2; a++)
         for (int c = 0; c < 2; c++) {
             for (int k = 0; k < 3; k++)
-                band_add(ab, 6 * s[a] + k, 6 * s[c] + k, 0.25 * pb->k_t * pb->mask[k]);
+                band_add(pb, ab, 6 * s[a] + k, 6 * s[c] + k, 0.25 * pb->k_t * pb->mask[k]);
             for (int r = 0; r < 3; r++)
                 for (int q = 0; q < 3; q++) {
                     double v = 0.0;
                     for (int k = 0; k < 3; k++)
                         v += A[a][3 * r + k] * pb->mask[3 + k] * A[c][3 * q + k];
-                    band_add(ab, 6 * s[a] + 3 + r, 6 * s[c] + 3 + q, 0.25 * pb->k_r * v);
+                    band_add(pb, ab, 6 * s[a] + 3 + r, 6 * s[c] + 3 + q, 0.25 * pb->k_r * v);
                 }
         }
 }
@@ -409,11 +403,11 @@ static void field_coupling(rd_static_problem *pb, double C[36])
     memcpy(x0, pb->x + 3 * last, sizeof x0);
     memcpy(Q0, pb->Q + 9 * last, sizeof Q0);
     for (int k = 0; k < 6; k++) {
-        double h = k < 3 ? hx : hr, fp[6], fm[6];
+        double h = k < 3 ? hx : hr, fp[6] = {0}, fm[6] = {0};
         perturb(x0, Q0, k, h, pb->x + 3 * last, pb->Q + 9 * last);
-        segment_load(pb, 0, pb->x, pb->Q, fp);
+        rd_pretension_gap_face_load(pb, 0, pb->x, pb->Q, fp);
         perturb(x0, Q0, k, -h, pb->x + 3 * last, pb->Q + 9 * last);
-        segment_load(pb, 0, pb->x, pb->Q, fm);
+        rd_pretension_gap_face_load(pb, 0, pb->x, pb->Q, fm);
         for (int r = 0; r < 6; r++)
             C[r + 6 * k] = -(fp[r] - fm[r]) / (2.0 * h);
     }
@@ -444,7 +438,8 @@ static int woodbury(rd_static_problem *pb, work *w)
     for (int c = 0; c < 6; c++)
         for (int r = 0; r < 6; r++)
             w->Y[(size_t)c * N + r] = C[r + 6 * c];
-    rc = LAPACKE_dgbtrs(LAPACK_COL_MAJOR, 'N', N, KL, KL, 6, w->ab, LDAB, w->ipiv, w->Y, N);
+    rc = LAPACKE_dgbtrs(LAPACK_COL_MAJOR, 'N', N, KL(pb), KL(pb), 6, w->ab, LDAB(pb), w->ipiv, w->Y,
+                        N);
     if ((rc = lapack_status(rc, "dgbtrs", w->err)) != 0)
         return rc;
     for (int c = 0; c < 6; c++)
@@ -470,10 +465,11 @@ static int woodbury(rd_static_problem *pb, work *w)
 static int newton_step(rd_static_problem *pb, work *w)
 {
     int N = 6 * pb->n, rc;
-    rc = LAPACKE_dgbtrf(LAPACK_COL_MAJOR, N, N, KL, KL, w->ab, LDAB, w->ipiv);
+    rc = LAPACKE_dgbtrf(LAPACK_COL_MAJOR, N, N, KL(pb), KL(pb), w->ab, LDAB(pb), w->ipiv);
     if ((rc = lapack_status(rc, "dgbtrf", w->err)) != 0)
         return rc;
-    rc = LAPACKE_dgbtrs(LAPACK_COL_MAJOR, 'N', N, KL, KL, 1, w->ab, LDAB, w->ipiv, w->delta, N);
+    rc = LAPACKE_dgbtrs(LAPACK_COL_MAJOR, 'N', N, KL(pb), KL(pb), 1, w->ab, LDAB(pb), w->ipiv,
+                        w->delta, N);
     if ((rc = lapack_status(rc, "dgbtrs", w->err)) != 0)
         return rc;
     if (!(pb->kind == RD_STATIC_PRETENSION && pb->method == RD_PRETENSION_FIELD && w->Y))
@@ -487,7 +483,7 @@ static int newton_step(rd_static_problem *pb, work *w)
 static void damp(rd_static_problem *pb, double *ab, double mu)
 {
     for (int k = 0; k < 6 * pb->n; k++) {
-        double *d = &ab[(size_t)k * LDAB + 2 * KL];
+        double *d = &ab[(size_t)k * LDAB(pb) + 2 * KL(pb)];
         *d += mu * fabs(*d);
     }
 }
@@ -602,7 +598,7 @@ static int work_alloc(const rd_static_problem *pb, work *w, rd_error *err)
     int n = pb->n, N = 6 * n;
     w->r = malloc((size_t)N * sizeof *w->r);
     w->delta = malloc((size_t)N * sizeof *w->delta);
-    w->ab = malloc((size_t)LDAB * N * sizeof *w->ab);
+    w->ab = malloc((size_t)LDAB(pb) * N * sizeof *w->ab);
     w->x0 = malloc((size_t)3 * n * sizeof *w->x0);
     w->Q0 = malloc((size_t)9 * n * sizeof *w->Q0);
     w->xs = malloc((size_t)3 * n * sizeof *w->xs);
