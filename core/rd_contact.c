@@ -19,7 +19,17 @@
  * beam-on-foundation length (E I / (k h))^(1/4)).  One multiplier per
  * segment, not per point: the points of a rigid segment cannot all touch a
  * curved bore, so per-point multipliers converge slowly (measured: 30 outer
- * iterations not enough; per segment 3-4).  Outputs per segment: pressure
+ * iterations not enough; per segment 3-4).  The points sit on the segment's
+ * face: a rigid arc of radius r_o turned with the section (the default), or
+ * (rd_contact_opts.flexible_face, from FACE_MIN_SEGMENTS on) that arc bent
+ * and sheared with the ring between the segment's joints, rd_contact_face.c,
+ * whose loads and their derivatives (a point's force works on its
+ * segment's neighbours through the face) the residual and tangent use.
+ * The rigid face misfits a bore that the ring follows by ~20 nm (bend) and
+ * ~4 nm (shear) at n = 160-320, against ~1 nm penetrations, so its points'
+ * forces carry couples the ring has not: the smooth bins stay 0.04 p0 off
+ * at n = 160 and 320 (order 4 at the bound), 0.0014 p0 with flexible faces
+ * at 320 (tests/core/test_contact_face.c).  Outputs per segment: pressure
  * (resultant / (h r_o phi)), closest approach, bore radius.  Error
  * estimates: levels n, 2n, 4n ... through rd_accuracy until they meet the
  * target, each level started from the coarser one's shape; the estimates
