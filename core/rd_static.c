@@ -20,8 +20,9 @@
  *
  * Tangent: central differences of these element residuals, element by
  * element (12 perturbations per joint, 6 per gap-face segment), the contact
- * load's derivative in closed form (rd_contact_segment_jacobian), assembled in
- * LAPACK general band storage (half bandwidth 17) and factored by dgbtrf.
+ * load's derivative in closed form (rd_contact_segment_jacobian, with
+ * flexible faces also rd_contact_face_jacobian's neighbour blocks), assembled
+ * in LAPACK general band storage (half bandwidth KL) and factored by dgbtrf.
  * The field method couples the first segment's load to the last segment's
  * state, outside the band: that 6x6 block is added exactly by the Woodbury
  * identity on the band factorization (newton_step).
