@@ -26,6 +26,8 @@
  *       3; the CPU time of this one-threaded process is what the solve
  *       costs on a free core when the machine is shared); last, the
  *       reference's CPU time a bore and its active-set passes (range).
+ *   --face (with --battery, --bins, --stiffness): flexible running faces
+ *       (rd_contact_opts.flexible_face) instead of rigid ones.
  *
  * The x_a limit is the Richardson extrapolation from n = 2000 and 1000
  * (order 2, checked in tests/core/test_static.c).
@@ -47,6 +49,10 @@
 enum { REF_NL, REF_NL_DEAD, REF_LINEAR };
 static int reference_kind = REF_NL;
 static int reference_cells = 2880;
+
+/* --face anywhere: the contact solves with flexible faces
+ * (rd_contact_opts.flexible_face, core/rd_contact_face.c). */
+static int flexible_face = 0;
 
 static int reference_solve(const rd_ring_params *p, const rd_contact_opts *o, double floor_m,
                            ref_result *r)
@@ -183,6 +189,7 @@ static void battery(const rd_ring_params *p)
                 double A = fmin(facs[fi] * bound, 0.004 * p->diameter);
                 rd_contact_opts o;
                 rd_contact_opts_default(&o);
+                o.flexible_face = flexible_face;
                 o.n_distortion = 1;
                 o.distortion[0] = (rd_distortion){k, A, phases[pi]};
                 ref_result r;
@@ -290,6 +297,7 @@ static void stiffness_battery(const rd_ring_params *p)
                 double bound = thin_ring_bound(p, k);
                 rd_contact_opts o;
                 rd_contact_opts_default(&o);
+                o.flexible_face = flexible_face;
                 o.n_distortion = 1;
                 o.distortion[0] =
                     (rd_distortion){k, fmin(facs[fi] * bound, 0.004 * p->diameter), phases[pi]};
@@ -346,6 +354,7 @@ static void bins_one(const rd_ring_params *p, int k, double fac, double phase, i
     double bound = thin_ring_bound(p, k);
     rd_contact_opts o;
     rd_contact_opts_default(&o);
+    o.flexible_face = flexible_face;
     o.n_distortion = 1;
     o.distortion[0] = (rd_distortion){k, fmin(fac * bound, 0.004 * p->diameter), phase};
     ref_result r;
@@ -392,6 +401,13 @@ int main(int argc, char **argv)
     rd_ring_params_default(&p);
     rd_contact_opts co;
     rd_contact_opts_default(&co);
+    for (int i = 1; i < argc; i++) /* --face, anywhere: taken out of argv */
+        if (strcmp(argv[i], "--face") == 0) {
+            flexible_face = 1;
+            memmove(argv + i, argv + i + 1, (size_t)(argc - i) * sizeof *argv);
+            argc--;
+            break;
+        }
     /* --reference nl | nl-dead | linear, anywhere: taken out of argv */
     for (int i = 1; i + 1 < argc; i++) {
         if (strcmp(argv[i], "--reference") != 0)
@@ -422,6 +438,7 @@ int main(int argc, char **argv)
         argc -= 2;
         break;
     }
+    co.flexible_face = flexible_face;
     if (argc == 3 && strcmp(argv[1], "--once") == 0) {
         rd_contact_result r;
         rd_static_opts so;

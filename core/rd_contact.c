@@ -19,7 +19,17 @@
  * beam-on-foundation length (E I / (k h))^(1/4)).  One multiplier per
  * segment, not per point: the points of a rigid segment cannot all touch a
  * curved bore, so per-point multipliers converge slowly (measured: 30 outer
- * iterations not enough; per segment 3-4).  Outputs per segment: pressure
+ * iterations not enough; per segment 3-4).  The points sit on the segment's
+ * face: a rigid arc of radius r_o turned with the section (the default), or
+ * (rd_contact_opts.flexible_face, from FACE_MIN_SEGMENTS on) that arc bent
+ * and sheared with the ring between the segment's joints, rd_contact_face.c,
+ * whose loads and their derivatives (a point's force works on its
+ * segment's neighbours through the face) the residual and tangent use.
+ * The rigid face misfits a bore that the ring follows by ~20 nm (bend) and
+ * ~4 nm (shear) at n = 160-320, against ~1 nm penetrations, so its points'
+ * forces carry couples the ring has not: the smooth bins stay 0.04 p0 off
+ * at n = 160 and 320 (order 4 at the bound), 0.0014 p0 with flexible faces
+ * at 320 (tests/core/test_contact_face.c).  Outputs per segment: pressure
  * (resultant / (h r_o phi)), closest approach, bore radius.  Error
  * estimates: levels n, 2n, 4n ... through rd_accuracy until they meet the
  * target, each level started from the coarser one's shape; the estimates
@@ -43,6 +53,13 @@
  * within the residual tolerance. */
 #define BORE_DONE 0.8
 #define EPS_WIDE  1000.0
+
+/* Flexible faces (rd_contact_face.c) from this many segments on.  Below,
+ * a face bends by up to ~2 um over its long segment (n = 20), twenty times
+ * the law's widest smoothing, and Newton needed 100-260 iterations where
+ * rigid faces need 16-29 (bench_static --bins 2 1 17); those levels only
+ * start the finer ones, which converge as fast from either. */
+#define FACE_MIN_SEGMENTS 80
 
 static double bore_factor(const rd_static_problem *pb)
 {
@@ -104,6 +121,7 @@ void rd_contact_follow_bore(rd_static_problem *pb, double l0, double l1)
 double rd_contact_update_multipliers(rd_static_problem *pb)
 {
     double change = 0.0;
+    rd_contact_face_update(pb);
     for (int i = 0; i < pb->n; i++) {
         double sp = 0.0, spd = 0.0;
         for (int k = 0; k < pb->m; k++) {
@@ -226,27 +244,6 @@ int rd_contact_validate(const rd_contact_opts *o, const rd_ring_params *p, rd_er
     return RD_OK;
 }
 
-void rd_contact_segment_load(const rd_static_problem *pb, int i, const double *x, const double *Q,
-                             double f[6])
-{
-    for (int k = 0; k < pb->m; k++) {
-        const double *c = pb->cp + 3 * (pb->m * i + k);
-        double arm[3], y[3];
-        rd_mv3(Q, c, arm);
-        for (int q = 0; q < 3; q++)
-            y[q] = x[q] + arm[q];
-        double rho = hypot(y[0], y[1]), th = atan2(y[1], y[0]), rb, drb;
-        bore_radius(pb, th, &rb, &drb);
-        double p = contact_pressure(pb, rho - rb, i);
-        /* outward bore normal ~ grad(rho - r_b(theta)) = e_rho - r_b'/rho e_theta */
-        double er[2] = {y[0] / rho, y[1] / rho}, et[2] = {-er[1], er[0]};
-        double nv[3] = {er[0] - drb / rho * et[0], er[1] - drb / rho * et[1], 0.0};
-        double nn = sqrt(rd_dot3(nv, nv));
-        double F[3] = {-p * pb->area * nv[0] / nn, -p * pb->area * nv[1] / nn, 0.0};
-        rd_static_add_force(Q, c, F, f);
-    }
-}
-
 /* The law at one point with its slope dp/ddelta (the logistic function of
  * z; e the current smoothing length, hoisted out of the points' loop). */
 static void law_and_slope(const rd_static_problem *pb, double delta, int i, double e, double *p,
@@ -263,6 +260,23 @@ static void law_and_slope(const rd_static_problem *pb, double delta, int i, doub
         *p = pb->k * e * log1p(q);
         *dp = pb->k * q / (1.0 + q);
     }
+}
+
+double rd_contact_eps(const rd_static_problem *pb)
+{
+    return eps_now(pb);
+}
+
+void rd_contact_point(const rd_static_problem *pb, int o, const double y[3], double e, double *p,
+                      double *dp, double n[3])
+{
+    double rho = hypot(y[0], y[1]), rb, drb;
+    bore_radius(pb, atan2(y[1], y[0]), &rb, &drb);
+    law_and_slope(pb, rho - rb, o, e, p, dp);
+    /* grad(delta) = e_rho - r_b'/rho e_theta */
+    n[0] = y[0] / rho + drb / rho * y[1] / rho;
+    n[1] = y[1] / rho - drb / rho * y[0] / rho;
+    n[2] = 0.0;
 }
 
 void rd_contact_segment_jacobian(const rd_static_problem *pb, int i, const double *x,
@@ -326,20 +340,26 @@ static int contact_setup(rd_static_problem *pb, const rd_ring_params *p, const r
     /* held: tangential (y at 180 deg), axial, tilts; free: radial, in-plane turn */
     double mask[6] = {0, 1, 1, 1, 1, 0};
     memcpy(pb->mask, mask, sizeof mask);
-    pb->cp = malloc((size_t)3 * n * m * sizeof *pb->cp);
+    /* cp, then cp0 and the face's cache */
+    pb->cp = malloc(((size_t)6 * n * m + 14 * (size_t)n) * sizeof *pb->cp);
     pb->mult = calloc((size_t)n, sizeof *pb->mult);
     if (!pb->cp || !pb->mult)
         return RD_ENOMEM;
     for (int i = 0; i < n; i++) {
         const double *P = rd_ring_reference_point(ring, i);
         for (int k = 0; k < m; k++) {
-            double a = rd_ring_get_segment_angle(ring, i) + (k + 0.5 - 0.5 * m) * phi / m;
+            double a = rd_ring_get_segment_angle(ring, i) + rd_contact_point_offset(pb, i, k);
             double *c = pb->cp + 3 * (m * i + k);
             c[0] = pb->r_o * cos(a) - P[0];
             c[1] = pb->r_o * sin(a) - P[1];
             c[2] = 0.0;
         }
     }
+    pb->cp0 = pb->cp + 3 * n * m;
+    pb->face = pb->cp0 + 3 * n * m;
+    memcpy(pb->cp0, pb->cp, (size_t)3 * n * m * sizeof *pb->cp);
+    if (!o->flexible_face || n < FACE_MIN_SEGMENTS)
+        pb->cp0 = NULL; /* rigid faces */
     return RD_OK;
 }
 
@@ -416,13 +436,12 @@ static int contact_summaries(const rd_static_problem *pb, const double *t, const
     /* Clearances below the floor are not light gaps: ten times the default
      * law's penetration under p0 (a property of the ring, not of the chosen
      * stiffness: with the multipliers the ring does not sink into the bore
-     * at any stiffness, so the floor must not move with it), or the misfit
-     * of a rigid segment's face (an arc of radius r_o) against the bore's
-     * curvature, up to (sum |A_k| k^2 + |D/2 - r_o|) /
+     * at any stiffness, so the floor must not move with it), or, with rigid
+     * faces (n < FACE_MIN_SEGMENTS), the misfit of an arc of radius r_o
+     * against the bore's curvature, up to (sum |A_k| k^2 + |D/2 - r_o|) /
      * r_o^2 times L^2 / 8 over a segment of length L: where the ring follows
-     * the bore the faces touch it at their ends or middles only, with gaps
-     * of that size between (~20 nm at 1 x the bound, n = 160-320), which a
-     * bending ring would not have. */
+     * the bore such faces touch it at their ends or middles only, with gaps
+     * of that size between, which a bending ring does not have. */
     double bend = fabs(pb->bore_dr), L = pb->r_o * rd_ring_segment_phi(pb->ring);
     for (int k = 0; k < pb->co->n_distortion; k++)
         bend += fabs(pb->co->distortion[k].amplitude) * pb->co->distortion[k].order *
@@ -430,7 +449,7 @@ static int contact_summaries(const rd_static_problem *pb, const double *t, const
     out->point_spacing_deg = phi / pb->m;
     out->gap_floor =
         fmax(10.0 * pb->p0 / rd_contact_default_stiffness(rd_ring_get_params(pb->ring)),
-             bend / (pb->r_o * pb->r_o) * L * L / 8.0);
+             pb->cp0 ? 0.0 : bend / (pb->r_o * pb->r_o) * L * L / 8.0);
     rd_contact_gaps(ts, out->clearance, n, t, c, pb->m, lo[0], lo[n - 1] + phi, out->gap_floor,
                     out);
     /* a free end's concentrated force: its segment's resultant beyond what
@@ -461,6 +480,7 @@ static int contact_outputs(const rd_ring_params *p, const rd_contact_opts *o,
         goto out;
     double sum = 0.0;
     out->max_penetration = 0.0;
+    rd_contact_face_update(pb);
     for (int i = 0; i < n; i++) {
         segment_output(pb, i, out, t, c, at + i);
         ts[i] = out->max_clearance_angle_deg;

@@ -22,13 +22,19 @@
  * Tangent: each joint's 12x12 block in closed form, the exact derivative of
  * g including the turn of Jl^-T(psi) (rd_static_joint.c; central differences
  * of g, 24 evaluations a joint, were 35 % of a contact solve's instructions),
- * the contact load's derivative in closed form (rd_contact_segment_jacobian),
- * the gap faces' loads by central differences (6 perturbations on each of two
+ * the contact load's derivative in closed form (rd_contact_segment_jacobian,
+ * with flexible faces also rd_contact_face_jacobian's neighbour blocks), the
+ * gap faces' loads by central differences (6 perturbations on each of two
  * segments), the support's exactly; assembled in 6x6 blocks, block
  * tridiagonal (a joint couples two neighbours, the support holds two
  * neighbours or one segment), and factored by the block Thomas algorithm
  * (rd_blocktri.c: a third of the instructions of LAPACK's band LU of half
- * bandwidth 11).  It pivots only inside the diagonal blocks; its pivot
+ * bandwidth 11).  A flexible contact face couples its segment's two
+ * neighbours, i - 1 with i + 1, outside the three 6x6 block diagonals: then
+ * the segments go in pairs, 12x12 blocks (n odd: a last, decoupled dummy
+ * segment with an identity block), again block tridiagonal (n = 320: 2.6 M
+ * instructions a factorization, LAPACK's band LU of half bandwidth 17 3.5 M).
+ * It pivots only inside the diagonal blocks; its pivot
  * blocks are the tangents of the sub-chain 0..i with segment i + 1 held, a
  * cantilever, regular wherever the chain's own stiffness outweighs its load
  * terms; an exactly singular one counts as a singular tangent (the load step
@@ -66,25 +72,6 @@ void rd_static_add_force(const double *Q, const double c[3], const double F[3], 
 double rd_static_force_factor(const rd_static_problem *pb)
 {
     return pb->kind == RD_STATIC_CONTACT ? fmin(1.0, pb->lambda / RD_CONTACT_LF) : pb->lambda;
-}
-
-/* External generalized force on segment i (6 values) at state (x, Q); other
- * segments' states are read from pb (the field method's pair).  Returns 0
- * when the segment carries no load. */
-static int segment_load(const rd_static_problem *pb, int i, const double *x, const double *Q,
-                        double f[6])
-{
-    int loaded = 0;
-    memset(f, 0, 6 * sizeof *f);
-    if (i == 0 || i == pb->n - 1) {
-        rd_pretension_gap_face_load(pb, i, x, Q, f);
-        loaded = 1;
-    }
-    if (pb->kind == RD_STATIC_CONTACT) {
-        rd_contact_segment_load(pb, i, x, Q, f);
-        loaded = 1;
-    }
-    return loaded;
 }
 
 /* Support residual (added to g for segments pa, pb) and its force/moment. */
@@ -127,6 +114,7 @@ static double residual(const rd_static_problem *pb, double *r)
     int n = pb->n;
     double energy = 0.0;
     memset(r, 0, (size_t)6 * n * sizeof *r);
+    rd_contact_face_update(pb); /* the contact faces at this state (if any) */
     for (int j = 0; j < n - 1; j++) {
         double g[12], e;
         rd_static_joint_residual(pb, j, pb->x + 3 * j, pb->Q + 9 * j, pb->x + 3 * (j + 1),
@@ -135,12 +123,14 @@ static double residual(const rd_static_problem *pb, double *r)
         for (int k = 0; k < 12; k++)
             r[6 * j + k] += g[k];
     }
-    for (int i = 0; i < n; i++) {
-        double f[6];
-        if (segment_load(pb, i, pb->x + 3 * i, pb->Q + 9 * i, f))
-            for (int k = 0; k < 6; k++)
-                r[6 * i + k] -= f[k];
+    for (int i = 0; i < n; i += n - 1) { /* the gap faces (segments 0, n - 1) */
+        double f[6] = {0};
+        rd_pretension_gap_face_load(pb, i, pb->x + 3 * i, pb->Q + 9 * i, f);
+        for (int k = 0; k < 6; k++)
+            r[6 * i + k] -= f[k];
     }
+    if (pb->kind == RD_STATIC_CONTACT)
+        rd_contact_loads(pb, r);
     support_terms(pb, r, NULL, NULL);
     return energy;
 }
@@ -173,42 +163,92 @@ static void perturb(const double *x, const double *Q, int k, double h, double xo
     }
 }
 
-/* The tangent's 6x6 block (row-major) of the rows of segment a and the
- * columns of segment b, |a - b| <= 1: block row a's D, U or L. */
-static double *block(rd_blocktri *t, int a, int b)
+/* Segments per block of the tangent: 2 with flexible faces (tangent). */
+static int per_block(const rd_static_problem *pb)
 {
-    return (b == a ? t->D : b > a ? t->U : t->L) + (size_t)36 * a;
+    return pb->cp0 ? 2 : 1;
 }
 
-/* The tangent of the whole residual, in block-tridiagonal storage. */
-static void tangent(rd_static_problem *pb, rd_blocktri *t)
+/* The tangent's 6x6 sub-block of the rows of segment a and the columns of
+ * segment b (row stride t->bs), in block row a / s (s = t->bs / 6 segments a
+ * block; a / s and b / s equal or neighbours): that block row's D, U or L. */
+static double *block(rd_blocktri *t, int a, int b)
 {
-    int n = pb->n;
-    double hx = 1e-6 * pb->R, hr = 1e-6;
-    /* joints: exact (rd_static_joint.c), K row-major 12x12.  Joint j is the
-     * only one in U_j and L_j+1 and the first in D_j+1: those are set, not
-     * added to, so only D_0 needs clearing (L_0 and U_n-1 are not read). */
-    memset(t->D, 0, 36 * sizeof *t->D);
+    int s = t->bs / 6, A = a / s, B = b / s;
+    double *base = (B == A ? t->D : B > A ? t->U : t->L) + (size_t)t->bs * t->bs * A;
+    return base + (size_t)t->bs * 6 * (a % s) + 6 * (b % s);
+}
+
+/* Adds segment i's flexible face's part of the contact loads' derivative:
+ * the loads on segments i - 1 .. i + 1 by the DOFs of i - 1 .. i + 1. */
+static void face_blocks(rd_static_problem *pb, rd_blocktri *t, int i)
+{
+    double Jf[3][3][36];
+    rd_contact_face_jacobian(pb, i, Jf);
+    for (int b = 0; b < 3; b++)
+        for (int c = 0; c < 3; c++) {
+            int sb = i - 1 + b, sc = i - 1 + c;
+            if (sb < 0 || sb >= pb->n || sc < 0 || sc >= pb->n)
+                continue;
+            double *B = block(t, sb, sc);
+            for (int e = 0; e < 36; e++)
+                B[t->bs * (e % 6) + e / 6] -= Jf[b][c][e];
+        }
+}
+
+/* B (row stride ld) = B + K or, add 0, = K, for the 6x6 part of the
+ * row-major 12x12 K at K's pointer. */
+static void put_block(double *B, int ld, const double *K, int add)
+{
+    for (int r = 0; r < 6; r++)
+        for (int c = 0; c < 6; c++)
+            B[ld * r + c] = (add ? B[ld * r + c] : 0.0) + K[12 * r + c];
+}
+
+/* The joints' blocks, exact (rd_static_joint.c, K row-major 12x12), into
+ * the tangent.  With single segments joint j is the only one in U_j and
+ * L_j+1 and the first in D_j+1: those are set, not added to, so only D_0 is
+ * cleared (L_0 and U_n-1 are not read); with pairs all is cleared and added
+ * to (and the dummy segment, n odd, gets its identity). */
+static void joint_blocks(rd_static_problem *pb, rd_blocktri *t)
+{
+    int n = pb->n, ld = t->bs, add = ld != 6;
+    size_t blocks = (size_t)t->nb * ld * ld;
+    memset(t->D, 0, (add ? blocks : 36) * sizeof *t->D);
+    if (add) {
+        memset(t->L, 0, blocks * sizeof *t->L);
+        memset(t->U, 0, blocks * sizeof *t->U);
+        for (int k = 6 * n; k < t->nb * ld; k++)
+            t->D[blocks - (size_t)ld * ld + (size_t)(ld + 1) * (k % ld)] = 1.0;
+    }
     for (int j = 0; j < n - 1; j++) {
         double K[144];
         rd_static_joint_tangent(pb, j, pb->x + 3 * j, pb->Q + 9 * j, pb->x + 3 * (j + 1),
                                 pb->Q + 9 * (j + 1), K);
-        double *AA = block(t, j, j), *AB = block(t, j, j + 1), *BA = block(t, j + 1, j),
-               *BB = block(t, j + 1, j + 1);
-        for (int r = 0; r < 6; r++) {
-            for (int c = 0; c < 6; c++)
-                AA[6 * r + c] += K[12 * r + c];
-            memcpy(AB + 6 * r, K + 12 * r + 6, 6 * sizeof *K);
-            memcpy(BA + 6 * r, K + 12 * (6 + r), 6 * sizeof *K);
-            memcpy(BB + 6 * r, K + 12 * (6 + r) + 6, 6 * sizeof *K);
-        }
+        put_block(block(t, j, j), ld, K, 1);
+        put_block(block(t, j, j + 1), ld, K + 6, add);
+        put_block(block(t, j + 1, j), ld, K + 72, add);
+        put_block(block(t, j + 1, j + 1), ld, K + 78, add);
     }
+}
+
+/* The tangent of the whole residual, in block-tridiagonal storage: 6x6
+ * blocks, or 12x12 (pairs of segments) with flexible faces (work_alloc). */
+static void tangent(rd_static_problem *pb, rd_blocktri *t)
+{
+    int n = pb->n, ld = t->bs;
+    double hx = 1e-6 * pb->R, hr = 1e-6;
+    rd_contact_face_update(pb); /* the contact faces at this state (if any) */
+    joint_blocks(pb, t);
     /* External loads: the contact law's derivative in closed form (differences
      * inside its bend eps were 63 % of a contact solve), the gap faces' by differences. */
     for (int i = 0; i < n; i++) {
         double J[36] = {0};
         if (pb->kind == RD_STATIC_CONTACT)
             rd_contact_segment_jacobian(pb, i, pb->x + 3 * i, pb->Q + 9 * i, J);
+        if (pb->cp0)
+            face_blocks(pb, t, i);
+        double *D = block(t, i, i);
         for (int k = 0; k < 6; k++) {
             double h = k < 3 ? hx : hr, fp[6] = {0}, fm[6] = {0}, xp[3], Qp[9];
             if (i == 0 || i == n - 1) {
@@ -218,7 +258,7 @@ static void tangent(rd_static_problem *pb, rd_blocktri *t)
                 rd_pretension_gap_face_load(pb, i, xp, Qp, fm);
             }
             for (int row = 0; row < 6; row++)
-                t->D[36 * i + 6 * row + k] += -J[row + 6 * k] - (fp[row] - fm[row]) / (2.0 * h);
+                D[ld * row + k] += -J[row + 6 * k] - (fp[row] - fm[row]) / (2.0 * h);
         }
     }
     /* support: translations 1/4 k_t mask; rotations 1/4 k_r A_a mask A_c^T
@@ -241,13 +281,13 @@ static void tangent(rd_static_problem *pb, rd_blocktri *t)
         for (int c = 0; c < 2; c++) {
             double *B = block(t, s[a], s[c]); /* s[0], s[1] equal or neighbours */
             for (int k = 0; k < 3; k++)
-                B[7 * k] += 0.25 * pb->k_t * pb->mask[k];
+                B[(ld + 1) * k] += 0.25 * pb->k_t * pb->mask[k];
             for (int r = 0; r < 3; r++)
                 for (int q = 0; q < 3; q++) {
                     double v = 0.0;
                     for (int k = 0; k < 3; k++)
                         v += A[a][3 * r + k] * pb->mask[3 + k] * A[c][3 * q + k];
-                    B[6 * (3 + r) + 3 + q] += 0.25 * pb->k_r * v;
+                    B[ld * (3 + r) + 3 + q] += 0.25 * pb->k_r * v;
                 }
         }
 }
@@ -302,11 +342,11 @@ static void field_coupling(rd_static_problem *pb, double C[36])
     memcpy(x0, pb->x + 3 * last, sizeof x0);
     memcpy(Q0, pb->Q + 9 * last, sizeof Q0);
     for (int k = 0; k < 6; k++) {
-        double h = k < 3 ? hx : hr, fp[6], fm[6];
+        double h = k < 3 ? hx : hr, fp[6] = {0}, fm[6] = {0};
         perturb(x0, Q0, k, h, pb->x + 3 * last, pb->Q + 9 * last);
-        segment_load(pb, 0, pb->x, pb->Q, fp);
+        rd_pretension_gap_face_load(pb, 0, pb->x, pb->Q, fp);
         perturb(x0, Q0, k, -h, pb->x + 3 * last, pb->Q + 9 * last);
-        segment_load(pb, 0, pb->x, pb->Q, fm);
+        rd_pretension_gap_face_load(pb, 0, pb->x, pb->Q, fm);
         for (int r = 0; r < 6; r++)
             C[r + 6 * k] = -(fp[r] - fm[r]) / (2.0 * h);
     }
@@ -383,7 +423,7 @@ static void damp(rd_static_problem *pb, rd_blocktri *t, double mu)
 {
     for (int i = 0; i < pb->n; i++)
         for (int k = 0; k < 6; k++) {
-            double *d = &t->D[36 * i + 7 * k];
+            double *d = block(t, i, i) + (t->bs + 1) * k;
             *d += mu * fabs(*d);
         }
 }
@@ -494,9 +534,9 @@ static void work_free(work *w)
 
 static int work_alloc(const rd_static_problem *pb, work *w, rd_error *err)
 {
-    int n = pb->n, N = 6 * n;
+    int n = pb->n, N = 6 * n, s = per_block(pb), nb = (n + s - 1) / s;
     w->r = malloc((size_t)N * sizeof *w->r);
-    w->delta = malloc((size_t)N * sizeof *w->delta);
+    w->delta = calloc((size_t)6 * s * nb, sizeof *w->delta); /* the dummy's 6 stay 0 */
     w->x0 = malloc((size_t)3 * n * sizeof *w->x0);
     w->Q0 = malloc((size_t)9 * n * sizeof *w->Q0);
     w->xs = malloc((size_t)3 * n * sizeof *w->xs);
@@ -505,7 +545,7 @@ static int work_alloc(const rd_static_problem *pb, work *w, rd_error *err)
     if (need_y)
         w->Y = malloc((size_t)6 * N * sizeof *w->Y);
     if ((need_y && !w->Y) || !w->r || !w->delta || !w->x0 || !w->Q0 || !w->xs || !w->Qs ||
-        rd_blocktri_init(&w->t, n, 6) != RD_OK)
+        rd_blocktri_init(&w->t, nb, 6 * s) != RD_OK)
         return rd_error_set(err, RD_ENOMEM, "", "Out of memory for the %d-segment static solve.",
                             n);
     return RD_OK;

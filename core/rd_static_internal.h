@@ -79,7 +79,9 @@ typedef struct rd_static_problem {
     double k_t, k_r;
     /* contact */
     int m;          /* points per segment */
-    double *cp;     /* 3 per point: body offsets */
+    double *cp;     /* 3 per point: body offsets (the flexible face's, rd_contact.c) */
+    double *cp0;    /* 3 per point: the rigid face's offsets, in cp's block (NULL: cp rigid) */
+    double *face;   /* 14 per joint: rd_contact_face.c's cache, in cp's block */
     double *mult;   /* per point: the augmented Lagrangian's multiplier, Pa (NULL: none) */
     double area;    /* tributary area of one point, m^2 */
     double r_o;     /* running-face radius of the closed ring */
@@ -143,12 +145,34 @@ void rd_pretension_gap_face_load(const rd_static_problem *pb, int i, const doubl
  * from load factor l0 to l1). */
 void rd_contact_segment_load(const rd_static_problem *pb, int i, const double *x, const double *Q,
                              double f[6]);
+/* The same for every segment at pb's state, subtracted from r (6n). */
+void rd_contact_loads(const rd_static_problem *pb, double *r);
 /* Its derivative: J[r + 6 d] = d f_r / d DOF d of segment i, DOFs (dx,
  * dpsi) as in rd_static.c (the normal's turn, p / (k rho) ~ 1e-7 of the
  * rest, left out). */
 void rd_contact_segment_jacobian(const rd_static_problem *pb, int i, const double *x,
                                  const double *Q, double J[36]);
 void rd_contact_follow_bore(rd_static_problem *pb, double l0, double l1);
+/* rd_contact.c: the law's smoothing length at the current load factor; the
+ * law p and its slope dp at the point y of segment o (its multiplier's
+ * shift included), and n = grad(delta), the bore's outward normal (|n| ~1). */
+double rd_contact_eps(const rd_static_problem *pb);
+void rd_contact_point(const rd_static_problem *pb, int o, const double y[3], double e, double *p,
+                      double *dp, double n[3]);
+/* rd_contact_face.c: each contact point's offset cp set to the rigid face's
+ * cp0 moved outward by the ring's bending and shear over its segment, from
+ * the current state (nothing when cp0 is NULL); point k of segment i's move
+ * u and, if du is not NULL, du[b][d] its derivative by the planar DOF d (dx,
+ * dy, dpsi_z) of segment i - 1 + b. */
+void rd_contact_face_update(const rd_static_problem *pb);
+/* Point k of segment i's angle from the segment's centre (rad). */
+double rd_contact_point_offset(const rd_static_problem *pb, int i, int k);
+void rd_contact_face_du(const rd_static_problem *pb, int i, int k, double *u, double du[3][3]);
+/* rd_contact.c: the face's part of the derivative of the contact loads of
+ * segment o's points: J[b][c] (layout as rd_contact_segment_jacobian) the
+ * load on segment o - 1 + b by the DOFs of segment o - 1 + c, less the
+ * rigid part rd_contact_segment_jacobian gives (zero without a face). */
+void rd_contact_face_jacobian(const rd_static_problem *pb, int o, double J[3][3][36]);
 /* rd_contact.c: the augmented Lagrangian's update, lambda_q <- p_q (each
  * point's current pressure); returns max_q |p_q - lambda_q| / p0 before it. */
 double rd_contact_update_multipliers(rd_static_problem *pb);

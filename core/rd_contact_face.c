@@ -1,0 +1,246 @@
+/*
+ * rd_contact_face — the running face of a contact segment as the bent,
+ * sheared ring would have it, not as a rigid arc.
+ *
+ * A segment is rigid: its face is an arc of the closed ring's radius r_o
+ * turned with the section (Q_i).  The ring it stands for bends and shears
+ * between its joints, and in a bore it follows the bore's curvature; a rigid
+ * face then misfits the bore by (curvature change) L^2 / 8 (~20 nm at 1 x
+ * the thin-ring bound, n = 160-320) and, turned with the section rather
+ * than with the centreline, by the shear angle gamma = V / (k G A) times
+ * L / 2 (~1e-5 rad: ~4 nm at n = 320), both far above the law's
+ * penetrations (~p0 / k = 1 nm).  The face then touches at its ends, its
+ * middle or one end, and the segment's contact force carries a couple the
+ * ring does not have: the binned pressure missed the reference by 0.04 p0
+ * at both n = 160 and 320 (bench_static --bins 4 1 0 N).
+ *
+ * The face here: each contact point k at arc length s (at the neutral
+ * radius R, from the segment's centre) is moved outward by
+ *   u(s) = -(kap_c s^2 / 2 + kap' s^3 / 6) - (gam_c s + gam' s^2 / 2),
+ * kap the curvature change and gam the shear angle, each interpolated
+ * linearly between the segment's two joints (at s = -L/2, +L/2, L = R phi):
+ * the centreline through the segment's centre x_i, its tangent there the
+ * section's turn plus the shear.  At joint j (segments j, j + 1, planar: a
+ * turn rz about the axis; the second term of kap the chord's stretch, which
+ * curves the face as a uniformly expanded ring's)
+ *   kap_j = (rz_(j+1) - rz_j) / L - (|x_(j+1) - x_j| / |P_(j+1) - P_j| - 1) / R,
+ *   gam_j = (turn of the chord x_(j+1) - x_j) - (rz_j + rz_(j+1)) / 2;
+ * at a free end kap = 0 (no moment on the gap face) and gam is the inner
+ * joint's.  u depends on the planar DOFs (dx, dy, dpsi_z) of segments
+ * i - 1, i, i + 1 (rd_contact_face_du); rd_contact.c puts that into the
+ * contact load's tangent, so Newton sees the face it solves with.
+ */
+#include "rd_static_internal.h"
+
+#include <math.h>
+
+/* Joint j's values v = (kap, gam) and their derivatives by the planar DOFs
+ * (dx, dy, dpsi_z) of its segments j (dA) and j + 1 (dB); zero past the
+ * ends. */
+static void joint_face(const rd_static_problem *pb, int j, double L, double v[2], double dA[2][3],
+                       double dB[2][3])
+{
+    memset(v, 0, 2 * sizeof *v);
+    memset(dA, 0, 6 * sizeof **dA);
+    memset(dB, 0, 6 * sizeof **dB);
+    if (j < 0 || j >= pb->n - 1)
+        return;
+    const double *A = pb->Q + 9 * j, *B = pb->Q + 9 * (j + 1), *d0 = pb->dP0 + 3 * j;
+    const double *xa = pb->x + 3 * j, *xb = pb->x + 3 * (j + 1);
+    double turn = remainder(atan2(B[3], B[0]) - atan2(A[3], A[0]), 2.0 * M_PI);
+    double d[2] = {xb[0] - xa[0], xb[1] - xa[1]}, dd = d[0] * d[0] + d[1] * d[1];
+    double chord = atan2(d0[0] * d[1] - d0[1] * d[0], d0[0] * d[0] + d0[1] * d[1]);
+    double len = sqrt(dd), len0 = hypot(d0[0], d0[1]), e = (len / len0 - 1.0) / pb->R;
+    v[0] = turn / L - e;
+    v[1] = chord - atan2(A[3], A[0]) - 0.5 * turn;
+    dA[0][0] = d[0] / (len * len0 * pb->R), dA[0][1] = d[1] / (len * len0 * pb->R);
+    dB[0][0] = -dA[0][0], dB[0][1] = -dA[0][1];
+    dA[0][2] = -1.0 / L;
+    dB[0][2] = 1.0 / L;
+    dA[1][0] = d[1] / dd, dA[1][1] = -d[0] / dd, dA[1][2] = -0.5;
+    dB[1][0] = -d[1] / dd, dB[1][1] = d[0] / dd, dB[1][2] = -0.5;
+}
+
+/* du / d(kap_L, kap_R, gam_L, gam_R) of point k of segment i; a free end's
+ * gam is its inner joint's. */
+static void point_weights(const rd_static_problem *pb, int i, int k, double w[4])
+{
+    double phi = rd_ring_segment_phi(pb->ring), L = pb->R * phi;
+    double s = pb->R * rd_contact_point_offset(pb, i, k);
+    w[0] = -(s * s / 4.0 - s * s * s / (6.0 * L));
+    w[1] = -(s * s / 4.0 + s * s * s / (6.0 * L));
+    w[2] = -(s / 2.0 - s * s / (2.0 * L));
+    w[3] = -(s / 2.0 + s * s / (2.0 * L));
+    if (i == 0)
+        w[3] += w[2], w[2] = 0.0;
+    if (i == pb->n - 1)
+        w[2] += w[3], w[3] = 0.0;
+}
+
+double rd_contact_point_offset(const rd_static_problem *pb, int i, int k)
+{
+    (void)i; /* evenly spaced, each at the middle of its share */
+    return (k + 0.5 - 0.5 * pb->m) * rd_ring_segment_phi(pb->ring) / pb->m;
+}
+
+/* Joint j's cached values and derivatives (rd_contact_face_update), zeros
+ * past the ends. */
+static const double *joint_cached(const rd_static_problem *pb, int j)
+{
+    static const double none[14];
+    return j < 0 || j >= pb->n - 1 ? none : pb->face + 14 * j;
+}
+
+void rd_contact_face_du(const rd_static_problem *pb, int i, int k, double *u, double du[3][3])
+{
+    double w[4];
+    const double *l = joint_cached(pb, i - 1), *r = joint_cached(pb, i);
+    point_weights(pb, i, k, w);
+    *u = w[0] * l[0] + w[1] * r[0] + w[2] * l[1] + w[3] * r[1];
+    if (!du)
+        return;
+    /* cache layout: kap, gam, dA[2][3], dB[2][3] */
+    for (int d = 0; d < 3; d++) {
+        du[0][d] = w[0] * l[2 + d] + w[2] * l[5 + d];
+        du[1][d] = w[0] * l[8 + d] + w[2] * l[11 + d] + w[1] * r[2 + d] + w[3] * r[5 + d];
+        du[2][d] = w[1] * r[8 + d] + w[3] * r[11 + d];
+    }
+}
+
+void rd_contact_face_update(const rd_static_problem *pb)
+{
+    if (!pb->cp0)
+        return;
+    double L = pb->R * rd_ring_segment_phi(pb->ring);
+    for (int j = 0; j < pb->n - 1; j++) {
+        double *f = pb->face + 14 * j;
+        joint_face(pb, j, L, f, (double(*)[3])(f + 2), (double(*)[3])(f + 8));
+    }
+    for (int i = 0; i < pb->n; i++) {
+        const double *P = rd_ring_reference_point(pb->ring, i);
+        for (int k = 0; k < pb->m; k++) {
+            const double *c0 = pb->cp0 + 3 * (pb->m * i + k);
+            double *c = pb->cp + 3 * (pb->m * i + k), u;
+            rd_contact_face_du(pb, i, k, &u, NULL);
+            /* outward: the point's reference position over r_o */
+            for (int q = 0; q < 2; q++)
+                c[q] = c0[q] + u * (c0[q] + P[q]) / pb->r_o;
+        }
+    }
+}
+
+/* Point k of segment o at (x, Q), the law's smoothing e: its arm, the bore
+ * normal n = grad(delta) = e_rho - r_b'/rho e_theta (|n| = nn, ~1), the
+ * law p and its slope dp, and dyu the point's move per unit u (its face's
+ * outward direction, rd_contact_face.c). */
+typedef struct point_eval {
+    double arm[3], n[3], nn, p, dp, dyu[3];
+} point_eval;
+
+static void point_at(const rd_static_problem *pb, int o, int k, const double *x, const double *Q,
+                     double e, point_eval *pe)
+{
+    const double *c = pb->cp + 3 * (pb->m * o + k), *P = rd_ring_reference_point(pb->ring, o);
+    double y[3];
+    rd_mv3(Q, c, pe->arm);
+    for (int q = 0; q < 3; q++)
+        y[q] = x[q] + pe->arm[q];
+    rd_contact_point(pb, o, y, e, &pe->p, &pe->dp, pe->n);
+    pe->nn = sqrt(rd_dot3(pe->n, pe->n));
+    if (pb->cp0) {
+        const double *c0 = pb->cp0 + 3 * (pb->m * o + k);
+        double out[3] = {(c0[0] + P[0]) / pb->r_o, (c0[1] + P[1]) / pb->r_o, 0.0};
+        rd_mv3(Q, out, pe->dyu);
+    }
+}
+
+/* The planar DOFs (dx, dy, dpsi_z) among a segment's six. */
+static const int planar[3] = {0, 1, 5};
+
+/* Adds sg times point k of segment o's load, at (x, Q), to f[b], the
+ * generalized forces of segment o - 1 + b (NULL: not wanted).  The point's
+ * force F at y_k works on every DOF y_k moves with: its own segment's as a
+ * rigid body's, and through the face (u_k) the planar DOFs of segments
+ * o - 1 .. o + 1. */
+static void point_load(const rd_static_problem *pb, int o, int k, const double *x, const double *Q,
+                       double e, double sg, double *f[3])
+{
+    point_eval pe;
+    point_at(pb, o, k, x, Q, e, &pe);
+    double s = -sg * pe.p * pb->area / pe.nn, F[3] = {s * pe.n[0], s * pe.n[1], 0.0}, M[3];
+    if (f[1]) {
+        rd_cross3(pe.arm, F, M);
+        for (int q = 0; q < 3; q++)
+            f[1][q] += F[q], f[1][3 + q] += M[q];
+    }
+    if (!pb->cp0)
+        return;
+    double u, du[3][3], fu = rd_dot3(F, pe.dyu);
+    rd_contact_face_du(pb, o, k, &u, du);
+    for (int b = 0; b < 3; b++)
+        for (int d = 0; d < 3 && f[b]; d++)
+            f[b][planar[d]] += fu * du[b][d];
+}
+
+void rd_contact_segment_load(const rd_static_problem *pb, int i, const double *x, const double *Q,
+                             double f[6])
+{
+    double e = rd_contact_eps(pb);
+    for (int o = i - 1; o <= i + 1; o++) {
+        if (o < 0 || o >= pb->n || (o != i && !pb->cp0))
+            continue;
+        double *fb[3] = {NULL, NULL, NULL};
+        fb[i - o + 1] = f;
+        for (int k = 0; k < pb->m; k++)
+            point_load(pb, o, k, o == i ? x : pb->x + 3 * o, o == i ? Q : pb->Q + 9 * o, e, 1.0,
+                       fb);
+    }
+}
+
+void rd_contact_loads(const rd_static_problem *pb, double *r)
+{
+    double e = rd_contact_eps(pb);
+    for (int o = 0; o < pb->n; o++) {
+        double *fb[3] = {o > 0 ? r + 6 * (o - 1) : NULL, r + 6 * o,
+                         o < pb->n - 1 ? r + 6 * (o + 1) : NULL};
+        for (int k = 0; k < pb->m; k++)
+            point_load(pb, o, k, pb->x + 3 * o, pb->Q + 9 * o, e, -1.0, fb);
+    }
+}
+
+void rd_contact_face_jacobian(const rd_static_problem *pb, int o, double J[3][3][36])
+{
+    double e = rd_contact_eps(pb);
+    memset(J, 0, 9 * 36 * sizeof ***J);
+    if (!pb->cp0)
+        return;
+    for (int k = 0; k < pb->m; k++) {
+        point_eval pe;
+        double u, du[3][3], G[3][6] = {{0}}, Gr[6], am[3];
+        point_at(pb, o, k, pb->x + 3 * o, pb->Q + 9 * o, e, &pe);
+        rd_contact_face_du(pb, o, k, &u, du);
+        /* G: d delta_k / d DOF (segments o - 1, o, o + 1); Gr its rigid part */
+        rd_cross3(pe.arm, pe.n, am);
+        for (int d = 0; d < 3; d++)
+            Gr[d] = pe.n[d], Gr[3 + d] = am[d];
+        memcpy(G[1], Gr, sizeof Gr);
+        double nu = rd_dot3(pe.n, pe.dyu), c = -pb->area * pe.dp / pe.nn;
+        for (int b = 0; b < 3; b++)
+            for (int d = 0; d < 3; d++)
+                G[b][planar[d]] += nu * du[b][d];
+        /* d f / d q' = c G(q) G(q'), less the rigid part the closed form
+         * has (the face's second derivatives, p / (k L) of this, left out);
+         * G's nonzeros: the owner's six, the neighbours' planar three */
+        int nz[12][2], cnt = 0;
+        for (int b = 0; b < 3; b++)
+            for (int r = 0; r < 6; r++)
+                if (b == 1 || r == 0 || r == 1 || r == 5)
+                    nz[cnt][0] = b, nz[cnt++][1] = r;
+        for (int q = 0; q < cnt; q++)
+            for (int t = 0; t < cnt; t++) {
+                int b = nz[q][0], r = nz[q][1], bc = nz[t][0], d = nz[t][1];
+                J[b][bc][r + 6 * d] +=
+                    c * (G[b][r] * G[bc][d] - (b == 1 && bc == 1 ? Gr[r] * Gr[d] : 0.0));
+            }
+    }
+}
