@@ -28,6 +28,8 @@
  *       reference's CPU time a bore and its active-set passes (range).
  *   --face (with --battery, --bins, --stiffness): flexible running faces
  *       (rd_contact_opts.flexible_face) instead of rigid ones.
+ *   --cap N (with --battery, --bins, --stiffness): rd_contact_opts.max_segments
+ *       N instead of its default.
  *
  * The x_a limit is the Richardson extrapolation from n = 2000 and 1000
  * (order 2, checked in tests/core/test_static.c).
@@ -53,6 +55,9 @@ static int reference_cells = 2880;
 /* --face anywhere: the contact solves with flexible faces
  * (rd_contact_opts.flexible_face, core/rd_contact_face.c). */
 static int flexible_face = 0;
+
+/* --cap N anywhere: rd_contact_opts.max_segments (0: its default). */
+static int cap = 0;
 
 static int reference_solve(const rd_ring_params *p, const rd_contact_opts *o, double floor_m,
                            ref_result *r)
@@ -190,6 +195,8 @@ static void battery(const rd_ring_params *p)
                 rd_contact_opts o;
                 rd_contact_opts_default(&o);
                 o.flexible_face = flexible_face;
+                if (cap)
+                    o.max_segments = cap;
                 o.n_distortion = 1;
                 o.distortion[0] = (rd_distortion){k, A, phases[pi]};
                 ref_result r;
@@ -298,6 +305,8 @@ static void stiffness_battery(const rd_ring_params *p)
                 rd_contact_opts o;
                 rd_contact_opts_default(&o);
                 o.flexible_face = flexible_face;
+                if (cap)
+                    o.max_segments = cap;
                 o.n_distortion = 1;
                 o.distortion[0] =
                     (rd_distortion){k, fmin(facs[fi] * bound, 0.004 * p->diameter), phases[pi]};
@@ -355,6 +364,8 @@ static void bins_one(const rd_ring_params *p, int k, double fac, double phase, i
     rd_contact_opts o;
     rd_contact_opts_default(&o);
     o.flexible_face = flexible_face;
+    if (cap)
+        o.max_segments = cap;
     o.n_distortion = 1;
     o.distortion[0] = (rd_distortion){k, fmin(fac * bound, 0.004 * p->diameter), phase};
     ref_result r;
@@ -408,6 +419,19 @@ int main(int argc, char **argv)
             argc--;
             break;
         }
+    for (int i = 1; i + 1 < argc; i++) { /* --cap N, anywhere: taken out of argv */
+        if (strcmp(argv[i], "--cap") != 0)
+            continue;
+        cap = atoi(argv[i + 1]);
+        if (cap < 4 || cap > RD_STATIC_SEGMENTS_MAX) {
+            fprintf(stderr, "--cap: 4 to %d segments, not %s\n", RD_STATIC_SEGMENTS_MAX,
+                    argv[i + 1]);
+            return 1;
+        }
+        memmove(argv + i, argv + i + 2, (size_t)(argc - i - 1) * sizeof *argv);
+        argc -= 2;
+        break;
+    }
     /* --reference nl | nl-dead | linear, anywhere: taken out of argv */
     for (int i = 1; i + 1 < argc; i++) {
         if (strcmp(argv[i], "--reference") != 0)
