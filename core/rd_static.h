@@ -44,9 +44,10 @@
  * is in place and then narrowed to eps), backtracking line search,
  * Levenberg-Marquardt damping when a plain step fails, the exact tangent
  * (each joint's and the contact law's in closed form, the gap faces' by
- * central differences) assembled in 6x6 blocks, block tridiagonal, factored
- * by the block Thomas algorithm (rd_blocktri.h; the field method's one
- * off-diagonal block by the Woodbury identity).
+ * central differences) assembled in 6x6 blocks (12x12, two segments, with
+ * flexible contact faces, which couple a segment's two neighbours), block
+ * tridiagonal, factored by the block Thomas algorithm (rd_blocktri.h; the
+ * field method's one off-diagonal block by the Woodbury identity).
  * Convergence: largest force residual <= tol * F_ref and largest moment
  * residual <= tol * F_ref * R, tol raised to the rounding floor of the
  * stiffest spring when that is larger (reported as numerics.tolerance).
