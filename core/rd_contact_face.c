@@ -145,7 +145,7 @@ static void point_at(const rd_static_problem *pb, int o, int k, const double *x,
     rd_mv3(Q, c, pe->arm);
     for (int q = 0; q < 3; q++)
         y[q] = x[q] + pe->arm[q];
-    rd_contact_point(pb, o, y, e, &pe->p, &pe->dp, pe->n);
+    rd_contact_point(pb, o, k, y, e, &pe->p, &pe->dp, pe->n);
     pe->nn = sqrt(rd_dot3(pe->n, pe->n));
     if (pb->cp0) {
         const double *c0 = pb->cp0 + 3 * (pb->m * o + k);

@@ -83,6 +83,7 @@ typedef struct rd_static_problem {
     double *cp0;    /* 3 per point: the rigid face's offsets, in cp's block (NULL: cp rigid) */
     double *face;   /* 14 per joint: rd_contact_face.c's cache, in cp's block */
     double *mult;   /* per point: the augmented Lagrangian's multiplier, Pa (NULL: none) */
+    int tip_mult;   /* mult has n + 2 m entries: the free ends' points their own */
     double area;    /* tributary area of one point, m^2 */
     double r_o;     /* running-face radius of the closed ring */
     double bore_dr; /* D/2 - r_o */
@@ -157,8 +158,8 @@ void rd_contact_follow_bore(rd_static_problem *pb, double l0, double l1);
  * law p and its slope dp at the point y of segment o (its multiplier's
  * shift included), and n = grad(delta), the bore's outward normal (|n| ~1). */
 double rd_contact_eps(const rd_static_problem *pb);
-void rd_contact_point(const rd_static_problem *pb, int o, const double y[3], double e, double *p,
-                      double *dp, double n[3]);
+void rd_contact_point(const rd_static_problem *pb, int o, int k, const double y[3], double e,
+                      double *p, double *dp, double n[3]);
 /* rd_contact_face.c: each contact point's offset cp set to the rigid face's
  * cp0 moved outward by the ring's bending and shear over its segment, from
  * the current state (nothing when cp0 is NULL); point k of segment i's move

@@ -322,10 +322,51 @@ static void test_against_reference(void)
           it160);
 }
 
+/* The free end's concentrated force with flexible faces (whose free ends'
+ * points have multipliers of their own) against the exact reference's:
+ * order 3 at 0.1 x the bound, full contact, the tip carrying ~1.5 N
+ * (bench_static --bins 3 0.1 0 N --face). */
+static void test_tip_force(void)
+{
+    rd_ring_params p;
+    rd_ring_params_default(&p);
+    rd_ring_section sec;
+    rd_ring_section_get(&p, 0, &sec);
+    double bound = p.tangential_force * pow(sec.R, 3) / (p.youngs_modulus * sec.I_inplane * 64.0);
+    rd_contact_opts o;
+    rd_contact_opts_default(&o);
+    o.n_distortion = 1;
+    o.distortion[0] = (rd_distortion){3, 0.1 * bound, 0.0};
+    o.flexible_face = 1;
+    double p0 = 2 * p.tangential_force / (p.diameter * p.axial_height);
+    ref_result r;
+    rd_static_opts so;
+    rd_static_opts_default(&so);
+    so.estimate_error = 0;
+    rd_contact_result c;
+    rd_error err;
+    rd_error_init(&err);
+    if (ref_contact_solve_nl(&p, &o, 1440, 1, RD_CONTACT_BIN_DEG,
+                             10 * p0 / rd_contact_default_stiffness(&p), &r) != 0 ||
+        rd_contact_solve(&p, 320, &o, &so, NULL, &c, &err) != RD_OK) {
+        CHECK(0, "tip force: %s", err.message);
+        return;
+    }
+    printf("tip forces, flexible faces n = 320: %.4f %.4f N, reference %.4f %.4f N\n",
+           c.tip_force[0], c.tip_force[1], r.tip_force[0], r.tip_force[1]);
+    /* measured 1.3 % (1.492 against 1.473 N), converging at first order in
+     * n; one multiplier for the whole end segment gave 5.3 %: 2.5 % keeps
+     * that out with room for the first-order rest */
+    for (int e = 0; e < 2; e++)
+        CHECK_REL(c.tip_force[e], r.tip_force[e], 0.025, "tip force %d", e);
+    rd_contact_result_cleanup(&c);
+}
+
 int main(void)
 {
     test_bent_ring();
     test_face_jacobian();
     test_against_reference();
+    test_tip_force();
     return check_done();
 }
