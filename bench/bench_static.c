@@ -160,6 +160,25 @@ static double thin_ring_bound(const rd_ring_params *p, int k)
            (p->youngs_modulus * sec.I_inplane * pow(k * k - 1.0, 2));
 }
 
+/* A battery bore: order k, fac times the thin-ring bound (capped at 0.4 %
+ * of the diameter), phase deg; the run's face and cap options.  *A_bound,
+ * if not NULL, receives the amplitude over the bound. */
+static rd_contact_opts battery_bore(const rd_ring_params *p, int k, double fac, double phase,
+                                    double *A_bound)
+{
+    double bound = thin_ring_bound(p, k), A = fmin(fac * bound, 0.004 * p->diameter);
+    rd_contact_opts o;
+    rd_contact_opts_default(&o);
+    o.flexible_face = flexible_face;
+    if (cap)
+        o.max_segments = cap;
+    o.n_distortion = 1;
+    o.distortion[0] = (rd_distortion){k, A, phase};
+    if (A_bound)
+        *A_bound = A / bound;
+    return o;
+}
+
 /* est / err within x3 (both below `floor`: counted as tracking). */
 static int tracks(double est, double err, double floor)
 {
@@ -190,19 +209,12 @@ static void battery(const rd_ring_params *p)
         for (int fi = 0; fi < 4; fi++)
             for (int pi = 0; pi < 2; pi++) {
                 int k = orders[oi];
-                double bound = thin_ring_bound(p, k);
-                double A = fmin(facs[fi] * bound, 0.004 * p->diameter);
-                rd_contact_opts o;
-                rd_contact_opts_default(&o);
-                o.flexible_face = flexible_face;
-                if (cap)
-                    o.max_segments = cap;
-                o.n_distortion = 1;
-                o.distortion[0] = (rd_distortion){k, A, phases[pi]};
+                double Ab;
+                rd_contact_opts o = battery_bore(p, k, facs[fi], phases[pi], &Ab);
                 ref_result r;
                 clock_t r0 = clock();
                 if (reference_solve(p, &o, floor_m, &r) != 0) {
-                    printf("| %d | %.2g | %g | reference failed |\n", k, A / bound, phases[pi]);
+                    printf("| %d | %.2g | %g | reference failed |\n", k, Ab, phases[pi]);
                     continue;
                 }
                 double rcpu = (double)(clock() - r0) / CLOCKS_PER_SEC;
@@ -236,8 +248,7 @@ static void battery(const rd_ring_params *p)
                     t[reps++] = bench_now() - t0;
                 }
                 if (rc != 0) {
-                    printf("| %d | %.2g | %g | failed: %s |\n", k, A / bound, phases[pi],
-                           err.message);
+                    printf("| %d | %.2g | %g | failed: %s |\n", k, Ab, phases[pi], err.message);
                     continue;
                 }
                 double wall = bench_median(t, reps), cpu_s = bench_median(cpu, reps), dp = 0;
@@ -267,8 +278,8 @@ static void battery(const rd_ring_params *p)
                 printf(
                     "| %d | %.2g | %g | %d | %s | %.3f | %.3f | %.4f (%.4f) | %+.1f %% (%.1f %%) | "
                     "%.2f (%.2f) | %.3f (%.3f) | %.3f |\n",
-                    k, A / bound, phases[pi], c.stats.segments, c.accuracy_met ? "yes" : "no", wall,
-                    cpu_s, dcf, c.estimates.contact_fraction, 100 * dg, 100 * eg, de,
+                    k, Ab, phases[pi], c.stats.segments, c.accuracy_met ? "yes" : "no", wall, cpu_s,
+                    dcf, c.estimates.contact_fraction, 100 * dg, 100 * eg, de,
                     c.estimates.gap_edges_deg, dp, c.estimates.pressure, ref_dp);
                 rd_contact_result_cleanup(&c);
             }
@@ -301,15 +312,7 @@ static void stiffness_battery(const rd_ring_params *p)
         for (int fi = 0; fi < 4; fi++)
             for (int pi = 0; pi < 2; pi++) {
                 int k = orders[oi];
-                double bound = thin_ring_bound(p, k);
-                rd_contact_opts o;
-                rd_contact_opts_default(&o);
-                o.flexible_face = flexible_face;
-                if (cap)
-                    o.max_segments = cap;
-                o.n_distortion = 1;
-                o.distortion[0] =
-                    (rd_distortion){k, fmin(facs[fi] * bound, 0.004 * p->diameter), phases[pi]};
+                rd_contact_opts o = battery_bore(p, k, facs[fi], phases[pi], NULL);
                 rd_contact_result a, b;
                 rd_static_opts so;
                 rd_static_opts_default(&so);
@@ -360,14 +363,7 @@ static void stiffness_battery(const rd_ring_params *p)
 static void bins_one(const rd_ring_params *p, int k, double fac, double phase, int fixed_n)
 {
     double p0 = 2 * p->tangential_force / (p->diameter * p->axial_height);
-    double bound = thin_ring_bound(p, k);
-    rd_contact_opts o;
-    rd_contact_opts_default(&o);
-    o.flexible_face = flexible_face;
-    if (cap)
-        o.max_segments = cap;
-    o.n_distortion = 1;
-    o.distortion[0] = (rd_distortion){k, fmin(fac * bound, 0.004 * p->diameter), phase};
+    rd_contact_opts o = battery_bore(p, k, fac, phase, NULL);
     ref_result r;
     rd_contact_result c;
     rd_static_opts so;
@@ -406,61 +402,57 @@ static void bins_one(const rd_ring_params *p, int k, double fac, double phase, i
     rd_contact_result_cleanup(&c);
 }
 
+/* Takes the first `name` (and its value, if has_value) out of argv, so
+ * options may stand anywhere; returns the value ("" for a flag), or NULL
+ * when absent. */
+static const char *take_option(int *argc, char **argv, const char *name, int has_value)
+{
+    for (int i = 1; i + has_value < *argc; i++) {
+        if (strcmp(argv[i], name) != 0)
+            continue;
+        const char *v = has_value ? argv[i + 1] : "";
+        int k = 1 + has_value;
+        memmove(argv + i, argv + i + k, (size_t)(*argc - i - k + 1) * sizeof *argv);
+        *argc -= k;
+        return v;
+    }
+    return NULL;
+}
+
 int main(int argc, char **argv)
 {
     rd_ring_params p;
     rd_ring_params_default(&p);
     rd_contact_opts co;
     rd_contact_opts_default(&co);
-    for (int i = 1; i < argc; i++) /* --face, anywhere: taken out of argv */
-        if (strcmp(argv[i], "--face") == 0) {
-            flexible_face = 1;
-            memmove(argv + i, argv + i + 1, (size_t)(argc - i) * sizeof *argv);
-            argc--;
-            break;
-        }
-    for (int i = 1; i + 1 < argc; i++) { /* --cap N, anywhere: taken out of argv */
-        if (strcmp(argv[i], "--cap") != 0)
-            continue;
-        cap = atoi(argv[i + 1]);
+    const char *v;
+    if (take_option(&argc, argv, "--face", 0))
+        flexible_face = 1;
+    if ((v = take_option(&argc, argv, "--cap", 1))) {
+        cap = atoi(v);
         if (cap < 4 || cap > RD_STATIC_SEGMENTS_MAX) {
-            fprintf(stderr, "--cap: 4 to %d segments, not %s\n", RD_STATIC_SEGMENTS_MAX,
-                    argv[i + 1]);
+            fprintf(stderr, "--cap: 4 to %d segments, not %s\n", RD_STATIC_SEGMENTS_MAX, v);
             return 1;
         }
-        memmove(argv + i, argv + i + 2, (size_t)(argc - i - 1) * sizeof *argv);
-        argc -= 2;
-        break;
     }
-    /* --reference nl | nl-dead | linear, anywhere: taken out of argv */
-    for (int i = 1; i + 1 < argc; i++) {
-        if (strcmp(argv[i], "--reference") != 0)
-            continue;
-        const char *k = argv[i + 1];
-        reference_kind = strcmp(k, "linear") == 0    ? REF_LINEAR
-                         : strcmp(k, "nl-dead") == 0 ? REF_NL_DEAD
-                         : strcmp(k, "nl") == 0      ? REF_NL
+    if ((v = take_option(&argc, argv, "--reference", 1))) {
+        reference_kind = strcmp(v, "linear") == 0    ? REF_LINEAR
+                         : strcmp(v, "nl-dead") == 0 ? REF_NL_DEAD
+                         : strcmp(v, "nl") == 0      ? REF_NL
                                                      : -1;
         if (reference_kind < 0) {
-            fprintf(stderr, "--reference: nl, nl-dead or linear, not %s\n", k);
+            fprintf(stderr, "--reference: nl, nl-dead or linear, not %s\n", v);
             return 1;
         }
-        memmove(argv + i, argv + i + 2, (size_t)(argc - i - 1) * sizeof *argv);
-        argc -= 2;
-        break;
     }
-    /* --ref-cells N (even, 8..REF_CELLS_MAX), anywhere: taken out of argv */
-    for (int i = 1; i + 1 < argc; i++) {
-        if (strcmp(argv[i], "--ref-cells") != 0)
-            continue;
-        reference_cells = atoi(argv[i + 1]);
+    /* a multiple of 4: the battery also solves the reference on half as
+     * many cells, which must be even */
+    if ((v = take_option(&argc, argv, "--ref-cells", 1))) {
+        reference_cells = atoi(v);
         if (reference_cells < 8 || reference_cells % 4) {
-            fprintf(stderr, "--ref-cells: a multiple of 4, at least 8, not %s\n", argv[i + 1]);
+            fprintf(stderr, "--ref-cells: a multiple of 4, at least 8, not %s\n", v);
             return 1;
         }
-        memmove(argv + i, argv + i + 2, (size_t)(argc - i - 1) * sizeof *argv);
-        argc -= 2;
-        break;
     }
     co.flexible_face = flexible_face;
     if (argc == 3 && strcmp(argv[1], "--once") == 0) {

@@ -294,7 +294,7 @@ static int contact_setup(rd_static_problem *pb, const rd_ring_params *p, const r
     pb->mult = calloc((size_t)(n + 2 * m), sizeof *pb->mult);
     /* flexible faces: the free ends' points have own multipliers (one per end
      * segment left the tip force's split to the penalty: end bins moved 0.047
-     * p0 at 10 x k); order 3, 0.1 x, n = 320: tip 1.551 -> 1.492 N (exact
+     * p0 at 10 x k); order 3, 0.1 x, n = 320: tip 1.551 -> 1.483 N (exact
      * 1.473); binned pressure within 0.02 p0 on 19 -> 22 of 32 battery bores;
      * with rigid faces 15 -> 16, but 10 x k moved 3 more gaps past their
      * estimate (bench_static [--face] --battery, --stiffness) */

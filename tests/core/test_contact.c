@@ -457,8 +457,34 @@ static void test_jacobian(void)
     rd_ring_free(ring);
 }
 
+/* rd_contact_bins: a segment beside a gap edge puts its force on the part
+ * of its arc that touches.  Segment [89.5, 91.5] deg, its force spread over
+ * its arc (centroid in the middle), a light gap from 80 to 89.8 deg: 0.2 of
+ * its 1.7 touching degrees lie in bin 8 (80-90), 1.5 in bin 9.  A run no
+ * deeper than twice the floor may be contact: then the whole arc, 0.5 of 2
+ * degrees in bin 8. */
+static void test_bins_touching(void)
+{
+    double lo[2] = {87.5, 89.5}, force[2] = {0.0, 3.0}, at[2] = {88.5, 90.5};
+    const double deg = M_PI / 180.0;
+    for (int deep = 0; deep < 2; deep++) {
+        rd_contact_result r;
+        memset(&r, 0, sizeof r);
+        r.gap_floor = 1e-9;
+        r.n_gaps = 1;
+        r.gaps[0] = (rd_contact_gap){80.0, 89.8, deep ? 1e-6 : 1.5e-9, 85.0};
+        rd_contact_bins(lo, 2.0, force, at, 2, 1.0, &r);
+        /* bin 8 holds 2.5 deg of the ring's arc (87.5-90), bin 9 1.5 deg */
+        double in8 = deep ? 0.2 / 1.7 : 0.5 / 2.0;
+        CHECK_REL(r.bin_pressure[8], 3.0 * in8 / (2.5 * deg), 1e-12, "bin 8 (deep %d)", deep);
+        CHECK_REL(r.bin_pressure[9], 3.0 * (1.0 - in8) / (1.5 * deg), 1e-12, "bin 9 (deep %d)",
+                  deep);
+    }
+}
+
 int main(void)
 {
+    test_bins_touching();
     test_jacobian();
     test_estimates();
     test_reference();
