@@ -26,7 +26,10 @@
  *       3; the CPU time of this one-threaded process is what the solve
  *       costs on a free core when the machine is shared); last, the
  *       reference's CPU time a bore and its active-set passes (range).
- *   --face (with --battery, --bins, --stiffness): flexible running faces
+ *   bench_static --dump  every battery bore: the reference (2880, 1440
+ *       cells) and fixed n = 40 ... 1280 without refinement, one JSON line a
+ *       bore (bins, fraction, gaps, per-segment pressure; for the estimates).
+ *   --face (with --battery, --bins, --stiffness, --dump): flexible running faces
  *       (rd_contact_opts.flexible_face) instead of rigid ones.
  *   --cap N (with --battery, --bins, --stiffness): rd_contact_opts.max_segments
  *       N instead of its default.
@@ -195,7 +198,8 @@ static void battery(const rd_ring_params *p)
     double floor_m = 10 * p0 / rd_contact_default_stiffness(p);
     int total = 0, ok[4] = {0}, track[4] = {0}, fast = 0, settled = 0, settled_ok = 0,
         ref_passes[2] = {1 << 30, 0}, its[3] = {1 << 30, 0, 0};
-    double ref_cpu[2] = {INFINITY, 0};
+    double ref_cpu[2] = {INFINITY, 0}, tip_worst = 0;
+    int tip_ok = 0;
     printf("## contact in distorted bores, default settings, vs the %s curved-beam reference\n\n",
            reference_kind == REF_LINEAR ? "linear"
            : reference_kind == REF_NL   ? "geometrically exact (follower F_t)"
@@ -203,8 +207,8 @@ static void battery(const rd_ring_params *p)
     printf("| k | A / bound | phase | n | met | wall (s) | cpu (s) | contact fraction: error "
            "(estimate) "
            "| largest gap: error (estimate) | gap edges, deg | binned pressure / p0 | reference's "
-           "own bins / p0 |\n"
-           "|---|---|---|---|---|---|---|---|---|---|---|---|\n");
+           "own bins / p0 | tip forces: error, N |\n"
+           "|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
     for (int oi = 0; oi < 4; oi++)
         for (int fi = 0; fi < 4; fi++)
             for (int pi = 0; pi < 2; pi++) {
@@ -259,7 +263,13 @@ static void battery(const rd_ring_params *p)
                                 ? fabs(c.max_clearance - r.max_clearance) / r.max_clearance
                                 : NAN;
                 double eg = c.max_clearance > 0 ? c.estimates.max_clearance / c.max_clearance : NAN;
-                double de = edge_error(&c, &r);
+                double de = edge_error(&c, &r), dtip = 0;
+                for (int e = 0; e < 2; e++) {
+                    dtip = fmax(dtip, fabs(c.tip_force[e] - r.tip_force[e]));
+                    tip_worst = fmax(tip_worst, fabs(c.tip_force[e] - r.tip_force[e]) /
+                                                    fmax(r.tip_force[e], 0.1));
+                    tip_ok += fabs(c.tip_force[e] - r.tip_force[e]) <= 0.02 * r.tip_force[e] + 0.01;
+                }
                 total++;
                 ok[0] += dcf <= 0.02;
                 ok[1] += !(dg > 0.05);
@@ -277,10 +287,10 @@ static void battery(const rd_ring_params *p)
                 its[2] += c.stats.iterations;
                 printf(
                     "| %d | %.2g | %g | %d | %s | %.3f | %.3f | %.4f (%.4f) | %+.1f %% (%.1f %%) | "
-                    "%.2f (%.2f) | %.3f (%.3f) | %.3f |\n",
+                    "%.2f (%.2f) | %.3f (%.3f) | %.3f | %.3f |\n",
                     k, Ab, phases[pi], c.stats.segments, c.accuracy_met ? "yes" : "no", wall, cpu_s,
                     dcf, c.estimates.contact_fraction, 100 * dg, 100 * eg, de,
-                    c.estimates.gap_edges_deg, dp, c.estimates.pressure, ref_dp);
+                    c.estimates.gap_edges_deg, dp, c.estimates.pressure, ref_dp, dtip);
                 rd_contact_result_cleanup(&c);
             }
     printf("\n%d bores. Within the targets: contact fraction (0.02) %d, largest gap (5 %%) %d, "
@@ -291,6 +301,9 @@ static void battery(const rd_ring_params *p)
     printf("Binned pressure where the reference's own bins settle within 0.02 p0 (%d cells "
            "against %d): %d of %d bores within 0.02 p0.\n",
            reference_cells / 2, reference_cells, settled_ok, settled);
+    printf("Tip forces within 2 %% + 0.01 N of the reference's: %d of %d free ends (worst %.1f %% "
+           "of the larger of the reference's and 0.1 N).\n",
+           tip_ok, 2 * total, 100 * tip_worst);
     printf("The reference (%d cells): %.3f-%.3f s CPU a bore, %d-%d active-set passes.\n",
            reference_cells, ref_cpu[0], ref_cpu[1], ref_passes[0], ref_passes[1]);
     printf("Newton iterations of the finest level's solve: %d-%d a bore, %d in all.\n", its[0],
@@ -402,6 +415,80 @@ static void bins_one(const rd_ring_params *p, int k, double fac, double phase, i
     rd_contact_result_cleanup(&c);
 }
 
+static void dump_arr(const char *name, const double *a, int n, double scale)
+{
+    printf("\"%s\":[", name);
+    for (int i = 0; i < n; i++)
+        printf("%s%.6g", i ? "," : "", a[i] / scale);
+    printf("]");
+}
+
+/* --dump: every battery bore's reference (2880 and 1440 cells) and ringdyn
+ * at fixed n = 40 ... 1280 without refinement, one JSON object a line (the
+ * estimates' design data: bins / p0, fraction, gaps, per-segment pressure). */
+static void dump_battery(const rd_ring_params *p)
+{
+    const int orders[] = {2, 3, 4, 6}, ns[] = {40, 80, 160, 320, 640, 1280};
+    const double facs[] = {0.1, 1, 3, 10}, phases[] = {0, 17};
+    double p0 = 2 * p->tangential_force / (p->diameter * p->axial_height);
+    double floor_m = 10 * p0 / rd_contact_default_stiffness(p);
+    for (int oi = 0; oi < 4; oi++)
+        for (int fi = 0; fi < 4; fi++)
+            for (int pi = 0; pi < 2; pi++) {
+                double Ab;
+                rd_contact_opts o = battery_bore(p, orders[oi], facs[fi], phases[pi], &Ab);
+                printf("{\"k\":%d,\"fac\":%g,\"phase\":%g,\"ref\":[", orders[oi], Ab, phases[pi]);
+                for (int h = 0; h < 2; h++) {
+                    ref_result r;
+                    int cells = reference_cells;
+                    reference_cells >>= h;
+                    int rc = reference_solve(p, &o, floor_m, &r);
+                    reference_cells = cells;
+                    if (rc)
+                        die("reference", &(rd_error){0});
+                    printf("%s{\"cf\":%.8g,\"gmax\":%.6g,\"tips\":[%.6g,%.6g],", h ? "," : "",
+                           r.contact_fraction, r.max_clearance, r.tip_force[0], r.tip_force[1]);
+                    dump_arr("bins", r.bin_pressure, RD_CONTACT_BINS, p0);
+                    printf(",\"gaps\":[");
+                    for (int g = 0; g < r.n_gaps; g++)
+                        printf("%s[%.6g,%.6g,%.6g]", g ? "," : "", r.gaps[g].start_deg,
+                               r.gaps[g].end_deg, r.gaps[g].max_clearance);
+                    printf("]}");
+                }
+                printf("],\"lev\":[");
+                for (int li = 0; li < 6; li++) {
+                    rd_contact_result c;
+                    rd_static_opts so;
+                    rd_static_opts_default(&so);
+                    so.estimate_error = 0;
+                    rd_error err;
+                    rd_error_init(&err);
+                    if (rd_contact_solve(p, ns[li], &o, &so, NULL, &c, &err) != RD_OK)
+                        die("dump", &err);
+                    printf("%s{\"n\":%d,\"cf\":%.8g,\"gmax\":%.6g,\"pen\":%.6g,\"marg\":%.6g,"
+                           "\"sp\":%.6g,\"its\":%d,\"tips\":[%.6g,%.6g],",
+                           li ? "," : "", ns[li], c.contact_fraction, c.max_clearance,
+                           c.max_penetration, c.marginal_gap_deg, c.point_spacing_deg,
+                           c.stats.iterations, c.tip_force[0], c.tip_force[1]);
+                    dump_arr("bins", c.bin_pressure, RD_CONTACT_BINS, p0);
+                    printf(",");
+                    dump_arr("ang", c.angle_deg, c.points, 1.0);
+                    printf(",");
+                    dump_arr("p", c.pressure, c.points, p0);
+                    printf(",");
+                    dump_arr("cl", c.clearance, c.points, 1.0);
+                    printf(",\"gaps\":[");
+                    for (int g = 0; g < c.n_gaps; g++)
+                        printf("%s[%.6g,%.6g,%.6g]", g ? "," : "", c.gaps[g].start_deg,
+                               c.gaps[g].end_deg, c.gaps[g].max_clearance);
+                    printf("]}");
+                    rd_contact_result_cleanup(&c);
+                }
+                printf("]}\n");
+                fflush(stdout);
+            }
+}
+
 /* Takes the first `name` (and its value, if has_value) out of argv, so
  * options may stand anywhere; returns the value ("" for a flag), or NULL
  * when absent. */
@@ -478,6 +565,10 @@ int main(int argc, char **argv)
         if (argc == 7)
             p.tangential_force *= atof(argv[6]);
         bins_one(&p, atoi(argv[2]), atof(argv[3]), atof(argv[4]), argc >= 6 ? atoi(argv[5]) : 0);
+        return 0;
+    }
+    if (argc == 2 && strcmp(argv[1], "--dump") == 0) {
+        dump_battery(&p);
         return 0;
     }
     if (argc == 2 && strcmp(argv[1], "--battery") == 0) {
