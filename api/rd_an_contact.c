@@ -178,9 +178,9 @@ static json_t *contact_result(const rd_scene *scene, const rd_contact_result *re
         "conformability", rd_result_real(res->conformability), "distortion",
         distortion_bounds(scene, res), "support", rd_static_result_support(&res->stats), "numerics",
         rd_static_result_numerics(&res->stats, wall_s,
-                                  "Largest difference of the binned pressure, "
-                                  "relative to the uniform pressure, at the last two "
-                                  "refinement levels,"));
+                                  "Binned pressure (of the uniform pressure): half its "
+                                  "largest change between the last two refinement levels "
+                                  "plus twice its change at double the contact stiffness,"));
     if (out && contact_accuracy(out, res) != 0) {
         json_decref(out);
         out = NULL;

@@ -29,8 +29,9 @@
  *   bench_static --dump  every battery bore: the reference (2880, 1440
  *       cells) and fixed n = 40 ... 1280 without refinement, one JSON line a
  *       bore (bins, fraction, gaps, per-segment pressure; for the estimates).
- *   --face (with --battery, --bins, --stiffness, --dump): flexible running faces
- *       (rd_contact_opts.flexible_face) instead of rigid ones.
+ *   --rigid (with --battery, --bins, --stiffness, --dump): rigid running
+ *       faces (rd_contact_opts.flexible_face = 0) instead of the default
+ *       flexible ones.
  *   --cap N (with --battery, --bins, --stiffness): rd_contact_opts.max_segments
  *       N instead of its default.
  *
@@ -55,12 +56,16 @@ enum { REF_NL, REF_NL_DEAD, REF_LINEAR };
 static int reference_kind = REF_NL;
 static int reference_cells = 2880;
 
-/* --face anywhere: the contact solves with flexible faces
- * (rd_contact_opts.flexible_face, core/rd_contact_face.c). */
-static int flexible_face = 0;
+/* --rigid anywhere: the contact solves with rigid faces
+ * (rd_contact_opts.flexible_face = 0) instead of the default flexible ones
+ * (core/rd_contact_face.c). */
+static int rigid_face = 0;
 
 /* --cap N anywhere: rd_contact_opts.max_segments (0: its default). */
 static int cap = 0;
+
+/* --kx F anywhere: the contact stiffness F times its default (0: default). */
+static double stiffness_times = 0;
 
 static int reference_solve(const rd_ring_params *p, const rd_contact_opts *o, double floor_m,
                            ref_result *r)
@@ -172,7 +177,10 @@ static rd_contact_opts battery_bore(const rd_ring_params *p, int k, double fac, 
     double bound = thin_ring_bound(p, k), A = fmin(fac * bound, 0.004 * p->diameter);
     rd_contact_opts o;
     rd_contact_opts_default(&o);
-    o.flexible_face = flexible_face;
+    if (rigid_face)
+        o.flexible_face = 0;
+    if (stiffness_times > 0)
+        o.stiffness = stiffness_times * rd_contact_default_stiffness(p);
     if (cap)
         o.max_segments = cap;
     o.n_distortion = 1;
@@ -513,8 +521,10 @@ int main(int argc, char **argv)
     rd_contact_opts co;
     rd_contact_opts_default(&co);
     const char *v;
-    if (take_option(&argc, argv, "--face", 0))
-        flexible_face = 1;
+    if (take_option(&argc, argv, "--rigid", 0))
+        rigid_face = 1;
+    if ((v = take_option(&argc, argv, "--kx", 1)))
+        stiffness_times = atof(v);
     if ((v = take_option(&argc, argv, "--cap", 1))) {
         cap = atoi(v);
         if (cap < 4 || cap > RD_STATIC_SEGMENTS_MAX) {
@@ -541,7 +551,8 @@ int main(int argc, char **argv)
             return 1;
         }
     }
-    co.flexible_face = flexible_face;
+    if (rigid_face)
+        co.flexible_face = 0;
     if (argc == 3 && strcmp(argv[1], "--once") == 0) {
         rd_contact_result r;
         rd_static_opts so;

@@ -16,6 +16,7 @@ void rd_contact_opts_default(rd_contact_opts *o)
     o->points_per_segment = 10;
     o->accuracy = 0.01;
     o->max_segments = 320;
+    o->flexible_face = 1;
 }
 
 double rd_contact_default_stiffness(const rd_ring_params *p)
