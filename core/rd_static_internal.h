@@ -6,7 +6,9 @@
  *   rd_static_joint.c  one joint's forces and their exact derivative, and the
  *                    SO(3) maps;
  *   rd_pretension.c  the free shape under F_t (and F_l) on the gap faces;
- *   rd_contact.c     the ring pressed into a round or distorted bore.
+ *   rd_contact.c     the ring pressed into a round or distorted bore: the
+ *                    problem, its law and one solve;
+ *   rd_contact_refine.c  the refinement and the error estimates' solves.
  * The model and its equations are in rd_static.h; the state layout in
  * rd_static.c.
  */
@@ -178,6 +180,30 @@ void rd_contact_face_jacobian(const rd_static_problem *pb, int o, double J[3][3]
 /* rd_contact.c: the augmented Lagrangian's update, lambda_q <- p_q (each
  * point's current pressure); returns max_q |p_q - lambda_q| / p0 before it. */
 double rd_contact_update_multipliers(rd_static_problem *pb);
+
+/* Flexible faces (rd_contact_face.c) from this many segments on.  Below,
+ * a face bends by up to ~2 um over its long segment (n = 20), twenty times
+ * the law's widest smoothing, and Newton needed 100-260 iterations where
+ * rigid faces need 16-29 (bench_static --bins 2 1 17); those levels only
+ * start the finer ones, which converge as fast from either. */
+#define RD_CONTACT_FACE_MIN_SEGMENTS 80
+
+/* A solved level's shape, for the next level's start: per segment its
+ * reference angle (rad), radial and tangential displacement (m) and turn
+ * about the axis (rad). */
+typedef struct rd_contact_warm {
+    int n, n_mult;
+    double *ang, *ur, *ut, *rz;
+    double *mult; /* the multipliers (n_mult), for a start at the same n */
+} rd_contact_warm;
+void rd_contact_warm_free(rd_contact_warm *w);
+
+/* One contact solve at `segments`, from the shape `from` if given (a
+ * coarser level's, or the same level's with its multipliers: then at the
+ * full load), the solved shape left in `to` if given. */
+int rd_contact_once(const rd_ring_params *p, int segments, const rd_contact_opts *o,
+                    const rd_static_opts *so, const rd_monitor *mon, const rd_contact_warm *from,
+                    rd_contact_warm *to, rd_contact_result *out, rd_error *err);
 
 /* rd_contact_post.c: light gaps and contact fraction from the segments'
  * closest points (angles ts, deg, increasing; clearances cs, m) and all m n

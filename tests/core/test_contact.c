@@ -336,6 +336,18 @@ static void test_stiffness(void)
           a.estimates.max_clearance);
     rd_contact_result_cleanup(&a);
     rd_contact_result_cleanup(&b);
+    /* a stiff law in a deep distortion: the coarse levels of rigid faces do
+     * not converge (order 2 at 2.8 x the bound, 17 deg, 10 x k0: n = 20 and
+     * 40 stall), the refinement starts from the first pair that does */
+    o = bore(&p, 2, 2.8, 17.0);
+    o.stiffness = 10 * rd_contact_default_stiffness(&p);
+    rd_error_init(&err);
+    int rc = rd_contact_solve(&p, 20, &o, &so, NULL, &a, &err);
+    CHECK(rc == RD_OK && a.stats.segments >= 160 && a.n_gaps == 3,
+          "stiff law, deep distortion from n = 20: %s (n %d, %d gaps)", err.message,
+          rc == RD_OK ? a.stats.segments : 0, rc == RD_OK ? a.n_gaps : 0);
+    if (rc == RD_OK)
+        rd_contact_result_cleanup(&a);
 }
 
 /* rd_contact_segment_jacobian against central differences of
