@@ -56,7 +56,15 @@ static const rd_block bore_block = {
     "Bore", "/bore (contact): the bore r_b(theta) = D/2 + sum A_k cos(k (theta - phi_k)).", 1, 0,
     bore_fields};
 
+/* rd_contact_opts.flexible_face: 0 rigid, 1 flexible (the index). */
+static const char *const face_names[] = {"rigid", "flexible", NULL};
+
 static const rd_field contact_fields[] = {
+    {"faces", RD_F_CHOICE, ST(contact.flexible_face), .choices = face_names,
+     .desc = "Each segment's running face: flexible (default), bent and sheared with the ring "
+             "between its joints from 80 segments on, or rigid, an arc turned with the segment "
+             "(the thesis model; its misfit against a bore the ring follows keeps smooth bins "
+             "0.04 p0 off at any n)."},
     {"points_per_segment", RD_F_INTEGER, ST(contact.points_per_segment), RD_MIN(1),
      RD_MAX(RD_CONTACT_POINTS_MAX), .desc = "Contact points m on each segment's running face."},
     {"max_segments", RD_F_INTEGER, ST(contact.max_segments), RD_MIN(4),

@@ -164,7 +164,7 @@ void rd_static_scene_defaults(struct rd_scene *s)
 
 static const char static_solver[] =
     "Newton's method with load stepping on the 6n equilibrium equations, large rotations, "
-    "central-difference tangent in LAPACK band storage (dgbsv)";
+    "closed-form tangent factored as block tridiagonal";
 
 json_t *rd_static_result_numerics(const rd_static_stats *st, double wall_s, const char *what)
 {
