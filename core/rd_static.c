@@ -183,17 +183,19 @@ static double *block(rd_blocktri *t, int a, int b)
  * the loads on segments i - 1 .. i + 1 by the DOFs of i - 1 .. i + 1. */
 static void face_blocks(rd_static_problem *pb, rd_blocktri *t, int i)
 {
-    double Jf[3][3][36];
-    rd_contact_face_jacobian(pb, i, Jf);
-    for (int b = 0; b < 3; b++)
-        for (int c = 0; c < 3; c++) {
-            int sb = i - 1 + b, sc = i - 1 + c;
-            if (sb < 0 || sb >= pb->n || sc < 0 || sc >= pb->n)
-                continue;
-            double *B = block(t, sb, sc);
-            for (int e = 0; e < 36; e++)
-                B[t->bs * (e % 6) + e / 6] -= Jf[b][c][e];
+    double K[RD_FACE_DOFS][RD_FACE_DOFS];
+    if (!rd_contact_face_jacobian(pb, i, K))
+        return; /* none of its points presses */
+    for (int q = 0; q < RD_FACE_DOFS; q++) {
+        int sq = i - 1 + rd_face_dof_seg[q];
+        if (sq < 0 || sq >= pb->n)
+            continue;
+        for (int c = 0; c < RD_FACE_DOFS; c++) {
+            int sc = i - 1 + rd_face_dof_seg[c];
+            if (sc >= 0 && sc < pb->n)
+                block(t, sq, sc)[t->bs * rd_face_dof[q] + rd_face_dof[c]] -= K[q][c];
         }
+    }
 }
 
 /* B (row stride ld) = B + K or, add 0, = K, for the 6x6 part of the
@@ -233,19 +235,20 @@ static void joint_blocks(rd_static_problem *pb, rd_blocktri *t)
 }
 
 /* The tangent of the whole residual, in block-tridiagonal storage: 6x6
- * blocks, or 12x12 (pairs of segments) with flexible faces (work_alloc). */
+ * blocks, or 12x12 (pairs of segments) with flexible faces (work_alloc).
+ * At the state of the last residual(): the contact faces and points as it
+ * left them (rd_contact_loads' pb->pe). */
 static void tangent(rd_static_problem *pb, rd_blocktri *t)
 {
     int n = pb->n, ld = t->bs;
     double hx = 1e-6 * pb->R, hr = 1e-6;
-    rd_contact_face_update(pb); /* the contact faces at this state (if any) */
     joint_blocks(pb, t);
     /* External loads: the contact law's derivative in closed form (differences
      * inside its bend eps were 63 % of a contact solve), the gap faces' by differences. */
     for (int i = 0; i < n; i++) {
         double J[36] = {0};
         if (pb->kind == RD_STATIC_CONTACT)
-            rd_contact_segment_jacobian(pb, i, pb->x + 3 * i, pb->Q + 9 * i, J);
+            rd_contact_segment_jacobian(pb, i, J);
         if (pb->cp0)
             face_blocks(pb, t, i);
         double *D = block(t, i, i);
@@ -713,6 +716,7 @@ void rd_static_problem_cleanup(rd_static_problem *pb)
     free(pb->Q);
     free(pb->cp);
     free(pb->mult);
+    free(pb->pe);
 }
 
 void rd_static_point_at(const rd_static_problem *pb, int i, const double c[3], double y[3])

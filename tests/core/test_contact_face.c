@@ -33,7 +33,8 @@ typedef struct setup {
     rd_contact_opts o;
     rd_ring *ring;
     rd_static_problem pb;
-    double cp[6 * N * M + 14 * N], mult[N];
+    double cp[6 * N * M + 14 * N], mult[N], r[6 * N];
+    rd_contact_eval pe[N * M];
 } setup;
 
 /* A 40-segment contact problem in a 3rd-order bore at the full load, the
@@ -58,7 +59,7 @@ static int setup_make(setup *s)
     pb->k = rd_contact_default_stiffness(&s->p), pb->eps = 0.05 * pb->p0 / pb->k;
     pb->lambda = 1.0;
     pb->cp = s->cp, pb->cp0 = s->cp + 3 * N * M, pb->face = s->cp + 6 * N * M;
-    pb->mult = s->mult;
+    pb->mult = s->mult, pb->pe = s->pe;
     for (int i = 0; i < N; i++) {
         const double *P = rd_ring_reference_point(s->ring, i);
         for (int k = 0; k < M; k++) {
@@ -74,7 +75,7 @@ static int setup_make(setup *s)
 
 static void setup_free(setup *s)
 {
-    s->pb.cp = NULL, s->pb.mult = NULL;
+    s->pb.cp = NULL, s->pb.mult = NULL, s->pb.pe = NULL;
     rd_static_problem_cleanup(&s->pb);
     rd_ring_free(s->ring);
 }
@@ -199,15 +200,19 @@ static void test_face_jacobian(void)
         int r = rows[ri];
         double Ja[5][36] = {{0}}, Jd[5][36] = {{0}}, scale = 0.0;
         rd_contact_face_update(pb);
-        rd_contact_segment_jacobian(pb, r, pb->x + 3 * r, pb->Q + 9 * r, Ja[2]);
+        rd_contact_loads(pb, s.r); /* the points at this state, for the derivatives */
+        rd_contact_segment_jacobian(pb, r, Ja[2]);
         for (int o = r - 1; o <= r + 1; o++) {
-            double Jf[3][3][36];
-            if (o < 0 || o >= N)
+            double K[RD_FACE_DOFS][RD_FACE_DOFS];
+            if (o < 0 || o >= N || !rd_contact_face_jacobian(pb, o, K))
                 continue;
-            rd_contact_face_jacobian(pb, o, Jf);
-            for (int c = 0; c < 3; c++)
-                for (int q = 0; q < 36; q++)
-                    Ja[o - 1 + c - (r - 2)][q] += Jf[r - o + 1][c][q];
+            /* K's rows of segment r into Ja (column-major 6x6 blocks of
+             * segments r - 2 .. r + 2) */
+            for (int q = 0; q < RD_FACE_DOFS; q++)
+                for (int c = 0; c < RD_FACE_DOFS; c++)
+                    if (o - 1 + rd_face_dof_seg[q] == r)
+                        Ja[o - 1 + rd_face_dof_seg[c] - (r - 2)]
+                          [rd_face_dof[q] + 6 * rd_face_dof[c]] += K[q][c];
         }
         for (int cb = 0; cb < 5; cb++) {
             int seg = r - 2 + cb;
