@@ -129,24 +129,17 @@ static int mult_of(const rd_static_problem *pb, int i, int k)
     return i;
 }
 
-/* The smooth contact law p(delta) = k e ln(1 + exp(delta / e)) at point
- * q, e the current smoothing length (hoisted out of the points' loops), its
- * penetration shifted by the point's multiplier: delta + lambda_q / k (the
- * augmented Lagrangian; lambda = 0 is the plain penalty). */
-static double pressure_at(const rd_static_problem *pb, double delta, int q, double e)
+/* The smooth contact law p(delta) = k eps ln(1 + exp(delta / eps)) at
+ * point q, its penetration shifted by the point's multiplier: delta +
+ * lambda_q / k (the augmented Lagrangian; lambda = 0 is the plain penalty). */
+static double contact_pressure(const rd_static_problem *pb, double delta, int q)
 {
     if (pb->mult)
         delta += pb->mult[q] / pb->k;
-    double z = delta / e;
+    double e = eps_now(pb), z = delta / e;
     if (z > 0)
         return pb->k * (delta + e * log1p(exp(-z)));
     return pb->k * e * log1p(exp(z));
-}
-
-/* The same at the current smoothing length. */
-static double contact_pressure(const rd_static_problem *pb, double delta, int q)
-{
-    return pressure_at(pb, delta, q, eps_now(pb));
 }
 
 /* Predictor for a contact load step: every segment moves radially with the
@@ -168,17 +161,13 @@ void rd_contact_follow_bore(rd_static_problem *pb, double l0, double l1)
 
 double rd_contact_update_multipliers(rd_static_problem *pb)
 {
-    double change = 0.0, e = eps_now(pb);
-    rd_contact_face_update(pb);
+    double change = 0.0;
     for (int i = 0; i < pb->n; i++) {
         double sp = 0.0, spd = 0.0;
         for (int k = 0; k < pb->m; k++) {
-            double y[3], rb, drb;
-            rd_static_point_at(pb, i, pb->cp + 3 * (pb->m * i + k), y);
-            double rho = hypot(y[0], y[1]);
-            bore_at(pb, y, rho, &rb, &drb);
+            const rd_contact_eval *pe = pb->pe + pb->m * i + k;
             int q = mult_of(pb, i, k);
-            double d = rho - rb, p = pressure_at(pb, d, q, e);
+            double d = pe->delta, p = pe->p;
             if (q != i) { /* a free end's point: its own */
                 double next = fmax(0.0, pb->mult[q] + pb->k * d);
                 change = fmax(change, fabs(next - pb->mult[q]));
@@ -228,11 +217,12 @@ double rd_contact_eps(const rd_static_problem *pb)
 }
 
 void rd_contact_point(const rd_static_problem *pb, int o, int k, const double y[3], double e,
-                      double *p, double *dp, double n[3])
+                      rd_contact_eval *pe)
 {
-    double rho = hypot(y[0], y[1]), rb, drb;
+    double rho = hypot(y[0], y[1]), rb, drb, *n = pe->n;
     bore_at(pb, y, rho, &rb, &drb);
-    law_and_slope(pb, rho - rb, mult_of(pb, o, k), e, p, dp);
+    pe->delta = rho - rb;
+    law_and_slope(pb, pe->delta, mult_of(pb, o, k), e, &pe->p, &pe->dp);
     /* grad(delta) = e_rho - r_b'/rho e_theta */
     n[0] = y[0] / rho + drb / rho * y[1] / rho;
     n[1] = y[1] / rho - drb / rho * y[0] / rho;
@@ -246,28 +236,28 @@ void rd_contact_segment_jacobian(const rd_static_problem *pb, int i, double J[36
         const rd_contact_eval *pe = pb->pe + pb->m * i + k;
         if (!rd_contact_presses(pe))
             continue;
-        const double *arm = pe->arm, *n = pe->n, nn = pe->nn, p = pe->p, dp = pe->dp;
-        /* F = -p A n / |n|, n = grad(delta) = e_rho - r_b'/rho e_theta */
-        double F[3] = {-p * pb->area * n[0] / nn, -p * pb->area * n[1] / nn, 0.0};
+        const double *arm = pe->arm, *n = pe->n, nn = pe->nn, a = -pb->area * pe->dp;
+        /* F = -p A n / |n|, n = grad(delta) = e_rho - r_b'/rho e_theta; a
+         * unit step in DOF d moves the point by dy (and, a turn, its arm by
+         * darm = dy), so dF = a (n . dy) n / |n| (the normal's own turn is
+         * dropped: p / rho against k, ~1e-7), dM = darm x F + arm x dF */
+        double F[3] = {-pe->p * pb->area * n[0] / nn, -pe->p * pb->area * n[1] / nn, 0.0};
         for (int d = 0; d < 6; d++) {
-            /* dy of a unit step in DOF d, and the arm's turn (rotations only) */
-            double ed[3] = {0, 0, 0}, dy[3], darm[3] = {0, 0, 0}, dF[3], m1[3], m2[3];
+            double ed[3] = {0, 0, 0}, dy[3], dF[3], m1[3] = {0, 0, 0}, m2[3];
             ed[d % 3] = 1.0;
-            if (d < 3)
+            if (d < 3) { /* n . dy = n_d; darm = 0, so m1 = 0 */
                 memcpy(dy, ed, sizeof dy);
-            else {
-                rd_cross3(ed, arm, darm);
-                memcpy(dy, darm, sizeof dy);
+            } else {
+                rd_cross3(ed, arm, dy);
+                rd_cross3(dy, F, m1);
             }
-            /* the normal's own turn is dropped: p / rho against k, ~1e-7 */
-            double s = -pb->area * dp * rd_dot3(n, dy) / nn;
+            double s = a * (d < 3 ? n[d] : rd_dot3(n, dy)) / nn;
             for (int q = 0; q < 3; q++)
                 dF[q] = s * n[q];
-            rd_cross3(darm, F, m1);
             rd_cross3(arm, dF, m2);
             for (int r = 0; r < 3; r++) {
                 J[r + 6 * d] += dF[r];
-                J[3 + r + 6 * d] += m1[r] + m2[r];
+                J[3 + r + 6 * d] += d < 3 ? m2[r] : m1[r] + m2[r];
             }
         }
     }

@@ -155,7 +155,7 @@ static void point_at(const rd_static_problem *pb, int o, int k, const double *x,
     rd_mv3(Q, c, pe->arm);
     for (int q = 0; q < 3; q++)
         y[q] = x[q] + pe->arm[q];
-    rd_contact_point(pb, o, k, y, e, &pe->p, &pe->dp, pe->n);
+    rd_contact_point(pb, o, k, y, e, pe);
     if (!rd_contact_presses(pe))
         return;
     pe->nn = sqrt(rd_dot3(pe->n, pe->n));
@@ -259,16 +259,20 @@ int rd_contact_face_jacobian(const rd_static_problem *pb, int o,
         }
         /* d f / d q' = c g(q) g(q'), less the rigid part the closed form
          * has (the face's second derivatives, p / (k L) of this, left out):
-         * gr's outer product on the owner's block, h = gr there, else 0 */
+         * gr's outer product on the owner's block, h = gr there, else 0;
+         * symmetric, so its upper triangle only */
         for (int q = 0; q < RD_FACE_DOFS; q++) {
             double h = q >= 3 && q < 9 ? gr[q - 3] : 0.0;
-            for (int t = 0; t < 3; t++)
+            for (int t = q; t < 3; t++)
                 K[q][t] += c * (g[q] * g[t]);
-            for (int t = 3; t < 9; t++)
+            for (int t = q > 3 ? q : 3; t < 9; t++)
                 K[q][t] += c * (g[q] * g[t] - h * gr[t - 3]);
-            for (int t = 9; t < RD_FACE_DOFS; t++)
+            for (int t = q > 9 ? q : 9; t < RD_FACE_DOFS; t++)
                 K[q][t] += c * (g[q] * g[t]);
         }
     }
+    for (int q = 0; pressing && q < RD_FACE_DOFS; q++)
+        for (int t = 0; t < q; t++)
+            K[q][t] = K[t][q];
     return pressing;
 }

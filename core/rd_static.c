@@ -183,19 +183,20 @@ static double *block(rd_blocktri *t, int a, int b)
  * the loads on segments i - 1 .. i + 1 by the DOFs of i - 1 .. i + 1. */
 static void face_blocks(rd_static_problem *pb, rd_blocktri *t, int i)
 {
-    double K[RD_FACE_DOFS][RD_FACE_DOFS];
+    double K[RD_FACE_DOFS][RD_FACE_DOFS], *B[3][3];
     if (!rd_contact_face_jacobian(pb, i, K))
         return; /* none of its points presses */
-    for (int q = 0; q < RD_FACE_DOFS; q++) {
-        int sq = i - 1 + rd_face_dof_seg[q];
-        if (sq < 0 || sq >= pb->n)
-            continue;
-        for (int c = 0; c < RD_FACE_DOFS; c++) {
-            int sc = i - 1 + rd_face_dof_seg[c];
-            if (sc >= 0 && sc < pb->n)
-                block(t, sq, sc)[t->bs * rd_face_dof[q] + rd_face_dof[c]] -= K[q][c];
+    for (int b = 0; b < 3; b++)
+        for (int c = 0; c < 3; c++) {
+            int sb = i - 1 + b, sc = i - 1 + c;
+            B[b][c] = sb < 0 || sb >= pb->n || sc < 0 || sc >= pb->n ? NULL : block(t, sb, sc);
         }
-    }
+    for (int q = 0; q < RD_FACE_DOFS; q++)
+        for (int c = 0; c < RD_FACE_DOFS; c++) {
+            double *Bq = B[rd_face_dof_seg[q]][rd_face_dof_seg[c]];
+            if (Bq)
+                Bq[t->bs * rd_face_dof[q] + rd_face_dof[c]] -= K[q][c];
+        }
 }
 
 /* B (row stride ld) = B + K or, add 0, = K, for the 6x6 part of the
@@ -610,6 +611,7 @@ static int uzawa(rd_static_problem *pb, work *w, double tol, int *budget, rd_sta
                  double *res)
 {
     for (int it = 0; it < UZAWA_MAX; it++) {
+        /* at the state newton left, its last residual's */
         double change = rd_contact_update_multipliers(pb);
         int ok = newton(pb, w, tol, budget, &st->iterations, res);
         if (ok < 0)

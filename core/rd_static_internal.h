@@ -57,16 +57,18 @@ static inline void rd_mm3(const double A[9], const double B[9], double out[9])
 /* ---- the problem ---------------------------------------------------------- */
 
 /* One contact point as the last rd_contact_loads found it (what the
- * tangent's contact blocks read, so a Newton iteration evaluates each point
- * once): arm = Q c its offset turned to global, n = grad(delta) the bore's
- * outward normal (|n| = nn, ~1), the law p and its slope dp; with flexible
+ * tangent's contact blocks and the multipliers' update read, so a Newton
+ * iteration evaluates each point once): its penetration delta (m, without
+ * the multiplier's shift), arm = Q c its offset turned to global, n =
+ * grad(delta) the bore's outward normal (|n| = nn, ~1), the law p and its
+ * slope dp; with flexible
  * faces dyu, the point's move per unit u, and du[b][d], u's derivative by
  * the planar DOF d of segment i - 1 + b (rd_contact_face.c).  A point off
  * the bore by more than 746 smoothing lengths has p = dp = 0 exactly (the
  * law's exp underflows) and nothing else filled: it adds nothing to the
  * loads or their derivative. */
 typedef struct rd_contact_eval {
-    double arm[3], n[3], nn, p, dp, dyu[3], du[3][3];
+    double delta, arm[3], n[3], nn, p, dp, dyu[3], du[3][3];
 } rd_contact_eval;
 
 typedef struct rd_static_problem {
@@ -178,12 +180,13 @@ void rd_contact_segment_jacobian(const rd_static_problem *pb, int i, double J[36
 /* The predictor of a load step: each segment moved with the bore under it
  * from load factor l0 to l1. */
 void rd_contact_follow_bore(rd_static_problem *pb, double l0, double l1);
-/* rd_contact.c: the law's smoothing length at the current load factor; the
- * law p and its slope dp at the point y of segment o (its multiplier's
- * shift included), and n = grad(delta), the bore's outward normal (|n| ~1). */
+/* rd_contact.c: the law's smoothing length at the current load factor; at
+ * the point y of segment o, pe's delta, the law p and its slope dp (its
+ * multiplier's shift included) and n = grad(delta), the bore's outward
+ * normal (|n| ~1). */
 double rd_contact_eps(const rd_static_problem *pb);
 void rd_contact_point(const rd_static_problem *pb, int o, int k, const double y[3], double e,
-                      double *p, double *dp, double n[3]);
+                      rd_contact_eval *pe);
 /* rd_contact_face.c: each contact point's offset cp set to the rigid face's
  * cp0 moved outward by the ring's bending and shear over its segment, from
  * the current state (nothing when cp0 is NULL). */
@@ -202,8 +205,9 @@ extern const int rd_face_dof_seg[RD_FACE_DOFS], rd_face_dof[RD_FACE_DOFS];
  * K is written only when some do (and never without a face). */
 int rd_contact_face_jacobian(const rd_static_problem *pb, int o,
                              double K[RD_FACE_DOFS][RD_FACE_DOFS]);
-/* rd_contact.c: the augmented Lagrangian's update, lambda_q <- p_q (each
- * point's current pressure); returns max_q |p_q - lambda_q| / p0 before it. */
+/* rd_contact.c: the augmented Lagrangian's update at the state of the last
+ * rd_contact_loads, lambda_q <- p_q (each point's current pressure);
+ * returns max_q |p_q - lambda_q| / p0 before it. */
 double rd_contact_update_multipliers(rd_static_problem *pb);
 
 /* rd_contact_post.c: light gaps and contact fraction from the segments'
