@@ -34,6 +34,10 @@
  * the segments go in pairs, 12x12 blocks (n odd: a last, decoupled dummy
  * segment with an identity block), again block tridiagonal (n = 320: 2.6 M
  * instructions a factorization, LAPACK's band LU of half bandwidth 17 3.5 M).
+ * The contact ring stays exactly planar, and its tangent couples no
+ * in-plane DOF (dx, dy, dpsi_z) with an out-of-plane one: then the two
+ * halves are factored apart (rd_blocktri_split, plane_solve), the same
+ * numbers at a quarter of the cost.
  * It pivots only inside the diagonal blocks; its pivot
  * blocks are the tangents of the sub-chain 0..i with segment i + 1 held, a
  * cantilever, regular wherever the chain's own stiffness outweighs its load
@@ -331,6 +335,9 @@ typedef struct work {
     double *r, *delta, *x0, *Q0, *xs, *Qs;
     double *Y;     /* N x 6: the field method's Woodbury columns; NULL otherwise */
     rd_blocktri t; /* the tangent, then its factors */
+    /* contact: the tangent's in-plane and out-of-plane parts (plane_solve) */
+    rd_blocktri part[2];
+    double *xh; /* their right-hand sides, t.nb t.bs */
     const rd_monitor *mon;
     double progress; /* accepted load factor, reported as the solve's fraction */
     rd_error *err;
@@ -397,6 +404,38 @@ static int woodbury(rd_static_problem *pb, work *w)
     return 0;
 }
 
+/* A segment's in-plane DOFs (dx, dy, dpsi_z) and its out-of-plane ones, in a
+ * block of one segment (the first three of each) or of two. */
+static const int in_plane[6] = {0, 1, 5, 6, 7, 11}, out_of_plane[6] = {2, 3, 4, 8, 9, 10};
+
+/* The contact ring stays in its plane (in-plane loads; the support holds
+ * the axial motion and the tilts; measured: every state and tangent of the
+ * battery exactly planar, the in-plane and out-of-plane DOFs coupled by no
+ * nonzero entry), so its tangent falls into two uncoupled halves, factored
+ * separately at a quarter of the cost with exactly the numbers of the whole
+ * (rd_blocktri_split).  Returns -1 if the tangent does not split (then
+ * nothing is done), else newton_step's 0 or 1 with w->delta solved. */
+static int plane_solve(work *w)
+{
+    const int *const sel[2] = {in_plane, out_of_plane};
+    if (!w->xh || !rd_blocktri_split(&w->t, sel, w->part))
+        return -1;
+    if (rd_blocktri_factor(&w->part[0]) != 0 || rd_blocktri_factor(&w->part[1]) != 0)
+        return 1;
+    int hs = w->t.bs / 2;
+    for (int h = 0; h < 2; h++) {
+        double *x = w->xh + (size_t)h * hs * w->t.nb;
+        for (int i = 0; i < w->t.nb; i++)
+            for (int r = 0; r < hs; r++)
+                x[hs * i + r] = w->delta[w->t.bs * i + sel[h][r]];
+        rd_blocktri_solve(&w->part[h], x);
+        for (int i = 0; i < w->t.nb; i++)
+            for (int r = 0; r < hs; r++)
+                w->delta[w->t.bs * i + sel[h][r]] = x[hs * i + r];
+    }
+    return 0;
+}
+
 /* Solves J delta = -r (w->delta holds -r on entry) with the factored
  * block-tridiagonal tangent in w->t.  For the field method J = J_tri + U V^T,
  * U = C in the first segment's rows, V selecting the last segment's DOFs,
@@ -407,10 +446,14 @@ static int woodbury(rd_static_problem *pb, work *w)
  * 0, 1 (singular tangent) or < 0 (w->err set). */
 static int newton_step(rd_static_problem *pb, work *w)
 {
-    int N = 6 * pb->n, rc;
-    if (rd_blocktri_factor(&w->t) != 0)
-        return 1;
-    rd_blocktri_solve(&w->t, w->delta);
+    int N = 6 * pb->n, rc = plane_solve(w);
+    if (rc > 0)
+        return rc;
+    if (rc < 0) {
+        if (rd_blocktri_factor(&w->t) != 0)
+            return 1;
+        rd_blocktri_solve(&w->t, w->delta);
+    }
     if (pb->kind == RD_STATIC_PRETENSION && pb->method == RD_PRETENSION_FIELD && w->Y &&
         (rc = woodbury(pb, w)) != 0)
         return rc;
@@ -533,7 +576,10 @@ static void work_free(work *w)
     free(w->xs);
     free(w->Qs);
     free(w->Y);
+    free(w->xh);
     rd_blocktri_cleanup(&w->t);
+    rd_blocktri_cleanup(&w->part[0]);
+    rd_blocktri_cleanup(&w->part[1]);
 }
 
 static int work_alloc(const rd_static_problem *pb, work *w, rd_error *err)
@@ -548,8 +594,13 @@ static int work_alloc(const rd_static_problem *pb, work *w, rd_error *err)
     int need_y = pb->kind == RD_STATIC_PRETENSION && pb->method == RD_PRETENSION_FIELD;
     if (need_y)
         w->Y = malloc((size_t)6 * N * sizeof *w->Y);
+    int halves = pb->kind == RD_STATIC_CONTACT; /* plane_solve */
+    if (halves)
+        w->xh = malloc((size_t)6 * s * nb * sizeof *w->xh);
     if ((need_y && !w->Y) || !w->r || !w->delta || !w->x0 || !w->Q0 || !w->xs || !w->Qs ||
-        rd_blocktri_init(&w->t, nb, 6 * s) != RD_OK)
+        rd_blocktri_init(&w->t, nb, 6 * s) != RD_OK ||
+        (halves && (!w->xh || rd_blocktri_init(&w->part[0], nb, 3 * s) != RD_OK ||
+                    rd_blocktri_init(&w->part[1], nb, 3 * s) != RD_OK)))
         return rd_error_set(err, RD_ENOMEM, "", "Out of memory for the %d-segment static solve.",
                             n);
     return RD_OK;
