@@ -1,8 +1,8 @@
 /*
  * rd_static_internal.h — what the static files share (no caller outside
  * core/ may include this, but tests/ may, for the derivatives they check):
- *   rd_static.c      the residual and its tangent, Newton's method and the
- *                    load stepping;
+ *   rd_static.c      the residual, Newton's method and the load stepping;
+ *   rd_static_tangent.c  the residual's tangent;
  *   rd_static_joint.c  one joint's forces and their exact derivative, and the
  *                    SO(3) maps;
  *   rd_pretension.c  the free shape under F_t (and F_l) on the gap faces;
@@ -15,6 +15,7 @@
 
 #include <string.h>
 
+#include "rd_blocktri.h"
 #include "rd_internal.h"
 #include "rd_static.h"
 
@@ -139,6 +140,17 @@ void rd_static_joint_residual(const rd_static_problem *pb, int j, const double *
  * dx_B, dpsi_B) as in rd_static.c. */
 void rd_static_joint_tangent(const rd_static_problem *pb, int j, const double *xA, const double *QA,
                              const double *xB, const double *QB, double K[144]);
+
+/* rd_static_tangent.c: the residual's tangent into t (6x6 blocks, or 12x12
+ * with flexible contact faces: rd_static_per_block segments a block), at
+ * the state of the last residual evaluation; Marquardt's damping of its
+ * diagonal by mu; a copy (xo, Qo) of a segment's state moved by h along
+ * DOF k (0..2 translate, 3..5 turn). */
+int rd_static_per_block(const rd_static_problem *pb);
+void rd_static_tangent(rd_static_problem *pb, rd_blocktri *t);
+void rd_static_damp(rd_static_problem *pb, rd_blocktri *t, double mu);
+void rd_static_perturb(const double *x, const double *Q, int k, double h, double xo[3],
+                       double Qo[9]);
 
 /* Strain energy, support force and moment, sizes, after a solve. */
 void rd_static_stats_fill(rd_static_problem *pb, rd_static_stats *st);
