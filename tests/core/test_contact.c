@@ -387,6 +387,8 @@ static void test_jacobian(void)
     pb.area = pb.h * pb.r_o * phi / m,
     pb.p0 = 2 * p.tangential_force / (p.diameter * p.axial_height);
     pb.k = rd_contact_default_stiffness(&p), pb.eps = 0.05 * pb.p0 / pb.k, pb.lambda = 1.0;
+    /* bore_at's cos, sin of k phi_k (contact_setup's) */
+    pb.bore_phase[0] = cos(3 * 17.0 * PI / 180), pb.bore_phase[1] = sin(3 * 17.0 * PI / 180);
     double cp[3 * 40 * 5], mult[40], res[6 * 40] = {0};
     rd_contact_eval pe[40 * 5];
     pb.cp = cp, pb.mult = mult, pb.pe = pe;

@@ -9,6 +9,7 @@
  *  - the face's part of the contact load's derivative (which couples a
  *    segment to its neighbours) against central differences of the load
  *    with the face recomputed at each perturbed state;
+ *  - points off the bore skipped exactly where the law is 0;
  *  - the binned pressure away from gap edges and free ends against the
  *    independent geometrically exact reference (contact_reference_nl.c):
  *    converged at n = 320 with flexible faces, where the rigid faces stay
@@ -58,6 +59,8 @@ static int setup_make(setup *s)
     pb->p0 = 2 * s->p.tangential_force / (s->p.diameter * s->p.axial_height);
     pb->k = rd_contact_default_stiffness(&s->p), pb->eps = 0.05 * pb->p0 / pb->k;
     pb->lambda = 1.0;
+    /* bore_at's cos, sin of k phi_k (contact_setup's) */
+    pb->bore_phase[0] = cos(3 * 17.0 * PI / 180), pb->bore_phase[1] = sin(3 * 17.0 * PI / 180);
     pb->cp = s->cp, pb->cp0 = s->cp + 3 * N * M, pb->face = s->cp + 6 * N * M;
     pb->mult = s->mult, pb->pe = s->pe;
     for (int i = 0; i < N; i++) {
@@ -249,6 +252,61 @@ static void test_face_jacobian(void)
     setup_free(&s);
 }
 
+/* Points off the bore: rd_contact_loads marks a point as not pressing (p =
+ * dp = 0, its loads and derivatives skipped) exactly where the law's own
+ * value is 0 (exp(z) underflows, z = (delta + lambda / k) / eps below
+ * -745.13), never where it is a tiny positive number (down to 5e-324 of k
+ * eps: z above -745); segments moved off the bore by 0 to 1170 eps so their
+ * points' z sweeps that edge.  A segment whose points and neighbours'
+ * points all are off gets exactly no load and no derivative. */
+static void test_far_points(void)
+{
+    setup s;
+    CHECK(setup_make(&s), "setup");
+    rd_static_problem *pb = &s.pb;
+    for (int i = 0; i < N; i++) {
+        double a = rd_ring_get_segment_angle(s.ring, i), A = s.o.distortion[0].amplitude;
+        double dr = s.pb.bore_dr + A * cos(3 * (a - 17 * PI / 180)) - 30.0 * i * pb->eps;
+        pb->x[3 * i] += dr * cos(a), pb->x[3 * i + 1] += dr * sin(a);
+        set_turn(pb->Q + 9 * i, 3 * A / pb->R * sin(3 * (a - 17 * PI / 180)));
+    }
+    rd_contact_face_update(pb);
+    memset(s.r, 0, sizeof s.r);
+    rd_contact_loads(pb, s.r);
+    int off = 0, edge = 0, wrong = 0, pressing[N] = {0};
+    for (int q = 0; q < N * M; q++) {
+        const rd_contact_eval *pe = &s.pe[q];
+        double z = (pe->delta + s.mult[q / M] / pb->k) / pb->eps;
+        int presses = rd_contact_presses(pe);
+        pressing[q / M] += presses;
+        off += !presses;
+        edge += z > -745.0 && z < -700.0;
+        /* the law's value here: k eps ln(1 + e^z), 0 exactly below -745.13 */
+        double law = pb->k * pb->eps * log1p(exp(z));
+        if (presses != (law > 0.0) || (presses && !(pe->dp > 0.0)) ||
+            fabs(pe->p - law) > 1e-12 * law)
+            wrong++;
+    }
+    CHECK(wrong == 0, "%d points pressing or not unlike the law's value", wrong);
+    CHECK(off > N * M / 3 && edge > 0, "the case misses its point: %d off, %d in z -745..-700", off,
+          edge);
+    for (int i = 1; i < N - 1; i++) {
+        double J[36], K[RD_FACE_DOFS][RD_FACE_DOFS], big = 0.0;
+        rd_contact_segment_jacobian(pb, i, J);
+        for (int q = 0; q < 36; q++)
+            big = fmax(big, fabs(J[q]));
+        int nf = rd_contact_face_jacobian(pb, i, K);
+        CHECK(nf == pressing[i] && (pressing[i] > 0 || big == 0.0),
+              "segment %d: %d points press, the face's block counted %d, |J| %g", i, pressing[i],
+              nf, big);
+        if (pressing[i - 1] + pressing[i] + pressing[i + 1] > 0)
+            continue;
+        for (int q = 0; q < 6; q++)
+            CHECK(s.r[6 * i + q] == 0.0, "segment %d off the bore has load %g", i, s.r[6 * i + q]);
+    }
+    setup_free(&s);
+}
+
 /* The largest binned-pressure error / p0 over the bins with no free end
  * and no reference gap edge within a bin of them, at n segments. */
 static double smooth_bins_error(const rd_ring_params *p, rd_contact_opts o, int n, int flexible,
@@ -383,6 +441,7 @@ int main(void)
 {
     test_bent_ring();
     test_face_jacobian();
+    test_far_points();
     test_against_reference();
     test_tip_force();
     return check_done();
