@@ -80,13 +80,14 @@ static void bore_radius(const rd_static_problem *pb, double theta, double *r, do
     *dr = mu * da;
 }
 
-/* The same at the angle of the point y (y[0], y[1] not both 0), without
- * trigonometry: cos k theta + i sin k theta = ((y0 + i y1) / rho)^k, turned
- * by the precomputed cos, sin of k phi_k (5-9 % of a distorted bore's
- * solve, callgrind). */
-static void bore_at(const rd_static_problem *pb, const double y[3], double *r, double *dr)
+/* The same at the angle of the point y, rho = hypot(y[0], y[1]) > 0,
+ * without trigonometry: cos k theta + i sin k theta = ((y0 + i y1) /
+ * rho)^k, turned by the precomputed cos, sin of k phi_k (5-9 % of a
+ * distorted bore's solve, callgrind). */
+static void bore_at(const rd_static_problem *pb, const double y[3], double rho, double *r,
+                    double *dr)
 {
-    double rho = hypot(y[0], y[1]), c = y[0] / rho, s = y[1] / rho;
+    double c = y[0] / rho, s = y[1] / rho;
     double a = pb->bore_dr, da = 0.0;
     for (int q = 0; q < pb->co->n_distortion; q++) {
         const rd_distortion *d = &pb->co->distortion[q];
@@ -151,15 +152,12 @@ void rd_contact_follow_bore(rd_static_problem *pb, double l0, double l1)
 double rd_contact_update_multipliers(rd_static_problem *pb)
 {
     double change = 0.0;
-    rd_contact_face_update(pb);
     for (int i = 0; i < pb->n; i++) {
         double sp = 0.0, spd = 0.0;
         for (int k = 0; k < pb->m; k++) {
-            double y[3], rb, drb;
-            rd_static_point_at(pb, i, pb->cp + 3 * (pb->m * i + k), y);
-            bore_at(pb, y, &rb, &drb);
+            const rd_contact_eval *pe = pb->pe + pb->m * i + k;
             int q = mult_of(pb, i, k);
-            double d = hypot(y[0], y[1]) - rb, p = contact_pressure(pb, d, q);
+            double d = pe->delta, p = pe->p;
             if (q != i) { /* a free end's point: its own */
                 double next = fmax(0.0, pb->mult[q] + pb->k * d);
                 change = fmax(change, fabs(next - pb->mult[q]));
@@ -179,12 +177,19 @@ double rd_contact_update_multipliers(rd_static_problem *pb)
 }
 
 /* The law at one point with its slope dp/ddelta (the logistic function of
- * z; e the current smoothing length, hoisted out of the points' loop). */
+ * z; e the current smoothing length, hoisted out of the points' loop).
+ * Below z = -746 exp(z) underflows to 0 (from -745.13 on), so both are
+ * exactly 0 there: returned without the calls (most points of a bore with
+ * light gaps). */
 static void law_and_slope(const rd_static_problem *pb, double delta, int i, double e, double *p,
                           double *dp)
 {
     delta += pb->mult ? pb->mult[i] / pb->k : 0.0;
     double z = delta / e;
+    if (z < -746.0) {
+        *p = *dp = 0.0;
+        return;
+    }
     if (z > 0) {
         double q = exp(-z);
         *p = pb->k * (delta + e * log1p(q));
@@ -202,53 +207,47 @@ double rd_contact_eps(const rd_static_problem *pb)
 }
 
 void rd_contact_point(const rd_static_problem *pb, int o, int k, const double y[3], double e,
-                      double *p, double *dp, double n[3])
+                      rd_contact_eval *pe)
 {
-    double rho = hypot(y[0], y[1]), rb, drb;
-    bore_at(pb, y, &rb, &drb);
-    law_and_slope(pb, rho - rb, mult_of(pb, o, k), e, p, dp);
+    double rho = hypot(y[0], y[1]), rb, drb, *n = pe->n;
+    bore_at(pb, y, rho, &rb, &drb);
+    pe->delta = rho - rb;
+    law_and_slope(pb, pe->delta, mult_of(pb, o, k), e, &pe->p, &pe->dp);
     /* grad(delta) = e_rho - r_b'/rho e_theta */
     n[0] = y[0] / rho + drb / rho * y[1] / rho;
     n[1] = y[1] / rho - drb / rho * y[0] / rho;
     n[2] = 0.0;
 }
 
-void rd_contact_segment_jacobian(const rd_static_problem *pb, int i, const double *x,
-                                 const double *Q, double J[36])
+void rd_contact_segment_jacobian(const rd_static_problem *pb, int i, double J[36])
 {
-    double e = eps_now(pb);
     memset(J, 0, 36 * sizeof *J);
     for (int k = 0; k < pb->m; k++) {
-        double arm[3], y[3], rb, drb, p, dp;
-        rd_mv3(Q, pb->cp + 3 * (pb->m * i + k), arm);
-        for (int q = 0; q < 3; q++)
-            y[q] = x[q] + arm[q];
-        double rho = hypot(y[0], y[1]);
-        bore_at(pb, y, &rb, &drb);
-        law_and_slope(pb, rho - rb, mult_of(pb, i, k), e, &p, &dp);
-        /* n = grad(delta) = e_rho - r_b'/rho e_theta; F = -p A n / |n| */
-        double n[3] = {y[0] / rho + drb / rho * y[1] / rho, y[1] / rho - drb / rho * y[0] / rho, 0};
-        double nn = sqrt(rd_dot3(n, n)),
-               F[3] = {-p * pb->area * n[0] / nn, -p * pb->area * n[1] / nn, 0.0};
+        const rd_contact_eval *pe = pb->pe + pb->m * i + k;
+        if (!rd_contact_presses(pe))
+            continue;
+        const double *arm = pe->arm, *n = pe->n, nn = pe->nn, a = -pb->area * pe->dp;
+        /* F = -p A n / |n|, n = grad(delta) = e_rho - r_b'/rho e_theta; a
+         * unit step in DOF d moves the point by dy (and, a turn, its arm by
+         * darm = dy), so dF = a (n . dy) n / |n| (the normal's own turn is
+         * dropped: p / rho against k, ~1e-7), dM = darm x F + arm x dF */
+        double F[3] = {-pe->p * pb->area * n[0] / nn, -pe->p * pb->area * n[1] / nn, 0.0};
         for (int d = 0; d < 6; d++) {
-            /* dy of a unit step in DOF d, and the arm's turn (rotations only) */
-            double ed[3] = {0, 0, 0}, dy[3], darm[3] = {0, 0, 0}, dF[3], m1[3], m2[3];
+            double ed[3] = {0, 0, 0}, dy[3], dF[3], m1[3] = {0, 0, 0}, m2[3];
             ed[d % 3] = 1.0;
-            if (d < 3)
+            if (d < 3) { /* n . dy = n_d; darm = 0, so m1 = 0 */
                 memcpy(dy, ed, sizeof dy);
-            else {
-                rd_cross3(ed, arm, darm);
-                memcpy(dy, darm, sizeof dy);
+            } else {
+                rd_cross3(ed, arm, dy);
+                rd_cross3(dy, F, m1);
             }
-            /* the normal's own turn is dropped: p / rho against k, ~1e-7 */
-            double s = -pb->area * dp * rd_dot3(n, dy) / nn;
+            double s = a * (d < 3 ? n[d] : rd_dot3(n, dy)) / nn;
             for (int q = 0; q < 3; q++)
                 dF[q] = s * n[q];
-            rd_cross3(darm, F, m1);
             rd_cross3(arm, dF, m2);
             for (int r = 0; r < 3; r++) {
                 J[r + 6 * d] += dF[r];
-                J[3 + r + 6 * d] += m1[r] + m2[r];
+                J[3 + r + 6 * d] += d < 3 ? m2[r] : m1[r] + m2[r];
             }
         }
     }
@@ -282,6 +281,7 @@ static int contact_setup(rd_static_problem *pb, const rd_ring_params *p, const r
     /* cp, then cp0 and the face's cache */
     pb->cp = malloc(((size_t)6 * n * m + 14 * (size_t)n) * sizeof *pb->cp);
     pb->mult = calloc((size_t)(n + 2 * m), sizeof *pb->mult);
+    pb->pe = malloc((size_t)n * m * sizeof *pb->pe);
     /* flexible faces: the free ends' points have own multipliers (one per end
      * segment left the tip force's split to the penalty: end bins moved 0.047
      * p0 at 10 x k); order 3, 0.1 x, n = 320: tip 1.551 -> 1.483 N (exact
@@ -289,7 +289,7 @@ static int contact_setup(rd_static_problem *pb, const rd_ring_params *p, const r
      * with rigid faces 15 -> 16, but 10 x k moved 3 more gaps past their
      * estimate (bench_static [--face] --battery, --stiffness) */
     pb->tip_mult = o->flexible_face && n >= RD_CONTACT_FACE_MIN_SEGMENTS;
-    if (!pb->cp || !pb->mult)
+    if (!pb->cp || !pb->mult || !pb->pe)
         return RD_ENOMEM;
     for (int i = 0; i < n; i++) {
         const double *P = rd_ring_reference_point(ring, i);

@@ -19,28 +19,13 @@
  * force F at the point y of segment i contributes (F, (y - x_i) x F) to
  * f_ext.
  *
- * Tangent: each joint's 12x12 block in closed form, the exact derivative of
- * g including the turn of Jl^-T(psi) (rd_static_joint.c; central differences
- * of g, 24 evaluations a joint, were 35 % of a contact solve's instructions),
- * the contact load's derivative in closed form (rd_contact_segment_jacobian,
- * with flexible faces also rd_contact_face_jacobian's neighbour blocks), the
- * gap faces' loads by central differences (6 perturbations on each of two
- * segments), the support's exactly; assembled in 6x6 blocks, block
- * tridiagonal (a joint couples two neighbours, the support holds two
- * neighbours or one segment), and factored by the block Thomas algorithm
- * (rd_blocktri.c: a third of the instructions of LAPACK's band LU of half
- * bandwidth 11).  A flexible contact face couples its segment's two
- * neighbours, i - 1 with i + 1, outside the three 6x6 block diagonals: then
- * the segments go in pairs, 12x12 blocks (n odd: a last, decoupled dummy
- * segment with an identity block), again block tridiagonal (n = 320: 2.6 M
- * instructions a factorization, LAPACK's band LU of half bandwidth 17 3.5 M).
- * It pivots only inside the diagonal blocks; its pivot
- * blocks are the tangents of the sub-chain 0..i with segment i + 1 held, a
- * cantilever, regular wherever the chain's own stiffness outweighs its load
- * terms; an exactly singular one counts as a singular tangent (the load step
- * is cut).  The field method couples the first segment's load to the last
- * segment's state, outside the three block diagonals: that 6x6 block is
- * added exactly by the Woodbury identity on the factorization (newton_step).
+ * Tangent (rd_static_tangent.c): each joint's 12x12 block in closed form,
+ * the contact loads' and the support's derivatives, block tridiagonal,
+ * factored by the block Thomas algorithm (rd_blocktri.c), the planar
+ * contact ring's in two uncoupled halves (plane_solve).  The field method
+ * couples the first segment's load to the last segment's state, outside the
+ * three block diagonals: that 6x6 block is added exactly by the Woodbury
+ * identity on the factorization (newton_step).
  */
 #include "rd_static_internal.h"
 
@@ -147,151 +132,6 @@ static double residual_norm(const rd_static_problem *pb, const double *r)
     return worst;
 }
 
-/* Perturbed copy of one segment state: direction k (0..2 translate, 3..5
- * rotate) by h. */
-static void perturb(const double *x, const double *Q, int k, double h, double xo[3], double Qo[9])
-{
-    memcpy(xo, x, 3 * sizeof *x);
-    memcpy(Qo, Q, 9 * sizeof *Q);
-    if (k < 3) {
-        xo[k] += h;
-    } else {
-        double w[3] = {0, 0, 0}, Rw[9];
-        w[k - 3] = h;
-        rd_static_rot_exp(w, Rw);
-        rd_mm3(Rw, Q, Qo);
-    }
-}
-
-/* Segments per block of the tangent: 2 with flexible faces (tangent). */
-static int per_block(const rd_static_problem *pb)
-{
-    return pb->cp0 ? 2 : 1;
-}
-
-/* The tangent's 6x6 sub-block of the rows of segment a and the columns of
- * segment b (row stride t->bs), in block row a / s (s = t->bs / 6 segments a
- * block; a / s and b / s equal or neighbours): that block row's D, U or L. */
-static double *block(rd_blocktri *t, int a, int b)
-{
-    int s = t->bs / 6, A = a / s, B = b / s;
-    double *base = (B == A ? t->D : B > A ? t->U : t->L) + (size_t)t->bs * t->bs * A;
-    return base + (size_t)t->bs * 6 * (a % s) + 6 * (b % s);
-}
-
-/* Adds segment i's flexible face's part of the contact loads' derivative:
- * the loads on segments i - 1 .. i + 1 by the DOFs of i - 1 .. i + 1. */
-static void face_blocks(rd_static_problem *pb, rd_blocktri *t, int i)
-{
-    double Jf[3][3][36];
-    rd_contact_face_jacobian(pb, i, Jf);
-    for (int b = 0; b < 3; b++)
-        for (int c = 0; c < 3; c++) {
-            int sb = i - 1 + b, sc = i - 1 + c;
-            if (sb < 0 || sb >= pb->n || sc < 0 || sc >= pb->n)
-                continue;
-            double *B = block(t, sb, sc);
-            for (int e = 0; e < 36; e++)
-                B[t->bs * (e % 6) + e / 6] -= Jf[b][c][e];
-        }
-}
-
-/* B (row stride ld) = B + K or, add 0, = K, for the 6x6 part of the
- * row-major 12x12 K at K's pointer. */
-static void put_block(double *B, int ld, const double *K, int add)
-{
-    for (int r = 0; r < 6; r++)
-        for (int c = 0; c < 6; c++)
-            B[ld * r + c] = (add ? B[ld * r + c] : 0.0) + K[12 * r + c];
-}
-
-/* The joints' blocks, exact (rd_static_joint.c, K row-major 12x12), into
- * the tangent.  With single segments joint j is the only one in U_j and
- * L_j+1 and the first in D_j+1: those are set, not added to, so only D_0 is
- * cleared (L_0 and U_n-1 are not read); with pairs all is cleared and added
- * to (and the dummy segment, n odd, gets its identity). */
-static void joint_blocks(rd_static_problem *pb, rd_blocktri *t)
-{
-    int n = pb->n, ld = t->bs, add = ld != 6;
-    size_t blocks = (size_t)t->nb * ld * ld;
-    memset(t->D, 0, (add ? blocks : 36) * sizeof *t->D);
-    if (add) {
-        memset(t->L, 0, blocks * sizeof *t->L);
-        memset(t->U, 0, blocks * sizeof *t->U);
-        for (int k = 6 * n; k < t->nb * ld; k++)
-            t->D[blocks - (size_t)ld * ld + (size_t)(ld + 1) * (k % ld)] = 1.0;
-    }
-    for (int j = 0; j < n - 1; j++) {
-        double K[144];
-        rd_static_joint_tangent(pb, j, pb->x + 3 * j, pb->Q + 9 * j, pb->x + 3 * (j + 1),
-                                pb->Q + 9 * (j + 1), K);
-        put_block(block(t, j, j), ld, K, 1);
-        put_block(block(t, j, j + 1), ld, K + 6, add);
-        put_block(block(t, j + 1, j), ld, K + 72, add);
-        put_block(block(t, j + 1, j + 1), ld, K + 78, add);
-    }
-}
-
-/* The tangent of the whole residual, in block-tridiagonal storage: 6x6
- * blocks, or 12x12 (pairs of segments) with flexible faces (work_alloc). */
-static void tangent(rd_static_problem *pb, rd_blocktri *t)
-{
-    int n = pb->n, ld = t->bs;
-    double hx = 1e-6 * pb->R, hr = 1e-6;
-    rd_contact_face_update(pb); /* the contact faces at this state (if any) */
-    joint_blocks(pb, t);
-    /* External loads: the contact law's derivative in closed form (differences
-     * inside its bend eps were 63 % of a contact solve), the gap faces' by differences. */
-    for (int i = 0; i < n; i++) {
-        double J[36] = {0};
-        if (pb->kind == RD_STATIC_CONTACT)
-            rd_contact_segment_jacobian(pb, i, pb->x + 3 * i, pb->Q + 9 * i, J);
-        if (pb->cp0)
-            face_blocks(pb, t, i);
-        double *D = block(t, i, i);
-        for (int k = 0; k < 6; k++) {
-            double h = k < 3 ? hx : hr, fp[6] = {0}, fm[6] = {0}, xp[3], Qp[9];
-            if (i == 0 || i == n - 1) {
-                perturb(pb->x + 3 * i, pb->Q + 9 * i, k, h, xp, Qp);
-                rd_pretension_gap_face_load(pb, i, xp, Qp, fp);
-                perturb(pb->x + 3 * i, pb->Q + 9 * i, k, -h, xp, Qp);
-                rd_pretension_gap_face_load(pb, i, xp, Qp, fm);
-            }
-            for (int row = 0; row < 6; row++)
-                D[ld * row + k] += -J[row + 6 * k] - (fp[row] - fm[row]) / (2.0 * h);
-        }
-    }
-    /* support: translations 1/4 k_t mask; rotations 1/4 k_r A_a mask A_c^T
-     * with A = Jl^-T(psi) (the derivative of log on each side; the held mean
-     * rotation is ~0 but each segment's own psi is not) */
-    int s[2] = {pb->pa, pb->pb};
-    double A[2][9];
-    for (int q = 0; q < 2; q++) {
-        double psi[3];
-        rd_static_rot_log(pb->Q + 9 * s[q], psi);
-        for (int k = 0; k < 3; k++) {
-            double e[3] = {0, 0, 0}, col[3];
-            e[k] = 1.0;
-            rd_static_jl_inv_t(psi, e, col);
-            for (int r = 0; r < 3; r++)
-                A[q][3 * r + k] = col[r];
-        }
-    }
-    for (int a = 0; a < 2; a++)
-        for (int c = 0; c < 2; c++) {
-            double *B = block(t, s[a], s[c]); /* s[0], s[1] equal or neighbours */
-            for (int k = 0; k < 3; k++)
-                B[(ld + 1) * k] += 0.25 * pb->k_t * pb->mask[k];
-            for (int r = 0; r < 3; r++)
-                for (int q = 0; q < 3; q++) {
-                    double v = 0.0;
-                    for (int k = 0; k < 3; k++)
-                        v += A[a][3 * r + k] * pb->mask[3 + k] * A[c][3 * q + k];
-                    B[ld * (3 + r) + 3 + q] += 0.25 * pb->k_r * v;
-                }
-        }
-}
-
 /* Gram-Schmidt on the rows, so repeated updates do not drift from SO(3). */
 static void orthonormalize(double Q[9])
 {
@@ -327,6 +167,9 @@ typedef struct work {
     double *r, *delta, *x0, *Q0, *xs, *Qs;
     double *Y;     /* N x 6: the field method's Woodbury columns; NULL otherwise */
     rd_blocktri t; /* the tangent, then its factors */
+    /* contact: the tangent's in-plane and out-of-plane parts (plane_solve) */
+    rd_blocktri part[2];
+    double *xh; /* their right-hand sides, t.nb t.bs */
     const rd_monitor *mon;
     double progress; /* accepted load factor, reported as the solve's fraction */
     rd_error *err;
@@ -343,9 +186,9 @@ static void field_coupling(rd_static_problem *pb, double C[36])
     memcpy(Q0, pb->Q + 9 * last, sizeof Q0);
     for (int k = 0; k < 6; k++) {
         double h = k < 3 ? hx : hr, fp[6] = {0}, fm[6] = {0};
-        perturb(x0, Q0, k, h, pb->x + 3 * last, pb->Q + 9 * last);
+        rd_static_perturb(x0, Q0, k, h, pb->x + 3 * last, pb->Q + 9 * last);
         rd_pretension_gap_face_load(pb, 0, pb->x, pb->Q, fp);
-        perturb(x0, Q0, k, -h, pb->x + 3 * last, pb->Q + 9 * last);
+        rd_static_perturb(x0, Q0, k, -h, pb->x + 3 * last, pb->Q + 9 * last);
         rd_pretension_gap_face_load(pb, 0, pb->x, pb->Q, fm);
         for (int r = 0; r < 6; r++)
             C[r + 6 * k] = -(fp[r] - fm[r]) / (2.0 * h);
@@ -393,6 +236,38 @@ static int woodbury(rd_static_problem *pb, work *w)
     return 0;
 }
 
+/* A segment's in-plane DOFs (dx, dy, dpsi_z) and its out-of-plane ones, in a
+ * block of one segment (the first three of each) or of two. */
+static const int in_plane[6] = {0, 1, 5, 6, 7, 11}, out_of_plane[6] = {2, 3, 4, 8, 9, 10};
+
+/* The contact ring stays in its plane (in-plane loads; the support holds
+ * the axial motion and the tilts; measured: every state and tangent of the
+ * battery exactly planar, the in-plane and out-of-plane DOFs coupled by no
+ * nonzero entry), so its tangent falls into two uncoupled halves, factored
+ * separately at a quarter of the cost with exactly the numbers of the whole
+ * (rd_blocktri_split).  Returns -1 if the tangent does not split (then
+ * nothing is done), else newton_step's 0 or 1 with w->delta solved. */
+static int plane_solve(work *w)
+{
+    const int *const sel[2] = {in_plane, out_of_plane};
+    if (!w->xh || !rd_blocktri_split(&w->t, sel, w->part))
+        return -1;
+    if (rd_blocktri_factor(&w->part[0]) != 0 || rd_blocktri_factor(&w->part[1]) != 0)
+        return 1;
+    int hs = w->t.bs / 2;
+    for (int h = 0; h < 2; h++) {
+        double *x = w->xh + (size_t)h * hs * w->t.nb;
+        for (int i = 0; i < w->t.nb; i++)
+            for (int r = 0; r < hs; r++)
+                x[hs * i + r] = w->delta[w->t.bs * i + sel[h][r]];
+        rd_blocktri_solve(&w->part[h], x);
+        for (int i = 0; i < w->t.nb; i++)
+            for (int r = 0; r < hs; r++)
+                w->delta[w->t.bs * i + sel[h][r]] = x[hs * i + r];
+    }
+    return 0;
+}
+
 /* Solves J delta = -r (w->delta holds -r on entry) with the factored
  * block-tridiagonal tangent in w->t.  For the field method J = J_tri + U V^T,
  * U = C in the first segment's rows, V selecting the last segment's DOFs,
@@ -403,10 +278,14 @@ static int woodbury(rd_static_problem *pb, work *w)
  * 0, 1 (singular tangent) or < 0 (w->err set). */
 static int newton_step(rd_static_problem *pb, work *w)
 {
-    int N = 6 * pb->n, rc;
-    if (rd_blocktri_factor(&w->t) != 0)
-        return 1;
-    rd_blocktri_solve(&w->t, w->delta);
+    int N = 6 * pb->n, rc = plane_solve(w);
+    if (rc > 0)
+        return rc;
+    if (rc < 0) {
+        if (rd_blocktri_factor(&w->t) != 0)
+            return 1;
+        rd_blocktri_solve(&w->t, w->delta);
+    }
     if (pb->kind == RD_STATIC_PRETENSION && pb->method == RD_PRETENSION_FIELD && w->Y &&
         (rc = woodbury(pb, w)) != 0)
         return rc;
@@ -414,18 +293,6 @@ static int newton_step(rd_static_problem *pb, work *w)
         if (!isfinite(w->delta[k]))
             return 1;
     return 0;
-}
-
-/* Adds mu |J_ii| to the tangent's diagonal (Marquardt's scaling): a step in a
- * direction the tangent barely resists (a ring losing the bore, a rigid
- * motion nothing holds) stays bounded. */
-static void damp(rd_static_problem *pb, rd_blocktri *t, double mu)
-{
-    for (int i = 0; i < pb->n; i++)
-        for (int k = 0; k < 6; k++) {
-            double *d = block(t, i, i) + (t->bs + 1) * k;
-            *d += mu * fabs(*d);
-        }
 }
 
 /* Backtracking on the residual norm along w->delta from the state saved in
@@ -487,9 +354,9 @@ static int newton(rd_static_problem *pb, work *w, double tol, int *budget, int *
             return rc;
         (*budget)--;
         (*iters)++;
-        tangent(pb, &w->t);
+        rd_static_tangent(pb, &w->t);
         if (mu > 0.0)
-            damp(pb, &w->t, mu);
+            rd_static_damp(pb, &w->t, mu);
         for (int k = 0; k < N; k++)
             w->delta[k] = -w->r[k];
         if ((rc = newton_step(pb, w)) != 0)
@@ -529,12 +396,15 @@ static void work_free(work *w)
     free(w->xs);
     free(w->Qs);
     free(w->Y);
+    free(w->xh);
     rd_blocktri_cleanup(&w->t);
+    rd_blocktri_cleanup(&w->part[0]);
+    rd_blocktri_cleanup(&w->part[1]);
 }
 
 static int work_alloc(const rd_static_problem *pb, work *w, rd_error *err)
 {
-    int n = pb->n, N = 6 * n, s = per_block(pb), nb = (n + s - 1) / s;
+    int n = pb->n, N = 6 * n, s = rd_static_per_block(pb), nb = (n + s - 1) / s;
     w->r = malloc((size_t)N * sizeof *w->r);
     w->delta = calloc((size_t)6 * s * nb, sizeof *w->delta); /* the dummy's 6 stay 0 */
     w->x0 = malloc((size_t)3 * n * sizeof *w->x0);
@@ -544,8 +414,13 @@ static int work_alloc(const rd_static_problem *pb, work *w, rd_error *err)
     int need_y = pb->kind == RD_STATIC_PRETENSION && pb->method == RD_PRETENSION_FIELD;
     if (need_y)
         w->Y = malloc((size_t)6 * N * sizeof *w->Y);
+    int halves = pb->kind == RD_STATIC_CONTACT; /* plane_solve */
+    if (halves)
+        w->xh = malloc((size_t)6 * s * nb * sizeof *w->xh);
     if ((need_y && !w->Y) || !w->r || !w->delta || !w->x0 || !w->Q0 || !w->xs || !w->Qs ||
-        rd_blocktri_init(&w->t, nb, 6 * s) != RD_OK)
+        rd_blocktri_init(&w->t, nb, 6 * s) != RD_OK ||
+        (halves && (!w->xh || rd_blocktri_init(&w->part[0], nb, 3 * s) != RD_OK ||
+                    rd_blocktri_init(&w->part[1], nb, 3 * s) != RD_OK)))
         return rd_error_set(err, RD_ENOMEM, "", "Out of memory for the %d-segment static solve.",
                             n);
     return RD_OK;
@@ -607,6 +482,7 @@ static int uzawa(rd_static_problem *pb, work *w, double tol, int *budget, rd_sta
                  double *res)
 {
     for (int it = 0; it < UZAWA_MAX; it++) {
+        /* at the state newton left, its last residual's */
         double change = rd_contact_update_multipliers(pb);
         int ok = newton(pb, w, tol, budget, &st->iterations, res);
         if (ok < 0)
@@ -713,6 +589,7 @@ void rd_static_problem_cleanup(rd_static_problem *pb)
     free(pb->Q);
     free(pb->cp);
     free(pb->mult);
+    free(pb->pe);
 }
 
 void rd_static_point_at(const rd_static_problem *pb, int i, const double c[3], double y[3])

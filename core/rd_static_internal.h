@@ -1,8 +1,8 @@
 /*
  * rd_static_internal.h — what the static files share (no caller outside
  * core/ may include this, but tests/ may, for the derivatives they check):
- *   rd_static.c      the residual and its tangent, Newton's method and the
- *                    load stepping;
+ *   rd_static.c      the residual, Newton's method and the load stepping;
+ *   rd_static_tangent.c  the residual's tangent;
  *   rd_static_joint.c  one joint's forces and their exact derivative, and the
  *                    SO(3) maps;
  *   rd_pretension.c  the free shape under F_t (and F_l) on the gap faces;
@@ -17,6 +17,7 @@
 
 #include <string.h>
 
+#include "rd_blocktri.h"
 #include "rd_internal.h"
 #include "rd_static.h"
 
@@ -58,6 +59,21 @@ static inline void rd_mm3(const double A[9], const double B[9], double out[9])
 
 /* ---- the problem ---------------------------------------------------------- */
 
+/* One contact point as the last rd_contact_loads found it (what the
+ * tangent's contact blocks and the multipliers' update read, so a Newton
+ * iteration evaluates each point once): its penetration delta (m, without
+ * the multiplier's shift), arm = Q c its offset turned to global, n =
+ * grad(delta) the bore's outward normal (|n| = nn, ~1), the law p and its
+ * slope dp; with flexible
+ * faces dyu, the point's move per unit u, and du[b][d], u's derivative by
+ * the planar DOF d of segment i - 1 + b (rd_contact_face.c).  A point off
+ * the bore by more than 746 smoothing lengths has p = dp = 0 exactly (the
+ * law's exp underflows) and nothing else filled: it adds nothing to the
+ * loads or their derivative. */
+typedef struct rd_contact_eval {
+    double delta, arm[3], n[3], nn, p, dp, dyu[3], du[3][3];
+} rd_contact_eval;
+
 typedef struct rd_static_problem {
     const rd_ring *ring;
     int n, kind;
@@ -80,15 +96,16 @@ typedef struct rd_static_problem {
     double mask[6];
     double k_t, k_r;
     /* contact */
-    int m;          /* points per segment */
-    double *cp;     /* 3 per point: body offsets (the flexible face's, rd_contact.c) */
-    double *cp0;    /* 3 per point: the rigid face's offsets, in cp's block (NULL: cp rigid) */
-    double *face;   /* 14 per joint: rd_contact_face.c's cache, in cp's block */
-    double *mult;   /* per point: the augmented Lagrangian's multiplier, Pa (NULL: none) */
-    int tip_mult;   /* mult has n + 2 m entries: the free ends' points their own */
-    double area;    /* tributary area of one point, m^2 */
-    double r_o;     /* running-face radius of the closed ring */
-    double bore_dr; /* D/2 - r_o */
+    int m;               /* points per segment */
+    double *cp;          /* 3 per point: body offsets (the flexible face's, rd_contact.c) */
+    double *cp0;         /* 3 per point: the rigid face's offsets, in cp's block (NULL: cp rigid) */
+    double *face;        /* 14 per joint: rd_contact_face.c's cache, in cp's block */
+    double *mult;        /* per point: the augmented Lagrangian's multiplier, Pa (NULL: none) */
+    rd_contact_eval *pe; /* m n: each point at the last rd_contact_loads */
+    int tip_mult;        /* mult has n + 2 m entries: the free ends' points their own */
+    double area;         /* tributary area of one point, m^2 */
+    double r_o;          /* running-face radius of the closed ring */
+    double bore_dr;      /* D/2 - r_o */
     const rd_contact_opts *co;
     double bore_phase[2 * RD_DISTORTION_MAX]; /* cos, sin of each distortion's k phi_k */
     double k, eps, p0;
@@ -126,6 +143,17 @@ void rd_static_joint_residual(const rd_static_problem *pb, int j, const double *
 void rd_static_joint_tangent(const rd_static_problem *pb, int j, const double *xA, const double *QA,
                              const double *xB, const double *QB, double K[144]);
 
+/* rd_static_tangent.c: the residual's tangent into t (6x6 blocks, or 12x12
+ * with flexible contact faces: rd_static_per_block segments a block), at
+ * the state of the last residual evaluation; Marquardt's damping of its
+ * diagonal by mu; a copy (xo, Qo) of a segment's state moved by h along
+ * DOF k (0..2 translate, 3..5 turn). */
+int rd_static_per_block(const rd_static_problem *pb);
+void rd_static_tangent(rd_static_problem *pb, rd_blocktri *t);
+void rd_static_damp(rd_static_problem *pb, rd_blocktri *t, double mu);
+void rd_static_perturb(const double *x, const double *Q, int k, double h, double xo[3],
+                       double Qo[9]);
+
 /* Strain energy, support force and moment, sizes, after a solve. */
 void rd_static_stats_fill(rd_static_problem *pb, rd_static_stats *st);
 
@@ -144,41 +172,56 @@ double rd_static_force_factor(const rd_static_problem *pb);
 void rd_pretension_gap_face_load(const rd_static_problem *pb, int i, const double *x,
                                  const double *Q, double f[6]);
 
-/* rd_contact.c: adds the bore's contact forces on segment i at (x, Q) to f;
- * the predictor of a load step (each segment moved with the bore under it
- * from load factor l0 to l1). */
+/* rd_contact_face.c: adds the bore's contact forces on segment i at (x, Q)
+ * to f (with flexible faces its neighbours' points' too, at their states in
+ * pb, through the faces as pb last computed them). */
 void rd_contact_segment_load(const rd_static_problem *pb, int i, const double *x, const double *Q,
                              double f[6]);
-/* The same for every segment at pb's state, subtracted from r (6n). */
+/* The same for every segment at pb's state, subtracted from r (6n); each
+ * point's evaluation kept in pb->pe for the derivatives below. */
 void rd_contact_loads(const rd_static_problem *pb, double *r);
-/* Its derivative: J[r + 6 d] = d f_r / d DOF d of segment i, DOFs (dx,
+/* Does the point press (its law or slope not exactly 0)?  Those that do not
+ * add nothing to the loads or their derivatives. */
+static inline int rd_contact_presses(const rd_contact_eval *pe)
+{
+    return pe->p != 0.0 || pe->dp != 0.0;
+}
+/* rd_contact.c: the loads' derivative at the state of the last
+ * rd_contact_loads: J[r + 6 d] = d f_r / d DOF d of segment i, DOFs (dx,
  * dpsi) as in rd_static.c (the normal's turn, p / (k rho) ~ 1e-7 of the
  * rest, left out). */
-void rd_contact_segment_jacobian(const rd_static_problem *pb, int i, const double *x,
-                                 const double *Q, double J[36]);
+void rd_contact_segment_jacobian(const rd_static_problem *pb, int i, double J[36]);
+/* The predictor of a load step: each segment moved with the bore under it
+ * from load factor l0 to l1. */
 void rd_contact_follow_bore(rd_static_problem *pb, double l0, double l1);
-/* rd_contact.c: the law's smoothing length at the current load factor; the
- * law p and its slope dp at the point y of segment o (its multiplier's
- * shift included), and n = grad(delta), the bore's outward normal (|n| ~1). */
+/* rd_contact.c: the law's smoothing length at the current load factor; at
+ * the point y of segment o, pe's delta, the law p and its slope dp (its
+ * multiplier's shift included) and n = grad(delta), the bore's outward
+ * normal (|n| ~1). */
 double rd_contact_eps(const rd_static_problem *pb);
 void rd_contact_point(const rd_static_problem *pb, int o, int k, const double y[3], double e,
-                      double *p, double *dp, double n[3]);
+                      rd_contact_eval *pe);
 /* rd_contact_face.c: each contact point's offset cp set to the rigid face's
  * cp0 moved outward by the ring's bending and shear over its segment, from
- * the current state (nothing when cp0 is NULL); point k of segment i's move
- * u and, if du is not NULL, du[b][d] its derivative by the planar DOF d (dx,
- * dy, dpsi_z) of segment i - 1 + b. */
+ * the current state (nothing when cp0 is NULL). */
 void rd_contact_face_update(const rd_static_problem *pb);
 /* Point k of segment i's angle from the segment's centre (rad). */
 double rd_contact_point_offset(const rd_static_problem *pb, int i, int k);
-void rd_contact_face_du(const rd_static_problem *pb, int i, int k, double *u, double du[3][3]);
-/* rd_contact.c: the face's part of the derivative of the contact loads of
- * segment o's points: J[b][c] (layout as rd_contact_segment_jacobian) the
- * load on segment o - 1 + b by the DOFs of segment o - 1 + c, less the
- * rigid part rd_contact_segment_jacobian gives (zero without a face). */
-void rd_contact_face_jacobian(const rd_static_problem *pb, int o, double J[3][3][36]);
-/* rd_contact.c: the augmented Lagrangian's update, lambda_q <- p_q (each
- * point's current pressure); returns max_q |p_q - lambda_q| / p0 before it. */
+/* The DOFs a flexible face couples, in the order of rd_contact_face_jacobian's
+ * K: segment o - 1's planar three (dx, dy, dpsi_z), o's six, o + 1's planar
+ * three; rd_face_dof_seg[q] is q's segment less o - 1, rd_face_dof[q] its DOF. */
+enum { RD_FACE_DOFS = 12 };
+extern const int rd_face_dof_seg[RD_FACE_DOFS], rd_face_dof[RD_FACE_DOFS];
+/* The face's part of the derivative of the contact loads of segment o's
+ * points at the state of the last rd_contact_loads: K[q][t] the load on
+ * DOF q by DOF t (the order above), less the rigid part
+ * rd_contact_segment_jacobian gives.  Returns how many of o's points press;
+ * K is written only when some do (and never without a face). */
+int rd_contact_face_jacobian(const rd_static_problem *pb, int o,
+                             double K[RD_FACE_DOFS][RD_FACE_DOFS]);
+/* rd_contact.c: the augmented Lagrangian's update at the state of the last
+ * rd_contact_loads, lambda_q <- p_q (each point's current pressure);
+ * returns max_q |p_q - lambda_q| / p0 before it. */
 double rd_contact_update_multipliers(rd_static_problem *pb);
 
 /* Flexible faces (rd_contact_face.c) from this many segments on.  Below,

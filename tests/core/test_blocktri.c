@@ -11,7 +11,9 @@
  *    run (seated, flying, landing: contacts closed and open), for the step
  *    sizes CVODE takes there (gamma 1e-8 .. 3e-5 s; 1 crank degree at 6000
  *    rpm is 2.8e-5 s);
- *  - exact breakdowns: a zero pivot is reported with its row, not divided by.
+ *  - exact breakdowns: a zero pivot is reported with its row, not divided by;
+ *  - a matrix of two uncoupled sets of unknowns split in two
+ *    (rd_blocktri_split): the parts solve to exactly the whole's numbers.
  *
  * Tolerances: both solvers are backward stable on these matrices, so they
  * agree to the forward error bound ~ N eps cond(S); each check allows
@@ -180,6 +182,87 @@ static void test_singular(void)
     CHECK(rd_blocktri_factor(&m) == 2, "zero Schur complement not reported at row 2");
     rd_blocktri_cleanup(&m);
     CHECK(rd_blocktri_init(&m, 0, 6) == RD_EINVAL && !m.L, "nb 0 accepted");
+}
+
+/* rd_blocktri_split: random matrices whose unknowns fall into two sets no
+ * entry couples (the static tangent's in-plane {0, 1, 5} and out-of-plane
+ * {2, 3, 4} DOFs of each 6-block), each set's diagonal blocks needing row
+ * pivoting: the parts' factors must solve to exactly (bit for bit) the
+ * whole matrix's solution, as the header claims; one nonzero coupling
+ * entry, anywhere it is read, must refuse the split. */
+static void test_split(void)
+{
+    static const int s0[6] = {0, 1, 5, 6, 7, 11}, s1[6] = {2, 3, 4, 8, 9, 10};
+    const int *const sel[2] = {s0, s1};
+    int cases[][2] = {{1, 6}, {7, 6}, {40, 12}, {3, 12}};
+    for (size_t c = 0; c < sizeof cases / sizeof cases[0]; c++) {
+        int nb = cases[c][0], bs = cases[c][1], N = nb * bs;
+        size_t bb = (size_t)bs * bs;
+        rd_blocktri m, full, part[2];
+        double *x = malloc(2 * (size_t)N * sizeof *x), *xh = malloc((size_t)N * sizeof *xh);
+        if (!x || !xh || rd_blocktri_init(&m, nb, bs) || rd_blocktri_init(&full, nb, bs) ||
+            rd_blocktri_init(&part[0], nb, bs / 2) || rd_blocktri_init(&part[1], nb, bs / 2)) {
+            CHECK(0, "split: out of memory");
+            return;
+        }
+        int set[12] = {0};
+        for (int k = 0; k < bs / 2; k++)
+            set[s1[k]] = 1;
+        unsigned seed = 3u + (unsigned)(nb * 17 + bs);
+        for (int i = 0; i < nb; i++)
+            for (int r = 0; r < bs; r++)
+                for (int q = 0; q < bs; q++) {
+                    size_t e = bb * i + (size_t)bs * r + q;
+                    int same = set[r] == set[q];
+                    m.L[e] = same && i > 0 ? 0.3 * urand(&seed) : 0.0;
+                    m.U[e] = same && i + 1 < nb ? 0.3 * urand(&seed) : 0.0;
+                    m.D[e] = same ? urand(&seed) + 2.0 * (r == q) : 0.0;
+                }
+        for (int i = 0; i < nb; i++) /* pivoting in each set: a zero (0, 0) */
+            for (int h = 0; h < 2; h++) {
+                double *D = m.D + bb * i;
+                D[bs * sel[h][1] + sel[h][0]] = 2.0, D[bs * sel[h][0] + sel[h][0]] = 0.0;
+            }
+        for (int k = 0; k < N; k++)
+            x[k] = urand(&seed);
+        memcpy(full.L, m.L, 3 * bb * nb * sizeof *m.L); /* L, D, U are one block */
+        CHECK(rd_blocktri_split(&m, sel, part) == 1, "split refused, nb %d bs %d", nb, bs);
+        CHECK(rd_blocktri_factor(&full) == 0 && rd_blocktri_factor(&part[0]) == 0 &&
+                  rd_blocktri_factor(&part[1]) == 0,
+              "split: factors, nb %d bs %d", nb, bs);
+        memcpy(x + N, x, (size_t)N * sizeof *x);
+        rd_blocktri_solve(&full, x);
+        for (int h = 0; h < 2; h++) {
+            for (int i = 0; i < nb; i++)
+                for (int r = 0; r < bs / 2; r++)
+                    xh[bs / 2 * i + r] = x[N + bs * i + sel[h][r]];
+            rd_blocktri_solve(&part[h], xh);
+            for (int i = 0; i < nb; i++)
+                for (int r = 0; r < bs / 2; r++)
+                    x[N + bs * i + sel[h][r]] = xh[bs / 2 * i + r];
+        }
+        int same = 1;
+        for (int k = 0; k < N; k++)
+            same &= x[k] == x[N + k];
+        CHECK(same, "split: parts' solution differs from the whole's, nb %d bs %d", nb, bs);
+        /* one coupling entry, in D, in L (not block 0) or in U (not the last) */
+        double *at[3] = {m.D + bb * (nb - 1) + 2, nb > 1 ? m.L + bb * 1 + bs * 3 + 1 : NULL,
+                         nb > 1 ? m.U + bs * 1 + 4 : NULL};
+        for (int w = 0; w < 3; w++) {
+            if (!at[w])
+                continue;
+            double keep = *at[w];
+            *at[w] = 1e-300;
+            CHECK(rd_blocktri_split(&m, sel, part) == 0, "split took a coupled matrix (%d)", w);
+            *at[w] = keep;
+        }
+        rd_blocktri_cleanup(&m);
+        rd_blocktri_cleanup(&full);
+        rd_blocktri_cleanup(&part[0]);
+        rd_blocktri_cleanup(&part[1]);
+        free(x);
+        free(xh);
+    }
 }
 
 /* ------------------------------------------------ the lift's own matrices */
@@ -378,6 +461,7 @@ int main(void)
 {
     test_random();
     test_singular();
+    test_split();
     test_lift();
     return check_done();
 }

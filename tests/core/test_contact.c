@@ -370,8 +370,11 @@ static void test_jacobian(void)
     pb.area = pb.h * pb.r_o * phi / m,
     pb.p0 = 2 * p.tangential_force / (p.diameter * p.axial_height);
     pb.k = rd_contact_default_stiffness(&p), pb.eps = 0.05 * pb.p0 / pb.k, pb.lambda = 1.0;
-    double cp[3 * 40 * 5], mult[40];
-    pb.cp = cp, pb.mult = mult;
+    /* bore_at's cos, sin of k phi_k (contact_setup's) */
+    pb.bore_phase[0] = cos(3 * 17.0 * PI / 180), pb.bore_phase[1] = sin(3 * 17.0 * PI / 180);
+    double cp[3 * 40 * 5], mult[40], res[6 * 40] = {0};
+    rd_contact_eval pe[40 * 5];
+    pb.cp = cp, pb.mult = mult, pb.pe = pe;
     double worst = 0.0;
     for (int i = 0; i < n; i++) {
         const double *P = rd_ring_reference_point(ring, i);
@@ -394,7 +397,8 @@ static void test_jacobian(void)
                 Q[3 * r + c] =
                     R[3 * r] * Q0[c] + R[3 * r + 1] * Q0[3 + c] + R[3 * r + 2] * Q0[6 + c];
         double J[36], scale = 0.0;
-        rd_contact_segment_jacobian(&pb, i, x, Q, J);
+        rd_contact_loads(&pb, res); /* the points at this state, for the derivative */
+        rd_contact_segment_jacobian(&pb, i, J);
         double Jd[36];
         for (int d = 0; d < 6; d++) {
             /* steps well inside the law's bend (eps) and its turn equivalent */
@@ -435,7 +439,7 @@ static void test_jacobian(void)
      * a 1 % error in the law's slope shows as 1e-2 */
     CHECK(worst < 1e-3, "contact load's derivative vs central differences: %.2e of the largest",
           worst);
-    pb.cp = NULL, pb.mult = NULL;
+    pb.cp = NULL, pb.mult = NULL, pb.pe = NULL;
     rd_static_problem_cleanup(&pb);
     rd_ring_free(ring);
 }

@@ -9,6 +9,7 @@
  *  - the face's part of the contact load's derivative (which couples a
  *    segment to its neighbours) against central differences of the load
  *    with the face recomputed at each perturbed state;
+ *  - points off the bore skipped exactly where the law is 0;
  *  - the binned pressure away from gap edges and free ends against the
  *    independent geometrically exact reference (contact_reference_nl.c):
  *    converged at n = 320 with flexible faces, where the rigid faces stay
@@ -33,7 +34,8 @@ typedef struct setup {
     rd_contact_opts o;
     rd_ring *ring;
     rd_static_problem pb;
-    double cp[6 * N * M + 14 * N], mult[N];
+    double cp[6 * N * M + 14 * N], mult[N], r[6 * N];
+    rd_contact_eval pe[N * M];
 } setup;
 
 /* A 40-segment contact problem in a 3rd-order bore at the full load, the
@@ -57,8 +59,10 @@ static int setup_make(setup *s)
     pb->p0 = 2 * s->p.tangential_force / (s->p.diameter * s->p.axial_height);
     pb->k = rd_contact_default_stiffness(&s->p), pb->eps = 0.05 * pb->p0 / pb->k;
     pb->lambda = 1.0;
+    /* bore_at's cos, sin of k phi_k (contact_setup's) */
+    pb->bore_phase[0] = cos(3 * 17.0 * PI / 180), pb->bore_phase[1] = sin(3 * 17.0 * PI / 180);
     pb->cp = s->cp, pb->cp0 = s->cp + 3 * N * M, pb->face = s->cp + 6 * N * M;
-    pb->mult = s->mult;
+    pb->mult = s->mult, pb->pe = s->pe;
     for (int i = 0; i < N; i++) {
         const double *P = rd_ring_reference_point(s->ring, i);
         for (int k = 0; k < M; k++) {
@@ -74,7 +78,7 @@ static int setup_make(setup *s)
 
 static void setup_free(setup *s)
 {
-    s->pb.cp = NULL, s->pb.mult = NULL;
+    s->pb.cp = NULL, s->pb.mult = NULL, s->pb.pe = NULL;
     rd_static_problem_cleanup(&s->pb);
     rd_ring_free(s->ring);
 }
@@ -199,15 +203,19 @@ static void test_face_jacobian(void)
         int r = rows[ri];
         double Ja[5][36] = {{0}}, Jd[5][36] = {{0}}, scale = 0.0;
         rd_contact_face_update(pb);
-        rd_contact_segment_jacobian(pb, r, pb->x + 3 * r, pb->Q + 9 * r, Ja[2]);
+        rd_contact_loads(pb, s.r); /* the points at this state, for the derivatives */
+        rd_contact_segment_jacobian(pb, r, Ja[2]);
         for (int o = r - 1; o <= r + 1; o++) {
-            double Jf[3][3][36];
-            if (o < 0 || o >= N)
+            double K[RD_FACE_DOFS][RD_FACE_DOFS];
+            if (o < 0 || o >= N || !rd_contact_face_jacobian(pb, o, K))
                 continue;
-            rd_contact_face_jacobian(pb, o, Jf);
-            for (int c = 0; c < 3; c++)
-                for (int q = 0; q < 36; q++)
-                    Ja[o - 1 + c - (r - 2)][q] += Jf[r - o + 1][c][q];
+            /* K's rows of segment r into Ja (column-major 6x6 blocks of
+             * segments r - 2 .. r + 2) */
+            for (int q = 0; q < RD_FACE_DOFS; q++)
+                for (int c = 0; c < RD_FACE_DOFS; c++)
+                    if (o - 1 + rd_face_dof_seg[q] == r)
+                        Ja[o - 1 + rd_face_dof_seg[c] - (r - 2)]
+                          [rd_face_dof[q] + 6 * rd_face_dof[c]] += K[q][c];
         }
         for (int cb = 0; cb < 5; cb++) {
             int seg = r - 2 + cb;
@@ -241,6 +249,61 @@ static void test_face_jacobian(void)
      * one of the face's weights shows as ~1e-2 */
     CHECK(worst < 1e-3, "face's load derivative vs central differences: %.2e of the largest",
           worst);
+    setup_free(&s);
+}
+
+/* Points off the bore: rd_contact_loads marks a point as not pressing (p =
+ * dp = 0, its loads and derivatives skipped) exactly where the law's own
+ * value is 0 (exp(z) underflows, z = (delta + lambda / k) / eps below
+ * -745.13), never where it is a tiny positive number (down to 5e-324 of k
+ * eps: z above -745); segments moved off the bore by 0 to 1170 eps so their
+ * points' z sweeps that edge.  A segment whose points and neighbours'
+ * points all are off gets exactly no load and no derivative. */
+static void test_far_points(void)
+{
+    setup s;
+    CHECK(setup_make(&s), "setup");
+    rd_static_problem *pb = &s.pb;
+    for (int i = 0; i < N; i++) {
+        double a = rd_ring_get_segment_angle(s.ring, i), A = s.o.distortion[0].amplitude;
+        double dr = s.pb.bore_dr + A * cos(3 * (a - 17 * PI / 180)) - 30.0 * i * pb->eps;
+        pb->x[3 * i] += dr * cos(a), pb->x[3 * i + 1] += dr * sin(a);
+        set_turn(pb->Q + 9 * i, 3 * A / pb->R * sin(3 * (a - 17 * PI / 180)));
+    }
+    rd_contact_face_update(pb);
+    memset(s.r, 0, sizeof s.r);
+    rd_contact_loads(pb, s.r);
+    int off = 0, edge = 0, wrong = 0, pressing[N] = {0};
+    for (int q = 0; q < N * M; q++) {
+        const rd_contact_eval *pe = &s.pe[q];
+        double z = (pe->delta + s.mult[q / M] / pb->k) / pb->eps;
+        int presses = rd_contact_presses(pe);
+        pressing[q / M] += presses;
+        off += !presses;
+        edge += z > -745.0 && z < -700.0;
+        /* the law's value here: k eps ln(1 + e^z), 0 exactly below -745.13 */
+        double law = pb->k * pb->eps * log1p(exp(z));
+        if (presses != (law > 0.0) || (presses && !(pe->dp > 0.0)) ||
+            fabs(pe->p - law) > 1e-12 * law)
+            wrong++;
+    }
+    CHECK(wrong == 0, "%d points pressing or not unlike the law's value", wrong);
+    CHECK(off > N * M / 3 && edge > 0, "the case misses its point: %d off, %d in z -745..-700", off,
+          edge);
+    for (int i = 1; i < N - 1; i++) {
+        double J[36], K[RD_FACE_DOFS][RD_FACE_DOFS], big = 0.0;
+        rd_contact_segment_jacobian(pb, i, J);
+        for (int q = 0; q < 36; q++)
+            big = fmax(big, fabs(J[q]));
+        int nf = rd_contact_face_jacobian(pb, i, K);
+        CHECK(nf == pressing[i] && (pressing[i] > 0 || big == 0.0),
+              "segment %d: %d points press, the face's block counted %d, |J| %g", i, pressing[i],
+              nf, big);
+        if (pressing[i - 1] + pressing[i] + pressing[i + 1] > 0)
+            continue;
+        for (int q = 0; q < 6; q++)
+            CHECK(s.r[6 * i + q] == 0.0, "segment %d off the bore has load %g", i, s.r[6 * i + q]);
+    }
     setup_free(&s);
 }
 
@@ -378,6 +441,7 @@ int main(void)
 {
     test_bent_ring();
     test_face_jacobian();
+    test_far_points();
     test_against_reference();
     test_tip_force();
     return check_done();
