@@ -4,22 +4,6 @@
 #include <math.h>
 #include <time.h>
 
-/* A monitor that maps a sub-solve's 0..1 onto [f0, f1] of the parent's. */
-typedef struct subrange {
-    const rd_monitor *parent;
-    double f0, f1;
-} subrange;
-
-static int subrange_report(void *ctx, double fraction)
-{
-    const subrange *s = ctx;
-    if (fraction < 0.0)
-        fraction = 0.0;
-    if (fraction > 1.0)
-        fraction = 1.0;
-    return s->parent->report(s->parent->ctx, s->f0 + (s->f1 - s->f0) * fraction);
-}
-
 double rd_accuracy_wall_now(void)
 {
     struct timespec ts;
@@ -40,9 +24,8 @@ double rd_accuracy_cpu_now(void)
 static int solve_level(const rd_accuracy_plan *plan, int level, const rd_monitor *mon, double f0,
                        double f1, rd_accuracy_cost *cost, rd_error *err)
 {
-    subrange sr = {mon, f0, f1};
-    rd_monitor sub = {subrange_report, &sr};
-    const rd_monitor *use = (mon && mon->report) ? &sub : NULL;
+    rd_monitor_span span;
+    const rd_monitor *use = rd_monitor_span_init(&span, mon, f0, f1);
     double w0 = rd_accuracy_wall_now(), c0 = rd_accuracy_cpu_now();
     int rc = plan->solve(plan->ctx, level, use, err);
     if (cost) {

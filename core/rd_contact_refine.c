@@ -57,18 +57,6 @@ static int contact_compare(void *ctx, rd_error *err)
     return RD_OK;
 }
 
-/* A monitor over [f0, f1] of the parent's range. */
-typedef struct span_mon {
-    const rd_monitor *parent;
-    double f0, f1;
-} span_mon;
-
-static int span_report(void *ctx, double f)
-{
-    const span_mon *s = ctx;
-    return s->parent->report(s->parent->ctx, s->f0 + (s->f1 - s->f0) * f);
-}
-
 /* Pairs until the estimates meet the target, the segment cap stops it, or
  * a finer solve fails (then the last good level stands, and says so). */
 static int refine(contact_run *run, const rd_monitor *mon, rd_error *err)
@@ -88,14 +76,14 @@ static int refine(contact_run *run, const rd_monitor *mon, rd_error *err)
         /* the answer comes from a level with the faces asked for (below
          * RD_CONTACT_FACE_MIN_SEGMENTS they are rigid, with no multipliers of the free
          * ends' own: the round bore's estimate at n = 40 was 0.0116 p0 with
-         * the law's share, 0.00x at 80) */
+         * the law's share, 0.0027 at 80) */
         int last = 2 * run->n[1] > cap,
             early = run->o->flexible_face && run->n[1] < RD_CONTACT_FACE_MIN_SEGMENTS && !last;
-        span_mon sm = {mon, f0, last ? 1.0 : f0 + 0.5 * (1.0 - f0)};
-        rd_monitor sub = {span_report, &sm};
+        double f1 = last ? 1.0 : f0 + 0.5 * (1.0 - f0);
+        rd_monitor_span span;
         rd_error e2;
         rd_error_init(&e2);
-        rc = rd_accuracy_run(&plan, mon && mon->report ? &sub : NULL, NULL, &e2);
+        rc = rd_accuracy_run(&plan, rd_monitor_span_init(&span, mon, f0, f1), NULL, &e2);
         best = run->level[0].points > 0 ? &run->level[0] : NULL;
         if (rc != RD_OK && best && rc != RD_ECANCELED && rc != RD_ETIMEOUT) {
             /* a finer solve failed: the last good level stands, and says so */
@@ -114,7 +102,7 @@ static int refine(contact_run *run, const rd_monitor *mon, rd_error *err)
             rd_contact_result_cleanup(&run->level[1]);
             run->n[0] *= 2;
             run->n[1] *= 2;
-            f0 = sm.f1;
+            f0 = f1;
             continue;
         }
         if (rc != RD_OK)
@@ -142,7 +130,7 @@ static int refine(contact_run *run, const rd_monitor *mon, rd_error *err)
         memset(&run->shape[1], 0, sizeof run->shape[1]);
         run->n[0] = run->n[1];
         run->n[1] *= 2;
-        f0 = sm.f1;
+        f0 = f1;
     }
 }
 
@@ -158,11 +146,11 @@ static int stiffness_probe(contact_run *run, const rd_monitor *mon, rd_error *er
     rd_contact_result *r = &run->level[0], s;
     rd_contact_opts o2 = *run->o;
     o2.stiffness = 2.0 * r->stiffness;
-    span_mon sm = {mon, 1.0, 1.0};
-    rd_monitor sub = {span_report, &sm};
+    rd_monitor_span span;
     memset(&s, 0, sizeof s);
-    int rc = rd_contact_once(run->p, run->n[1], &o2, run->so, mon && mon->report ? &sub : NULL,
-                             &run->shape[1], NULL, &s, err);
+    int rc =
+        rd_contact_once(run->p, run->n[1], &o2, run->so, rd_monitor_span_init(&span, mon, 1.0, 1.0),
+                        &run->shape[1], NULL, &s, err);
     if (rc == RD_OK) {
         double law = rd_contact_estimate_law(r, &s, &r->estimates);
         int met = meets(&r->estimates, r, r->accuracy);

@@ -67,6 +67,20 @@ int rd_monitor_report(const rd_monitor *mon, double fraction, rd_error *err)
     return RD_OK;
 }
 
+static int span_report(void *ctx, double fraction)
+{
+    const rd_monitor_span *s = ctx;
+    fraction = fraction < 0.0 ? 0.0 : (fraction > 1.0 ? 1.0 : fraction);
+    return s->parent->report(s->parent->ctx, s->f0 + (s->f1 - s->f0) * fraction);
+}
+
+const rd_monitor *rd_monitor_span_init(rd_monitor_span *s, const rd_monitor *parent, double f0,
+                                       double f1)
+{
+    *s = (rd_monitor_span){parent, f0, f1, {span_report, s}};
+    return parent && parent->report ? &s->mon : NULL;
+}
+
 int rd_error_range(double v, double lo, double hi, const char *path, const char *unit,
                    rd_error *err)
 {

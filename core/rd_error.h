@@ -86,4 +86,16 @@ typedef struct rd_monitor {
 /* Calls the monitor; returns RD_ECANCELED (and records it) if asked to stop. */
 int rd_monitor_report(const rd_monitor *mon, double fraction, rd_error *err);
 
+/* A sub-computation's monitor: its fractions 0..1 (clamped) reported to
+ * `parent` as [f0, f1] of the parent's range.  rd_monitor_span_init fills
+ * `s` and returns the monitor to hand down, or NULL when the parent has no
+ * report (the sub-computation then skips its reports). */
+typedef struct rd_monitor_span {
+    const rd_monitor *parent;
+    double f0, f1;
+    rd_monitor mon;
+} rd_monitor_span;
+const rd_monitor *rd_monitor_span_init(rd_monitor_span *s, const rd_monitor *parent, double f0,
+                                       double f1);
+
 #endif
