@@ -412,7 +412,7 @@ test('contact form: empty optional fields are left out, the distortion list is s
     await runAnalysis('Run contact analysis');
     let scene = jobs.sent.at(-1);
     assert.equal(scene.bore, undefined, 'round bore of the ring diameter: no bore block');
-    assert.deepEqual(scene.contact, { points_per_segment: 10 });
+    assert.deepEqual(scene.contact, { faces: 'flexible', points_per_segment: 10 });
     assert.equal(scene.numerics.error_estimate, true);
 
     const add = page.getByRole('button', { name: 'Add a distortion order' });
@@ -434,13 +434,14 @@ test('contact form: empty optional fields are left out, the distortion list is s
     await page.fill('#f-ct-bore-diameter', '0.0766');
     await page.fill('#f-ct-stiffness', '2e13');
     await page.fill('#f-ct-points', '8');
+    await page.selectOption('#f-ct-faces', 'rigid');
     await runAnalysis('Run contact analysis');
     scene = jobs.sent.at(-1);
     assert.deepEqual(scene.bore, {
       diameter: 0.0766,
       distortion: [{ order: 3, amplitude: 4e-6, phase_deg: 30 }, { order: 4, amplitude: 6e-6, phase_deg: 45 }],
     });
-    assert.deepEqual(scene.contact, { points_per_segment: 8, stiffness: 2e13 });
+    assert.deepEqual(scene.contact, { faces: 'rigid', points_per_segment: 8, stiffness: 2e13 });
 
     // Emptied again, the optional fields are left out again.
     await page.fill('#f-ct-stiffness', '');
