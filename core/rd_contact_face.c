@@ -27,8 +27,15 @@
  *   gam_j = (turn of the chord x_(j+1) - x_j) - (rz_j + rz_(j+1)) / 2;
  * at a free end kap = 0 (no moment on the gap face) and gam is the inner
  * joint's.  u depends on the planar DOFs (dx, dy, dpsi_z) of segments
- * i - 1, i, i + 1 (rd_contact_face_du); rd_contact.c puts that into the
- * contact load's tangent, so Newton sees the face it solves with.
+ * i - 1, i, i + 1 (face_du); the face's block of the contact loads'
+ * derivative (rd_contact_face_jacobian) puts that into the tangent, so
+ * Newton sees the face it solves with.
+ *
+ * The contact loads of all segments are computed here in one pass
+ * (rd_contact_loads), which keeps each point's evaluation (pb->pe,
+ * rd_contact_eval) for the tangent and the multipliers' update: a Newton
+ * iteration evaluates each point once.  Points off the bore (law and slope
+ * exactly 0) are skipped past their penetration.
  */
 #include "rd_static_internal.h"
 
