@@ -421,6 +421,7 @@ static int contact_outputs(const rd_ring_params *p, const rd_contact_opts *o,
 {
     int n = pb->n, rc;
     out->points = n;
+    out->law_share = NAN; /* rd_contact_refine.c's probe sets it */
     out->angle_deg = malloc((size_t)n * sizeof *out->angle_deg);
     out->pressure = malloc((size_t)n * sizeof *out->pressure);
     out->clearance = malloc((size_t)n * sizeof *out->clearance);

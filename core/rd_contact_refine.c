@@ -153,6 +153,7 @@ static int stiffness_probe(contact_run *run, const rd_monitor *mon, rd_error *er
                         &run->shape[1], NULL, &s, err);
     if (rc == RD_OK) {
         double law = rd_contact_estimate_law(r, &s, &r->estimates);
+        r->law_share = law;
         int met = meets(&r->estimates, r, r->accuracy);
         if (r->accuracy_met == 1 && !met)
             snprintf(r->accuracy_note, sizeof r->accuracy_note,
@@ -183,6 +184,7 @@ int rd_contact_solve(const rd_ring_params *p, int segments, const rd_contact_opt
     int rc;
     memset(out, 0, sizeof *out);
     out->stats.error_estimate = NAN;
+    out->law_share = NAN;
     if ((rc = rd_ring_validate(p, segments, 0, err)) ||
         (rc = rd_static_validate(so, segments, 0, err)) || (rc = rd_contact_validate(o, p, err)))
         return rc;

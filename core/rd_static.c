@@ -433,6 +433,21 @@ static int load_steps(rd_static_problem *pb, work *w, double tol, int *budget_io
     int n = pb->n, budget = *budget_io;
     double lam = pb->lambda_start, dlam = 1.0, res = 0.0;
     pb->lambda = lam;
+    if (lam >= 1.0) {
+        /* started at the full load (a solved state, another law): Newton
+         * there first, so that the multipliers' first update reads a
+         * residual's evaluation of this problem (rd_static_tangent.c's call
+         * order; without it the stiffness probe read a stale store and set
+         * the multipliers to ~1e18 p0 before recovering) */
+        int ok = newton(pb, w, tol, &budget, &st->iterations, &res);
+        if (ok < 0)
+            return ok;
+        if (!ok)
+            return rd_error_set(w->err, RD_ENOCONV, "",
+                                "The static solve did not converge: Newton's method stalled at "
+                                "the full load from the given state after %d iterations.",
+                                st->iterations);
+    }
     while (lam < 1.0) {
         double target = fmin(1.0, lam + dlam);
         memcpy(w->x0, pb->x, (size_t)3 * n * sizeof *pb->x);

@@ -187,6 +187,8 @@ typedef struct rd_contact_result {
     rd_contact_estimates estimates;
     double accuracy;
     int accuracy_met; /* 1 met, 0 not (see accuracy_note), -1 not estimated */
+    double law_share; /* the contact law's share in estimates.pressure, of p0: twice the
+                         binned pressure's move at twice the stiffness (NAN if not solved) */
     int levels;       /* solves made */
     char accuracy_note[256];
 } rd_contact_result;

@@ -350,6 +350,55 @@ static void test_stiffness(void)
         rd_contact_result_cleanup(&a);
 }
 
+/* The contact law's share of the pressure estimate (the reported level
+ * solved again at twice the stiffness from its own state and multipliers)
+ * against the same two solves made apart, each from the whole load path:
+ * twice the largest bin move between k0 and 2 k0.  Order 3 at 3 x, 17 deg,
+ * where the law matters (patches a few segments wide). */
+static void test_law_share(void)
+{
+    rd_ring_params p;
+    rd_ring_params_default(&p);
+    rd_contact_opts o = bore(&p, 3, 3.0, 17.0);
+    o.max_segments = 160;
+    rd_static_opts so;
+    rd_static_opts_default(&so);
+    rd_contact_result c, a, b;
+    rd_error err;
+    rd_error_init(&err);
+    if (rd_contact_solve(&p, 20, &o, &so, NULL, &c, &err) != RD_OK) {
+        CHECK(0, "law share: %s", err.message);
+        return;
+    }
+    so.estimate_error = 0;
+    int n = c.stats.segments;
+    int ra = rd_contact_solve(&p, n, &o, &so, NULL, &a, &err);
+    o.stiffness = 2.0 * c.stiffness;
+    int rb = ra == RD_OK ? rd_contact_solve(&p, n, &o, &so, NULL, &b, &err) : ra;
+    if (rb != RD_OK) {
+        CHECK(0, "law share, the solves apart: %s", err.message);
+        if (ra == RD_OK)
+            rd_contact_result_cleanup(&a);
+        rd_contact_result_cleanup(&c);
+        return;
+    }
+    double dp = 0.0;
+    for (int k = 0; k < RD_CONTACT_BINS; k++)
+        dp = fmax(dp, fabs(a.bin_pressure[k] - b.bin_pressure[k]));
+    double apart = 2.0 * dp / c.uniform_pressure;
+    printf("law share at n = %d: %.4f p0 (the solves apart: %.4f), of the estimate %.4f\n", n,
+           c.law_share, apart, c.estimates.pressure);
+    /* the two stiff solves stop their multipliers' updates at different
+     * states (from the solved one or from the load path, each within the
+     * updates' 0.1 p0): 20 % plus 0.002 p0 of room */
+    CHECK(fabs(c.law_share - apart) <= 0.2 * apart + 2e-3 && c.law_share > 0.0 &&
+              c.law_share <= c.estimates.pressure,
+          "law share %.4f p0 against %.4f apart", c.law_share, apart);
+    rd_contact_result_cleanup(&a);
+    rd_contact_result_cleanup(&b);
+    rd_contact_result_cleanup(&c);
+}
+
 /* rd_contact_segment_jacobian against central differences of
  * rd_contact_segment_load, on a 40-segment ring in a 3rd-order bore at the
  * full load, its segments moved by up to 3 eps radially (each point on the
@@ -476,6 +525,7 @@ int main(void)
     test_reference();
     test_accuracy_target();
     test_stiffness();
+    test_law_share();
     test_battery();
     test_battery_exact();
     return check_done();
