@@ -31,7 +31,9 @@
  *       bore (bins, fraction, gaps, per-segment pressure; for the estimates).
  *   --rigid (with --battery, --bins, --stiffness, --dump): rigid running
  *       faces (rd_contact_opts.flexible_face = 0) instead of the default
- *       flexible ones.
+ *       flexible ones (--face, the flexible ones, is accepted and changes
+ *       nothing).
+ *   --kx F (with the same): the contact stiffness F times its default.
  *   --cap N (with --battery, --bins, --stiffness): rd_contact_opts.max_segments
  *       N instead of its default.
  *
@@ -523,6 +525,10 @@ int main(int argc, char **argv)
     const char *v;
     if (take_option(&argc, argv, "--rigid", 0))
         rigid_face = 1;
+    /* --face: the flexible faces, the default since 0.3.0 (kept so the
+     * README's earlier commands still run) */
+    if (take_option(&argc, argv, "--face", 0))
+        rigid_face = 0;
     if ((v = take_option(&argc, argv, "--kx", 1)))
         stiffness_times = atof(v);
     if ((v = take_option(&argc, argv, "--cap", 1))) {
