@@ -15,7 +15,7 @@ void rd_contact_opts_default(rd_contact_opts *o)
     memset(o, 0, sizeof *o);
     o->points_per_segment = 10;
     o->accuracy = 0.01;
-    o->max_segments = 320;
+    o->max_segments = 640;
     o->flexible_face = 1;
 }
 

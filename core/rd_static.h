@@ -93,7 +93,7 @@ typedef struct rd_contact_opts {
                                or the gap is certainly under 0.1 um) and 100a deg (gap
                                edges); default 0.01, 1e-4..0.5 */
     int max_segments;       /* refinement stops here (the first pair n, 2n always runs);
-                               default 320, 4..RD_STATIC_SEGMENTS_MAX */
+                               default 640, 4..RD_STATIC_SEGMENTS_MAX */
     int flexible_face;      /* 1 (default): each segment's running face bent and sheared
                                with the ring between its joints (rd_contact_face.c), from 80
                                segments on; 0: rigid arcs (binned pressure within 0.02 p0 of

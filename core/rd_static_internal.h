@@ -102,7 +102,7 @@ typedef struct rd_static_problem {
     double *face;        /* 14 per joint: rd_contact_face.c's cache, in cp's block */
     double *mult;        /* per point: the augmented Lagrangian's multiplier, Pa (NULL: none) */
     rd_contact_eval *pe; /* m n: each point at the last rd_contact_loads */
-    int tip_mult;        /* mult has n + 2 m entries: the free ends' points their own */
+    int tip_mult;        /* mult[n], mult[n + 1]: the free ends' very tips their own */
     double area;         /* tributary area of one point, m^2 */
     double r_o;          /* running-face radius of the closed ring */
     double bore_dr;      /* D/2 - r_o */
