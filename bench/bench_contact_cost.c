@@ -29,6 +29,7 @@
 #include <time.h>
 
 #include "bench_util.h"
+#include "contact_reference.h"
 
 #include "rd_static.h"
 
@@ -73,20 +74,14 @@ static uint64_t fingerprint(const rd_contact_result *c)
     return h;
 }
 
-/* bench_static's battery bore (its battery_bore). */
+/* bench_static's battery bore (contact_reference.c), with the options
+ * given on the command line. */
 static rd_contact_opts bore(const rd_ring_params *p, int k, double fac, double phase)
 {
-    rd_ring_section sec;
-    rd_ring_section_get(p, 0, &sec);
-    double bound = p->tangential_force * pow(sec.R, 3) /
-                   (p->youngs_modulus * sec.I_inplane * pow(k * k - 1.0, 2));
-    rd_contact_opts o;
-    rd_contact_opts_default(&o);
+    rd_contact_opts o = ref_battery_bore(p, k, fac, phase);
     o.flexible_face = flexible_face;
     if (cap)
         o.max_segments = cap;
-    o.n_distortion = 1;
-    o.distortion[0] = (rd_distortion){k, fmin(fac * bound, 0.004 * p->diameter), phase};
     return o;
 }
 

@@ -176,19 +176,15 @@ static double thin_ring_bound(const rd_ring_params *p, int k)
 static rd_contact_opts battery_bore(const rd_ring_params *p, int k, double fac, double phase,
                                     double *A_bound)
 {
-    double bound = thin_ring_bound(p, k), A = fmin(fac * bound, 0.004 * p->diameter);
-    rd_contact_opts o;
-    rd_contact_opts_default(&o);
+    rd_contact_opts o = ref_battery_bore(p, k, fac, phase);
     if (rigid_face)
         o.flexible_face = 0;
     if (stiffness_times > 0)
         o.stiffness = stiffness_times * rd_contact_default_stiffness(p);
     if (cap)
         o.max_segments = cap;
-    o.n_distortion = 1;
-    o.distortion[0] = (rd_distortion){k, A, phase};
     if (A_bound)
-        *A_bound = A / bound;
+        *A_bound = o.distortion[0].amplitude / thin_ring_bound(p, k);
     return o;
 }
 

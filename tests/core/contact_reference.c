@@ -142,6 +142,19 @@ static double on_bore(const ref_result *out, double a, double b)
     return fmax(0.0, len);
 }
 
+rd_contact_opts ref_battery_bore(const rd_ring_params *p, int k, double fac, double phase)
+{
+    rd_ring_section sec;
+    rd_ring_section_get(p, 0, &sec);
+    double bound = p->tangential_force * pow(sec.R, 3) /
+                   (p->youngs_modulus * sec.I_inplane * pow(k * k - 1.0, 2));
+    rd_contact_opts o;
+    rd_contact_opts_default(&o);
+    o.n_distortion = 1;
+    o.distortion[0] = (rd_distortion){k, fmin(fac * bound, 0.004 * p->diameter), phase};
+    return o;
+}
+
 void ref_post(const ref_mesh *m, const char *act, const double *gap, const double *lam,
               double bin_deg, double gap_floor, ref_result *out)
 {

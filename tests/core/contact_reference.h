@@ -31,6 +31,12 @@ typedef struct ref_result {
     double p0;
 } ref_result;
 
+/* The battery's bore (bench_static --battery, test_contact): order k at fac
+ * times the thin-ring conformability bound F_t R^3 / (E I (k^2 - 1)^2),
+ * capped at 0.4 % of the diameter, phase deg; the other contact options at
+ * their defaults. */
+rd_contact_opts ref_battery_bore(const rd_ring_params *p, int k, double fac, double phase);
+
 /* Solves on `cells` cells (even); bins of bin_deg; light gaps no deeper
  * than gap_floor (m) count as contact.  Returns 0, or -1 (no convergence,
  * out of memory, singular). */

@@ -28,19 +28,6 @@
  * sanitizer build solves each bore in ~0.1 s */
 #define CELLS 360
 
-static rd_contact_opts bore(const rd_ring_params *p, int k, double fac, double phase)
-{
-    rd_ring_section sec;
-    rd_ring_section_get(p, 0, &sec);
-    double bound = p->tangential_force * pow(sec.R, 3) /
-                   (p->youngs_modulus * sec.I_inplane * pow(k * k - 1.0, 2));
-    rd_contact_opts o;
-    rd_contact_opts_default(&o);
-    o.n_distortion = 1;
-    o.distortion[0] = (rd_distortion){k, fac * bound, phase};
-    return o;
-}
-
 static void test_round_bore(void)
 {
     rd_ring_params p;
@@ -76,7 +63,7 @@ static int difference(int k, double fac, double phase, double s, double d[36])
 {
     rd_ring_params p;
     rd_ring_params_default(&p);
-    rd_contact_opts o = bore(&p, k, fac, phase);
+    rd_contact_opts o = ref_battery_bore(&p, k, fac, phase);
     p.tangential_force *= s;
     o.distortion[0].amplitude *= s;
     ref_result nl, lin;
