@@ -138,9 +138,9 @@ static int refine(contact_run *run, const rd_monitor *mon, rd_error *err)
  * at twice the contact stiffness, from its own shape.  The law's compliance
  * moves the answer as 1/k (measured: 10 x k moves the battery's bins 1.6 to
  * 2.0 times as far as 2 x k), so the stiff law's limit is twice the move
- * away, and that is added to each estimate (rd_contact_estimate_law); the
- * target is judged again with it, and if the law alone misses it the note
- * says so. */
+ * away, and that is added to the binned pressure's and the largest gap's
+ * estimates (rd_contact_estimate_law); the target is judged again with it,
+ * and if the law alone misses it the note says so. */
 static int stiffness_probe(contact_run *run, const rd_monitor *mon, rd_error *err)
 {
     rd_contact_result *r = &run->level[0], s;
