@@ -157,6 +157,9 @@ static int contact_accuracy(json_t *out, const rd_contact_result *res)
                                          rd_result_real(e->contact_fraction), "max_clearance",
                                          rd_result_real(e->max_clearance), "gap_edges_deg",
                                          rd_result_real(e->gap_edges_deg)));
+    /* the contact law's part of error_estimates.pressure (of p0): twice the
+     * bins' move at twice contact.stiffness; null when not solved */
+    bad |= json_object_set_new(num, "pressure_law_share", rd_result_real(res->law_share));
     bad |= json_object_set_new(num, "accuracy",
                                rd_result_real(res->accuracy_met < 0 ? NAN : res->accuracy));
     bad |= json_object_set_new(
