@@ -400,12 +400,33 @@ static int distorted(const char *dir, int reps)
 
 /* ------------------------------- the full model's segment-count estimate (6.) */
 
-/* A scene of the battery: an example, then what is changed in it. */
-typedef struct seg_scene {
+/* A scene of the batteries (6. and 7.): an example, then what is changed
+ * in it, for one cycle. */
+typedef struct bat_scene {
     const char *label, *file;
     double speed_rpm, clearance; /* 0: the example's */
-    int coulomb;                 /* 1: Coulomb friction, coefficient 0.1 */
-} seg_scene;
+    int friction;                /* enum rd_friction_model, coefficient 0.1; -1: the example's */
+} bat_scene;
+
+/* Reads s's example from dir into c and applies s; 0 (and a message) if
+ * the file cannot be read. */
+static int bat_load(gcase *c, const char *dir, const bat_scene *s)
+{
+    if (!load_example(c, dir, s->file)) {
+        fprintf(stderr, "cannot read %s/%s\n", dir, s->file);
+        return 0;
+    }
+    c->p.engine.cycles = 1.0;
+    if (s->speed_rpm > 0)
+        c->p.engine.speed_rpm = s->speed_rpm;
+    if (s->clearance > 0)
+        c->p.groove.axial_clearance = s->clearance;
+    if (s->friction >= 0) {
+        c->p.friction.model = s->friction;
+        c->p.friction.coefficient = 0.1;
+    }
+    return 1;
+}
 
 #define SEG_STEP_DEG   0.05 /* output step: the threshold landings' resolution (interpolated) */
 #define SEG_SAMPLES    14500
@@ -502,15 +523,15 @@ static void seg_diff(const seg_run *a, const seg_run *b, double ca, double v[3])
  * 1e-8, and the observed order from n/2, n, 2n, 4n at rtol 1e-8. */
 static int seg_battery(const char *dir, int with4n, int only, double order)
 {
-    static const seg_scene sc[] = {
-        {"gas 6000 rpm (example)", "thesis_lift_gas_6000rpm.json", 0, 0, 0},
-        {"distorted bore (example)", "lift_distorted.json", 0, 0, 0},
-        {"tilted piston (example)", "lift_tilted.json", 0, 0, 0},
-        {"1000 rpm Coulomb", "thesis_lift_1000rpm.json", 0, 0, 1},
-        {"1000 rpm Coulomb, 10 um", "thesis_lift_1000rpm.json", 0, 1e-5, 1},
-        {"gas 3000 rpm", "thesis_lift_gas_6000rpm.json", 3000, 0, 0},
-        {"gas 6000 rpm, 60 um", "thesis_lift_gas_6000rpm.json", 0, 6e-5, 0},
-        {"1000 rpm inertia only", "thesis_lift_1000rpm.json", 0, 0, 0},
+    static const bat_scene sc[] = {
+        {"gas 6000 rpm (example)", "thesis_lift_gas_6000rpm.json", 0, 0, -1},
+        {"distorted bore (example)", "lift_distorted.json", 0, 0, -1},
+        {"tilted piston (example)", "lift_tilted.json", 0, 0, -1},
+        {"1000 rpm Coulomb", "thesis_lift_1000rpm.json", 0, 0, RD_FRICTION_COULOMB},
+        {"1000 rpm Coulomb, 10 um", "thesis_lift_1000rpm.json", 0, 1e-5, RD_FRICTION_COULOMB},
+        {"gas 3000 rpm", "thesis_lift_gas_6000rpm.json", 3000, 0, -1},
+        {"gas 6000 rpm, 60 um", "thesis_lift_gas_6000rpm.json", 0, 6e-5, -1},
+        {"1000 rpm inertia only", "thesis_lift_1000rpm.json", 0, 0, -1},
     };
     double div = pow(2.0, order);
     printf("One cycle, full model, each scene's n and rtol.  est = |f(n) - f(n/2)| / 2^p (both at "
@@ -528,19 +549,8 @@ static int seg_battery(const char *dir, int with4n, int only, double order)
         gcase c;
         if (only >= 0 && s != only)
             continue;
-        if (!load_example(&c, dir, sc[s].file)) {
-            fprintf(stderr, "cannot read %s/%s\n", dir, sc[s].file);
+        if (!bat_load(&c, dir, &sc[s]))
             return 1;
-        }
-        c.p.engine.cycles = 1.0;
-        if (sc[s].speed_rpm > 0)
-            c.p.engine.speed_rpm = sc[s].speed_rpm;
-        if (sc[s].clearance > 0)
-            c.p.groove.axial_clearance = sc[s].clearance;
-        if (sc[s].coulomb) {
-            c.p.friction.model = RD_FRICTION_COULOMB;
-            c.p.friction.coefficient = 0.1;
-        }
         int n = c.n;
         double rtol = c.p.rtol, atol = c.p.atol, ca = c.p.groove.axial_clearance;
         static seg_run a, h, t, f[4]; /* f: n/2, n, 2n, 4n at rtol 1e-8 */
@@ -575,13 +585,6 @@ static int seg_battery(const char *dir, int with4n, int only, double order)
 }
 
 /* ------------------------- landings dated at a fraction of the clearance (7.) */
-
-/* A scene of the landing-dating battery: an example, then what is changed. */
-typedef struct ld_scene {
-    const char *label, *file;
-    double speed_rpm, clearance; /* 0: the example's */
-    int friction;                /* enum rd_friction_model; -1: the example's */
-} ld_scene;
 
 #define LD_SAMPLES 36100 /* one cycle at 0.02 deg, the finest output step */
 #define LD_NTH     4     /* touch (the run's event), then the fractions below */
@@ -671,24 +674,11 @@ static double ld_diff(const ld_run *a, const ld_run *b, int t)
     return d;
 }
 
-static void ld_apply(gcase *c, const ld_scene *s)
-{
-    c->p.engine.cycles = 1.0;
-    if (s->speed_rpm > 0)
-        c->p.engine.speed_rpm = s->speed_rpm;
-    if (s->clearance > 0)
-        c->p.groove.axial_clearance = s->clearance;
-    if (s->friction >= 0) {
-        c->p.friction.model = s->friction;
-        c->p.friction.coefficient = 0.1;
-    }
-}
-
 /* Table 7: for each scene, rigid vs full n = 20, 40, 80 (rtol 1e-8) at
  * each landing threshold, and full's convergence in n. */
 static int landing_dating(const char *dir, int with80, int only, double step)
 {
-    static const ld_scene sc[] = {
+    static const bat_scene sc[] = {
         {"gas 6000 rpm (example)", "thesis_lift_gas_6000rpm.json", 0, 0, -1},
         {"gas 3000 rpm", "thesis_lift_gas_6000rpm.json", 3000, 0, -1},
         {"gas 8000 rpm", "thesis_lift_gas_6000rpm.json", 8000, 0, -1},
@@ -713,11 +703,8 @@ static int landing_dating(const char *dir, int with80, int only, double step)
         gcase c;
         if (only >= 0 && s != only)
             continue;
-        if (!load_example(&c, dir, sc[s].file)) {
-            fprintf(stderr, "cannot read %s/%s\n", dir, sc[s].file);
+        if (!bat_load(&c, dir, &sc[s]))
             return 1;
-        }
-        ld_apply(&c, &sc[s]);
         static ld_run r[LD_RUNS]; /* rigid, full 20, 40, 80 */
         for (int k = 0; k < LD_RUNS; k++) {
             r[k].ok = 0;
