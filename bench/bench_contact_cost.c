@@ -3,16 +3,18 @@
  * everything it answers, so a change meant to make the solve cheaper can
  * be shown to leave its answers bit for bit (or to say which moved).
  *
- *   bench_contact_cost [--face] [--cap N] K A PHASE [N]
+ *   bench_contact_cost [--rigid] [--cap N] K A PHASE [N]
  *       one bore of bench_static's battery (order K, A x the thin-ring
  *       bound capped at 0.4 % of the diameter, PHASE deg), at N segments
  *       without refinement, or (no N) refined as by default: segments,
  *       Newton iterations (one tangent and factorization each), load
  *       steps, final residual, CPU s, and the fingerprint.
- *   bench_contact_cost [--face] [--cap N] --battery
+ *   bench_contact_cost [--rigid] [--cap N] --battery
  *       the same, one line a bore, for the 32 battery bores (CPU the
  *       median of 3 solves), and the sums.
- *   --face: flexible running faces (rd_contact_opts.flexible_face);
+ *   --rigid: rigid running faces (rd_contact_opts.flexible_face = 0)
+ *       instead of the default flexible ones (--face, the flexible ones, is
+ *       accepted and changes nothing, as in bench_static);
  *   --cap N: rd_contact_opts.max_segments.
  *
  * The fingerprint is FNV-1a over the bytes of every double of the result
@@ -33,7 +35,7 @@
 
 #include "rd_static.h"
 
-static int flexible_face = 0, cap = 0;
+static int flexible_face = 1, cap = 0;
 
 static uint64_t fnv(uint64_t h, const void *data, size_t len)
 {
@@ -126,6 +128,8 @@ int main(int argc, char **argv)
     for (; a < argc && strncmp(argv[a], "--", 2) == 0 && strcmp(argv[a], "--battery"); a++) {
         if (strcmp(argv[a], "--face") == 0)
             flexible_face = 1;
+        else if (strcmp(argv[a], "--rigid") == 0)
+            flexible_face = 0;
         else if (strcmp(argv[a], "--cap") == 0 && a + 1 < argc)
             cap = atoi(argv[++a]);
         else
@@ -158,7 +162,7 @@ int main(int argc, char **argv)
         return 0;
     }
     if (argc - a < 3 || argc - a > 4) {
-        fprintf(stderr, "usage: bench_contact_cost [--face] [--cap N] (K A PHASE [N] | "
+        fprintf(stderr, "usage: bench_contact_cost [--rigid] [--cap N] (K A PHASE [N] | "
                         "--battery)\n");
         return 2;
     }
