@@ -180,6 +180,18 @@ static void nudge(setup *s, int b, int d, double h)
             Q[3 * r + c] = W[3 * r] * Q0[c] + W[3 * r + 1] * Q0[3 + c] + W[3 * r + 2] * Q0[6 + c];
 }
 
+/* Segment i moved onto setup s's bore (order 3, phase 17 deg) and `off` m
+ * further out, turned with it (the bore's slope 3 A / R sin 3(a - phi) at
+ * the centroid) and by `turn` rad more. */
+static void on_bore(setup *s, int i, double off, double turn)
+{
+    rd_static_problem *pb = &s->pb;
+    double a = rd_ring_get_segment_angle(s->ring, i), A = s->o.distortion[0].amplitude;
+    double ph = s->o.distortion[0].phase_deg * PI / 180, dr = pb->bore_dr + A * cos(3 * (a - ph));
+    pb->x[3 * i] += (dr + off) * cos(a), pb->x[3 * i + 1] += (dr + off) * sin(a);
+    set_turn(pb->Q + 9 * i, turn + 3 * A / pb->R * sin(3 * (a - ph)));
+}
+
 /* The tangent's rows of segment r's load (its own closed form plus the
  * faces' blocks of the points of segments r - 1, r, r + 1, which reach
  * segments r - 2 .. r + 2) against central differences, on a ring on the
@@ -190,13 +202,8 @@ static void test_face_jacobian(void)
     setup s;
     CHECK(setup_make(&s), "setup");
     rd_static_problem *pb = &s.pb;
-    for (int i = 0; i < N; i++) {
-        double a = rd_ring_get_segment_angle(s.ring, i), A = s.o.distortion[0].amplitude;
-        double dr = s.pb.bore_dr + A * cos(3 * (a - 17 * PI / 180)) + 3 * pb->eps * sin(7.0 * i);
-        double *x = pb->x + 3 * i;
-        x[0] += dr * cos(a), x[1] += dr * sin(a);
-        set_turn(pb->Q + 9 * i, 2e-8 * cos(5.0 * i) + 3 * A / pb->R * sin(3 * (a - 17 * PI / 180)));
-    }
+    for (int i = 0; i < N; i++)
+        on_bore(&s, i, 3 * pb->eps * sin(7.0 * i), 2e-8 * cos(5.0 * i));
     double worst = 0.0;
     int rows[] = {0, 1, 2, 16, 17, N - 2, N - 1};
     for (int ri = 0; ri < (int)(sizeof rows / sizeof *rows); ri++) {
@@ -264,12 +271,8 @@ static void test_far_points(void)
     setup s;
     CHECK(setup_make(&s), "setup");
     rd_static_problem *pb = &s.pb;
-    for (int i = 0; i < N; i++) {
-        double a = rd_ring_get_segment_angle(s.ring, i), A = s.o.distortion[0].amplitude;
-        double dr = s.pb.bore_dr + A * cos(3 * (a - 17 * PI / 180)) - 30.0 * i * pb->eps;
-        pb->x[3 * i] += dr * cos(a), pb->x[3 * i + 1] += dr * sin(a);
-        set_turn(pb->Q + 9 * i, 3 * A / pb->R * sin(3 * (a - 17 * PI / 180)));
-    }
+    for (int i = 0; i < N; i++)
+        on_bore(&s, i, -30.0 * i * pb->eps, 0.0);
     rd_contact_face_update(pb);
     memset(s.r, 0, sizeof s.r);
     rd_contact_loads(pb, s.r);
