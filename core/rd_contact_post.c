@@ -147,43 +147,61 @@ static double touching(const rd_contact_result *out, double a, double b)
     return fmax(0.0, len);
 }
 
+/* Bin k's arc [lo, hi] (deg): the first and the last reach past 0 and
+ * 360 deg, where a free end pushed along the bore beyond the gap's middle
+ * still belongs to its own bin. */
+static void bin_arc(int k, double *lo, double *hi)
+{
+    double w = RD_CONTACT_BIN_DEG;
+    *lo = k > 0 ? k * w : -INFINITY;
+    *hi = k < RD_CONTACT_BINS - 1 ? (k + 1) * w : INFINITY;
+}
+
+static int bin_of(double a)
+{
+    int k = (int)floor(a / RD_CONTACT_BIN_DEG);
+    return k < 0 ? 0 : (k >= RD_CONTACT_BINS ? RD_CONTACT_BINS - 1 : k);
+}
+
 /* Adds force f spread evenly over the touching part of [a, b] (length
  * len > 0) to the bins. */
 static void spread(const rd_contact_result *out, double a, double b, double len, double force,
                    double *f)
 {
-    double w = RD_CONTACT_BIN_DEG;
-    for (int k = (int)floor(a / w); k < RD_CONTACT_BINS && k * w < b; k++)
-        if (k >= 0)
-            f[k] += force * touching(out, fmax(a, k * w), fmin(b, (k + 1) * w)) / len;
+    for (int k = bin_of(a); k <= bin_of(b); k++) {
+        double lo, hi;
+        bin_arc(k, &lo, &hi);
+        f[k] += force * touching(out, fmax(a, lo), fmin(b, hi)) / len;
+    }
 }
 
-void rd_contact_bins(const double *seg_lo_deg, double seg_deg, const double *force,
-                     const double *at_deg, int n, double h_ro, rd_contact_result *out)
+void rd_contact_bins(const double *seg_deg, const double *force, const double *at_deg, int n,
+                     double h_ro, rd_contact_result *out)
 {
-    double f[RD_CONTACT_BINS] = {0}, cover[RD_CONTACT_BINS] = {0}, w = RD_CONTACT_BIN_DEG;
+    double f[RD_CONTACT_BINS] = {0}, cover[RD_CONTACT_BINS] = {0};
     for (int i = 0; i < n; i++) {
-        double lo = seg_lo_deg[i], hi = lo + seg_deg;
+        double lo = seg_deg[i], hi = seg_deg[i + 1], width = hi - lo;
         double c = fmin(hi, fmax(lo, at_deg[i])), half = fmin(c - lo, hi - c);
-        for (int k = (int)floor(lo / w); k < RD_CONTACT_BINS && k * w < hi; k++)
-            if (k >= 0)
-                cover[k] += fmax(0.0, fmin(hi, (k + 1) * w) - fmax(lo, k * w));
+        for (int k = bin_of(lo); k <= bin_of(hi); k++) {
+            double a, b;
+            bin_arc(k, &a, &b);
+            cover[k] += fmax(0.0, fmin(hi, b) - fmax(lo, a));
+        }
         if (!(force[i] > 0.0))
             continue;
         /* on the bore only: a segment beside a gap edge spreads its force
          * over the part of its arc that touches (the edge's location), not
          * over the lifted part, which may lie in the next bin */
         double len = touching(out, c - half, c + half);
-        if (len > 1e-9 * seg_deg) {
+        if (len > 1e-9 * width) {
             spread(out, c - half, c + half, len, force[i], f);
             continue;
         }
         len = touching(out, lo, hi);
-        int kc = (int)floor(c / w);
-        if (len > 1e-9 * seg_deg && half > 1e-9 * seg_deg)
+        if (len > 1e-9 * width && half > 1e-9 * width)
             spread(out, lo, hi, len, force[i], f);
-        else if (kc >= 0 && kc < RD_CONTACT_BINS)
-            f[kc] += force[i]; /* at one point (its centroid) */
+        else
+            f[bin_of(c)] += force[i]; /* at one point (its centroid) */
     }
     for (int k = 0; k < RD_CONTACT_BINS; k++)
         out->bin_pressure[k] = cover[k] > 0.0 ? f[k] / (h_ro * cover[k] * M_PI / 180.0) : 0.0;

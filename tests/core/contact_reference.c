@@ -155,11 +155,17 @@ rd_contact_opts ref_battery_bore(const rd_ring_params *p, int k, double fac, dou
     return o;
 }
 
+static double node_angle(const ref_mesh *m, int j)
+{
+    return m->s + j * m->D + (m->shift ? m->shift[j] : 0.0);
+}
+
 void ref_post(const ref_mesh *m, const char *act, const double *gap, const double *lam,
               double bin_deg, double gap_floor, ref_result *out)
 {
     int N = m->cells;
-    double span = 2.0 * M_PI - 2.0 * m->s, gap_len = 0.0;
+    double a0 = node_angle(m, 0), aN = node_angle(m, N);
+    double span = aN - a0, gap_len = 0.0;
     out->n_gaps = 0;
     out->max_clearance = 0.0;
     out->max_clearance_deg = NAN;
@@ -172,14 +178,16 @@ void ref_post(const ref_mesh *m, const char *act, const double *gap, const doubl
         while (j <= N && !act[j])
             j++;
         int b = j - 1; /* nodes a..b lifted */
-        double th = m->s + a * m->D, te = m->s + b * m->D;
+        double th = node_angle(m, a), te = node_angle(m, b);
         double gA = gap[a], gB = gap[b];
-        double start = a == 0 ? m->s : edge(th - m->D, th, gA, a + 1 <= b ? gap[a + 1] : 0);
-        double end = b == N ? te : -edge(-(te + m->D), -te, gB, b - 1 >= a ? gap[b - 1] : 0);
+        double start =
+            a == 0 ? th : edge(node_angle(m, a - 1), th, gA, a + 1 <= b ? gap[a + 1] : 0);
+        double end =
+            b == N ? te : -edge(-node_angle(m, b + 1), -te, gB, b - 1 >= a ? gap[b - 1] : 0);
         double best = 0.0, at = th;
         for (int q = a; q <= b; q++)
             if (gap[q] > best)
-                best = gap[q], at = m->s + q * m->D;
+                best = gap[q], at = node_angle(m, q);
         if (best <= gap_floor)
             continue;
         gap_len += end - start;
@@ -190,6 +198,8 @@ void ref_post(const ref_mesh *m, const char *act, const double *gap, const doubl
             out->max_clearance = best, out->max_clearance_deg = at * 180 / M_PI;
     }
     out->contact_fraction = 1.0 - gap_len / span;
+    out->end_deg[0] = a0 * 180 / M_PI;
+    out->end_deg[1] = aN * 180 / M_PI;
     out->tip_force[0] = act[0] ? lam[0] - 0.5 * lam[1] : 0.0;
     out->tip_force[1] = act[N] ? lam[N] - 0.5 * lam[N - 1] : 0.0;
     /* bins: node forces spread over the part of their tributary arcs on
@@ -197,11 +207,14 @@ void ref_post(const ref_mesh *m, const char *act, const double *gap, const doubl
     out->bins = (int)lround(360.0 / bin_deg);
     double wb = bin_deg * M_PI / 180.0, force[REF_BINS_MAX] = {0}, cover[REF_BINS_MAX] = {0};
     for (int j = 0; j <= N; j++) {
-        double lo = m->s + (j - 0.5) * m->D, hi = lo + m->D;
-        lo = fmax(lo, m->s), hi = fmin(hi, 2 * M_PI - m->s);
+        double lo = j > 0 ? 0.5 * (node_angle(m, j - 1) + node_angle(m, j)) : a0;
+        double hi = j < N ? 0.5 * (node_angle(m, j) + node_angle(m, j + 1)) : aN;
         double on = on_bore(out, lo, hi);
         for (int k = 0; k < out->bins; k++) {
-            double a = fmax(lo, k * wb), b = fmin(hi, (k + 1) * wb);
+            /* the first and last bins reach past 0 and 360 deg (a free end
+             * pushed along the bore beyond the gap's middle) */
+            double a = k > 0 ? fmax(lo, k * wb) : lo;
+            double b = k < out->bins - 1 ? fmin(hi, (k + 1) * wb) : hi;
             if (b <= a)
                 continue;
             cover[k] += b - a;
@@ -277,7 +290,11 @@ static int solve_linear(const rd_ring_params *p, const rd_contact_opts *o, int c
         out->p0 = 2.0 * m.Ft / (p->diameter * h);
         for (int j = 0; j <= cells; j++)
             re[j] = m.g0[j] - u[3 * j + 1]; /* the gaps (re is free now) */
-        ref_mesh mesh = {cells, m.s, m.D, m.h, m.ro};
+        /* where on the bore: the running-face points' tangential moves
+         * u + (b / 2) beta over r_o (f is free now) */
+        for (int j = 0; j <= cells; j++)
+            f[j] = (u[3 * j] + 0.5 * b * u[3 * j + 2]) / m.ro;
+        ref_mesh mesh = {cells, m.s, m.D, m.h, m.ro, f};
         ref_post(&mesh, act, re, lam, bin_deg, gap_floor, out);
         if (act_out)
             memcpy(act_out, act, (size_t)cells + 1);

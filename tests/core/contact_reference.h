@@ -22,11 +22,12 @@ typedef struct ref_gap {
 typedef struct ref_result {
     int cells, iterations;
     double contact_fraction; /* contact length / ring span */
+    double end_deg[2];       /* the free ends' polar angles: where on the bore they are */
     int n_gaps;
     ref_gap gaps[64];
     double max_clearance, max_clearance_deg;
-    double tip_force[2];               /* concentrated force at the two free ends, N */
-    int bins;                          /* angular bins of bin_deg from 0 deg */
+    double tip_force[2]; /* concentrated force at the two free ends, N */
+    int bins; /* angular bins of bin_deg from 0 deg on the bore, the first and last reaching past */
     double bin_pressure[REF_BINS_MAX]; /* mean contact pressure per bin, Pa (0 where no ring) */
     double p0;
 } ref_result;
@@ -59,6 +60,7 @@ int ref_contact_solve_nl(const rd_ring_params *p, const rd_contact_opts *o, int 
 typedef struct ref_mesh {
     int cells;
     double s, D, h, ro;
+    const double *shift; /* per node, rad: its polar angle's departure from s + j D, or NULL */
 } ref_mesh;
 
 /* Fills out's gaps, contact fraction, tip forces and bins from the nodes'

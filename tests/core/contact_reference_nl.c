@@ -334,8 +334,17 @@ int ref_contact_solve_nl(const rd_ring_params *p, const rd_contact_opts *o, int 
         }
         out->cells = cells;
         out->p0 = 2.0 * m.Ft / (p->diameter * h);
-        ref_mesh mesh = {cells, m.s, m.D, h, m.ro};
+        /* where on the bore: the nodes' polar angles phi_j */
+        double *shift = malloc((cells + 1) * sizeof *shift);
+        if (!shift) {
+            rc = -1;
+            goto out;
+        }
+        for (int j = 0; j <= cells; j++)
+            shift[j] = w.q[3 * j] / m.ro;
+        ref_mesh mesh = {cells, m.s, m.D, h, m.ro, shift};
         ref_post(&mesh, w.act, gap, w.lam, bin_deg, gap_floor, out);
+        free(shift);
     }
 out:
     free(w.q), free(w.r), free(w.ab), free(w.lam), free(gap), free(w.piv), free(w.held);
