@@ -3,10 +3,12 @@
  * problem, and the error estimates between two refinement levels
  * (rd_contact.c calls these; declarations in rd_static_internal.h).
  *
- * Light gaps.  The clearances c_q of the contact points (m per segment,
- * spacing phi / m, angles increasing along the ring) are scanned for runs
- * with c_q > 0.  An edge between a touching point a and the first lifted
- * point b lies where the clearance leaves zero: behind an edge that carries
+ * Light gaps.  The segments' closest approaches are scanned for runs of
+ * lifted segments.  An edge between a touching point a and the first lifted
+ * point b lies where the clearance leaves zero (with faces that bend with
+ * the ring: among the contact points, m per segment, spacing phi / m,
+ * angles increasing along the ring; rigid faces, whose points do not follow
+ * the bore: between the segments' closest points): behind an edge that carries
  * a concentrated force the clearance grows as the cube of the distance, so
  * with c_b and the next c_{b+1}, r = (c_{b+1} / c_b)^(1/3) puts the edge
  * y = d / (r - 1) before b (d the point spacing), kept within [a, b].  A run
@@ -81,14 +83,33 @@ static void peak(const double *t, const double *c, int k, int lo, int hi, double
 }
 
 /* The run of lifted segments lo..hi of n; ts, cs their closest points'
- * angles and clearances, t, c all m n points. */
+ * angles and clearances, t, c all m n points.  With points (faces that
+ * bend with the ring, whose points follow the bore) the edges are found
+ * among the points: from the run's outermost points outwards over the
+ * lifted points of the touching neighbours (the segments' closest points
+ * put the edge up to half a segment into the patch: 0.14 deg at n = 1280,
+ * halving with each doubling of n, on most of bench_static's battery). */
 static void one_gap(const double *ts, const double *cs, int n, const double *t, const double *c,
-                    int m, int lo, int hi, double tip0, double tip1, rd_contact_gap *g)
+                    int m, int lo, int hi, double tip0, double tip1, int points, rd_contact_gap *g)
 {
-    g->start_deg =
-        lo == 0 ? tip0 : cube_edge(ts[lo - 1], ts[lo], cs[lo], lo < hi ? cs[lo + 1] : 0.0);
-    g->end_deg =
-        hi == n - 1 ? tip1 : -cube_edge(-ts[hi + 1], -ts[hi], cs[hi], hi > lo ? cs[hi - 1] : 0.0);
+    if (lo == 0)
+        g->start_deg = tip0;
+    else if (points) {
+        int q = m * lo, last = m * (hi + 1) - 1;
+        while (q > m * (lo - 1) && c[q - 1] > 0.0)
+            q--;
+        g->start_deg = cube_edge(t[q - 1], t[q], c[q], q < last ? c[q + 1] : 0.0);
+    } else
+        g->start_deg = cube_edge(ts[lo - 1], ts[lo], cs[lo], lo < hi ? cs[lo + 1] : 0.0);
+    if (hi == n - 1)
+        g->end_deg = tip1;
+    else if (points) {
+        int q = m * (hi + 1) - 1, first = m * lo;
+        while (q < m * (hi + 2) - 1 && c[q + 1] > 0.0)
+            q++;
+        g->end_deg = -cube_edge(-t[q + 1], -t[q], c[q], q > first ? c[q - 1] : 0.0);
+    } else
+        g->end_deg = -cube_edge(-ts[hi + 1], -ts[hi], cs[hi], hi > lo ? cs[hi - 1] : 0.0);
     int k = m * lo;
     for (int q = m * lo; q < m * (hi + 1); q++)
         if (c[q] > c[k])
@@ -97,7 +118,8 @@ static void one_gap(const double *ts, const double *cs, int n, const double *t, 
 }
 
 void rd_contact_gaps(const double *ts, const double *cs, int n, const double *t, const double *c,
-                     int m, double tip0, double tip1, double gap_floor, rd_contact_result *out)
+                     int m, int points, double tip0, double tip1, double gap_floor,
+                     rd_contact_result *out)
 {
     /* the band of depths counted or not by chance: within x2 of the floor,
      * including the runs a rigid face's misfit makes (order 3 at 1 x the
@@ -118,7 +140,7 @@ void rd_contact_gaps(const double *ts, const double *cs, int n, const double *t,
         while (i < n && cs[i] > 0.0)
             i++;
         rd_contact_gap g;
-        one_gap(ts, cs, n, t, c, m, lo, i - 1, tip0, tip1, &g);
+        one_gap(ts, cs, n, t, c, m, lo, i - 1, tip0, tip1, points, &g);
         if (g.max_clearance > band_lo && g.max_clearance < 2.0 * gap_floor)
             out->marginal_gap_deg += g.end_deg - g.start_deg;
         if (!(g.max_clearance > gap_floor))
@@ -176,7 +198,7 @@ static void spread(const rd_contact_result *out, double a, double b, double len,
 }
 
 void rd_contact_bins(const double *seg_deg, const double *force, const double *at_deg, int n,
-                     double h_ro, rd_contact_result *out)
+                     double h_ro, const rd_contact_result *gaps, rd_contact_result *out)
 {
     double f[RD_CONTACT_BINS] = {0}, cover[RD_CONTACT_BINS] = {0};
     for (int i = 0; i < n; i++) {
@@ -192,14 +214,14 @@ void rd_contact_bins(const double *seg_deg, const double *force, const double *a
         /* on the bore only: a segment beside a gap edge spreads its force
          * over the part of its arc that touches (the edge's location), not
          * over the lifted part, which may lie in the next bin */
-        double len = touching(out, c - half, c + half);
+        double len = touching(gaps, c - half, c + half);
         if (len > 1e-9 * width) {
-            spread(out, c - half, c + half, len, force[i], f);
+            spread(gaps, c - half, c + half, len, force[i], f);
             continue;
         }
-        len = touching(out, lo, hi);
+        len = touching(gaps, lo, hi);
         if (len > 1e-9 * width && half > 1e-9 * width)
-            spread(out, lo, hi, len, force[i], f);
+            spread(gaps, lo, hi, len, force[i], f);
         else
             f[bin_of(c)] += force[i]; /* at one point (its centroid) */
     }

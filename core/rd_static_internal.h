@@ -254,9 +254,10 @@ int rd_contact_once(const rd_ring_params *p, int segments, const rd_contact_opts
  * (N) acting at at_deg_i within their arcs [seg_deg_i, seg_deg_i+1] on the bore (n + 1
  * ends, deg); the error estimates of the finer of two levels. */
 void rd_contact_gaps(const double *ts, const double *cs, int n, const double *t, const double *c,
-                     int m, double tip0, double tip1, double gap_floor, rd_contact_result *out);
+                     int m, int points, double tip0, double tip1, double gap_floor,
+                     rd_contact_result *out);
 void rd_contact_bins(const double *seg_deg, const double *force, const double *at_deg, int n,
-                     double h_ro, rd_contact_result *out);
+                     double h_ro, const rd_contact_result *gaps, rd_contact_result *out);
 void rd_contact_estimate(const rd_contact_result *fine, const rd_contact_result *coarse,
                          rd_contact_estimates *e);
 /* Adds to e the contact law's share of r's errors from s, the same level
