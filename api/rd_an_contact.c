@@ -66,15 +66,18 @@ static const rd_field contact_fields[] = {
              "(the thesis model; its misfit against a bore the ring follows keeps smooth bins "
              "0.04 p0 off at any n)."},
     {"points_per_segment", RD_F_INTEGER, ST(contact.points_per_segment), RD_MIN(1),
-     RD_MAX(RD_CONTACT_POINTS_MAX), .desc = "Contact points m on each segment's running face."},
+     RD_MAX(RD_CONTACT_POINTS_MAX),
+     .desc = "Contact points m on each segment's running face (above 640 segments no more "
+             "than keep them 360/6400 deg apart, and at least 5)."},
     {"max_segments", RD_F_INTEGER, ST(contact.max_segments), RD_MIN(4),
      RD_MAX(RD_STATIC_SEGMENTS_MAX),
-     .desc = "Largest segment count the accuracy target may refine to (n, 2n, 4n ...)."},
+     .desc = "Largest segment count the accuracy target may refine to (n, 2n, 4n ...); "
+             "default 1280."},
     {"stiffness", RD_F_NUMBER, ST(contact.stiffness), RD_MIN(0.0), .echo = echo_stiffness,
-     .desc = "Contact stiffness k, Pa/m. Absent or 0 = the default 1e6 E I / (h R^4) "
-             "(penetration under the nominal pressure 1e-6 of the ring's radial deflection "
-             "scale); otherwise 1e-3 to 1e2 times that default. The echo gives the stiffness "
-             "used."},
+     .desc = "Contact stiffness k, Pa/m. Absent or 0 = the default 2e6 E I / (h R^4) "
+             "(penetration under the nominal pressure 5e-7 of the ring's radial deflection "
+             "scale; 1e6 before 0.3.1); otherwise 1e-3 to 1e2 times that default. The echo "
+             "gives the stiffness used."},
     {.key = NULL},
 };
 static const rd_block contact_block = {

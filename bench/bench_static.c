@@ -201,7 +201,7 @@ static void battery(const rd_ring_params *p)
     const int orders[] = {2, 3, 4, 6};
     const double facs[] = {0.1, 1, 3, 10}, phases[] = {0, 17};
     double p0 = 2 * p->tangential_force / (p->diameter * p->axial_height);
-    double floor_m = 10 * p0 / rd_contact_default_stiffness(p);
+    double floor_m = rd_contact_gap_floor(p);
     int total = 0, ok[4] = {0}, track[4] = {0}, fast = 0, settled = 0, settled_ok = 0,
         ref_passes[2] = {1 << 30, 0}, its[3] = {1 << 30, 0, 0};
     double ref_cpu[2] = {INFINITY, 0}, tip_worst = 0;
@@ -391,7 +391,7 @@ static void bins_one(const rd_ring_params *p, int k, double fac, double phase, i
     rd_error_init(&err);
     if (fixed_n > 0)
         so.estimate_error = 0;
-    if (reference_solve(p, &o, 10 * p0 / rd_contact_default_stiffness(p), &r) != 0 ||
+    if (reference_solve(p, &o, rd_contact_gap_floor(p), &r) != 0 ||
         rd_contact_solve(p, fixed_n > 0 ? fixed_n : 20, &o, &so, NULL, &c, &err) != RD_OK)
         die("bins", &err);
     printf(
@@ -437,7 +437,7 @@ static void dump_battery(const rd_ring_params *p)
     const int orders[] = {2, 3, 4, 6}, ns[] = {40, 80, 160, 320, 640, 1280};
     const double facs[] = {0.1, 1, 3, 10}, phases[] = {0, 17};
     double p0 = 2 * p->tangential_force / (p->diameter * p->axial_height);
-    double floor_m = 10 * p0 / rd_contact_default_stiffness(p);
+    double floor_m = rd_contact_gap_floor(p);
     for (int oi = 0; oi < 4; oi++)
         for (int fi = 0; fi < 4; fi++)
             for (int pi = 0; pi < 2; pi++) {

@@ -266,7 +266,7 @@ void rd_contact_segment_jacobian(const rd_static_problem *pb, int i, double J[36
 /* The contact problem on `ring`: loads, law, support, contact points. */
 static int contact_setup(rd_static_problem *pb, const rd_ring_params *p, const rd_contact_opts *o)
 {
-    int n = pb->n, m = o->points_per_segment;
+    int n = pb->n, m = rd_contact_points(o->points_per_segment, n);
     const rd_ring *ring = pb->ring;
     double phi = rd_ring_segment_phi(ring);
     pb->Ft = p->tangential_force;
@@ -429,10 +429,10 @@ static int contact_summaries(const rd_static_problem *pb, const double *t, const
         if (!(force[i] > 2.0 * nb))
             at[i] = 0.5 * (lo[i] + lo[i + 1]);
     }
-    /* Clearances below the floor are not light gaps: ten times the default
-     * law's penetration under p0 (a property of the ring, not of the chosen
-     * stiffness: with the multipliers the ring does not sink into the bore
-     * at any stiffness, so the floor must not move with it), or, with rigid
+    /* Clearances below the floor are not light gaps: rd_contact_gap_floor
+     * (a property of the ring, not of the chosen stiffness: with the
+     * multipliers the ring does not sink into the bore at any stiffness, so
+     * the floor must not move with it), or, with rigid
      * faces (n < RD_CONTACT_FACE_MIN_SEGMENTS), the misfit of an arc of radius r_o
      * against the bore's curvature, up to (sum |A_k| k^2 + |D/2 - r_o|) /
      * r_o^2 times L^2 / 8 over a segment of length L: where the ring follows
@@ -443,9 +443,8 @@ static int contact_summaries(const rd_static_problem *pb, const double *t, const
         bend += fabs(pb->co->distortion[k].amplitude) * pb->co->distortion[k].order *
                 pb->co->distortion[k].order;
     out->point_spacing_deg = phi / pb->m;
-    out->gap_floor =
-        fmax(10.0 * pb->p0 / rd_contact_default_stiffness(rd_ring_get_params(pb->ring)),
-             pb->cp0 ? 0.0 : bend / (pb->r_o * pb->r_o) * L * L / 8.0);
+    out->gap_floor = fmax(rd_contact_gap_floor(rd_ring_get_params(pb->ring)),
+                          pb->cp0 ? 0.0 : bend / (pb->r_o * pb->r_o) * L * L / 8.0);
     rd_contact_gaps(ts, out->clearance, n, t, c, pb->m, pb->cp0 != NULL, lo[0], lo[n],
                     out->gap_floor, out);
     /* a free end's concentrated force: its segment's resultant beyond what

@@ -15,7 +15,7 @@ void rd_contact_opts_default(rd_contact_opts *o)
     memset(o, 0, sizeof *o);
     o->points_per_segment = 10;
     o->accuracy = 0.01;
-    o->max_segments = 640;
+    o->max_segments = 1280;
     o->flexible_face = 1;
 }
 
@@ -23,7 +23,19 @@ double rd_contact_default_stiffness(const rd_ring_params *p)
 {
     rd_ring_section s;
     rd_ring_section_get(p, 0, &s);
-    return 1e6 * p->youngs_modulus * s.I_inplane / (p->axial_height * pow(s.R, 4));
+    return 2e6 * p->youngs_modulus * s.I_inplane / (p->axial_height * pow(s.R, 4));
+}
+
+double rd_contact_gap_floor(const rd_ring_params *p)
+{
+    double p0 = 2.0 * p->tangential_force / (p->diameter * p->axial_height);
+    return 20.0 * p0 / rd_contact_default_stiffness(p);
+}
+
+int rd_contact_points(int m, int n)
+{
+    int dense = n > 0 ? (6400 + n - 1) / n : m;
+    return m < 5 ? m : (dense < 5 ? 5 : (dense < m ? dense : m));
 }
 
 double rd_bore_bend_term(int order, double amplitude)

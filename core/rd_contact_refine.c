@@ -57,6 +57,26 @@ static int contact_compare(void *ctx, rd_error *err)
     return RD_OK;
 }
 
+/* A pair that did not converge is dropped and the refinement starts again
+ * above it, from the load path: the pair above, where the first level
+ * failed (a coarse chain of rigid faces under a stiff law in a deep
+ * distortion: order 2 at 2.8 x with 10 x k_c of 0.3.0, n = 20 and 40; from
+ * 80 on it converges), or (to_faces) the first pair with the faces asked
+ * for, where a level below RD_CONTACT_FACE_MIN_SEGMENTS, which cannot be
+ * the answer, failed after the first (order 2 at 2.8 x, 0 deg, 20 x that
+ * k_c: n = 20 took 1143 Newton iterations, n = 40 failed, and the answer
+ * stayed at n = 20, an edge 10 deg off). */
+static void hand_over(contact_run *run, int to_faces)
+{
+    rd_contact_result_cleanup(&run->level[0]);
+    rd_contact_result_cleanup(&run->level[1]);
+    rd_contact_warm_free(&run->shape[0]);
+    run->have_coarse = 0;
+    do
+        run->n[0] *= 2, run->n[1] *= 2;
+    while (to_faces && run->n[0] < RD_CONTACT_FACE_MIN_SEGMENTS);
+}
+
 /* Pairs until the estimates meet the target, the segment cap stops it, or
  * a finer solve fails (then the last good level stands, and says so). */
 static int refine(contact_run *run, const rd_monitor *mon, rd_error *err)
@@ -85,6 +105,11 @@ static int refine(contact_run *run, const rd_monitor *mon, rd_error *err)
         rd_error_init(&e2);
         rc = rd_accuracy_run(&plan, rd_monitor_span_init(&span, mon, f0, f1), NULL, &e2);
         best = run->level[0].points > 0 ? &run->level[0] : NULL;
+        if (rc == RD_ENOCONV && (early || (!best && !last))) {
+            hand_over(run, early);
+            f0 = f1;
+            continue;
+        }
         if (rc != RD_OK && best && rc != RD_ECANCELED && rc != RD_ETIMEOUT) {
             /* a finer solve failed: the last good level stands, and says so */
             snprintf(best->accuracy_note, sizeof best->accuracy_note,
@@ -92,18 +117,6 @@ static int refine(contact_run *run, const rd_monitor *mon, rd_error *err)
             best->accuracy = a;
             best->accuracy_met = 0;
             return RD_OK;
-        }
-        if (rc == RD_ENOCONV && !best && !last) {
-            /* the first level did not converge (a coarse chain of rigid
-             * faces under a stiff law in a deep distortion: order 2 at 2.8
-             * x with 10 x k_c, n = 20 and 40; from 80 on it does): the pair
-             * above it instead */
-            rd_contact_result_cleanup(&run->level[0]);
-            rd_contact_result_cleanup(&run->level[1]);
-            run->n[0] *= 2;
-            run->n[1] *= 2;
-            f0 = f1;
-            continue;
         }
         if (rc != RD_OK)
             return rd_error_set(err, rc, e2.path, "%s", e2.message);

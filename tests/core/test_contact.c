@@ -50,8 +50,7 @@ static rd_contact_opts bore(const rd_ring_params *p, int k, double factor, doubl
 
 static double floor_of(const rd_ring_params *p)
 {
-    double p0 = 2 * p->tangential_force / (p->diameter * p->axial_height);
-    return 10 * p0 / rd_contact_default_stiffness(p);
+    return rd_contact_gap_floor(p);
 }
 
 static void test_reference(void)
@@ -161,11 +160,13 @@ static void test_battery(void)
 }
 
 /* The battery of bench_static --battery at the default settings (n from
- * 20, a = 0.01, refined to at most 320) against the geometrically exact
- * reference (contact_reference_nl.c, 1440 cells, F_t following the end
- * sections as in ringdyn), which ringdyn converges to; its 30 distinct bores
- * take ~10 s in a sanitizer build (the reference 0.01-0.12 s of it a bore,
- * started from the linear reference's contact states).  The bounds are
+ * 20, a = 0.01, refined to at most 1280) against the geometrically exact
+ * reference (contact_reference_nl.c, 2880 cells as the bench, F_t following
+ * the end sections as in ringdyn), which ringdyn converges to; its 30
+ * distinct bores take ~15 s in a sanitizer build (the reference started
+ * from the linear reference's contact states; on 1440 cells its own bins
+ * were 0.031 p0 off on order 2 at 3 x, 17 deg, and 0.39 on order 4 at 10 x,
+ * 17 deg, the estimates' errors the check below counted).  The bounds are
  * tighter than test_battery's against the linear reference at n = 160
  * (0.02, 5 %, 1.5 deg), which ringdyn does not converge to. */
 static void test_battery_exact(void)
@@ -188,7 +189,7 @@ static void test_battery_exact(void)
                 rd_contact_result c;
                 rd_error err;
                 rd_error_init(&err);
-                if (ref_contact_solve_nl(&p, &o, 1440, 1, 10.0, floor_of(&p), &x) != 0) {
+                if (ref_contact_solve_nl(&p, &o, 2880, 1, 10.0, floor_of(&p), &x) != 0) {
                     CHECK(0, "exact reference k=%d x%g ph %g", k, factors[fi], phases[pi]);
                     continue;
                 }
@@ -206,59 +207,59 @@ static void test_battery_exact(void)
                        k, factors[fi], phases[pi], c.stats.segments, dcf,
                        c.estimates.contact_fraction, 100 * dg, de, c.estimates.gap_edges_deg, dp,
                        c.estimates.pressure);
-                /* measured at most 0.0068 (order 6 at 10 x, 17 deg, n =
-                 * 160) besides a run off the bore as deep as the floor,
-                 * counted in one and not the other (order 3 at 0.1 x, 0
-                 * deg: 0.0543, its width 20 deg): 0.009 is x1.3 the worst,
-                 * the issue's target 0.02 */
-                CHECK(dcf < 0.009 + c.marginal_gap_deg / 360.0,
+                /* measured at most 0.0039 (order 6 at 3 x, 0 deg, n = 320)
+                 * besides a run off the bore as deep as the floor, counted
+                 * in one and not the other (order 3 at 0.1 x, 0 deg:
+                 * 0.0545, its width 20 deg): 0.005 is x1.3 the worst, the
+                 * issue's target 0.02 */
+                CHECK(dcf < 0.005 + c.marginal_gap_deg / 360.0,
                       "k=%d x%g ph %g: contact fraction %.4f, exact %.4f", k, factors[fi],
                       phases[pi], c.contact_fraction, x.contact_fraction);
-                /* measured at most 1.1 % (order 6 at 1 x, 17 deg, a 0.3 um
-                 * gap) where the gap exceeds 0.1 um: 2 % */
+                /* measured at most 0.47 % (order 6 at 1 x, 17 deg, a 0.3 um
+                 * gap) where the gap exceeds 0.1 um: 2 % (the issue's 5) */
                 CHECK(fabs(dg) < 0.02, "k=%d x%g ph %g: largest gap %+.2f %% off", k, factors[fi],
                       phases[pi], 100 * dg);
-                /* measured at most 0.54 deg (order 2 at 3 x, 0 deg, n =
+                /* measured at most 0.49 deg (order 2 at 3 x, 0 deg, n =
                  * 160; 0.89 before the angles were taken on the bore):
-                 * 0.7 deg, x1.3 the worst (the issue's target: 1) */
-                CHECK(de < 0.7, "k=%d x%g ph %g: gap edges off by %.2f deg", k, factors[fi],
+                 * 0.65 deg, x1.3 the worst (the issue's target: 1) */
+                CHECK(de < 0.65, "k=%d x%g ph %g: gap edges off by %.2f deg", k, factors[fi],
                       phases[pi], de);
-                /* the bins are not all converged (concentrated forces at
-                 * the edges of short patches: up to 0.23 p0), but the
-                 * pressure's estimate covers them within x2 where they
-                 * miss half the default target (errors under 0.01 p0
-                 * against estimates of 0.002-0.005 are not counted:
-                 * order 4 at 0.1 x, 0 deg, 0.005 against 0.002) but on one
-                 * bore: order 4 at 10 x, 17 deg (0.39 p0 against 0.011: a
-                 * point contact on the 330 deg boundary, where the
-                 * reference's own bins move 0.39 p0 between 1440 and 2880
-                 * cells; against 2880 ringdyn is 0.008 off).  Order 6 at 1 x, 0 deg (a gap edge 0.06 deg short
-                 * of the 20 deg boundary at n = 160 and 320, 0.3 deg past it
-                 * in the reference) was the second, 0.070 against 0.010,
-                 * until the edge's share refined it to 640 */
+                /* the bins are not all converged (0.171 p0 on order 6 at
+                 * 10 x, 0 deg: point contacts on the 90 and 270 deg
+                 * boundaries, where the reference's own bins move as much
+                 * between 1440 and 2880 cells; every other bore within
+                 * 0.016), but the pressure's estimate covers them within
+                 * x2 where they miss half the default target (errors under
+                 * 0.01 p0 against estimates of 0.002-0.005 are not
+                 * counted: order 4 at 0.1 x, 0 deg, 0.005 against 0.003);
+                 * one bore may be at the edge of it: order 2 at 3 x, 17
+                 * deg, 0.016 against 0.008 */
                 int under = dp > 2 * c.estimates.pressure && dp > 0.01;
                 under_p += under;
                 if (under)
                     printf("  k=%d x%g ph %g: the pressure's estimate understates x%.1f\n", k,
                            factors[fi], phases[pi], dp / c.estimates.pressure);
                 /* the largest gap's (where over 0.1 um) never by more
-                 * than x3 but on one bore: order 3 at 3 x, 17 deg (x5.7 at
-                 * n = 640, a 31 um gap 0.09 % off; with the cap at 320 it
-                 * was order 4 at 3 x, 17 deg, 24 nm against 2.7, a depth
-                 * that stays put from n = 160 to 320) */
+                 * than x3 where the error exceeds 0.5 %, a tenth of the
+                 * issue's target.  Below that ringdyn and the reference
+                 * differ by a settled 0.03-0.31 % on the 3 x bores at 17 deg
+                 * (the same against 1440 and 2880 cells, and from n = 640
+                 * to 1280: the two models' own difference, not the chain's
+                 * discretisation or the law, which is what the estimate
+                 * measures: 1e-9 m on a 30 um gap) */
                 if (x.max_clearance > 1e-7) {
                     double eg = fabs(c.max_clearance - x.max_clearance);
-                    under_g += c.estimates.max_clearance < eg / 3;
-                    if (c.estimates.max_clearance < eg / 3)
+                    int low = c.estimates.max_clearance < eg / 3 && eg > 5e-3 * x.max_clearance;
+                    under_g += low;
+                    if (low)
                         printf("  k=%d x%g ph %g: the largest gap's estimate understates x%.1f\n",
                                k, factors[fi], phases[pi], eg / c.estimates.max_clearance);
                 }
                 /* the contact fraction's and the edges' estimates do not
                  * understate the error by more than x3 (as test_estimates
-                 * against the linear reference; measured at most x2.9 and
-                 * x2.4, both order 4 at 1 x, 17 deg: 0.0013 against
-                 * 0.00044, 0.26 deg against the edge locator's resolution,
-                 * 0.11 deg at n = 640) */
+                 * against the linear reference; measured at most x2.5 and
+                 * x1.4, both order 4 at 1 x, 0 deg: 0.0011 against
+                 * 0.00044, 0.17 deg against 0.12) */
                 CHECK(c.estimates.contact_fraction >= dcf / 3 || dcf < 1e-3,
                       "k=%d x%g ph %g: contact fraction error %.4f, estimate %.4f", k, factors[fi],
                       phases[pi], dcf, c.estimates.contact_fraction);
@@ -267,10 +268,56 @@ static void test_battery_exact(void)
                       phases[pi], de, c.estimates.gap_edges_deg);
                 rd_contact_result_cleanup(&c);
             }
-    CHECK(under_p <= 1 && under_g <= 1,
+    CHECK(under_p <= 1 && under_g == 0,
           "estimates understating the true error: the binned pressure's x2 on %d bores (1 "
-          "known), the largest gap's x3 on %d (1 known)",
+          "may be), the largest gap's x3 on %d",
           under_p, under_g);
+}
+
+/* The multipliers' (Uzawa) updates converge: order 3 at 3 x the bound,
+ * 17 deg, n = 640 from the load path, is bench_static's hardest at that n.
+ * The plain update converges linearly at 0.95-0.96 a step there: from the
+ * same start it took 25 updates to its former 0.1 p0 test (30, the cap,
+ * at 0.3.0's stiffness), stopping ~2 p0 short of the fixed point; the
+ * mixed one (rd_anderson.h) meets the 0.02 p0 test in 15 (the bound, 20:
+ * 8-16 over the battery at n = 640-1280).  What it stops at is the fixed
+ * point: solved again from its own state and multipliers, one more update
+ * moves the bins by 1.4e-4 p0 (bound 0.01, the target's).  On the battery
+ * the converged multipliers moved order 2 at 2.8 x, 17 deg, from 0.199 to
+ * 0.071 p0 off the reference at n = 640. */
+static void test_uzawa(void)
+{
+    rd_ring_params p;
+    rd_ring_params_default(&p);
+    rd_contact_opts o = bore(&p, 3, 3.0, 17.0);
+    rd_static_opts so;
+    rd_static_opts_default(&so);
+    rd_contact_result c, r;
+    rd_contact_warm w = {0};
+    rd_error err;
+    rd_error_init(&err);
+    if (rd_contact_once(&p, 640, &o, &so, NULL, NULL, &w, &c, &err) != RD_OK) {
+        CHECK(0, "n = 640: %s", err.message);
+        rd_contact_warm_free(&w);
+        return;
+    }
+    CHECK(c.stats.outer_iterations >= 1 && c.stats.outer_iterations <= 20,
+          "multiplier updates at n = 640: %d", c.stats.outer_iterations);
+    if (rd_contact_once(&p, 640, &o, &so, NULL, &w, NULL, &r, &err) != RD_OK) {
+        CHECK(0, "again: %s", err.message);
+        rd_contact_result_cleanup(&c);
+        rd_contact_warm_free(&w);
+        return;
+    }
+    double d = 0.0;
+    for (int b = 0; b < RD_CONTACT_BINS; b++)
+        d = fmax(d, fabs(c.bin_pressure[b] - r.bin_pressure[b]) / c.uniform_pressure);
+    CHECK(d < 0.01, "solved again from its own state: bins %.4f p0 apart", d);
+    printf("Uzawa at n = 640: %d updates; solved again, %d more, the bins %.2e p0 apart\n",
+           c.stats.outer_iterations, r.stats.outer_iterations, d);
+    rd_contact_result_cleanup(&c);
+    rd_contact_result_cleanup(&r);
+    rd_contact_warm_free(&w);
 }
 
 static void test_accuracy_target(void)
@@ -534,6 +581,7 @@ int main(void)
     test_jacobian();
     test_reference();
     test_accuracy_target();
+    test_uzawa();
     test_stiffness();
     test_law_share();
     test_battery();

@@ -356,9 +356,7 @@ static int distorted_bore(const rd_ring_params *p, int k, double factor, rd_cont
     rd_contact_opts_default(o);
     o->n_distortion = 1;
     o->distortion[0] = (rd_distortion){k, factor * bound, 0.0};
-    double p0 = 2 * p->tangential_force / (p->diameter * p->axial_height);
-    return ref_contact_solve_nl(p, o, 1440, 1, RD_CONTACT_BIN_DEG,
-                                10 * p0 / rd_contact_default_stiffness(p), r);
+    return ref_contact_solve_nl(p, o, 1440, 1, RD_CONTACT_BIN_DEG, rd_contact_gap_floor(p), r);
 }
 
 /* Order 4 at the thin-ring bound (light gaps from the free ends to 32 deg,
