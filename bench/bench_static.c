@@ -411,6 +411,11 @@ static void bins_one(const rd_ring_params *p, int k, double fac, double phase, i
         if (c.angle_deg[i] > worst * RD_CONTACT_BIN_DEG - 3 &&
             c.angle_deg[i] < (worst + 1) * RD_CONTACT_BIN_DEG + 3)
             printf("%.3f %.4f %.3e\n", c.angle_deg[i], c.pressure[i] / p0, c.clearance[i]);
+    if (fixed_n <= 0)
+        printf("estimates at n = %d: pressure %.4f p0 (the law's share %.4f), contact fraction "
+               "%.5f, largest gap %.3e m, edges %.3f deg; %d multiplier updates\n",
+               c.stats.segments, c.estimates.pressure, c.law_share, c.estimates.contact_fraction,
+               c.estimates.max_clearance, c.estimates.gap_edges_deg, c.stats.outer_iterations);
     printf("gaps (ringdyn | reference):\n");
     for (int g = 0; g < c.n_gaps; g++)
         printf("  %.3f..%.3f %.3e\n", c.gaps[g].start_deg, c.gaps[g].end_deg,
