@@ -155,11 +155,12 @@ static int contact_accuracy(json_t *out, const rd_contact_result *res)
         return 1;
     const rd_contact_estimates *e = &res->estimates;
     bad |= json_object_set_new(num, "error_estimates",
-                               json_pack("{s:o, s:o, s:o, s:o}", "pressure",
+                               json_pack("{s:o, s:o, s:o, s:o, s:o}", "pressure",
                                          rd_result_real(e->pressure), "contact_fraction",
                                          rd_result_real(e->contact_fraction), "max_clearance",
                                          rd_result_real(e->max_clearance), "gap_edges_deg",
-                                         rd_result_real(e->gap_edges_deg)));
+                                         rd_result_real(e->gap_edges_deg), "tip_forces_n",
+                                         rd_result_real(e->tip_forces_n)));
     /* the contact law's part of error_estimates.pressure (of p0): twice the
      * bins' move at twice contact.stiffness; null when not solved */
     bad |= json_object_set_new(num, "pressure_law_share", rd_result_real(res->law_share));

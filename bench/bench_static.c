@@ -202,7 +202,7 @@ static void battery(const rd_ring_params *p)
     const double facs[] = {0.1, 1, 3, 10}, phases[] = {0, 17};
     double p0 = 2 * p->tangential_force / (p->diameter * p->axial_height);
     double floor_m = rd_contact_gap_floor(p);
-    int total = 0, ok[4] = {0}, track[4] = {0}, fast = 0, settled = 0, settled_ok = 0,
+    int total = 0, ok[4] = {0}, track[5] = {0}, fast = 0, settled = 0, settled_ok = 0,
         ref_passes[2] = {1 << 30, 0}, its[3] = {1 << 30, 0, 0};
     double ref_cpu[2] = {INFINITY, 0}, tip_worst = 0;
     int tip_ok = 0;
@@ -287,6 +287,7 @@ static void battery(const rd_ring_params *p)
                 track[1] += isnan(dg) || tracks(eg, dg, 1e-3);
                 track[2] += isnan(de) || tracks(c.estimates.gap_edges_deg, de, 0.05);
                 track[3] += tracks(c.estimates.pressure, dp, 1e-3);
+                track[4] += tracks(c.estimates.tip_forces_n, dtip, 0.01);
                 fast += cpu_s <= 0.2;
                 its[0] = c.stats.iterations < its[0] ? c.stats.iterations : its[0];
                 its[1] = c.stats.iterations > its[1] ? c.stats.iterations : its[1];
@@ -302,8 +303,9 @@ static void battery(const rd_ring_params *p)
     printf("\n%d bores. Within the targets: contact fraction (0.02) %d, largest gap (5 %%) %d, "
            "edges (1 deg) %d, binned pressure (0.02 p0) %d; cpu <= 0.2 s: %d.\n"
            "Estimate within x3 of the true error: contact fraction %d, largest gap %d, edges %d, "
-           "pressure %d.\n",
-           total, ok[0], ok[1], ok[2], ok[3], fast, track[0], track[1], track[2], track[3]);
+           "pressure %d; tip forces %d (both under 0.01 N: counted).\n",
+           total, ok[0], ok[1], ok[2], ok[3], fast, track[0], track[1], track[2], track[3],
+           track[4]);
     printf("Binned pressure where the reference's own bins settle within 0.02 p0 (%d cells "
            "against %d): %d of %d bores within 0.02 p0.\n",
            reference_cells / 2, reference_cells, settled_ok, settled);

@@ -121,6 +121,7 @@ typedef struct rd_contact_estimates {
     double contact_fraction; /* absolute */
     double max_clearance;    /* m */
     double gap_edges_deg;    /* deg */
+    double tip_forces_n;     /* N, the larger of the two free ends' (since 0.3.1) */
 } rd_contact_estimates;
 
 /* Counters and accuracy common to both analyses. */
