@@ -62,20 +62,33 @@ function figures(result, gaps) {
   const err = isNum(n.error_estimate)
     ? `${percent(n.error_estimate)}${n.reference_segments ? ` (vs ${n.reference_segments} segments)` : ''}`
     : 'not estimated';
+  // each figure with its own error estimate (numerics.error_estimates), when there is one
+  const est = n.error_estimates || {};
+  const pm = (v, text) => (isNum(v) ? ` ± ${text(v)}` : '');
+  const tips = nums(result.tip_forces_n);
+  const accuracy = n.accuracy_met === true
+    ? `met (${percent(n.accuracy, 1)} of p0 for the binned pressure)`
+    : n.accuracy_met === false ? `not met: ${n.accuracy_note || 'see the estimates'}` : undefined;
   return kvTable({
     id: 'ct-table',
     caption: 'Contact figures, accuracy and cost',
     rows: [
       ['Mean contact pressure', `${MPa(mean)}${ratio}`, { id: 'ct-mean' }],
       ['Uniform pressure p0 = 2 Ft / (d h)', MPa(p0), { id: 'ct-p0-value' }],
-      ['Contact fraction', isNum(result.contact_fraction) ? `${fixed(result.contact_fraction, 1, 100)} %` : '—', { id: 'ct-fraction' }],
+      ['Contact fraction', isNum(result.contact_fraction)
+        ? `${fixed(result.contact_fraction, 1, 100)} %${pm(est.contact_fraction, (v) => `${fixed(v, 2, 100)} %`)}` : '—', { id: 'ct-fraction' }],
       ['Largest light gap', gaps.length || isNum(result.max_clearance)
-        ? `${um(result.max_clearance)} µm${gaps.length ? ` at ${deg(maxGapAngle(result, gaps))}` : ''}` : '—', { id: 'ct-max-clearance' }],
+        ? `${um(result.max_clearance)} µm${gaps.length ? `${pm(est.max_clearance, (v) => `${sig(v * 1e6, 2)} µm`)} at ${deg(maxGapAngle(result, gaps))}` : ''}` : '—', { id: 'ct-max-clearance' }],
+      ['Light-gap edges', Array.isArray(result.light_gaps) && result.light_gaps.length && isNum(est.gap_edges_deg)
+        ? `± ${sig(est.gap_edges_deg, 2)}° (estimate)` : undefined, { id: 'ct-edges' }],
+      ['Tip forces (free ends)', tips.length === 2
+        ? `${sig(tips[0], 4)} N, ${sig(tips[1], 4)} N${pm(est.tip_forces_n, (v) => `${sig(v, 2)} N`)}` : undefined, { id: 'ct-tips' }],
       ['Segments with a light gap', `${gaps.length} of ${nums(result.clearance).length}`],
       ['Largest penetration', isNum(result.max_penetration) ? `${um(result.max_penetration, 3)} µm` : undefined],
       ['Contact stiffness', isNum(result.contact_stiffness) ? `${sig(result.contact_stiffness)} Pa/m` : undefined],
       ['Conformability k (1.4)', isNum(result.conformability) ? sig(result.conformability, 4) : undefined],
-      ['Error estimate', err, { id: 'ct-error', title: n.error_method }],
+      ['Error estimate (binned pressure)', err, { id: 'ct-error', title: n.error_method }],
+      ['Accuracy target', accuracy, { id: 'ct-accuracy' }],
       ['Segments / DOF', `${n.segments ?? '—'} / ${n.dof ?? '—'}`],
       ['Load steps / Newton iterations', `${n.load_steps ?? '—'} / ${n.iterations ?? '—'}`],
       ['Wall time', seconds(n.wall_s)],

@@ -739,6 +739,12 @@ test('contact against the server: polar points, light gaps and the distortion ta
   assert.equal(await page.locator('#ct-p0').count(), 1);
   assert.equal(await page.locator('#ct-distortion tbody tr').count(), (result.distortion || []).length);
   assert.match(await page.textContent('#ct-fraction'), new RegExp(`^${(result.contact_fraction * 100).toFixed(1)} %`));
+  // each figure with its estimate: the contact fraction's, the tip forces (N) and theirs, the target's verdict
+  const est = result.numerics.error_estimates;
+  assert.match(await page.textContent('#ct-fraction'), new RegExp(` ± ${(est.contact_fraction * 100).toFixed(2)} %$`));
+  const tip = (v) => String(Number(v.toPrecision(4)));
+  assert.match(await page.textContent('#ct-tips'), new RegExp(`^${tip(result.tip_forces_n[0])} N, ${tip(result.tip_forces_n[1])} N ± `));
+  assert.match(await page.textContent('#ct-accuracy'), result.numerics.accuracy_met ? /^met / : /^not met: /);
   assert.equal((await page.request.get(`${BASE}${await page.getAttribute('#csv-link', 'href')}`)).status(), 200, 'CSV link answers');
   await shot('ringdyn-contact.png', { fullPage: true });
 
