@@ -66,6 +66,14 @@ static int contact_compare(void *ctx, rd_error *err)
  * the answer, failed after the first (order 2 at 2.8 x, 0 deg, 20 x that
  * k_c: n = 20 took 1143 Newton iterations, n = 40 failed, and the answer
  * stayed at n = 20, an edge 10 deg off). */
+static int faces_fit(const contact_run *run)
+{
+    int n = run->n[1];
+    while (n / 2 < RD_CONTACT_FACE_MIN_SEGMENTS)
+        n *= 2;
+    return n <= run->o->max_segments;
+}
+
 static void hand_over(contact_run *run, int to_faces)
 {
     rd_contact_result_cleanup(&run->level[0]);
@@ -105,8 +113,10 @@ static int refine(contact_run *run, const rd_monitor *mon, rd_error *err)
         rd_error_init(&e2);
         rc = rd_accuracy_run(&plan, rd_monitor_span_init(&span, mon, f0, f1), NULL, &e2);
         best = run->level[0].points > 0 ? &run->level[0] : NULL;
-        if (rc == RD_ENOCONV && (early || (!best && !last))) {
-            hand_over(run, early);
+        /* (the first pair with the faces asked for within the segment cap) */
+        int to_faces = early && faces_fit(run);
+        if (rc == RD_ENOCONV && (to_faces || (!best && !last))) {
+            hand_over(run, to_faces);
             f0 = f1;
             continue;
         }

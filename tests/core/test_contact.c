@@ -420,6 +420,30 @@ static void test_stiffness(void)
           rc == RD_OK ? a.stats.segments : 0, rc == RD_OK ? a.n_gaps : 0);
     if (rc == RD_OK)
         rd_contact_result_cleanup(&a);
+    /* the same bore at 0 deg: n = 20 of rigid faces converges (after 1143
+     * Newton iterations), n = 40 does not; the answer stayed at n = 20, its
+     * first gap ending 10 deg short of the default law's 93.9 deg, until a
+     * failed level below 80 segments handed over to the pair (80, 160) */
+    o = bore(&p, 2, 2.8, 0.0);
+    o.stiffness = 10 * rd_contact_default_stiffness(&p);
+    o.max_segments = 160;
+    rd_error_init(&err);
+    rc = rd_contact_solve(&p, 20, &o, &so, NULL, &a, &err);
+    CHECK(rc == RD_OK && a.stats.segments == 160 && a.n_gaps == 3 &&
+              fabs(a.gaps[0].end_deg - 93.9) < 1.0,
+          "stiff law at 0 deg from n = 20: %s (n %d, first gap ends at %.2f deg)", err.message,
+          rc == RD_OK ? a.stats.segments : 0, rc == RD_OK && a.n_gaps ? a.gaps[0].end_deg : 0.0);
+    if (rc == RD_OK)
+        rd_contact_result_cleanup(&a);
+    /* ... and with a cap the first such pair would pass (120): the last
+     * good level stands and says why */
+    o.max_segments = 120;
+    rd_error_init(&err);
+    rc = rd_contact_solve(&p, 20, &o, &so, NULL, &a, &err);
+    CHECK(rc == RD_OK && a.stats.segments <= 120 && a.accuracy_met == 0,
+          "stiff law, cap 120: %s (n %d)", err.message, rc == RD_OK ? a.stats.segments : 0);
+    if (rc == RD_OK)
+        rd_contact_result_cleanup(&a);
 }
 
 /* The contact law's share of the pressure estimate (the reported level
