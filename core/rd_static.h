@@ -237,7 +237,7 @@ double rd_contact_gap_floor(const rd_ring_params *p);
  * m up to 640 segments, then no closer than 360/6400 deg, and at least 5
  * (or m if fewer).  Measured on bench_static's battery at n = 1280: the
  * binned pressure within 0.02 p0 of the reference on the same 31 of 32
- * bores with 5 points as with 10, the hardest bore's CPU time 0.23 -> 0.16 s
+ * bores with 5 points as with 10, the hardest bore's CPU time 0.20 -> 0.16 s
  * (half the points' evaluations, about half the Newton iteration's cost). */
 int rd_contact_points(int m, int n);
 
