@@ -12,8 +12,9 @@
  * phi / m, along the bore's outward normal.  Augmented Lagrangian: at the
  * full load, delta is shifted by lambda_i / k, one multiplier per segment,
  * updated (Uzawa, rd_static.c) as lambda_i <- max(0, lambda_i + k dbar_i),
- * dbar_i the force-weighted mean penetration of the segment's points, until
- * no lambda moves by more than 0.1 p0: the segment-level penetration goes to
+ * dbar_i the force-weighted mean penetration of the segment's points (the
+ * updates mixed by Anderson acceleration, rd_static.c), until no plain
+ * update moves a lambda by more than 0.02 p0: the segment-level penetration goes to
  * zero at the law's own stiffness (the plain penalty's compliance cost the
  * largest light gap 5 % and spread the free ends' forces over ~2.6 deg, the
  * beam-on-foundation length (E I / (k h))^(1/4)).  One multiplier per

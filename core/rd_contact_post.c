@@ -47,9 +47,12 @@
  * raised to the binned share of a concentrated force near a bin boundary
  * (that share overstated the patch bores x5 to x800).  To the pressure's
  * and the largest gap's, rd_contact_estimate_law adds the contact law's
- * share (rd_contact_refine.c solves the level again at twice k): with it,
- * the defaults (n up to 640) track 21, 29, 27, 24 of the 32 bores
- * (fraction, gap, edges, pressure; bench_static --battery).
+ * share (rd_contact_refine.c solves the level again at twice k), and to
+ * the edges' the law's move once (rd_contact_estimate_law).  The tip
+ * forces' estimate is the whole level difference (first order) plus twice
+ * the law's move.  With them 0.3.1's defaults (n up to 1280) track 23, 30,
+ * 29, 27 of the 32 bores (fraction, gap, edges, pressure) and the tip
+ * forces on 29 (bench_static --battery).
  */
 #include "rd_static_internal.h"
 

@@ -174,8 +174,9 @@ typedef struct rd_contact_result {
     /* Thin-ring conformability bound of each distortion order:
      * F_t R^3 / (E I (k^2 - 1)^2), m (NAN for k = 1). */
     double bound[RD_DISTORTION_MAX];
-    /* Light gaps deeper than gap_floor (10 p0 / k: the law's penetration
-     * scale), in angle order; edges where the clearance crosses zero. */
+    /* Light gaps deeper than gap_floor (rd_contact_gap_floor, or a rigid
+     * face's misfit), in angle order; edges where the clearance crosses
+     * zero, angles where on the bore. */
     int n_gaps;
     rd_contact_gap gaps[RD_CONTACT_GAPS_MAX];
     double gap_floor;         /* m */

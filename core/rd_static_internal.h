@@ -250,9 +250,12 @@ int rd_contact_once(const rd_ring_params *p, int segments, const rd_contact_opts
 
 /* rd_contact_post.c: light gaps and contact fraction from the segments'
  * closest points (angles ts, deg, increasing; clearances cs, m) and all m n
- * contact points (t, c), the free ends at tip0 < tip1 deg; binned pressure from the segments' forces
- * (N) acting at at_deg_i within their arcs [seg_deg_i, seg_deg_i+1] on the bore (n + 1
- * ends, deg); the error estimates of the finer of two levels. */
+ * contact points (t, c), their edges among the points if `points` (faces
+ * that follow the bore) else between the segments' closest points, the
+ * free ends at tip0 < tip1 deg; binned pressure from the segments' forces
+ * (N) acting at at_deg_i within their arcs [seg_deg_i, seg_deg_i+1] on the
+ * bore (n + 1 ends, deg), spread over the parts the light gaps of `gaps`
+ * leave on the bore; the error estimates of the finer of two levels. */
 void rd_contact_gaps(const double *ts, const double *cs, int n, const double *t, const double *c,
                      int m, int points, double tip0, double tip1, double gap_floor,
                      rd_contact_result *out);
@@ -261,10 +264,12 @@ void rd_contact_bins(const double *seg_deg, const double *force, const double *a
 void rd_contact_estimate(const rd_contact_result *fine, const rd_contact_result *coarse,
                          rd_contact_estimates *e);
 /* Adds to e the contact law's share of r's errors from s, the same level
- * solved at twice the stiffness (twice each quantity's move: the law's
- * error goes as 1/k), added to the refinement's (in quadrature, the 10 x
- * k moves of the battery's bins exceeded the estimate on 11 of 29 bores,
- * added on 4); returns the binned pressure's share, of p0. */
+ * solved at twice the stiffness (the binned pressure, largest gap and tip
+ * forces: twice each move, the law's error going as 1/k; the edges: the
+ * move once, and the contact fraction's edge term again with it), added to
+ * the refinement's (in quadrature, the 10 x k moves of the battery's bins
+ * exceeded the estimate on 11 of 29 bores, added on 4); returns the binned
+ * pressure's share, of p0. */
 double rd_contact_estimate_law(const rd_contact_result *r, const rd_contact_result *s,
                                rd_contact_estimates *e);
 

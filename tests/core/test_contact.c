@@ -485,9 +485,11 @@ static void test_law_share(void)
     printf("law share at n = %d: %.4f p0 (the solves apart: %.4f), of the estimate %.4f\n", n,
            c.law_share, apart, c.estimates.pressure);
     /* the two stiff solves stop their multipliers' updates at different
-     * states (from the solved one or from the load path, each within the
-     * updates' 0.1 p0): 20 % plus 0.002 p0 of room */
-    CHECK(fabs(c.law_share - apart) <= 0.2 * apart + 2e-3 && c.law_share > 0.0 &&
+     * states (from the solved one or from the load path), each within the
+     * updates' 0.02 p0 test since their Anderson mixing (0.1 p0, plain,
+     * before: 0.0851 against 0.0913 apart); measured 0.0825 both, to four
+     * digits: 5 % plus 0.002 p0 (a tenth of the updates' test) of room */
+    CHECK(fabs(c.law_share - apart) <= 0.05 * apart + 2e-3 && c.law_share > 0.0 &&
               c.law_share <= c.estimates.pressure,
           "law share %.4f p0 against %.4f apart", c.law_share, apart);
     rd_contact_result_cleanup(&a);
