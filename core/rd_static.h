@@ -183,6 +183,8 @@ typedef struct rd_contact_result {
     double marginal_gap_deg;  /* width of the runs off the bore whose depth is within x2 of
                                 gap_floor, counted or not: the contact fraction's threshold
                                 uncertainty, deg */
+    double marginal_depth;    /* of those runs, the depth nearest gap_floor (by ratio), m; 0
+                                 if none */
     double point_spacing_deg; /* contact points' spacing, deg: the edge locator's resolution */
     double tip_force[2];      /* concentrated force at the first / last free end, N */
     double bin_pressure[RD_CONTACT_BINS]; /* mean pressure over the ring's arc in each

@@ -111,6 +111,14 @@ static double edge_error(const rd_contact_result *c, const ref_result *r)
     return worst;
 }
 
+/* est / err within x3 (both below `floor`: counted as tracking). */
+static int tracks(double est, double err, double floor)
+{
+    if (err <= floor && est <= floor)
+        return 1;
+    return est <= 3.0 * err && err <= 3.0 * est;
+}
+
 static void test_battery(void)
 {
     rd_ring_params p;
@@ -177,7 +185,7 @@ static void test_battery_exact(void)
     const double factors[] = {0.1, 1, 3, 10}, phases[] = {0, 17};
     rd_static_opts so;
     rd_static_opts_default(&so);
-    int under_p = 0, under_g = 0;
+    int under_p = 0, under_g = 0, bores = 0, track[4] = {0};
     for (int oi = 0; oi < 4; oi++)
         for (int fi = 0; fi < 4; fi++)
             for (int pi = 0; pi < 2; pi++) {
@@ -266,6 +274,13 @@ static void test_battery_exact(void)
                 CHECK(c.estimates.gap_edges_deg >= de / 3,
                       "k=%d x%g ph %g: edge error %.3f deg, estimate %.3f", k, factors[fi],
                       phases[pi], de, c.estimates.gap_edges_deg);
+                /* est / err within x3, as bench_static --battery counts */
+                bores++;
+                track[0] += tracks(c.estimates.contact_fraction, dcf, 1e-3);
+                track[1] += x.max_clearance <= 1e-7 ||
+                            tracks(c.estimates.max_clearance / c.max_clearance, fabs(dg), 1e-3);
+                track[2] += x.max_clearance <= 1e-7 || tracks(c.estimates.gap_edges_deg, de, 0.05);
+                track[3] += tracks(c.estimates.pressure, dp, 1e-3);
                 /* the free ends' concentrated forces within 2 % + 0.01 N of
                  * the reference's (the bench's count), or their error
                  * within x3 of its estimate where they are not (the light
@@ -283,6 +298,15 @@ static void test_battery_exact(void)
                 }
                 rd_contact_result_cleanup(&c);
             }
+    printf("estimates within x3 of the true error on %d bores: contact fraction %d, largest gap "
+           "%d, edges %d, binned pressure %d\n",
+           bores, track[0], track[1], track[2], track[3]);
+    /* measured 27, 28, 27, 26 of the 30 (0.3.2): one bore's room each, as
+     * a ratio near x3 may flip with the build's rounding */
+    CHECK(track[0] >= 26 && track[1] >= 27 && track[2] >= 26 && track[3] >= 25,
+          "estimates within x3 of the true error: contact fraction %d, largest gap %d, edges %d, "
+          "binned pressure %d of %d bores",
+          track[0], track[1], track[2], track[3], bores);
     CHECK(under_p <= 1 && under_g == 0,
           "estimates understating the true error: the binned pressure's x2 on %d bores (1 "
           "may be), the largest gap's x3 on %d",
