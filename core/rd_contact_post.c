@@ -11,8 +11,14 @@
  * the bore: between the segments' closest points): behind an edge that carries
  * a concentrated force the clearance grows as the cube of the distance, so
  * with c_b and the next c_{b+1}, r = (c_{b+1} / c_b)^(1/3) puts the edge
- * y = d / (r - 1) before b (d the point spacing), kept within [a, b].  A run
- * reaching a free end starts (ends) at that end's face.  The largest
+ * y = d / (r - 1) before b (d the point spacing), kept within [a, b], a
+ * the end's face where the touching point is the ring's first (last): a
+ * tip's concentrated force acts at the face, and from its first point,
+ * half a spacing in, the edge sat half a spacing late (order 3 at 1 x the
+ * bound, 0 deg: 0.264 deg at n = 640 and 1280 against the reference's
+ * 0.236; the battery's contact fraction errors fell on 9 of 30 bores, by
+ * up to 0.0004, and rose on 2, by up to 0.0003).  A run reaching a free end
+ * starts (ends) at that end's face.  The largest
  * clearance of a run is the parabola's peak through its largest point and
  * the two neighbours.  Runs no deeper than the floor (the contact law's
  * penetration scale) are contact.  Contact fraction = 1 - gap length / span.
@@ -59,14 +65,13 @@
 
 #include <math.h>
 
-/* Edge between a touching point at ta and the first lifted point tb (gap
- * c1), c2 the next point's gap; angles in deg, either direction. */
-static double cube_edge(double ta, double tb, double c1, double c2)
+/* Edge between ta (a touching point, or a free end's face) and the first
+ * lifted point tb (gap c1), c2 the gap of the next point, d beyond tb;
+ * angles in deg, ta < tb (the caller negates them for a run's end). */
+static double cube_edge(double ta, double tb, double d, double c1, double c2)
 {
     double r = c1 > 0.0 && c2 > c1 ? cbrt(c2 / c1) : 3.0;
-    double x = -1.0 / (r - 1.0);
-    x = x < -1.0 ? -1.0 : (x > 0.0 ? 0.0 : x);
-    return tb + x * (tb - ta);
+    return tb - fmin(d / (r - 1.0), tb - ta);
 }
 
 /* Peak of the parabola through (t[k-1..k+1], c[k-1..k+1]), if k is inside. */
@@ -102,18 +107,22 @@ static void one_gap(const double *ts, const double *cs, int n, const double *t, 
         int q = m * lo, last = m * (hi + 1) - 1;
         while (q > m * (lo - 1) && c[q - 1] > 0.0)
             q--;
-        g->start_deg = cube_edge(t[q - 1], t[q], c[q], q < last ? c[q + 1] : 0.0);
+        g->start_deg = cube_edge(q - 1 == 0 ? tip0 : t[q - 1], t[q], t[q] - t[q - 1], c[q],
+                                 q < last ? c[q + 1] : 0.0);
     } else
-        g->start_deg = cube_edge(ts[lo - 1], ts[lo], cs[lo], lo < hi ? cs[lo + 1] : 0.0);
+        g->start_deg =
+            cube_edge(ts[lo - 1], ts[lo], ts[lo] - ts[lo - 1], cs[lo], lo < hi ? cs[lo + 1] : 0.0);
     if (hi == n - 1)
         g->end_deg = tip1;
     else if (points) {
         int q = m * (hi + 1) - 1, first = m * lo;
         while (q < m * (hi + 2) - 1 && c[q + 1] > 0.0)
             q++;
-        g->end_deg = -cube_edge(-t[q + 1], -t[q], c[q], q > first ? c[q - 1] : 0.0);
+        g->end_deg = -cube_edge(q + 1 == m * n - 1 ? -tip1 : -t[q + 1], -t[q], t[q + 1] - t[q],
+                                c[q], q > first ? c[q - 1] : 0.0);
     } else
-        g->end_deg = -cube_edge(-ts[hi + 1], -ts[hi], cs[hi], hi > lo ? cs[hi - 1] : 0.0);
+        g->end_deg = -cube_edge(-ts[hi + 1], -ts[hi], ts[hi + 1] - ts[hi], cs[hi],
+                                hi > lo ? cs[hi - 1] : 0.0);
     int k = m * lo;
     for (int q = m * lo; q < m * (hi + 1); q++)
         if (c[q] > c[k])
