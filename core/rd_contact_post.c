@@ -345,7 +345,9 @@ static double edge_share(const rd_contact_result *f, const rd_contact_result *c,
  * 28, 28, 25, 21 bores and cover 10 x k_c on 22, 25, 26, 28. */
 static double edges_share(const rd_contact_result *r, double edge_deg)
 {
-    int edges = 0, mirrored = r->n_gaps > 0;
+    if (r->n_gaps == 0 || r->points < 1)
+        return 0.0;
+    int edges = 0, mirrored = 1;
     double half = 180.0 / r->points, ends = r->angle_deg[0] + r->angle_deg[r->points - 1];
     for (int g = 0; g < r->n_gaps; g++) {
         edges += (g > 0 || r->gaps[g].start_deg > 1.0) +
