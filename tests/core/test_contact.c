@@ -223,9 +223,10 @@ static void test_battery_exact(void)
                 CHECK(dcf < 0.005 + c.marginal_gap_deg / 360.0,
                       "k=%d x%g ph %g: contact fraction %.4f, exact %.4f", k, factors[fi],
                       phases[pi], c.contact_fraction, x.contact_fraction);
-                /* measured at most 0.47 % (order 6 at 1 x, 17 deg, a 0.3 um
-                 * gap) where the gap exceeds 0.1 um: 2 % (the issue's 5) */
-                CHECK(fabs(dg) < 0.02, "k=%d x%g ph %g: largest gap %+.2f %% off", k, factors[fi],
+                /* measured at most 0.41 % (order 4 at 1 x, 0 deg, a 0.5 um
+                 * gap; 0.47 % before the free ends' gaps were read at the
+                 * end) where the gap exceeds 0.1 um: 1 % (the issue's 5) */
+                CHECK(fabs(dg) < 0.01, "k=%d x%g ph %g: largest gap %+.2f %% off", k, factors[fi],
                       phases[pi], 100 * dg);
                 /* measured at most 0.49 deg (order 2 at 3 x, 0 deg, n =
                  * 160; 0.89 before the angles were taken on the bore):
@@ -248,16 +249,16 @@ static void test_battery_exact(void)
                     printf("  k=%d x%g ph %g: the pressure's estimate understates x%.1f\n", k,
                            factors[fi], phases[pi], dp / c.estimates.pressure);
                 /* the largest gap's (where over 0.1 um) never by more
-                 * than x3 where the error exceeds 0.5 %, a tenth of the
-                 * issue's target.  Below that ringdyn and the reference
-                 * differ by a settled 0.03-0.31 % on the 3 x bores at 17 deg
-                 * (the same against 1440 and 2880 cells, and from n = 640
-                 * to 1280: the two models' own difference, not the chain's
-                 * discretisation or the law, which is what the estimate
-                 * measures: 1e-9 m on a 30 um gap) */
+                 * than x3 where the error exceeds 0.1 %, a fiftieth of the
+                 * issue's target (measured at most 0.41 %: order 4 at 1 x,
+                 * 0 deg, estimate 0.2 %).  Until 0.3.2 a largest gap at a
+                 * free end was read at the last point, half a spacing short
+                 * of the end, and differed from the reference by a settled
+                 * 0.03-0.5 %, which the estimate did not see, so this
+                 * counted only errors over 0.5 % */
                 if (x.max_clearance > 1e-7) {
                     double eg = fabs(c.max_clearance - x.max_clearance);
-                    int low = c.estimates.max_clearance < eg / 3 && eg > 5e-3 * x.max_clearance;
+                    int low = c.estimates.max_clearance < eg / 3 && eg > 1e-3 * x.max_clearance;
                     under_g += low;
                     if (low)
                         printf("  k=%d x%g ph %g: the largest gap's estimate understates x%.1f\n",
@@ -301,9 +302,9 @@ static void test_battery_exact(void)
     printf("estimates within x3 of the true error on %d bores: contact fraction %d, largest gap "
            "%d, edges %d, binned pressure %d\n",
            bores, track[0], track[1], track[2], track[3]);
-    /* measured 26, 28, 27, 26 of the 30 (0.3.2): one bore's room each, as
+    /* measured 26, 29, 27, 26 of the 30 (0.3.2): one bore's room each, as
      * a ratio near x3 may flip with the build's rounding */
-    CHECK(track[0] >= 25 && track[1] >= 27 && track[2] >= 26 && track[3] >= 25,
+    CHECK(track[0] >= 25 && track[1] >= 28 && track[2] >= 26 && track[3] >= 25,
           "estimates within x3 of the true error: contact fraction %d, largest gap %d, edges %d, "
           "binned pressure %d of %d bores",
           track[0], track[1], track[2], track[3], bores);
