@@ -38,6 +38,8 @@
  *       flexible ones (--face, the flexible ones, is accepted and changes
  *       nothing).
  *   --kx F (with the same): the contact stiffness F times its default.
+ *   --ring D,B,H,FT (with the same): another ring (diameter, radial width,
+ *       axial height in m, tangential force in N; the rest the default's).
  *   --cap N (with --battery, --bins, --stiffness): rd_contact_opts.max_segments
  *       N instead of its default.
  *
@@ -599,6 +601,18 @@ int main(int argc, char **argv)
             fprintf(stderr, "--ref-cells: a multiple of 4, at least 8, not %s\n", v);
             return 1;
         }
+    }
+    if ((v = take_option(&argc, argv, "--ring", 1))) {
+        /* another ring: diameter, radial width, axial height (m), F_t (N) */
+        if (sscanf(v, "%lf,%lf,%lf,%lf", &p.diameter, &p.radial_width, &p.axial_height,
+                   &p.tangential_force) != 4) {
+            fprintf(stderr, "--ring: D,B,H,FT (m, m, m, N), not %s\n", v);
+            return 1;
+        }
+        rd_error err;
+        rd_error_init(&err);
+        if (rd_ring_validate(&p, 20, 0, &err))
+            die("--ring", &err);
     }
     if (rigid_face)
         co.flexible_face = 0;

@@ -317,7 +317,14 @@ static double own_move(const rd_contact_result *f, const rd_contact_result *c, i
  * the largest edge's move is 0.22) was estimated at 2.6 p0 against a true
  * 0.17 (the reference's own bins move 0.17 p0 between 1440 and 2880
  * cells), 0.38 with its own; the battery's pressure estimates track on 26
- * of 30 bores (25 before).  tip0, tip1: the ring's ends, deg. */
+ * of 30 bores (25 before).  And the distributed pressure at the edge (its
+ * segment's) over the part of sig past the boundary: an edge beside a
+ * pressure that rises into the patch, not a concentrated force, moves that
+ * pressure across (bench_static --ring 0.05,0.002,0.001,6, order 4 at 3 x,
+ * 17 deg: an edge 0.007 deg short of 60 deg, 0.014 from the reference's,
+ * beside 8.4 p0, put 0.031 p0 in the wrong bin and met the target with an
+ * estimate of 0.008; now 0.090, not met; the default ring's battery
+ * unchanged).  tip0, tip1: the ring's ends, deg. */
 static double edge_share(const rd_contact_result *f, const rd_contact_result *c, double sig_all,
                          double res, double tip0, double tip1)
 {
@@ -335,8 +342,10 @@ static double edge_share(const rd_contact_result *f, const rd_contact_result *c,
             double B = w * floor(E / w + 0.5);
             if (fabs(B - E) > sig || fabs(other - E) < 2.0 * sig)
                 continue;
-            double sum = 0.0;
+            double sum = 0.0, dist = 0.0;
             for (int i = 0; i < n; i++) {
+                if (fabs(f->angle_deg[i] - E) <= 0.5 * phi)
+                    dist = fmax(dist, f->pressure[i]);
                 if (fabs(f->angle_deg[i] - E) > sig + 0.5 * phi)
                     continue;
                 double nb = 0.5 * ((i > 0 ? f->pressure[i - 1] : 0.0) +
@@ -344,6 +353,7 @@ static double edge_share(const rd_contact_result *f, const rd_contact_result *c,
                 sum += fmax(0.0, f->pressure[i] - nb) * phi / w;
             }
             worst = fmax(worst, (1.0 - fabs(B - E) / sig) * sum / f->uniform_pressure);
+            worst = fmax(worst, dist * (sig - fabs(B - E)) / w / f->uniform_pressure);
         }
     return worst;
 }
