@@ -440,6 +440,8 @@ static void bins_one(const rd_ring_params *p, int k, double fac, double phase, i
                "%.5f, largest gap %.3e m, edges %.3f deg; %d multiplier updates\n",
                c.stats.segments, c.estimates.pressure, c.law_share, c.estimates.contact_fraction,
                c.estimates.max_clearance, c.estimates.gap_edges_deg, c.stats.outer_iterations);
+    if (fixed_n <= 0 && c.accuracy_met != 1)
+        printf("accuracy target not met: %s\n", c.accuracy_note);
     printf("gaps (ringdyn | reference):\n");
     for (int g = 0; g < c.n_gaps; g++)
         printf("  %.3f..%.3f %.3e\n", c.gaps[g].start_deg, c.gaps[g].end_deg,

@@ -25,6 +25,28 @@ static int meets(const rd_contact_estimates *e, const rd_contact_result *r, doub
            e->gap_edges_deg <= 100.0 * a;
 }
 
+/* Names the estimates of e that miss the target a (as meets() judges
+ * them), e.g. "gap edges 1.02 deg (at most 1)", into buf. */
+static void misses(const rd_contact_estimates *e, const rd_contact_result *r, double a, char *buf,
+                   size_t size)
+{
+    size_t len = 0;
+    buf[0] = '\0';
+#define MISS(cond, ...)                                                        \
+    if ((cond) && len < size)                                                  \
+        len += (size_t)snprintf(buf + len, size - len, "%s", len ? ", " : ""), \
+            len += len < size ? (size_t)snprintf(buf + len, size - len, __VA_ARGS__) : 0;
+    MISS(e->pressure > a, "binned pressure %.3g of p0 (at most %g)", e->pressure, a)
+    MISS(e->contact_fraction > 2.0 * a, "contact fraction %.3g (at most %g)", e->contact_fraction,
+         2.0 * a)
+    MISS(!(e->max_clearance <= 5.0 * a * r->max_clearance ||
+           r->max_clearance + e->max_clearance <= 1e-7),
+         "largest gap %.3g m (at most %g of it)", e->max_clearance, 5.0 * a)
+    MISS(e->gap_edges_deg > 100.0 * a, "gap edges %.3g deg (at most %g)", e->gap_edges_deg,
+         100.0 * a)
+#undef MISS
+}
+
 /* The refinement: level pairs (n, 2n), (2n, 4n), ... through rd_accuracy,
  * the coarse level of each pair the fine one of the last. */
 typedef struct contact_run {
@@ -134,11 +156,14 @@ static int refine(contact_run *run, const rd_monitor *mon, rd_error *err)
         fine->accuracy = a;
         fine->accuracy_met = meets(&fine->estimates, fine, a);
         if ((fine->accuracy_met && !early) || last) {
-            if (!fine->accuracy_met)
+            if (!fine->accuracy_met) {
+                char miss[200];
+                misses(&fine->estimates, fine, a, miss, sizeof miss);
                 snprintf(fine->accuracy_note, sizeof fine->accuracy_note,
-                         "The error estimates at %d segments miss the accuracy target %g; "
+                         "The error estimates at %d segments miss the accuracy target %g: %s; "
                          "refining further would pass /contact/max_segments = %d.",
-                         run->n[1], a, cap);
+                         run->n[1], a, miss, cap);
+            }
             rd_contact_result_cleanup(&run->level[0]);
             run->level[0] = *fine;
             memset(fine, 0, sizeof *fine);
@@ -163,7 +188,7 @@ static int refine(contact_run *run, const rd_monitor *mon, rd_error *err)
  * 2.0 times as far as 2 x k), so the stiff law's limit is twice the move
  * away, and that is added to the binned pressure's and the largest gap's
  * estimates (rd_contact_estimate_law); the target is judged again with it,
- * and if the law alone misses it the note says so. */
+ * and if with it the estimates miss the target, the note names them. */
 static int stiffness_probe(contact_run *run, const rd_monitor *mon, rd_error *err)
 {
     rd_contact_result *r = &run->level[0], s;
@@ -178,12 +203,15 @@ static int stiffness_probe(contact_run *run, const rd_monitor *mon, rd_error *er
         double law = rd_contact_estimate_law(r, &s, &r->estimates);
         r->law_share = law;
         int met = meets(&r->estimates, r, r->accuracy);
-        if (r->accuracy_met == 1 && !met)
+        if (r->accuracy_met == 1 && !met) {
+            char miss[200];
+            misses(&r->estimates, r, r->accuracy, miss, sizeof miss);
             snprintf(r->accuracy_note, sizeof r->accuracy_note,
-                     "The contact law's compliance moves the binned pressure by %.3g of p0 "
-                     "(from twice /contact/stiffness), beyond the accuracy target %g: raise "
-                     "/contact/stiffness.",
-                     law, r->accuracy);
+                     "With the contact law's share (its compliance, from twice "
+                     "/contact/stiffness: %.3g of p0 in the binned pressure) the estimates miss "
+                     "the accuracy target %g: %s. Raise /contact/stiffness.",
+                     law, r->accuracy, miss);
+        }
         r->accuracy_met = r->accuracy_met == 1 && met;
     } else if (rc != RD_ECANCELED && rc != RD_ETIMEOUT) {
         /* the stiffer law did not converge: the estimates stand without it,

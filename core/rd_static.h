@@ -198,7 +198,7 @@ typedef struct rd_contact_result {
     double law_share; /* the contact law's share in estimates.pressure, of p0: twice the
                          binned pressure's move at twice the stiffness (NAN if not solved) */
     int levels;       /* solves made */
-    char accuracy_note[256];
+    char accuracy_note[512];
 } rd_contact_result;
 
 void rd_static_opts_default(rd_static_opts *o);
