@@ -57,6 +57,7 @@ typedef struct contact_run {
     rd_contact_result level[2]; /* coarse, fine of the current pair */
     int have_coarse;
     rd_contact_warm shape[2]; /* the levels' solved shapes: the finer starts from the coarser */
+    int law_missed;           /* the law's share alone turned a met target into a miss */
 } contact_run;
 
 static int contact_level(void *ctx, int level, const rd_monitor *mon, rd_error *err)
@@ -203,6 +204,7 @@ static int stiffness_probe(contact_run *run, const rd_monitor *mon, rd_error *er
         double law = rd_contact_estimate_law(r, &s, &r->estimates);
         r->law_share = law;
         int met = meets(&r->estimates, r, r->accuracy);
+        run->law_missed = r->accuracy_met == 1 && !met;
         if (r->accuracy_met == 1 && !met) {
             char miss[200];
             misses(&r->estimates, r, r->accuracy, miss, sizeof miss);
@@ -228,6 +230,38 @@ static int stiffness_probe(contact_run *run, const rd_monitor *mon, rd_error *er
     return rc;
 }
 
+/* The default law's share alone made the estimates miss the target: the
+ * refinement again from the reported pair at RD_CONTACT_STIFFEN x the
+ * default stiffness, whose answer replaces r if it meets the target (the
+ * law's share goes as 1/k: a quarter).  On bench_static's battery order 6
+ * and order 3 at 10 x the bound, 17 deg, and order 2 at 2.8 x, 0 deg,
+ * missed it at n = 160 with the law's share (0.014 and 0.0076 p0 of the
+ * pressure's estimates; the edges' 1.02 deg against 1) and meet it at 4 x,
+ * their errors against the exact reference no larger. */
+#define RD_CONTACT_STIFFEN 4.0
+static int stiffen(const rd_ring_params *p, const rd_contact_opts *o, const rd_static_opts *so,
+                   const rd_monitor *mon, rd_contact_result *r, rd_error *err)
+{
+    rd_contact_opts o4 = *o;
+    o4.stiffness = RD_CONTACT_STIFFEN * rd_contact_default_stiffness(p);
+    rd_contact_result s;
+    rd_error e2;
+    rd_error_init(&e2);
+    rd_monitor_span span;
+    int n = r->stats.reference_segments > 0 ? r->stats.reference_segments : r->stats.segments;
+    int rc = rd_contact_solve(p, n, &o4, so, rd_monitor_span_init(&span, mon, 1.0, 1.0), &s, &e2);
+    if (rc == RD_ECANCELED || rc == RD_ETIMEOUT)
+        return rd_error_set(err, rc, e2.path, "%s", e2.message);
+    if (rc != RD_OK)
+        return RD_OK; /* the default law's answer stands, with its note */
+    if (s.accuracy_met == 1) {
+        rd_contact_result_cleanup(r);
+        *r = s;
+    } else
+        rd_contact_result_cleanup(&s);
+    return RD_OK;
+}
+
 int rd_contact_solve(const rd_ring_params *p, int segments, const rd_contact_opts *o,
                      const rd_static_opts *so, const rd_monitor *mon, rd_contact_result *out,
                      rd_error *err)
@@ -251,6 +285,8 @@ int rd_contact_solve(const rd_ring_params *p, int segments, const rd_contact_opt
     rc = refine(&run, mon, err);
     if (rc == RD_OK && run.level[0].stats.reference_segments > 0 && run.shape[1].n == run.n[1])
         rc = stiffness_probe(&run, mon, err);
+    if (rc == RD_OK && run.law_missed && o->stiffness == 0.0)
+        rc = stiffen(p, o, so, mon, &run.level[0], err);
     if (rc == RD_OK) {
         *out = run.level[0];
         if (out->stats.reference_segments == 0) /* the first finer solve failed */

@@ -302,9 +302,13 @@ static void test_battery_exact(void)
     printf("estimates within x3 of the true error on %d bores: contact fraction %d, largest gap "
            "%d, edges %d, binned pressure %d\n",
            bores, track[0], track[1], track[2], track[3]);
-    /* measured 26, 29, 27, 26 of the 30 (0.3.2): one bore's room each, as
-     * a ratio near x3 may flip with the build's rounding */
-    CHECK(track[0] >= 25 && track[1] >= 28 && track[2] >= 26 && track[3] >= 25,
+    /* measured 24, 27, 26, 26 of the 30 (0.3.2; 26, 29, 27, 26 before the
+     * three bores whose default law missed the target were solved again at
+     * 4 x: their answers came closer to the reference than their new
+     * estimates, e.g. order 3 at 10 x, 17 deg, contact fraction 0.0019 ->
+     * 0.0003 off, estimated 0.0024): one bore's room each, as a ratio near
+     * x3 may flip with the build's rounding */
+    CHECK(track[0] >= 23 && track[1] >= 26 && track[2] >= 25 && track[3] >= 25,
           "estimates within x3 of the true error: contact fraction %d, largest gap %d, edges %d, "
           "binned pressure %d of %d bores",
           track[0], track[1], track[2], track[3], bores);
@@ -397,6 +401,40 @@ static void test_accuracy_target(void)
     CHECK(rd_contact_solve(&p, 20, &o, &so, NULL, &c, &err) == RD_EINVAL &&
               strcmp(err.path, "/numerics/accuracy") == 0,
           "accuracy 0.9 refused: %s", err.message);
+}
+
+/* The default law's share alone misses the target (order 6 at 10 x the
+ * bound, 17 deg: 0.014 p0 of the pressure's 0.018 at n = 160): with the
+ * default stiffness the refinement is repeated at 4 x and meets it; with
+ * the same stiffness asked for explicitly it is not, and the note says to
+ * raise it. */
+static void test_stiffen(void)
+{
+    rd_ring_params p;
+    rd_ring_params_default(&p);
+    rd_contact_opts o = bore(&p, 6, 10.0, 17.0);
+    rd_static_opts so;
+    rd_static_opts_default(&so);
+    rd_contact_result c;
+    rd_error err;
+    rd_error_init(&err);
+    double k0 = rd_contact_default_stiffness(&p);
+    int rc = rd_contact_solve(&p, 20, &o, &so, NULL, &c, &err);
+    CHECK(rc == RD_OK && c.accuracy_met == 1 && fabs(c.stiffness / k0 - 4.0) < 1e-12,
+          "default law, deep distortion: %s (met %d, k %g k0)", err.message,
+          rc == RD_OK ? c.accuracy_met : -2, rc == RD_OK ? c.stiffness / k0 : 0.0);
+    if (rc == RD_OK)
+        rd_contact_result_cleanup(&c);
+    o.stiffness = k0;
+    rd_error_init(&err);
+    rc = rd_contact_solve(&p, 20, &o, &so, NULL, &c, &err);
+    CHECK(rc == RD_OK && c.accuracy_met == 0 && c.stiffness == k0 &&
+              strstr(c.accuracy_note, "Raise /contact/stiffness") != NULL &&
+              strstr(c.accuracy_note, "binned pressure") != NULL,
+          "explicit default law: %s (met %d, note '%s')", err.message,
+          rc == RD_OK ? c.accuracy_met : -2, rc == RD_OK ? c.accuracy_note : "");
+    if (rc == RD_OK)
+        rd_contact_result_cleanup(&c);
 }
 
 /* Ten times the contact stiffness moves each reported quantity by less than
@@ -693,6 +731,7 @@ int main(void)
     test_accuracy_target();
     test_uzawa();
     test_stiffness();
+    test_stiffen();
     test_law_share();
     test_battery();
     test_battery_exact();
