@@ -59,9 +59,10 @@
  * share (rd_contact_refine.c solves the level again at twice k), and to
  * the edges' the law's move once (rd_contact_estimate_law).  The tip
  * forces' estimate is the whole level difference (first order) plus twice
- * the law's move.  With them 0.3.2's defaults (n up to 1280) track 28, 30,
- * 29, 27 of the 32 bores (fraction, gap, edges, pressure) and the tip
- * forces on 29 (bench_static --battery).
+ * the law's move.  With them 0.3.2's defaults (n up to 1280) track 24, 27,
+ * 26, 26 of the 30 distinct bores (fraction, gap, edges, pressure; 26, 29,
+ * 27, 26 before rd_contact_refine.c re-solves a default law's miss at 4 x
+ * k) and the tip forces on 27 (bench_static --battery).
  */
 #include "rd_static_internal.h"
 

@@ -11,6 +11,7 @@
 #include "rd_static_internal.h"
 
 #include <math.h>
+#include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -25,6 +26,22 @@ static int meets(const rd_contact_estimates *e, const rd_contact_result *r, doub
            e->gap_edges_deg <= 100.0 * a;
 }
 
+/* Appends ", " (after the first) and the formatted text to buf (size),
+ * whose used length is *len. */
+static void append(char *buf, size_t size, size_t *len, const char *fmt, ...)
+{
+    if (*len + 2 >= size)
+        return;
+    if (*len > 0)
+        *len += (size_t)snprintf(buf + *len, size - *len, ", ");
+    va_list ap;
+    va_start(ap, fmt);
+    int k = vsnprintf(buf + *len, size - *len, fmt, ap);
+    va_end(ap);
+    if (k > 0)
+        *len = *len + (size_t)k < size ? *len + (size_t)k : size - 1;
+}
+
 /* Names the estimates of e that miss the target a (as meets() judges
  * them), e.g. "gap edges 1.02 deg (at most 1)", into buf. */
 static void misses(const rd_contact_estimates *e, const rd_contact_result *r, double a, char *buf,
@@ -32,19 +49,15 @@ static void misses(const rd_contact_estimates *e, const rd_contact_result *r, do
 {
     size_t len = 0;
     buf[0] = '\0';
-#define MISS(cond, ...)                                                        \
-    if ((cond) && len < size)                                                  \
-        len += (size_t)snprintf(buf + len, size - len, "%s", len ? ", " : ""), \
-            len += len < size ? (size_t)snprintf(buf + len, size - len, __VA_ARGS__) : 0;
-    MISS(e->pressure > a, "binned pressure %.3g of p0 (at most %g)", e->pressure, a)
-    MISS(e->contact_fraction > 2.0 * a, "contact fraction %.3g (at most %g)", e->contact_fraction,
-         2.0 * a)
-    MISS(!(e->max_clearance <= 5.0 * a * r->max_clearance ||
-           r->max_clearance + e->max_clearance <= 1e-7),
-         "largest gap %.3g m (at most %g of it)", e->max_clearance, 5.0 * a)
-    MISS(e->gap_edges_deg > 100.0 * a, "gap edges %.3g deg (at most %g)", e->gap_edges_deg,
-         100.0 * a)
-#undef MISS
+    if (e->pressure > a)
+        append(buf, size, &len, "binned pressure %.3g of p0 (at most %g)", e->pressure, a);
+    if (e->contact_fraction > 2.0 * a)
+        append(buf, size, &len, "contact fraction %.3g (at most %g)", e->contact_fraction, 2.0 * a);
+    if (!(e->max_clearance <= 5.0 * a * r->max_clearance ||
+          r->max_clearance + e->max_clearance <= 1e-7))
+        append(buf, size, &len, "largest gap %.3g m (at most %g of it)", e->max_clearance, 5.0 * a);
+    if (e->gap_edges_deg > 100.0 * a)
+        append(buf, size, &len, "gap edges %.3g deg (at most %g)", e->gap_edges_deg, 100.0 * a);
 }
 
 /* The refinement: level pairs (n, 2n), (2n, 4n), ... through rd_accuracy,
