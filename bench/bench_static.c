@@ -143,29 +143,6 @@ static double profile_change(const rd_contact_result *a, const rd_contact_result
     return worst;
 }
 
-/* Largest edge error of the reference's gaps deeper than 0.1 um against the
- * overlapping gap of the solver (a missed gap: its width); NAN when the
- * reference has no such gap (nothing compared). */
-static double edge_error(const rd_contact_result *c, const ref_result *r)
-{
-    double worst = NAN;
-    for (int a = 0; a < r->n_gaps; a++) {
-        const ref_gap *g = &r->gaps[a];
-        if (g->max_clearance <= 1e-7)
-            continue;
-        double best = g->end_deg - g->start_deg;
-        for (int b = 0; b < c->n_gaps; b++) {
-            const rd_contact_gap *h = &c->gaps[b];
-            if (h->end_deg < g->start_deg || h->start_deg > g->end_deg)
-                continue;
-            best =
-                fmin(best, fmax(fabs(g->start_deg - h->start_deg), fabs(g->end_deg - h->end_deg)));
-        }
-        worst = isnan(worst) ? best : fmax(worst, best);
-    }
-    return worst;
-}
-
 /* The thin-ring conformability bound of order k, F_t R^3 / (E I (k^2 - 1)^2)
  * (the battery's amplitude unit). */
 static double thin_ring_bound(const rd_ring_params *p, int k)
@@ -277,7 +254,7 @@ static void battery(const rd_ring_params *p)
                                 ? fabs(c.max_clearance - r.max_clearance) / r.max_clearance
                                 : NAN;
                 double eg = c.max_clearance > 0 ? c.estimates.max_clearance / c.max_clearance : NAN;
-                double de = edge_error(&c, &r), dtip = 0;
+                double de = ref_edge_error(&c, &r), dtip = 0;
                 for (int e = 0; e < 2; e++) {
                     dtip = fmax(dtip, fabs(c.tip_force[e] - r.tip_force[e]));
                     tip_worst = fmax(tip_worst, fabs(c.tip_force[e] - r.tip_force[e]) /

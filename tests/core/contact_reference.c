@@ -316,3 +316,23 @@ int ref_contact_active_set(const rd_ring_params *p, const rd_contact_opts *o, in
     ref_result r;
     return solve_linear(p, o, cells, 10.0, 0.0, &r, act);
 }
+
+double ref_edge_error(const rd_contact_result *c, const ref_result *r)
+{
+    double worst = NAN;
+    for (int a = 0; a < r->n_gaps; a++) {
+        const ref_gap *g = &r->gaps[a];
+        if (g->max_clearance <= 1e-7)
+            continue;
+        double best = g->end_deg - g->start_deg;
+        for (int b = 0; b < c->n_gaps; b++) {
+            const rd_contact_gap *h = &c->gaps[b];
+            if (h->end_deg < g->start_deg || h->start_deg > g->end_deg)
+                continue;
+            best =
+                fmin(best, fmax(fabs(g->start_deg - h->start_deg), fabs(g->end_deg - h->end_deg)));
+        }
+        worst = isnan(worst) ? best : fmax(worst, best);
+    }
+    return worst;
+}

@@ -69,4 +69,10 @@ typedef struct ref_mesh {
 void ref_post(const ref_mesh *m, const char *act, const double *gap, const double *lam,
               double bin_deg, double gap_floor, ref_result *out);
 
+/* The largest move of an edge of r's light gaps deeper than 0.1 um against
+ * c's overlapping gap (none: the reference gap's width), deg; NAN when r
+ * has no such gap.  The edges' error of bench_static --battery and
+ * test_contact. */
+double ref_edge_error(const rd_contact_result *c, const ref_result *r);
+
 #endif
