@@ -37,6 +37,10 @@
  *       faces (rd_contact_opts.flexible_face = 0) instead of the default
  *       flexible ones (--face, the flexible ones, is accepted and changes
  *       nothing).
+ *   bench_static --random SEED N  N random bores (one or two orders 2-8,
+ *       0.1-10 x their bounds, any phase) at default settings against the
+ *       exact reference: the targets, the bores reporting the target met
+ *       while outside one, CPU (the battery's out-of-sample check).
  *   --kx F (with the same): the contact stiffness F times its default.
  *   --ring D,B,H,FT (with the same): another ring (diameter, radial width,
  *       axial height in m, tangential force in N; the rest the default's).
@@ -376,6 +380,83 @@ static void stiffness_battery(const rd_ring_params *p)
            both[0], both[1], both[2], both[3]);
 }
 
+/* A uniform deviate in [0, 1) from the 64-bit LCG state *x (Knuth's
+ * MMIX constants), the same on every platform. */
+static double uniform(unsigned long long *x)
+{
+    *x = *x * 6364136223846793005ULL + 1442695040888963407ULL;
+    return (double)(*x >> 11) / 9007199254740992.0;
+}
+
+/* --random SEED N: N random bores (one or two orders from 2 to 8, each
+ * 0.1 to 10 x its bound log-uniformly, capped at 0.4 % of d shared, any
+ * phase; kept convex) at default settings against the exact reference,
+ * one line a bore and the counts: the battery's out-of-sample check. */
+static void random_bores(const rd_ring_params *p, unsigned long long seed, int count)
+{
+    int ok[4] = {0}, met = 0, met_off = 0, slow = 0;
+    double cpu_all = 0;
+    for (int t = 0; t < count;) {
+        rd_contact_opts o = battery_bore(p, 2, 1, 0, NULL);
+        o.n_distortion = 1 + (uniform(&seed) < 0.5);
+        double convex = 0;
+        for (int d = 0; d < o.n_distortion; d++) {
+            int k = 2 + (int)(7 * uniform(&seed));
+            double fac = pow(10.0, -1.0 + 2.0 * uniform(&seed)), ph = 360.0 * uniform(&seed);
+            double A = fmin(fac * thin_ring_bound(p, k), 0.004 * p->diameter / o.n_distortion);
+            o.distortion[d] = (rd_distortion){k, A, ph};
+            convex += A * (k * k + 2);
+        }
+        if (convex > 0.45 * p->diameter)
+            continue;
+        t++;
+        ref_result r;
+        rd_contact_result c;
+        rd_static_opts so;
+        rd_static_opts_default(&so);
+        rd_error err;
+        rd_error_init(&err);
+        if (reference_solve(p, &o, rd_contact_gap_floor(p), &r) != 0) {
+            printf("%d: reference failed\n", t);
+            continue;
+        }
+        clock_t c0 = clock();
+        if (rd_contact_solve(p, 20, &o, &so, NULL, &c, &err) != RD_OK) {
+            printf("%d: %s\n", t, err.message);
+            continue;
+        }
+        double cpu = (double)(clock() - c0) / CLOCKS_PER_SEC, dp = 0;
+        for (int b = 0; b < RD_CONTACT_BINS; b++)
+            dp = fmax(dp, fabs(c.bin_pressure[b] - r.bin_pressure[b]) / r.p0);
+        double dcf = fabs(c.contact_fraction - r.contact_fraction);
+        double dg = r.max_clearance > 1e-7 ? fabs(c.max_clearance / r.max_clearance - 1) : 0;
+        double de = ref_edge_error(&c, &r);
+        de = isnan(de) ? 0 : de;
+        int in[4] = {dcf <= 0.02, dg <= 0.05, de <= 1.0, dp <= 0.02};
+        for (int q = 0; q < 4; q++)
+            ok[q] += in[q];
+        met += c.accuracy_met == 1;
+        met_off += c.accuracy_met == 1 && !(in[0] && in[1] && in[2] && in[3]);
+        slow += cpu > 0.2;
+        cpu_all += cpu;
+        printf("%d:", t);
+        for (int d = 0; d < o.n_distortion; d++)
+            printf(" order %d at %.2f x, %.0f deg;", o.distortion[d].order,
+                   o.distortion[d].amplitude / thin_ring_bound(p, o.distortion[d].order),
+                   o.distortion[d].phase_deg);
+        printf(" n %d, met %d, k %g x, cpu %.3f s; errors (estimates): fraction %.4f (%.4f), "
+               "gap %.2f %%, edges %.2f (%.2f) deg, bins %.3f (%.3f) p0\n",
+               c.stats.segments, c.accuracy_met, c.stiffness / rd_contact_default_stiffness(p), cpu,
+               dcf, c.estimates.contact_fraction, 100 * dg, de, c.estimates.gap_edges_deg, dp,
+               c.estimates.pressure);
+        rd_contact_result_cleanup(&c);
+    }
+    printf("\n%d bores. Within the targets: contact fraction %d, largest gap %d, edges %d, binned "
+           "pressure %d. Target met: %d, of them outside a target: %d. CPU over 0.2 s: %d, "
+           "%.2f s in all.\n",
+           count, ok[0], ok[1], ok[2], ok[3], met, met_off, slow, cpu_all);
+}
+
 /* One battery bore (order k, amplitude fac x the bound, phase deg) at
  * default settings (or at fixed_n segments without refinement, if > 0):
  * each bin's pressure against the reference's, the tip forces, the light
@@ -622,6 +703,10 @@ int main(int argc, char **argv)
     }
     if (argc == 2 && strcmp(argv[1], "--dump") == 0) {
         dump_battery(&p);
+        return 0;
+    }
+    if (argc == 4 && strcmp(argv[1], "--random") == 0) {
+        random_bores(&p, strtoull(argv[2], NULL, 10), atoi(argv[3]));
         return 0;
     }
     if (argc == 2 && strcmp(argv[1], "--battery") == 0) {
