@@ -511,7 +511,7 @@ static int uzawa(rd_static_problem *pb, work *w, double tol, int *budget, rd_sta
 {
     int nm = pb->n + 2, n = pb->n, rc = RD_OK;
     double *x = malloc((size_t)2 * nm * sizeof *x), *g = x ? x + nm : NULL;
-    rd_anderson acc;
+    rd_anderson acc = {0}; /* freed below even where x failed before its init */
     if (!x || rd_anderson_init(&acc, nm, UZAWA_DEPTH) != 0) {
         free(x);
         rd_anderson_free(&acc);
