@@ -175,14 +175,6 @@ static rd_contact_opts battery_bore(const rd_ring_params *p, int k, double fac, 
     return o;
 }
 
-/* est / err within x3 (both below `floor`: counted as tracking). */
-static int tracks(double est, double err, double floor)
-{
-    if (err <= floor && est <= floor)
-        return 1;
-    return est <= 3.0 * err && err <= 3.0 * est;
-}
-
 static void battery(const rd_ring_params *p)
 {
     const int orders[] = {2, 3, 4, 6};
@@ -272,11 +264,11 @@ static void battery(const rd_ring_params *p)
                 ok[3] += dp <= 0.02;
                 settled += ref_dp <= 0.02;
                 settled_ok += ref_dp <= 0.02 && dp <= 0.02;
-                track[0] += tracks(c.estimates.contact_fraction, dcf, 1e-3);
-                track[1] += isnan(dg) || tracks(eg, dg, 1e-3);
-                track[2] += isnan(de) || tracks(c.estimates.gap_edges_deg, de, 0.05);
-                track[3] += tracks(c.estimates.pressure, dp, 1e-3);
-                track[4] += tracks(c.estimates.tip_forces_n, dtip, 0.01);
+                track[0] += ref_tracks(c.estimates.contact_fraction, dcf, 1e-3);
+                track[1] += isnan(dg) || ref_tracks(eg, dg, 1e-3);
+                track[2] += isnan(de) || ref_tracks(c.estimates.gap_edges_deg, de, 0.05);
+                track[3] += ref_tracks(c.estimates.pressure, dp, 1e-3);
+                track[4] += ref_tracks(c.estimates.tip_forces_n, dtip, 0.01);
                 fast += cpu_s <= 0.2;
                 its[0] = c.stats.iterations < its[0] ? c.stats.iterations : its[0];
                 its[1] = c.stats.iterations > its[1] ? c.stats.iterations : its[1];

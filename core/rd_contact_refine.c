@@ -16,21 +16,11 @@
 #include <stdlib.h>
 #include <string.h>
 
-/* Does the estimate e meet the target a (see rd_contact_opts.accuracy)? */
-static int meets(const rd_contact_estimates *e, const rd_contact_result *r, double a)
-{
-    /* a largest gap certainly under 0.1 um is held to nothing relative */
-    int gap_ok = e->max_clearance <= 5.0 * a * r->max_clearance ||
-                 r->max_clearance + e->max_clearance <= 1e-7;
-    return e->pressure <= a && e->contact_fraction <= 2.0 * a && gap_ok &&
-           e->gap_edges_deg <= 100.0 * a;
-}
-
-/* Appends ", " (after the first) and the formatted text to buf (size),
- * whose used length is *len. */
+/* Appends ", " (after the first) and the formatted text to buf (size; none
+ * if NULL), whose used length is *len. */
 static void append(char *buf, size_t size, size_t *len, const char *fmt, ...)
 {
-    if (*len + 2 >= size)
+    if (!buf || *len + 2 >= size)
         return;
     if (*len > 0)
         *len += (size_t)snprintf(buf + *len, size - *len, ", ");
@@ -42,22 +32,40 @@ static void append(char *buf, size_t size, size_t *len, const char *fmt, ...)
         *len = *len + (size_t)k < size ? *len + (size_t)k : size - 1;
 }
 
-/* Names the estimates of e that miss the target a (as meets() judges
- * them), e.g. "gap edges 1.02 deg (at most 1)", into buf. */
-static void misses(const rd_contact_estimates *e, const rd_contact_result *r, double a, char *buf,
-                   size_t size)
+/* How many of the estimates e miss the target a (see
+ * rd_contact_opts.accuracy; NAN misses), each named with its value and
+ * bound in buf (if not NULL), e.g. "gap edges 1.02 deg (at most 1)". */
+static int misses(const rd_contact_estimates *e, const rd_contact_result *r, double a, char *buf,
+                  size_t size)
 {
     size_t len = 0;
-    buf[0] = '\0';
-    if (e->pressure > a)
+    int count = 0;
+    if (buf)
+        buf[0] = '\0';
+    if (!(e->pressure <= a)) {
+        count++;
         append(buf, size, &len, "binned pressure %.3g of p0 (at most %g)", e->pressure, a);
-    if (e->contact_fraction > 2.0 * a)
+    }
+    if (!(e->contact_fraction <= 2.0 * a)) {
+        count++;
         append(buf, size, &len, "contact fraction %.3g (at most %g)", e->contact_fraction, 2.0 * a);
+    }
+    /* a largest gap certainly under 0.1 um is held to nothing relative */
     if (!(e->max_clearance <= 5.0 * a * r->max_clearance ||
-          r->max_clearance + e->max_clearance <= 1e-7))
+          r->max_clearance + e->max_clearance <= 1e-7)) {
+        count++;
         append(buf, size, &len, "largest gap %.3g m (at most %g of it)", e->max_clearance, 5.0 * a);
-    if (e->gap_edges_deg > 100.0 * a)
+    }
+    if (!(e->gap_edges_deg <= 100.0 * a)) {
+        count++;
         append(buf, size, &len, "gap edges %.3g deg (at most %g)", e->gap_edges_deg, 100.0 * a);
+    }
+    return count;
+}
+
+static int meets(const rd_contact_estimates *e, const rd_contact_result *r, double a)
+{
+    return misses(e, r, a, NULL, 0) == 0;
 }
 
 /* The refinement: level pairs (n, 2n), (2n, 4n), ... through rd_accuracy,
@@ -218,7 +226,7 @@ static int stiffness_probe(contact_run *run, const rd_monitor *mon, rd_error *er
         r->law_share = law;
         int met = meets(&r->estimates, r, r->accuracy);
         run->law_missed = r->accuracy_met == 1 && !met;
-        if (r->accuracy_met == 1 && !met) {
+        if (run->law_missed) {
             char miss[200];
             misses(&r->estimates, r, r->accuracy, miss, sizeof miss);
             snprintf(r->accuracy_note, sizeof r->accuracy_note,

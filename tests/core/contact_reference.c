@@ -336,3 +336,10 @@ double ref_edge_error(const rd_contact_result *c, const ref_result *r)
     }
     return worst;
 }
+
+int ref_tracks(double est, double err, double floor)
+{
+    if (err <= floor && est <= floor)
+        return 1;
+    return est <= 3.0 * err && err <= 3.0 * est;
+}

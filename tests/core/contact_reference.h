@@ -75,4 +75,9 @@ void ref_post(const ref_mesh *m, const char *act, const double *gap, const doubl
  * test_contact. */
 double ref_edge_error(const rd_contact_result *c, const ref_result *r);
 
+/* Does the estimate est track the true error err: within x3 either way,
+ * or both at most `floor` (the issue's tracking criterion; bench_static
+ * --battery and test_contact count with it)? */
+int ref_tracks(double est, double err, double floor);
+
 #endif

@@ -89,14 +89,6 @@ static void test_reference(void)
     }
 }
 
-/* est / err within x3 (both below `floor`: counted as tracking). */
-static int tracks(double est, double err, double floor)
-{
-    if (err <= floor && est <= floor)
-        return 1;
-    return est <= 3.0 * err && err <= 3.0 * est;
-}
-
 /* ref_edge_error, 0 where the reference has no gap over 0.1 um */
 static double edge_or_0(const rd_contact_result *c, const ref_result *r)
 {
@@ -262,11 +254,12 @@ static void test_battery_exact(void)
                       phases[pi], de, c.estimates.gap_edges_deg);
                 /* est / err within x3, as bench_static --battery counts */
                 bores++;
-                track[0] += tracks(c.estimates.contact_fraction, dcf, 1e-3);
+                track[0] += ref_tracks(c.estimates.contact_fraction, dcf, 1e-3);
                 track[1] += x.max_clearance <= 1e-7 ||
-                            tracks(c.estimates.max_clearance / c.max_clearance, fabs(dg), 1e-3);
-                track[2] += x.max_clearance <= 1e-7 || tracks(c.estimates.gap_edges_deg, de, 0.05);
-                track[3] += tracks(c.estimates.pressure, dp, 1e-3);
+                            ref_tracks(c.estimates.max_clearance / c.max_clearance, fabs(dg), 1e-3);
+                track[2] +=
+                    x.max_clearance <= 1e-7 || ref_tracks(c.estimates.gap_edges_deg, de, 0.05);
+                track[3] += ref_tracks(c.estimates.pressure, dp, 1e-3);
                 /* the free ends' concentrated forces within 2 % + 0.01 N of
                  * the reference's (the bench's count), or their error
                  * within x3 of its estimate where they are not (the light
