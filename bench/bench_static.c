@@ -433,7 +433,7 @@ static void random_bores(const rd_ring_params *p, unsigned long long seed, int c
         cpu_all += cpu;
         printf("%d:", t);
         for (int d = 0; d < o.n_distortion; d++)
-            printf(" order %d at %.2f x, %.0f deg;", o.distortion[d].order,
+            printf(" order %d at %.6g x, %.6g deg;", o.distortion[d].order,
                    o.distortion[d].amplitude / thin_ring_bound(p, o.distortion[d].order),
                    o.distortion[d].phase_deg);
         printf(" n %d, met %d, k %g x, cpu %.3f s; errors (estimates): fraction %.4f (%.4f), "

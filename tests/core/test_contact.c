@@ -668,37 +668,68 @@ static void test_bins_touching(void)
  * estimate must cover that (it said 0.008 and "met" before the edge's
  * distributed share; now 0.090), and a result over the target must not
  * claim to meet it. */
+/* Other rings' bores whose binned pressure once met the target with an
+ * estimate far from the error (bench_static --ring D,B,H,FT --bins K A
+ * PHASE), against the exact reference: the estimate at least a third of
+ * the error (and, with `both`, at most three times it or both under 1e-3
+ * p0), and a bore outside the target not reported as met. */
 static void test_other_ring(void)
 {
-    rd_ring_params p;
-    rd_ring_params_default(&p);
-    p.diameter = 0.05, p.radial_width = 0.002, p.axial_height = 0.001, p.tangential_force = 6;
-    rd_contact_opts o = bore(&p, 4, 3.0, 17.0);
-    rd_static_opts so;
-    rd_static_opts_default(&so);
-    ref_result x;
-    rd_contact_result c;
-    rd_error err;
-    rd_error_init(&err);
-    if (ref_contact_solve_nl(&p, &o, 2880, 1, 10.0, floor_of(&p), &x) != 0) {
-        CHECK(0, "other ring: exact reference");
-        return;
+    static const struct {
+        double d, b, h, ft;
+        int k;
+        double fac, phase;
+        int both;
+        const char *why;
+    } cases[] = {
+        /* an edge 0.007 deg short of 60 deg beside 8.4 p0: met with 0.008
+         * where 0.031 p0 was off (edge_share's distributed term) */
+        {0.05, 0.002, 0.001, 6, 4, 3.0, 17.0, 0, "edge beside a rising pressure"},
+        /* a patch on 39.98-40.88 deg at n = 160 put none of its force below
+         * 40 deg, the reference a tenth: met with 0.009 where 0.51 p0 was
+         * off (straddle_share) */
+        {0.05, 0.002, 0.001, 6, 7, 9.70363, 117.806, 0, "patch across a boundary"},
+        /* a patch on 330.09-330.37 deg narrowing from 329.96-330.48 at n =
+         * 640: 1.27 p0 estimated, 0.002 off, not met (stays_off) */
+        {0.13, 0.0045, 0.003, 40, 4, 10.0, 17.0, 1, "patch narrowing beside a boundary"},
+    };
+    for (size_t t = 0; t < sizeof cases / sizeof cases[0]; t++) {
+        rd_ring_params p;
+        rd_ring_params_default(&p);
+        p.diameter = cases[t].d, p.radial_width = cases[t].b, p.axial_height = cases[t].h;
+        p.tangential_force = cases[t].ft;
+        rd_contact_opts o = bore(&p, cases[t].k, cases[t].fac, cases[t].phase);
+        rd_static_opts so;
+        rd_static_opts_default(&so);
+        ref_result x;
+        rd_contact_result c;
+        rd_error err;
+        rd_error_init(&err);
+        if (ref_contact_solve_nl(&p, &o, 2880, 1, 10.0, floor_of(&p), &x) != 0) {
+            CHECK(0, "%s: exact reference", cases[t].why);
+            continue;
+        }
+        if (rd_contact_solve(&p, 20, &o, &so, NULL, &c, &err) != RD_OK) {
+            CHECK(0, "%s: %s", cases[t].why, err.message);
+            continue;
+        }
+        double dp = 0;
+        for (int b = 0; b < RD_CONTACT_BINS; b++)
+            dp = fmax(dp, fabs(c.bin_pressure[b] - x.bin_pressure[b]) / x.p0);
+        double est = c.estimates.pressure;
+        printf("other ring %g mm, %s (order %d at %g x, %g deg): n %d, bins %.4f p0 off (est. "
+               "%.4f), met %d\n",
+               1e3 * cases[t].d, cases[t].why, cases[t].k, cases[t].fac, cases[t].phase,
+               c.stats.segments, dp, est, c.accuracy_met);
+        /* x3: the tracking bound */
+        CHECK(dp <= 3 * est, "%s: bins %.4f p0 off, estimate %.4f", cases[t].why, dp, est);
+        CHECK(!cases[t].both || ref_tracks(est, dp, 1e-3), "%s: estimate %.4f against %.4f off",
+              cases[t].why, est, dp);
+        CHECK(dp <= c.accuracy || c.accuracy_met == 0,
+              "%s: bins %.4f p0 off, over the target %g, reported as met", cases[t].why, dp,
+              c.accuracy);
+        rd_contact_result_cleanup(&c);
     }
-    if (rd_contact_solve(&p, 20, &o, &so, NULL, &c, &err) != RD_OK) {
-        CHECK(0, "other ring: %s", err.message);
-        return;
-    }
-    double dp = 0;
-    for (int b = 0; b < RD_CONTACT_BINS; b++)
-        dp = fmax(dp, fabs(c.bin_pressure[b] - x.bin_pressure[b]) / x.p0);
-    printf("other ring, order 4 at 3 x, 17 deg: n %d, bins %.4f p0 off (est. %.4f), met %d\n",
-           c.stats.segments, dp, c.estimates.pressure, c.accuracy_met);
-    /* x3: the tracking bound */
-    CHECK(dp <= 3 * c.estimates.pressure, "other ring: bins %.4f p0 off, estimate %.4f", dp,
-          c.estimates.pressure);
-    CHECK(dp <= c.accuracy || c.accuracy_met == 0,
-          "other ring: bins %.4f p0 off, over the target %g, reported as met", dp, c.accuracy);
-    rd_contact_result_cleanup(&c);
 }
 
 int main(void)
