@@ -309,28 +309,6 @@ static double own_move(const rd_contact_result *f, const rd_contact_result *c, i
     return isnan(m) ? -1.0 : fabs(m);
 }
 
-/* Does the contact patch beside edge `side` of f's gap g, at most two
- * segments wide with the boundary B outside it, keep off B: its middle
- * (its two edges' mean) moved from c by less than its edge's distance from
- * B?  Such a patch narrows towards its point of contact as n grows, its
- * edges moving apart-together while its place holds (bench_static --ring
- * 0.13,0.0045,0.003,40, order 4 at 10 x, 17 deg: a patch on 330.09-330.37
- * deg, 329.96-330.48 at n = 640, its edge 0.13 deg from c's and 0.09 from
- * 330 deg, was estimated at 1.27 p0 against a true 0.002). */
-static int stays_off(const rd_contact_result *f, const rd_contact_result *c, int g, int side,
-                     double B)
-{
-    int h = side ? g + 1 : g - 1;
-    if (h < 0 || h >= f->n_gaps)
-        return 0;
-    double E = side ? f->gaps[g].end_deg : f->gaps[g].start_deg;
-    double O = side ? f->gaps[h].start_deg : f->gaps[h].end_deg;
-    if (fabs(O - E) > 2.0 * 360.0 / f->points || (B - E) * (O - E) >= 0.0)
-        return 0;
-    double mE = signed_move(f, c, g, side), mO = signed_move(f, c, h, !side);
-    return !isnan(mE) && !isnan(mO) && fabs(0.5 * (mE + mO)) < fabs(B - E);
-}
-
 /* A patch narrower than 2 sig (its edges' uncertainty) with the bin
  * boundary B inside it: where its force lies in it is not resolved, and
  * its split between the bins moves with its place.  The share: the patch's
@@ -343,7 +321,7 @@ static int stays_off(const rd_contact_result *f, const rd_contact_result *c, int
  * bore met the target.  A patch centred on B by symmetry, order 3 at 10 x,
  * 0 deg on 120 and 240 deg, keeps its middle and its split.) */
 static double straddle_share(const rd_contact_result *f, const rd_contact_result *c, int g,
-                             int side, double B, double sig)
+                             int side, double sig)
 {
     int h = side ? g + 1 : g - 1, n = f->points;
     double E = side ? f->gaps[g].end_deg : f->gaps[g].start_deg;
@@ -359,7 +337,6 @@ static double straddle_share(const rd_contact_result *f, const rd_contact_result
     for (int i = 0; i < n; i++)
         if (f->angle_deg[i] > lo - half && f->angle_deg[i] < hi + half)
             force += f->pressure[i] * phi / RD_CONTACT_BIN_DEG;
-    (void)B;
     return fmin(1.0, move / fmax(hi - lo, 1e-9)) * force / f->uniform_pressure;
 }
 
@@ -405,10 +382,10 @@ static double edge_share(const rd_contact_result *f, const rd_contact_result *c,
             double sig = mv < 0.0 ? sig_all : fmax(mv, res);
             double B = w * floor(E / w + 0.5);
             if (fabs(other - E) < 2.0 * sig && (B - E) * (other - B) > 0.0) {
-                worst = fmax(worst, straddle_share(f, c, g, side, B, sig));
+                worst = fmax(worst, straddle_share(f, c, g, side, sig));
                 continue;
             }
-            if (fabs(B - E) > sig || fabs(other - E) < 2.0 * sig || stays_off(f, c, g, side, B))
+            if (fabs(B - E) > sig || fabs(other - E) < 2.0 * sig)
                 continue;
             double sum = 0.0, dist = 0.0;
             for (int i = 0; i < n; i++) {
