@@ -693,6 +693,12 @@ static void test_other_ring(void)
          * closest points, 0.2 deg short of it: met at n = 640 with 0.0004
          * where 0.11 p0 was off (wide_patch_edges, rd_contact.c) */
         {0.05, 0.002, 0.001, 6, 4, 2.27805, 305.785, 1, "patch end past a boundary"},
+        /* a point-like patch on 319.29-319.96 deg at n = 160 beside 320
+         * deg, the reference's across it: met with 0.007 where 0.9 p0 was
+         * off (straddle_share with B outside; one-segment wide_patch_edges
+         * bins the patch's 1.49 p0 past 320 deg at n = 1280, the reference
+         * on 5760 and 11520 cells 1.56, on these 2880 cells 0.93) */
+        {0.05, 0.002, 0.001, 6, 3, 5.69085, 144.595, 0, "patch beside a boundary"},
         /* a patch ending 0.11 deg short of 80 deg, the reference's 0.11
          * past: the edge's share must hold at n = 160 (a rule that let a
          * patch two segments wide off it met the target with 0.003 where
