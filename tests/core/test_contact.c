@@ -704,6 +704,10 @@ static void test_other_ring(void)
          * patch two segments wide off it met the target with 0.003 where
          * 0.42 p0 was off) */
         {0.0765, 0.0029, 0.0012, 10, 2, 2.83031, 342.015, 0, "patch end short of a boundary"},
+        /* n = 160 pressed its first end's tip (17.3 N) where the reference
+         * is 0.35 um clear to 2.23 deg: levels 80 and 160 agreed, and the
+         * edges 2.1 deg off met the target (unresolved_tips) */
+        {0.13, 0.0045, 0.003, 40, 6, 9.44982, 208.024, 0, "tip pressed, lifted in truth"},
     };
     for (size_t t = 0; t < sizeof cases / sizeof cases[0]; t++) {
         rd_ring_params p;
@@ -740,6 +744,18 @@ static void test_other_ring(void)
         CHECK(dp <= c.accuracy || c.accuracy_met == 0,
               "%s: bins %.4f p0 off, over the target %g, reported as met", cases[t].why, dp,
               c.accuracy);
+        /* and the edges and tip forces: within x3 of their estimates, and
+         * no bore with an edge past the issue's 1 deg reported as met */
+        double de = ref_edge_error(&c, &x), dtip = 0;
+        for (int e = 0; e < 2; e++)
+            dtip = fmax(dtip, fabs(c.tip_force[e] - x.tip_force[e]));
+        CHECK(!(de > 3 * c.estimates.gap_edges_deg), "%s: edges %.3f deg off, estimate %.3f",
+              cases[t].why, de, c.estimates.gap_edges_deg);
+        CHECK(!(de > 1.0) || c.accuracy_met == 0, "%s: edges %.3f deg off, reported as met",
+              cases[t].why, de);
+        CHECK(dtip <= 3 * c.estimates.tip_forces_n + 0.01,
+              "%s: tip forces %.3f N off, estimate %.3f", cases[t].why, dtip,
+              c.estimates.tip_forces_n);
         rd_contact_result_cleanup(&c);
     }
 }
