@@ -373,14 +373,14 @@ static void segment_output(const rd_static_problem *pb, int i, rd_contact_result
  * force beside it into the next bin (bench_static --ring
  * 0.05,0.002,0.001,6 --bins 4 2.27805 305.785: a patch ending at 270.13
  * deg, the reference's at 270.08, binned as ending at 269.92 at n = 640,
- * 0.11 p0 off, with an estimate of 0.0004).  `wide` is one segment: with
- * two, a 0.5 deg patch across 320 deg at n = 1280 (--bins 3 5.69085
- * 144.595 on that ring) put none of its force past 320 deg, the reference
- * on 5760 and 11520 cells 1.56 p0, ringdyn now 1.49; narrower patches (a
- * point-like contact) keep the closest points' edges, as the comment
- * below says why.  On 600 random bores on three rings (bench_static
- * --random 11 ... 15 40) the bins within 0.02 p0 went 562 -> 567, the
- * bores reported met outside a target 9 -> 3. */
+ * 0.11 p0 off, with an estimate of 0.0004).  `wide` is 1.5 segments: with
+ * two, a 0.5 deg patch (1.8 segments) across 320 deg at n = 1280 (--bins
+ * 3 5.69085 144.595 on that ring) put none of its force past 320 deg, the
+ * reference on 5760 and 11520 cells 1.56 p0, ringdyn now 1.49; with one,
+ * a point-like contact on 329.98-330.26 deg (one segment; order 4 at 10 x,
+ * 17 deg, default ring, n = 1280) put 0.42 p0 before 330 deg where the
+ * references on 2880 and 5760 cells put none.  Narrower patches keep the
+ * closest points' edges, as the comment below says why. */
 static void wide_patch_edges(const rd_contact_result *out, double wide, rd_contact_result *seg)
 {
     for (int g = 0; g < seg->n_gaps; g++) {
@@ -419,7 +419,7 @@ static int contact_bins(const rd_static_problem *pb, const double *ts, const dou
     if (seg != out) {
         rd_contact_gaps(ts, out->clearance, n, t, c, pb->m, 0, lo[0], lo[n], out->gap_floor, seg);
         seg->gap_floor = out->gap_floor;
-        wide_patch_edges(out, 1.0 * (lo[n] - lo[0]) / n, seg);
+        wide_patch_edges(out, 1.5 * (lo[n] - lo[0]) / n, seg);
     }
     rd_contact_bins(lo, force, at, n, pb->h * pb->r_o, seg, out);
     if (seg != out)

@@ -309,23 +309,26 @@ static double own_move(const rd_contact_result *f, const rd_contact_result *c, i
     return isnan(m) ? -1.0 : fabs(m);
 }
 
-/* A patch narrower than 2 sig (its edges' uncertainty) with the bin
- * boundary B inside it: where its force lies in it is not resolved, and
- * its split between the bins moves with its place.  The share: the patch's
- * force times its middle's move from c (its two edges' mean; sig where c
- * lacks one) over its width, at most all of it.  With B outside it but
- * within sig of its edge, off away: the move less off (50 mm ring, order 3
- * at 5.69 x, 145 deg: a patch on 319.29-319.96 deg at n = 160, B = 320,
- * the reference's on 319.64-320.02 with 1.56 p0 past 320 deg; met with
- * 0.007, now refined to 1280).  A free end as the patch's
- * other edge does not move.  (bench_static --ring 0.05,0.002,0.001,6
- * --random 3 40, bore 30, order 7 at 9.7 x, 118 deg: a patch on 39.98-40.88
- * deg at n = 160 put none of its force below 40 deg, the reference's on
- * 39.90-40.64 deg a tenth of it, 0.51 p0; the estimate was 0.009 and the
- * bore met the target.  A patch centred on B by symmetry, order 3 at 10 x,
- * 0 deg on 120 and 240 deg, keeps its middle and its split.) */
+/* A patch narrower than 2 sig (its edges' uncertainty), or than one
+ * segment, with the bin boundary B inside it: where its force lies in it
+ * is not resolved, and its split between the bins moves with its place and
+ * is known only where B is its middle (by symmetry: order 3 at 10 x, 0
+ * deg, on 120 and 240 deg) or its edge.  The share: the patch's force times
+ * its middle's move from c (its two edges' mean; sig where c lacks one)
+ * plus B's distance from the nearer of its middle and its edges, over its
+ * width, at most all of it.  With B
+ * outside a patch narrower than 2 sig but within sig of its edge, off
+ * away: the move less off.  A free end as the patch's other edge does not
+ * move.  (bench_static --ring 0.05,0.002,0.001,6 --random 3 40, bore 30,
+ * order 7 at 9.7 x, 118 deg: a patch on 39.98-40.88 deg at n = 160 put
+ * none of its force below 40 deg, the reference's on 39.90-40.64 a tenth,
+ * 0.51 p0, met with 0.009; order 4 at 8.76 x, 353 deg on that ring, a
+ * patch on 309.78-310.45 deg binned all past 310 deg, the reference 58 %
+ * before it, met with 0.007 where 5.1 p0 was off; order 3 at 5.69 x, 145
+ * deg, a patch on 319.29-319.96 deg beside 320 deg, the reference's across
+ * it with 1.56 p0 past it, met with 0.007.  All now refine to 1280.) */
 static double straddle_share(const rd_contact_result *f, const rd_contact_result *c, int g,
-                             int side, double sig, double off)
+                             int side, double B, double sig, double off)
 {
     int h = side ? g + 1 : g - 1, n = f->points;
     double E = side ? f->gaps[g].end_deg : f->gaps[g].start_deg;
@@ -341,6 +344,8 @@ static double straddle_share(const rd_contact_result *f, const rd_contact_result
     for (int i = 0; i < n; i++)
         if (f->angle_deg[i] > lo - half && f->angle_deg[i] < hi + half)
             force += f->pressure[i] * phi / RD_CONTACT_BIN_DEG;
+    if (off <= 0.0)
+        move += fmin(fabs(B - 0.5 * (lo + hi)), fmin(B - lo, hi - B));
     return fmin(1.0, fmax(0.0, move - off) / fmax(hi - lo, 1e-9)) * force / f->uniform_pressure;
 }
 
@@ -385,14 +390,17 @@ static double edge_share(const rd_contact_result *f, const rd_contact_result *c,
             double mv = own_move(f, c, g, side);
             double sig = mv < 0.0 ? sig_all : fmax(mv, res);
             double B = w * floor(E / w + 0.5);
-            if (fabs(other - E) < 2.0 * sig) {
-                int inside = (B - E) * (other - B) > 0.0;
-                if (inside || fabs(B - E) <= sig)
-                    worst =
-                        fmax(worst, straddle_share(f, c, g, side, sig, inside ? 0.0 : fabs(B - E)));
+            int inside = (B - E) * (other - B) > 0.0, narrow = fabs(other - E) < 2.0 * sig;
+            if (inside && (narrow || fabs(other - E) < phi)) {
+                worst = fmax(worst, straddle_share(f, c, g, side, B, sig, 0.0));
                 continue;
             }
-            if (fabs(B - E) > sig || fabs(other - E) < 2.0 * sig)
+            if (narrow) {
+                if (fabs(B - E) <= sig)
+                    worst = fmax(worst, straddle_share(f, c, g, side, B, sig, fabs(B - E)));
+                continue;
+            }
+            if (fabs(B - E) > sig)
                 continue;
             double sum = 0.0, dist = 0.0;
             for (int i = 0; i < n; i++) {

@@ -280,13 +280,15 @@ static void test_battery_exact(void)
     printf("estimates within x3 of the true error on %d bores: contact fraction %d, largest gap "
            "%d, edges %d, binned pressure %d\n",
            bores, track[0], track[1], track[2], track[3]);
-    /* measured 24, 27, 26, 26 of the 30 (0.3.2; 26, 29, 27, 26 before the
-     * three bores whose default law missed the target were solved again at
-     * 4 x: their answers came closer to the reference than their new
-     * estimates, e.g. order 3 at 10 x, 17 deg, contact fraction 0.0019 ->
-     * 0.0003 off, estimated 0.0024): one bore's room each, as a ratio near
-     * x3 may flip with the build's rounding */
-    CHECK(track[0] >= 23 && track[1] >= 26 && track[2] >= 25 && track[3] >= 25,
+    /* measured 23, 27, 26, 25 of the 30 (0.3.3; 24, 27, 26, 26 at 0.3.2,
+     * 26, 29, 27, 26 before the three bores whose default law missed the
+     * target were solved again at 4 x: their answers came closer to the
+     * reference than their new estimates, e.g. order 3 at 10 x, 17 deg,
+     * contact fraction 0.0019 -> 0.0003 off, estimated 0.0024; 0.3.3's
+     * unresolved-patch share refines order 4 at 10 x, 17 deg from 640 to
+     * 1280, closer again, its estimates not): one bore's room each, as a
+     * ratio near x3 may flip with the build's rounding */
+    CHECK(track[0] >= 22 && track[1] >= 26 && track[2] >= 25 && track[3] >= 24,
           "estimates within x3 of the true error: contact fraction %d, largest gap %d, edges %d, "
           "binned pressure %d of %d bores",
           track[0], track[1], track[2], track[3], bores);
@@ -695,10 +697,15 @@ static void test_other_ring(void)
         {0.05, 0.002, 0.001, 6, 4, 2.27805, 305.785, 1, "patch end past a boundary"},
         /* a point-like patch on 319.29-319.96 deg at n = 160 beside 320
          * deg, the reference's across it: met with 0.007 where 0.9 p0 was
-         * off (straddle_share with B outside; one-segment wide_patch_edges
+         * off (straddle_share with B outside; wide_patch_edges at 1.5 segments
          * bins the patch's 1.49 p0 past 320 deg at n = 1280, the reference
          * on 5760 and 11520 cells 1.56, on these 2880 cells 0.93) */
         {0.05, 0.002, 0.001, 6, 3, 5.69085, 144.595, 0, "patch beside a boundary"},
+        /* a patch on 309.78-310.45 deg at n = 160, less than a segment
+         * wide, across 310 deg: binned all past 310 where the reference
+         * puts 58 % before it, and levels 80 and 160 agreed: met with 0.007
+         * where 5.1 p0 was off (straddle_share: B inside an unresolved patch) */
+        {0.05, 0.002, 0.001, 6, 4, 8.7604, 352.54, 0, "unresolved patch across a boundary"},
         /* a patch ending 0.11 deg short of 80 deg, the reference's 0.11
          * past: the edge's share must hold at n = 160 (a rule that let a
          * patch two segments wide off it met the target with 0.003 where
