@@ -187,6 +187,8 @@ typedef struct rd_contact_result {
                                  if none */
     double point_spacing_deg; /* contact points' spacing, deg: the edge locator's resolution */
     double tip_force[2];      /* concentrated force at the first / last free end, N */
+    double edge_bin_share;    /* the most a segment holding a gap edge put past a bin boundary
+                                 from the edge, as a bin pressure, Pa (rd_contact_bins) */
     double bin_pressure[RD_CONTACT_BINS]; /* mean pressure over the ring's arc in each
                                    RD_CONTACT_BIN_DEG bin, Pa */
     /* Accuracy: estimates of the reported values' errors from the last two

@@ -711,6 +711,10 @@ static void test_other_ring(void)
          * patch two segments wide off it met the target with 0.003 where
          * 0.42 p0 was off) */
         {0.0765, 0.0029, 0.0012, 10, 2, 2.83031, 342.015, 0, "patch end short of a boundary"},
+        /* a patch ending at 270.28 deg (the reference's 270.34) whose
+         * segment's force was spread from 269.9 deg: met at n = 640 with
+         * 0.010 where 0.055 p0 was off (edge_bin_share) */
+        {0.0765, 0.0029, 0.0012, 10, 2, 1.30134, 346.801, 0, "edge segment across a boundary"},
         /* n = 160 pressed its first end's tip (17.3 N) where the reference
          * is 0.35 um clear to 2.23 deg: levels 80 and 160 agreed, and the
          * edges 2.1 deg off met the target (unresolved_tips) */
