@@ -62,7 +62,11 @@
  * the law's move.  With them 0.3.2's defaults (n up to 1280) track 24, 27,
  * 26, 26 of the 30 distinct bores (fraction, gap, edges, pressure; 26, 29,
  * 27, 26 before rd_contact_refine.c re-solves a default law's miss at 4 x
- * k) and the tip forces on 27 (bench_static --battery).
+ * k) and the tip forces on 27 (bench_static --battery); 0.3.3's, 23, 27,
+ * 26, 24 and 27: its shares for unresolved patches (straddle_share,
+ * edge_bin_share, unresolved_tips), which stop bores from meeting the
+ * target at n = 160-640 with answers 0.05-5 p0 or 2 deg off
+ * (bench/contact_random.sh), overstate two battery bores.
  */
 #include "rd_static_internal.h"
 
