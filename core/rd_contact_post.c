@@ -318,8 +318,9 @@ static double edge_moves(const rd_contact_result *f, const rd_contact_result *c)
     return worst;
 }
 
-/* The same move signed (f's edge less c's; the smallest of the overlapping
- * gaps'), NAN if c has no gap overlapping f's gap g. */
+/* How far the edge `side` (0 start, 1 end) of f's gap g moved from c's
+ * overlapping gap's, signed (f's edge less c's; the smallest of the
+ * overlapping gaps'), NAN if c has no gap overlapping g. */
 static double signed_move(const rd_contact_result *f, const rd_contact_result *c, int g, int side)
 {
     const rd_contact_gap *a = &f->gaps[g];
@@ -335,8 +336,7 @@ static double signed_move(const rd_contact_result *f, const rd_contact_result *c
     return best;
 }
 
-/* How far the edge `side` (0 start, 1 end) of f's gap g moved from c's
- * overlapping gap's (none: -1). */
+/* The same move, unsigned (none: -1). */
 static double own_move(const rd_contact_result *f, const rd_contact_result *c, int g, int side)
 {
     double m = signed_move(f, c, g, side);
@@ -350,10 +350,9 @@ static double own_move(const rd_contact_result *f, const rd_contact_result *c, i
  * deg, on 120 and 240 deg) or its edge.  The share: the patch's force times
  * its middle's move from c (its two edges' mean; sig where c lacks one)
  * plus B's distance from the nearer of its middle and its edges, over its
- * width, at most all of it.  With B
- * outside a patch narrower than 2 sig but within sig of its edge, off
- * away: the move less off.  A free end as the patch's other edge does not
- * move.  (bench_static --ring 0.05,0.002,0.001,6 --random 3 40, bore 30,
+ * width, at most all of it.  With B outside a patch narrower than 2 sig but
+ * within sig of its edge, off away: the move less off.  A free end as the
+ * patch's other edge does not move.  (bench_static --ring 0.05,0.002,0.001,6 --random 3 40, bore 30,
  * order 7 at 9.7 x, 118 deg: a patch on 39.98-40.88 deg at n = 160 put
  * none of its force below 40 deg, the reference's on 39.90-40.64 a tenth,
  * 0.51 p0, met with 0.009; order 4 at 8.76 x, 353 deg on that ring, a
