@@ -343,9 +343,14 @@ static double own_move(const rd_contact_result *f, const rd_contact_result *c, i
     return isnan(m) ? -1.0 : fabs(m);
 }
 
-/* A patch narrower than 2 sig (its edges' uncertainty), or than one
- * segment, with the bin boundary B inside it: where its force lies in it
- * is not resolved, and its split between the bins moves with its place and
+/* A patch narrower than 2 sig (its edges' uncertainty), or than the 1.5
+ * segments below which the bins take its edges from the segments' closest
+ * points (wide_patch_edges, rd_contact.c), with the bin boundary B inside
+ * it (with one segment: the 130 mm ring, order 5 at 6.40 x, 352 deg, a
+ * patch of 1.1 segments on 99.86-100.48 deg at n = 640 binned all past 100
+ * deg, the reference 14 % before it, met with 0.001 where 1.03 p0 was
+ * off): where its force lies in it is not resolved, and its split between
+ * the bins moves with its place and
  * is known only where B is its middle (by symmetry: order 3 at 10 x, 0
  * deg, on 120 and 240 deg) or its edge.  The share: the patch's force times
  * its middle's move from c (its two edges' mean; sig where c lacks one)
@@ -424,7 +429,7 @@ static double edge_share(const rd_contact_result *f, const rd_contact_result *c,
             double sig = mv < 0.0 ? sig_all : fmax(mv, res);
             double B = w * floor(E / w + 0.5);
             int inside = (B - E) * (other - B) > 0.0, narrow = fabs(other - E) < 2.0 * sig;
-            if (inside && (narrow || fabs(other - E) < phi)) {
+            if (inside && (narrow || fabs(other - E) < 1.5 * phi)) {
                 worst = fmax(worst, straddle_share(f, c, g, side, B, sig, 0.0));
                 continue;
             }

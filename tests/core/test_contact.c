@@ -716,6 +716,11 @@ static void test_other_ring(void)
          * segment's force was spread from 269.9 deg: met at n = 640 with
          * 0.010 where 0.055 p0 was off (edge_bin_share) */
         {0.0765, 0.0029, 0.0012, 10, 2, 1.30134, 346.801, 0, "edge segment across a boundary"},
+        /* a patch on 99.86-100.48 deg at n = 640, 1.1 segments wide, binned
+         * all past 100 deg where the reference puts 14 % before it: met
+         * with 0.001 where 1.03 p0 was off (straddle_share up to the 1.5
+         * segments wide_patch_edges bins by the closest points) */
+        {0.13, 0.0045, 0.003, 40, 5, 6.40487, 352.294, 0, "patch of 1.1 segments across 100 deg"},
         /* n = 160 pressed its first end's tip (17.3 N) where the reference
          * is 0.35 um clear to 2.23 deg: levels 80 and 160 agreed, and the
          * edges 2.1 deg off met the target (unresolved_tips) */
