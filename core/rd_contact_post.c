@@ -356,8 +356,9 @@ static double own_move(const rd_contact_result *f, const rd_contact_result *c, i
  * its middle's move from c (its two edges' mean; sig where c lacks one)
  * plus B's distance from the nearer of its middle and its edges, over its
  * width, at most all of it.  With B outside a patch narrower than 2 sig but
- * within sig of its edge, off away: the move less off.  A free end as the
- * patch's other edge does not move.  (bench_static --ring 0.05,0.002,0.001,6 --random 3 40, bore 30,
+ * within sig of its edge, off away: the move less off.  O is the patch's
+ * other edge (edge_share's `other`); a free end there does not move.
+ * (bench_static --ring 0.05,0.002,0.001,6 --random 3 40, bore 30,
  * order 7 at 9.7 x, 118 deg: a patch on 39.98-40.88 deg at n = 160 put
  * none of its force below 40 deg, the reference's on 39.90-40.64 a tenth,
  * 0.51 p0, met with 0.009; order 4 at 8.76 x, 353 deg on that ring, a
@@ -366,15 +367,11 @@ static double own_move(const rd_contact_result *f, const rd_contact_result *c, i
  * deg, a patch on 319.29-319.96 deg beside 320 deg, the reference's across
  * it with 1.56 p0 past it, met with 0.007.  All now refine to 1280.) */
 static double straddle_share(const rd_contact_result *f, const rd_contact_result *c, int g,
-                             int side, double B, double sig, double off)
+                             int side, double O, double B, double sig, double off)
 {
     int h = side ? g + 1 : g - 1, n = f->points;
     double E = side ? f->gaps[g].end_deg : f->gaps[g].start_deg;
     double half = 180.0 / n, phi = 2.0 * half;
-    double O = h < 0            ? f->angle_deg[0] - half
-               : h >= f->n_gaps ? f->angle_deg[n - 1] + half
-               : side           ? f->gaps[h].start_deg
-                                : f->gaps[h].end_deg;
     double mE = signed_move(f, c, g, side);
     double mO = h < 0 || h >= f->n_gaps ? 0.0 : signed_move(f, c, h, !side);
     double move = isnan(mE) || isnan(mO) ? sig : fabs(0.5 * (mE + mO));
@@ -430,12 +427,12 @@ static double edge_share(const rd_contact_result *f, const rd_contact_result *c,
             double B = w * floor(E / w + 0.5);
             int inside = (B - E) * (other - B) > 0.0, narrow = fabs(other - E) < 2.0 * sig;
             if (inside && (narrow || fabs(other - E) < 1.5 * phi)) {
-                worst = fmax(worst, straddle_share(f, c, g, side, B, sig, 0.0));
+                worst = fmax(worst, straddle_share(f, c, g, side, other, B, sig, 0.0));
                 continue;
             }
             if (narrow) {
                 if (fabs(B - E) <= sig)
-                    worst = fmax(worst, straddle_share(f, c, g, side, B, sig, fabs(B - E)));
+                    worst = fmax(worst, straddle_share(f, c, g, side, other, B, sig, fabs(B - E)));
                 continue;
             }
             if (fabs(B - E) > sig)

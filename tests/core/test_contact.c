@@ -663,19 +663,16 @@ static void test_bins_touching(void)
     }
 }
 
-/* Another ring (d 50 mm, b 2 mm, h 1 mm, F_t 6 N; bench_static --ring
- * 0.05,0.002,0.001,6 --battery), order 4 at 3 x its bound, 17 deg: a gap
- * edge 0.007 deg short of the 60 deg bin boundary beside a pressure of 8.4
- * p0 that rises into the patch (no concentrated force there), 0.014 deg
- * from the exact reference's, puts 0.031 p0 in the wrong bin.  The
- * estimate must cover that (it said 0.008 and "met" before the edge's
- * distributed share; now 0.090), and a result over the target must not
- * claim to meet it. */
-/* Other rings' bores whose binned pressure once met the target with an
- * estimate far from the error (bench_static --ring D,B,H,FT --bins K A
- * PHASE), against the exact reference: the estimate at least a third of
- * the error (and, with `both`, at most three times it or both under 1e-3
- * p0), and a bore outside the target not reported as met. */
+/* Bores, on the default ring and on two others (bench_static --ring
+ * D,B,H,FT), whose estimates once met the target far from the error: the
+ * first from the 50 mm ring's battery, the rest from random bores
+ * (bench/contact_random.sh; bench_static --bins K A PHASE runs one again).
+ * Against the exact reference: each estimate (bins, edges, tip forces) at
+ * least a third of its error (and, with `both`, the bins' at most three
+ * times it or both under 1e-3 p0), and a bore outside the bins' or the
+ * edges' target not reported as met.  Several of these references are
+ * themselves unsettled at 2880 cells (a point-like contact across a bin
+ * boundary), which loosens the x3 checks but not the "not met" ones. */
 static void test_other_ring(void)
 {
     static const struct {
@@ -685,7 +682,8 @@ static void test_other_ring(void)
         int both;
         const char *why;
     } cases[] = {
-        /* an edge 0.007 deg short of 60 deg beside 8.4 p0: met with 0.008
+        /* an edge 0.007 deg short of the 60 deg boundary, 0.014 deg from the
+         * reference's, beside 8.4 p0 rising into the patch: met with 0.008
          * where 0.031 p0 was off (edge_share's distributed term) */
         {0.05, 0.002, 0.001, 6, 4, 3.0, 17.0, 0, "edge beside a rising pressure"},
         /* a patch on 39.98-40.88 deg at n = 160 put none of its force below
@@ -770,6 +768,8 @@ static void test_other_ring(void)
               cases[t].why, de, c.estimates.gap_edges_deg);
         CHECK(!(de > 1.0) || c.accuracy_met == 0, "%s: edges %.3f deg off, reported as met",
               cases[t].why, de);
+        /* + 0.01 N: the tracking floor bench_static --battery counts tip
+         * forces with (both under 0.01 N), a tip touching by a hair */
         CHECK(dtip <= 3 * c.estimates.tip_forces_n + 0.01,
               "%s: tip forces %.3f N off, estimate %.3f", cases[t].why, dtip,
               c.estimates.tip_forces_n);
