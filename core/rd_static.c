@@ -432,7 +432,7 @@ static int load_steps(rd_static_problem *pb, work *w, double tol, int *budget_io
                       rd_static_stats *st)
 {
     int n = pb->n, budget = *budget_io;
-    double lam = pb->lambda_start, dlam = 1.0, res = 0.0;
+    double lam = pb->lambda_start, dlam = pb->step_start > 0.0 ? pb->step_start : 1.0, res = 0.0;
     pb->lambda = lam;
     if (lam >= 1.0) {
         /* started at the full load (a solved state, another law): Newton
@@ -461,6 +461,8 @@ static int load_steps(rd_static_problem *pb, work *w, double tol, int *budget_io
         if (ok < 0)
             return ok;
         if (ok) {
+            if (pb->step_taken == 0.0)
+                pb->step_taken = target - lam;
             lam = target;
             st->load_steps++;
             if (st->iterations - before <= 6)

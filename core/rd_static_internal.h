@@ -85,6 +85,8 @@ typedef struct rd_static_problem {
     double *Q;   /* 9n */
     double lambda;
     double lambda_start; /* where the load path starts (a warm start: past 0) */
+    double step_start;   /* the load path's first step (0: all of it at once) */
+    double step_taken;   /* the first load step accepted (load_steps sets it) */
     /* gap-face loads */
     double Ft, Fl;
     int method;
@@ -238,6 +240,8 @@ typedef struct rd_contact_warm {
     int n, n_mult;
     double *ang, *ur, *ut, *rz;
     double *mult; /* the multipliers (n_mult), for a start at the same n */
+    double step;  /* the first load step the level accepted from its own
+                     warm start (0: none, or a cold start) */
 } rd_contact_warm;
 void rd_contact_warm_free(rd_contact_warm *w);
 
