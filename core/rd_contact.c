@@ -81,7 +81,7 @@ static void bore_radius(const rd_static_problem *pb, double theta, double *r, do
     *dr = mu * da;
 }
 
-/* The same at the angle of the point y, rho = hypot(y[0], y[1]) > 0,
+/* The same at the angle of the point y, rho = |(y[0], y[1])| > 0,
  * without trigonometry: cos k theta + i sin k theta = ((y0 + i y1) /
  * rho)^k, turned by the precomputed cos, sin of k phi_k (5-9 % of a
  * distorted bore's solve, callgrind). */
@@ -219,7 +219,10 @@ double rd_contact_eps(const rd_static_problem *pb)
 void rd_contact_point(const rd_static_problem *pb, int o, int k, const double y[3], double e,
                       rd_contact_eval *pe)
 {
-    double rho = hypot(y[0], y[1]), rb, drb, *n = pe->n;
+    /* sqrt, not hypot: no overflow or underflow at a ring's size, and
+     * glibc's hypot was 3 % of a contact solve's instructions (callgrind,
+     * order 4 at 10 x, 17 deg: 2.297 -> 2.232 G) */
+    double rho = sqrt(y[0] * y[0] + y[1] * y[1]), rb, drb, *n = pe->n;
     bore_at(pb, y, rho, &rb, &drb);
     pe->delta = rho - rb;
     law_and_slope(pb, pe->delta, mult_of(pb, o, k), e, &pe->p, &pe->dp);
