@@ -167,6 +167,12 @@ static int contact_accuracy(json_t *out, const rd_contact_result *res)
     /* the contact law's part of error_estimates.pressure (of p0): twice the
      * bins' move at twice contact.stiffness; null when not solved */
     bad |= json_object_set_new(num, "pressure_law_share", rd_result_real(res->law_share));
+    /* where the pressure's estimate's largest part is, and what it is */
+    const char *source = rd_contact_est_source_name(e->pressure_source);
+    bad |= json_object_set_new(num, "pressure_estimate_at_deg",
+                               rd_result_real(source ? e->pressure_at_deg : NAN));
+    bad |= json_object_set_new(num, "pressure_estimate_source",
+                               source ? json_string(source) : json_null());
     bad |= json_object_set_new(num, "accuracy",
                                rd_result_real(res->accuracy_met < 0 ? NAN : res->accuracy));
     bad |= json_object_set_new(

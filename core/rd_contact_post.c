@@ -245,7 +245,7 @@ static void spread(const rd_contact_result *out, double a, double b, double len,
  * segment's force spread from 269.9 deg, met at n = 640 with 0.010 where
  * 0.055 p0 was off). */
 static double past_boundary(const rd_contact_result *gaps, double lo, double hi, double a, double b,
-                            double len, double force)
+                            double len, double force, double *at)
 {
     double worst = 0.0;
     for (int g = 0; g < gaps->n_gaps; g++)
@@ -258,16 +258,27 @@ static double past_boundary(const rd_contact_result *gaps, double lo, double hi,
             for (int k = bin_of(from) + 1; k <= bin_of(to); k++) {
                 double B = k * RD_CONTACT_BIN_DEG;
                 double part = side ? touching(gaps, fmax(B, a), b) : touching(gaps, a, fmin(B, b));
-                worst = fmax(worst, force * part / len);
+                if (force * part / len > worst)
+                    worst = force * part / len, *at = B;
             }
         }
     return worst;
 }
 
+/* past_boundary's share of one segment into *worst (and its boundary into
+ * *at) where it is the largest yet. */
+static void keep_worst(double *worst, double *at, const rd_contact_result *gaps, double lo,
+                       double hi, double a, double b, double len, double force)
+{
+    double B = NAN, share = past_boundary(gaps, lo, hi, a, b, len, force, &B);
+    if (share > *worst)
+        *worst = share, *at = B;
+}
+
 void rd_contact_bins(const double *seg_deg, const double *force, const double *at_deg, int n,
                      double h_ro, const rd_contact_result *gaps, rd_contact_result *out)
 {
-    double f[RD_CONTACT_BINS] = {0}, cover[RD_CONTACT_BINS] = {0}, past = 0.0;
+    double f[RD_CONTACT_BINS] = {0}, cover[RD_CONTACT_BINS] = {0}, past = 0.0, past_at = NAN;
     for (int i = 0; i < n; i++) {
         double lo = seg_deg[i], hi = seg_deg[i + 1], width = hi - lo;
         double c = fmin(hi, fmax(lo, at_deg[i])), half = fmin(c - lo, hi - c);
@@ -284,19 +295,20 @@ void rd_contact_bins(const double *seg_deg, const double *force, const double *a
         double len = touching(gaps, c - half, c + half);
         if (len > 1e-9 * width) {
             spread(gaps, c - half, c + half, len, force[i], f);
-            past = fmax(past, past_boundary(gaps, lo, hi, c - half, c + half, len, force[i]));
+            keep_worst(&past, &past_at, gaps, lo, hi, c - half, c + half, len, force[i]);
             continue;
         }
         len = touching(gaps, lo, hi);
         if (len > 1e-9 * width && half > 1e-9 * width) {
             spread(gaps, lo, hi, len, force[i], f);
-            past = fmax(past, past_boundary(gaps, lo, hi, lo, hi, len, force[i]));
+            keep_worst(&past, &past_at, gaps, lo, hi, lo, hi, len, force[i]);
         } else
             f[bin_of(c)] += force[i]; /* at one point (its centroid) */
     }
     for (int k = 0; k < RD_CONTACT_BINS; k++)
         out->bin_pressure[k] = cover[k] > 0.0 ? f[k] / (h_ro * cover[k] * M_PI / 180.0) : 0.0;
     out->edge_bin_share = past / (h_ro * RD_CONTACT_BIN_DEG * M_PI / 180.0);
+    out->edge_bin_at_deg = past_at;
 }
 
 /* Largest edge move of fine's gaps against coarse's overlapping gaps. */
@@ -384,6 +396,14 @@ static double straddle_share(const rd_contact_result *f, const rd_contact_result
     return fmin(1.0, fmax(0.0, move - off) / fmax(hi - lo, 1e-9)) * force / f->uniform_pressure;
 }
 
+/* share into *worst, with where (at) and what it is (source), where it is
+ * the largest yet. */
+static void keep(double *worst, double *at, int *source, double share, double where, int what)
+{
+    if (share > *worst)
+        *worst = share, *at = where, *source = what;
+}
+
 /* A gap edge within its uncertainty sig of a bin boundary may sit on the
  * boundary's other side: the concentrated part of the force next to it
  * (each segment's excess over its neighbours' mean, within sig and half a
@@ -411,10 +431,11 @@ static double straddle_share(const rd_contact_result *f, const rd_contact_result
  * estimate of 0.008; now 0.090, not met; the default ring's battery
  * unchanged).  tip0, tip1: the ring's ends, deg. */
 static double edge_share(const rd_contact_result *f, const rd_contact_result *c, double sig_all,
-                         double res, double tip0, double tip1)
+                         double res, double tip0, double tip1, double *at, int *source)
 {
     int n = f->points;
     double phi = 360.0 / n, worst = 0.0, w = RD_CONTACT_BIN_DEG;
+    *at = NAN, *source = RD_EST_NONE;
     for (int g = 0; g < f->n_gaps; g++)
         for (int side = 0; side < 2; side++) {
             double E = side ? f->gaps[g].end_deg : f->gaps[g].start_deg;
@@ -427,12 +448,15 @@ static double edge_share(const rd_contact_result *f, const rd_contact_result *c,
             double B = w * floor(E / w + 0.5);
             int inside = (B - E) * (other - B) > 0.0, narrow = fabs(other - E) < 2.0 * sig;
             if (inside && (narrow || fabs(other - E) < 1.5 * phi)) {
-                worst = fmax(worst, straddle_share(f, c, g, side, other, B, sig, 0.0));
+                keep(&worst, at, source, straddle_share(f, c, g, side, other, B, sig, 0.0), B,
+                     RD_EST_PATCH);
                 continue;
             }
             if (narrow) {
                 if (fabs(B - E) <= sig)
-                    worst = fmax(worst, straddle_share(f, c, g, side, other, B, sig, fabs(B - E)));
+                    keep(&worst, at, source,
+                         straddle_share(f, c, g, side, other, B, sig, fabs(B - E)), B,
+                         RD_EST_PATCH);
                 continue;
             }
             if (fabs(B - E) > sig)
@@ -447,8 +471,10 @@ static double edge_share(const rd_contact_result *f, const rd_contact_result *c,
                                    (i < n - 1 ? f->pressure[i + 1] : 0.0));
                 sum += fmax(0.0, f->pressure[i] - nb) * phi / w;
             }
-            worst = fmax(worst, (1.0 - fabs(B - E) / sig) * sum / f->uniform_pressure);
-            worst = fmax(worst, dist * (sig - fabs(B - E)) / w / f->uniform_pressure);
+            keep(&worst, at, source, (1.0 - fabs(B - E) / sig) * sum / f->uniform_pressure, B,
+                 RD_EST_EDGE);
+            keep(&worst, at, source, dist * (sig - fabs(B - E)) / w / f->uniform_pressure, B,
+                 RD_EST_EDGE);
         }
     return worst;
 }
@@ -529,8 +555,10 @@ void rd_contact_estimate(const rd_contact_result *f, const rd_contact_result *c,
      * next two); half a segment, as before, overstated the battery's edge
      * errors by up to x9 (order 4 at 1 x the bound: 0.56 deg against 0.06) */
     double res = 2.0 * f->point_spacing_deg, dp = 0.0;
+    int kp = 0;
     for (int k = 0; k < RD_CONTACT_BINS; k++)
-        dp = fmax(dp, fabs(f->bin_pressure[k] - c->bin_pressure[k]));
+        if (fabs(f->bin_pressure[k] - c->bin_pressure[k]) > dp)
+            dp = fabs(f->bin_pressure[k] - c->bin_pressure[k]), kp = k;
     /* a gap the coarse level missed (or the reverse) counts by its width */
     e->gap_edges_deg = fmax(edge_moves(f, c), edge_moves(c, f));
     if (f->n_gaps > 0)
@@ -558,16 +586,21 @@ void rd_contact_estimate(const rd_contact_result *f, const rd_contact_result *c,
      * at n = 320, 640, 1280) and at second order or faster where smooth
      * (order 2 at 1 x, 17 deg: 0.076, 0.0073, 0.0036): d / 2 (above) */
     e->pressure = 0.5 * dp / f->uniform_pressure;
+    e->pressure_at_deg = dp > 0.0 ? (kp + 0.5) * RD_CONTACT_BIN_DEG : NAN;
+    e->pressure_source = dp > 0.0 ? RD_EST_LEVELS : RD_EST_NONE;
     /* ... or more where a gap edge may lie across a bin boundary: order 6
      * at 1 x, 0 deg, an edge 0.06 deg short of 20 deg at n = 160 and 320
      * (the reference's 0.3 deg past it) was 0.071 p0 off and met the target
      * with 0.010; with the edge's share it refines to 640 (0.010 off,
      * estimate 0.046), and the battery's pressure within 0.02 p0 went 24 ->
      * 25 bores, the estimate within x3 of the error on 24 both ways */
-    e->pressure = fmax(e->pressure, f->edge_bin_share / f->uniform_pressure);
-    double half = 180.0 / f->points;
-    e->pressure = fmax(e->pressure, edge_share(f, c, e->gap_edges_deg, res, f->angle_deg[0] - half,
-                                               f->angle_deg[f->points - 1] + half));
+    keep(&e->pressure, &e->pressure_at_deg, &e->pressure_source,
+         f->edge_bin_share / f->uniform_pressure, f->edge_bin_at_deg, RD_EST_EDGE_SEGMENT);
+    double half = 180.0 / f->points, at;
+    int source;
+    double share = edge_share(f, c, e->gap_edges_deg, res, f->angle_deg[0] - half,
+                              f->angle_deg[f->points - 1] + half, &at, &source);
+    keep(&e->pressure, &e->pressure_at_deg, &e->pressure_source, share, at, source);
     unresolved_tips(f, f->angle_deg[0] - half, f->angle_deg[f->points - 1] + half, res, e);
 }
 
@@ -575,9 +608,14 @@ double rd_contact_estimate_law(const rd_contact_result *r, const rd_contact_resu
                                rd_contact_estimates *e)
 {
     double dp = 0.0;
+    int kp = 0;
     for (int k = 0; k < RD_CONTACT_BINS; k++)
-        dp = fmax(dp, fabs(r->bin_pressure[k] - s->bin_pressure[k]));
+        if (fabs(r->bin_pressure[k] - s->bin_pressure[k]) > dp)
+            dp = fabs(r->bin_pressure[k] - s->bin_pressure[k]), kp = k;
     double law = 2.0 * dp / r->uniform_pressure;
+    /* the larger part names the estimate's place */
+    if (law > e->pressure)
+        e->pressure_at_deg = (kp + 0.5) * RD_CONTACT_BIN_DEG, e->pressure_source = RD_EST_LAW;
     e->pressure += law;
     e->max_clearance += 2.0 * fabs(r->max_clearance - s->max_clearance);
     e->tip_forces_n += 2.0 * fmax(fabs(r->tip_force[0] - s->tip_force[0]),
@@ -599,4 +637,10 @@ double rd_contact_estimate_law(const rd_contact_result *r, const rd_contact_resu
     e->gap_edges_deg += fmax(edge_moves(r, s), edge_moves(s, r));
     e->contact_fraction = fmax(e->contact_fraction, edges_share(r, e->gap_edges_deg));
     return law;
+}
+
+const char *rd_contact_est_source_name(int source)
+{
+    static const char *const names[] = {NULL, "levels", "edge_segment", "edge", "patch", "law"};
+    return source > RD_EST_NONE && source <= RD_EST_LAW ? names[source] : NULL;
 }

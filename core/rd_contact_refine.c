@@ -32,6 +32,39 @@ static void append(char *buf, size_t size, size_t *len, const char *fmt, ...)
         *len = *len + (size_t)k < size ? *len + (size_t)k : size - 1;
 }
 
+/* Where the binned pressure's estimate comes from, for the notes. */
+static const char *where(const rd_contact_estimates *e)
+{
+    static _Thread_local char buf[120];
+    double at = e->pressure_at_deg;
+    switch (e->pressure_source) {
+    case RD_EST_LEVELS:
+        snprintf(buf, sizeof buf,
+                 "mostly the bins' change between the levels, in the %.0f-%.0f deg bin",
+                 at - 0.5 * RD_CONTACT_BIN_DEG, at + 0.5 * RD_CONTACT_BIN_DEG);
+        break;
+    case RD_EST_EDGE_SEGMENT:
+        snprintf(buf, sizeof buf, "mostly a gap edge's segment across the bin boundary at %.0f deg",
+                 at);
+        break;
+    case RD_EST_EDGE:
+        snprintf(buf, sizeof buf, "mostly a gap edge beside the bin boundary at %.0f deg", at);
+        break;
+    case RD_EST_PATCH:
+        snprintf(buf, sizeof buf,
+                 "mostly a contact patch too narrow to split across the bin boundary at %.0f deg",
+                 at);
+        break;
+    case RD_EST_LAW:
+        snprintf(buf, sizeof buf, "mostly the contact law's compliance, in the %.0f-%.0f deg bin",
+                 at - 0.5 * RD_CONTACT_BIN_DEG, at + 0.5 * RD_CONTACT_BIN_DEG);
+        break;
+    default:
+        snprintf(buf, sizeof buf, "not located");
+    }
+    return buf;
+}
+
 /* How many of the estimates e miss the target a (see
  * rd_contact_opts.accuracy; NAN misses), each named with its value and
  * bound in buf (if not NULL), e.g. "gap edges 1.02 deg (at most 1)". */
@@ -44,7 +77,8 @@ static int misses(const rd_contact_estimates *e, const rd_contact_result *r, dou
         buf[0] = '\0';
     if (!(e->pressure <= a)) {
         count++;
-        append(buf, size, &len, "binned pressure %.3g of p0 (at most %g)", e->pressure, a);
+        append(buf, size, &len, "binned pressure %.3g of p0 (at most %g; %s)", e->pressure, a,
+               where(e));
     }
     if (!(e->contact_fraction <= 2.0 * a)) {
         count++;
@@ -348,7 +382,7 @@ int rd_contact_solve(const rd_ring_params *p, int segments, const rd_contact_opt
         run.n[0] = segments / 2, run.n[1] = segments;
     if (!so->estimate_error) {
         rc = rd_contact_once(p, segments, o, so, mon, NULL, NULL, out, err);
-        out->estimates = (rd_contact_estimates){NAN, NAN, NAN, NAN, NAN};
+        out->estimates = (rd_contact_estimates){NAN, NAN, NAN, NAN, NAN, NAN, RD_EST_NONE};
         out->accuracy_met = -1;
         return rc;
     }
@@ -360,7 +394,7 @@ int rd_contact_solve(const rd_ring_params *p, int segments, const rd_contact_opt
     if (rc == RD_OK) {
         *out = run.level[0];
         if (out->stats.reference_segments == 0) /* the first finer solve failed */
-            out->estimates = (rd_contact_estimates){NAN, NAN, NAN, NAN, NAN};
+            out->estimates = (rd_contact_estimates){NAN, NAN, NAN, NAN, NAN, NAN, RD_EST_NONE};
         out->stats.error_estimate = out->estimates.pressure;
         memset(&run.level[0], 0, sizeof run.level[0]);
     }

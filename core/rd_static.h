@@ -116,12 +116,27 @@ typedef struct rd_contact_gap {
 } rd_contact_gap;
 
 /* Error estimates of a contact result (NAN when not estimated). */
+/* What the largest part of the binned pressure's estimate is (since 0.3.4):
+ * the bins' change between the levels (in one bin), a gap edge's segment
+ * spreading its force past a bin boundary, a gap edge within its
+ * uncertainty of a boundary, a patch too narrow to split across a boundary,
+ * or the contact law's compliance (the bins' move at twice the stiffness). */
+enum { RD_EST_NONE, RD_EST_LEVELS, RD_EST_EDGE_SEGMENT, RD_EST_EDGE, RD_EST_PATCH, RD_EST_LAW };
+/* Its name in results and notes ("levels", "edge_segment", "edge",
+ * "patch", "law"), NULL for RD_EST_NONE. */
+const char *rd_contact_est_source_name(int source);
+
 typedef struct rd_contact_estimates {
     double pressure;         /* largest binned-pressure error / p0 */
     double contact_fraction; /* absolute */
     double max_clearance;    /* m */
     double gap_edges_deg;    /* deg */
     double tip_forces_n;     /* N, the larger of the two free ends' (since 0.3.1) */
+    /* where the pressure's estimate's largest part is: a bin's middle
+     * (RD_EST_LEVELS, RD_EST_LAW) or a bin boundary, deg on the bore (NAN:
+     * none), and which part (RD_EST_*) */
+    double pressure_at_deg;
+    int pressure_source;
 } rd_contact_estimates;
 
 /* Counters and accuracy common to both analyses. */
@@ -189,6 +204,7 @@ typedef struct rd_contact_result {
     double tip_force[2];      /* concentrated force at the first / last free end, N */
     double edge_bin_share;    /* the most a segment holding a gap edge put past a bin boundary
                                  from the edge, as a bin pressure, Pa (rd_contact_bins) */
+    double edge_bin_at_deg;   /* that boundary, deg (NAN: none) */
     double bin_pressure[RD_CONTACT_BINS]; /* mean pressure over the ring's arc in each
                                    RD_CONTACT_BIN_DEG bin, Pa */
     /* Accuracy: estimates of the reported values' errors from the last two
