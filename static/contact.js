@@ -55,12 +55,24 @@ function maxGapAngle(result, gaps) {
   return a[i];
 }
 
+// What the largest part of the binned pressure's estimate is
+// (numerics.pressure_estimate_source, since 0.3.4).
+const ESTIMATE_SOURCE = {
+  levels: "the bins' change between the last two levels",
+  edge_segment: "a gap edge's segment across the bin boundary",
+  edge: 'a gap edge beside the bin boundary',
+  patch: 'a contact patch too narrow to split across the bin boundary',
+  law: "the contact law's compliance",
+};
+
 function figures(result, gaps) {
   const n = result.numerics || {};
   const mean = result.mean_pressure_pa, p0 = result.uniform_pressure_pa;
   const ratio = isNum(mean) && isNum(p0) && p0 !== 0 ? ` (${(mean / p0).toFixed(3)} p0)` : '';
+  const from = ESTIMATE_SOURCE[n.pressure_estimate_source];
+  const where = from && isNum(n.pressure_estimate_at_deg) ? `; mostly ${from} at ${deg(n.pressure_estimate_at_deg)}` : '';
   const err = isNum(n.error_estimate)
-    ? `${percent(n.error_estimate)}${n.reference_segments ? ` (vs ${n.reference_segments} segments)` : ''}`
+    ? `${percent(n.error_estimate)}${n.reference_segments ? ` (vs ${n.reference_segments} segments)` : ''}${where}`
     : 'not estimated';
   // each figure with its own error estimate (numerics.error_estimates), when there is one
   const est = n.error_estimates || {};
