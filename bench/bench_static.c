@@ -175,6 +175,22 @@ static rd_contact_opts battery_bore(const rd_ring_params *p, int k, double fac, 
     return o;
 }
 
+/* A tracking miss (ref_tracks false) of estimate est against error err:
+ * understated beyond x3 (into *under) or overstated (over[0]; over[1] too
+ * when est is under a tenth of the target, `tenth`: an overstatement that
+ * cannot turn a met target into a miss). */
+static void miss_kind(double est, double err, double floor, double tenth, int *under, int over[2])
+{
+    if (ref_tracks(est, err, floor))
+        return;
+    if (err > 3.0 * est)
+        ++*under;
+    else {
+        over[0]++;
+        over[1] += est < tenth;
+    }
+}
+
 static void battery(const rd_ring_params *p)
 {
     const int orders[] = {2, 3, 4, 6};
@@ -184,7 +200,7 @@ static void battery(const rd_ring_params *p)
     int total = 0, ok[4] = {0}, track[5] = {0}, fast = 0, settled = 0, settled_ok = 0,
         ref_passes[2] = {1 << 30, 0}, its[3] = {1 << 30, 0, 0};
     double ref_cpu[2] = {INFINITY, 0}, tip_worst = 0;
-    int tip_ok = 0;
+    int tip_ok = 0, under[4] = {0}, over[4][2] = {{0}};
     printf("## contact in distorted bores, default settings, vs the %s curved-beam reference\n\n",
            reference_kind == REF_LINEAR ? "linear"
            : reference_kind == REF_NL   ? "geometrically exact (follower F_t)"
@@ -269,6 +285,12 @@ static void battery(const rd_ring_params *p)
                 track[2] += isnan(de) || ref_tracks(c.estimates.gap_edges_deg, de, 0.05);
                 track[3] += ref_tracks(c.estimates.pressure, dp, 1e-3);
                 track[4] += ref_tracks(c.estimates.tip_forces_n, dtip, 0.01);
+                miss_kind(c.estimates.contact_fraction, dcf, 1e-3, 0.002, &under[0], over[0]);
+                if (!isnan(dg))
+                    miss_kind(eg, dg, 1e-3, 0.005, &under[1], over[1]);
+                if (!isnan(de))
+                    miss_kind(c.estimates.gap_edges_deg, de, 0.05, 0.1, &under[2], over[2]);
+                miss_kind(c.estimates.pressure, dp, 1e-3, 0.001, &under[3], over[3]);
                 fast += cpu_s <= 0.2;
                 its[0] = c.stats.iterations < its[0] ? c.stats.iterations : its[0];
                 its[1] = c.stats.iterations > its[1] ? c.stats.iterations : its[1];
@@ -287,6 +309,11 @@ static void battery(const rd_ring_params *p)
            "pressure %d; tip forces %d (both under 0.01 N: counted).\n",
            total, ok[0], ok[1], ok[2], ok[3], fast, track[0], track[1], track[2], track[3],
            track[4]);
+    printf("Of the rest, understated beyond x3: %d, %d, %d, %d; overstated beyond x3: %d, %d, %d, "
+           "%d, of them with the estimate under a tenth of the target (0.002, 0.5 %%, 0.1 deg, "
+           "0.001 p0): %d, %d, %d, %d.\n",
+           under[0], under[1], under[2], under[3], over[0][0], over[1][0], over[2][0], over[3][0],
+           over[0][1], over[1][1], over[2][1], over[3][1]);
     printf("Binned pressure where the reference's own bins settle within 0.02 p0 (%d cells "
            "against %d): %d of %d bores within 0.02 p0.\n",
            reference_cells / 2, reference_cells, settled_ok, settled);
