@@ -32,35 +32,32 @@ static void append(char *buf, size_t size, size_t *len, const char *fmt, ...)
         *len = *len + (size_t)k < size ? *len + (size_t)k : size - 1;
 }
 
-/* Where the binned pressure's estimate comes from, for the notes. */
-static const char *where(const rd_contact_estimates *e)
+/* Where the binned pressure's estimate comes from, in words, into buf. */
+static const char *where(const rd_contact_estimates *e, char *buf, size_t size)
 {
-    static _Thread_local char buf[120];
-    double at = e->pressure_at_deg;
+    double at = e->pressure_at_deg, w = RD_CONTACT_BIN_DEG;
     switch (e->pressure_source) {
     case RD_EST_LEVELS:
-        snprintf(buf, sizeof buf,
-                 "mostly the bins' change between the levels, in the %.0f-%.0f deg bin",
-                 at - 0.5 * RD_CONTACT_BIN_DEG, at + 0.5 * RD_CONTACT_BIN_DEG);
+        snprintf(buf, size, "mostly the bins' change between the levels, in the %.0f-%.0f deg bin",
+                 at - 0.5 * w, at + 0.5 * w);
         break;
     case RD_EST_EDGE_SEGMENT:
-        snprintf(buf, sizeof buf, "mostly a gap edge's segment across the bin boundary at %.0f deg",
-                 at);
+        snprintf(buf, size, "mostly a gap edge's segment across the bin boundary at %.0f deg", at);
         break;
     case RD_EST_EDGE:
-        snprintf(buf, sizeof buf, "mostly a gap edge beside the bin boundary at %.0f deg", at);
+        snprintf(buf, size, "mostly a gap edge beside the bin boundary at %.0f deg", at);
         break;
     case RD_EST_PATCH:
-        snprintf(buf, sizeof buf,
+        snprintf(buf, size,
                  "mostly a contact patch too narrow to split across the bin boundary at %.0f deg",
                  at);
         break;
     case RD_EST_LAW:
-        snprintf(buf, sizeof buf, "mostly the contact law's compliance, in the %.0f-%.0f deg bin",
-                 at - 0.5 * RD_CONTACT_BIN_DEG, at + 0.5 * RD_CONTACT_BIN_DEG);
+        snprintf(buf, size, "mostly the contact law's compliance, in the %.0f-%.0f deg bin",
+                 at - 0.5 * w, at + 0.5 * w);
         break;
     default:
-        snprintf(buf, sizeof buf, "not located");
+        snprintf(buf, size, "not located");
     }
     return buf;
 }
@@ -77,8 +74,9 @@ static int misses(const rd_contact_estimates *e, const rd_contact_result *r, dou
         buf[0] = '\0';
     if (!(e->pressure <= a)) {
         count++;
+        char place[120];
         append(buf, size, &len, "binned pressure %.3g of p0 (at most %g; %s)", e->pressure, a,
-               where(e));
+               where(e, place, sizeof place));
     }
     if (!(e->contact_fraction <= 2.0 * a)) {
         count++;
