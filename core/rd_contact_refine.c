@@ -315,7 +315,8 @@ static void run_cleanup(contact_run *run)
  * and order 3 at 10 x the bound, 17 deg, and order 2 at 2.8 x, 0 deg,
  * missed it at n = 160 with the law's share (0.014 and 0.0076 p0 of the
  * pressure's estimates; the edges' 1.02 deg against 1); the first two meet
- * it at 4 x, their errors against the exact reference no larger. */
+ * it at 4 x, their errors against the exact reference no larger (the third
+ * meets it at the default law since the edges' estimate is half its move). */
 #define RD_CONTACT_STIFFEN 4.0
 static int stiffen(contact_run *run, const rd_monitor *mon, rd_error *err)
 {
@@ -330,8 +331,8 @@ static int stiffen(contact_run *run, const rd_monitor *mon, rd_error *err)
      * rings, 600 bores: CPU 121 -> 109 s, met 415 -> 414.  The 4 x answer
      * is itself only as converged as the tolerances: on the battery, order
      * 2 at 2.8 x, 0 deg, met at 4 x from the load path (edges' estimate
-     * 0.89 deg), misses at 4 x from the states (1.02) and keeps the default
-     * law's answer, not met, 0.0017 off in the contact fraction. */
+     * 0.89 deg) and missed at 4 x from the states (1.02), until the edges'
+     * estimate took half their move; it now meets at the default law. */
     contact_run s = {.p = run->p,
                      .o = &o4,
                      .so = run->so,
