@@ -245,11 +245,11 @@ static void spread(const rd_contact_result *out, double a, double b, double len,
  * segment's arc (bench_static --random 32 40, bore 39, order 2 at 1.30 x,
  * 347 deg: a patch ending at 270.28 deg, the reference's at 270.34, its
  * segment's force spread from 269.9 deg, met at n = 640 with 0.010 where
- * 0.055 p0 was off). */
-static double past_boundary(const rd_contact_result *gaps, double lo, double hi, double a, double b,
-                            double len, double force, double *at)
+ * 0.055 p0 was off).  Raises *worst to that part where it is larger, with
+ * its boundary in *at. */
+static void past_boundary(const rd_contact_result *gaps, double lo, double hi, double a, double b,
+                          double len, double force, double *worst, double *at)
 {
-    double worst = 0.0;
     for (int g = 0; g < gaps->n_gaps; g++)
         for (int side = 0; side < 2; side++) {
             double E = side ? gaps->gaps[g].end_deg : gaps->gaps[g].start_deg;
@@ -260,21 +260,10 @@ static double past_boundary(const rd_contact_result *gaps, double lo, double hi,
             for (int k = bin_of(from) + 1; k <= bin_of(to); k++) {
                 double B = k * RD_CONTACT_BIN_DEG;
                 double part = side ? touching(gaps, fmax(B, a), b) : touching(gaps, a, fmin(B, b));
-                if (force * part / len > worst)
-                    worst = force * part / len, *at = B;
+                if (force * part / len > *worst)
+                    *worst = force * part / len, *at = B;
             }
         }
-    return worst;
-}
-
-/* past_boundary's share of one segment into *worst (and its boundary into
- * *at) where it is the largest yet. */
-static void keep_worst(double *worst, double *at, const rd_contact_result *gaps, double lo,
-                       double hi, double a, double b, double len, double force)
-{
-    double B = NAN, share = past_boundary(gaps, lo, hi, a, b, len, force, &B);
-    if (share > *worst)
-        *worst = share, *at = B;
 }
 
 void rd_contact_bins(const double *seg_deg, const double *force, const double *at_deg, int n,
@@ -297,13 +286,13 @@ void rd_contact_bins(const double *seg_deg, const double *force, const double *a
         double len = touching(gaps, c - half, c + half);
         if (len > 1e-9 * width) {
             spread(gaps, c - half, c + half, len, force[i], f);
-            keep_worst(&past, &past_at, gaps, lo, hi, c - half, c + half, len, force[i]);
+            past_boundary(gaps, lo, hi, c - half, c + half, len, force[i], &past, &past_at);
             continue;
         }
         len = touching(gaps, lo, hi);
         if (len > 1e-9 * width && half > 1e-9 * width) {
             spread(gaps, lo, hi, len, force[i], f);
-            keep_worst(&past, &past_at, gaps, lo, hi, lo, hi, len, force[i]);
+            past_boundary(gaps, lo, hi, lo, hi, len, force[i], &past, &past_at);
         } else
             f[bin_of(c)] += force[i]; /* at one point (its centroid) */
     }
@@ -550,6 +539,18 @@ static void unresolved_tips(const rd_contact_result *f, double tip0, double tip1
         }
 }
 
+/* The largest change of a bin's pressure from b to a, Pa, and that bin's
+ * middle in *at (deg). */
+static double largest_bin_change(const rd_contact_result *a, const rd_contact_result *b, double *at)
+{
+    double d = 0.0;
+    *at = 0.5 * RD_CONTACT_BIN_DEG;
+    for (int k = 0; k < RD_CONTACT_BINS; k++)
+        if (fabs(a->bin_pressure[k] - b->bin_pressure[k]) > d)
+            d = fabs(a->bin_pressure[k] - b->bin_pressure[k]), *at = (k + 0.5) * RD_CONTACT_BIN_DEG;
+    return d;
+}
+
 void rd_contact_estimate(const rd_contact_result *f, const rd_contact_result *c,
                          rd_contact_estimates *e)
 {
@@ -557,11 +558,8 @@ void rd_contact_estimate(const rd_contact_result *f, const rd_contact_result *c,
      * point spacings (the cube fit through the last touching point and the
      * next two); half a segment, as before, overstated the battery's edge
      * errors by up to x9 (order 4 at 1 x the bound: 0.56 deg against 0.06) */
-    double res = 2.0 * f->point_spacing_deg, dp = 0.0;
-    int kp = 0;
-    for (int k = 0; k < RD_CONTACT_BINS; k++)
-        if (fabs(f->bin_pressure[k] - c->bin_pressure[k]) > dp)
-            dp = fabs(f->bin_pressure[k] - c->bin_pressure[k]), kp = k;
+    double res = 2.0 * f->point_spacing_deg, at_bin;
+    double dp = largest_bin_change(f, c, &at_bin);
     /* half the edges' move between the levels (as the pressure's d / 2,
      * below: the located edges converge at second order in n where the
      * clearance is smooth, at first where a patch is a few segments wide;
@@ -599,7 +597,7 @@ void rd_contact_estimate(const rd_contact_result *f, const rd_contact_result *c,
      * at n = 320, 640, 1280) and at second order or faster where smooth
      * (order 2 at 1 x, 17 deg: 0.076, 0.0073, 0.0036): d / 2 (above) */
     e->pressure = 0.5 * dp / f->uniform_pressure;
-    e->pressure_at_deg = dp > 0.0 ? (kp + 0.5) * RD_CONTACT_BIN_DEG : NAN;
+    e->pressure_at_deg = dp > 0.0 ? at_bin : NAN;
     e->pressure_source = dp > 0.0 ? RD_EST_LEVELS : RD_EST_NONE;
     /* ... or more where a gap edge may lie across a bin boundary: order 6
      * at 1 x, 0 deg, an edge 0.06 deg short of 20 deg at n = 160 and 320
@@ -620,15 +618,10 @@ void rd_contact_estimate(const rd_contact_result *f, const rd_contact_result *c,
 double rd_contact_estimate_law(const rd_contact_result *r, const rd_contact_result *s,
                                rd_contact_estimates *e)
 {
-    double dp = 0.0;
-    int kp = 0;
-    for (int k = 0; k < RD_CONTACT_BINS; k++)
-        if (fabs(r->bin_pressure[k] - s->bin_pressure[k]) > dp)
-            dp = fabs(r->bin_pressure[k] - s->bin_pressure[k]), kp = k;
-    double law = 2.0 * dp / r->uniform_pressure;
+    double at_bin, law = 2.0 * largest_bin_change(r, s, &at_bin) / r->uniform_pressure;
     /* the larger part names the estimate's place */
     if (law > e->pressure)
-        e->pressure_at_deg = (kp + 0.5) * RD_CONTACT_BIN_DEG, e->pressure_source = RD_EST_LAW;
+        e->pressure_at_deg = at_bin, e->pressure_source = RD_EST_LAW;
     e->pressure += law;
     e->max_clearance += 2.0 * fabs(r->max_clearance - s->max_clearance);
     e->tip_forces_n += 2.0 * fmax(fabs(r->tip_force[0] - s->tip_force[0]),
