@@ -10,16 +10,12 @@
  * took 3.8 M), so the compiler unrolls and vectorizes their fixed-length
  * loops; any other size runs the same code with a run-time size.
  */
-#include <assert.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "rd_blocktri.h"
 #include "rd_error.h"
-
-/* The largest block size rd_blocktri_split takes. */
-#define RD_BLOCKTRI_SPLIT_MAX 24
 
 #if defined(__GNUC__)
 #define BT_INLINE static inline __attribute__((always_inline))
@@ -180,52 +176,4 @@ void rd_blocktri_solve(const rd_blocktri *m, double *x)
         solve(m, x, 12);
     else
         solve(m, x, m->bs);
-}
-
-/* The block of kind w (0 L, 1 D, 2 U) of block row i, or NULL if not read. */
-static const double *kind_block(const rd_blocktri *m, int w, int i)
-{
-    if ((w == 0 && i == 0) || (w == 2 && i == m->nb - 1))
-        return NULL;
-    return (w == 0 ? m->L : w == 1 ? m->D : m->U) + (size_t)m->bs * m->bs * i;
-}
-
-int rd_blocktri_split(const rd_blocktri *m, const int *const sel[2], rd_blocktri part[2])
-{
-    /* offsets in an m block: of each part's entries (row-major), of the
-     * entries that couple the two sets */
-    int bs = m->bs, set[RD_BLOCKTRI_SPLIT_MAX] = {0}, nx = 0;
-    int src[2][RD_BLOCKTRI_SPLIT_MAX * RD_BLOCKTRI_SPLIT_MAX];
-    int cross[RD_BLOCKTRI_SPLIT_MAX * RD_BLOCKTRI_SPLIT_MAX];
-    assert(bs <= RD_BLOCKTRI_SPLIT_MAX && part[0].bs + part[1].bs == bs);
-    for (int r = 0; r < part[1].bs; r++)
-        set[sel[1][r]] = 1;
-    for (int h = 0; h < 2; h++)
-        for (int r = 0; r < part[h].bs; r++)
-            for (int c = 0; c < part[h].bs; c++)
-                src[h][part[h].bs * r + c] = bs * sel[h][r] + sel[h][c];
-    for (int r = 0; r < bs; r++)
-        for (int c = 0; c < bs; c++)
-            if (set[r] != set[c])
-                cross[nx++] = bs * r + c;
-    int coupled = 0;
-    for (int i = 0; i < m->nb; i++)
-        for (int w = 0; w < 3; w++) {
-            const double *M = kind_block(m, w, i);
-            for (int q = 0; M && q < nx; q++)
-                coupled |= M[cross[q]] != 0.0;
-        }
-    if (coupled)
-        return 0;
-    for (int h = 0; h < 2; h++) {
-        int hh = part[h].bs * part[h].bs;
-        for (int i = 0; i < m->nb; i++)
-            for (int w = 0; w < 3; w++) {
-                const double *M = kind_block(m, w, i);
-                double *P = (w == 0 ? part[h].L : w == 1 ? part[h].D : part[h].U) + (size_t)hh * i;
-                for (int q = 0; M && q < hh; q++)
-                    P[q] = M[src[h][q]];
-            }
-    }
-    return 1;
 }

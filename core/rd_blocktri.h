@@ -46,16 +46,11 @@ int rd_blocktri_factor(rd_blocktri *m);
 /* x = A^-1 x (nb bs values) with the factors of rd_blocktri_factor. */
 void rd_blocktri_solve(const rd_blocktri *m, double *x);
 
-/* Before factoring: if no entry of m couples the unknowns listed in sel[0]
- * (in-block indices, increasing) with those in sel[1] (the rest, increasing;
- * part[h].bs of each, both parts allocated with m's nb), copies each set's
- * entries into part[h] and returns 1, else returns 0 (e.g. a planar
- * structure's in-plane and out-of-plane unknowns, uncoupled while it stays
- * planar).  Factoring and solving the parts then gives exactly the same
- * numbers as m's own factorization, at a quarter of its cost for halves:
- * the partial pivoting never picks an exact zero over a nonzero, so it
- * makes the same choices, and every operation it does across the sets
- * adds or subtracts an exact zero.  L_0 and U_(nb-1) are not read. */
-int rd_blocktri_split(const rd_blocktri *m, const int *const sel[2], rd_blocktri part[2]);
+/* Two sets of unknowns no entry couples (e.g. a planar structure's
+ * in-plane and out-of-plane ones) can be factored and solved apart, with
+ * exactly the numbers of the whole's factorization: the partial pivoting
+ * never picks an exact zero over a nonzero, so it makes the same choices,
+ * and every operation it does across the sets adds or subtracts an exact
+ * zero (rd_static.c's plane_solve; test_blocktri checks it bit for bit). */
 
 #endif

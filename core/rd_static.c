@@ -171,6 +171,7 @@ typedef struct work {
     /* contact: the tangent's in-plane and out-of-plane parts (plane_solve) */
     rd_blocktri part[2];
     double *xh; /* their right-hand sides, t.nb t.bs */
+    int split;  /* the last tangent went into part, not t */
     const rd_monitor *mon;
     double progress; /* accepted load factor, reported as the solve's fraction */
     rd_error *err;
@@ -241,30 +242,39 @@ static int woodbury(rd_static_problem *pb, work *w)
  * block of one segment (the first three of each) or of two. */
 static const int in_plane[6] = {0, 1, 5, 6, 7, 11}, out_of_plane[6] = {2, 3, 4, 8, 9, 10};
 
-/* The contact ring stays in its plane (in-plane loads; the support holds
- * the axial motion and the tilts; measured: every state and tangent of the
+/* The tangent at the last residual's state, Marquardt-damped by mu.  The
+ * contact ring stays in its plane (in-plane loads; the support holds the
+ * axial motion and the tilts; measured: every state and tangent of the
  * battery exactly planar, the in-plane and out-of-plane DOFs coupled by no
- * nonzero entry), so its tangent falls into two uncoupled halves, factored
- * separately at a quarter of the cost with exactly the numbers of the whole
- * (rd_blocktri_split).  Returns -1 if the tangent does not split (then
- * nothing is done), else newton_step's 0 or 1 with w->delta solved. */
+ * nonzero entry), so its tangent falls into two uncoupled halves, assembled
+ * and factored separately (rd_static_tangent_planar) at a quarter of the
+ * cost with exactly the numbers of the whole: the partial pivoting never
+ * picks an exact zero over a nonzero, so it makes the same choices, and
+ * every operation the whole's factorization does across the halves adds or
+ * subtracts an exact zero.  Where an entry couples them, the whole. */
+static void tangent(rd_static_problem *pb, work *w, double mu)
+{
+    w->split = w->xh && rd_static_tangent_planar(pb, w->part, mu);
+    if (!w->split)
+        rd_static_tangent(pb, &w->t, mu);
+}
+
+/* newton_step's solve on the halves of a split tangent: 0, or 1 (singular). */
 static int plane_solve(work *w)
 {
     const int *const sel[2] = {in_plane, out_of_plane};
-    if (!w->xh || !rd_blocktri_split(&w->t, sel, w->part))
-        return -1;
     if (rd_blocktri_factor(&w->part[0]) != 0 || rd_blocktri_factor(&w->part[1]) != 0)
         return 1;
-    int hs = w->t.bs / 2;
+    int hs = w->part[0].bs, bs = 2 * hs;
     for (int h = 0; h < 2; h++) {
         double *x = w->xh + (size_t)h * hs * w->t.nb;
         for (int i = 0; i < w->t.nb; i++)
             for (int r = 0; r < hs; r++)
-                x[hs * i + r] = w->delta[w->t.bs * i + sel[h][r]];
+                x[hs * i + r] = w->delta[bs * i + sel[h][r]];
         rd_blocktri_solve(&w->part[h], x);
         for (int i = 0; i < w->t.nb; i++)
             for (int r = 0; r < hs; r++)
-                w->delta[w->t.bs * i + sel[h][r]] = x[hs * i + r];
+                w->delta[bs * i + sel[h][r]] = x[hs * i + r];
     }
     return 0;
 }
@@ -279,7 +289,7 @@ static int plane_solve(work *w)
  * 0, 1 (singular tangent) or < 0 (w->err set). */
 static int newton_step(rd_static_problem *pb, work *w)
 {
-    int N = 6 * pb->n, rc = plane_solve(w);
+    int N = 6 * pb->n, rc = w->split ? plane_solve(w) : -1;
     if (rc > 0)
         return rc;
     if (rc < 0) {
@@ -355,9 +365,7 @@ static int newton(rd_static_problem *pb, work *w, double tol, int *budget, int *
             return rc;
         (*budget)--;
         (*iters)++;
-        rd_static_tangent(pb, &w->t);
-        if (mu > 0.0)
-            rd_static_damp(pb, &w->t, mu);
+        tangent(pb, w, mu);
         for (int k = 0; k < N; k++)
             w->delta[k] = -w->r[k];
         if ((rc = newton_step(pb, w)) != 0)

@@ -151,10 +151,14 @@ void rd_static_joint_tangent(const rd_static_problem *pb, int j, const double *x
  * diagonal by mu; a copy (xo, Qo) of a segment's state moved by h along
  * DOF k (0..2 translate, 3..5 turn). */
 int rd_static_per_block(const rd_static_problem *pb);
-void rd_static_tangent(rd_static_problem *pb, rd_blocktri *t);
-void rd_static_damp(rd_static_problem *pb, rd_blocktri *t, double mu);
+void rd_static_tangent(rd_static_problem *pb, rd_blocktri *t, double mu);
 void rd_static_perturb(const double *x, const double *Q, int k, double h, double xo[3],
                        double Qo[9]);
+/* The tangent straight into its in-plane (part[0]: dx, dy, dpsi_z of each
+ * segment of a block) and out-of-plane (part[1]: dz, dpsi_x, dpsi_y) halves,
+ * 3 DOFs a segment: returns 1, or 0 if an entry coupling the halves was not
+ * exactly 0 (then the halves are void). */
+int rd_static_tangent_planar(rd_static_problem *pb, rd_blocktri part[2], double mu);
 
 /* Strain energy, support force and moment, sizes, after a solve. */
 void rd_static_stats_fill(rd_static_problem *pb, rd_static_stats *st);

@@ -197,12 +197,12 @@ static void jl_parts(const double psi[3], const double v[3], double Jt[9], doubl
     mmt3(D, Jt, H);
 }
 
-/* K[12 r + c] += s * B (3x3 row-major) at block row br, block column bc. */
-static void put3(double K[144], int br, int bc, double s, const double B[9])
+/* K's 3x3 block at block row br, block column bc = B (row-major). */
+static void set3(double K[144], int br, int bc, const double B[9])
 {
     for (int r = 0; r < 3; r++)
         for (int q = 0; q < 3; q++)
-            K[12 * (3 * br + r) + 3 * bc + q] += s * B[3 * r + q];
+            K[12 * (3 * br + r) + 3 * bc + q] = B[3 * r + q];
 }
 
 /* The header's dF (a = 0) and dMg (a = 1) by increment b = (u_A, w_A, u_B,
@@ -263,15 +263,17 @@ void rd_static_joint_tangent(const rd_static_problem *pb, int j, const double *x
     force_blocks(S, Hg, F, Mg, s.Dx, d);
     skew3(s.Dx, Xd);
     skew3(F, Fx);
-    memset(K, 0, 144 * sizeof *K);
+    /* rows: -dF, d(F x Dx) - dMg = -[Dx] dF + [F] (u_B - u_A) - dMg, dF, dMg */
     for (int b = 0; b < 4; b++) {
+        double neg[9], row1[9];
         rd_mm3(Xd, d[0][b], XdF);
-        put3(K, 0, b, -1.0, d[0][b]);
-        put3(K, 1, b, -1.0, XdF); /* d(F x Dx) = -[Dx] dF + [F] (u_B - u_A) */
-        put3(K, 1, b, -1.0, d[1][b]);
-        put3(K, 2, b, 1.0, d[0][b]);
-        put3(K, 3, b, 1.0, d[1][b]);
+        for (int k = 0; k < 9; k++) {
+            neg[k] = -d[0][b][k];
+            row1[k] = -XdF[k] - d[1][b][k] + (b == 0 ? -Fx[k] : b == 2 ? Fx[k] : 0.0);
+        }
+        set3(K, 0, b, neg);
+        set3(K, 1, b, row1);
+        set3(K, 2, b, d[0][b]);
+        set3(K, 3, b, d[1][b]);
     }
-    put3(K, 1, 0, -1.0, Fx);
-    put3(K, 1, 2, 1.0, Fx);
 }

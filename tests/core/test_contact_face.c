@@ -10,6 +10,8 @@
  *    segment to its neighbours) against central differences of the load
  *    with the face recomputed at each perturbed state;
  *  - points off the bore skipped exactly where the law is 0;
+ *  - the tangent assembled straight into its in-plane and out-of-plane
+ *    halves equal to the whole tangent, entry by entry;
  *  - the binned pressure away from gap edges and free ends against the
  *    independent geometrically exact reference (contact_reference_nl.c):
  *    converged at n = 320 with flexible faces, where the rigid faces stay
@@ -310,6 +312,88 @@ static void test_far_points(void)
     setup_free(&s);
 }
 
+/* Whole tangent t against its halves part[2] (rd_static.c's in-plane
+ * DOFs 0, 1, 5 and out-of-plane 2, 3, 4 of each segment of a block): the
+ * number of entries where a half differs from the whole, or the whole
+ * couples the halves by a nonzero. */
+static int halves_differ(const rd_blocktri *t, const rd_blocktri part[2])
+{
+    static const int half[6] = {0, 0, 1, 1, 1, 0}, at[6] = {0, 1, 0, 1, 2, 2};
+    int bs = t->bs, hs = bs / 2, bad = 0;
+    for (int i = 0; i < t->nb; i++)
+        for (int w = 0; w < 3; w++) {
+            if ((w == 0 && i == 0) || (w == 2 && i == t->nb - 1))
+                continue; /* L_0, U_last: not read */
+            size_t o = (size_t)bs * bs * i, oh = (size_t)hs * hs * i;
+            const double *W = (w == 0 ? t->L : w == 1 ? t->D : t->U) + o;
+            for (int r = 0; r < bs; r++)
+                for (int c = 0; c < bs; c++) {
+                    int hr = half[r % 6], hc = half[c % 6];
+                    if (hr != hc) {
+                        bad += W[bs * r + c] != 0.0;
+                        continue;
+                    }
+                    const rd_blocktri *P = part + hr;
+                    const double *H = (w == 0 ? P->L : w == 1 ? P->D : P->U) + oh;
+                    int pr = 3 * (r / 6) + at[r % 6], pc = 3 * (c / 6) + at[c % 6];
+                    bad += H[hs * pr + pc] != W[bs * r + c];
+                }
+        }
+    return bad;
+}
+
+/* rd_static_tangent_planar (the contact solve's tangent assembled straight
+ * into its in-plane and out-of-plane halves) against the whole tangent of
+ * rd_static_tangent at the same state: on a planar ring on the bore, its
+ * faces flexible (pairs of segments a block) and rigid (one), Marquardt's
+ * damping on, every entry of each half equal to the whole's bit for bit and
+ * the whole's entries between the halves exactly 0; one segment tilted out
+ * of the plane by 1e-9 rad couples them, and the planar assembly must say
+ * so. */
+static void test_planar_tangent(void)
+{
+    setup s;
+    CHECK(setup_make(&s), "setup");
+    rd_static_problem *pb = &s.pb;
+    for (int i = 0; i < N; i++)
+        on_bore(&s, i, 3 * pb->eps * sin(7.0 * i), 2e-8 * cos(5.0 * i));
+    double *cp0 = pb->cp0;
+    for (int rigid = 0; rigid < 2; rigid++) {
+        pb->cp0 = rigid ? NULL : cp0;
+        int per = rd_static_per_block(pb), nb = N / per;
+        rd_blocktri t, part[2];
+        if (rd_blocktri_init(&t, nb, 6 * per) || rd_blocktri_init(&part[0], nb, 3 * per) ||
+            rd_blocktri_init(&part[1], nb, 3 * per)) {
+            CHECK(0, "planar tangent: out of memory");
+            return;
+        }
+        for (int tilt = 0; tilt < 2; tilt++) {
+            if (tilt)
+                nudge(&s, 7, 3, 1e-9);
+            rd_contact_face_update(pb);
+            memset(s.r, 0, sizeof s.r);
+            rd_contact_loads(pb, s.r);
+            rd_static_tangent(pb, &t, 0.3);
+            int planar = rd_static_tangent_planar(pb, part, 0.3);
+            if (!tilt) {
+                int bad = halves_differ(&t, part);
+                CHECK(planar && bad == 0,
+                      "%s faces: planar assembly %d, %d entries unlike the whole tangent's",
+                      rigid ? "rigid" : "flexible", planar, bad);
+            } else {
+                CHECK(!planar, "%s faces: a tilted segment's tangent taken as planar",
+                      rigid ? "rigid" : "flexible");
+                nudge(&s, 7, 3, -1e-9);
+            }
+        }
+        rd_blocktri_cleanup(&t);
+        rd_blocktri_cleanup(&part[0]);
+        rd_blocktri_cleanup(&part[1]);
+    }
+    pb->cp0 = cp0;
+    setup_free(&s);
+}
+
 /* The largest binned-pressure error / p0 over the bins with no free end
  * and no reference gap edge within a bin of them, at n segments. */
 static double smooth_bins_error(const rd_ring_params *p, rd_contact_opts o, int n, int flexible,
@@ -445,6 +529,7 @@ int main(void)
     test_bent_ring();
     test_face_jacobian();
     test_far_points();
+    test_planar_tangent();
     test_against_reference();
     test_tip_force();
     return check_done();
