@@ -365,6 +365,25 @@ static int stiffen(contact_run *run, const rd_monitor *mon, rd_error *err)
     return RD_OK;
 }
 
+/* The answer's multipliers stopped at the updates' limit
+ * (rd_static_opts.max_updates) still moving: its estimates leave that out,
+ * so a target is not taken as met, and the note says by how much they moved
+ * last. */
+static void unsettled(rd_contact_result *r)
+{
+    if (!(r->stats.outer_change > r->stats.outer_tolerance))
+        return;
+    size_t len = strlen(r->accuracy_note);
+    snprintf(r->accuracy_note + len, sizeof r->accuracy_note - len,
+             "%sThe contact multipliers were still moving when the solve stopped after %d updates "
+             "(the last moved one by %.3g of p0, against %g): the answer may be off by more than "
+             "its estimates.",
+             len ? " " : "", r->stats.outer_iterations, r->stats.outer_change,
+             r->stats.outer_tolerance);
+    if (r->accuracy_met == 1)
+        r->accuracy_met = 0;
+}
+
 int rd_contact_solve(const rd_ring_params *p, int segments, const rd_contact_opts *o,
                      const rd_static_opts *so, const rd_monitor *mon, rd_contact_result *out,
                      rd_error *err)
@@ -383,6 +402,8 @@ int rd_contact_solve(const rd_ring_params *p, int segments, const rd_contact_opt
         rc = rd_contact_once(p, segments, o, so, mon, NULL, NULL, out, err);
         out->estimates = (rd_contact_estimates){NAN, NAN, NAN, NAN, NAN, NAN, RD_EST_NONE};
         out->accuracy_met = -1;
+        if (rc == RD_OK)
+            unsettled(out);
         return rc;
     }
     rc = refine(&run, mon, err);
@@ -395,6 +416,7 @@ int rd_contact_solve(const rd_ring_params *p, int segments, const rd_contact_opt
         if (out->stats.reference_segments == 0) /* the first finer solve failed */
             out->estimates = (rd_contact_estimates){NAN, NAN, NAN, NAN, NAN, NAN, RD_EST_NONE};
         out->stats.error_estimate = out->estimates.pressure;
+        unsettled(out);
         memset(&run.level[0], 0, sizeof run.level[0]);
     }
     run_cleanup(&run);

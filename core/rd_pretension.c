@@ -295,6 +295,7 @@ void rd_static_opts_default(rd_static_opts *o)
     o->tol = 1e-9;
     o->max_iterations = 2000;
     o->estimate_error = 1;
+    o->max_updates = 60;
 }
 
 int rd_static_validate(const rd_static_opts *o, int segments, int closed, rd_error *err)
@@ -318,5 +319,9 @@ int rd_static_validate(const rd_static_opts *o, int segments, int closed, rd_err
                             "/numerics/max_iterations",
                             "/numerics/max_iterations = %d is out of range: allowed 1 to 100000.",
                             o->max_iterations);
+    if (o->max_updates < 1 || o->max_updates > 1000) /* core's own: not in the API */
+        return rd_error_set(err, RD_EINVAL, "",
+                            "rd_static_opts.max_updates = %d is out of range: allowed 1 to 1000.",
+                            o->max_updates);
     return RD_OK;
 }

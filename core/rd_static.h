@@ -68,6 +68,7 @@ typedef struct rd_static_opts {
     double tol;         /* relative residual tolerance, default 1e-9 */
     int max_iterations; /* Newton iterations over all load steps, default 2000 */
     int estimate_error; /* 1: second solve at 2n (n/2 above 1000) for the error estimate */
+    int max_updates;    /* contact: the multipliers' updates at most (Uzawa), default 60 */
 } rd_static_opts;
 
 typedef struct rd_pretension_opts {
@@ -142,9 +143,12 @@ typedef struct rd_contact_estimates {
 /* Counters and accuracy common to both analyses. */
 typedef struct rd_static_stats {
     int segments, dof;
-    int load_steps;         /* accepted load steps */
-    int iterations;         /* Newton iterations, all steps, the main solve */
-    int outer_iterations;   /* contact: the multipliers' updates (Uzawa); 0 otherwise */
+    int load_steps;       /* accepted load steps */
+    int iterations;       /* Newton iterations, all steps, the main solve */
+    int outer_iterations; /* contact: the multipliers' updates (Uzawa); 0 otherwise */
+    double outer_change;  /* contact: the last update's largest change / p0; stopped at
+                               the updates' limit if above outer_tolerance (0 otherwise) */
+    double outer_tolerance;
     double residual;        /* final relative residual */
     double tolerance;       /* residual tolerance used: the requested one, or the
                               rounding floor of this ring if that is larger */

@@ -329,6 +329,37 @@ static void test_battery_exact(void)
           under_p, under_g);
 }
 
+/* Multipliers stopped at the updates' limit still moving: the answer says
+ * so in its note, with the last change, and does not call its target met
+ * (order 3 at 1 x, 17 deg, meets it at the default limit, at 640 segments);
+ * without estimates the note alone (accuracy_met stays -1, not judged). */
+static void unsettled_note(const rd_ring_params *p)
+{
+    rd_contact_opts o = bore(p, 3, 1.0, 17.0);
+    rd_static_opts so;
+    rd_static_opts_default(&so);
+    for (int limit = 0; limit < 2; limit++)
+        for (int est = 0; est < 2; est++) {
+            rd_contact_result c;
+            rd_error err;
+            rd_error_init(&err);
+            so.max_updates = limit ? 2 : 60, so.estimate_error = est;
+            if (rd_contact_solve(p, est ? 40 : 320, &o, &so, NULL, &c, &err) != RD_OK) {
+                CHECK(0, "limit %d, estimates %d: %s", so.max_updates, est, err.message);
+                continue;
+            }
+            int noted = strstr(c.accuracy_note, "still moving") != NULL;
+            CHECK(noted == limit && (limit ? c.stats.outer_change > c.stats.outer_tolerance
+                                           : c.stats.outer_change <= c.stats.outer_tolerance),
+                  "limit %d updates, estimates %d: note %d, last change %g (tolerance %g): %s",
+                  so.max_updates, est, noted, c.stats.outer_change, c.stats.outer_tolerance,
+                  c.accuracy_note);
+            CHECK(c.accuracy_met == (est ? !limit : -1), "limit %d, estimates %d: met %d",
+                  so.max_updates, est, c.accuracy_met);
+            rd_contact_result_cleanup(&c);
+        }
+}
+
 /* The multipliers' (Uzawa) updates converge: order 3 at 3 x the bound,
  * 17 deg, n = 640 from the load path, is bench_static's hardest at that n.
  * The plain update converges linearly at 0.95-0.96 a step there: from the
@@ -370,9 +401,13 @@ static void test_uzawa(void)
     CHECK(d < 0.01, "solved again from its own state: bins %.4f p0 apart", d);
     printf("Uzawa at n = 640: %d updates; solved again, %d more, the bins %.2e p0 apart\n",
            c.stats.outer_iterations, r.stats.outer_iterations, d);
+    CHECK(c.stats.outer_change <= c.stats.outer_tolerance && c.stats.outer_tolerance > 0.0,
+          "converged, yet the last update's change %g above %g", c.stats.outer_change,
+          c.stats.outer_tolerance);
     rd_contact_result_cleanup(&c);
     rd_contact_result_cleanup(&r);
     rd_contact_warm_free(&w);
+    unsettled_note(&p);
 }
 
 static void test_accuracy_target(void)
