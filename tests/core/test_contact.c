@@ -309,8 +309,10 @@ static void test_battery_exact(void)
     printf("estimates within x3 of the true error on %d bores: contact fraction %d, largest gap "
            "%d, edges %d, binned pressure %d\n",
            bores, track[0], track[1], track[2], track[3]);
-    /* measured 27, 27, 26, 24 of the 30 (0.3.4, half the edges' move in
-     * their estimate; 23, 27, 26, 24 at 0.3.3; 24, 27, 26, 26 at 0.3.2,
+    /* measured 27, 26, 26, 24 of the 30 (0.3.5: the multipliers' chord
+     * step moved one largest gap's overstatement past x3, its estimate under
+     * a tenth of the 5 % target; 27, 27, 26, 24 at 0.3.4, half the edges'
+     * move in their estimate; 23, 27, 26, 24 at 0.3.3; 24, 27, 26, 26 at 0.3.2,
      * 26, 29, 27, 26 before the three bores whose default law missed the
      * target were solved again at 4 x: their answers came closer to the
      * reference than their new estimates, e.g. order 3 at 10 x, 17 deg,
@@ -319,7 +321,7 @@ static void test_battery_exact(void)
      * 1280, closer again, its estimates not; edge_bin_share raises order 6
      * at 10 x, 0 deg from 0.38 to 0.82 p0 against a true 0.14): one bore's
      * room each, as a ratio near x3 may flip with the build's rounding */
-    CHECK(track[0] >= 26 && track[1] >= 26 && track[2] >= 25 && track[3] >= 23,
+    CHECK(track[0] >= 26 && track[1] >= 25 && track[2] >= 25 && track[3] >= 23,
           "estimates within x3 of the true error: contact fraction %d, largest gap %d, edges %d, "
           "binned pressure %d of %d bores",
           track[0], track[1], track[2], track[3], bores);
