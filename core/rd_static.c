@@ -239,10 +239,6 @@ static int woodbury(rd_static_problem *pb, work *w)
     return 0;
 }
 
-/* A segment's in-plane DOFs (dx, dy, dpsi_z) and its out-of-plane ones, in a
- * block of one segment (the first three of each) or of two. */
-static const int in_plane[6] = {0, 1, 5, 6, 7, 11}, out_of_plane[6] = {2, 3, 4, 8, 9, 10};
-
 /* The tangent at the last residual's state, Marquardt-damped by mu.  The
  * contact ring stays in its plane (in-plane loads; the support holds the
  * axial motion and the tilts; measured: every state and tangent of the
@@ -263,19 +259,18 @@ static void tangent(rd_static_problem *pb, work *w, double mu)
 /* newton_step's solve on the halves of a split tangent: 0, or 1 (singular). */
 static int plane_solve(work *w, int reuse)
 {
-    const int *const sel[2] = {in_plane, out_of_plane};
     if (!reuse && (rd_blocktri_factor(&w->part[0]) != 0 || rd_blocktri_factor(&w->part[1]) != 0))
         return 1;
-    int hs = w->part[0].bs, bs = 2 * hs;
+    int hs = w->part[0].bs, bs = 2 * hs; /* a block's DOFs: in a half, in all */
     for (int h = 0; h < 2; h++) {
         double *x = w->xh + (size_t)h * hs * w->t.nb;
         for (int i = 0; i < w->t.nb; i++)
             for (int r = 0; r < hs; r++)
-                x[hs * i + r] = w->delta[bs * i + sel[h][r]];
+                x[hs * i + r] = w->delta[bs * i + 6 * (r / 3) + rd_plane_dof[h][r % 3]];
         rd_blocktri_solve(&w->part[h], x);
         for (int i = 0; i < w->t.nb; i++)
             for (int r = 0; r < hs; r++)
-                w->delta[bs * i + sel[h][r]] = x[hs * i + r];
+                w->delta[bs * i + 6 * (r / 3) + rd_plane_dof[h][r % 3]] = x[hs * i + r];
     }
     return 0;
 }

@@ -159,6 +159,9 @@ void rd_static_perturb(const double *x, const double *Q, int k, double h, double
  * 3 DOFs a segment: returns 1, or 0 if an entry coupling the halves was not
  * exactly 0 (then the halves are void). */
 int rd_static_tangent_planar(rd_static_problem *pb, rd_blocktri part[2], double mu);
+/* A segment's DOFs in each half, in the halves' order (in-plane dx, dy,
+ * dpsi_z; out-of-plane dz, dpsi_x, dpsi_y). */
+extern const int rd_plane_dof[2][3];
 
 /* Strain energy, support force and moment, sizes, after a solve. */
 void rd_static_stats_fill(rd_static_problem *pb, rd_static_stats *st);

@@ -74,7 +74,7 @@ int rd_static_per_block(const rd_static_problem *pb)
 /* A segment's DOFs (dx, dy, dz, dpsi_x, dpsi_y, dpsi_z) by half (0 in-plane,
  * 1 out-of-plane) and place in it; the DOFs of half h in order. */
 static const int half_of[6] = {0, 0, 1, 1, 1, 0}, in_half[6] = {0, 1, 0, 1, 2, 2};
-static const int half_dof[2][3] = {{0, 1, 5}, {2, 3, 4}};
+const int rd_plane_dof[2][3] = {{0, 1, 5}, {2, 3, 4}};
 
 /* Where the tangent is assembled: the whole (part NULL), or its two halves
  * (part[0] in-plane, part[1] out-of-plane, 3 s DOFs a block each), and then
@@ -122,7 +122,7 @@ static void add_entry(sink *k, int a, int r, int b, int c, double v)
 TG_INLINE int put_half(rd_blocktri *m, int s, int a, int b, const double *K, int ld, int add, int h)
 {
     double *B = block_in(m, s, a, b);
-    const int *d = half_dof[h], *e = half_dof[1 - h];
+    const int *d = rd_plane_dof[h], *e = rd_plane_dof[1 - h];
     int coupled = 0;
     for (int r = 0; r < 3; r++) {
         const double *Kr = K + ld * d[r];
