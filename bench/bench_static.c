@@ -14,7 +14,9 @@
  *       default settings or at N segments (0: default), F_t scaled by S.
  *   bench_static --stiffness  the battery below at 10 x the default contact
  *       stiffness: how far each quantity moves, against its estimate at the
- *       default stiffness, and against both answers' estimates together.
+ *       default stiffness, and against both answers' estimates together;
+ *       and 10 x solved once at the default answer's n, against its
+ *       estimate (the law's own move, without another n's).
  *   bench_static --battery  contact in distorted bores (orders 2, 3, 4, 6;
  *       0.1, 1, 3, 10 x the thin-ring bound, capped at 0.4 % of the
  *       diameter, order 2 at 10 x left out as the 3 x bore again: 30 bores;
@@ -333,7 +335,7 @@ static void stiffness_battery(const rd_ring_params *p)
 {
     const int orders[] = {2, 3, 4, 6};
     const double facs[] = {0.1, 1, 3, 10}, phases[] = {0, 17};
-    int total = 0, within[4] = {0}, both[4] = {0}, failed = 0;
+    int total = 0, within[4] = {0}, both[4] = {0}, same[4] = {0}, failed = 0;
     printf(
         "| k | A / bound | phase | fraction move (est) | largest gap move, m (est) | edges move, "
         "deg (est) | bins move / p0 (est) |\n|---|---|---|---|---|---|---|\n");
@@ -369,6 +371,31 @@ static void stiffness_battery(const rd_ring_params *p)
                     de = INFINITY;
                 double dcf = fabs(a.contact_fraction - b.contact_fraction);
                 double dg = fabs(a.max_clearance - b.max_clearance);
+                /* the law's own move: 10 k0 at the n the default answer
+                 * reports, one solve (b may have stopped at another n, and
+                 * then its move is two discretisation errors too) */
+                rd_contact_result c;
+                rd_static_opts so1 = so;
+                so1.estimate_error = 0;
+                if (rd_contact_solve(p, a.stats.segments, &o, &so1, NULL, &c, &err) == RD_OK) {
+                    double mp = 0, me = a.n_gaps == c.n_gaps ? 0 : INFINITY;
+                    for (int q = 0; q < RD_CONTACT_BINS; q++)
+                        mp = fmax(mp,
+                                  fabs(a.bin_pressure[q] - c.bin_pressure[q]) / a.uniform_pressure);
+                    for (int g = 0; g < a.n_gaps && a.n_gaps == c.n_gaps; g++)
+                        me = fmax(me, fmax(fabs(a.gaps[g].start_deg - c.gaps[g].start_deg),
+                                           fabs(a.gaps[g].end_deg - c.gaps[g].end_deg)));
+                    same[0] += fabs(a.contact_fraction - c.contact_fraction) <=
+                               a.estimates.contact_fraction;
+                    same[1] +=
+                        fabs(a.max_clearance - c.max_clearance) <= a.estimates.max_clearance ||
+                        a.max_clearance == 0;
+                    same[2] += me <= a.estimates.gap_edges_deg || a.n_gaps == 0;
+                    same[3] += mp <= a.estimates.pressure;
+                    rd_contact_result_cleanup(&c);
+                } else {
+                    rd_error_init(&err);
+                }
                 total++;
                 within[0] += dcf <= a.estimates.contact_fraction;
                 within[1] += dg <= a.estimates.max_clearance || a.max_clearance == 0;
@@ -397,6 +424,9 @@ static void stiffness_battery(const rd_ring_params *p)
     printf("By no more than the two answers' estimates together: contact fraction %d, largest "
            "gap %d, edges %d, binned pressure %d.\n",
            both[0], both[1], both[2], both[3]);
+    printf("At the default answer's n (10 x the stiffness solved there once): within its "
+           "estimate: contact fraction %d, largest gap %d, edges %d, binned pressure %d.\n",
+           same[0], same[1], same[2], same[3]);
 }
 
 /* A uniform deviate in [0, 1) from the 64-bit LCG state *x (Knuth's
