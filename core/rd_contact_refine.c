@@ -366,21 +366,28 @@ static int stiffen(contact_run *run, const rd_monitor *mon, rd_error *err)
 }
 
 /* The answer's multipliers stopped at the updates' limit
- * (rd_static_opts.max_updates) still moving: its estimates leave that out,
- * so a target is not taken as met, and the note says by how much they moved
- * last. */
+ * (rd_static_opts.max_updates) still moving: the note says so, with their
+ * last change.  Over twice the updates' tolerance its estimates may leave
+ * out more than a converged answer's, so a target is not taken as met; up
+ * to twice it stands (the tolerance itself is loose: at a quarter of it
+ * bench_static --battery counts the same targets met and the same
+ * estimates tracking, at 20 % more CPU; of 400 random bores on two rings,
+ * seeds 61-65, five stopped at 60 updates: two at 0.025 and 0.027 p0,
+ * three at 0.07-1.6 p0, those three not met on other grounds). */
 static void unsettled(rd_contact_result *r)
 {
-    if (!(r->stats.outer_change > r->stats.outer_tolerance))
+    double c = r->stats.outer_change, tol = r->stats.outer_tolerance;
+    if (!(c > tol))
         return;
+    int refuse = c > 2.0 * tol;
     size_t len = strlen(r->accuracy_note);
     snprintf(r->accuracy_note + len, sizeof r->accuracy_note - len,
              "%sThe contact multipliers were still moving when the solve stopped after %d updates "
-             "(the last moved one by %.3g of p0, against %g): the answer may be off by more than "
-             "its estimates.",
-             len ? " " : "", r->stats.outer_iterations, r->stats.outer_change,
-             r->stats.outer_tolerance);
-    if (r->accuracy_met == 1)
+             "(the last moved one by %.3g of p0, against %g): %s",
+             len ? " " : "", r->stats.outer_iterations, c, tol,
+             refuse ? "the answer may be off by more than its estimates."
+                    : "within twice that, the estimates stand.");
+    if (refuse && r->accuracy_met == 1)
         r->accuracy_met = 0;
 }
 

@@ -331,10 +331,11 @@ static void test_battery_exact(void)
           under_p, under_g);
 }
 
-/* Multipliers stopped at the updates' limit still moving: the answer says
- * so in its note, with the last change, and does not call its target met
- * (order 3 at 1 x, 17 deg, meets it at the default limit, at 640 segments);
- * without estimates the note alone (accuracy_met stays -1, not judged). */
+/* Multipliers stopped at the updates' limit still moving (after 2 of them,
+ * far over twice the tolerance): the answer says so in its note, with the
+ * last change, and does not call its target met (order 3 at 1 x, 17 deg,
+ * meets it at the default limit, at 640 segments); without estimates the
+ * note alone (accuracy_met stays -1, not judged). */
 static void unsettled_note(const rd_ring_params *p)
 {
     rd_contact_opts o = bore(p, 3, 1.0, 17.0);
@@ -351,7 +352,7 @@ static void unsettled_note(const rd_ring_params *p)
                 continue;
             }
             int noted = strstr(c.accuracy_note, "still moving") != NULL;
-            CHECK(noted == limit && (limit ? c.stats.outer_change > c.stats.outer_tolerance
+            CHECK(noted == limit && (limit ? c.stats.outer_change > 2 * c.stats.outer_tolerance
                                            : c.stats.outer_change <= c.stats.outer_tolerance),
                   "limit %d updates, estimates %d: note %d, last change %g (tolerance %g): %s",
                   so.max_updates, est, noted, c.stats.outer_change, c.stats.outer_tolerance,
