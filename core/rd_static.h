@@ -143,12 +143,15 @@ typedef struct rd_contact_estimates {
 /* Counters and accuracy common to both analyses. */
 typedef struct rd_static_stats {
     int segments, dof;
-    int load_steps;       /* accepted load steps */
-    int iterations;       /* Newton iterations, all steps, the main solve */
-    int outer_iterations; /* contact: the multipliers' updates (Uzawa); 0 otherwise */
-    double outer_change;  /* contact: the last update's largest change / p0; stopped at
-                               the updates' limit if above outer_tolerance (0 otherwise) */
-    double outer_tolerance;
+    int load_steps;     /* accepted load steps */
+    int iterations;     /* Newton iterations, all steps, the main solve */
+    int factorizations; /* tangents assembled and factored (contact: the chord step after
+                           each multipliers' update reuses one) */
+    /* contact: the multipliers' updates (Uzawa; 0 otherwise), the last one's
+     * largest change / p0 and its tolerance: stopped at the updates' limit if
+     * the change is above the tolerance */
+    int outer_iterations;
+    double outer_change, outer_tolerance;
     double residual;        /* final relative residual */
     double tolerance;       /* residual tolerance used: the requested one, or the
                               rounding floor of this ring if that is larger */
