@@ -172,10 +172,11 @@ json_t *rd_static_result_numerics(const rd_static_stats *st, double wall_s, cons
     int estimated = st->reference_segments > 0;
     snprintf(method, sizeof method, "%s from a second solve at %d segments", what,
              st->reference_segments);
-    return json_pack("{s:i, s:i, s:o, s:s, s:i, s:i, s:o, s:o, s:o, s:o, s:o, s:o}", "segments",
-                     st->segments, "dof", st->dof, "wall_s", rd_result_real(wall_s), "solver",
-                     static_solver, "load_steps", st->load_steps, "iterations", st->iterations,
-                     "residual", rd_result_real(st->residual), "tolerance",
+    return json_pack("{s:i, s:i, s:o, s:s, s:i, s:i, s:i, s:i, s:o, s:o, s:o, s:o, s:o, s:o}",
+                     "segments", st->segments, "dof", st->dof, "wall_s", rd_result_real(wall_s),
+                     "solver", static_solver, "load_steps", st->load_steps, "iterations",
+                     st->iterations, "factorizations", st->factorizations, "multiplier_updates",
+                     st->outer_iterations, "residual", rd_result_real(st->residual), "tolerance",
                      rd_result_real(st->tolerance), "strain_energy",
                      rd_result_real(st->strain_energy), "reference_segments",
                      estimated ? json_integer(st->reference_segments) : json_null(),
