@@ -103,6 +103,8 @@ function figures(result, gaps) {
       ['Accuracy target', accuracy, { id: 'ct-accuracy' }],
       ['Segments / DOF', `${n.segments ?? '—'} / ${n.dof ?? '—'}`],
       ['Load steps / Newton iterations', `${n.load_steps ?? '—'} / ${n.iterations ?? '—'}`],
+      ['Factorizations / multiplier updates', isNum(n.factorizations)
+        ? `${n.factorizations} / ${n.multiplier_updates ?? '—'}` : undefined, { id: 'ct-cost' }],
       ['Wall time', seconds(n.wall_s)],
       ['Solver', n.solver],
     ],

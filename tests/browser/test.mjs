@@ -745,6 +745,9 @@ test('contact against the server: polar points, light gaps and the distortion ta
   const tip = (v) => String(Number(v.toPrecision(4)));
   assert.match(await page.textContent('#ct-tips'), new RegExp(`^${tip(result.tip_forces_n[0])} N, ${tip(result.tip_forces_n[1])} N ± `));
   assert.match(await page.textContent('#ct-accuracy'), result.numerics.accuracy_met ? /^met / : /^not met: /);
+  // what the solve cost (since 0.3.5): tangents factored and multiplier updates
+  assert.equal(await page.textContent('#ct-cost'), `${result.numerics.factorizations} / ${result.numerics.multiplier_updates}`);
+  assert.ok(result.numerics.factorizations <= result.numerics.iterations, 'a factorization an iteration at most');
   // the pressure's estimate says where its largest part is (since 0.3.4)
   assert.ok(Number.isFinite(result.numerics.pressure_estimate_at_deg), 'the estimate has a place');
   assert.match(await page.textContent('#ct-error'), new RegExp(`; mostly .* at ${Number(result.numerics.pressure_estimate_at_deg.toFixed(1))}°$`));
