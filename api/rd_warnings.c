@@ -222,9 +222,23 @@ static int accuracy_not_met(json_t *scene, json_t *result, json_t *out)
                 note ? note : "the solver stopped refining before its estimates met it.");
 }
 
+/* A note of the solver's (contact's accuracy_note) on a result that met its
+ * target or had none to meet (accuracy_met true or null): e.g. the contact
+ * multipliers stopped at their update limit, within twice their tolerance.
+ * A target missed is accuracy_not_met's, which quotes the note already. */
+static int solver_note(json_t *scene, json_t *result, json_t *out)
+{
+    (void)scene;
+    json_t *numerics = json_object_get(result, "numerics");
+    const char *note = json_string_value(json_object_get(numerics, "accuracy_note"));
+    if (!note || json_is_false(json_object_get(numerics, "accuracy_met")))
+        return 0;
+    return warn(out, "solver_note", "", "the solver noted: %s", note);
+}
+
 /* The rules, in the order their warnings are listed. */
 static int (*const rules[])(json_t *scene, json_t *result, json_t *out) = {
-    material, gas_in_bar, bore_diameter, error_estimate, event_error, accuracy_not_met,
+    material, gas_in_bar, bore_diameter, error_estimate, event_error, accuracy_not_met, solver_note,
 };
 
 int rd_warnings_add(json_t *result)

@@ -119,6 +119,18 @@ static void test_edges(void)
     synthetic("{\"scene\": {}, \"numerics\": {\"error_estimate\": null}}", "");
     synthetic("{\"scene\": {}, \"numerics\": {\"event_error_deg\": 5}}", "");
     synthetic("{\"scene\": {}, \"numerics\": {\"event_error_deg\": 5.1}}", "event_error_high");
+    /* a solver's note: its own warning unless the target was missed (which quotes it) */
+    synthetic("{\"scene\": {}, \"numerics\": {\"accuracy_met\": true, \"accuracy_note\": null}}",
+              "");
+    synthetic("{\"scene\": {}, \"numerics\": {\"accuracy_met\": true, \"accuracy_note\": "
+              "\"still moving\"}}",
+              "solver_note");
+    synthetic("{\"scene\": {}, \"numerics\": {\"accuracy_met\": null, \"accuracy_note\": "
+              "\"still moving\"}}",
+              "solver_note");
+    synthetic("{\"scene\": {}, \"numerics\": {\"accuracy\": 0.01, \"accuracy_met\": false, "
+              "\"accuracy_note\": \"still moving\"}}",
+              "accuracy_not_met");
     /* gas: a side without gas (all zero) is no slip; a real set is silent */
     synthetic("{\"scene\": {\"physics\": {\"gas\": {\"above\": [0, 0], \"behind\": [0, 0], "
               "\"below\": [0, 0]}}}}",
