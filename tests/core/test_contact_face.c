@@ -194,6 +194,18 @@ static void on_bore(setup *s, int i, double off, double turn)
     set_turn(pb->Q + 9 * i, turn + 3 * A / pb->R * sin(3 * (a - ph)));
 }
 
+/* setup_make, and every segment on the bore moved by up to 3 eps radially
+ * and turned by up to 2e-8 rad about a turn field consistent with the bore
+ * (so each face bends, and the ring stays in its plane). */
+static int setup_on_bore(setup *s)
+{
+    if (!setup_make(s))
+        return 0;
+    for (int i = 0; i < N; i++)
+        on_bore(s, i, 3 * s->pb.eps * sin(7.0 * i), 2e-8 * cos(5.0 * i));
+    return 1;
+}
+
 /* The tangent's rows of segment r's load (its own closed form plus the
  * faces' blocks of the points of segments r - 1, r, r + 1, which reach
  * segments r - 2 .. r + 2) against central differences, on a ring on the
@@ -202,10 +214,8 @@ static void on_bore(setup *s, int i, double off, double turn)
 static void test_face_jacobian(void)
 {
     setup s;
-    CHECK(setup_make(&s), "setup");
+    CHECK(setup_on_bore(&s), "setup");
     rd_static_problem *pb = &s.pb;
-    for (int i = 0; i < N; i++)
-        on_bore(&s, i, 3 * pb->eps * sin(7.0 * i), 2e-8 * cos(5.0 * i));
     double worst = 0.0;
     int rows[] = {0, 1, 2, 16, 17, N - 2, N - 1};
     for (int ri = 0; ri < (int)(sizeof rows / sizeof *rows); ri++) {
@@ -353,19 +363,20 @@ static int halves_differ(const rd_blocktri *t, const rd_blocktri part[2])
 static void test_planar_tangent(void)
 {
     setup s;
-    CHECK(setup_make(&s), "setup");
+    CHECK(setup_on_bore(&s), "setup");
     rd_static_problem *pb = &s.pb;
-    for (int i = 0; i < N; i++)
-        on_bore(&s, i, 3 * pb->eps * sin(7.0 * i), 2e-8 * cos(5.0 * i));
     double *cp0 = pb->cp0;
     for (int rigid = 0; rigid < 2; rigid++) {
         pb->cp0 = rigid ? NULL : cp0;
         int per = rd_static_per_block(pb), nb = N / per;
-        rd_blocktri t, part[2];
+        rd_blocktri t = {0}, part[2] = {{0}};
         if (rd_blocktri_init(&t, nb, 6 * per) || rd_blocktri_init(&part[0], nb, 3 * per) ||
             rd_blocktri_init(&part[1], nb, 3 * per)) {
             CHECK(0, "planar tangent: out of memory");
-            return;
+            rd_blocktri_cleanup(&t);
+            rd_blocktri_cleanup(&part[0]);
+            rd_blocktri_cleanup(&part[1]);
+            break;
         }
         for (int tilt = 0; tilt < 2; tilt++) {
             if (tilt)
