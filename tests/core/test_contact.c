@@ -799,48 +799,57 @@ static void test_other_ring(void)
         double fac, phase;
         int both;
         const char *why;
+        double est_below; /* the pressure's estimate stays under it (0: not checked) */
     } cases[] = {
         /* an edge 0.007 deg short of the 60 deg boundary, 0.014 deg from the
          * reference's, beside 8.4 p0 rising into the patch: met with 0.008
          * where 0.031 p0 was off (edge_share's distributed term) */
-        {0.05, 0.002, 0.001, 6, 4, 3.0, 17.0, 0, "edge beside a rising pressure"},
+        {0.05, 0.002, 0.001, 6, 4, 3.0, 17.0, 0, "edge beside a rising pressure", 0},
         /* a patch on 39.98-40.88 deg at n = 160 put none of its force below
          * 40 deg, the reference a tenth: met with 0.009 where 0.51 p0 was
          * off (straddle_share) */
-        {0.05, 0.002, 0.001, 6, 7, 9.70363, 117.806, 0, "patch across a boundary"},
+        {0.05, 0.002, 0.001, 6, 7, 9.70363, 117.806, 0, "patch across a boundary", 0},
         /* a patch's end 0.13 deg past 270 deg binned from the segments'
          * closest points, 0.2 deg short of it: met at n = 640 with 0.0004
          * where 0.11 p0 was off (wide_patch_edges, rd_contact.c) */
-        {0.05, 0.002, 0.001, 6, 4, 2.27805, 305.785, 1, "patch end past a boundary"},
+        {0.05, 0.002, 0.001, 6, 4, 2.27805, 305.785, 1, "patch end past a boundary", 0},
         /* a point-like patch on 319.29-319.96 deg at n = 160 beside 320
          * deg, the reference's across it: met with 0.007 where 0.9 p0 was
          * off (straddle_share with B outside; wide_patch_edges at 1.5 segments
          * bins the patch's 1.49 p0 past 320 deg at n = 1280, the reference
          * on 5760 and 11520 cells 1.56, on these 2880 cells 0.93) */
-        {0.05, 0.002, 0.001, 6, 3, 5.69085, 144.595, 0, "patch beside a boundary"},
+        {0.05, 0.002, 0.001, 6, 3, 5.69085, 144.595, 0, "patch beside a boundary", 0},
         /* a patch on 309.78-310.45 deg at n = 160, less than a segment
          * wide, across 310 deg: binned all past 310 where the reference
          * puts 58 % before it, and levels 80 and 160 agreed: met with 0.007
          * where 5.1 p0 was off (straddle_share: B inside an unresolved patch) */
-        {0.05, 0.002, 0.001, 6, 4, 8.7604, 352.54, 0, "unresolved patch across a boundary"},
+        {0.05, 0.002, 0.001, 6, 4, 8.7604, 352.54, 0, "unresolved patch across a boundary", 0},
         /* a patch ending 0.11 deg short of 80 deg, the reference's 0.11
          * past: the edge's share must hold at n = 160 (a rule that let a
          * patch two segments wide off it met the target with 0.003 where
          * 0.42 p0 was off) */
-        {0.0765, 0.0029, 0.0012, 10, 2, 2.83031, 342.015, 0, "patch end short of a boundary"},
+        {0.0765, 0.0029, 0.0012, 10, 2, 2.83031, 342.015, 0, "patch end short of a boundary", 0},
         /* a patch ending at 270.28 deg (the reference's 270.34) whose
          * segment's force was spread from 269.9 deg: met at n = 640 with
          * 0.010 where 0.055 p0 was off (edge_bin_share) */
-        {0.0765, 0.0029, 0.0012, 10, 2, 1.30134, 346.801, 0, "edge segment across a boundary"},
+        {0.0765, 0.0029, 0.0012, 10, 2, 1.30134, 346.801, 0, "edge segment across a boundary", 0},
         /* a patch on 99.86-100.48 deg at n = 640, 1.1 segments wide, binned
          * all past 100 deg where the reference puts 14 % before it: met
          * with 0.001 where 1.03 p0 was off (straddle_share up to the 1.5
          * segments wide_patch_edges bins by the closest points) */
-        {0.13, 0.0045, 0.003, 40, 5, 6.40487, 352.294, 0, "patch of 1.1 segments across 100 deg"},
+        {0.13, 0.0045, 0.003, 40, 5, 6.40487, 352.294, 0, "patch of 1.1 segments across 100 deg",
+         0},
         /* n = 160 pressed its first end's tip (17.3 N) where the reference
          * is 0.35 um clear to 2.23 deg: levels 80 and 160 agreed, and the
          * edges 2.1 deg off met the target (unresolved_tips) */
-        {0.13, 0.0045, 0.003, 40, 6, 9.44982, 208.024, 0, "tip pressed, lifted in truth"},
+        {0.13, 0.0045, 0.003, 40, 6, 9.44982, 208.024, 0, "tip pressed, lifted in truth", 0},
+        /* a heavy 0.55 deg patch (12.4 p0 of its bin) ending 0.07 deg short
+         * of 320 deg at n = 1280, its end moved 0.17 deg from 640, the
+         * reference's bins within 0.0004 p0: the edge's share takes half
+         * the move, 0.76 p0 (the whole move, before 0.3.6: 3.5; bench_static
+         * --random 52 40, bore 39).  Still not met: the edge could cross */
+        {0.0765, 0.0029, 0.0012, 10, 2, 2.83031, 254.83, 0, "heavy patch end short of a boundary",
+         1.5},
     };
     for (size_t t = 0; t < sizeof cases / sizeof cases[0]; t++) {
         rd_ring_params p;
@@ -873,6 +882,9 @@ static void test_other_ring(void)
         /* x3: the tracking bound */
         CHECK(dp <= 3 * est, "%s: bins %.4f p0 off, estimate %.4f", cases[t].why, dp, est);
         check_where(&c, &x, dp);
+        CHECK(!(cases[t].est_below > 0) || est < cases[t].est_below,
+              "%s: bins %.4f p0 off, estimate %.4f (at most %g)", cases[t].why, dp, est,
+              cases[t].est_below);
         CHECK(!cases[t].both || ref_tracks(est, dp, 1e-3), "%s: estimate %.4f against %.4f off",
               cases[t].why, est, dp);
         CHECK(dp <= c.accuracy || c.accuracy_met == 0,
