@@ -555,8 +555,11 @@ static void bins_one(const rd_ring_params *p, int k, double fac, double phase, i
     rd_error_init(&err);
     if (fixed_n > 0)
         so.estimate_error = 0;
-    if (reference_solve(p, &o, rd_contact_gap_floor(p), &r) != 0 ||
-        rd_contact_solve(p, fixed_n > 0 ? fixed_n : 20, &o, &so, NULL, &c, &err) != RD_OK)
+    if (reference_solve(p, &o, rd_contact_gap_floor(p), &r) != 0) {
+        fprintf(stderr, "bins: the reference did not converge on %d cells\n", reference_cells);
+        exit(1);
+    }
+    if (rd_contact_solve(p, fixed_n > 0 ? fixed_n : 20, &o, &so, NULL, &c, &err) != RD_OK)
         die("bins", &err);
     printf(
         "n %d, tip forces %.4g %.4g N (reference %.4g %.4g)\n| bin | ringdyn / p0 | reference / p0 "
