@@ -793,6 +793,7 @@ static void test_bins_touching(void)
  * boundary), which loosens the x3 checks but not the "not met" ones. */
 static void test_other_ring(void)
 {
+    int bound_notes = 0;
     static const struct {
         double d, b, h, ft;
         int k;
@@ -890,10 +891,12 @@ static void test_other_ring(void)
         int boundary = c.estimates.pressure_source == RD_EST_EDGE ||
                        c.estimates.pressure_source == RD_EST_EDGE_SEGMENT ||
                        c.estimates.pressure_source == RD_EST_PATCH;
-        if (c.accuracy_met == 0 && boundary && est > c.accuracy)
+        if (boundary && strstr(c.accuracy_note, "of p0 (at most") != NULL) {
+            bound_notes++;
             CHECK(strstr(c.accuracy_note, "the bins may still be right)") != NULL,
                   "%s: the note does not say the estimate is a bound: %s", cases[t].why,
                   c.accuracy_note);
+        }
         CHECK(!cases[t].both || ref_tracks(est, dp, 1e-3), "%s: estimate %.4f against %.4f off",
               cases[t].why, est, dp);
         CHECK(dp <= c.accuracy || c.accuracy_met == 0,
@@ -915,6 +918,9 @@ static void test_other_ring(void)
               c.estimates.tip_forces_n);
         rd_contact_result_cleanup(&c);
     }
+    /* measured 2 (the heavy patch's edge, and the rising pressure's edge
+     * segment by 60 deg on the 50 mm ring): the check above ran */
+    CHECK(bound_notes >= 2, "bin-boundary misses with a note: %d", bound_notes);
 }
 
 int main(void)
