@@ -463,23 +463,22 @@ static double edge_share(const rd_contact_result *f, const rd_contact_result *c,
             }
             /* the edge's own uncertainty as the edges' estimate takes it:
              * half its move (rd_contact_estimate) */
-            if (mv >= 0.0)
-                sig = fmax(0.5 * mv, res);
-            if (fabs(B - E) > sig)
+            double s = mv < 0.0 ? sig : fmax(0.5 * mv, res);
+            if (fabs(B - E) > s)
                 continue;
             double sum = 0.0, dist = 0.0;
             for (int i = 0; i < n; i++) {
                 if (fabs(f->angle_deg[i] - E) <= 0.5 * phi)
                     dist = fmax(dist, f->pressure[i]);
-                if (fabs(f->angle_deg[i] - E) > sig + 0.5 * phi)
+                if (fabs(f->angle_deg[i] - E) > s + 0.5 * phi)
                     continue;
                 double nb = 0.5 * ((i > 0 ? f->pressure[i - 1] : 0.0) +
                                    (i < n - 1 ? f->pressure[i + 1] : 0.0));
                 sum += fmax(0.0, f->pressure[i] - nb) * phi / w;
             }
-            keep(&worst, at, source, (1.0 - fabs(B - E) / sig) * sum / f->uniform_pressure, B,
+            keep(&worst, at, source, (1.0 - fabs(B - E) / s) * sum / f->uniform_pressure, B,
                  RD_EST_EDGE);
-            keep(&worst, at, source, dist * (sig - fabs(B - E)) / w / f->uniform_pressure, B,
+            keep(&worst, at, source, dist * (s - fabs(B - E)) / w / f->uniform_pressure, B,
                  RD_EST_EDGE);
         }
     return worst;

@@ -346,8 +346,8 @@ static double step_length(const rd_static_problem *pb, const double *delta)
  * is taken again with a fresh tangent.
  * Returns 1 converged, 0 not converged (caller cuts the load step), < 0 on
  * error or cancellation (w->err set). */
-static int newton(rd_static_problem *pb, work *w, double tol, int *budget, int *iters,
-                  int *factored, double *res_out, int chord)
+static int newton(rd_static_problem *pb, work *w, double tol, int *budget, rd_static_stats *st,
+                  double *res_out, int chord)
 {
     int N = 6 * pb->n, rc;
     double mu = 0.0;
@@ -363,11 +363,11 @@ static int newton(rd_static_problem *pb, work *w, double tol, int *budget, int *
         if ((rc = rd_monitor_report(w->mon, w->progress, w->err)) != RD_OK)
             return rc;
         (*budget)--;
-        (*iters)++;
+        st->iterations++;
         int reuse = it < chord && w->factored && mu == 0.0;
         if (!reuse) {
             tangent(pb, w, mu);
-            (*factored)++;
+            st->factorizations++;
         }
         for (int k = 0; k < N; k++)
             w->delta[k] = -w->r[k];
@@ -457,7 +457,7 @@ static int load_steps(rd_static_problem *pb, work *w, double tol, int *budget_io
          * residual's evaluation of this problem (rd_static_tangent.c's call
          * order; without it the stiffness probe read a stale store and set
          * the multipliers to ~1e18 p0 before recovering) */
-        int ok = newton(pb, w, tol, &budget, &st->iterations, &st->factorizations, &res, 0);
+        int ok = newton(pb, w, tol, &budget, st, &res, 0);
         if (ok < 0)
             return ok;
         if (!ok)
@@ -474,7 +474,7 @@ static int load_steps(rd_static_problem *pb, work *w, double tol, int *budget_io
             rd_contact_follow_bore(pb, lam, target);
         pb->lambda = target;
         int before = st->iterations;
-        int ok = newton(pb, w, tol, &budget, &st->iterations, &st->factorizations, &res, 0);
+        int ok = newton(pb, w, tol, &budget, st, &res, 0);
         if (ok < 0)
             return ok;
         if (ok) {
@@ -519,8 +519,8 @@ static int load_steps(rd_static_problem *pb, work *w, double tol, int *budget_io
  *
  * The plain update converges linearly, at a rate near 1 on fine chains
  * (0.95-0.96 a step at n = 640-1280: the ring's stiffness at a segment's
- * length outgrows the law's), so it hit its limit of 30 at n = 640 on bench_static's
- * battery, and its former test of 0.1 p0 stopped ~2 p0 short of the fixed
+ * length outgrows the law's), so it hit its limit of 30 at n = 640 on
+ * bench_static's battery, and its former test of 0.1 p0 stopped ~2 p0 short of the fixed
  * point: the answer depended on the start (0.08 p0 in a bin between two
  * starts, order 6 at 10 x).  The updates are therefore mixed by Anderson
  * acceleration (rd_anderson.h, depth UZAWA_DEPTH) and projected onto
@@ -534,8 +534,8 @@ static int load_steps(rd_static_problem *pb, work *w, double tol, int *budget_io
  * bench_contact_cost --battery 2.96 -> 2.59 s CPU, its worst bore 0.174 ->
  * 0.145 s, with 771 -> 869 Newton iterations at the finest levels (with
  * the limit below 893 iterations, 484 factorizations, where each iteration
- * had one); the
- * answers move within the updates' tolerance (bench_static --bins, each
+ * had one); the answers move within the updates' tolerance (bench_static
+ * --bins, each
  * battery bore, with the limit below: the largest bin change 0.015 p0, on
  * order 6 at 10 x, 0 deg, whose estimate is 0.80 p0; every other bore's
  * bins within 0.0012 p0; the same level and verdict on each).
@@ -570,13 +570,13 @@ static int uzawa(rd_static_problem *pb, work *w, double tol, int max_updates, in
         memcpy(w->x0, pb->x, (size_t)3 * n * sizeof *pb->x);
         memcpy(w->Q0, pb->Q, (size_t)9 * n * sizeof *pb->Q);
         st->outer_iterations++;
-        int ok = newton(pb, w, tol, budget, &st->iterations, &st->factorizations, res, 1);
+        int ok = newton(pb, w, tol, budget, st, res, 1);
         if (ok == 0 && acc.m > 0) { /* the plain update instead */
             memcpy(pb->x, w->x0, (size_t)3 * n * sizeof *pb->x);
             memcpy(pb->Q, w->Q0, (size_t)9 * n * sizeof *pb->Q);
             memcpy(pb->mult, g, (size_t)nm * sizeof *g);
             rd_anderson_reset(&acc);
-            ok = newton(pb, w, tol, budget, &st->iterations, &st->factorizations, res, 1);
+            ok = newton(pb, w, tol, budget, st, res, 1);
         }
         if (ok < 0) {
             rc = ok;
