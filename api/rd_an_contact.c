@@ -164,6 +164,18 @@ static int contact_accuracy(json_t *out, const rd_contact_result *res)
                                          rd_result_real(e->max_clearance), "gap_edges_deg",
                                          rd_result_real(e->gap_edges_deg), "tip_forces_n",
                                          rd_result_real(e->tip_forces_n)));
+    /* the local refinement: base segments, factor and arcs (null: equal
+     * segments) */
+    json_t *grade = json_null();
+    if (res->grade_factor > 1) {
+        json_t *arcs = json_array();
+        for (int k = 0; arcs && k < res->grade_arcs; k++)
+            json_array_append_new(arcs, json_pack("[o, o]", rd_result_real(res->grade_lo_deg[k]),
+                                                  rd_result_real(res->grade_hi_deg[k])));
+        grade = json_pack("{s:i, s:i, s:o*}", "base_segments", res->grade_base, "factor",
+                          res->grade_factor, "arcs_deg", arcs);
+    }
+    bad |= !grade || json_object_set_new(num, "local_refinement", grade);
     /* the contact law's part of error_estimates.pressure (of p0): twice the
      * bins' move at twice contact.stiffness; null when not solved */
     bad |= json_object_set_new(num, "pressure_law_share", rd_result_real(res->law_share));
@@ -188,12 +200,13 @@ static json_t *contact_result(const rd_scene *scene, const rd_contact_result *re
     int n = res->points;
     json_t *out = json_pack(
         "{s:s, s:o, s:o, s:o, s:o, s:o, s:o, s:o, s:o, s:o, s:o, s:o, s:o, s:o, s:o, s:o,"
-        " s:o}",
+        " s:o, s:o}",
         "analysis", rd_scene_analysis(scene), "scene", rd_scene_echo(scene), "angle_deg",
         rd_result_reals(res->angle_deg, n, 1, 1.0), "pressure_pa",
         rd_result_reals(res->pressure, n, 1, 1.0), "clearance",
         rd_result_reals(res->clearance, n, 1, 1.0), "bore_radius",
-        rd_result_reals(res->bore_radius, n, 1, 1.0), "mean_pressure_pa",
+        rd_result_reals(res->bore_radius, n, 1, 1.0), "width_deg",
+        rd_result_reals(res->width_deg, n, 1, 1.0), "mean_pressure_pa",
         rd_result_real(res->mean_pressure), "uniform_pressure_pa",
         rd_result_real(res->uniform_pressure), "contact_fraction",
         rd_result_real(res->contact_fraction), "max_clearance", rd_result_real(res->max_clearance),

@@ -239,12 +239,12 @@ void rd_contact_segment_jacobian(const rd_static_problem *pb, int i, double J[36
         const rd_contact_eval *pe = pb->pe + pb->m * i + k;
         if (!rd_contact_presses(pe))
             continue;
-        const double *arm = pe->arm, *n = pe->n, nn = pe->nn, a = -pb->area * pe->dp;
+        const double *arm = pe->arm, *n = pe->n, nn = pe->nn, a = -pb->area[i] * pe->dp;
         /* F = -p A n / |n|, n = grad(delta) = e_rho - r_b'/rho e_theta; a
          * unit step in DOF d moves the point by dy (and, a turn, its arm by
          * darm = dy), so dF = a (n . dy) n / |n| (the normal's own turn is
          * dropped: p / rho against k, ~1e-7), dM = darm x F + arm x dF */
-        double F[3] = {-pe->p * pb->area * n[0] / nn, -pe->p * pb->area * n[1] / nn, 0.0};
+        double F[3] = {-pe->p * pb->area[i] * n[0] / nn, -pe->p * pb->area[i] * n[1] / nn, 0.0};
 #pragma GCC unroll 6 /* fixed DOFs: 30 % fewer of its instructions */
         for (int d = 0; d < 6; d++) {
             double ed[3] = {0, 0, 0}, dy[3], dF[3], m1[3] = {0, 0, 0}, m2[3];
@@ -272,7 +272,6 @@ static int contact_setup(rd_static_problem *pb, const rd_ring_params *p, const r
 {
     int n = pb->n, m = rd_contact_points(o->points_per_segment, n);
     const rd_ring *ring = pb->ring;
-    double phi = rd_ring_segment_phi(ring);
     pb->Ft = p->tangential_force;
     pb->method = RD_PRETENSION_FORCE;
     pb->co = o;
@@ -284,7 +283,6 @@ static int contact_setup(rd_static_problem *pb, const rd_ring_params *p, const r
     pb->m = m;
     pb->r_o = pb->R + 0.5 * pb->b;
     pb->bore_dr = (o->bore_diameter > 0.0 ? 0.5 * o->bore_diameter : 0.5 * p->diameter) - pb->r_o;
-    pb->area = pb->h * pb->r_o * phi / m;
     pb->p0 = 2.0 * p->tangential_force / (p->diameter * p->axial_height);
     pb->k = o->stiffness > 0.0 ? o->stiffness : rd_contact_default_stiffness(p);
     pb->eps = 0.05 * pb->p0 / pb->k;
@@ -293,7 +291,7 @@ static int contact_setup(rd_static_problem *pb, const rd_ring_params *p, const r
     double mask[6] = {0, 1, 1, 1, 1, 0};
     memcpy(pb->mask, mask, sizeof mask);
     /* cp, then cp0 and the face's cache */
-    pb->cp = malloc(((size_t)6 * n * m + 14 * (size_t)n) * sizeof *pb->cp);
+    pb->cp = malloc(((size_t)6 * n * m + 15 * (size_t)n) * sizeof *pb->cp);
     pb->mult = calloc((size_t)n + 2, sizeof *pb->mult);
     pb->pe = malloc((size_t)n * m * sizeof *pb->pe);
     /* flexible faces: each free end's very tip has a multiplier of its own
@@ -309,6 +307,12 @@ static int contact_setup(rd_static_problem *pb, const rd_ring_params *p, const r
     pb->tip_mult = o->flexible_face && n >= RD_CONTACT_FACE_MIN_SEGMENTS;
     if (!pb->cp || !pb->mult || !pb->pe)
         return RD_ENOMEM;
+    pb->area = pb->cp + (size_t)6 * n * m + 14 * (size_t)n;
+    for (int i = 0; i < n; i++) {
+        double phi = rd_ring_segment_phi_at(ring, i);
+        pb->area[i] = pb->h * pb->r_o * phi / m;
+        pb->area_max = fmax(pb->area_max, pb->area[i]);
+    }
     for (int i = 0; i < n; i++) {
         const double *P = rd_ring_reference_point(ring, i);
         for (int k = 0; k < m; k++) {
@@ -351,7 +355,7 @@ static void segment_output(const rd_static_problem *pb, int i, rd_contact_result
         clear[m * i + k] = -delta;
         if (-delta < closest)
             out->max_clearance_angle_deg = t_deg[m * i + k]; /* scratch: closest point */
-        double fq = contact_pressure(pb, delta, mult_of(pb, i, k)) * pb->area;
+        double fq = contact_pressure(pb, delta, mult_of(pb, i, k)) * pb->area[i];
         force += fq;
         moment += fq * t_deg[m * i + k];
         closest = fmin(closest, -delta);
@@ -364,7 +368,7 @@ static void segment_output(const rd_static_problem *pb, int i, rd_contact_result
     double th = atan2(mid[1], mid[0]), deg = th * 180.0 / M_PI;
     bore_radius(pb, th, &rb, &drb);
     out->angle_deg[i] = deg < 0.0 ? deg + 360.0 : deg;
-    out->pressure[i] = force / (m * pb->area);
+    out->pressure[i] = force / (m * pb->area[i]);
     *at = force > 0.0 ? moment / force : rd_ring_get_segment_angle(pb->ring, i) * 180.0 / M_PI;
     out->clearance[i] = closest;
     out->bore_radius[i] = rb;
@@ -384,7 +388,8 @@ static void segment_output(const rd_static_problem *pb, int i, rd_contact_result
  * 17 deg, default ring, n = 1280) put 0.42 p0 before 330 deg where the
  * references on 2880 and 5760 cells put none.  Narrower patches keep the
  * closest points' edges, as the comment below says why. */
-static void wide_patch_edges(const rd_contact_result *out, double wide, rd_contact_result *seg)
+static void wide_patch_edges(const rd_contact_result *out, const double *lo, int n,
+                             rd_contact_result *seg)
 {
     for (int g = 0; g < seg->n_gaps; g++) {
         rd_contact_gap *a = &seg->gaps[g];
@@ -392,11 +397,16 @@ static void wide_patch_edges(const rd_contact_result *out, double wide, rd_conta
             const rd_contact_gap *b = &out->gaps[h];
             if (b->end_deg < a->start_deg || b->start_deg > a->end_deg)
                 continue;
+            /* 1.5 segments where the patch is (graded: that segment's
+             * arc; equal: the mean arc on the bore) */
+            double mean = 1.5 * (lo[n] - lo[0]) / n;
+            double wb = out->graded ? 1.5 * rd_contact_width_at(out, b->start_deg) : mean;
+            double wa = out->graded ? 1.5 * rd_contact_width_at(out, b->end_deg) : mean;
             double before = h > 0 ? b->start_deg - out->gaps[h - 1].end_deg : INFINITY;
             double after = h + 1 < out->n_gaps ? out->gaps[h + 1].start_deg - b->end_deg : INFINITY;
-            if (before > wide && (g == 0 || b->start_deg > seg->gaps[g - 1].end_deg))
+            if (before > wb && (g == 0 || b->start_deg > seg->gaps[g - 1].end_deg))
                 a->start_deg = b->start_deg;
-            if (after > wide && (g + 1 == seg->n_gaps || b->end_deg < seg->gaps[g + 1].start_deg))
+            if (after > wa && (g + 1 == seg->n_gaps || b->end_deg < seg->gaps[g + 1].start_deg))
                 a->end_deg = b->end_deg;
             break;
         }
@@ -422,7 +432,7 @@ static int contact_bins(const rd_static_problem *pb, const double *ts, const dou
     if (seg != out) {
         rd_contact_gaps(ts, out->clearance, n, t, c, pb->m, 0, lo[0], lo[n], out->gap_floor, seg);
         seg->gap_floor = out->gap_floor;
-        wide_patch_edges(out, 1.5 * (lo[n] - lo[0]) / n, seg);
+        wide_patch_edges(out, lo, n, seg);
     }
     rd_contact_bins(lo, force, at, n, pb->h * pb->r_o, seg, out);
     if (seg != out)
@@ -436,7 +446,6 @@ static int contact_summaries(const rd_static_problem *pb, const double *t, const
                              const double *ts, double *at, rd_contact_result *out)
 {
     int n = pb->n, m = pb->m, nm = n * m;
-    double phi = rd_ring_segment_phi(pb->ring) * 180.0 / M_PI;
     double *lo = malloc((size_t)(n + 1) * sizeof *lo), *force = malloc((size_t)n * sizeof *force);
     if (!lo || !force) {
         free(lo);
@@ -456,7 +465,7 @@ static int contact_summaries(const rd_static_problem *pb, const double *t, const
         lo[i] = 0.5 * (t[m * i - 1] + t[m * i]);
     lo[n] = t[nm - 1] + 0.5 * (t[nm - 1] - t[nm - 2]);
     for (int i = 0; i < n; i++)
-        force[i] = out->pressure[i] * pb->h * pb->r_o * rd_ring_segment_phi(pb->ring);
+        force[i] = out->pressure[i] * pb->h * pb->r_o * rd_ring_segment_phi_at(pb->ring, i);
     /* A segment's force acts at its points' force centroid only where it is
      * concentrated (over twice either neighbour's: a free end, a gap edge, a
      * point-like contact); elsewhere the split between its points is the
@@ -476,11 +485,16 @@ static int contact_summaries(const rd_static_problem *pb, const double *t, const
      * r_o^2 times L^2 / 8 over a segment of length L: where the ring follows
      * the bore such faces touch it at their ends or middles only, with gaps
      * of that size between, which a bending ring does not have. */
-    double bend = fabs(pb->bore_dr), L = pb->r_o * rd_ring_segment_phi(pb->ring);
+    double bend = fabs(pb->bore_dr), L = 0.0, fine = INFINITY;
+    for (int i = 0; i < n; i++) {
+        L = fmax(L, pb->r_o * rd_ring_segment_phi_at(pb->ring, i));
+        fine = fmin(fine, out->width_deg[i]);
+    }
     for (int k = 0; k < pb->co->n_distortion; k++)
         bend += fabs(pb->co->distortion[k].amplitude) * pb->co->distortion[k].order *
                 pb->co->distortion[k].order;
-    out->point_spacing_deg = phi / pb->m;
+    out->point_spacing_deg = fine / pb->m;
+    out->points_per_segment = pb->m;
     out->gap_floor = fmax(rd_contact_gap_floor(rd_ring_get_params(pb->ring)),
                           pb->cp0 ? 0.0 : bend / (pb->r_o * pb->r_o) * L * L / 8.0);
     rd_contact_gaps(ts, out->clearance, n, t, c, pb->m, pb->cp0 != NULL, lo[0], lo[n],
@@ -521,21 +535,29 @@ static int contact_outputs(const rd_ring_params *p, const rd_contact_opts *o,
     out->pressure = malloc((size_t)n * sizeof *out->pressure);
     out->clearance = malloc((size_t)n * sizeof *out->clearance);
     out->bore_radius = malloc((size_t)n * sizeof *out->bore_radius);
+    out->width_deg = malloc((size_t)n * sizeof *out->width_deg);
     double *t = malloc((size_t)n * pb->m * sizeof *t), *c = malloc((size_t)n * pb->m * sizeof *c);
     double *ts = malloc((size_t)n * sizeof *ts), *at = malloc((size_t)n * sizeof *at);
     rc = RD_ENOMEM;
-    if (!out->angle_deg || !out->pressure || !out->clearance || !out->bore_radius || !t || !c ||
-        !ts || !at)
+    if (!out->angle_deg || !out->pressure || !out->clearance || !out->bore_radius ||
+        !out->width_deg || !t || !c || !ts || !at)
         goto out;
-    double sum = 0.0;
+    double sum = 0.0, wsum = 0.0, psum = 0.0;
+    int graded = 0;
     out->max_penetration = 0.0;
     rd_contact_face_update(pb);
     for (int i = 0; i < n; i++) {
         segment_output(pb, i, out, t, c, at + i);
         ts[i] = out->max_clearance_angle_deg;
+        out->width_deg[i] = rd_ring_segment_phi_at(pb->ring, i) * 180.0 / M_PI;
+        graded |= out->width_deg[i] != out->width_deg[0];
         sum += out->pressure[i];
+        psum += out->pressure[i] * out->width_deg[i];
+        wsum += out->width_deg[i];
     }
-    out->mean_pressure = sum / n;
+    out->graded = graded;
+    /* (graded: weighted by the segments' arcs) */
+    out->mean_pressure = graded ? psum / wsum : sum / n;
     out->uniform_pressure = pb->p0;
     rc = contact_summaries(pb, t, c, ts, at, out);
 out:
@@ -626,7 +648,10 @@ static void warm_start(rd_static_problem *pb, const rd_contact_warm *w)
      * flexible levels take their whole step and do not change. */
     int same_faces = w->n >= RD_CONTACT_FACE_MIN_SEGMENTS || !pb->cp0;
     pb->step_start = same_faces ? w->step : 0.0;
-    if (w->n == pb->n && w->n_mult == pb->n + 2) {
+    int same = w->n == pb->n && w->n_mult == pb->n + 2;
+    for (int i = 0; same && i < pb->n; i++) /* and the same segments (graded) */
+        same = w->ang[i] == rd_ring_get_segment_angle(pb->ring, i);
+    if (same) {
         memcpy(pb->mult, w->mult, (size_t)w->n_mult * sizeof *pb->mult);
         pb->lambda_start = 1.0;
     }
@@ -636,9 +661,17 @@ int rd_contact_once(const rd_ring_params *p, int segments, const rd_contact_opts
                     const rd_static_opts *so, const rd_monitor *mon, const rd_contact_warm *from,
                     rd_contact_warm *to, rd_contact_result *out, rd_error *err)
 {
+    return rd_contact_once_graded(p, segments, NULL, o, so, mon, from, to, out, err);
+}
+
+int rd_contact_once_graded(const rd_ring_params *p, int segments, const double *weights,
+                           const rd_contact_opts *o, const rd_static_opts *so,
+                           const rd_monitor *mon, const rd_contact_warm *from, rd_contact_warm *to,
+                           rd_contact_result *out, rd_error *err)
+{
     rd_static_problem pb;
     int rc;
-    rd_ring *ring = rd_ring_create(p, segments, 0, err);
+    rd_ring *ring = rd_ring_create_graded(p, segments, 0, weights, err);
     if (!ring)
         return err ? err->code : RD_EINVAL;
     if ((rc = rd_static_problem_init(&pb, ring, RD_STATIC_CONTACT)) != RD_OK ||
@@ -653,7 +686,7 @@ int rd_contact_once(const rd_ring_params *p, int segments, const rd_contact_opts
         rd_ring_free(ring);
         if (err)
             rd_error_init(err);
-        return rd_contact_once(p, segments, o, so, mon, NULL, to, out, err);
+        return rd_contact_once_graded(p, segments, weights, o, so, mon, NULL, to, out, err);
     }
     if (rc != RD_OK)
         goto out;
@@ -677,5 +710,6 @@ void rd_contact_result_cleanup(rd_contact_result *r)
     free(r->pressure);
     free(r->clearance);
     free(r->bore_radius);
-    r->angle_deg = r->pressure = r->clearance = r->bore_radius = NULL;
+    free(r->width_deg);
+    r->angle_deg = r->pressure = r->clearance = r->bore_radius = r->width_deg = NULL;
 }

@@ -44,7 +44,7 @@
 /* Joint j's values v = (kap, gam) and their derivatives by the planar DOFs
  * (dx, dy, dpsi_z) of its segments j (dA) and j + 1 (dB); zero past the
  * ends. */
-static void joint_face(const rd_static_problem *pb, int j, double L, double v[2], double dA[2][3],
+static void joint_face(const rd_static_problem *pb, int j, double v[2], double dA[2][3],
                        double dB[2][3])
 {
     memset(v, 0, 2 * sizeof *v);
@@ -52,6 +52,9 @@ static void joint_face(const rd_static_problem *pb, int j, double L, double v[2]
     memset(dB, 0, 6 * sizeof **dB);
     if (j < 0 || j >= pb->n - 1)
         return;
+    /* the arc between the two segments' middles */
+    double L = pb->R * 0.5 *
+               (rd_ring_segment_phi_at(pb->ring, j) + rd_ring_segment_phi_at(pb->ring, j + 1));
     const double *A = pb->Q + 9 * j, *B = pb->Q + 9 * (j + 1), *d0 = pb->dP0 + 3 * j;
     const double *xa = pb->x + 3 * j, *xb = pb->x + 3 * (j + 1);
     double turn = remainder(atan2(B[3], B[0]) - atan2(A[3], A[0]), 2.0 * M_PI);
@@ -69,17 +72,28 @@ static void joint_face(const rd_static_problem *pb, int j, double L, double v[2]
 }
 
 /* du / d(kap_L, kap_R, gam_L, gam_R) of each point k of an inner segment
- * (the same for all: evenly spaced points). */
-static void face_weights(const rd_static_problem *pb, double w[][4])
+ * of segment i's length (the same for all of that length: evenly spaced
+ * points), kept in c and computed again only for another length. */
+typedef struct face_w {
+    double phi;
+    double w[RD_CONTACT_POINTS_MAX][4];
+} face_w;
+
+static const double (*face_weights(const rd_static_problem *pb, int i, face_w *c))[4]
 {
-    double phi = rd_ring_segment_phi(pb->ring), L = pb->R * phi;
+    double phi = rd_ring_segment_phi_at(pb->ring, i), L = pb->R * phi;
+    if (phi == c->phi)
+        return c->w;
+    c->phi = phi;
+    double(*w)[4] = c->w;
     for (int k = 0; k < pb->m; k++) {
-        double s = pb->R * rd_contact_point_offset(pb, 0, k);
+        double s = pb->R * rd_contact_point_offset(pb, i, k);
         w[k][0] = -(s * s / 4.0 - s * s * s / (6.0 * L));
         w[k][1] = -(s * s / 4.0 + s * s * s / (6.0 * L));
         w[k][2] = -(s / 2.0 - s * s / (2.0 * L));
         w[k][3] = -(s / 2.0 + s * s / (2.0 * L));
     }
+    return c->w;
 }
 
 /* The weights of a point of segment i from an inner segment's wk: a free
@@ -99,8 +113,8 @@ static const double *end_weights(const rd_static_problem *pb, int i, const doubl
 
 double rd_contact_point_offset(const rd_static_problem *pb, int i, int k)
 {
-    (void)i; /* evenly spaced, each at the middle of its share */
-    return (k + 0.5 - 0.5 * pb->m) * rd_ring_segment_phi(pb->ring) / pb->m;
+    /* evenly spaced, each at the middle of its share */
+    return (k + 0.5 - 0.5 * pb->m) * rd_ring_segment_phi_at(pb->ring, i) / pb->m;
 }
 
 /* Joint j's cached values and derivatives (rd_contact_face_update), zeros
@@ -133,14 +147,15 @@ void rd_contact_face_update(const rd_static_problem *pb)
 {
     if (!pb->cp0)
         return;
-    double L = pb->R * rd_ring_segment_phi(pb->ring), wk[RD_CONTACT_POINTS_MAX][4], wend[4];
+    face_w fw = {.phi = -1.0};
+    double wend[4];
     for (int j = 0; j < pb->n - 1; j++) {
         double *f = pb->face + 14 * j;
-        joint_face(pb, j, L, f, (double(*)[3])(f + 2), (double(*)[3])(f + 8));
+        joint_face(pb, j, f, (double(*)[3])(f + 2), (double(*)[3])(f + 8));
     }
-    face_weights(pb, wk);
     for (int i = 0; i < pb->n; i++) {
         const double *P = rd_ring_reference_point(pb->ring, i);
+        const double(*wk)[4] = face_weights(pb, i, &fw);
         for (int k = 0; k < pb->m; k++) {
             const double *c0 = pb->cp0 + 3 * (pb->m * i + k);
             double *c = pb->cp + 3 * (pb->m * i + k), u;
@@ -182,12 +197,12 @@ static const int planar[3] = {0, 1, 5};
  * force F at y_k works on every DOF y_k moves with: its own segment's as a
  * rigid body's, and through the face (u_k) the planar DOFs of segments
  * o - 1 .. o + 1. */
-static void point_load(const rd_static_problem *pb, const rd_contact_eval *pe, double sg,
+static void point_load(const rd_static_problem *pb, int o, const rd_contact_eval *pe, double sg,
                        double *f[3])
 {
     if (pe->p == 0.0) /* F = 0 */
         return;
-    double s = -sg * pe->p * pb->area / pe->nn, F[3] = {s * pe->n[0], s * pe->n[1], 0.0}, M[3];
+    double s = -sg * pe->p * pb->area[o] / pe->nn, F[3] = {s * pe->n[0], s * pe->n[1], 0.0}, M[3];
     if (f[1]) {
         rd_cross3(pe->arm, F, M);
         for (int q = 0; q < 3; q++)
@@ -204,34 +219,36 @@ static void point_load(const rd_static_problem *pb, const rd_contact_eval *pe, d
 void rd_contact_segment_load(const rd_static_problem *pb, int i, const double *x, const double *Q,
                              double f[6])
 {
-    double e = rd_contact_eps(pb), wk[RD_CONTACT_POINTS_MAX][4], wend[4];
-    face_weights(pb, wk);
+    double e = rd_contact_eps(pb), wend[4];
+    face_w fw = {.phi = -1.0};
     for (int o = i - 1; o <= i + 1; o++) {
         if (o < 0 || o >= pb->n || (o != i && !pb->cp0))
             continue;
+        const double(*wk)[4] = face_weights(pb, o, &fw);
         double *fb[3] = {NULL, NULL, NULL};
         fb[i - o + 1] = f;
         for (int k = 0; k < pb->m; k++) {
             rd_contact_eval pe;
             point_at(pb, o, k, o == i ? x : pb->x + 3 * o, o == i ? Q : pb->Q + 9 * o, e,
                      end_weights(pb, o, wk[k], wend), &pe);
-            point_load(pb, &pe, 1.0, fb);
+            point_load(pb, o, &pe, 1.0, fb);
         }
     }
 }
 
 void rd_contact_loads(const rd_static_problem *pb, double *r)
 {
-    double e = rd_contact_eps(pb), wk[RD_CONTACT_POINTS_MAX][4], wend[4];
-    face_weights(pb, wk);
+    double e = rd_contact_eps(pb), wend[4];
+    face_w fw = {.phi = -1.0};
     for (int o = 0; o < pb->n; o++) {
+        const double(*wk)[4] = face_weights(pb, o, &fw);
         double *fb[3] = {o > 0 ? r + 6 * (o - 1) : NULL, r + 6 * o,
                          o < pb->n - 1 ? r + 6 * (o + 1) : NULL};
         for (int k = 0; k < pb->m; k++) {
             rd_contact_eval *pe = pb->pe + pb->m * o + k;
             point_at(pb, o, k, pb->x + 3 * o, pb->Q + 9 * o, e, end_weights(pb, o, wk[k], wend),
                      pe);
-            point_load(pb, pe, -1.0, fb);
+            point_load(pb, o, pe, -1.0, fb);
         }
     }
 }
@@ -257,7 +274,7 @@ int rd_contact_face_jacobian(const rd_static_problem *pb, int o,
         rd_cross3(pe->arm, pe->n, am);
         for (int d = 0; d < 3; d++)
             gr[d] = pe->n[d], gr[3 + d] = am[d];
-        double nu = rd_dot3(pe->n, pe->dyu), c = -pb->area * pe->dp / pe->nn;
+        double nu = rd_dot3(pe->n, pe->dyu), c = -pb->area[o] * pe->dp / pe->nn;
         memcpy(g + 3, gr, sizeof gr);
         for (int d = 0; d < 3; d++) {
             g[d] = nu * pe->du[0][d];

@@ -74,6 +74,30 @@
 
 #include <math.h>
 
+double rd_contact_seg_deg(const rd_contact_result *r, int i)
+{
+    return r->graded ? r->width_deg[i] : 360.0 / r->points;
+}
+
+double rd_contact_width_at(const rd_contact_result *r, double a)
+{
+    if (!r->graded)
+        return 360.0 / r->points;
+    int best = 0;
+    for (int i = 1; i < r->points; i++)
+        if (fabs(r->angle_deg[i] - a) < fabs(r->angle_deg[best] - a))
+            best = i;
+    return r->width_deg[best];
+}
+
+/* The edge locator's resolution at the angle a (deg): two point spacings
+ * there (rd_contact_estimate). */
+static double res_at(const rd_contact_result *r, double a)
+{
+    return 2.0 *
+           (r->graded ? rd_contact_width_at(r, a) / r->points_per_segment : r->point_spacing_deg);
+}
+
 /* Edge between ta (a touching point, or a free end's face) and the first
  * lifted point tb (gap c1), c2 the gap of the next point, d beyond tb;
  * angles in deg, ta < tb (the caller negates them for a run's end). */
@@ -375,14 +399,15 @@ static double straddle_share(const rd_contact_result *f, const rd_contact_result
 {
     int h = side ? g + 1 : g - 1, n = f->points;
     double E = side ? f->gaps[g].end_deg : f->gaps[g].start_deg;
-    double half = 180.0 / n, phi = 2.0 * half;
     double mE = signed_move(f, c, g, side);
     double mO = h < 0 || h >= f->n_gaps ? 0.0 : signed_move(f, c, h, !side);
     double move = isnan(mE) || isnan(mO) ? sig : fabs(0.5 * (mE + mO));
     double lo = fmin(E, O), hi = fmax(E, O), force = 0.0;
-    for (int i = 0; i < n; i++)
+    for (int i = 0; i < n; i++) {
+        double phi = rd_contact_seg_deg(f, i), half = 0.5 * phi;
         if (f->angle_deg[i] > lo - half && f->angle_deg[i] < hi + half)
             force += f->pressure[i] * phi / RD_CONTACT_BIN_DEG;
+    }
     if (off <= 0.0)
         move += fmin(fabs(B - 0.5 * (lo + hi)), fmin(B - lo, hi - B));
     return fmin(1.0, fmax(0.0, move - off) / fmax(hi - lo, 1e-9)) * force / f->uniform_pressure;
@@ -394,6 +419,26 @@ static void keep(double *worst, double *at, int *source, double share, double wh
 {
     if (share > *worst)
         *worst = share, *at = where, *source = what;
+}
+
+/* Records [lo - pad, hi + pad] (deg) in z (if not NULL) where share
+ * exceeds z's threshold, merged with the zones it overlaps. */
+static void zone_note(rd_contact_zones *z, double share, double lo, double hi, double pad)
+{
+    if (!z || !(share > z->threshold))
+        return;
+    lo -= pad, hi += pad;
+    for (int k = 0; k < z->n;) {
+        if (z->hi[k] < lo || z->lo[k] > hi) {
+            k++;
+            continue;
+        }
+        lo = fmin(lo, z->lo[k]), hi = fmax(hi, z->hi[k]);
+        z->lo[k] = z->lo[z->n - 1], z->hi[k] = z->hi[z->n - 1];
+        z->n--;
+    }
+    if (z->n < RD_CONTACT_ZONES_MAX)
+        z->lo[z->n] = lo, z->hi[z->n] = hi, z->n++;
 }
 
 /* A gap edge within its uncertainty sig of a bin boundary may sit on the
@@ -433,10 +478,10 @@ static void keep(double *worst, double *at, int *source, double share, double wh
  * of 320 deg, its end moved 0.17 deg from n = 640: estimated at 3.5 ->
  * 0.76 p0 against a true 0.0004).  tip0, tip1: the ring's ends, deg. */
 static double edge_share(const rd_contact_result *f, const rd_contact_result *c, double sig_all,
-                         double res, double tip0, double tip1, double *at, int *source)
+                         double tip0, double tip1, double *at, int *source, rd_contact_zones *z)
 {
     int n = f->points;
-    double phi = 360.0 / n, worst = 0.0, w = RD_CONTACT_BIN_DEG;
+    double worst = 0.0, w = RD_CONTACT_BIN_DEG;
     *at = NAN, *source = RD_EST_NONE;
     for (int g = 0; g < f->n_gaps; g++)
         for (int side = 0; side < 2; side++) {
@@ -445,20 +490,24 @@ static double edge_share(const rd_contact_result *f, const rd_contact_result *c,
                 continue; /* a free end */
             double other = side ? (g + 1 < f->n_gaps ? f->gaps[g + 1].start_deg : tip1)
                                 : (g > 0 ? f->gaps[g - 1].end_deg : tip0);
-            double mv = own_move(f, c, g, side);
+            double mv = own_move(f, c, g, side), res = res_at(f, E),
+                   phi = rd_contact_width_at(f, E);
             double sig = mv < 0.0 ? sig_all : fmax(mv, res);
             double B = w * floor(E / w + 0.5);
             int inside = (B - E) * (other - B) > 0.0, narrow = fabs(other - E) < 2.0 * sig;
             if (inside && (narrow || fabs(other - E) < 1.5 * phi)) {
-                keep(&worst, at, source, straddle_share(f, c, g, side, other, B, sig, 0.0), B,
-                     RD_EST_PATCH);
+                double sh = straddle_share(f, c, g, side, other, B, sig, 0.0);
+                zone_note(z, sh, fmin(E, other), fmax(E, other), fmax(sig, phi));
+                keep(&worst, at, source, sh, B, RD_EST_PATCH);
                 continue;
             }
             if (narrow) {
-                if (fabs(B - E) <= sig)
-                    keep(&worst, at, source,
-                         straddle_share(f, c, g, side, other, B, sig, fabs(B - E)), B,
-                         RD_EST_PATCH);
+                if (fabs(B - E) <= sig) {
+                    double sh = straddle_share(f, c, g, side, other, B, sig, fabs(B - E));
+                    zone_note(z, sh, fmin(fmin(E, other), B), fmax(fmax(E, other), B),
+                              fmax(sig, phi));
+                    keep(&worst, at, source, sh, B, RD_EST_PATCH);
+                }
                 continue;
             }
             /* the edge's own uncertainty as the edges' estimate takes it:
@@ -468,18 +517,19 @@ static double edge_share(const rd_contact_result *f, const rd_contact_result *c,
                 continue;
             double sum = 0.0, dist = 0.0;
             for (int i = 0; i < n; i++) {
-                if (fabs(f->angle_deg[i] - E) <= 0.5 * phi)
+                double phi_i = rd_contact_seg_deg(f, i);
+                if (fabs(f->angle_deg[i] - E) <= 0.5 * phi_i)
                     dist = fmax(dist, f->pressure[i]);
-                if (fabs(f->angle_deg[i] - E) > s + 0.5 * phi)
+                if (fabs(f->angle_deg[i] - E) > s + 0.5 * phi_i)
                     continue;
                 double nb = 0.5 * ((i > 0 ? f->pressure[i - 1] : 0.0) +
                                    (i < n - 1 ? f->pressure[i + 1] : 0.0));
-                sum += fmax(0.0, f->pressure[i] - nb) * phi / w;
+                sum += fmax(0.0, f->pressure[i] - nb) * phi_i / w;
             }
-            keep(&worst, at, source, (1.0 - fabs(B - E) / s) * sum / f->uniform_pressure, B,
-                 RD_EST_EDGE);
-            keep(&worst, at, source, dist * (s - fabs(B - E)) / w / f->uniform_pressure, B,
-                 RD_EST_EDGE);
+            double sh = fmax((1.0 - fabs(B - E) / s) * sum / f->uniform_pressure,
+                             dist * (s - fabs(B - E)) / w / f->uniform_pressure);
+            zone_note(z, sh, fmin(E, B), fmax(E, B), fmax(s, phi));
+            keep(&worst, at, source, sh, B, RD_EST_EDGE);
         }
     return worst;
 }
@@ -501,8 +551,9 @@ static double edges_share(const rd_contact_result *r, double edge_deg)
     if (r->n_gaps == 0 || r->points < 1)
         return 0.0;
     int edges = 0, mirrored = 1;
-    double half = 180.0 / r->points, ends = r->angle_deg[0] + r->angle_deg[r->points - 1];
+    double ends = r->angle_deg[0] + r->angle_deg[r->points - 1];
     for (int g = 0; g < r->n_gaps; g++) {
+        double half = 0.5 * rd_contact_width_at(r, r->gaps[g].start_deg);
         edges += (g > 0 || r->gaps[g].start_deg > 1.0) +
                  (g < r->n_gaps - 1 || r->gaps[g].end_deg < 359.0);
         const rd_contact_gap *h = &r->gaps[r->n_gaps - 1 - g];
@@ -542,10 +593,11 @@ static void unresolved_tips(const rd_contact_result *f, double tip0, double tip1
 {
     if (f->n_gaps == 0)
         return;
-    double phi = (tip1 - tip0) / f->points;
     double run[2] = {f->gaps[0].start_deg - tip0, tip1 - f->gaps[f->n_gaps - 1].end_deg};
     for (int end = 0; end < 2; end++)
-        if (run[end] > res && run[end] < 2.0 * phi) {
+        if (run[end] > res &&
+            run[end] < 2.0 * (f->graded ? rd_contact_seg_deg(f, end ? f->points - 1 : 0)
+                                        : (tip1 - tip0) / f->points)) {
             e->gap_edges_deg = fmax(e->gap_edges_deg, run[end]);
             e->contact_fraction = fmax(e->contact_fraction, run[end] / (tip1 - tip0));
             e->tip_forces_n = fmax(e->tip_forces_n, f->tip_force[end]);
@@ -572,6 +624,8 @@ void rd_contact_estimate(const rd_contact_result *f, const rd_contact_result *c,
      * next two); half a segment, as before, overstated the battery's edge
      * errors by up to x9 (order 4 at 1 x the bound: 0.56 deg against 0.06) */
     double res = 2.0 * f->point_spacing_deg, at_bin;
+    for (int g = 0; f->graded && g < f->n_gaps; g++) /* graded: the coarsest at an edge */
+        res = fmax(res, fmax(res_at(f, f->gaps[g].start_deg), res_at(f, f->gaps[g].end_deg)));
     double dp = largest_bin_change(f, c, &at_bin);
     /* half the edges' move between the levels (as the pressure's d / 2,
      * below: the located edges converge at second order in n where the
@@ -609,7 +663,8 @@ void rd_contact_estimate(const rd_contact_result *f, const rd_contact_result *c,
      * ends and narrow patches (order 2 at 2.8 x, 17 deg: 0.52, 0.30, 0.15 p0
      * at n = 320, 640, 1280) and at second order or faster where smooth
      * (order 2 at 1 x, 17 deg: 0.076, 0.0073, 0.0036): d / 2 (above) */
-    e->pressure = 0.5 * dp / f->uniform_pressure;
+    e->pressure = e->pressure_levels = 0.5 * dp / f->uniform_pressure;
+    e->pressure_levels_at_deg = at_bin;
     e->pressure_at_deg = dp > 0.0 ? at_bin : NAN;
     e->pressure_source = dp > 0.0 ? RD_EST_LEVELS : RD_EST_NONE;
     /* ... or more where a gap edge may lie across a bin boundary: order 6
@@ -620,12 +675,26 @@ void rd_contact_estimate(const rd_contact_result *f, const rd_contact_result *c,
      * 25 bores, the estimate within x3 of the error on 24 both ways */
     keep(&e->pressure, &e->pressure_at_deg, &e->pressure_source,
          f->edge_bin_share / f->uniform_pressure, f->edge_bin_at_deg, RD_EST_EDGE_SEGMENT);
-    double half = 180.0 / f->points, at;
+    double at, tip0 = f->angle_deg[0] - 0.5 * rd_contact_seg_deg(f, 0),
+               tip1 = f->angle_deg[f->points - 1] + 0.5 * rd_contact_seg_deg(f, f->points - 1);
     int source;
-    double share = edge_share(f, c, e->gap_edges_deg, res, f->angle_deg[0] - half,
-                              f->angle_deg[f->points - 1] + half, &at, &source);
+    double share = edge_share(f, c, e->gap_edges_deg, tip0, tip1, &at, &source, NULL);
     keep(&e->pressure, &e->pressure_at_deg, &e->pressure_source, share, at, source);
-    unresolved_tips(f, f->angle_deg[0] - half, f->angle_deg[f->points - 1] + half, res, e);
+    unresolved_tips(f, tip0, tip1, res, e);
+}
+
+void rd_contact_zones_find(const rd_contact_result *f, const rd_contact_result *c,
+                           rd_contact_zones *z)
+{
+    double at, tip0 = f->angle_deg[0] - 0.5 * rd_contact_seg_deg(f, 0),
+               tip1 = f->angle_deg[f->points - 1] + 0.5 * rd_contact_seg_deg(f, f->points - 1);
+    int source;
+    edge_share(f, c, f->estimates.gap_edges_deg, tip0, tip1, &at, &source, z);
+    double B = f->edge_bin_at_deg;
+    if (!isnan(B)) {
+        double phi = rd_contact_width_at(f, B);
+        zone_note(z, f->edge_bin_share / f->uniform_pressure, B, B, phi);
+    }
 }
 
 double rd_contact_estimate_law(const rd_contact_result *r, const rd_contact_result *s,

@@ -29,10 +29,22 @@ const double *rd_ring_segment_mass_matrix(const rd_ring *ring, int i);
 double rd_ring_lambda_max_estimate(const rd_ring *ring);
 /* Reference point P_i (3 values, on the centroid circle). */
 const double *rd_ring_reference_point(const rd_ring *ring, int i);
-/* The joints' local cantilever stiffness Kc (6x6 row-major, local axes
- * chord, axial, radial); all joints are alike. */
-const double *rd_ring_joint_stiffness(const rd_ring *ring);
-/* The segment angle phi = span / n, rad. */
+/* Joint j's local cantilever stiffness Kc (6x6 row-major, local axes
+ * chord, axial, radial); all joints are alike unless the ring is graded. */
+const double *rd_ring_joint_stiffness(const rd_ring *ring, int j);
+/* The mean segment angle phi = span / n, rad: every segment's unless the
+ * ring is graded. */
 double rd_ring_segment_phi(const rd_ring *ring);
+/* Was it built with weights (rd_ring_create_graded)? */
+int rd_ring_is_graded(const rd_ring *ring);
+/* Segment i's angle, rad. */
+double rd_ring_segment_phi_at(const rd_ring *ring, int i);
+/* A graded ring (the contact analysis' local refinement): segment i spans
+ * span * weights[i] / sum(weights), in order from the gap (weights NULL:
+ * equal segments, as rd_ring_create).  Each joint is the Timoshenko beam
+ * along the chord between its two segments' reference points, each
+ * segment's mass that of its own sector. */
+rd_ring *rd_ring_create_graded(const rd_ring_params *p, int segments, int closed,
+                               const double *weights, rd_error *err);
 
 #endif

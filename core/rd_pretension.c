@@ -132,7 +132,7 @@ static int pretension_outputs(const rd_ring_params *p, const rd_static_problem *
 {
     const rd_ring *ring = pb->ring;
     int n = pb->n;
-    double s = rd_ring_get_segment_angle(ring, 0) - 0.5 * rd_ring_segment_phi(ring);
+    double s = rd_ring_get_segment_angle(ring, 0) - 0.5 * rd_ring_segment_phi_at(ring, 0);
     double Ri = pb->R - 0.5 * pb->b;
     const double *P0 = rd_ring_reference_point(ring, 0), *Pn = rd_ring_reference_point(ring, n - 1);
     double ia[3] = {Ri * cos(s) - P0[0], Ri * sin(s) - P0[1], 0.0};

@@ -28,8 +28,8 @@
  * Timoshenko beam element between the two reference points.  A rigid motion
  * gives d = t = 0, so K has the six rigid-body modes in its null space.
  *
- * Mass.  Each segment is the section swept through phi = span/n about the
- * ring axis; its mass, centre of mass and inertia tensor are integrated
+ * Mass.  Each segment is the section swept through phi = span/n (graded:
+ * its own phi_i) about the ring axis; its mass, centre of mass and inertia tensor are integrated
  * exactly.  With DOFs (u, theta) at the reference point P and the centre of
  * mass at P + c:  v_com = u' - [c]x theta', hence
  *   M_i = [[ m I,  -m [c]x ], [ m [c]x,  I_com - m [c]x [c]x ]].
@@ -44,15 +44,16 @@
 struct rd_ring {
     rd_ring_params p;
     rd_ring_section s;
-    int n, closed, joints;
-    double phi;    /* segment angle, rad */
-    double *alpha; /* n mid-angles from the gap middle, rad */
-    double *P;     /* 3n reference points */
-    rd_segment_mass mass;
-    double *Mseg;  /* n x 36, row-major per segment */
-    double Kc[36]; /* local cantilever stiffness, row-major */
-    double *T;     /* joints x (6 x 12) transfer matrices, local components */
-    int *pos;      /* band position of each segment */
+    int n, closed, joints, graded;
+    double phi;            /* mean segment angle span / n, rad (every segment's unless graded) */
+    double *phis;          /* n segment angles, rad */
+    double *alpha;         /* n mid-angles from the gap middle, rad */
+    double *P;             /* 3n reference points */
+    rd_segment_mass *mass; /* n */
+    double *Mseg;          /* n x 36, row-major per segment */
+    double *Kc;            /* joints x 36: each joint's local cantilever stiffness, row-major */
+    double *T;             /* joints x (6 x 12) transfer matrices, local components */
+    int *pos;              /* band position of each segment */
 };
 
 #define M6(A, r, c) ((A)[6 * (r) + (c)])
@@ -250,7 +251,7 @@ void rd_ring_segment_frame(const rd_ring *ring, int i, double e_r[3], double e_t
 /* Segment mass matrix (global components, DOFs at P_i). */
 static void segment_mass_matrix(const rd_ring *ring, int i, double Ms[36])
 {
-    const rd_segment_mass *sm = &ring->mass;
+    const rd_segment_mass *sm = &ring->mass[i];
     double e_r[3], e_t[3], e_z[3] = {0, 0, 1};
     rd_ring_segment_frame(ring, i, e_r, e_t);
     double c[3], S[9], Ic[9];
@@ -312,6 +313,12 @@ static void joint_ends(const rd_ring *ring, int j, int *a, int *b)
 
 rd_ring *rd_ring_create(const rd_ring_params *p, int segments, int closed, rd_error *err)
 {
+    return rd_ring_create_graded(p, segments, closed, NULL, err);
+}
+
+rd_ring *rd_ring_create_graded(const rd_ring_params *p, int segments, int closed,
+                               const double *weights, rd_error *err)
+{
     rd_ring *ring = NULL;
     if (rd_ring_validate(p, segments, closed, err) != RD_OK)
         return NULL;
@@ -325,29 +332,53 @@ rd_ring *rd_ring_create(const rd_ring_params *p, int segments, int closed, rd_er
     ring->joints = closed ? n : n - 1;
     rd_ring_section_get(p, ring->closed, &ring->s);
     ring->phi = ring->s.span / n;
+    ring->phis = malloc((size_t)n * sizeof *ring->phis);
     ring->alpha = malloc((size_t)n * sizeof *ring->alpha);
     ring->P = malloc((size_t)n * 3 * sizeof *ring->P);
+    ring->mass = malloc((size_t)n * sizeof *ring->mass);
     ring->Mseg = malloc((size_t)n * 36 * sizeof *ring->Mseg);
+    ring->Kc = malloc((size_t)(ring->joints > 0 ? ring->joints : 1) * 36 * sizeof *ring->Kc);
     ring->T = malloc((size_t)ring->joints * 72 * sizeof *ring->T);
     ring->pos = malloc((size_t)n * sizeof *ring->pos);
-    if (!ring->alpha || !ring->P || !ring->Mseg || !ring->T || !ring->pos)
+    if (!ring->phis || !ring->alpha || !ring->P || !ring->mass || !ring->Mseg || !ring->Kc ||
+        !ring->T || !ring->pos)
         goto nomem;
 
-    double start = closed ? 0.0 : 0.5 * p->closed_gap / ring->s.R;
+    /* the segments' angles: equal, or span-scaled weights (their sum) */
+    double start = closed ? 0.0 : 0.5 * p->closed_gap / ring->s.R, wsum = 0.0, at = 0.0;
+    for (int i = 0; weights && i < n; i++)
+        wsum += weights[i];
+    ring->graded = weights != NULL;
     for (int i = 0; i < n; i++) {
-        ring->alpha[i] = start + (i + 0.5) * ring->phi;
+        if (weights) {
+            ring->phis[i] = ring->s.span * weights[i] / wsum;
+            ring->alpha[i] = start + at + 0.5 * ring->phis[i];
+            at += ring->phis[i];
+        } else {
+            ring->phis[i] = ring->phi;
+            ring->alpha[i] = start + (i + 0.5) * ring->phi;
+        }
         ring->P[3 * i + 0] = ring->s.R * cos(ring->alpha[i]);
         ring->P[3 * i + 1] = ring->s.R * sin(ring->alpha[i]);
         ring->P[3 * i + 2] = 0.0;
     }
-    rd_ring_segment_mass_get(p, ring->phi, &ring->mass);
-    for (int i = 0; i < n; i++)
+    for (int i = 0; i < n; i++) {
+        if (i == 0 || ring->phis[i] != ring->phis[i - 1])
+            rd_ring_segment_mass_get(p, ring->phis[i], &ring->mass[i]);
+        else
+            ring->mass[i] = ring->mass[i - 1];
         segment_mass_matrix(ring, i, ring->Mseg + 36 * i);
-    cantilever_stiffness(p, &ring->s, 2.0 * ring->s.R * sin(0.5 * ring->phi), ring->Kc);
+    }
     for (int j = 0; j < ring->joints; j++) {
         int a, b;
         joint_ends(ring, j, &a, &b);
         joint_transfer(ring, a, b, ring->T + 72 * j);
+        /* the chord between the two segments' reference points */
+        double d = 0.5 * (ring->phis[a] + ring->phis[b]);
+        if (j > 0 && ring->phis[a] == ring->phis[a - 1] && ring->phis[b] == ring->phis[a])
+            memcpy(ring->Kc + 36 * j, ring->Kc + 36 * (j - 1), 36 * sizeof *ring->Kc);
+        else
+            cantilever_stiffness(p, &ring->s, 2.0 * ring->s.R * sin(0.5 * d), ring->Kc + 36 * j);
     }
     for (int k = 0; k < n; k++) {
         int seg = closed ? (k % 2 == 0 ? k / 2 : n - 1 - (k - 1) / 2) : k;
@@ -364,9 +395,12 @@ void rd_ring_free(rd_ring *ring)
 {
     if (!ring)
         return;
+    free(ring->phis);
     free(ring->alpha);
     free(ring->P);
+    free(ring->mass);
     free(ring->Mseg);
+    free(ring->Kc);
     free(ring->T);
     free(ring->pos);
     free(ring);
@@ -402,8 +436,7 @@ double rd_ring_get_segment_angle(const rd_ring *ring, int i)
 }
 const rd_segment_mass *rd_ring_get_segment_mass(const rd_ring *ring, int i)
 {
-    (void)i;
-    return &ring->mass;
+    return &ring->mass[i];
 }
 const double *rd_ring_segment_mass_matrix(const rd_ring *ring, int i)
 {
@@ -414,13 +447,21 @@ const double *rd_ring_reference_point(const rd_ring *ring, int i)
 {
     return ring->P + 3 * i;
 }
-const double *rd_ring_joint_stiffness(const rd_ring *ring)
+const double *rd_ring_joint_stiffness(const rd_ring *ring, int j)
 {
-    return ring->Kc;
+    return ring->Kc + 36 * j;
 }
 double rd_ring_segment_phi(const rd_ring *ring)
 {
     return ring->phi;
+}
+int rd_ring_is_graded(const rd_ring *ring)
+{
+    return ring->graded;
+}
+double rd_ring_segment_phi_at(const rd_ring *ring, int i)
+{
+    return ring->phis[i];
 }
 
 int rd_ring_band_index(const rd_ring *ring, int i, int k)
@@ -441,7 +482,7 @@ static void joint_stiffness(const rd_ring *ring, int j, double Ke[144])
         for (int c = 0; c < 12; c++) {
             double s = 0.0;
             for (int k = 0; k < 6; k++)
-                s += ring->Kc[6 * r + k] * T[12 * k + c];
+                s += ring->Kc[36 * j + 6 * r + k] * T[12 * k + c];
             KT[12 * r + c] = s;
         }
     for (int r = 0; r < 12; r++)
@@ -547,7 +588,7 @@ double rd_ring_strain_energy(const rd_ring *ring, const double *q)
         }
         for (int r = 0; r < 6; r++)
             for (int c = 0; c < 6; c++)
-                e += 0.5 * d[r] * ring->Kc[6 * r + c] * d[c];
+                e += 0.5 * d[r] * ring->Kc[36 * j + 6 * r + c] * d[c];
     }
     return e;
 }

@@ -11,7 +11,10 @@
  * Global frame: z is the ring axis (cylinder axis, up), the ring lies in the
  * z = 0 plane with its centre at the origin, angle theta measured from +x.
  *
- * The ring is cut into n equal rigid segments (annular sectors).  Segment i
+ * The ring is cut into n rigid segments (annular sectors), equal unless
+ * graded (rd_ring_create_graded, rd_internal.h: the contact analysis'
+ * local refinement gives each its own angle, each joint its own beam
+ * along its chord and each segment its own sector's mass).  Segment i
  * has a reference point P_i on the centroid circle at its mid-angle; its six
  * degrees of freedom are the small translation of P_i and the small rotation
  * vector of the segment, global components:

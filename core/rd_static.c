@@ -610,7 +610,10 @@ int rd_static_solve_path(rd_static_problem *pb, const rd_static_opts *so, const 
         /* Rounding floor: the stiffest spring (joint axial EA/L, or a contact
          * point's k A) times a position's last bits (measured: up to ~1000
          * eps R), over F_ref. */
-        double noise = 1024.0 * DBL_EPSILON * fmax(pb->Kc[0], pb->k * pb->area) * pb->R / pb->F_ref;
+        double kmax = pb->k * pb->area_max;
+        for (int j = 0; j < rd_ring_get_joints(pb->ring); j++)
+            kmax = fmax(kmax, pb->Kc[36 * j]);
+        double noise = 1024.0 * DBL_EPSILON * kmax * pb->R / pb->F_ref;
         double tol = fmax(so->tol, noise);
         st->tolerance = tol;
         st->iterations = st->factorizations = 0;
@@ -637,7 +640,7 @@ int rd_static_problem_init(rd_static_problem *pb, const rd_ring *ring, int kind)
     pb->R = rd_ring_get_section(ring)->R;
     pb->b = p->radial_width;
     pb->h = p->axial_height;
-    pb->Kc = rd_ring_joint_stiffness(ring);
+    pb->Kc = rd_ring_joint_stiffness(ring, 0);
     pb->E = malloc((size_t)9 * n * sizeof *pb->E);
     pb->dP0 = malloc((size_t)3 * n * sizeof *pb->dP0);
     pb->x = malloc((size_t)3 * n * sizeof *pb->x);
@@ -663,7 +666,7 @@ int rd_static_problem_init(rd_static_problem *pb, const rd_ring *ring, int kind)
         memcpy(E + 6, e3, sizeof e3);
     }
     /* gap faces: neutral-axis points and the opening directions */
-    double s = rd_ring_get_segment_angle(ring, 0) - 0.5 * rd_ring_segment_phi(ring);
+    double s = rd_ring_get_segment_angle(ring, 0) - 0.5 * rd_ring_segment_phi_at(ring, 0);
     double sB = 2.0 * M_PI - s;
     const double *P0 = rd_ring_reference_point(ring, 0), *Pn = rd_ring_reference_point(ring, n - 1);
     double fa[3] = {pb->R * cos(s), pb->R * sin(s), 0},
@@ -675,9 +678,18 @@ int rd_static_problem_init(rd_static_problem *pb, const rd_ring *ring, int kind)
     double tA[3] = {-sin(s), cos(s), 0}, tB[3] = {sin(sB), -cos(sB), 0};
     memcpy(pb->tA, tA, sizeof tA);
     memcpy(pb->tB, tB, sizeof tB);
-    /* support: the section opposite the gap */
+    /* support: the section opposite the gap (on a graded ring the segments
+     * beside pi, or the one centred on it) */
     pb->pa = (n - 1) / 2;
     pb->pb = n / 2;
+    if (rd_ring_is_graded(ring)) {
+        int i = 0;
+        while (i < n - 1 && rd_ring_get_segment_angle(ring, i + 1) <= M_PI)
+            i++;
+        double a = rd_ring_get_segment_angle(ring, i);
+        pb->pa = i;
+        pb->pb = fabs(a - M_PI) < 1e-3 * rd_ring_segment_phi_at(ring, i) || i == n - 1 ? i : i + 1;
+    }
     pb->k_t = 1e3 * pb->Kc[0];
     pb->k_r = 1e3 * fmax(pb->Kc[6 * 3 + 3], fmax(pb->Kc[6 * 4 + 4], pb->Kc[6 * 5 + 5]));
     return RD_OK;

@@ -107,6 +107,7 @@ typedef struct rd_contact_opts {
 
 #define RD_CONTACT_BIN_DEG  10.0 /* width of the pressure bins, from the gap middle */
 #define RD_CONTACT_BINS     36
+#define RD_CONTACT_ARCS_MAX 16 /* graded arcs a result reports (rd_contact_result) */
 #define RD_CONTACT_GAPS_MAX 64
 
 /* A light gap: a run of the running face off the bore. */
@@ -138,6 +139,9 @@ typedef struct rd_contact_estimates {
      * none), and which part (RD_EST_*) */
     double pressure_at_deg;
     int pressure_source;
+    double pressure_levels;        /* of the pressure's: half the bins' largest change between the
+                               levels, / p0 (the part the bin-boundary shares do not hold) */
+    double pressure_levels_at_deg; /* that bin's middle, deg */
 } rd_contact_estimates;
 
 /* Counters and accuracy common to both analyses. */
@@ -184,7 +188,9 @@ typedef struct rd_contact_result {
     double *pressure;        /* resultant contact force / (h * segment's running-face arc), Pa */
     double *clearance;       /* closest approach of its points to the bore, m (<= 0: touching) */
     double *bore_radius;     /* bore radius at the segment's middle, m */
-    double mean_pressure;    /* mean of the segment pressures, Pa */
+    double *width_deg;       /* the segment's arc on the ring, deg: all alike unless the
+                                refinement graded them (rd_contact_opts.local_refinement) */
+    double mean_pressure;    /* mean of the segment pressures over their arcs, Pa */
     double uniform_pressure; /* 2 F_t / (d h) (1.3), Pa */
     double contact_fraction; /* contact length / running-face length (point clearances,
                                    edges located between points) */
@@ -207,7 +213,10 @@ typedef struct rd_contact_result {
                                 uncertainty, deg */
     double marginal_depth;    /* of those runs, the depth nearest gap_floor (by ratio), m; 0
                                  if none */
-    double point_spacing_deg; /* contact points' spacing, deg: the edge locator's resolution */
+    double point_spacing_deg; /* contact points' spacing (graded: the finest), deg: the edge
+                                 locator's resolution */
+    int points_per_segment;   /* m */
+    int graded;               /* the segments are not all alike */
     double tip_force[2];      /* concentrated force at the first / last free end, N */
     double edge_bin_share;    /* the most a segment holding a gap edge put past a bin boundary
                                  from the edge, as a bin pressure, Pa (rd_contact_bins) */
@@ -223,6 +232,12 @@ typedef struct rd_contact_result {
     double law_share; /* the contact law's share in estimates.pressure, of p0: twice the
                          binned pressure's move at twice the stiffness (NAN if not solved) */
     int levels;       /* solves made */
+    /* The local refinement of the reported level (0.3.7): its segments
+     * over each arc grade_factor times finer than the rest's grade_base
+     * (equal) segments, halving outwards; grade_factor 1 (and no arcs):
+     * equal segments. */
+    int grade_base, grade_factor, grade_arcs;
+    double grade_lo_deg[RD_CONTACT_ARCS_MAX], grade_hi_deg[RD_CONTACT_ARCS_MAX];
     char accuracy_note[512];
 } rd_contact_result;
 

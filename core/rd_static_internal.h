@@ -105,7 +105,8 @@ typedef struct rd_static_problem {
     double *mult;        /* per point: the augmented Lagrangian's multiplier, Pa (NULL: none) */
     rd_contact_eval *pe; /* m n: each point at the last rd_contact_loads */
     int tip_mult;        /* mult[n], mult[n + 1]: the free ends' very tips their own */
-    double area;         /* tributary area of one point, m^2 */
+    double *area;        /* n: tributary area of one point of each segment, m^2 (in cp's block) */
+    double area_max;     /* the largest of them (0 without contact) */
     double r_o;          /* running-face radius of the closed ring */
     double bore_dr;      /* D/2 - r_o */
     const rd_contact_opts *co;
@@ -258,6 +259,12 @@ void rd_contact_warm_free(rd_contact_warm *w);
 int rd_contact_once(const rd_ring_params *p, int segments, const rd_contact_opts *o,
                     const rd_static_opts *so, const rd_monitor *mon, const rd_contact_warm *from,
                     rd_contact_warm *to, rd_contact_result *out, rd_error *err);
+/* The same on a graded ring (rd_ring_create_graded's weights; NULL: equal
+ * segments). */
+int rd_contact_once_graded(const rd_ring_params *p, int segments, const double *weights,
+                           const rd_contact_opts *o, const rd_static_opts *so,
+                           const rd_monitor *mon, const rd_contact_warm *from, rd_contact_warm *to,
+                           rd_contact_result *out, rd_error *err);
 
 /* rd_contact_post.c: light gaps and contact fraction from the segments'
  * closest points (angles ts, deg, increasing; clearances cs, m) and all m n
@@ -272,6 +279,25 @@ void rd_contact_gaps(const double *ts, const double *cs, int n, const double *t,
                      rd_contact_result *out);
 void rd_contact_bins(const double *seg_deg, const double *force, const double *at_deg, int n,
                      double h_ro, const rd_contact_result *gaps, rd_contact_result *out);
+/* Segment i's arc, deg: 360 / n where the segments are alike (as the
+ * estimates were measured), its own where graded; the arc of the segment
+ * nearest the angle a (deg). */
+double rd_contact_seg_deg(const rd_contact_result *r, int i);
+double rd_contact_width_at(const rd_contact_result *r, double a);
+/* Arcs (deg) where a graded level should be finer: around each bin
+ * boundary that a gap edge or a narrow patch of f may lie across, where the
+ * force that could cross it (the binned pressure's estimate's
+ * edge_segment, edge and patch shares) exceeds z->threshold (of p0),
+ * padded by the edge's uncertainty and a segment of f; merged where they
+ * overlap, added to those z has. */
+#define RD_CONTACT_ZONES_MAX RD_CONTACT_ARCS_MAX
+typedef struct rd_contact_zones {
+    double threshold;
+    int n;
+    double lo[RD_CONTACT_ZONES_MAX], hi[RD_CONTACT_ZONES_MAX];
+} rd_contact_zones;
+void rd_contact_zones_find(const rd_contact_result *f, const rd_contact_result *c,
+                           rd_contact_zones *z);
 void rd_contact_estimate(const rd_contact_result *fine, const rd_contact_result *coarse,
                          rd_contact_estimates *e);
 /* Adds to e the contact law's share of r's errors from s, the same level

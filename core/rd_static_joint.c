@@ -131,7 +131,7 @@ typedef struct joint_state {
 static void joint_state_fill(const rd_static_problem *pb, int j, const double *xA, const double *QA,
                              const double *xB, const double *QB, joint_state *s)
 {
-    const double *E = pb->E + 9 * j, *dP0 = pb->dP0 + 3 * j, *Kc = pb->Kc;
+    const double *E = pb->E + 9 * j, *dP0 = pb->dP0 + 3 * j, *Kc = pb->Kc + 36 * j;
     double dl[3], Rrel[9], dt[6];
     for (int k = 0; k < 3; k++)
         s->Dx[k] = xB[k] - xA[k];
@@ -230,7 +230,7 @@ static void force_blocks(const double S[36], const double Hg[9], const double F[
 void rd_static_joint_tangent(const rd_static_problem *pb, int j, const double *xA, const double *QA,
                              const double *xB, const double *QB, double K[144])
 {
-    const double *E = pb->E + 9 * j, *Kc = pb->Kc;
+    const double *E = pb->E + 9 * j, *Kc = pb->Kc + 36 * j;
     joint_state s;
     joint_state_fill(pb, j, xA, QA, xB, QB, &s);
     double Em[3], Jt[9], H[9], P[9], G[9], X[2][9], F[3], Mg[3], S[36], Hg[9], T[9];

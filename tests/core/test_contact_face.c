@@ -36,7 +36,7 @@ typedef struct setup {
     rd_contact_opts o;
     rd_ring *ring;
     rd_static_problem pb;
-    double cp[6 * N * M + 14 * N], mult[N], r[6 * N];
+    double cp[6 * N * M + 14 * N], mult[N], r[6 * N], area[N];
     rd_contact_eval pe[N * M];
 } setup;
 
@@ -57,7 +57,9 @@ static int setup_make(setup *s)
     double phi = rd_ring_segment_phi(s->ring);
     pb->co = &s->o, pb->m = M, pb->r_o = pb->R + 0.5 * pb->b;
     pb->bore_dr = 0.5 * s->p.diameter - pb->r_o;
-    pb->area = pb->h * pb->r_o * phi / M;
+    for (int i = 0; i < N; i++)
+        s->area[i] = pb->h * pb->r_o * phi / M;
+    pb->area = s->area, pb->area_max = s->area[0];
     pb->p0 = 2 * s->p.tangential_force / (s->p.diameter * s->p.axial_height);
     pb->k = rd_contact_default_stiffness(&s->p), pb->eps = 0.05 * pb->p0 / pb->k;
     pb->lambda = 1.0;

@@ -6,6 +6,7 @@
 #include <string.h>
 
 #include "check.h"
+#include "rd_internal.h"
 #include "rd_ring.h"
 
 #define PI  3.14159265358979323846
@@ -98,15 +99,32 @@ static void test_segment_mass(void)
               "revolved-rectangle centroid");
 }
 
+/* Weights of a graded ring of n segments (rd_ring_create_graded): the
+ * contact refinement's pattern, segments of 1, 1/2, 1/4 and 1/8 of a base
+ * segment and back, and a lone short one, so that no two neighbours but
+ * the base ones are alike; NULL for equal segments. */
+static double *graded(int n, int on)
+{
+    if (!on)
+        return NULL;
+    double *w = malloc((size_t)n * sizeof *w);
+    for (int i = 0; i < n; i++)
+        w[i] = 1.0 / (1 << (i % 4)) + (i == n / 3 ? 0.37 : 0.0);
+    return w;
+}
+
 /* The assembled M against whole-ring integrals (Pappus and the ring's inertia
- * tensor): kinetic energy of rigid motions. */
-static void test_mass_matrix_rigid(int closed, int n)
+ * tensor): kinetic energy of rigid motions; on a graded ring too (each
+ * segment's mass is its own sector's, exactly). */
+static void test_mass_matrix_rigid(int closed, int n, int grade)
 {
     rd_ring_params p;
     rd_ring_params_default(&p);
     rd_error err;
     rd_error_init(&err);
-    rd_ring *ring = rd_ring_create(&p, n, closed, &err);
+    double *wts = graded(n, grade);
+    rd_ring *ring = rd_ring_create_graded(&p, n, closed, wts, &err);
+    free(wts);
     CHECK(ring != NULL, "create: %s", err.message);
     if (!ring)
         return;
@@ -139,14 +157,16 @@ static void test_mass_matrix_rigid(int closed, int n)
 }
 
 /* K: symmetric, rigid motions in its null space, and 1/2 q^T K q equal to the
- * element-by-element strain energy. */
-static void test_stiffness(int closed, int n)
+ * element-by-element strain energy; graded: each joint its own beam. */
+static void test_stiffness(int closed, int n, int grade)
 {
     rd_ring_params p;
     rd_ring_params_default(&p);
     rd_error err;
     rd_error_init(&err);
-    rd_ring *ring = rd_ring_create(&p, n, closed, &err);
+    double *wts = graded(n, grade);
+    rd_ring *ring = rd_ring_create_graded(&p, n, closed, wts, &err);
+    free(wts);
     int N = 6 * n;
     double *K = malloc((size_t)N * N * sizeof *K), *M = malloc((size_t)N * N * sizeof *M);
     double *q = malloc((size_t)N * sizeof *q);
@@ -189,6 +209,57 @@ static void test_stiffness(int closed, int n)
     free(M);
     free(q);
     rd_ring_free(ring);
+}
+
+/* A graded ring's segments: their angles in proportion to the weights and
+ * summing to the span, each midway between its ends; a joint's axial
+ * stiffness E A / L with L its chord (thesis 3.1); equal weights the equal
+ * ring's segments (to rounding). */
+static void test_graded_segments(void)
+{
+    rd_ring_params p;
+    rd_ring_params_default(&p);
+    rd_error err;
+    rd_error_init(&err);
+    int n = 20;
+    double *w = graded(n, 1), sum = 0.0, span = 0.0;
+    for (int i = 0; i < n; i++)
+        sum += w[i];
+    rd_ring *ring = rd_ring_create_graded(&p, n, 0, w, &err);
+    const rd_ring_section *s = rd_ring_get_section(ring);
+    double start = 0.5 * p.closed_gap / s->R;
+    for (int i = 0; i < n; i++) {
+        double phi = rd_ring_segment_phi_at(ring, i);
+        CHECK_REL(phi, s->span * w[i] / sum, 1e-14, "segment %d's angle", i);
+        CHECK_REL(rd_ring_get_segment_angle(ring, i), start + span + 0.5 * phi, 1e-14,
+                  "segment %d's middle", i);
+        span += phi;
+        CHECK_REL(rd_ring_get_segment_mass(ring, i)->mass,
+                  p.density * p.axial_height * phi * s->R * p.radial_width, 1e-13,
+                  "segment %d's mass (Pappus)", i);
+    }
+    CHECK_REL(span, s->span, 1e-14, "the segments fill the span");
+    for (int j = 0; j < n - 1; j++) {
+        double L =
+            2.0 * s->R *
+            sin(0.25 * (rd_ring_segment_phi_at(ring, j) + rd_ring_segment_phi_at(ring, j + 1)));
+        CHECK_REL(rd_ring_joint_stiffness(ring, j)[0], p.youngs_modulus * s->area / L, 1e-13,
+                  "joint %d's E A / L", j);
+    }
+    rd_ring_free(ring);
+    for (int i = 0; i < n; i++)
+        w[i] = 2.5;
+    ring = rd_ring_create_graded(&p, n, 0, w, &err);
+    rd_ring *eq = rd_ring_create(&p, n, 0, &err);
+    for (int i = 0; i < n; i++)
+        CHECK_REL(rd_ring_get_segment_angle(ring, i), rd_ring_get_segment_angle(eq, i), 1e-14,
+                  "equal weights: segment %d", i);
+    CHECK_REL(rd_ring_joint_stiffness(ring, 3)[6 * 5 + 5],
+              rd_ring_joint_stiffness(eq, 3)[6 * 5 + 5], 1e-13,
+              "equal weights: a joint's bending stiffness");
+    rd_ring_free(ring);
+    rd_ring_free(eq);
+    free(w);
 }
 
 /* A closed ring under a single joint's axial stretch has the energy of the
@@ -272,10 +343,12 @@ int main(void)
     test_segment_mass();
     int ns[] = {3, 7, 20, 64};
     for (int i = 0; i < 4; i++)
-        for (int closed = 0; closed < 2; closed++) {
-            test_mass_matrix_rigid(closed, ns[i]);
-            test_stiffness(closed, ns[i]);
-        }
+        for (int closed = 0; closed < 2; closed++)
+            for (int grade = 0; grade < 2; grade++) {
+                test_mass_matrix_rigid(closed, ns[i], grade);
+                test_stiffness(closed, ns[i], grade);
+            }
+    test_graded_segments();
     test_axial_spring();
     test_validation();
     return check_done();
