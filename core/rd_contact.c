@@ -440,6 +440,33 @@ static int contact_bins(const rd_static_problem *pb, const double *ts, const dou
     return RD_OK;
 }
 
+/* A free end's concentrated force (into out->tip_force, from the
+ * segments' forces): the end segment's and its neighbour's resultants
+ * beyond what the third segment's pressure would put on them, where the end is on the bore (within the floor, as the
+ * gaps: a tip touching at its very end has its closest point a hair
+ * off, +1e-13 m, and was reported as 0 N on 11 of the battery's levels,
+ * bench_static --dump).  The tip's force reaches into the neighbour
+ * through the flexible face: order 4 at 0.1 x the bound, 17 deg, n =
+ * 1280, the end segments at 11.6 and 3.9 p0 over a 0.1 p0 pressure; the
+ * end segment's excess over its neighbour alone read 0.34-0.38 N at n =
+ * 320-1280 against the exact reference's 0.730, the two's 0.748 at 320
+ * (and the same as before, within 1e-4 N, where the neighbour carries
+ * the distributed pressure only: 54 of the battery's 64 free ends). */
+static void tip_forces(const rd_static_problem *pb, const double *force, rd_contact_result *out)
+{
+    int n = pb->n;
+    for (int e = 0; e < 2; e++) {
+        int i = e ? n - 1 : 0, j = e ? n - 2 : 1, q = e ? n - 3 : 2;
+        q = q < 0 ? 0 : (q > n - 1 ? n - 1 : q);
+        /* (the third's pressure over the two's arcs: on equal segments
+         * twice its force, bit for bit) */
+        double arcs = rd_ring_segment_phi_at(pb->ring, i) + rd_ring_segment_phi_at(pb->ring, j);
+        double third = out->pressure[q] * pb->h * pb->r_o * arcs;
+        out->tip_force[e] =
+            out->clearance[i] <= out->gap_floor ? fmax(0.0, force[i] + force[j] - third) : 0.0;
+    }
+}
+
 /* Light gaps, contact fraction, tip forces and bins (rd_contact_post.c)
  * from the point clearances t, c. */
 static int contact_summaries(const rd_static_problem *pb, const double *t, const double *c,
@@ -499,25 +526,7 @@ static int contact_summaries(const rd_static_problem *pb, const double *t, const
                           pb->cp0 ? 0.0 : bend / (pb->r_o * pb->r_o) * L * L / 8.0);
     rd_contact_gaps(ts, out->clearance, n, t, c, pb->m, pb->cp0 != NULL, lo[0], lo[n],
                     out->gap_floor, out);
-    /* a free end's concentrated force: the end segment's and its
-     * neighbour's resultants beyond what the third segment's pressure would
-     * put on them, where the end is on the bore (within the floor, as the
-     * gaps: a tip touching at its very end has its closest point a hair
-     * off, +1e-13 m, and was reported as 0 N on 11 of the battery's levels,
-     * bench_static --dump).  The tip's force reaches into the neighbour
-     * through the flexible face: order 4 at 0.1 x the bound, 17 deg, n =
-     * 1280, the end segments at 11.6 and 3.9 p0 over a 0.1 p0 pressure; the
-     * end segment's excess over its neighbour alone read 0.34-0.38 N at n =
-     * 320-1280 against the exact reference's 0.730, the two's 0.748 at 320
-     * (and the same as before, within 1e-4 N, where the neighbour carries
-     * the distributed pressure only: 54 of the battery's 64 free ends). */
-    for (int e = 0; e < 2; e++) {
-        int i = e ? n - 1 : 0, j = e ? n - 2 : 1, q = e ? n - 3 : 2;
-        q = q < 0 ? 0 : (q > n - 1 ? n - 1 : q);
-        out->tip_force[e] = out->clearance[i] <= out->gap_floor
-                                ? fmax(0.0, force[i] + force[j] - 2.0 * force[q])
-                                : 0.0;
-    }
+    tip_forces(pb, force, out);
     int rc = contact_bins(pb, ts, t, c, lo, force, at, out);
     free(lo);
     free(force);

@@ -69,6 +69,11 @@
  * (bench/contact_random.sh), overstate two battery bores; 0.3.4's, 27,
  * 27, 26, 24 and 27, with half the edges' move (rd_contact_estimate), and
  * none of the 120 estimates understates its error beyond x3.
+ *
+ * Graded levels (rd_contact_refine.c's local refinement, since 0.3.7):
+ * every segment's arc is its own (rd_contact_seg_deg: 360 / n where they
+ * are alike, as all the above was measured), and so is the locator's
+ * resolution at an edge (two point spacings of the segment there, res_at).
  */
 #include "rd_static_internal.h"
 
