@@ -272,16 +272,6 @@ static void drop(rd_contact_result *r)
     memset(r, 0, sizeof *r);
 }
 
-/* Local refinement: the pair again, each level graded RD_CONTACT_GRADE
- * times finer (again: times that) over the arcs where the finer level's
- * bin-boundary shares exceed half the target (rd_contact_zones_find), if
- * that stays within the segment cap and RD_CONTACT_GRADE_MAX; returns 1 if
- * the run's meshes were changed.  Such a share is the force beside an
- * edge whose place is known only to its move between the levels or to two
- * point spacings: the segments there shrink, the rest stays. */
-#define RD_CONTACT_GRADE      4
-#define RD_CONTACT_GRADE_MAX  16
-#define RD_CONTACT_GRADE_FROM 640
 /* Would grading r's pair help: are there arcs to grade (z, from r and the
  * coarser level c), and is the rest of the pressure's estimate, the bins'
  * change between the levels, within the target a?  (With that change
@@ -296,6 +286,16 @@ static int gradable(const rd_contact_result *r, const rd_contact_result *c, doub
     return z->n > 0 && r->estimates.pressure > a && r->estimates.pressure_levels <= a;
 }
 
+/* Local refinement: the pair again, each level graded RD_CONTACT_GRADE
+ * times finer (again: times that) over the arcs where the finer level's
+ * bin-boundary shares exceed half the target (rd_contact_zones_find), if
+ * that stays within the segment cap and RD_CONTACT_GRADE_MAX; returns 1 if
+ * the run's meshes were changed.  Such a share is the force beside an
+ * edge whose place is known only to its move between the levels or to two
+ * point spacings: the segments there shrink, the rest stays. */
+#define RD_CONTACT_GRADE      4
+#define RD_CONTACT_GRADE_MAX  16
+#define RD_CONTACT_GRADE_FROM 640
 static int grade(contact_run *run, const rd_contact_zones *z)
 {
     contact_run t = *run;
@@ -327,7 +327,7 @@ static int doubled(const contact_run *run, contact_run *t)
     return N;
 }
 
-/* The answer is the last equal pair's (a graded pair failed), with why. */
+/* The answer is the last pair's, kept when its graded pair failed, with why. */
 static void fall_back(contact_run *run, const char *why)
 {
     rd_contact_result *r = &run->level[0];
