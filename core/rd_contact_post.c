@@ -79,7 +79,9 @@
 
 #include <math.h>
 
-double rd_contact_seg_deg(const rd_contact_result *r, int i)
+/* Segment i's arc, deg: 360 / n where the segments are alike, its own
+ * where graded (as rd_contact_width_at). */
+static double rd_contact_seg_deg(const rd_contact_result *r, int i)
 {
     return r->graded ? r->width_deg[i] : 360.0 / r->points;
 }
@@ -669,7 +671,6 @@ void rd_contact_estimate(const rd_contact_result *f, const rd_contact_result *c,
      * at n = 320, 640, 1280) and at second order or faster where smooth
      * (order 2 at 1 x, 17 deg: 0.076, 0.0073, 0.0036): d / 2 (above) */
     e->pressure = e->pressure_levels = 0.5 * dp / f->uniform_pressure;
-    e->pressure_levels_at_deg = at_bin;
     e->pressure_at_deg = dp > 0.0 ? at_bin : NAN;
     e->pressure_source = dp > 0.0 ? RD_EST_LEVELS : RD_EST_NONE;
     /* ... or more where a gap edge may lie across a bin boundary: order 6

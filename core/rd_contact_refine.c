@@ -650,8 +650,7 @@ int rd_contact_solve(const rd_ring_params *p, int segments, const rd_contact_opt
         run.n[0] = segments / 2, run.n[1] = segments;
     if (!so->estimate_error) {
         rc = rd_contact_once(p, segments, o, so, mon, NULL, NULL, out, err);
-        out->estimates =
-            (rd_contact_estimates){NAN, NAN, NAN, NAN, NAN, NAN, RD_EST_NONE, NAN, NAN};
+        out->estimates = (rd_contact_estimates){NAN, NAN, NAN, NAN, NAN, NAN, RD_EST_NONE, NAN};
         out->accuracy_met = -1;
         if (rc == RD_OK)
             unsettled(out);
@@ -665,8 +664,7 @@ int rd_contact_solve(const rd_ring_params *p, int segments, const rd_contact_opt
     if (rc == RD_OK) {
         *out = run.level[0];
         if (out->stats.reference_segments == 0) /* the first finer solve failed */
-            out->estimates =
-                (rd_contact_estimates){NAN, NAN, NAN, NAN, NAN, NAN, RD_EST_NONE, NAN, NAN};
+            out->estimates = (rd_contact_estimates){NAN, NAN, NAN, NAN, NAN, NAN, RD_EST_NONE, NAN};
         out->stats.error_estimate = out->estimates.pressure;
         unsettled(out);
         memset(&run.level[0], 0, sizeof run.level[0]);

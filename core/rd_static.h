@@ -139,9 +139,8 @@ typedef struct rd_contact_estimates {
      * none), and which part (RD_EST_*) */
     double pressure_at_deg;
     int pressure_source;
-    double pressure_levels;        /* of the pressure's: half the bins' largest change between the
+    double pressure_levels; /* of the pressure's: half the bins' largest change between the
                                levels, / p0 (the part the bin-boundary shares do not hold) */
-    double pressure_levels_at_deg; /* that bin's middle, deg */
 } rd_contact_estimates;
 
 /* Counters and accuracy common to both analyses. */

@@ -279,10 +279,9 @@ void rd_contact_gaps(const double *ts, const double *cs, int n, const double *t,
                      rd_contact_result *out);
 void rd_contact_bins(const double *seg_deg, const double *force, const double *at_deg, int n,
                      double h_ro, const rd_contact_result *gaps, rd_contact_result *out);
-/* Segment i's arc, deg: 360 / n where the segments are alike (as the
- * estimates were measured), its own where graded; the arc of the segment
- * nearest the angle a (deg). */
-double rd_contact_seg_deg(const rd_contact_result *r, int i);
+/* The arc of the segment nearest the angle a (deg): 360 / n where the
+ * segments are alike (as the estimates were measured), its own where
+ * graded. */
 double rd_contact_width_at(const rd_contact_result *r, double a);
 /* Arcs (deg) where a graded level should be finer: around each bin
  * boundary that a gap edge or a narrow patch of f may lie across, where the
