@@ -50,9 +50,21 @@
  * comparable to its own, not 1e-10 m), then the smoothing brought down to
  * eps geometrically; measured: half the Newton iterations of the unsmoothed
  * path on the hard bores of bench_static --battery, the answer unchanged
- * within the residual tolerance. */
+ * within the residual tolerance.  EPS_WIDE 1e4 since 0.3.8 (1e3 before):
+ * the first level's path (n = 20, rigid faces) crept through the bore's
+ * part in steps of 0.002 at 7-9 Newton iterations each (its step grows only
+ * below 7), and was a quarter of a bore's CPU; the load steps' Newton
+ * iterations over bench_static's three rings' batteries (all levels, the
+ * failed tries counted) 12318, 19134, 13173 at 1e3; 7761, 8775, 7419 at
+ * 1e4; 7386, 7425, 6921 at 3e4 and 8124, 9042, 7545 at 1e5, where the
+ * finer levels, whose warm starts take the smoothing down from EPS_WIDE,
+ * begin to need more (1404 at n >= 160 at 1e3, 1410 at 1e4, 1443 at 3e4,
+ * each up to 64 times a first level's); the same targets met and the same
+ * estimates tracking on all three.  Instructions of rd_contact_solve
+ * (callgrind, bench_contact_cost): order 2 at 2.8 x, 17 deg 1.63 -> 1.51 G,
+ * order 4 at 10 x, 17 deg 1.74 -> 1.66 G. */
 #define BORE_DONE 0.8
-#define EPS_WIDE  1000.0
+#define EPS_WIDE  1e4
 
 static double bore_factor(const rd_static_problem *pb)
 {
@@ -623,7 +635,25 @@ static int warm_save(const rd_static_problem *pb, rd_contact_warm *w)
 /* The state of pb interpolated (linearly in the angle, extrapolated past
  * the end segments) from a coarser level's shape.  The contact is planar
  * (in-plane loads, the support holding the axial motion and the tilts), so
- * a turn about the axis is the whole rotation. */
+ * a turn about the axis is the whole rotation.
+ *
+ * The multipliers too (since 0.3.8), where the coarser level's faces were
+ * as these: each is a pressure (the law's pressure at zero penetration),
+ * so a segment's is interpolated in the angle as the shape (held at the
+ * end segments' past them) and a free end's tip keeps its own.  Started
+ * from zero, each level's updates (rd_static.c's uzawa, a rate near 1 on
+ * fine chains) rebuilt them: 44 updates at n = 1280 on order 6 at 10 x, 0
+ * deg, now 32.  Instructions of rd_contact_solve (callgrind,
+ * bench_contact_cost K A PHASE): orders 4, 2, 6, 3 at 10, 2.8, 10, 3 x,
+ * 17, 17, 0, 17 deg: 1.89, 1.87, 1.87, 1.64 G -> 1.74, 1.63, 1.54, 1.41;
+ * bench_contact_cost --battery: the finest levels' Newton iterations 908
+ * -> 744; bench_static --battery: the same targets met and the same
+ * estimates tracking (the bins move within the updates' tolerance), and
+ * on three rings' random bores (seeds 51-55) met 419 -> 421, met but
+ * outside a target 2 either way.  The tips' multipliers scaled by the end
+ * segments' arcs (a concentrated force over a point's area) tracked
+ * worse: 23 of the battery's pressure estimates against 25. */
+#define FACES_ALIKE(w, pb) ((w)->n >= RD_CONTACT_FACE_MIN_SEGMENTS || !(pb)->cp0)
 static void warm_start(rd_static_problem *pb, const rd_contact_warm *w)
 {
     for (int i = 0, j = 0; i < pb->n; i++) {
@@ -641,7 +671,13 @@ static void warm_start(rd_static_problem *pb, const rd_contact_warm *w)
         x[2] = P[2];
         double R[9] = {cos(rz), -sin(rz), 0, sin(rz), cos(rz), 0, 0, 0, 1};
         memcpy(Q, R, sizeof R);
+        if (w->mult && FACES_ALIKE(w, pb)) { /* held past the end segments */
+            double tm = fmin(1.0, fmax(0.0, t));
+            pb->mult[i] = w->mult[j] + tm * (w->mult[j + 1] - w->mult[j]);
+        }
     }
+    if (w->mult && FACES_ALIKE(w, pb) && w->n_mult == w->n + 2 && pb->tip_mult)
+        pb->mult[pb->n] = w->mult[w->n], pb->mult[pb->n + 1] = w->mult[w->n + 1];
     /* the bore in place, the law still wide: the path's last part; or, at
      * the same n (the same level with another law), the solved state with
      * its multipliers, at the full load */
@@ -655,8 +691,7 @@ static void warm_start(rd_static_problem *pb, const rd_contact_warm *w)
      * = 320, 640 and 1280, 1.0 s CPU; from the hint, at 320 only, 0.57 s,
      * the answer the same within the solver's tolerances); the battery's
      * flexible levels take their whole step and do not change. */
-    int same_faces = w->n >= RD_CONTACT_FACE_MIN_SEGMENTS || !pb->cp0;
-    pb->step_start = same_faces ? w->step : 0.0;
+    pb->step_start = FACES_ALIKE(w, pb) ? w->step : 0.0;
     int same = w->n == pb->n && w->n_mult == pb->n + 2;
     for (int i = 0; same && i < pb->n; i++) /* and the same segments (graded) */
         same = w->ang[i] == rd_ring_get_segment_angle(pb->ring, i);
