@@ -370,6 +370,15 @@ static void unsettled_note(const rd_ring_params *p)
         }
 }
 
+/* Largest bin difference of a and b, / p0. */
+static double bins_apart(const rd_contact_result *a, const rd_contact_result *b)
+{
+    double d = 0.0;
+    for (int k = 0; k < RD_CONTACT_BINS; k++)
+        d = fmax(d, fabs(a->bin_pressure[k] - b->bin_pressure[k]) / a->uniform_pressure);
+    return d;
+}
+
 /* The multipliers' (Uzawa) updates converge: order 3 at 3 x the bound,
  * 17 deg, n = 640 from the load path, is bench_static's hardest at that n.
  * The plain update converges linearly at 0.95-0.96 a step there: from the
@@ -405,9 +414,7 @@ static void test_uzawa(void)
         rd_contact_warm_free(&w);
         return;
     }
-    double d = 0.0;
-    for (int b = 0; b < RD_CONTACT_BINS; b++)
-        d = fmax(d, fabs(c.bin_pressure[b] - r.bin_pressure[b]) / c.uniform_pressure);
+    double d = bins_apart(&c, &r);
     CHECK(d < 0.01, "solved again from its own state: bins %.4f p0 apart", d);
     printf("Uzawa at n = 640: %d updates; solved again, %d more, the bins %.2e p0 apart\n",
            c.stats.outer_iterations, r.stats.outer_iterations, d);
@@ -418,15 +425,6 @@ static void test_uzawa(void)
     rd_contact_result_cleanup(&r);
     rd_contact_warm_free(&w);
     unsettled_note(&p);
-}
-
-/* Largest bin difference of a and b, / p0. */
-static double bins_apart(const rd_contact_result *a, const rd_contact_result *b)
-{
-    double d = 0.0;
-    for (int k = 0; k < RD_CONTACT_BINS; k++)
-        d = fmax(d, fabs(a->bin_pressure[k] - b->bin_pressure[k]) / a->uniform_pressure);
-    return d;
 }
 
 /* A level started from the one below (since 0.3.8) takes its multipliers
@@ -623,9 +621,7 @@ static double gaps_move(const rd_contact_result *a, const rd_contact_result *b)
  * limit, so they may differ by no more than the two estimates together. */
 static void check_starts_agree(const rd_contact_result *a, const rd_contact_result *b)
 {
-    double dp = 0.0;
-    for (int k = 0; k < RD_CONTACT_BINS; k++)
-        dp = fmax(dp, fabs(a->bin_pressure[k] - b->bin_pressure[k]) / a->uniform_pressure);
+    double dp = bins_apart(a, b);
     const rd_contact_estimates *ea = &a->estimates, *eb = &b->estimates;
     double df = fabs(a->contact_fraction - b->contact_fraction);
     double dg = fabs(a->max_clearance - b->max_clearance), de = gaps_move(a, b);
@@ -711,9 +707,7 @@ static void test_stiffness(void)
         rd_contact_result_cleanup(&a);
         return;
     }
-    double dp = 0;
-    for (int k = 0; k < RD_CONTACT_BINS; k++)
-        dp = fmax(dp, fabs(a.bin_pressure[k] - b.bin_pressure[k]) / a.uniform_pressure);
+    double dp = bins_apart(&a, &b);
     CHECK(a.stats.segments == b.stats.segments, "same level: %d, %d", a.stats.segments,
           b.stats.segments);
     CHECK(dp <= a.estimates.pressure, "bins move %g p0, estimate %g", dp, a.estimates.pressure);
