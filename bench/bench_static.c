@@ -44,6 +44,8 @@
  *       exact reference: the targets, the bores reporting the target met
  *       while outside one, CPU, and the estimates against the true errors
  *       counted as the battery's (the battery's out-of-sample check).
+ *   bench_static --random SEED N I  the same set's bore I (1..N) alone,
+ *       then its bins against the reference's as --bins prints them.
  *   --kx F (with the same): the contact stiffness F times its default.
  *   --ring D,B,H,FT (with the same): another ring (diameter, radial width,
  *       axial height in m, tangential force in N; the rest the default's).
@@ -448,8 +450,10 @@ static const char *source_name(int source)
 /* --random SEED N: N random bores (one or two orders from 2 to 8, each
  * 0.1 to 10 x its bound log-uniformly, capped at 0.4 % of d shared, any
  * phase; kept convex) at default settings against the exact reference,
- * one line a bore and the counts: the battery's out-of-sample check. */
-static void random_bores(const rd_ring_params *p, unsigned long long seed, int count)
+ * one line a bore and the counts: the battery's out-of-sample check;
+ * only bore `only` of them if it is over 0. */
+static void bins_of(const rd_ring_params *p, const rd_contact_opts *bore, int fixed_n);
+static void random_bores(const rd_ring_params *p, unsigned long long seed, int count, int only)
 {
     int ok[4] = {0}, met = 0, met_off = 0, slow = 0, track[4] = {0}, under[4] = {0},
         over[4][2] = {0};
@@ -468,6 +472,8 @@ static void random_bores(const rd_ring_params *p, unsigned long long seed, int c
         if (convex > 0.45 * p->diameter)
             continue;
         t++;
+        if (only > 0 && t != only)
+            continue;
         ref_result r;
         rd_contact_result c;
         rd_static_opts so;
@@ -526,6 +532,8 @@ static void random_bores(const rd_ring_params *p, unsigned long long seed, int c
             dp, c.estimates.pressure, source_name(c.estimates.pressure_source),
             c.estimates.pressure_at_deg);
         rd_contact_result_cleanup(&c);
+        if (only > 0)
+            bins_of(p, &o, 0);
     }
     printf("\n%d bores. Within the targets: contact fraction %d, largest gap %d, edges %d, binned "
            "pressure %d. Target met: %d, of them outside a target: %d. CPU over 0.2 s: %d, "
@@ -539,14 +547,15 @@ static void random_bores(const rd_ring_params *p, unsigned long long seed, int c
            over[3][1]);
 }
 
-/* One battery bore (order k, amplitude fac x the bound, phase deg) at
- * default settings (or at fixed_n segments without refinement, if > 0):
- * each bin's pressure against the reference's, the tip forces, the light
- * gaps, and the segments of the worst bin (what dominates its error). */
-static void bins_one(const rd_ring_params *p, int k, double fac, double phase, int fixed_n)
+/* One bore at default settings (or at fixed_n segments without
+ * refinement, if > 0): each bin's pressure against the reference's, the
+ * tip forces, the light gaps, and the segments of the worst bin (what
+ * dominates its error).  bins_one: the battery's bore of order k,
+ * amplitude fac x the bound, phase deg. */
+static void bins_of(const rd_ring_params *p, const rd_contact_opts *bore, int fixed_n)
 {
     double p0 = 2 * p->tangential_force / (p->diameter * p->axial_height);
-    rd_contact_opts o = battery_bore(p, k, fac, phase, NULL);
+    rd_contact_opts o = *bore;
     ref_result r;
     rd_contact_result c;
     rd_static_opts so;
@@ -593,6 +602,12 @@ static void bins_one(const rd_ring_params *p, int k, double fac, double phase, i
         printf("  | %.3f..%.3f %.3e\n", r.gaps[g].start_deg, r.gaps[g].end_deg,
                r.gaps[g].max_clearance);
     rd_contact_result_cleanup(&c);
+}
+
+static void bins_one(const rd_ring_params *p, int k, double fac, double phase, int fixed_n)
+{
+    rd_contact_opts o = battery_bore(p, k, fac, phase, NULL);
+    bins_of(p, &o, fixed_n);
 }
 
 static void dump_arr(const char *name, const double *a, int n, double scale)
@@ -790,8 +805,8 @@ int main(int argc, char **argv)
         dump_battery(&p);
         return 0;
     }
-    if (argc == 4 && strcmp(argv[1], "--random") == 0) {
-        random_bores(&p, strtoull(argv[2], NULL, 10), atoi(argv[3]));
+    if ((argc == 4 || argc == 5) && strcmp(argv[1], "--random") == 0) {
+        random_bores(&p, strtoull(argv[2], NULL, 10), atoi(argv[3]), argc == 5 ? atoi(argv[4]) : 0);
         return 0;
     }
     if (argc == 2 && strcmp(argv[1], "--battery") == 0) {

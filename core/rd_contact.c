@@ -228,6 +228,11 @@ double rd_contact_eps(const rd_static_problem *pb)
     return eps_now(pb);
 }
 
+void rd_contact_law_again(const rd_static_problem *pb, int o, int k, double e, rd_contact_eval *pe)
+{
+    law_and_slope(pb, pe->delta, mult_of(pb, o, k), e, &pe->p, &pe->dp);
+}
+
 void rd_contact_point(const rd_static_problem *pb, int o, int k, const double y[3], double e,
                       rd_contact_eval *pe)
 {
@@ -238,6 +243,8 @@ void rd_contact_point(const rd_static_problem *pb, int o, int k, const double y[
     bore_at(pb, y, rho, &rb, &drb);
     pe->delta = rho - rb;
     law_and_slope(pb, pe->delta, mult_of(pb, o, k), e, &pe->p, &pe->dp);
+    if (!rd_contact_presses(pe))
+        return; /* no force: its normal is never read */
     /* grad(delta) = e_rho - r_b'/rho e_theta */
     n[0] = y[0] / rho + drb / rho * y[1] / rho;
     n[1] = y[1] / rho - drb / rho * y[0] / rho;
@@ -302,8 +309,8 @@ static int contact_setup(rd_static_problem *pb, const rd_ring_params *p, const r
     /* held: tangential (y at 180 deg), axial, tilts; free: radial, in-plane turn */
     double mask[6] = {0, 1, 1, 1, 1, 0};
     memcpy(pb->mask, mask, sizeof mask);
-    /* cp, then cp0 and the face's cache */
-    pb->cp = malloc(((size_t)6 * n * m + 15 * (size_t)n) * sizeof *pb->cp);
+    /* cp, then cp0, the face's caches and the points' areas */
+    pb->cp = malloc(((size_t)6 * n * m + 16 * (size_t)n) * sizeof *pb->cp);
     pb->mult = calloc((size_t)n + 2, sizeof *pb->mult);
     pb->pe = malloc((size_t)n * m * sizeof *pb->pe);
     /* flexible faces: each free end's very tip has a multiplier of its own
@@ -320,6 +327,7 @@ static int contact_setup(rd_static_problem *pb, const rd_ring_params *p, const r
     if (!pb->cp || !pb->mult || !pb->pe)
         return RD_ENOMEM;
     pb->area = pb->cp + (size_t)6 * n * m + 14 * (size_t)n;
+    pb->face_rz = pb->area + n;
     for (int i = 0; i < n; i++) {
         double phi = rd_ring_segment_phi_at(ring, i);
         pb->area[i] = pb->h * pb->r_o * phi / m;

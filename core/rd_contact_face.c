@@ -45,7 +45,7 @@
 
 /* Joint j's values v = (kap, gam) and their derivatives by the planar DOFs
  * (dx, dy, dpsi_z) of its segments j (dA) and j + 1 (dB); zero past the
- * ends. */
+ * ends.  The segments' turns from pb->face_rz (rd_contact_face_update). */
 static void joint_face(const rd_static_problem *pb, int j, double v[2], double dA[2][3],
                        double dB[2][3])
 {
@@ -57,14 +57,13 @@ static void joint_face(const rd_static_problem *pb, int j, double v[2], double d
     /* the arc between the two segments' middles */
     double L = pb->R * 0.5 *
                (rd_ring_segment_phi_at(pb->ring, j) + rd_ring_segment_phi_at(pb->ring, j + 1));
-    const double *A = pb->Q + 9 * j, *B = pb->Q + 9 * (j + 1), *d0 = pb->dP0 + 3 * j;
-    const double *xa = pb->x + 3 * j, *xb = pb->x + 3 * (j + 1);
-    double turn = remainder(atan2(B[3], B[0]) - atan2(A[3], A[0]), 2.0 * M_PI);
+    const double *d0 = pb->dP0 + 3 * j, *xa = pb->x + 3 * j, *xb = pb->x + 3 * (j + 1);
+    double turn = remainder(pb->face_rz[j + 1] - pb->face_rz[j], 2.0 * M_PI);
     double d[2] = {xb[0] - xa[0], xb[1] - xa[1]}, dd = d[0] * d[0] + d[1] * d[1];
     double chord = atan2(d0[0] * d[1] - d0[1] * d[0], d0[0] * d[0] + d0[1] * d[1]);
     double len = sqrt(dd), len0 = hypot(d0[0], d0[1]), e = (len / len0 - 1.0) / pb->R;
     v[0] = turn / L - e;
-    v[1] = chord - atan2(A[3], A[0]) - 0.5 * turn;
+    v[1] = chord - pb->face_rz[j] - 0.5 * turn;
     dA[0][0] = d[0] / (len * len0 * pb->R), dA[0][1] = d[1] / (len * len0 * pb->R);
     dB[0][0] = -dA[0][0], dB[0][1] = -dA[0][1];
     dA[0][2] = -1.0 / L;
@@ -151,6 +150,10 @@ void rd_contact_face_update(const rd_static_problem *pb)
         return;
     face_w fw = {.phi = -1.0};
     double wend[4];
+    /* each segment's turn once (joint_face reads two a joint: the atan2
+     * calls were 5 % of a contact solve's instructions) */
+    for (int i = 0; i < pb->n; i++)
+        pb->face_rz[i] = atan2(pb->Q[9 * i + 3], pb->Q[9 * i]);
     for (int j = 0; j < pb->n - 1; j++) {
         double *f = pb->face + 14 * j;
         joint_face(pb, j, f, (double(*)[3])(f + 2), (double(*)[3])(f + 8));
@@ -238,7 +241,11 @@ void rd_contact_segment_load(const rd_static_problem *pb, int i, const double *x
     }
 }
 
-void rd_contact_loads(const rd_static_problem *pb, double *r)
+/* rd_contact_loads (again 0) and rd_contact_loads_again (1): a point that
+ * pressed keeps the place, normal and face terms point_at found for it
+ * and has its law evaluated again; one that did not is evaluated whole if
+ * it presses now (its geometry was never filled). */
+static void loads(const rd_static_problem *pb, double *r, int again)
 {
     double e = rd_contact_eps(pb), wend[4];
     face_w fw = {.phi = -1.0};
@@ -248,11 +255,25 @@ void rd_contact_loads(const rd_static_problem *pb, double *r)
                          o < pb->n - 1 ? r + 6 * (o + 1) : NULL};
         for (int k = 0; k < pb->m; k++) {
             rd_contact_eval *pe = pb->pe + pb->m * o + k;
-            point_at(pb, o, k, pb->x + 3 * o, pb->Q + 9 * o, e, end_weights(pb, o, wk[k], wend),
-                     pe);
+            int kept = again && rd_contact_presses(pe);
+            if (again)
+                rd_contact_law_again(pb, o, k, e, pe);
+            if (!kept && (!again || rd_contact_presses(pe)))
+                point_at(pb, o, k, pb->x + 3 * o, pb->Q + 9 * o, e, end_weights(pb, o, wk[k], wend),
+                         pe);
             point_load(pb, o, pe, -1.0, fb);
         }
     }
+}
+
+void rd_contact_loads(const rd_static_problem *pb, double *r)
+{
+    loads(pb, r, 0);
+}
+
+void rd_contact_loads_again(const rd_static_problem *pb, double *r)
+{
+    loads(pb, r, 1);
 }
 
 const int rd_face_dof_seg[RD_FACE_DOFS] = {0, 0, 0, 1, 1, 1, 1, 1, 1, 2, 2, 2};

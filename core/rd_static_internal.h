@@ -102,6 +102,7 @@ typedef struct rd_static_problem {
     double *cp;          /* 3 per point: body offsets (the flexible face's, rd_contact.c) */
     double *cp0;         /* 3 per point: the rigid face's offsets, in cp's block (NULL: cp rigid) */
     double *face;        /* 14 per joint: rd_contact_face.c's cache, in cp's block */
+    double *face_rz;     /* per segment: its turn about the axis (the same cache) */
     double *mult;        /* per point: the augmented Lagrangian's multiplier, Pa (NULL: none) */
     rd_contact_eval *pe; /* m n: each point at the last rd_contact_loads */
     int tip_mult;        /* mult[n], mult[n + 1]: the free ends' very tips their own */
@@ -190,6 +191,11 @@ void rd_contact_segment_load(const rd_static_problem *pb, int i, const double *x
 /* The same for every segment at pb's state, subtracted from r (6n); each
  * point's evaluation kept in pb->pe for the derivatives below. */
 void rd_contact_loads(const rd_static_problem *pb, double *r);
+/* The same where only the multipliers changed since the last
+ * rd_contact_loads (the state and the load factor as then): each point's
+ * law again at its kept penetration, bit for bit what rd_contact_loads
+ * would give, without the points' geometry (rd_static.c's uzawa). */
+void rd_contact_loads_again(const rd_static_problem *pb, double *r);
 /* Does the point press (its law or slope not exactly 0)?  Those that do not
  * add nothing to the loads or their derivatives. */
 static inline int rd_contact_presses(const rd_contact_eval *pe)
@@ -206,11 +212,13 @@ void rd_contact_segment_jacobian(const rd_static_problem *pb, int i, double J[36
 void rd_contact_follow_bore(rd_static_problem *pb, double l0, double l1);
 /* rd_contact.c: the law's smoothing length at the current load factor; at
  * the point y of segment o, pe's delta, the law p and its slope dp (its
- * multiplier's shift included) and n = grad(delta), the bore's outward
- * normal (|n| ~1). */
+ * multiplier's shift included) and, where it presses, n = grad(delta), the
+ * bore's outward normal (|n| ~1). */
 double rd_contact_eps(const rd_static_problem *pb);
 void rd_contact_point(const rd_static_problem *pb, int o, int k, const double y[3], double e,
                       rd_contact_eval *pe);
+/* pe's law and slope again at its kept delta (the multiplier changed). */
+void rd_contact_law_again(const rd_static_problem *pb, int o, int k, double e, rd_contact_eval *pe);
 /* rd_contact_face.c: each contact point's offset cp set to the rigid face's
  * cp0 moved outward by the ring's bending and shear over its segment, from
  * the current state (nothing when cp0 is NULL). */

@@ -10,6 +10,8 @@
  *    segment to its neighbours) against central differences of the load
  *    with the face recomputed at each perturbed state;
  *  - points off the bore skipped exactly where the law is 0;
+ *  - the loads after a change of the multipliers alone (the law again at
+ *    each point's kept penetration) bit for bit the whole evaluation's;
  *  - the tangent assembled straight into its in-plane and out-of-plane
  *    halves equal to the whole tangent, entry by entry;
  *  - the binned pressure away from gap edges and free ends against the
@@ -36,7 +38,7 @@ typedef struct setup {
     rd_contact_opts o;
     rd_ring *ring;
     rd_static_problem pb;
-    double cp[6 * N * M + 14 * N], mult[N], r[6 * N], area[N];
+    double cp[6 * N * M + 14 * N], mult[N], r[6 * N], area[N], face_rz[N];
     rd_contact_eval pe[N * M];
 } setup;
 
@@ -66,6 +68,7 @@ static int setup_make(setup *s)
     /* bore_at's cos, sin of k phi_k (contact_setup's) */
     pb->bore_phase[0] = cos(3 * 17.0 * PI / 180), pb->bore_phase[1] = sin(3 * 17.0 * PI / 180);
     pb->cp = s->cp, pb->cp0 = s->cp + 3 * N * M, pb->face = s->cp + 6 * N * M;
+    pb->face_rz = s->face_rz;
     pb->mult = s->mult, pb->pe = s->pe;
     for (int i = 0; i < N; i++) {
         const double *P = rd_ring_reference_point(s->ring, i);
@@ -324,6 +327,58 @@ static void test_far_points(void)
     setup_free(&s);
 }
 
+/* rd_contact_loads_again (rd_static.c's uzawa: the residual after the
+ * multipliers' update, the state unchanged) against a whole
+ * rd_contact_loads at the same state and multipliers: the loads and every
+ * point's law, slope and (where it presses) geometry bit for bit, with
+ * points that start pressing (their multiplier raised past the law's
+ * underflow: their geometry was never filled) and points that stop. */
+static void test_loads_again(void)
+{
+    setup s;
+    CHECK(setup_make(&s), "setup");
+    rd_static_problem *pb = &s.pb;
+    /* bent faces on the bore; then 40 to 800 eps off it (the faces bent
+     * by the steps: their points 2000 eps either side), with multipliers
+     * of 500 eps k */
+    for (int i = 0; i < N; i++) {
+        on_bore(&s, i, i < 20 ? 3 * pb->eps * sin(7.0 * i) : -40.0 * (i - 19) * pb->eps,
+                i < 20 ? 2e-8 * cos(5.0 * i) : 0.0);
+        s.mult[i] += i < 20 ? 0.0 : 500.0 * pb->eps * pb->k;
+    }
+    rd_contact_face_update(pb);
+    memset(s.r, 0, sizeof s.r);
+    rd_contact_loads(pb, s.r);
+    char was[N * M];
+    for (int q = 0; q < N * M; q++)
+        was[q] = (char)rd_contact_presses(&s.pe[q]);
+    for (int i = 0; i < N; i++) /* raised by 200 eps k on odd segments, 0 on even */
+        s.mult[i] = i % 2 ? s.mult[i] + 200.0 * pb->eps * pb->k : 0.0;
+    double again[6 * N] = {0};
+    rd_contact_loads_again(pb, again);
+    rd_contact_eval kept[N * M];
+    memcpy(kept, s.pe, sizeof kept);
+    memset(s.r, 0, sizeof s.r);
+    rd_contact_loads(pb, s.r);
+    int start = 0, stop = 0, differ = 0;
+    for (int q = 0; q < N * M; q++) {
+        const rd_contact_eval *a = &kept[q], *b = &s.pe[q];
+        int now = rd_contact_presses(b);
+        start += now && !was[q];
+        stop += was[q] && !now;
+        differ += a->delta != b->delta || a->p != b->p || a->dp != b->dp;
+        if (now)
+            differ += memcmp(a->arm, b->arm, sizeof a->arm) || memcmp(a->n, b->n, sizeof a->n) ||
+                      a->nn != b->nn || memcmp(a->dyu, b->dyu, sizeof a->dyu) ||
+                      memcmp(a->du, b->du, sizeof a->du);
+    }
+    CHECK(start > 0 && stop > 0, "the case misses its point: %d points start pressing, %d stop",
+          start, stop);
+    CHECK(differ == 0, "%d points evaluated unlike the whole evaluation", differ);
+    CHECK(memcmp(again, s.r, sizeof again) == 0, "the loads differ from the whole evaluation's");
+    setup_free(&s);
+}
+
 /* Whole tangent t against its halves part[2] (rd_static.c's in-plane
  * DOFs 0, 1, 5 and out-of-plane 2, 3, 4 of each segment of a block): the
  * number of entries where a half differs from the whole, or the whole
@@ -542,6 +597,7 @@ int main(void)
     test_bent_ring();
     test_face_jacobian();
     test_far_points();
+    test_loads_again();
     test_planar_tangent();
     test_against_reference();
     test_tip_force();
