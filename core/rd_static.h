@@ -188,7 +188,7 @@ typedef struct rd_contact_result {
     double *clearance;       /* closest approach of its points to the bore, m (<= 0: touching) */
     double *bore_radius;     /* bore radius at the segment's middle, m */
     double *width_deg;       /* the segment's arc on the ring, deg: all alike unless the
-                                refinement graded them (rd_contact_opts.local_refinement) */
+                                refinement graded them (grade_* below) */
     double mean_pressure;    /* mean of the segment pressures over their arcs, Pa */
     double uniform_pressure; /* 2 F_t / (d h) (1.3), Pa */
     double contact_fraction; /* contact length / running-face length (point clearances,
