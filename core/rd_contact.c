@@ -97,8 +97,8 @@ static void bore_radius(const rd_static_problem *pb, double theta, double *r, do
  * without trigonometry: cos k theta + i sin k theta = ((y0 + i y1) /
  * rho)^k, turned by the precomputed cos, sin of k phi_k (5-9 % of a
  * distorted bore's solve, callgrind). */
-static void bore_at(const rd_static_problem *pb, const double y[3], double rho, double *r,
-                    double *dr)
+static void bore_at(const rd_static_problem *pb, const double y[3], double rho, double mu,
+                    double *r, double *dr)
 {
     double c = y[0] / rho, s = y[1] / rho;
     double a = pb->bore_dr, da = 0.0;
@@ -114,7 +114,6 @@ static void bore_at(const rd_static_problem *pb, const double y[3], double rho, 
         a += d->amplitude * (ck * cp + sk * sp);
         da -= d->amplitude * d->order * (sk * cp - ck * sp);
     }
-    double mu = bore_factor(pb);
     *r = pb->r_o + mu * a;
     *dr = mu * da;
 }
@@ -223,9 +222,9 @@ static void law_and_slope(const rd_static_problem *pb, double delta, int i, doub
     }
 }
 
-double rd_contact_eps(const rd_static_problem *pb)
+rd_contact_at rd_contact_now(const rd_static_problem *pb)
 {
-    return eps_now(pb);
+    return (rd_contact_at){eps_now(pb), bore_factor(pb)};
 }
 
 void rd_contact_law_again(const rd_static_problem *pb, int o, int k, double e, rd_contact_eval *pe)
@@ -233,16 +232,16 @@ void rd_contact_law_again(const rd_static_problem *pb, int o, int k, double e, r
     law_and_slope(pb, pe->delta, mult_of(pb, o, k), e, &pe->p, &pe->dp);
 }
 
-void rd_contact_point(const rd_static_problem *pb, int o, int k, const double y[3], double e,
-                      rd_contact_eval *pe)
+void rd_contact_point(const rd_static_problem *pb, int o, int k, const double y[3],
+                      const rd_contact_at *at, rd_contact_eval *pe)
 {
     /* sqrt, not hypot: no overflow or underflow at a ring's size, and
      * glibc's hypot was 3 % of a contact solve's instructions (callgrind,
      * order 4 at 10 x, 17 deg: 2.297 -> 2.232 G) */
     double rho = sqrt(y[0] * y[0] + y[1] * y[1]), rb, drb, *n = pe->n;
-    bore_at(pb, y, rho, &rb, &drb);
+    bore_at(pb, y, rho, at->mu, &rb, &drb);
     pe->delta = rho - rb;
-    law_and_slope(pb, pe->delta, mult_of(pb, o, k), e, &pe->p, &pe->dp);
+    law_and_slope(pb, pe->delta, mult_of(pb, o, k), at->e, &pe->p, &pe->dp);
     if (!rd_contact_presses(pe))
         return; /* no force: its normal is never read */
     /* grad(delta) = e_rho - r_b'/rho e_theta */

@@ -175,14 +175,14 @@ void rd_contact_face_update(const rd_static_problem *pb)
 /* Point k of segment o at (x, Q), the law's smoothing e, into pe
  * (rd_contact_eval); w the point's face weights (flexible faces). */
 static void point_at(const rd_static_problem *pb, int o, int k, const double *x, const double *Q,
-                     double e, const double w[4], rd_contact_eval *pe)
+                     const rd_contact_at *at, const double w[4], rd_contact_eval *pe)
 {
     const double *c = pb->cp + 3 * (pb->m * o + k);
     double y[3], u;
     rd_mv3(Q, c, pe->arm);
     for (int q = 0; q < 3; q++)
         y[q] = x[q] + pe->arm[q];
-    rd_contact_point(pb, o, k, y, e, pe);
+    rd_contact_point(pb, o, k, y, at, pe);
     if (!rd_contact_presses(pe))
         return;
     pe->nn = sqrt(rd_dot3(pe->n, pe->n));
@@ -224,7 +224,8 @@ static void point_load(const rd_static_problem *pb, int o, const rd_contact_eval
 void rd_contact_segment_load(const rd_static_problem *pb, int i, const double *x, const double *Q,
                              double f[6])
 {
-    double e = rd_contact_eps(pb), wend[4];
+    rd_contact_at at = rd_contact_now(pb);
+    double wend[4];
     face_w fw = {.phi = -1.0};
     for (int o = i - 1; o <= i + 1; o++) {
         if (o < 0 || o >= pb->n || (o != i && !pb->cp0))
@@ -234,7 +235,7 @@ void rd_contact_segment_load(const rd_static_problem *pb, int i, const double *x
         fb[i - o + 1] = f;
         for (int k = 0; k < pb->m; k++) {
             rd_contact_eval pe;
-            point_at(pb, o, k, o == i ? x : pb->x + 3 * o, o == i ? Q : pb->Q + 9 * o, e,
+            point_at(pb, o, k, o == i ? x : pb->x + 3 * o, o == i ? Q : pb->Q + 9 * o, &at,
                      end_weights(pb, o, wk[k], wend), &pe);
             point_load(pb, o, &pe, 1.0, fb);
         }
@@ -247,7 +248,8 @@ void rd_contact_segment_load(const rd_static_problem *pb, int i, const double *x
  * it presses now (its geometry was never filled). */
 static void loads(const rd_static_problem *pb, double *r, int again)
 {
-    double e = rd_contact_eps(pb), wend[4];
+    rd_contact_at at = rd_contact_now(pb);
+    double wend[4];
     face_w fw = {.phi = -1.0};
     for (int o = 0; o < pb->n; o++) {
         const double(*wk)[4] = face_weights(pb, o, &fw);
@@ -257,10 +259,10 @@ static void loads(const rd_static_problem *pb, double *r, int again)
             rd_contact_eval *pe = pb->pe + pb->m * o + k;
             int kept = again && rd_contact_presses(pe);
             if (again)
-                rd_contact_law_again(pb, o, k, e, pe);
+                rd_contact_law_again(pb, o, k, at.e, pe);
             if (!kept && (!again || rd_contact_presses(pe)))
-                point_at(pb, o, k, pb->x + 3 * o, pb->Q + 9 * o, e, end_weights(pb, o, wk[k], wend),
-                         pe);
+                point_at(pb, o, k, pb->x + 3 * o, pb->Q + 9 * o, &at,
+                         end_weights(pb, o, wk[k], wend), pe);
             point_load(pb, o, pe, -1.0, fb);
         }
     }

@@ -210,13 +210,18 @@ void rd_contact_segment_jacobian(const rd_static_problem *pb, int i, double J[36
 /* The predictor of a load step: each segment moved with the bore under it
  * from load factor l0 to l1. */
 void rd_contact_follow_bore(rd_static_problem *pb, double l0, double l1);
-/* rd_contact.c: the law's smoothing length at the current load factor; at
- * the point y of segment o, pe's delta, the law p and its slope dp (its
+/* rd_contact.c: what every point's evaluation at the current load factor
+ * shares, hoisted out of the points' loop: the law's smoothing length e and
+ * the share mu of the bore's departure from round that is in place; at the
+ * point y of segment o, pe's delta, the law p and its slope dp (its
  * multiplier's shift included) and, where it presses, n = grad(delta), the
  * bore's outward normal (|n| ~1). */
-double rd_contact_eps(const rd_static_problem *pb);
-void rd_contact_point(const rd_static_problem *pb, int o, int k, const double y[3], double e,
-                      rd_contact_eval *pe);
+typedef struct rd_contact_at {
+    double e, mu;
+} rd_contact_at;
+rd_contact_at rd_contact_now(const rd_static_problem *pb);
+void rd_contact_point(const rd_static_problem *pb, int o, int k, const double y[3],
+                      const rd_contact_at *at, rd_contact_eval *pe);
 /* pe's law and slope again at its kept delta (the multiplier changed). */
 void rd_contact_law_again(const rd_static_problem *pb, int o, int k, double e, rd_contact_eval *pe);
 /* rd_contact_face.c: each contact point's offset cp set to the rigid face's
