@@ -172,8 +172,9 @@ void rd_contact_face_update(const rd_static_problem *pb)
     }
 }
 
-/* Point k of segment o at (x, Q), the law's smoothing e, into pe
- * (rd_contact_eval); w the point's face weights (flexible faces). */
+/* Point k of segment o at (x, Q), at the load factor's smoothing and bore
+ * (at), into pe (rd_contact_eval); w the point's face weights (flexible
+ * faces). */
 static void point_at(const rd_static_problem *pb, int o, int k, const double *x, const double *Q,
                      const rd_contact_at *at, const double w[4], rd_contact_eval *pe)
 {

@@ -313,7 +313,8 @@ static int newton_step(rd_static_problem *pb, work *w, int reuse)
  * kept (w->pre), the points' law evaluated again at their kept
  * penetrations (rd_contact_loads_again), the support as before: bit for
  * bit residual's, without the faces, the joints or the points' geometry
- * (a third to a half of a residual's instructions at n = 640-1280). */
+ * (order 6 at 10 x, 0 deg: 0.5 M instructions a call against 2.8 M for the
+ * whole residuals of all its levels; rd_contact_solve 1.54 -> 1.31 G). */
 static void residual_again(const rd_static_problem *pb, work *w)
 {
     memcpy(w->r, w->pre, (size_t)6 * pb->n * sizeof *w->r);
