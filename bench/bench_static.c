@@ -452,7 +452,8 @@ static const char *source_name(int source)
  * phase; kept convex) at default settings against the exact reference,
  * one line a bore and the counts: the battery's out-of-sample check;
  * only bore `only` of them if it is over 0. */
-static void bins_of(const rd_ring_params *p, const rd_contact_opts *bore, int fixed_n);
+static void bins_print(const rd_ring_params *p, const rd_contact_result *c, const ref_result *r,
+                       int estimates);
 static void random_bores(const rd_ring_params *p, unsigned long long seed, int count, int only)
 {
     int ok[4] = {0}, met = 0, met_off = 0, slow = 0, track[4] = {0}, under[4] = {0},
@@ -531,9 +532,9 @@ static void random_bores(const rd_ring_params *p, unsigned long long seed, int c
             dcf, c.estimates.contact_fraction, 100 * dg, 100 * eg, de, c.estimates.gap_edges_deg,
             dp, c.estimates.pressure, source_name(c.estimates.pressure_source),
             c.estimates.pressure_at_deg);
-        rd_contact_result_cleanup(&c);
         if (only > 0)
-            bins_of(p, &o, 0);
+            bins_print(p, &c, &r, 1);
+        rd_contact_result_cleanup(&c);
     }
     printf("\n%d bores. Within the targets: contact fraction %d, largest gap %d, edges %d, binned "
            "pressure %d. Target met: %d, of them outside a target: %d. CPU over 0.2 s: %d, "
@@ -547,15 +548,54 @@ static void random_bores(const rd_ring_params *p, unsigned long long seed, int c
            over[3][1]);
 }
 
-/* One bore at default settings (or at fixed_n segments without
- * refinement, if > 0): each bin's pressure against the reference's, the
- * tip forces, the light gaps, and the segments of the worst bin (what
- * dominates its error).  bins_one: the battery's bore of order k,
- * amplitude fac x the bound, phase deg. */
-static void bins_of(const rd_ring_params *p, const rd_contact_opts *bore, int fixed_n)
+/* One solved bore c against its reference r: each bin's pressure against
+ * the reference's, the tip forces, the light gaps, and the segments of the
+ * worst bin (what dominates its error); with `estimates`, the estimates
+ * and the accuracy note. */
+static void bins_print(const rd_ring_params *p, const rd_contact_result *c, const ref_result *r,
+                       int estimates)
 {
     double p0 = 2 * p->tangential_force / (p->diameter * p->axial_height);
-    rd_contact_opts o = *bore;
+    printf(
+        "n %d, tip forces %.4g %.4g N (reference %.4g %.4g)\n| bin | ringdyn / p0 | reference / p0 "
+        "| error |\n|---|---|---|---|\n",
+        c->points, c->tip_force[0], c->tip_force[1], r->tip_force[0], r->tip_force[1]);
+    int worst = 0;
+    for (int b = 0; b < RD_CONTACT_BINS; b++) {
+        double d = (c->bin_pressure[b] - r->bin_pressure[b]) / p0;
+        if (fabs(d) > fabs(c->bin_pressure[worst] - r->bin_pressure[worst]) / p0)
+            worst = b;
+        printf("| %d | %.4f | %.4f | %+.4f |\n", b, c->bin_pressure[b] / p0,
+               r->bin_pressure[b] / p0, d);
+    }
+    printf("\nsegments around bin %d: angle, pressure / p0, clearance (m)\n", worst);
+    for (int i = 0; i < c->points; i++)
+        if (c->angle_deg[i] > worst * RD_CONTACT_BIN_DEG - 3 &&
+            c->angle_deg[i] < (worst + 1) * RD_CONTACT_BIN_DEG + 3)
+            printf("%.3f %.4f %.3e\n", c->angle_deg[i], c->pressure[i] / p0, c->clearance[i]);
+    if (estimates)
+        printf("estimates at n = %d: pressure %.4f p0 (the law's share %.4f), contact fraction "
+               "%.5f, largest gap %.3e m, edges %.3f deg; %d multiplier updates\n",
+               c->stats.segments, c->estimates.pressure, c->law_share,
+               c->estimates.contact_fraction, c->estimates.max_clearance,
+               c->estimates.gap_edges_deg, c->stats.outer_iterations);
+    if (estimates && c->accuracy_met != 1)
+        printf("accuracy target not met: %s\n", c->accuracy_note);
+    printf("gaps (ringdyn | reference):\n");
+    for (int g = 0; g < c->n_gaps; g++)
+        printf("  %.3f..%.3f %.3e\n", c->gaps[g].start_deg, c->gaps[g].end_deg,
+               c->gaps[g].max_clearance);
+    for (int g = 0; g < r->n_gaps; g++)
+        printf("  | %.3f..%.3f %.3e\n", r->gaps[g].start_deg, r->gaps[g].end_deg,
+               r->gaps[g].max_clearance);
+}
+
+/* The battery's bore of order k, amplitude fac x the bound, phase deg, at
+ * default settings (or at fixed_n segments without refinement, if > 0),
+ * printed by bins_print. */
+static void bins_one(const rd_ring_params *p, int k, double fac, double phase, int fixed_n)
+{
+    rd_contact_opts o = battery_bore(p, k, fac, phase, NULL);
     ref_result r;
     rd_contact_result c;
     rd_static_opts so;
@@ -570,44 +610,8 @@ static void bins_of(const rd_ring_params *p, const rd_contact_opts *bore, int fi
     }
     if (rd_contact_solve(p, fixed_n > 0 ? fixed_n : 20, &o, &so, NULL, &c, &err) != RD_OK)
         die("bins", &err);
-    printf(
-        "n %d, tip forces %.4g %.4g N (reference %.4g %.4g)\n| bin | ringdyn / p0 | reference / p0 "
-        "| error |\n|---|---|---|---|\n",
-        c.points, c.tip_force[0], c.tip_force[1], r.tip_force[0], r.tip_force[1]);
-    int worst = 0;
-    for (int b = 0; b < RD_CONTACT_BINS; b++) {
-        double d = (c.bin_pressure[b] - r.bin_pressure[b]) / p0;
-        if (fabs(d) > fabs(c.bin_pressure[worst] - r.bin_pressure[worst]) / p0)
-            worst = b;
-        printf("| %d | %.4f | %.4f | %+.4f |\n", b, c.bin_pressure[b] / p0, r.bin_pressure[b] / p0,
-               d);
-    }
-    printf("\nsegments around bin %d: angle, pressure / p0, clearance (m)\n", worst);
-    for (int i = 0; i < c.points; i++)
-        if (c.angle_deg[i] > worst * RD_CONTACT_BIN_DEG - 3 &&
-            c.angle_deg[i] < (worst + 1) * RD_CONTACT_BIN_DEG + 3)
-            printf("%.3f %.4f %.3e\n", c.angle_deg[i], c.pressure[i] / p0, c.clearance[i]);
-    if (fixed_n <= 0)
-        printf("estimates at n = %d: pressure %.4f p0 (the law's share %.4f), contact fraction "
-               "%.5f, largest gap %.3e m, edges %.3f deg; %d multiplier updates\n",
-               c.stats.segments, c.estimates.pressure, c.law_share, c.estimates.contact_fraction,
-               c.estimates.max_clearance, c.estimates.gap_edges_deg, c.stats.outer_iterations);
-    if (fixed_n <= 0 && c.accuracy_met != 1)
-        printf("accuracy target not met: %s\n", c.accuracy_note);
-    printf("gaps (ringdyn | reference):\n");
-    for (int g = 0; g < c.n_gaps; g++)
-        printf("  %.3f..%.3f %.3e\n", c.gaps[g].start_deg, c.gaps[g].end_deg,
-               c.gaps[g].max_clearance);
-    for (int g = 0; g < r.n_gaps; g++)
-        printf("  | %.3f..%.3f %.3e\n", r.gaps[g].start_deg, r.gaps[g].end_deg,
-               r.gaps[g].max_clearance);
+    bins_print(p, &c, &r, fixed_n <= 0);
     rd_contact_result_cleanup(&c);
-}
-
-static void bins_one(const rd_ring_params *p, int k, double fac, double phase, int fixed_n)
-{
-    rd_contact_opts o = battery_bore(p, k, fac, phase, NULL);
-    bins_of(p, &o, fixed_n);
 }
 
 static void dump_arr(const char *name, const double *a, int n, double scale)

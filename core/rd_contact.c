@@ -241,7 +241,7 @@ void rd_contact_point(const rd_static_problem *pb, int o, int k, const double y[
     double rho = sqrt(y[0] * y[0] + y[1] * y[1]), rb, drb, *n = pe->n;
     bore_at(pb, y, rho, at->mu, &rb, &drb);
     pe->delta = rho - rb;
-    law_and_slope(pb, pe->delta, mult_of(pb, o, k), at->e, &pe->p, &pe->dp);
+    rd_contact_law_again(pb, o, k, at->e, pe);
     if (!rd_contact_presses(pe))
         return; /* no force: its normal is never read */
     /* grad(delta) = e_rho - r_b'/rho e_theta */

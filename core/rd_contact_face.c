@@ -27,8 +27,8 @@
  *   gam_j = (turn of the chord x_(j+1) - x_j) - (rz_j + rz_(j+1)) / 2,
  * L_j = R (phi_j + phi_(j+1)) / 2 the arc between the two middles (R phi
  * on equal segments; a graded ring's segments each have their own phi and
- * L, so their points' weights too, face_weights); at a free end kap = 0 (no moment on the gap face) and gam is the inner
- * joint's.  u depends on the planar DOFs (dx, dy, dpsi_z) of segments
+ * L, so their points' weights too, face_weights); at a free end kap = 0
+ * (no moment on the gap face) and gam is the inner joint's.  u depends on the planar DOFs (dx, dy, dpsi_z) of segments
  * i - 1, i, i + 1 (face_du); the face's block of the contact loads'
  * derivative (rd_contact_face_jacobian) puts that into the tangent, so
  * Newton sees the face it solves with.
