@@ -179,6 +179,11 @@ static int contact_accuracy(json_t *out, const rd_contact_result *res)
     /* the contact law's part of error_estimates.pressure (of p0): twice the
      * bins' move at twice contact.stiffness; null when not solved */
     bad |= json_object_set_new(num, "pressure_law_share", rd_result_real(res->law_share));
+    /* the levels' part of it from the pair solved again on shifted meshes
+     * (since 0.3.10); null without an estimate */
+    bad |= json_object_set_new(num, "pressure_shifted_meshes",
+                               res->accuracy_met < 0 ? json_null()
+                                                     : json_boolean(e->pressure_shifted));
     /* where the pressure's estimate's largest part is, and what it is */
     const char *source = rd_contact_est_source_name(e->pressure_source);
     bad |= json_object_set_new(num, "pressure_estimate_at_deg",
@@ -214,10 +219,17 @@ static json_t *contact_result(const rd_scene *scene, const rd_contact_result *re
         rd_result_real(res->max_penetration), "contact_stiffness", rd_result_real(res->stiffness),
         "conformability", rd_result_real(res->conformability), "distortion",
         distortion_bounds(scene, res), "support", rd_static_result_support(&res->stats), "numerics",
-        rd_static_result_numerics(&res->stats, wall_s,
-                                  "Binned pressure (of the uniform pressure): half its "
-                                  "largest change between the last two refinement levels "
-                                  "plus twice its change at double the contact stiffness,"));
+        rd_static_result_numerics(
+            &res->stats, wall_s,
+            res->estimates.pressure_shifted
+                ? "Binned pressure (of the uniform pressure): in each bin the larger of its move "
+                  "when the finer level's segments are shifted by half a segment and half the "
+                  "smaller of its changes from the coarser level and from the coarser level so "
+                  "shifted where both are of one sign (else half the first), plus twice its "
+                  "change at double the contact stiffness,"
+                : "Binned pressure (of the uniform pressure): half its "
+                  "largest change between the last two refinement levels "
+                  "plus twice its change at double the contact stiffness,"));
     if (out && contact_accuracy(out, res) != 0) {
         json_decref(out);
         out = NULL;

@@ -731,7 +731,7 @@ int rd_contact_once_graded(const rd_ring_params *p, int segments, const double *
     if (from && from->n >= 2)
         warm_start(&pb, from);
     rc = rd_static_solve_path(&pb, so, mon, &out->stats, err);
-    if (rc == RD_ENOCONV && from && from->n >= 2) {
+    if (rc == RD_ENOCONV && from && from->n >= 2 && !from->only) {
         /* the coarser shape was too far off: the whole load path instead */
         rd_static_problem_cleanup(&pb);
         rd_ring_free(ring);

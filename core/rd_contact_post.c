@@ -623,17 +623,18 @@ static double largest_bin_change(const rd_contact_result *a, const rd_contact_re
     return d;
 }
 
-void rd_contact_estimate(const rd_contact_result *f, const rd_contact_result *c,
-                         rd_contact_estimates *e)
+/* The estimates of f from c with the binned pressure's levels part
+ * `levels` (of p0) in the bin whose middle is at_bin (deg). */
+static void estimate(const rd_contact_result *f, const rd_contact_result *c, double levels,
+                     double at_bin, rd_contact_estimates *e)
 {
     /* the edge locator's resolution: its stencil, two of the finer level's
      * point spacings (the cube fit through the last touching point and the
      * next two); half a segment, as before, overstated the battery's edge
      * errors by up to x9 (order 4 at 1 x the bound: 0.56 deg against 0.06) */
-    double res = 2.0 * f->point_spacing_deg, at_bin;
+    double res = 2.0 * f->point_spacing_deg;
     for (int g = 0; f->graded && g < f->n_gaps; g++) /* graded: the coarsest at an edge */
         res = fmax(res, fmax(res_at(f, f->gaps[g].start_deg), res_at(f, f->gaps[g].end_deg)));
-    double dp = largest_bin_change(f, c, &at_bin);
     /* half the edges' move between the levels (as the pressure's d / 2,
      * below: the located edges converge at second order in n where the
      * clearance is smooth, at first where a patch is a few segments wide;
@@ -669,10 +670,12 @@ void rd_contact_estimate(const rd_contact_result *f, const rd_contact_result *c,
     /* the binned pressure converges at first order next to gap edges, free
      * ends and narrow patches (order 2 at 2.8 x, 17 deg: 0.52, 0.30, 0.15 p0
      * at n = 320, 640, 1280) and at second order or faster where smooth
-     * (order 2 at 1 x, 17 deg: 0.076, 0.0073, 0.0036): d / 2 (above) */
-    e->pressure = e->pressure_levels = 0.5 * dp / f->uniform_pressure;
-    e->pressure_at_deg = dp > 0.0 ? at_bin : NAN;
-    e->pressure_source = dp > 0.0 ? RD_EST_LEVELS : RD_EST_NONE;
+     * (order 2 at 1 x, 17 deg: 0.076, 0.0073, 0.0036): d / 2 (above), or
+     * the shifted meshes' rule (rd_contact_estimate_shifted) */
+    e->pressure = e->pressure_levels = levels;
+    e->pressure_shifted = 0;
+    e->pressure_at_deg = levels > 0.0 ? at_bin : NAN;
+    e->pressure_source = levels > 0.0 ? RD_EST_LEVELS : RD_EST_NONE;
     /* ... or more where a gap edge may lie across a bin boundary: order 6
      * at 1 x, 0 deg, an edge 0.06 deg short of 20 deg at n = 160 and 320
      * (the reference's 0.3 deg past it) was 0.071 p0 off and met the target
@@ -687,6 +690,27 @@ void rd_contact_estimate(const rd_contact_result *f, const rd_contact_result *c,
     double share = edge_share(f, c, e->gap_edges_deg, tip0, tip1, &at, &source, NULL);
     keep(&e->pressure, &e->pressure_at_deg, &e->pressure_source, share, at, source);
     unresolved_tips(f, tip0, tip1, res, e);
+}
+
+void rd_contact_estimate(const rd_contact_result *f, const rd_contact_result *c,
+                         rd_contact_estimates *e)
+{
+    double at, levels = 0.5 * largest_bin_change(f, c, &at) / f->uniform_pressure;
+    estimate(f, c, levels, at, e);
+}
+
+void rd_contact_estimate_shifted(const rd_contact_result *f, const rd_contact_result *c,
+                                 const double *own, const double *below, rd_contact_estimates *e)
+{
+    double worst = 0.0, at = 0.5 * RD_CONTACT_BIN_DEG;
+    for (int k = 0; k < RD_CONTACT_BINS; k++) {
+        double d = f->bin_pressure[k] - c->bin_pressure[k], ds = d - below[k];
+        double b = fmax(fabs(own[k]), 0.5 * (d * ds < 0.0 ? fabs(d) : fmin(fabs(d), fabs(ds))));
+        if (b > worst)
+            worst = b, at = (k + 0.5) * RD_CONTACT_BIN_DEG;
+    }
+    estimate(f, c, worst / f->uniform_pressure, at, e);
+    e->pressure_shifted = 1;
 }
 
 void rd_contact_zones_find(const rd_contact_result *f, const rd_contact_result *c,

@@ -140,7 +140,11 @@ typedef struct rd_contact_estimates {
     double pressure_at_deg;
     int pressure_source;
     double pressure_levels; /* of the pressure's: half the bins' largest change between the
-                               levels, / p0 (the part the bin-boundary shares do not hold) */
+                               levels, / p0 (the part the bin-boundary shares do not hold), or
+                               (pressure_shifted) that change less what shifting the coarser
+                               level's segments moves */
+    int pressure_shifted;   /* 1: pressure_levels from the pair solved again on meshes shifted
+                               by half a segment (since 0.3.10, rd_contact_refine.c) */
 } rd_contact_estimates;
 
 /* Counters and accuracy common to both analyses. */

@@ -263,6 +263,8 @@ typedef struct rd_contact_warm {
     double *mult; /* the multipliers (n_mult), for a start at the same n */
     double step;  /* the first load step the level accepted from its own
                      warm start (0: none, or a cold start) */
+    int only;     /* 1: if the start from this shape fails, so does the solve (no
+                     whole load path after it: a shifted level, rd_contact_refine.c) */
 } rd_contact_warm;
 void rd_contact_warm_free(rd_contact_warm *w);
 
@@ -312,6 +314,14 @@ void rd_contact_zones_find(const rd_contact_result *f, const rd_contact_result *
                            rd_contact_zones *z);
 void rd_contact_estimate(const rd_contact_result *fine, const rd_contact_result *coarse,
                          rd_contact_estimates *e);
+/* The same with the binned pressure's levels part from the levels' moves
+ * when their meshes are shifted by half a segment (own: the finer's, below:
+ * the coarser's; shifted less unshifted, RD_CONTACT_BINS each, Pa): in each
+ * bin the larger of the finer level's own move and half the smaller of its
+ * changes from the coarser level and from the coarser level shifted, where
+ * both are of one sign (else half the first, as rd_contact_estimate). */
+void rd_contact_estimate_shifted(const rd_contact_result *fine, const rd_contact_result *coarse,
+                                 const double *own, const double *below, rd_contact_estimates *e);
 /* Adds to e the contact law's share of r's errors from s, the same level
  * solved at twice the stiffness (the binned pressure, largest gap and tip
  * forces: twice each move, the law's error going as 1/k; the edges: the

@@ -69,7 +69,10 @@ function figures(result, gaps) {
   const n = result.numerics || {};
   const mean = result.mean_pressure_pa, p0 = result.uniform_pressure_pa;
   const ratio = isNum(mean) && isNum(p0) && p0 !== 0 ? ` (${(mean / p0).toFixed(3)} p0)` : '';
-  const from = ESTIMATE_SOURCE[n.pressure_estimate_source];
+  // the levels' part from the pair solved again on shifted meshes (since 0.3.10)
+  const from = n.pressure_estimate_source === 'levels' && n.pressure_shifted_meshes === true
+    ? "the bins' change between the last two levels, as far as shifting their segments does not explain it"
+    : ESTIMATE_SOURCE[n.pressure_estimate_source];
   const where = from && isNum(n.pressure_estimate_at_deg) ? `; mostly ${from} at ${deg(n.pressure_estimate_at_deg)}` : '';
   const err = isNum(n.error_estimate)
     ? `${percent(n.error_estimate)}${n.reference_segments ? ` (vs ${n.reference_segments} segments)` : ''}${where}`

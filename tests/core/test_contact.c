@@ -190,7 +190,7 @@ static void test_battery_exact(void)
     const double factors[] = {0.1, 1, 3, 10}, phases[] = {0, 17};
     rd_static_opts so;
     rd_static_opts_default(&so);
-    int under_p = 0, under_g = 0, bores = 0, track[4] = {0}, graded = 0;
+    int under_p = 0, under_g = 0, bores = 0, track[4] = {0}, graded = 0, met = 0;
     for (int oi = 0; oi < 4; oi++)
         for (int fi = 0; fi < 4; fi++)
             for (int pi = 0; pi < 2; pi++) {
@@ -284,6 +284,7 @@ static void test_battery_exact(void)
                 /* est / err within x3, as bench_static --battery counts */
                 bores++;
                 graded += c.grade_factor > 1;
+                met += c.accuracy_met == 1;
                 track[0] += ref_tracks(c.estimates.contact_fraction, dcf, 1e-3);
                 track[1] += x.max_clearance <= 1e-7 ||
                             ref_tracks(c.estimates.max_clearance / c.max_clearance, fabs(dg), 1e-3);
@@ -310,7 +311,10 @@ static void test_battery_exact(void)
     printf("estimates within x3 of the true error on %d bores: contact fraction %d, largest gap "
            "%d, edges %d, binned pressure %d\n",
            bores, track[0], track[1], track[2], track[3]);
-    /* measured 27, 26, 26, 25 of the 30 (0.3.7: order 4 at 10 x, 17 deg,
+    /* measured 28, 26, 26, 26 of the 30 (0.3.10: the shifted meshes' estimate,
+     * test_shifted_meshes: order 6 at 3 x, 17 deg, 0.005 p0 off, estimated
+     * 0.010 where d / 2 said 0.020; 28, 26, 26, 25 since 0.3.8;
+     * 27, 26, 26, 25 at 0.3.7: order 4 at 10 x, 17 deg,
      * graded by 330 deg, meets the target at 654 segments with 0.006 p0
      * against a true 0.004, where 1280 equal segments gave 0.578); 27, 26,
      * 26, 24 at 0.3.6 (0.3.5: the multipliers' chord
@@ -325,13 +329,21 @@ static void test_battery_exact(void)
      * 1280, closer again, its estimates not; edge_bin_share raises order 6
      * at 10 x, 0 deg from 0.38 to 0.82 p0 against a true 0.14): one bore's
      * room each, as a ratio near x3 may flip with the build's rounding */
-    CHECK(track[0] >= 26 && track[1] >= 25 && track[2] >= 25 && track[3] >= 23,
+    CHECK(track[0] >= 26 && track[1] >= 25 && track[2] >= 25 && track[3] >= 25,
           "estimates within x3 of the true error: contact fraction %d, largest gap %d, edges %d, "
           "binned pressure %d of %d bores",
           track[0], track[1], track[2], track[3], bores);
     /* the local refinement ran (measured: order 4 at 10 x, 17 deg) and its
      * answers were held to the checks above */
     CHECK(graded >= 1, "no bore of the battery graded");
+    /* the target met on 28 of the 30 (26 before 0.3.10's shifted meshes:
+     * order 3 at 3 x, 0 deg, and order 6 at 3 x, 17 deg, stopped at the
+     * cap on half the levels' change, 0.008 and 0.005 p0 off the reference,
+     * now estimated at 0.009 and 0.010; not met: order 3 at 3 x, 17 deg,
+     * 0.004 off, estimated 0.012, and order 6 at 10 x, 0 deg, point
+     * contacts on the bin boundaries); one bore's room, as two of them
+     * are within 10 % of the target */
+    CHECK(met >= 27, "the target met on %d of the %d bores", met, bores);
     CHECK(under_p <= 1 && under_g == 0,
           "estimates understating the true error: the binned pressure's x2 on %d bores (1 "
           "may be), the largest gap's x3 on %d",
@@ -741,6 +753,60 @@ static void test_stiffen(void)
               strstr(c.accuracy_note, "binned pressure") != NULL,
           "explicit default law: %s (met %d, note '%s')", err.message,
           rc == RD_OK ? c.accuracy_met : -2, rc == RD_OK ? c.accuracy_note : "");
+    if (rc == RD_OK)
+        rd_contact_result_cleanup(&c);
+}
+
+/* Shifted meshes (0.3.10, rd_contact_refine.c): order 6 at 3 x the bound,
+ * 17 deg, reaches the 1280-segment cap with half the levels' change 0.017
+ * p0 (0.020 with the law's share, not met) where the bins are 0.005 p0 off
+ * the exact reference.  The pair solved again with its segments shifted by
+ * half a segment tells the coarser level's placing error from the finer's:
+ * the estimate is within x3 of the true error and meets the target.  At a
+ * target the shifted coarser level alone shows out of reach (0.002), the
+ * finer is not shifted and d / 2 stands. */
+static void test_shifted_meshes(void)
+{
+    rd_ring_params p;
+    rd_ring_params_default(&p);
+    rd_contact_opts o = bore(&p, 6, 3.0, 17.0);
+    rd_static_opts so;
+    rd_static_opts_default(&so);
+    ref_result x;
+    if (ref_contact_solve_nl(&p, &o, 2880, 1, 10.0, floor_of(&p), &x) != 0) {
+        CHECK(0, "exact reference, order 6 at 3 x, 17 deg");
+        return;
+    }
+    rd_contact_result c;
+    rd_error err;
+    rd_error_init(&err);
+    int rc = rd_contact_solve(&p, 20, &o, &so, NULL, &c, &err);
+    CHECK(rc == RD_OK, "order 6 at 3 x, 17 deg: %s", err.message);
+    if (rc != RD_OK)
+        return;
+    double dp = 0;
+    for (int b = 0; b < RD_CONTACT_BINS; b++)
+        dp = fmax(dp, fabs(c.bin_pressure[b] - x.bin_pressure[b]) / x.p0);
+    printf("shifted meshes: n %d, met %d, shifted %d, bins %.4f p0 off, estimate %.4f\n",
+           c.stats.segments, c.accuracy_met, c.estimates.pressure_shifted, dp,
+           c.estimates.pressure);
+    /* measured 0.0050 off against 0.0099 (its levels' part 0.0064, d / 2's
+     * 0.0167; with the law's share 0.020); the levels' part is held to
+     * 0.008, under the target with room for rounding, and the whole to x3 */
+    CHECK(c.stats.segments == 1280 && c.estimates.pressure_shifted == 1 &&
+              c.estimates.pressure_levels <= 0.008 && ref_tracks(c.estimates.pressure, dp, 1e-3),
+          "n %d, met %d, shifted %d: bins %.4f p0 off, estimate %.4f (levels %.4f)",
+          c.stats.segments, c.accuracy_met, c.estimates.pressure_shifted, dp, c.estimates.pressure,
+          c.estimates.pressure_levels);
+    rd_contact_result_cleanup(&c);
+    o.accuracy = 0.002;
+    rd_error_init(&err);
+    rc = rd_contact_solve(&p, 20, &o, &so, NULL, &c, &err);
+    CHECK(rc == RD_OK && c.accuracy_met == 0 && c.estimates.pressure_shifted == 0 &&
+              c.estimates.pressure_levels > 0.002,
+          "target 0.002: %s (met %d, shifted %d, levels %.4f)", err.message,
+          rc == RD_OK ? c.accuracy_met : -2, rc == RD_OK ? c.estimates.pressure_shifted : -1,
+          rc == RD_OK ? c.estimates.pressure_levels : 0.0);
     if (rc == RD_OK)
         rd_contact_result_cleanup(&c);
 }
@@ -1171,6 +1237,7 @@ int main(void)
     test_graded_falls_back();
     test_stiffness();
     test_stiffen();
+    test_shifted_meshes();
     test_law_share();
     test_battery();
     test_battery_exact();
