@@ -762,9 +762,10 @@ static void test_stiffen(void)
  * p0 (0.020 with the law's share, not met) where the bins are 0.005 p0 off
  * the exact reference.  The pair solved again with its segments shifted by
  * half a segment tells the coarser level's placing error from the finer's:
- * the estimate is within x3 of the true error and meets the target.  At a
- * target the shifted coarser level alone shows out of reach (0.002), the
- * finer is not shifted and d / 2 stands. */
+ * the estimate is within x3 of the true error, its levels' part under the
+ * target (the whole, 0.0099, meets it).  At a target the shifted coarser
+ * level alone shows out of reach (0.002: without the finer's move 0.0064),
+ * the finer is not shifted and d / 2 stands. */
 static void test_shifted_meshes(void)
 {
     rd_ring_params p;
