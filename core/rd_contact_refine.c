@@ -62,7 +62,9 @@ static const char *where(const rd_contact_estimates *e, char *buf, size_t size)
     double at = e->pressure_at_deg, w = RD_CONTACT_BIN_DEG;
     switch (e->pressure_source) {
     case RD_EST_LEVELS:
-        snprintf(buf, size, "mostly the bins' change between the levels, in the %.0f-%.0f deg bin",
+        snprintf(buf, size,
+                 "mostly the bins' change between the levels%s, in the %.0f-%.0f deg bin",
+                 e->pressure_shifted ? " that shifting their segments does not explain" : "",
                  at - 0.5 * w, at + 0.5 * w);
         break;
     case RD_EST_EDGE_SEGMENT:
