@@ -6,6 +6,7 @@
 #include <jansson.h>
 #include <math.h>
 #include <stddef.h>
+#include <stdio.h>
 
 #include "rd_registry.h"
 #include "rd_scene.h"
@@ -203,6 +204,18 @@ static int contact_accuracy(json_t *out, const rd_contact_result *res)
 static json_t *contact_result(const rd_scene *scene, const rd_contact_result *res, double wall_s)
 {
     int n = res->points;
+    /* the binned pressure's estimate, as refined (since 0.3.10, where it was
+     * taken from shifted meshes, rd_contact_refine.c) */
+    char method[400];
+    snprintf(method, sizeof method,
+             "Binned pressure (of the uniform pressure): %s plus twice its change at double the "
+             "contact stiffness,",
+             res->estimates.pressure_shifted
+                 ? "in each bin the larger of its move when the finer level's segments are "
+                   "shifted by half a segment and half the smaller of its changes from the "
+                   "coarser level and from the coarser level so shifted where both are of one "
+                   "sign (else half the first)"
+                 : "half its largest change between the last two refinement levels");
     json_t *out = json_pack(
         "{s:s, s:o, s:o, s:o, s:o, s:o, s:o, s:o, s:o, s:o, s:o, s:o, s:o, s:o, s:o, s:o,"
         " s:o, s:o}",
@@ -219,17 +232,7 @@ static json_t *contact_result(const rd_scene *scene, const rd_contact_result *re
         rd_result_real(res->max_penetration), "contact_stiffness", rd_result_real(res->stiffness),
         "conformability", rd_result_real(res->conformability), "distortion",
         distortion_bounds(scene, res), "support", rd_static_result_support(&res->stats), "numerics",
-        rd_static_result_numerics(
-            &res->stats, wall_s,
-            res->estimates.pressure_shifted
-                ? "Binned pressure (of the uniform pressure): in each bin the larger of its move "
-                  "when the finer level's segments are shifted by half a segment and half the "
-                  "smaller of its changes from the coarser level and from the coarser level so "
-                  "shifted where both are of one sign (else half the first), plus twice its "
-                  "change at double the contact stiffness,"
-                : "Binned pressure (of the uniform pressure): half its "
-                  "largest change between the last two refinement levels "
-                  "plus twice its change at double the contact stiffness,"));
+        rd_static_result_numerics(&res->stats, wall_s, method));
     if (out && contact_accuracy(out, res) != 0) {
         json_decref(out);
         out = NULL;

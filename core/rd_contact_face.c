@@ -28,10 +28,11 @@
  * L_j = R (phi_j + phi_(j+1)) / 2 the arc between the two middles (R phi
  * on equal segments; a graded ring's segments each have their own phi and
  * L, so their points' weights too, face_weights); at a free end kap = 0
- * (no moment on the gap face) and gam is the inner joint's.  u depends on the planar DOFs (dx, dy, dpsi_z) of segments
- * i - 1, i, i + 1 (face_du); the face's block of the contact loads'
- * derivative (rd_contact_face_jacobian) puts that into the tangent, so
- * Newton sees the face it solves with.
+ * (no moment on the gap face) and gam is the inner joint's.  u depends on
+ * the planar DOFs (dx, dy, dpsi_z) of segments i - 1, i, i + 1 (face_du);
+ * the face's block of the contact loads' derivative
+ * (rd_contact_face_jacobian) puts that into the tangent, so Newton sees the
+ * face it solves with.
  *
  * The contact loads of all segments are computed here in one pass
  * (rd_contact_loads), which keeps each point's evaluation (pb->pe,

@@ -6,6 +6,9 @@
  * level that does not converge hands over to the pair above it; then the
  * reported level is solved again at twice the contact stiffness for the
  * law's share of the error.  The problem and one solve are in rd_contact.c.
+ * Where the last pair's levels disagree at the cap, both are solved again
+ * on meshes shifted by half a segment for a sharper estimate ("Shifted
+ * meshes", at reestimate).
  *
  * Local refinement (since 0.3.7).  Where the binned pressure's estimate is
  * mostly the force beside a gap edge or a narrow patch that could lie
@@ -150,11 +153,6 @@ typedef struct contact_run {
     /* the first pair's levels solved before at another law: their starts
      * (the same n: at the full load, with their multipliers), or NULL */
     const rd_contact_warm *same[2];
-    /* the levels' bins' moves on meshes shifted by half a segment, Pa,
-     * shifted less unshifted (reestimate), for base segments shift_n[0]
-     * and shift_n[1] (0: none) */
-    int shift_n[2];
-    double shift_move[2][RD_CONTACT_BINS];
 } contact_run;
 
 /* The weights of base segment count n graded over run's zones (NULL and
@@ -452,9 +450,9 @@ static void advance(contact_run *run, int next, const contact_run *up)
  * against 0.004, at 0.16 s instead of 0.19-0.20. */
 
 /* The bins' moves (Pa, shifted less unshifted) of level (0 coarse, 1
- * fine) solved again on its mesh shifted by half a segment, into
- * run->shift_move. */
-static int shifted_move(contact_run *run, int level, const rd_monitor *mon, rd_error *err)
+ * fine) solved again on its mesh shifted by half a segment, into move. */
+static int shifted_move(const contact_run *run, int level, const rd_monitor *mon, double *move,
+                        rd_error *err)
 {
     int n = run->n[level];
     double *w = malloc((size_t)(n + 1) * sizeof *w);
@@ -467,11 +465,8 @@ static int shifted_move(contact_run *run, int level, const rd_monitor *mon, rd_e
     rd_contact_warm from = run->shape[level];
     from.only = 1; /* (the whole load path would cost a dozen times more) */
     int rc = rd_contact_once_graded(run->p, n + 1, w, run->o, run->so, mon, &from, NULL, &s, err);
-    if (rc == RD_OK) {
-        for (int k = 0; k < RD_CONTACT_BINS; k++)
-            run->shift_move[level][k] = s.bin_pressure[k] - run->level[level].bin_pressure[k];
-        run->shift_n[level] = n;
-    }
+    for (int k = 0; rc == RD_OK && k < RD_CONTACT_BINS; k++)
+        move[k] = s.bin_pressure[k] - run->level[level].bin_pressure[k];
     rd_contact_result_cleanup(&s);
     free(w);
     return rc;
@@ -494,21 +489,19 @@ static int reestimate(contact_run *run, const rd_monitor *mon, rd_error *err)
     rd_error e2;
     rd_error_init(&e2);
     rd_contact_result *f = &run->level[1], *c = &run->level[0];
-    int rc = RD_OK;
-    if (run->shift_n[0] != run->n[0])
-        rc = shifted_move(run, 0, mon, &e2);
-    if (rc == RD_OK && run->shift_n[1] != run->n[1]) {
-        static const double none[RD_CONTACT_BINS];
-        rd_contact_estimates lo;
-        rd_contact_estimate_shifted(f, c, none, run->shift_move[0], &lo);
+    double own[RD_CONTACT_BINS] = {0}, below[RD_CONTACT_BINS];
+    int rc = shifted_move(run, 0, mon, below, &e2);
+    if (rc == RD_OK) {
+        rd_contact_estimates lo; /* (own all 0: the finer's move can only add) */
+        rd_contact_estimate_shifted(f, c, own, below, &lo);
         if (lo.pressure_levels > run->o->accuracy)
-            return RD_OK; /* the finer's own move can only add */
-        rc = shifted_move(run, 1, mon, &e2);
+            return RD_OK;
+        rc = shifted_move(run, 1, mon, own, &e2);
     }
     if (rc == RD_ECANCELED || rc == RD_ETIMEOUT)
         return rd_error_set(err, rc, e2.path, "%s", e2.message);
     if (rc == RD_OK)
-        rd_contact_estimate_shifted(f, c, run->shift_move[1], run->shift_move[0], &f->estimates);
+        rd_contact_estimate_shifted(f, c, own, below, &f->estimates);
     return RD_OK;
 }
 
