@@ -1120,6 +1120,12 @@ static void test_other_ring(void)
          * puts 58 % before it, and levels 80 and 160 agreed: met with 0.007
          * where 5.1 p0 was off (straddle_share: B inside an unresolved patch) */
         {0.05, 0.002, 0.001, 6, 4, 8.7604, 352.54, 0, "unresolved patch across a boundary", 0, 0},
+        /* a point-like patch on 330.13-331.02 deg at n = 160 (0.4 segments),
+         * the reference's on 329.96-331.21 around the same middle: met with
+         * 0.008 where 0.085 p0 lay across 330 deg, the patch's middle alone
+         * taken as uncertain (straddle_share with B outside: its near edge
+         * too, since 0.3.11) */
+        {0.05, 0.002, 0.001, 6, 6, 7.17111, 58.7121, 0, "point-like patch beside a boundary", 0, 0},
         /* a patch ending 0.11 deg short of 80 deg, the reference's 0.11
          * past: the edge's share must hold at n = 160 (a rule that let a
          * patch two segments wide off it met the target with 0.003 where
