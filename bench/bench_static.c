@@ -47,6 +47,8 @@
  *   bench_static --random SEED N I  the same set's bore I (1..N) alone,
  *       then its bins against the reference's as --bins prints them.
  *   --kx F (with the same): the contact stiffness F times its default.
+ *   --accuracy A (with --battery, --bins, --random): rd_contact_opts.accuracy
+ *       (the default 0.01); the counts' targets stay the issue's.
  *   --ring D,B,H,FT (with the same): another ring (diameter, radial width,
  *       axial height in m, tangential force in N; the rest the default's).
  *   --cap N (with --battery, --bins, --stiffness): rd_contact_opts.max_segments
@@ -83,6 +85,9 @@ static int cap = 0;
 
 /* --kx F anywhere: the contact stiffness F times its default (0: default). */
 static double stiffness_times = 0;
+
+/* --accuracy A anywhere: rd_contact_opts.accuracy (0: its default, 0.01). */
+static double accuracy_opt = 0;
 
 static int reference_solve(const rd_ring_params *p, const rd_contact_opts *o, double floor_m,
                            ref_result *r)
@@ -175,6 +180,8 @@ static rd_contact_opts battery_bore(const rd_ring_params *p, int k, double fac, 
         o.stiffness = stiffness_times * rd_contact_default_stiffness(p);
     if (cap)
         o.max_segments = cap;
+    if (accuracy_opt > 0)
+        o.accuracy = accuracy_opt;
     if (A_bound)
         *A_bound = o.distortion[0].amplitude / thin_ring_bound(p, k);
     return o;
@@ -744,6 +751,13 @@ int main(int argc, char **argv)
         cap = atoi(v);
         if (cap < 4 || cap > RD_STATIC_SEGMENTS_MAX) {
             fprintf(stderr, "--cap: 4 to %d segments, not %s\n", RD_STATIC_SEGMENTS_MAX, v);
+            return 1;
+        }
+    }
+    if ((v = take_option(&argc, argv, "--accuracy", 1))) {
+        accuracy_opt = atof(v);
+        if (!(accuracy_opt >= 1e-4 && accuracy_opt <= 0.5)) {
+            fprintf(stderr, "--accuracy: 1e-4 to 0.5, not %s\n", v);
             return 1;
         }
     }

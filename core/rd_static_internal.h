@@ -281,6 +281,14 @@ int rd_contact_once_graded(const rd_ring_params *p, int segments, const double *
                            const rd_monitor *mon, const rd_contact_warm *from, rd_contact_warm *to,
                            rd_contact_result *out, rd_error *err);
 
+/* How many of the estimates e of r miss the target a (see
+ * rd_contact_opts.accuracy; NAN misses), each named with its value and
+ * bound in buf (if not NULL), e.g. "gap edges 1.02 deg (at most 1)"
+ * (rd_contact_target.c); rd_contact_meets: none. */
+int rd_contact_misses(const rd_contact_estimates *e, const rd_contact_result *r, double a,
+                      char *buf, size_t size);
+int rd_contact_meets(const rd_contact_estimates *e, const rd_contact_result *r, double a);
+
 /* rd_contact_post.c: light gaps and contact fraction from the segments'
  * closest points (angles ts, deg, increasing; clearances cs, m) and all m n
  * contact points (t, c), their edges among the points if `points` (faces
