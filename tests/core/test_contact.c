@@ -182,6 +182,39 @@ static void check_where(const rd_contact_result *c, const ref_result *x, double 
           at, there, dp);
 }
 
+/* The bore o at a looser target, a = 0.05 (the refinement stops sooner):
+ * if its answer says the target is met, the largest of its true errors
+ * against x over its target (rd_contact_target.c: bins a p0, contact
+ * fraction 2 a, largest gap 5 a of itself where over 0.1 um, gap edges
+ * 100 a deg) into *worst; *met counts them. */
+static void loose_target(const rd_ring_params *p, const rd_contact_opts *o, const ref_result *x,
+                         int *met, double *worst)
+{
+    rd_contact_opts o2 = *o;
+    o2.accuracy = 0.05;
+    rd_static_opts so;
+    rd_static_opts_default(&so);
+    rd_contact_result c;
+    rd_error err;
+    rd_error_init(&err);
+    if (rd_contact_solve(p, 20, &o2, &so, NULL, &c, &err) != RD_OK) {
+        CHECK(0, "accuracy 0.05: %s", err.message);
+        return;
+    }
+    if (c.accuracy_met == 1) {
+        double a = o2.accuracy, dp = 0;
+        for (int b = 0; b < RD_CONTACT_BINS; b++)
+            dp = fmax(dp, fabs(c.bin_pressure[b] - x->bin_pressure[b]) / x->p0);
+        double q = fmax(dp / a, fabs(c.contact_fraction - x->contact_fraction) / (2 * a));
+        if (x->max_clearance > 1e-7)
+            q = fmax(q, fabs(c.max_clearance / x->max_clearance - 1) / (5 * a));
+        q = fmax(q, edge_or_0(&c, x) / (100 * a));
+        *worst = fmax(*worst, q);
+        ++*met;
+    }
+    rd_contact_result_cleanup(&c);
+}
+
 static void test_battery_exact(void)
 {
     rd_ring_params p;
@@ -190,7 +223,8 @@ static void test_battery_exact(void)
     const double factors[] = {0.1, 1, 3, 10}, phases[] = {0, 17};
     rd_static_opts so;
     rd_static_opts_default(&so);
-    int under_p = 0, under_g = 0, bores = 0, track[4] = {0}, graded = 0, met = 0;
+    int under_p = 0, under_g = 0, bores = 0, track[4] = {0}, graded = 0, met = 0, loose_met = 0;
+    double loose_worst = 0.0;
     for (int oi = 0; oi < 4; oi++)
         for (int fi = 0; fi < 4; fi++)
             for (int pi = 0; pi < 2; pi++) {
@@ -307,10 +341,18 @@ static void test_battery_exact(void)
                           c.estimates.tip_forces_n);
                 }
                 rd_contact_result_cleanup(&c);
+                loose_target(&p, &o, &x, &loose_met, &loose_worst);
             }
     printf("estimates within x3 of the true error on %d bores: contact fraction %d, largest gap "
            "%d, edges %d, binned pressure %d\n",
            bores, track[0], track[1], track[2], track[3]);
+    /* a looser target (0.05): measured 29 met, none with a true error over
+     * 1.55 x its target (order 3 at 3 x, 17 deg: bins 0.077 p0 against
+     * 0.05); x3 the issue's tracking bound, one bore's room on the count */
+    printf("at accuracy 0.05: %d met, the worst true error %.2f x its target\n", loose_met,
+           loose_worst);
+    CHECK(loose_met >= 28 && loose_worst <= 3.0,
+          "accuracy 0.05: %d met, a true error %.2f x its target", loose_met, loose_worst);
     /* measured 28, 26, 26, 26 of the 30 (0.3.10: the shifted meshes' estimate,
      * test_shifted_meshes: order 6 at 3 x, 17 deg, 0.005 p0 off, estimated
      * 0.010 where d / 2 said 0.020; 28, 26, 26, 25 since 0.3.8;
