@@ -645,44 +645,43 @@ static void unsettled(rd_contact_result *r)
 }
 
 /* A miss through the law's share that the stiffer law did not mend (the
- * answer is still the asked law's, on equal segments, not from shifted
- * meshes) where n can still double: the refinement goes on (go_on).  The
- * law's share only tipped an estimate over the target; the rest of it, the
- * levels' part or a bin-boundary bound, shrinks with n, the law's share
- * often too.  Before 0.3.12 such an answer stopped, not met, at the level
- * the levels' part had met: at accuracy 0.1 the battery's order 2 at 0.1 x,
- * 0 and 17 deg, at 160 segments (bins estimated at 0.10-0.11 p0, 0.08 of
- * it a gap edge's segment by 20 deg, 0.022 the law's), now met at 320
- * (0.015-0.017), and order 6 at 0.1 x, 0 deg at 80 (0.135), now met at 160
- * (0.038); battery met at 0.1 25 -> 28, CPU
- * 1.21 -> 1.28 s for the 30; at the default 0.01 the default ring's and
- * the 130 mm ring's batteries bit for bit, the 50 mm ring's order 6 at 3
- * x, 0 deg, not met at 320 (0.012), met at 640 (0.002, 0.001 off).  Random seeds 51-55 and 61-65 on three rings,
- * 1200 bores at 0.01: 12 bores refine further (160 -> 320 or 640, 320 ->
- * 640, 640 -> 1280), 9 of them now met, the bins' error 0.000-0.003 p0
- * where it was 0.003-0.014; met 874 -> 883, met but outside a target 7
- * either way, CPU +1.7 %. */
-static int further(const contact_run *run)
+ * answer is still the asked law's, on equal segments) where n can still
+ * double (so not from shifted meshes, which run only where it cannot):
+ * the refinement goes on from it (go_on, with the doubled meshes in *up).
+ * The law's share only tipped an estimate over the target; the rest of
+ * it, the levels' part or a bin-boundary bound, shrinks with n, the law's
+ * share often too.  Before 0.3.12 such an answer stopped, not met, at the
+ * level the levels' part had met: at accuracy 0.1 the battery's order 2
+ * at 0.1 x, 0 and 17 deg, at 160 segments (bins estimated at 0.10-0.11
+ * p0, 0.08 of it a gap edge's segment by 20 deg, 0.022 the law's), now
+ * met at 320 (0.015-0.017), and order 6 at 0.1 x, 0 deg at 80 (0.135),
+ * now met at 160 (0.038); battery met at 0.1 25 -> 28, CPU 1.21 -> 1.28 s
+ * for the 30.  At the default 0.01 the default ring's battery bit for bit
+ * (bench_contact_cost --battery fingerprints), the 130 mm ring's the same
+ * counts and Newton iterations, the 50 mm ring's order 6 at 3 x, 0 deg,
+ * not met at 320 (0.012), met at 640 (0.002, 0.001 off).  Random seeds
+ * 51-55 and 61-65 on three rings, 1200 bores at 0.01: 12 bores refine
+ * further (160 -> 320 or 640, 320 -> 640, 640 -> 1280), 9 of them now
+ * met, the bins' error 0.000-0.003 p0 where it was 0.003-0.014; met 874
+ * -> 883, met but outside a target 7 either way, CPU +1.7 %. */
+static int further(const contact_run *run, contact_run *up)
 {
     const rd_contact_result *r = &run->level[0];
     double k = run->o->stiffness > 0.0 ? run->o->stiffness : rd_contact_default_stiffness(run->p);
-    contact_run up;
     if (!run->law_missed || r->accuracy_met == 1 || r->stiffness != k || run->factor != 1 ||
-        run->shape[1].n != run->N[1] || r->estimates.pressure_shifted)
+        run->shape[1].n != run->N[1])
         return 0;
-    int up_N = doubled(run, &up);
+    int up_N = doubled(run, up);
     return up_N > 0 && up_N <= run->o->max_segments;
 }
 
-/* The answer back as the finer level of its pair, the pair doubled and the
- * refinement on from it, then its probe. */
-static int go_on(contact_run *run, const rd_monitor *mon, rd_error *err)
+/* The answer back as the finer level of its pair, the pair doubled (up)
+ * and the refinement on from it. */
+static int go_on(contact_run *run, const contact_run *up, const rd_monitor *mon, rd_error *err)
 {
-    contact_run up;
-    doubled(run, &up);
     run->level[1] = run->level[0];
     memset(&run->level[0], 0, sizeof run->level[0]);
-    advance(run, 1, &up);
+    advance(run, 1, up);
     run->law_missed = 0;
     rd_monitor_span span;
     return refine(run, rd_monitor_span_init(&span, mon, 1.0, 1.0), err);
@@ -718,9 +717,10 @@ int rd_contact_solve(const rd_ring_params *p, int segments, const rd_contact_opt
         if (rc == RD_OK && run.law_missed && o->stiffness == 0.0 &&
             !run.level[0].estimates.pressure_shifted)
             rc = stiffen(&run, mon, err);
-        if (rc != RD_OK || !further(&run))
+        contact_run up;
+        if (rc != RD_OK || !further(&run, &up))
             break;
-        rc = go_on(&run, mon, err);
+        rc = go_on(&run, &up, mon, err);
     }
     if (rc == RD_OK) {
         *out = run.level[0];
