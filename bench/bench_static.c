@@ -47,6 +47,8 @@
  *   bench_static --random SEED N I  the same set's bore I (1..N) alone,
  *       then its bins against the reference's as --bins prints them.
  *   --kx F (with the same): the contact stiffness F times its default.
+ *   --single (with --random): one order a bore, 2 to 6 (the issue's
+ *       battery's orders; 0.1-10 x the bound, any phase, as above).
  *   --accuracy A (with --battery, --bins, --random): rd_contact_opts.accuracy
  *       (the default 0.01); the counts' targets stay the issue's.
  *   --ring D,B,H,FT (with the same): another ring (diameter, radial width,
@@ -88,6 +90,10 @@ static double stiffness_times = 0;
 
 /* --accuracy A anywhere: rd_contact_opts.accuracy (0: its default, 0.01). */
 static double accuracy_opt = 0;
+
+/* --single anywhere (with --random): one order a bore, 2 to 6, as the
+ * issue's battery (orders 2-6, 0.1-10 x the bound, several phases). */
+static int single_order = 0;
 
 static int reference_solve(const rd_ring_params *p, const rd_contact_opts *o, double floor_m,
                            ref_result *r)
@@ -468,10 +474,10 @@ static void random_bores(const rd_ring_params *p, unsigned long long seed, int c
     double cpu_all = 0;
     for (int t = 0; t < count;) {
         rd_contact_opts o = battery_bore(p, 2, 1, 0, NULL);
-        o.n_distortion = 1 + (uniform(&seed) < 0.5);
+        o.n_distortion = single_order ? 1 : 1 + (uniform(&seed) < 0.5);
         double convex = 0;
         for (int d = 0; d < o.n_distortion; d++) {
-            int k = 2 + (int)(7 * uniform(&seed));
+            int k = 2 + (int)((single_order ? 5 : 7) * uniform(&seed));
             double fac = pow(10.0, -1.0 + 2.0 * uniform(&seed)), ph = 360.0 * uniform(&seed);
             double A = fmin(fac * thin_ring_bound(p, k), 0.004 * p->diameter / o.n_distortion);
             o.distortion[d] = (rd_distortion){k, A, ph};
@@ -739,6 +745,8 @@ int main(int argc, char **argv)
     rd_contact_opts co;
     rd_contact_opts_default(&co);
     const char *v;
+    if (take_option(&argc, argv, "--single", 0))
+        single_order = 1;
     if (take_option(&argc, argv, "--rigid", 0))
         rigid_face = 1;
     /* --face: the flexible faces, the default since 0.3.0 (kept so the

@@ -525,6 +525,52 @@ static void test_warm_multipliers(void)
     rd_contact_warm_free(&w);
 }
 
+/* Contact's Newton takes full steps within 1e3 x its best residual (since
+ * 0.3.13, rd_static.c's line_search): order 3 at 1.16848 x the bound,
+ * 48.3412 deg (bench_static --single --random 82 40 1), whose long light
+ * gaps of a few nm put many points at the law's switch.  n = 640 from
+ * 320's state: the whole step from the warm start (0.8 -> 1) converges,
+ * where the backtracked steps crawled, failed it after 40 iterations and
+ * took four steps of 0.05 (102 Newton iterations against 32, the
+ * multipliers' updates' included); and it lands on the whole load path's
+ * fixed point (bins within 0.01 p0, the target's bound; measured 7e-5 p0
+ * apart). */
+static void test_full_steps(void)
+{
+    rd_ring_params p;
+    rd_ring_params_default(&p);
+    rd_contact_opts o = bore(&p, 3, 1.16848, 48.3412);
+    rd_static_opts so;
+    rd_static_opts_default(&so);
+    rd_contact_result c, r[2];
+    memset(&c, 0, sizeof c);
+    memset(r, 0, sizeof r);
+    rd_contact_warm w = {0};
+    rd_error err;
+    rd_error_init(&err);
+    int rc = rd_contact_once(&p, 320, &o, &so, NULL, NULL, &w, &c, &err);
+    if (rc == RD_OK)
+        rc = rd_contact_once(&p, 640, &o, &so, NULL, &w, NULL, &r[0], &err);
+    if (rc == RD_OK)
+        rc = rd_contact_once(&p, 640, &o, &so, NULL, NULL, NULL, &r[1], &err);
+    CHECK(rc == RD_OK, "%s", err.message);
+    if (rc == RD_OK) {
+        double d = bins_apart(&r[0], &r[1]);
+        CHECK(r[0].stats.load_steps == 1,
+              "n = 640 from 320: %d load steps (the whole step "
+              "failed?)",
+              r[0].stats.load_steps);
+        CHECK(d < 0.01, "n = 640 from 320: bins %.4f p0 from the whole load path's", d);
+        printf("full steps: n = 640 from 320 in %d load step(s), %d Newton iterations (%d "
+               "updates); bins %.1e p0 from the load path's\n",
+               r[0].stats.load_steps, r[0].stats.iterations, r[0].stats.outer_iterations, d);
+    }
+    rd_contact_result_cleanup(&c);
+    rd_contact_result_cleanup(&r[0]);
+    rd_contact_result_cleanup(&r[1]);
+    rd_contact_warm_free(&w);
+}
+
 /* A graded ring (rd_contact_once_graded, the refinement's local levels):
  * base n = 320 with its segments over 25-65 deg in eight (0.14 deg, as n
  * = 2560) and one or two base segments either side in four and two, the
@@ -1296,6 +1342,7 @@ int main(void)
     test_accuracy_target();
     test_uzawa();
     test_warm_multipliers();
+    test_full_steps();
     test_graded();
     test_graded_falls_back();
     test_stiffness();
