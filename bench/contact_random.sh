@@ -10,10 +10,12 @@
 # core (Release).
 #   bench/contact_random.sh [build-dir]     (default: build-rel)
 #   SEEDS="1 2" COUNT=40 bench/contact_random.sh
+#   SINGLE=1 bench/contact_random.sh   one order a bore, 2-6 (--single)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 b=${1:-build-rel}
 SEEDS=${SEEDS:-"11 12 13 14 15"} COUNT=${COUNT:-40}
+ONE=${SINGLE:+--single}
 # one build at a time: two runs side by side (two seed sets, one per core)
 # raced on it ("No rule to make target core/libringdyn_core.a")
 mkdir -p "$b"
@@ -22,8 +24,8 @@ flock "$b/.contact_random.lock" sh -c '
     cmake --build "$1" -j2 --target bench_static >/dev/null' sh "$b"
 for seed in $SEEDS; do
     for ring in "" "--ring 0.13,0.0045,0.003,40" "--ring 0.05,0.002,0.001,6"; do
-        # shellcheck disable=SC2086 # $ring is two words or none
-        "$b/bench/bench_static" $ring --random "$seed" "$COUNT" |
+        # shellcheck disable=SC2086 # $ring is two words or none, $ONE one or none
+        "$b/bench/bench_static" $ring $ONE --random "$seed" "$COUNT" |
             awk -v run="seed $seed ${ring:---ring default}" '
                 / met 1, / {
                     split($0, a, "errors \\(estimates\\): ")
