@@ -343,9 +343,9 @@ static void residual_again(const rd_static_problem *pb, work *w)
  * iterations and the step converged in 13; the bore 0.47 -> 0.10 s CPU, the
  * answer the same within the solver's tolerances).  Measured on random
  * bores, three rings (bench_static [--ring ...] [--single] --random SEED
- * 40): one order a bore, seeds 81-86, 720 bores, CPU 76.8 -> 62.7 s, over
- * 0.2 s 59 -> 24; one or two orders, seeds 51-55, 600 bores, 72.2 -> 59.1
- * s, 42 -> 19; the same bores within the issue's targets (669, 534) and
+ * 40): one order a bore, seeds 81-86, 720 bores, CPU 76.8 -> 63.4 s, over
+ * 0.2 s 59 -> 24; one or two orders, seeds 51-55, 600 bores, 72.2 -> 59.2
+ * s, 42 -> 21; the same bores within the issue's targets (669, 534) and
  * reporting the target met (592 -> 591, 434).  Full steps until the 3rd,
  * 6th, 10th, 20th iteration: 76.8, 69.4, 68.2, 64.3 s; at every iteration
  * within 1e3 x the last residual (not the best): 62.5 s. */
