@@ -481,6 +481,34 @@ static void test_uzawa(void)
     unsettled_note(&p);
 }
 
+/* Order k at fac x the bound, phase deg, on the default ring: n = 320 along
+ * the load path, then 640 from each start kinds names ('w' 320's solved
+ * state, 'b' its shape alone, 'p' the whole load path) into r (zeroed by
+ * the caller); RD_OK or the first failure's code, err saying why. */
+static int from_320(int k, double fac, double phase, const char *kinds, rd_contact_result *r,
+                    rd_error *err)
+{
+    rd_ring_params p;
+    rd_ring_params_default(&p);
+    rd_contact_opts o = bore(&p, k, fac, phase);
+    rd_static_opts so;
+    rd_static_opts_default(&so);
+    rd_contact_result c;
+    memset(&c, 0, sizeof c);
+    rd_contact_warm w = {0};
+    rd_error_init(err);
+    int rc = rd_contact_once(&p, 320, &o, &so, NULL, NULL, &w, &c, err);
+    rd_contact_warm bare = w;
+    bare.mult = NULL; /* the shape alone */
+    for (int i = 0; kinds[i] && rc == RD_OK; i++) {
+        const rd_contact_warm *from = kinds[i] == 'w' ? &w : (kinds[i] == 'b' ? &bare : NULL);
+        rc = rd_contact_once(&p, 640, &o, &so, NULL, from, NULL, &r[i], err);
+    }
+    rd_contact_result_cleanup(&c);
+    rd_contact_warm_free(&w);
+    return rc;
+}
+
 /* A level started from the one below (since 0.3.8) takes its multipliers
  * too: order 6 at 3 x the bound, 17 deg, n = 640 from 320's state, against
  * the same state without them (each level rebuilt them from zero before)
@@ -492,23 +520,10 @@ static void test_uzawa(void)
  * iterations against 908), so it is measured there, not checked here. */
 static void test_warm_multipliers(void)
 {
-    rd_ring_params p;
-    rd_ring_params_default(&p);
-    rd_contact_opts o = bore(&p, 6, 3.0, 17.0);
-    rd_static_opts so;
-    rd_static_opts_default(&so);
-    rd_contact_result c, r[3];
-    memset(&c, 0, sizeof c);
+    rd_contact_result r[3];
     memset(r, 0, sizeof r);
-    rd_contact_warm w = {0};
     rd_error err;
-    rd_error_init(&err);
-    int rc = rd_contact_once(&p, 320, &o, &so, NULL, NULL, &w, &c, &err);
-    rd_contact_warm bare = w;
-    bare.mult = NULL; /* the shape alone */
-    const rd_contact_warm *from[3] = {&w, &bare, NULL};
-    for (int k = 0; k < 3 && rc == RD_OK; k++)
-        rc = rd_contact_once(&p, 640, &o, &so, NULL, from[k], NULL, &r[k], &err);
+    int rc = from_320(6, 3.0, 17.0, "wbp", r, &err);
     CHECK(rc == RD_OK, "%s", err.message);
     if (rc == RD_OK) {
         double d1 = bins_apart(&r[0], &r[1]), d2 = bins_apart(&r[0], &r[2]);
@@ -519,10 +534,8 @@ static void test_warm_multipliers(void)
                r[0].stats.outer_iterations, r[1].stats.outer_iterations,
                r[2].stats.outer_iterations, d1, d2);
     }
-    rd_contact_result_cleanup(&c);
     for (int k = 0; k < 3; k++)
         rd_contact_result_cleanup(&r[k]);
-    rd_contact_warm_free(&w);
 }
 
 /* Contact's Newton takes full steps within 1e3 x its best residual (since
@@ -537,38 +550,22 @@ static void test_warm_multipliers(void)
  * apart). */
 static void test_full_steps(void)
 {
-    rd_ring_params p;
-    rd_ring_params_default(&p);
-    rd_contact_opts o = bore(&p, 3, 1.16848, 48.3412);
-    rd_static_opts so;
-    rd_static_opts_default(&so);
-    rd_contact_result c, r[2];
-    memset(&c, 0, sizeof c);
+    rd_contact_result r[2];
     memset(r, 0, sizeof r);
-    rd_contact_warm w = {0};
     rd_error err;
-    rd_error_init(&err);
-    int rc = rd_contact_once(&p, 320, &o, &so, NULL, NULL, &w, &c, &err);
-    if (rc == RD_OK)
-        rc = rd_contact_once(&p, 640, &o, &so, NULL, &w, NULL, &r[0], &err);
-    if (rc == RD_OK)
-        rc = rd_contact_once(&p, 640, &o, &so, NULL, NULL, NULL, &r[1], &err);
+    int rc = from_320(3, 1.16848, 48.3412, "wp", r, &err);
     CHECK(rc == RD_OK, "%s", err.message);
     if (rc == RD_OK) {
         double d = bins_apart(&r[0], &r[1]);
         CHECK(r[0].stats.load_steps == 1,
-              "n = 640 from 320: %d load steps (the whole step "
-              "failed?)",
-              r[0].stats.load_steps);
+              "n = 640 from 320: %d load steps (the whole step failed?)", r[0].stats.load_steps);
         CHECK(d < 0.01, "n = 640 from 320: bins %.4f p0 from the whole load path's", d);
         printf("full steps: n = 640 from 320 in %d load step(s), %d Newton iterations (%d "
                "updates); bins %.1e p0 from the load path's\n",
                r[0].stats.load_steps, r[0].stats.iterations, r[0].stats.outer_iterations, d);
     }
-    rd_contact_result_cleanup(&c);
     rd_contact_result_cleanup(&r[0]);
     rd_contact_result_cleanup(&r[1]);
-    rd_contact_warm_free(&w);
 }
 
 /* A graded ring (rd_contact_once_graded, the refinement's local levels):
