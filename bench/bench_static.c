@@ -55,6 +55,8 @@
  *       axial height in m, tangential force in N; the rest the default's).
  *   --cap N (with --battery, --bins, --stiffness): rd_contact_opts.max_segments
  *       N instead of its default.
+ *   --exact-updates (with any): every contact multiplier update solved to the
+ *       full tolerance (rd_static_opts.update_eta = 0; 0.3.13 and before).
  *
  * The x_a limit is the Richardson extrapolation from n = 2000 and 1000
  * (order 2, checked in tests/core/test_static.c).
@@ -91,6 +93,18 @@ static double stiffness_times = 0;
 /* --accuracy A anywhere: rd_contact_opts.accuracy (0: its default, 0.01). */
 static double accuracy_opt = 0;
 
+/* --exact-updates anywhere: every multiplier update's Newton solve to the
+ * full tolerance (rd_static_opts.update_eta = 0, 0.3.13's way). */
+static int exact_updates = 0;
+
+/* The static solver's defaults with --exact-updates applied. */
+static void static_opts(rd_static_opts *so)
+{
+    rd_static_opts_default(so);
+    if (exact_updates)
+        so->update_eta = 0.0;
+}
+
 /* --single anywhere (with --random): one order a bore, 2 to 6, as the
  * issue's battery (orders 2-6, 0.1-10 x the bound, several phases). */
 static int single_order = 0;
@@ -121,7 +135,7 @@ static double time_pretension(const rd_ring_params *p, int n, int estimate,
         rd_pretension_opts o;
         rd_pretension_opts_default(&o);
         rd_static_opts so;
-        rd_static_opts_default(&so);
+        static_opts(&so);
         so.estimate_error = estimate;
         rd_error err;
         rd_error_init(&err);
@@ -142,7 +156,7 @@ static double time_contact(const rd_ring_params *p, int n, const rd_contact_opts
     double start = bench_now();
     while (reps < 64 && (reps < 5 || bench_now() - start < 0.3)) {
         rd_static_opts so;
-        rd_static_opts_default(&so);
+        static_opts(&so);
         so.estimate_error = 0;
         rd_error err;
         rd_error_init(&err);
@@ -263,7 +277,7 @@ static void battery(const rd_ring_params *p)
                 rd_error err;
                 while (reps < 3 && rc == 0 && (reps == 0 || t[0] < 2.0)) {
                     rd_static_opts so;
-                    rd_static_opts_default(&so);
+                    static_opts(&so);
                     rd_error_init(&err);
                     rd_contact_result_cleanup(&c);
                     double t0 = bench_now();
@@ -364,7 +378,7 @@ static void stiffness_battery(const rd_ring_params *p)
                 rd_contact_opts o = battery_bore(p, k, facs[fi], phases[pi], NULL);
                 rd_contact_result a, b;
                 rd_static_opts so;
-                rd_static_opts_default(&so);
+                static_opts(&so);
                 rd_error err;
                 rd_error_init(&err);
                 if (rd_contact_solve(p, 20, &o, &so, NULL, &a, &err) != RD_OK) {
@@ -491,7 +505,7 @@ static void random_bores(const rd_ring_params *p, unsigned long long seed, int c
         ref_result r;
         rd_contact_result c;
         rd_static_opts so;
-        rd_static_opts_default(&so);
+        static_opts(&so);
         rd_error err;
         rd_error_init(&err);
         if (reference_solve(p, &o, rd_contact_gap_floor(p), &r) != 0) {
@@ -612,7 +626,7 @@ static void bins_one(const rd_ring_params *p, int k, double fac, double phase, i
     ref_result r;
     rd_contact_result c;
     rd_static_opts so;
-    rd_static_opts_default(&so);
+    static_opts(&so);
     rd_error err;
     rd_error_init(&err);
     if (fixed_n > 0)
@@ -673,7 +687,7 @@ static void dump_battery(const rd_ring_params *p)
                 for (int li = 0; li < 6; li++) {
                     rd_contact_result c;
                     rd_static_opts so;
-                    rd_static_opts_default(&so);
+                    static_opts(&so);
                     so.estimate_error = 0;
                     rd_error err;
                     rd_error_init(&err);
@@ -747,6 +761,8 @@ int main(int argc, char **argv)
     const char *v;
     if (take_option(&argc, argv, "--single", 0))
         single_order = 1;
+    if (take_option(&argc, argv, "--exact-updates", 0))
+        exact_updates = 1;
     if (take_option(&argc, argv, "--rigid", 0))
         rigid_face = 1;
     /* --face: the flexible faces, the default since 0.3.0 (kept so the
@@ -805,7 +821,7 @@ int main(int argc, char **argv)
     if (argc == 3 && strcmp(argv[1], "--once") == 0) {
         rd_contact_result r;
         rd_static_opts so;
-        rd_static_opts_default(&so);
+        static_opts(&so);
         so.estimate_error = 0;
         rd_error err;
         rd_error_init(&err);

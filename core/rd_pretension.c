@@ -296,6 +296,7 @@ void rd_static_opts_default(rd_static_opts *o)
     o->max_iterations = 2000;
     o->estimate_error = 1;
     o->max_updates = 60;
+    o->update_eta = 0.03;
 }
 
 int rd_static_validate(const rd_static_opts *o, int segments, int closed, rd_error *err)
@@ -323,5 +324,9 @@ int rd_static_validate(const rd_static_opts *o, int segments, int closed, rd_err
         return rd_error_set(err, RD_EINVAL, "",
                             "rd_static_opts.max_updates = %d is out of range: allowed 1 to 1000.",
                             o->max_updates);
+    if (!(o->update_eta >= 0.0 && o->update_eta <= 1.0)) /* core's own: not in the API */
+        return rd_error_set(err, RD_EINVAL, "",
+                            "rd_static_opts.update_eta = %g is out of range: allowed 0 to 1.",
+                            o->update_eta);
     return RD_OK;
 }

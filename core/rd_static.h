@@ -69,6 +69,10 @@ typedef struct rd_static_opts {
     int max_iterations; /* Newton iterations over all load steps, default 2000 */
     int estimate_error; /* 1: second solve at 2n (n/2 above 1000) for the error estimate */
     int max_updates;    /* contact: the multipliers' updates at most (Uzawa), default 60 */
+    double update_eta;  /* contact: each update's Newton solve stops at eta times its
+                           change's force on a segment while the updates are far from
+                           converged (rd_static.c's uzawa); 0: every one to tol;
+                           default 0.03, 0..1 */
 } rd_static_opts;
 
 typedef struct rd_pretension_opts {

@@ -1,0 +1,96 @@
+/*
+ * rd_static_problem — the static chain's problem: its state, reference
+ * geometry, gap faces and support set up from a ring (rd_static_problem_init),
+ * freed (rd_static_problem_cleanup), and a body point's place
+ * (rd_static_point_at).  The residual, tangent and solver are in
+ * rd_static.c and rd_static_tangent.c; the model in rd_static.h.
+ */
+#include "rd_static_internal.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+int rd_static_problem_init(rd_static_problem *pb, const rd_ring *ring, int kind)
+{
+    int n = rd_ring_get_segments(ring);
+    const rd_ring_params *p = rd_ring_get_params(ring);
+    memset(pb, 0, sizeof *pb);
+    pb->ring = ring;
+    pb->n = n;
+    pb->kind = kind;
+    pb->R = rd_ring_get_section(ring)->R;
+    pb->b = p->radial_width;
+    pb->h = p->axial_height;
+    pb->Kc = rd_ring_joint_stiffness(ring, 0);
+    pb->E = malloc((size_t)9 * n * sizeof *pb->E);
+    pb->dP0 = malloc((size_t)3 * n * sizeof *pb->dP0);
+    pb->x = malloc((size_t)3 * n * sizeof *pb->x);
+    pb->Q = malloc((size_t)9 * n * sizeof *pb->Q);
+    if (!pb->E || !pb->dP0 || !pb->x || !pb->Q)
+        return RD_ENOMEM;
+    for (int i = 0; i < n; i++) {
+        memcpy(pb->x + 3 * i, rd_ring_reference_point(ring, i), 3 * sizeof(double));
+        double eye[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1};
+        memcpy(pb->Q + 9 * i, eye, sizeof eye);
+    }
+    for (int j = 0; j < n - 1; j++) {
+        const double *PA = rd_ring_reference_point(ring, j),
+                     *PB = rd_ring_reference_point(ring, j + 1);
+        double *E = pb->E + 9 * j, *d = pb->dP0 + 3 * j;
+        for (int k = 0; k < 3; k++)
+            d[k] = PB[k] - PA[k];
+        double L = sqrt(rd_dot3(d, d));
+        double e1[3] = {d[0] / L, d[1] / L, d[2] / L}, e2[3] = {0, 0, 1}, e3[3];
+        rd_cross3(e1, e2, e3);
+        memcpy(E, e1, sizeof e1);
+        memcpy(E + 3, e2, sizeof e2);
+        memcpy(E + 6, e3, sizeof e3);
+    }
+    /* gap faces: neutral-axis points and the opening directions */
+    double s = rd_ring_get_segment_angle(ring, 0) - 0.5 * rd_ring_segment_phi_at(ring, 0);
+    double sB = 2.0 * M_PI - s;
+    const double *P0 = rd_ring_reference_point(ring, 0), *Pn = rd_ring_reference_point(ring, n - 1);
+    double fa[3] = {pb->R * cos(s), pb->R * sin(s), 0},
+           fb[3] = {pb->R * cos(sB), pb->R * sin(sB), 0};
+    for (int k = 0; k < 3; k++) {
+        pb->cA[k] = fa[k] - P0[k];
+        pb->cB[k] = fb[k] - Pn[k];
+    }
+    double tA[3] = {-sin(s), cos(s), 0}, tB[3] = {sin(sB), -cos(sB), 0};
+    memcpy(pb->tA, tA, sizeof tA);
+    memcpy(pb->tB, tB, sizeof tB);
+    /* support: the section opposite the gap (on a graded ring the segments
+     * beside pi, or the one centred on it) */
+    pb->pa = (n - 1) / 2;
+    pb->pb = n / 2;
+    if (rd_ring_is_graded(ring)) {
+        int i = 0;
+        while (i < n - 1 && rd_ring_get_segment_angle(ring, i + 1) <= M_PI)
+            i++;
+        double a = rd_ring_get_segment_angle(ring, i);
+        pb->pa = i;
+        pb->pb = fabs(a - M_PI) < 1e-3 * rd_ring_segment_phi_at(ring, i) || i == n - 1 ? i : i + 1;
+    }
+    pb->k_t = 1e3 * pb->Kc[0];
+    pb->k_r = 1e3 * fmax(pb->Kc[6 * 3 + 3], fmax(pb->Kc[6 * 4 + 4], pb->Kc[6 * 5 + 5]));
+    return RD_OK;
+}
+
+void rd_static_problem_cleanup(rd_static_problem *pb)
+{
+    free(pb->E);
+    free(pb->dP0);
+    free(pb->x);
+    free(pb->Q);
+    free(pb->cp);
+    free(pb->mult);
+    free(pb->pe);
+}
+
+void rd_static_point_at(const rd_static_problem *pb, int i, const double c[3], double y[3])
+{
+    rd_mv3(pb->Q + 9 * i, c, y);
+    for (int k = 0; k < 3; k++)
+        y[k] += pb->x[3 * i + k];
+}
