@@ -135,7 +135,26 @@ static json_t *distortion_bounds(const rd_scene *scene, const rd_contact_result 
  *  "bore_radius" (n each, per segment), "mean_pressure_pa", ...,
  *  "distortion":[{"order","amplitude","phase_deg","conformability_bound"}],
  *  "support", "numerics"} */
-/* Light gaps, tip forces, bins and the accuracy record added to a contact
+/* [{"start_deg", "end_deg", "force_n", "centroid_deg"}] (rd_contact_patch);
+ * NULL on out of memory. */
+static json_t *contact_patches(const rd_contact_result *res)
+{
+    json_t *a = json_array();
+    for (int j = 0; a && j < res->n_patches; j++) {
+        const rd_contact_patch *p = &res->patches[j];
+        if (json_array_append_new(a, json_pack("{s:o, s:o, s:o, s:o}", "start_deg",
+                                               rd_result_real(p->start_deg), "end_deg",
+                                               rd_result_real(p->end_deg), "force_n",
+                                               rd_result_real(p->force_n), "centroid_deg",
+                                               rd_result_real(p->centroid_deg))) != 0) {
+            json_decref(a);
+            a = NULL;
+        }
+    }
+    return a;
+}
+
+/* Light gaps, patches, tip forces, bins and the accuracy record added to a contact
  * result; non-zero on out of memory. */
 static int contact_accuracy(json_t *out, const rd_contact_result *res)
 {
@@ -151,6 +170,7 @@ static int contact_accuracy(json_t *out, const rd_contact_result *res)
     }
     bad |= json_object_set_new(out, "light_gaps", gaps);
     bad |= json_object_set_new(out, "tip_forces_n", rd_result_reals(res->tip_force, 2, 1, 1.0));
+    bad |= json_object_set_new(out, "contact_patches", contact_patches(res));
     bad |=
         json_object_set_new(out, "pressure_bins",
                             json_pack("{s:f, s:o}", "bin_deg", RD_CONTACT_BIN_DEG, "pressure_pa",
@@ -158,13 +178,13 @@ static int contact_accuracy(json_t *out, const rd_contact_result *res)
     if (bad)
         return 1;
     const rd_contact_estimates *e = &res->estimates;
-    bad |= json_object_set_new(num, "error_estimates",
-                               json_pack("{s:o, s:o, s:o, s:o, s:o}", "pressure",
-                                         rd_result_real(e->pressure), "contact_fraction",
-                                         rd_result_real(e->contact_fraction), "max_clearance",
-                                         rd_result_real(e->max_clearance), "gap_edges_deg",
-                                         rd_result_real(e->gap_edges_deg), "tip_forces_n",
-                                         rd_result_real(e->tip_forces_n)));
+    bad |= json_object_set_new(
+        num, "error_estimates",
+        json_pack("{s:o, s:o, s:o, s:o, s:o, s:o}", "pressure", rd_result_real(e->pressure),
+                  "contact_fraction", rd_result_real(e->contact_fraction), "max_clearance",
+                  rd_result_real(e->max_clearance), "gap_edges_deg",
+                  rd_result_real(e->gap_edges_deg), "tip_forces_n", rd_result_real(e->tip_forces_n),
+                  "patch_forces_n", rd_result_real(e->patch_forces_n)));
     /* the local refinement: base segments, factor and arcs (null: equal
      * segments) */
     json_t *grade = json_null();

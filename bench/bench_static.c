@@ -231,8 +231,9 @@ static void battery(const rd_ring_params *p)
     double floor_m = rd_contact_gap_floor(p);
     int total = 0, ok[4] = {0}, track[5] = {0}, fast = 0, settled = 0, settled_ok = 0,
         ref_passes[2] = {1 << 30, 0}, its[3] = {1 << 30, 0, 0};
-    double ref_cpu[2] = {INFINITY, 0}, tip_worst = 0;
-    int tip_ok = 0, under[4] = {0}, over[4][2] = {{0}};
+    double ref_cpu[2] = {INFINITY, 0}, tip_worst = 0, patch_worst = 0;
+    int tip_ok = 0, under[4] = {0}, over[4][2] = {{0}}, patch_ok = 0, patch_track = 0,
+        patch_under = 0, patches = 0;
     printf("## contact in distorted bores, default settings, vs the %s curved-beam reference\n\n",
            reference_kind == REF_LINEAR ? "linear"
            : reference_kind == REF_NL   ? "geometrically exact (follower F_t)"
@@ -240,8 +241,9 @@ static void battery(const rd_ring_params *p)
     printf("| k | A / bound | phase | n | met | wall (s) | cpu (s) | contact fraction: error "
            "(estimate) "
            "| largest gap: error (estimate) | gap edges, deg | binned pressure / p0 | reference's "
-           "own bins / p0 | tip forces: error, N |\n"
-           "|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
+           "own bins / p0 | tip forces: error, N | patches | patch forces: error (estimate), N "
+           "|\n"
+           "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
     for (int oi = 0; oi < 4; oi++)
         for (int fi = 0; fi < 4; fi++)
             for (int pi = 0; pi < 2; pi++) {
@@ -305,6 +307,12 @@ static void battery(const rd_ring_params *p)
                                                     fmax(r.tip_force[e], 0.1));
                     tip_ok += fabs(c.tip_force[e] - r.tip_force[e]) <= 0.02 * r.tip_force[e] + 0.01;
                 }
+                double prel, dpf = ref_patch_error(&c, &r, &prel);
+                patches += r.n_patches;
+                patch_worst = fmax(patch_worst, prel);
+                patch_ok += prel <= 0.02 || dpf <= 0.01;
+                patch_track += ref_tracks(c.estimates.patch_forces_n, dpf, ref_patch_floor(&r));
+                patch_under += 3.0 * c.estimates.patch_forces_n < dpf && dpf > ref_patch_floor(&r);
                 total++;
                 ok[0] += dcf <= 0.02;
                 ok[1] += !(dg > 0.05);
@@ -329,10 +337,11 @@ static void battery(const rd_ring_params *p)
                 its[2] += c.stats.iterations;
                 printf(
                     "| %d | %.2g | %g | %d | %s | %.3f | %.3f | %.4f (%.4f) | %+.1f %% (%.1f %%) | "
-                    "%.2f (%.2f) | %.3f (%.3f) | %.3f | %.3f |\n",
+                    "%.2f (%.2f) | %.3f (%.3f) | %.3f | %.3f | %d (%d) | %.3f (%.3f) |\n",
                     k, Ab, phases[pi], c.stats.segments, c.accuracy_met ? "yes" : "no", wall, cpu_s,
                     dcf, c.estimates.contact_fraction, 100 * dg, 100 * eg, de,
-                    c.estimates.gap_edges_deg, dp, c.estimates.pressure, ref_dp, dtip);
+                    c.estimates.gap_edges_deg, dp, c.estimates.pressure, ref_dp, dtip, c.n_patches,
+                    r.n_patches, dpf, c.estimates.patch_forces_n);
                 rd_contact_result_cleanup(&c);
             }
     printf("\n%d bores. Within the targets: contact fraction (0.02) %d, largest gap (5 %%) %d, "
@@ -352,6 +361,11 @@ static void battery(const rd_ring_params *p)
     printf("Tip forces within 2 %% + 0.01 N of the reference's: %d of %d free ends (worst %.1f %% "
            "of the larger of the reference's and 0.1 N).\n",
            tip_ok, 2 * total, 100 * tip_worst);
+    printf("Contact patches (%d in the references): every patch's force within 2 %% or 0.01 N "
+           "of the reference's on %d of %d bores (worst %.1f %% of the larger of its force and "
+           "0.5 N); the estimate within x3 of the error on %d (both under 0.01 N + 1e-3 of the "
+           "largest patch: counted), understated beyond x3 on %d.\n",
+           patches, patch_ok, total, 100 * patch_worst, patch_track, patch_under);
     printf("The reference (%d cells): %.3f-%.3f s CPU a bore, %d-%d active-set passes.\n",
            reference_cells, ref_cpu[0], ref_cpu[1], ref_passes[0], ref_passes[1]);
     printf("Newton iterations of the finest level's solve: %d-%d a bore, %d in all.\n", its[0],
@@ -484,8 +498,8 @@ static void bins_print(const rd_ring_params *p, const rd_contact_result *c, cons
 static void random_bores(const rd_ring_params *p, unsigned long long seed, int count, int only)
 {
     int ok[4] = {0}, met = 0, met_off = 0, slow = 0, track[4] = {0}, under[4] = {0},
-        over[4][2] = {0};
-    double cpu_all = 0;
+        over[4][2] = {0}, patch_ok = 0, patch_track = 0, patch_under = 0;
+    double cpu_all = 0, patch_worst = 0;
     for (int t = 0; t < count;) {
         rd_contact_opts o = battery_bore(p, 2, 1, 0, NULL);
         o.n_distortion = single_order ? 1 : 1 + (uniform(&seed) < 0.5);
@@ -542,6 +556,11 @@ static void random_bores(const rd_ring_params *p, unsigned long long seed, int c
             if (has[q])
                 miss_kind(est[q], err4[q], floor4[q], tenth[q], &under[q], over[q]);
         }
+        double prel, dpf = ref_patch_error(&c, &r, &prel);
+        patch_worst = fmax(patch_worst, prel);
+        patch_ok += prel <= 0.02 || dpf <= 0.01;
+        patch_track += ref_tracks(c.estimates.patch_forces_n, dpf, ref_patch_floor(&r));
+        patch_under += 3.0 * c.estimates.patch_forces_n < dpf && dpf > ref_patch_floor(&r);
         met += c.accuracy_met == 1;
         met_off += c.accuracy_met == 1 && !(in[0] && in[1] && in[2] && in[3]);
         slow += cpu > 0.2;
@@ -551,14 +570,13 @@ static void random_bores(const rd_ring_params *p, unsigned long long seed, int c
             printf(" order %d at %.6g x, %.6g deg;", o.distortion[d].order,
                    o.distortion[d].amplitude / thin_ring_bound(p, o.distortion[d].order),
                    o.distortion[d].phase_deg);
-        printf(
-            " n %d, met %d, k %g x, cpu %.3f s; errors (estimates): fraction %.4f (%.4f), "
-            "gap %.2f %% (%.2f %%), edges %.2f (%.2f) deg, bins %.3f (%.3f) p0; the bins' estimate "
-            "from %s at %.4g deg\n",
-            c.stats.segments, c.accuracy_met, c.stiffness / rd_contact_default_stiffness(p), cpu,
-            dcf, c.estimates.contact_fraction, 100 * dg, 100 * eg, de, c.estimates.gap_edges_deg,
-            dp, c.estimates.pressure, source_name(c.estimates.pressure_source),
-            c.estimates.pressure_at_deg);
+        printf(" n %d, met %d, k %g x, cpu %.3f s; errors (estimates): fraction %.4f (%.4f), "
+               "gap %.2f %% (%.2f %%), edges %.2f (%.2f) deg, bins %.3f (%.3f) p0, patches %d (%d) "
+               "%.4f (%.4f) N; the bins' estimate from %s at %.4g deg\n",
+               c.stats.segments, c.accuracy_met, c.stiffness / rd_contact_default_stiffness(p), cpu,
+               dcf, c.estimates.contact_fraction, 100 * dg, 100 * eg, de, c.estimates.gap_edges_deg,
+               dp, c.estimates.pressure, c.n_patches, r.n_patches, dpf, c.estimates.patch_forces_n,
+               source_name(c.estimates.pressure_source), c.estimates.pressure_at_deg);
         if (only > 0)
             bins_print(p, &c, &r, 1);
         rd_contact_result_cleanup(&c);
@@ -573,6 +591,11 @@ static void random_bores(const rd_ring_params *p, unsigned long long seed, int c
            track[0], track[1], track[2], track[3], under[0], under[1], under[2], under[3],
            over[0][0], over[1][0], over[2][0], over[3][0], over[0][1], over[1][1], over[2][1],
            over[3][1]);
+    printf("Contact patches: every patch's force within 2 %% or 0.01 N of the reference's on %d "
+           "bores (worst %.1f %% of the larger of its force and 0.5 N); the estimate within x3 of "
+           "the error on %d (both under 0.01 N + 1e-3 of the largest patch: counted), "
+           "understated beyond x3 on %d.\n",
+           patch_ok, 100 * patch_worst, patch_track, patch_under);
 }
 
 /* One solved bore c against its reference r: each bin's pressure against
@@ -615,6 +638,14 @@ static void bins_print(const rd_ring_params *p, const rd_contact_result *c, cons
     for (int g = 0; g < r->n_gaps; g++)
         printf("  | %.3f..%.3f %.3e\n", r->gaps[g].start_deg, r->gaps[g].end_deg,
                r->gaps[g].max_clearance);
+    printf("patches, N at deg (ringdyn | reference; the estimate %.3g N):\n",
+           c->estimates.patch_forces_n);
+    for (int j = 0; j < c->n_patches; j++)
+        printf("  %.3f..%.3f %.5g N at %.3f\n", c->patches[j].start_deg, c->patches[j].end_deg,
+               c->patches[j].force_n, c->patches[j].centroid_deg);
+    for (int j = 0; j < r->n_patches; j++)
+        printf("  | %.3f..%.3f %.5g N at %.3f\n", r->patches[j].start_deg, r->patches[j].end_deg,
+               r->patches[j].force_n, r->patches[j].centroid_deg);
 }
 
 /* The battery's bore of order k, amplitude fac x the bound, phase deg, at

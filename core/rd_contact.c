@@ -546,6 +546,7 @@ static int contact_summaries(const rd_static_problem *pb, const double *t, const
     rd_contact_gaps(ts, out->clearance, n, t, c, pb->m, pb->cp0 != NULL, lo[0], lo[n],
                     out->gap_floor, out);
     tip_forces(pb, force, out);
+    rd_contact_patches(lo, force, at, n, out);
     int rc = contact_bins(pb, ts, t, c, lo, force, at, out);
     free(lo);
     free(force);

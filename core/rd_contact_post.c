@@ -198,6 +198,7 @@ void rd_contact_gaps(const double *ts, const double *cs, int n, const double *t,
     out->n_gaps = 0;
     out->marginal_gap_deg = 0.0;
     out->marginal_depth = 0.0;
+    out->n_marginal = 0;
     out->max_clearance = 0.0;
     out->max_clearance_angle_deg = NAN;
     for (int i = 0; i < n;) {
@@ -212,6 +213,8 @@ void rd_contact_gaps(const double *ts, const double *cs, int n, const double *t,
         one_gap(ts, cs, n, t, c, m, lo, i - 1, tip0, tip1, points, &g);
         if (g.max_clearance > band_lo && g.max_clearance < 2.0 * gap_floor) {
             out->marginal_gap_deg += g.end_deg - g.start_deg;
+            if (out->n_marginal < RD_CONTACT_GAPS_MAX)
+                out->marginal_at_deg[out->n_marginal++] = g.max_clearance_deg;
             double off = fabs(log(g.max_clearance / gap_floor));
             if (off < nearest)
                 nearest = off, out->marginal_depth = g.max_clearance;
@@ -684,6 +687,11 @@ static void estimate(const rd_contact_result *f, const rd_contact_result *c, dou
      * 0.206): the whole difference */
     e->tip_forces_n =
         fmax(fabs(f->tip_force[0] - c->tip_force[0]), fabs(f->tip_force[1] - c->tip_force[1]));
+    /* the patches' forces: the whole difference too (a patch at a free end
+     * holds its tip force), or what a run about as deep as the floor would
+     * split off or join (as the fraction's, above) */
+    e->patch_forces_n =
+        fmax(rd_contact_patch_moves(f, c), marginal(f, c) ? f->patch_marginal_n : 0.0);
     /* the binned pressure converges at first order next to gap edges, free
      * ends and narrow patches (order 2 at 2.8 x, 17 deg: 0.52, 0.30, 0.15 p0
      * at n = 320, 640, 1280) and at second order or faster where smooth
@@ -755,6 +763,7 @@ double rd_contact_estimate_law(const rd_contact_result *r, const rd_contact_resu
     e->max_clearance += 2.0 * fabs(r->max_clearance - s->max_clearance);
     e->tip_forces_n += 2.0 * fmax(fabs(r->tip_force[0] - s->tip_force[0]),
                                   fabs(r->tip_force[1] - s->tip_force[1]));
+    e->patch_forces_n += 2.0 * rd_contact_patch_moves(r, s);
     /* The edges, found among the points since 0.3.1, move with the law: a
      * light gap's clearance grows as the cube of the distance from its
      * edge, so the law's penetration (p / k) shifts the edge as k^(-1/3),

@@ -675,6 +675,17 @@ static int further(const contact_run *run, contact_run *up)
     return up_N > 0 && up_N <= run->o->max_segments;
 }
 
+/* An answer without estimates (none asked for, or no finer level solved). */
+static const rd_contact_estimates NO_ESTIMATES = {.pressure = NAN,
+                                                  .contact_fraction = NAN,
+                                                  .max_clearance = NAN,
+                                                  .gap_edges_deg = NAN,
+                                                  .tip_forces_n = NAN,
+                                                  .patch_forces_n = NAN,
+                                                  .pressure_at_deg = NAN,
+                                                  .pressure_source = RD_EST_NONE,
+                                                  .pressure_levels = NAN};
+
 /* The answer back as the finer level of its pair, the pair doubled (up)
  * and the refinement on from it. */
 static int go_on(contact_run *run, const contact_run *up, const rd_monitor *mon, rd_error *err)
@@ -703,7 +714,7 @@ int rd_contact_solve(const rd_ring_params *p, int segments, const rd_contact_opt
         run.n[0] = segments / 2, run.n[1] = segments;
     if (!so->estimate_error) {
         rc = rd_contact_once(p, segments, o, so, mon, NULL, NULL, out, err);
-        out->estimates = (rd_contact_estimates){NAN, NAN, NAN, NAN, NAN, NAN, RD_EST_NONE, NAN, 0};
+        out->estimates = NO_ESTIMATES;
         out->accuracy_met = -1;
         if (rc == RD_OK)
             unsettled(out);
@@ -725,8 +736,7 @@ int rd_contact_solve(const rd_ring_params *p, int segments, const rd_contact_opt
     if (rc == RD_OK) {
         *out = run.level[0];
         if (out->stats.reference_segments == 0) /* the first finer solve failed */
-            out->estimates =
-                (rd_contact_estimates){NAN, NAN, NAN, NAN, NAN, NAN, RD_EST_NONE, NAN, 0};
+            out->estimates = NO_ESTIMATES;
         out->stats.error_estimate = out->estimates.pressure;
         unsettled(out);
         memset(&run.level[0], 0, sizeof run.level[0]);

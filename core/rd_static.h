@@ -121,6 +121,18 @@ typedef struct rd_contact_gap {
     double max_clearance_deg;  /* where */
 } rd_contact_gap;
 
+/* A contact patch (since 0.3.15): a run of the running face on the bore
+ * between two light gaps, or between a free end and a gap (the whole ring
+ * where there is no gap). */
+typedef struct rd_contact_patch {
+    double start_deg, end_deg; /* where it touches: the gaps' edges either side, or the free
+                                  end, deg where on the bore */
+    double force_n;            /* the bore's radial force on it, N: the segments' resultants
+                                  between the deepest points of the gaps either side (a free
+                                  end's concentrated force included) */
+    double centroid_deg;       /* where that force acts: its mean angle, deg */
+} rd_contact_patch;
+
 /* Error estimates of a contact result (NAN when not estimated). */
 /* What the largest part of the binned pressure's estimate is (since 0.3.4):
  * the bins' change between the levels (in one bin), a gap edge's segment
@@ -138,6 +150,7 @@ typedef struct rd_contact_estimates {
     double max_clearance;    /* m */
     double gap_edges_deg;    /* deg */
     double tip_forces_n;     /* N, the larger of the two free ends' (since 0.3.1) */
+    double patch_forces_n;   /* N, the largest patch's (since 0.3.15) */
     /* where the pressure's estimate's largest part is: a bin's middle
      * (RD_EST_LEVELS, RD_EST_LAW) or a bin boundary, deg on the bore (NAN:
      * none), and which part (RD_EST_*) */
@@ -214,20 +227,27 @@ typedef struct rd_contact_result {
      * zero, angles where on the bore. */
     int n_gaps;
     rd_contact_gap gaps[RD_CONTACT_GAPS_MAX];
-    double gap_floor;         /* m */
-    double marginal_gap_deg;  /* width of the runs off the bore whose depth is within x2 of
+    double gap_floor;        /* m */
+    double marginal_gap_deg; /* width of the runs off the bore whose depth is within x2 of
                                 gap_floor, counted or not: the contact fraction's threshold
                                 uncertainty, deg */
-    double marginal_depth;    /* of those runs, the depth nearest gap_floor (by ratio), m; 0
+    double marginal_depth;   /* of those runs, the depth nearest gap_floor (by ratio), m; 0
                                  if none */
+    int n_marginal;          /* those runs' deepest points, deg (at most RD_CONTACT_GAPS_MAX) */
+    double marginal_at_deg[RD_CONTACT_GAPS_MAX];
     double point_spacing_deg; /* contact points' spacing (graded: the finest), deg: the edge
                                  locator's resolution */
     int points_per_segment;   /* m */
     int graded;               /* the segments are not all alike */
     double tip_force[2];      /* concentrated force at the first / last free end, N */
-    double edge_bin_share;    /* the most a segment holding a gap edge put past a bin boundary
+    int n_patches;            /* the contact patches, in angle order (rd_contact_patch) */
+    rd_contact_patch patches[RD_CONTACT_GAPS_MAX + 1];
+    double patch_marginal_n; /* the most force a run off the bore as deep as the floor would
+                                 move from a patch were it counted the other way (a patch
+                                 split in two, or two merged), N */
+    double edge_bin_share;   /* the most a segment holding a gap edge put past a bin boundary
                                  from the edge, as a bin pressure, Pa (rd_contact_bins) */
-    double edge_bin_at_deg;   /* that boundary, deg (NAN: none) */
+    double edge_bin_at_deg;  /* that boundary, deg (NAN: none) */
     double bin_pressure[RD_CONTACT_BINS]; /* mean pressure over the ring's arc in each
                                    RD_CONTACT_BIN_DEG bin, Pa */
     /* Accuracy: estimates of the reported values' errors from the last two

@@ -302,6 +302,16 @@ void rd_contact_gaps(const double *ts, const double *cs, int n, const double *t,
                      rd_contact_result *out);
 void rd_contact_bins(const double *seg_deg, const double *force, const double *at_deg, int n,
                      double h_ro, const rd_contact_result *gaps, rd_contact_result *out);
+/* rd_contact_patch.c: out's contact patches from its light gaps and the
+ * segments' forces (N) acting at at (deg on the bore), their arcs' ends lo
+ * (n + 1, deg: lo[0] and lo[n] the free ends). */
+void rd_contact_patches(const double *lo, const double *force, const double *at, int n,
+                        rd_contact_result *out);
+/* The largest change of a patch's force between a and b, N: each patch
+ * against those of the other that overlap it, one none overlaps by its
+ * whole force (a patch split or merged by a light gap at the floor moves
+ * by the part split off). */
+double rd_contact_patch_moves(const rd_contact_result *a, const rd_contact_result *b);
 /* The arc of the segment nearest the angle a (deg): 360 / n where the
  * segments are alike (as the estimates were measured), its own where
  * graded. */

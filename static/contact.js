@@ -37,6 +37,7 @@ export const contact = {
         ? h('figure', { class: 'plot wide' }, cartesianPlot(result, gaps),
           h('figcaption', {}, 'The same pressure against the angle from the gap, its axis fitted to the values so that small departures from p0 show (dashed: p0).'))
         : null,
+      patchTable(result),
       distortionTable(result),
     );
   },
@@ -112,6 +113,27 @@ function figures(result, gaps) {
       ['Solver', n.solver],
     ],
   });
+}
+
+// The contact patches (since 0.3.15): where the ring touches between its
+// light gaps and how hard, N, with the estimate of the patch forces' error.
+function patchTable(result) {
+  const rows = Array.isArray(result.contact_patches) ? result.contact_patches : [];
+  if (!rows.length) return null;
+  const est = result.numerics?.error_estimates?.patch_forces_n;
+  const body = rows.map((p) => h('tr', {},
+    h('td', { class: 'num' }, isNum(p.start_deg) ? p.start_deg.toFixed(2) : '—'),
+    h('td', { class: 'num' }, isNum(p.end_deg) ? p.end_deg.toFixed(2) : '—'),
+    h('td', { class: 'num' }, isNum(p.force_n) ? sig(p.force_n, 4) : '—'),
+    h('td', { class: 'num' }, isNum(p.centroid_deg) ? p.centroid_deg.toFixed(2) : '—')));
+  return h('div', { class: 'table-wrap' }, h('table', { class: 'data', id: 'ct-patches' },
+    h('caption', {}, `Contact patches: where the ring touches the bore between its light gaps, and the bore's force on each${isNum(est) ? ` (± ${sig(est, 2)} N, estimate)` : ''}`),
+    h('thead', {}, h('tr', {},
+      h('th', { scope: 'col', class: 'num' }, 'From (deg)'),
+      h('th', { scope: 'col', class: 'num' }, 'To (deg)'),
+      h('th', { scope: 'col', class: 'num' }, 'Force (N)'),
+      h('th', { scope: 'col', class: 'num' }, 'Acting at (deg)'))),
+    h('tbody', {}, body)));
 }
 
 // Each distortion order: its amplitude against the thin-ring conformability

@@ -738,6 +738,12 @@ test('contact against the server: polar points, light gaps and the distortion ta
   }
   assert.equal(await page.locator('#ct-p0').count(), 1);
   assert.equal(await page.locator('#ct-distortion tbody tr').count(), (result.distortion || []).length);
+  // the contact patches (since 0.3.15): one row each, the force in N and its estimate in the caption
+  assert.equal(await page.locator('#ct-patches tbody tr').count(), result.contact_patches.length);
+  assert.ok(result.contact_patches.length >= 1, 'a distorted bore has a contact patch');
+  assert.equal(await page.textContent('#ct-patches tbody tr:first-child td:nth-child(3)'),
+    String(Number(result.contact_patches[0].force_n.toPrecision(4))));
+  assert.match(await page.textContent('#ct-patches caption'), / \(± .* N, estimate\)$/);
   assert.match(await page.textContent('#ct-fraction'), new RegExp(`^${(result.contact_fraction * 100).toFixed(1)} %`));
   // each figure with its estimate: the contact fraction's, the tip forces (N) and theirs, the target's verdict
   const est = result.numerics.error_estimates;

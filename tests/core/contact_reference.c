@@ -160,6 +160,26 @@ static double node_angle(const ref_mesh *m, int j)
     return m->s + j * m->D + (m->shift ? m->shift[j] : 0.0);
 }
 
+/* out's contact patches from its gaps: each node's force to the patch
+ * between the deepest points of the gaps around it (a node in a gap holds
+ * none); a patch is kept where it has width or force. */
+static void ref_patches(const ref_mesh *m, const double *lam, ref_result *out)
+{
+    int N = m->cells, j = 0;
+    out->n_patches = 0;
+    for (int g = 0; g <= out->n_gaps; g++) {
+        double lim = g < out->n_gaps ? out->gaps[g].at_deg : INFINITY, f = 0.0, fa = 0.0;
+        for (; j <= N && node_angle(m, j) * 180 / M_PI <= lim; j++)
+            f += lam[j], fa += lam[j] * node_angle(m, j) * 180 / M_PI;
+        double a = g > 0 ? out->gaps[g - 1].end_deg : node_angle(m, 0) * 180 / M_PI;
+        double b = g < out->n_gaps ? out->gaps[g].start_deg : node_angle(m, N) * 180 / M_PI;
+        if (b <= a && f <= 0.0)
+            continue;
+        out->patches[out->n_patches++] =
+            (ref_patch){a, fmax(a, b), f, f > 0.0 ? fa / f : 0.5 * (a + b)};
+    }
+}
+
 void ref_post(const ref_mesh *m, const char *act, const double *gap, const double *lam,
               double bin_deg, double gap_floor, ref_result *out)
 {
@@ -200,6 +220,7 @@ void ref_post(const ref_mesh *m, const char *act, const double *gap, const doubl
     out->contact_fraction = 1.0 - gap_len / span;
     out->end_deg[0] = a0 * 180 / M_PI;
     out->end_deg[1] = aN * 180 / M_PI;
+    ref_patches(m, lam, out);
     out->tip_force[0] = act[0] ? lam[0] - 0.5 * lam[1] : 0.0;
     out->tip_force[1] = act[N] ? lam[N] - 0.5 * lam[N - 1] : 0.0;
     /* bins: node forces spread over the part of their tributary arcs on
@@ -335,6 +356,63 @@ double ref_edge_error(const rd_contact_result *c, const ref_result *r)
         worst = isnan(worst) ? best : fmax(worst, best);
     }
     return worst;
+}
+
+/* c's segment arc nearest the angle a, deg. */
+static double seg_width(const rd_contact_result *c, double a)
+{
+    int best = 0;
+    for (int i = 1; i < c->points; i++)
+        if (fabs(c->angle_deg[i] - a) < fabs(c->angle_deg[best] - a))
+            best = i;
+    return c->width_deg[best];
+}
+
+/* The largest difference of r's patch p from c's patches that overlap it
+ * within a segment of c there (none: p's force), and the reverse. */
+static double patch_error_one(const ref_patch *p, const rd_contact_result *c, double *rel)
+{
+    double w = seg_width(c, p->centroid_deg), d = NAN;
+    for (int k = 0; k < c->n_patches; k++) {
+        const rd_contact_patch *q = &c->patches[k];
+        if (q->end_deg + w >= p->start_deg && q->start_deg - w <= p->end_deg) {
+            double e = fabs(q->force_n - p->force_n);
+            d = isnan(d) ? e : fmax(d, e);
+        }
+    }
+    d = isnan(d) ? p->force_n : d;
+    *rel = fmax(*rel, d / fmax(p->force_n, 0.5));
+    return d;
+}
+
+double ref_patch_error(const rd_contact_result *c, const ref_result *r, double *rel)
+{
+    double worst = 0.0;
+    *rel = 0.0;
+    for (int j = 0; j < r->n_patches; j++)
+        worst = fmax(worst, patch_error_one(&r->patches[j], c, rel));
+    for (int k = 0; k < c->n_patches; k++) { /* c's patches the reference lacks */
+        const rd_contact_patch *q = &c->patches[k];
+        ref_patch p = {q->start_deg, q->end_deg, q->force_n, q->centroid_deg};
+        int found = 0;
+        double w = seg_width(c, q->centroid_deg);
+        for (int j = 0; j < r->n_patches && !found; j++)
+            found = r->patches[j].end_deg + w >= p.start_deg &&
+                    r->patches[j].start_deg - w <= p.end_deg;
+        if (!found) {
+            worst = fmax(worst, p.force_n);
+            *rel = fmax(*rel, 1.0);
+        }
+    }
+    return worst;
+}
+
+double ref_patch_floor(const ref_result *r)
+{
+    double big = 0.0;
+    for (int j = 0; j < r->n_patches; j++)
+        big = fmax(big, r->patches[j].force_n);
+    return 0.01 + 1e-3 * big;
 }
 
 int ref_tracks(double est, double err, double floor)

@@ -19,6 +19,13 @@ typedef struct ref_gap {
     double max_clearance, at_deg; /* largest clearance (m) and where */
 } ref_gap;
 
+/* A contact patch: the nodes between the deepest points of the light gaps
+ * either side (or a free end), their forces' sum and mean angle. */
+typedef struct ref_patch {
+    double start_deg, end_deg; /* the gaps' edges either side, or the free end */
+    double force_n, centroid_deg;
+} ref_patch;
+
 typedef struct ref_result {
     int cells, iterations;
     double contact_fraction; /* contact length / ring span */
@@ -27,6 +34,8 @@ typedef struct ref_result {
     ref_gap gaps[64];
     double max_clearance, max_clearance_deg;
     double tip_force[2]; /* concentrated force at the two free ends, N */
+    int n_patches;
+    ref_patch patches[65];
     int bins; /* angular bins of bin_deg from 0 deg on the bore, the first and last reaching past */
     double bin_pressure[REF_BINS_MAX]; /* mean contact pressure per bin, Pa (0 where no ring) */
     double p0;
@@ -74,6 +83,18 @@ void ref_post(const ref_mesh *m, const char *act, const double *gap, const doubl
  * has no such gap.  The edges' error of bench_static --battery and
  * test_contact. */
 double ref_edge_error(const rd_contact_result *c, const ref_result *r);
+
+/* The largest error of c's contact patches' forces against r's, N: each
+ * of r's patches against c's that overlap it within a segment, a patch
+ * only one of them has by its whole force; *rel the largest relative to
+ * its patch's force (at least 0.5 N). */
+double ref_patch_error(const rd_contact_result *c, const ref_result *r, double *rel);
+
+/* The patch forces' tracking floor, N: 0.01 N (as the tip forces') plus
+ * 1e-3 of r's largest patch force, the two models' settled difference (the
+ * 130 mm ring, order 2 at 2.27 x, 126.5 deg: 0.032 N of ~80 N at n = 1280,
+ * the reference within 0.0006 N of it from 1440 to 4000 cells). */
+double ref_patch_floor(const ref_result *r);
 
 /* Does the estimate est track the true error err: within x3 either way,
  * or both at most `floor` (the issue's tracking criterion; bench_static

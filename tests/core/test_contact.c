@@ -215,6 +215,26 @@ static void loose_target(const rd_ring_params *p, const rd_contact_opts *o, cons
     rd_contact_result_cleanup(&c);
 }
 
+/* c's contact patches against the exact reference x's: as many, each
+ * patch's force within 1 % of the larger of its force and 0.5 N (measured
+ * at most 0.4 %, order 3 at 10 x, 17 deg, n = 160: 0.011 N; x2.5), and
+ * the estimate not understating the error beyond x3 over the floor;
+ * returns whether the estimate tracks the error (ref_tracks). */
+static int patches_against(const rd_contact_result *c, const ref_result *x, int k, double fac,
+                           double ph)
+{
+    double rel, d = ref_patch_error(c, x, &rel), fl = ref_patch_floor(x);
+    printf("  patches %d (exact %d): forces off by %.4f N, %.2f %% (est. %.4f N)\n", c->n_patches,
+           x->n_patches, d, 100 * rel, c->estimates.patch_forces_n);
+    CHECK(c->n_patches == x->n_patches && rel <= 0.01,
+          "k=%d x%g ph %g: %d patches (exact %d), a force %.4f N off (%.2f %%)", k, fac, ph,
+          c->n_patches, x->n_patches, d, 100 * rel);
+    CHECK(d <= fl || d <= 3.0 * c->estimates.patch_forces_n,
+          "k=%d x%g ph %g: patch forces %.4f N off, estimate %.4f N", k, fac, ph, d,
+          c->estimates.patch_forces_n);
+    return ref_tracks(c->estimates.patch_forces_n, d, fl);
+}
+
 static void test_battery_exact(void)
 {
     rd_ring_params p;
@@ -224,6 +244,7 @@ static void test_battery_exact(void)
     rd_static_opts so;
     rd_static_opts_default(&so);
     int under_p = 0, under_g = 0, bores = 0, track[4] = {0}, graded = 0, met = 0, loose_met = 0;
+    int patch_track = 0;
     double loose_worst = 0.0;
     for (int oi = 0; oi < 4; oi++)
         for (int fi = 0; fi < 4; fi++)
@@ -340,6 +361,7 @@ static void test_battery_exact(void)
                           factors[fi], phases[pi], e, c.tip_force[e], x.tip_force[e],
                           c.estimates.tip_forces_n);
                 }
+                patch_track += patches_against(&c, &x, k, factors[fi], phases[pi]);
                 rd_contact_result_cleanup(&c);
                 loose_target(&p, &o, &x, &loose_met, &loose_worst);
             }
@@ -371,6 +393,13 @@ static void test_battery_exact(void)
      * 1280, closer again, its estimates not; edge_bin_share raises order 6
      * at 10 x, 0 deg from 0.38 to 0.82 p0 against a true 0.14): one bore's
      * room each, as a ratio near x3 may flip with the build's rounding */
+    /* the patch forces' estimate: measured within x3 of the error, or both
+     * under the floor (ref_patch_floor), on 28 of the 30 (overstated on
+     * order 3 at 10 x, 0 deg, and order 4 at 10 x, 0 deg: estimates 0.020
+     * and 0.018 N at n = 160 against 0.003 and 0.006), never understated
+     * beyond x3 (patches_against): two bores' room */
+    CHECK(patch_track >= 26, "patch forces' estimate within x3 on %d of %d bores", patch_track,
+          bores);
     CHECK(track[0] >= 26 && track[1] >= 25 && track[2] >= 25 && track[3] >= 25,
           "estimates within x3 of the true error: contact fraction %d, largest gap %d, edges %d, "
           "binned pressure %d of %d bores",
@@ -792,6 +821,18 @@ static void test_accuracy_target(void)
               c.stats.reference_segments == c.stats.segments / 2,
           "round bore: met %d, estimate %g, n %d from %d", c.accuracy_met, c.estimates.pressure,
           c.stats.segments, c.stats.reference_segments);
+    /* one patch, the whole ring: under the uniform pressure (1.3) the
+     * bore's radial force is p0 h r_o per radian, F_t, over the running
+     * face's span 2 pi - g / r_o (the closed gap g); the patch sums the
+     * segments' resultants (measured 5e-5 off at n = 640, the mean
+     * pressure's own error: 1e-4); its force acting in the middle, 180 deg */
+    double span = 2.0 * PI - p.closed_gap / (0.5 * p.diameter);
+    CHECK(rc == RD_OK && c.n_patches == 1 &&
+              fabs(c.patches[0].force_n / (p.tangential_force * span) - 1.0) < 1e-4 &&
+              fabs(c.patches[0].centroid_deg - 180.0) < 1e-3,
+          "round bore: %d patches, force %.6g N against F_t (2 pi - g / r_o) = %.6g N, at %.4f deg",
+          c.n_patches, c.n_patches ? c.patches[0].force_n : NAN, p.tangential_force * span,
+          c.n_patches ? c.patches[0].centroid_deg : NAN);
     rd_contact_result_cleanup(&c);
     /* a target the cap cannot reach: the answer comes with the reason */
     o = bore(&p, 4, 3.0, 0.0);
