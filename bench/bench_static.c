@@ -498,7 +498,8 @@ static void bins_print(const rd_ring_params *p, const rd_contact_result *c, cons
 static void random_bores(const rd_ring_params *p, unsigned long long seed, int count, int only)
 {
     int ok[4] = {0}, met = 0, met_off = 0, slow = 0, track[4] = {0}, under[4] = {0},
-        over[4][2] = {0}, patch_ok = 0, patch_track = 0, patch_under = 0;
+        over[4][2] = {0}, patch_ok = 0, patch_track = 0, patch_under = 0, tip_ok = 0, tip_track = 0,
+        tip_under = 0;
     double cpu_all = 0, patch_worst = 0;
     for (int t = 0; t < count;) {
         rd_contact_opts o = battery_bore(p, 2, 1, 0, NULL);
@@ -556,6 +557,13 @@ static void random_bores(const rd_ring_params *p, unsigned long long seed, int c
             if (has[q])
                 miss_kind(est[q], err4[q], floor4[q], tenth[q], &under[q], over[q]);
         }
+        double dtip = 0.0; /* the free ends' forces, as the battery counts them */
+        for (int e = 0; e < 2; e++) {
+            dtip = fmax(dtip, fabs(c.tip_force[e] - r.tip_force[e]));
+            tip_ok += fabs(c.tip_force[e] - r.tip_force[e]) <= 0.02 * r.tip_force[e] + 0.01;
+        }
+        tip_track += ref_tracks(c.estimates.tip_forces_n, dtip, 0.01);
+        tip_under += 3.0 * c.estimates.tip_forces_n < dtip && dtip > 0.01;
         double prel, dpf = ref_patch_error(&c, &r, &prel);
         patch_worst = fmax(patch_worst, prel);
         patch_ok += prel <= 0.02 || dpf <= 0.01;
@@ -572,11 +580,12 @@ static void random_bores(const rd_ring_params *p, unsigned long long seed, int c
                    o.distortion[d].phase_deg);
         printf(" n %d, met %d, k %g x, cpu %.3f s; errors (estimates): fraction %.4f (%.4f), "
                "gap %.2f %% (%.2f %%), edges %.2f (%.2f) deg, bins %.3f (%.3f) p0, patches %d (%d) "
-               "%.4f (%.4f) N; the bins' estimate from %s at %.4g deg\n",
+               "%.4f (%.4f) N, tips %.4f (%.4f) N; the bins' estimate from %s at %.4g deg\n",
                c.stats.segments, c.accuracy_met, c.stiffness / rd_contact_default_stiffness(p), cpu,
                dcf, c.estimates.contact_fraction, 100 * dg, 100 * eg, de, c.estimates.gap_edges_deg,
                dp, c.estimates.pressure, c.n_patches, r.n_patches, dpf, c.estimates.patch_forces_n,
-               source_name(c.estimates.pressure_source), c.estimates.pressure_at_deg);
+               dtip, c.estimates.tip_forces_n, source_name(c.estimates.pressure_source),
+               c.estimates.pressure_at_deg);
         if (only > 0)
             bins_print(p, &c, &r, 1);
         rd_contact_result_cleanup(&c);
@@ -596,6 +605,10 @@ static void random_bores(const rd_ring_params *p, unsigned long long seed, int c
            "the error on %d (both under 0.01 N + 1e-3 of the largest patch: counted), "
            "understated beyond x3 on %d.\n",
            patch_ok, 100 * patch_worst, patch_track, patch_under);
+    printf("Tip forces within 2 %% + 0.01 N of the reference's: %d of %d free ends; the estimate "
+           "within x3 of the larger end's error on %d bores (both under 0.01 N: counted), "
+           "understated beyond x3 on %d.\n",
+           tip_ok, 2 * count, tip_track, tip_under);
 }
 
 /* One solved bore c against its reference r: each bin's pressure against
