@@ -227,27 +227,32 @@ typedef struct rd_contact_result {
      * zero, angles where on the bore. */
     int n_gaps;
     rd_contact_gap gaps[RD_CONTACT_GAPS_MAX];
-    double gap_floor;        /* m */
-    double marginal_gap_deg; /* width of the runs off the bore whose depth is within x2 of
+    double gap_floor;         /* m */
+    double marginal_gap_deg;  /* width of the runs off the bore whose depth is within x2 of
                                 gap_floor, counted or not: the contact fraction's threshold
                                 uncertainty, deg */
-    double marginal_depth;   /* of those runs, the depth nearest gap_floor (by ratio), m; 0
+    double marginal_depth;    /* of those runs, the depth nearest gap_floor (by ratio), m; 0
                                  if none */
-    int n_marginal;          /* those runs' deepest points, deg (at most RD_CONTACT_GAPS_MAX) */
-    double marginal_at_deg[RD_CONTACT_GAPS_MAX];
     double point_spacing_deg; /* contact points' spacing (graded: the finest), deg: the edge
                                  locator's resolution */
     int points_per_segment;   /* m */
     int graded;               /* the segments are not all alike */
     double tip_force[2];      /* concentrated force at the first / last free end, N */
-    int n_patches;            /* the contact patches, in angle order (rd_contact_patch) */
-    rd_contact_patch patches[RD_CONTACT_GAPS_MAX + 1];
-    double patch_marginal_n; /* the most force a run off the bore as deep as the floor would
-                                 move from a patch were it counted the other way (a patch
-                                 split in two, or two merged), N */
-    double edge_bin_share;   /* the most a segment holding a gap edge put past a bin boundary
+    double edge_bin_share;    /* the most a segment holding a gap edge put past a bin boundary
                                  from the edge, as a bin pressure, Pa (rd_contact_bins) */
-    double edge_bin_at_deg;  /* that boundary, deg (NAN: none) */
+    double edge_bin_at_deg;   /* that boundary, deg (NAN: none) */
+
+    /* The contact patches (since 0.3.15), in angle order; the deepest points
+     * of the runs off the bore within x2 of gap_floor (marginal_gap_deg's, at
+     * most RD_CONTACT_GAPS_MAX), deg; and the most force such a run would move
+     * from a patch were it counted the other way (a patch split in two, or
+     * two merged), N. */
+    int n_patches;
+    rd_contact_patch patches[RD_CONTACT_GAPS_MAX + 1];
+    int n_marginal;
+    double marginal_at_deg[RD_CONTACT_GAPS_MAX];
+    double patch_marginal_n;
+
     double bin_pressure[RD_CONTACT_BINS]; /* mean pressure over the ring's arc in each
                                    RD_CONTACT_BIN_DEG bin, Pa */
     /* Accuracy: estimates of the reported values' errors from the last two

@@ -308,9 +308,9 @@ void rd_contact_bins(const double *seg_deg, const double *force, const double *a
 void rd_contact_patches(const double *lo, const double *force, const double *at, int n,
                         rd_contact_result *out);
 /* The largest change of a patch's force between a and b, N: each patch
- * against those of the other that overlap it, one none overlaps by its
- * whole force (a patch split or merged by a light gap at the floor moves
- * by the part split off). */
+ * against those of the other that overlap it within a segment, one none
+ * overlaps by its whole force (a patch one of them splits in two moves by
+ * the larger part). */
 double rd_contact_patch_moves(const rd_contact_result *a, const rd_contact_result *b);
 /* The arc of the segment nearest the angle a (deg): 360 / n where the
  * segments are alike (as the estimates were measured), its own where
