@@ -256,6 +256,14 @@ function polarPlot(result, gaps) {
       }, `max ${um(result.max_clearance)} µm`));
   }
 
+  // Contact patches (since 0.3.15) where the ring has light gaps: a mark on
+  // the bore where each patch's force acts, the force in its tooltip.
+  const patches = gaps.length && Array.isArray(result.contact_patches) ? result.contact_patches : [];
+  const patchMarks = patches.filter((q) => isNum(q.centroid_deg) && isNum(q.force_n)).map((q) => {
+    const [px, py] = polar(cx, cy, boreAt(q.centroid_deg) + 7, q.centroid_deg);
+    return svg('circle', { class: 'patch-mark', cx: px, cy: py, r: 4 },
+      svg('title', {}, `Contact patch ${deg(q.start_deg)}–${deg(q.end_deg)}: ${sig(q.force_n, 4)} N at ${deg(q.centroid_deg)}`));
+  });
   const pressure = pathD(angles.slice(0, k).map((a, i) => polar(cx, cy, rOf(p[i]), a)));
   const summary = `Polar plot of the contact pressure at ${k} points, up to ${MPa(Math.max(...p.slice(0, k).filter(isNum), 0))}; ` +
     `uniform pressure ${MPa(p0)}; ${gaps.length} light-gap segments${gaps.length ? `, largest ${um(result.max_clearance)} µm` : ''}.`;
@@ -264,6 +272,7 @@ function polarPlot(result, gaps) {
       [svg('path', { class: 'pressure', d: 'M-2,0H12' }), 'pressure'],
       [svg('path', { class: 'p0', d: 'M-2,0H12' }), 'p0'],
       [svg('path', { class: 'light-gap', d: 'M-2,0H12' }), 'light gap'],
+      ...(patchMarks.length ? [[svg('circle', { class: 'patch-mark', cx: 5, cy: 0, r: 4 }), 'contact patch']] : []),
     ], { x: 10, y: 12 }),
     svg('text', { class: 'tick', x: 10, y: 32, id: 'ct-bore-label' }, boreText),
     grid,
@@ -272,6 +281,7 @@ function polarPlot(result, gaps) {
       svg('title', {}, `Uniform pressure p0 = ${MPa(p0)}`)) : null,
     svg('path', { class: 'pressure', id: 'ct-pressure', d: pressure }),
     svg('g', { class: 'light-gaps' }, arcs),
+    svg('g', { class: 'patch-marks', id: 'ct-patch-marks' }, patchMarks),
     maxMark);
 }
 

@@ -744,6 +744,8 @@ test('contact against the server: polar points, light gaps and the distortion ta
   assert.equal(await page.textContent('#ct-patches tbody tr:first-child td:nth-child(3)'),
     String(Number(result.contact_patches[0].force_n.toPrecision(4))));
   assert.match(await page.textContent('#ct-patches caption'), / \(± .* N, estimate\)$/);
+  // and a mark on the polar plot where each patch's force acts, where the ring has light gaps
+  assert.equal(await page.locator('#ct-patch-marks .patch-mark').count(), gaps > 0 ? result.contact_patches.length : 0);
   assert.match(await page.textContent('#ct-fraction'), new RegExp(`^${(result.contact_fraction * 100).toFixed(1)} %`));
   // each figure with its estimate: the contact fraction's, the tip forces (N) and theirs, the target's verdict
   const est = result.numerics.error_estimates;
