@@ -200,7 +200,14 @@ double rd_contact_update_multipliers(rd_static_problem *pb)
  * z; e the current smoothing length, hoisted out of the points' loop).
  * Below z = -746 exp(z) underflows to 0 (from -745.13 on), so both are
  * exactly 0 there: returned without the calls (most points of a bore with
- * light gaps). */
+ * light gaps).  Above z = 40 they are exactly k delta and k: q = exp(-z) <
+ * 4.3e-18 is under half an ulp of 1 (1 + q rounds to 1) and e log1p(q) =
+ * delta q / z under half an ulp of delta, so the calls are skipped there
+ * too (a point pressing at over 2 p0; from z = 708 on exp(-z) is
+ * subnormal, glibc's slow path).  Order 2 at 1.97 x, 179.8 deg (a random
+ * bore over 0.2 s): 3.124 -> 3.053 G instructions (callgrind,
+ * bench_contact_cost 2 1.97019 179.812); order 6 at 10 x, 0 deg: 1.026 ->
+ * 1.023 G; bench_contact_cost --battery's fingerprints the same. */
 static void law_and_slope(const rd_static_problem *pb, double delta, int i, double e, double *p,
                           double *dp)
 {
@@ -211,7 +218,10 @@ static void law_and_slope(const rd_static_problem *pb, double delta, int i, doub
         *p = *dp = 0.0;
         return;
     }
-    if (z > 0) {
+    if (z > 40.0) {
+        *p = k * delta;
+        *dp = k;
+    } else if (z > 0) {
         double q = exp(-z);
         *p = k * (delta + e * log1p(q));
         *dp = k / (1.0 + q);
