@@ -224,6 +224,17 @@ static int patches_against(const rd_contact_result *c, const ref_result *x, int 
                            double ph)
 {
     double rel, d = ref_patch_error(c, x, &rel), fl = ref_patch_floor(x);
+    /* every segment's force in one patch: the patches' sum is the
+     * segments' resultants' (pressure x h x r_o x arc), to rounding */
+    rd_ring_params p;
+    rd_ring_params_default(&p);
+    double all = 0.0, sum = 0.0;
+    for (int i = 0; i < c->points; i++)
+        all += c->pressure[i] * p.axial_height * 0.5 * p.diameter * c->width_deg[i] * PI / 180.0;
+    for (int j = 0; j < c->n_patches; j++)
+        sum += c->patches[j].force_n;
+    CHECK(fabs(sum - all) <= 1e-9 * all, "k=%d x%g ph %g: patches sum to %.12g N, segments %.12g N",
+          k, fac, ph, sum, all);
     printf("  patches %d (exact %d): forces off by %.4f N, %.2f %% (est. %.4f N)\n", c->n_patches,
            x->n_patches, d, 100 * rel, c->estimates.patch_forces_n);
     CHECK(c->n_patches == x->n_patches && rel <= 0.01,
@@ -394,11 +405,11 @@ static void test_battery_exact(void)
      * at 10 x, 0 deg from 0.38 to 0.82 p0 against a true 0.14): one bore's
      * room each, as a ratio near x3 may flip with the build's rounding */
     /* the patch forces' estimate: measured within x3 of the error, or both
-     * under the floor (ref_patch_floor), on 28 of the 30 (overstated on
-     * order 3 at 10 x, 0 deg, and order 4 at 10 x, 0 deg: estimates 0.020
-     * and 0.018 N at n = 160 against 0.003 and 0.006), never understated
-     * beyond x3 (patches_against): two bores' room */
-    CHECK(patch_track >= 26, "patch forces' estimate within x3 on %d of %d bores", patch_track,
+     * under the floor (ref_patch_floor), on all 30 (28 with a 0.01 N floor
+     * alone: order 3 at 10 x, 0 deg, and order 4 at 10 x, 0 deg, estimates
+     * 0.020 and 0.018 N at n = 160 against 0.003 and 0.006), never
+     * understated beyond x3 (patches_against): two bores' room */
+    CHECK(patch_track >= 28, "patch forces' estimate within x3 on %d of %d bores", patch_track,
           bores);
     CHECK(track[0] >= 26 && track[1] >= 25 && track[2] >= 25 && track[3] >= 25,
           "estimates within x3 of the true error: contact fraction %d, largest gap %d, edges %d, "
@@ -821,14 +832,16 @@ static void test_accuracy_target(void)
               c.stats.reference_segments == c.stats.segments / 2,
           "round bore: met %d, estimate %g, n %d from %d", c.accuracy_met, c.estimates.pressure,
           c.stats.segments, c.stats.reference_segments);
-    /* one patch, the whole ring: under the uniform pressure (1.3) the
-     * bore's radial force is p0 h r_o per radian, F_t, over the running
-     * face's span 2 pi - g / r_o (the closed gap g); the patch sums the
-     * segments' resultants (measured 5e-5 off at n = 640, the mean
-     * pressure's own error: 1e-4); its force acting in the middle, 180 deg */
+    /* one patch, the whole ring: under the thin-ring uniform pressure
+     * (1.3) the bore's radial force is p0 h r_o per radian, F_t, over the
+     * running face's span 2 pi - g / r_o (the closed gap g), 62.753 N; the
+     * thick ring departs from it as its mean pressure does from p0
+     * (measured -6.9e-5 at the default n = 80, -5.7e-4 converged at n =
+     * 1280, the mean pressure -5.2e-4): 1e-3; its force acting in the
+     * middle, 180 deg (measured to 2e-7 deg) */
     double span = 2.0 * PI - p.closed_gap / (0.5 * p.diameter);
     CHECK(rc == RD_OK && c.n_patches == 1 &&
-              fabs(c.patches[0].force_n / (p.tangential_force * span) - 1.0) < 1e-4 &&
+              fabs(c.patches[0].force_n / (p.tangential_force * span) - 1.0) < 1e-3 &&
               fabs(c.patches[0].centroid_deg - 180.0) < 1e-3,
           "round bore: %d patches, force %.6g N against F_t (2 pi - g / r_o) = %.6g N, at %.4f deg",
           c.n_patches, c.n_patches ? c.patches[0].force_n : NAN, p.tangential_force * span,
