@@ -220,17 +220,16 @@ static void loose_target(const rd_ring_params *p, const rd_contact_opts *o, cons
  * at most 0.4 %, order 3 at 10 x, 17 deg, n = 160: 0.011 N; x2.5), and
  * the estimate not understating the error beyond x3 over the floor;
  * returns whether the estimate tracks the error (ref_tracks). */
-static int patches_against(const rd_contact_result *c, const ref_result *x, int k, double fac,
-                           double ph)
+static int patches_against(const rd_ring_params *p, const rd_contact_result *c, const ref_result *x,
+                           int k, double fac, double ph)
 {
     double rel, d = ref_patch_error(c, x, &rel), fl = ref_patch_floor(x);
     /* every segment's force in one patch: the patches' sum is the
-     * segments' resultants' (pressure x h x r_o x arc), to rounding */
-    rd_ring_params p;
-    rd_ring_params_default(&p);
+     * segments' resultants' (pressure x h x r_o x arc, r_o = d / 2 for a
+     * rectangular section), to rounding */
     double all = 0.0, sum = 0.0;
     for (int i = 0; i < c->points; i++)
-        all += c->pressure[i] * p.axial_height * 0.5 * p.diameter * c->width_deg[i] * PI / 180.0;
+        all += c->pressure[i] * p->axial_height * 0.5 * p->diameter * c->width_deg[i] * PI / 180.0;
     for (int j = 0; j < c->n_patches; j++)
         sum += c->patches[j].force_n;
     CHECK(fabs(sum - all) <= 1e-9 * all, "k=%d x%g ph %g: patches sum to %.12g N, segments %.12g N",
@@ -372,7 +371,7 @@ static void test_battery_exact(void)
                           factors[fi], phases[pi], e, c.tip_force[e], x.tip_force[e],
                           c.estimates.tip_forces_n);
                 }
-                patch_track += patches_against(&c, &x, k, factors[fi], phases[pi]);
+                patch_track += patches_against(&p, &c, &x, k, factors[fi], phases[pi]);
                 rd_contact_result_cleanup(&c);
                 loose_target(&p, &o, &x, &loose_met, &loose_worst);
             }
