@@ -64,7 +64,7 @@ static void test_reference(void)
     /* the hoop force F_t balances p h r_o: p = 2 F_t / (d h) away from the
      * free ends, within 1e-3 (measured -5.2e-4 here, uniform along the ring:
      * the ends' share, which core's mean pressure shows too, -5e-4 at
-     * n >= 320 in the README) */
+     * n >= 320 in docs/contact.md) */
     for (int b = 1; b < r.bins - 1; b++)
         CHECK(fabs(r.bin_pressure[b] / r.p0 - 1) < 1e-3, "round bore bin %d: %g p0", b,
               r.bin_pressure[b] / r.p0);
