@@ -959,7 +959,10 @@ for (const width of [1280, 390]) {
       assert.equal(await page.inputValue('#f-pt-lateral'), '0.25');
 
       if (!SKIP.lift) {
-        const resp = await page.request.post(`${BASE}/api/v1/jobs?wait=0`, { data: { analysis: 'lift', engine: { cycles: 40 }, numerics: { error_estimate: false } } });
+        // the full ring, so that it still runs when the page opens it in a
+        // Release build too (auto picks the rigid ring here: 40 cycles in
+        // ~0.1 s, finished before Cancel, whose DELETE then removes it)
+        const resp = await page.request.post(`${BASE}/api/v1/jobs?wait=0`, { data: { analysis: 'lift', engine: { cycles: 40 }, numerics: { model: 'full', error_estimate: false } } });
         const running = await resp.json();
         await page.goto(`${BASE}/?job=${running.id}`);
         await page.waitForFunction(() => /^Job \S+ running/.test(document.getElementById('status-text').textContent));
