@@ -452,15 +452,15 @@ static int is_top_level_key(const char *key, size_t n)
 }
 
 /* The README and the documents it sends readers to: every `block.field`
- * they name exists, every scene they show is valid.  Returns how many
- * names and scenes were checked. */
+ * they name exists, every scene they show is valid.  *names_out and
+ * *scenes_out: how many were checked. */
 static void check_doc(const char *path, int *names_out, int *scenes_out)
 {
-    char *readme = read_text(path);
-    CHECK(readme != NULL, "%s", path);
+    char *text = read_text(path);
+    CHECK(text != NULL, "%s", path);
     int names = 0, scenes = 0;
     /* `block.field` mentions */
-    for (const char *p = readme; p && (p = strchr(p, '`')) != NULL; p++) {
+    for (const char *p = text; p && (p = strchr(p, '`')) != NULL; p++) {
         const char *end = strchr(p + 1, '`');
         if (!end)
             break;
@@ -476,7 +476,7 @@ static void check_doc(const char *path, int *names_out, int *scenes_out)
         p = end;
     }
     /* ```json blocks that are scenes */
-    for (const char *p = readme; p && (p = strstr(p, "```json\n")) != NULL;) {
+    for (const char *p = text; p && (p = strstr(p, "```json\n")) != NULL;) {
         p += 8;
         const char *end = strstr(p, "```");
         if (!end)
@@ -495,7 +495,7 @@ static void check_doc(const char *path, int *names_out, int *scenes_out)
         p = end + 3;
     }
     *names_out = names, *scenes_out = scenes;
-    free(readme);
+    free(text);
 }
 
 static void test_readme(void)
