@@ -257,7 +257,7 @@ static void battery(const rd_ring_params *p)
         ref_passes[2] = {1 << 30, 0}, its[3] = {1 << 30, 0, 0};
     double ref_cpu[2] = {INFINITY, 0}, tip_worst = 0, patch_worst = 0;
     int tip_ok = 0, under[4] = {0}, over[4][2] = {{0}}, patch_ok = 0, patch_track = 0,
-        patch_under = 0, patches = 0, unsettled = 0, unsettled_ok = 0;
+        patch_under = 0, patches = 0, unsettled = 0, unsettled_ok = 0, unsettled_failed = 0;
     double unsettled_worst = 0.0;
     printf("## contact in distorted bores, default settings, vs the %s curved-beam reference\n\n",
            reference_kind == REF_LINEAR ? "linear"
@@ -349,6 +349,7 @@ static void battery(const rd_ring_params *p)
                     double df = bins_vs_finer(p, &o, floor_m, &c, p0);
                     unsettled++;
                     unsettled_ok += df <= 0.02;
+                    unsettled_failed += isnan(df);
                     unsettled_worst = fmax(unsettled_worst, df);
                 }
                 track[0] += ref_tracks(c.estimates.contact_fraction, dcf, 1e-3);
@@ -391,8 +392,8 @@ static void battery(const rd_ring_params *p)
            reference_cells / 2, reference_cells, settled_ok, settled);
     if (unsettled > 0)
         printf("Where they do not (%d bores), against the reference on %d cells: %d within 0.02 "
-               "p0 (the worst %.3f p0).\n",
-               unsettled, 4 * reference_cells, unsettled_ok, unsettled_worst);
+               "p0 (the worst %.3f p0; %d whose finer reference failed).\n",
+               unsettled, 4 * reference_cells, unsettled_ok, unsettled_worst, unsettled_failed);
     printf("Tip forces within 2 %% + 0.01 N of the reference's: %d of %d free ends (worst %.1f %% "
            "of the larger of the reference's and 0.1 N).\n",
            tip_ok, 2 * total, 100 * tip_worst);
