@@ -6,7 +6,7 @@
 set -euo pipefail
 cd "$1"
 bad=0
-for f in core/*.c core/*.h; do
+for f in core/*/*.c core/*/*.h; do
   n=$(wc -l <"$f")
   if [ "$n" -gt 800 ]; then echo "file over 800 lines: $f ($n)"; bad=1; fi
 done
@@ -14,7 +14,7 @@ long=$(awk '
   FNR == 1 { start = 0 }
   /^\{$/ { start = FNR; name = prev }
   /^\}/ && start { len = FNR - start + 1; if (len > 80) printf "function over 80 lines: %s:%d %s (%d)\n", FILENAME, start, name, len; start = 0 }
-  { prev = $0 }' core/*.c api/*.c)
+  { prev = $0 }' core/*/*.c api/*.c)
 if [ -n "$long" ]; then echo "$long"; bad=1; fi
 [ "$bad" -eq 0 ] && echo "sizes: core files <= 800 lines, core/api functions <= 80 lines"
 exit "$bad"
