@@ -20,7 +20,7 @@
  * Cylinder pressure (absolute, Pa) vs crank angle, 0 = firing TDC, periodic
  * over 720 deg.  The synthetic generator (rd_gasflow_synthetic):
  *   cylinder volume V(theta) = V_c + A_p s(theta), A_p = pi d^2/4, s the piston
- *   distance below TDC (rd_lift_piston), V_c = A_p 2 r / (eps - 1);
+ *   distance below TDC (rd_engine_piston), V_c = A_p 2 r / (eps - 1);
  *   motored: p = p_in (V_bdc / V)^n, n = 1.32, from 540 deg (BDC, inlet closed)
  *   through TDC to 180 deg; p_in during exhaust and intake (180..540);
  *   fired: the single-zone energy equation (no wall heat loss)
@@ -37,6 +37,7 @@
 #ifndef RD_GASFLOW_H
 #define RD_GASFLOW_H
 
+#include "rd_engine.h"
 #include "rd_error.h"
 #include "rd_lift.h"
 

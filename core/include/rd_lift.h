@@ -23,11 +23,11 @@
 #ifndef RD_LIFT_H
 #define RD_LIFT_H
 
+#include "rd_engine.h"
 #include "rd_error.h"
+#include "rd_liner.h"
 #include "rd_ring.h"
 
-enum rd_kinematics { RD_KINEMATICS_EXACT = 0, RD_KINEMATICS_APPROXIMATE = 1 };
-enum rd_friction_model { RD_FRICTION_NONE = 0, RD_FRICTION_COULOMB = 1, RD_FRICTION_STRIBECK = 2 };
 enum rd_gas_area { RD_GAS_AREA_FIXED = 0, RD_GAS_AREA_DYNAMIC = 1 };
 /* How a landing on a flank is integrated: through the damped penalty alone,
  * or as a plastic impact (the ring's axial velocity towards the flank
@@ -57,37 +57,11 @@ enum rd_lift_event_kind {
 #define RD_LIFT_TABLE_MAX    100000 /* points of a gas pressure table */
 #define RD_LIFT_SEGMENTS_MAX 1000
 #define RD_LIFT_MODES_MAX    60
-#define RD_LIFT_TILT_MAX_DEG 2.0
-
-typedef struct rd_engine_params {
-    double speed_rpm;    /* 1 .. 30000 */
-    double crank_radius; /* r, m (half the stroke) */
-    double rod_length;   /* l, m, > crank_radius */
-    int kinematics;      /* enum rd_kinematics */
-    double cycles;       /* 4-stroke cycles simulated, > 0 */
-    /* Piston tilt about its pin axis (the axis in the ring plane at 90 deg
-     * from the gap middle), deg, positive raising the groove on the gap's
-     * side: the constant piston_tilt_deg plus a table vs crank angle
-     * (tilt_points values at tilt_crank_deg, strictly increasing within
-     * [0, 720], periodic, a C1 cubic spline: rd_lift_tilt_at); |tilt| <=
-     * RD_LIFT_TILT_MAX_DEG.  Borrowed arrays; tilt_points == 0: no table. */
-    double piston_tilt_deg;
-    int tilt_points;
-    const double *tilt_crank_deg, *tilt_deg;
-} rd_engine_params;
 
 typedef struct rd_groove_params {
     double axial_clearance;  /* groove height minus ring height, m */
     double radial_clearance; /* ring inner face to groove back, m */
 } rd_groove_params;
-
-typedef struct rd_friction_params {
-    int model;                    /* enum rd_friction_model; NONE = not modelled */
-    double coefficient;           /* Coulomb coefficient (also C_Coulomb of 2.9) */
-    double viscosity;             /* Stribeck: oil dynamic viscosity eta, Pa s */
-    double sommerfeld_transition; /* Stribeck: So_lim of 2.9 */
-    double hydrodynamic_slope;    /* Stribeck: K of 2.9 */
-} rd_friction_params;
 
 /* The landing law (rd_lift_landing.c): the oil squeeze film between a ring
  * face and the groove flank it approaches.  Off by default (the flanks are
@@ -202,18 +176,7 @@ void rd_lift_result_cleanup(rd_lift_result *r);
  * (rd_lift.c explains the rule); p and ring must be valid. */
 double rd_lift_contact_stiffness_default(const rd_ring_params *ring, const rd_lift_params *p);
 
-/* Piston kinematics: position below TDC s (m), velocity ds/dt (m/s) and
- * acceleration d2s/dt2 (m/s^2) at crank angle alpha (rad), thesis 1.6-1.8 or
- * the exact slider-crank. */
-void rd_lift_piston(const rd_engine_params *e, double alpha, double *s, double *v, double *a);
-
-/* The piston tilt (deg) at crank angle `deg` and its first and second
- * derivatives with respect to the crank angle (deg/deg, deg/deg^2)
- * (rd_lift_tilt.c). */
-void rd_lift_tilt_at(const rd_engine_params *e, double deg, double *beta, double *d1, double *d2);
 /* 1 if the bore is not the round bore of the ring's diameter. */
 int rd_lift_bore_distorted(const rd_lift_bore *b, double ring_diameter);
-/* 1 if the scene tilts the piston (a constant or a table). */
-int rd_lift_tilted(const rd_engine_params *e);
 
 #endif

@@ -42,7 +42,7 @@
  * to for axisymmetric scenes without friction): lift z_i (0 = seated on the
  * lower flank, a = on the upper),
  *   m_i z_i'' = m_i s''(t) - m_i g + A_i (p_above - p_below),
- * s the piston's distance below TDC (rd_lift_piston; m s'' is the inertia
+ * s the piston's distance below TDC (rd_engine_piston; m s'' is the inertia
  * pseudo-force in the piston frame), A_i = b (pi (d - b) - g) the face area
  * and m_i = rho h A_i the mass; p_above = p(land_i), p_below = p(below_i)
  * (the lift analysis' "fixed" active areas).  The flanks are hard stops:
@@ -58,7 +58,7 @@
  * N the ring's bore normal force in radial equilibrium: the pretension over
  * the running face (L = pi d - g) plus the groove's gas (gauge against the
  * crankcase) on the back face; u_reg = 1e-3 x the mean piston speed
- * (rd_lift_friction_ureg).  Added to the axial force above.
+ * (rd_liner_ureg).  Added to the axial force above.
  *
  * State (N0 = 2R + 2R + 4): y = [p(land_1), p(groove_1), ..., p(groove_R),
  * z_1, z_1', ..., z_R, z_R', M_in, M_back, M_cc, M_cc_back], the last four

@@ -56,6 +56,7 @@
 #define RD_STATIC_H
 
 #include "rd_error.h"
+#include "rd_liner.h"
 #include "rd_ring.h"
 
 enum rd_pretension_method { RD_PRETENSION_FORCE = 0, RD_PRETENSION_FIELD = 1 };
@@ -283,16 +284,6 @@ int rd_static_validate(const rd_static_opts *o, int segments, int closed, rd_err
 int rd_pretension_validate(const rd_pretension_opts *o, const rd_ring_params *p, int segments,
                            rd_error *err);
 int rd_contact_validate(const rd_contact_opts *o, const rd_ring_params *p, rd_error *err);
-
-/* The convex-bore rule of a distorted bore r = D/2 + sum A_k cos(k (t -
- * phi_k)), shared by the contact and lift analyses: its curvature stays
- * positive when sum |A_k| (k^2 + 2) <= D/2 (to first order in A_k / D).
- * rd_bore_bend_term is one term of the sum; rd_bore_convex_validate checks
- * the sum `bend` against the bore of diameter d (path "/bore/distortion").
- * A non-convex (petal-shaped) bore ends the contact solve unconverged and
- * is outside the lift model's small-offset contact geometry. */
-double rd_bore_bend_term(int order, double amplitude);
-int rd_bore_convex_validate(double bend, double d, rd_error *err);
 
 /* Default contact stiffness: 2e6 E I / (h R^4), so the penetration under the
  * nominal pressure is 5e-7 of the radial deflection scale of the ring (1e6

@@ -202,32 +202,6 @@ static double smoothstep(double x, double *dx)
     return x * x * (3.0 - 2.0 * x);
 }
 
-/* Friction force F(N, u) on one bore point (header comment) and dF/dN, dF/du. */
-static double friction_force(const rd_lift_model *c, double N, double u, double *F_N, double *F_u)
-{
-    double T = tanh(u / c->ureg), T_u = (1.0 - T * T) / c->ureg;
-    if (c->p->friction.model == RD_FRICTION_COULOMB) {
-        *F_N = -c->mu * T;
-        *F_u = -c->mu * N * T_u;
-        return -c->mu * N * T;
-    }
-    /* Stribeck (2.9): B = C e^{-3 r^2.5} N, r = So_lim / So; H = K eta |u| h s_k / L */
-    double share = c->bo_area / (c->h * c->L_run); /* s_k / L */
-    double sg = u >= 0.0 ? 1.0 : -1.0, au = fabs(u);
-    double H = c->kh * c->eta * au * c->h * share, H_u = c->kh * c->eta * c->h * share * sg;
-    double B = 0.0, B_N = 0.0, B_u = 0.0;
-    if (N > 0.0) {
-        double r_u = c->so_lim * c->eta * c->h * share / N; /* r / |u| */
-        double r = r_u * au, r15 = pow(r, 1.5), E = exp(-3.0 * r15 * r);
-        B = c->mu * E * N;
-        B_N = c->mu * E * (1.0 + 7.5 * r15 * r);
-        B_u = -7.5 * c->mu * E * r15 * r_u * N * sg;
-    }
-    *F_N = -T * B_N;
-    *F_u = -T_u * (B + H) - T * (B_u + H_u);
-    return -T * (B + H);
-}
-
 /* Generalized directions: axial force at in-plane offset d, and radial
  * force along e at offset d (so that w = a . q, u_r = b . q).  Each has
  * three entries that are not structurally zero (axial: z, rx, ry; radial:
@@ -390,10 +364,12 @@ static void add_bore(rd_lift_model *c, const force_env *env, seg_view *s, double
         rank1(s->dv, -c->bo_area * P_dd, &b, &b);
         if (env->fric) {
             dir3 a = axial_dir(d);
-            double F_N, F_u, u = dot3(&a, s->v) - env->sd;
+            double u = dot3(&a, s->v) - env->sd;
             if (env->tilt) /* the groove frame's own axial speed at the point, beta' x */
                 u += env->bd * (rd_ring_get_section(c->ring)->R * c->e_r[2 * s->i] + d[0]);
-            double F = friction_force(c, N, u, &F_N, &F_u);
+            rd_liner_force lf;
+            rd_liner_eval(&c->liner, &(rd_liner_point){N, u, c->bo_area / (c->h * c->L_run)}, &lf);
+            double F = lf.F, F_N = lf.F_N, F_u = lf.F_u;
             add3(s->f, &a, F);
             if (c->energy)
                 c->energy->friction_power += F * u;
@@ -449,16 +425,16 @@ static void kinematics_at(rd_lift_model *c, double t, force_env *env)
 {
     const rd_lift_params *p = c->p;
     double *k = c->kin;
-    env->tilt = rd_lift_tilted(&p->engine);
+    env->tilt = rd_engine_tilted(&p->engine);
     if (t != c->kin_t) {
         double s, sdd = 0.0, deg = c->omega * t * 180.0 / M_PI;
         k[0] = 0.0;
         if (!c->piston_fixed)
-            rd_lift_piston(&p->engine, c->omega * t, &s, &k[0], &sdd);
+            rd_engine_piston(&p->engine, c->omega * t, &s, &k[0], &sdd);
         k[1] = sdd - c->g_on;
         if (env->tilt) {
             double b, b1, b2, dps = c->omega * 180.0 / M_PI, r = M_PI / 180.0;
-            rd_lift_tilt_at(&p->engine, deg, &b, &b1, &b2);
+            rd_engine_tilt_at(&p->engine, deg, &b, &b1, &b2);
             k[2] = cos(b * r);
             k[3] = sin(b * r);
             k[4] = b1 * dps * r;

@@ -46,9 +46,6 @@ int rd_lift_solve_setup(const rd_ring_params *ring, int segments, const rd_lift_
                         const rd_lift_setup *setup, const rd_monitor *mon, rd_lift_result *out,
                         rd_error *err);
 
-/* Friction regularization velocity u_reg (m/s) of a valid scene. */
-double rd_lift_friction_ureg(const rd_lift_params *p);
-
 /* Largest relative difference between the analytic Jacobian of the lift
  * equations at (t, y) and central differences of the right-hand side: the
  * full model's (y: 12 n values), or the rigid model's when p->model is

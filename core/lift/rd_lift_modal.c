@@ -232,7 +232,7 @@ static double modal_fd_step(void *user, sunindextype j)
 {
     modal *s = user;
     int a = (int)(j % s->r);
-    return (j < s->r ? 1e-3 * s->m->d0 : 1e-4 * s->m->ureg) / s->scale[a];
+    return (j < s->r ? 1e-3 * s->m->d0 : 1e-4 * s->m->liner.ureg) / s->scale[a];
 }
 
 /* A = L^-1 K L^-T (row-major, N x N) and the factors L_i (n x 36, lower,

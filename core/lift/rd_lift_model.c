@@ -60,7 +60,7 @@ static void model_constants(rd_lift_model *c, const rd_ring_params *rp, const rd
                             const rd_lift_setup *setup)
 {
     c->piston_fixed = setup && setup->piston_fixed;
-    c->omega = rd_lift_omega(&p->engine);
+    c->omega = rd_engine_omega(&p->engine);
     c->ca = p->groove.axial_clearance;
     c->cr = p->groove.radial_clearance;
     c->k = p->contact_stiffness > 0.0 ? p->contact_stiffness
@@ -72,11 +72,10 @@ static void model_constants(rd_lift_model *c, const rd_ring_params *rp, const rd
     c->g_on = p->gravity ? RD_LIFT_GRAVITY : 0.0;
     c->p0 = 2.0 * rp->tangential_force / (rp->diameter * rp->axial_height); /* (1.3) */
     c->delta_pre = rd_lift_contact_inverse(c, c->p0);
-    c->ureg = rd_lift_friction_ureg(p) * (setup && setup->ureg_scale > 0 ? setup->ureg_scale : 1.0);
-    c->mu = p->friction.coefficient;
-    c->eta = p->friction.viscosity;
-    c->so_lim = p->friction.sommerfeld_transition;
-    c->kh = p->friction.hydrodynamic_slope;
+    rd_liner_init(&c->liner, &p->friction,
+                  rd_liner_ureg(&p->engine) *
+                      (setup && setup->ureg_scale > 0 ? setup->ureg_scale : 1.0),
+                  rp->axial_height);
     c->h = rp->axial_height;
     rd_lift_landing_init(c, rp, p);
 }

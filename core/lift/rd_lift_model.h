@@ -71,6 +71,7 @@
 #include "rd_internal.h"
 #include "rd_lift.h"
 #include "rd_lift_internal.h"
+#include "rd_liner_law.h"
 
 #define RD_LIFT_GRAVITY      9.80665
 #define RD_LIFT_ARC_POINTS   3 /* contact positions along a segment's arc */
@@ -94,7 +95,8 @@ typedef struct rd_lift_model {
     double eps;           /* event threshold on the mean lift */
     double g_on;          /* gravity, m/s^2, or 0 */
     double p0, delta_pre; /* pretension pressure and bore preload penetration */
-    double ureg, mu, eta, so_lim, kh, h, L_run;
+    rd_liner liner;       /* the running face on the liner: friction (rd_liner_law.h) */
+    double h, L_run;
     int sq_on;                        /* the squeeze-film landing law (rd_lift_landing.c) */
     double sq_coef, sq_hmin, sq_vreg; /* mu b^2 (Pa s m^2), h_min (m), v_r (m/s) */
     rd_band K;
@@ -185,10 +187,13 @@ int rd_lift_cv_jac(sunrealtype t, N_Vector y, N_Vector fy, SUNMatrix J, void *us
  * per-segment values into seg (n values) when not NULL. */
 double rd_lift_model_mean_lift(const rd_lift_model *m, const double *y, double *seg);
 
-/* Crank speed (rad/s) and the scene's largest acceleration (m/s^2, for the
- * velocity tolerance) (rd_lift.c). */
-double rd_lift_omega(const rd_engine_params *e);
+/* The scene's largest acceleration (m/s^2, for the velocity tolerance) and
+ * the largest pressure it can put on a flank (Pa) (rd_lift_scales.c). */
 double rd_lift_accel_scale(const rd_ring_params *rp, const rd_lift_params *p);
+double rd_lift_flank_pressure_scale(const rd_ring_params *ring, const rd_lift_params *p);
+
+/* Output samples of a valid scene: cycles x 720 / step_deg + 1 (rd_lift.c). */
+int rd_lift_samples(const rd_lift_params *p);
 
 /* A formulation of the equations the driver integrates: the full model's
  * 12 n states, or a reduced one (rd_lift_rigid.c) built on the same model's
@@ -254,6 +259,9 @@ void rd_lift_full_form(rd_lift_model *m, rd_lift_form *form);
  * form's user is freed by rd_lift_rigid_close. */
 int rd_lift_rigid_open(rd_lift_model *m, rd_lift_form *form, rd_error *err);
 void rd_lift_rigid_close(rd_lift_form *form);
+/* The rigid ring's twist stiffnesses on m (N m / rad): free, seated on the
+ * inner edge, on the outer edge (rd_lift_rigid.c). */
+int rd_lift_rigid_twist(rd_lift_model *m, double k[3], rd_error *err);
 
 /* The bore (rd_lift_bore.c): the per-point offsets of a distorted bore into
  * m->bo_gap (NULL for a round one), and the static equilibrium of the

@@ -465,29 +465,17 @@ int rd_lift_rigid_open(rd_lift_model *m, rd_lift_form *form, rd_error *err)
     return RD_OK;
 }
 
-int rd_lift_twist_stiffness(const rd_ring_params *rp, int segments, const rd_lift_params *p,
-                            double k[3], rd_error *err)
+int rd_lift_rigid_twist(rd_lift_model *m, double k[3], rd_error *err)
 {
-    rd_lift_model m;
     rigid r;
-    memset(&m, 0, sizeof m);
     memset(&r, 0, sizeof r);
-    int rc = rd_lift_validate(p, rp, segments, err);
-    if (rc)
-        return rc;
-    rd_ring *ring = rd_ring_create(rp, segments, 0, err);
-    if (!ring)
-        return err ? err->code : RD_ENOMEM;
-    if (!(rc = rd_lift_model_init(&m, ring, p, NULL, err))) {
-        r.m = &m;
-        if (!(rc = rigid_twist_stiffness(&r, err))) {
-            k[0] = r.k_twist;
-            k[1] = r.k_edge[0];
-            k[2] = r.k_edge[1];
-        }
+    r.m = m;
+    int rc = rigid_twist_stiffness(&r, err);
+    if (!rc) {
+        k[0] = r.k_twist;
+        k[1] = r.k_edge[0];
+        k[2] = r.k_edge[1];
     }
-    rd_lift_model_cleanup(&m);
-    rd_ring_free(ring);
     return rc;
 }
 

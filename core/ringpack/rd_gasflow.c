@@ -215,10 +215,8 @@ typedef struct trace {
 
 static double volume(const trace *tr, double deg, double *dV)
 {
-    rd_engine_params unit = *tr->e;
-    unit.speed_rpm = 60.0 / (2.0 * M_PI); /* omega = 1: v = ds/dalpha */
-    double s, v;
-    rd_lift_piston(&unit, deg * M_PI / 180.0, &s, &v, NULL);
+    double s, v, a; /* v = ds/dalpha */
+    rd_engine_piston_alpha(tr->e, deg * M_PI / 180.0, &s, &v, &a);
     if (dV)
         *dV = tr->Ap * v * M_PI / 180.0; /* per degree */
     return tr->Vc + tr->Ap * s;

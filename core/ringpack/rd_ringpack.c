@@ -58,11 +58,6 @@ void rd_ringpack_params_default(rd_ringpack_params *p)
     p->model = RD_LIFT_MODEL_AUTO;
 }
 
-const char *rd_ringpack_model_name(int model)
-{
-    return model == RD_RINGPACK_AXIAL ? "axial" : rd_lift_model_name(model);
-}
-
 double rd_ringpack_standard_density(void)
 {
     return 101325.0 / (RD_GASFLOW_R * 293.15);
@@ -164,11 +159,7 @@ int rd_ringpack_validate(const rd_ringpack_params *p, rd_error *err)
     const rd_engine_params *e = &p->engine;
     int rc = rd_error_range(p->step_deg, 0.01, 90.0, "/output/step_deg", "deg", err);
     rc = rc ? rc : rd_error_range((double)p->max_steps, 100.0, 1e9, "/numerics/max_steps", "", err);
-    rc = rc ? rc : rd_error_range(e->speed_rpm, 1.0, 30000.0, "/engine/speed_rpm", "rpm", err);
-    rc = rc ? rc : rd_error_range(e->crank_radius, 0.001, 1.0, "/engine/crank_radius", "m", err);
-    rc = rc ? rc
-            : rd_error_range(e->rod_length, e->crank_radius / 0.9, 10.0, "/engine/rod_length", "m",
-                             err);
+    rc = rc ? rc : rd_engine_validate(e, err);
     rc =
         rc ? rc : rd_error_range(e->cycles, 2.0, RD_RINGPACK_CYCLES_MAX, "/engine/cycles", "", err);
     if (!rc && e->cycles != floor(e->cycles))
@@ -284,17 +275,15 @@ int rd_ringpack_model_init(rd_ringpack_model *m, const rd_ringpack_params *p, rd
     m->V = 2 * m->R;
     m->N = m->N0 = 4 * m->R + 4;
     m->F = 1 + 3 * m->R;
-    m->omega = p->engine.speed_rpm * 2.0 * M_PI / 60.0;
+    m->omega = rd_engine_omega(&p->engine);
     m->temp[0] = p->T_lands; /* gas entering the top land takes its temperature */
     m->temp[m->V + 1] = p->T_crankcase;
     m->top_area = M_PI * p->rings[0].ring.diameter * p->rings[0].land_clearance;
     m->from[0] = 0;
     m->to[0] = 1;
-    rd_lift_params lp; /* the lift analysis' regularization speed, from the engine alone */
-    rd_lift_params_default(&lp);
-    lp.engine = p->engine;
-    m->ureg = rd_lift_friction_ureg(&lp);
     for (int i = 0; i < m->R; i++) {
+        rd_liner_init(&m->liner[i], &p->friction, rd_liner_ureg(&p->engine),
+                      p->rings[i].ring.axial_height);
         ring_geometry(m, i);
         m->mode[i] = p->rings[i].pinned == RD_PIN_UPPER ? RD_FLANK_UPPER : RD_FLANK_LOWER;
     }
@@ -382,9 +371,11 @@ double rd_ringpack_friction(const rd_ringpack_model *m, int i, double t, const d
         return 0.0;
     double f[3], v_p;
     rd_ringpack_faces(m, i, t, pv, f);
-    rd_lift_piston(&m->p->engine, m->omega * t, NULL, &v_p, NULL);
+    rd_engine_piston(&m->p->engine, m->omega * t, NULL, &v_p, NULL);
     double N = fmax(m->n_pre[i] + m->n_back[i] * f[1], 0.0);
-    return -m->p->friction.coefficient * N * tanh((RP_ZD(m, y, i) - v_p) / m->ureg);
+    rd_liner_force lf;
+    rd_liner_eval(&m->liner[i], &(rd_liner_point){N, RP_ZD(m, y, i) - v_p, 1.0}, &lf);
+    return lf.F;
 }
 
 double rd_ringpack_ring_force(const rd_ringpack_model *m, int i, double t, const double *y,
@@ -392,7 +383,7 @@ double rd_ringpack_ring_force(const rd_ringpack_model *m, int i, double t, const
 {
     double f[3], a_p;
     rd_ringpack_faces(m, i, t, pv, f);
-    rd_lift_piston(&m->p->engine, m->omega * t, NULL, NULL, &a_p);
+    rd_engine_piston(&m->p->engine, m->omega * t, NULL, NULL, &a_p);
     return m->mass[i] * (a_p - (m->p->gravity ? GRAVITY : 0.0)) + m->area[i] * (f[2] - f[0]) +
            rd_ringpack_friction(m, i, t, y, pv);
 }
@@ -437,13 +428,15 @@ static double force_gradient(const rd_ringpack_model *m, int i, double t, const 
     }
     if (m->p->friction.model != RD_FRICTION_COULOMB)
         return 0.0;
-    double f[3], v_p, mu = m->p->friction.coefficient;
+    double f[3], v_p;
     rd_ringpack_faces(m, i, t, pv, f);
-    rd_lift_piston(&m->p->engine, m->omega * t, NULL, &v_p, NULL);
-    double n = m->n_pre[i] + m->n_back[i] * f[1], th = tanh((RP_ZD(m, y, i) - v_p) / m->ureg);
+    rd_engine_piston(&m->p->engine, m->omega * t, NULL, &v_p, NULL);
+    double n = m->n_pre[i] + m->n_back[i] * f[1];
+    rd_liner_force lf;
+    rd_liner_eval(&m->liner[i], &(rd_liner_point){fmax(n, 0.0), RP_ZD(m, y, i) - v_p, 1.0}, &lf);
     if (!tables && n > 0.0)
-        dF[2 * i + 2] -= mu * m->n_back[i] * th;
-    return -mu * fmax(n, 0.0) * (1.0 - th * th) / m->ureg;
+        dF[2 * i + 2] += lf.F_N * m->n_back[i];
+    return lf.F_u;
 }
 
 /* Axial ring i's columns and row of J: its lift through the flank areas

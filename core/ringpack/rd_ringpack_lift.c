@@ -106,7 +106,7 @@ static int ring_frame(const rd_ringpack_params *p, int i, rd_lift_params *lp, do
         lp->bore.distortion[k].phase_deg =
             wrap_deg(p->bore.distortion[k].phase_deg - r->gap_angle_deg);
     lp->gas.active_area = p->active_area;
-    if (!rd_lift_tilted(&p->engine) || !gap_opposite(r))
+    if (!rd_engine_tilted(&p->engine) || !gap_opposite(r))
         return 0;
     lp->engine.piston_tilt_deg = -p->engine.piston_tilt_deg;
     int n = p->engine.tilt_points;
@@ -144,6 +144,11 @@ static int lift_params(const rd_ringpack_model *m, int i, rd_packring *L)
     L->tab_zero[0] = L->tab_zero[1] = 0.0;
     lp->gas = (rd_gas_params){2, L->tab_deg, L->tab_top, L->tab_zero, L->tab_zero, p->active_area};
     return ring_frame(p, i, lp, &L->tilt);
+}
+
+const char *rd_ringpack_model_name(int model)
+{
+    return model == RD_RINGPACK_AXIAL ? "axial" : rd_lift_model_name(model);
 }
 
 int rd_packring_open(rd_ringpack_model *m, int i, SUNContext ctx, int *N, int *modes_out, double *k,
@@ -378,7 +383,7 @@ int rd_packring_solver_solve(rd_packring *L, double *x, double *b)
 static int needs_flexible(const rd_ringpack_params *p)
 {
     return rd_lift_bore_distorted(&p->bore, p->rings[0].ring.diameter) ||
-           rd_lift_tilted(&p->engine);
+           rd_engine_tilted(&p->engine);
 }
 
 int rd_packring_auto(const rd_ringpack_params *p, const char **why)
@@ -387,7 +392,7 @@ int rd_packring_auto(const rd_ringpack_params *p, const char **why)
         *why = BORE_WHY;
         return RD_LIFT_MODEL_FULL;
     }
-    if (rd_lift_tilted(&p->engine)) {
+    if (rd_engine_tilted(&p->engine)) {
         *why = TILT_WHY;
         return RD_LIFT_MODEL_FULL;
     }
@@ -425,7 +430,8 @@ static int validate_model(const rd_ringpack_params *p, int i, rd_error *err)
                             "flank stops have no sealing contact to weight the faces' pressures; "
                             "use auto, rigid, modal or full.",
                             at);
-    if (rd_lift_tilted(&p->engine) && fabs(wrap_deg(r->gap_angle_deg)) > 1e-6 && !gap_opposite(r)) {
+    if (rd_engine_tilted(&p->engine) && fabs(wrap_deg(r->gap_angle_deg)) > 1e-6 &&
+        !gap_opposite(r)) {
         snprintf(at, sizeof at, "/rings/%d/gap_angle_deg", i % 10);
         return rd_error_set(err, RD_EINVAL, at,
                             "%s = %g deg with a tilted piston: the lift models tilt the groove "

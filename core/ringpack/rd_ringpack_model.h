@@ -34,7 +34,8 @@ typedef struct rd_ringpack_model {
     int from[RD_RINGPACK_FLOWS_MAX], to[RD_RINGPACK_FLOWS_MAX]; /* network indices */
     int mode[RD_RINGPACK_RINGS_MAX]; /* enum rd_flank: lower, upper, free */
     /* friction (rd_ringpack.h): N = n_pre + n_back (p_groove - p_cc), N */
-    double n_pre[RD_RINGPACK_RINGS_MAX], n_back[RD_RINGPACK_RINGS_MAX], ureg;
+    double n_pre[RD_RINGPACK_RINGS_MAX], n_back[RD_RINGPACK_RINGS_MAX];
+    rd_liner liner[RD_RINGPACK_RINGS_MAX]; /* each axial ring on the liner (rd_liner_law.h) */
     /* Rings on a lift model: lr[i] (NULL: the axial ring), whose states
      * follow the N0 = 4R + 4 above at y + off[i]; N counts them all. */
     int N0, lifted;

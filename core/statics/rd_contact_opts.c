@@ -38,23 +38,6 @@ int rd_contact_points(int m, int n)
     return m < 5 ? m : (dense < 5 ? 5 : (dense < m ? dense : m));
 }
 
-double rd_bore_bend_term(int order, double amplitude)
-{
-    return fabs(amplitude) * ((double)order * order + 2.0);
-}
-
-int rd_bore_convex_validate(double bend, double d, rd_error *err)
-{
-    if (!(bend > 0.5 * d))
-        return RD_OK;
-    return rd_error_set(err, RD_EINVAL, "/bore/distortion",
-                        "/bore/distortion: sum of |amplitude| (order^2 + 2) is %.7g m; allowed "
-                        "at most the bore radius %.7g m, so that the bore stays convex (a "
-                        "non-convex bore makes the contact solve fail to converge and is outside "
-                        "the lift model's contact geometry).",
-                        bend, 0.5 * d);
-}
-
 int rd_contact_validate(const rd_contact_opts *o, const rd_ring_params *p, rd_error *err)
 {
     double d = p->diameter;

@@ -19,6 +19,7 @@
 #include "check.h"
 #include "rd_lift.h"
 #include "rd_lift_internal.h"
+#include "rd_liner_law.h"
 #include "rd_modal.h"
 
 #define PI     3.14159265358979323846
@@ -89,7 +90,7 @@ static void test_kinematics(void)
     for (int kin = 0; kin < 2; kin++) {
         e.kinematics = kin;
         double s, v, a, lam = r / e.rod_length;
-        rd_lift_piston(&e, 0.0, &s, &v, &a);
+        rd_engine_piston(&e, 0.0, &s, &v, &a);
         CHECK_ABS(s, 0.0, 1e-15, "s(TDC), kinematics %d", kin);
         CHECK_ABS(v, 0.0, 1e-12, "v(TDC)");
         CHECK_REL(a, r * w * w * (1.0 + lam), 1e-14, "a(TDC)");
@@ -97,9 +98,9 @@ static void test_kinematics(void)
          * h = 1e-4 rad, i.e. ~2e-9 relative; tolerance 1e-7 of r w (or r w^2) */
         for (double al = 0.1; al < 4 * PI; al += 0.37) {
             double h = 1e-4, sp, sm, vp, vm;
-            rd_lift_piston(&e, al, &s, &v, &a);
-            rd_lift_piston(&e, al + h, &sp, &vp, NULL);
-            rd_lift_piston(&e, al - h, &sm, &vm, NULL);
+            rd_engine_piston(&e, al, &s, &v, &a);
+            rd_engine_piston(&e, al + h, &sp, &vp, NULL);
+            rd_engine_piston(&e, al - h, &sm, &vm, NULL);
             CHECK_ABS(v, w * (sp - sm) / (2 * h), 1e-7 * r * w, "v vs FD at %g", al);
             CHECK_ABS(a, w * (vp - vm) / (2 * h), 1e-7 * r * w * w, "a vs FD at %g", al);
         }
@@ -118,8 +119,8 @@ static void test_kinematics(void)
         dmax[j] = 0.0;
         for (double al = 0.0; al < 2 * PI; al += 0.001) {
             double s1, s2;
-            rd_lift_piston(&x, al, &s1, NULL, NULL);
-            rd_lift_piston(&y, al, &s2, NULL, NULL);
+            rd_engine_piston(&x, al, &s1, NULL, NULL);
+            rd_engine_piston(&y, al, &s2, NULL, NULL);
             dmax[j] = fmax(dmax[j], fabs(s1 - s2));
         }
         CHECK(dmax[j] <= r * pow(lam, 3) * (1 + lam * lam) / 8.0 &&
@@ -146,7 +147,7 @@ typedef struct odof {
 static double od_load(const odof *o, double t, double xd)
 {
     double s, v, a;
-    rd_lift_piston(&o->e, o->w * t, &s, &v, &a);
+    rd_engine_piston(&o->e, o->w * t, &s, &v, &a);
     double F = o->mu > 0 ? -o->mu * o->N * tanh((xd - v) / o->ureg) : 0.0;
     return a - o->g + F / o->m;
 }
@@ -155,8 +156,8 @@ static void od_flight(const odof *o, double t0, double x0, double v0, double t, 
                       double *xd)
 {
     double s0, sd0, s, sd;
-    rd_lift_piston(&o->e, o->w * t0, &s0, &sd0, NULL);
-    rd_lift_piston(&o->e, o->w * t, &s, &sd, NULL);
+    rd_engine_piston(&o->e, o->w * t0, &s0, &sd0, NULL);
+    rd_engine_piston(&o->e, o->w * t, &s, &sd, NULL);
     double dt = t - t0;
     *x = x0 + v0 * dt + s - s0 - sd0 * dt - 0.5 * o->g * dt * dt;
     *xd = v0 + sd - sd0 - o->g * dt;
@@ -260,7 +261,7 @@ static void odof_init(odof *o, const rd_ring_params *rp, const rd_lift_params *p
     /* total bore normal force p0 h (d/2) span = F_t span (thesis 1.3) */
     o->N = rp->tangential_force * span;
     o->mu = p->friction.model == RD_FRICTION_COULOMB ? p->friction.coefficient : 0.0;
-    o->ureg = rd_lift_friction_ureg(p);
+    o->ureg = rd_liner_ureg(&p->engine);
 }
 
 /* A uniformly loaded split ring moves as a rigid body (its segments are
@@ -762,13 +763,13 @@ static void test_thesis(void)
         int nz = 0;
         for (double a = 0.0; a < 360.0 && nz < 2; a += 0.5) {
             double s, v, a1, a2;
-            rd_lift_piston(&p.engine, a * PI / 180, &s, &v, &a1);
-            rd_lift_piston(&p.engine, (a + 0.5) * PI / 180, &s, &v, &a2);
+            rd_engine_piston(&p.engine, a * PI / 180, &s, &v, &a1);
+            rd_engine_piston(&p.engine, (a + 0.5) * PI / 180, &s, &v, &a2);
             if ((a1 > 0) != (a2 > 0)) {
                 double lo = a, hi = a + 0.5;
                 for (int k = 0; k < 50; k++) {
                     double m = 0.5 * (lo + hi), am;
-                    rd_lift_piston(&p.engine, m * PI / 180, &s, &v, &am);
+                    rd_engine_piston(&p.engine, m * PI / 180, &s, &v, &am);
                     if ((am > 0) == (a1 > 0))
                         lo = m;
                     else

@@ -46,16 +46,16 @@ static void test_spline(void)
     p.engine.piston_tilt_deg = 0.1;
     double b, d1, d2, bp, bm, d1p, d1m, x, y;
     for (int k = 0; k < 4; k++) {
-        rd_lift_tilt_at(&p.engine, tab_deg[k], &b, &d1, &d2);
+        rd_engine_tilt_at(&p.engine, tab_deg[k], &b, &d1, &d2);
         CHECK(fabs(b - 0.1 - tab_tilt[k]) < 1e-15, "spline at point %d: %g", k, b);
-        rd_lift_tilt_at(&p.engine, tab_deg[k] + 1440.0, &y, &d1, &d2);
+        rd_engine_tilt_at(&p.engine, tab_deg[k] + 1440.0, &y, &d1, &d2);
         CHECK(fabs(y - b) < 1e-15, "not periodic at point %d", k);
     }
     double worst = 0.0, h = 1e-3;
     for (double a = 3.0; a < 720.0; a += 37.0) {
-        rd_lift_tilt_at(&p.engine, a, &x, &d1, &d2);
-        rd_lift_tilt_at(&p.engine, a + h, &bp, &d1p, &y);
-        rd_lift_tilt_at(&p.engine, a - h, &bm, &d1m, &y);
+        rd_engine_tilt_at(&p.engine, a, &x, &d1, &d2);
+        rd_engine_tilt_at(&p.engine, a + h, &bp, &d1p, &y);
+        rd_engine_tilt_at(&p.engine, a - h, &bm, &d1m, &y);
         worst = fmax(worst, fabs((bp - bm) / (2 * h) - d1) / 1e-4);
         worst = fmax(worst, fabs((d1p - d1m) / (2 * h) - d2) / 1e-6);
     }
@@ -74,8 +74,8 @@ static void sample(void *vctx, double t, const double *y)
 {
     track *tr = vctx;
     double deg = tr->omega * t * 180.0 / PI, b, d1, d2, b0, d10, d20;
-    rd_lift_tilt_at(&tr->p->engine, deg, &b, &d1, &d2);
-    rd_lift_tilt_at(&tr->p->engine, 0.0, &b0, &d10, &d20);
+    rd_engine_tilt_at(&tr->p->engine, deg, &b, &d1, &d2);
+    rd_engine_tilt_at(&tr->p->engine, 0.0, &b0, &d10, &d20);
     double rel = (b0 + d10 * deg - b) * PI / 180.0; /* rad */
     for (int i = 0; i < tr->n; i++) {
         double want = 0.5 * tr->p->groove.axial_clearance + rel * tr->R * tr->cx[i];

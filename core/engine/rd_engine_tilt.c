@@ -1,7 +1,7 @@
 /*
- * rd_lift_tilt.c — the piston's tilt about its pin axis vs crank angle
+ * rd_engine_tilt.c — the piston's tilt about its pin axis vs crank angle
  * (engine.piston_tilt_deg and the engine.piston_tilt table; the forces it
- * causes: rd_lift_forces.c, add_inertia_gravity and add_bore).
+ * causes: core/lift/rd_lift_forces.c, add_inertia_gravity and add_bore).
  *
  * beta(alpha) = piston_tilt_deg + table(alpha), deg, with the table a
  * periodic (720 deg) cubic Hermite spline through its points, the tangent at
@@ -14,7 +14,7 @@
  */
 #include <math.h>
 
-#include "rd_lift.h"
+#include "rd_engine.h"
 
 /* x_k and y_k of the periodic extension (k any integer). */
 static double px(const rd_engine_params *e, int k)
@@ -34,7 +34,7 @@ static double tangent(const rd_engine_params *e, int k)
     return (py(e, k + 1) - py(e, k - 1)) / (px(e, k + 1) - px(e, k - 1));
 }
 
-void rd_lift_tilt_at(const rd_engine_params *e, double deg, double *beta, double *d1, double *d2)
+void rd_engine_tilt_at(const rd_engine_params *e, double deg, double *beta, double *d1, double *d2)
 {
     *beta = e->piston_tilt_deg;
     *d1 = *d2 = 0.0;
@@ -64,7 +64,7 @@ void rd_lift_tilt_at(const rd_engine_params *e, double deg, double *beta, double
     *d2 = ((12 * s - 6) * ya + (6 * s - 4) * ma + (-12 * s + 6) * yb + (6 * s - 2) * mb) / (h * h);
 }
 
-int rd_lift_tilted(const rd_engine_params *e)
+int rd_engine_tilted(const rd_engine_params *e)
 {
     return e->piston_tilt_deg != 0.0 || e->tilt_points > 0;
 }

@@ -1,0 +1,32 @@
+/*
+ * rd_liner — the cylinder liner as the ring meets it: the bore's shape rule
+ * and the friction of the running face (the scene's physics.friction).
+ * Shared by the contact, lift and ring-pack analyses; the law itself, per
+ * point of the running face, is core/liner/rd_liner_law.h (private).
+ */
+#ifndef RD_LINER_H
+#define RD_LINER_H
+
+#include "rd_error.h"
+
+enum rd_friction_model { RD_FRICTION_NONE = 0, RD_FRICTION_COULOMB = 1, RD_FRICTION_STRIBECK = 2 };
+
+typedef struct rd_friction_params {
+    int model;                    /* enum rd_friction_model; NONE = not modelled */
+    double coefficient;           /* Coulomb coefficient (also C_Coulomb of 2.9) */
+    double viscosity;             /* Stribeck: oil dynamic viscosity eta, Pa s */
+    double sommerfeld_transition; /* Stribeck: So_lim of 2.9 */
+    double hydrodynamic_slope;    /* Stribeck: K of 2.9 */
+} rd_friction_params;
+
+/* The convex-bore rule of a distorted bore r = D/2 + sum A_k cos(k (t -
+ * phi_k)), shared by the contact and lift analyses: its curvature stays
+ * positive when sum |A_k| (k^2 + 2) <= D/2 (to first order in A_k / D).
+ * rd_bore_bend_term is one term of the sum; rd_bore_convex_validate checks
+ * the sum `bend` against the bore of diameter d (path "/bore/distortion").
+ * A non-convex (petal-shaped) bore ends the contact solve unconverged and
+ * is outside the lift model's small-offset contact geometry. */
+double rd_bore_bend_term(int order, double amplitude);
+int rd_bore_convex_validate(double bend, double d, rd_error *err);
+
+#endif
