@@ -57,6 +57,7 @@
 #include <sunmatrix/sunmatrix_band.h>
 #include <sunmatrix/sunmatrix_dense.h>
 
+#include "rd_cvode.h"
 #include "rd_lift_model.h"
 #include "rd_lift_small.h"
 #include "rd_lift_stick.h"
@@ -75,13 +76,12 @@ typedef struct driver {
     rd_lift_model m;
     rd_lift_form form; /* what is integrated: the full model or a reduced one */
     double *full;      /* 12 n: the full state of a sample (reduced forms) */
-    SUNContext sunctx;
+    rd_cvode cs;       /* the context, CVODE's memory (cs.cv; NULL with sm) */
     N_Vector y, abstol;
     SUNMatrix S; /* the Newton matrix, owned by LS (second-order forms) */
     SUNMatrix A; /* owned: the Newton matrix of a form without blocks */
     SUNLinearSolver LS;
     rd_lift_newton *nw;
-    void *cv;
     rd_lift_small *sm;     /* the small forms' integrator (rd_lift_small.c), instead of cv */
     double *seg;           /* n: per-segment lift of the current sample */
     double deg_per_s;      /* crank degrees per second */
@@ -90,7 +90,6 @@ typedef struct driver {
     N_Vector yd, yk;       /* the sticking phase's scratch (rd_lift_stick.c); NULL: none */
     int stick;             /* 1 while the seated ring is advanced quasi-statically */
     double t_stick;        /* the time the sticking phase has reached, s */
-    char cv_msg[200];      /* CVODE's last error message */
 } driver;
 
 /* Flank tracking between root returns: the committed flank and the time a
@@ -150,50 +149,15 @@ static int drv_jac(sunrealtype t, N_Vector y, N_Vector fy, SUNMatrix J, void *us
     return d->form.jac(t, y, fy, J, d->form.user, t1, t2, t3);
 }
 
-static void cv_silent(int code, const char *module, const char *function, char *msg, void *user)
-{
-    (void)code;
-    (void)module;
-    (void)function;
-    driver *d = user;
-    snprintf(d->cv_msg, sizeof d->cv_msg, "%s", msg ? msg : "");
-}
-
-static const char *cvode_what(int flag)
-{
-    switch (flag) {
-    case CV_TOO_MUCH_ACC:
-        return "the requested accuracy is below what double precision allows";
-    case CV_ERR_FAILURE:
-        return "the error test failed repeatedly (the step size collapsed)";
-    case CV_CONV_FAILURE:
-        return "the Newton iteration failed to converge repeatedly";
-    case CV_LSETUP_FAIL:
-    case CV_LSOLVE_FAIL:
-        return "the linear solver failed (singular Newton matrix)";
-    case CV_RHSFUNC_FAIL:
-    case CV_REPTD_RHSFUNC_ERR:
-    case CV_UNREC_RHSFUNC_ERR:
-    case CV_FIRST_RHSFUNC_ERR:
-        return "the forces became non-finite";
-    case CV_TOO_CLOSE:
-        return "the output times are too close together";
-    default:
-        return "the integrator failed";
-    }
-}
-
 /* An error from a CVODE query or set-up call (these fail only on misuse). */
 static int cv_fail(const driver *d, int flag, const char *what, rd_error *err)
 {
-    return rd_error_set(err, RD_EINTERNAL, "", "CVODE %s failed: %s (%s).", what,
-                        CVodeGetReturnFlagName(flag), d->cv_msg);
+    return rd_cvode_misuse(&d->cs, flag, what, err);
 }
 
 static void driver_free(driver *d)
 {
-    if (d->cv)
-        CVodeFree(&d->cv);
+    rd_cvode_close(&d->cs);
     rd_lift_small_free(d->sm);
     if (d->LS)
         SUNLinSolFree(d->LS);
@@ -207,8 +171,7 @@ static void driver_free(driver *d)
         N_VDestroy(d->yk);
     if (d->abstol)
         N_VDestroy(d->abstol);
-    if (d->sunctx)
-        SUNContext_Free(&d->sunctx);
+    rd_cvode_close_context(&d->cs);
     free(d->seg);
     free(d->full);
     if (d->form.close)
@@ -219,18 +182,18 @@ static void driver_free(driver *d)
 static int cv_configure(driver *d, double rtol, rd_error *err)
 {
     int flag, rootdir[N_ROOTS] = {-1, +1, -1, +1, 0};
-    if ((flag = CVodeSetErrHandlerFn(d->cv, cv_silent, d)) ||
-        (flag = CVodeInit(d->cv, drv_rhs, 0.0, d->y)) ||
-        (flag = CVodeSVtolerances(d->cv, rtol, d->abstol)) || (flag = CVodeSetUserData(d->cv, d)) ||
-        (flag = CVodeSetLinearSolver(d->cv, d->LS, d->A ? d->A : d->S)) ||
-        (flag = d->A ? CVodeSetJacFn(d->cv, drv_jac) : CVodeSetLinSysFn(d->cv, drv_linsys)) ||
-        (flag = CVodeSetMaxOrd(d->cv, MAX_ORDER)) ||
-        (flag = CVodeSetMaxStep(d->cv, HMAX_DEG / d->deg_per_s)) ||
-        (flag = CVodeSetLSetupFrequency(d->cv, 1)) || /* fresh Newton matrix each step */
-        (flag = CVodeSetJacEvalFrequency(d->cv, 1)) ||
-        (flag = CVodeRootInit(d->cv, N_ROOTS, roots)) ||
-        (flag = CVodeSetRootDirection(d->cv, rootdir)) ||
-        (flag = CVodeSetNoInactiveRootWarn(d->cv)))
+    if ((flag = CVodeInit(d->cs.cv, drv_rhs, 0.0, d->y)) ||
+        (flag = CVodeSVtolerances(d->cs.cv, rtol, d->abstol)) ||
+        (flag = CVodeSetUserData(d->cs.cv, d)) ||
+        (flag = CVodeSetLinearSolver(d->cs.cv, d->LS, d->A ? d->A : d->S)) ||
+        (flag = d->A ? CVodeSetJacFn(d->cs.cv, drv_jac) : CVodeSetLinSysFn(d->cs.cv, drv_linsys)) ||
+        (flag = CVodeSetMaxOrd(d->cs.cv, MAX_ORDER)) ||
+        (flag = CVodeSetMaxStep(d->cs.cv, HMAX_DEG / d->deg_per_s)) ||
+        (flag = CVodeSetLSetupFrequency(d->cs.cv, 1)) || /* fresh Newton matrix each step */
+        (flag = CVodeSetJacEvalFrequency(d->cs.cv, 1)) ||
+        (flag = CVodeRootInit(d->cs.cv, N_ROOTS, roots)) ||
+        (flag = CVodeSetRootDirection(d->cs.cv, rootdir)) ||
+        (flag = CVodeSetNoInactiveRootWarn(d->cs.cv)))
         return cv_fail(d, flag, "set-up", err);
     return RD_OK;
 }
@@ -258,7 +221,7 @@ static int small_open(driver *d, const rd_lift_setup *setup, const rd_lift_run *
                               N_VGetArrayPointer(d->abstol), err)))
         return rc;
     double hmax = (d->m.p->gas.points > 0 ? HMAX_DEG : HMAX_SMALL) / d->deg_per_s;
-    d->sm = rd_lift_small_create(&d->form, d->sunctx, 0.0, N_VGetArrayPointer(d->y), o->rtol,
+    d->sm = rd_lift_small_create(&d->form, d->cs.ctx, 0.0, N_VGetArrayPointer(d->y), o->rtol,
                                  N_VGetArrayPointer(d->abstol), hmax, N_ROOTS, roots, rootdir, d);
     if (!d->sm)
         return rd_error_set(err, RD_ENOMEM, "", "Out of memory setting up the lift integrator.");
@@ -283,29 +246,30 @@ static int driver_open(driver *d, const rd_ring *ring, const rd_lift_params *p,
     d->full = d->form.expand ? malloc(12 * (size_t)n * sizeof *d->full) : NULL;
     if (!d->seg || (d->form.expand && !d->full))
         return rd_error_set(err, RD_ENOMEM, "", "Out of memory for the lift output.");
-    if (SUNContext_Create(NULL, &d->sunctx))
-        return rd_error_set(err, RD_ENOMEM, "", "Could not create the SUNDIALS context.");
-    d->y = N_VNew_Serial(N, d->sunctx);
-    d->abstol = N_VNew_Serial(N, d->sunctx);
+    if ((rc = rd_cvode_open(&d->cs, d->deg_per_s, err)))
+        return rc;
+    d->y = N_VNew_Serial(N, d->cs.ctx);
+    d->abstol = N_VNew_Serial(N, d->cs.ctx);
     if (!(p->stick && rd_lift_stick_usable(&d->form)) && !p->cvode &&
         rd_lift_small_usable(&d->form))
         return small_open(d, setup, o, err);
     if (d->form.blocks) {
-        d->LS = rd_lift_newton_create(&d->form, d->sunctx, &d->S, &d->nw);
+        d->LS = rd_lift_newton_create(&d->form, d->cs.ctx, &d->S, &d->nw);
     } else if (d->y) {
-        d->A = d->form.dense ? SUNDenseMatrix(N, N, d->sunctx)
-                             : SUNBandMatrix(N, RD_LIFT_MU, RD_LIFT_ML, d->sunctx);
+        d->A = d->form.dense ? SUNDenseMatrix(N, N, d->cs.ctx)
+                             : SUNBandMatrix(N, RD_LIFT_MU, RD_LIFT_ML, d->cs.ctx);
         if (d->A)
-            d->LS = d->form.dense ? SUNLinSol_Dense(d->y, d->A, d->sunctx)
-                                  : SUNLinSol_Band(d->y, d->A, d->sunctx);
+            d->LS = d->form.dense ? SUNLinSol_Dense(d->y, d->A, d->cs.ctx)
+                                  : SUNLinSol_Band(d->y, d->A, d->cs.ctx);
     }
     int stick = p->stick && rd_lift_stick_usable(&d->form);
-    d->cv = CVodeCreate(CV_BDF, d->sunctx);
+    if ((rc = rd_cvode_create(&d->cs, err)))
+        return rc;
     if (stick && d->y) {
-        d->yd = N_VNew_Serial(N, d->sunctx);
-        d->yk = N_VNew_Serial(N, d->sunctx);
+        d->yd = N_VNew_Serial(N, d->cs.ctx);
+        d->yk = N_VNew_Serial(N, d->cs.ctx);
     }
-    if (!d->y || !d->abstol || !d->LS || !d->cv || (stick && (!d->yd || !d->yk)))
+    if (!d->y || !d->abstol || !d->LS || (stick && (!d->yd || !d->yk)))
         return rd_error_set(err, RD_ENOMEM, "", "Out of memory setting up CVODE for %d segments.",
                             n);
     if ((rc = d->form.initial(d->form.user, setup, o->atol, N_VGetArrayPointer(d->y),
@@ -399,12 +363,7 @@ static int read_counters(const driver *d, long *c)
             c[k] += d->base[k];
         return 0;
     }
-    if ((flag = CVodeGetNumSteps(d->cv, &c[0])) || (flag = CVodeGetNumRhsEvals(d->cv, &c[1])) ||
-        (flag = CVodeGetNumJacEvals(d->cv, &c[2])) ||
-        (flag = CVodeGetNumLinSolvSetups(d->cv, &c[3])) ||
-        (flag = CVodeGetNumNonlinSolvIters(d->cv, &c[4])) ||
-        (flag = CVodeGetNumNonlinSolvConvFails(d->cv, &c[5])) ||
-        (flag = CVodeGetNumErrTestFails(d->cv, &c[6])) || (flag = CVodeGetNumGEvals(d->cv, &c[7])))
+    if ((flag = rd_cvode_counters(&d->cs, c)))
         return flag;
     for (int k = 0; k < N_COUNTERS; k++)
         c[k] += d->base[k];
@@ -431,7 +390,7 @@ static int current_time(const driver *d, double *tc)
         *tc = rd_lift_small_time(d->sm);
         return CV_SUCCESS;
     }
-    return CVodeGetCurrentTime(d->cv, tc);
+    return CVodeGetCurrentTime(d->cs.cv, tc);
 }
 
 /* One call of the integrator towards tout with at most max_steps steps
@@ -443,9 +402,9 @@ static int integrator_solve(driver *d, double tout, long max_steps, double *t)
         rd_lift_small_set_max_steps(d->sm, max_steps);
         return rd_lift_small_solve(d->sm, tout, N_VGetArrayPointer(d->y), t);
     }
-    if ((flag = CVodeSetMaxNumSteps(d->cv, max_steps)))
+    if ((flag = CVodeSetMaxNumSteps(d->cs.cv, max_steps)))
         return flag;
-    return CVode(d->cv, tout, d->y, t, CV_NORMAL);
+    return CVode(d->cs.cv, tout, d->y, t, CV_NORMAL);
 }
 
 static int root_info(const driver *d, int *rf)
@@ -454,7 +413,7 @@ static int root_info(const driver *d, int *rf)
         rd_lift_small_root_info(d->sm, rf);
         return CV_SUCCESS;
     }
-    return CVodeGetRootInfo(d->cv, rf);
+    return CVodeGetRootInfo(d->cs.cv, rf);
 }
 
 /* A plastic landing (rd_lift.h): the form arrests the ring's velocity
@@ -472,7 +431,7 @@ static int land_plastic(driver *d, double t, int upper, rd_error *err)
     if ((flag = keep_counters(d)))
         return cv_fail(d, flag, "counter query", err);
     d->form.impact(d->form.user, N_VGetArrayPointer(d->y), upper);
-    if ((flag = CVodeReInit(d->cv, t, d->y)))
+    if ((flag = CVodeReInit(d->cs.cv, t, d->y)))
         return cv_fail(d, flag, "restart", err);
     return RD_OK;
 }
@@ -487,18 +446,8 @@ static int step_error(driver *d, int flag, rd_error *err)
     if ((f2 = current_time(d, &tc)) || (f2 = read_counters(d, c)))
         return cv_fail(d, f2, "query", err);
     nst = c[0];
-    if (flag == CV_TOO_MUCH_WORK)
-        return rd_error_set(err, RD_ELIMIT, "/numerics/max_steps",
-                            "The integration used its /numerics/max_steps = %ld steps by crank "
-                            "angle %.3f deg (of %.1f): the ring's motion needs more work than "
-                            "allowed; raise max_steps, or make the run cheaper: fewer cycles, a "
-                            "cheaper model (/numerics/model) or a looser /numerics/rtol.",
-                            d->m.p->max_steps, tc * d->deg_per_s, total);
-    return rd_error_set(err, RD_ENOCONV, "",
-                        "The lift integration failed at crank angle %.4f deg after %ld steps: "
-                        "%s (CVODE %s: %s).",
-                        tc * d->deg_per_s, nst, cvode_what(flag), CVodeGetReturnFlagName(flag),
-                        d->cv_msg);
+    rd_cvode_limit lim = {"lift", "ring's motion", d->m.p->max_steps, total, nst};
+    return rd_cvode_failure(&d->cs, flag, tc, &lim, err);
 }
 
 /* Integrates to tout in chunks of d->chunk steps, handling the roots on the
@@ -588,7 +537,7 @@ static int advance_or_stick(driver *d, double tout, flank_track *tr, rd_lift_run
     } else {
         tr->cand = tl;
     }
-    if ((flag = keep_counters(d)) || (flag = CVodeReInit(d->cv, tl, d->y)))
+    if ((flag = keep_counters(d)) || (flag = CVodeReInit(d->cs.cv, tl, d->y)))
         return cv_fail(d, flag, "restart", err);
     return advance(d, tout, tr, o, mon, frac, err);
 }

@@ -234,11 +234,6 @@ typedef struct rd_lift_form {
     void (*close)(struct rd_lift_form *form);
 } rd_lift_form;
 
-/* A SUNDIALS linear solver of our own: an empty one from SUNLinSolNewEmpty
- * with `ops` copied in and `content` attached (freed by ops->free); NULL
- * when content is NULL or out of memory (content is then the caller's). */
-SUNLinearSolver rd_linsol_wrap(SUNContext ctx, void *content,
-                               const struct _generic_SUNLinearSolver_Ops *ops);
 /* The Newton solver of a form (rd_lift_newton.c): a DIRECT SUNLinearSolver
  * over the second-order system matrix *S (owned by the solver, to be given
  * to CVodeSetLinearSolver with it), and its handle for the linear-system

@@ -46,6 +46,7 @@
 #include <string.h>
 
 #include "rd_blocktri.h"
+#include "rd_cvode.h"
 #include "rd_lift_model.h"
 
 #if defined(__GNUC__)
@@ -195,17 +196,6 @@ static SUNMatrix_ID hold_id(SUNMatrix M)
 {
     (void)M;
     return SUNMATRIX_CUSTOM;
-}
-
-SUNLinearSolver rd_linsol_wrap(SUNContext ctx, void *content,
-                               const struct _generic_SUNLinearSolver_Ops *ops)
-{
-    SUNLinearSolver LS = content ? SUNLinSolNewEmpty(ctx) : NULL;
-    if (!LS)
-        return NULL;
-    *LS->ops = *ops;
-    LS->content = content;
-    return LS;
 }
 
 SUNLinearSolver rd_lift_newton_create(const rd_lift_form *form, SUNContext ctx, SUNMatrix *S,

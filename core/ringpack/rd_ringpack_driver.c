@@ -20,6 +20,7 @@
 #include <sunmatrix/sunmatrix_dense.h>
 
 #include "rd_accuracy.h"
+#include "rd_cvode.h"
 #include "rd_internal.h"
 #include "rd_ringpack_model.h"
 
@@ -31,12 +32,11 @@
 
 typedef struct drv {
     rd_ringpack_model m;
-    SUNContext ctx;
+    rd_cvode cs; /* the context and CVODE's memory (cs.cv) */
     N_Vector y, abstol;
     SUNMatrix A;
     SUNLinearSolver LS;
     rd_ringpack_newton *pn; /* with lift rings: the bordered Newton solver */
-    void *cv;
     double deg_per_s;
     double *prev;     /* n_volumes x samples: the cycle before the last */
     double cum[3][4]; /* cumulative masses at the starts of the last two cycles, end */
@@ -118,26 +118,27 @@ static int cv_linsys(sunrealtype t, N_Vector y, N_Vector fy, SUNMatrix A, sunboo
                                      gamma);
 }
 
-static void cv_silent(int code, const char *module, const char *fn, char *msg, void *user)
+/* A CVODE set-up, query or restart call failed (misuse). */
+static int cv_fail(const drv *d, int flag, const char *what, rd_error *err)
 {
-    (void)code, (void)module, (void)fn, (void)msg, (void)user;
+    return rd_cvode_misuse(&d->cs, flag, what, err);
 }
 
-static int cv_fail(drv *d, int flag, const char *what, rd_error *err)
+/* The integration failed (flag < 0): dated at the crank angle reached. */
+static int cv_failed(const drv *d, int flag, rd_error *err)
 {
     double t = 0.0;
-    if (d->cv)
-        CVodeGetCurrentTime(d->cv, &t);
-    return rd_error_set(err, flag == CV_TOO_MUCH_WORK ? RD_ELIMIT : RD_ENOCONV, "",
-                        "CVODE failed (%s, flag %d: %s) near crank angle %.2f deg; try a "
-                        "smaller /numerics/rtol or check the pack's clearances.",
-                        what, flag, CVodeGetReturnFlagName(flag), t * d->deg_per_s);
+    long steps = d->res->steps, now = 0;
+    if (CVodeGetCurrentTime(d->cs.cv, &t) || CVodeGetNumSteps(d->cs.cv, &now))
+        return cv_fail(d, flag, "query", err);
+    rd_cvode_limit lim = {"ring-pack", "ring pack's run", d->m.p->max_steps, 720.0 * d->C,
+                          steps + now};
+    return rd_cvode_failure(&d->cs, flag, t, &lim, err);
 }
 
 static void drv_close(drv *d)
 {
-    if (d->cv)
-        CVodeFree(&d->cv);
+    rd_cvode_close(&d->cs);
     if (d->LS)
         SUNLinSolFree(d->LS);
     if (d->A)
@@ -146,8 +147,7 @@ static void drv_close(drv *d)
         N_VDestroy(d->y);
     if (d->abstol)
         N_VDestroy(d->abstol);
-    if (d->ctx)
-        SUNContext_Free(&d->ctx);
+    rd_cvode_close_context(&d->cs);
     free(d->prev);
     rd_ringpack_model_cleanup(&d->m);
 }
@@ -196,7 +196,7 @@ static int open_rings(drv *d, rd_error *err)
         r->ring_dof[i] = m->p->rings[i].pinned == RD_PIN_FREE ? 1 : 0;
         if (m->kind[i] == RD_RINGPACK_AXIAL)
             continue;
-        if ((rc = rd_packring_open(m, i, d->ctx, &n, &modes, &k, err)))
+        if ((rc = rd_packring_open(m, i, d->cs.ctx, &n, &modes, &k, err)))
             return rc;
         m->off[i] = m->N;
         m->N += n;
@@ -217,21 +217,23 @@ static int solver(drv *d, rd_error *err)
 {
     int flag = 0;
     if (!d->m.lifted) {
-        d->A = SUNDenseMatrix(d->m.N, d->m.N, d->ctx);
-        d->LS = d->A ? SUNLinSol_Dense(d->y, d->A, d->ctx) : NULL;
+        d->A = SUNDenseMatrix(d->m.N, d->m.N, d->cs.ctx);
+        d->LS = d->A ? SUNLinSol_Dense(d->y, d->A, d->cs.ctx) : NULL;
     } else {
-        d->A = SUNDenseMatrix(d->m.N0, d->m.N0, d->ctx);
-        d->LS = d->A ? rd_ringpack_newton_create(&d->m, d->ctx, d->A, &d->pn) : NULL;
+        d->A = SUNDenseMatrix(d->m.N0, d->m.N0, d->cs.ctx);
+        d->LS = d->A ? rd_ringpack_newton_create(&d->m, d->cs.ctx, d->A, &d->pn) : NULL;
     }
     if (!d->A || !d->LS)
         return rd_error_set(err, RD_ENOMEM, "", "Out of memory setting up CVODE for the pack.");
-    if ((flag = CVodeSetLinearSolver(d->cv, d->LS, d->A)))
+    if ((flag = CVodeSetLinearSolver(d->cs.cv, d->LS, d->A)))
         return cv_fail(d, flag, "set-up", err);
     if (!d->m.lifted)
         return RD_OK;
-    if ((flag = CVodeSetLinSysFn(d->cv, cv_linsys)) || (flag = CVodeSetMaxOrd(d->cv, ORDER_LIFT)) ||
-        (flag = CVodeSetMaxStep(d->cv, HMAX_LIFT / d->deg_per_s)) ||
-        (flag = CVodeSetLSetupFrequency(d->cv, 1)) || (flag = CVodeSetJacEvalFrequency(d->cv, 1)))
+    if ((flag = CVodeSetLinSysFn(d->cs.cv, cv_linsys)) ||
+        (flag = CVodeSetMaxOrd(d->cs.cv, ORDER_LIFT)) ||
+        (flag = CVodeSetMaxStep(d->cs.cv, HMAX_LIFT / d->deg_per_s)) ||
+        (flag = CVodeSetLSetupFrequency(d->cs.cv, 1)) ||
+        (flag = CVodeSetJacEvalFrequency(d->cs.cv, 1)))
         return cv_fail(d, flag, "set-up", err);
     return RD_OK;
 }
@@ -244,7 +246,7 @@ static int root_directions(drv *d)
     for (int i = 0; i < d->m.R; i++)
         if (d->m.lr[i])
             memcpy(dir + NR * i, lift, sizeof lift);
-    return CVodeSetRootDirection(d->cv, dir);
+    return CVodeSetRootDirection(d->cs.cv, dir);
 }
 
 static int drv_open(drv *d, const rd_ringpack_params *p, double rtol, double atol, rd_error *err)
@@ -253,25 +255,26 @@ static int drv_open(drv *d, const rd_ringpack_params *p, double rtol, double ato
     if (rc)
         return rc;
     d->deg_per_s = d->m.omega * 180.0 / M_PI;
-    if (SUNContext_Create(NULL, &d->ctx))
-        return rd_error_set(err, RD_ENOMEM, "", "Could not create the SUNDIALS context.");
+    if ((rc = rd_cvode_open(&d->cs, d->deg_per_s, err)))
+        return rc;
     if ((rc = open_rings(d, err)))
         return rc;
     sunindextype N = d->m.N;
-    d->y = N_VNew_Serial(N, d->ctx);
-    d->abstol = N_VNew_Serial(N, d->ctx);
-    d->cv = CVodeCreate(CV_BDF, d->ctx);
-    if (!d->y || !d->abstol || !d->cv)
+    d->y = N_VNew_Serial(N, d->cs.ctx);
+    d->abstol = N_VNew_Serial(N, d->cs.ctx);
+    if ((rc = rd_cvode_create(&d->cs, err)))
+        return rc;
+    if (!d->y || !d->abstol)
         return rd_error_set(err, RD_ENOMEM, "", "Out of memory setting up CVODE for the pack.");
     if ((rc = initial_state(d, rtol, atol, err)))
         return rc;
-    if ((flag = CVodeSetErrHandlerFn(d->cv, cv_silent, d)) ||
-        (flag = CVodeInit(d->cv, cv_rhs, 0.0, d->y)) ||
-        (flag = CVodeSVtolerances(d->cv, rtol, d->abstol)) || (flag = CVodeSetUserData(d->cv, d)) ||
-        (flag = CVodeSetMaxStep(d->cv, HMAX_DEG / d->deg_per_s)) ||
-        (flag = CVodeSetMaxNumSteps(d->cv, p->max_steps)) ||
-        (flag = CVodeRootInit(d->cv, NR * d->m.R, cv_roots)) || (flag = root_directions(d)) ||
-        (flag = CVodeSetNoInactiveRootWarn(d->cv)))
+    if ((flag = CVodeInit(d->cs.cv, cv_rhs, 0.0, d->y)) ||
+        (flag = CVodeSVtolerances(d->cs.cv, rtol, d->abstol)) ||
+        (flag = CVodeSetUserData(d->cs.cv, d)) ||
+        (flag = CVodeSetMaxStep(d->cs.cv, HMAX_DEG / d->deg_per_s)) ||
+        (flag = CVodeSetMaxNumSteps(d->cs.cv, p->max_steps)) ||
+        (flag = CVodeRootInit(d->cs.cv, NR * d->m.R, cv_roots)) || (flag = root_directions(d)) ||
+        (flag = CVodeSetNoInactiveRootWarn(d->cs.cv)))
         return cv_fail(d, flag, "set-up", err);
     return solver(d, err);
 }
@@ -337,17 +340,17 @@ static int ring_switch(drv *d, int i, double t, double *y, const double *pv, int
 static void counters(drv *d, rd_ringpack_result *r)
 {
     long v;
-    if (!CVodeGetNumSteps(d->cv, &v))
+    if (!CVodeGetNumSteps(d->cs.cv, &v))
         r->steps += v;
-    if (!CVodeGetNumRhsEvals(d->cv, &v))
+    if (!CVodeGetNumRhsEvals(d->cs.cv, &v))
         r->rhs_evals += v;
-    if (!CVodeGetNumJacEvals(d->cv, &v))
+    if (!CVodeGetNumJacEvals(d->cs.cv, &v))
         r->jac_evals += v;
-    if (!CVodeGetNumGEvals(d->cv, &v))
+    if (!CVodeGetNumGEvals(d->cs.cv, &v))
         r->root_evals += v;
-    if (!CVodeGetNumErrTestFails(d->cv, &v))
+    if (!CVodeGetNumErrTestFails(d->cs.cv, &v))
         r->err_test_fails += v;
-    if (!CVodeGetNumNonlinSolvConvFails(d->cv, &v))
+    if (!CVodeGetNumNonlinSolvConvFails(d->cs.cv, &v))
         r->nonlin_fails += v;
 }
 
@@ -382,7 +385,7 @@ static int at_root(drv *d, double t, int all, rd_error *err)
 {
     int found[NR * RD_RINGPACK_RINGS_MAX] = {0}, flag, rc = RD_OK, axial = all;
     double pv[RD_RINGPACK_VOLUMES_MAX], *y = N_VGetArrayPointer(d->y);
-    if (!all && (flag = CVodeGetRootInfo(d->cv, found)))
+    if (!all && (flag = CVodeGetRootInfo(d->cs.cv, found)))
         return cv_fail(d, flag, "root info", err);
     rd_ringpack_pressures(&d->m, t, y, pv);
     for (int i = 0; !rc && i < d->m.R; i++) {
@@ -402,7 +405,7 @@ static int at_root(drv *d, double t, int all, rd_error *err)
                             "chatters on its flank; pin it or change the clearances.",
                             RESTARTS_MAX, t * d->deg_per_s);
     counters(d, d->res);
-    if ((flag = CVodeReInit(d->cv, t, d->y)))
+    if ((flag = CVodeReInit(d->cs.cv, t, d->y)))
         return cv_fail(d, flag, "restart", err);
     return RD_OK;
 }
@@ -494,7 +497,7 @@ static int alloc_result(drv *d, rd_ringpack_result *r, rd_error *err)
 static int work_bound(drv *d, double t, rd_error *err)
 {
     long now = 0;
-    if (!CVodeGetNumSteps(d->cv, &now) && d->res->steps + now > d->m.p->max_steps)
+    if (!CVodeGetNumSteps(d->cs.cv, &now) && d->res->steps + now > d->m.p->max_steps)
         return rd_error_set(err, RD_ELIMIT, "/numerics/max_steps",
                             "The run needed more than /numerics/max_steps = %ld CVODE steps "
                             "by crank angle %.2f deg (of %d cycles); raise it, or loosen "
@@ -523,13 +526,13 @@ static int integrate(drv *d, const rd_monitor *mon, rd_error *err)
     double t = 0.0, dt = 720.0 / d->S / d->deg_per_s;
     int total = d->C * d->S, rc = at_root(d, 0.0, 1, err), flag;
     long chunk = step_chunk(&d->m);
-    if (rc || (chunk && (flag = CVodeSetMaxNumSteps(d->cv, chunk))))
+    if (rc || (chunk && (flag = CVodeSetMaxNumSteps(d->cs.cv, chunk))))
         return rc ? rc : cv_fail(d, flag, "set-up", err);
     record(d, 0, 0.0);
     for (int j = 1; j <= total; j++) {
         double tout = j * dt;
         while (t < tout) {
-            flag = CVode(d->cv, tout, d->y, &t, CV_NORMAL);
+            flag = CVode(d->cs.cv, tout, d->y, &t, CV_NORMAL);
             if (flag == CV_ROOT_RETURN) {
                 if ((rc = at_root(d, t, 0, err)))
                     return rc;
@@ -538,7 +541,7 @@ static int integrate(drv *d, const rd_monitor *mon, rd_error *err)
                     (rc = rd_monitor_report(mon, (j - 1.0) / total, err)))
                     return rc;
             } else if (flag < 0) {
-                return cv_fail(d, flag, "integration", err);
+                return cv_failed(d, flag, err);
             } else {
                 t = tout;
             }

@@ -54,6 +54,7 @@
 #include <sundials/sundials_dense.h>
 #include <sunmatrix/sunmatrix_dense.h>
 
+#include "rd_cvode.h"
 #include "rd_ringpack_model.h"
 
 typedef struct pring {
