@@ -111,21 +111,6 @@ int rd_pretension_validate(const rd_pretension_opts *o, const rd_ring_params *p,
     return RD_OK;
 }
 
-double rd_ring_conformability(const rd_ring_params *p)
-{
-    rd_ring_section s;
-    rd_ring_section_get(p, 0, &s);
-    double db = p->diameter - p->radial_width;
-    return p->tangential_force * db * db / (4.0 * p->youngs_modulus * s.I_inplane);
-}
-
-double rd_ring_free_gap_formula(const rd_ring_params *p)
-{
-    /* (1.5): k = 2/(3 pi) m/(d - b), m the opening beyond the closed gap */
-    double m = 1.5 * M_PI * rd_ring_conformability(p) * (p->diameter - p->radial_width);
-    return p->closed_gap + m;
-}
-
 /* Openings and the deformed centroid line of a solved problem. */
 static int pretension_outputs(const rd_ring_params *p, const rd_static_problem *pb,
                               rd_pretension_result *out, rd_error *err)
@@ -286,47 +271,4 @@ int rd_pretension_solve(const rd_ring_params *p, int segments, const rd_pretensi
     rc = rd_accuracy_run(&plan, mon, NULL, err);
     rd_pretension_result_cleanup(&run.ref);
     return rc;
-}
-
-/* ---- the static solver's options (shared with rd_contact.c) ---------------- */
-
-void rd_static_opts_default(rd_static_opts *o)
-{
-    o->tol = 1e-9;
-    o->max_iterations = 2000;
-    o->estimate_error = 1;
-    o->max_updates = 60;
-    o->update_eta = 0.03;
-}
-
-int rd_static_validate(const rd_static_opts *o, int segments, int closed, rd_error *err)
-{
-    if (closed)
-        return rd_error_set(err, RD_EINVAL, "/discretization/closed",
-                            "/discretization/closed = true joins the gap, but pretension and "
-                            "contact act on the gap faces: use a split ring (closed = false).");
-    if (segments < 4 || segments > RD_STATIC_SEGMENTS_MAX)
-        return rd_error_set(err, segments > RD_STATIC_SEGMENTS_MAX ? RD_ELIMIT : RD_EINVAL,
-                            "/discretization/segments",
-                            "/discretization/segments = %d is out of range for a static "
-                            "analysis: allowed 4 to %d.",
-                            segments, RD_STATIC_SEGMENTS_MAX);
-    if (!isfinite(o->tol) || o->tol < 1e-13 || o->tol > 1e-3)
-        return rd_error_set(err, RD_EINVAL, "/numerics/tolerance",
-                            "/numerics/tolerance = %g is out of range: allowed 1e-13 to 1e-3.",
-                            o->tol);
-    if (o->max_iterations < 1 || o->max_iterations > 100000)
-        return rd_error_set(err, o->max_iterations > 100000 ? RD_ELIMIT : RD_EINVAL,
-                            "/numerics/max_iterations",
-                            "/numerics/max_iterations = %d is out of range: allowed 1 to 100000.",
-                            o->max_iterations);
-    if (o->max_updates < 1 || o->max_updates > 1000) /* core's own: not in the API */
-        return rd_error_set(err, RD_EINVAL, "",
-                            "rd_static_opts.max_updates = %d is out of range: allowed 1 to 1000.",
-                            o->max_updates);
-    if (!(o->update_eta >= 0.0 && o->update_eta <= 1.0)) /* core's own: not in the API */
-        return rd_error_set(err, RD_EINVAL, "",
-                            "rd_static_opts.update_eta = %g is out of range: allowed 0 to 1.",
-                            o->update_eta);
-    return RD_OK;
 }

@@ -1,7 +1,7 @@
 /*
  * rd_static — the nonlinear mechanics of the segment chain and its solver,
- * shared by pretension (rd_pretension.c) and bore contact (rd_contact.c);
- * rd_static.h has the model.
+ * shared by pretension (rd_pretension.c) and bore contact (rd_contact.c),
+ * and its options' defaults and checks; rd_static.h has the model.
  *
  * Unknowns: per segment i the position x_i (3, m) and the rotation Q_i
  * (3x3 row-major, body to global).  Increments are (dx_i, dpsi_i), with the
@@ -738,4 +738,47 @@ void rd_static_stats_fill(rd_static_problem *pb, rd_static_stats *st)
     st->strain_energy = r ? residual(pb, r, NULL) : NAN;
     free(r);
     support_terms(pb, NULL, &st->support_force, &st->support_moment);
+}
+
+/* ---- the solver's options (pretension's and contact's) ------------------- */
+
+void rd_static_opts_default(rd_static_opts *o)
+{
+    o->tol = 1e-9;
+    o->max_iterations = 2000;
+    o->estimate_error = 1;
+    o->max_updates = 60;
+    o->update_eta = 0.03;
+}
+
+int rd_static_validate(const rd_static_opts *o, int segments, int closed, rd_error *err)
+{
+    if (closed)
+        return rd_error_set(err, RD_EINVAL, "/discretization/closed",
+                            "/discretization/closed = true joins the gap, but pretension and "
+                            "contact act on the gap faces: use a split ring (closed = false).");
+    if (segments < 4 || segments > RD_STATIC_SEGMENTS_MAX)
+        return rd_error_set(err, segments > RD_STATIC_SEGMENTS_MAX ? RD_ELIMIT : RD_EINVAL,
+                            "/discretization/segments",
+                            "/discretization/segments = %d is out of range for a static "
+                            "analysis: allowed 4 to %d.",
+                            segments, RD_STATIC_SEGMENTS_MAX);
+    if (!isfinite(o->tol) || o->tol < 1e-13 || o->tol > 1e-3)
+        return rd_error_set(err, RD_EINVAL, "/numerics/tolerance",
+                            "/numerics/tolerance = %g is out of range: allowed 1e-13 to 1e-3.",
+                            o->tol);
+    if (o->max_iterations < 1 || o->max_iterations > 100000)
+        return rd_error_set(err, o->max_iterations > 100000 ? RD_ELIMIT : RD_EINVAL,
+                            "/numerics/max_iterations",
+                            "/numerics/max_iterations = %d is out of range: allowed 1 to 100000.",
+                            o->max_iterations);
+    if (o->max_updates < 1 || o->max_updates > 1000) /* core's own: not in the API */
+        return rd_error_set(err, RD_EINVAL, "",
+                            "rd_static_opts.max_updates = %d is out of range: allowed 1 to 1000.",
+                            o->max_updates);
+    if (!(o->update_eta >= 0.0 && o->update_eta <= 1.0)) /* core's own: not in the API */
+        return rd_error_set(err, RD_EINVAL, "",
+                            "rd_static_opts.update_eta = %g is out of range: allowed 0 to 1.",
+                            o->update_eta);
+    return RD_OK;
 }
