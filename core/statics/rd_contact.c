@@ -35,7 +35,7 @@
  * at 320 (tests/core/test_contact_face.c).  Outputs per segment: pressure
  * (resultant / (h r_o phi)), closest approach, bore radius.  The
  * refinement and the error estimates' solves are in rd_contact_refine.c,
- * the estimates themselves in rd_contact_post.c.
+ * the estimates themselves in rd_contact_estimate.c.
  */
 #include "rd_static_internal.h"
 
@@ -442,7 +442,7 @@ static void wide_patch_edges(const rd_contact_result *out, const double *lo, int
     }
 }
 
-/* The bins (rd_contact_post.c) from the segments' forces on their arcs lo
+/* The bins (rd_contact_gaps.c) from the segments' forces on their arcs lo
  * (n + 1 ends); the gaps already in out.  The bins put a force beside a
  * gap edge on the touching part of its segment, with the edges between
  * the segments' closest points even where the reported ones are among the
@@ -496,7 +496,7 @@ static void tip_forces(const rd_static_problem *pb, const double *force, rd_cont
     }
 }
 
-/* Light gaps, contact fraction, tip forces and bins (rd_contact_post.c)
+/* Light gaps, contact fraction, tip forces and bins (rd_contact_gaps.c)
  * from the point clearances t, c. */
 static int contact_summaries(const rd_static_problem *pb, const double *t, const double *c,
                              const double *ts, double *at, rd_contact_result *out)

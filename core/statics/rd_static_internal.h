@@ -258,19 +258,23 @@ int rd_contact_misses(const rd_contact_estimates *e, const rd_contact_result *r,
                       char *buf, size_t size);
 int rd_contact_meets(const rd_contact_estimates *e, const rd_contact_result *r, double a);
 
-/* rd_contact_post.c: light gaps and contact fraction from the segments'
+/* rd_contact_gaps.c: light gaps and contact fraction from the segments'
  * closest points (angles ts, deg, increasing; clearances cs, m) and all m n
  * contact points (t, c), their edges among the points if `points` (faces
  * that follow the bore) else between the segments' closest points, the
  * free ends at tip0 < tip1 deg; binned pressure from the segments' forces
  * (N) acting at at_deg_i within their arcs [seg_deg_i, seg_deg_i+1] on the
  * bore (n + 1 ends, deg), spread over the parts the light gaps of `gaps`
- * leave on the bore; the error estimates of the finer of two levels. */
+ * leave on the bore. */
 void rd_contact_gaps(const double *ts, const double *cs, int n, const double *t, const double *c,
                      int m, int points, double tip0, double tip1, double gap_floor,
                      rd_contact_result *out);
 void rd_contact_bins(const double *seg_deg, const double *force, const double *at_deg, int n,
                      double h_ro, const rd_contact_result *gaps, rd_contact_result *out);
+/* The arc of the segment nearest the angle a (deg): 360 / n where the
+ * segments are alike (as the estimates were measured), its own where
+ * graded. */
+double rd_contact_width_at(const rd_contact_result *r, double a);
 /* rd_contact_patch.c: out's contact patches from its light gaps and the
  * segments' forces (N) acting at at (deg on the bore), their arcs' ends lo
  * (n + 1, deg: lo[0] and lo[n] the free ends). */
@@ -281,16 +285,12 @@ void rd_contact_patches(const double *lo, const double *force, const double *at,
  * overlaps by its whole force (a patch one of them splits in two moves by
  * the larger part). */
 double rd_contact_patch_moves(const rd_contact_result *a, const rd_contact_result *b);
-/* The arc of the segment nearest the angle a (deg): 360 / n where the
- * segments are alike (as the estimates were measured), its own where
- * graded. */
-double rd_contact_width_at(const rd_contact_result *r, double a);
-/* Arcs (deg) where a graded level should be finer: around each bin
- * boundary that a gap edge or a narrow patch of f may lie across, where the
- * force that could cross it (the binned pressure's estimate's
- * edge_segment, edge and patch shares) exceeds z->threshold (of p0),
- * padded by the edge's uncertainty and a segment of f; merged where they
- * overlap, added to those z has. */
+/* rd_contact_estimate.c: arcs (deg) where a graded level should be finer:
+ * around each bin boundary that a gap edge or a narrow patch of f may lie
+ * across, where the force that could cross it (the binned pressure's
+ * estimate's edge_segment, edge and patch shares) exceeds z->threshold (of
+ * p0), padded by the edge's uncertainty and a segment of f; merged where
+ * they overlap, added to those z has. */
 #define RD_CONTACT_ZONES_MAX RD_CONTACT_ARCS_MAX
 typedef struct rd_contact_zones {
     double threshold;
@@ -299,6 +299,7 @@ typedef struct rd_contact_zones {
 } rd_contact_zones;
 void rd_contact_zones_find(const rd_contact_result *f, const rd_contact_result *c,
                            rd_contact_zones *z);
+/* The error estimates of the finer of two levels. */
 void rd_contact_estimate(const rd_contact_result *fine, const rd_contact_result *coarse,
                          rd_contact_estimates *e);
 /* The same with the binned pressure's levels part from the levels' moves
