@@ -24,8 +24,6 @@
 
 enum { RD_STATIC_PRETENSION = 0, RD_STATIC_CONTACT = 1 };
 
-#define RD_CONTACT_LF 0.4 /* contact: load factor at which F_t is fully applied */
-
 /* ---- the problem ---------------------------------------------------------- */
 
 /* One contact point as the last rd_contact_loads found it (what the
@@ -179,7 +177,25 @@ void rd_contact_segment_jacobian(const rd_static_problem *pb, int i, double J[36
 /* The predictor of a load step: each segment moved with the bore under it
  * from load factor l0 to l1. */
 void rd_contact_follow_bore(rd_static_problem *pb, double l0, double l1);
-/* rd_contact.c: what every point's evaluation at the current load factor
+/* rd_contact_law.c.  The contact's load path (rd_contact_law.c has why):
+ * F_t over lambda 0..RD_CONTACT_LF with the bore still the ring's closed
+ * shape, the bore's departure from it over RD_CONTACT_LF..
+ * RD_CONTACT_BORE_DONE, then the law's smoothing brought down to its own
+ * by lambda = 1. */
+#define RD_CONTACT_LF        0.4
+#define RD_CONTACT_BORE_DONE 0.8
+/* Bore radius r and its derivative dr by theta at the angle theta, at the
+ * current load factor. */
+void rd_contact_bore_radius(const rd_static_problem *pb, double theta, double *r, double *dr);
+/* Point k of segment i's multiplier: its segment's (i), or with tip_mult
+ * the very tip's own (n on the first free end, n + 1 on the last). */
+int rd_contact_mult_of(const rd_static_problem *pb, int i, int k);
+/* The law's stiffness at multiplier q: k, or a stiffer one at a tip's own
+ * point once the load is on. */
+double rd_contact_law_stiffness(const rd_static_problem *pb, int q);
+/* The law p(delta) at multiplier q (its shift included), Pa. */
+double rd_contact_pressure(const rd_static_problem *pb, double delta, int q);
+/* What every point's evaluation at the current load factor
  * shares, hoisted out of the points' loop: the law's smoothing length e and
  * the share mu of the bore's departure from round that is in place; at the
  * point y of segment o, pe's delta, the law p and its slope dp (its
