@@ -7,7 +7,8 @@
  * axis, pushing the faces apart, by the force method (each force normal to
  * its own face as it turns) or the field method (the J face's force, equal
  * and opposite on the I face, plus the couple that keeps the pair's moment
- * zero); F_l lambda along +z on the first face and -z on the last.
+ * zero); F_l lambda along +z on the first face and -z on the last (both
+ * the chain's own loads, rd_static_problem.c's rd_static_gap_face_load).
  * Outputs (m): x_a between the inner gap corners at mid-height, x_c the axial
  * separation of the inner top corners, the face centroids' distance, and the
  * deformed centroid line.  Error estimate: Richardson (order 2 in n) from a
@@ -20,56 +21,6 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-
-/* Field method: the force on the J face (follows that face) and the point
- * where it acts. */
-static void field_force(const rd_static_problem *pb, const double *xJ, const double *QJ,
-                        double F[3], double pJ[3])
-{
-    int first = pb->jseg == 0;
-    double t[3], c[3];
-    rd_mv3(QJ, first ? pb->tA : pb->tB, t);
-    rd_mv3(QJ, first ? pb->cA : pb->cB, c);
-    for (int k = 0; k < 3; k++) {
-        F[k] = rd_static_force_factor(pb) * pb->Ft * t[k];
-        pJ[k] = xJ[k] + c[k];
-    }
-}
-
-/* The gap-face loads on segment i (0 or n - 1): the pretension F_t, by the
- * force or the field method, and the lateral force F_l (0 in contact). */
-void rd_pretension_gap_face_load(const rd_static_problem *pb, int i, const double *x,
-                                 const double *Q, double f[6])
-{
-    const double *c = i == 0 ? pb->cA : pb->cB;
-    double F[3];
-    if (pb->method == RD_PRETENSION_FIELD) {
-        double FJ[3], pJ[3];
-        if (i == pb->jseg) {
-            field_force(pb, x, Q, F, pJ);
-        } else {
-            /* equal and opposite vector on the I face, plus the couple that
-             * keeps the pair's moment zero */
-            double arm[3], M[3];
-            field_force(pb, pb->x + 3 * pb->jseg, pb->Q + 9 * pb->jseg, FJ, pJ);
-            rd_mv3(Q, c, arm);
-            for (int k = 0; k < 3; k++) {
-                F[k] = -FJ[k];
-                arm[k] += x[k] - pJ[k];
-            }
-            rd_cross3(arm, FJ, M);
-            for (int k = 0; k < 3; k++)
-                f[3 + k] += M[k];
-        }
-    } else {
-        double t[3];
-        rd_mv3(Q, i == 0 ? pb->tA : pb->tB, t);
-        for (int k = 0; k < 3; k++)
-            F[k] = rd_static_force_factor(pb) * pb->Ft * t[k];
-    }
-    F[2] += (i == 0 ? 1.0 : -1.0) * pb->lambda * pb->Fl;
-    rd_static_add_force(Q, c, F, f);
-}
 
 void rd_pretension_opts_default(rd_pretension_opts *o)
 {

@@ -38,28 +38,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-/* Adds (F, (y - x) x F) for a force F at body offset c of a segment at (x, Q). */
-void rd_static_add_force(const double *Q, const double c[3], const double F[3], double f[6])
-{
-    double arm[3], M[3];
-    rd_mv3(Q, c, arm);
-    rd_cross3(arm, F, M);
-    for (int k = 0; k < 3; k++) {
-        f[k] += F[k];
-        f[3 + k] += M[k];
-    }
-}
-
-/* The load path of F_t.  Pretension: F_t and F_l grow with lambda.
- * Contact: F_t first (lambda 0..RD_CONTACT_LF, the bore still the ring's
- * closed shape, so the ring is pressed on it throughout), then the bore
- * (rd_contact.c): a bore moving away from an unloaded ring would leave it
- * floating, and Newton with it. */
-double rd_static_force_factor(const rd_static_problem *pb)
-{
-    return pb->kind == RD_STATIC_CONTACT ? fmin(1.0, pb->lambda / RD_CONTACT_LF) : pb->lambda;
-}
-
 /* Support residual (added to g for segments pa, pb) and its force/moment. */
 static void support_terms(const rd_static_problem *pb, double *g, double *force, double *moment)
 {
@@ -113,7 +91,7 @@ static double residual(const rd_static_problem *pb, double *r, double *pre)
     }
     for (int i = 0; i < n; i += n - 1) { /* the gap faces (segments 0, n - 1) */
         double f[6] = {0};
-        rd_pretension_gap_face_load(pb, i, pb->x + 3 * i, pb->Q + 9 * i, f);
+        rd_static_gap_face_load(pb, i, pb->x + 3 * i, pb->Q + 9 * i, f);
         for (int k = 0; k < 6; k++)
             r[6 * i + k] -= f[k];
     }
@@ -199,9 +177,9 @@ static void field_coupling(rd_static_problem *pb, double C[36])
     for (int k = 0; k < 6; k++) {
         double h = k < 3 ? hx : hr, fp[6] = {0}, fm[6] = {0};
         rd_static_perturb(x0, Q0, k, h, pb->x + 3 * last, pb->Q + 9 * last);
-        rd_pretension_gap_face_load(pb, 0, pb->x, pb->Q, fp);
+        rd_static_gap_face_load(pb, 0, pb->x, pb->Q, fp);
         rd_static_perturb(x0, Q0, k, -h, pb->x + 3 * last, pb->Q + 9 * last);
-        rd_pretension_gap_face_load(pb, 0, pb->x, pb->Q, fm);
+        rd_static_gap_face_load(pb, 0, pb->x, pb->Q, fm);
         for (int r = 0; r < 6; r++)
             C[r + 6 * k] = -(fp[r] - fm[r]) / (2.0 * h);
     }

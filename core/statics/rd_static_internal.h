@@ -145,10 +145,11 @@ void rd_static_add_force(const double *Q, const double c[3], const double F[3], 
  * over lambda 0..1/2 (rd_contact.c has the bore's part of the path). */
 double rd_static_force_factor(const rd_static_problem *pb);
 
-/* rd_pretension.c: adds the gap-face loads on segment i (0 or n - 1) at
- * (x, Q) to f: F_t by the force or the field method, and F_l. */
-void rd_pretension_gap_face_load(const rd_static_problem *pb, int i, const double *x,
-                                 const double *Q, double f[6]);
+/* rd_static_problem.c: adds the gap-face loads on segment i (0 or n - 1)
+ * at (x, Q) to f: F_t by the force or the field method, and F_l (both
+ * problems' residual and tangent apply them). */
+void rd_static_gap_face_load(const rd_static_problem *pb, int i, const double *x, const double *Q,
+                             double f[6]);
 
 /* rd_contact_face.c: adds the bore's contact forces on segment i at (x, Q)
  * to f (with flexible faces its neighbours' points' too, at their states in

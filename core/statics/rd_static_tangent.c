@@ -228,9 +228,9 @@ static void assemble(rd_static_problem *pb, sink *k, double mu)
             double h = c < 3 ? hx : hr, fp[6] = {0}, fm[6] = {0}, xp[3], Qp[9];
             if (i == 0 || i == n - 1) {
                 rd_static_perturb(pb->x + 3 * i, pb->Q + 9 * i, c, h, xp, Qp);
-                rd_pretension_gap_face_load(pb, i, xp, Qp, fp);
+                rd_static_gap_face_load(pb, i, xp, Qp, fp);
                 rd_static_perturb(pb->x + 3 * i, pb->Q + 9 * i, c, -h, xp, Qp);
-                rd_pretension_gap_face_load(pb, i, xp, Qp, fm);
+                rd_static_gap_face_load(pb, i, xp, Qp, fm);
             }
             for (int row = 0; row < 6; row++)
                 Di[6 * row + c] = -J[row + 6 * c] - (fp[row] - fm[row]) / (2.0 * h);
