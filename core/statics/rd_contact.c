@@ -11,9 +11,9 @@
  * delta = rho - r_b(theta) its penetration, over its tributary area h r_o
  * phi / m, along the bore's outward normal.  Augmented Lagrangian: at the
  * full load, delta is shifted by lambda_i / k, one multiplier per segment,
- * updated (Uzawa, rd_static.c) as lambda_i <- max(0, lambda_i + k dbar_i),
+ * updated (Uzawa, rd_contact_uzawa.c) as lambda_i <- max(0, lambda_i + k dbar_i),
  * dbar_i the force-weighted mean penetration of the segment's points (the
- * updates mixed by Anderson acceleration, rd_static.c), until no plain
+ * updates mixed by Anderson acceleration), until no plain
  * update moves a lambda by more than 0.02 p0: the segment-level penetration goes to
  * zero at the law's own stiffness (the plain penalty's compliance cost the
  * largest light gap 5 % and spread the free ends' forces over ~2.6 deg, the
@@ -47,7 +47,7 @@
  * bore under it from load factor l0 to l1.  Without it a bore that moves
  * away by more than the law's smoothing length eps leaves every contact on
  * the law's exp(delta / eps) tail, with no stiffness to push the ring out. */
-void rd_contact_follow_bore(rd_static_problem *pb, double l0, double l1)
+static void follow_bore(rd_static_problem *pb, double l0, double l1)
 {
     for (int i = 0; i < pb->n; i++) {
         double *x = pb->x + 3 * i, th = atan2(x[1], x[0]), r0, r1, d;
@@ -58,31 +58,6 @@ void rd_contact_follow_bore(rd_static_problem *pb, double l0, double l1)
         x[0] += (r1 - r0) * cos(th);
         x[1] += (r1 - r0) * sin(th);
     }
-}
-
-double rd_contact_update_multipliers(rd_static_problem *pb)
-{
-    double change = 0.0;
-    for (int i = 0; i < pb->n; i++) {
-        double sp = 0.0, spd = 0.0;
-        for (int k = 0; k < pb->m; k++) {
-            const rd_contact_eval *pe = pb->pe + pb->m * i + k;
-            int q = rd_contact_mult_of(pb, i, k);
-            double d = pe->delta, p = pe->p;
-            if (q != i) { /* a free end's tip: its own */
-                double next = fmax(0.0, pb->mult[q] + rd_contact_law_stiffness(pb, q) * d);
-                change = fmax(change, fabs(next - pb->mult[q]));
-                pb->mult[q] = next;
-                continue;
-            }
-            sp += p;
-            spd += p * d;
-        }
-        double next = sp > 0.0 ? fmax(0.0, pb->mult[i] + pb->k * spd / sp) : 0.0;
-        change = fmax(change, fabs(next - pb->mult[i]));
-        pb->mult[i] = next;
-    }
-    return change / pb->p0;
 }
 
 void rd_contact_segment_jacobian(const rd_static_problem *pb, int i, double J[36])
@@ -119,6 +94,40 @@ void rd_contact_segment_jacobian(const rd_static_problem *pb, int i, double J[36
         }
     }
 }
+
+/* The contact loads' residual: the faces at pb's state (if flexible), then
+ * the points' loads (rd_contact_face.c). */
+static void contact_residual(const rd_static_problem *pb, double *r)
+{
+    rd_contact_face_update(pb);
+    rd_contact_loads(pb, r);
+}
+
+/* Flexible faces: a segment's points move with its neighbours. */
+static int faces_couple(const rd_static_problem *pb)
+{
+    return pb->cp0 != NULL;
+}
+
+/* The stiffest contact spring: a point's k A. */
+static double point_stiffness(const rd_static_problem *pb)
+{
+    return pb->k * pb->area_max;
+}
+
+const rd_static_loads rd_contact_static_loads = {
+    .force_factor = rd_contact_force_factor,
+    .residual = contact_residual,
+    .residual_again = rd_contact_loads_again,
+    .segment_jacobian = rd_contact_segment_jacobian,
+    .coupled = faces_couple,
+    .face_jacobian = rd_contact_face_jacobian,
+    .predict = follow_bore,
+    .stiffest = point_stiffness,
+    .outer = rd_contact_uzawa,
+    .full_steps = 1,
+    .planar = 1,
+};
 
 /* The contact problem on `ring`: loads, law, support, contact points. */
 static int contact_setup(rd_static_problem *pb, const rd_ring_params *p, const rd_contact_opts *o)
@@ -485,7 +494,7 @@ static int warm_save(const rd_static_problem *pb, rd_contact_warm *w)
  * as these: each is a pressure (the law's pressure at zero penetration),
  * so a segment's is interpolated in the angle as the shape (held at the
  * end segments' past them) and a free end's tip keeps its own.  Started
- * from zero, each level's updates (rd_static.c's uzawa, a rate near 1 on
+ * from zero, each level's updates (rd_contact_uzawa.c, a rate near 1 on
  * fine chains) rebuilt them: 44 updates at n = 1280 on order 6 at 10 x, 0
  * deg, now 32.  Instructions of rd_contact_solve (callgrind,
  * bench_contact_cost K A PHASE): orders 4, 2, 6, 3 at 10, 2.8, 10, 3 x,
@@ -562,7 +571,7 @@ int rd_contact_once_graded(const rd_ring_params *p, int segments, const double *
     rd_ring *ring = rd_ring_create_graded(p, segments, 0, weights, err);
     if (!ring)
         return err ? err->code : RD_EINVAL;
-    if ((rc = rd_static_problem_init(&pb, ring, RD_STATIC_CONTACT)) != RD_OK ||
+    if ((rc = rd_static_problem_init(&pb, ring, &rd_contact_static_loads)) != RD_OK ||
         (rc = contact_setup(&pb, p, o)) != RD_OK)
         goto out;
     if (from && from->n >= 2)

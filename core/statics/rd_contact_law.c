@@ -33,6 +33,15 @@
  * order 4 at 10 x, 17 deg 1.74 -> 1.66 G. */
 #define EPS_WIDE 1e4
 
+/* F_t first (lambda 0..RD_CONTACT_LF, the bore still the ring's closed
+ * shape, so the ring is pressed on it throughout), then the bore: a bore
+ * moving away from an unloaded ring would leave it floating, and Newton
+ * with it. */
+double rd_contact_force_factor(const rd_static_problem *pb)
+{
+    return fmin(1.0, pb->lambda / RD_CONTACT_LF);
+}
+
 static double bore_factor(const rd_static_problem *pb)
 {
     return fmin(1.0,

@@ -15,7 +15,7 @@
  * second solve at 2n (n/2 above the segment limit), by rd_accuracy.
  */
 #include "rd_accuracy.h"
-#include "rd_static_internal.h"
+#include "rd_static_problem.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -127,7 +127,7 @@ static int pretension_once(const rd_ring_params *p, int segments, const rd_prete
     rd_ring *ring = rd_ring_create(p, segments, 0, err);
     if (!ring)
         return err ? err->code : RD_EINVAL;
-    if ((rc = rd_static_problem_init(&pb, ring, RD_STATIC_PRETENSION)) != RD_OK) {
+    if ((rc = rd_static_problem_init(&pb, ring, NULL)) != RD_OK) {
         rc = rd_error_set(err, RD_ENOMEM, "", "Out of memory for the %d-segment ring.", segments);
         goto out;
     }

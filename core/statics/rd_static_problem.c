@@ -8,20 +8,23 @@
  * the force or the field method, F_l).  The residual, tangent and solver
  * are in rd_static.c and rd_static_tangent.c; the model in rd_static.h.
  */
-#include "rd_static_internal.h"
+#include "rd_static_problem.h"
 
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
-int rd_static_problem_init(rd_static_problem *pb, const rd_ring *ring, int kind)
+/* A problem whose loads are the chain's own (pretension's). */
+static const rd_static_loads chain_only = {0};
+
+int rd_static_problem_init(rd_static_problem *pb, const rd_ring *ring, const rd_static_loads *loads)
 {
     int n = rd_ring_get_segments(ring);
     const rd_ring_params *p = rd_ring_get_params(ring);
     memset(pb, 0, sizeof *pb);
     pb->ring = ring;
+    pb->loads = loads ? loads : &chain_only;
     pb->n = n;
-    pb->kind = kind;
     pb->R = rd_ring_get_section(ring)->R;
     pb->b = p->radial_width;
     pb->h = p->axial_height;
@@ -112,14 +115,11 @@ void rd_static_add_force(const double *Q, const double c[3], const double F[3], 
     }
 }
 
-/* The load path of F_t.  Pretension: F_t and F_l grow with lambda.
- * Contact: F_t first (lambda 0..RD_CONTACT_LF, the bore still the ring's
- * closed shape, so the ring is pressed on it throughout), then the bore
- * (rd_contact.c): a bore moving away from an unloaded ring would leave it
- * floating, and Newton with it. */
+/* The load path of F_t: the problem's (contact: rd_contact_force_factor),
+ * or F_t and F_l growing with lambda (pretension). */
 double rd_static_force_factor(const rd_static_problem *pb)
 {
-    return pb->kind == RD_STATIC_CONTACT ? fmin(1.0, pb->lambda / RD_CONTACT_LF) : pb->lambda;
+    return pb->loads->force_factor ? pb->loads->force_factor(pb) : pb->lambda;
 }
 
 /* Field method: the force on the J face (follows that face) and the point
