@@ -42,10 +42,11 @@ static double update_multipliers(rd_static_problem *pb)
 }
 
 /* The augmented Lagrangian's outer (Uzawa) iterations at the full load
- * (rd_static_loads.outer).  Each sets every point's multiplier to its pressure and solves
- * again from the last state, so the penetration where the ring presses goes
- * to zero at the law's own stiffness (no stiffer Newton problem); stops when
- * no multiplier's plain update moves it by more than UZAWA_TOL p0.
+ * (rd_static_loads.outer).  Each sets every point's multiplier to its
+ * pressure and solves again from the last state, so the penetration where
+ * the ring presses goes to zero at the law's own stiffness (no stiffer
+ * Newton problem); stops when no multiplier's plain update moves it by
+ * more than UZAWA_TOL p0.
  *
  * The plain update converges linearly, at a rate near 1 on fine chains
  * (0.95-0.96 a step at n = 640-1280: the ring's stiffness at a segment's
