@@ -9,7 +9,7 @@
  * the mixed one by the polynomial that best damps M's spectrum).
  *
  * Used by the contact solve's multiplier (Uzawa) iteration
- * (rd_static.c), whose plain update converges linearly at a rate that
+ * (rd_contact_uzawa.c), whose plain update converges linearly at a rate that
  * approaches 1 as the segments shorten (the ring's stiffness at the
  * segment's length outgrows the contact law's): 0.95-0.96 a step at n =
  * 640-1280 on bench_static's battery, 24 to more than 30 updates.

@@ -47,4 +47,10 @@ double rd_ring_segment_phi_at(const rd_ring *ring, int i);
 rd_ring *rd_ring_create_graded(const rd_ring_params *p, int segments, int closed,
                                const double *weights, rd_error *err);
 
+/* Conformability k (1.4) and the free gap m from (1.5) (rd_ring.c; the
+ * public declarations are rd_static.h's, where pretension and contact
+ * report them). */
+double rd_ring_conformability(const rd_ring_params *p);
+double rd_ring_free_gap_formula(const rd_ring_params *p);
+
 #endif

@@ -159,6 +159,21 @@ void rd_ring_section_get(const rd_ring_params *p, int closed, rd_ring_section *s
     s->span = closed ? 2.0 * M_PI : 2.0 * M_PI - p->closed_gap / s->R;
 }
 
+double rd_ring_conformability(const rd_ring_params *p)
+{
+    rd_ring_section s;
+    rd_ring_section_get(p, 0, &s);
+    double db = p->diameter - p->radial_width;
+    return p->tangential_force * db * db / (4.0 * p->youngs_modulus * s.I_inplane);
+}
+
+double rd_ring_free_gap_formula(const rd_ring_params *p)
+{
+    /* (1.5): k = 2/(3 pi) m/(d - b), m the opening beyond the closed gap */
+    double m = 1.5 * M_PI * rd_ring_conformability(p) * (p->diameter - p->radial_width);
+    return p->closed_gap + m;
+}
+
 /* (phi - sin phi) / 2 without cancellation for small phi. */
 static double half_phi_minus_sin(double phi)
 {

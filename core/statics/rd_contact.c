@@ -11,9 +11,9 @@
  * delta = rho - r_b(theta) its penetration, over its tributary area h r_o
  * phi / m, along the bore's outward normal.  Augmented Lagrangian: at the
  * full load, delta is shifted by lambda_i / k, one multiplier per segment,
- * updated (Uzawa, rd_static.c) as lambda_i <- max(0, lambda_i + k dbar_i),
+ * updated (Uzawa, rd_contact_uzawa.c) as lambda_i <- max(0, lambda_i + k dbar_i),
  * dbar_i the force-weighted mean penetration of the segment's points (the
- * updates mixed by Anderson acceleration, rd_static.c), until no plain
+ * updates mixed by Anderson acceleration), until no plain
  * update moves a lambda by more than 0.02 p0: the segment-level penetration goes to
  * zero at the law's own stiffness (the plain penalty's compliance cost the
  * largest light gap 5 % and spread the free ends' forces over ~2.6 deg, the
@@ -35,7 +35,7 @@
  * at 320 (tests/core/test_contact_face.c).  Outputs per segment: pressure
  * (resultant / (h r_o phi)), closest approach, bore radius.  The
  * refinement and the error estimates' solves are in rd_contact_refine.c,
- * the estimates themselves in rd_contact_post.c.
+ * the estimates themselves in rd_contact_estimate.c.
  */
 #include "rd_static_internal.h"
 
@@ -43,221 +43,21 @@
 #include <stdlib.h>
 #include <string.h>
 
-/* The load path (lambda 0..1): F_t over 0..RD_CONTACT_LF with the bore
- * still the ring's closed shape, then the bore's departure from it over
- * RD_CONTACT_LF..BORE_DONE, the contact law smoothed over EPS_WIDE times its
- * length meanwhile (a Newton step then sees contacts change over a length
- * comparable to its own, not 1e-10 m), then the smoothing brought down to
- * eps geometrically; measured: half the Newton iterations of the unsmoothed
- * path on the hard bores of bench_static --battery, the answer unchanged
- * within the residual tolerance.  EPS_WIDE 1e4 since 0.3.8 (1e3 before):
- * the first level's path (n = 20, rigid faces) crept through the bore's
- * part in steps of 0.002 at 7-9 Newton iterations each (its step grows only
- * below 7), and was a quarter of a bore's CPU; the load steps' Newton
- * iterations over bench_static's three rings' batteries (all levels, the
- * failed tries counted) 12318, 19134, 13173 at 1e3; 7761, 8775, 7419 at
- * 1e4; 7386, 7425, 6921 at 3e4 and 8124, 9042, 7545 at 1e5, where the
- * finer levels, whose warm starts take the smoothing down from EPS_WIDE,
- * begin to need more (1404 at n >= 160 at 1e3, 1410 at 1e4, 1443 at 3e4,
- * each up to 64 times a first level's); the same targets met and the same
- * estimates tracking on all three.  Instructions of rd_contact_solve
- * (callgrind, bench_contact_cost): order 2 at 2.8 x, 17 deg 1.63 -> 1.51 G,
- * order 4 at 10 x, 17 deg 1.74 -> 1.66 G. */
-#define BORE_DONE 0.8
-#define EPS_WIDE  1e4
-
-static double bore_factor(const rd_static_problem *pb)
-{
-    return fmin(1.0, fmax(0.0, (pb->lambda - RD_CONTACT_LF) / (BORE_DONE - RD_CONTACT_LF)));
-}
-
-/* The law's smoothing length at the current load factor. */
-static double eps_now(const rd_static_problem *pb)
-{
-    double s = fmin(1.0, fmax(0.0, (1.0 - pb->lambda) / (1.0 - BORE_DONE)));
-    return pb->eps * pow(EPS_WIDE, s);
-}
-
-/* Bore radius and its derivative at theta, at the current load factor. */
-static void bore_radius(const rd_static_problem *pb, double theta, double *r, double *dr)
-{
-    double a = pb->bore_dr, da = 0.0;
-    for (int k = 0; k < pb->co->n_distortion; k++) {
-        const rd_distortion *d = &pb->co->distortion[k];
-        double arg = d->order * (theta - d->phase_deg * M_PI / 180.0);
-        a += d->amplitude * cos(arg);
-        da -= d->amplitude * d->order * sin(arg);
-    }
-    double mu = bore_factor(pb);
-    *r = pb->r_o + mu * a;
-    *dr = mu * da;
-}
-
-/* The same at the angle of the point y, rho = |(y[0], y[1])| > 0,
- * without trigonometry: cos k theta + i sin k theta = ((y0 + i y1) /
- * rho)^k, turned by the precomputed cos, sin of k phi_k (5-9 % of a
- * distorted bore's solve, callgrind). */
-static void bore_at(const rd_static_problem *pb, const double y[3], double rho, double mu,
-                    double *r, double *dr)
-{
-    double c = y[0] / rho, s = y[1] / rho;
-    double a = pb->bore_dr, da = 0.0;
-    for (int q = 0; q < pb->co->n_distortion; q++) {
-        const rd_distortion *d = &pb->co->distortion[q];
-        double ck = 1.0, sk = 0.0;
-        for (int j = 0; j < d->order; j++) {
-            double t = ck * c - sk * s;
-            sk = sk * c + ck * s;
-            ck = t;
-        }
-        double cp = pb->bore_phase[2 * q], sp = pb->bore_phase[2 * q + 1];
-        a += d->amplitude * (ck * cp + sk * sp);
-        da -= d->amplitude * d->order * (sk * cp - ck * sp);
-    }
-    *r = pb->r_o + mu * a;
-    *dr = mu * da;
-}
-
-/* Point k of segment i's multiplier: its segment's, or with tip_mult the
- * very tip's own (n on the first free end, n + 1 on the last). */
-static int mult_of(const rd_static_problem *pb, int i, int k)
-{
-    if (pb->tip_mult && i == 0 && k == 0)
-        return pb->n;
-    if (pb->tip_mult && i == pb->n - 1 && k == pb->m - 1)
-        return pb->n + 1;
-    return i;
-}
-
-/* The law's stiffness at multiplier q: k, or TIP_STIFFNESS k at a tip's
- * own point once the load is on (the multipliers' updates; along the load
- * path the tip's law is k's, as the warm starts from a coarser level need:
- * from the start the first flexible level, n = 80, of order 2 at 2.8 x
- * stalled after 400 iterations and took the whole path again). */
-#define TIP_STIFFNESS 100.0
-static double law_stiffness(const rd_static_problem *pb, int q)
-{
-    return q >= pb->n && pb->lambda >= 1.0 ? TIP_STIFFNESS * pb->k : pb->k;
-}
-
-/* The smooth contact law p(delta) = k eps ln(1 + exp(delta / eps)) at
- * point q, its penetration shifted by the point's multiplier: delta +
- * lambda_q / k (the augmented Lagrangian; lambda = 0 is the plain penalty). */
-static double contact_pressure(const rd_static_problem *pb, double delta, int q)
-{
-    double k = law_stiffness(pb, q);
-    if (pb->mult)
-        delta += pb->mult[q] / k;
-    double e = eps_now(pb), z = delta / e;
-    if (z > 0)
-        return k * (delta + e * log1p(exp(-z)));
-    return k * e * log1p(exp(z));
-}
-
 /* Predictor for a contact load step: every segment moves radially with the
  * bore under it from load factor l0 to l1.  Without it a bore that moves
  * away by more than the law's smoothing length eps leaves every contact on
  * the law's exp(delta / eps) tail, with no stiffness to push the ring out. */
-void rd_contact_follow_bore(rd_static_problem *pb, double l0, double l1)
+static void follow_bore(rd_static_problem *pb, double l0, double l1)
 {
     for (int i = 0; i < pb->n; i++) {
         double *x = pb->x + 3 * i, th = atan2(x[1], x[0]), r0, r1, d;
         pb->lambda = l0;
-        bore_radius(pb, th, &r0, &d);
+        rd_contact_bore_radius(pb, th, &r0, &d);
         pb->lambda = l1;
-        bore_radius(pb, th, &r1, &d);
+        rd_contact_bore_radius(pb, th, &r1, &d);
         x[0] += (r1 - r0) * cos(th);
         x[1] += (r1 - r0) * sin(th);
     }
-}
-
-double rd_contact_update_multipliers(rd_static_problem *pb)
-{
-    double change = 0.0;
-    for (int i = 0; i < pb->n; i++) {
-        double sp = 0.0, spd = 0.0;
-        for (int k = 0; k < pb->m; k++) {
-            const rd_contact_eval *pe = pb->pe + pb->m * i + k;
-            int q = mult_of(pb, i, k);
-            double d = pe->delta, p = pe->p;
-            if (q != i) { /* a free end's tip: its own */
-                double next = fmax(0.0, pb->mult[q] + law_stiffness(pb, q) * d);
-                change = fmax(change, fabs(next - pb->mult[q]));
-                pb->mult[q] = next;
-                continue;
-            }
-            sp += p;
-            spd += p * d;
-        }
-        double next = sp > 0.0 ? fmax(0.0, pb->mult[i] + pb->k * spd / sp) : 0.0;
-        change = fmax(change, fabs(next - pb->mult[i]));
-        pb->mult[i] = next;
-    }
-    return change / pb->p0;
-}
-
-/* The law at one point with its slope dp/ddelta (the logistic function of
- * z; e the current smoothing length, hoisted out of the points' loop).
- * Below z = -746 exp(z) underflows to 0 (from -745.13 on), so both are
- * exactly 0 there: returned without the calls (most points of a bore with
- * light gaps).  Above z = 40 they are exactly k delta and k: q = exp(-z) <
- * 4.3e-18 is under half an ulp of 1 (1 + q rounds to 1) and e log1p(q) =
- * delta q / z under half an ulp of delta, so the calls are skipped there
- * too (a point pressing at over 2 p0; from z = 708 on exp(-z) is
- * subnormal, glibc's slow path).  Order 2 at 1.97 x, 179.8 deg (a random
- * bore over 0.2 s): 3.124 -> 3.053 G instructions (callgrind,
- * bench_contact_cost 2 1.97019 179.812); order 6 at 10 x, 0 deg: 1.026 ->
- * 1.023 G; bench_contact_cost --battery's fingerprints the same. */
-static void law_and_slope(const rd_static_problem *pb, double delta, int i, double e, double *p,
-                          double *dp)
-{
-    double k = law_stiffness(pb, i);
-    delta += pb->mult ? pb->mult[i] / k : 0.0;
-    double z = delta / e;
-    if (z < -746.0) {
-        *p = *dp = 0.0;
-        return;
-    }
-    if (z > 40.0) {
-        *p = k * delta;
-        *dp = k;
-    } else if (z > 0) {
-        double q = exp(-z);
-        *p = k * (delta + e * log1p(q));
-        *dp = k / (1.0 + q);
-    } else {
-        double q = exp(z);
-        *p = k * e * log1p(q);
-        *dp = k * q / (1.0 + q);
-    }
-}
-
-rd_contact_at rd_contact_now(const rd_static_problem *pb)
-{
-    return (rd_contact_at){eps_now(pb), bore_factor(pb)};
-}
-
-void rd_contact_law_again(const rd_static_problem *pb, int o, int k, double e, rd_contact_eval *pe)
-{
-    law_and_slope(pb, pe->delta, mult_of(pb, o, k), e, &pe->p, &pe->dp);
-}
-
-void rd_contact_point(const rd_static_problem *pb, int o, int k, const double y[3],
-                      const rd_contact_at *at, rd_contact_eval *pe)
-{
-    /* sqrt, not hypot: no overflow or underflow at a ring's size, and
-     * glibc's hypot was 3 % of a contact solve's instructions (callgrind,
-     * order 4 at 10 x, 17 deg: 2.297 -> 2.232 G) */
-    double rho = sqrt(y[0] * y[0] + y[1] * y[1]), rb, drb, *n = pe->n;
-    bore_at(pb, y, rho, at->mu, &rb, &drb);
-    pe->delta = rho - rb;
-    rd_contact_law_again(pb, o, k, at->e, pe);
-    if (!rd_contact_presses(pe))
-        return; /* no force: its normal is never read */
-    /* grad(delta) = e_rho - r_b'/rho e_theta */
-    n[0] = y[0] / rho + drb / rho * y[1] / rho;
-    n[1] = y[1] / rho - drb / rho * y[0] / rho;
-    n[2] = 0.0;
 }
 
 void rd_contact_segment_jacobian(const rd_static_problem *pb, int i, double J[36])
@@ -295,6 +95,40 @@ void rd_contact_segment_jacobian(const rd_static_problem *pb, int i, double J[36
     }
 }
 
+/* The contact loads' residual: the faces at pb's state (if flexible), then
+ * the points' loads (rd_contact_face.c). */
+static void contact_residual(const rd_static_problem *pb, double *r)
+{
+    rd_contact_face_update(pb);
+    rd_contact_loads(pb, r);
+}
+
+/* Flexible faces: a segment's points move with its neighbours. */
+static int faces_couple(const rd_static_problem *pb)
+{
+    return pb->cp0 != NULL;
+}
+
+/* The stiffest contact spring: a point's k A. */
+static double point_stiffness(const rd_static_problem *pb)
+{
+    return pb->k * pb->area_max;
+}
+
+const rd_static_loads rd_contact_static_loads = {
+    .force_factor = rd_contact_force_factor,
+    .residual = contact_residual,
+    .residual_again = rd_contact_loads_again,
+    .segment_jacobian = rd_contact_segment_jacobian,
+    .coupled = faces_couple,
+    .face_jacobian = rd_contact_face_jacobian,
+    .predict = follow_bore,
+    .stiffest = point_stiffness,
+    .outer = rd_contact_uzawa,
+    .full_steps = 1,
+    .planar = 1,
+};
+
 /* The contact problem on `ring`: loads, law, support, contact points. */
 static int contact_setup(rd_static_problem *pb, const rd_ring_params *p, const rd_contact_opts *o)
 {
@@ -323,8 +157,9 @@ static int contact_setup(rd_static_problem *pb, const rd_ring_params *p, const r
     pb->mult = calloc((size_t)n + 2, sizeof *pb->mult);
     pb->pe = malloc((size_t)n * m * sizeof *pb->pe);
     /* flexible faces: each free end's very tip has a multiplier of its own
-     * and, at the full load, TIP_STIFFNESS times the law's stiffness (one
-     * multiplier per end segment left the tip force's split to the penalty:
+     * and, at the full load, TIP_STIFFNESS (rd_contact_law.c) times the
+     * law's stiffness (one multiplier per end segment left the tip force's
+     * split to the penalty:
      * order 3, 0.1 x, n = 320, tip 1.551 N against the exact 1.473; one per
      * point of the end segments, 1.483 N, over-constrains the face, whose
      * points then traded load at every update and never met the updates'
@@ -375,7 +210,7 @@ static void segment_output(const rd_static_problem *pb, int i, rd_contact_result
         double y[3], a;
         rd_static_point_at(pb, i, pb->cp + 3 * (m * i + k), y);
         a = atan2(y[1], y[0]);
-        bore_radius(pb, a, &rb, &drb);
+        rd_contact_bore_radius(pb, a, &rb, &drb);
         double delta = hypot(y[0], y[1]) - rb;
         /* continuous along the ring: a free end may move past 0 deg */
         a = a * 180.0 / M_PI - ref;
@@ -384,7 +219,7 @@ static void segment_output(const rd_static_problem *pb, int i, rd_contact_result
         clear[m * i + k] = -delta;
         if (-delta < closest)
             out->max_clearance_angle_deg = t_deg[m * i + k]; /* scratch: closest point */
-        double fq = contact_pressure(pb, delta, mult_of(pb, i, k)) * pb->area[i];
+        double fq = rd_contact_pressure(pb, delta, rd_contact_mult_of(pb, i, k)) * pb->area[i];
         force += fq;
         moment += fq * t_deg[m * i + k];
         closest = fmin(closest, -delta);
@@ -395,7 +230,7 @@ static void segment_output(const rd_static_problem *pb, int i, rd_contact_result
         c_mid[k] = (pb->r_o / pb->R) * P[k] - P[k];
     rd_static_point_at(pb, i, c_mid, mid);
     double th = atan2(mid[1], mid[0]), deg = th * 180.0 / M_PI;
-    bore_radius(pb, th, &rb, &drb);
+    rd_contact_bore_radius(pb, th, &rb, &drb);
     out->angle_deg[i] = deg < 0.0 ? deg + 360.0 : deg;
     out->pressure[i] = force / (m * pb->area[i]);
     *at = force > 0.0 ? moment / force : rd_ring_get_segment_angle(pb->ring, i) * 180.0 / M_PI;
@@ -442,7 +277,7 @@ static void wide_patch_edges(const rd_contact_result *out, const double *lo, int
     }
 }
 
-/* The bins (rd_contact_post.c) from the segments' forces on their arcs lo
+/* The bins (rd_contact_gaps.c) from the segments' forces on their arcs lo
  * (n + 1 ends); the gaps already in out.  The bins put a force beside a
  * gap edge on the touching part of its segment, with the edges between
  * the segments' closest points even where the reported ones are among the
@@ -496,7 +331,7 @@ static void tip_forces(const rd_static_problem *pb, const double *force, rd_cont
     }
 }
 
-/* Light gaps, contact fraction, tip forces and bins (rd_contact_post.c)
+/* Light gaps, contact fraction, tip forces and bins (rd_contact_gaps.c)
  * from the point clearances t, c. */
 static int contact_summaries(const rd_static_problem *pb, const double *t, const double *c,
                              const double *ts, double *at, rd_contact_result *out)
@@ -659,7 +494,7 @@ static int warm_save(const rd_static_problem *pb, rd_contact_warm *w)
  * as these: each is a pressure (the law's pressure at zero penetration),
  * so a segment's is interpolated in the angle as the shape (held at the
  * end segments' past them) and a free end's tip keeps its own.  Started
- * from zero, each level's updates (rd_static.c's uzawa, a rate near 1 on
+ * from zero, each level's updates (rd_contact_uzawa.c, a rate near 1 on
  * fine chains) rebuilt them: 44 updates at n = 1280 on order 6 at 10 x, 0
  * deg, now 32.  Instructions of rd_contact_solve (callgrind,
  * bench_contact_cost K A PHASE): orders 4, 2, 6, 3 at 10, 2.8, 10, 3 x,
@@ -699,7 +534,7 @@ static void warm_start(rd_static_problem *pb, const rd_contact_warm *w)
     /* the bore in place, the law still wide: the path's last part; or, at
      * the same n (the same level with another law), the solved state with
      * its multipliers, at the full load */
-    pb->lambda_start = BORE_DONE;
+    pb->lambda_start = RD_CONTACT_BORE_DONE;
     /* Its first step is the one the coarser level first took from its own
      * warm start, where that level's faces were as these (a rigid-faced
      * level's steps say little of a flexible one's): a level whose whole
@@ -736,7 +571,7 @@ int rd_contact_once_graded(const rd_ring_params *p, int segments, const double *
     rd_ring *ring = rd_ring_create_graded(p, segments, 0, weights, err);
     if (!ring)
         return err ? err->code : RD_EINVAL;
-    if ((rc = rd_static_problem_init(&pb, ring, RD_STATIC_CONTACT)) != RD_OK ||
+    if ((rc = rd_static_problem_init(&pb, ring, &rd_contact_static_loads)) != RD_OK ||
         (rc = contact_setup(&pb, p, o)) != RD_OK)
         goto out;
     if (from && from->n >= 2)

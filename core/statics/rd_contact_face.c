@@ -280,9 +280,6 @@ void rd_contact_loads_again(const rd_static_problem *pb, double *r)
     loads(pb, r, 1);
 }
 
-const int rd_face_dof_seg[RD_FACE_DOFS] = {0, 0, 0, 1, 1, 1, 1, 1, 1, 2, 2, 2};
-const int rd_face_dof[RD_FACE_DOFS] = {0, 1, 5, 0, 1, 2, 3, 4, 5, 0, 1, 5};
-
 int rd_contact_face_jacobian(const rd_static_problem *pb, int o,
                              double K[RD_FACE_DOFS][RD_FACE_DOFS])
 {

@@ -2,7 +2,7 @@
  * rd_contact_refine — the contact analysis' accuracy loop (rd_contact_solve):
  * level pairs (n, 2n), (2n, 4n) ... through rd_accuracy, each finer level
  * started from the coarser one's solved shape, until the error estimates
- * (rd_contact_post.c) meet the target or the segment cap stops it; a first
+ * (rd_contact_estimate.c) meet the target or the segment cap stops it; a first
  * level that does not converge hands over to the pair above it; then the
  * reported level is solved again at twice the contact stiffness for the
  * law's share of the error; where that share tips the estimates over the

@@ -7,69 +7,20 @@
  * axis, pushing the faces apart, by the force method (each force normal to
  * its own face as it turns) or the field method (the J face's force, equal
  * and opposite on the I face, plus the couple that keeps the pair's moment
- * zero); F_l lambda along +z on the first face and -z on the last.
+ * zero); F_l lambda along +z on the first face and -z on the last (both
+ * the chain's own loads, rd_static_problem.c's rd_static_gap_face_load).
  * Outputs (m): x_a between the inner gap corners at mid-height, x_c the axial
  * separation of the inner top corners, the face centroids' distance, and the
  * deformed centroid line.  Error estimate: Richardson (order 2 in n) from a
  * second solve at 2n (n/2 above the segment limit), by rd_accuracy.
  */
 #include "rd_accuracy.h"
-#include "rd_static_internal.h"
+#include "rd_static_problem.h"
 
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-
-/* Field method: the force on the J face (follows that face) and the point
- * where it acts. */
-static void field_force(const rd_static_problem *pb, const double *xJ, const double *QJ,
-                        double F[3], double pJ[3])
-{
-    int first = pb->jseg == 0;
-    double t[3], c[3];
-    rd_mv3(QJ, first ? pb->tA : pb->tB, t);
-    rd_mv3(QJ, first ? pb->cA : pb->cB, c);
-    for (int k = 0; k < 3; k++) {
-        F[k] = rd_static_force_factor(pb) * pb->Ft * t[k];
-        pJ[k] = xJ[k] + c[k];
-    }
-}
-
-/* The gap-face loads on segment i (0 or n - 1): the pretension F_t, by the
- * force or the field method, and the lateral force F_l (0 in contact). */
-void rd_pretension_gap_face_load(const rd_static_problem *pb, int i, const double *x,
-                                 const double *Q, double f[6])
-{
-    const double *c = i == 0 ? pb->cA : pb->cB;
-    double F[3];
-    if (pb->method == RD_PRETENSION_FIELD) {
-        double FJ[3], pJ[3];
-        if (i == pb->jseg) {
-            field_force(pb, x, Q, F, pJ);
-        } else {
-            /* equal and opposite vector on the I face, plus the couple that
-             * keeps the pair's moment zero */
-            double arm[3], M[3];
-            field_force(pb, pb->x + 3 * pb->jseg, pb->Q + 9 * pb->jseg, FJ, pJ);
-            rd_mv3(Q, c, arm);
-            for (int k = 0; k < 3; k++) {
-                F[k] = -FJ[k];
-                arm[k] += x[k] - pJ[k];
-            }
-            rd_cross3(arm, FJ, M);
-            for (int k = 0; k < 3; k++)
-                f[3 + k] += M[k];
-        }
-    } else {
-        double t[3];
-        rd_mv3(Q, i == 0 ? pb->tA : pb->tB, t);
-        for (int k = 0; k < 3; k++)
-            F[k] = rd_static_force_factor(pb) * pb->Ft * t[k];
-    }
-    F[2] += (i == 0 ? 1.0 : -1.0) * pb->lambda * pb->Fl;
-    rd_static_add_force(Q, c, F, f);
-}
 
 void rd_pretension_opts_default(rd_pretension_opts *o)
 {
@@ -109,21 +60,6 @@ int rd_pretension_validate(const rd_pretension_opts *o, const rd_ring_params *p,
             p->tangential_force, k, k_max, segments, PRETENSION_K_MAX_N4,
             p->tangential_force * k_max / k);
     return RD_OK;
-}
-
-double rd_ring_conformability(const rd_ring_params *p)
-{
-    rd_ring_section s;
-    rd_ring_section_get(p, 0, &s);
-    double db = p->diameter - p->radial_width;
-    return p->tangential_force * db * db / (4.0 * p->youngs_modulus * s.I_inplane);
-}
-
-double rd_ring_free_gap_formula(const rd_ring_params *p)
-{
-    /* (1.5): k = 2/(3 pi) m/(d - b), m the opening beyond the closed gap */
-    double m = 1.5 * M_PI * rd_ring_conformability(p) * (p->diameter - p->radial_width);
-    return p->closed_gap + m;
 }
 
 /* Openings and the deformed centroid line of a solved problem. */
@@ -191,7 +127,7 @@ static int pretension_once(const rd_ring_params *p, int segments, const rd_prete
     rd_ring *ring = rd_ring_create(p, segments, 0, err);
     if (!ring)
         return err ? err->code : RD_EINVAL;
-    if ((rc = rd_static_problem_init(&pb, ring, RD_STATIC_PRETENSION)) != RD_OK) {
+    if ((rc = rd_static_problem_init(&pb, ring, NULL)) != RD_OK) {
         rc = rd_error_set(err, RD_ENOMEM, "", "Out of memory for the %d-segment ring.", segments);
         goto out;
     }
@@ -286,47 +222,4 @@ int rd_pretension_solve(const rd_ring_params *p, int segments, const rd_pretensi
     rc = rd_accuracy_run(&plan, mon, NULL, err);
     rd_pretension_result_cleanup(&run.ref);
     return rc;
-}
-
-/* ---- the static solver's options (shared with rd_contact.c) ---------------- */
-
-void rd_static_opts_default(rd_static_opts *o)
-{
-    o->tol = 1e-9;
-    o->max_iterations = 2000;
-    o->estimate_error = 1;
-    o->max_updates = 60;
-    o->update_eta = 0.03;
-}
-
-int rd_static_validate(const rd_static_opts *o, int segments, int closed, rd_error *err)
-{
-    if (closed)
-        return rd_error_set(err, RD_EINVAL, "/discretization/closed",
-                            "/discretization/closed = true joins the gap, but pretension and "
-                            "contact act on the gap faces: use a split ring (closed = false).");
-    if (segments < 4 || segments > RD_STATIC_SEGMENTS_MAX)
-        return rd_error_set(err, segments > RD_STATIC_SEGMENTS_MAX ? RD_ELIMIT : RD_EINVAL,
-                            "/discretization/segments",
-                            "/discretization/segments = %d is out of range for a static "
-                            "analysis: allowed 4 to %d.",
-                            segments, RD_STATIC_SEGMENTS_MAX);
-    if (!isfinite(o->tol) || o->tol < 1e-13 || o->tol > 1e-3)
-        return rd_error_set(err, RD_EINVAL, "/numerics/tolerance",
-                            "/numerics/tolerance = %g is out of range: allowed 1e-13 to 1e-3.",
-                            o->tol);
-    if (o->max_iterations < 1 || o->max_iterations > 100000)
-        return rd_error_set(err, o->max_iterations > 100000 ? RD_ELIMIT : RD_EINVAL,
-                            "/numerics/max_iterations",
-                            "/numerics/max_iterations = %d is out of range: allowed 1 to 100000.",
-                            o->max_iterations);
-    if (o->max_updates < 1 || o->max_updates > 1000) /* core's own: not in the API */
-        return rd_error_set(err, RD_EINVAL, "",
-                            "rd_static_opts.max_updates = %d is out of range: allowed 1 to 1000.",
-                            o->max_updates);
-    if (!(o->update_eta >= 0.0 && o->update_eta <= 1.0)) /* core's own: not in the API */
-        return rd_error_set(err, RD_EINVAL, "",
-                            "rd_static_opts.update_eta = %g is out of range: allowed 0 to 1.",
-                            o->update_eta);
-    return RD_OK;
 }

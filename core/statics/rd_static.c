@@ -1,7 +1,7 @@
 /*
  * rd_static — the nonlinear mechanics of the segment chain and its solver,
- * shared by pretension (rd_pretension.c) and bore contact (rd_contact.c);
- * rd_static.h has the model.
+ * shared by pretension (rd_pretension.c) and bore contact (rd_contact.c),
+ * and its options' defaults and checks; rd_static.h has the model.
  *
  * Unknowns: per segment i the position x_i (3, m) and the rotation Q_i
  * (3x3 row-major, body to global).  Increments are (dx_i, dpsi_i), with the
@@ -27,8 +27,7 @@
  * three block diagonals: that 6x6 block is added exactly by the Woodbury
  * identity on the factorization (newton_step).
  */
-#include "rd_anderson.h"
-#include "rd_static_internal.h"
+#include "rd_static_problem.h"
 
 #include "rd_blocktri.h"
 
@@ -37,28 +36,6 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
-
-/* Adds (F, (y - x) x F) for a force F at body offset c of a segment at (x, Q). */
-void rd_static_add_force(const double *Q, const double c[3], const double F[3], double f[6])
-{
-    double arm[3], M[3];
-    rd_mv3(Q, c, arm);
-    rd_cross3(arm, F, M);
-    for (int k = 0; k < 3; k++) {
-        f[k] += F[k];
-        f[3 + k] += M[k];
-    }
-}
-
-/* The load path of F_t.  Pretension: F_t and F_l grow with lambda.
- * Contact: F_t first (lambda 0..RD_CONTACT_LF, the bore still the ring's
- * closed shape, so the ring is pressed on it throughout), then the bore
- * (rd_contact.c): a bore moving away from an unloaded ring would leave it
- * floating, and Newton with it. */
-double rd_static_force_factor(const rd_static_problem *pb)
-{
-    return pb->kind == RD_STATIC_CONTACT ? fmin(1.0, pb->lambda / RD_CONTACT_LF) : pb->lambda;
-}
 
 /* Support residual (added to g for segments pa, pb) and its force/moment. */
 static void support_terms(const rd_static_problem *pb, double *g, double *force, double *moment)
@@ -95,14 +72,13 @@ static void support_terms(const rd_static_problem *pb, double *g, double *force,
 }
 
 /* Full residual r (6n) at the current state; returns the strain energy.
- * pre (contact; NULL: not kept): r before the contact loads, for
+ * pre (NULL: not kept): r before the problem's own loads, for
  * residual_again. */
 static double residual(const rd_static_problem *pb, double *r, double *pre)
 {
     int n = pb->n;
     double energy = 0.0;
     memset(r, 0, (size_t)6 * n * sizeof *r);
-    rd_contact_face_update(pb); /* the contact faces at this state (if any) */
     for (int j = 0; j < n - 1; j++) {
         double g[12], e;
         rd_static_joint_residual(pb, j, pb->x + 3 * j, pb->Q + 9 * j, pb->x + 3 * (j + 1),
@@ -113,14 +89,14 @@ static double residual(const rd_static_problem *pb, double *r, double *pre)
     }
     for (int i = 0; i < n; i += n - 1) { /* the gap faces (segments 0, n - 1) */
         double f[6] = {0};
-        rd_pretension_gap_face_load(pb, i, pb->x + 3 * i, pb->Q + 9 * i, f);
+        rd_static_gap_face_load(pb, i, pb->x + 3 * i, pb->Q + 9 * i, f);
         for (int k = 0; k < 6; k++)
             r[6 * i + k] -= f[k];
     }
-    if (pb->kind == RD_STATIC_CONTACT) {
+    if (pb->loads->residual) {
         if (pre)
             memcpy(pre, r, (size_t)6 * n * sizeof *r);
-        rd_contact_loads(pb, r);
+        pb->loads->residual(pb, r);
     }
     support_terms(pb, r, NULL, NULL);
     return energy;
@@ -169,18 +145,20 @@ static void apply_step(rd_static_problem *pb, const double *delta, double a)
 }
 
 /* Scratch of one solve, and what Newton needs to report and be cancelled. */
-typedef struct work {
+typedef struct rd_static_work {
     double *r, *delta, *x0, *Q0, *xs, *Qs;
-    double *pre;   /* contact: the last residual before its contact loads */
+    double *pre;   /* the last residual before the problem's own loads */
     double *Y;     /* N x 6: the field method's Woodbury columns; NULL otherwise */
     rd_blocktri t; /* the tangent, then its factors */
-    /* contact: the tangent's in-plane and out-of-plane parts (plane_solve) */
+    /* a planar problem: the tangent's in-plane and out-of-plane parts
+     * (plane_solve) */
     rd_blocktri part[2];
     double *xh;   /* their right-hand sides, t.nb t.bs */
     int split;    /* the last tangent went into part, not t */
     int factored; /* t or part holds the factors of a recent tangent */
-    /* uzawa's inexact solves: newton stops at min(loose, a tenth of its
-     * first residual) where that is above tol (0: at tol) */
+    /* the outer iterations' inexact solves (rd_static_resolve): newton
+     * stops at min(loose, a tenth of its first residual) where that is
+     * above tol (0: at tol) */
     double loose;
     const rd_monitor *mon;
     double progress; /* accepted load factor, reported as the solve's fraction */
@@ -199,9 +177,9 @@ static void field_coupling(rd_static_problem *pb, double C[36])
     for (int k = 0; k < 6; k++) {
         double h = k < 3 ? hx : hr, fp[6] = {0}, fm[6] = {0};
         rd_static_perturb(x0, Q0, k, h, pb->x + 3 * last, pb->Q + 9 * last);
-        rd_pretension_gap_face_load(pb, 0, pb->x, pb->Q, fp);
+        rd_static_gap_face_load(pb, 0, pb->x, pb->Q, fp);
         rd_static_perturb(x0, Q0, k, -h, pb->x + 3 * last, pb->Q + 9 * last);
-        rd_pretension_gap_face_load(pb, 0, pb->x, pb->Q, fm);
+        rd_static_gap_face_load(pb, 0, pb->x, pb->Q, fm);
         for (int r = 0; r < 6; r++)
             C[r + 6 * k] = -(fp[r] - fm[r]) / (2.0 * h);
     }
@@ -248,11 +226,12 @@ static int woodbury(rd_static_problem *pb, work *w)
     return 0;
 }
 
-/* The tangent at the last residual's state, Marquardt-damped by mu.  The
- * contact ring stays in its plane (in-plane loads; the support holds the
- * axial motion and the tilts; measured: every state and tangent of the
- * battery exactly planar, the in-plane and out-of-plane DOFs coupled by no
- * nonzero entry), so its tangent falls into two uncoupled halves, assembled
+/* The tangent at the last residual's state, Marquardt-damped by mu.  A
+ * planar problem's ring (loads->planar: the contact ring) stays in its
+ * plane (in-plane loads; the support holds the axial motion and the tilts;
+ * measured: every state and tangent of the battery exactly planar, the
+ * in-plane and out-of-plane DOFs coupled by no nonzero entry), so its
+ * tangent falls into two uncoupled halves, assembled
  * and factored separately (rd_static_tangent_planar) at a quarter of the
  * cost with exactly the numbers of the whole: the partial pivoting never
  * picks an exact zero over a nonzero, so it makes the same choices, and
@@ -302,8 +281,7 @@ static int newton_step(rd_static_problem *pb, work *w, int reuse)
             return 1;
         rd_blocktri_solve(&w->t, w->delta);
     }
-    if (pb->kind == RD_STATIC_PRETENSION && pb->method == RD_PRETENSION_FIELD && w->Y &&
-        (rc = woodbury(pb, w)) != 0)
+    if (w->Y && (rc = woodbury(pb, w)) != 0) /* the field method */
         return rc;
     for (int k = 0; k < N; k++)
         if (!isfinite(w->delta[k]))
@@ -311,47 +289,48 @@ static int newton_step(rd_static_problem *pb, work *w, int reuse)
     return 0;
 }
 
-/* The residual into w->r where only the contact multipliers changed since
- * the last residual (uzawa's update): its part before the contact loads
- * kept (w->pre), the points' law evaluated again at their kept
- * penetrations (rd_contact_loads_again), the support as before: bit for
- * bit residual's, without the faces, the joints or the points' geometry
- * (order 6 at 10 x, 0 deg: 0.5 M instructions a call against 2.8 M for the
- * whole residuals of all its levels; rd_contact_solve 1.54 -> 1.31 G). */
+/* The residual into w->r where only what the loads' outer iterations
+ * change (the contact multipliers) changed since the last residual: its
+ * part before the problem's own loads kept (w->pre), those loads again
+ * (loads->residual_again: the contact points' law evaluated again at their
+ * kept penetrations), the support as before: bit for bit residual's,
+ * without the faces, the joints or the points' geometry (order 6 at 10 x,
+ * 0 deg: 0.5 M instructions a call against 2.8 M for the whole residuals
+ * of all its levels; rd_contact_solve 1.54 -> 1.31 G). */
 static void residual_again(const rd_static_problem *pb, work *w)
 {
     memcpy(w->r, w->pre, (size_t)6 * pb->n * sizeof *w->r);
-    rd_contact_loads_again(pb, w->r);
+    pb->loads->residual_again(pb, w->r);
     support_terms(pb, w->r, NULL, NULL);
 }
 
 /* Backtracking on the residual norm along w->delta from the state saved in
  * w->xs, w->Qs (best: the smallest residual norm of this Newton solve so
- * far).  Returns 1 and the new norm when a step was taken (the state
- * moved), 0 when none was (the state restored, w->r that of the step tried
- * last).  `a` returns the step fraction taken.
+ * far).  Returns 1 and the new norm when a step was taken (the state moved),
+ * 0 when none was (the state restored, w->r that of the step tried last).
+ * `a` returns the step fraction taken.
  *
  * A full step may raise the residual at first: the chain's axial stiffness
- * turns the step's second-order length error into large forces that the
- * next iteration removes.  So the first iterations of a load step take it
- * unless it explodes (1e3 x the residual).  Contact takes every full step
- * within 1e3 x the solve's best residual (since 0.3.13): its law switches
- * from none to k delta over 0.05 p0 / k, and where many points lie near
- * that switch (long light gaps of a few nm: orders 2-4 at 0.3-1.2 x the
+ * turns the step's second-order length error into large forces that the next
+ * iteration removes.  So the first iterations of a load step take it unless
+ * it explodes (1e3 x the residual).  Contact takes every full step within
+ * 1e3 x the solve's best residual (loads->full_steps; since 0.3.13): its law
+ * switches from none to k delta over 0.05 p0 / k, and where many points lie
+ * near that switch (long light gaps of a few nm: orders 2-4 at 0.3-1.2 x the
  * bound) the backtracked steps crawled, a residual falling by 3-6 % an
- * iteration at a = 1/16, until the load step failed after 40 iterations
- * and was cut to a quarter (bench_static --single --random 82 40 1: the
- * finer level's step 0.8 -> 1 at n = 640 failed after 40, then four steps
- * of 0.05 took 43 more; with full steps the residual rose 14 x over three
- * iterations and the step converged in 13; the bore 0.47 -> 0.10 s CPU, the
- * answer the same within the solver's tolerances).  Measured on random
- * bores, three rings (bench_static [--ring ...] [--single] --random SEED
- * 40): one order a bore, seeds 81-86, 720 bores, CPU 76.8 -> 63.4 s, over
- * 0.2 s 59 -> 24; one or two orders, seeds 51-55, 600 bores, 72.2 -> 59.2
- * s, 42 -> 21; the same bores within the issue's targets (669, 534) and
- * reporting the target met (592 -> 591, 434).  Full steps until the 3rd,
- * 6th, 10th, 20th iteration: 76.8, 69.4, 68.2, 64.3 s; at every iteration
- * within 1e3 x the last residual (not the best): 62.5 s. */
+ * iteration at a = 1/16, until the load step failed after 40 iterations and
+ * was cut to a quarter (bench_static --single --random 82 40 1: the finer
+ * level's step 0.8 -> 1 at n = 640 failed after 40, then four steps of 0.05
+ * took 43 more; with full steps the residual rose 14 x over three iterations
+ * and the step converged in 13; the bore 0.47 -> 0.10 s CPU, the answer the
+ * same within the solver's tolerances).  Measured on random bores, three
+ * rings (bench_static [--ring ...] [--single] --random SEED 40): one order a
+ * bore, seeds 81-86, 720 bores, CPU 76.8 -> 63.4 s, over 0.2 s 59 -> 24; one
+ * or two orders, seeds 51-55, 600 bores, 72.2 -> 59.2 s, 42 -> 21; the same
+ * bores within the issue's targets (669, 534) and reporting the target met
+ * (592 -> 591, 434).  Full steps until the 3rd, 6th, 10th, 20th iteration:
+ * 76.8, 69.4, 68.2, 64.3 s; at every iteration within 1e3 x the last
+ * residual (not the best): 62.5 s. */
 static int line_search(rd_static_problem *pb, work *w, int it, double res, double best, double tol,
                        double *res_new, double *a)
 {
@@ -361,7 +340,7 @@ static int line_search(rd_static_problem *pb, work *w, int it, double res, doubl
         residual(pb, w->r, w->pre);
         *res_new = residual_norm(pb, w->r);
         int full = *a == 1.0 && ((it < 3 && *res_new < 1e3 * res) ||
-                                 (pb->kind == RD_STATIC_CONTACT && *res_new < 1e3 * best));
+                                 (pb->loads->full_steps && *res_new < 1e3 * best));
         if (*res_new < (1.0 - 1e-4 * *a) * res || *res_new <= tol || full)
             return 1;
         memcpy(pb->x, w->xs, (size_t)3 * pb->n * sizeof *pb->x);
@@ -385,9 +364,10 @@ static double step_length(const rd_static_problem *pb, const double *delta)
  * when a plain step fails; the monitor is called once per iteration (one
  * tangent and factorization: well under 100 ms up to 2000 segments).  The
  * first `chord` iterations may reuse the last factorization instead (a
- * chord step: the multipliers' updates, uzawa); one whose line search fails
- * is taken again with a fresh tangent.  `again`: only the contact
- * multipliers changed since the last residual (residual_again).
+ * chord step: the loads' outer iterations, rd_static_resolve); one whose
+ * line search fails is taken again with a fresh tangent.  `again`: only
+ * what the outer iterations change (the contact multipliers) changed since
+ * the last residual (residual_again).
  * Returns 1 converged, 0 not converged (caller cuts the load step), < 0 on
  * error or cancellation (w->err set). */
 static int newton(rd_static_problem *pb, work *w, double tol, int *budget, rd_static_stats *st,
@@ -479,17 +459,18 @@ static int work_alloc(const rd_static_problem *pb, work *w, rd_error *err)
     w->Q0 = malloc((size_t)9 * n * sizeof *w->Q0);
     w->xs = malloc((size_t)3 * n * sizeof *w->xs);
     w->Qs = malloc((size_t)9 * n * sizeof *w->Qs);
-    int need_y = pb->kind == RD_STATIC_PRETENSION && pb->method == RD_PRETENSION_FIELD;
+    int need_y = pb->method == RD_PRETENSION_FIELD; /* the gap faces' field method: woodbury */
     if (need_y)
         w->Y = malloc((size_t)6 * N * sizeof *w->Y);
-    int halves = pb->kind == RD_STATIC_CONTACT; /* plane_solve */
-    if (halves) {
+    int halves = pb->loads->planar; /* plane_solve */
+    if (halves)
         w->xh = malloc((size_t)6 * s * nb * sizeof *w->xh);
+    int again = pb->loads->residual_again != NULL; /* residual_again */
+    if (again)
         w->pre = malloc((size_t)N * sizeof *w->pre);
-    }
     if ((need_y && !w->Y) || !w->r || !w->delta || !w->x0 || !w->Q0 || !w->xs || !w->Qs ||
-        rd_blocktri_init(&w->t, nb, 6 * s) != RD_OK ||
-        (halves && (!w->xh || !w->pre || rd_blocktri_init(&w->part[0], nb, 3 * s) != RD_OK ||
+        rd_blocktri_init(&w->t, nb, 6 * s) != RD_OK || (again && !w->pre) ||
+        (halves && (!w->xh || rd_blocktri_init(&w->part[0], nb, 3 * s) != RD_OK ||
                     rd_blocktri_init(&w->part[1], nb, 3 * s) != RD_OK)))
         return rd_error_set(err, RD_ENOMEM, "", "Out of memory for the %d-segment static solve.",
                             n);
@@ -522,8 +503,8 @@ static int load_steps(rd_static_problem *pb, work *w, double tol, int *budget_io
         double target = fmin(1.0, lam + dlam);
         memcpy(w->x0, pb->x, (size_t)3 * n * sizeof *pb->x);
         memcpy(w->Q0, pb->Q, (size_t)9 * n * sizeof *pb->Q);
-        if (pb->kind == RD_STATIC_CONTACT)
-            rd_contact_follow_bore(pb, lam, target);
+        if (pb->loads->predict)
+            pb->loads->predict(pb, lam, target);
         pb->lambda = target;
         int before = st->iterations;
         int ok = newton(pb, w, tol, &budget, st, &res, 0, 0);
@@ -563,143 +544,6 @@ static int load_steps(rd_static_problem *pb, work *w, double tol, int *budget_io
     return rd_monitor_report(w->mon, 1.0, w->err);
 }
 
-/* Contact: the augmented Lagrangian's outer (Uzawa) iterations at the full
- * load.  Each sets every point's multiplier to its pressure and solves
- * again from the last state, so the penetration where the ring presses goes
- * to zero at the law's own stiffness (no stiffer Newton problem); stops when
- * no multiplier's plain update moves it by more than UZAWA_TOL p0.
- *
- * The plain update converges linearly, at a rate near 1 on fine chains
- * (0.95-0.96 a step at n = 640-1280: the ring's stiffness at a segment's
- * length outgrows the law's), so it hit its limit of 30 at n = 640 on
- * bench_static's battery, and its former test of 0.1 p0 stopped ~2 p0 short of the fixed
- * point: the answer depended on the start (0.08 p0 in a bin between two
- * starts, order 6 at 10 x).  The updates are therefore mixed by Anderson
- * acceleration (rd_anderson.h, depth UZAWA_DEPTH) and projected onto
- * lambda >= 0; a mixed step whose Newton solve fails is taken again as the
- * plain update, with the history cleared.  Order 3 at 3 x, 17 deg, n = 640:
- * 13 updates to 0.02 p0 where the plain ones took 30 to 0.1 p0.
- *
- * An update moves the state little, mostly where contact changes, so each
- * solve after one starts with a chord step on the last factorization (the
- * tangent and its factors were half of an iteration's instructions):
- * bench_contact_cost --battery 2.96 -> 2.59 s CPU, its worst bore 0.174 ->
- * 0.145 s, with 771 -> 869 Newton iterations at the finest levels (with
- * the limit below 893 iterations, 484 factorizations, where each iteration
- * had one); the answers move within the updates' tolerance (bench_static
- * --bins, each
- * battery bore, with the limit below: the largest bin change 0.015 p0, on
- * order 6 at 10 x, 0 deg, whose estimate is 0.80 p0; every other bore's
- * bins within 0.0012 p0; the same level and verdict on each).
- *
- * Inexact updates (since 0.3.14, rd_static_opts.update_eta, 0.03): while
- * the plain change is over UZAWA_LOOSE x UZAWA_TOL, an update's Newton
- * solve stops at eta times that change's force on one segment (p0 change
- * x m x area_max over F_ref, residual_norm's scale; times k0 / k for a law
- * stiffer than the default k0, which turns the same residual into a larger
- * update: without it bench_static --stiffness lost 1-2 bores a quantity),
- * or at a tenth of its first residual if that is larger (newton's
- * w->loose): at least one iteration, since an update that moved no state
- * fed Anderson a stale change and it extrapolated to 5000 p0 (the 50 mm
- * ring, order 6 at 1 x, 17 deg: 28 updates at n = 640, 0.23 s).  The multipliers a
- * few updates on do not need the digits.  The change that stops the
- * updates is read at a state solved to the full tolerance (else one more
- * update), and a run stopped at the limit after a loose solve is solved
- * to it, so the answer's residual is the tolerance as before.  Measured
- * (bench_static --exact-updates against the default, Release, two
- * processes on the two cores): the battery 1.93 -> 1.65 s CPU, its slowest
- * 0.17 -> 0.13 s, the same counts; one order a bore, seeds 81-86 on three
- * rings (720, --single --random), 63.4 -> 57.0 s, over 0.2 s 24 -> 18;
- * one or two orders, seeds 51-55 (600), 59.2 -> 52.8 s, 21 -> 15; the same
- * bores within the targets but for the updates' noise (669 -> 668, 534
- * -> 535), met 591 and 434 -> 433.  eta 0.1: -21 % on the battery (0.03:
- * -15 %); without the one-iteration rule 0.1 moved the answers at n = 1280
- * by their updates' noise (estimates 0.012 -> 0.044 p0): an update's
- * error is the residual times the ring's compliance, large for the
- * long-wave modes.
- *
- * The limit (rd_static_opts.max_updates, 60): the battery's point contacts
- * at n = 1280 (orders 4 and 6 at 10 x) take 34 and 44 updates (at 30 they
- * stopped 0.17 and 0.07 p0 short of the tolerance, and said nothing); where
- * it is reached all the same, stats->outer_change says by how much
- * (rd_contact_solve's note). */
-#define UZAWA_TOL   0.02
-#define UZAWA_DEPTH 3
-#define UZAWA_LOOSE 2.0
-static int uzawa(rd_static_problem *pb, work *w, double tol, const rd_static_opts *so, int *budget,
-                 rd_static_stats *st, double *res)
-{
-    /* the force of a change of 1 p0 on one segment, over F_ref (residual_norm's
-     * scale), at most the default law's: a stiffer law turns the same
-     * residual into a larger update (k delta) */
-    double k0 = rd_contact_default_stiffness(rd_ring_get_params(pb->ring));
-    double seg = pb->p0 * pb->m * pb->area_max / pb->F_ref * fmin(1.0, k0 / pb->k);
-    int loose = 0; /* the last solve stopped short of tol */
-    int nm = pb->n + 2, n = pb->n, rc = RD_OK;
-    double *x = malloc((size_t)2 * nm * sizeof *x), *g = x ? x + nm : NULL;
-    rd_anderson acc = {0}; /* freed below even where x failed before its init */
-    if (!x || rd_anderson_init(&acc, nm, UZAWA_DEPTH) != 0) {
-        free(x);
-        rd_anderson_free(&acc);
-        return rd_error_set(w->err, RD_ENOMEM, "", "Out of memory for the contact multipliers.");
-    }
-    st->outer_tolerance = UZAWA_TOL;
-    for (st->outer_iterations = 0; st->outer_iterations < so->max_updates;) {
-        /* at the state newton left, its last residual's */
-        memcpy(x, pb->mult, (size_t)nm * sizeof *x);
-        double change = rd_contact_update_multipliers(pb);
-        memcpy(g, pb->mult, (size_t)nm * sizeof *g);
-        rd_anderson_mix(&acc, x, pb->mult);
-        for (int i = 0; i < nm; i++)
-            pb->mult[i] = fmax(0.0, pb->mult[i]);
-        memcpy(w->x0, pb->x, (size_t)3 * n * sizeof *pb->x);
-        memcpy(w->Q0, pb->Q, (size_t)9 * n * sizeof *pb->Q);
-        st->outer_iterations++;
-        /* (only the multipliers changed since newton's last residual) */
-        int measured = !loose; /* change read at a state solved to tol */
-        w->loose = change > UZAWA_LOOSE * UZAWA_TOL ? so->update_eta * change * seg : 0.0;
-        int ok = newton(pb, w, tol, budget, st, res, 1, 1);
-        if (ok == 0 && acc.m > 0) { /* the plain update instead */
-            memcpy(pb->x, w->x0, (size_t)3 * n * sizeof *pb->x);
-            memcpy(pb->Q, w->Q0, (size_t)9 * n * sizeof *pb->Q);
-            memcpy(pb->mult, g, (size_t)nm * sizeof *g);
-            rd_anderson_reset(&acc);
-            ok = newton(pb, w, tol, budget, st, res, 1, 0);
-        }
-        /* (a full-tolerance solve left at the rounding floor counts as one) */
-        loose = ok > 0 && w->loose > 0.0 && *res > tol;
-        w->loose = 0.0;
-        if (ok < 0) {
-            rc = ok;
-            break;
-        }
-        if (!ok) {
-            rc = rd_error_set(w->err, RD_ENOCONV, "",
-                              "The contact solve did not converge: Newton's method stalled in "
-                              "outer iteration %d of the contact multipliers after %d "
-                              "iterations.",
-                              st->outer_iterations, st->iterations);
-            break;
-        }
-        st->outer_change = change;
-        if (change <= UZAWA_TOL && measured)
-            break;
-    }
-    if (rc == RD_OK && loose) { /* stopped at the limit after a loose solve */
-        int ok = newton(pb, w, tol, budget, st, res, 0, 0);
-        if (ok <= 0)
-            rc = ok < 0 ? ok
-                        : rd_error_set(w->err, RD_ENOCONV, "",
-                                       "The contact solve did not converge: Newton's method "
-                                       "stalled after the last update of the contact "
-                                       "multipliers (%d iterations).",
-                                       st->iterations);
-    }
-    free(x);
-    rd_anderson_free(&acc);
-    return rc;
-}
-
 int rd_static_solve_path(rd_static_problem *pb, const rd_static_opts *so, const rd_monitor *mon,
                          rd_static_stats *st, rd_error *err)
 {
@@ -708,10 +552,10 @@ int rd_static_solve_path(rd_static_problem *pb, const rd_static_opts *so, const 
     if (rc == RD_OK) {
         w.mon = mon;
         w.err = err;
-        /* Rounding floor: the stiffest spring (joint axial EA/L, or a contact
-         * point's k A) times a position's last bits (measured: up to ~1000
-         * eps R), over F_ref. */
-        double kmax = pb->k * pb->area_max;
+        /* Rounding floor: the stiffest spring (joint axial EA/L, or the
+         * loads', a contact point's k A) times a position's last bits
+         * (measured: up to ~1000 eps R), over F_ref. */
+        double kmax = pb->loads->stiffest ? pb->loads->stiffest(pb) : 0.0;
         for (int j = 0; j < rd_ring_get_joints(pb->ring); j++)
             kmax = fmax(kmax, pb->Kc[36 * j]);
         double noise = 1024.0 * DBL_EPSILON * kmax * pb->R / pb->F_ref;
@@ -723,11 +567,22 @@ int rd_static_solve_path(rd_static_problem *pb, const rd_static_opts *so, const 
         st->load_steps = 0;
         int budget = so->max_iterations;
         rc = load_steps(pb, &w, tol, &budget, st);
-        if (rc == RD_OK && pb->mult)
-            rc = uzawa(pb, &w, tol, so, &budget, st, &st->residual);
+        if (rc == RD_OK && pb->loads->outer) {
+            rd_static_session s = {tol, budget, so, st, err, &w};
+            rc = pb->loads->outer(pb, &s);
+        }
     }
     work_free(&w);
     return rc;
+}
+
+int rd_static_resolve(rd_static_problem *pb, rd_static_session *s, int chord, int again,
+                      double loose, double *res)
+{
+    s->work->loose = loose;
+    int ok = newton(pb, s->work, s->tol, &s->budget, s->st, res, chord, again);
+    s->work->loose = 0.0;
+    return ok;
 }
 
 void rd_static_stats_fill(rd_static_problem *pb, rd_static_stats *st)
@@ -738,4 +593,47 @@ void rd_static_stats_fill(rd_static_problem *pb, rd_static_stats *st)
     st->strain_energy = r ? residual(pb, r, NULL) : NAN;
     free(r);
     support_terms(pb, NULL, &st->support_force, &st->support_moment);
+}
+
+/* ---- the solver's options (pretension's and contact's) ------------------- */
+
+void rd_static_opts_default(rd_static_opts *o)
+{
+    o->tol = 1e-9;
+    o->max_iterations = 2000;
+    o->estimate_error = 1;
+    o->max_updates = 60;
+    o->update_eta = 0.03;
+}
+
+int rd_static_validate(const rd_static_opts *o, int segments, int closed, rd_error *err)
+{
+    if (closed)
+        return rd_error_set(err, RD_EINVAL, "/discretization/closed",
+                            "/discretization/closed = true joins the gap, but pretension and "
+                            "contact act on the gap faces: use a split ring (closed = false).");
+    if (segments < 4 || segments > RD_STATIC_SEGMENTS_MAX)
+        return rd_error_set(err, segments > RD_STATIC_SEGMENTS_MAX ? RD_ELIMIT : RD_EINVAL,
+                            "/discretization/segments",
+                            "/discretization/segments = %d is out of range for a static "
+                            "analysis: allowed 4 to %d.",
+                            segments, RD_STATIC_SEGMENTS_MAX);
+    if (!isfinite(o->tol) || o->tol < 1e-13 || o->tol > 1e-3)
+        return rd_error_set(err, RD_EINVAL, "/numerics/tolerance",
+                            "/numerics/tolerance = %g is out of range: allowed 1e-13 to 1e-3.",
+                            o->tol);
+    if (o->max_iterations < 1 || o->max_iterations > 100000)
+        return rd_error_set(err, o->max_iterations > 100000 ? RD_ELIMIT : RD_EINVAL,
+                            "/numerics/max_iterations",
+                            "/numerics/max_iterations = %d is out of range: allowed 1 to 100000.",
+                            o->max_iterations);
+    if (o->max_updates < 1 || o->max_updates > 1000) /* core's own: not in the API */
+        return rd_error_set(err, RD_EINVAL, "",
+                            "rd_static_opts.max_updates = %d is out of range: allowed 1 to 1000.",
+                            o->max_updates);
+    if (!(o->update_eta >= 0.0 && o->update_eta <= 1.0)) /* core's own: not in the API */
+        return rd_error_set(err, RD_EINVAL, "",
+                            "rd_static_opts.update_eta = %g is out of range: allowed 0 to 1.",
+                            o->update_eta);
+    return RD_OK;
 }

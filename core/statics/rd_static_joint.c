@@ -30,7 +30,7 @@
 #include <math.h>
 #include <string.h>
 
-#include "rd_static_internal.h"
+#include "rd_static_problem.h"
 
 /* out = A^T v */
 static void mtv3(const double A[9], const double v[3], double out[3])

@@ -2,23 +2,29 @@
  * rd_static_problem — the static chain's problem: its state, reference
  * geometry, gap faces and support set up from a ring (rd_static_problem_init),
  * freed (rd_static_problem_cleanup), and a body point's place
- * (rd_static_point_at).  The residual, tangent and solver are in
- * rd_static.c and rd_static_tangent.c; the model in rd_static.h.
+ * (rd_static_point_at); and the chain's own loads, which pretension and
+ * contact both apply: a force at a body point (rd_static_add_force), F_t's
+ * load factor and the gap faces' loads (rd_static_gap_face_load: F_t by
+ * the force or the field method, F_l).  The residual, tangent and solver
+ * are in rd_static.c and rd_static_tangent.c; the model in rd_static.h.
  */
-#include "rd_static_internal.h"
+#include "rd_static_problem.h"
 
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
-int rd_static_problem_init(rd_static_problem *pb, const rd_ring *ring, int kind)
+/* A problem whose loads are the chain's own (pretension's). */
+static const rd_static_loads chain_only = {0};
+
+int rd_static_problem_init(rd_static_problem *pb, const rd_ring *ring, const rd_static_loads *loads)
 {
     int n = rd_ring_get_segments(ring);
     const rd_ring_params *p = rd_ring_get_params(ring);
     memset(pb, 0, sizeof *pb);
     pb->ring = ring;
+    pb->loads = loads ? loads : &chain_only;
     pb->n = n;
-    pb->kind = kind;
     pb->R = rd_ring_get_section(ring)->R;
     pb->b = p->radial_width;
     pb->h = p->axial_height;
@@ -93,4 +99,75 @@ void rd_static_point_at(const rd_static_problem *pb, int i, const double c[3], d
     rd_mv3(pb->Q + 9 * i, c, y);
     for (int k = 0; k < 3; k++)
         y[k] += pb->x[3 * i + k];
+}
+
+/* ---- the chain's own loads ---------------------------------------------- */
+
+/* Adds (F, (y - x) x F) for a force F at body offset c of a segment at (x, Q). */
+void rd_static_add_force(const double *Q, const double c[3], const double F[3], double f[6])
+{
+    double arm[3], M[3];
+    rd_mv3(Q, c, arm);
+    rd_cross3(arm, F, M);
+    for (int k = 0; k < 3; k++) {
+        f[k] += F[k];
+        f[3 + k] += M[k];
+    }
+}
+
+/* The load path of F_t: the problem's (contact: rd_contact_force_factor),
+ * or F_t and F_l growing with lambda (pretension). */
+double rd_static_force_factor(const rd_static_problem *pb)
+{
+    return pb->loads->force_factor ? pb->loads->force_factor(pb) : pb->lambda;
+}
+
+/* Field method: the force on the J face (follows that face) and the point
+ * where it acts. */
+static void field_force(const rd_static_problem *pb, const double *xJ, const double *QJ,
+                        double F[3], double pJ[3])
+{
+    int first = pb->jseg == 0;
+    double t[3], c[3];
+    rd_mv3(QJ, first ? pb->tA : pb->tB, t);
+    rd_mv3(QJ, first ? pb->cA : pb->cB, c);
+    for (int k = 0; k < 3; k++) {
+        F[k] = rd_static_force_factor(pb) * pb->Ft * t[k];
+        pJ[k] = xJ[k] + c[k];
+    }
+}
+
+/* The gap-face loads on segment i (0 or n - 1): the pretension F_t, by the
+ * force or the field method, and the lateral force F_l (0 in contact). */
+void rd_static_gap_face_load(const rd_static_problem *pb, int i, const double *x, const double *Q,
+                             double f[6])
+{
+    const double *c = i == 0 ? pb->cA : pb->cB;
+    double F[3];
+    if (pb->method == RD_PRETENSION_FIELD) {
+        double FJ[3], pJ[3];
+        if (i == pb->jseg) {
+            field_force(pb, x, Q, F, pJ);
+        } else {
+            /* equal and opposite vector on the I face, plus the couple that
+             * keeps the pair's moment zero */
+            double arm[3], M[3];
+            field_force(pb, pb->x + 3 * pb->jseg, pb->Q + 9 * pb->jseg, FJ, pJ);
+            rd_mv3(Q, c, arm);
+            for (int k = 0; k < 3; k++) {
+                F[k] = -FJ[k];
+                arm[k] += x[k] - pJ[k];
+            }
+            rd_cross3(arm, FJ, M);
+            for (int k = 0; k < 3; k++)
+                f[3 + k] += M[k];
+        }
+    } else {
+        double t[3];
+        rd_mv3(Q, i == 0 ? pb->tA : pb->tB, t);
+        for (int k = 0; k < 3; k++)
+            F[k] = rd_static_force_factor(pb) * pb->Ft * t[k];
+    }
+    F[2] += (i == 0 ? 1.0 : -1.0) * pb->lambda * pb->Fl;
+    rd_static_add_force(Q, c, F, f);
 }

@@ -5,8 +5,9 @@
  * Each joint's 12x12 block in closed form, the exact derivative of g
  * (rd_static.c's header) including the turn of Jl^-T(psi) (rd_static_joint.c; central differences
  * of g, 24 evaluations a joint, were 35 % of a contact solve's instructions),
- * the contact load's derivative in closed form (rd_contact_segment_jacobian,
- * with flexible faces also rd_contact_face_jacobian's neighbour blocks), the
+ * the problem's loads' derivative (pb->loads: contact's in closed form,
+ * rd_contact_segment_jacobian, with flexible faces also
+ * rd_contact_face_jacobian's neighbour blocks), the
  * gap faces' loads by central differences (6 perturbations on each of two
  * segments), the support's exactly; assembled in 6x6 blocks, block
  * tridiagonal (a joint couples two neighbours, the support holds two
@@ -33,11 +34,11 @@
  * three block diagonals: that 6x6 block is added exactly by the Woodbury
  * identity on the factorization (rd_static.c's newton_step).
  *
- * The contact blocks are read from the points' evaluation of the last
- * residual (rd_contact_loads' pb->pe): rd_static_tangent is called at that
+ * The loads' blocks are read from their evaluation at the last residual
+ * (contact: rd_contact_loads' pb->pe): rd_static_tangent is called at that
  * residual's state, as Newton's method does.
  */
-#include "rd_static_internal.h"
+#include "rd_static_problem.h"
 
 #include <math.h>
 #include <string.h>
@@ -65,11 +66,15 @@ void rd_static_perturb(const double *x, const double *Q, int k, double h, double
     }
 }
 
-/* Segments per block of the tangent: 2 with flexible faces (tangent). */
+/* Segments per block of the tangent: 2 where the loads couple neighbours
+ * (flexible contact faces; rd_static_tangent). */
 int rd_static_per_block(const rd_static_problem *pb)
 {
-    return pb->cp0 ? 2 : 1;
+    return pb->loads->coupled && pb->loads->coupled(pb) ? 2 : 1;
 }
+
+const int rd_face_dof_seg[RD_FACE_DOFS] = {0, 0, 0, 1, 1, 1, 1, 1, 1, 2, 2, 2};
+const int rd_face_dof[RD_FACE_DOFS] = {0, 1, 5, 0, 1, 2, 3, 4, 5, 0, 1, 5};
 
 /* A segment's DOFs (dx, dy, dz, dpsi_x, dpsi_y, dpsi_z) by half (0 in-plane,
  * 1 out-of-plane) and place in it; the DOFs of half h in order. */
@@ -153,12 +158,13 @@ static void put_block(sink *k, int a, int b, const double *K, int ld, int add)
     k->coupled |= coupled;
 }
 
-/* Adds segment i's flexible face's part of the contact loads' derivative:
- * the loads on segments i - 1 .. i + 1 by the DOFs of i - 1 .. i + 1. */
+/* Adds the part of the loads' derivative that segment i's points take
+ * from its neighbours (a flexible contact face): the loads on segments
+ * i - 1 .. i + 1 by the DOFs of i - 1 .. i + 1. */
 static void face_blocks(rd_static_problem *pb, sink *k, int i)
 {
     double K[RD_FACE_DOFS][RD_FACE_DOFS];
-    if (!rd_contact_face_jacobian(pb, i, K))
+    if (!pb->loads->face_jacobian(pb, i, K))
         return; /* none of its points presses */
     for (int q = 0; q < RD_FACE_DOFS; q++) {
         int a = i - 1 + rd_face_dof_seg[q];
@@ -220,17 +226,17 @@ static void assemble(rd_static_problem *pb, sink *k, double mu)
      * inside its bend eps were 63 % of a contact solve), the gap faces' by differences. */
     for (int i = 0; i < n; i++) {
         double J[36] = {0}, Di[36];
-        if (pb->kind == RD_STATIC_CONTACT)
-            rd_contact_segment_jacobian(pb, i, J);
-        if (pb->cp0)
+        if (pb->loads->segment_jacobian)
+            pb->loads->segment_jacobian(pb, i, J);
+        if (k->s > 1) /* the loads couple neighbours */
             face_blocks(pb, k, i);
         for (int c = 0; c < 6; c++) {
             double h = c < 3 ? hx : hr, fp[6] = {0}, fm[6] = {0}, xp[3], Qp[9];
             if (i == 0 || i == n - 1) {
                 rd_static_perturb(pb->x + 3 * i, pb->Q + 9 * i, c, h, xp, Qp);
-                rd_pretension_gap_face_load(pb, i, xp, Qp, fp);
+                rd_static_gap_face_load(pb, i, xp, Qp, fp);
                 rd_static_perturb(pb->x + 3 * i, pb->Q + 9 * i, c, -h, xp, Qp);
-                rd_pretension_gap_face_load(pb, i, xp, Qp, fm);
+                rd_static_gap_face_load(pb, i, xp, Qp, fm);
             }
             for (int row = 0; row < 6; row++)
                 Di[6 * row + c] = -J[row + 6 * c] - (fp[row] - fm[row]) / (2.0 * h);

@@ -1156,7 +1156,7 @@ static void test_jacobian(void)
     int n = 40, m = 5;
     rd_ring *ring = rd_ring_create(&p, n, 0, &err);
     rd_static_problem pb;
-    CHECK(ring && rd_static_problem_init(&pb, ring, RD_STATIC_CONTACT) == RD_OK, "problem");
+    CHECK(ring && rd_static_problem_init(&pb, ring, &rd_contact_static_loads) == RD_OK, "problem");
     double phi = rd_ring_segment_phi(ring);
     pb.co = &o, pb.m = m, pb.r_o = pb.R + 0.5 * pb.b, pb.bore_dr = 0.5 * p.diameter - pb.r_o;
     double area[40];

@@ -53,7 +53,7 @@ static int setup_make(setup *s)
     rd_error err;
     rd_error_init(&err);
     s->ring = rd_ring_create(&s->p, N, 0, &err);
-    if (!s->ring || rd_static_problem_init(&s->pb, s->ring, RD_STATIC_CONTACT) != RD_OK)
+    if (!s->ring || rd_static_problem_init(&s->pb, s->ring, &rd_contact_static_loads) != RD_OK)
         return 0;
     rd_static_problem *pb = &s->pb;
     double phi = rd_ring_segment_phi(s->ring);
