@@ -125,6 +125,81 @@ static int parse_long(const char *s, long min, long max, long *out)
     return 1;
 }
 
+/* "--name" of "--name value" or "--name=value": `arg` up to `name_len`. */
+#define IS(name) (name_len == strlen(name) && strncmp(arg, name, name_len) == 0)
+
+/* The connection options: 1 taken, 0 a bad value, -1 not one of them. */
+static int set_limit_option(struct options *o, const char *arg, size_t name_len, const char *value)
+{
+    long v;
+    int ok;
+    if (IS("--http-threads")) {
+        if ((ok = parse_long(value, 1, 64, &v)))
+            o->limits.threads = (int)v;
+    } else if (IS("--max-connections")) {
+        if ((ok = parse_long(value, 1, 100000, &v)))
+            o->limits.connections_max = (int)v;
+    } else if (IS("--max-per-ip")) {
+        if ((ok = parse_long(value, 1, 100000, &v)))
+            o->limits.per_ip_max = (int)v;
+    } else if (IS("--idle-timeout")) {
+        if ((ok = parse_long(value, 1, 3600, &v)))
+            o->limits.idle_timeout_s = (int)v;
+    } else if (IS("--request-deadline")) {
+        char *end;
+        double d = strtod(value, &end);
+        ok = end != value && !*end && d >= 0.1 && d <= 3600;
+        if (ok)
+            o->limits.request_deadline_s = d;
+    } else {
+        return -1;
+    }
+    return ok;
+}
+
+/* Every other option: 1 taken, 0 a bad value, -1 unknown. */
+static int set_option(struct options *o, const char *arg, size_t name_len, const char *value)
+{
+    char *end;
+    int ok = 1;
+    if (IS("--host"))
+        o->host = value;
+    else if (IS("--port"))
+        ok = parse_long(value, 0, 65535, &o->port);
+    else if (IS("--static"))
+        o->static_dir = value;
+    else if (IS("--examples"))
+        o->examples_dir = value;
+    else if (IS("--threads"))
+        ok = parse_long(value, 1, 64, &o->threads);
+    else if (IS("--queue"))
+        ok = parse_long(value, 1, 10000, &o->queue);
+    else if (IS("--keep-jobs"))
+        ok = parse_long(value, 1, 100000, &o->keep_jobs);
+    else if (IS("--sweep-max-points"))
+        ok = parse_long(value, 1, RD_SWEEP_POINTS_MAX, &o->sweep_max_points);
+    else if (IS("--allow-host")) {
+        ok = o->n_allow_hosts < ALLOW_HOSTS_MAX;
+        if (ok)
+            o->allow_hosts[o->n_allow_hosts++] = value;
+    } else if (IS("--token-file"))
+        o->token_file = value;
+    else if (IS("--data"))
+        o->data_dir = value;
+    else if (IS("--keep-days")) {
+        o->keep_days = strtod(value, &end);
+        ok = end != value && !*end && o->keep_days >= 0 && o->keep_days <= 36500;
+    } else if (IS("--keep-mb"))
+        ok = parse_long(value, 1, 65536, &o->keep_mb);
+    else if (IS("--job-timeout")) {
+        o->job_timeout = strtod(value, &end);
+        ok = end != value && !*end && o->job_timeout > 0 && o->job_timeout <= 86400;
+    } else
+        return set_limit_option(o, arg, name_len, value);
+    return ok;
+}
+#undef IS
+
 /* Accepts "--name value" and "--name=value".  Returns 0 on success, or
  * prints what is wrong and returns -1. */
 static int parse_options(int argc, char **argv, struct options *o)
@@ -146,69 +221,11 @@ static int parse_options(int argc, char **argv, struct options *o)
             fprintf(stderr, "ringdyn-server: %s needs a value\n", arg);
             return -1;
         }
-#define IS(name) (name_len == strlen(name) && strncmp(arg, name, name_len) == 0)
-        int ok = 1;
-        if (IS("--host"))
-            o->host = value;
-        else if (IS("--port"))
-            ok = parse_long(value, 0, 65535, &o->port);
-        else if (IS("--static"))
-            o->static_dir = value;
-        else if (IS("--examples"))
-            o->examples_dir = value;
-        else if (IS("--threads"))
-            ok = parse_long(value, 1, 64, &o->threads);
-        else if (IS("--queue"))
-            ok = parse_long(value, 1, 10000, &o->queue);
-        else if (IS("--keep-jobs"))
-            ok = parse_long(value, 1, 100000, &o->keep_jobs);
-        else if (IS("--sweep-max-points"))
-            ok = parse_long(value, 1, RD_SWEEP_POINTS_MAX, &o->sweep_max_points);
-        else if (IS("--allow-host")) {
-            ok = o->n_allow_hosts < ALLOW_HOSTS_MAX;
-            if (ok)
-                o->allow_hosts[o->n_allow_hosts++] = value;
-        } else if (IS("--token-file"))
-            o->token_file = value;
-        else if (IS("--http-threads")) {
-            long v;
-            if ((ok = parse_long(value, 1, 64, &v)))
-                o->limits.threads = (int)v;
-        } else if (IS("--max-connections")) {
-            long v;
-            if ((ok = parse_long(value, 1, 100000, &v)))
-                o->limits.connections_max = (int)v;
-        } else if (IS("--max-per-ip")) {
-            long v;
-            if ((ok = parse_long(value, 1, 100000, &v)))
-                o->limits.per_ip_max = (int)v;
-        } else if (IS("--idle-timeout")) {
-            long v;
-            if ((ok = parse_long(value, 1, 3600, &v)))
-                o->limits.idle_timeout_s = (int)v;
-        } else if (IS("--request-deadline")) {
-            char *end;
-            double v = strtod(value, &end);
-            ok = end != value && !*end && v >= 0.1 && v <= 3600;
-            if (ok)
-                o->limits.request_deadline_s = v;
-        } else if (IS("--data"))
-            o->data_dir = value;
-        else if (IS("--keep-days")) {
-            char *end;
-            o->keep_days = strtod(value, &end);
-            ok = end != value && !*end && o->keep_days >= 0 && o->keep_days <= 36500;
-        } else if (IS("--keep-mb"))
-            ok = parse_long(value, 1, 65536, &o->keep_mb);
-        else if (IS("--job-timeout")) {
-            char *end;
-            o->job_timeout = strtod(value, &end);
-            ok = end != value && !*end && o->job_timeout > 0 && o->job_timeout <= 86400;
-        } else {
+        int ok = set_option(o, arg, name_len, value);
+        if (ok < 0) {
             fprintf(stderr, "ringdyn-server: unknown option '%.*s'\n", (int)name_len, arg);
             return -1;
         }
-#undef IS
         if (!ok) {
             fprintf(stderr, "ringdyn-server: bad value '%s' for %.*s\n", value, (int)name_len, arg);
             return -1;
@@ -302,6 +319,122 @@ static void tune_malloc(void)
 #endif
 }
 
+/* What runs, in the order it starts; freed in the order of free_server. */
+struct server {
+    rd_metrics *metrics;
+    rd_store *store;
+    rd_jobs *jobs;
+    rd_sweeps *sweeps;
+    rd_http *http; /* on_job_final reads it through &http */
+    char *token;
+    const char *data_dir;
+    char data_buf[4096];
+};
+
+/* SIGINT and SIGTERM blocked (sigwait takes them) before any thread starts,
+ * so every thread inherits the mask; SIGPIPE ignored. */
+static void block_signals(sigset_t *stop)
+{
+    sigemptyset(stop);
+    sigaddset(stop, SIGINT);
+    sigaddset(stop, SIGTERM);
+    pthread_sigmask(SIG_BLOCK, stop, NULL);
+    struct sigaction ignore;
+    memset(&ignore, 0, sizeof ignore);
+    ignore.sa_handler = SIG_IGN;
+    sigaction(SIGPIPE, &ignore, NULL); /* a client hanging up must not kill us */
+}
+
+/* Prints the error that stopped the start; -1. */
+static int start_failed(const rd_error *err)
+{
+    fprintf(stderr, "ringdyn-server: %s\n", err->message);
+    return -1;
+}
+
+/* The metrics, the store and the two pools.  0, or -1 after printing why. */
+static int start_pools(struct server *s, const struct options *opt, rd_error *err)
+{
+    s->metrics = rd_metrics_create();
+    if (!s->metrics) {
+        fprintf(stderr, "ringdyn-server: out of memory\n");
+        return -1;
+    }
+    s->data_dir = opt->data_dir ? opt->data_dir : default_data_dir(s->data_buf, sizeof s->data_buf);
+    if (!s->data_dir) {
+        fprintf(stderr,
+                "ringdyn-server: neither HOME nor XDG_STATE_HOME is set: give --data DIR\n");
+        return -1;
+    }
+    if (rd_store_create(s->data_dir, &s->store, err) != RD_OK)
+        return start_failed(err);
+    rd_jobs_config jc = {.threads = (int)opt->threads,
+                         .queue_max = (int)opt->queue,
+                         .keep_max = (int)opt->keep_jobs,
+                         .keep_bytes = (size_t)opt->keep_mb << 20,
+                         .keep_age_s = opt->keep_days * 86400.0,
+                         .store = s->store,
+                         .timeout_s = opt->job_timeout,
+                         .on_finish = on_job_finish,
+                         .on_finish_ctx = s->metrics,
+                         .on_final = on_job_final,
+                         .on_final_ctx = &s->http};
+    if (rd_jobs_create(&jc, &s->jobs, err) != RD_OK)
+        return start_failed(err);
+    rd_sweeps_config sc = {.threads = (int)opt->threads,
+                           .max_points = (size_t)opt->sweep_max_points,
+                           .timeout_s = opt->job_timeout,
+                           .queue_max = SWEEPS_QUEUE_MAX,
+                           .keep_max = SWEEPS_KEEP_MAX,
+                           .store = s->store,
+                           .on_final = on_job_final,
+                           .on_final_ctx = &s->http};
+    if (rd_sweeps_create(&sc, &s->sweeps, err) != RD_OK)
+        return start_failed(err);
+    return 0;
+}
+
+/* The token and the HTTP server.  0, or -1 after printing why. */
+static int start_http(struct server *s, const struct options *opt, rd_error *err)
+{
+    if (opt->token_file && !(s->token = read_token(opt->token_file)))
+        return -1;
+    rd_http_config hc = {.host = opt->host,
+                         .port = (int)opt->port,
+                         .static_dir = opt->static_dir,
+                         .examples_dir = opt->examples_dir,
+                         .allow_hosts = opt->allow_hosts,
+                         .n_allow_hosts = opt->n_allow_hosts,
+                         .token = s->token,
+                         .limits = opt->limits,
+                         .sweeps = s->sweeps,
+                         .job_timeout_s = opt->job_timeout};
+    if (rd_http_create(&hc, s->jobs, s->metrics, &s->http, err) != RD_OK)
+        return start_failed(err);
+    return 0;
+}
+
+/* The shutdown of the file comment, up to the freeing. */
+static void stop_server(struct server *s, int sig)
+{
+    fprintf(stderr, "ringdyn-server: %s, shutting down\n", sig == SIGINT ? "SIGINT" : "SIGTERM");
+    rd_http_quiesce(s->http);
+    rd_sweeps_stop(s->sweeps);
+    rd_jobs_shutdown(s->jobs, STOP_WAIT_S);
+    rd_sweeps_shutdown(s->sweeps, STOP_WAIT_S);
+    rd_http_drain(s->http, DRAIN_S);
+}
+
+static void free_server(struct server *s)
+{
+    rd_http_free(s->http);
+    rd_jobs_free(s->jobs);
+    rd_sweeps_free(s->sweeps);
+    rd_store_free(s->store);
+    rd_metrics_free(s->metrics);
+    free(s->token);
+}
+
 int main(int argc, char **argv)
 {
     struct options opt = {.host = "127.0.0.1",
@@ -318,14 +451,9 @@ int main(int argc, char **argv)
                                      .per_ip_max = 64,
                                      .request_deadline_s = 10,
                                      .idle_timeout_s = 30}};
-    rd_store *store = NULL;
-    char data_buf[4096];
-    char *token = NULL;
+    struct server s;
+    memset(&s, 0, sizeof s);
     int status = 1;
-    rd_metrics *metrics = NULL;
-    rd_jobs *jobs = NULL;
-    rd_sweeps *sweeps = NULL;
-    rd_http *http = NULL;
     rd_error err;
     rd_error_init(&err);
     tune_malloc();
@@ -334,98 +462,26 @@ int main(int argc, char **argv)
         usage(stderr);
         return 2;
     }
-
-    /* Block before any thread starts, so every thread inherits the mask. */
     sigset_t stop;
-    sigemptyset(&stop);
-    sigaddset(&stop, SIGINT);
-    sigaddset(&stop, SIGTERM);
-    pthread_sigmask(SIG_BLOCK, &stop, NULL);
-    struct sigaction ignore;
-    memset(&ignore, 0, sizeof ignore);
-    ignore.sa_handler = SIG_IGN;
-    sigaction(SIGPIPE, &ignore, NULL); /* a client hanging up must not kill us */
+    block_signals(&stop);
+    if (start_pools(&s, &opt, &err) != 0 || start_http(&s, &opt, &err) != 0)
+        goto out;
 
-    metrics = rd_metrics_create();
-    if (!metrics) {
-        fprintf(stderr, "ringdyn-server: out of memory\n");
-        goto out;
-    }
-    const char *data_dir =
-        opt.data_dir ? opt.data_dir : default_data_dir(data_buf, sizeof data_buf);
-    if (!data_dir) {
-        fprintf(stderr,
-                "ringdyn-server: neither HOME nor XDG_STATE_HOME is set: give --data DIR\n");
-        goto out;
-    }
-    if (rd_store_create(data_dir, &store, &err) != RD_OK)
-        goto fail;
-    rd_jobs_config jc = {.threads = (int)opt.threads,
-                         .queue_max = (int)opt.queue,
-                         .keep_max = (int)opt.keep_jobs,
-                         .keep_bytes = (size_t)opt.keep_mb << 20,
-                         .keep_age_s = opt.keep_days * 86400.0,
-                         .store = store,
-                         .timeout_s = opt.job_timeout,
-                         .on_finish = on_job_finish,
-                         .on_finish_ctx = metrics,
-                         .on_final = on_job_final,
-                         .on_final_ctx = &http};
-    if (rd_jobs_create(&jc, &jobs, &err) != RD_OK)
-        goto fail;
-    rd_sweeps_config sc = {.threads = (int)opt.threads,
-                           .max_points = (size_t)opt.sweep_max_points,
-                           .timeout_s = opt.job_timeout,
-                           .queue_max = SWEEPS_QUEUE_MAX,
-                           .keep_max = SWEEPS_KEEP_MAX,
-                           .store = store,
-                           .on_final = on_job_final,
-                           .on_final_ctx = &http};
-    if (rd_sweeps_create(&sc, &sweeps, &err) != RD_OK)
-        goto fail;
-    if (opt.token_file && !(token = read_token(opt.token_file)))
-        goto out;
-    rd_http_config hc = {.host = opt.host,
-                         .port = (int)opt.port,
-                         .static_dir = opt.static_dir,
-                         .examples_dir = opt.examples_dir,
-                         .allow_hosts = opt.allow_hosts,
-                         .n_allow_hosts = opt.n_allow_hosts,
-                         .token = token,
-                         .limits = opt.limits,
-                         .sweeps = sweeps,
-                         .job_timeout_s = opt.job_timeout};
-    if (rd_http_create(&hc, jobs, metrics, &http, &err) != RD_OK)
-        goto fail;
-
-    printf("ringdyn-server listening on http://%s:%d\n", rd_http_get_host(http),
-           rd_http_get_port(http));
+    printf("ringdyn-server listening on http://%s:%d\n", rd_http_get_host(s.http),
+           rd_http_get_port(s.http));
     fflush(stdout);
     fprintf(stderr,
             "ringdyn-server %s: %ld workers, queue %ld, job time limit %g s, keeps %ld finished "
             "jobs / %ld MiB of results / %g days in %s\n",
             rd_api_version(), opt.threads, opt.queue, opt.job_timeout, opt.keep_jobs, opt.keep_mb,
-            opt.keep_days, data_dir);
+            opt.keep_days, s.data_dir);
 
     int sig = 0;
     if (sigwait(&stop, &sig) != 0)
         goto out;
-    fprintf(stderr, "ringdyn-server: %s, shutting down\n", sig == SIGINT ? "SIGINT" : "SIGTERM");
-    rd_http_quiesce(http);
-    rd_sweeps_stop(sweeps);
-    rd_jobs_shutdown(jobs, STOP_WAIT_S);
-    rd_sweeps_shutdown(sweeps, STOP_WAIT_S);
-    rd_http_drain(http, DRAIN_S);
+    stop_server(&s, sig);
     status = 0;
-    goto out;
-fail:
-    fprintf(stderr, "ringdyn-server: %s\n", err.message);
 out:
-    rd_http_free(http);
-    rd_jobs_free(jobs);
-    rd_sweeps_free(sweeps);
-    rd_store_free(store);
-    rd_metrics_free(metrics);
-    free(token);
+    free_server(&s);
     return status;
 }

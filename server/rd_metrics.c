@@ -178,93 +178,111 @@ text_printf(struct text *t, const char *fmt, ...)
     }
 }
 
-char *rd_metrics_render(rd_metrics *m, const char *const *state_names, const size_t *state_counts,
-                        size_t n, const rd_metrics_gauges *g)
+/* The gauges: build info, stop latency, connections, jobs by state. */
+static void render_gauges(struct text *t, const char *const *state_names,
+                          const size_t *state_counts, size_t n, const rd_metrics_gauges *g)
 {
-    struct text t = {0};
-    text_printf(&t,
+    text_printf(t,
                 "# HELP ringdyn_build_info The server's version (the value is always 1).\n"
                 "# TYPE ringdyn_build_info gauge\n"
                 "ringdyn_build_info{version=\"%s\"} 1\n",
                 g->version ? g->version : "unknown");
-    text_printf(&t,
+    text_printf(t,
                 "# HELP ringdyn_stop_latency_seconds Time from a DELETE, the time limit or a "
                 "shutdown to the solver's return: the last run stopped, and the largest.\n"
                 "# TYPE ringdyn_stop_latency_seconds gauge\n"
                 "ringdyn_stop_latency_seconds{which=\"last\"} %.6f\n"
                 "ringdyn_stop_latency_seconds{which=\"max\"} %.6f\n",
                 g->stop_last_s, g->stop_max_s);
-    text_printf(&t,
+    text_printf(t,
                 "# HELP ringdyn_connections Open HTTP connections.\n"
                 "# TYPE ringdyn_connections gauge\n"
                 "ringdyn_connections %zu\n",
                 g->connections);
-    text_printf(&t,
+    text_printf(t,
                 "# HELP ringdyn_connections_deadline_total Connections closed because their "
                 "request did not arrive complete within the request deadline.\n"
                 "# TYPE ringdyn_connections_deadline_total counter\n"
                 "ringdyn_connections_deadline_total %zu\n",
                 g->deadline_closed);
-    text_printf(&t, "# HELP ringdyn_jobs Jobs held by the server, by state.\n"
-                    "# TYPE ringdyn_jobs gauge\n");
+    text_printf(t, "# HELP ringdyn_jobs Jobs held by the server, by state.\n"
+                   "# TYPE ringdyn_jobs gauge\n");
     for (size_t i = 0; i < n; i++)
-        text_printf(&t, "ringdyn_jobs{state=\"%s\"} %zu\n", state_names[i], state_counts[i]);
+        text_printf(t, "ringdyn_jobs{state=\"%s\"} %zu\n", state_names[i], state_counts[i]);
+}
 
-    pthread_mutex_lock(&m->mu);
+/* The run-time histograms, unlabelled and by analysis and outcome (mu held). */
+static void render_durations(struct text *t, const rd_metrics *m)
+{
     text_printf(
-        &t, "# HELP ringdyn_job_duration_seconds Run time of finished jobs, from start to end.\n"
-            "# TYPE ringdyn_job_duration_seconds histogram\n");
+        t, "# HELP ringdyn_job_duration_seconds Run time of finished jobs, from start to end.\n"
+           "# TYPE ringdyn_job_duration_seconds histogram\n");
     for (size_t i = 0; i < NBOUNDS; i++)
-        text_printf(&t, "ringdyn_job_duration_seconds_bucket{le=\"%g\"} %llu\n", duration_bounds[i],
+        text_printf(t, "ringdyn_job_duration_seconds_bucket{le=\"%g\"} %llu\n", duration_bounds[i],
                     (unsigned long long)m->duration_buckets[i]);
-    text_printf(&t, "ringdyn_job_duration_seconds_bucket{le=\"+Inf\"} %llu\n",
+    text_printf(t, "ringdyn_job_duration_seconds_bucket{le=\"+Inf\"} %llu\n",
                 (unsigned long long)m->duration_count);
-    text_printf(&t, "ringdyn_job_duration_seconds_sum %.9g\n", m->duration_sum);
-    text_printf(&t, "ringdyn_job_duration_seconds_count %llu\n",
+    text_printf(t, "ringdyn_job_duration_seconds_sum %.9g\n", m->duration_sum);
+    text_printf(t, "ringdyn_job_duration_seconds_count %llu\n",
                 (unsigned long long)m->duration_count);
 
-    text_printf(&t, "# HELP ringdyn_job_run_seconds Run time of the jobs that ran, by analysis "
-                    "and outcome (counted when they end; kept however jobs are evicted).\n"
-                    "# TYPE ringdyn_job_run_seconds histogram\n");
+    text_printf(t, "# HELP ringdyn_job_run_seconds Run time of the jobs that ran, by analysis "
+                   "and outcome (counted when they end; kept however jobs are evicted).\n"
+                   "# TYPE ringdyn_job_run_seconds histogram\n");
     for (size_t k = 0; k < m->nseries; k++) {
         const struct series *se = &m->series[k];
         for (size_t i = 0; i < NBOUNDS; i++)
             text_printf(
-                &t,
+                t,
                 "ringdyn_job_run_seconds_bucket{analysis=\"%s\",outcome=\"%s\",le=\"%g\"} %llu\n",
                 se->analysis, se->outcome, duration_bounds[i], (unsigned long long)se->buckets[i]);
         text_printf(
-            &t, "ringdyn_job_run_seconds_bucket{analysis=\"%s\",outcome=\"%s\",le=\"+Inf\"} %llu\n",
+            t, "ringdyn_job_run_seconds_bucket{analysis=\"%s\",outcome=\"%s\",le=\"+Inf\"} %llu\n",
             se->analysis, se->outcome, (unsigned long long)se->count);
-        text_printf(&t, "ringdyn_job_run_seconds_sum{analysis=\"%s\",outcome=\"%s\"} %.9g\n",
+        text_printf(t, "ringdyn_job_run_seconds_sum{analysis=\"%s\",outcome=\"%s\"} %.9g\n",
                     se->analysis, se->outcome, se->sum);
-        text_printf(&t, "ringdyn_job_run_seconds_count{analysis=\"%s\",outcome=\"%s\"} %llu\n",
+        text_printf(t, "ringdyn_job_run_seconds_count{analysis=\"%s\",outcome=\"%s\"} %llu\n",
                     se->analysis, se->outcome, (unsigned long long)se->count);
     }
-    text_printf(&t, "# HELP ringdyn_jobs_total Jobs that ran, by analysis and outcome.\n"
-                    "# TYPE ringdyn_jobs_total counter\n");
+}
+
+/* The counters: jobs, cache, inline runs, HTTP responses (mu held). */
+static void render_counters(struct text *t, const rd_metrics *m)
+{
+    text_printf(t, "# HELP ringdyn_jobs_total Jobs that ran, by analysis and outcome.\n"
+                   "# TYPE ringdyn_jobs_total counter\n");
     for (size_t k = 0; k < m->nseries; k++)
-        text_printf(&t, "ringdyn_jobs_total{analysis=\"%s\",outcome=\"%s\"} %llu\n",
+        text_printf(t, "ringdyn_jobs_total{analysis=\"%s\",outcome=\"%s\"} %llu\n",
                     m->series[k].analysis, m->series[k].outcome,
                     (unsigned long long)m->series[k].count);
-    text_printf(&t, "# HELP ringdyn_result_cache_total Job submissions by what the result cache "
-                    "did: answered (hit), missed, or was told not to look (bypass).\n"
-                    "# TYPE ringdyn_result_cache_total counter\n");
+    text_printf(t, "# HELP ringdyn_result_cache_total Job submissions by what the result cache "
+                   "did: answered (hit), missed, or was told not to look (bypass).\n"
+                   "# TYPE ringdyn_result_cache_total counter\n");
     for (int k = 0; k < CACHE_NKINDS; k++)
-        text_printf(&t, "ringdyn_result_cache_total{result=\"%s\"} %llu\n", cache_names[k],
+        text_printf(t, "ringdyn_result_cache_total{result=\"%s\"} %llu\n", cache_names[k],
                     (unsigned long long)m->cache[k]);
-    text_printf(&t,
+    text_printf(t,
                 "# HELP ringdyn_inline_runs_total Jobs run on the HTTP thread (predicted small, "
                 "client waiting).\n"
                 "# TYPE ringdyn_inline_runs_total counter\n"
                 "ringdyn_inline_runs_total %llu\n",
                 (unsigned long long)m->inline_runs);
-    text_printf(&t, "# HELP ringdyn_http_requests_total HTTP responses sent, by status code.\n"
-                    "# TYPE ringdyn_http_requests_total counter\n");
+    text_printf(t, "# HELP ringdyn_http_requests_total HTTP responses sent, by status code.\n"
+                   "# TYPE ringdyn_http_requests_total counter\n");
     for (int s = HTTP_STATUS_MIN; s <= HTTP_STATUS_MAX; s++)
         if (m->http[s - HTTP_STATUS_MIN])
-            text_printf(&t, "ringdyn_http_requests_total{status=\"%d\"} %llu\n", s,
+            text_printf(t, "ringdyn_http_requests_total{status=\"%d\"} %llu\n", s,
                         (unsigned long long)m->http[s - HTTP_STATUS_MIN]);
+}
+
+char *rd_metrics_render(rd_metrics *m, const char *const *state_names, const size_t *state_counts,
+                        size_t n, const rd_metrics_gauges *g)
+{
+    struct text t = {0};
+    render_gauges(&t, state_names, state_counts, n, g);
+    pthread_mutex_lock(&m->mu);
+    render_durations(&t, m);
+    render_counters(&t, m);
     pthread_mutex_unlock(&m->mu);
 
     if (t.failed) {

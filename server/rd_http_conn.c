@@ -1,0 +1,185 @@
+/*
+ * rd_http_conn — connections and suspended requests (rd_http_int.h): the
+ * list of open connections, the request deadline, the requests waiting for
+ * their job, and the timer thread that resumes them.
+ */
+#include "rd_http_int.h"
+
+#include <pthread.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/socket.h>
+
+#include "rd_clock.h"
+
+/* The timer thread's period: the latest a waiter is resumed after its
+ * deadline, and the resolution of the request deadline. */
+#define TICK_S 0.1
+/* How often the store's age limit is applied. */
+#define EXPIRE_EVERY_S 60.0
+
+/* The request on this connection is complete (being answered): the
+ * deadline no longer applies until the next one starts. */
+void rd_http_set_busy(rd_http *h, struct request *rq)
+{
+    if (!rq->conn)
+        return;
+    pthread_mutex_lock(&h->mu);
+    rq->conn->busy = 1;
+    pthread_mutex_unlock(&h->mu);
+}
+
+/* MHD_OPTION_NOTIFY_CONNECTION: keeps rd_http.conns.  MHD calls CLOSED
+ * before it closes the socket, and the timer thread shuts sockets down only
+ * under `mu` while the connection is listed, so it never touches a
+ * descriptor that has been reused. */
+void rd_http_on_connection(void *cls, struct MHD_Connection *c, void **socket_context,
+                           enum MHD_ConnectionNotificationCode code)
+{
+    rd_http *h = cls;
+    if (code == MHD_CONNECTION_NOTIFY_STARTED) {
+        const union MHD_ConnectionInfo *info =
+            MHD_get_connection_info(c, MHD_CONNECTION_INFO_CONNECTION_FD);
+        struct conn *k = calloc(1, sizeof *k);
+        if (!k || !info) { /* not tracked: then only the idle timeout applies */
+            free(k);
+            *socket_context = NULL;
+            return;
+        }
+        k->fd = info->connect_fd;
+        k->since = rd_clock_mono_s();
+        pthread_mutex_lock(&h->mu);
+        k->next = h->conns;
+        if (h->conns)
+            h->conns->prev = k;
+        h->conns = k;
+        h->nconns++;
+        pthread_mutex_unlock(&h->mu);
+        *socket_context = k;
+        return;
+    }
+    struct conn *k = *socket_context;
+    if (!k)
+        return;
+    pthread_mutex_lock(&h->mu);
+    if (k->prev)
+        k->prev->next = k->next;
+    else
+        h->conns = k->next;
+    if (k->next)
+        k->next->prev = k->prev;
+    h->nconns--;
+    pthread_mutex_unlock(&h->mu);
+    free(k);
+    *socket_context = NULL;
+}
+
+/* Shuts down the sockets whose request is overdue (mu held).  MHD sees the
+ * socket end and closes the connection in its own thread. */
+static void enforce_deadline_locked(rd_http *h, double now)
+{
+    for (struct conn *k = h->conns; k; k = k->next)
+        if (!k->busy && !k->shut && now - k->since > h->limits.request_deadline_s) {
+            shutdown(k->fd, SHUT_RDWR);
+            k->shut = 1;
+            h->deadline_closed++;
+        }
+}
+
+/* Suspends a request until job `id` ends or `seconds` pass; the timer
+ * thread resumes it, and MHD then calls on_request again (rd_routes_answer_waiter). */
+enum MHD_Result rd_http_suspend_for(rd_http *h, struct MHD_Connection *c, struct request *rq,
+                                    enum wait_kind kind, const char *id, double seconds)
+{
+    rd_http_set_busy(h, rq);
+    rq->waiting = kind;
+    rq->until = rd_clock_mono_s() + seconds;
+    memcpy(rq->job_id, id, sizeof rq->job_id);
+    MHD_suspend_connection(c);
+    pthread_mutex_lock(&h->mu);
+    rq->prev = NULL;
+    rq->next = h->waiters;
+    if (h->waiters)
+        h->waiters->prev = rq;
+    h->waiters = rq;
+    h->poked = 1; /* the job may have ended before the request was listed */
+    pthread_cond_signal(&h->wake);
+    pthread_mutex_unlock(&h->mu);
+    return MHD_YES;
+}
+
+/* Takes the waiters that may go on (job final, time up, or `all`) off the
+ * list (mu held) and returns them chained through `next`; the caller resumes
+ * them after unlocking (MHD takes its own locks in MHD_resume_connection). */
+static struct request *take_ready_locked(rd_http *h, double now, int all)
+{
+    struct request *ready = NULL, *rq = h->waiters;
+    while (rq) {
+        struct request *next = rq->next;
+        int final = rq->waiting == WAIT_SWEEP ? rd_sweeps_is_final(h->sweeps, rq->job_id)
+                                              : rd_jobs_is_final(h->jobs, rq->job_id);
+        if (all || now >= rq->until || final) {
+            if (rq->prev)
+                rq->prev->next = rq->next;
+            else
+                h->waiters = rq->next;
+            if (rq->next)
+                rq->next->prev = rq->prev;
+            rq->prev = NULL;
+            rq->next = ready;
+            ready = rq;
+        }
+        rq = next;
+    }
+    return ready;
+}
+
+static void resume_all(struct request *ready)
+{
+    while (ready) {
+        struct request *next = ready->next;
+        ready->next = NULL;
+        ready->resumed = 1;
+        MHD_resume_connection(ready->c);
+        ready = next;
+    }
+}
+
+/* The timer thread: resumes waiters, enforces the request deadline, applies
+ * the job store's age limit; wakes on rd_http_job_ended or every TICK_S. */
+void *rd_http_timer_main(void *arg)
+{
+    rd_http *h = arg;
+    double next_expire = rd_clock_mono_s() + EXPIRE_EVERY_S;
+    pthread_mutex_lock(&h->mu);
+    while (!h->stop) {
+        if (!h->poked) {
+            struct timespec tick = rd_clock_mono_deadline(TICK_S);
+            pthread_cond_timedwait(&h->wake, &h->mu, &tick);
+        }
+        h->poked = 0;
+        double now = rd_clock_mono_s();
+        struct request *ready = take_ready_locked(h, now, 0);
+        enforce_deadline_locked(h, now);
+        pthread_mutex_unlock(&h->mu);
+        resume_all(ready);
+        if (now >= next_expire) {
+            rd_jobs_expire(h->jobs);
+            next_expire = now + EXPIRE_EVERY_S;
+        }
+        pthread_mutex_lock(&h->mu);
+    }
+    struct request *ready = take_ready_locked(h, 0, 1);
+    pthread_mutex_unlock(&h->mu);
+    resume_all(ready);
+    return NULL;
+}
+
+void rd_http_job_ended(void *http)
+{
+    rd_http *h = http;
+    pthread_mutex_lock(&h->mu);
+    h->poked = 1;
+    pthread_cond_signal(&h->wake);
+    pthread_mutex_unlock(&h->mu);
+}

@@ -1,0 +1,233 @@
+/*
+ * rd_http_reply — responses (rd_http_int.h): text and job answers, gzip,
+ * the error bodies of the contract, and the count of every status sent.
+ */
+#include "rd_http_int.h"
+
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include <jansson.h>
+
+#include "rd_api.h"
+#include "rd_gzip.h"
+
+/* What a cached answer puts before the cached job's JSON (minus its '{'). */
+static const char cached_prefix[] = "{\"cached\":true,";
+
+static const char oom_body[] =
+    "{\"error\":{\"code\":\"out_of_memory\",\"message\":\"The server is out of memory.\"}}";
+
+/* Queues `r` (consumed; NULL means out of memory and sends a fixed 503). */
+enum MHD_Result rd_http_send_response(rd_http *h, struct MHD_Connection *c, struct request *rq,
+                                      int status, struct MHD_Response *r)
+{
+    if (!r) {
+        r = MHD_create_response_from_buffer(sizeof oom_body - 1, (void *)oom_body,
+                                            MHD_RESPMEM_PERSISTENT);
+        if (!r)
+            return MHD_NO;
+        if (MHD_add_response_header(r, MHD_HTTP_HEADER_CONTENT_TYPE, RD_HTTP_JSON) != MHD_YES) {
+            MHD_destroy_response(r);
+            return MHD_NO;
+        }
+        status = MHD_HTTP_SERVICE_UNAVAILABLE;
+    }
+    rq->replied = 1;
+    rd_http_set_busy(h, rq);
+    enum MHD_Result ok = MHD_queue_response(c, (unsigned)status, r);
+    MHD_destroy_response(r);
+    if (ok == MHD_YES)
+        rd_metrics_count_http(h->metrics, status);
+    return ok;
+}
+
+/* `len` bytes at `data` gzipped for a client that accepts it, when that is
+ * worth it: a malloc'd copy in *gz, else NULL. */
+static void maybe_gzip(const struct request *rq, const char *data, size_t len, char **gz,
+                       size_t *gz_len)
+{
+    *gz = NULL;
+    if (rq->gzip && len >= RD_GZIP_MIN_BYTES && rd_gzip(data, len, gz, gz_len) != 0)
+        *gz = NULL; /* out of memory: send it as it is */
+}
+
+static int add_gzip_headers(struct MHD_Response *r)
+{
+    return MHD_add_response_header(r, MHD_HTTP_HEADER_CONTENT_ENCODING, "gzip") == MHD_YES &&
+           MHD_add_response_header(r, MHD_HTTP_HEADER_VARY, "Accept-Encoding") == MHD_YES;
+}
+
+/* r with one more header, or NULL (r destroyed) when libmicrohttpd cannot add
+ * it: the caller then answers with the out-of-memory body (rd_http_send_response). */
+struct MHD_Response *rd_http_with_header(struct MHD_Response *r, const char *name,
+                                         const char *value)
+{
+    if (r && MHD_add_response_header(r, name, value) != MHD_YES) {
+        MHD_destroy_response(r);
+        return NULL;
+    }
+    return r;
+}
+
+/* A response owning the malloc'd `body` (NULL in, NULL out), gzipped when
+ * the client accepts it and the body is large enough. */
+struct MHD_Response *rd_http_text_response(const struct request *rq, char *body,
+                                           const char *content_type)
+{
+    if (!body)
+        return NULL;
+    size_t len = strlen(body), gz_len = 0;
+    char *gz;
+    maybe_gzip(rq, body, len, &gz, &gz_len);
+    if (gz) {
+        free(body);
+        body = gz;
+        len = gz_len;
+    }
+    struct MHD_Response *r = MHD_create_response_from_buffer(len, body, MHD_RESPMEM_MUST_FREE);
+    if (!r) {
+        free(body);
+        return NULL;
+    }
+    if (MHD_add_response_header(r, MHD_HTTP_HEADER_CONTENT_TYPE, content_type) != MHD_YES ||
+        MHD_add_response_header(r, MHD_HTTP_HEADER_CACHE_CONTROL, "no-store") != MHD_YES ||
+        (gz && !add_gzip_headers(r))) {
+        MHD_destroy_response(r);
+        return NULL;
+    }
+    return r;
+}
+
+/* A cached job's shared JSON with "cached":true as its first member: two
+ * pieces sent as they are (no copy), or, gzipped, one per-request copy. */
+static struct MHD_Response *cached_response(const struct request *rq, rd_jobs_body *body)
+{
+    if (rq->gzip && body->len >= RD_GZIP_MIN_BYTES) {
+        size_t n = sizeof cached_prefix - 1 + body->len - 1;
+        char *joined = malloc(n + 1);
+        if (joined) {
+            memcpy(joined, cached_prefix, sizeof cached_prefix - 1);
+            memcpy(joined + sizeof cached_prefix - 1, body->data + 1, body->len - 1);
+            joined[n] = '\0';
+        }
+        rd_jobs_body_release(body);
+        return rd_http_text_response(rq, joined, RD_HTTP_JSON);
+    }
+    struct MHD_IoVec iov[2] = {{cached_prefix, sizeof cached_prefix - 1},
+                               {body->data + 1, body->len - 1}};
+    struct MHD_Response *r = MHD_create_response_from_iovec(iov, 2, rd_jobs_body_release, body);
+    if (!r) {
+        rd_jobs_body_release(body);
+        return NULL;
+    }
+    if (MHD_add_response_header(r, MHD_HTTP_HEADER_CONTENT_TYPE, RD_HTTP_JSON) != MHD_YES ||
+        MHD_add_response_header(r, MHD_HTTP_HEADER_CACHE_CONTROL, "no-store") != MHD_YES) {
+        MHD_destroy_response(r); /* releases the body */
+        return NULL;
+    }
+    return r;
+}
+
+/* A job's answer: its shared JSON (a succeeded job: one copy for all the
+ * requests sending it, released when MHD is done; gzipped once per body) or
+ * the rendered `json`.  `cached`: the answer comes from the result cache. */
+struct MHD_Response *rd_http_job_response(const struct request *rq, rd_jobs_body *body, char *json,
+                                          int cached)
+{
+    if (!body)
+        return rd_http_text_response(rq, json, RD_HTTP_JSON);
+    if (cached)
+        return cached_response(rq, body);
+    const char *data = body->data;
+    size_t len = body->len;
+    int gz = rq->gzip && len >= RD_GZIP_MIN_BYTES && rd_jobs_body_gzip(body, &data, &len) == RD_OK;
+    if (!gz) {
+        data = body->data;
+        len = body->len;
+    }
+    struct MHD_Response *r = MHD_create_response_from_buffer_with_free_callback_cls(
+        len, (void *)data, rd_jobs_body_release, body);
+    if (!r) {
+        rd_jobs_body_release(body);
+        return NULL;
+    }
+    if ((gz && !add_gzip_headers(r)) ||
+        MHD_add_response_header(r, MHD_HTTP_HEADER_CONTENT_TYPE, RD_HTTP_JSON) != MHD_YES ||
+        MHD_add_response_header(r, MHD_HTTP_HEADER_CACHE_CONTROL, "no-store") != MHD_YES) {
+        MHD_destroy_response(r); /* releases the body */
+        return NULL;
+    }
+    return r;
+}
+
+enum MHD_Result rd_http_send_text(rd_http *h, struct MHD_Connection *c, struct request *rq,
+                                  int status, char *body, const char *content_type)
+{
+    return rd_http_send_response(h, c, rq, status, rd_http_text_response(rq, body, content_type));
+}
+
+/* The contract's error body; `allow` (may be NULL) for 405. */
+enum MHD_Result rd_http_send_error(rd_http *h, struct MHD_Connection *c, struct request *rq,
+                                   const rd_error *err, const char *allow)
+{
+    rd_error fallback;
+    if (err->code == RD_OK) { /* a callee failed without saying why: our bug */
+        rd_error_init(&fallback);
+        rd_error_set(&fallback, RD_EINTERNAL, "", "Internal error.");
+        err = &fallback;
+    }
+    struct MHD_Response *r = rd_http_text_response(rq, rd_api_error_json(err), RD_HTTP_JSON);
+    if (allow)
+        r = rd_http_with_header(r, MHD_HTTP_HEADER_ALLOW, allow);
+    if (r && err->code == RD_EBUSY) {
+        char seconds[16];
+        snprintf(seconds, sizeof seconds, "%d", rd_jobs_get_retry_after(h->jobs));
+        r = rd_http_with_header(r, MHD_HTTP_HEADER_RETRY_AFTER, seconds);
+    }
+    return rd_http_send_response(h, c, rq, rd_api_http_status(err->code), r);
+}
+
+#if defined(__GNUC__)
+__attribute__((format(printf, 5, 6)))
+#endif
+enum MHD_Result
+rd_http_send_fail(rd_http *h, struct MHD_Connection *c, struct request *rq, int code,
+                  const char *fmt, ...)
+{
+    rd_error err;
+    rd_error_init(&err);
+    va_list ap;
+    va_start(ap, fmt);
+    rd_error_setv(&err, code, "", fmt, ap);
+    va_end(ap);
+    return rd_http_send_error(h, c, rq, &err, NULL);
+}
+
+enum MHD_Result rd_http_send_not_found(rd_http *h, struct MHD_Connection *c, struct request *rq,
+                                       const char *url)
+{
+    char buf[128];
+    return rd_http_send_fail(h, c, rq, RD_ENOTFOUND, "There is nothing at %s.",
+                             rd_http_printable(url, buf, sizeof buf));
+}
+
+/* An error the status table of core/rd_error.h has no code for (401, 403,
+ * 400 for a framing fault): the same {"error": {"code", "message"}} shape,
+ * written here.  `header`/`value` (may be NULL) adds one response header. */
+enum MHD_Result rd_http_send_server_error(rd_http *h, struct MHD_Connection *c, struct request *rq,
+                                          int status, const char *code, const char *message,
+                                          const char *header, const char *value)
+{
+    json_t *o = json_pack("{s:{s:s, s:s}}", "error", "code", code, "message", message);
+    char *body = o ? json_dumps(o, JSON_COMPACT) : NULL;
+    json_decref(o);
+    struct MHD_Response *r = rd_http_text_response(rq, body, RD_HTTP_JSON);
+    if (r && header && MHD_add_response_header(r, header, value) != MHD_YES) {
+        MHD_destroy_response(r);
+        r = NULL;
+    }
+    return rd_http_send_response(h, c, rq, status, r);
+}
