@@ -14,6 +14,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 
+#include "rd_json.h"
 #include "rd_lift.h"
 #include "rd_registry.h"
 #include "rd_scene.h"

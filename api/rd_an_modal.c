@@ -15,6 +15,7 @@
 #include <stdio.h>
 #include <string.h>
 
+#include "rd_json.h"
 #include "rd_modal.h"
 #include "rd_registry.h"
 #include "rd_ring.h"

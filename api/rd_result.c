@@ -1,6 +1,6 @@
 /*
- * rd_result — reals as JSON, CSV tables of a result, and the CSV of a
- * stored result text without decoding all of it (rd_result.h, rd_api.h).
+ * rd_result — CSV tables of a result, and the CSV of a stored result text
+ * without decoding all of it (rd_result.h, rd_api.h).
  *
  * A result is built once, as a jansson object, by the analysis' runner;
  * its JSON text and its CSV table are both written from that object
@@ -31,23 +31,6 @@ double rd_clock_s(void)
     if (clock_gettime(CLOCK_MONOTONIC, &t) != 0)
         return NAN; /* reported as null: no time rather than a wrong one */
     return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
-}
-
-json_t *rd_result_real(double x)
-{
-    return isfinite(x) ? json_real(x) : json_null();
-}
-
-json_t *rd_result_reals(const double *x, int n, int stride, double scale)
-{
-    json_t *a = json_array();
-    for (int i = 0; a && i < n; i++) {
-        if (json_array_append_new(a, rd_result_real(scale * x[(size_t)i * (size_t)stride])) != 0) {
-            json_decref(a);
-            a = NULL;
-        }
-    }
-    return a;
 }
 
 /* ---- CSV ----------------------------------------------------------------- */

@@ -1,5 +1,5 @@
 /*
- * rd_result — what every result writer shares: reals as JSON, the CSV
+ * rd_result — what every result writer shares: the CSV
  * table of a result (declared by each analysis as columns of its result
  * object), and the result document (rd_api.h) that writes both the JSON
  * and the CSV from the one object built by the runner.
@@ -23,13 +23,6 @@ struct json_t;
 
 /* Monotonic wall clock, s: what a runner reports as numerics.wall_s. */
 double rd_clock_s(void);
-
-/* A real, or null when it is not finite (NaN: nothing estimated); jansson
- * refuses non-finite reals.  NULL only when out of memory. */
-struct json_t *rd_result_real(double x);
-
-/* [scale * x[0], scale * x[stride], ...], n values; NULL on out of memory. */
-struct json_t *rd_result_reals(const double *x, int n, int stride, double scale);
 
 /* One CSV column: its header (name with unit), the result key it reads and
  * whether its cells are text (else numbers or null, written %.10g, empty

@@ -18,7 +18,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "rd_result.h"
+#include "rd_json.h"
 #include "rd_scene.h"
 #include "rd_static.h"
 
