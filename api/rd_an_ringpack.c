@@ -289,13 +289,7 @@ static int parse_rings(const rd_field *f, json_t *v, const char *path, rd_scene 
 static json_t *echo_rings(const rd_scene *s);
 
 static const rd_field scene_fields[] = {
-    {"analysis", RD_F_ANALYSIS, 0,
-     .desc = "Which analysis to run; decides which blocks are "
-             "read."},
-    {"name", RD_F_STRING, offsetof(struct rd_scene, name),
-     .desc = "Free text, echoed in the result; absent when not given."},
-    {"description", RD_F_STRING, offsetof(struct rd_scene, description),
-     .desc = "Free text, echoed in the result; absent when not given."},
+    RD_SCENE_HEAD,
     {"engine", RD_F_BLOCK, 0, .block = &engine_block},
     {"rings", RD_F_ITEMS, 0, .block = &item_block, RD_MIN(1), RD_MAX(RD_RINGPACK_RINGS_MAX),
      .parse = parse_rings, .echo = echo_rings,

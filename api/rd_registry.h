@@ -101,25 +101,31 @@ struct json_t *rd_static_result_numerics(const rd_static_stats *st, double wall_
                                          const char *what);
 struct json_t *rd_static_result_support(const rd_static_stats *st);
 
-/* The fields every analysis reads first: analysis, name, description, ring
- * and its discretization block.  _WITH adds to the shared ring what this
- * analysis requires of it (a description and a JSON schema, allOf). */
-#define RD_SCENE_COMMON_WITH(ring_desc, ring_extra, discretization)          \
-    {"analysis", RD_F_ANALYSIS, 0,                                           \
-     .desc = "Which analysis to run; decides which blocks are "              \
-             "read."},                                                       \
-        {"name", RD_F_STRING, offsetof(struct rd_scene, name),               \
-         .desc = "Free text, echoed in the result; absent when not given."}, \
-        {"description", RD_F_STRING, offsetof(struct rd_scene, description), \
-         .desc = "Free text, echoed in the result; absent when not given."}, \
-        {"ring",                                                             \
-         RD_F_BLOCK,                                                         \
-         0,                                                                  \
-         .block = &rd_block_ring,                                            \
-         .desc = (ring_desc),                                                \
-         .extra = (ring_extra)},                                             \
-    {                                                                        \
-        "discretization", RD_F_BLOCK, 0, .block = &(discretization)          \
+/* The fields every scene opens with: analysis (echoed, and its OpenAPI
+ * enum written, by rd_scene_echo_analysis), name and description. */
+#define RD_SCENE_HEAD                                                         \
+    {"analysis", RD_F_ANALYSIS, 0, .echo = rd_scene_echo_analysis,            \
+     .desc = "Which analysis to run; decides which blocks are "               \
+             "read."},                                                        \
+        {"name", RD_F_STRING, offsetof(struct rd_scene, name),                \
+         .desc = "Free text, echoed in the result; absent when not given."},  \
+    {                                                                         \
+        "description", RD_F_STRING, offsetof(struct rd_scene, description),   \
+            .desc = "Free text, echoed in the result; absent when not given." \
+    }
+
+/* The fields every analysis with a top-level ring reads first: the head,
+ * ring and its discretization block.  _WITH adds to the shared ring what
+ * this analysis requires of it (a description and a JSON schema, allOf). */
+#define RD_SCENE_COMMON_WITH(ring_desc, ring_extra, discretization) \
+    RD_SCENE_HEAD, {"ring",                                         \
+                    RD_F_BLOCK,                                     \
+                    0,                                              \
+                    .block = &rd_block_ring,                        \
+                    .desc = (ring_desc),                            \
+                    .extra = (ring_extra)},                         \
+    {                                                               \
+        "discretization", RD_F_BLOCK, 0, .block = &(discretization) \
     }
 #define RD_SCENE_COMMON(discretization) RD_SCENE_COMMON_WITH(NULL, NULL, discretization)
 

@@ -34,6 +34,11 @@ const char *rd_scene_analysis(const rd_scene *scene)
     return scene->an ? scene->an->name : "unknown";
 }
 
+json_t *rd_scene_echo_analysis(const rd_scene *scene)
+{
+    return json_string(rd_scene_analysis(scene));
+}
+
 static void list_analyses(char *buf, size_t size, const rd_analysis_def *const *registry)
 {
     size_t n = 0;

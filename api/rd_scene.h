@@ -73,6 +73,10 @@ struct rd_scene {
  * outside it. */
 const char *rd_scene_analysis_name(int analysis);
 
+/* The scene's analysis name as a JSON string (new reference, NULL on out
+ * of memory): the echo of the "analysis" field (RD_SCENE_HEAD). */
+struct json_t *rd_scene_echo_analysis(const rd_scene *scene);
+
 /* The echoed scene as a new jansson object (caller owns the reference):
  * analysis, name/description when given, and the blocks the analysis reads
  * with every default filled in.  NULL on out of memory. */

@@ -717,8 +717,8 @@ static json_t *field_echo(const rd_field *f, const char *at, const struct rd_sce
     if (f->echo)
         return f->echo(s);
     switch (f->type) {
-    case RD_F_ANALYSIS:
-        return json_string(rd_scene_analysis(s));
+    case RD_F_ANALYSIS: /* echoed by its hook */
+        break;
     case RD_F_NUMBER:
         return rd_result_real(*(const double *)at);
     case RD_F_INTEGER:
@@ -861,8 +861,8 @@ static json_t *block_ref(const rd_field *f, const struct rd_scene *defaults, jso
 static int field_keywords(json_t *o, const rd_field *f, const char *at,
                           const struct rd_scene *defaults, json_t *components)
 {
-    if (f->type == RD_F_ANALYSIS)
-        return set_new(o, "enum", json_pack("[s]", rd_scene_analysis(defaults)));
+    if (f->type == RD_F_ANALYSIS) /* the one name its echo gives */
+        return set_new(o, "enum", f->echo ? json_pack("[o]", f->echo(defaults)) : NULL);
     int bad = 0;
     if (f->desc)
         bad |= set_new(o, "description", json_string(f->desc));
