@@ -65,8 +65,8 @@ const rd_analysis_def *rd_registry_find(const rd_analysis_def *const *registry, 
 int rd_registry_ignored(const rd_analysis_def *const *registry, const rd_analysis_def *an,
                         const char **keys, int max);
 
-/* The OpenAPI document `template_json` with its scene schemas filled in
- * from `registry`: components.schemas gets "Scene" (oneOf the analyses,
+/* (rd_openapi.c) The OpenAPI document `template_json` with its scene
+ * schemas filled in from `registry`: components.schemas gets "Scene" (oneOf the analyses,
  * discriminated by "analysis"), one "<Name>Scene" per analysis and every
  * named block they reference.  New reference; NULL + err when the
  * template is not a JSON object with components.schemas, or on out of
