@@ -3,11 +3,14 @@
  * (rd_registry.h): the ring with its material, the three discretization
  * blocks (the analyses differ in the segment range and whether the ring
  * may be closed) and the Newton numerics of pretension and contact, with
- * the result pieces those two share.
+ * the result pieces those two share; and the wall clock every runner
+ * times its solve with.
  */
 #include <jansson.h>
+#include <math.h>
 #include <stddef.h>
 #include <stdio.h>
+#include <time.h>
 
 #include "rd_json.h"
 #include "rd_registry.h"
@@ -159,6 +162,16 @@ void rd_static_scene_defaults(struct rd_scene *s)
     o->statics.estimate_error = 1; /* API default, whatever core's is */
     rd_pretension_opts_default(&o->pretension);
     rd_contact_opts_default(&o->contact);
+}
+
+/* ---- what the runners share ---- */
+
+double rd_clock_s(void)
+{
+    struct timespec t;
+    if (clock_gettime(CLOCK_MONOTONIC, &t) != 0)
+        return NAN; /* reported as null: no time rather than a wrong one */
+    return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
 }
 
 /* ---- the result pieces pretension and contact share ---- */

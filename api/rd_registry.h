@@ -75,6 +75,8 @@ struct json_t *rd_registry_openapi(const rd_analysis_def *const *registry,
                                    const char *template_json, rd_error *err);
 
 /* ---- shared blocks (rd_blocks.c), referenced by the analyses ---- */
+/* Monotonic wall clock, s: what a runner reports as numerics.wall_s. */
+double rd_clock_s(void);
 extern const rd_block rd_block_ring;                  /* /ring, with /ring/material */
 extern const rd_block rd_block_discretization_modal;  /* 3..2000 segments, closed allowed */
 extern const rd_block rd_block_discretization_static; /* 4..2000, split ring */

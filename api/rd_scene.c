@@ -4,8 +4,9 @@
  *
  * Which fields exist, their types and their echo are the analyses' tables
  * (rd_registry.h, rd_schema.h); this file picks the analysis, fills the
- * defaults, runs the tables and the analysis' checks, and owns the scene's
- * memory.
+ * defaults, runs the tables and the analysis' checks, owns the scene's
+ * memory, and runs a parsed scene (its analysis' runner, then the result's
+ * warnings, into a result document).
  */
 #include "rd_scene.h"
 
@@ -17,7 +18,9 @@
 #include "rd_dtoa.h"
 #include "rd_json.h"
 #include "rd_registry.h"
+#include "rd_result.h"
 #include "rd_schema.h"
+#include "rd_warnings.h"
 
 #define MAX_KEYS 64 /* top-level keys of all analyses together */
 
@@ -235,6 +238,39 @@ void rd_scene_free(rd_scene *scene)
     free(scene->name);
     free(scene->description);
     free(scene);
+}
+
+int rd_scene_run_doc(const rd_scene *scene, const rd_monitor *mon, rd_result_doc **out,
+                     rd_error *err)
+{
+    json_t *result = NULL;
+    *out = NULL;
+    int rc = scene->an->run(scene, mon, &result, err);
+    if (rc != RD_OK && !result)
+        return rc;
+    /* warnings never refuse: they only annotate a finished result */
+    *out = result && rd_warnings_add(result) == 0 ? rd_result_doc_new(scene->an, result) : NULL;
+    if (!*out) {
+        json_decref(result);
+        return rc != RD_OK
+                   ? rc
+                   : rd_error_set(err, RD_ENOMEM, "", "out of memory while writing the result");
+    }
+    return rc; /* not RD_OK: a stopped run's partial result */
+}
+
+int rd_scene_run(const rd_scene *scene, const rd_monitor *mon, char **result_json, rd_error *err)
+{
+    rd_result_doc *doc = NULL;
+    *result_json = NULL;
+    int rc = rd_scene_run_doc(scene, mon, &doc, err);
+    if (!doc)
+        return rc;
+    *result_json = rd_result_doc_json(doc);
+    rd_result_doc_free(doc);
+    if (!*result_json && rc == RD_OK)
+        rc = rd_error_set(err, RD_ENOMEM, "", "out of memory while writing the result");
+    return rc;
 }
 
 json_t *rd_scene_echo(const rd_scene *s)
