@@ -1,12 +1,13 @@
 /*
  * rd_scene — scene parsing: JSON body -> type-checked, defaults-filled
- * struct rd_scene, and the echo back to JSON (rd_scene.h).
+ * struct rd_scene, and running it (rd_scene.h).
  *
  * Which fields exist, their types and their echo are the analyses' tables
  * (rd_registry.h, rd_schema.h); this file picks the analysis, fills the
  * defaults, runs the tables and the analysis' checks, owns the scene's
  * memory, and runs a parsed scene (its analysis' runner, then the result's
- * warnings, into a result document).
+ * warnings, into a result document).  The echo back to JSON, which the
+ * runners call, is rd_scene_echo.c's.
  */
 #include "rd_scene.h"
 
@@ -15,8 +16,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "rd_dtoa.h"
-#include "rd_json.h"
 #include "rd_registry.h"
 #include "rd_result.h"
 #include "rd_schema.h"
@@ -30,16 +29,6 @@ const char *rd_scene_analysis_name(int analysis)
         if (i == analysis)
             return rd_registry[i]->name;
     return "unknown";
-}
-
-const char *rd_scene_analysis(const rd_scene *scene)
-{
-    return scene->an ? scene->an->name : "unknown";
-}
-
-json_t *rd_scene_echo_analysis(const rd_scene *scene)
-{
-    return json_string(rd_scene_analysis(scene));
 }
 
 static void list_analyses(char *buf, size_t size, const rd_analysis_def *const *registry)
@@ -271,61 +260,4 @@ int rd_scene_run(const rd_scene *scene, const rd_monitor *mon, char **result_jso
     if (!*result_json && rc == RD_OK)
         rc = rd_error_set(err, RD_ENOMEM, "", "out of memory while writing the result");
     return rc;
-}
-
-json_t *rd_scene_echo(const rd_scene *s)
-{
-    json_t *o = json_object();
-    if (o && rd_schema_echo(s->an->scene, s, o) != 0) {
-        json_decref(o);
-        o = NULL;
-    }
-    return o;
-}
-
-/* 1 when every real in `v` reads back unchanged from RD_SCENE_REAL_DIGITS
- * significant digits (as jansson writes it: %.*g). */
-static int reals_round_trip(json_t *v)
-{
-    if (json_is_real(v)) {
-        char text[RD_DTOA_SIZE];
-        rd_dtoa_digits(json_real_value(v), RD_SCENE_REAL_DIGITS, text); /* printf's %.15g */
-        return strtod(text, NULL) == json_real_value(v);
-    }
-    const char *key;
-    json_t *child;
-    size_t i;
-    if (json_is_object(v)) {
-        json_object_foreach(v, key, child)
-        {
-            if (!reals_round_trip(child))
-                return 0;
-        }
-    }
-    if (json_is_array(v)) {
-        json_array_foreach(v, i, child)
-        {
-            if (!reals_round_trip(child))
-                return 0;
-        }
-    }
-    return 1;
-}
-
-int rd_scene_real_digits(json_t *v)
-{
-    return reals_round_trip(v) ? RD_SCENE_REAL_DIGITS : 17;
-}
-
-/* The echo is a scene that parses back into the same scene: a value that
- * 15 digits would round (0.49999999999999994 to 0.5, out of its range),
- * found by tests/fuzz, makes the whole echo use 17, which always
- * round-trips. */
-char *rd_scene_to_json(const rd_scene *scene)
-{
-    json_t *echo = rd_scene_echo(scene);
-    int digits = rd_scene_real_digits(echo);
-    char *text = echo ? rd_json_dumps(echo, digits, 0) : NULL;
-    json_decref(echo);
-    return text;
 }
