@@ -10,7 +10,8 @@
  *   - writes the echo of a parsed scene (every default filled in),
  *   - writes the OpenAPI schema of the block (types, defaults read from a
  *     defaults-filled scene, ranges, enums, descriptions),
- * so none of the three can drift from the others.
+ * so none of the three can drift from the others (rd_schema.c parses,
+ * rd_schema_write.c writes the echo and the OpenAPI schema).
  *
  * Ranges: core's validators (the core *_validate functions) stay the authority for value
  * checks and their messages.  A field's min/max here is the static part of
