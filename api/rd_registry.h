@@ -25,7 +25,9 @@
 #include <stddef.h>
 
 #include "rd_error.h"
+#include "rd_lift.h"
 #include "rd_result.h"
+#include "rd_scene.h"
 #include "rd_schema.h"
 
 struct json_t;
@@ -102,6 +104,86 @@ void rd_static_scene_defaults(struct rd_scene *s);
 struct json_t *rd_static_result_numerics(const rd_static_stats *st, double wall_s,
                                          const char *what);
 struct json_t *rd_static_result_support(const rd_static_stats *st);
+
+/* ---- engine, bore and friction: what lift and the ring pack share ----
+ * Both read /engine (with /engine/piston_tilt), /bore and /physics/friction
+ * alike: each field's key, type, storage, range and choices are written
+ * once below, and so is its description where the two say the same.  Each
+ * analysis writes the rest in its own words (block names and descriptions,
+ * the descriptions that differ, the cycles row, friction's further rows).
+ * Their opts hold a struct rd_engine_scene named `eng`; in the row macros
+ * AT(member) is the analysis' offsetof into its opts, E the path of its
+ * rd_engine_params there and F that of its rd_friction_params. */
+
+/* What the scene gives beside core's params (rd_blocks.c turns it into
+ * theirs). */
+struct rd_engine_scene {
+    int tilt_given;                /* /engine/piston_tilt present */
+    struct rd_table tilt_table[2]; /* crank_deg, tilt_deg */
+    rd_contact_opts bore;          /* /bore (its diameter and distortion only) */
+    int friction_given;            /* /physics/friction present */
+    int friction_model;            /* index into rd_friction_names */
+};
+extern const char *const rd_kinematics_names[]; /* enum rd_kinematics */
+extern const char *const rd_friction_names[];   /* enum rd_friction_model - 1 */
+
+/* Core's friction model, tilt table (borrowed: both tables, of the same
+ * length, else RD_EINVAL at /engine/piston_tilt/tilt_deg) and bore from
+ * what the scene gave. */
+int rd_engine_scene_finish(const struct rd_engine_scene *es, rd_engine_params *engine,
+                           rd_lift_bore *bore, rd_friction_params *friction, rd_error *err);
+/* Frees the tilt tables. */
+void rd_engine_scene_cleanup(struct rd_engine_scene *es);
+
+/* /engine: speed (its description given), crank radius, rod length,
+ * kinematics; then, after the analysis' cycles row, the constant tilt (its
+ * description given) and the /engine/piston_tilt block. */
+#define RD_ENGINE_CRANK_FIELDS(AT, E, speed_desc)                                                \
+    {"speed_rpm", RD_F_NUMBER, AT(E.speed_rpm), RD_MIN(1), RD_MAX(30000), .desc = (speed_desc)}, \
+        {"crank_radius", RD_F_NUMBER, AT(E.crank_radius),                                        \
+         RD_MIN(0.001),  RD_MAX(1.0), .desc = "Crank radius r (half the stroke), m."},           \
+        {"rod_length", RD_F_NUMBER, AT(E.rod_length), RD_MAX(10.0),                              \
+         .desc = "Connecting rod length l, m; from r / 0.9 to 10 m."},                           \
+    {                                                                                            \
+        "kinematics", RD_F_CHOICE, AT(E.kinematics),                                             \
+            .choices = rd_kinematics_names,                                                      \
+            .desc = "exact slider-crank, or the approximate series (thesis 1.6-1.8)."            \
+    }
+#define RD_ENGINE_TILT_FIELDS(AT, E, tilt_desc, tilt_block)                      \
+    {"piston_tilt_deg", RD_F_NUMBER, AT(E.piston_tilt_deg),                      \
+     RD_MIN(-2),        RD_MAX(2),   .desc = (tilt_desc)},                       \
+    {                                                                            \
+        "piston_tilt", RD_F_OPTBLOCK, AT(eng.tilt_given), .block = &(tilt_block) \
+    }
+/* /engine/piston_tilt: the two tables. */
+#define RD_TILT_FIELDS(AT)                                                                        \
+    {"crank_deg",                                                                                 \
+     RD_F_TABLE,                                                                                  \
+     AT(eng.tilt_table[0]),                                                                       \
+     RD_MIN(1),                                                                                   \
+     RD_MAX(RD_LIFT_TABLE_MAX),                                                                   \
+     .required = 1,                                                                               \
+     .desc = "Crank angles, deg, strictly increasing within 0..720."},                            \
+    {                                                                                             \
+        "tilt_deg", RD_F_TABLE, AT(eng.tilt_table[1]), RD_MIN(1), RD_MAX(RD_LIFT_TABLE_MAX),      \
+            .required = 1, .desc = "Piston tilt at those angles, deg (added to piston_tilt_deg)." \
+    }
+/* /bore: diameter and distortion, their descriptions given. */
+#define RD_BORE_FIELDS(AT, diameter_desc, distortion_desc)                                       \
+    {"diameter", RD_F_NUMBER, AT(eng.bore.bore_diameter), RD_MIN(0.0), .desc = (diameter_desc)}, \
+    {                                                                                            \
+        "distortion", RD_F_DISTORTION, AT(eng.bore), .block = &rd_block_lift_distortion,         \
+                                                     RD_MAX(RD_LIFT_DISTORTION_MAX),             \
+                                                     .desc = (distortion_desc)                   \
+    }
+/* /physics/friction: model and Coulomb coefficient, descriptions given. */
+#define RD_FRICTION_FIELDS(AT, F, model_desc, coefficient_desc)                  \
+    {"model", RD_F_CHOICE, AT(eng.friction_model), .choices = rd_friction_names, \
+     .desc = (model_desc)},                                                      \
+    {                                                                            \
+        "coefficient", RD_F_NUMBER, AT(F.coefficient), RD_MIN(0), RD_MAX(10),    \
+            .desc = (coefficient_desc)                                           \
+    }
 
 /* The fields every scene opens with: analysis (echoed, and its OpenAPI
  * enum written, by rd_scene_echo_analysis), name and description. */
