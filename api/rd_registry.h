@@ -10,6 +10,7 @@
  *            validators once parsed, and free what they hold;
  *   run      the runner: calls the core solver and builds the result
  *            object (API.md "Results") once, as data;
+ *   predict  its cost model, when core has one (the server's inline runs);
  *   csv      its main table (columns of that result object), or NULL with
  *            `csv_none` saying why there is none;
  *   page     its tab on the web page (a module in static/), or "none".
@@ -48,6 +49,9 @@ typedef struct rd_analysis_def {
      * out of memory, which the caller reports. */
     int (*run)(const struct rd_scene *s, const rd_monitor *mon, struct json_t **result,
                rd_error *err);
+    /* Predicted CPU seconds of `run` (core's cost model); NULL when the
+     * analysis has none. */
+    double (*predict)(const struct rd_scene *s);
     const rd_csv_table *csv; /* the main table, or NULL */
     const char *csv_none;    /* why there is no table (csv NULL) */
     const char *page;        /* "modal.js": its tab in static/, or "none" */
