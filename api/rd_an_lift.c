@@ -4,9 +4,10 @@
  * object and CSV table (rd_registry.h).
  *
  * Options (struct lift_opts): core's rd_lift_params, plus what only the
- * scene knows: which optional physics it named (friction, gas), the
- * friction model's index and the four gas tables, which rd_lift_params.gas
- * borrows once the scene is parsed.
+ * scene knows: which optional physics it named (gas, squeeze film), the
+ * four gas tables, which rd_lift_params.gas borrows once the scene is
+ * parsed, and what it shares with the ring pack (struct rd_engine_scene:
+ * the tilt tables, the bore, the friction model; rd_registry.h).
  */
 #include <jansson.h>
 #include <math.h>
@@ -14,6 +15,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 
+#include "rd_json.h"
 #include "rd_lift.h"
 #include "rd_registry.h"
 #include "rd_scene.h"
@@ -21,30 +23,21 @@
 
 struct lift_opts {
     rd_lift_params lift;
-    int friction_given, gas_given, squeeze_given;
-    int friction_model;           /* index into friction_names */
+    struct rd_engine_scene eng; /* the tilt tables, /bore, the friction model */
+    int gas_given, squeeze_given;
     int max_steps;                /* /numerics/max_steps */
     struct rd_table gas_table[4]; /* crank_deg, above, behind, below */
-    int tilt_given;
-    struct rd_table tilt_table[2]; /* crank_deg, tilt_deg */
-    rd_contact_opts bore;          /* /bore (its diameter and distortion only) */
 };
 
 #define LO(member) offsetof(struct lift_opts, member)
 
 /* ---- scene ---------------------------------------------------------------- */
 
-static const char *const kinematics_names[] = {"exact", "approximate",
-                                               NULL};                      /* enum rd_kinematics */
-static const char *const friction_names[] = {"coulomb", "stribeck", NULL}; /* model - 1 */
-static const char *const area_names[] = {"fixed", "dynamic", NULL};        /* enum rd_gas_area */
+static const char *const area_names[] = {"fixed", "dynamic", NULL};      /* enum rd_gas_area */
 static const char *const landing_names[] = {"penalty", "plastic", NULL}; /* enum rd_lift_landing */
 
 static const rd_field tilt_fields[] = {
-    {"crank_deg", RD_F_TABLE, LO(tilt_table[0]), RD_MIN(1), RD_MAX(RD_LIFT_TABLE_MAX),
-     .required = 1, .desc = "Crank angles, deg, strictly increasing within 0..720."},
-    {"tilt_deg", RD_F_TABLE, LO(tilt_table[1]), RD_MIN(1), RD_MAX(RD_LIFT_TABLE_MAX), .required = 1,
-     .desc = "Piston tilt at those angles, deg (added to piston_tilt_deg)."},
+    RD_TILT_FIELDS(LO),
     {.key = NULL},
 };
 static const rd_block tilt_block = {
@@ -55,13 +48,11 @@ static const rd_block tilt_block = {
     1, 0, tilt_fields};
 
 static const rd_field bore_fields[] = {
-    {"diameter", RD_F_NUMBER, LO(bore.bore_diameter), RD_MIN(0.0),
-     .desc = "Bore diameter D, m; 0 = the ring's diameter; otherwise within 2 % of it."},
-    {"distortion", RD_F_DISTORTION, LO(bore), .block = &rd_block_lift_distortion,
-     RD_MAX(RD_LIFT_DISTORTION_MAX),
-     .desc = "Fourier terms of the bore's out-of-roundness, at most 16. The radial contact "
-             "pressure, hence the friction, then varies around the ring; the ring starts from "
-             "its static equilibrium in this bore, and the scene never runs the rigid model."},
+    RD_BORE_FIELDS(LO, "Bore diameter D, m; 0 = the ring's diameter; otherwise within 2 % of it.",
+                   "Fourier terms of the bore's out-of-roundness, at most 16. The radial contact "
+                   "pressure, hence the friction, then varies around the ring; the ring starts "
+                   "from its static equilibrium in this bore, and the scene never runs the rigid "
+                   "model."),
     {.key = NULL},
 };
 static const rd_block bore_block = {
@@ -71,21 +62,15 @@ static const rd_block bore_block = {
     1, 0, bore_fields};
 
 static const rd_field engine_fields[] = {
-    {"speed_rpm", RD_F_NUMBER, LO(lift.engine.speed_rpm), RD_MIN(1), RD_MAX(30000),
-     .desc = "Crank speed, rpm."},
-    {"crank_radius", RD_F_NUMBER, LO(lift.engine.crank_radius), RD_MIN(0.001), RD_MAX(1.0),
-     .desc = "Crank radius r (half the stroke), m."},
-    {"rod_length", RD_F_NUMBER, LO(lift.engine.rod_length), RD_MAX(10.0),
-     .desc = "Connecting rod length l, m; from r / 0.9 to 10 m."},
-    {"kinematics", RD_F_CHOICE, LO(lift.engine.kinematics), .choices = kinematics_names,
-     .desc = "exact slider-crank, or the approximate series (thesis 1.6-1.8)."},
+    RD_ENGINE_CRANK_FIELDS(LO, lift.engine, "Crank speed, rpm."),
     {"cycles", RD_F_NUMBER, LO(lift.engine.cycles), RD_XMIN(0), RD_MAX(50),
      .desc = "4-stroke cycles (720 deg each) simulated; any real > 0."},
-    {"piston_tilt_deg", RD_F_NUMBER, LO(lift.engine.piston_tilt_deg), RD_MIN(-2), RD_MAX(2),
-     .desc = "Constant piston tilt about the pin axis (the axis in the ring plane at 90 deg from "
-             "the gap middle), deg, positive raising the groove on the gap's side. A tilted "
-             "scene never runs the rigid model (the flank gap varies around the ring)."},
-    {"piston_tilt", RD_F_OPTBLOCK, LO(tilt_given), .block = &tilt_block},
+    RD_ENGINE_TILT_FIELDS(
+        LO, lift.engine,
+        "Constant piston tilt about the pin axis (the axis in the ring plane at 90 deg from the "
+        "gap middle), deg, positive raising the groove on the gap's side. A tilted scene never "
+        "runs the rigid model (the flank gap varies around the ring).",
+        tilt_block),
     {.key = NULL},
 };
 static const rd_block engine_block = {"Engine", "/engine (lift): piston kinematics.", 1, 0,
@@ -101,11 +86,10 @@ static const rd_field groove_fields[] = {
 static const rd_block groove_block = {"Groove", "/groove (lift).", 1, 0, groove_fields};
 
 static const rd_field friction_fields[] = {
-    {"model", RD_F_CHOICE, LO(friction_model), .choices = friction_names,
-     .desc = "coulomb: F = -mu N tanh(u / u_reg). stribeck: thesis (2.9) with the Sommerfeld "
-             "number (1.11)."},
-    {"coefficient", RD_F_NUMBER, LO(lift.friction.coefficient), RD_MIN(0), RD_MAX(10),
-     .desc = "Coulomb coefficient mu (also C_Coulomb of 2.9), -."},
+    RD_FRICTION_FIELDS(LO, lift.friction,
+                       "coulomb: F = -mu N tanh(u / u_reg). stribeck: thesis (2.9) with the "
+                       "Sommerfeld number (1.11).",
+                       "Coulomb coefficient mu (also C_Coulomb of 2.9), -."),
     {"viscosity", RD_F_NUMBER, LO(lift.friction.viscosity), RD_MIN(1e-05), RD_MAX(10),
      .desc = "Stribeck only: oil dynamic viscosity eta, Pa s."},
     {"sommerfeld_transition", RD_F_NUMBER, LO(lift.friction.sommerfeld_transition), RD_MIN(0),
@@ -158,7 +142,7 @@ static const rd_block squeeze_block = {
 
 static const rd_field physics_fields[] = {
     {"gravity", RD_F_BOOL, LO(lift.gravity), .desc = "Gravity, g = 9.80665 m/s^2 along -z."},
-    {"friction", RD_F_OPTBLOCK, LO(friction_given), .block = &friction_block},
+    {"friction", RD_F_OPTBLOCK, LO(eng.friction_given), .block = &friction_block},
     {"gas", RD_F_OPTBLOCK, LO(gas_given), .block = &gas_block},
     {"squeeze_film", RD_F_OPTBLOCK, LO(squeeze_given), .block = &squeeze_block},
     {.key = NULL},
@@ -268,26 +252,7 @@ static void cleanup(void *opts)
     struct lift_opts *o = opts;
     for (int k = 0; k < 4; k++)
         free(o->gas_table[k].v);
-    for (int k = 0; k < 2; k++)
-        free(o->tilt_table[k].v);
-}
-
-/* The tilt tables: both, of the same length; rd_lift_params borrows them. */
-static int tilt_finish(struct lift_opts *o, rd_error *err)
-{
-    rd_engine_params *e = &o->lift.engine;
-    e->tilt_points = 0;
-    if (!o->tilt_given)
-        return RD_OK;
-    if (!o->tilt_table[0].v || !o->tilt_table[1].v || o->tilt_table[1].n != o->tilt_table[0].n)
-        return rd_error_set(err, RD_EINVAL, "/engine/piston_tilt/tilt_deg",
-                            "/engine/piston_tilt needs crank_deg and tilt_deg of the same length "
-                            "(got %d and %d values).",
-                            o->tilt_table[0].n, o->tilt_table[1].n);
-    e->tilt_points = o->tilt_table[0].n;
-    e->tilt_crank_deg = o->tilt_table[0].v;
-    e->tilt_deg = o->tilt_table[1].v;
-    return RD_OK;
+    rd_engine_scene_cleanup(&o->eng);
 }
 
 /* The gas tables: all four, of the same length; rd_lift_params borrows them. */
@@ -316,7 +281,8 @@ static int gas_finish(struct lift_opts *o, rd_error *err)
     return RD_OK;
 }
 
-/* The optional physics the scene named, the gas tables, then core's checks. */
+/* The optional physics the scene named, the gas tables, the engine's tilt,
+ * the bore and the friction model, then core's checks. */
 static int finish(struct rd_scene *s, rd_error *err)
 {
     struct lift_opts *o = s->opts;
@@ -325,7 +291,6 @@ static int finish(struct rd_scene *s, rd_error *err)
         return rd_error_set(err, RD_EINVAL, "/discretization/closed",
                             "/discretization/closed = true joins the gap, but the lift analysis "
                             "models the split ring in its groove: use closed = false.");
-    l->friction.model = o->friction_given ? o->friction_model + 1 : RD_FRICTION_NONE;
     l->squeeze.on = o->squeeze_given;
     l->max_steps = o->max_steps;
     l->gas.points = 0;
@@ -334,17 +299,8 @@ static int finish(struct rd_scene *s, rd_error *err)
         if (rc != RD_OK)
             return rc;
     }
-    int rc = tilt_finish(o, err);
-    if (rc != RD_OK)
-        return rc;
-    l->bore.diameter = o->bore.bore_diameter;
-    l->bore.n_distortion = o->bore.n_distortion;
-    for (int k = 0; k < o->bore.n_distortion && k < RD_LIFT_DISTORTION_MAX; k++) {
-        l->bore.distortion[k].order = o->bore.distortion[k].order;
-        l->bore.distortion[k].amplitude = o->bore.distortion[k].amplitude;
-        l->bore.distortion[k].phase_deg = o->bore.distortion[k].phase_deg;
-    }
-    return rd_lift_validate(l, &s->ring, s->segments, err);
+    int rc = rd_engine_scene_finish(&o->eng, &l->engine, &l->bore, &l->friction, err);
+    return rc != RD_OK ? rc : rd_lift_validate(l, &s->ring, s->segments, err);
 }
 
 /* ---- result --------------------------------------------------------------- */

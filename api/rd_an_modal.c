@@ -15,6 +15,7 @@
 #include <stdio.h>
 #include <string.h>
 
+#include "rd_json.h"
 #include "rd_modal.h"
 #include "rd_registry.h"
 #include "rd_ring.h"
@@ -171,6 +172,11 @@ out:
     return rc;
 }
 
+static double predict(const rd_scene *s)
+{
+    return rd_modal_cost_predict(&s->modal, s->segments, s->closed);
+}
+
 /* mode,kind,frequency_hz,error_estimate,frequency_extrapolated_hz,
  * in_plane_energy_fraction: one row per mode. */
 static const rd_csv_column csv_columns[] = {
@@ -191,6 +197,7 @@ const rd_analysis_def rd_an_modal = {
     .defaults = defaults,
     .finish = finish,
     .run = run,
+    .predict = predict,
     .csv = &csv,
     .page = "modal.js",
 };

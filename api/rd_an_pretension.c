@@ -8,6 +8,7 @@
 #include <stddef.h>
 #include <stdlib.h>
 
+#include "rd_json.h"
 #include "rd_registry.h"
 #include "rd_scene.h"
 #include "rd_static.h"

@@ -6,7 +6,8 @@
  * (the lift analysis' gas tables are gauge).
  *
  * Options (struct pack_opts): core's rd_ringpack_params plus what only the
- * scene knows.  `rings` is an array of items whose blocks nest the shared
+ * scene knows, and what it shares with lift (struct rd_engine_scene: the
+ * tilt tables, the bore, the friction model; rd_registry.h).  `rings` is an array of items whose blocks nest the shared
  * ring block; each item is parsed (and echoed) through a temporary scene
  * whose `ring` is the item's ring and whose opts are a pack_opts holding
  * the item in `proto` — so `proto` must stay the first member: the item
@@ -29,20 +30,16 @@
 struct pack_opts {
     rd_ringpack_ring proto; /* first: one ring item while parsing or echoing it */
     rd_ringpack_params pack;
+    struct rd_engine_scene eng;          /* the tilt tables, /bore, the friction model */
     int synthetic_given, synthetic_kind; /* kind: index into synthetic_names */
-    int friction_given, friction_model;  /* model: index into friction_names */
     int max_steps;
     struct rd_table table[2]; /* crank_deg, pressure_pa */
-    int tilt_given;
-    struct rd_table tilt_table[2]; /* crank_deg, tilt_deg */
-    rd_contact_opts bore;          /* /bore (its diameter and distortion only) */
 };
 
 #define PO(member) offsetof(struct pack_opts, member)
 
 /* ---- scene ---------------------------------------------------------------- */
 
-static const char *const kinematics_names[] = {"exact", "approximate", NULL};
 static const char *const pin_names[] = {"none", "lower", "upper", NULL}; /* enum rd_ringpack_pin */
 static const char *const synthetic_names[] = {"fired", "motored", NULL};
 /* enum rd_lift_model_kind order, then RD_RINGPACK_AXIAL */
@@ -54,9 +51,6 @@ static const char *const model_names[] = {"full", "rigid", "modal", "auto", "axi
     "rigid with friction or dynamic active areas, else axial (README \"Ring pack\"); axial and "   \
     "rigid are refused where the scene needs a flexible ring. A pinned ring is held on its flank " \
     "(no model)."
-
-/* model - 1; stribeck is named (as in lift) but refused by rd_ringpack_validate */
-static const char *const friction_names[] = {"coulomb", "stribeck", NULL};
 
 /* The ranges the pack's solver was found to converge on (README "Limits"):
  * rtol up to 1e-5 (at 3e-5 the 1 rpm scene fails, at 1e-3..1e-2 pressures go
@@ -71,10 +65,7 @@ static const char *const friction_names[] = {"coulomb", "stribeck", NULL};
 #define FRICTION_RPM_MIN  300.0
 
 static const rd_field tilt_fields[] = {
-    {"crank_deg", RD_F_TABLE, PO(tilt_table[0]), RD_MIN(1), RD_MAX(RD_LIFT_TABLE_MAX),
-     .required = 1, .desc = "Crank angles, deg, strictly increasing within 0..720."},
-    {"tilt_deg", RD_F_TABLE, PO(tilt_table[1]), RD_MIN(1), RD_MAX(RD_LIFT_TABLE_MAX), .required = 1,
-     .desc = "Piston tilt at those angles, deg (added to piston_tilt_deg)."},
+    RD_TILT_FIELDS(PO),
     {.key = NULL},
 };
 static const rd_block tilt_block = {
@@ -85,16 +76,14 @@ static const rd_block tilt_block = {
     1, 0, tilt_fields};
 
 static const rd_field bore_fields[] = {
-    {"diameter", RD_F_NUMBER, PO(bore.bore_diameter), RD_MIN(0.0),
-     .desc = "Bore diameter D, m; 0 = the rings' diameter; otherwise within 2 % of it (the "
-             "lift-model rings run in it; the network's areas and volumes keep the rings' "
-             "diameter)."},
-    {"distortion", RD_F_DISTORTION, PO(bore), .block = &rd_block_lift_distortion,
-     RD_MAX(RD_LIFT_DISTORTION_MAX),
-     .desc = "Fourier terms of the bore's out-of-roundness, at most 16, phases from the bore's "
-             "angle 0 (ring i sees phi_k - gap_angle_deg). Every free ring then needs a flexible "
-             "model (auto: full; axial and rigid are refused) and starts from its static "
-             "equilibrium in this bore, as in lift."},
+    RD_BORE_FIELDS(PO,
+                   "Bore diameter D, m; 0 = the rings' diameter; otherwise within 2 % of it (the "
+                   "lift-model rings run in it; the network's areas and volumes keep the rings' "
+                   "diameter).",
+                   "Fourier terms of the bore's out-of-roundness, at most 16, phases from the "
+                   "bore's angle 0 (ring i sees phi_k - gap_angle_deg). Every free ring then needs "
+                   "a flexible model (auto: full; axial and rigid are refused) and starts from its "
+                   "static equilibrium in this bore, as in lift."),
     {.key = NULL},
 };
 static const rd_block bore_block = {
@@ -104,24 +93,19 @@ static const rd_block bore_block = {
     1, 0, bore_fields};
 
 static const rd_field engine_fields[] = {
-    {"speed_rpm", RD_F_NUMBER, PO(pack.engine.speed_rpm), RD_MIN(1), RD_MAX(30000),
-     .desc = "Crank speed, rpm; at least 300 with physics.friction."},
-    {"crank_radius", RD_F_NUMBER, PO(pack.engine.crank_radius), RD_MIN(0.001), RD_MAX(1.0),
-     .desc = "Crank radius r (half the stroke), m."},
-    {"rod_length", RD_F_NUMBER, PO(pack.engine.rod_length), RD_MAX(10.0),
-     .desc = "Connecting rod length l, m; from r / 0.9 to 10 m."},
-    {"kinematics", RD_F_CHOICE, PO(pack.engine.kinematics), .choices = kinematics_names,
-     .desc = "exact slider-crank, or the approximate series (thesis 1.6-1.8)."},
+    RD_ENGINE_CRANK_FIELDS(PO, pack.engine,
+                           "Crank speed, rpm; at least 300 with physics.friction."),
     {"cycles", RD_F_NUMBER, PO(pack.engine.cycles), RD_MIN(2), RD_MAX(RD_RINGPACK_CYCLES_MAX),
      .desc = "Whole 4-stroke cycles simulated from rest (all volumes at the crankcase "
              "pressure); the last is reported and compared with the one before "
              "(periodicity)."},
-    {"piston_tilt_deg", RD_F_NUMBER, PO(pack.engine.piston_tilt_deg), RD_MIN(-2), RD_MAX(2),
-     .desc = "Constant piston tilt about the pin axis (in the ring plane, 90 deg from the bore's "
-             "angle 0), deg, positive raising the groove at angle 0. Every free ring then needs a "
-             "flexible model (auto: full; axial and rigid are refused) and its gap at "
-             "gap_angle_deg 0 or 180 (the lift models tilt about the axis 90 deg from the gap)."},
-    {"piston_tilt", RD_F_OPTBLOCK, PO(tilt_given), .block = &tilt_block},
+    RD_ENGINE_TILT_FIELDS(
+        PO, pack.engine,
+        "Constant piston tilt about the pin axis (in the ring plane, 90 deg from the bore's angle "
+        "0), deg, positive raising the groove at angle 0. Every free ring then needs a flexible "
+        "model (auto: full; axial and rigid are refused) and its gap at gap_angle_deg 0 or 180 "
+        "(the lift models tilt about the axis 90 deg from the gap).",
+        tilt_block),
     {.key = NULL},
 };
 static const rd_block engine_block = {"PackEngine", "/engine (ringpack): piston kinematics.", 1, 0,
@@ -227,13 +211,14 @@ static const rd_field output_fields[] = {
 };
 static const rd_block output_block = {"PackOutput", "/output (ringpack).", 1, 0, output_fields};
 
+/* stribeck is named (as in lift) but refused by rd_ringpack_validate */
 static const rd_field friction_fields[] = {
-    {"model", RD_F_CHOICE, PO(friction_model), .choices = friction_names,
-     .desc = "coulomb: F = -mu N tanh(u / u_reg) on each ring, N its bore normal force (the "
-             "pretension plus its groove's gas on the back face), u its sliding speed on the "
-             "liner (the lift analysis' law). stribeck: refused, not available in the pack yet."},
-    {"coefficient", RD_F_NUMBER, PO(pack.friction.coefficient), RD_MIN(0), RD_MAX(10),
-     .desc = "Coulomb coefficient mu, -."},
+    RD_FRICTION_FIELDS(PO, pack.friction,
+                       "coulomb: F = -mu N tanh(u / u_reg) on each ring, N its bore normal force "
+                       "(the pretension plus its groove's gas on the back face), u its sliding "
+                       "speed on the liner (the lift analysis' law). stribeck: refused, not "
+                       "available in the pack yet.",
+                       "Coulomb coefficient mu, -."),
     {.key = NULL},
 };
 static const rd_block friction_block = {
@@ -257,7 +242,7 @@ static const rd_block gas_block = {
     1, 0, gas_fields};
 
 static const rd_field physics_fields[] = {
-    {"friction", RD_F_OPTBLOCK, PO(friction_given), .block = &friction_block},
+    {"friction", RD_F_OPTBLOCK, PO(eng.friction_given), .block = &friction_block},
     {"gas", RD_F_BLOCK, 0, .block = &gas_block},
     {.key = NULL},
 };
@@ -289,13 +274,7 @@ static int parse_rings(const rd_field *f, json_t *v, const char *path, rd_scene 
 static json_t *echo_rings(const rd_scene *s);
 
 static const rd_field scene_fields[] = {
-    {"analysis", RD_F_ANALYSIS, 0,
-     .desc = "Which analysis to run; decides which blocks are "
-             "read."},
-    {"name", RD_F_STRING, offsetof(struct rd_scene, name),
-     .desc = "Free text, echoed in the result; absent when not given."},
-    {"description", RD_F_STRING, offsetof(struct rd_scene, description),
-     .desc = "Free text, echoed in the result; absent when not given."},
+    RD_SCENE_HEAD,
     {"engine", RD_F_BLOCK, 0, .block = &engine_block},
     {"rings", RD_F_ITEMS, 0, .block = &item_block, RD_MIN(1), RD_MAX(RD_RINGPACK_RINGS_MAX),
      .parse = parse_rings, .echo = echo_rings,
@@ -403,38 +382,9 @@ static void defaults(struct rd_scene *s)
 static void cleanup(void *opts)
 {
     struct pack_opts *o = opts;
-    for (int k = 0; k < 2; k++) {
+    for (int k = 0; k < 2; k++)
         free(o->table[k].v);
-        free(o->tilt_table[k].v);
-    }
-}
-
-/* The tilt tables (both, of the same length; the params borrow them) and
- * the bore, as in lift (rd_an_lift.c). */
-static int tilt_bore_finish(struct pack_opts *o, rd_error *err)
-{
-    rd_engine_params *e = &o->pack.engine;
-    rd_lift_bore *b = &o->pack.bore;
-    e->tilt_points = 0;
-    if (o->tilt_given &&
-        (!o->tilt_table[0].v || !o->tilt_table[1].v || o->tilt_table[1].n != o->tilt_table[0].n))
-        return rd_error_set(err, RD_EINVAL, "/engine/piston_tilt/tilt_deg",
-                            "/engine/piston_tilt needs crank_deg and tilt_deg of the same length "
-                            "(got %d and %d values).",
-                            o->tilt_table[0].n, o->tilt_table[1].n);
-    if (o->tilt_given) {
-        e->tilt_points = o->tilt_table[0].n;
-        e->tilt_crank_deg = o->tilt_table[0].v;
-        e->tilt_deg = o->tilt_table[1].v;
-    }
-    b->diameter = o->bore.bore_diameter;
-    b->n_distortion = o->bore.n_distortion;
-    for (int k = 0; k < o->bore.n_distortion && k < RD_LIFT_DISTORTION_MAX; k++) {
-        b->distortion[k].order = o->bore.distortion[k].order;
-        b->distortion[k].amplitude = o->bore.distortion[k].amplitude;
-        b->distortion[k].phase_deg = o->bore.distortion[k].phase_deg;
-    }
-    return RD_OK;
+    rd_engine_scene_cleanup(&o->eng);
 }
 
 /* A table or the synthetic trace, never both; the table's two columns alike. */
@@ -479,7 +429,7 @@ static int solver_ranges(const struct pack_opts *o, rd_error *err)
                             "rings' flank stops and the gas network go unstable: negative "
                             "pressures, CVODE failures).",
                             o->pack.rtol, RTOL_MAX);
-    if (!o->friction_given)
+    if (!o->eng.friction_given)
         return RD_OK;
     if (o->pack.engine.speed_rpm < FRICTION_RPM_MIN || o->pack.rtol > FRICTION_RTOL_MAX)
         return rd_error_set(err, RD_EINVAL, "/physics/friction",
@@ -495,10 +445,10 @@ static int solver_ranges(const struct pack_opts *o, rd_error *err)
 static int finish(struct rd_scene *s, rd_error *err)
 {
     struct pack_opts *o = s->opts;
-    o->pack.max_steps = o->max_steps;
-    o->pack.friction.model = o->friction_given ? o->friction_model + 1 : RD_FRICTION_NONE;
+    rd_ringpack_params *p = &o->pack;
+    p->max_steps = o->max_steps;
     int rc = cylinder_finish(o, err);
-    rc = rc ? rc : tilt_bore_finish(o, err);
+    rc = rc ? rc : rd_engine_scene_finish(&o->eng, &p->engine, &p->bore, &p->friction, err);
     rc = rc ? rc : rd_ringpack_validate(&o->pack, err);
     return rc ? rc : solver_ranges(o, err);
 }

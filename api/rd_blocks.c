@@ -3,12 +3,19 @@
  * (rd_registry.h): the ring with its material, the three discretization
  * blocks (the analyses differ in the segment range and whether the ring
  * may be closed) and the Newton numerics of pretension and contact, with
- * the result pieces those two share.
+ * the result pieces those two share; what lift and the ring pack share of
+ * the engine, the bore and friction (their rows are rd_registry.h's
+ * macros: the two describe some fields in their own words); and the wall
+ * clock every runner times its solve with.
  */
 #include <jansson.h>
+#include <math.h>
 #include <stddef.h>
 #include <stdio.h>
+#include <stdlib.h>
+#include <time.h>
 
+#include "rd_json.h"
 #include "rd_registry.h"
 #include "rd_scene.h"
 
@@ -158,6 +165,53 @@ void rd_static_scene_defaults(struct rd_scene *s)
     o->statics.estimate_error = 1; /* API default, whatever core's is */
     rd_pretension_opts_default(&o->pretension);
     rd_contact_opts_default(&o->contact);
+}
+
+/* ---- engine, bore and friction: what lift and the ring pack share ---- */
+
+const char *const rd_kinematics_names[] = {"exact", "approximate", NULL};
+const char *const rd_friction_names[] = {"coulomb", "stribeck", NULL};
+
+int rd_engine_scene_finish(const struct rd_engine_scene *es, rd_engine_params *e, rd_lift_bore *b,
+                           rd_friction_params *f, rd_error *err)
+{
+    f->model = es->friction_given ? es->friction_model + 1 : RD_FRICTION_NONE;
+    e->tilt_points = 0;
+    if (es->tilt_given && (!es->tilt_table[0].v || !es->tilt_table[1].v ||
+                           es->tilt_table[1].n != es->tilt_table[0].n))
+        return rd_error_set(err, RD_EINVAL, "/engine/piston_tilt/tilt_deg",
+                            "/engine/piston_tilt needs crank_deg and tilt_deg of the same length "
+                            "(got %d and %d values).",
+                            es->tilt_table[0].n, es->tilt_table[1].n);
+    if (es->tilt_given) {
+        e->tilt_points = es->tilt_table[0].n;
+        e->tilt_crank_deg = es->tilt_table[0].v;
+        e->tilt_deg = es->tilt_table[1].v;
+    }
+    b->diameter = es->bore.bore_diameter;
+    b->n_distortion = es->bore.n_distortion;
+    for (int k = 0; k < es->bore.n_distortion && k < RD_LIFT_DISTORTION_MAX; k++) {
+        b->distortion[k].order = es->bore.distortion[k].order;
+        b->distortion[k].amplitude = es->bore.distortion[k].amplitude;
+        b->distortion[k].phase_deg = es->bore.distortion[k].phase_deg;
+    }
+    return RD_OK;
+}
+
+void rd_engine_scene_cleanup(struct rd_engine_scene *es)
+{
+    for (int k = 0; k < 2; k++)
+        free(es->tilt_table[k].v);
+}
+
+/* ---- what the runners share ---- */
+
+double rd_clock_s(void)
+{
+    struct timespec t;
+    if (clock_gettime(CLOCK_MONOTONIC, &t) != 0)
+        return NAN; /* reported as null: no time rather than a wrong one */
+    return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
 }
 
 /* ---- the result pieces pretension and contact share ---- */

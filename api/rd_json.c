@@ -7,10 +7,13 @@
  * escapes them: '"', '\\' and the control characters below 0x20 (\b \f \n
  * \r \t by name, the others as \u00XX with upper-case hex); everything else,
  * UTF-8 included, is copied (jansson validated it when the string was made).
+ *
+ * Also the reals every writer above makes: a non-finite one as null.
  */
 #include "rd_json.h"
 
 #include <inttypes.h>
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -211,4 +214,21 @@ json_t *rd_json_copy(json_t *v)
         c = NULL;
     }
     return c;
+}
+
+json_t *rd_result_real(double x)
+{
+    return isfinite(x) ? json_real(x) : json_null();
+}
+
+json_t *rd_result_reals(const double *x, int n, int stride, double scale)
+{
+    json_t *a = json_array();
+    for (int i = 0; a && i < n; i++) {
+        if (json_array_append_new(a, rd_result_real(scale * x[(size_t)i * (size_t)stride])) != 0) {
+            json_decref(a);
+            a = NULL;
+        }
+    }
+    return a;
 }

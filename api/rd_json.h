@@ -1,4 +1,5 @@
-/* rd_json — compact JSON text of a jansson value, reals by rd_dtoa (rd_json.c).
+/* rd_json — compact JSON text of a jansson value, reals by rd_dtoa, and the
+ * reals of results and echoes as jansson values (rd_json.c).
  *
  * rd_json_dumps(v, digits, sort) writes byte for byte what
  *     json_dumps(v, JSON_COMPACT | JSON_REAL_PRECISION(digits) [| JSON_SORT_KEYS])
@@ -27,5 +28,12 @@ char *rd_json_dumps(const json_t *v, int digits, int sort);
  * or items it had no memory for (found by tests/fuzz's allocation
  * failures). */
 json_t *rd_json_copy(json_t *v);
+
+/* A real, or null when it is not finite (NaN: nothing estimated); jansson
+ * refuses non-finite reals.  NULL only when out of memory. */
+json_t *rd_result_real(double x);
+
+/* [scale * x[0], scale * x[stride], ...], n values; NULL on out of memory. */
+json_t *rd_result_reals(const double *x, int n, int stride, double scale);
 
 #endif

@@ -10,6 +10,7 @@
  *            validators once parsed, and free what they hold;
  *   run      the runner: calls the core solver and builds the result
  *            object (API.md "Results") once, as data;
+ *   predict  its cost model, when core has one (the server's inline runs);
  *   csv      its main table (columns of that result object), or NULL with
  *            `csv_none` saying why there is none;
  *   page     its tab on the web page (a module in static/), or "none".
@@ -25,7 +26,9 @@
 #include <stddef.h>
 
 #include "rd_error.h"
+#include "rd_lift.h"
 #include "rd_result.h"
+#include "rd_scene.h"
 #include "rd_schema.h"
 
 struct json_t;
@@ -46,6 +49,9 @@ typedef struct rd_analysis_def {
      * out of memory, which the caller reports. */
     int (*run)(const struct rd_scene *s, const rd_monitor *mon, struct json_t **result,
                rd_error *err);
+    /* Predicted CPU seconds of `run` (core's cost model); NULL when the
+     * analysis has none. */
+    double (*predict)(const struct rd_scene *s);
     const rd_csv_table *csv; /* the main table, or NULL */
     const char *csv_none;    /* why there is no table (csv NULL) */
     const char *page;        /* "modal.js": its tab in static/, or "none" */
@@ -65,8 +71,8 @@ const rd_analysis_def *rd_registry_find(const rd_analysis_def *const *registry, 
 int rd_registry_ignored(const rd_analysis_def *const *registry, const rd_analysis_def *an,
                         const char **keys, int max);
 
-/* The OpenAPI document `template_json` with its scene schemas filled in
- * from `registry`: components.schemas gets "Scene" (oneOf the analyses,
+/* (rd_openapi.c) The OpenAPI document `template_json` with its scene
+ * schemas filled in from `registry`: components.schemas gets "Scene" (oneOf the analyses,
  * discriminated by "analysis"), one "<Name>Scene" per analysis and every
  * named block they reference.  New reference; NULL + err when the
  * template is not a JSON object with components.schemas, or on out of
@@ -75,6 +81,8 @@ struct json_t *rd_registry_openapi(const rd_analysis_def *const *registry,
                                    const char *template_json, rd_error *err);
 
 /* ---- shared blocks (rd_blocks.c), referenced by the analyses ---- */
+/* Monotonic wall clock, s: what a runner reports as numerics.wall_s. */
+double rd_clock_s(void);
 extern const rd_block rd_block_ring;                  /* /ring, with /ring/material */
 extern const rd_block rd_block_discretization_modal;  /* 3..2000 segments, closed allowed */
 extern const rd_block rd_block_discretization_static; /* 4..2000, split ring */
@@ -101,25 +109,111 @@ struct json_t *rd_static_result_numerics(const rd_static_stats *st, double wall_
                                          const char *what);
 struct json_t *rd_static_result_support(const rd_static_stats *st);
 
-/* The fields every analysis reads first: analysis, name, description, ring
- * and its discretization block.  _WITH adds to the shared ring what this
- * analysis requires of it (a description and a JSON schema, allOf). */
-#define RD_SCENE_COMMON_WITH(ring_desc, ring_extra, discretization)          \
-    {"analysis", RD_F_ANALYSIS, 0,                                           \
-     .desc = "Which analysis to run; decides which blocks are "              \
-             "read."},                                                       \
-        {"name", RD_F_STRING, offsetof(struct rd_scene, name),               \
-         .desc = "Free text, echoed in the result; absent when not given."}, \
-        {"description", RD_F_STRING, offsetof(struct rd_scene, description), \
-         .desc = "Free text, echoed in the result; absent when not given."}, \
-        {"ring",                                                             \
-         RD_F_BLOCK,                                                         \
-         0,                                                                  \
-         .block = &rd_block_ring,                                            \
-         .desc = (ring_desc),                                                \
-         .extra = (ring_extra)},                                             \
-    {                                                                        \
-        "discretization", RD_F_BLOCK, 0, .block = &(discretization)          \
+/* ---- engine, bore and friction: what lift and the ring pack share ----
+ * Both read /engine (with /engine/piston_tilt), /bore and /physics/friction
+ * alike: each field's key, type, storage, range and choices are written
+ * once below, and so is its description where the two say the same.  Each
+ * analysis writes the rest in its own words (block names and descriptions,
+ * the descriptions that differ, the cycles row, friction's further rows).
+ * Their opts hold a struct rd_engine_scene named `eng`; in the row macros
+ * AT(member) is the analysis' offsetof into its opts, E the path of its
+ * rd_engine_params there and F that of its rd_friction_params. */
+
+/* What the scene gives beside core's params (rd_blocks.c turns it into
+ * theirs). */
+struct rd_engine_scene {
+    int tilt_given;                /* /engine/piston_tilt present */
+    struct rd_table tilt_table[2]; /* crank_deg, tilt_deg */
+    rd_contact_opts bore;          /* /bore (its diameter and distortion only) */
+    int friction_given;            /* /physics/friction present */
+    int friction_model;            /* index into rd_friction_names */
+};
+extern const char *const rd_kinematics_names[]; /* enum rd_kinematics */
+extern const char *const rd_friction_names[];   /* enum rd_friction_model - 1 */
+
+/* Core's friction model, tilt table (borrowed: both tables, of the same
+ * length, else RD_EINVAL at /engine/piston_tilt/tilt_deg) and bore from
+ * what the scene gave. */
+int rd_engine_scene_finish(const struct rd_engine_scene *es, rd_engine_params *engine,
+                           rd_lift_bore *bore, rd_friction_params *friction, rd_error *err);
+/* Frees the tilt tables. */
+void rd_engine_scene_cleanup(struct rd_engine_scene *es);
+
+/* /engine: speed (its description given), crank radius, rod length,
+ * kinematics; then, after the analysis' cycles row, the constant tilt (its
+ * description given) and the /engine/piston_tilt block. */
+#define RD_ENGINE_CRANK_FIELDS(AT, E, speed_desc)                                                \
+    {"speed_rpm", RD_F_NUMBER, AT(E.speed_rpm), RD_MIN(1), RD_MAX(30000), .desc = (speed_desc)}, \
+        {"crank_radius", RD_F_NUMBER, AT(E.crank_radius),                                        \
+         RD_MIN(0.001),  RD_MAX(1.0), .desc = "Crank radius r (half the stroke), m."},           \
+        {"rod_length", RD_F_NUMBER, AT(E.rod_length), RD_MAX(10.0),                              \
+         .desc = "Connecting rod length l, m; from r / 0.9 to 10 m."},                           \
+    {                                                                                            \
+        "kinematics", RD_F_CHOICE, AT(E.kinematics),                                             \
+            .choices = rd_kinematics_names,                                                      \
+            .desc = "exact slider-crank, or the approximate series (thesis 1.6-1.8)."            \
+    }
+#define RD_ENGINE_TILT_FIELDS(AT, E, tilt_desc, tilt_block)                      \
+    {"piston_tilt_deg", RD_F_NUMBER, AT(E.piston_tilt_deg),                      \
+     RD_MIN(-2),        RD_MAX(2),   .desc = (tilt_desc)},                       \
+    {                                                                            \
+        "piston_tilt", RD_F_OPTBLOCK, AT(eng.tilt_given), .block = &(tilt_block) \
+    }
+/* /engine/piston_tilt: the two tables. */
+#define RD_TILT_FIELDS(AT)                                                                        \
+    {"crank_deg",                                                                                 \
+     RD_F_TABLE,                                                                                  \
+     AT(eng.tilt_table[0]),                                                                       \
+     RD_MIN(1),                                                                                   \
+     RD_MAX(RD_LIFT_TABLE_MAX),                                                                   \
+     .required = 1,                                                                               \
+     .desc = "Crank angles, deg, strictly increasing within 0..720."},                            \
+    {                                                                                             \
+        "tilt_deg", RD_F_TABLE, AT(eng.tilt_table[1]), RD_MIN(1), RD_MAX(RD_LIFT_TABLE_MAX),      \
+            .required = 1, .desc = "Piston tilt at those angles, deg (added to piston_tilt_deg)." \
+    }
+/* /bore: diameter and distortion, their descriptions given. */
+#define RD_BORE_FIELDS(AT, diameter_desc, distortion_desc)                                       \
+    {"diameter", RD_F_NUMBER, AT(eng.bore.bore_diameter), RD_MIN(0.0), .desc = (diameter_desc)}, \
+    {                                                                                            \
+        "distortion", RD_F_DISTORTION, AT(eng.bore), .block = &rd_block_lift_distortion,         \
+                                                     RD_MAX(RD_LIFT_DISTORTION_MAX),             \
+                                                     .desc = (distortion_desc)                   \
+    }
+/* /physics/friction: model and Coulomb coefficient, descriptions given. */
+#define RD_FRICTION_FIELDS(AT, F, model_desc, coefficient_desc)                  \
+    {"model", RD_F_CHOICE, AT(eng.friction_model), .choices = rd_friction_names, \
+     .desc = (model_desc)},                                                      \
+    {                                                                            \
+        "coefficient", RD_F_NUMBER, AT(F.coefficient), RD_MIN(0), RD_MAX(10),    \
+            .desc = (coefficient_desc)                                           \
+    }
+
+/* The fields every scene opens with: analysis (echoed, and its OpenAPI
+ * enum written, by rd_scene_echo_analysis), name and description. */
+#define RD_SCENE_HEAD                                                         \
+    {"analysis", RD_F_ANALYSIS, 0, .echo = rd_scene_echo_analysis,            \
+     .desc = "Which analysis to run; decides which blocks are "               \
+             "read."},                                                        \
+        {"name", RD_F_STRING, offsetof(struct rd_scene, name),                \
+         .desc = "Free text, echoed in the result; absent when not given."},  \
+    {                                                                         \
+        "description", RD_F_STRING, offsetof(struct rd_scene, description),   \
+            .desc = "Free text, echoed in the result; absent when not given." \
+    }
+
+/* The fields every analysis with a top-level ring reads first: the head,
+ * ring and its discretization block.  _WITH adds to the shared ring what
+ * this analysis requires of it (a description and a JSON schema, allOf). */
+#define RD_SCENE_COMMON_WITH(ring_desc, ring_extra, discretization) \
+    RD_SCENE_HEAD, {"ring",                                         \
+                    RD_F_BLOCK,                                     \
+                    0,                                              \
+                    .block = &rd_block_ring,                        \
+                    .desc = (ring_desc),                            \
+                    .extra = (ring_extra)},                         \
+    {                                                               \
+        "discretization", RD_F_BLOCK, 0, .block = &(discretization) \
     }
 #define RD_SCENE_COMMON(discretization) RD_SCENE_COMMON_WITH(NULL, NULL, discretization)
 

@@ -1,10 +1,10 @@
 /*
- * rd_result — reals as JSON, CSV tables of a result, and the CSV of a
- * stored result text without decoding all of it (rd_result.h, rd_api.h).
+ * rd_result — CSV tables of a result, and the CSV of a stored result text
+ * without decoding all of it (rd_result.h, rd_api.h).
  *
- * A result is built once, as a jansson object, by the analysis' runner;
- * its JSON text and its CSV table are both written from that object
- * (rd_result_doc).  A server that kept only the text (rd_api_result_csv)
+ * A result is built once, as a jansson object, by the analysis' runner
+ * (rd_scene_run_doc, rd_scene.c); its JSON text and its CSV table are both
+ * written from that object (rd_result_doc).  A server that kept only the text (rd_api_result_csv)
  * gets the CSV by decoding just the members the table reads: the lift
  * result's bulk, lift_segments (samples x n numbers), is skipped over,
  * never turned into jansson values.
@@ -12,43 +12,14 @@
 #include "rd_result.h"
 
 #include <jansson.h>
-#include <math.h>
 #include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <time.h>
 
 #include "rd_api.h"
 #include "rd_json.h"
 #include "rd_registry.h"
-#include "rd_scene.h"
-#include "rd_warnings.h"
-
-double rd_clock_s(void)
-{
-    struct timespec t;
-    if (clock_gettime(CLOCK_MONOTONIC, &t) != 0)
-        return NAN; /* reported as null: no time rather than a wrong one */
-    return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
-}
-
-json_t *rd_result_real(double x)
-{
-    return isfinite(x) ? json_real(x) : json_null();
-}
-
-json_t *rd_result_reals(const double *x, int n, int stride, double scale)
-{
-    json_t *a = json_array();
-    for (int i = 0; a && i < n; i++) {
-        if (json_array_append_new(a, rd_result_real(scale * x[(size_t)i * (size_t)stride])) != 0) {
-            json_decref(a);
-            a = NULL;
-        }
-    }
-    return a;
-}
 
 /* ---- CSV ----------------------------------------------------------------- */
 
@@ -225,25 +196,14 @@ struct rd_result_doc {
     json_t *result;
 };
 
-int rd_scene_run_doc(const rd_scene *scene, const rd_monitor *mon, rd_result_doc **out,
-                     rd_error *err)
+rd_result_doc *rd_result_doc_new(const rd_analysis_def *an, json_t *result)
 {
-    json_t *result = NULL;
-    *out = NULL;
-    int rc = scene->an->run(scene, mon, &result, err);
-    if (rc != RD_OK && !result)
-        return rc;
-    /* warnings never refuse: they only annotate a finished result */
-    *out = result && rd_warnings_add(result) == 0 ? malloc(sizeof **out) : NULL;
-    if (!*out) {
-        json_decref(result);
-        return rc != RD_OK
-                   ? rc
-                   : rd_error_set(err, RD_ENOMEM, "", "out of memory while writing the result");
+    rd_result_doc *doc = malloc(sizeof *doc);
+    if (doc) {
+        doc->an = an;
+        doc->result = result;
     }
-    (*out)->an = scene->an;
-    (*out)->result = result;
-    return rc; /* not RD_OK: a stopped run's partial result */
+    return doc;
 }
 
 char *rd_result_doc_json(const rd_result_doc *doc)
@@ -266,20 +226,6 @@ void rd_result_doc_free(rd_result_doc *doc)
         return;
     json_decref(doc->result);
     free(doc);
-}
-
-int rd_scene_run(const rd_scene *scene, const rd_monitor *mon, char **result_json, rd_error *err)
-{
-    rd_result_doc *doc = NULL;
-    *result_json = NULL;
-    int rc = rd_scene_run_doc(scene, mon, &doc, err);
-    if (!doc)
-        return rc;
-    *result_json = rd_result_doc_json(doc);
-    rd_result_doc_free(doc);
-    if (!*result_json && rc == RD_OK)
-        rc = rd_error_set(err, RD_ENOMEM, "", "out of memory while writing the result");
-    return rc;
 }
 
 /* ---- CSV of a result text ------------------------------------------------- */

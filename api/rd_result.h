@@ -1,5 +1,5 @@
 /*
- * rd_result — what every result writer shares: reals as JSON, the CSV
+ * rd_result — what every result writer shares: the CSV
  * table of a result (declared by each analysis as columns of its result
  * object), and the result document (rd_api.h) that writes both the JSON
  * and the CSV from the one object built by the runner.
@@ -15,21 +15,13 @@
 #include "rd_error.h"
 
 struct json_t;
+struct rd_analysis_def;
+struct rd_result_doc;
 
 /* Significant digits of the reals in a result: well below the model's
  * discretization error (~1e-3) and the solver tolerance, and it keeps the
  * mode shapes of a large ring (60 modes x 4 x 2000 numbers) compact. */
 #define RD_RESULT_REAL_DIGITS 10
-
-/* Monotonic wall clock, s: what a runner reports as numerics.wall_s. */
-double rd_clock_s(void);
-
-/* A real, or null when it is not finite (NaN: nothing estimated); jansson
- * refuses non-finite reals.  NULL only when out of memory. */
-struct json_t *rd_result_real(double x);
-
-/* [scale * x[0], scale * x[stride], ...], n values; NULL on out of memory. */
-struct json_t *rd_result_reals(const double *x, int n, int stride, double scale);
 
 /* One CSV column: its header (name with unit), the result key it reads and
  * whether its cells are text (else numbers or null, written %.10g, empty
@@ -53,5 +45,9 @@ typedef struct rd_csv_table {
  * RD_EINTERNAL ("malformed <analysis> result: ..."). */
 char *rd_result_csv(struct json_t *result, const rd_csv_table *table, const char *analysis,
                     rd_error *err);
+
+/* A result document (rd_api.h) of analysis `an` holding `result`, which it
+ * takes over; NULL when out of memory (then `result` stays the caller's). */
+struct rd_result_doc *rd_result_doc_new(const struct rd_analysis_def *an, struct json_t *result);
 
 #endif

@@ -1,11 +1,13 @@
 /*
  * rd_scene — scene parsing: JSON body -> type-checked, defaults-filled
- * struct rd_scene, and the echo back to JSON (rd_scene.h).
+ * struct rd_scene, and running it (rd_scene.h).
  *
  * Which fields exist, their types and their echo are the analyses' tables
  * (rd_registry.h, rd_schema.h); this file picks the analysis, fills the
- * defaults, runs the tables and the analysis' checks, and owns the scene's
- * memory.
+ * defaults, runs the tables and the analysis' checks, owns the scene's
+ * memory, and runs a parsed scene (its analysis' runner, then the result's
+ * warnings, into a result document).  The echo back to JSON, which the
+ * runners call, is rd_scene_echo.c's.
  */
 #include "rd_scene.h"
 
@@ -14,10 +16,10 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "rd_dtoa.h"
-#include "rd_json.h"
 #include "rd_registry.h"
+#include "rd_result.h"
 #include "rd_schema.h"
+#include "rd_warnings.h"
 
 #define MAX_KEYS 64 /* top-level keys of all analyses together */
 
@@ -27,11 +29,6 @@ const char *rd_scene_analysis_name(int analysis)
         if (i == analysis)
             return rd_registry[i]->name;
     return "unknown";
-}
-
-const char *rd_scene_analysis(const rd_scene *scene)
-{
-    return scene->an ? scene->an->name : "unknown";
 }
 
 static void list_analyses(char *buf, size_t size, const rd_analysis_def *const *registry)
@@ -232,59 +229,35 @@ void rd_scene_free(rd_scene *scene)
     free(scene);
 }
 
-json_t *rd_scene_echo(const rd_scene *s)
+int rd_scene_run_doc(const rd_scene *scene, const rd_monitor *mon, rd_result_doc **out,
+                     rd_error *err)
 {
-    json_t *o = json_object();
-    if (o && rd_schema_echo(s->an->scene, s, o) != 0) {
-        json_decref(o);
-        o = NULL;
+    json_t *result = NULL;
+    *out = NULL;
+    int rc = scene->an->run(scene, mon, &result, err);
+    if (rc != RD_OK && !result)
+        return rc;
+    /* warnings never refuse: they only annotate a finished result */
+    *out = result && rd_warnings_add(result) == 0 ? rd_result_doc_new(scene->an, result) : NULL;
+    if (!*out) {
+        json_decref(result);
+        return rc != RD_OK
+                   ? rc
+                   : rd_error_set(err, RD_ENOMEM, "", "out of memory while writing the result");
     }
-    return o;
+    return rc; /* not RD_OK: a stopped run's partial result */
 }
 
-/* 1 when every real in `v` reads back unchanged from RD_SCENE_REAL_DIGITS
- * significant digits (as jansson writes it: %.*g). */
-static int reals_round_trip(json_t *v)
+int rd_scene_run(const rd_scene *scene, const rd_monitor *mon, char **result_json, rd_error *err)
 {
-    if (json_is_real(v)) {
-        char text[RD_DTOA_SIZE];
-        rd_dtoa_digits(json_real_value(v), RD_SCENE_REAL_DIGITS, text); /* printf's %.15g */
-        return strtod(text, NULL) == json_real_value(v);
-    }
-    const char *key;
-    json_t *child;
-    size_t i;
-    if (json_is_object(v)) {
-        json_object_foreach(v, key, child)
-        {
-            if (!reals_round_trip(child))
-                return 0;
-        }
-    }
-    if (json_is_array(v)) {
-        json_array_foreach(v, i, child)
-        {
-            if (!reals_round_trip(child))
-                return 0;
-        }
-    }
-    return 1;
-}
-
-int rd_scene_real_digits(json_t *v)
-{
-    return reals_round_trip(v) ? RD_SCENE_REAL_DIGITS : 17;
-}
-
-/* The echo is a scene that parses back into the same scene: a value that
- * 15 digits would round (0.49999999999999994 to 0.5, out of its range),
- * found by tests/fuzz, makes the whole echo use 17, which always
- * round-trips. */
-char *rd_scene_to_json(const rd_scene *scene)
-{
-    json_t *echo = rd_scene_echo(scene);
-    int digits = rd_scene_real_digits(echo);
-    char *text = echo ? rd_json_dumps(echo, digits, 0) : NULL;
-    json_decref(echo);
-    return text;
+    rd_result_doc *doc = NULL;
+    *result_json = NULL;
+    int rc = rd_scene_run_doc(scene, mon, &doc, err);
+    if (!doc)
+        return rc;
+    *result_json = rd_result_doc_json(doc);
+    rd_result_doc_free(doc);
+    if (!*result_json && rc == RD_OK)
+        rc = rd_error_set(err, RD_ENOMEM, "", "out of memory while writing the result");
+    return rc;
 }

@@ -2,10 +2,11 @@
  * rd_scene — the scene model of the api layer: what a parsed, type-checked,
  * defaults-filled scene holds, and its echo as JSON.
  *
- * Implements the rd_scene_parse / rd_scene_free / rd_scene_analysis /
- * rd_scene_to_json entry points declared in rd_api.h; this header adds what
- * the other api modules need to see.  Not for the server: it should only
- * include rd_api.h.
+ * Implements the rd_scene_parse / rd_scene_free / rd_scene_run entry
+ * points declared in rd_api.h (rd_scene.c), and rd_scene_analysis /
+ * rd_scene_to_json with the echo (rd_scene_echo.c, below the registry: the
+ * runners call it); this header adds what the other api modules need to
+ * see.  Not for the server: it should only include rd_api.h.
  *
  * Parsing order (the first error wins and is `error`; rd_scene_parse_issues
  * also lists every problem the tables find, the "errors" of the answer):
@@ -72,6 +73,10 @@ struct rd_scene {
 /* Name of an analysis of the built-in registry ("modal", ...); "unknown"
  * outside it. */
 const char *rd_scene_analysis_name(int analysis);
+
+/* The scene's analysis name as a JSON string (new reference, NULL on out
+ * of memory): the echo of the "analysis" field (RD_SCENE_HEAD). */
+struct json_t *rd_scene_echo_analysis(const rd_scene *scene);
 
 /* The echoed scene as a new jansson object (caller owns the reference):
  * analysis, name/description when given, and the blocks the analysis reads

@@ -6,12 +6,11 @@
 #include "rd_scene_facts.h"
 
 #include <math.h>
-#include <string.h>
 
 #include <jansson.h>
 
 #include "rd_json.h"
-#include "rd_modal.h"
+#include "rd_registry.h"
 #include "rd_scene.h"
 
 const char *rd_scene_name(const rd_scene *scene)
@@ -31,7 +30,5 @@ char *rd_scene_canonical_json(const rd_scene *scene)
 
 double rd_scene_cost_predict(const rd_scene *scene)
 {
-    if (strcmp(rd_scene_analysis(scene), "modal") != 0)
-        return NAN;
-    return rd_modal_cost_predict(&scene->modal, scene->segments, scene->closed);
+    return scene->an && scene->an->predict ? scene->an->predict(scene) : NAN;
 }

@@ -23,8 +23,9 @@ const char *rd_scene_name(const rd_scene *scene);
 /* The canonical text above; malloc'd, NULL when out of memory. */
 char *rd_scene_canonical_json(const rd_scene *scene);
 
-/* Predicted CPU seconds of rd_scene_run (core's cost model of the analysis),
- * or NAN when the analysis has none (every analysis but modal today). */
+/* Predicted CPU seconds of rd_scene_run (its analysis' predict hook, core's
+ * cost model), or NAN when the analysis has none (every analysis but modal
+ * today). */
 double rd_scene_cost_predict(const rd_scene *scene);
 
 #endif

@@ -10,7 +10,8 @@
  *   - writes the echo of a parsed scene (every default filled in),
  *   - writes the OpenAPI schema of the block (types, defaults read from a
  *     defaults-filled scene, ranges, enums, descriptions),
- * so none of the three can drift from the others.
+ * so none of the three can drift from the others (rd_schema.c parses,
+ * rd_schema_write.c writes the echo and the OpenAPI schema).
  *
  * Ranges: core's validators (the core *_validate functions) stay the authority for value
  * checks and their messages.  A field's min/max here is the static part of
@@ -31,7 +32,8 @@ struct json_t;
 struct rd_scene;
 
 enum rd_field_type {
-    RD_F_ANALYSIS,   /* "analysis": checked first, on its own */
+    RD_F_ANALYSIS,   /* "analysis": checked first, on its own; echoed (and its
+                        OpenAPI enum written) by the field's `echo` hook */
     RD_F_NUMBER,     /* double, any JSON number */
     RD_F_INTEGER,    /* int: a JSON integer, or a real with an integral value */
     RD_F_BOOL,       /* int 0/1 from JSON true/false only */
@@ -68,8 +70,8 @@ typedef struct rd_field {
     const char *extra;              /* RD_F_BLOCK: JSON schema combined with the block's
                                       (allOf), for what this analysis adds to a shared one */
     /* The echoed value when it is not the stored one (a 0 meaning "the
-     * default computed from the ring", echoed as the value used); a new
-     * reference, NULL on out of memory. */
+     * default computed from the ring", echoed as the value used; the
+     * analysis' name); a new reference, NULL on out of memory. */
     struct json_t *(*echo)(const struct rd_scene *s);
     /* RD_F_ITEMS: parses the array `v` at `path` into the scene. */
     int (*parse)(const struct rd_field *f, struct json_t *v, const char *path, struct rd_scene *s,

@@ -1,0 +1,108 @@
+/*
+ * rd_openapi — the OpenAPI scene schemas written from a registry
+ * (rd_registry_openapi, declared in rd_registry.h): "Scene", oneOf the
+ * analyses, one "<Name>Scene" per analysis with the blocks only other
+ * analyses read described as ignored, and every named block they
+ * reference (rd_schema_block_openapi), with defaults read from a
+ * defaults-filled scene of each analysis.
+ */
+#include <jansson.h>
+#include <stdio.h>
+
+#include "rd_registry.h"
+#include "rd_scene.h"
+
+static const char scene_description[] =
+    "The request body: one of the analyses' shapes, chosen by `analysis`. Only the blocks an "
+    "analysis reads are checked; every field has a default (the thesis ring and engine), so "
+    "{\"analysis\":\"modal\"} alone is valid. The blocks of the other analyses are known and "
+    "ignored without any check; unknown keys are an error (422 invalid_scene with the key's "
+    "path). Note that `numerics` and `contact` mean different things per analysis: `numerics` "
+    "is StaticNumerics for pretension and contact, LiftNumerics for lift (ignored by modal); "
+    "`contact` is ContactOptions for contact, LiftContact for lift (ignored by modal and "
+    "pretension). Parsing order (the first error is `error`; `errors` lists every problem the "
+    "schema finds, with core's first range error): JSON object, `analysis`, unknown keys and "
+    "JSON types block by block, then value ranges. Integers may be "
+    "written as reals with an integral value (20.0), except /bore/distortion/*/order. The job's "
+    "result echoes the scene with every default filled in.";
+
+static const char ignored_description[] =
+    "A block this analysis does not read: accepted whatever it holds, never checked, not "
+    "echoed.";
+
+/* "<Name>Scene": the analysis' top-level block, "analysis" required, and
+ * the blocks only other analyses read, described as ignored. */
+static json_t *analysis_schema(const rd_analysis_def *const *registry, const rd_analysis_def *an,
+                               json_t *schemas)
+{
+    const char *ignored[64];
+    rd_scene *defaults = rd_scene_defaults(an);
+    json_t *o = defaults ? rd_schema_block_openapi(an->scene, defaults, schemas) : NULL;
+    json_t *props = json_object_get(o, "properties");
+    int bad = !o || !props || json_object_set_new(o, "required", json_pack("[s]", "analysis"));
+    rd_registry_ignored(registry, an, ignored, 64);
+    for (int i = 0; !bad && ignored[i]; i++)
+        bad |= json_object_set_new(props, ignored[i],
+                                   json_pack("{s:s}", "description", ignored_description));
+    rd_scene_free(defaults);
+    if (bad) {
+        json_decref(o);
+        return NULL;
+    }
+    return o;
+}
+
+/* "Scene": oneOf the analyses, discriminated by "analysis". */
+static json_t *scene_schema(const rd_analysis_def *const *registry)
+{
+    json_t *names = json_array(), *mapping = json_object(), *one_of = json_array();
+    int bad = !names || !mapping || !one_of;
+    for (int i = 0; !bad && registry[i]; i++) {
+        char ref[128];
+        snprintf(ref, sizeof ref, "#/components/schemas/%s", registry[i]->scene->name);
+        bad |= json_array_append_new(names, json_string(registry[i]->name));
+        bad |= json_object_set_new(mapping, registry[i]->name, json_string(ref));
+        bad |= json_array_append_new(one_of, json_pack("{s:s}", "$ref", ref));
+    }
+    /* "additionalProperties": true (the default, said out loud): the keys
+     * are the branches' business; validators that merge the discriminated
+     * branch with this schema (Redocly's example check) otherwise judge the
+     * branch's own keys as unevaluated here. */
+    json_t *o =
+        bad ? NULL
+            : json_pack("{s:s, s:[s], s:s, s:{s:{s:s, s:s, s:O}}, s:b, s:{s:s, s:O}, s:O}", "type",
+                        "object", "required", "analysis", "description", scene_description,
+                        "properties", "analysis", "type", "string", "description",
+                        "Which analysis to run; decides which blocks are read.", "enum", names,
+                        "additionalProperties", 1, "discriminator", "propertyName", "analysis",
+                        "mapping", mapping, "oneOf", one_of);
+    json_decref(names);
+    json_decref(mapping);
+    json_decref(one_of);
+    return o;
+}
+
+json_t *rd_registry_openapi(const rd_analysis_def *const *registry, const char *template_json,
+                            rd_error *err)
+{
+    json_error_t jerr;
+    json_t *doc = json_loads(template_json ? template_json : "", 0, &jerr);
+    json_t *schemas = json_object_get(json_object_get(doc, "components"), "schemas");
+    if (!json_is_object(schemas)) {
+        rd_error_set(err, RD_EINTERNAL, "",
+                     "the OpenAPI template is not an object with components.schemas%s%s",
+                     doc ? "" : ": ", doc ? "" : jerr.text);
+        json_decref(doc);
+        return NULL;
+    }
+    int bad = json_object_set_new(schemas, "Scene", scene_schema(registry));
+    for (int i = 0; !bad && registry[i]; i++)
+        bad |= json_object_set_new(schemas, registry[i]->scene->name,
+                                   analysis_schema(registry, registry[i], schemas));
+    if (bad) {
+        rd_error_set(err, RD_ENOMEM, "", "out of memory while writing the OpenAPI document");
+        json_decref(doc);
+        return NULL;
+    }
+    return doc;
+}
