@@ -20,7 +20,7 @@
 static json_t *echo_bore_diameter(const rd_scene *s)
 {
     const struct rd_static_scene *o = s->opts;
-    double d = o->contact.bore_diameter;
+    double d = o->contact.bore.diameter;
     return rd_result_real(d > 0 ? d : s->ring.diameter);
 }
 
@@ -45,11 +45,11 @@ static const rd_block distortion_block = {
     "BoreDistortion", "One Fourier term of the bore distortion.", 0, 1, distortion_fields};
 
 static const rd_field bore_fields[] = {
-    {"diameter", RD_F_NUMBER, ST(contact.bore_diameter), RD_MIN(0.0), .echo = echo_bore_diameter,
+    {"diameter", RD_F_NUMBER, ST(contact.bore.diameter), RD_MIN(0.0), .echo = echo_bore_diameter,
      .desc = "Bore diameter D, m; absent or 0 = the ring's diameter; otherwise within 2 % of it "
              "(0.98 d to 1.02 d). The echo gives the diameter used."},
-    {"distortion", RD_F_DISTORTION, ST(contact), .block = &distortion_block,
-     RD_MAX(RD_DISTORTION_MAX),
+    {"distortion", RD_F_DISTORTION, ST(contact.bore), .block = &distortion_block,
+     RD_MAX(RD_BORE_ORDERS_MAX),
      .desc = "Fourier terms of the bore's out-of-roundness, at most 16; the sum of |amplitude| "
              "is at most 1 % of the ring diameter. Default: none (a round bore)."},
     {.key = NULL},
@@ -118,8 +118,8 @@ static json_t *distortion_bounds(const rd_scene *scene, const rd_contact_result 
 {
     const struct rd_static_scene *o = scene->opts;
     json_t *dist = json_array();
-    for (int k = 0; dist && k < o->contact.n_distortion; k++) {
-        const rd_distortion *d = &o->contact.distortion[k];
+    for (int k = 0; dist && k < o->contact.bore.n_distortion; k++) {
+        const rd_distortion *d = &o->contact.bore.distortion[k];
         if (json_array_append_new(dist,
                                   json_pack("{s:i, s:o, s:o, s:o}", "order", d->order, "amplitude",
                                             rd_result_real(d->amplitude), "phase_deg",

@@ -359,7 +359,7 @@ static json_t *lift_numerics(const rd_scene *scene, const rd_lift_result *res, d
                   "modes", res->modes, "why", res->why),
         "wall_s", rd_result_real(wall_s), "solver",
         res->model == RD_LIFT_MODEL_RIGID
-            ? "TR-BDF2 (L-stable, second order, embedded error estimate; core/"
+            ? "TR-BDF2 (L-stable, second order, embedded error estimate; core/lift/"
               "rd_lift_small.c) with a 3 x 3 second-order Newton solve (the rigid ring's 6 "
               "states), root finding for the flank changes"
         : res->model == RD_LIFT_MODEL_MODAL

@@ -172,7 +172,7 @@ void rd_static_scene_defaults(struct rd_scene *s)
 const char *const rd_kinematics_names[] = {"exact", "approximate", NULL};
 const char *const rd_friction_names[] = {"coulomb", "stribeck", NULL};
 
-int rd_engine_scene_finish(const struct rd_engine_scene *es, rd_engine_params *e, rd_lift_bore *b,
+int rd_engine_scene_finish(const struct rd_engine_scene *es, rd_engine_params *e, rd_bore *b,
                            rd_friction_params *f, rd_error *err)
 {
     f->model = es->friction_given ? es->friction_model + 1 : RD_FRICTION_NONE;
@@ -188,13 +188,7 @@ int rd_engine_scene_finish(const struct rd_engine_scene *es, rd_engine_params *e
         e->tilt_crank_deg = es->tilt_table[0].v;
         e->tilt_deg = es->tilt_table[1].v;
     }
-    b->diameter = es->bore.bore_diameter;
-    b->n_distortion = es->bore.n_distortion;
-    for (int k = 0; k < es->bore.n_distortion && k < RD_LIFT_DISTORTION_MAX; k++) {
-        b->distortion[k].order = es->bore.distortion[k].order;
-        b->distortion[k].amplitude = es->bore.distortion[k].amplitude;
-        b->distortion[k].phase_deg = es->bore.distortion[k].phase_deg;
-    }
+    *b = es->bore;
     return RD_OK;
 }
 

@@ -124,7 +124,7 @@ struct json_t *rd_static_result_support(const rd_static_stats *st);
 struct rd_engine_scene {
     int tilt_given;                /* /engine/piston_tilt present */
     struct rd_table tilt_table[2]; /* crank_deg, tilt_deg */
-    rd_contact_opts bore;          /* /bore (its diameter and distortion only) */
+    rd_bore bore;                  /* /bore */
     int friction_given;            /* /physics/friction present */
     int friction_model;            /* index into rd_friction_names */
 };
@@ -135,7 +135,7 @@ extern const char *const rd_friction_names[];   /* enum rd_friction_model - 1 */
  * length, else RD_EINVAL at /engine/piston_tilt/tilt_deg) and bore from
  * what the scene gave. */
 int rd_engine_scene_finish(const struct rd_engine_scene *es, rd_engine_params *engine,
-                           rd_lift_bore *bore, rd_friction_params *friction, rd_error *err);
+                           rd_bore *bore, rd_friction_params *friction, rd_error *err);
 /* Frees the tilt tables. */
 void rd_engine_scene_cleanup(struct rd_engine_scene *es);
 
@@ -173,12 +173,12 @@ void rd_engine_scene_cleanup(struct rd_engine_scene *es);
             .required = 1, .desc = "Piston tilt at those angles, deg (added to piston_tilt_deg)." \
     }
 /* /bore: diameter and distortion, their descriptions given. */
-#define RD_BORE_FIELDS(AT, diameter_desc, distortion_desc)                                       \
-    {"diameter", RD_F_NUMBER, AT(eng.bore.bore_diameter), RD_MIN(0.0), .desc = (diameter_desc)}, \
-    {                                                                                            \
-        "distortion", RD_F_DISTORTION, AT(eng.bore), .block = &rd_block_lift_distortion,         \
-                                                     RD_MAX(RD_LIFT_DISTORTION_MAX),             \
-                                                     .desc = (distortion_desc)                   \
+#define RD_BORE_FIELDS(AT, diameter_desc, distortion_desc)                                  \
+    {"diameter", RD_F_NUMBER, AT(eng.bore.diameter), RD_MIN(0.0), .desc = (diameter_desc)}, \
+    {                                                                                       \
+        "distortion", RD_F_DISTORTION, AT(eng.bore), .block = &rd_block_lift_distortion,    \
+                                                     RD_MAX(RD_BORE_ORDERS_MAX),            \
+                                                     .desc = (distortion_desc)              \
     }
 /* /physics/friction: model and Coulomb coefficient, descriptions given. */
 #define RD_FRICTION_FIELDS(AT, F, model_desc, coefficient_desc)                  \

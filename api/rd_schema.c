@@ -333,7 +333,7 @@ void rd_schema_allowed(const rd_field *f, char *buf, size_t size)
         break;
     case RD_F_DISTORTION:
         snprintf(buf, size, "an array of at most %d {order, amplitude, phase_deg}",
-                 RD_DISTORTION_MAX);
+                 RD_BORE_ORDERS_MAX);
         break;
     case RD_F_ITEMS:
         snprintf(buf, size, "an array of objects");
@@ -521,7 +521,7 @@ static int parse_distortion_item(const rd_block *items, json_t *item, const char
 }
 
 /* RD_F_DISTORTION: [{"order": k, "amplitude": A, "phase_deg": phi}, ...]. */
-static int parse_distortion(const rd_field *f, json_t *v, const char *path, rd_contact_opts *c,
+static int parse_distortion(const rd_field *f, json_t *v, const char *path, rd_bore *c,
                             struct rd_scene *s, rd_error *err)
 {
     size_t i;
@@ -529,10 +529,10 @@ static int parse_distortion(const rd_field *f, json_t *v, const char *path, rd_c
     int rc = RD_OK;
     if (!json_is_array(v))
         return type_issue(s, err, path, "an array of {order, amplitude, phase_deg}", v);
-    if (json_array_size(v) > RD_DISTORTION_MAX)
+    if (json_array_size(v) > RD_BORE_ORDERS_MAX)
         return report(s, err, RD_ELIMIT, path, NULL, NULL,
                       "%s has %zu entries; at most %d are allowed.", path, json_array_size(v),
-                      RD_DISTORTION_MAX);
+                      RD_BORE_ORDERS_MAX);
     c->n_distortion = 0;
     json_array_foreach(v, i, item)
     {
@@ -603,7 +603,7 @@ static int parse_field(const rd_field *f, char *at, json_t *v, const char *path,
     case RD_F_TABLE:
         return parse_table(f, v, path, (struct rd_table *)at, s, err);
     case RD_F_DISTORTION:
-        return parse_distortion(f, v, path, (rd_contact_opts *)at, s, err);
+        return parse_distortion(f, v, path, (rd_bore *)at, s, err);
     case RD_F_ITEMS:
         if (!json_is_array(v))
             return type_issue(s, err, path, "an array of objects", v);

@@ -43,7 +43,7 @@ enum rd_field_type {
     RD_F_OPTBLOCK,   /* RD_F_BLOCK whose presence sets the int at `offset` to 1 */
     RD_F_TABLE,      /* struct rd_table: an array of numbers, malloc'd;
                         min/max count its items */
-    RD_F_DISTORTION, /* rd_contact_opts at `offset`: an array of `block` items
+    RD_F_DISTORTION, /* rd_bore at `offset`: an array of `block` items
                         ({order, amplitude, phase_deg}); max counts the items */
     RD_F_ITEMS       /* an array of `block` objects read by the field's `parse`
                         hook and echoed by its `echo` (items whose blocks nest

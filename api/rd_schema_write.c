@@ -42,7 +42,7 @@ static json_t *table_echo(const struct rd_table *t)
     return a;
 }
 
-static json_t *distortion_echo(const rd_contact_opts *c)
+static json_t *distortion_echo(const rd_bore *c)
 {
     json_t *a = json_array();
     for (int i = 0; a && i < c->n_distortion; i++) {
@@ -102,7 +102,7 @@ static json_t *field_echo(const rd_field *f, const char *at, const struct rd_sce
         *skip = ((const struct rd_table *)at)->n == 0;
         return *skip ? NULL : table_echo((const struct rd_table *)at);
     case RD_F_DISTORTION:
-        return distortion_echo((const rd_contact_opts *)at);
+        return distortion_echo((const rd_bore *)at);
     case RD_F_ITEMS: /* echoed by its hook */
         break;
     }

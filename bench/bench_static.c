@@ -207,7 +207,7 @@ static rd_contact_opts battery_bore(const rd_ring_params *p, int k, double fac, 
     if (accuracy_opt > 0)
         o.accuracy = accuracy_opt;
     if (A_bound)
-        *A_bound = o.distortion[0].amplitude / thin_ring_bound(p, k);
+        *A_bound = o.bore.distortion[0].amplitude / thin_ring_bound(p, k);
     return o;
 }
 
@@ -539,13 +539,13 @@ static void random_bores(const rd_ring_params *p, unsigned long long seed, int c
     double cpu_all = 0, patch_worst = 0;
     for (int t = 0; t < count;) {
         rd_contact_opts o = battery_bore(p, 2, 1, 0, NULL);
-        o.n_distortion = single_order ? 1 : 1 + (uniform(&seed) < 0.5);
+        o.bore.n_distortion = single_order ? 1 : 1 + (uniform(&seed) < 0.5);
         double convex = 0;
-        for (int d = 0; d < o.n_distortion; d++) {
+        for (int d = 0; d < o.bore.n_distortion; d++) {
             int k = 2 + (int)((single_order ? 5 : 7) * uniform(&seed));
             double fac = pow(10.0, -1.0 + 2.0 * uniform(&seed)), ph = 360.0 * uniform(&seed);
-            double A = fmin(fac * thin_ring_bound(p, k), 0.004 * p->diameter / o.n_distortion);
-            o.distortion[d] = (rd_distortion){k, A, ph};
+            double A = fmin(fac * thin_ring_bound(p, k), 0.004 * p->diameter / o.bore.n_distortion);
+            o.bore.distortion[d] = (rd_distortion){k, A, ph};
             convex += A * (k * k + 2);
         }
         if (convex > 0.45 * p->diameter)
@@ -611,10 +611,10 @@ static void random_bores(const rd_ring_params *p, unsigned long long seed, int c
         slow += cpu > 0.2;
         cpu_all += cpu;
         printf("%d:", t);
-        for (int d = 0; d < o.n_distortion; d++)
-            printf(" order %d at %.6g x, %.6g deg;", o.distortion[d].order,
-                   o.distortion[d].amplitude / thin_ring_bound(p, o.distortion[d].order),
-                   o.distortion[d].phase_deg);
+        for (int d = 0; d < o.bore.n_distortion; d++)
+            printf(" order %d at %.6g x, %.6g deg;", o.bore.distortion[d].order,
+                   o.bore.distortion[d].amplitude / thin_ring_bound(p, o.bore.distortion[d].order),
+                   o.bore.distortion[d].phase_deg);
         printf(" n %d, met %d, k %g x, cpu %.3f s; errors (estimates): fraction %.4f (%.4f), "
                "gap %.2f %% (%.2f %%), edges %.2f (%.2f) deg, bins %.3f (%.3f) p0, patches %d (%d) "
                "%.4f (%.4f) N, tips %.4f (%.4f) N; the bins' estimate from %s at %.4g deg\n",
@@ -989,10 +989,10 @@ int main(int argc, char **argv)
     printf("| points | round bore: wall (ms) | change vs 20 points (of p0) | distorted "
            "(k=4, 1.3 x bound): wall (ms) | change vs 20 points |\n|---|---|---|---|---|\n");
     rd_contact_opts cd = co;
-    cd.n_distortion = 1;
-    cd.distortion[0].order = 4;
-    cd.distortion[0].phase_deg = 45;
-    cd.distortion[0].amplitude = 1.3 * 4.3246e-6; /* 1.3 x F_t R^3 / (E I 15^2) */
+    cd.bore.n_distortion = 1;
+    cd.bore.distortion[0].order = 4;
+    cd.bore.distortion[0].phase_deg = 45;
+    cd.bore.distortion[0].amplitude = 1.3 * 4.3246e-6; /* 1.3 x F_t R^3 / (E I 15^2) */
     rd_contact_result d, d20;
     memset(&d, 0, sizeof d);
     memset(&d20, 0, sizeof d20);

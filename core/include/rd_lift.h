@@ -83,24 +83,11 @@ typedef struct rd_gas_params {
     int active_area;         /* enum rd_gas_area */
 } rd_gas_params;
 
-/* The bore in lift (as in the contact analysis, rd_static.h): radius
- * r_b(theta) = D/2 + sum A_k cos(k (theta - phi_k)), theta from the gap
- * middle; D = 0: the ring's diameter.  A round bore of the ring's diameter
- * (the default) is the installed reference; otherwise the ring starts from
- * its static equilibrium in this bore (rd_lift_bore.c). */
-#define RD_LIFT_DISTORTION_MAX 16
-typedef struct rd_lift_bore {
-    double diameter;
-    int n_distortion;
-    struct {
-        int order;
-        double amplitude, phase_deg;
-    } distortion[RD_LIFT_DISTORTION_MAX];
-} rd_lift_bore;
-
 typedef struct rd_lift_params {
     rd_engine_params engine;
-    rd_lift_bore bore;
+    rd_bore bore; /* a round bore of the ring's diameter (the default) is the installed
+                     reference; otherwise the ring starts from its static equilibrium in
+                     it (rd_lift_start.c) */
     rd_groove_params groove;
     int gravity; /* 1: g = 9.80665 m/s^2 along -z */
     rd_friction_params friction;
@@ -175,8 +162,5 @@ void rd_lift_result_cleanup(rd_lift_result *r);
 /* The flank/bore penalty stiffness (Pa/m) used when p->contact_stiffness is 0
  * (rd_lift.c explains the rule); p and ring must be valid. */
 double rd_lift_contact_stiffness_default(const rd_ring_params *ring, const rd_lift_params *p);
-
-/* 1 if the bore is not the round bore of the ring's diameter. */
-int rd_lift_bore_distorted(const rd_lift_bore *b, double ring_diameter);
 
 #endif

@@ -19,6 +19,31 @@ typedef struct rd_friction_params {
     double hydrodynamic_slope;    /* Stribeck: K of 2.9 */
 } rd_friction_params;
 
+/* The bore: radius r_b(theta) = D/2 + sum A_k cos(k (theta - phi_k)), theta
+ * from the ring's gap middle; D = 0: the ring's diameter.  One type for the
+ * contact, lift and ring-pack analyses. */
+#define RD_BORE_ORDERS_MAX 16
+typedef struct rd_distortion {
+    int order;        /* k >= 1 */
+    double amplitude; /* A_k, m (radius change) */
+    double phase_deg; /* phi_k, degrees from the gap middle */
+} rd_distortion;
+
+typedef struct rd_bore {
+    double diameter; /* D, m; 0 = the ring's diameter */
+    int n_distortion;
+    rd_distortion distortion[RD_BORE_ORDERS_MAX];
+} rd_bore;
+
+/* 1 if the bore is not the round bore of the ring's diameter. */
+int rd_bore_distorted(const rd_bore *b, double ring_diameter);
+
+/* Range checks of a bore for a ring of diameter d (paths "/bore/..."):
+ * D within 2 % of d, at most RD_BORE_ORDERS_MAX terms of order 1..64,
+ * |A_k| and their sum at most 1 % of d, phases within +-360 deg, and
+ * convex (rd_bore_convex_validate). */
+int rd_bore_validate(const rd_bore *b, double d, rd_error *err);
+
 /* The convex-bore rule of a distorted bore r = D/2 + sum A_k cos(k (t -
  * phi_k)), shared by the contact and lift analyses: its curvature stays
  * positive when sum |A_k| (k^2 + 2) <= D/2 (to first order in A_k / D).

@@ -124,14 +124,14 @@ typedef struct rd_ringpack_params {
     rd_friction_params friction; /* model NONE (default) or COULOMB */
     int model;                   /* every ring's model unless its own says (rd_ringpack_ring) */
     /* Carried to the lift-model rings (rd_ringpack_lift.c): the bore every
-     * ring runs in (the lift analysis' rd_lift_bore; distortion phases from
+     * ring runs in (rd_bore, rd_liner.h; distortion phases from
      * the bore's angle 0, each ring's taken from its gap at gap_angle_deg),
      * the piston tilt (engine.piston_tilt_deg and the table, about the pin
      * axis at 90 deg from the bore's angle 0, positive raising the groove at
      * angle 0) and the active areas (enum rd_gas_area).  A distorted bore or a
      * tilt needs a flexible ring (auto: full), dynamic areas a lift model
      * (auto: rigid); the axial ring takes none of them. */
-    rd_lift_bore bore;
+    rd_bore bore;
     int active_area;
     /* Test hook: the ring faces' pressures from these gauge tables (above,
      * below; behind for friction) instead of the network's.  NULL normally. */

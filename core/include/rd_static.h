@@ -61,7 +61,6 @@
 
 enum rd_pretension_method { RD_PRETENSION_FORCE = 0, RD_PRETENSION_FIELD = 1 };
 
-#define RD_DISTORTION_MAX      16
 #define RD_CONTACT_POINTS_MAX  64
 #define RD_STATIC_SEGMENTS_MAX 2000
 
@@ -81,16 +80,8 @@ typedef struct rd_pretension_opts {
     double lateral_force; /* F_l, N, >= 0 */
 } rd_pretension_opts;
 
-typedef struct rd_distortion {
-    int order;        /* k >= 1 */
-    double amplitude; /* A_k, m (radius change) */
-    double phase_deg; /* phi_k, degrees from the gap middle */
-} rd_distortion;
-
 typedef struct rd_contact_opts {
-    double bore_diameter; /* D, m; 0 = the ring's diameter */
-    int n_distortion;
-    rd_distortion distortion[RD_DISTORTION_MAX];
+    rd_bore bore;           /* the bore (rd_liner.h) */
     int points_per_segment; /* m, 1..RD_CONTACT_POINTS_MAX, default 10 (bench_static:
                                5 moves a distorted bore's pressures by ~0.2 p0, 10 by ~0.05,
                                at n = 40); above 640 segments no more than keep the points
@@ -222,7 +213,7 @@ typedef struct rd_contact_result {
     double conformability;          /* k of (1.4) */
     /* Thin-ring conformability bound of each distortion order:
      * F_t R^3 / (E I (k^2 - 1)^2), m (NAN for k = 1). */
-    double bound[RD_DISTORTION_MAX];
+    double bound[RD_BORE_ORDERS_MAX];
     /* Light gaps deeper than gap_floor (rd_contact_gap_floor, or a rigid
      * face's misfit), in angle order; edges where the clearance crosses
      * zero, angles where on the bore. */

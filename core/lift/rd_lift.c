@@ -261,7 +261,7 @@ static int validate_numerics(const rd_lift_params *p, const rd_ring_params *ring
         return rd_error_set(err, RD_EINVAL, "/numerics/model",
                             "/numerics/model = %d is unknown: use auto, rigid, modal or full.",
                             p->model);
-    if (p->model == RD_LIFT_MODEL_RIGID && rd_lift_bore_distorted(&p->bore, ring_d))
+    if (p->model == RD_LIFT_MODEL_RIGID && rd_bore_distorted(&p->bore, ring_d))
         return rd_error_set(err, RD_EINVAL, "/numerics/model",
                             "/numerics/model = rigid cannot represent a distorted bore "
                             "(/bore/distortion, /bore/diameter): the contact pressure varies "
@@ -323,7 +323,7 @@ int rd_lift_validate(const rd_lift_params *p, const rd_ring_params *ring, int se
                             "allowed 4 to %d.",
                             segments, RD_LIFT_SEGMENTS_MAX);
     if ((rc = rd_engine_validate(&p->engine, err)) || (rc = validate_cycles(&p->engine, err)) ||
-        (rc = rd_lift_bore_validate(&p->bore, ring, err)) || (rc = validate_physics(p, err)) ||
+        (rc = rd_bore_validate(&p->bore, ring->diameter, err)) || (rc = validate_physics(p, err)) ||
         (rc = validate_gas(&p->gas, err)) || (rc = validate_numerics(p, ring, segments, err)))
         return rc;
     return RD_OK;

@@ -470,6 +470,22 @@ static void force_env_at(rd_lift_model *c, double t, force_env *env)
     }
 }
 
+/* Every element on one segment, in the order of the sums (file head): the
+ * one list of the full forces, for every model (rd_lift_forces,
+ * rd_lift_forces_segment).  *ftot gathers the bore friction, *fz the axial
+ * loads other than the flanks'. */
+static void add_elements(rd_lift_model *c, const force_env *env, seg_view *s, double *ftot,
+                         double *fz)
+{
+    add_inertia_gravity(c, env, s);
+    *fz += s->f[2];
+    add_flanks(c, env, s);
+    add_bore(c, env, s, ftot);
+    add_back(c, s);
+    if (env->gas)
+        *fz += add_gas(c, env, s);
+}
+
 void rd_lift_forces(rd_lift_model *c, double t, const double *y, double *Dq, double *Dv)
 {
     force_env env;
@@ -483,13 +499,7 @@ void rd_lift_forces(rd_lift_model *c, double t, const double *y, double *Dq, dou
             memset(s.dq, 0, 36 * sizeof *s.dq);
             memset(s.dv, 0, 36 * sizeof *s.dv);
         }
-        add_inertia_gravity(c, &env, &s);
-        fz += s.f[2];
-        add_flanks(c, &env, &s);
-        add_bore(c, &env, &s, &ftot);
-        add_back(c, &s);
-        if (env.gas)
-            fz += add_gas(c, &env, &s);
+        add_elements(c, &env, &s, &ftot, &fz);
     }
     c->friction = ftot;
     c->fz_ext = fz + ftot;
@@ -546,13 +556,7 @@ void rd_lift_forces_segment(rd_lift_model *c, double t, int i, const double *q, 
         memset(dq, 0, 36 * sizeof *dq);
         memset(dv, 0, 36 * sizeof *dv);
     }
-    add_inertia_gravity(c, &env, &s);
-    fz += s.f[2];
-    add_flanks(c, &env, &s);
-    add_bore(c, &env, &s, &ftot);
-    add_back(c, &s);
-    if (env.gas)
-        fz += add_gas(c, &env, &s);
+    add_elements(c, &env, &s, &ftot, &fz);
     c->friction = ftot;
     c->fz_ext = fz + ftot;
 }

@@ -261,10 +261,6 @@ int rd_lift_rigid_twist(rd_lift_model *m, double k[3], rd_error *err);
 /* The bore (rd_lift_bore.c): the per-point offsets of a distorted bore into
  * m->bo_gap (NULL for a round one), and the static equilibrium of the
  * installed ring in it (y0: 12 n values, the rates 0). */
-/* bore.diameter and bore.distortion (paths "/bore/..."): within 2 % of the
- * ring's diameter, 16 terms of order 1..64, sum |A_k| <= 1 % of it, and a
- * convex bore as in the contact analysis (rd_bore_convex_validate). */
-int rd_lift_bore_validate(const rd_lift_bore *b, const rd_ring_params *ring, rd_error *err);
 int rd_lift_bore_init(rd_lift_model *m, rd_error *err);
 int rd_lift_bore_static(const rd_ring *ring, const rd_lift_params *p, double *y0, rd_error *err);
 

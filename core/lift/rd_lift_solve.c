@@ -74,12 +74,12 @@ static void choose_model(const rd_lift_params *p, int n, double ring_d, rd_lift_
         snprintf(out->why, sizeof out->why,
                  "asked for (numerics.model = modal, %d elastic modes%s)%s", out->modes,
                  p->modes ? "" : " by default",
-                 rd_lift_bore_distorted(&p->bore, ring_d) && out->modes < 6 * n - 6
+                 rd_bore_distorted(&p->bore, ring_d) && out->modes < 6 * n - 6
                      ? "; with a distorted bore its truncated basis cannot hold the stiff bore "
                        "contact's equilibrium: flank changes measured up to 100 deg off the "
                        "full model's, use full"
                      : "");
-    } else if (rd_lift_bore_distorted(&p->bore, ring_d)) {
+    } else if (rd_bore_distorted(&p->bore, ring_d)) {
         snprintf(out->why, sizeof out->why,
                  "auto: the bore is distorted, so the contact pressure and the friction vary "
                  "around the ring, which the rigid ring cannot represent, and the modal model is "
@@ -215,7 +215,7 @@ int rd_lift_solve_setup(const rd_ring_params *rp, int segments, const rd_lift_pa
     }
     /* a distorted bore: both runs start from the ring's static equilibrium in it */
     rd_lift_setup su = setup ? *setup : (rd_lift_setup){0};
-    if (rd_lift_bore_distorted(&p->bore, rp->diameter) && !su.y0) {
+    if (rd_bore_distorted(&p->bore, rp->diameter) && !su.y0) {
         y0 = malloc(12 * (size_t)segments * sizeof *y0);
         if (!y0) {
             rc = rd_error_set(err, RD_ENOMEM, "", "Out of memory for the bore start.");

@@ -102,7 +102,7 @@ static int ring_frame(const rd_ringpack_params *p, int i, rd_lift_params *lp, do
     const rd_ringpack_ring *r = &p->rings[i];
     lp->engine = p->engine;
     lp->bore = p->bore;
-    for (int k = 0; k < lp->bore.n_distortion && k < RD_LIFT_DISTORTION_MAX; k++)
+    for (int k = 0; k < lp->bore.n_distortion && k < RD_BORE_ORDERS_MAX; k++)
         lp->bore.distortion[k].phase_deg =
             wrap_deg(p->bore.distortion[k].phase_deg - r->gap_angle_deg);
     lp->gas.active_area = p->active_area;
@@ -223,7 +223,7 @@ int rd_packring_initial(rd_packring *L, double atol, double *y, double *ab, rd_e
 {
     rd_lift_setup su = {0};
     const rd_ring_params *rp = rd_ring_get_params(L->ring);
-    if (rd_lift_bore_distorted(&L->lp.bore, rp->diameter)) { /* its static equilibrium there */
+    if (rd_bore_distorted(&L->lp.bore, rp->diameter)) { /* its static equilibrium there */
         int rc;
         free(L->y0);
         if (!(L->y0 = malloc(12 * (size_t)L->m.n * sizeof *L->y0)))
@@ -382,13 +382,12 @@ int rd_packring_solver_solve(rd_packring *L, double *x, double *b)
 
 static int needs_flexible(const rd_ringpack_params *p)
 {
-    return rd_lift_bore_distorted(&p->bore, p->rings[0].ring.diameter) ||
-           rd_engine_tilted(&p->engine);
+    return rd_bore_distorted(&p->bore, p->rings[0].ring.diameter) || rd_engine_tilted(&p->engine);
 }
 
 int rd_packring_auto(const rd_ringpack_params *p, const char **why)
 {
-    if (rd_lift_bore_distorted(&p->bore, p->rings[0].ring.diameter)) {
+    if (rd_bore_distorted(&p->bore, p->rings[0].ring.diameter)) {
         *why = BORE_WHY;
         return RD_LIFT_MODEL_FULL;
     }
@@ -415,7 +414,7 @@ static int validate_model(const rd_ringpack_params *p, int i, rd_error *err)
         snprintf(at, sizeof at, "/numerics/model");
     const char *name = rd_ringpack_model_name(k);
     if (needs_flexible(p) && (k == RD_RINGPACK_AXIAL || k == RD_LIFT_MODEL_RIGID)) {
-        int bore = rd_lift_bore_distorted(&p->bore, r->ring.diameter);
+        int bore = rd_bore_distorted(&p->bore, r->ring.diameter);
         return rd_error_set(err, RD_EINVAL, at,
                             "%s = %s cannot represent %s: the %s varies around the ring; use "
                             "auto, modal or full.",

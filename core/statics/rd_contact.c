@@ -137,14 +137,14 @@ static int contact_setup(rd_static_problem *pb, const rd_ring_params *p, const r
     pb->Ft = p->tangential_force;
     pb->method = RD_PRETENSION_FORCE;
     pb->co = o;
-    for (int q = 0; q < o->n_distortion; q++) {
-        double kp = o->distortion[q].order * o->distortion[q].phase_deg * M_PI / 180.0;
+    for (int q = 0; q < o->bore.n_distortion; q++) {
+        double kp = o->bore.distortion[q].order * o->bore.distortion[q].phase_deg * M_PI / 180.0;
         pb->bore_phase[2 * q] = cos(kp);
         pb->bore_phase[2 * q + 1] = sin(kp);
     }
     pb->m = m;
     pb->r_o = pb->R + 0.5 * pb->b;
-    pb->bore_dr = (o->bore_diameter > 0.0 ? 0.5 * o->bore_diameter : 0.5 * p->diameter) - pb->r_o;
+    pb->bore_dr = (o->bore.diameter > 0.0 ? 0.5 * o->bore.diameter : 0.5 * p->diameter) - pb->r_o;
     pb->p0 = 2.0 * p->tangential_force / (p->diameter * p->axial_height);
     pb->k = o->stiffness > 0.0 ? o->stiffness : rd_contact_default_stiffness(p);
     pb->eps = 0.05 * pb->p0 / pb->k;
@@ -381,9 +381,9 @@ static int contact_summaries(const rd_static_problem *pb, const double *t, const
         L = fmax(L, pb->r_o * rd_ring_segment_phi_at(pb->ring, i));
         fine = fmin(fine, out->width_deg[i]);
     }
-    for (int k = 0; k < pb->co->n_distortion; k++)
-        bend += fabs(pb->co->distortion[k].amplitude) * pb->co->distortion[k].order *
-                pb->co->distortion[k].order;
+    for (int k = 0; k < pb->co->bore.n_distortion; k++)
+        bend += fabs(pb->co->bore.distortion[k].amplitude) * pb->co->bore.distortion[k].order *
+                pb->co->bore.distortion[k].order;
     out->point_spacing_deg = fine / pb->m;
     out->points_per_segment = pb->m;
     out->gap_floor = fmax(rd_contact_gap_floor(rd_ring_get_params(pb->ring)),
@@ -443,8 +443,8 @@ out:
     out->conformability = rd_ring_conformability(p);
     rd_ring_section sec;
     rd_ring_section_get(p, 0, &sec);
-    for (int k = 0; k < o->n_distortion; k++) {
-        double kk = o->distortion[k].order;
+    for (int k = 0; k < o->bore.n_distortion; k++) {
+        double kk = o->bore.distortion[k].order;
         out->bound[k] = kk < 2 ? NAN
                                : p->tangential_force * pow(sec.R, 3) /
                                      (p->youngs_modulus * sec.I_inplane * pow(kk * kk - 1.0, 2));

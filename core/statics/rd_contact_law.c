@@ -59,8 +59,8 @@ static double eps_now(const rd_static_problem *pb)
 void rd_contact_bore_radius(const rd_static_problem *pb, double theta, double *r, double *dr)
 {
     double a = pb->bore_dr, da = 0.0;
-    for (int k = 0; k < pb->co->n_distortion; k++) {
-        const rd_distortion *d = &pb->co->distortion[k];
+    for (int k = 0; k < pb->co->bore.n_distortion; k++) {
+        const rd_distortion *d = &pb->co->bore.distortion[k];
         double arg = d->order * (theta - d->phase_deg * M_PI / 180.0);
         a += d->amplitude * cos(arg);
         da -= d->amplitude * d->order * sin(arg);
@@ -79,8 +79,8 @@ static void bore_at(const rd_static_problem *pb, const double y[3], double rho, 
 {
     double c = y[0] / rho, s = y[1] / rho;
     double a = pb->bore_dr, da = 0.0;
-    for (int q = 0; q < pb->co->n_distortion; q++) {
-        const rd_distortion *d = &pb->co->distortion[q];
+    for (int q = 0; q < pb->co->bore.n_distortion; q++) {
+        const rd_distortion *d = &pb->co->bore.distortion[q];
         double ck = 1.0, sk = 0.0;
         for (int j = 0; j < d->order; j++) {
             double t = ck * c - sk * s;

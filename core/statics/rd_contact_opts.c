@@ -47,46 +47,7 @@ int rd_contact_validate(const rd_contact_opts *o, const rd_ring_params *p, rd_er
                             "pretension > 0 (without it the ring presses on nothing and its "
                             "place in the bore is undetermined).",
                             p->tangential_force);
-    if (o->bore_diameter != 0.0 &&
-        (!isfinite(o->bore_diameter) || o->bore_diameter < 0.98 * d || o->bore_diameter > 1.02 * d))
-        return rd_error_set(err, RD_EINVAL, "/bore/diameter",
-                            "/bore/diameter = %g m is out of range: allowed %g to %g m (within "
-                            "2 %% of the ring diameter %g m).",
-                            o->bore_diameter, 0.98 * d, 1.02 * d, d);
-    if (o->n_distortion < 0 || o->n_distortion > RD_DISTORTION_MAX)
-        return rd_error_set(err, RD_ELIMIT, "/bore/distortion",
-                            "/bore/distortion has %d entries; at most %d are allowed.",
-                            o->n_distortion, RD_DISTORTION_MAX);
-    double total = 0.0, bend = 0.0;
-    for (int k = 0; k < o->n_distortion; k++) {
-        const rd_distortion *ds = &o->distortion[k];
-        char path[64];
-        snprintf(path, sizeof path, "/bore/distortion/%d/order", k);
-        if (ds->order < 1 || ds->order > 64)
-            return rd_error_set(err, RD_EINVAL, path, "%s = %d is out of range: allowed 1 to 64.",
-                                path, ds->order);
-        snprintf(path, sizeof path, "/bore/distortion/%d/amplitude", k);
-        if (!isfinite(ds->amplitude) || fabs(ds->amplitude) > 0.01 * d)
-            return rd_error_set(err, RD_EINVAL, path,
-                                "%s = %g m is out of range: allowed -%g to %g m (1 %% of the "
-                                "diameter).",
-                                path, ds->amplitude, 0.01 * d, 0.01 * d);
-        snprintf(path, sizeof path, "/bore/distortion/%d/phase_deg", k);
-        if (!isfinite(ds->phase_deg) || fabs(ds->phase_deg) > 360.0)
-            return rd_error_set(err, RD_EINVAL, path,
-                                "%s = %g deg is out of range: allowed -360 to 360 deg.", path,
-                                ds->phase_deg);
-        total += fabs(ds->amplitude);
-        bend += rd_bore_bend_term(ds->order, ds->amplitude);
-    }
-    if (total > 0.01 * d)
-        return rd_error_set(err, RD_EINVAL, "/bore/distortion",
-                            "/bore/distortion: the amplitudes add up to %g m; allowed at most "
-                            "%g m (1 %% of the diameter).",
-                            total, 0.01 * d);
-    /* A petal-shaped bore (order 30 or 64 at the 1 % amplitude) ends Newton's
-     * continuation unconverged; at the convex edge orders 4..64 converge. */
-    int rc = rd_bore_convex_validate(bend, d, err);
+    int rc = rd_bore_validate(&o->bore, d, err);
     if (rc != RD_OK)
         return rc;
     if (o->points_per_segment < 1 || o->points_per_segment > RD_CONTACT_POINTS_MAX)

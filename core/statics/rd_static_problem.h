@@ -65,7 +65,7 @@ typedef struct rd_static_problem {
     double r_o;      /* running-face radius of the closed ring */
     double bore_dr;  /* D/2 - r_o */
     const rd_contact_opts *co;
-    double bore_phase[2 * RD_DISTORTION_MAX]; /* cos, sin of each distortion's k phi_k */
+    double bore_phase[2 * RD_BORE_ORDERS_MAX]; /* cos, sin of each distortion's k phi_k */
     double k, eps, p0;
     /* scales */
     double F_ref;

@@ -111,8 +111,8 @@ static int solve_fixed(const model *m, const char *fixed, const double *val, con
 static double bore(const rd_contact_opts *o, double th)
 {
     double r = 0.0;
-    for (int k = 0; k < o->n_distortion; k++) {
-        const rd_distortion *d = &o->distortion[k];
+    for (int k = 0; k < o->bore.n_distortion; k++) {
+        const rd_distortion *d = &o->bore.distortion[k];
         r += d->amplitude * cos(d->order * (th - d->phase_deg * M_PI / 180.0));
     }
     return r;
@@ -150,8 +150,8 @@ rd_contact_opts ref_battery_bore(const rd_ring_params *p, int k, double fac, dou
                    (p->youngs_modulus * sec.I_inplane * pow(k * k - 1.0, 2));
     rd_contact_opts o;
     rd_contact_opts_default(&o);
-    o.n_distortion = 1;
-    o.distortion[0] = (rd_distortion){k, fmin(fac * bound, 0.004 * p->diameter), phase};
+    o.bore.n_distortion = 1;
+    o.bore.distortion[0] = (rd_distortion){k, fmin(fac * bound, 0.004 * p->diameter), phase};
     return o;
 }
 
@@ -258,7 +258,7 @@ static int solve_linear(const rd_ring_params *p, const rd_contact_opts *o, int c
     m.R = 0.5 * (p->diameter - b), m.ro = 0.5 * p->diameter, m.h = h;
     m.s = p->closed_gap / (2.0 * m.R), m.D = (2.0 * M_PI - 2.0 * m.s) / cells;
     m.EA = E * A, m.GAs = G * A / 1.2, m.EI = E * h * b * b * b / 12.0, m.Ft = p->tangential_force;
-    double dD = (o->bore_diameter > 0 ? 0.5 * o->bore_diameter : m.ro) - m.ro;
+    double dD = (o->bore.diameter > 0 ? 0.5 * o->bore.diameter : m.ro) - m.ro;
     int n = m.ndof, rc = -1;
     m.K = calloc((size_t)n * (KD + 1), sizeof *m.K);
     m.g0 = malloc((size_t)(cells + 1) * sizeof *m.g0);

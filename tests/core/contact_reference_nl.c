@@ -64,8 +64,8 @@ static double theta_of(const nl_model *m, int j)
 static void departure(const nl_model *m, double phi, double *a, double *da)
 {
     *a = m->dD, *da = 0.0;
-    for (int k = 0; k < m->o->n_distortion; k++) {
-        const rd_distortion *d = &m->o->distortion[k];
+    for (int k = 0; k < m->o->bore.n_distortion; k++) {
+        const rd_distortion *d = &m->o->bore.distortion[k];
         double arg = d->order * (phi - d->phase_deg * M_PI / 180.0);
         *a += d->amplitude * cos(arg);
         *da -= d->amplitude * d->order * sin(arg);
@@ -294,7 +294,7 @@ int ref_contact_solve_nl(const rd_ring_params *p, const rd_contact_opts *o, int 
     m.R = 0.5 * (p->diameter - b), m.ro = 0.5 * p->diameter, m.half_b = 0.5 * b;
     m.s = p->closed_gap / (2.0 * m.R), m.D = (2.0 * M_PI - 2.0 * m.s) / cells, m.L = m.R * m.D;
     m.EA = E * A, m.GAs = G * A / 1.2, m.EI = E * h * b * b * b / 12.0, m.Ft = p->tangential_force;
-    m.dD = (o->bore_diameter > 0 ? 0.5 * o->bore_diameter : m.ro) - m.ro;
+    m.dD = (o->bore.diameter > 0 ? 0.5 * o->bore.diameter : m.ro) - m.ro;
     /* the linear reference's foundation, 1e-12 of the radial stiffness (see
      * there): keeps an iterate's too-small active set solvable */
     m.kf = 1e-12 * m.EA / m.R * m.D;

@@ -82,13 +82,13 @@ static void map_tilt(gcase *c, json_t *e)
     c->p.engine.tilt_deg = c->tilt[1];
 }
 
-/* bore.diameter and bore.distortion (at most RD_LIFT_DISTORTION_MAX terms). */
+/* bore.diameter and bore.distortion (at most RD_BORE_ORDERS_MAX terms). */
 static void map_bore(gcase *c, json_t *b)
 {
     c->p.bore.diameter = num(b, "diameter", 0.0);
     json_t *d = json_object_get(b, "distortion");
     size_t k = json_array_size(d);
-    for (size_t i = 0; i < k && i < RD_LIFT_DISTORTION_MAX; i++) {
+    for (size_t i = 0; i < k && i < RD_BORE_ORDERS_MAX; i++) {
         json_t *t = json_array_get(d, i);
         c->p.bore.distortion[i].order = (int)num(t, "order", 0);
         c->p.bore.distortion[i].amplitude = num(t, "amplitude", 0.0);

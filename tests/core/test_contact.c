@@ -42,9 +42,10 @@ static rd_contact_opts bore(const rd_ring_params *p, int k, double factor, doubl
 {
     rd_contact_opts o;
     rd_contact_opts_default(&o);
-    o.n_distortion = 1;
+    o.bore.n_distortion = 1;
     /* 0.4 % of the diameter caps the largest amplitudes (the limit is 1 %) */
-    o.distortion[0] = (rd_distortion){k, fmin(factor * bound_of(p, k), 0.004 * p->diameter), phase};
+    o.bore.distortion[0] =
+        (rd_distortion){k, fmin(factor * bound_of(p, k), 0.004 * p->diameter), phase};
     return o;
 }
 
@@ -771,10 +772,10 @@ static void test_graded_falls_back(void)
     p.diameter = 0.05, p.radial_width = 0.002, p.axial_height = 0.001, p.tangential_force = 6;
     rd_contact_opts o;
     rd_contact_opts_default(&o);
-    o.n_distortion = 2; /* each capped at 0.2 % of d, as the bench's */
-    o.distortion[0] =
+    o.bore.n_distortion = 2; /* each capped at 0.2 % of d, as the bench's */
+    o.bore.distortion[0] =
         (rd_distortion){8, fmin(9.44928 * bound_of(&p, 8), 0.002 * p.diameter), 70.5586};
-    o.distortion[1] =
+    o.bore.distortion[1] =
         (rd_distortion){7, fmin(2.19252 * bound_of(&p, 7), 0.002 * p.diameter), 301.834};
     rd_static_opts so;
     rd_static_opts_default(&so);
@@ -1181,7 +1182,7 @@ static void test_jacobian(void)
         }
         mult[i] = (i % 3) * 0.5 * pb.p0;
         /* on the bore (its radius at the segment's angle), then moved */
-        double a = rd_ring_get_segment_angle(ring, i), A = o.distortion[0].amplitude;
+        double a = rd_ring_get_segment_angle(ring, i), A = o.bore.distortion[0].amplitude;
         double dr = A * cos(3 * (a - 17 * PI / 180)) + 3 * pb.eps * sin(7.0 * i);
         double *x = pb.x + 3 * i, *Q = pb.Q + 9 * i, w = 2e-8 * cos(5.0 * i);
         x[0] += dr * cos(a), x[1] += dr * sin(a);

@@ -48,8 +48,8 @@ static int setup_make(setup *s)
 {
     rd_ring_params_default(&s->p);
     rd_contact_opts_default(&s->o);
-    s->o.n_distortion = 1;
-    s->o.distortion[0] = (rd_distortion){3, 2e-5, 17.0};
+    s->o.bore.n_distortion = 1;
+    s->o.bore.distortion[0] = (rd_distortion){3, 2e-5, 17.0};
     rd_error err;
     rd_error_init(&err);
     s->ring = rd_ring_create(&s->p, N, 0, &err);
@@ -193,8 +193,9 @@ static void nudge(setup *s, int b, int d, double h)
 static void on_bore(setup *s, int i, double off, double turn)
 {
     rd_static_problem *pb = &s->pb;
-    double a = rd_ring_get_segment_angle(s->ring, i), A = s->o.distortion[0].amplitude;
-    double ph = s->o.distortion[0].phase_deg * PI / 180, dr = pb->bore_dr + A * cos(3 * (a - ph));
+    double a = rd_ring_get_segment_angle(s->ring, i), A = s->o.bore.distortion[0].amplitude;
+    double ph = s->o.bore.distortion[0].phase_deg * PI / 180,
+           dr = pb->bore_dr + A * cos(3 * (a - ph));
     pb->x[3 * i] += (dr + off) * cos(a), pb->x[3 * i + 1] += (dr + off) * sin(a);
     set_turn(pb->Q + 9 * i, turn + 3 * A / pb->R * sin(3 * (a - ph)));
 }
@@ -506,8 +507,8 @@ static int distorted_bore(const rd_ring_params *p, int k, double factor, rd_cont
     double bound = p->tangential_force * pow(sec.R, 3) /
                    (p->youngs_modulus * sec.I_inplane * pow(k * k - 1.0, 2));
     rd_contact_opts_default(o);
-    o->n_distortion = 1;
-    o->distortion[0] = (rd_distortion){k, factor * bound, 0.0};
+    o->bore.n_distortion = 1;
+    o->bore.distortion[0] = (rd_distortion){k, factor * bound, 0.0};
     return ref_contact_solve_nl(p, o, 1440, 1, RD_CONTACT_BIN_DEG, rd_contact_gap_floor(p), r);
 }
 

@@ -78,7 +78,7 @@ static int difference(int k, double fac, double phase, double s, double d[36])
     rd_ring_params_default(&p);
     rd_contact_opts o = ref_battery_bore(&p, k, fac, phase);
     p.tangential_force *= s;
-    o.distortion[0].amplitude *= s;
+    o.bore.distortion[0].amplitude *= s;
     ref_result nl, lin;
     if (ref_contact_solve_nl(&p, &o, CELLS, 1, 10.0, 0.0, &nl) != 0 ||
         ref_contact_solve(&p, &o, CELLS, 10.0, 0.0, &lin) != 0 || nl.bins != 36)

@@ -71,10 +71,10 @@ static void check_mass(const rd_ringpack_params *p, const rd_ringpack_result *r,
 typedef struct extras {
     double gap_deg;
     rd_engine_params tilt; /* piston_tilt_deg, table */
-    rd_lift_bore bore;
+    rd_bore bore;
     int area;                    /* enum rd_gas_area */
     rd_engine_params lift_tilt;  /* the same tilt as the ring sees it */
-    rd_lift_bore lift_bore;      /* the same bore as the ring sees it */
+    rd_bore lift_bore;           /* the same bore as the ring sees it */
     int expect;                  /* the model auto must pick */
     int segments;                /* 0: 20 */
     double rtol, atol, step_deg; /* 0: the defaults below */

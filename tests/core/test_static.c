@@ -342,17 +342,17 @@ static void test_distorted_bore(void)
     const int orders[3] = {3, 4, 6};
     for (int k = 0; k < 3; k++) {
         int kk = orders[k];
-        o.n_distortion = 1;
-        o.distortion[0].order = kk;
-        o.distortion[0].phase_deg = 180.0 / kk; /* bore smallest at the gap */
+        o.bore.n_distortion = 1;
+        o.bore.distortion[0].order = kk;
+        o.bore.distortion[0].phase_deg = 180.0 / kk; /* bore smallest at the gap */
         const double factor[2] = {0.8, 1.3};
         for (int f = 0; f < 2; f++) {
-            o.distortion[0].amplitude = 0; /* bound from the result below */
+            o.bore.distortion[0].amplitude = 0; /* bound from the result below */
             if (contact(&p, 80, &o, &r, &err) != RD_OK)
                 return;
             double bound = r.bound[0];
             rd_contact_result_cleanup(&r);
-            o.distortion[0].amplitude = factor[f] * bound;
+            o.bore.distortion[0].amplitude = factor[f] * bound;
             int rc = contact(&p, 80, &o, &r, &err);
             CHECK(rc == RD_OK, "order %d x%g: %s", kk, factor[f], err.message);
             if (rc != RD_OK)
@@ -398,7 +398,7 @@ static void test_extremes_and_errors(void)
     const double scale[4] = {0.98, 0.999, 1.001, 1.02};
     double last = INFINITY;
     for (int k = 0; k < 4; k++) {
-        o.bore_diameter = scale[k] * p.diameter;
+        o.bore.diameter = scale[k] * p.diameter;
         int rc = contact(&p, 20, &o, &r, &err);
         CHECK(rc == RD_OK && r.mean_pressure < last, "bore x%g: rc %d %s, mean %g", scale[k], rc,
               err.message, rc == RD_OK ? r.mean_pressure : NAN);
@@ -406,7 +406,7 @@ static void test_extremes_and_errors(void)
             last = r.mean_pressure;
         rd_contact_result_cleanup(&r);
     }
-    o.bore_diameter = 0;
+    o.bore.diameter = 0;
 
     /* no pretension: a clear error naming the field */
     p.tangential_force = 0;
@@ -417,15 +417,15 @@ static void test_extremes_and_errors(void)
     p.tangential_force = 10;
 
     /* huge distortion: over the 1 % limit is refused with the range... */
-    o.n_distortion = 1;
-    o.distortion[0].order = 2;
-    o.distortion[0].amplitude = 0.02 * p.diameter;
+    o.bore.n_distortion = 1;
+    o.bore.distortion[0].order = 2;
+    o.bore.distortion[0].amplitude = 0.02 * p.diameter;
     CHECK(contact(&p, 20, &o, &r, &err) == RD_EINVAL &&
               strstr(err.path, "/bore/distortion/0/amplitude") && strstr(err.message, "allowed"),
           "huge distortion: %s", err.message);
     rd_contact_result_cleanup(&r);
     /* ...and the largest allowed one gives an answer or a clear failure */
-    o.distortion[0].amplitude = 0.01 * p.diameter;
+    o.bore.distortion[0].amplitude = 0.01 * p.diameter;
     int rc = contact(&p, 20, &o, &r, &err);
     CHECK((rc == RD_OK && isfinite(r.max_clearance) && r.max_clearance > 0) ||
               (rc == RD_ENOCONV && strstr(err.message, "load factor")),
@@ -491,8 +491,8 @@ static void test_monitor(void)
     rd_ring_params_default(&p);
     rd_contact_opts o;
     rd_contact_opts_default(&o);
-    o.n_distortion = 1;
-    o.distortion[0] = (rd_distortion){4, 10e-6, 0.0};
+    o.bore.n_distortion = 1;
+    o.bore.distortion[0] = (rd_distortion){4, 10e-6, 0.0};
     rd_static_opts so = opts(0);
     counter c = {0, 0};
     rd_monitor mon = {count_report, &c};
