@@ -1,7 +1,8 @@
 #!/usr/bin/env python3
 """layers.py — the layering lint: who calls whom, read off the built objects.
 
-    layers.py SOURCE_DIR LIB.a...
+    layers.py SOURCE_DIR LIB.a...   (each LIB.a built in the build tree's folder
+                                     of the same name as its source: core/, api/)
 
 Every object file in the archives is one source file (found under SOURCE_DIR by
 its name).  File A calls file B when A's object has an undefined symbol that
@@ -13,7 +14,10 @@ It fails (exit 1) on
   - a circle: files that call each other, directly or round a loop (every
     strongly connected component of more than one file is printed);
   - a call into a higher floor of core: core/<folder>/ files may call only
-    their own folder and the folders below it, in the order of FLOORS.
+    their own folder and the folders below it, in the order of FLOORS;
+  - a call into a higher layer (core -> api -> cli -> server, LAYERS).
+Objects generated in the build tree (no source of that name in the
+archive's source folder) are listed, not checked.
 It prints the counts it checked, so a run that found nothing to check fails
 (no objects, no edges) instead of passing on an empty graph.
 """
@@ -24,39 +28,42 @@ import sys
 
 # core's folders, lowest first (docs/architecture.md, "Floors").
 FLOORS = ["include", "base", "numerics", "ring", "engine", "liner", "statics", "lift", "ringpack"]
+# the layers, lowest first: core knows no JSON, api no HTTP (STYLE.md).
+LAYERS = ["core", "api", "cli", "server"]
 
 
 def objects(archives):
-    """{object name: (defined symbols, undefined symbols)} over the archives."""
-    out = subprocess.run(["nm", "-A", "--defined-only", "-g"] + archives, capture_output=True,
-                         text=True, check=True).stdout
-    undef = subprocess.run(["nm", "-A", "-u"] + archives, capture_output=True, text=True,
-                           check=True).stdout
+    """{(archive, object name): (defined symbols, undefined symbols)}."""
     objs = collections.defaultdict(lambda: (set(), set()))
-    for text, slot in ((out, 0), (undef, 1)):
-        for line in text.splitlines():
-            # "archive:member:[address]  TYPE symbol"
-            parts = line.split()
-            if len(parts) < 2 or parts[0].count(":") < 2:
-                continue
-            member = parts[0].split(":")[1]
-            if slot == 0 and (len(parts) < 3 or parts[-2] not in "TDBRCGS"):
-                continue
-            objs[member][slot].add(parts[-1])
+    for archive in archives:
+        for flags, slot in ((["--defined-only", "-g"], 0), (["-u"], 1)):
+            out = subprocess.run(["nm", "-A"] + flags + [archive], capture_output=True, text=True,
+                                 check=True).stdout
+            for line in out.splitlines():
+                # "archive:member:[address]  TYPE symbol"
+                parts = line.split()
+                if len(parts) < 2 or parts[0].count(":") < 2:
+                    continue
+                member = parts[0].split(":")[-2]
+                if slot == 0 and (len(parts) < 3 or parts[-2] not in "TDBRCGS"):
+                    continue
+                objs[(archive, member)][slot].add(parts[-1])
     return objs
 
 
-def source_of(root, member):
-    """The source path (relative to root) of an object member such as rd_lift.c.o."""
+def source_of(root, archive, member):
+    """The source path (relative to root) of an object of an archive built from
+    the source folder of the same name (build/core/libx.a: core/); None for an
+    object generated in the build tree (no such source)."""
+    folder = os.path.basename(os.path.dirname(os.path.abspath(archive)))
     name = member[:-2] if member.endswith(".o") else member
     hits = []
-    for d in ("core", "api", "server", "cli"):
-        for dirpath, _, files in os.walk(os.path.join(root, d)):
-            if name in files:
-                hits.append(os.path.relpath(os.path.join(dirpath, name), root))
-    if len(hits) != 1:
+    for dirpath, _, files in os.walk(os.path.join(root, folder)):
+        if name in files and "node_modules" not in dirpath:
+            hits.append(os.path.relpath(os.path.join(dirpath, name), root))
+    if len(hits) > 1:
         sys.exit("layers: %s maps to %d source files (%s)" % (member, len(hits), hits))
-    return hits[0]
+    return hits[0] if hits else None
 
 
 def circles(nodes, edges):
@@ -102,22 +109,24 @@ def floor(path):
 def main():
     root, archives = sys.argv[1], sys.argv[2:]
     objs = objects(archives)
-    src = {m: source_of(root, m) for m in objs}
+    src = {k: source_of(root, k[0], k[1]) for k in objs}
+    generated = sorted(k[1] for k, v in src.items() if v is None)
+    objs = {k: v for k, v in objs.items() if src[k] is not None}
     owner = {}
-    for m, (defs, _) in objs.items():
-        for s in defs:
-            owner[s] = src[m]
+    for k, (defs, _) in objs.items():
+        for sym in defs:
+            owner[sym] = src[k]
     edges = collections.defaultdict(set)
     count = 0
-    for m, (_, undefs) in objs.items():
-        for s in undefs:
-            b = owner.get(s)
-            if b and b != src[m]:
-                if b not in edges[src[m]]:
+    for k, (_, undefs) in objs.items():
+        for sym in undefs:
+            b = owner.get(sym)
+            if b and b != src[k]:
+                if b not in edges[src[k]]:
                     count += 1
-                edges[src[m]].add(b)
+                edges[src[k]].add(b)
     bad = 0
-    for comp in circles(set(src.values()), edges):
+    for comp in circles({v for k, v in src.items() if v}, edges):
         print("circle: " + " <-> ".join(comp))
         bad += 1
     up = 0
@@ -131,8 +140,13 @@ def main():
             elif fa is not None and fb is not None and fb > fa:
                 print("call into a higher folder: %s -> %s" % (a, b))
                 up += 1
+            elif LAYERS.index(b.split("/")[0]) > LAYERS.index(a.split("/")[0]):
+                print("call into a higher layer: %s -> %s" % (a, b))
+                up += 1
     if not objs or count == 0:
         sys.exit("layers: no objects or no calls found in %s" % " ".join(archives))
+    if generated:
+        print("layers: generated objects, not checked: " + " ".join(generated))
     print("layers: %d files, %d file-to-file calls, %d circles, %d calls into a higher folder"
           % (len(objs), count, bad, up))
     sys.exit(1 if bad or up else 0)
