@@ -1,7 +1,7 @@
 /*
  * rd_ring — the discretized piston ring (thesis ch. 3.1-3.2).
  *
- * Geometry (SI units).  Rectangular section: radial width b, axial height h;
+ * Geometry (SI units).  Section (rd_section.h): radial width b, axial height h;
  * nominal diameter d (= bore), closed gap g.  Centroid radius R = (d - b)/2.
  * The split ring spans the arc 2*pi - g/R of the centroid circle, centred on
  * the angle opposite the gap: angle 0 is the middle of the gap, segments run
@@ -26,6 +26,7 @@
 #define RD_RING_H
 
 #include "rd_error.h"
+#include "rd_section.h"
 
 /* Ring definition as the user gives it.  Plain struct, caller-owned. */
 typedef struct rd_ring_params {
@@ -40,16 +41,13 @@ typedef struct rd_ring_params {
     int section;             /* enum rd_section_shape; default rectangle */
 } rd_ring_params;
 
-/* Cross-section shape.  The thesis ring is rectangular (b x h).  A circular
- * section (wire diameter b = h) serves round-wire rings and the NAFEMS
- * free-ring benchmark. */
-enum rd_section_shape { RD_SECTION_RECTANGLE = 0, RD_SECTION_CIRCLE = 1 };
-
 /* Allowed ranges, shared by validation and documentation. */
 #define RD_SEGMENTS_MIN 3
 #define RD_SEGMENTS_MAX 2000
 
-/* Section and material constants derived from the parameters. */
+/* The beam's constants: a view of the ring's rd_section (its area and
+ * moments) with the material's G and the ring's span.  Geometry (faces,
+ * radii, areas) is the rd_section's: rd_ring_get_cross_section. */
 typedef struct rd_ring_section {
     double R;            /* centroid radius, m */
     double area;         /* A = b h */
@@ -78,11 +76,9 @@ void rd_ring_params_default(rd_ring_params *p);
  * ("/ring/...", "/discretization/segments").  Returns RD_OK or RD_EINVAL. */
 int rd_ring_validate(const rd_ring_params *p, int segments, int closed, rd_error *err);
 
-/* Section constants; p must be valid. */
+/* The beam's constants of p's section, without a ring (the ring's own copy:
+ * rd_ring_get_section); p must be valid. */
 void rd_ring_section_get(const rd_ring_params *p, int closed, rd_ring_section *out);
-
-/* Saint-Venant torsion constant of a solid a x c rectangle (series solution). */
-double rd_ring_torsion_constant(double a, double c);
 
 /* Exact mass properties of one segment: the section of `p` swept about the
  * ring axis through the angle phi (an annular sector for a rectangle, a torus
@@ -102,6 +98,8 @@ int rd_ring_get_dof(const rd_ring *ring); /* 6 n */
 int rd_ring_is_closed(const rd_ring *ring);
 const rd_ring_params *rd_ring_get_params(const rd_ring *ring);
 const rd_ring_section *rd_ring_get_section(const rd_ring *ring);
+/* The ring's cross-section (rd_section.h), built once with the ring. */
+const rd_section *rd_ring_get_cross_section(const rd_ring *ring);
 /* Mid-angle of segment i, rad, measured from the middle of the gap. */
 double rd_ring_get_segment_angle(const rd_ring *ring, int i);
 /* Mass properties of segment i (all equal, kept per segment for clarity). */

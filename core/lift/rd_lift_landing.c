@@ -33,10 +33,11 @@
 
 #define V_REG_FRACTION 1e-2 /* v_r / (c_a omega) */
 
-void rd_lift_landing_init(rd_lift_model *m, const rd_ring_params *rp, const rd_lift_params *p)
+void rd_lift_landing_init(rd_lift_model *m, const rd_section *s, const rd_lift_params *p)
 {
     m->sq_on = p->squeeze.on;
-    m->sq_coef = p->squeeze.viscosity * rp->radial_width * rp->radial_width;
+    /* b: the flank's width (the lower's; the upper is alike) */
+    m->sq_coef = p->squeeze.viscosity * s->lower.width * s->lower.width;
     m->sq_hmin = p->squeeze.min_film;
     m->sq_vreg = V_REG_FRACTION * m->ca * m->omega;
     if (!(m->sq_vreg > 0.0))

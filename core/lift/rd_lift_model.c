@@ -59,6 +59,7 @@ void rd_lift_model_cleanup(rd_lift_model *c)
 static void model_constants(rd_lift_model *c, const rd_ring_params *rp, const rd_lift_params *p,
                             const rd_lift_setup *setup)
 {
+    const rd_section *s = rd_ring_get_cross_section(c->ring);
     c->piston_fixed = setup && setup->piston_fixed;
     c->omega = rd_engine_omega(&p->engine);
     c->ca = p->groove.axial_clearance;
@@ -67,17 +68,17 @@ static void model_constants(rd_lift_model *c, const rd_ring_params *rp, const rd
                                       : rd_lift_contact_stiffness_default(rp, p);
     c->d0 = SMOOTH_FRACTION * c->ca;
     c->eps = EVENT_FRACTION * c->ca;
-    c->c_flank = 2.0 * DAMPING_RATIO * sqrt(c->k * rp->density * rp->axial_height);
-    c->c_rad = 2.0 * DAMPING_RATIO * sqrt(c->k * rp->density * rp->radial_width);
+    c->c_flank = 2.0 * DAMPING_RATIO * sqrt(c->k * rp->density * s->h);
+    c->c_rad = 2.0 * DAMPING_RATIO * sqrt(c->k * rp->density * s->b);
     c->g_on = p->gravity ? RD_LIFT_GRAVITY : 0.0;
-    c->p0 = 2.0 * rp->tangential_force / (rp->diameter * rp->axial_height); /* (1.3) */
+    c->p0 = 2.0 * rp->tangential_force / (rp->diameter * s->run.height); /* (1.3) */
     c->delta_pre = rd_lift_contact_inverse(c, c->p0);
     rd_liner_init(&c->liner, &p->friction,
                   rd_liner_ureg(&p->engine) *
                       (setup && setup->ureg_scale > 0 ? setup->ureg_scale : 1.0),
-                  rp->axial_height);
-    c->h = rp->axial_height;
-    rd_lift_landing_init(c, rp, p);
+                  s->run.height);
+    c->h = s->run.height;
+    rd_lift_landing_init(c, s, p);
 }
 
 static int model_alloc(rd_lift_model *c, rd_error *err)
@@ -103,28 +104,31 @@ static int model_alloc(rd_lift_model *c, rd_error *err)
     return RD_OK;
 }
 
-/* Tributary areas of the contact points (header comment). */
-static void model_areas(rd_lift_model *c, const rd_ring_params *rp, const rd_ring_section *sec)
+/* Tributary areas of the contact points (header comment).  One set of flank
+ * points serves both flanks: the lower flank's, the upper being alike (the
+ * lift takes rectangles only). */
+static void model_areas(rd_lift_model *c, const rd_section *s, const rd_ring_section *sec)
 {
-    double R = sec->R, b = rp->radial_width, h = rp->axial_height;
-    double ri = R - 0.5 * b, ro = R + 0.5 * b, phi = sec->span / c->n;
-    c->L_run = ro * sec->span;
-    c->face_area = phi * R * b;
-    c->back_chord_area = h * 2.0 * ri * sin(0.5 * phi);
-    c->bo_area = h * ro * phi / ARC_POINTS;
-    c->ba_area = h * ri * phi / ARC_POINTS;
+    double R = sec->R, ri = s->lower.r_in, ro = s->lower.r_out, phi = sec->span / c->n;
+    c->L_run = s->run.r * sec->span;
+    c->face_area = phi * R * s->lower.width;
+    c->back_chord_area = s->back.height * 2.0 * s->back.r * sin(0.5 * phi);
+    c->bo_area = s->run.area_rad * phi / ARC_POINTS;
+    c->ba_area = s->back.area_rad * phi / ARC_POINTS;
     for (int a = 0; a < ARC_POINTS; a++) {
         c->fl_area[2 * a] = phi / ARC_POINTS * 0.5 * (R * R - ri * ri);     /* inner half */
         c->fl_area[2 * a + 1] = phi / ARC_POINTS * 0.5 * (ro * ro - R * R); /* outer half */
     }
 }
 
-/* Segment i's frame, face centroid and contact point offsets from P_i. */
-static void model_points(rd_lift_model *c, int i, const rd_ring_params *rp,
-                         const rd_ring_section *sec)
+/* Segment i's frame, face centroid and contact point offsets from P_i: the
+ * flank points at the lower flank's edges (model_areas), the bore and back
+ * points on the running and back faces, all in the plane of P_i (the faces
+ * touch at mid-height, z_touch = 0). */
+static void model_points(rd_lift_model *c, int i, const rd_section *s, const rd_ring_section *sec)
 {
-    double R = sec->R, b = rp->radial_width;
-    double ri = R - 0.5 * b, ro = R + 0.5 * b, phi = sec->span / c->n;
+    double R = sec->R, ri = s->lower.r_in, ro = s->lower.r_out, phi = sec->span / c->n;
+    double r_run = s->run.r, r_back = s->back.r;
     double rc_com = rd_ring_get_segment_mass(c->ring, 0)->com_radius;
     double al = rd_ring_get_segment_angle(c->ring, i), er[3], et[3];
     double Px = R * cos(al), Py = R * sin(al);
@@ -144,12 +148,12 @@ static void model_points(rd_lift_model *c, int i, const rd_ring_params *rp,
         fd[2] = ro * cp - Px;
         fd[3] = ro * sp - Py;
         size_t o = 2 * (ARC_POINTS * (size_t)i + a);
-        c->bo_d[o] = ro * cp - Px;
-        c->bo_d[o + 1] = ro * sp - Py;
+        c->bo_d[o] = r_run * cp - Px;
+        c->bo_d[o + 1] = r_run * sp - Py;
         c->bo_e[o] = cp;
         c->bo_e[o + 1] = sp;
-        c->ba_d[o] = ri * cp - Px;
-        c->ba_d[o + 1] = ri * sp - Py;
+        c->ba_d[o] = r_back * cp - Px;
+        c->ba_d[o + 1] = r_back * sp - Py;
     }
 }
 
@@ -204,6 +208,7 @@ int rd_lift_model_init(rd_lift_model *c, const rd_ring *ring, const rd_lift_para
                        const rd_lift_setup *setup, rd_error *err)
 {
     const rd_ring_params *rp = rd_ring_get_params(ring);
+    const rd_section *s = rd_ring_get_cross_section(ring);
     const rd_ring_section *sec = rd_ring_get_section(ring);
     int rc;
     memset(c, 0, sizeof *c);
@@ -212,7 +217,7 @@ int rd_lift_model_init(rd_lift_model *c, const rd_ring *ring, const rd_lift_para
     c->p = p;
     c->n = rd_ring_get_segments(ring);
     model_constants(c, rp, p, setup);
-    model_areas(c, rp, sec);
+    model_areas(c, s, sec);
     if ((rc = model_alloc(c, err)))
         return rc;
     rd_band M;
@@ -220,7 +225,7 @@ int rd_lift_model_init(rd_lift_model *c, const rd_ring *ring, const rd_lift_para
         return rc;
     rd_band_cleanup(&M); /* the block-diagonal M_i are used directly */
     for (int i = 0; i < c->n; i++) {
-        model_points(c, i, rp, sec);
+        model_points(c, i, s, sec);
         if ((rc = model_mass(c, i, err)))
             return rc;
     }

@@ -149,7 +149,7 @@ double rd_lift_contact_inverse(const rd_lift_model *m, double p);
  * scene (after ca and omega are set), and its pressure (Pa) at a flank
  * point with gap `gap` (m) closing at `closing` (m/s), with the partial
  * derivatives dp/dgap, dp/dclosing. */
-void rd_lift_landing_init(rd_lift_model *m, const rd_ring_params *rp, const rd_lift_params *p);
+void rd_lift_landing_init(rd_lift_model *m, const rd_section *s, const rd_lift_params *p);
 double rd_lift_squeeze(const rd_lift_model *m, double gap, double closing, double *p_gap,
                        double *p_closing);
 

@@ -385,7 +385,8 @@ static int pivoted_twist_stiffness(const rd_lift_model *m, int edge, double k_un
         const double *Mi = rd_ring_segment_mass_matrix(m->ring, i);
         double P[6][6] = {{0}};
         {
-            double rho = (edge ? 0.5 : -0.5) * rd_ring_get_params(m->ring)->radial_width;
+            const rd_section_flank *fl = &rd_ring_get_cross_section(m->ring)->lower;
+            double rho = edge ? fl->d_out : fl->d_in; /* the pivot edge's offset */
             double d[2] = {rho * m->e_r[2 * i], rho * m->e_r[2 * i + 1]};
             double p[6] = {0.0, 0.0, 1.0, d[1], -d[0], 0.0};
             for (int u = 0; u < 6; u++)

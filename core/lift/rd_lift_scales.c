@@ -31,20 +31,22 @@ static double table_max_abs(const rd_gas_params *g, const double *v)
 double rd_lift_flank_pressure_scale(const rd_ring_params *ring, const rd_lift_params *p)
 {
     const rd_engine_params *e = &p->engine;
+    rd_section s;
+    rd_section_init(&s, ring);
     double w = rd_engine_omega(e), lam = e->crank_radius / e->rod_length;
-    double rho_h = ring->density * ring->axial_height;
+    double rho_h = ring->density * s.h; /* mass per unit flank area */
     double P = rho_h * e->crank_radius * w * w * (1.0 + lam);
     if (p->gravity)
         P = fmax(P, rho_h * GRAVITY);
     if (p->friction.model != RD_FRICTION_NONE) {
         /* mu p0 h / b: the friction force per unit flank area */
-        double p0 = 2.0 * ring->tangential_force / (ring->diameter * ring->axial_height);
-        double pf = p->friction.coefficient * p0 * ring->axial_height / ring->radial_width;
+        double p0 = 2.0 * ring->tangential_force / (ring->diameter * s.run.height);
+        double pf = p->friction.coefficient * p0 * s.run.height / s.lower.width;
         if (p->friction.model == RD_FRICTION_STRIBECK) {
             /* + the hydrodynamic K eta u h per unit length at the peak speed */
             double umax = e->crank_radius * w * (1.0 + lam);
-            pf += p->friction.hydrodynamic_slope * p->friction.viscosity * umax *
-                  ring->axial_height / (M_PI * ring->diameter * ring->radial_width);
+            pf += p->friction.hydrodynamic_slope * p->friction.viscosity * umax * s.run.height /
+                  (M_PI * ring->diameter * s.lower.width);
         }
         P = fmax(P, pf);
     }
@@ -62,7 +64,9 @@ double rd_lift_contact_stiffness_default(const rd_ring_params *ring, const rd_li
     double k_load =
         rd_lift_flank_pressure_scale(ring, p) / (LOAD_PENETRATION * p->groove.axial_clearance);
     double wc = CONTACT_FREQ_RATIO * w;
-    double k_dyn = ring->density * ring->axial_height * wc * wc;
+    rd_section s;
+    rd_section_init(&s, ring);
+    double k_dyn = ring->density * s.h * wc * wc;
     return fmax(k_load, k_dyn);
 }
 
@@ -71,5 +75,7 @@ double rd_lift_accel_scale(const rd_ring_params *rp, const rd_lift_params *p)
     const rd_engine_params *e = &p->engine;
     double w = rd_engine_omega(e);
     double a = e->crank_radius * w * w * (1.0 + e->crank_radius / e->rod_length);
-    return fmax(a, rd_lift_flank_pressure_scale(rp, p) / (rp->density * rp->axial_height));
+    rd_section s;
+    rd_section_init(&s, rp);
+    return fmax(a, rd_lift_flank_pressure_scale(rp, p) / (rp->density * s.h));
 }

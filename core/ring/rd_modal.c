@@ -83,9 +83,11 @@ int rd_modal_validate(const rd_modal_opts *o, int segments, rd_error *err)
 
 double rd_modal_slenderness(const rd_ring_params *p, int segments)
 {
-    double R = 0.5 * (p->diameter - p->radial_width);
+    rd_section s;
+    rd_section_init(&s, p);
+    double R = s.R;
     double g = 1.0 / (2.0 * (1.0 + p->poisson_ratio)); /* G / E */
-    return segments * R / fmin(p->radial_width, p->axial_height) * sqrt(fmax(1.0, g));
+    return segments * R / fmin(s.b, s.h) * sqrt(fmax(1.0, g));
 }
 
 /* The edges were found by solving rings of D = 0.0765 and 5 m, square and

@@ -1,6 +1,7 @@
 /*
- * rd_ring — section properties, segment mass properties and the global
- * stiffness and mass matrices of the segmented ring (thesis 3.1-3.2).
+ * rd_ring — the beam's section constants (a view of rd_section.c's), segment
+ * mass properties and the global stiffness and mass matrices of the
+ * segmented ring (thesis 3.1-3.2).
  *
  * Joint stiffness.  Neighbouring segments i, i+1 with reference points P_i,
  * P_{i+1} on the centroid circle are joined by a straight Timoshenko beam of
@@ -43,7 +44,8 @@
 
 struct rd_ring {
     rd_ring_params p;
-    rd_ring_section s;
+    rd_section sec;    /* the cross-section */
+    rd_ring_section s; /* its view for the beam */
     int n, closed, joints, graded;
     double phi;            /* mean segment angle span / n, rad (every segment's unless graded) */
     double *phis;          /* n segment angles, rad */
@@ -88,7 +90,7 @@ int rd_ring_validate(const rd_ring_params *p, int segments, int closed, rd_error
                             "/ring/axial_height = %g m gives a width/height ratio b/h = %g; "
                             "allowed 0.05 to 20.",
                             p->axial_height, ratio);
-    if (p->section != RD_SECTION_RECTANGLE && p->section != RD_SECTION_CIRCLE)
+    if (p->section < 0 || p->section >= RD_SECTION_SHAPES)
         return rd_error_set(err, RD_EINVAL, "/ring/section", "unknown section shape %d.",
                             p->section);
     if (p->section == RD_SECTION_CIRCLE && p->radial_width != p->axial_height)
@@ -120,57 +122,41 @@ int rd_ring_validate(const rd_ring_params *p, int segments, int closed, rd_error
     return RD_OK;
 }
 
-double rd_ring_torsion_constant(double a, double c)
+/* The beam's constants: the section's area and moments, G, the span. */
+static void section_view(const rd_section *sec, const rd_ring_params *p, int closed,
+                         rd_ring_section *s)
 {
-    /* J = a c^3 [1/3 - (64/pi^5)(c/a) sum_{k odd} tanh(k pi a / 2c) / k^5], a >= c. */
-    if (a < c) {
-        double t = a;
-        a = c;
-        c = t;
-    }
-    double sum = 0.0;
-    for (int k = 1; k < 200; k += 2) {
-        double term = tanh(k * M_PI * a / (2.0 * c)) / pow(k, 5);
-        sum += term;
-        if (term < 1e-17 * sum)
-            break;
-    }
-    return a * c * c * c * (1.0 / 3.0 - 64.0 / pow(M_PI, 5) * (c / a) * sum);
+    s->R = sec->R;
+    s->G = p->youngs_modulus / (2.0 * (1.0 + p->poisson_ratio));
+    s->area = sec->area;
+    s->I_inplane = sec->I_inplane;
+    s->I_outplane = sec->I_outplane;
+    s->J = sec->J;
+    s->shear_factor = sec->shear_factor;
+    s->span = closed ? 2.0 * M_PI : 2.0 * M_PI - p->closed_gap / s->R;
 }
 
 void rd_ring_section_get(const rd_ring_params *p, int closed, rd_ring_section *s)
 {
-    double b = p->radial_width, h = p->axial_height;
-    s->R = 0.5 * (p->diameter - b);
-    s->G = p->youngs_modulus / (2.0 * (1.0 + p->poisson_ratio));
-    if (p->section == RD_SECTION_CIRCLE) {
-        double a = 0.5 * b; /* wire radius */
-        s->area = M_PI * a * a;
-        s->I_inplane = s->I_outplane = M_PI * pow(a, 4) / 4.0;
-        s->J = M_PI * pow(a, 4) / 2.0;
-        s->shear_factor = 10.0 / 9.0;
-    } else {
-        s->area = b * h;
-        s->I_inplane = h * b * b * b / 12.0;
-        s->I_outplane = b * h * h * h / 12.0;
-        s->J = rd_ring_torsion_constant(b, h);
-        s->shear_factor = 6.0 / 5.0;
-    }
-    s->span = closed ? 2.0 * M_PI : 2.0 * M_PI - p->closed_gap / s->R;
+    rd_section sec;
+    rd_section_init(&sec, p);
+    section_view(&sec, p, closed, s);
 }
 
 double rd_ring_conformability(const rd_ring_params *p)
 {
-    rd_ring_section s;
-    rd_ring_section_get(p, 0, &s);
-    double db = p->diameter - p->radial_width;
+    rd_section s;
+    rd_section_init(&s, p);
+    double db = s.D;
     return p->tangential_force * db * db / (4.0 * p->youngs_modulus * s.I_inplane);
 }
 
 double rd_ring_free_gap_formula(const rd_ring_params *p)
 {
     /* (1.5): k = 2/(3 pi) m/(d - b), m the opening beyond the closed gap */
-    double m = 1.5 * M_PI * rd_ring_conformability(p) * (p->diameter - p->radial_width);
+    rd_section s;
+    rd_section_init(&s, p);
+    double m = 1.5 * M_PI * rd_ring_conformability(p) * s.D;
     return p->closed_gap + m;
 }
 
@@ -184,7 +170,8 @@ static double half_phi_minus_sin(double phi)
     return 0.5 * (phi - sin(phi));
 }
 
-void rd_ring_segment_mass_get(const rd_ring_params *p, double phi, rd_segment_mass *out)
+/* The section swept about the ring axis through phi (density rho). */
+static void sweep_mass(const rd_section *sec, double rho, double phi, rd_segment_mass *out)
 {
     /* Section moments about the ring axis (r radial coordinate, z axial):
      * S1 = int r dA, S2 = int r^2 dA, S3 = int r^3 dA, Z = int r z^2 dA.
@@ -192,22 +179,7 @@ void rd_ring_segment_mass_get(const rd_ring_params *p, double phi, rd_segment_ma
      * m = rho phi S1, int x dm = 2 rho S2 sin(phi/2),
      * int x^2 dm = rho S3 (phi + sin phi)/2, int y^2 dm = rho S3 (phi - sin phi)/2,
      * int z^2 dm = rho phi Z. */
-    double b = p->radial_width, h = p->axial_height, rho = p->density;
-    double R = 0.5 * (p->diameter - b);
-    double S1, S2, S3, Z;
-    if (p->section == RD_SECTION_CIRCLE) {
-        double a = 0.5 * b, A = M_PI * a * a, a2 = a * a / 4.0; /* int x^2 dA / A */
-        S1 = A * R;
-        S2 = A * (R * R + a2);
-        S3 = A * (R * R * R + 3.0 * R * a2);
-        Z = R * A * a2;
-    } else {
-        double ri = R - 0.5 * b, ro = R + 0.5 * b;
-        S1 = h * (ro * ro - ri * ri) / 2.0;
-        S2 = h * (ro * ro * ro - ri * ri * ri) / 3.0;
-        S3 = h * (pow(ro, 4) - pow(ri, 4)) / 4.0;
-        Z = (ro * ro - ri * ri) / 2.0 * h * h * h / 12.0;
-    }
+    double S1 = sec->S1, S2 = sec->S2, S3 = sec->S3, Z = sec->Z;
     double m = rho * phi * S1;
     double xx = rho * S3 * (phi - half_phi_minus_sin(phi)); /* (phi + sin phi)/2 */
     double yy = rho * S3 * half_phi_minus_sin(phi);
@@ -218,6 +190,13 @@ void rd_ring_segment_mass_get(const rd_ring_params *p, double phi, rd_segment_ma
     out->I_rr = yy + zz;               /* about the radial axis through the COM */
     out->I_tt = xx + zz - m * rc * rc; /* parallel-axis shift by rc */
     out->I_zz = xx + yy - m * rc * rc;
+}
+
+void rd_ring_segment_mass_get(const rd_ring_params *p, double phi, rd_segment_mass *out)
+{
+    rd_section sec;
+    rd_section_init(&sec, p);
+    sweep_mass(&sec, p->density, phi, out);
 }
 
 /* out = [v]x, the cross-product matrix (row-major 3x3). */
@@ -345,7 +324,8 @@ rd_ring *rd_ring_create_graded(const rd_ring_params *p, int segments, int closed
     ring->n = n;
     ring->closed = closed ? 1 : 0;
     ring->joints = closed ? n : n - 1;
-    rd_ring_section_get(p, ring->closed, &ring->s);
+    rd_section_init(&ring->sec, p);
+    section_view(&ring->sec, p, ring->closed, &ring->s);
     ring->phi = ring->s.span / n;
     ring->phis = malloc((size_t)n * sizeof *ring->phis);
     ring->alpha = malloc((size_t)n * sizeof *ring->alpha);
@@ -379,7 +359,7 @@ rd_ring *rd_ring_create_graded(const rd_ring_params *p, int segments, int closed
     }
     for (int i = 0; i < n; i++) {
         if (i == 0 || ring->phis[i] != ring->phis[i - 1])
-            rd_ring_segment_mass_get(p, ring->phis[i], &ring->mass[i]);
+            sweep_mass(&ring->sec, p->density, ring->phis[i], &ring->mass[i]);
         else
             ring->mass[i] = ring->mass[i - 1];
         segment_mass_matrix(ring, i, ring->Mseg + 36 * i);
@@ -444,6 +424,10 @@ const rd_ring_params *rd_ring_get_params(const rd_ring *ring)
 const rd_ring_section *rd_ring_get_section(const rd_ring *ring)
 {
     return &ring->s;
+}
+const rd_section *rd_ring_get_cross_section(const rd_ring *ring)
+{
+    return &ring->sec;
 }
 double rd_ring_get_segment_angle(const rd_ring *ring, int i)
 {

@@ -115,12 +115,14 @@ static int validate_ring(const rd_ringpack_ring *r, int i, double bore, rd_error
     rc = rc ? rc
             : rd_error_range(r->land_clearance, 1e-7, 0.25 * bore, FIELD("land/radial_clearance"),
                              "m", err);
-    if (!rc && r->groove.axial_clearance >= r->ring.axial_height)
+    rd_section s;
+    rd_section_init(&s, &r->ring);
+    if (!rc && r->groove.axial_clearance >= s.h)
         return rd_error_set(err, RD_EINVAL, FIELD("groove/axial_clearance"),
                             "%s = %g m is not smaller than the ring's height %g m: the groove "
                             "(ring height + axial clearance) would be more than twice as tall "
                             "as the ring, outside this model.",
-                            f, r->groove.axial_clearance, r->ring.axial_height);
+                            f, r->groove.axial_clearance, s.h);
 #undef FIELD
     return rc;
 }
@@ -210,23 +212,29 @@ int rd_ringpack_validate(const rd_ringpack_params *p, rd_error *err)
 static const char *const land_names[] = {"top_land", "second_land", "third_land"};
 static const char *const groove_names[] = {"groove_1", "groove_2", "groove_3"};
 
+/* The ring's lumped geometry (rd_ringpack.h): its flank area and mass, the
+ * pretension's and the back gas's normal forces, the volumes around it. */
 static void ring_geometry(rd_ringpack_model *m, int i)
 {
     const rd_ringpack_ring *r = &m->p->rings[i];
-    double d = r->ring.diameter, b = r->ring.radial_width, h = r->ring.axial_height;
+    rd_section s;
+    rd_section_init(&s, &r->ring);
+    double d = r->ring.diameter, h_run = s.run.height, h_back = s.back.height;
     double a = r->groove.axial_clearance, c = r->land_clearance;
-    double r_in = 0.5 * d - b, r_b = r_in - r->groove.radial_clearance;
+    /* the back face, b inside the bore; the groove back behind it */
+    double r_in = 0.5 * d - s.b, r_b = r_in - r->groove.radial_clearance;
     m->ca[i] = a;
-    m->area[i] = b * (M_PI * (d - b) - r->ring.closed_gap);
-    m->mass[i] = r->ring.density * h * m->area[i];
+    m->area[i] = s.lower.area_ring;
+    m->mass[i] = r->ring.density * s.h * m->area[i];
     m->circ[i] = M_PI * d;
     m->gap_area[i] = r->ring.closed_gap * c;
     m->cd[i] = r->discharge_coefficient;
-    m->n_pre[i] = 2.0 * r->ring.tangential_force / (d * h) * h * (M_PI * d - r->ring.closed_gap);
-    m->n_back[i] = h * 2.0 * M_PI * r_in;
+    m->n_pre[i] =
+        2.0 * r->ring.tangential_force / (d * h_run) * h_run * (M_PI * d - r->ring.closed_gap);
+    m->n_back[i] = h_back * 2.0 * M_PI * r_in;
     m->vol[2 * i + 1] = M_PI * r->land_height * c * (d - c);
     m->vol[2 * i + 2] =
-        M_PI * (r_in * r_in - r_b * r_b) * (h + a) + M_PI * (0.25 * d * d - r_in * r_in) * a;
+        M_PI * (r_in * r_in - r_b * r_b) * (s.h + a) + M_PI * (0.25 * d * d - r_in * r_in) * a;
     m->temp[2 * i + 1] = m->temp[2 * i + 2] = m->p->T_lands;
     /* flows 1 + 3i .. 3 + 3i: upper flank, lower flank, end gap */
     m->from[1 + 3 * i] = 2 * i + 1;
@@ -282,8 +290,9 @@ int rd_ringpack_model_init(rd_ringpack_model *m, const rd_ringpack_params *p, rd
     m->from[0] = 0;
     m->to[0] = 1;
     for (int i = 0; i < m->R; i++) {
-        rd_liner_init(&m->liner[i], &p->friction, rd_liner_ureg(&p->engine),
-                      p->rings[i].ring.axial_height);
+        rd_section s;
+        rd_section_init(&s, &p->rings[i].ring);
+        rd_liner_init(&m->liner[i], &p->friction, rd_liner_ureg(&p->engine), s.run.height);
         ring_geometry(m, i);
         m->mode[i] = p->rings[i].pinned == RD_PIN_UPPER ? RD_FLANK_UPPER : RD_FLANK_LOWER;
     }

@@ -18,16 +18,16 @@ static void test_torsion_constant(void)
      * 0.229 (2), 0.281 (4), 0.299 ~ 0.3 (6), 0.307 (8), 1/3 as a/c -> inf.
      * Tolerance 1e-3 = the tables' last digit. */
     double c = 1.0;
-    CHECK_ABS(rd_ring_torsion_constant(1.0, c), 0.1406, 1e-3, "square");
-    CHECK_ABS(rd_ring_torsion_constant(2.0, c) / 2.0, 0.229, 1e-3, "b/h = 2");
-    CHECK_ABS(rd_ring_torsion_constant(4.0, c) / 4.0, 0.281, 1e-3, "b/h = 4");
-    CHECK_ABS(rd_ring_torsion_constant(6.0, c) / 6.0, 0.299, 1e-3, "b/h = 6");
-    CHECK_ABS(rd_ring_torsion_constant(8.0, c) / 8.0, 0.307, 1e-3, "b/h = 8");
+    CHECK_ABS(rd_section_torsion_constant(1.0, c), 0.1406, 1e-3, "square");
+    CHECK_ABS(rd_section_torsion_constant(2.0, c) / 2.0, 0.229, 1e-3, "b/h = 2");
+    CHECK_ABS(rd_section_torsion_constant(4.0, c) / 4.0, 0.281, 1e-3, "b/h = 4");
+    CHECK_ABS(rd_section_torsion_constant(6.0, c) / 6.0, 0.299, 1e-3, "b/h = 6");
+    CHECK_ABS(rd_section_torsion_constant(8.0, c) / 8.0, 0.307, 1e-3, "b/h = 8");
     /* thin strip: beta = 1/3 (1 - 0.630 c/a) to O((c/a)^5) */
-    CHECK_REL(rd_ring_torsion_constant(1000.0, c) / 1000.0, (1.0 - 0.630 / 1000.0) / 3.0, 1e-5,
+    CHECK_REL(rd_section_torsion_constant(1000.0, c) / 1000.0, (1.0 - 0.630 / 1000.0) / 3.0, 1e-5,
               "thin strip");
     /* symmetric in its arguments (b < h rings) */
-    CHECK_REL(rd_ring_torsion_constant(0.3, 1.0), rd_ring_torsion_constant(1.0, 0.3), 1e-15,
+    CHECK_REL(rd_section_torsion_constant(0.3, 1.0), rd_section_torsion_constant(1.0, 0.3), 1e-15,
               "J(b,h) = J(h,b)");
 }
 
