@@ -145,7 +145,7 @@ static int contact_setup(rd_static_problem *pb, const rd_ring_params *p, const r
     pb->m = m;
     pb->r_o = pb->R + 0.5 * pb->b;
     pb->bore_dr = (o->bore.diameter > 0.0 ? 0.5 * o->bore.diameter : 0.5 * p->diameter) - pb->r_o;
-    pb->p0 = 2.0 * p->tangential_force / (p->diameter * p->axial_height);
+    pb->p0 = 2.0 * p->tangential_force / (p->diameter * pb->h); /* over the running face */
     pb->k = o->stiffness > 0.0 ? o->stiffness : rd_contact_default_stiffness(p);
     pb->eps = 0.05 * pb->p0 / pb->k;
     pb->F_ref = p->tangential_force;

@@ -22,13 +22,17 @@ void rd_contact_opts_default(rd_contact_opts *o)
 double rd_contact_default_stiffness(const rd_ring_params *p)
 {
     rd_ring_section s;
+    rd_section sec;
     rd_ring_section_get(p, 0, &s);
-    return 2e6 * p->youngs_modulus * s.I_inplane / (p->axial_height * pow(s.R, 4));
+    rd_section_init(&sec, p);
+    return 2e6 * p->youngs_modulus * s.I_inplane / (sec.h * pow(s.R, 4));
 }
 
 double rd_contact_gap_floor(const rd_ring_params *p)
 {
-    double p0 = 2.0 * p->tangential_force / (p->diameter * p->axial_height);
+    rd_section sec;
+    rd_section_init(&sec, p);
+    double p0 = 2.0 * p->tangential_force / (p->diameter * sec.run.height);
     return 20.0 * p0 / rd_contact_default_stiffness(p);
 }
 

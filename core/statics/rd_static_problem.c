@@ -20,14 +20,14 @@ static const rd_static_loads chain_only = {0};
 int rd_static_problem_init(rd_static_problem *pb, const rd_ring *ring, const rd_static_loads *loads)
 {
     int n = rd_ring_get_segments(ring);
-    const rd_ring_params *p = rd_ring_get_params(ring);
     memset(pb, 0, sizeof *pb);
     pb->ring = ring;
     pb->loads = loads ? loads : &chain_only;
     pb->n = n;
     pb->R = rd_ring_get_section(ring)->R;
-    pb->b = p->radial_width;
-    pb->h = p->axial_height;
+    const rd_section *sec = rd_ring_get_cross_section(ring);
+    pb->b = sec->b;
+    pb->h = sec->h;
     pb->Kc = rd_ring_joint_stiffness(ring, 0);
     pb->E = malloc((size_t)9 * n * sizeof *pb->E);
     pb->dP0 = malloc((size_t)3 * n * sizeof *pb->dP0);

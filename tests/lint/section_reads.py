@@ -22,13 +22,7 @@ import sys
 
 OWNER = "core/ring/rd_section.c"
 INPUT_FUNCTIONS = {"core/ring/rd_ring.c": {"rd_ring_params_default", "rd_ring_validate"}}
-# Files that still read b and h raw: core/statics, being restructured while
-# the section object landed.  Remove each entry as its file is ported.
-ALLOWED = {
-    "core/statics/rd_contact.c",
-    "core/statics/rd_contact_opts.c",
-    "core/statics/rd_static_problem.c",
-}
+ALLOWED = set()  # files still reading b and h raw until ported: none
 READ = re.compile(r"(?:\.|->)\s*(radial_width|axial_height)\b")
 
 
