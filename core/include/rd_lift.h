@@ -16,9 +16,11 @@
  * active areas.  Contacts: the groove's lower and upper flanks and back, and
  * the bore (radially, preloaded by the pretension), as smooth penalties.
  *
- * Integrated with SUNDIALS CVODE (BDF, banded Newton linear solver), so the
- * cost grows linearly with n; flank changes are located by CVODE's root
- * finding, not on the output grid.
+ * Three formulations (numerics.model): the full ring, integrated with
+ * SUNDIALS CVODE (BDF) and a block-tridiagonal Newton solve in second-order
+ * form, so the cost grows linearly with n; the rigid ring, with its own
+ * TR-BDF2 integrator; the modal reduction, CVODE with a dense Newton solve.
+ * Flank changes are located by root finding, not on the output grid.
  */
 #ifndef RD_LIFT_H
 #define RD_LIFT_H
@@ -36,8 +38,8 @@ enum rd_lift_landing { RD_LANDING_PENALTY = 0, RD_LANDING_PLASTIC = 1 };
 enum rd_flank { RD_FLANK_LOWER = 0, RD_FLANK_UPPER = 1, RD_FLANK_FREE = 2 };
 /* Which equations are integrated (numerics.model): the full flexible ring
  * (6 n DOFs), the rigid ring (axial lift, twist, radial: exact for
- * axisymmetric scenes, rd_lift_rigid.c), the modal reduction (not available
- * yet), or auto: the cheapest the scene allows. */
+ * axisymmetric scenes, rd_lift_rigid.c), the modal reduction
+ * (rd_lift_modal.c, by request), or auto: the cheapest the scene allows. */
 enum rd_lift_model_kind {
     RD_LIFT_MODEL_FULL = 0,
     RD_LIFT_MODEL_RIGID = 1,

@@ -1,14 +1,13 @@
 /*
  * rd_lift_model.h — the full lift model's pieces, shared by its files (not
- * part of the public API; no caller outside core/ may include this, except
- * tests/core/test_blocktri.c and bench/bench_newton.c, which drive the
- * Newton solver on the model's own matrices).
+ * part of the public API: core/lift/ is private to core; tests and benches
+ * reach it through ringdyn_core_internal).
  *
- * The full model is split by concern (MODEL.md "lift" and rd_lift.h for the
- * physics; each file's comment for its part):
- *   rd_lift.c         parameters, validation, piston kinematics, default
- *                     stiffness, the public solve (the accuracy driver's
- *                     two solves and their comparison)
+ * The lift folder, split by concern (MODEL.md "lift" and rd_lift.h for the
+ * physics; each file's comment for its part; docs/architecture.md):
+ *   rd_lift.c         parameters and their validation
+ *   rd_lift_scales.c  the scene's scales: largest flank pressure, default
+ *                     contact stiffness, acceleration scale
  *   rd_lift_model.c   the model: state layout, geometry of the contact
  *                     points, mass (M_i^-1) and stiffness (K, -M_i^-1 K_ij),
  *                     the right-hand side and the Jacobian assembled from
@@ -16,15 +15,26 @@
  *   rd_lift_forces.c  the force elements, each a small unit that adds its
  *                     generalized force on segment i and its local Jacobian
  *                     contribution df_i/dq_i, df_i/dv_i: inertia and
- *                     gravity, flank contacts, bore contact and friction,
- *                     groove back, gas faces
+ *                     gravity, flank contacts, bore contact and friction
+ *                     (the liner's law, core/liner), groove back, gas faces
  *   rd_lift_landing.c the landing law: the oil squeeze film on the flanks
+ *   rd_lift_bore.c    a distorted bore's offsets per contact point
+ *   rd_lift_start.c   the static start in a distorted bore
+ *   rd_lift_rigid.c, rd_lift_modal.c   the reduced formulations
  *   rd_lift_newton.c  the Newton systems in second-order form (half the
  *                     unknowns, block-tridiagonal LU of I - gamma B -
  *                     gamma^2 A by rd_blocktri.c)
- *   rd_lift_driver.c  the CVODE driver: set-up, events (root finding and
- *                     the flank state machine), output sampling, counters,
- *                     the work bound and cancellation, the Jacobian check
+ *   rd_lift_small.c   the small forms' TR-BDF2 integrator; rd_lift_stick.c
+ *                     the seated ring's sticking phase
+ *   rd_lift_driver.c  the CVODE driver (core/numerics/rd_cvode.h): set-up,
+ *                     events (root finding and the flank state machine),
+ *                     output sampling, counters, the work bound and
+ *                     cancellation
+ *   rd_lift_partial.c what a stopped run keeps
+ *   rd_lift_solve.c   the public solve (the accuracy driver's two solves and
+ *                     their comparison), on top
+ *   rd_lift_hooks.c   the test hooks (Jacobian check, twist stiffness)
+ * The piston's kinematics and tilt are core/engine's (rd_engine.h).
  *
  * State layout (interleaved per segment so that the Jacobian is banded):
  *     y[12 i + k] = q_i[k],  y[12 i + 6 + k] = v_i[k],  k = 0..5   (Q(), V())
