@@ -33,31 +33,19 @@
  *   linear K) is the constant outward force p0 h (arc)/3 at each point, so
  *   the reference is in equilibrium.  p0 = 2 F_t / (d h)  (thesis 1.3).
  *   Groove back: 3 points on the inner face, penetration -u_r - c_r.
- * Default stiffness k (Pa/m, contact_stiffness = 0), the larger of
- *   k_load = P_max / (1e-3 c_a): the largest pressure the scene can put on a
- *     flank (inertia rho h r w^2 (1 + lambda), gravity, friction, gas)
- *     pushes it in by at most 1e-3 of the clearance;
- *   k_dyn = rho h (3e4 w)^2: the flank contact frequency w_c = sqrt(k / (rho h))
- *     is 3e4 times the crank's, so the damped contact follows the load with
- *     a lag 2 zeta / w_c = 3.3e-4 rad = 0.02 deg of crank.
- * Both effects shift the flank-change angles by far less than the flight
- * times (degrees); test_lift checks the angles over 2 decades of k.
+ * Default stiffness k: rd_lift_scales.c (k_load and k_dyn; both shift the
+ * flank-change angles by far less than the flight times: test_lift checks
+ * them over 2 decades of k).
  * Optional landing law (/physics/squeeze_film): the oil squeeze film on
  * each flank point, added after the penalty (rd_lift_landing.c).
  *
  *
- * Friction (model != NONE), on each bore point, axial.  Sliding velocity of
- * the ring against the liner: ring velocity in the piston frame plus the
- * piston's velocity in the cylinder frame (-ds/dt):  u = w' - s'.
- *   Coulomb:  F = -mu N tanh(u / u_reg)
- *   Stribeck (2.9) with the Sommerfeld number (1.11):
- *     F = -tanh(u / u_reg) (C e^{-3 |So_lim / So|^2.5} + K / So) N,
- *     So = N_ring / (eta |u| h),  so K / So N = K eta |u| h N / N_ring.
- *   N is the point's bore normal force; N_ring = N L / s_k is the ring-
- *   equivalent normal force at that point's local line load (s_k its arc,
- *   L the whole running face), so a uniform load gives exactly (1.11) with
- *   the ring's total force and the hydrodynamic part sums to K eta u h over
- *   the ring, independent of n.  u_reg = 1e-3 x the mean piston speed.
+ * Friction (model != NONE), on each bore point, axial: the liner's law
+ * (core/liner/rd_liner_law.h: Coulomb or Stribeck 2.9, regularized by
+ * u_reg), given the point's bore normal force N, its share s_k / L of the
+ * running face and the sliding speed of the ring on the liner: ring
+ * velocity in the piston frame plus the piston's velocity in the cylinder
+ * frame (-ds/dt), u = w' - s'.
  *
  *
  * Gas (points > 0), gauge pressures interpolated linearly in crank angle,
