@@ -183,6 +183,13 @@ static const rd_block contact_block = {
 static const rd_field output_fields[] = {
     {"step_deg", RD_F_NUMBER, LO(lift.step_deg), RD_MIN(0.001), RD_MAX(90),
      .desc = "Crank-angle step of the output samples, deg."},
+    {"flank_band", RD_F_NUMBER, LO(lift.flank_band), RD_MIN(0), RD_MAX(RD_LIFT_FLANK_BAND_MAX),
+     .desc = "Width of the band at each flank, as a fraction of the axial clearance, where flank "
+             "changes are dated: a leave where the mean lift moves out of the band, a landing "
+             "where it moves in (a bounce that leaves the band is two events). Each event also "
+             "keeps touch_deg, where the mean lift itself touched or left the flank. 0: dated at "
+             "the touch (a landing) and where the load turns away (a leave, confirmed 1 % of the "
+             "clearance off the flank). Default 0.01."},
     {.key = NULL},
 };
 static const rd_block output_block = {"Output", "/output (lift).", 1, 0, output_fields};
@@ -327,8 +334,10 @@ static int lift_series(const rd_lift_result *res, json_t **segs, json_t **flank,
     for (int k = 0; !bad && k < res->n_events; k++) {
         int e = res->events[k].kind;
         bad |= json_array_append_new(
-            *events, json_pack("{s:o, s:s}", "crank_deg", rd_result_real(res->events[k].crank_deg),
-                               "event", e >= 0 && e < 4 ? event_names[e] : "unknown"));
+            *events, json_pack("{s:o, s:s, s:o}", "crank_deg",
+                               rd_result_real(res->events[k].crank_deg), "event",
+                               e >= 0 && e < 4 ? event_names[e] : "unknown", "touch_deg",
+                               rd_result_real(res->events[k].touch_deg)));
     }
     return bad ? -1 : 0;
 }
@@ -353,7 +362,7 @@ static json_t *lift_numerics(const rd_scene *scene, const rd_lift_result *res, d
     int estimated = isfinite(res->error_estimate);
     return json_pack(
         "{s:i, s:i, s:o, s:o, s:s, s:I, s:I, s:I, s:I, s:I, s:I, s:I, s:I, s:o, s:o, s:o, s:o, "
-        "s:o}",
+        "s:o, s:o}",
         "segments", res->segments, "dof", res->dof, "model",
         json_pack("{s:s, s:i, s:i, s:s}", "name", rd_lift_model_name(res->model), "dof", res->dof,
                   "modes", res->modes, "why", res->why),
@@ -376,7 +385,8 @@ static json_t *lift_numerics(const rd_scene *scene, const rd_lift_result *res, d
         "event_error_deg", rd_result_real(res->event_error_deg), "error_method",
         estimated ? json_string(res->model == RD_LIFT_MODEL_RIGID ? METHOD_TIME METHOD_RIGID
                                                                   : METHOD_TIME METHOD_FLEX)
-                  : json_null());
+                  : json_null(),
+        "flank_band", rd_result_real(o->lift.flank_band));
 }
 
 /* The warning of a partial result, {code: "partial", path, message}, in the

@@ -59,6 +59,8 @@ enum rd_lift_event_kind {
 #define RD_LIFT_TABLE_MAX    100000 /* points of a gas pressure table */
 #define RD_LIFT_SEGMENTS_MAX 1000
 #define RD_LIFT_MODES_MAX    60
+#define RD_LIFT_FLANK_BAND     0.01 /* output.flank_band default, of the axial clearance */
+#define RD_LIFT_FLANK_BAND_MAX 0.2
 
 typedef struct rd_groove_params {
     double axial_clearance;  /* groove height minus ring height, m */
@@ -104,6 +106,12 @@ typedef struct rd_lift_params {
     int model;                 /* enum rd_lift_model_kind */
     int modes;           /* elastic modes of the modal model, 0 = auto, <= RD_LIFT_MODES_MAX */
     double accuracy_deg; /* target on the flank-change angles, deg (auto) */
+    /* Flank changes are dated where the mean lift crosses the edge of a band of
+     * flank_band * axial_clearance at each flank (a leave where it moves out,
+     * a landing where it moves in; default 0.01, within [0, 0.2]).  0: dated
+     * where the mean lift touches the flank (a landing) or where the load turns
+     * away from it (a leave, confirmed 1 % of the clearance off the flank). */
+    double flank_band;
     int stick; /* 1: the rigid model's sticking phase (rd_lift_stick.c); C only, default 0:
                   it saves steps but not instructions (README) */
     int cvode; /* 1: CVODE for every model; C only, default 0: the rigid model is integrated
@@ -111,8 +119,12 @@ typedef struct rd_lift_params {
 } rd_lift_params;
 
 typedef struct rd_lift_event {
-    double crank_deg;
-    int kind; /* enum rd_lift_event_kind */
+    double crank_deg; /* where the mean lift crossed the band's edge (flank_band) */
+    int kind;         /* enum rd_lift_event_kind */
+    /* Where the mean lift itself first touched the flank after a landing, or
+     * left it before a leave (the load's turning away, as with flank_band 0);
+     * NAN if it never touched the flank in between. */
+    double touch_deg;
 } rd_lift_event;
 
 typedef struct rd_lift_result {

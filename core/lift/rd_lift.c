@@ -84,6 +84,7 @@ void rd_lift_params_default(rd_lift_params *p)
     p->model = RD_LIFT_MODEL_AUTO;
     p->modes = 0;
     p->accuracy_deg = 0.1;
+    p->flank_band = RD_LIFT_FLANK_BAND;
 }
 
 const char *rd_lift_model_name(int model)
@@ -283,6 +284,9 @@ static int validate_numerics(const rd_lift_params *p, const rd_ring_params *ring
                             "%d elastic modes.",
                             p->modes, segments, 6 * segments - 6);
     if ((rc = rd_error_range(p->accuracy_deg, 1e-4, 10.0, "/numerics/accuracy_deg", "deg", err)))
+        return rc;
+    if ((rc = rd_error_range(p->flank_band, 0.0, RD_LIFT_FLANK_BAND_MAX, "/output/flank_band",
+                             "of the axial clearance", err)))
         return rc;
     if (p->modes < 0 || p->modes > RD_LIFT_MODES_MAX)
         return rd_error_set(err, RD_EINVAL, "/numerics/modes",

@@ -181,7 +181,7 @@ static void driver_free(driver *d)
 
 static int cv_configure(driver *d, double rtol, rd_error *err)
 {
-    int flag, rootdir[N_ROOTS] = {-1, +1, -1, +1, 0};
+    int flag, b = d->m.banded ? 0 : +1, rootdir[N_ROOTS] = {-1, b, -1, b, 0};
     if ((flag = CVodeInit(d->cs.cv, drv_rhs, 0.0, d->y)) ||
         (flag = CVodeSVtolerances(d->cs.cv, rtol, d->abstol)) ||
         (flag = CVodeSetUserData(d->cs.cv, d)) ||
@@ -214,7 +214,7 @@ int rd_lift_form_open(rd_lift_model *m, int model, int modes, rd_lift_form *form
  * least that often; the seated phases then take ~1 step per 10 deg). */
 static int small_open(driver *d, const rd_lift_setup *setup, const rd_lift_run *o, rd_error *err)
 {
-    int rc, rootdir[N_ROOTS] = {-1, +1, -1, +1, 0};
+    int rc, b = d->m.banded ? 0 : +1, rootdir[N_ROOTS] = {-1, b, -1, b, 0};
     if (!d->y || !d->abstol)
         return rd_error_set(err, RD_ENOMEM, "", "Out of memory setting up the lift integrator.");
     if ((rc = d->form.initial(d->form.user, setup, o->atol, N_VGetArrayPointer(d->y),
@@ -280,7 +280,7 @@ static int driver_open(driver *d, const rd_ring *ring, const rd_lift_params *p,
 
 /* ---------------------------------------------------------------- events */
 
-static int push_event(rd_lift_run *o, double deg, int kind, rd_error *err)
+static int push_event(rd_lift_run *o, double deg, int kind, double touch_deg, rd_error *err)
 {
     if (o->n_events == o->cap_events) {
         int cap = o->cap_events ? 2 * o->cap_events : 16;
@@ -290,14 +290,13 @@ static int push_event(rd_lift_run *o, double deg, int kind, rd_error *err)
         o->events = e;
         o->cap_events = cap;
     }
-    o->events[o->n_events].crank_deg = deg;
-    o->events[o->n_events].kind = kind;
+    o->events[o->n_events] = (rd_lift_event){deg, kind, touch_deg};
     o->n_events++;
     return RD_OK;
 }
 
-/* A seated ring: a leave needs the load to turn away (rf[load] with sign
- * `away`) and then the lift to confirm it (rf[confirm] > 0). */
+/* Without a band: a seated ring leaves when the load turns away (rf[4]
+ * with sign `away`) and the lift then confirms it (rf[confirm] > 0). */
 static int track_seated(flank_track *tr, const int *rf, int away, int confirm, int kind, double t,
                         double deg_per_s, rd_lift_run *o, rd_error *err)
 {
@@ -306,50 +305,111 @@ static int track_seated(flank_track *tr, const int *rf, int away, int confirm, i
     else if (rf[4] == -away)
         tr->cand = NAN; /* the load turned back before the ring got away */
     if (rf[confirm] > 0) {
+        double deg = (isnan(tr->cand) ? t : tr->cand) * deg_per_s;
         tr->state = RD_FLANK_FREE;
-        return push_event(o, (isnan(tr->cand) ? t : tr->cand) * deg_per_s, kind, err);
+        tr->touched = 0;
+        return push_event(o, deg, kind, deg, err);
     }
     return RD_OK;
+}
+
+/* The mean lift reached the flank it is in the band of (state): the
+ * landing's touch, and the leave watch from there (a ring landing against
+ * its load leaves again). */
+static void touch_flank(flank_track *tr, double t, double deg_per_s, double fz, rd_lift_run *o)
+{
+    int away = tr->state == RD_FLANK_UPPER ? -1 : +1;
+    tr->touched = 1;
+    tr->cand = fz * away > 0.0 ? t : NAN;
+    if (tr->landing >= 0)
+        o->events[tr->landing].touch_deg = t * deg_per_s;
+    tr->landing = -1;
+}
+
+/* With a band: a landing where the mean lift enters it, a leave where it
+ * moves out; touch_deg where it reached the flank, or left it (the load
+ * turning away while it touched, else the band's edge). */
+static int track_band(flank_track *tr, const int *rf, double t, double deg_per_s, double fz,
+                      rd_lift_run *o, rd_error *err)
+{
+    if (tr->state == RD_FLANK_FREE) {
+        int upper = rf[3] < 0;
+        if (!upper && rf[1] >= 0)
+            return RD_OK;
+        tr->state = upper ? RD_FLANK_UPPER : RD_FLANK_LOWER;
+        tr->touched = 0;
+        tr->cand = NAN;
+        tr->landing = o->n_events;
+        int rc = push_event(o, t * deg_per_s, upper ? RD_EVENT_REACH_UPPER : RD_EVENT_REACH_LOWER,
+                            NAN, err);
+        if (rc == RD_OK && rf[upper ? 2 : 0] < 0)
+            touch_flank(tr, t, deg_per_s, fz, o);
+        return rc;
+    }
+    int upper = tr->state == RD_FLANK_UPPER, away = upper ? -1 : +1;
+    if (!tr->touched && rf[upper ? 2 : 0] < 0)
+        touch_flank(tr, t, deg_per_s, fz, o);
+    else if (tr->touched && rf[4] == away)
+        tr->cand = t;
+    else if (tr->touched && rf[4] == -away)
+        tr->cand = NAN;
+    if (rf[upper ? 3 : 1] <= 0)
+        return RD_OK;
+    double touch = tr->touched ? (isnan(tr->cand) ? t : tr->cand) * deg_per_s : NAN;
+    tr->state = RD_FLANK_FREE;
+    tr->touched = 0;
+    tr->landing = -1;
+    return push_event(o, t * deg_per_s, upper ? RD_EVENT_LEAVE_UPPER : RD_EVENT_LEAVE_LOWER, touch,
+                      err);
 }
 
 int rd_lift_track_roots(flank_track *tr, const int *rf, double t, double deg_per_s, double fz,
                         rd_lift_run *o, rd_error *err)
 {
+    if (tr->banded)
+        return track_band(tr, rf, t, deg_per_s, fz, o, err);
     if (tr->state == RD_FLANK_LOWER)
         return track_seated(tr, rf, +1, 1, RD_EVENT_LEAVE_LOWER, t, deg_per_s, o, err);
     if (tr->state == RD_FLANK_UPPER)
         return track_seated(tr, rf, -1, 3, RD_EVENT_LEAVE_UPPER, t, deg_per_s, o, err);
     if (rf[0] < 0) {
         tr->state = RD_FLANK_LOWER;
+        tr->touched = 1;
         tr->cand = fz > 0.0 ? t : NAN; /* landed against its load: leaves again */
-        return push_event(o, t * deg_per_s, RD_EVENT_REACH_LOWER, err);
+        return push_event(o, t * deg_per_s, RD_EVENT_REACH_LOWER, t * deg_per_s, err);
     }
     if (rf[2] < 0) {
         tr->state = RD_FLANK_UPPER;
+        tr->touched = 1;
         tr->cand = fz < 0.0 ? t : NAN;
-        return push_event(o, t * deg_per_s, RD_EVENT_REACH_UPPER, err);
+        return push_event(o, t * deg_per_s, RD_EVENT_REACH_UPPER, t * deg_per_s, err);
     }
     return RD_OK;
+}
+
+rd_lift_flank_track rd_lift_track_seated(int banded, double fz, double t)
+{
+    return (flank_track){RD_FLANK_LOWER, fz > 0.0 ? t : NAN, banded, 1, -1};
 }
 
 /* The event state machine starts where the initial state is (the seated
  * ring on the lower flank; a load already pulling it away dates a leave at 0). */
 static flank_track initial_flank(driver *d)
 {
-    flank_track tr = {RD_FLANK_LOWER, NAN};
     const double *yy = N_VGetArrayPointer(d->y);
     double L0 = d->form.lift(d->form.user, yy, NULL);
     d->form.loads(d->form.user, 0.0, yy);
+    flank_track tr = rd_lift_track_seated(d->m.banded, d->m.fz_ext, 0.0);
     if (L0 > d->m.ca - d->m.eps)
         tr.state = RD_FLANK_UPPER;
     else if (L0 > d->m.eps)
         tr.state = RD_FLANK_FREE;
-    else if (d->m.fz_ext > 0.0)
-        tr.cand = 0.0;
+    if (tr.state != RD_FLANK_LOWER || (d->m.banded && L0 > d->m.d0)) {
+        tr.cand = NAN; /* not on the lower flank: no leave pending */
+        tr.touched = 0;
+    }
     return tr;
 }
-
-/* ---------------------------------------------------------- stepping */
 
 /* CVODE's counters (rd_lift_result order: steps, rhs, Jacobians, set-ups,
  * Newton iterations and failures, error-test failures, root evaluations)
@@ -472,11 +532,10 @@ static int advance(driver *d, double tout, flank_track *tr, rd_lift_run *o, cons
             if ((flag = root_info(d, rf)))
                 return cv_fail(d, flag, "query", err);
             d->form.loads(d->form.user, t, yy);
-            int was = tr->state;
+            int was = tr->touched;
             if ((rc = rd_lift_track_roots(tr, rf, t, d->deg_per_s, d->m.fz_ext, o, err)))
                 return rc;
-            if (was == RD_FLANK_FREE && tr->state != RD_FLANK_FREE &&
-                d->m.p->landing == RD_LANDING_PLASTIC &&
+            if (!was && tr->touched && d->m.p->landing == RD_LANDING_PLASTIC &&
                 (rc = land_plastic(d, t, tr->state == RD_FLANK_UPPER, err)))
                 return rc;
             continue;
@@ -498,7 +557,7 @@ static int may_stick(driver *d, const flank_track *tr, double t)
 {
     const double *yy = N_VGetArrayPointer(d->y), *at = N_VGetArrayPointer(d->abstol);
     int away = tr->state == RD_FLANK_LOWER ? +1 : -1;
-    if (!d->yd || tr->state == RD_FLANK_FREE || !isnan(tr->cand))
+    if (!d->yd || tr->state == RD_FLANK_FREE || !tr->touched || !isnan(tr->cand))
         return 0;
     for (sunindextype k = d->form.N / 2; k < d->form.N; k++)
         if (fabs(yy[k]) > at[k])

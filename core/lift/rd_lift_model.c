@@ -32,7 +32,7 @@
 #define Q               RD_LIFT_Q
 #define V               RD_LIFT_V
 #define SMOOTH_FRACTION 1e-4 /* d0 / c_a: quadratic start of the penalty */
-#define EVENT_FRACTION  1e-2 /* eps / c_a: smallest hop that is a flank change */
+#define EVENT_FRACTION  1e-2 /* eps / c_a without a band: smallest hop that is a leave */
 #define DAMPING_RATIO   5.0  /* zeta of the contacts: landings do not rebound */
 
 void rd_lift_model_cleanup(rd_lift_model *c)
@@ -67,7 +67,8 @@ static void model_constants(rd_lift_model *c, const rd_ring_params *rp, const rd
     c->k = p->contact_stiffness > 0.0 ? p->contact_stiffness
                                       : rd_lift_contact_stiffness_default(rp, p);
     c->d0 = SMOOTH_FRACTION * c->ca;
-    c->eps = EVENT_FRACTION * c->ca;
+    c->banded = p->flank_band > 0.0;
+    c->eps = (c->banded ? p->flank_band : EVENT_FRACTION) * c->ca;
     c->c_flank = 2.0 * DAMPING_RATIO * sqrt(c->k * rp->density * s->h);
     c->c_rad = 2.0 * DAMPING_RATIO * sqrt(c->k * rp->density * s->b);
     c->g_on = p->gravity ? RD_LIFT_GRAVITY : 0.0;

@@ -102,7 +102,9 @@ typedef struct rd_lift_model {
     double omega;  /* crank speed, rad/s */
     double ca, cr; /* axial and radial clearances */
     double k, d0, c_flank, c_rad;
-    double eps;           /* event threshold on the mean lift */
+    double eps;           /* the band's edge on the mean lift, m (flank_band c_a; without
+                           * a band the 1 % that confirms a leave) */
+    int banded;           /* 1: flank changes dated at the band's edge (flank_band > 0) */
     double g_on;          /* gravity, m/s^2, or 0 */
     double p0, delta_pre; /* pretension pressure and bore preload penetration */
     rd_liner liner;       /* the running face on the liner: friction (rd_liner_law.h) */
@@ -324,9 +326,15 @@ void rd_lift_estimate_stopped(rd_lift_result *out, const rd_lift_params *p);
  * a root return: rf the root flags of the five roots L, L - eps, c_a - L,
  * c_a - L - eps, the load fz (N) at time t (s); events go to run. */
 typedef struct rd_lift_flank_track {
-    int state;
-    double cand;
+    int state;   /* enum rd_flank: the band the mean lift is in (without a band:
+                  * the flank it sits on) */
+    double cand; /* when the load turned away from the flank it touches, s; NAN */
+    int banded;  /* 1: events at the band's edge (rd_lift_model.banded) */
+    int touched; /* 1: the mean lift has reached the flank since it entered the band */
+    int landing; /* index in run->events of the landing awaiting its touch, or -1 */
 } rd_lift_flank_track;
+/* A ring seated at rest on its lower flank; fz its load at time t. */
+rd_lift_flank_track rd_lift_track_seated(int banded, double fz, double t);
 int rd_lift_track_roots(rd_lift_flank_track *tr, const int *rf, double t, double deg_per_s,
                         double fz, rd_lift_run *run, rd_error *err);
 

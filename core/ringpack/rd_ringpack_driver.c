@@ -295,7 +295,7 @@ static int push_event(drv *d, int i, double t, int kind, rd_error *err)
         r->events[i] = e;
         d->cap[i] = cap;
     }
-    r->events[i][r->n_events[i]++] = (rd_lift_event){deg, kind};
+    r->events[i][r->n_events[i]++] = (rd_lift_event){deg, kind, deg};
     return RD_OK;
 }
 
@@ -372,7 +372,7 @@ static int lift_switch(drv *d, int i, double t, const double *y, const double *p
     rd_packring_gas(L, f);
     rd_packring_loads(L, t, y + m->off[i], &fz, &fr);
     if (all) { /* seated at rest: a load already pulling it away dates a leave at 0 */
-        *rd_packring_track(L) = (rd_lift_flank_track){RD_FLANK_LOWER, fz > 0.0 ? t : NAN};
+        *rd_packring_track(L) = rd_lift_track_seated(rd_packring_track(L)->banded, fz, t);
         return RD_OK;
     }
     return rd_lift_track_roots(rd_packring_track(L), rf, t, d->deg_per_s, fz, rd_packring_events(L),

@@ -133,6 +133,7 @@ static int lift_params(const rd_ringpack_model *m, int i, rd_packring *L)
     lp->atol = p->atol;
     lp->max_steps = p->max_steps;
     lp->estimate_error = 0;
+    lp->flank_band = 0.0; /* the pack dates flank changes at the touch (for now) */
     lp->model = m->kind[i];
     lp->modes = p->rings[i].modes;
     double peak = 0.0;
@@ -183,7 +184,7 @@ int rd_packring_open(rd_ringpack_model *m, int i, SUNContext ctx, int *N, int *m
     if (!L->seg || !L->zero || !L->ys || !L->yd)
         return rd_error_set(err, RD_ENOMEM, "", "Out of memory for ring %d's lift model.", i + 1);
     L->form.lift(L->form.user, L->zero, L->seg_0);
-    L->track = (rd_lift_flank_track){RD_FLANK_LOWER, NAN};
+    L->track = rd_lift_track_seated(L->m.banded, 0.0, NAN);
     *N = (int)L->form.N;
     *modes_out = modes;
     *k = L->m.k;
