@@ -72,7 +72,7 @@ static void test_battery_frictionless(void)
                 scene(&p, rpms[a], cas[c], g, RD_FRICTION_NONE, 1e-8);
                 int rc = run(&p, RD_LIFT_MODEL_AUTO, &ra, &err);
                 CHECK(rc == RD_OK, "auto %g rpm %g m gas %d: %s", rpms[a], cas[c], g, err.message);
-                scene(&p, rpms[a], cas[c], g, RD_FRICTION_NONE, 1e-7);
+                scene(&p, rpms[a], cas[c], g, RD_FRICTION_NONE, 1e-8);
                 int rc2 = run(&p, RD_LIFT_MODEL_FULL, &rf, &err);
                 CHECK(rc2 == RD_OK, "full %g rpm %g m gas %d: %s", rpms[a], cas[c], g, err.message);
                 if (rc == RD_OK && rc2 == RD_OK) {

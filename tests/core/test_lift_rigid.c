@@ -41,12 +41,14 @@ static double event_diff(const rd_lift_result *a, const rd_lift_result *b)
     return d;
 }
 
-/* Rigid vs full on axisymmetric scenes without friction, the rigid model at
- * rtol 1e-8 (cheap) and the full one at 1e-7.  Tolerance 0.03 deg: the full
- * model's own integration error at rtol 1e-7 (~0.01 deg, its rtol/10
- * estimate) plus what the rigid ring cannot do — the split ring's free ends
- * and the small twist of the inertia and gas loads acting off the section's
- * centre (rc_com - R = b^2 / (12 R)); measured 0.017 deg at most.  (At the
+/* Rigid vs full on axisymmetric scenes without friction, both at rtol 1e-8.
+ * Tolerance 0.03 deg: the full model's own integration error plus what the
+ * rigid ring cannot do — the split ring's free ends and the small twist of
+ * the inertia and gas loads acting off the section's centre (rc_com - R =
+ * b^2 / (12 R)); measured 0.0034 deg at most.  Dated at the band (1 %), a
+ * leave is where the lift has risen 1 % of the clearance from rest, ~1.8 deg
+ * after it left: the full ring at rtol 1e-7 was 0.073 deg off there (at rtol
+ * 1e-10 both rings agree within 1e-4 deg), hence 1e-8.  (At the
  * rigid model's default rtol 1e-6 its own error is up to 0.06 deg on the gas
  * scenes: its rtol/10 estimate reports it.)  The lift at every sample:
  * within 1 % of the clearance (measured 0.6 %: a flank change 0.017 deg off
@@ -78,8 +80,8 @@ static void test_rigid_vs_full(void)
         p.atol = 1e-11;
         int rc = run(&p, RD_LIFT_MODEL_RIGID, 20, &a, &err);
         CHECK(rc == RD_OK, "%s rigid: %s", cases[j].what, err.message);
-        p.rtol = 1e-7;
-        p.atol = 1e-10;
+        p.rtol = 1e-8;
+        p.atol = 1e-11;
         int rc2 = run(&p, RD_LIFT_MODEL_FULL, 20, &b, &err);
         CHECK(rc2 == RD_OK, "%s full: %s", cases[j].what, err.message);
         if (rc == RD_OK && rc2 == RD_OK) {
@@ -298,11 +300,13 @@ static void test_estimate_tracks(void)
     }
 }
 
-/* Issue 10's promise for the new default: a default scene (auto, which now
- * runs the rigid model) keeps today's flank changes (the full model at the
- * same defaults) within 0.05 deg, on the thesis ring at 1000 rpm with and
- * without gravity (measured 0.034 deg: both models' integration errors at
- * rtol 1e-6, ~0.01-0.03 deg each, plus the 0.017 deg between the models). */
+/* Issue 10's promise for the default (auto, which runs the rigid model
+ * here): its flank changes within 0.05 deg of the full model's, on the
+ * thesis ring at 1000 rpm with and without gravity.  Dated at the band
+ * (1 %), the full model at the default rtol 1e-6 is itself up to 0.12 deg
+ * off on the leaves (its rtol/10 estimate says 0.11 deg), the rigid one
+ * 0.01 deg: the reference is the full model at rtol 1e-8 (measured 0.014
+ * deg). */
 static void test_default_answers(void)
 {
     for (int grav = 0; grav < 2; grav++) {
@@ -314,6 +318,8 @@ static void test_default_answers(void)
         rd_lift_result a, b;
         rd_error err;
         int rc = run(&p, p.model, 20, &a, &err);
+        p.rtol = 1e-8;
+        p.atol = 1e-11;
         int rc2 = run(&p, RD_LIFT_MODEL_FULL, 20, &b, &err);
         CHECK(rc == RD_OK && rc2 == RD_OK && a.model == RD_LIFT_MODEL_RIGID, "defaults: %d %d %d",
               rc, rc2, a.model);
