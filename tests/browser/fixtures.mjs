@@ -74,29 +74,63 @@ export function contactResult() {
 }
 
 // One cycle at 1 deg: seated, lifted to the upper flank around 180-360 deg,
-// a free excursion around 540-600 deg.  Events follow from the flank states.
-export function liftResult({ friction = true } = {}) {
+// a free excursion around 540-640 deg that dips into the lower flank band
+// without touching the flank (600-605 deg) before it lands.  The events are
+// dated as the server dates them with output.flank_band = band: where the
+// mean lift crosses the band's edge (band * clearance from a flank; with
+// band 0, at the flank), each with touch_deg where the lift itself touched
+// or left the flank (null: it never touched in between).
+export function liftResult({ friction = true, band = 0.01 } = {}) {
   const clearance = 3e-5;
   const crank = Array.from({ length: 721 }, (_, i) => i);
   const ramp = (a, a0, a1) => Math.min(1, Math.max(0, (a - a0) / (a1 - a0)));
+  const lerp = (a, a0, a1, l0, l1) => l0 + (l1 - l0) * ramp(a, a0, a1);
+  const dip = 1.5e-7; // inside a band of 1 % (3e-7), off the flank
   const lift = crank.map((a) => {
     if (a < 170) return 0;
     if (a < 200) return clearance * ramp(a, 170, 200);
     if (a < 360) return clearance;
     if (a < 390) return clearance * (1 - ramp(a, 360, 390));
     if (a < 540) return 0;
-    if (a < 600) return 1.5e-5 * Math.sin(Math.PI * ramp(a, 540, 600));
+    if (a < 570) return lerp(a, 540, 570, 0, 1.5e-5);
+    if (a < 600) return lerp(a, 570, 600, 1.5e-5, dip);
+    if (a < 605) return dip;
+    if (a < 620) return lerp(a, 605, 620, dip, 5e-6);
+    if (a < 640) return lerp(a, 620, 640, 5e-6, 0);
     return 0;
   });
-  const flank = lift.map((l) => (l <= 0 ? 'lower' : l >= clearance ? 'upper' : 'free'));
-  const events = [];
+  const edge = (band > 0 ? band : 0.01) * clearance; // the flank column's threshold
+  const flank = lift.map((l) => (l < edge ? 'lower' : l > clearance - edge ? 'upper' : 'free'));
+  // Events from the samples: the band's state changes where the lift crosses
+  // an edge (linear between samples, to 0.1 deg); band 0: at the flank.
+  const e = band * clearance;
+  const state = (l) => (band > 0 ? (l < e ? 'lower' : l > clearance - e ? 'upper' : 'free') : (l <= 0 ? 'lower' : l >= clearance ? 'upper' : 'free'));
+  const atFlank = (l, side) => (side === 'lower' ? l <= 0 : l >= clearance);
   const KIND = { 'lower>free': 'leave_lower', 'free>upper': 'reach_upper', 'upper>free': 'leave_upper', 'free>lower': 'reach_lower' };
-  for (let i = 1; i < flank.length; i++) {
-    const k = KIND[`${flank[i - 1]}>${flank[i]}`];
-    if (k) events.push({ crank_deg: i - 0.5, event: k });
+  const events = [];
+  let touched = true, lastAt = 0, landing = null;
+  for (let i = 1; i < crank.length; i++) {
+    const from = state(lift[i - 1]), to = state(lift[i]);
+    if (from !== 'free' && atFlank(lift[i - 1], from)) { touched = true; lastAt = crank[i - 1]; }
+    if (landing && atFlank(lift[i], to)) { landing.touch_deg = crank[i]; landing = null; touched = true; lastAt = crank[i]; }
+    const k = KIND[`${from}>${to}`];
+    if (!k) continue;
+    const level = k.endsWith('lower') ? (band > 0 ? e : 0) : clearance - (band > 0 ? e : 0);
+    const t = (level - lift[i - 1]) / (lift[i] - lift[i - 1]);
+    const at = Math.round((crank[i - 1] + t * (crank[i] - crank[i - 1])) * 10) / 10;
+    if (k.startsWith('leave')) {
+      events.push({ crank_deg: at, event: k, touch_deg: band > 0 ? (touched ? lastAt : null) : at });
+      touched = false;
+      landing = null;
+    } else {
+      const ev = { crank_deg: at, event: k, touch_deg: band > 0 ? null : at };
+      events.push(ev);
+      if (band > 0) landing = ev;
+      if (band > 0 && atFlank(lift[i], to)) { ev.touch_deg = crank[i]; landing = null; touched = true; lastAt = crank[i]; }
+    }
   }
   const spread = lift.map((l, i) => (flank[i] === 'free' ? 2e-6 : 0));
-  const scene = { analysis: 'lift', ring, engine: { speed_rpm: 1000, cycles: 1 }, groove: { axial_clearance: clearance, radial_clearance: 5e-4 }, physics: { gravity: false } };
+  const scene = { analysis: 'lift', ring, engine: { speed_rpm: 1000, cycles: 1 }, groove: { axial_clearance: clearance, radial_clearance: 5e-4 }, physics: { gravity: false }, output: { step_deg: 1, flank_band: band } };
   if (friction) scene.physics.friction = { model: 'coulomb', coefficient: 0.1 };
   return {
     analysis: 'lift',
@@ -110,7 +144,7 @@ export function liftResult({ friction = true } = {}) {
     friction_force: crank.map((a) => (friction ? 1.5 * Math.sin(rad(2 * a)) : 0)),
     flank,
     events,
-    numerics: { segments: 4, dof: 24, wall_s: 1.7, solver: 'CVODE BDF, banded', steps: 5123, rhs_evals: 7012, jac_evals: 88, error_test_fails: 41, nonlinear_iterations: 6900, root_evals: 5200, error_estimate: 0.003, event_error_deg: 0.02 },
+    numerics: { segments: 4, dof: 24, wall_s: 1.7, solver: 'CVODE BDF, banded', steps: 5123, rhs_evals: 7012, jac_evals: 88, error_test_fails: 41, nonlinear_iterations: 6900, root_evals: 5200, error_estimate: 0.003, event_error_deg: 0.02, flank_band: band },
   };
 }
 
@@ -150,7 +184,7 @@ export function liftGasResult() {
   for (const k of ['lift', 'lift_min', 'lift_max', 'flank', 'friction_force']) two[k] = [...one[k], ...one[k].slice(1)];
   two.lift_segments = two.lift.map((l) => [l, l, l, l]);
   two.twist_rad = two.lift.map(() => 0);
-  two.events = [...one.events, ...one.events.map((e) => ({ ...e, crank_deg: e.crank_deg + 720 }))];
+  two.events = [...one.events, ...one.events.map((e) => ({ ...e, crank_deg: e.crank_deg + 720, touch_deg: e.touch_deg === null ? null : e.touch_deg + 720 }))];
   return two;
 }
 
