@@ -208,3 +208,54 @@ export function contactRoundResult() {
     distortion: [],
   };
 }
+
+// A ring pack of three rings over one cycle at 2 deg (the shape of
+// api/rd_an_ringpack.c's result): ring 1 (30 µm clearance) lifts to its upper
+// flank around 90-300 deg, ring 2 (40 µm) hops half-way, ring 3 (40 µm) stays
+// seated.  The flank band, when not null, is numerics.flank_band.
+export function ringpackResult({ band = 0.01 } = {}) {
+  const crank = Array.from({ length: 361 }, (_, i) => 2 * i);
+  const ramp = (a, a0, a1) => Math.min(1, Math.max(0, (a - a0) / (a1 - a0)));
+  const cas = [3e-5, 4e-5, 4e-5];
+  const lifts = [
+    crank.map((a) => cas[0] * (ramp(a, 80, 100) - ramp(a, 290, 310))),
+    crank.map((a) => 2e-5 * Math.sin(Math.PI * ramp(a, 300, 400))),
+    crank.map(() => 0),
+  ];
+  const names = ['cylinder', 'top_land', 'groove_1', 'second_land', 'groove_2', 'third_land', 'groove_3', 'crankcase'];
+  const cylinder = crank.map((a) => 1e5 + 59e5 * Math.exp(-(((a - 375) / 40) ** 2)));
+  const volumes = names.map((name, k) => ({ name, pressure_pa: cylinder.map((p) => 1e5 + (p - 1e5) / (1 + 3 * k)) }));
+  const flankOf = (l, ca) => (l < 0.01 * ca ? 'lower' : l > 0.99 * ca ? 'upper' : 'free');
+  const rings = lifts.map((lift, i) => ({
+    lift,
+    flank: lift.map((l) => flankOf(l, cas[i])),
+    events: [],
+    friction_n: lift.map(() => 0),
+  }));
+  rings[0].events = [
+    { crank_deg: 80.2, event: 'leave_lower', touch_deg: 80 }, { crank_deg: 99.8, event: 'reach_upper', touch_deg: 100 },
+    { crank_deg: 290.2, event: 'leave_upper', touch_deg: 290 }, { crank_deg: 309.8, event: 'reach_lower', touch_deg: 310 },
+  ];
+  const scene = {
+    analysis: 'ringpack', engine: { speed_rpm: 2400, cycles: 2 },
+    rings: cas.map((ca) => ({ ring, groove: { axial_clearance: ca, radial_clearance: 5e-4 }, land: { height: 0.005, radial_clearance: 4e-4 } })),
+    output: { step_deg: 2 },
+  };
+  if (band !== null) scene.output.flank_band = band;
+  const model = { name: 'axial', dof: 1, modes: 0, why: 'auto: an axisymmetric pack ring without friction' };
+  return {
+    analysis: 'ringpack',
+    scene,
+    crank_deg: crank,
+    volumes,
+    rings,
+    flows: [{ name: 'ring_3_end_gap', from: 'third_land', to: 'crankcase', mass_flow_kg_s: crank.map((a) => 2e-5 * Math.exp(-(((a - 380) / 50) ** 2))) }],
+    blowby: { kg_per_cycle: 1.4e-6, l_per_min: 1.39, reverse_kg_per_cycle: 2.9e-5, inflow_kg_per_cycle: 3.0e-5, mass_balance_residual: 6e-10 },
+    periodicity: 0.004,
+    numerics: {
+      model: [model, model, model], steps: 1200, restarts: 8, cycles: 2, wall_s: 0.37, error_estimate: null, event_error_deg: null,
+      ...(band !== null ? { flank_band: band } : {}),
+    },
+    warnings: [],
+  };
+}
