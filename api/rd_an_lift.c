@@ -441,11 +441,21 @@ static int run(const rd_scene *s, const rd_monitor *mon, json_t **out, rd_error 
     return rc;
 }
 
+/* The samples, then the band that dates the flank changes and the clearance
+ * it is a fraction of, the same in every row: flank is lower where lift_m is
+ * below flank_band * axial_clearance_m (1 % with flank_band 0), upper within
+ * that of the clearance. */
 static const rd_csv_column csv_columns[] = {
-    {"crank_deg", "crank_deg", 0}, {"lift_m", "lift", 0},
-    {"lift_min_m", "lift_min", 0}, {"lift_max_m", "lift_max", 0},
-    {"twist_rad", "twist_rad", 0}, {"friction_force_n", "friction_force", 0},
-    {"flank", "flank", 1},         {NULL, NULL, 0},
+    {"crank_deg", "crank_deg", 0},
+    {"lift_m", "lift", 0},
+    {"lift_min_m", "lift_min", 0},
+    {"lift_max_m", "lift_max", 0},
+    {"twist_rad", "twist_rad", 0},
+    {"friction_force_n", "friction_force", 0},
+    {"flank", "flank", 1},
+    {"flank_band", "/numerics/flank_band", 0},
+    {"axial_clearance_m", "/scene/groove/axial_clearance", 0},
+    {NULL, NULL, 0},
 };
 static const rd_csv_table csv = {NULL, NULL, csv_columns};
 

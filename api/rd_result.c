@@ -19,6 +19,7 @@
 
 #include "rd_api.h"
 #include "rd_json.h"
+#include "rd_jsonptr.h"
 #include "rd_registry.h"
 
 /* ---- CSV ----------------------------------------------------------------- */
@@ -121,6 +122,24 @@ static int count_columns(const rd_csv_table *t)
     return n;
 }
 
+/* A column of one value of the whole result (its key a JSON Pointer). */
+static int is_pointer(const rd_csv_column *c)
+{
+    return c->key[0] == '/';
+}
+
+/* A pointer column's cell: its value, an empty cell when the result has none
+ * (a result written before the column was). */
+static int pointer_cell(strbuf *b, json_t *result, const rd_csv_column *c, const char *sep)
+{
+    json_t *v = rd_jsonptr_get(result, c->key);
+    if (!v || json_is_null(v)) {
+        sb_printf(b, "%s", sep);
+        return 0;
+    }
+    return csv_cell(b, c, v, sep);
+}
+
 /* Rows from an array of objects (table->rows). */
 static int csv_rows(json_t *result, const rd_csv_table *t, int ncols, strbuf *b,
                     const char *analysis, rd_error *err)
@@ -134,7 +153,9 @@ static int csv_rows(json_t *result, const rd_csv_table *t, int ncols, strbuf *b,
     {
         for (int c = 0; c < ncols; c++) {
             const rd_csv_column *col = &t->columns[c];
-            if (csv_cell(b, col, json_object_get(row, col->key), c + 1 < ncols ? "," : "\n"))
+            const char *sep = c + 1 < ncols ? "," : "\n";
+            if (is_pointer(col) ? pointer_cell(b, result, col, sep)
+                                : csv_cell(b, col, json_object_get(row, col->key), sep))
                 return rd_error_set(err, RD_EINTERNAL, "", "malformed %s result: /%s/%zu/%s",
                                     analysis, t->rows, i, col->key);
         }
@@ -148,24 +169,30 @@ static int csv_arrays(json_t *result, const rd_csv_table *t, int ncols, strbuf *
 {
     json_t *holder = t->object ? json_object_get(result, t->object) : result;
     size_t rows = 0;
+    int first = 1;
     for (int c = 0; c < ncols; c++) {
+        if (is_pointer(&t->columns[c]))
+            continue;
         json_t *a = json_object_get(holder, t->columns[c].key);
         if (!json_is_array(a))
             return rd_error_set(err, RD_EINTERNAL, "", "malformed %s result: /%s is not an array",
                                 analysis, t->columns[c].key);
-        if (c == 0)
+        if (first)
             rows = json_array_size(a);
         else if (json_array_size(a) != rows)
             return rd_error_set(err, RD_EINTERNAL, "",
                                 "malformed %s result: /%s has %zu rows, "
                                 "not %zu",
                                 analysis, t->columns[c].key, json_array_size(a), rows);
+        first = 0;
     }
     for (size_t i = 0; i < rows; i++)
         for (int c = 0; c < ncols; c++) {
             const rd_csv_column *col = &t->columns[c];
-            json_t *v = json_array_get(json_object_get(holder, col->key), i);
-            if (csv_cell(b, col, v, c + 1 < ncols ? "," : "\n"))
+            const char *sep = c + 1 < ncols ? "," : "\n";
+            json_t *column = json_object_get(holder, col->key);
+            if (is_pointer(col) ? pointer_cell(b, result, col, sep)
+                                : csv_cell(b, col, json_array_get(column, i), sep))
                 return rd_error_set(err, RD_EINTERNAL, "", "malformed %s result: /%s/%zu", analysis,
                                     col->key, i);
         }
@@ -334,26 +361,48 @@ static json_t *member_value(const member *m, int n, const char *key)
     return NULL;
 }
 
+/* Decodes member `key` (key_len bytes) of the text into `o`: 0, or -1 when
+ * out of memory.  An absent or undecodable member is left out. */
+static int take_member(json_t *o, const member *m, int n, const char *key, size_t key_len)
+{
+    for (int i = 0; i < n; i++) {
+        if (m[i].key_len != key_len || memcmp(m[i].key, key, key_len) != 0)
+            continue;
+        json_t *v = json_loadb(m[i].value, m[i].value_len, JSON_DECODE_ANY, NULL);
+        if (!v)
+            return 0;
+        char *name = malloc(key_len + 1);
+        if (!name) {
+            json_decref(v);
+            return -1;
+        }
+        memcpy(name, key, key_len);
+        name[key_len] = '\0';
+        int rc = json_object_set_new(o, name, v);
+        free(name);
+        return rc ? -1 : 0;
+    }
+    return 0;
+}
+
 /* An object holding only the members `t` reads ("analysis" aside): what
- * rd_result_csv needs of the whole result.  NULL on out of memory. */
+ * rd_result_csv needs of the whole result (a pointer column: the member its
+ * first token names).  NULL on out of memory. */
 static json_t *table_members(const member *m, int n, const rd_csv_table *t)
 {
     json_t *o = json_object();
     const char *holder = t->rows ? t->rows : t->object;
-    if (o && holder) {
-        json_t *v = member_value(m, n, holder);
-        if (v && json_object_set_new(o, holder, v) != 0) {
-            json_decref(o);
-            return NULL;
-        }
-        return o;
+    int bad = !o || (holder && take_member(o, m, n, holder, strlen(holder)));
+    for (int c = 0; !bad && t->columns[c].header; c++) {
+        const char *key = t->columns[c].key;
+        if (is_pointer(&t->columns[c]))
+            bad = take_member(o, m, n, key + 1, strcspn(key + 1, "/"));
+        else if (!holder)
+            bad = take_member(o, m, n, key, strlen(key));
     }
-    for (int c = 0; o && t->columns[c].header; c++) {
-        json_t *v = member_value(m, n, t->columns[c].key);
-        if (v && json_object_set_new(o, t->columns[c].key, v) != 0) {
-            json_decref(o);
-            o = NULL;
-        }
+    if (bad) {
+        json_decref(o);
+        return NULL;
     }
     return o;
 }

@@ -25,7 +25,10 @@ struct rd_result_doc;
 
 /* One CSV column: its header (name with unit), the result key it reads and
  * whether its cells are text (else numbers or null, written %.10g, empty
- * for null). */
+ * for null).  A key that starts with '/' is a JSON Pointer into the whole
+ * result (its first token without ~ escapes) to one value written in every
+ * row: a number that holds for the whole table, such as a setting the run
+ * used; an empty cell when the result has none. */
 typedef struct rd_csv_column {
     const char *header, *key;
     int text;

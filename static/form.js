@@ -26,6 +26,7 @@ const HINTS = {
   mm: (v) => `= ${fmt(v * 1e3)} mm`,
   um: (v) => `= ${fmt(v * 1e6)} µm`,
   GPa: (v) => `= ${fmt(v / 1e9)} GPa`,
+  percent: (v) => `= ${fmt(v * 100)} %`,
 };
 
 function fmt(v) {

@@ -1,8 +1,9 @@
 // The lift analysis: renders a lift `result` (API.md) as the ring lift in its
 // groove against crank angle (mean over the segments, the band between the
-// lowest and highest segment, both flanks, the flank events), a strip of the
-// flank state, the friction force when friction is modelled, and tables of
-// the events and the solver's cost.
+// lowest and highest segment, both flanks, the flank band where the events
+// are dated, the flank events), a strip of the flank state, the friction
+// force when friction is modelled, and tables of the events and the solver's
+// cost.
 // A pure function of the result: optional fields may be missing.
 //
 // setup() is called once the shipped examples are known: the gas pressure
@@ -69,7 +70,9 @@ export const lift = {
       zoomControl(crank, (range) => fill(plots, figures(sliceRun(result, events, range)))),
       plots,
       h('div', { class: 'lift-tables' },
-        h('div', { class: 'table-wrap events-wrap' }, eventTable(events)),
+        h('div', {},
+          h('div', { class: 'table-wrap events-wrap' }, eventTable(events)),
+          events.length ? datingNote(result) : null),
         h('div', { class: 'table-wrap' }, costTable(result))),
     );
   },
@@ -81,10 +84,13 @@ function figures(result) {
   const friction = result.scene?.physics?.friction;
   if (crank.length < 2) return h('p', { class: 'hint', id: 'lf-empty' }, 'This result has no samples to draw.');
   const gas = gasTables(result.scene?.physics?.gas);
+  const b = bandDrawn(result) ? flankBand(result) : null;
   return [
     h('figure', { class: 'plot wide' }, liftPlot(result, result.events), flankStrip(result),
       h('figcaption', {}, 'Ring lift above the groove\'s lower flank against crank angle (0° = top dead centre before the power stroke). ' +
-        'Line: mean over the segments; band: lowest to highest segment; markers: flank events (hover for the angle). Bar: flank state.')),
+        'Line: mean over the segments; band: lowest to highest segment; markers: flank events (hover for the angle). ' +
+        (b !== null ? `Strips at the flanks: the flank band (${bandText(b)} of the clearance); an event is dated where the mean line crosses a strip's edge, and its marker sits on the flank at that angle. ` : '') +
+        'Bar: flank state.')),
     gas ? h('figure', { class: 'plot wide' }, gasPlot(result, gas),
       h('figcaption', {}, `Gas pressures that drove the ring (the scene's tables, repeated every 720°; ${result.scene.physics.gas.active_area || 'fixed'} active areas).`))
       : null,
@@ -242,6 +248,20 @@ function crankAxis(crank) {
   return { x, c0, c1, ticks: stepTicks(c0, c1, CRANK_STEPS, 12) };
 }
 
+// The band at each flank where the flank changes are dated (the result's
+// numerics.flank_band, a fraction of the axial clearance); null when the
+// result has none or it is 0 (dated at the flank itself).
+function flankBand(result) {
+  const b = result.numerics?.flank_band;
+  return isNum(b) && b > 0 ? b : null;
+}
+
+// Whether the lift plot draws the band: it needs the clearance too.
+const bandDrawn = (result) => flankBand(result) !== null && isNum(result.scene?.groove?.axial_clearance);
+
+// A band's fraction of the clearance as a percentage: 0.01 -> "1 %".
+const bandText = (b) => `${sig(b * 100)} %`;
+
 // An event marker: circle at the lower flank, square at the upper; filled
 // when the ring arrives, open when it leaves.
 function eventMarker(kind, px, py) {
@@ -268,6 +288,19 @@ function liftPlot(result, events) {
   const { x, ticks: xTicks } = crankAxis(crank);
   const y = scale(y0 - pad, y1 + pad, box.top + box.height, box.top);
 
+  // The flank band: a strip from each flank to the band's edge, b c_a into
+  // the groove, with the edge dashed (the mean lift's crossing dates an event).
+  const b = bandDrawn(result) ? flankBand(result) : null;
+  const bandStrip = (side, from, edge) => svg('g', { class: 'flank-band-strip', id: `lf-flank-band-${side}` },
+    svg('rect', {
+      class: 'flank-band', 'data-side': side, 'data-edge-um': edge,
+      x: box.left, width: box.width, y: Math.min(y(from), y(edge)), height: Math.abs(y(from) - y(edge)),
+    }),
+    svg('line', { class: 'flank-band-edge', x1: box.left, x2: box.left + box.width, y1: y(edge), y2: y(edge) }));
+  const flankBands = b !== null
+    ? [bandStrip('lower', 0, b * cl), bandStrip('upper', cl, cl - b * cl)]
+    : [];
+
   const band = lo.length === N && hi.length === N
     ? svg('path', {
       class: 'band', id: 'lf-band',
@@ -281,26 +314,30 @@ function liftPlot(result, events) {
   const atFlank = (kind) => (kind === 'reach_upper' || kind === 'leave_upper' ? cl ?? y1 : 0);
   const markers = events.map((e, i) => {
     const kind = String(e.event);
+    const touch = isNum(e.touch_deg) && Math.abs(e.touch_deg - e.crank_deg) > 1e-9
+      ? ` (${kind.startsWith('leave') ? 'left' : 'touched'} the flank itself at ${deg(e.touch_deg)})` : '';
     const g = svg('g', { class: 'event', 'data-event': kind, 'data-index': i },
-      svg('title', {}, `${EVENT_TEXT[kind] || kind} at ${deg(e.crank_deg)} crank`),
+      svg('title', {}, `${EVENT_TEXT[kind] || kind} at ${deg(e.crank_deg)} crank${touch}`),
       eventMarker(kind, x(e.crank_deg), y(atFlank(kind))));
     return g;
   });
   return svg('svg', {
     id: 'lf-lift', class: 'chart', viewBox: `0 0 ${W} ${H}`, role: 'img',
-    'aria-label': `Ring lift against crank angle, ${N} samples, ${um(Math.min(...values) / 1e6)} to ${um(Math.max(...values) / 1e6)} µm; ${events.length} flank events.`,
+    'aria-label': `Ring lift against crank angle, ${N} samples, ${um(Math.min(...values) / 1e6)} to ${um(Math.max(...values) / 1e6)} µm; ${events.length} flank events${b !== null ? `; flank band ${bandText(b)} of the clearance at each flank` : ''}.`,
   },
   legend([
     [svg('path', { class: 'mean', d: 'M-2,0H12' }), 'mean lift'],
     [svg('rect', { class: 'band', x: -2, y: -5, width: 14, height: 10 }), 'segment range'],
     [eventMarker('reach_lower', 5, 0), 'reach'],
     [eventMarker('leave_lower', 5, 0), 'leave (circle: lower, square: upper)'],
-  ], { x: box.left, y: 14 }),
+    b !== null ? [svg('rect', { class: 'flank-band', x: -2, y: -5, width: 14, height: 10 }), `flank band (${bandText(b)} of the clearance)`] : null,
+  ].filter(Boolean), { x: box.left, y: 14 }),
   axes({
     box, x, y, xTicks, yTicks: ticks(y0 - pad, y1 + pad, 5),
     xLabel: 'crank angle (deg)', yLabel: 'lift (µm)', yFormat: (v) => String(Number(v.toPrecision(4))),
   }),
   band,
+  flankBands,
   flankLine('lf-lower', 0, 'lower flank'),
   cl !== null ? flankLine('lf-upper', cl, `upper flank (clearance ${um(clearance)} µm)`, true) : null,
   mean.length === N ? svg('path', { class: 'mean', id: 'lf-mean', d: pathD(thin(crank, mean).map(([c, v]) => [x(c), y(v)])) }) : null,
@@ -360,13 +397,19 @@ function frictionPlot(result) {
   f.length === crank.length ? svg('path', { class: 'friction', id: 'lf-friction-line', d: pathD(thin(crank, f).map(([c, v]) => [x(c), y(v)])) }) : null);
 }
 
+// The events, each with where the mean lift touched the flank itself (after
+// a landing) or left it (before a leave): touch_deg, "—" when it never
+// touched.  A result without touch_deg (older than the flank band) has no
+// such column.
 function eventTable(events) {
   const shown = events.slice(0, EVENTS_SHOWN);
+  const touch = events.some((e) => e && typeof e === 'object' && 'touch_deg' in e);
   const rows = shown.map((e, i) => h('tr', { 'data-event': e.event },
     h('td', { class: 'num' }, String(i + 1)),
     h('td', { class: 'num' }, fixed(e.crank_deg, 2)),
     h('td', { class: 'num' }, isNum(e.crank_deg) ? (((e.crank_deg % 720) + 720) % 720).toFixed(2) : '—'),
-    h('td', {}, EVENT_TEXT[e.event] || String(e.event))));
+    h('td', {}, EVENT_TEXT[e.event] || String(e.event)),
+    touch ? h('td', { class: 'num touch' }, fixed(e.touch_deg, 2)) : null));
   return h('table', { class: 'data', id: 'lf-events' },
     h('caption', {}, events.length
       ? `Flank events${events.length > EVENTS_SHOWN ? ` (first ${EVENTS_SHOWN} of ${events.length}; all are in the raw result)` : ''}`
@@ -375,8 +418,23 @@ function eventTable(events) {
       h('th', { scope: 'col', class: 'num' }, '#'),
       h('th', { scope: 'col', class: 'num' }, 'Crank (deg)'),
       h('th', { scope: 'col', class: 'num' }, 'In cycle (deg)'),
-      h('th', { scope: 'col' }, 'The ring…'))),
+      h('th', { scope: 'col' }, 'The ring…'),
+      touch ? h('th', { scope: 'col', class: 'num', id: 'lf-touch-head' }, 'Touches / leaves the flank at (deg)') : null)),
     h('tbody', {}, rows));
+}
+
+// How the events are dated (numerics.flank_band); nothing for a result that
+// does not say.
+function datingNote(result) {
+  const b = result.numerics?.flank_band;
+  if (!isNum(b)) return null;
+  const clearance = result.scene?.groove?.axial_clearance;
+  const text = b > 0
+    ? `Dated where the mean lift crosses the edge of a band of ${bandText(b)} of the axial clearance` +
+      `${isNum(clearance) ? ` (${um(b * clearance, 3)} µm)` : ''} at the flank; ` +
+      'the last column is where it touched or left the flank itself (—: it did not touch the flank).'
+    : 'Dated where the mean lift touches the flank (landings) or the load turns away (leaves).';
+  return h('p', { class: 'hint', id: 'lf-dating' }, text);
 }
 
 function costTable(result) {

@@ -2,7 +2,9 @@
 // absolute gas pressures of every volume against crank angle (the cylinder
 // first, the crankcase last), each ring's lift, the mass flow into the
 // crankcase (the blow-by), and tables of each ring's model (name, DOF, why),
-// the balance and the solver's cost.
+// the balance and the solver's cost.  With a flank band (numerics.flank_band
+// > 0) each ring's lift is drawn over the band at its groove's flanks, in the
+// ring's colour: where its flank changes are dated.
 // A pure function of the result: optional fields may be missing.
 
 import { svg, scale, ticks, axes, pathD, stepTicks, legend } from './svg.js';
@@ -26,8 +28,9 @@ export const ringpack = {
     const figs = crank.length < 2 ? [h('p', { class: 'hint', id: 'rp-empty' }, 'This result has no samples to draw.')] : [
       h('figure', { class: 'plot wide' }, pressurePlot(crank, volumes),
         h('figcaption', {}, 'Absolute gas pressures of the last cycle against crank angle (0° = firing TDC): the cylinder (the input trace), the lands and grooves from the top down, the crankcase.')),
-      h('figure', { class: 'plot wide' }, liftPlot(crank, rings),
-        h('figcaption', {}, 'Each ring\'s lift above its groove\'s lower flank (rigid rings).')),
+      h('figure', { class: 'plot wide' }, liftPlot(crank, rings, result),
+        h('figcaption', {}, `Each ring's lift above its groove's lower flank (rigid rings)${flankBand(result) !== null
+          ? `; strips: the flank band at each flank of each groove, ${bandText(flankBand(result))} of its axial clearance, whose edge dates the ring's flank changes` : ''}.`)),
       h('figure', { class: 'plot wide' }, blowbyPlot(crank, result),
         h('figcaption', {}, 'Mass flow into the crankcase (the blow-by; negative: back out of it).')),
     ];
@@ -48,17 +51,24 @@ function crankAxis(crank) {
 }
 
 // One chart of several series [{label, values}] against crank angle.
-function chart(id, crank, series, yLabel, factor, label) {
+// extra: {legend: [[swatch, text]...] after the series', yMax: a value (in
+// the series' units times factor) the axis reaches at least, under(x, y,
+// box): elements drawn beneath the series}.
+function chart(id, crank, series, yLabel, factor, label, extra = {}) {
   const H = 260;
   const box = { ...BOX, top: 40, height: H - 40 - 50 };
   const { x, ticks: xTicks } = crankAxis(crank);
   const all = series.flatMap((s) => s.values.map((v) => v * factor));
-  const lo = Math.min(0, ...all), hi = Math.max(1e-12, ...all);
+  const lo = Math.min(0, ...all), hi = Math.max(1e-12, ...all, extra.yMax ?? -Infinity);
   const pad = (hi - lo) * 0.06 || 1;
   const y = scale(lo, hi + pad, box.top + box.height, box.top);
   return svg('svg', { id, class: 'chart', viewBox: `0 0 ${W} ${H}`, role: 'img', 'aria-label': label },
-    legend(series.map((s, i) => [svg('path', { d: 'M-2,0H12', style: `stroke:${COLORS[i % COLORS.length]};stroke-width:2` }), s.label]), { x: box.left, y: 14 }),
+    legend([
+      ...series.map((s, i) => [svg('path', { d: 'M-2,0H12', style: `stroke:${COLORS[i % COLORS.length]};stroke-width:2` }), s.label]),
+      ...(extra.legend || []),
+    ], { x: box.left, y: 14 }),
     axes({ box, x, y, xTicks, yTicks: ticks(lo, hi + pad, 4), xLabel: 'crank angle (deg)', yLabel, yFormat: (v) => String(Number(v.toPrecision(4))) }),
+    extra.under ? extra.under(x, y, box) : null,
     series.map((s, i) => svg('path', {
       id: `${id}-${i}`, 'data-points': s.values.length, style: `fill:none;stroke:${COLORS[i % COLORS.length]};stroke-width:1.6`,
       d: pathD(s.values.map((v, k) => [x(crank[k]), y(v * factor)])),
@@ -72,10 +82,42 @@ function pressurePlot(crank, volumes) {
     `Gas pressures against crank angle: ${series.map((s) => `${s.label} peak ${sig(peak(s))} bar`).join('; ')}.`);
 }
 
-function liftPlot(crank, rings) {
-  const series = rings.map((r, i) => ({ label: `ring ${i + 1}`, values: nums(r.lift) })).filter((s) => s.values.length === crank.length);
+// The flank band of the result (numerics.flank_band, else the scene's
+// output.flank_band), a fraction of each groove's axial clearance; null when
+// absent or 0 (flank changes dated at the flank itself).
+function flankBand(result) {
+  const b = result.numerics?.flank_band ?? result.scene?.output?.flank_band;
+  return isNum(b) && b > 0 ? b : null;
+}
+
+const bandText = (b) => `${sig(b * 100)} %`;
+
+function liftPlot(crank, rings, result) {
+  const series = rings.map((r, i) => ({ label: `ring ${i + 1}`, ring: i, values: nums(r.lift) })).filter((s) => s.values.length === crank.length);
+  // Each drawn ring's band at both flanks of its groove, in the ring's colour.
+  const b = flankBand(result);
+  const grooves = Array.isArray(result.scene?.rings) ? result.scene.rings : [];
+  const banded = b === null ? [] : series.map((s, i) => ({ i, ring: s.ring, ca: grooves[s.ring]?.groove?.axial_clearance }))
+    .filter((g) => isNum(g.ca) && g.ca > 0);
+  const under = (x, y, box) => banded.map(({ i, ring, ca }) => {
+    const color = COLORS[i % COLORS.length];
+    const ca6 = ca * 1e6, edge = b * ca6;
+    const strip = (side, from, to) => [
+      svg('rect', {
+        class: 'flank-band', 'data-ring': ring + 1, 'data-side': side, style: `fill:${color}`,
+        x: box.left, width: box.width, y: Math.min(y(from), y(to)), height: Math.abs(y(from) - y(to)),
+      }),
+      svg('line', { class: 'flank-band-edge', style: `stroke:${color}`, x1: box.left, x2: box.left + box.width, y1: y(to), y2: y(to) }),
+    ];
+    return svg('g', { class: 'flank-band-strip', id: `rp-flank-band-${ring + 1}` }, strip('lower', 0, edge), strip('upper', ca6, ca6 - edge));
+  });
   return chart('rp-lift', crank, series, 'lift (µm)', 1e6,
-    `Ring lifts against crank angle: ${series.map((s) => `${s.label} up to ${um(Math.max(...s.values))} µm`).join('; ')}.`);
+    `Ring lifts against crank angle: ${series.map((s) => `${s.label} up to ${um(Math.max(...s.values))} µm`).join('; ')}${banded.length ? `; flank band ${bandText(b)} of each groove's axial clearance` : ''}.`,
+    banded.length ? {
+      under,
+      yMax: Math.max(...banded.map((g) => g.ca * 1e6)),
+      legend: [[svg('rect', { class: 'flank-band', style: 'fill:#6b7580;stroke:#39414a', x: -2, y: -5, width: 14, height: 10 }), `flank bands (${bandText(b)} of each groove's clearance)`]],
+    } : {});
 }
 
 function blowbyPlot(crank, result) {

@@ -681,6 +681,78 @@ static void test_csv(void)
     free(csv);
 }
 
+/* The lift CSV: the samples, then the flank band (numerics.flank_band) and
+ * the axial clearance it is a fraction of, the same in every row; from the
+ * document and from the text alike; a result written before the band was
+ * has empty cells there. */
+static void test_lift_csv(void)
+{
+    rd_error err;
+    rd_error_init(&err);
+    const char *result =
+        "{\"analysis\":\"lift\",\"scene\":{\"analysis\":\"lift\",\"groove\":{\"axial_clearance\":"
+        "3e-05,\"radial_clearance\":0.0005}},\"crank_deg\":[0,1],\"lift\":[0,2e-07],"
+        "\"lift_min\":[0,1e-07],\"lift_max\":[0,3e-07],\"lift_segments\":[[0,0],[1e-07,3e-07]],"
+        "\"twist_rad\":[0,0],\"friction_force\":[0,0.5],\"flank\":[\"lower\",\"lower\"],"
+        "\"events\":[{\"crank_deg\":1.5,\"event\":\"leave_lower\",\"touch_deg\":0.8}],"
+        "\"numerics\":{\"segments\":2,\"flank_band\":0.02}}";
+    char *csv = rd_api_result_csv(result, &err);
+    CHECK(csv && strcmp(csv, "crank_deg,lift_m,lift_min_m,lift_max_m,twist_rad,friction_force_n,"
+                             "flank,flank_band,axial_clearance_m\n"
+                             "0,0,0,0,0,0,lower,0.02,3e-05\n"
+                             "1,2e-07,1e-07,3e-07,0,0.5,lower,0.02,3e-05\n") == 0,
+          "lift CSV: %s", csv ? csv : err.message);
+    free(csv);
+
+    /* a result without the band or the scene: empty cells, not an error */
+    rd_error_init(&err);
+    csv = rd_api_result_csv("{\"analysis\":\"lift\",\"crank_deg\":[0],\"lift\":[0],"
+                            "\"lift_min\":[0],\"lift_max\":[0],\"twist_rad\":[0],"
+                            "\"friction_force\":[0],\"flank\":[\"lower\"],\"numerics\":{}}",
+                            &err);
+    CHECK(csv && strstr(csv, "\n0,0,0,0,0,0,lower,,\n") != NULL, "no band: %s",
+          csv ? csv : err.message);
+    free(csv);
+    /* a band that is not a number is a malformed result */
+    rd_error_init(&err);
+    csv = rd_api_result_csv("{\"analysis\":\"lift\",\"crank_deg\":[0],\"lift\":[0],"
+                            "\"lift_min\":[0],\"lift_max\":[0],\"twist_rad\":[0],"
+                            "\"friction_force\":[0],\"flank\":[\"lower\"],"
+                            "\"numerics\":{\"flank_band\":\"x\"}}",
+                            &err);
+    CHECK(csv == NULL && err.code == RD_EINTERNAL, "band not a number: %s", err.message);
+    free(csv);
+
+    /* a run with flank_band 0.05: every row states it; the document's CSV is the text's */
+    rd_scene *s = NULL;
+    const char *scene = "{\"analysis\":\"lift\",\"discretization\":{\"segments\":6},"
+                        "\"engine\":{\"cycles\":0.25},\"output\":{\"step_deg\":5,"
+                        "\"flank_band\":0.05},\"numerics\":{\"error_estimate\":false}}";
+    rd_error_init(&err);
+    CHECK(rd_scene_parse(scene, strlen(scene), &s, &err) == RD_OK, "parse: %s", err.message);
+    rd_result_doc *doc = NULL;
+    if (s && rd_scene_run_doc(s, NULL, &doc, &err) == RD_OK && doc) {
+        char *from_doc = rd_result_doc_csv(doc, &err), *text = rd_result_doc_json(doc);
+        char *from_text = text ? rd_api_result_csv(text, &err) : NULL;
+        CHECK(from_doc && from_text && strcmp(from_doc, from_text) == 0, "doc and text CSV");
+        int rows = 0, stated = 1;
+        for (const char *p = from_doc ? strchr(from_doc, '\n') : NULL; p && p[1]; rows++) {
+            const char *end = strchr(p + 1, '\n');
+            stated &= end && end - p > 11 && strncmp(end - 11, ",0.05,3e-05", 11) == 0;
+            p = end;
+        }
+        CHECK(rows == 37 && stated, "%d rows (want 37), each ending ,0.05,3e-05: %s", rows,
+              from_doc ? from_doc : err.message);
+        free(from_doc);
+        free(from_text);
+        free(text);
+    } else {
+        CHECK(0, "run: %s", err.message);
+    }
+    rd_result_doc_free(doc);
+    rd_scene_free(s);
+}
+
 /* ---- examples ------------------------------------------------------------ */
 
 static void write_file(const char *dir, const char *name, const char *text)
@@ -889,6 +961,7 @@ int main(int argc, char **argv)
     test_error_json();
     test_http_status();
     test_csv();
+    test_lift_csv();
     test_run_modal();
     test_examples_shipped(argv[1]);
     test_examples_broken();

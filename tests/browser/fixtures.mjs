@@ -74,29 +74,63 @@ export function contactResult() {
 }
 
 // One cycle at 1 deg: seated, lifted to the upper flank around 180-360 deg,
-// a free excursion around 540-600 deg.  Events follow from the flank states.
-export function liftResult({ friction = true } = {}) {
+// a free excursion around 540-640 deg that dips into the lower flank band
+// without touching the flank (600-605 deg) before it lands.  The events are
+// dated as the server dates them with output.flank_band = band: where the
+// mean lift crosses the band's edge (band * clearance from a flank; with
+// band 0, at the flank), each with touch_deg where the lift itself touched
+// or left the flank (null: it never touched in between).
+export function liftResult({ friction = true, band = 0.01 } = {}) {
   const clearance = 3e-5;
   const crank = Array.from({ length: 721 }, (_, i) => i);
   const ramp = (a, a0, a1) => Math.min(1, Math.max(0, (a - a0) / (a1 - a0)));
+  const lerp = (a, a0, a1, l0, l1) => l0 + (l1 - l0) * ramp(a, a0, a1);
+  const dip = 1.5e-7; // inside a band of 1 % (3e-7), off the flank
   const lift = crank.map((a) => {
     if (a < 170) return 0;
     if (a < 200) return clearance * ramp(a, 170, 200);
     if (a < 360) return clearance;
     if (a < 390) return clearance * (1 - ramp(a, 360, 390));
     if (a < 540) return 0;
-    if (a < 600) return 1.5e-5 * Math.sin(Math.PI * ramp(a, 540, 600));
+    if (a < 570) return lerp(a, 540, 570, 0, 1.5e-5);
+    if (a < 600) return lerp(a, 570, 600, 1.5e-5, dip);
+    if (a < 605) return dip;
+    if (a < 620) return lerp(a, 605, 620, dip, 5e-6);
+    if (a < 640) return lerp(a, 620, 640, 5e-6, 0);
     return 0;
   });
-  const flank = lift.map((l) => (l <= 0 ? 'lower' : l >= clearance ? 'upper' : 'free'));
-  const events = [];
+  const edge = (band > 0 ? band : 0.01) * clearance; // the flank column's threshold
+  const flank = lift.map((l) => (l < edge ? 'lower' : l > clearance - edge ? 'upper' : 'free'));
+  // Events from the samples: the band's state changes where the lift crosses
+  // an edge (linear between samples, to 0.1 deg); band 0: at the flank.
+  const e = band * clearance;
+  const state = (l) => (band > 0 ? (l < e ? 'lower' : l > clearance - e ? 'upper' : 'free') : (l <= 0 ? 'lower' : l >= clearance ? 'upper' : 'free'));
+  const atFlank = (l, side) => (side === 'lower' ? l <= 0 : l >= clearance);
   const KIND = { 'lower>free': 'leave_lower', 'free>upper': 'reach_upper', 'upper>free': 'leave_upper', 'free>lower': 'reach_lower' };
-  for (let i = 1; i < flank.length; i++) {
-    const k = KIND[`${flank[i - 1]}>${flank[i]}`];
-    if (k) events.push({ crank_deg: i - 0.5, event: k });
+  const events = [];
+  let touched = true, lastAt = 0, landing = null;
+  for (let i = 1; i < crank.length; i++) {
+    const from = state(lift[i - 1]), to = state(lift[i]);
+    if (from !== 'free' && atFlank(lift[i - 1], from)) { touched = true; lastAt = crank[i - 1]; }
+    if (landing && atFlank(lift[i], to)) { landing.touch_deg = crank[i]; landing = null; touched = true; lastAt = crank[i]; }
+    const k = KIND[`${from}>${to}`];
+    if (!k) continue;
+    const level = k.endsWith('lower') ? (band > 0 ? e : 0) : clearance - (band > 0 ? e : 0);
+    const t = (level - lift[i - 1]) / (lift[i] - lift[i - 1]);
+    const at = Math.round((crank[i - 1] + t * (crank[i] - crank[i - 1])) * 10) / 10;
+    if (k.startsWith('leave')) {
+      events.push({ crank_deg: at, event: k, touch_deg: band > 0 ? (touched ? lastAt : null) : at });
+      touched = false;
+      landing = null;
+    } else {
+      const ev = { crank_deg: at, event: k, touch_deg: band > 0 ? null : at };
+      events.push(ev);
+      if (band > 0) landing = ev;
+      if (band > 0 && atFlank(lift[i], to)) { ev.touch_deg = crank[i]; landing = null; touched = true; lastAt = crank[i]; }
+    }
   }
   const spread = lift.map((l, i) => (flank[i] === 'free' ? 2e-6 : 0));
-  const scene = { analysis: 'lift', ring, engine: { speed_rpm: 1000, cycles: 1 }, groove: { axial_clearance: clearance, radial_clearance: 5e-4 }, physics: { gravity: false } };
+  const scene = { analysis: 'lift', ring, engine: { speed_rpm: 1000, cycles: 1 }, groove: { axial_clearance: clearance, radial_clearance: 5e-4 }, physics: { gravity: false }, output: { step_deg: 1, flank_band: band } };
   if (friction) scene.physics.friction = { model: 'coulomb', coefficient: 0.1 };
   return {
     analysis: 'lift',
@@ -110,7 +144,7 @@ export function liftResult({ friction = true } = {}) {
     friction_force: crank.map((a) => (friction ? 1.5 * Math.sin(rad(2 * a)) : 0)),
     flank,
     events,
-    numerics: { segments: 4, dof: 24, wall_s: 1.7, solver: 'CVODE BDF, banded', steps: 5123, rhs_evals: 7012, jac_evals: 88, error_test_fails: 41, nonlinear_iterations: 6900, root_evals: 5200, error_estimate: 0.003, event_error_deg: 0.02 },
+    numerics: { segments: 4, dof: 24, wall_s: 1.7, solver: 'CVODE BDF, banded', steps: 5123, rhs_evals: 7012, jac_evals: 88, error_test_fails: 41, nonlinear_iterations: 6900, root_evals: 5200, error_estimate: 0.003, event_error_deg: 0.02, flank_band: band },
   };
 }
 
@@ -150,7 +184,7 @@ export function liftGasResult() {
   for (const k of ['lift', 'lift_min', 'lift_max', 'flank', 'friction_force']) two[k] = [...one[k], ...one[k].slice(1)];
   two.lift_segments = two.lift.map((l) => [l, l, l, l]);
   two.twist_rad = two.lift.map(() => 0);
-  two.events = [...one.events, ...one.events.map((e) => ({ ...e, crank_deg: e.crank_deg + 720 }))];
+  two.events = [...one.events, ...one.events.map((e) => ({ ...e, crank_deg: e.crank_deg + 720, touch_deg: e.touch_deg === null ? null : e.touch_deg + 720 }))];
   return two;
 }
 
@@ -172,5 +206,56 @@ export function contactRoundResult() {
     max_clearance: 0,
     max_clearance_angle_deg: undefined,
     distortion: [],
+  };
+}
+
+// A ring pack of three rings over one cycle at 2 deg (the shape of
+// api/rd_an_ringpack.c's result): ring 1 (30 µm clearance) lifts to its upper
+// flank around 90-300 deg, ring 2 (40 µm) hops half-way, ring 3 (40 µm) stays
+// seated.  The flank band, when not null, is numerics.flank_band.
+export function ringpackResult({ band = 0.01 } = {}) {
+  const crank = Array.from({ length: 361 }, (_, i) => 2 * i);
+  const ramp = (a, a0, a1) => Math.min(1, Math.max(0, (a - a0) / (a1 - a0)));
+  const cas = [3e-5, 4e-5, 4e-5];
+  const lifts = [
+    crank.map((a) => cas[0] * (ramp(a, 80, 100) - ramp(a, 290, 310))),
+    crank.map((a) => 2e-5 * Math.sin(Math.PI * ramp(a, 300, 400))),
+    crank.map(() => 0),
+  ];
+  const names = ['cylinder', 'top_land', 'groove_1', 'second_land', 'groove_2', 'third_land', 'groove_3', 'crankcase'];
+  const cylinder = crank.map((a) => 1e5 + 59e5 * Math.exp(-(((a - 375) / 40) ** 2)));
+  const volumes = names.map((name, k) => ({ name, pressure_pa: cylinder.map((p) => 1e5 + (p - 1e5) / (1 + 3 * k)) }));
+  const flankOf = (l, ca) => (l < 0.01 * ca ? 'lower' : l > 0.99 * ca ? 'upper' : 'free');
+  const rings = lifts.map((lift, i) => ({
+    lift,
+    flank: lift.map((l) => flankOf(l, cas[i])),
+    events: [],
+    friction_n: lift.map(() => 0),
+  }));
+  rings[0].events = [
+    { crank_deg: 80.2, event: 'leave_lower', touch_deg: 80 }, { crank_deg: 99.8, event: 'reach_upper', touch_deg: 100 },
+    { crank_deg: 290.2, event: 'leave_upper', touch_deg: 290 }, { crank_deg: 309.8, event: 'reach_lower', touch_deg: 310 },
+  ];
+  const scene = {
+    analysis: 'ringpack', engine: { speed_rpm: 2400, cycles: 2 },
+    rings: cas.map((ca) => ({ ring, groove: { axial_clearance: ca, radial_clearance: 5e-4 }, land: { height: 0.005, radial_clearance: 4e-4 } })),
+    output: { step_deg: 2 },
+  };
+  if (band !== null) scene.output.flank_band = band;
+  const model = { name: 'axial', dof: 1, modes: 0, why: 'auto: an axisymmetric pack ring without friction' };
+  return {
+    analysis: 'ringpack',
+    scene,
+    crank_deg: crank,
+    volumes,
+    rings,
+    flows: [{ name: 'ring_3_end_gap', from: 'third_land', to: 'crankcase', mass_flow_kg_s: crank.map((a) => 2e-5 * Math.exp(-(((a - 380) / 50) ** 2))) }],
+    blowby: { kg_per_cycle: 1.4e-6, l_per_min: 1.39, reverse_kg_per_cycle: 2.9e-5, inflow_kg_per_cycle: 3.0e-5, mass_balance_residual: 6e-10 },
+    periodicity: 0.004,
+    numerics: {
+      model: [model, model, model], steps: 1200, restarts: 8, cycles: 2, wall_s: 0.37, error_estimate: null, event_error_deg: null,
+      ...(band !== null ? { flank_band: band } : {}),
+    },
+    warnings: [],
   };
 }

@@ -487,7 +487,7 @@ test('lift form: the friction and gas toggles put their blocks in the scene or l
     assert.deepEqual(scene.engine, { speed_rpm: 1000, crank_radius: 0.04345, rod_length: 0.13, kinematics: 'exact', cycles: 2 });
     assert.deepEqual(scene.groove, { axial_clearance: 3e-5, radial_clearance: 5e-4 });
     assert.deepEqual(scene.physics, { gravity: false }, 'friction and gas off: absent');
-    assert.deepEqual(scene.output, { step_deg: 1 });
+    assert.deepEqual(scene.output, { step_deg: 1, flank_band: 0.01 });
     assert.deepEqual(scene.numerics, { model: 'auto', accuracy_deg: 0.1, rtol: 1e-6, atol: 1e-9, error_estimate: true });
     assert.equal(await page.isDisabled('#f-lf-friction-coefficient'), true, 'friction fields off with their toggle');
 
@@ -795,7 +795,18 @@ test('lift against the server: band, event markers, friction plot and flank stri
   const ticks = (await page.$$eval('#lf-lift .axes text.tick[text-anchor="middle"]', (ts) => ts.map((t) => Number(t.textContent))));
   assert.ok(ticks.length >= 2 && ticks.every((t) => t % 90 === 0), `crank ticks every 90 or 180 deg: ${ticks}`);
   assert.ok([90, 180].includes(ticks[1] - ticks[0]), `tick step ${ticks[1] - ticks[0]}`);
-  assert.equal((await page.request.get(`${BASE}${await page.getAttribute('#csv-link', 'href')}`)).status(), 200, 'CSV link answers');
+  const csvResp = await page.request.get(`${BASE}${await page.getAttribute('#csv-link', 'href')}`);
+  assert.equal(csvResp.status(), 200, 'CSV link answers');
+  // The band the server used: drawn at both flanks, stated in the CSV's rows and under the events.
+  assert.equal(result.numerics.flank_band, 0.01);
+  assert.equal(await page.locator('#lf-lift rect.flank-band:not(.legend *)').count(), 2);
+  const csvLines = (await csvResp.text()).trim().split('\n');
+  assert.equal(csvLines[0], 'crank_deg,lift_m,lift_min_m,lift_max_m,twist_rad,friction_force_n,flank,flank_band,axial_clearance_m');
+  assert.equal(csvLines.length, result.crank_deg.length + 1);
+  assert.ok(csvLines.slice(1).every((l) => l.split(',').slice(-2).map(Number).join() === `0.01,${result.scene.groove.axial_clearance}`),
+    `every CSV row ends with the band and the clearance: ${csvLines[1]}`);
+  assert.equal(await page.locator('#lf-events tbody td.touch').count(), Math.min(result.events.length, 500));
+  if (result.events.length) assert.match(await page.textContent('#lf-dating'), /band of 1 % of the axial clearance/);
   await shot('ringdyn-lift.png', { fullPage: true });
 
   await page.fill('#f-lf-speed', '0');
@@ -1409,6 +1420,166 @@ for (const width of [1280, 390]) {
     }
   });
 }
+
+// ---- the flank band (issue 39): drawn, dated, in the event table ----------
+
+// What a lift or ring pack plot draws of the flank band, in viewBox units:
+// the strips (not the legend's swatch) with their flank side and ring, the
+// strip edges, the flank lines and the y axis' ticks [value, y].
+async function bandDrawing(chart) {
+  return page.$eval(chart, (svgEl) => {
+    const n = (el, a) => Number(el.getAttribute(a));
+    return {
+      strips: [...svgEl.querySelectorAll('rect.flank-band')].filter((r) => !r.closest('.legend'))
+        .map((r) => ({ side: r.dataset.side, ring: Number(r.dataset.ring || 0), y: n(r, 'y'), height: n(r, 'height') })),
+      edges: [...svgEl.querySelectorAll('line.flank-band-edge')].map((l) => n(l, 'y1')),
+      lower: svgEl.querySelector('#lf-lower line') ? n(svgEl.querySelector('#lf-lower line'), 'y1') : null,
+      upper: svgEl.querySelector('#lf-upper line') ? n(svgEl.querySelector('#lf-upper line'), 'y1') : null,
+      yTicks: [...svgEl.querySelectorAll('.axes text.tick[text-anchor="end"]')].map((t) => [Number(t.textContent), n(t, 'y')]),
+      legend: [...svgEl.querySelectorAll('.legend text')].map((t) => t.textContent),
+    };
+  }, null);
+}
+
+// The y axis as drawn: value (µm) -> viewBox y, from the first and last tick labels.
+function yAxis(ticks) {
+  const [v0, p0] = ticks[0], [v1, p1] = ticks.at(-1);
+  assert.ok(v1 !== v0, `two distinct y ticks: ${JSON.stringify(ticks)}`);
+  return (v) => p0 + ((v - v0) * (p1 - p0)) / (v1 - v0);
+}
+
+// A strip spans [y(a), y(b)] on screen (either order), to 0.05 units (the
+// tick labels are rounded to 4 digits, so the scale is read to about that).
+function assertSpan(strip, ya, yb, what) {
+  const top = Math.min(ya, yb), bottom = Math.max(ya, yb);
+  assert.ok(Math.abs(strip.y - top) < 0.05 && Math.abs(strip.y + strip.height - bottom) < 0.05,
+    `${what}: strip ${strip.y.toFixed(3)}..${(strip.y + strip.height).toFixed(3)}, want ${top.toFixed(3)}..${bottom.toFixed(3)}`);
+}
+
+for (const width of [1280, 390]) {
+  test(`${width} px: the lift plot draws the flank band where events are dated, the event table shows where the lift touched the flank and the dating rule; band 0 draws none; the ring pack draws each ring's band`, { timeout: 90000 }, async () => {
+    await page.setViewportSize({ width, height: 844 });
+    try {
+      await selectTab('lift');
+      for (const band of [0.01, 0.05]) {
+        const lf = fixtures.liftResult({ band });
+        const ca = lf.scene.groove.axial_clearance * 1e6;
+        const jobs = await interceptJobs(lf);
+        try {
+          await runAnalysis('Run lift analysis');
+        } finally {
+          await jobs.stop();
+        }
+        await settled();
+        // The strips: from each flank to b c_a into the groove, on the plot's own y scale.
+        const d = await bandDrawing('#lf-lift');
+        const y = yAxis(d.yTicks);
+        assert.ok(Math.abs(d.lower - y(0)) < 0.05 && Math.abs(d.upper - y(ca)) < 0.05, `flank lines at 0 and ${ca} µm`);
+        assert.deepEqual(d.strips.map((s) => s.side), ['lower', 'upper']);
+        assertSpan(d.strips[0], d.lower, y(band * ca), `lower band ${band}`);
+        assertSpan(d.strips[1], d.upper, y(ca - band * ca), `upper band ${band}`);
+        assert.ok(d.strips.every((s) => s.height > 0.5), 'the strips have a visible height');
+        const edgesWant = [y(band * ca), y(ca - band * ca)];
+        assert.ok(d.edges.length === 2 && d.edges.every((e, k) => Math.abs(e - edgesWant[k]) < 0.05), `dashed edges ${d.edges}, want ${edgesWant}`);
+        assert.ok(d.legend.includes(`flank band (${band * 100} % of the clearance)`), `legend: ${d.legend}`);
+        // The markers stay on the flanks at their crank angles, one per event.
+        assert.equal(await page.locator('#lf-lift .event').count(), lf.events.length);
+        // The table: where the lift touched or left the flank, — where it never did.
+        assert.equal(await page.textContent('#lf-touch-head'), 'Touches / leaves the flank at (deg)');
+        const touch = await page.$$eval('#lf-events tbody td.touch', (tds) => tds.map((t) => t.textContent));
+        assert.deepEqual(touch, lf.events.map((e) => (e.touch_deg === null ? '—' : e.touch_deg.toFixed(2))));
+        assert.ok(touch.includes('—') && lf.events.some((e) => e.touch_deg !== null && e.touch_deg !== e.crank_deg),
+          'the fixture has a landing that never touched and events dated off their touch');
+        assert.match(await page.textContent('#lf-dating'),
+          new RegExp(`^Dated where the mean lift crosses the edge of a band of ${band * 100} % of the axial clearance \\(${(band * ca).toFixed(3)} µm\\) at the flank; the last column is where it touched or left the flank itself`));
+        assert.match(await page.textContent('#lf-plots figcaption'), new RegExp(`flank band \\(${band * 100} % of the clearance\\)`));
+        const overflow = await page.evaluate(() => document.documentElement.scrollWidth - window.innerWidth);
+        assert.ok(overflow <= 0, `no sideways scrolling (${overflow} px)`);
+        assert.deepEqual(await smallText(), [], `lift with a ${band} band`);
+        if (band === 0.01) await shot(`ringdyn-lift-band-${width}.png`, { fullPage: true });
+      }
+
+      // Band 0: nothing drawn, dated at the flank, the touch column still there.
+      const lf0 = fixtures.liftResult({ band: 0 });
+      const jobs = await interceptJobs(lf0);
+      try {
+        await runAnalysis('Run lift analysis');
+      } finally {
+        await jobs.stop();
+      }
+      const d0 = await bandDrawing('#lf-lift');
+      assert.deepEqual([d0.strips, d0.edges], [[], []], 'flank_band 0: no band drawn');
+      assert.ok(!d0.legend.some((t) => /flank band/.test(t)), `legend: ${d0.legend}`);
+      assert.equal(await page.textContent('#lf-dating'), 'Dated where the mean lift touches the flank (landings) or the load turns away (leaves).');
+      assert.deepEqual(await page.$$eval('#lf-events tbody td.touch', (tds) => tds.map((t) => t.textContent)), lf0.events.map((e) => e.touch_deg.toFixed(2)));
+      assert.doesNotMatch(await page.textContent('#lf-plots figcaption'), /flank band/);
+
+      // The ring pack: each ring's band at both flanks of its groove, on the lift plot's scale.
+      await selectTab('ringpack');
+      for (const band of [0.01, 0, null]) {
+        const rp = fixtures.ringpackResult({ band });
+        const rjobs = await interceptJobs(rp);
+        try {
+          await runAnalysis('Run ringpack analysis');
+        } finally {
+          await rjobs.stop();
+        }
+        await page.waitForSelector('#rp-lift');
+        const d = await bandDrawing('#rp-lift');
+        if (!band) {
+          assert.deepEqual(d.strips, [], `ring pack, flank_band ${band}: no band drawn`);
+          continue;
+        }
+        const y = yAxis(d.yTicks);
+        const want = rp.scene.rings.flatMap((r, i) => ['lower', 'upper'].map((side) => ({ ring: i + 1, side, ca: r.groove.axial_clearance * 1e6 })));
+        assert.deepEqual(d.strips.map((s) => [s.ring, s.side]), want.map((w) => [w.ring, w.side]));
+        d.strips.forEach((s, k) => {
+          const { ca, side, ring } = want[k];
+          if (side === 'lower') assertSpan(s, y(0), y(band * ca), `ring ${ring} lower`);
+          else assertSpan(s, y(ca), y(ca - band * ca), `ring ${ring} upper`);
+        });
+        assert.ok(d.legend.includes('flank bands (1 % of each groove\'s clearance)'), `legend: ${d.legend}`);
+        assert.deepEqual(await smallText(), [], 'ring pack with bands');
+        await shot(`ringdyn-ringpack-band-${width}.png`, { fullPage: true });
+      }
+    } finally {
+      await page.setViewportSize({ width: 1280, height: 800 });
+      await page.getByRole('button', { name: 'Reset to defaults' }).click();
+    }
+  });
+}
+
+test('lift form: the flank band field has the schema\'s default and range, reaches the scene, and the server refuses 0.3 naming it', { timeout: 60000 }, async () => {
+  const schemas = (await (await fetch(`${BASE}/api/v1/openapi.json`)).json()).components.schemas;
+  const field = schemas.Output.properties.flank_band;
+  await page.getByRole('button', { name: 'Reset to defaults' }).click();
+  await selectTab('lift');
+  assert.equal(Number(await page.inputValue('#f-lf-flank-band')), field.default);
+  assert.equal(field.default, 0.01);
+  assert.deepEqual([await page.getAttribute('#f-lf-flank-band', 'min'), await page.getAttribute('#f-lf-flank-band', 'max')].map(Number), [field.minimum, field.maximum]);
+  assert.equal(await page.textContent('#f-lf-flank-band-hint'), '= 1 %');
+  const jobs = await interceptJobs(fixtures.liftResult());
+  try {
+    await page.fill('#f-lf-flank-band', '0.05');
+    await runAnalysis('Run lift analysis');
+    assert.equal(jobs.sent.at(-1).output.flank_band, 0.05);
+    await page.fill('#f-lf-flank-band', '0');
+    await runAnalysis('Run lift analysis');
+    assert.equal(jobs.sent.at(-1).output.flank_band, 0);
+  } finally {
+    await jobs.stop();
+  }
+  if (!SKIP.lift) {
+    // Out of range: refused before any run, the message names the field and it is marked.
+    await page.fill('#f-lf-flank-band', '0.3');
+    await runAnalysis('Run lift analysis');
+    await page.waitForSelector('#error:not([hidden])');
+    const text = await page.textContent('#error');
+    assert.match(text, /\/output\/flank_band/, `error names the field: ${text}`);
+    assert.equal(await page.getAttribute('#f-lf-flank-band', 'aria-invalid'), 'true');
+  }
+  await page.getByRole('button', { name: 'Reset to defaults' }).click();
+});
 
 // ---- /docs: the API docs page, built from the OpenAPI document (issue 13) ----
 
