@@ -88,6 +88,9 @@ def merge(s, o):
             s[k] = v
 
 
+CACHED_ONLY = False
+
+
 def run_one(build, cache, key, sc, spec):
     s = json.loads(json.dumps(sc))
     o = run_spec(spec)
@@ -99,6 +102,8 @@ def run_one(build, cache, key, sc, spec):
     path = os.path.join(cache, f'{h}.json')
     if os.path.exists(path):
         return key, spec, json.load(open(path))
+    if CACHED_ONLY:
+        return key, spec, {'error': {'message': 'not run yet'}}
     t = time.time()
     r = subprocess.run([os.path.join(build, 'cli', 'ringdyn'), 'run', '-'],
                        input=json.dumps(s), capture_output=True, text=True)
@@ -147,8 +152,11 @@ def main():
     ap.add_argument('--jobs', type=int, default=1)
     ap.add_argument('--only', default='')
     ap.add_argument('--reduced', action='store_true')
+    ap.add_argument('--cached', action='store_true', help='print what the cache holds, run nothing')
     a = ap.parse_args()
     os.makedirs(a.cache, exist_ok=True)
+    global CACHED_ONLY
+    CACHED_ONLY = a.cached
     runs = a.runs.split(',')
     scenes = battery(a.reduced)
     if a.only:

@@ -61,6 +61,7 @@ enum rd_lift_event_kind {
 #define RD_LIFT_MODES_MAX    60
 #define RD_LIFT_FLANK_BAND     0.01 /* output.flank_band default, of the axial clearance */
 #define RD_LIFT_FLANK_BAND_MAX 0.2
+#define RD_LIFT_SEGMENT_WARN_DEG 1.0 /* segment-count share of the event error that warns */
 
 typedef struct rd_groove_params {
     double axial_clearance;  /* groove height minus ring height, m */
@@ -157,8 +158,23 @@ typedef struct rd_lift_result {
     int partial_stop;         /* what stopped it: RD_ELIMIT, RD_ECANCELED or RD_ETIMEOUT */
     double crank_deg_reached; /* deg; the end of the run when not partial */
     char warning[400];        /* empty when not partial */
-    double error_estimate;    /* relative lift error from the rtol/10 run; NAN if none */
-    double event_error_deg;   /* largest event-angle change in that run; NAN if none */
+    /* The error estimate (estimate_error; NAN if none, or if a reference run
+     * has other flank changes than the scene's): the lift error over the
+     * clearance and the flank changes' error, deg, each the sum of the time
+     * integration's share (the run at rtol/10, atol/10) and, for the full and
+     * modal models, the segment count's (the run at n/2 segments, its
+     * difference / (2^1.5 - 1)); the rigid model's covers the time only. */
+    double error_estimate;
+    double event_error_deg;
+    double event_error_time_deg;     /* the time integration's share, deg */
+    double event_error_segments_deg; /* the segment count's share, deg; NAN if not estimated */
+    int segments_half;               /* n of that run (0: none) */
+    int segments_half_events;        /* its number of flank changes */
+    /* Not empty when the flank changes are not converged in the segment
+     * count: the n/2 run has other flank changes, or their segment-count
+     * share exceeds RD_LIFT_SEGMENT_WARN_DEG (a warning of the result, path
+     * /discretization/segments). */
+    char accuracy_warning[400];
 } rd_lift_result;
 
 void rd_lift_params_default(rd_lift_params *p);

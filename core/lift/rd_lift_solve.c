@@ -53,6 +53,8 @@
  * full model's band one, so it is never the cheapest model meeting the
  * target; it is there by request (numerics.model = modal). */
 #define MODAL_DEFAULT_MODES 12
+#define SEGMENT_ORDER       1.5 /* p of the segment-count estimate (compare_levels) */
+#define HALF_SEGMENTS_MIN   6   /* the n/2 run of the segment-count estimate: at least this */
 static int modal_default_modes(int n)
 {
     return MODAL_DEFAULT_MODES < 6 * n - 6 ? MODAL_DEFAULT_MODES : 6 * n - 6;
@@ -102,61 +104,122 @@ static void choose_model(const rd_lift_params *p, int n, double ring_d, rd_lift_
                  "than the full ring (numerics.model = modal by request)");
 }
 
-/* The two solves of the accuracy driver and what they keep. */
+/* The solves of the accuracy driver and what they keep.  Level 1, the
+ * reference, is the scene at rtol/10 and atol/10 (the time integration's
+ * error) and, for the flexible models, the scene at n/2 segments at the
+ * scene's tolerances (the segment count's error, below). */
 typedef struct lift_solve {
     const rd_ring *ring;
+    const rd_ring *half; /* n/2 segments; NULL: no segment-count estimate */
     const rd_lift_params *p;
-    const rd_lift_setup *setup;
+    const rd_lift_setup *setup, *setup_half;
     rd_lift_result *out;
-    rd_lift_run run[2]; /* level 0: the scene; level 1: rtol/10, atol/10 */
+    rd_lift_run run[3]; /* the scene; rtol/10, atol/10; n/2 segments */
     int main_done;      /* level 0 ran every cycle */
 } lift_solve;
+
+static int solve_run(lift_solve *s, int k, const rd_monitor *mon, rd_error *err)
+{
+    rd_lift_run *r = &s->run[k];
+    double scale = k == 1 ? 0.1 : 1.0;
+    r->rtol = scale * s->p->rtol;
+    r->atol = scale * s->p->atol;
+    r->res = k ? NULL : s->out;
+    r->modes = s->out->modes;
+    if (k == 2 && r->modes > 6 * rd_ring_get_segments(s->half) - 6)
+        r->modes = 6 * rd_ring_get_segments(s->half) - 6;
+    return rd_lift_integrate(k == 2 ? s->half : s->ring, s->p, k == 2 ? s->setup_half : s->setup,
+                             s->out->model, mon, r, err);
+}
 
 static int solve_level(void *ctx, int level, const rd_monitor *mon, rd_error *err)
 {
     lift_solve *s = ctx;
-    rd_lift_run *r = &s->run[level];
-    double scale = level ? 0.1 : 1.0;
     if (level == 1 && s->out->partial)
         return RD_OK; /* no estimate for a partial result: its reference would stop too */
-    r->rtol = scale * s->p->rtol;
-    r->atol = scale * s->p->atol;
-    r->res = level ? NULL : s->out;
-    r->modes = s->out->modes;
-    int rc = rd_lift_integrate(s->ring, s->p, s->setup, s->out->model, mon, r, err);
-    if (level == 0 && (rc == RD_ELIMIT || rc == RD_ECANCELED || rc == RD_ETIMEOUT) && r->done > 0 &&
-        r->reached_deg > 0.0)
+    if (level == 1) {
+        rd_monitor_span sp;
+        double split = s->half ? 0.8 : 1.0; /* n/2 at rtol costs ~1/4 of n at rtol/10 */
+        int rc = solve_run(s, 1, rd_monitor_span_init(&sp, mon, 0.0, split), err);
+        if (rc == RD_OK && s->half)
+            rc = solve_run(s, 2, rd_monitor_span_init(&sp, mon, split, 1.0), err);
+        return rc;
+    }
+    int rc = solve_run(s, 0, mon, err);
+    if ((rc == RD_ELIMIT || rc == RD_ECANCELED || rc == RD_ETIMEOUT) && s->run[0].done > 0 &&
+        s->run[0].reached_deg > 0.0)
         rc = rd_lift_keep_partial(s->out, s->p, &s->run[0], rc, err);
-    if (level == 0 && rc == RD_OK && !s->out->partial)
+    if (rc == RD_OK && !s->out->partial)
         s->main_done = 1;
     return rc;
 }
 
-/* error_estimate: largest lift difference / clearance; event error: the
- * largest angle change of matched events, NAN when the two runs see a
- * different number or kind of flank changes (the estimate cannot pair them). */
+/* Largest lift difference of two runs, m, and the largest angle change of
+ * their matched flank changes, deg (NAN when they differ in number or kind:
+ * the estimate cannot pair them). */
+static void run_diff(const rd_lift_run *a, const rd_lift_run *b, double *lift, double *deg)
+{
+    double e = 0.0, de = a->n_events == b->n_events ? 0.0 : NAN;
+    for (int k = 0; k < a->samples; k++)
+        e = fmax(e, fabs(a->lift[k] - b->lift[k]));
+    for (int j = 0; isfinite(de) && j < a->n_events; j++)
+        de = b->events[j].kind != a->events[j].kind
+                 ? NAN
+                 : fmax(de, fabs(b->events[j].crank_deg - a->events[j].crank_deg));
+    *lift = e;
+    *deg = de;
+}
+
+/* The warning of flank changes not converged in the segment count. */
+static void segment_warning(rd_lift_result *out, int n_events)
+{
+    int n = out->segments, nh = out->segments_half;
+    if (isnan(out->event_error_segments_deg))
+        snprintf(out->accuracy_warning, sizeof out->accuracy_warning,
+                 "The flank changes are not converged in the segment count: the check run at "
+                 "n/2 = %d segments has %d flank changes where n = %d has %d, so the angles "
+                 "cannot be given an error; run at more segments (/discretization/segments) and "
+                 "compare before trusting them.",
+                 nh, out->segments_half_events, n, n_events);
+    else if (out->event_error_segments_deg > RD_LIFT_SEGMENT_WARN_DEG)
+        snprintf(out->accuracy_warning, sizeof out->accuracy_warning,
+                 "The flank changes are not converged in the segment count: against the check "
+                 "run at n/2 = %d segments they move by up to %.3g deg (estimated error %.3g "
+                 "deg at n = %d); run at more segments (/discretization/segments) and compare "
+                 "before trusting the angles.",
+                 nh, out->event_error_segments_deg * (pow(2.0, SEGMENT_ORDER) - 1.0),
+                 out->event_error_segments_deg, n);
+}
+
+/* error_estimate: the lift error over the clearance; event_error_deg: the
+ * flank changes' (NAN when a reference run sees other flank changes).  The
+ * time integration's share is the difference from the rtol/10 run.  The
+ * segment count's share is the difference from the n/2 run divided by
+ * 2^p - 1: the error against the limit n -> infinity if the answer
+ * converges as n^-p; p = 1.5, the order observed on the friction battery
+ * (docs/lift.md, Segment count).  The two shares add. */
 static int compare_levels(void *ctx, rd_error *err)
 {
     (void)err;
     lift_solve *s = ctx;
-    const rd_lift_run *a = &s->run[0], *b = &s->run[1];
-    double e = 0.0;
-    if (s->out->partial)
+    rd_lift_result *out = s->out;
+    double ca = s->p->groove.axial_clearance, lt, dt, ln = 0.0, dn = 0.0;
+    if (out->partial)
         return RD_OK;
-    for (int k = 0; k < a->samples; k++)
-        e = fmax(e, fabs(a->lift[k] - b->lift[k]));
-    s->out->error_estimate = e / s->p->groove.axial_clearance;
-    if (b->n_events == a->n_events) {
-        double de = 0.0;
-        for (int j = 0; j < a->n_events; j++) {
-            if (b->events[j].kind != a->events[j].kind) {
-                de = NAN;
-                break;
-            }
-            de = fmax(de, fabs(b->events[j].crank_deg - a->events[j].crank_deg));
-        }
-        s->out->event_error_deg = de;
+    run_diff(&s->run[0], &s->run[1], &lt, &dt);
+    out->event_error_time_deg = dt;
+    if (s->half) {
+        run_diff(&s->run[0], &s->run[2], &ln, &dn);
+        double f = 1.0 / (pow(2.0, SEGMENT_ORDER) - 1.0);
+        ln *= f;
+        dn *= f;
+        out->event_error_segments_deg = dn;
+        out->segments_half = rd_ring_get_segments(s->half);
+        out->segments_half_events = s->run[2].n_events;
+        segment_warning(out, s->run[0].n_events);
     }
+    out->error_estimate = (lt + ln) / ca;
+    out->event_error_deg = dt + dn;
     return RD_OK;
 }
 
@@ -187,10 +250,13 @@ int rd_lift_solve_setup(const rd_ring_params *rp, int segments, const rd_lift_pa
 {
     lift_solve s = {.p = p, .setup = setup, .out = out};
     double *y0 = NULL;
+    rd_ring *half = NULL;
     int rc;
     memset(out, 0, sizeof *out);
     out->error_estimate = NAN;
     out->event_error_deg = NAN;
+    out->event_error_time_deg = NAN;
+    out->event_error_segments_deg = NAN;
     if ((rc = rd_lift_validate(p, rp, segments, err)))
         return rc;
     rd_ring *ring = rd_ring_create(rp, segments, 0, err);
@@ -205,34 +271,51 @@ int rd_lift_solve_setup(const rd_ring_params *rp, int segments, const rd_lift_pa
         out->dof = 3; /* axial lift, twist, radial */
     else if (out->model == RD_LIFT_MODEL_MODAL)
         out->dof = 6 + out->modes; /* rigid-body and elastic modes */
-    for (int l = 0; l < 2; l++) {
+    /* the segment-count estimate: the flexible models, from the scene's own start */
+    int nh = segments / 2;
+    if (p->estimate_error && out->model != RD_LIFT_MODEL_RIGID && nh >= HALF_SEGMENTS_MIN &&
+        !(setup && setup->y0)) {
+        half = rd_ring_create(rp, nh, 0, err);
+        if (!half) {
+            rc = err ? err->code : RD_ENOMEM;
+            goto out;
+        }
+        s.half = half;
+    }
+    for (int l = 0; l < 3; l++) {
+        int need = l == 0 || (l == 1 && p->estimate_error) || (l == 2 && s.half);
         s.run[l].samples = S;
-        s.run[l].lift = l == 0 || p->estimate_error ? malloc((size_t)S * sizeof(double)) : NULL;
-        if ((l == 0 || p->estimate_error) && !s.run[l].lift) {
+        s.run[l].lift = need ? malloc((size_t)S * sizeof(double)) : NULL;
+        if (need && !s.run[l].lift) {
             rc = rd_error_set(err, RD_ENOMEM, "", "Out of memory for %d lift samples.", S);
             goto out;
         }
     }
-    /* a distorted bore: both runs start from the ring's static equilibrium in it */
-    rd_lift_setup su = setup ? *setup : (rd_lift_setup){0};
+    /* a distorted bore: every run starts from its ring's static equilibrium in it */
+    rd_lift_setup su = setup ? *setup : (rd_lift_setup){0}, suh = su;
+    s.setup_half = setup;
     if (rd_bore_distorted(&p->bore, rp->diameter) && !su.y0) {
-        y0 = malloc(12 * (size_t)segments * sizeof *y0);
+        y0 = malloc(12 * (size_t)(segments + nh) * sizeof *y0);
         if (!y0) {
             rc = rd_error_set(err, RD_ENOMEM, "", "Out of memory for the bore start.");
             goto out;
         }
-        if ((rc = rd_lift_bore_static(ring, p, y0, err)))
+        if ((rc = rd_lift_bore_static(ring, p, y0, err)) ||
+            (s.half && (rc = rd_lift_bore_static(s.half, p, y0 + 12 * segments, err))))
             goto out;
         su.y0 = y0;
+        suh.y0 = y0 + 12 * segments;
         s.setup = &su;
+        s.setup_half = &suh;
     }
-    /* the reference run at rtol/10 typically costs 1.5-2x the main run */
+    /* the reference run at rtol/10 typically costs 1.5-2x the main run, the n/2 one ~0.5x */
     rd_accuracy_plan plan = {.solve = solve_level,
                              .compare = compare_levels,
                              .ctx = &s,
                              .estimate = p->estimate_error,
-                             .main_share = 0.4,
-                             .reference = "rtol/10 and atol/10"};
+                             .main_share = s.half ? 0.3 : 0.4,
+                             .reference = s.half ? "rtol/10 and atol/10, and at n/2 segments"
+                                                 : "rtol/10 and atol/10"};
     rc = rd_accuracy_run(&plan, mon, NULL, err);
     if ((rc == RD_ECANCELED || rc == RD_ETIMEOUT) && s.main_done)
         rd_lift_estimate_stopped(out, p);
@@ -247,11 +330,12 @@ int rd_lift_solve_setup(const rd_ring_params *rp, int segments, const rd_lift_pa
            out->events[out->n_events - 1].crank_deg > out->crank_deg[out->samples - 1])
         out->n_events--; /* events after the last whole cycle */
 out:
-    for (int l = 0; l < 2; l++) {
+    for (int l = 0; l < 3; l++) {
         free(s.run[l].lift);
         free(s.run[l].events);
     }
     rd_ring_free(ring);
+    rd_ring_free(half);
     free(y0);
     return rc;
 }
