@@ -98,7 +98,9 @@ def run_one(build, cache, key, sc, spec):
     merge(s, o)
     if atol:
         s['numerics']['atol'] = 1e-11 * s['groove']['axial_clearance'] / 3e-5
-    h = hashlib.sha1(json.dumps(s, sort_keys=True).encode()).hexdigest()[:16]
+    # the references are keyed by scene; what auto and rigid give, by build too
+    key_text = json.dumps(s, sort_keys=True) + ('' if spec.startswith('full') else build)
+    h = hashlib.sha1(key_text.encode()).hexdigest()[:16]
     path = os.path.join(cache, f'{h}.json')
     if os.path.exists(path):
         return key, spec, json.load(open(path))
@@ -120,7 +122,7 @@ def run_one(build, cache, key, sc, spec):
         keep['events'] = res.get('events')
         keep['numerics'] = res.get('numerics')
         keep['warnings'] = res.get('warnings')
-        if spec in ('rigid', 'auto'):
+        if spec in ('rigid', 'auto', 'auto20'):
             for k in ('crank_deg', 'lift', 'twist_rad', 'friction_force', 'flank'):
                 keep[k] = res.get(k)
     json.dump(keep, open(path + '.tmp', 'w'))

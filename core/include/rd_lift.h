@@ -168,6 +168,10 @@ typedef struct rd_lift_result {
     double event_error_deg;
     double event_error_time_deg;     /* the time integration's share, deg */
     double event_error_segments_deg; /* the segment count's share, deg; NAN if not estimated */
+    /* the rigid ring's share where auto chose it on a friction scene: its
+     * largest difference from the full ring in the run-time check, deg
+     * (part of event_error_deg); NAN otherwise */
+    double event_error_model_deg;
     int segments_half;               /* n of that run (0: none) */
     int segments_half_events;        /* its number of flank changes */
     /* Not empty when the flank changes are not converged in the segment

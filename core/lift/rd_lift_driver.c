@@ -90,6 +90,9 @@ typedef struct driver {
     N_Vector yd, yk;       /* the sticking phase's scratch (rd_lift_stick.c); NULL: none */
     int stick;             /* 1 while the seated ring is advanced quasi-statically */
     double t_stick;        /* the time the sticking phase has reached, s */
+    double t0;             /* the start, s (a window's, rd_lift_setup) */
+    int stop_events;       /* > 0: stop at the root that records that many events */
+    int stopped;           /* 1: stopped there */
 } driver;
 
 /* Flank tracking between root returns: the committed flank and the time a
@@ -182,7 +185,7 @@ static void driver_free(driver *d)
 static int cv_configure(driver *d, double rtol, rd_error *err)
 {
     int flag, b = d->m.banded ? 0 : +1, rootdir[N_ROOTS] = {-1, b, -1, b, 0};
-    if ((flag = CVodeInit(d->cs.cv, drv_rhs, 0.0, d->y)) ||
+    if ((flag = CVodeInit(d->cs.cv, drv_rhs, d->t0, d->y)) ||
         (flag = CVodeSVtolerances(d->cs.cv, rtol, d->abstol)) ||
         (flag = CVodeSetUserData(d->cs.cv, d)) ||
         (flag = CVodeSetLinearSolver(d->cs.cv, d->LS, d->A ? d->A : d->S)) ||
@@ -221,7 +224,7 @@ static int small_open(driver *d, const rd_lift_setup *setup, const rd_lift_run *
                               N_VGetArrayPointer(d->abstol), err)))
         return rc;
     double hmax = (d->m.p->gas.points > 0 ? HMAX_DEG : HMAX_SMALL) / d->deg_per_s;
-    d->sm = rd_lift_small_create(&d->form, d->cs.ctx, 0.0, N_VGetArrayPointer(d->y), o->rtol,
+    d->sm = rd_lift_small_create(&d->form, d->cs.ctx, d->t0, N_VGetArrayPointer(d->y), o->rtol,
                                  N_VGetArrayPointer(d->abstol), hmax, N_ROOTS, roots, rootdir, d);
     if (!d->sm)
         return rd_error_set(err, RD_ENOMEM, "", "Out of memory setting up the lift integrator.");
@@ -239,6 +242,8 @@ static int driver_open(driver *d, const rd_ring *ring, const rd_lift_params *p,
     int rigid = model == RD_LIFT_MODEL_RIGID;
     sunindextype N = d->form.N;
     d->deg_per_s = d->m.omega * 180.0 / M_PI;
+    d->t0 = setup && setup->t1_deg > 0.0 ? setup->t0_deg / d->deg_per_s : 0.0;
+    d->stop_events = setup ? setup->stop_events : 0;
     d->chunk = STEP_CHUNK / n > 1 ? STEP_CHUNK / n : 1;
     if (rigid) /* a step costs about as much as one segment's forces */
         d->chunk = STEP_CHUNK;
@@ -398,11 +403,15 @@ static flank_track initial_flank(driver *d)
 {
     const double *yy = N_VGetArrayPointer(d->y);
     double L0 = d->form.lift(d->form.user, yy, NULL);
-    d->form.loads(d->form.user, 0.0, yy);
-    flank_track tr = rd_lift_track_seated(d->m.banded, d->m.fz_ext, 0.0);
-    if (L0 > d->m.ca - d->m.eps)
+    d->form.loads(d->form.user, d->t0, yy);
+    flank_track tr = rd_lift_track_seated(d->m.banded, d->m.fz_ext, d->t0);
+    if (L0 > d->m.ca - d->m.eps) { /* a window's start on the upper flank */
         tr.state = RD_FLANK_UPPER;
-    else if (L0 > d->m.eps)
+        tr.touched = d->m.banded && L0 >= d->m.ca - d->m.d0;
+        tr.cand = NAN;
+        return tr;
+    }
+    if (L0 > d->m.eps)
         tr.state = RD_FLANK_FREE;
     if (tr.state != RD_FLANK_LOWER || (d->m.banded && L0 > d->m.d0)) {
         tr.cand = NAN; /* not on the lower flank: no leave pending */
@@ -538,6 +547,11 @@ static int advance(driver *d, double tout, flank_track *tr, rd_lift_run *o, cons
             if (!was && tr->touched && d->m.p->landing == RD_LANDING_PLASTIC &&
                 (rc = land_plastic(d, t, tr->state == RD_FLANK_UPPER, err)))
                 return rc;
+            if (d->stop_events > 0 && (o->n_events > d->stop_events ||
+                                       (o->n_events == d->stop_events && tr->touched))) {
+                d->stopped = 1;
+                return RD_OK;
+            }
             continue;
         }
         if (flag == CV_TOO_MUCH_WORK) { /* a chunk ended, or max_steps did */
@@ -639,6 +653,8 @@ static void store_sample(driver *d, int k, double deg, double tout, rd_lift_run 
     }
     if (setup && setup->sample)
         setup->sample(setup->ctx, tout, yf);
+    if (setup && setup->state)
+        setup->state(setup->ctx, tout, yy, (int)d->form.N);
     if (setup && setup->energy) {
         rd_lift_energy en = {0.0, 0.0, 0.0};
         c->energy = &en;
@@ -675,14 +691,20 @@ int rd_lift_integrate(const rd_ring *ring, const rd_lift_params *p, const rd_lif
     o->dof = (int)(d.form.N / 2);
     flank_track tr = initial_flank(&d);
     int S = o->samples;
-    double total = p->engine.cycles * 720.0;
-    for (int k = 0; k < S; k++) {
-        double deg = fmin(k * p->step_deg, total), tout = deg / d.deg_per_s;
+    double t0 = d.t0 * d.deg_per_s, total = p->engine.cycles * 720.0;
+    if (setup && setup->t1_deg > 0.0)
+        total = setup->t1_deg;
+    for (int k = 0; k < S && !d.stopped; k++) {
+        double deg = fmin(t0 + k * p->step_deg, total), tout = deg / d.deg_per_s;
         if (k > 0 && (rc = advance_or_stick(&d, tout, &tr, o, mon, (double)k / S, err))) {
             double tc = 0.0;
             o->done = k; /* a stopped run's partial result may keep the samples */
             if (current_time(&d, &tc) == CV_SUCCESS)
                 o->reached_deg = tc * d.deg_per_s;
+            break;
+        }
+        if (d.stopped) {
+            o->done = k;
             break;
         }
         store_sample(&d, k, deg, tout, o, setup);

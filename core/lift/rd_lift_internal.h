@@ -39,6 +39,18 @@ typedef struct rd_lift_setup {
     /* Called at every output sample, after `sample`, with the same ctx, the
      * time (s) and the energy bookkeeping of the state; NULL: not called. */
     void (*energy)(void *ctx, double t, const rd_lift_energy *e);
+    /* A window of the run (the auto check, rd_lift_check.c): from t0_deg
+     * (state y0, seated at rest when NULL) to t1_deg, sampled every step_deg
+     * from t0_deg (the run's `samples` must match); t1_deg = 0: the whole
+     * run.  stop_events > 0: the run ends at the root where it has recorded
+     * that many flank changes and its mean lift touches the flank of the
+     * last, or where it records more (its samples stop there: `done`). */
+    double t0_deg, t1_deg;
+    int stop_events;
+    /* Called at every output sample with the time (s) and the integrated
+     * form's own state (N values: 6 for the rigid ring, 12 n for the full
+     * one); NULL: not called.  Same ctx. */
+    void (*state)(void *ctx, double t, const double *y, int N);
 } rd_lift_setup;
 
 /* rd_lift_solve with a set-up; setup == NULL is rd_lift_solve. */

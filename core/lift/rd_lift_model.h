@@ -311,6 +311,26 @@ typedef struct rd_lift_run {
 int rd_lift_integrate(const rd_ring *ring, const rd_lift_params *p, const rd_lift_setup *setup,
                       int model, const rd_monitor *mon, rd_lift_run *run, rd_error *err);
 
+/* The run-time check of a rigid run's flank changes against the full ring
+ * over its flights (rd_lift_check.c): worst_deg the largest move of a
+ * flank change, NAN when the full ring's differ in number or kind (the
+ * check stops at that window); the windows and events checked and the full
+ * ring's steps there. */
+typedef struct rd_lift_check {
+    double worst_deg;
+    int windows, events;
+    long steps;
+} rd_lift_check;
+typedef struct rd_lift_check_in {
+    const rd_lift_event *events; /* the rigid run's */
+    int n_events;
+    const double *states;          /* its form's state at every output sample, N each */
+    int N;                         /* 6 */
+    const rd_lift_form *expand;    /* a rigid form of the scene: expands a state to 12 n */
+} rd_lift_check_in;
+int rd_lift_check_rigid(const rd_ring *ring, const rd_lift_params *p, const rd_lift_check_in *in,
+                        rd_lift_check *out, rd_error *err);
+
 /* A level-0 run `r` that stopped with `why` (RD_ELIMIT, RD_ECANCELED or
  * RD_ETIMEOUT) keeps its whole cycles in `out` (partial = 1, samples cut to
  * the last whole cycle, warning); returns RD_OK for RD_ELIMIT with at least

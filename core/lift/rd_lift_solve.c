@@ -96,12 +96,10 @@ static void choose_model(const rd_lift_params *p, int n, double ring_d, rd_lift_
         snprintf(out->why, sizeof out->why,
                  "auto: the scene is axisymmetric (round bore, aligned groove, loads uniform "
                  "around the ring) and without friction the rigid ring is exact for it");
-    } else
-        snprintf(out->why, sizeof out->why,
-                 "auto: with friction the split ring's free ends lift differently from its "
-                 "middle in flight, which delays its landings by up to several degrees against "
-                 "the rigid ring's, and the modal model needs more modes than make it cheaper "
-                 "than the full ring (numerics.model = modal by request)");
+    } else {
+        out->model = RD_LIFT_MODEL_RIGID; /* checked at run time (check_rigid) */
+        snprintf(out->why, sizeof out->why, "auto: the rigid ring, checked");
+    }
 }
 
 /* The solves of the accuracy driver and what they keep.  Level 1, the
@@ -116,7 +114,74 @@ typedef struct lift_solve {
     rd_lift_result *out;
     rd_lift_run run[3]; /* the scene; rtol/10, atol/10; n/2 segments */
     int main_done;      /* level 0 ran every cycle */
+    int check;          /* auto with friction: the rigid run is checked (check_rigid) */
+    const rd_ring_params *rp;
+    rd_ring *half_owned; /* the n/2 ring made after a failed check */
+    double *states;      /* the checked rigid run's state at every sample (6 each) */
 } lift_solve;
+
+/* The rigid run's states for the check's window starts (rd_lift_setup.state). */
+static void keep_state(void *ctx, double t, const double *y, int N)
+{
+    lift_solve *s = ctx;
+    int k = (int)lround(t * rd_engine_omega(&s->p->engine) * 180.0 / M_PI / s->p->step_deg);
+    if (N == 6 && k >= 0 && k < s->run[0].samples)
+        memcpy(s->states + 6 * (size_t)k, y, 6 * sizeof *y);
+}
+
+/* auto on a friction scene: the rigid run's flank changes checked against
+ * the full ring over its flights (rd_lift_check.c); kept when they agree
+ * within numerics.accuracy_deg, else the full ring runs.  Returns 1 when
+ * the rigid run stands, 0 when the full ring must run (out->why says why). */
+static int check_rigid(lift_solve *s, rd_error *err)
+{
+    rd_lift_result *out = s->out;
+    const rd_lift_run *r = &s->run[0];
+    rd_lift_check ck = {NAN, 0, 0, 0};
+    rd_error e2;
+    rd_error_init(&e2);
+    double tol = s->p->accuracy_deg;
+    rd_lift_model m;
+    rd_lift_form form = {0};
+    int rc = rd_lift_model_init(&m, s->ring, s->p, NULL, &e2);
+    if (rc == RD_OK && (rc = rd_lift_rigid_open(&m, &form, &e2)) == RD_OK) {
+        rd_lift_check_in in = {r->events, r->n_events, s->states, 6, &form};
+        rc = rd_lift_check_rigid(s->ring, s->p, &in, &ck, &e2);
+    }
+    if (form.close)
+        form.close(&form);
+    rd_lift_model_cleanup(&m);
+    (void)err;
+    if (rc == RD_OK && isfinite(ck.worst_deg) && ck.worst_deg <= tol) {
+        out->event_error_model_deg = ck.worst_deg;
+        snprintf(out->why, sizeof out->why,
+                 "auto: the scene is axisymmetric; with friction the rigid ring was checked at "
+                 "run time against the full ring (%d segments, rtol/10) over each of its %d "
+                 "flights (%d flank changes, %ld steps): they move by at most %.3g deg, within "
+                 "numerics.accuracy_deg = %g",
+                 out->segments, ck.windows, ck.events, ck.steps, ck.worst_deg, tol);
+        return 1;
+    }
+    if (rc != RD_OK)
+        snprintf(out->why, sizeof out->why,
+                 "auto: with friction the rigid ring's flank changes are checked against the "
+                 "full ring over its flights, and the check failed (%.150s): the full ring ran",
+                 e2.message);
+    else if (isnan(ck.worst_deg))
+        snprintf(out->why, sizeof out->why,
+                 "auto: with friction the rigid ring's flank changes were checked against the "
+                 "full ring over its flights, and the full ring has other flank changes there "
+                 "(window %d): the full ring ran",
+                 ck.windows + 1);
+    else
+        snprintf(out->why, sizeof out->why,
+                 "auto: with friction the rigid ring's flank changes were checked against the "
+                 "full ring over its flights: they move by up to %.3g deg, more than "
+                 "numerics.accuracy_deg = %g, so the full ring ran",
+                 ck.worst_deg, tol);
+    return 0;
+}
+
 
 static int solve_run(lift_solve *s, int k, const rd_monitor *mon, rd_error *err)
 {
@@ -128,8 +193,30 @@ static int solve_run(lift_solve *s, int k, const rd_monitor *mon, rd_error *err)
     r->modes = s->out->modes;
     if (k == 2 && r->modes > 6 * rd_ring_get_segments(s->half) - 6)
         r->modes = 6 * rd_ring_get_segments(s->half) - 6;
+    rd_lift_setup su = {.state = keep_state, .ctx = s};
+    if (k == 0 && s->check && s->out->model == RD_LIFT_MODEL_RIGID)
+        return rd_lift_integrate(s->ring, s->p, &su, s->out->model, mon, r, err);
     return rd_lift_integrate(k == 2 ? s->half : s->ring, s->p, k == 2 ? s->setup_half : s->setup,
                              s->out->model, mon, r, err);
+}
+
+/* The n/2 ring of the segment-count estimate for a full ring that auto
+ * chose after its check (the scene is axisymmetric: no bore start). */
+static int half_ring(lift_solve *s, rd_error *err)
+{
+    int nh = s->out->segments / 2;
+    if (!s->p->estimate_error || nh < HALF_SEGMENTS_MIN || s->half || (s->setup && s->setup->y0))
+        return RD_OK;
+    s->half_owned = rd_ring_create(s->rp, nh, 0, err);
+    if (!s->half_owned)
+        return err && err->code ? err->code : RD_ENOMEM;
+    s->half = s->half_owned;
+    s->run[2].samples = s->run[0].samples;
+    s->run[2].lift = malloc((size_t)s->run[2].samples * sizeof(double));
+    if (!s->run[2].lift)
+        return rd_error_set(err, RD_ENOMEM, "", "Out of memory for %d lift samples.",
+                            s->run[2].samples);
+    return RD_OK;
 }
 
 static int solve_level(void *ctx, int level, const rd_monitor *mon, rd_error *err)
@@ -145,7 +232,27 @@ static int solve_level(void *ctx, int level, const rd_monitor *mon, rd_error *er
             rc = solve_run(s, 2, rd_monitor_span_init(&sp, mon, split, 1.0), err);
         return rc;
     }
-    int rc = solve_run(s, 0, mon, err);
+    int rc = solve_run(s, 0, s->check ? NULL : mon, err);
+    if (s->check && (rc != RD_OK || !check_rigid(s, err))) {
+        if (rc == RD_ECANCELED || rc == RD_ETIMEOUT)
+            return rc;
+        if (rc != RD_OK)
+            snprintf(s->out->why, sizeof s->out->why,
+                     "auto: with friction the rigid ring runs first and is checked against the "
+                     "full ring, but it failed (%.150s): the full ring ran",
+                     err->message);
+        rd_error_init(err);
+        rd_lift_run *r = &s->run[0];
+        free(r->events);
+        r->events = NULL;
+        r->n_events = r->cap_events = r->done = 0;
+        s->out->model = RD_LIFT_MODEL_FULL;
+        s->out->dof = 6 * s->out->segments;
+        s->out->event_error_model_deg = NAN;
+        if ((rc = half_ring(s, err)))
+            return rc;
+        rc = solve_run(s, 0, mon, err);
+    }
     if ((rc == RD_ELIMIT || rc == RD_ECANCELED || rc == RD_ETIMEOUT) && s->run[0].done > 0 &&
         s->run[0].reached_deg > 0.0)
         rc = rd_lift_keep_partial(s->out, s->p, &s->run[0], rc, err);
@@ -219,7 +326,7 @@ static int compare_levels(void *ctx, rd_error *err)
         segment_warning(out, s->run[0].n_events);
     }
     out->error_estimate = (lt + ln) / ca;
-    out->event_error_deg = dt + dn;
+    out->event_error_deg = dt + dn + (isfinite(out->event_error_model_deg) ? out->event_error_model_deg : 0.0);
     return RD_OK;
 }
 
@@ -257,6 +364,7 @@ int rd_lift_solve_setup(const rd_ring_params *rp, int segments, const rd_lift_pa
     out->event_error_deg = NAN;
     out->event_error_time_deg = NAN;
     out->event_error_segments_deg = NAN;
+    out->event_error_model_deg = NAN;
     if ((rc = rd_lift_validate(p, rp, segments, err)))
         return rc;
     rd_ring *ring = rd_ring_create(rp, segments, 0, err);
@@ -267,6 +375,19 @@ int rd_lift_solve_setup(const rd_ring_params *rp, int segments, const rd_lift_pa
     if ((rc = result_alloc(out, S, segments, err)))
         goto out;
     choose_model(p, segments, rp->diameter, out);
+    s.rp = rp;
+    /* (a test's set-up with its own start or hooks runs the full ring) */
+    s.check = p->model == RD_LIFT_MODEL_AUTO && out->model == RD_LIFT_MODEL_RIGID &&
+              p->friction.model != RD_FRICTION_NONE;
+    if (s.check && setup && (setup->y0 || setup->sample || setup->energy || setup->state)) {
+        s.check = 0;
+        out->model = RD_LIFT_MODEL_FULL;
+        snprintf(out->why, sizeof out->why, "auto: a test's set-up (its own start or hooks)");
+    }
+    if (s.check && !(s.states = calloc(6 * (size_t)S, sizeof *s.states))) {
+        rc = rd_error_set(err, RD_ENOMEM, "", "Out of memory for the auto check.");
+        goto out;
+    }
     if (out->model == RD_LIFT_MODEL_RIGID)
         out->dof = 3; /* axial lift, twist, radial */
     else if (out->model == RD_LIFT_MODEL_MODAL)
@@ -336,6 +457,8 @@ out:
     }
     rd_ring_free(ring);
     rd_ring_free(half);
+    rd_ring_free(s.half_owned);
+    free(s.states);
     free(y0);
     return rc;
 }

@@ -48,14 +48,24 @@ static void scene(rd_lift_params *p, double rpm, double ca, int gas, int fric, d
     lift_battery_scene(p, rpm, ca, gas, fric, rtol, 5.0);
 }
 
+/* The thesis ring of axial height h (m), n segments. */
+static int run_n(const rd_lift_params *p, int model, int n, double h, rd_lift_result *r,
+                 rd_error *err)
+{
+    rd_ring_params rp;
+    rd_ring_params_default(&rp);
+    rp.axial_height = h;
+    rd_lift_params q = *p;
+    q.model = model;
+    rd_error_init(err);
+    return rd_lift_solve(&rp, n, &q, NULL, r, err);
+}
+
 static int run(const rd_lift_params *p, int model, rd_lift_result *r, rd_error *err)
 {
     rd_ring_params rp;
     rd_ring_params_default(&rp);
-    rd_lift_params q = *p;
-    q.model = model;
-    rd_error_init(err);
-    return rd_lift_solve(&rp, 6, &q, NULL, r, err);
+    return run_n(p, model, 6, rp.axial_height, r, err);
 }
 
 static const double rpms[] = {100.0, 1000.0, 8000.0}, cas[] = {5e-6, 3e-5, 1e-4};
@@ -88,26 +98,65 @@ static void test_battery_frictionless(void)
     fprintf(stderr, "    no friction, 18 scenes: auto - full <= %.4f deg\n", worst);
 }
 
-/* Friction: auto gives the full ring at every target (a choice only: the
- * runs are a quarter cycle). */
+/* Friction: auto runs the rigid ring and checks it against the full ring
+ * over its flights (rd_lift_check.c); it keeps the rigid run only when the
+ * check finds its flank changes within numerics.accuracy_deg.  Checked here
+ * against what the check does not run: the full ring over the whole cycle
+ * (the same n = 6, rtol 1e-7 as the check's rtol/10), whose flank changes
+ * must be the rigid run's within the target plus SLACK_DEG (the full
+ * ring's own integration error at rtol 1e-7 on these scenes, and the
+ * window's start from the undeformed ring instead of its settled state);
+ * where auto ran the full ring, its why names the check's finding. */
+#define SLACK_DEG 0.02
 static void test_battery_friction(void)
 {
-    double targets[] = {0.01, 0.1, 2.0, 10.0};
+    const double targets[] = {0.1, 0.5};
+    int rigid = 0, total = 0;
+    double worst = 0.0;
     for (int g = 0; g < 2; g++)
         for (int a = 0; a < 3; a++)
-            for (int t = 0; t < 4; t++) {
+            for (int f = 0; f < 2; f++) {
                 rd_lift_params p;
-                rd_lift_result r;
+                rd_lift_result ref;
                 rd_error err;
-                scene(&p, rpms[a], 3e-5, g, RD_FRICTION_STRIBECK - a % 2, 1e-6);
-                p.engine.cycles = 0.05;
-                p.accuracy_deg = targets[t];
-                int rc = run(&p, RD_LIFT_MODEL_AUTO, &r, &err);
-                CHECK(rc == RD_OK && r.model == RD_LIFT_MODEL_FULL && strstr(r.why, "friction"),
-                      "friction, %g rpm, gas %d, target %g: rc %d model %d (%s)", rpms[a], g,
-                      targets[t], rc, r.model, r.why);
-                rd_lift_result_cleanup(&r);
+                scene(&p, rpms[a], 3e-5, g, f ? RD_FRICTION_STRIBECK : RD_FRICTION_COULOMB, 1e-7);
+                int rc = run(&p, RD_LIFT_MODEL_FULL, &ref, &err);
+                CHECK(rc == RD_OK, "friction reference %g rpm gas %d: %s", rpms[a], g, err.message);
+                for (int t = 0; rc == RD_OK && t < 2; t++) {
+                    rd_lift_result r;
+                    scene(&p, rpms[a], 3e-5, g, f ? RD_FRICTION_STRIBECK : RD_FRICTION_COULOMB,
+                          1e-6);
+                    p.accuracy_deg = targets[t];
+                    int rc2 = run(&p, RD_LIFT_MODEL_AUTO, &r, &err);
+                    CHECK(rc2 == RD_OK, "friction auto %g rpm gas %d: %s", rpms[a], g, err.message);
+                    total++;
+                    if (rc2 == RD_OK && r.model == RD_LIFT_MODEL_RIGID) {
+                        double d = event_diff(&r, &ref);
+                        rigid++;
+                        worst = fmax(worst, d);
+                        CHECK(d <= targets[t] + SLACK_DEG && strstr(r.why, "checked"),
+                              "friction %g rpm gas %d %s, target %g: auto kept the rigid ring "
+                              "%g deg from the full one (%s)",
+                              rpms[a], g, f ? "Stribeck" : "Coulomb", targets[t], d, r.why);
+                        CHECK(isfinite(r.event_error_model_deg) &&
+                                  r.event_error_model_deg <= targets[t],
+                              "friction: the check's difference %g", r.event_error_model_deg);
+                    } else if (rc2 == RD_OK) {
+                        CHECK(r.model == RD_LIFT_MODEL_FULL && strstr(r.why, "full ring ran"),
+                              "friction %g rpm gas %d: model %d (%s)", rpms[a], g, r.model, r.why);
+                    }
+                    if (getenv("RD_VERBOSE"))
+                        fprintf(stderr, "      %5.0f rpm gas %d %-8s target %.1f: %s, %.3f deg\n",
+                                rpms[a], g, f ? "Stribeck" : "Coulomb", targets[t],
+                                rd_lift_model_name(r.model), event_diff(&r, &ref));
+                    rd_lift_result_cleanup(&r);
+                }
+                rd_lift_result_cleanup(&ref);
             }
+    fprintf(stderr,
+            "    friction, %d runs: auto kept the rigid ring in %d, within %.3f deg of the full "
+            "ring\n",
+            total, rigid, worst);
 }
 
 /* Distorted bores and tilted pistons: auto runs the full ring at every
@@ -138,20 +187,27 @@ static void test_battery_flexible_scenes(void)
         }
 }
 
-/* Why: the rigid ring with friction misses by more than 1 deg at 8000 rpm. */
+/* The scene where the flexible ring of 20 segments leaves before its load
+ * turns (1000 rpm, Coulomb, 100 um, a 2 mm high ring: the friction's twist lifts its inner
+ * edge, the split ring's ends most; 343.7 deg at n = 20 and 343.9 at n =
+ * 40, rtol 1e-8, where the rigid ring's load turns at 346.5 and it leaves
+ * the band at 350.0; bench/lift_friction_battery.py): the check sees it and
+ * auto runs the full ring.  (At n = 6 the flexible ring does not do it, and
+ * the check keeps the rigid ring there: test_battery_friction.) */
 static void test_rigid_friction_misses(void)
 {
     rd_lift_params p;
     rd_lift_result ra, rf;
     rd_error err;
-    scene(&p, 8000.0, 3e-5, 0, RD_FRICTION_COULOMB, 1e-8);
-    int rc = run(&p, RD_LIFT_MODEL_RIGID, &ra, &err);
-    scene(&p, 8000.0, 3e-5, 0, RD_FRICTION_COULOMB, 1e-6);
-    int rc2 = run(&p, RD_LIFT_MODEL_FULL, &rf, &err);
-    CHECK(rc == RD_OK && rc2 == RD_OK, "rigid/full with friction: %d %d", rc, rc2);
+    scene(&p, 1000.0, 1e-4, 0, RD_FRICTION_COULOMB, 1e-6);
+    int rc = run_n(&p, RD_LIFT_MODEL_RIGID, 20, 2e-3, &ra, &err);
+    int rc2 = run_n(&p, RD_LIFT_MODEL_AUTO, 20, 2e-3, &rf, &err);
+    CHECK(rc == RD_OK && rc2 == RD_OK, "rigid/auto with friction: %d %d", rc, rc2);
     double d = event_diff(&ra, &rf);
-    CHECK(d > 1.0, "rigid with friction now within %g deg of full: revisit auto", d);
-    fprintf(stderr, "    8000 rpm Coulomb: rigid - full = %.3f deg\n", d);
+    CHECK(rf.model == RD_LIFT_MODEL_FULL && d > 1.0,
+          "1000 rpm Coulomb: auto ran %s, rigid - auto = %g deg (%s)", rd_lift_model_name(rf.model),
+          d, rf.why);
+    fprintf(stderr, "    1000 rpm Coulomb, 100 um: rigid - auto (full) = %.3f deg\n", d);
     rd_lift_result_cleanup(&ra);
     rd_lift_result_cleanup(&rf);
 }
