@@ -207,6 +207,15 @@ static const rd_block temperature_block = {"GasTemperature", "/gas_temperature_k
 static const rd_field output_fields[] = {
     {"step_deg", RD_F_NUMBER, PO(pack.step_deg), RD_MIN(0.01), RD_MAX(90),
      .desc = "Crank-angle step of the output samples, deg (rounded so 720 / step is whole)."},
+    {"flank_band", RD_F_NUMBER, PO(pack.flank_band), RD_MIN(0), RD_MAX(RD_LIFT_FLANK_BAND_MAX),
+     .desc = "Width of the band at each flank, as a fraction of each ring's axial clearance, "
+             "where flank changes are dated (as in lift): a leave where the ring's (mean) lift "
+             "moves out of the band, a landing where it moves in (a bounce that leaves the band "
+             "is two events). Each event also keeps touch_deg, where the lift itself touched or "
+             "left the flank (an axial ring: its impact, or its net force turning away), null "
+             "if it never touched in between. The samples' flank is the band the lift is in. 0: "
+             "dated at the touch and where the ring leaves the flank (touch_deg = crank_deg; an "
+             "axial ring's flank is then its contact state). Default 0.01."},
     {.key = NULL},
 };
 static const rd_block output_block = {"PackOutput", "/output (ringpack).", 1, 0, output_fields};
@@ -489,8 +498,10 @@ static json_t *ring_json(const rd_ringpack_result *r, int i)
     for (int e = 0; !bad && e < r->n_events[i]; e++) {
         int kind = r->events[i][e].kind;
         bad |= json_array_append_new(
-            events, json_pack("{s:o, s:s}", "crank_deg", rd_result_real(r->events[i][e].crank_deg),
-                              "event", kind >= 0 && kind < 4 ? event_names[kind] : "unknown"));
+            events,
+            json_pack("{s:o, s:s, s:o}", "crank_deg", rd_result_real(r->events[i][e].crank_deg),
+                      "event", kind >= 0 && kind < 4 ? event_names[kind] : "unknown", "touch_deg",
+                      rd_result_real(r->events[i][e].touch_deg)));
     }
     if (bad) {
         json_decref(flank);
@@ -585,7 +596,8 @@ static json_t *pack_numerics(const rd_scene *scene, const rd_ringpack_result *r,
     int estimated = isfinite(r->error_estimate), lifted;
     json_t *models = ring_models(r, &lifted);
     return json_pack(
-        "{s:o, s:i, s:o, s:s, s:I, s:I, s:I, s:I, s:I, s:I, s:I, s:o, s:o, s:o, s:o, s:o, s:i}",
+        "{s:o, s:i, s:o, s:s, s:I, s:I, s:I, s:I, s:I, s:I, s:I, s:o, s:o, s:o, s:o, s:o, s:i, "
+        "s:o}",
         "model", models, "dof", r->states, "wall_s", rd_result_real(wall_s), "solver",
         lifted ? "SUNDIALS CVODE, BDF (order <= 2), Newton on the coupled system by block "
                  "elimination: each lift-model ring's own solver, the network's dense "
@@ -604,7 +616,7 @@ static json_t *pack_numerics(const rd_scene *scene, const rd_ringpack_result *r,
                                 "largest shift of a matched flank change (null "
                                 "when the runs' flank changes differ in number)")
                   : json_null(),
-        "cycles", r->cycles);
+        "cycles", r->cycles, "flank_band", rd_result_real(o->pack.flank_band));
 }
 
 static json_t *pack_result(const rd_scene *scene, const rd_ringpack_result *r, double wall_s)

@@ -51,6 +51,16 @@
  * impact; MODEL.md "lift models").  Changes are located by CVODE's root
  * finding and the integration restarts there.  A pinned ring stays on its
  * flank.
+ * Flank changes (every ring's events; issue 39): dated where the ring's
+ * (mean) lift crosses the edge of a band of flank_band x its axial
+ * clearance at each flank, a landing where it moves into the band, a leave
+ * where it moves out (a bounce that leaves the band is two events), as the
+ * lift analysis dates them (rd_lift.h).  Each event also keeps touch_deg:
+ * after a landing where the lift first reached the flank (the axial ring's
+ * inelastic impact), before a leave where it last left it (the axial ring's
+ * net force turning away, or its impact against its load); NAN if it never
+ * touched in between.  flank_band 0: dated at the touch and the leave
+ * themselves (touch_deg = crank_deg).
  * Friction (physics.friction, Coulomb only): the liner's axial friction on
  * the ring, as the lift analysis' (rd_lift_forces.c) on the uniform ring,
  *   F_f = -mu N tanh(u / u_reg),  u = z_i' - s'(t)  (sliding speed on the liner),
@@ -118,6 +128,10 @@ typedef struct rd_ringpack_params {
     double T_lands, T_crankcase; /* K */
     int gravity;                 /* 1: g along -z */
     double step_deg;             /* output sampling (rounded so 720 / step is whole) */
+    /* output.flank_band: the band at each flank, a fraction of each ring's
+     * axial clearance, where flank changes are dated (above); 0 to
+     * RD_LIFT_FLANK_BAND_MAX, default RD_LIFT_FLANK_BAND */
+    double flank_band;
     double rtol, atol;           /* atol on the lifts, m */
     long max_steps;              /* CVODE steps for the whole run */
     int estimate_error;          /* 1: second run at rtol/10, atol/10 */
@@ -143,10 +157,16 @@ typedef struct rd_ringpack_result {
     double *crank_deg; /* samples: the last cycle, 0..720 */
     double *pressure;  /* n_volumes x samples: cylinder, land_1, groove_1, ..., crankcase */
     double *lift;      /* n_rings x samples, m */
-    int *flank;        /* n_rings x samples, enum rd_flank */
-    double *friction;  /* n_rings x samples, N, +z up (0 without friction) */
-    double *flow;      /* n_flows x samples, kg/s, positive from `flow_from` to `flow_to` */
-    rd_lift_event *events[RD_RINGPACK_RINGS_MAX]; /* the last cycle's, crank_deg in 0..720 */
+    /* n_rings x samples, enum rd_flank: the band the lift is in (a lift
+     * ring's mean lift, an axial ring's z, against flank_band x c_a; with
+     * flank_band 0 a lift ring's against 1 % of c_a, an axial ring's mode:
+     * seated lower or upper, or free) */
+    int *flank;
+    double *friction; /* n_rings x samples, N, +z up (0 without friction) */
+    double *flow;     /* n_flows x samples, kg/s, positive from `flow_from` to `flow_to` */
+    /* the last cycle's, crank_deg in 0..720; touch_deg shifted alike (a
+     * leave's may fall before 0: it left the flank in the cycle before) */
+    rd_lift_event *events[RD_RINGPACK_RINGS_MAX];
     int n_events[RD_RINGPACK_RINGS_MAX];
     const char *volume_name[RD_RINGPACK_VOLUMES_MAX]; /* static strings */
     double volume_m3[RD_RINGPACK_VOLUMES_MAX];        /* 0 for cylinder and crankcase */

@@ -49,6 +49,7 @@ void rd_ringpack_params_default(rd_ringpack_params *p)
     p->T_crankcase = 380.0;
     p->gravity = 1;
     p->step_deg = 1.0;
+    p->flank_band = RD_LIFT_FLANK_BAND;
     p->rtol = 1e-6;
     p->atol = 1e-9;
     p->max_steps = 2000000;
@@ -160,6 +161,9 @@ int rd_ringpack_validate(const rd_ringpack_params *p, rd_error *err)
 {
     const rd_engine_params *e = &p->engine;
     int rc = rd_error_range(p->step_deg, 0.01, 90.0, "/output/step_deg", "deg", err);
+    rc = rc ? rc
+            : rd_error_range(p->flank_band, 0.0, RD_LIFT_FLANK_BAND_MAX, "/output/flank_band",
+                             "of the axial clearance", err);
     rc = rc ? rc : rd_error_range((double)p->max_steps, 100.0, 1e9, "/numerics/max_steps", "", err);
     rc = rc ? rc : rd_engine_validate(e, err);
     rc =

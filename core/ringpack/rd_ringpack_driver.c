@@ -5,10 +5,26 @@
  * last two cycles, and the error estimate (rd_accuracy: the run again at
  * rtol/10, atol/10).
  *
- * Roots, two per ring: a seated ring watches its net force F (it leaves
+ * Roots of an axial ring: a seated ring watches its net force F (it leaves
  * when F stops pressing it on the flank), a free ring watches z and a - z
- * (it lands).  At a root the ring's mode changes, the state is set on the
- * flank (z = 0 or a, z' = 0: an inelastic landing) and CVODE restarts.
+ * (it lands).  At such a root the ring's mode changes, the state is set on
+ * the flank (z = 0 or a, z' = 0: an inelastic landing) and CVODE restarts.
+ * With a band (flank_band > 0, rd_ringpack.h) a free ring also watches
+ * z - e and a - z - e, e = flank_band a, both ways: its band state
+ * (band_state) moves at those roots without a restart (the state is not
+ * touched there), and the flank changes are dated there: a landing where z
+ * moves into a band, a leave where it moves out.  touch_deg: the inelastic
+ * landing (z reaching the flank) after a landing, the mode change (F
+ * turning away) or an impact against the load (z reaching the flank while
+ * F pulls it away: it stays free and leaves at once) before a leave.  A
+ * band crossing is handled before a mode change at the same root return.
+ * Without a band the events are the mode changes themselves (touch_deg =
+ * crank_deg), and an impact against the load is none.  A sample's flank is
+ * the band z is in (with flank_band 0: the mode), as a lift ring's is the
+ * band of its mean lift.
+ * A lift ring's five roots and state machine are the lift driver's
+ * (rd_lift_track_roots; its band edge the model's eps), with its root
+ * directions (roots 1 and 3 both ways with a band).
  */
 #include <math.h>
 #include <stdlib.h>
@@ -27,8 +43,17 @@
 #define HMAX_DEG     2.0    /* largest step, crank degrees */
 #define HMAX_LIFT    1.0    /* with lift rings: the lift driver's bound */
 #define ORDER_LIFT   2      /* with lift rings: the lift driver's BDF order bound */
-#define NR           5      /* roots per ring (an axial ring uses the first two) */
+#define NR           5      /* roots per ring (an axial ring uses two, four with a band) */
 #define RESTARTS_MAX 200000 /* flank changes allowed in a run */
+
+/* An axial ring's flank band (header comment): the band z is in (enum
+ * rd_flank), whether z reached the flank since it entered it, when it last
+ * left the flank (s; NAN: not since), and the landing awaiting its touch
+ * (index in the result's events; -1: none, or not in the last cycle). */
+typedef struct band_state {
+    int band, touched, landing;
+    double cand;
+} band_state;
 
 typedef struct drv {
     rd_ringpack_model m;
@@ -44,6 +69,8 @@ typedef struct drv {
     int S, C;         /* samples per cycle (intervals), cycles */
     rd_ringpack_result *res;
     int cap[RD_RINGPACK_RINGS_MAX];
+    int banded; /* flank_band > 0: events at the bands' edges */
+    band_state band[RD_RINGPACK_RINGS_MAX];
 } drv;
 
 static int cv_rhs(sunrealtype t, N_Vector y, N_Vector yd, void *user)
@@ -98,8 +125,13 @@ static int cv_roots(sunrealtype t, N_Vector yv, sunrealtype *g, void *user)
         if (m->p->rings[i].pinned != RD_PIN_FREE)
             continue;
         if (m->mode[i] == RD_FLANK_FREE) {
-            gi[0] = RP_Z(m, y, i);
-            gi[1] = m->ca[i] - RP_Z(m, y, i);
+            double z = RP_Z(m, y, i), a = m->ca[i], e = m->p->flank_band * a;
+            gi[0] = z;
+            gi[1] = a - z;
+            if (d->banded) { /* the bands' edges (an exact zero nudged up) */
+                gi[2] = z - e != 0.0 ? z - e : 1e-300;
+                gi[3] = a - z - e != 0.0 ? a - z - e : 1e-300;
+            }
         } else {
             gi[0] = rd_ringpack_ring_force(m, i, t, y, pv);
         }
@@ -239,10 +271,12 @@ static int solver(drv *d, rd_error *err)
 }
 
 /* Root directions: an axial ring's both ways; a lift ring's as the lift
- * driver's (landing, leave confirmed, landing, leave confirmed, load). */
+ * driver's (landing, leave confirmed, landing, leave confirmed, load;
+ * with a band: landing, the lower band's edge both ways, and so on). */
 static int root_directions(drv *d)
 {
-    int dir[NR * RD_RINGPACK_RINGS_MAX] = {0}, lift[NR] = {-1, +1, -1, +1, 0};
+    int b = d->banded ? 0 : +1;
+    int dir[NR * RD_RINGPACK_RINGS_MAX] = {0}, lift[NR] = {-1, b, -1, b, 0};
     for (int i = 0; i < d->m.R; i++)
         if (d->m.lr[i])
             memcpy(dir + NR * i, lift, sizeof lift);
@@ -255,6 +289,7 @@ static int drv_open(drv *d, const rd_ringpack_params *p, double rtol, double ato
     if (rc)
         return rc;
     d->deg_per_s = d->m.omega * 180.0 / M_PI;
+    d->banded = p->flank_band > 0.0;
     if ((rc = rd_cvode_open(&d->cs, d->deg_per_s, err)))
         return rc;
     if ((rc = open_rings(d, err)))
@@ -281,7 +316,10 @@ static int drv_open(drv *d, const rd_ringpack_params *p, double rtol, double ato
 
 /* ------------------------------------------------------------- events */
 
-static int push_event(drv *d, int i, double t, int kind, rd_error *err)
+/* Ring i's flank change at t (s) of the last cycle, `touch` its touch_deg's
+ * time (s; NAN: none), both as crank angles of that cycle; earlier ones are
+ * dropped. */
+static int push_event(drv *d, int i, double t, int kind, double touch, rd_error *err)
 {
     double deg = t * d->deg_per_s - 720.0 * (d->C - 1);
     rd_ringpack_result *r = d->res;
@@ -295,44 +333,91 @@ static int push_event(drv *d, int i, double t, int kind, rd_error *err)
         r->events[i] = e;
         d->cap[i] = cap;
     }
-    r->events[i][r->n_events[i]++] = (rd_lift_event){deg, kind, deg};
+    r->events[i][r->n_events[i]++] =
+        (rd_lift_event){deg, kind, touch * d->deg_per_s - 720.0 * (d->C - 1)};
     return RD_OK;
 }
 
+/* The flank change reaching (leave 0) or leaving (1) `flank`. */
+static int flank_event(int flank, int leave)
+{
+    if (flank == RD_FLANK_UPPER)
+        return leave ? RD_EVENT_LEAVE_UPPER : RD_EVENT_REACH_UPPER;
+    return leave ? RD_EVENT_LEAVE_LOWER : RD_EVENT_REACH_LOWER;
+}
+
+/* Axial ring i moves into the band at `flank` at t: a landing, awaiting
+ * its touch. */
+static int band_enter(drv *d, int i, double t, int flank, rd_error *err)
+{
+    int n = d->res->n_events[i], rc = push_event(d, i, t, flank_event(flank, 0), NAN, err);
+    d->band[i] = (band_state){flank, 0, d->res->n_events[i] > n ? n : -1, NAN};
+    return rc;
+}
+
+/* Axial ring i's band crossing at t (rf: its root flags): into a band (z -
+ * e or a - z - e falling) a landing; out of the band it is in a leave,
+ * touch_deg when z last left the flank (NAN if it never touched it). */
+static int band_cross(drv *d, int i, double t, const int *rf, rd_error *err)
+{
+    band_state *b = &d->band[i];
+    int upper = rf[3] != 0, flank = upper ? RD_FLANK_UPPER : RD_FLANK_LOWER;
+    if ((upper ? rf[3] : rf[2]) < 0)
+        return b->band == RD_FLANK_FREE ? band_enter(d, i, t, flank, err) : RD_OK;
+    if (b->band != flank)
+        return RD_OK;
+    double touch = b->touched ? (isnan(b->cand) ? t : b->cand) : NAN;
+    *b = (band_state){RD_FLANK_FREE, 0, -1, NAN};
+    return push_event(d, i, t, flank_event(flank, 1), touch, err);
+}
+
+/* Axial ring i reached `flank` at t (an inelastic landing) and sits on it
+ * (seated) or leaves it again at once (against its load): the landing's
+ * touch, and where a leave left the flank.  Reaching the flank outside its
+ * band (not expected: the band's root comes first) enters the band there. */
+static int band_touch(drv *d, int i, double t, int flank, int seated, rd_error *err)
+{
+    band_state *b = &d->band[i];
+    int rc = b->band != flank ? band_enter(d, i, t, flank, err) : RD_OK;
+    if (!b->touched && b->landing >= 0)
+        d->res->events[i][b->landing].touch_deg = t * d->deg_per_s - 720.0 * (d->C - 1);
+    b->touched = 1;
+    b->landing = -1;
+    b->cand = seated ? NAN : t;
+    return rc;
+}
+
 /* The new mode of ring i at (t, y): `fired` says its root was found (or,
- * at the start, that the check is due). */
+ * at the start, that the check is due).  With a band its events come at
+ * the band's edges (band_cross); here where a leave left the flank and a
+ * landing touched it. */
 static int ring_switch(drv *d, int i, double t, double *y, const double *pv, int fired,
                        rd_error *err)
 {
     rd_ringpack_model *m = &d->m;
     double F = rd_ringpack_ring_force(m, i, t, y, pv), z = RP_Z(m, y, i), a = m->ca[i];
-    int mode = m->mode[i], rc = RD_OK;
+    int mode = m->mode[i];
     if (!fired || m->p->rings[i].pinned != RD_PIN_FREE)
         return RD_OK;
-    if (mode == RD_FLANK_LOWER && F >= 0.0) {
+    if ((mode == RD_FLANK_LOWER && F >= 0.0) || (mode == RD_FLANK_UPPER && F <= 0.0)) {
         m->mode[i] = RD_FLANK_FREE;
-        rc = push_event(d, i, t, RD_EVENT_LEAVE_LOWER, err);
-    } else if (mode == RD_FLANK_UPPER && F <= 0.0) {
-        m->mode[i] = RD_FLANK_FREE;
-        rc = push_event(d, i, t, RD_EVENT_LEAVE_UPPER, err);
-    } else if (mode == RD_FLANK_FREE && z <= 0.5 * a) {
-        RP_Z(m, y, i) = 0.0;
-        RP_ZD(m, y, i) = fmax(RP_ZD(m, y, i), 0.0);
-        if (F <= 0.0) {
-            m->mode[i] = RD_FLANK_LOWER;
-            RP_ZD(m, y, i) = 0.0;
-            rc = push_event(d, i, t, RD_EVENT_REACH_LOWER, err);
-        }
-    } else if (mode == RD_FLANK_FREE) {
-        RP_Z(m, y, i) = a;
-        RP_ZD(m, y, i) = fmin(RP_ZD(m, y, i), 0.0);
-        if (F >= 0.0) {
-            m->mode[i] = RD_FLANK_UPPER;
-            RP_ZD(m, y, i) = 0.0;
-            rc = push_event(d, i, t, RD_EVENT_REACH_UPPER, err);
-        }
+        d->band[i].cand = t;
+        return d->banded ? RD_OK : push_event(d, i, t, flank_event(mode, 1), t, err);
     }
-    return rc;
+    if (mode != RD_FLANK_FREE)
+        return RD_OK;
+    /* landed: on the flank, not moving into it; seated if F presses it there */
+    int upper = z > 0.5 * a, flank = upper ? RD_FLANK_UPPER : RD_FLANK_LOWER;
+    int seated = upper ? F >= 0.0 : F <= 0.0;
+    RP_Z(m, y, i) = upper ? a : 0.0;
+    RP_ZD(m, y, i) = upper ? fmin(RP_ZD(m, y, i), 0.0) : fmax(RP_ZD(m, y, i), 0.0);
+    if (seated) {
+        m->mode[i] = flank;
+        RP_ZD(m, y, i) = 0.0;
+    }
+    if (d->banded)
+        return band_touch(d, i, t, flank, seated, err);
+    return seated ? push_event(d, i, t, flank_event(flank, 0), t, err) : RD_OK;
 }
 
 /* Adds CVODE's counters since its last (re)start to the result's (a restart
@@ -394,8 +479,12 @@ static int at_root(drv *d, double t, int all, rd_error *err)
             rc = lift_switch(d, i, t, y, pv, rf, all, err);
             continue;
         }
-        axial |= rf[0] || rf[1];
-        rc = ring_switch(d, i, t, y, pv, all || rf[0] || rf[1], err);
+        if (all) /* at rest on its flank (or pinned there) */
+            d->band[i] = (band_state){d->m.mode[i], 1, -1, NAN};
+        if (d->banded && !all && (rf[2] || rf[3])) /* first: the band (header comment) */
+            rc = band_cross(d, i, t, rf, err);
+        axial |= rf[0] || rf[1]; /* a mode change: the restart; a band crossing: none */
+        rc = rc ? rc : ring_switch(d, i, t, y, pv, all || rf[0] || rf[1], err);
     }
     if (rc || !axial)
         return rc;
@@ -466,7 +555,7 @@ static void record(drv *d, int j, double t)
             continue;
         }
         r->lift[at] = RP_Z(m, y, i);
-        r->flank[at] = m->mode[i];
+        r->flank[at] = d->banded ? d->band[i].band : m->mode[i];
         r->friction[at] = rd_ringpack_friction(m, i, t, y, pv);
     }
     for (int f = 0; f < m->F; f++)
@@ -589,9 +678,10 @@ static int lift_events(drv *d, rd_error *err)
         if (!d->m.lr[i])
             continue;
         const rd_lift_run *o = rd_packring_events(d->m.lr[i]);
-        for (int e = 0; e < o->n_events; e++) {
-            int rc =
-                push_event(d, i, o->events[e].crank_deg / d->deg_per_s, o->events[e].kind, err);
+        for (int e = 0; e < o->n_events; e++) { /* its absolute angles; NAN stays NAN */
+            const rd_lift_event *ev = &o->events[e];
+            int rc = push_event(d, i, ev->crank_deg / d->deg_per_s, ev->kind,
+                                ev->touch_deg / d->deg_per_s, err);
             if (rc)
                 return rc;
         }

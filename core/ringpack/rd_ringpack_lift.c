@@ -31,7 +31,8 @@
  * penalty's penetration (1e-3 a) from the seated ring's passage.
  *
  * Events: the lift analysis' definitions and state machine
- * (rd_lift_track_roots, its five roots on the mean lift and the load).
+ * (rd_lift_track_roots, its five roots on the mean lift and the load), at
+ * the pack's flank_band (the model's eps is the band's edge).
  *
  * The scene's bore, tilt and active areas (rd_ringpack.h), in the ring's
  * frame (angles from its gap middle, as the lift analysis'):
@@ -133,7 +134,7 @@ static int lift_params(const rd_ringpack_model *m, int i, rd_packring *L)
     lp->atol = p->atol;
     lp->max_steps = p->max_steps;
     lp->estimate_error = 0;
-    lp->flank_band = 0.0; /* the pack dates flank changes at the touch (for now) */
+    lp->flank_band = p->flank_band; /* the pack's dating (rd_ringpack.h) */
     lp->model = m->kind[i];
     lp->modes = p->rings[i].modes;
     double peak = 0.0;
