@@ -334,10 +334,10 @@ static int lift_series(const rd_lift_result *res, json_t **segs, json_t **flank,
     for (int k = 0; !bad && k < res->n_events; k++) {
         int e = res->events[k].kind;
         bad |= json_array_append_new(
-            *events, json_pack("{s:o, s:s, s:o}", "crank_deg",
-                               rd_result_real(res->events[k].crank_deg), "event",
-                               e >= 0 && e < 4 ? event_names[e] : "unknown", "touch_deg",
-                               rd_result_real(res->events[k].touch_deg)));
+            *events,
+            json_pack("{s:o, s:s, s:o}", "crank_deg", rd_result_real(res->events[k].crank_deg),
+                      "event", e >= 0 && e < 4 ? event_names[e] : "unknown", "touch_deg",
+                      rd_result_real(res->events[k].touch_deg)));
     }
     return bad ? -1 : 0;
 }
@@ -356,7 +356,7 @@ static int lift_series(const rd_lift_result *res, json_t **segs, json_t **flank,
     "; plus a run at n/2 segments at the scene's tolerances, its difference / (2^1.5 - 1): "   \
     "the segment count's error if the answer converges as n^-1.5 (event_error_segments_deg); " \
     "the two add. Not covered: the model's own assumptions (MODEL.md)"
-#define METHOD_FLEX_NO_HALF                                                                    \
+#define METHOD_FLEX_NO_HALF                                                                     \
     "; the time integration's error only: the segment count's is not in it (below 12 segments " \
     "there is no n/2 check run; compare a run at twice the segments)"
 
@@ -366,7 +366,7 @@ static json_t *lift_numerics(const rd_scene *scene, const rd_lift_result *res, d
     int estimated = isfinite(res->error_estimate);
     return json_pack(
         "{s:i, s:i, s:o, s:o, s:s, s:I, s:I, s:I, s:I, s:I, s:I, s:I, s:I, s:o, s:o, s:o, s:o, "
-        "s:o, s:o, s:o, s:o, s:o}",
+        "s:o, s:o, s:o, s:o, s:o, s:o}",
         "segments", res->segments, "dof", res->dof, "model",
         json_pack("{s:s, s:i, s:i, s:s}", "name", rd_lift_model_name(res->model), "dof", res->dof,
                   "modes", res->modes, "why", res->why),
@@ -388,12 +388,13 @@ static json_t *lift_numerics(const rd_scene *scene, const rd_lift_result *res, d
         rd_result_real(o->lift.atol), "error_estimate", rd_result_real(res->error_estimate),
         "event_error_deg", rd_result_real(res->event_error_deg), "error_method",
         estimated ? json_string(res->model == RD_LIFT_MODEL_RIGID ? METHOD_TIME METHOD_RIGID
-                                : res->segments_half        ? METHOD_TIME METHOD_FLEX
-                                                            : METHOD_TIME METHOD_FLEX_NO_HALF)
+                                : res->segments_half              ? METHOD_TIME METHOD_FLEX
+                                                                  : METHOD_TIME METHOD_FLEX_NO_HALF)
                   : json_null(),
         "flank_band", rd_result_real(o->lift.flank_band), "event_error_time_deg",
         rd_result_real(res->event_error_time_deg), "event_error_segments_deg",
-        rd_result_real(res->event_error_segments_deg), "segments_check",
+        rd_result_real(res->event_error_segments_deg), "event_error_model_deg",
+        rd_result_real(res->event_error_model_deg), "segments_check",
         res->segments_half ? json_integer(res->segments_half) : json_null());
 }
 

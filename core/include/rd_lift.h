@@ -54,13 +54,13 @@ enum rd_lift_event_kind {
 };
 
 /* Limits shared by validation and documentation. */
-#define RD_LIFT_CYCLES_MAX   50.0   /* 4-stroke cycles (720 deg each) */
-#define RD_LIFT_SAMPLES_MAX  200000 /* output samples (cycles * 720 / step_deg + 1) */
-#define RD_LIFT_TABLE_MAX    100000 /* points of a gas pressure table */
-#define RD_LIFT_SEGMENTS_MAX 1000
-#define RD_LIFT_MODES_MAX    60
-#define RD_LIFT_FLANK_BAND     0.01 /* output.flank_band default, of the axial clearance */
-#define RD_LIFT_FLANK_BAND_MAX 0.2
+#define RD_LIFT_CYCLES_MAX       50.0   /* 4-stroke cycles (720 deg each) */
+#define RD_LIFT_SAMPLES_MAX      200000 /* output samples (cycles * 720 / step_deg + 1) */
+#define RD_LIFT_TABLE_MAX        100000 /* points of a gas pressure table */
+#define RD_LIFT_SEGMENTS_MAX     1000
+#define RD_LIFT_MODES_MAX        60
+#define RD_LIFT_FLANK_BAND       0.01 /* output.flank_band default, of the axial clearance */
+#define RD_LIFT_FLANK_BAND_MAX   0.2
 #define RD_LIFT_SEGMENT_WARN_DEG 1.0 /* segment-count share of the event error that warns */
 
 typedef struct rd_groove_params {
@@ -172,8 +172,8 @@ typedef struct rd_lift_result {
      * largest difference from the full ring in the run-time check, deg
      * (part of event_error_deg); NAN otherwise */
     double event_error_model_deg;
-    int segments_half;               /* n of that run (0: none) */
-    int segments_half_events;        /* its number of flank changes */
+    int segments_half;        /* n of that run (0: none) */
+    int segments_half_events; /* its number of flank changes */
     /* Not empty when the flank changes are not converged in the segment
      * count: the n/2 run has other flank changes, or their segment-count
      * share exceeds RD_LIFT_SEGMENT_WARN_DEG (a warning of the result, path

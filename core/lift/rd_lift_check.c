@@ -41,9 +41,9 @@
 
 #include "rd_lift_model.h"
 
-#define LEAD_DEG 10.0 /* the window's start before the rigid ring's leave (header comment) */
-#define TAIL_DEG 2.0  /* a window runs at most this far past the rigid ring's last landing */
-#define CHECK_RTOL 0.1 /* the windows at rtol x this and atol / 10: a reference */
+#define LEAD_DEG   10.0 /* the window's start before the rigid ring's leave (header comment) */
+#define TAIL_DEG   2.0  /* a window runs at most this far past the rigid ring's last landing */
+#define CHECK_RTOL 0.1  /* the windows at rtol x this and atol / 10: a reference */
 
 static int is_leave(int kind)
 {
@@ -80,7 +80,10 @@ static int run_window(const rd_ring *ring, const rd_lift_params *p, const rd_lif
     rd_lift_setup su = {.y0 = y0, .t0_deg = t0, .t1_deg = t1, .stop_events = cnt};
     rd_lift_result res;
     memset(&res, 0, sizeof res);
-    rd_lift_run run = {.rtol = CHECK_RTOL * p->rtol, .atol = 0.1 * p->atol, .res = &res, .lift = lift,
+    rd_lift_run run = {.rtol = CHECK_RTOL * p->rtol,
+                       .atol = 0.1 * p->atol,
+                       .res = &res,
+                       .lift = lift,
                        .samples = 2};
     double *buf[8] = {NULL};
     int rc = RD_OK;

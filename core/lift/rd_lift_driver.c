@@ -547,8 +547,8 @@ static int advance(driver *d, double tout, flank_track *tr, rd_lift_run *o, cons
             if (!was && tr->touched && d->m.p->landing == RD_LANDING_PLASTIC &&
                 (rc = land_plastic(d, t, tr->state == RD_FLANK_UPPER, err)))
                 return rc;
-            if (d->stop_events > 0 && (o->n_events > d->stop_events ||
-                                       (o->n_events == d->stop_events && tr->touched))) {
+            if (d->stop_events > 0 &&
+                (o->n_events > d->stop_events || (o->n_events == d->stop_events && tr->touched))) {
                 d->stopped = 1;
                 return RD_OK;
             }

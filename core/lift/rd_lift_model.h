@@ -324,9 +324,9 @@ typedef struct rd_lift_check {
 typedef struct rd_lift_check_in {
     const rd_lift_event *events; /* the rigid run's */
     int n_events;
-    const double *states;          /* its form's state at every output sample, N each */
-    int N;                         /* 6 */
-    const rd_lift_form *expand;    /* a rigid form of the scene: expands a state to 12 n */
+    const double *states;       /* its form's state at every output sample, N each */
+    int N;                      /* 6 */
+    const rd_lift_form *expand; /* a rigid form of the scene: expands a state to 12 n */
 } rd_lift_check_in;
 int rd_lift_check_rigid(const rd_ring *ring, const rd_lift_params *p, const rd_lift_check_in *in,
                         rd_lift_check *out, rd_error *err);

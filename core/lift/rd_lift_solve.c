@@ -116,8 +116,10 @@ typedef struct lift_solve {
     int main_done;      /* level 0 ran every cycle */
     int check;          /* auto with friction: the rigid run is checked (check_rigid) */
     const rd_ring_params *rp;
-    rd_ring *half_owned; /* the n/2 ring made after a failed check */
-    double *states;      /* the checked rigid run's state at every sample (6 each) */
+    rd_ring *half_owned;   /* the n/2 ring (owned) */
+    double *states;        /* the checked rigid run's state at every sample (6 each) */
+    double *y0;            /* the bore starts of n and n/2 segments (owned) */
+    rd_lift_setup su, suh; /* the set-ups with those starts */
 } lift_solve;
 
 /* The rigid run's states for the check's window starts (rd_lift_setup.state). */
@@ -182,7 +184,6 @@ static int check_rigid(lift_solve *s, rd_error *err)
     return 0;
 }
 
-
 static int solve_run(lift_solve *s, int k, const rd_monitor *mon, rd_error *err)
 {
     rd_lift_run *r = &s->run[k];
@@ -200,8 +201,10 @@ static int solve_run(lift_solve *s, int k, const rd_monitor *mon, rd_error *err)
                              s->out->model, mon, r, err);
 }
 
-/* The n/2 ring of the segment-count estimate for a full ring that auto
- * chose after its check (the scene is axisymmetric: no bore start). */
+/* The n/2 ring of the segment-count estimate of a flexible model, from the
+ * scene's own start (a test's start y0 has none); made before the bore
+ * start (bore_start) or, for the full ring that auto ran after its check,
+ * after it (the scene is then axisymmetric: no bore start). */
 static int half_ring(lift_solve *s, rd_error *err)
 {
     int nh = s->out->segments / 2;
@@ -326,7 +329,8 @@ static int compare_levels(void *ctx, rd_error *err)
         segment_warning(out, s->run[0].n_events);
     }
     out->error_estimate = (lt + ln) / ca;
-    out->event_error_deg = dt + dn + (isfinite(out->event_error_model_deg) ? out->event_error_model_deg : 0.0);
+    out->event_error_deg =
+        dt + dn + (isfinite(out->event_error_model_deg) ? out->event_error_model_deg : 0.0);
     return RD_OK;
 }
 
@@ -351,13 +355,65 @@ static int result_alloc(rd_lift_result *out, int S, int n, rd_error *err)
     return RD_OK;
 }
 
+/* The model's run-time check, the n/2 ring and the runs' buffers. */
+static int prepare(lift_solve *s, int S, rd_error *err)
+{
+    const rd_lift_params *p = s->p;
+    const rd_lift_setup *setup = s->setup;
+    rd_lift_result *out = s->out;
+    /* (a test's set-up with its own start or hooks runs the full ring) */
+    s->check = p->model == RD_LIFT_MODEL_AUTO && out->model == RD_LIFT_MODEL_RIGID &&
+               p->friction.model != RD_FRICTION_NONE;
+    if (s->check && setup && (setup->y0 || setup->sample || setup->energy || setup->state)) {
+        s->check = 0;
+        out->model = RD_LIFT_MODEL_FULL;
+        snprintf(out->why, sizeof out->why, "auto: a test's set-up (its own start or hooks)");
+    }
+    if (s->check && !(s->states = calloc(6 * (size_t)S, sizeof *s->states)))
+        return rd_error_set(err, RD_ENOMEM, "", "Out of memory for the auto check.");
+    if (out->model == RD_LIFT_MODEL_RIGID)
+        out->dof = 3; /* axial lift, twist, radial */
+    else if (out->model == RD_LIFT_MODEL_MODAL)
+        out->dof = 6 + out->modes; /* rigid-body and elastic modes */
+    for (int l = 0; l < 2; l++) {
+        int need = l == 0 || p->estimate_error;
+        s->run[l].samples = S;
+        s->run[l].lift = need ? malloc((size_t)S * sizeof(double)) : NULL;
+        if (need && !s->run[l].lift)
+            return rd_error_set(err, RD_ENOMEM, "", "Out of memory for %d lift samples.", S);
+    }
+    s->run[2].samples = S;
+    /* the segment-count estimate: the flexible models, from the scene's own start */
+    return out->model != RD_LIFT_MODEL_RIGID ? half_ring(s, err) : RD_OK;
+}
+
+/* A distorted bore: every run starts from its ring's static equilibrium in it. */
+static int bore_start(lift_solve *s, rd_error *err)
+{
+    int n = s->out->segments, nh = s->half ? rd_ring_get_segments(s->half) : 0, rc;
+    s->su = s->setup ? *s->setup : (rd_lift_setup){0};
+    s->suh = s->su;
+    s->setup_half = s->setup;
+    if (!rd_bore_distorted(&s->p->bore, s->rp->diameter) || s->su.y0)
+        return RD_OK;
+    s->y0 = malloc(12 * (size_t)(n + nh) * sizeof *s->y0);
+    if (!s->y0)
+        return rd_error_set(err, RD_ENOMEM, "", "Out of memory for the bore start.");
+    if ((rc = rd_lift_bore_static(s->ring, s->p, s->y0, err)) ||
+        (s->half && (rc = rd_lift_bore_static(s->half, s->p, s->y0 + 12 * n, err))))
+        return rc;
+    s->su.y0 = s->y0;
+    s->suh.y0 = s->y0 + 12 * n;
+    s->setup = &s->su;
+    s->setup_half = &s->suh;
+    return RD_OK;
+}
+
 int rd_lift_solve_setup(const rd_ring_params *rp, int segments, const rd_lift_params *p,
                         const rd_lift_setup *setup, const rd_monitor *mon, rd_lift_result *out,
                         rd_error *err)
 {
     lift_solve s = {.p = p, .setup = setup, .out = out};
-    double *y0 = NULL;
-    rd_ring *half = NULL;
     int rc;
     memset(out, 0, sizeof *out);
     out->error_estimate = NAN;
@@ -376,59 +432,8 @@ int rd_lift_solve_setup(const rd_ring_params *rp, int segments, const rd_lift_pa
         goto out;
     choose_model(p, segments, rp->diameter, out);
     s.rp = rp;
-    /* (a test's set-up with its own start or hooks runs the full ring) */
-    s.check = p->model == RD_LIFT_MODEL_AUTO && out->model == RD_LIFT_MODEL_RIGID &&
-              p->friction.model != RD_FRICTION_NONE;
-    if (s.check && setup && (setup->y0 || setup->sample || setup->energy || setup->state)) {
-        s.check = 0;
-        out->model = RD_LIFT_MODEL_FULL;
-        snprintf(out->why, sizeof out->why, "auto: a test's set-up (its own start or hooks)");
-    }
-    if (s.check && !(s.states = calloc(6 * (size_t)S, sizeof *s.states))) {
-        rc = rd_error_set(err, RD_ENOMEM, "", "Out of memory for the auto check.");
+    if ((rc = prepare(&s, S, err)) || (rc = bore_start(&s, err)))
         goto out;
-    }
-    if (out->model == RD_LIFT_MODEL_RIGID)
-        out->dof = 3; /* axial lift, twist, radial */
-    else if (out->model == RD_LIFT_MODEL_MODAL)
-        out->dof = 6 + out->modes; /* rigid-body and elastic modes */
-    /* the segment-count estimate: the flexible models, from the scene's own start */
-    int nh = segments / 2;
-    if (p->estimate_error && out->model != RD_LIFT_MODEL_RIGID && nh >= HALF_SEGMENTS_MIN &&
-        !(setup && setup->y0)) {
-        half = rd_ring_create(rp, nh, 0, err);
-        if (!half) {
-            rc = err ? err->code : RD_ENOMEM;
-            goto out;
-        }
-        s.half = half;
-    }
-    for (int l = 0; l < 3; l++) {
-        int need = l == 0 || (l == 1 && p->estimate_error) || (l == 2 && s.half);
-        s.run[l].samples = S;
-        s.run[l].lift = need ? malloc((size_t)S * sizeof(double)) : NULL;
-        if (need && !s.run[l].lift) {
-            rc = rd_error_set(err, RD_ENOMEM, "", "Out of memory for %d lift samples.", S);
-            goto out;
-        }
-    }
-    /* a distorted bore: every run starts from its ring's static equilibrium in it */
-    rd_lift_setup su = setup ? *setup : (rd_lift_setup){0}, suh = su;
-    s.setup_half = setup;
-    if (rd_bore_distorted(&p->bore, rp->diameter) && !su.y0) {
-        y0 = malloc(12 * (size_t)(segments + nh) * sizeof *y0);
-        if (!y0) {
-            rc = rd_error_set(err, RD_ENOMEM, "", "Out of memory for the bore start.");
-            goto out;
-        }
-        if ((rc = rd_lift_bore_static(ring, p, y0, err)) ||
-            (s.half && (rc = rd_lift_bore_static(s.half, p, y0 + 12 * segments, err))))
-            goto out;
-        su.y0 = y0;
-        suh.y0 = y0 + 12 * segments;
-        s.setup = &su;
-        s.setup_half = &suh;
-    }
     /* the reference run at rtol/10 typically costs 1.5-2x the main run, the n/2 one ~0.5x */
     rd_accuracy_plan plan = {.solve = solve_level,
                              .compare = compare_levels,
@@ -456,10 +461,9 @@ out:
         free(s.run[l].events);
     }
     rd_ring_free(ring);
-    rd_ring_free(half);
     rd_ring_free(s.half_owned);
     free(s.states);
-    free(y0);
+    free(s.y0);
     return rc;
 }
 

@@ -851,8 +851,8 @@ static void test_thesis(void)
         /* where the mean lift left and touched the flank (touch_deg); the
          * band's edge is crossed after it left, before it touches */
         int leave = e->kind == RD_EVENT_LEAVE_LOWER || e->kind == RD_EVENT_LEAVE_UPPER;
-        CHECK(isfinite(e->touch_deg) && (leave ? e->touch_deg <= e->crank_deg
-                                               : e->touch_deg >= e->crank_deg),
+        CHECK(isfinite(e->touch_deg) &&
+                  (leave ? e->touch_deg <= e->crank_deg : e->touch_deg >= e->crank_deg),
               "event %d at %.3f deg: touch at %.3f deg on the wrong side", i, e->crank_deg,
               e->touch_deg);
         if (leave) {
