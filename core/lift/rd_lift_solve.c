@@ -195,10 +195,22 @@ static int solve_run(lift_solve *s, int k, const rd_monitor *mon, rd_error *err)
     if (k == 2 && r->modes > 6 * rd_ring_get_segments(s->half) - 6)
         r->modes = 6 * rd_ring_get_segments(s->half) - 6;
     rd_lift_setup su = {.state = keep_state, .ctx = s};
+    const rd_lift_setup *setup = k == 2 ? s->setup_half : s->setup;
     if (k == 0 && s->check && s->out->model == RD_LIFT_MODEL_RIGID)
-        return rd_lift_integrate(s->ring, s->p, &su, s->out->model, mon, r, err);
-    return rd_lift_integrate(k == 2 ? s->half : s->ring, s->p, k == 2 ? s->setup_half : s->setup,
-                             s->out->model, mon, r, err);
+        setup = &su;
+    int rc = rd_lift_integrate(k == 2 ? s->half : s->ring, s->p, setup, s->out->model, mon, r, err);
+    if (rc != RD_ENOCONV || s->out->model != RD_LIFT_MODEL_RIGID || s->p->cvode)
+        return rc;
+    /* the rigid ring's own integrator (rd_lift_small.c) gave up, its step
+     * collapsed (seen on Coulomb scenes without gas at rtol 1e-7): the run
+     * again with CVODE, whose BDF error control gets through */
+    rd_lift_params q = *s->p;
+    q.cvode = 1;
+    free(r->events);
+    r->events = NULL;
+    r->n_events = r->cap_events = r->done = 0;
+    rd_error_init(err);
+    return rd_lift_integrate(s->ring, &q, setup, s->out->model, mon, r, err);
 }
 
 /* The n/2 ring of the segment-count estimate of a flexible model, from the
