@@ -109,8 +109,10 @@ char *rd_sweep_fidelity_spec(const char *scene, size_t len, const rd_sweep_fidel
         add_param(params, "/numerics/model", json_incref(models));
     json_t *outputs =
         json_pack("[s, s, s]", "/numerics/wall_s", kinds[kind].estimate, kinds[kind].quantity);
-    if (lift && outputs)
+    if (lift && outputs) { /* and the model a lift run really integrated (auto's choice) */
         json_array_append_new(outputs, json_string("/scene/groove/axial_clearance"));
+        json_array_append_new(outputs, json_string("/numerics/model/name"));
+    }
     json_t *spec = json_pack("{s:o, s:o, s:s, s:o}", "base", base, "parameters", params, "combine",
                              "product", "outputs", outputs);
     json_decref(models);
