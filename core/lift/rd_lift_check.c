@@ -9,8 +9,11 @@
  * under the friction's twist before its load turns) and a landing (its
  * parts arrive one after another).  A seated ring follows its loads
  * quasi-statically and a flying one moves with its total load, which is the
- * same for both rings.  So the check runs the full ring (the scene's n, at
- * rtol/10 and atol/10: a reference) only over each flight of the rigid run:
+ * same for both rings.  So the check runs the full ring (the scene's n and
+ * tolerances: the flexible ring's answer the scene would get; at rtol/10 and
+ * atol/10 the windows cost ~2x the steps, 46720 instead of 22615 at 8000 rpm,
+ * Coulomb, no gas, for the same verdicts on 6 battery scenes) only over each
+ * flight of the rigid run:
  * from LEAD_DEG before the crank angle where the rigid ring's mean lift left
  * its flank (touch_deg of the leave) to the flight's landing, i.e. to the
  * root that records the window's last band crossing — not through the
@@ -43,7 +46,7 @@
 
 #define LEAD_DEG   10.0 /* the window's start before the rigid ring's leave (header comment) */
 #define TAIL_DEG   2.0  /* a window runs at most this far past the rigid ring's last landing */
-#define CHECK_RTOL 0.1  /* the windows at rtol x this and atol / 10: a reference */
+#define CHECK_RTOL 1.0  /* the windows at the scene's rtol and atol x this (header comment) */
 
 static int is_leave(int kind)
 {
@@ -81,7 +84,7 @@ static int run_window(const rd_ring *ring, const rd_lift_params *p, const rd_lif
     rd_lift_result res;
     memset(&res, 0, sizeof res);
     rd_lift_run run = {.rtol = CHECK_RTOL * p->rtol,
-                       .atol = 0.1 * p->atol,
+                       .atol = CHECK_RTOL * p->atol,
                        .res = &res,
                        .lift = lift,
                        .samples = 2};

@@ -158,8 +158,9 @@ static int check_rigid(lift_solve *s, rd_error *err)
         out->event_error_model_deg = ck.worst_deg;
         snprintf(out->why, sizeof out->why,
                  "auto: the scene is axisymmetric; with friction the rigid ring was checked at "
-                 "run time against the full ring (%d segments, rtol/10) over each of its %d "
-                 "flights (%d flank changes, %ld steps): they move by at most %.3g deg, within "
+                 "run time against the full ring (%d segments, the scene's tolerances) over each "
+                 "of its %d flights (%d flank changes, %ld steps): they move by at most %.3g "
+                 "deg, within "
                  "numerics.accuracy_deg = %g",
                  out->segments, ck.windows, ck.events, ck.steps, ck.worst_deg, tol);
         return 1;
