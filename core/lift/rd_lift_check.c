@@ -64,7 +64,8 @@ static double left_at(const rd_lift_event *e)
  * first..last of the rigid run.  Returns the largest angle move, or NAN
  * when the full ring's flank changes there differ in number or kind. */
 static int run_window(const rd_ring *ring, const rd_lift_params *p, const rd_lift_check_in *in,
-                      int first, int last, double *worst, long *steps, rd_error *err)
+                      int first, int last, const rd_monitor *mon, double *worst, long *steps,
+                      rd_error *err)
 {
     const rd_lift_event *ev = in->events;
     int n = rd_ring_get_segments(ring), cnt = last - first + 1;
@@ -105,7 +106,7 @@ static int run_window(const rd_ring *ring, const rd_lift_params *p, const rd_lif
     if (rc || !res.flank)
         rc = rd_error_set(err, RD_ENOMEM, "", "Out of memory for the auto check.");
     else
-        rc = rd_lift_integrate(ring, &q, &su, RD_LIFT_MODEL_FULL, NULL, &run, err);
+        rc = rd_lift_integrate(ring, &q, &su, RD_LIFT_MODEL_FULL, mon, &run, err);
     if (rc == RD_OK) {
         double w = run.n_events == cnt ? 0.0 : NAN;
         for (int j = 0; isfinite(w) && j < cnt; j++)
@@ -124,7 +125,7 @@ static int run_window(const rd_ring *ring, const rd_lift_params *p, const rd_lif
 }
 
 int rd_lift_check_rigid(const rd_ring *ring, const rd_lift_params *p, const rd_lift_check_in *in,
-                        rd_lift_check *out, rd_error *err)
+                        const rd_monitor *mon, rd_lift_check *out, rd_error *err)
 {
     const rd_lift_event *ev = in->events;
     int n_ev = in->n_events;
@@ -140,7 +141,10 @@ int rd_lift_check_rigid(const rd_ring *ring, const rd_lift_params *p, const rd_l
         while (b + 2 < n_ev && is_leave(ev[b + 1].kind) &&
                left_at(&ev[b + 1]) - LEAD_DEG < ev[b].crank_deg)
             b += 2;
-        int rc = run_window(ring, p, in, a, b, &out->worst_deg, &out->steps, err);
+        rd_monitor_span sp; /* progress: the share of the run's events checked */
+        const rd_monitor *wm =
+            rd_monitor_span_init(&sp, mon, (double)a / n_ev, (double)(b + 1) / n_ev);
+        int rc = run_window(ring, p, in, a, b, wm, &out->worst_deg, &out->steps, err);
         if (rc)
             return rc;
         out->windows++;

@@ -328,8 +328,10 @@ typedef struct rd_lift_check_in {
     int N;                      /* 6 */
     const rd_lift_form *expand; /* a rigid form of the scene: expands a state to 12 n */
 } rd_lift_check_in;
+/* mon: progress over the windows and the cancel (RD_ECANCELED, RD_ETIMEOUT
+ * returned as such). */
 int rd_lift_check_rigid(const rd_ring *ring, const rd_lift_params *p, const rd_lift_check_in *in,
-                        rd_lift_check *out, rd_error *err);
+                        const rd_monitor *mon, rd_lift_check *out, rd_error *err);
 
 /* A level-0 run `r` that stopped with `why` (RD_ELIMIT, RD_ECANCELED or
  * RD_ETIMEOUT) keeps its whole cycles in `out` (partial = 1, samples cut to

@@ -134,8 +134,10 @@ static void keep_state(void *ctx, double t, const double *y, int N)
 /* auto on a friction scene: the rigid run's flank changes checked against
  * the full ring over its flights (rd_lift_check.c); kept when they agree
  * within numerics.accuracy_deg, else the full ring runs.  Returns 1 when
- * the rigid run stands, 0 when the full ring must run (out->why says why). */
-static int check_rigid(lift_solve *s, rd_error *err)
+ * the rigid run stands, 0 when the full ring must run (out->why says why),
+ * a negative status when the check was stopped (cancel, time limit) or ran
+ * out of memory. */
+static int check_rigid(lift_solve *s, const rd_monitor *mon, rd_error *err)
 {
     rd_lift_result *out = s->out;
     const rd_lift_run *r = &s->run[0];
@@ -148,12 +150,13 @@ static int check_rigid(lift_solve *s, rd_error *err)
     int rc = rd_lift_model_init(&m, s->ring, s->p, NULL, &e2);
     if (rc == RD_OK && (rc = rd_lift_rigid_open(&m, &form, &e2)) == RD_OK) {
         rd_lift_check_in in = {r->events, r->n_events, s->states, 6, &form};
-        rc = rd_lift_check_rigid(s->ring, s->p, &in, &ck, &e2);
+        rc = rd_lift_check_rigid(s->ring, s->p, &in, mon, &ck, &e2);
     }
     if (form.close)
         form.close(&form);
     rd_lift_model_cleanup(&m);
-    (void)err;
+    if (rc == RD_ECANCELED || rc == RD_ETIMEOUT || rc == RD_ENOMEM) /* stopped, not refused */
+        return rd_error_set(err, rc, e2.path, "%s", e2.message);
     if (rc == RD_OK && isfinite(ck.worst_deg) && ck.worst_deg <= tol) {
         out->event_error_model_deg = ck.worst_deg;
         snprintf(out->why, sizeof out->why,
@@ -248,8 +251,16 @@ static int solve_level(void *ctx, int level, const rd_monitor *mon, rd_error *er
             rc = solve_run(s, 2, rd_monitor_span_init(&sp, mon, split, 1.0), err);
         return rc;
     }
-    int rc = solve_run(s, 0, s->check ? NULL : mon, err);
-    if (s->check && (rc != RD_OK || !check_rigid(s, err))) {
+    /* auto with friction: the rigid run (progress 0-5 %), its check (5-50 %),
+     * and if refused the full ring (50-100 %) */
+    rd_monitor_span sp;
+    int rc = solve_run(s, 0, s->check ? rd_monitor_span_init(&sp, mon, 0.0, 0.05) : mon, err);
+    int kept = s->check && rc == RD_OK
+                   ? check_rigid(s, rd_monitor_span_init(&sp, mon, 0.05, 0.5), err)
+                   : 1;
+    if (kept < 0)
+        return kept;
+    if (s->check && (rc != RD_OK || !kept)) {
         if (rc == RD_ECANCELED || rc == RD_ETIMEOUT)
             return rc;
         if (rc != RD_OK)
@@ -267,7 +278,7 @@ static int solve_level(void *ctx, int level, const rd_monitor *mon, rd_error *er
         s->out->event_error_model_deg = NAN;
         if ((rc = half_ring(s, err)))
             return rc;
-        rc = solve_run(s, 0, mon, err);
+        rc = solve_run(s, 0, rd_monitor_span_init(&sp, mon, 0.5, 1.0), err);
     }
     if ((rc == RD_ELIMIT || rc == RD_ECANCELED || rc == RD_ETIMEOUT) && s->run[0].done > 0 &&
         s->run[0].reached_deg > 0.0)

@@ -1043,6 +1043,17 @@ static int stop_at_half(void *ctx, double fraction)
     return fraction > 0.5;
 }
 
+/* Cancels at the first progress report at or past `at`; keeps the last seen. */
+struct stop_at {
+    double at, seen;
+};
+static int stop_after(void *ctx, double fraction)
+{
+    struct stop_at *s = ctx;
+    s->seen = fraction;
+    return fraction >= s->at ? 1 : 0;
+}
+
 static void test_cancel(void)
 {
     rd_ring_params rp;
@@ -1057,6 +1068,22 @@ static void test_cancel(void)
     int rc = rd_lift_solve(&rp, 8, &p, &mon, &r, &err);
     CHECK(rc == RD_ECANCELED, "cancel: rc %d", rc);
     rd_lift_result_cleanup(&r);
+    /* auto with friction: the rigid run, its check over the flights and the
+     * full ring each report progress, and a cancel stops whichever runs (a
+     * check that ignored its monitor kept a cancelled job running) */
+    static const double stops[] = {0.02, 0.3, 0.7};
+    for (int k = 0; k < 3; k++) {
+        struct stop_at st = {stops[k], 0.0};
+        rd_monitor m2 = {stop_after, &st};
+        lift_params(&p, 1000.0, 1.0);
+        p.friction.model = RD_FRICTION_COULOMB;
+        p.friction.coefficient = 0.1;
+        rd_error_init(&err);
+        rc = rd_lift_solve(&rp, 8, &p, &m2, &r, &err);
+        CHECK(rc == RD_ECANCELED && st.seen >= stops[k] && st.seen < stops[k] + 0.3,
+              "auto, friction: cancel at %g: rc %d, last progress %g", stops[k], rc, st.seen);
+        rd_lift_result_cleanup(&r);
+    }
 }
 
 /* A work bound that runs out exactly when an output sample is reached: the
