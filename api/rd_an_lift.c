@@ -352,6 +352,10 @@ static int lift_series(const rd_lift_result *res, json_t **segs, json_t **flank,
 #define METHOD_RIGID                                                                          \
     "; the time integration's error only (the rigid ring's own difference from the flexible " \
     "ring is not in it: numerics.model.why says what the run-time check found)"
+#define METHOD_RIGID_CHECKED                                                                  \
+    "; plus the rigid ring's largest difference from the full ring in auto's run-time check " \
+    "(event_error_model_deg) and, from the check repeated at n/2 segments, the full ring's "  \
+    "segment-count share (event_error_segments_deg; 12 segments or more); the three add"
 #define METHOD_FLEX                                                                            \
     "; plus a run at n/2 segments at the scene's tolerances, its difference / (2^1.5 - 1): "   \
     "the segment count's error if the answer converges as n^-1.5 (event_error_segments_deg); " \
@@ -387,10 +391,13 @@ static json_t *lift_numerics(const rd_scene *scene, const rd_lift_result *res, d
         "root_evals", (json_int_t)res->root_evals, "rtol", rd_result_real(o->lift.rtol), "atol",
         rd_result_real(o->lift.atol), "error_estimate", rd_result_real(res->error_estimate),
         "event_error_deg", rd_result_real(res->event_error_deg), "error_method",
-        estimated ? json_string(res->model == RD_LIFT_MODEL_RIGID ? METHOD_TIME METHOD_RIGID
-                                : res->segments_half              ? METHOD_TIME METHOD_FLEX
-                                                                  : METHOD_TIME METHOD_FLEX_NO_HALF)
-                  : json_null(),
+        estimated
+            ? json_string(res->model == RD_LIFT_MODEL_RIGID && isfinite(res->event_error_model_deg)
+                              ? METHOD_TIME METHOD_RIGID_CHECKED
+                          : res->model == RD_LIFT_MODEL_RIGID ? METHOD_TIME METHOD_RIGID
+                          : res->segments_half                ? METHOD_TIME METHOD_FLEX
+                                                              : METHOD_TIME METHOD_FLEX_NO_HALF)
+            : json_null(),
         "flank_band", rd_result_real(o->lift.flank_band), "event_error_time_deg",
         rd_result_real(res->event_error_time_deg), "event_error_segments_deg",
         rd_result_real(res->event_error_segments_deg), "event_error_model_deg",

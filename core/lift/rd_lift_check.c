@@ -113,6 +113,8 @@ static int run_window(const rd_ring *ring, const rd_lift_params *p, const rd_lif
             w = run.events[j].kind != ev[first + j].kind
                     ? NAN
                     : fmax(w, fabs(run.events[j].crank_deg - ev[first + j].crank_deg));
+        for (int j = 0; in->flex_deg && isfinite(w) && j < cnt; j++)
+            in->flex_deg[first + j] = run.events[j].crank_deg;
         *worst = isnan(w) || isnan(*worst) ? NAN : fmax(*worst, w);
         *steps += res.steps;
     }
@@ -130,6 +132,8 @@ int rd_lift_check_rigid(const rd_ring *ring, const rd_lift_params *p, const rd_l
     const rd_lift_event *ev = in->events;
     int n_ev = in->n_events;
     memset(out, 0, sizeof *out);
+    for (int j = 0; in->flex_deg && j < n_ev; j++)
+        in->flex_deg[j] = NAN;
     for (int a = 0; a < n_ev;) {
         if (!is_leave(ev[a].kind)) { /* a landing without its leave: the run's start */
             out->worst_deg = NAN;

@@ -330,6 +330,8 @@ typedef struct rd_lift_check_in {
     const double *states;       /* its form's state at every output sample, N each */
     int N;                      /* 6 */
     const rd_lift_form *expand; /* a rigid form of the scene: expands a state to 12 n */
+    double *flex_deg; /* out, n_events (may be NULL): the full ring's angle of each checked
+                         flank change, NAN where not matched */
 } rd_lift_check_in;
 /* mon: progress over the windows and the cancel (RD_ECANCELED, RD_ETIMEOUT
  * returned as such). */

@@ -137,24 +137,77 @@ static void keep_state(void *ctx, double t, const double *y, int N)
  * the rigid run stands, 0 when the full ring must run (out->why says why),
  * a negative status when the check was stopped (cancel, time limit) or ran
  * out of memory. */
-static int check_rigid(lift_solve *s, const rd_monitor *mon, rd_error *err)
+/* The check of the rigid run on `ring` (the scene's, or n/2 segments): the
+ * full ring's angles of the checked flank changes into flex (n_events). */
+static int run_check(lift_solve *s, const rd_ring *ring, const rd_monitor *mon, double *flex,
+                     rd_lift_check *ck, rd_error *err)
 {
-    rd_lift_result *out = s->out;
     const rd_lift_run *r = &s->run[0];
-    rd_lift_check ck = {NAN, 0, 0, 0};
-    rd_error e2;
-    rd_error_init(&e2);
-    double tol = s->p->accuracy_deg;
     rd_lift_model m;
     rd_lift_form form = {0};
-    int rc = rd_lift_model_init(&m, s->ring, s->p, NULL, &e2);
-    if (rc == RD_OK && (rc = rd_lift_rigid_open(&m, &form, &e2)) == RD_OK) {
-        rd_lift_check_in in = {r->events, r->n_events, s->states, 6, &form};
-        rc = rd_lift_check_rigid(s->ring, s->p, &in, mon, &ck, &e2);
+    int rc = rd_lift_model_init(&m, ring, s->p, NULL, err);
+    if (rc == RD_OK && (rc = rd_lift_rigid_open(&m, &form, err)) == RD_OK) {
+        rd_lift_check_in in = {r->events, r->n_events, s->states, 6, &form, flex};
+        rc = rd_lift_check_rigid(ring, s->p, &in, mon, ck, err);
     }
     if (form.close)
         form.close(&form);
     rd_lift_model_cleanup(&m);
+    return rc;
+}
+
+/* A kept rigid run's segment-count share: the check again at n/2 segments
+ * (estimate on, n >= 2 HALF_SEGMENTS_MIN), the full ring's angles at n and
+ * n/2 compared as compare_levels does for a full run; a warning where they
+ * differ in number or by more than RD_LIFT_SEGMENT_WARN_DEG. */
+static int check_half(lift_solve *s, const rd_monitor *mon, const double *fn, rd_error *err)
+{
+    rd_lift_result *out = s->out;
+    int n = out->segments, nh = n / 2, ne = s->run[0].n_events, rc;
+    if (!s->p->estimate_error || nh < HALF_SEGMENTS_MIN)
+        return RD_OK;
+    rd_ring *half = rd_ring_create(s->rp, nh, 0, err);
+    double *fh = malloc((size_t)(ne > 0 ? ne : 1) * sizeof *fh);
+    rd_lift_check ck = {NAN, 0, 0, 0};
+    rc = !half || !fh ? rd_error_set(err, RD_ENOMEM, "", "Out of memory for the auto check.")
+                      : run_check(s, half, mon, fh, &ck, err);
+    double dn = rc == RD_OK && isfinite(ck.worst_deg) ? 0.0 : NAN;
+    for (int j = 0; isfinite(dn) && j < ne; j++)
+        dn = fmax(dn, fabs(fn[j] - fh[j]));
+    rd_ring_free(half);
+    free(fh);
+    if (rc == RD_ECANCELED || rc == RD_ETIMEOUT || rc == RD_ENOMEM)
+        return rc;
+    rd_error_init(err);
+    out->segments_half = nh;
+    out->event_error_segments_deg = dn / (pow(2.0, SEGMENT_ORDER) - 1.0);
+    if (!(out->event_error_segments_deg <= RD_LIFT_SEGMENT_WARN_DEG))
+        snprintf(out->accuracy_warning, sizeof out->accuracy_warning,
+                 "The flank changes are not converged in the segment count: the run-time check's "
+                 "full ring at n/2 = %d segments %s; the rigid ring matches the full ring at n = "
+                 "%d, which is not converged; run the full ring at more segments "
+                 "(/discretization/segments, /numerics/model) and compare before trusting the "
+                 "angles.",
+                 nh, isnan(dn) ? "has other flank changes than at n" : "moves them by over 1 deg",
+                 n);
+    return RD_OK;
+}
+
+static int check_rigid(lift_solve *s, const rd_monitor *mon, rd_error *err)
+{
+    rd_lift_result *out = s->out;
+    rd_lift_check ck = {NAN, 0, 0, 0};
+    rd_error e2;
+    rd_error_init(&e2);
+    double tol = s->p->accuracy_deg;
+    int ne = s->run[0].n_events;
+    double *fn = malloc((size_t)(ne > 0 ? ne : 1) * sizeof *fn);
+    rd_monitor_span sp;
+    int rc = fn ? run_check(s, s->ring, rd_monitor_span_init(&sp, mon, 0.0, 0.67), fn, &ck, &e2)
+                : rd_error_set(&e2, RD_ENOMEM, "", "Out of memory for the auto check.");
+    if (rc == RD_OK && isfinite(ck.worst_deg) && ck.worst_deg <= tol)
+        rc = check_half(s, rd_monitor_span_init(&sp, mon, 0.67, 1.0), fn, &e2);
+    free(fn);
     if (rc == RD_ECANCELED || rc == RD_ETIMEOUT || rc == RD_ENOMEM) /* stopped, not refused */
         return rd_error_set(err, rc, e2.path, "%s", e2.message);
     if (rc == RD_OK && isfinite(ck.worst_deg) && ck.worst_deg <= tol) {
@@ -352,6 +405,8 @@ static int compare_levels(void *ctx, rd_error *err)
         out->segments_half_events = s->run[2].n_events;
         segment_warning(out, s->run[0].n_events);
     }
+    if (!s->half && out->segments_half > 0) /* a kept rigid run's, from its check (check_half) */
+        dn = out->event_error_segments_deg;
     out->error_estimate = (lt + ln) / ca;
     out->event_error_deg =
         dt + dn + (isfinite(out->event_error_model_deg) ? out->event_error_model_deg : 0.0);
