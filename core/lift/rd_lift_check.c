@@ -32,11 +32,13 @@
  * ring's flank changes (number and kind) and none moves by more than the
  * target; its largest move is reported (rd_lift_result.event_error_model_deg).
  *
- * What it does not see: a flank change the rigid run does not have, outside
- * its windows (a twist-driven leave more than LEAD_DEG before the rigid
- * ring's own; the full ring leaving earlier then shows as a moved or extra
- * event at the window's start, which fails the check), and the segment
- * count (the check runs the scene's n).
+ * A rigid run without flank changes is checked over the whole run (the full
+ * ring must stay seated too; seated phases are cheap).  What it does not
+ * see: a flank change the rigid run does not have, outside its windows (a
+ * twist-driven leave more than LEAD_DEG before the rigid ring's own; the
+ * full ring leaving earlier then shows as a moved or extra event at the
+ * window's start, which fails the check).  The segment count is the
+ * caller's: rd_lift_solve.c repeats the check at n/2 for the estimate.
  */
 #include <math.h>
 #include <stdlib.h>
@@ -59,19 +61,20 @@ static double left_at(const rd_lift_event *e)
     return isfinite(e->touch_deg) ? e->touch_deg : e->crank_deg;
 }
 
-/* One window: the full ring from t0 (seated at rest on the flank the
- * leave `first` leaves, or the scene's own start at 0) over the events
- * first..last of the rigid run.  Returns the largest angle move, or NAN
- * when the full ring's flank changes there differ in number or kind. */
+/* One window: the full ring from t0 (the rigid ring's state LEAD_DEG
+ * before the leave `first`, or the scene's own start at 0) over the events
+ * first..last of the rigid run (none: the whole run, from its start).
+ * *worst takes the largest angle move, NAN when the full ring's flank
+ * changes there differ in number or kind; *steps its steps. */
 static int run_window(const rd_ring *ring, const rd_lift_params *p, const rd_lift_check_in *in,
                       int first, int last, const rd_monitor *mon, double *worst, long *steps,
                       rd_error *err)
 {
     const rd_lift_event *ev = in->events;
     int n = rd_ring_get_segments(ring), cnt = last - first + 1;
-    int k0 = (int)floor(fmax(0.0, left_at(&ev[first]) - LEAD_DEG) / p->step_deg);
+    int k0 = cnt ? (int)floor(fmax(0.0, left_at(&ev[first]) - LEAD_DEG) / p->step_deg) : 0;
     double t0 = k0 * p->step_deg, end_deg = 720.0 * p->engine.cycles;
-    double t1 = fmin(end_deg, ev[last].crank_deg + TAIL_DEG);
+    double t1 = cnt ? fmin(end_deg, ev[last].crank_deg + TAIL_DEG) : end_deg;
     double *y0 = NULL, lift[2];
     if (k0 > 0) { /* the rigid ring's state there, on every segment */
         y0 = malloc(12 * (size_t)n * sizeof *y0);
@@ -81,7 +84,7 @@ static int run_window(const rd_ring *ring, const rd_lift_params *p, const rd_lif
     }
     rd_lift_params q = *p;
     q.step_deg = t1 - t0;
-    rd_lift_setup su = {.y0 = y0, .t0_deg = t0, .t1_deg = t1, .stop_events = cnt};
+    rd_lift_setup su = {.y0 = y0, .t0_deg = t0, .t1_deg = t1, .stop_events = cnt ? cnt : 1};
     rd_lift_result res;
     memset(&res, 0, sizeof res);
     rd_lift_run run = {.rtol = CHECK_RTOL * p->rtol,
@@ -134,6 +137,11 @@ int rd_lift_check_rigid(const rd_ring *ring, const rd_lift_params *p, const rd_l
     memset(out, 0, sizeof *out);
     for (int j = 0; in->flex_deg && j < n_ev; j++)
         in->flex_deg[j] = NAN;
+    if (n_ev == 0) { /* seated all along: the full ring must be too, over the whole run */
+        int rc = run_window(ring, p, in, 0, -1, mon, &out->worst_deg, &out->steps, err);
+        out->windows = rc == RD_OK;
+        return rc;
+    }
     for (int a = 0; a < n_ev;) {
         if (!is_leave(ev[a].kind)) { /* a landing without its leave: the run's start */
             out->worst_deg = NAN;

@@ -212,13 +212,20 @@ static int check_rigid(lift_solve *s, const rd_monitor *mon, rd_error *err)
         return rd_error_set(err, rc, e2.path, "%s", e2.message);
     if (rc == RD_OK && isfinite(ck.worst_deg) && ck.worst_deg <= tol) {
         out->event_error_model_deg = ck.worst_deg;
-        snprintf(out->why, sizeof out->why,
-                 "auto: the scene is axisymmetric; with friction the rigid ring was checked at "
-                 "run time against the full ring (%d segments, the scene's tolerances) over each "
-                 "of its %d flights (%d flank changes, %ld steps): they move by at most %.3g "
-                 "deg, within "
-                 "numerics.accuracy_deg = %g",
-                 out->segments, ck.windows, ck.events, ck.steps, ck.worst_deg, tol);
+        if (ck.events == 0)
+            snprintf(out->why, sizeof out->why,
+                     "auto: the scene is axisymmetric; with friction the rigid ring was checked "
+                     "at run time against the full ring (%d segments, the scene's tolerances): "
+                     "the rigid ring stays on its flank, and so does the full ring over the "
+                     "whole run (%ld steps)",
+                     out->segments, ck.steps);
+        else
+            snprintf(out->why, sizeof out->why,
+                     "auto: the scene is axisymmetric; with friction the rigid ring was checked "
+                     "at run time against the full ring (%d segments, the scene's tolerances) "
+                     "over each of its %d flights (%d flank changes, %ld steps): they move by at "
+                     "most %.3g deg, within numerics.accuracy_deg = %g",
+                     out->segments, ck.windows, ck.events, ck.steps, ck.worst_deg, tol);
         return 1;
     }
     if (rc != RD_OK)

@@ -412,6 +412,17 @@ static void test_auto(void)
               strstr(r.why, "more than numerics.accuracy_deg") != NULL,
           "auto, friction, half a cycle: model %d (%s)", r.model, r.why);
     rd_lift_result_cleanup(&r);
+    /* a ring held on its flank by 5 bar above and behind it: the rigid run
+     * has no flank change, and the check runs the full ring over the whole
+     * run, which must stay seated too */
+    static double gdeg[2] = {0.0, 720.0}, ghi[2] = {5e5, 5e5}, gzero[2] = {0.0, 0.0};
+    p.gas = (rd_gas_params){2, gdeg, ghi, ghi, gzero, RD_GAS_AREA_FIXED};
+    rc = run(&p, RD_LIFT_MODEL_AUTO, 8, &r, &err);
+    CHECK(rc == RD_OK && r.model == RD_LIFT_MODEL_RIGID && r.n_events == 0 &&
+              strstr(r.why, "stays on its flank") != NULL,
+          "auto, friction, held down: rc %d model %d events %d (%s)", rc, r.model, r.n_events,
+          r.why);
+    rd_lift_result_cleanup(&r);
 }
 
 /* The rigid model's analytic Jacobian (the projection of segment 0's local
