@@ -26,7 +26,10 @@ import urllib.error
 import urllib.parse
 import urllib.request
 
-FINISHED = ("succeeded", "failed", "cancelled")
+# A job is live while queued or running; every other status is final (succeeded, failed,
+# cancelled, interrupted by a server restart, and any the server adds), so wait() never
+# polls a job that cannot change any more.
+LIVE = ("queued", "running")
 
 
 class RingdynError(Exception):
@@ -77,12 +80,14 @@ class Client:
     def wait(self, job, poll=0.5, timeout=600.0, on_progress=None):
         """Polls `job` (a job object or id) until it has finished; returns it.
 
-        Raises RingdynError if it failed or was cancelled (with .job set), or
-        if it is still running after `timeout` s (the job keeps running)."""
+        Raises RingdynError if it ended otherwise than succeeded (failed,
+        cancelled, interrupted: with .job set and .code the error's code or
+        the status), or if it is still live after `timeout` s (the job keeps
+        running)."""
         if isinstance(job, str):
             job = self.job(job)
         deadline = time.monotonic() + timeout
-        while job["status"] not in FINISHED:
+        while job["status"] in LIVE:
             if on_progress:
                 on_progress(job)
             if time.monotonic() > deadline:

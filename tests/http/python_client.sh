@@ -88,6 +88,21 @@ try:
     raise SystemExit("a cancelled job did not raise")
 except RingdynError as e:
     assert e.job is not None and e.job["status"] == "cancelled", (e.code, e.job)
+# A job the server stopped by its restart ends "interrupted": final at once,
+# not polled until the timeout (a client that knew only three final
+# statuses waited its 600 s).
+import time as _t
+class Stub(Client):
+    def job(self, job_id):
+        return {"id": job_id, "status": "interrupted",
+                "error": {"code": "interrupted", "message": "the server restarted"}}
+t0 = _t.monotonic()
+try:
+    Stub(base).wait({"id": "x", "status": "running"}, poll=0.01, timeout=30)
+    raise SystemExit("an interrupted job did not raise")
+except RingdynError as e:
+    assert e.code == "interrupted" and e.job["status"] == "interrupted", (e.code, e.job)
+assert _t.monotonic() - t0 < 5, "an interrupted job was polled"
 try:
     c.submit({"analysis": "modal", "ring": {"material": {"density": -1}}})
     raise SystemExit("a negative density was accepted")
