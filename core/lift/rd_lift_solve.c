@@ -118,16 +118,20 @@ typedef struct lift_solve {
     const rd_ring_params *rp;
     rd_ring *half_owned;   /* the n/2 ring (owned) */
     double *states;        /* the checked rigid run's state at every sample (6 each) */
+    int states_next;       /* the sample keep_state stores next */
     double *y0;            /* the bore starts of n and n/2 segments (owned) */
     rd_lift_setup su, suh; /* the set-ups with those starts */
 } lift_solve;
 
-/* The rigid run's states for the check's window starts (rd_lift_setup.state). */
+/* The rigid run's states for the check's window starts (rd_lift_setup.state:
+ * called once per output sample, in order; counted, not taken from t, whose
+ * last sample may be a shortened step). */
 static void keep_state(void *ctx, double t, const double *y, int N)
 {
+    (void)t;
     lift_solve *s = ctx;
-    int k = (int)lround(t * rd_engine_omega(&s->p->engine) * 180.0 / M_PI / s->p->step_deg);
-    if (N == 6 && k >= 0 && k < s->run[0].samples)
+    int k = s->states_next++;
+    if (N == 6 && k < s->run[0].samples)
         memcpy(s->states + 6 * (size_t)k, y, 6 * sizeof *y);
 }
 
@@ -260,6 +264,7 @@ static int solve_run(lift_solve *s, int k, const rd_monitor *mon, rd_error *err)
         r->modes = 6 * rd_ring_get_segments(s->half) - 6;
     rd_lift_setup su = {.state = keep_state, .ctx = s};
     const rd_lift_setup *setup = k == 2 ? s->setup_half : s->setup;
+    s->states_next = 0;
     if (k == 0 && s->check && s->out->model == RD_LIFT_MODEL_RIGID)
         setup = &su;
     int rc = rd_lift_integrate(k == 2 ? s->half : s->ring, s->p, setup, s->out->model, mon, r, err);
@@ -274,6 +279,7 @@ static int solve_run(lift_solve *s, int k, const rd_monitor *mon, rd_error *err)
     r->events = NULL;
     r->n_events = r->cap_events = r->done = 0;
     rd_error_init(err);
+    s->states_next = 0;
     return rd_lift_integrate(s->ring, &q, setup, s->out->model, mon, r, err);
 }
 
