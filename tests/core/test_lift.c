@@ -180,6 +180,23 @@ static void od_push(evlist *e, double deg, int kind)
     }
 }
 
+/* Where the analytic flight from (t0, x0, v0) crosses lvl in (t, tn], from
+ * x at t: bisection, 60 halvings. */
+static double od_cross(const odof *o, double t0, double x0, double v0, double t, double x,
+                       double tn, double lvl)
+{
+    double a = t, b = tn;
+    for (int k = 0; k < 60; k++) {
+        double m = 0.5 * (a + b), xm, vm;
+        od_flight(o, t0, x0, v0, m, &xm, &vm);
+        if ((xm - lvl) * (x - lvl) > 0)
+            a = m;
+        else
+            b = m;
+    }
+    return b;
+}
+
 /* Band crossings of a flight step from (t, x) to (tn, xn): a leave where
  * the lift moves out of the band at a flank, a landing where it moves in
  * (bs: 0 in the lower band, 1 in the upper, 2 between); the crossing dated
@@ -200,19 +217,8 @@ static void od_band(const odof *o, double t0, double x0, double v0, double t, do
         lvl = o->c - o->b, kind = RD_EVENT_REACH_UPPER, to = 1;
     else
         return;
-    double tc = t + (lvl - x) / (xn - x) * (tn - t);
-    if (o->mu == 0) {
-        double a = t, b = tn;
-        for (int k = 0; k < 60; k++) {
-            double m = 0.5 * (a + b), xm, vm;
-            od_flight(o, t0, x0, v0, m, &xm, &vm);
-            if ((xm - lvl) * (x - lvl) > 0)
-                a = m;
-            else
-                b = m;
-        }
-        tc = b;
-    }
+    double tc =
+        o->mu == 0 ? od_cross(o, t0, x0, v0, t, x, tn, lvl) : t + (lvl - x) / (xn - x) * (tn - t);
     od_push(bev, tc * deg, kind);
     *bs = to;
 }
@@ -278,18 +284,8 @@ static void one_dof(const odof *o, double deg_end, evlist *ev, evlist *bev)
         if ((xn <= 0.0 && xdn < 0.0) || (xn >= o->c && xdn > 0.0)) {
             double lvl = xn <= 0.0 ? 0.0 : o->c, f = (lvl - x) / (xn - x);
             double tl = t + f * dt;
-            if (o->mu == 0) { /* bisection on the analytic flight */
-                double a = t, b = tn;
-                for (int k = 0; k < 60; k++) {
-                    double m = 0.5 * (a + b), xm, vm;
-                    od_flight(o, t0, x0, v0, m, &xm, &vm);
-                    if ((xm - lvl) * (x - lvl) > 0)
-                        a = m;
-                    else
-                        b = m;
-                }
-                tl = b;
-            }
+            if (o->mu == 0) /* bisection on the analytic flight */
+                tl = od_cross(o, t0, x0, v0, t, x, tn, lvl);
             od_push(ev, tl * deg, lvl == 0.0 ? RD_EVENT_REACH_LOWER : RD_EVENT_REACH_UPPER);
             state = lvl == 0.0 ? 0 : 1;
             x = lvl;
