@@ -352,10 +352,11 @@ static int lift_series(const rd_lift_result *res, json_t **segs, json_t **flank,
 #define METHOD_RIGID                                                                          \
     "; the time integration's error only (the rigid ring's own difference from the flexible " \
     "ring is not in it: numerics.model.why says what the run-time check found)"
-#define METHOD_RIGID_CHECKED                                                                  \
-    "; plus the rigid ring's largest difference from the full ring in auto's run-time check " \
-    "(event_error_model_deg) and, from the check repeated at n/2 segments, the full ring's "  \
-    "segment-count share (event_error_segments_deg; 12 segments or more); the three add"
+#define METHOD_RIGID_CHECKED                                                                   \
+    "; plus the rigid ring's largest difference from the full ring in auto's run-time check "  \
+    "(event_error_model_deg) and, from the check repeated at n/2 segments, the full ring's "   \
+    "segment-count share (event_error_segments_deg; 12 segments or more); the three add. Not " \
+    "covered: a flank change of the full ring outside the check's windows"
 #define METHOD_FLEX                                                                            \
     "; plus a run at n/2 segments at the scene's tolerances, its difference / (2^1.5 - 1): "   \
     "the segment count's error if the answer converges as n^-1.5 (event_error_segments_deg); " \

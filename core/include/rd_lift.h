@@ -54,14 +54,17 @@ enum rd_lift_event_kind {
 };
 
 /* Limits shared by validation and documentation. */
-#define RD_LIFT_CYCLES_MAX       50.0   /* 4-stroke cycles (720 deg each) */
-#define RD_LIFT_SAMPLES_MAX      200000 /* output samples (cycles * 720 / step_deg + 1) */
-#define RD_LIFT_TABLE_MAX        100000 /* points of a gas pressure table */
-#define RD_LIFT_SEGMENTS_MAX     1000
-#define RD_LIFT_MODES_MAX        60
-#define RD_LIFT_FLANK_BAND       0.01 /* output.flank_band default, of the axial clearance */
-#define RD_LIFT_FLANK_BAND_MAX   0.2
-#define RD_LIFT_SEGMENT_WARN_DEG 1.0 /* segment-count share of the event error that warns */
+#define RD_LIFT_CYCLES_MAX     50.0   /* 4-stroke cycles (720 deg each) */
+#define RD_LIFT_SAMPLES_MAX    200000 /* output samples (cycles * 720 / step_deg + 1) */
+#define RD_LIFT_TABLE_MAX      100000 /* points of a gas pressure table */
+#define RD_LIFT_SEGMENTS_MAX   1000
+#define RD_LIFT_MODES_MAX      60
+#define RD_LIFT_FLANK_BAND     0.01 /* output.flank_band default, of the axial clearance */
+#define RD_LIFT_FLANK_BAND_MAX 0.2
+/* The segment-count share of the event error that warns: 10x the default
+ * accuracy_deg (a choice: an estimate that large is no longer a small
+ * correction to the angle but a sign the answer changes with n). */
+#define RD_LIFT_SEGMENT_WARN_DEG 1.0
 
 typedef struct rd_groove_params {
     double axial_clearance;  /* groove height minus ring height, m */
