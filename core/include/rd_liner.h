@@ -9,7 +9,53 @@
 
 #include "rd_error.h"
 
-enum rd_friction_model { RD_FRICTION_NONE = 0, RD_FRICTION_COULOMB = 1, RD_FRICTION_STRIBECK = 2 };
+enum rd_friction_model {
+    RD_FRICTION_NONE = 0,
+    RD_FRICTION_COULOMB = 1,
+    RD_FRICTION_STRIBECK = 2,
+    RD_FRICTION_LUBRICATED = 3 /* the oil film and asperity contact (rd_film.h) */
+};
+
+/* The running face's profile across its axial height (ring.face): x from
+ * the face's lower edge (x = 0) to its upper edge (x = L, the running
+ * face's height), drop(x) >= 0 the face's recess from the liner-side
+ * envelope, smallest 0 (where the film is thinnest). */
+enum rd_face_profile {
+    RD_FACE_BARREL = 0, /* drop = crown ((x - x_c) / (L / 2))^2, x_c = L / 2 + offset */
+    RD_FACE_TAPER = 1,  /* drop = tan(taper) x: the lower edge runs on the liner */
+    RD_FACE_FLAT = 2,   /* flat, each edge rounded with radius edge_radius */
+    RD_FACE_TABLE = 3   /* (x, drop) points, linear between them */
+};
+#define RD_FACE_TABLE_MAX 1000
+
+typedef struct rd_face_params {
+    int profile;        /* enum rd_face_profile */
+    double crown;       /* barrel: drop at the edges of a centred crown, m */
+    double offset;      /* barrel: crown position above mid-height, m */
+    double taper_deg;   /* taper: angle, deg */
+    double edge_radius; /* flat: radius of the rounded edges, m */
+    int points;         /* table: points (borrowed arrays) */
+    const double *x, *drop;
+    double roughness_rq; /* the face's Rq, m */
+} rd_face_params;
+
+/* The oil and the rough contact of the lubricated model (physics.friction
+ * with model "lubricated").  Viscosity: the constant `viscosity` when > 0,
+ * else the Vogel law eta = a exp(b / (T - c)), T in kelvin, at the liner
+ * temperature (a constant, or a periodic table vs crank angle when
+ * temp_points > 0, linear between points). */
+typedef struct rd_lube_params {
+    double viscosity;                 /* Pa s; 0 = Vogel */
+    double vogel_a, vogel_b, vogel_c; /* Pa s, K, K */
+    double temperature_c;             /* liner temperature, deg C */
+    int temp_points;                  /* table points (borrowed arrays) */
+    const double *temp_crank_deg, *temp_c;
+    double asperity_density;     /* asperities per m^2 (Greenwood-Tripp n) */
+    double asperity_radius;      /* asperity tip radius beta, m */
+    double boundary_coefficient; /* mu_b of the asperity load */
+    double composite_modulus;    /* E' (1/E' = sum (1 - nu_i^2)/E_i), Pa; 0 = the
+                                          * ring's material on a grey cast-iron liner */
+} rd_lube_params;
 
 typedef struct rd_friction_params {
     int model;                    /* enum rd_friction_model; NONE = not modelled */
@@ -17,6 +63,7 @@ typedef struct rd_friction_params {
     double viscosity;             /* Stribeck: oil dynamic viscosity eta, Pa s */
     double sommerfeld_transition; /* Stribeck: So_lim of 2.9 */
     double hydrodynamic_slope;    /* Stribeck: K of 2.9 */
+    rd_lube_params lube;          /* lubricated */
 } rd_friction_params;
 
 /* The bore: radius r_b(theta) = D/2 + sum A_k cos(k (theta - phi_k)), theta
@@ -30,7 +77,8 @@ typedef struct rd_distortion {
 } rd_distortion;
 
 typedef struct rd_bore {
-    double diameter; /* D, m; 0 = the ring's diameter */
+    double diameter;     /* D, m; 0 = the ring's diameter */
+    double roughness_rq; /* the liner's Rq, m (the lubricated model) */
     int n_distortion;
     rd_distortion distortion[RD_BORE_ORDERS_MAX];
 } rd_bore;

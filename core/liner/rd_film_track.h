@@ -1,0 +1,60 @@
+/*
+ * rd_film_track.h — the film of a rigid face over a run (private to core):
+ * the radial balance of the face, integrated in time with the squeeze film
+ * (MODEL.md "Ring-liner lubrication", radial balance).
+ *
+ * At each instant the caller's loads give the liner speed U, the viscosity,
+ * the radial load on the face W_ext (N per metre of circumference: the
+ * ring's elastic pressure times its height plus the gas behind it) and the
+ * gas pressures at the face's edges; the film thickness h0 follows from
+ *     W_film(h0, dh0/dt) + W_asperity(h0) = W_ext,
+ * integrated by BDF2 at a constant step (the first step backward Euler),
+ * each step's h0 a bracketed secant root (W_film + W_a falls as h0 grows).
+ * One cycle of warm-up (720 deg before t = 0) starts it on its periodic
+ * orbit; `periodic_change` says how far h0 at the run's end still differs
+ * from one cycle earlier.
+ *
+ * Usage:
+ *     rd_film_track tr;
+ *     rc = rd_film_track_run(&film, &loads, t_end, dt, t_cycle, 0.0, &tr, err);
+ *     rd_film_point pt; rd_film_track_at(&tr, t, &pt);   linear in t
+ *     rd_film_track_free(&tr);
+ */
+#ifndef RD_FILM_TRACK_H
+#define RD_FILM_TRACK_H
+
+#include "rd_film.h"
+
+#define RD_FILM_H_MAX 1e-4 /* m: a face pushed further off the liner is held there */
+
+typedef struct rd_film_loads {
+    /* at time t (s): liner speed past the ring U (m/s, + up), eta (Pa s),
+     * W_ext (N/m), the gas at the lower and upper edges (Pa) */
+    void (*at)(void *ctx, double t, double *U, double *eta, double *W_ext, double *p_lo,
+               double *p_hi);
+    void *ctx;
+} rd_film_loads;
+
+/* The film's state and loads at one instant, per metre of circumference. */
+typedef struct rd_film_point {
+    double h0, W, Wa, Cc, Fp, U, cavitated;
+} rd_film_point;
+
+typedef struct rd_film_track {
+    int steps;              /* points at t = k dt, k = 0 .. steps */
+    double dt;              /* s */
+    rd_film_point *pt;      /* steps + 1 */
+    double periodic_change; /* |h0(end) - h0(end - t_cycle)| / h0(end); 0 for a run
+                             * shorter than a cycle */
+    long solves;            /* film solves, warm-up included */
+    int held;               /* steps where h0 was held at RD_FILM_H_MAX */
+} rd_film_track;
+
+/* From t = -t_warm (s, a whole number of steps) to t_end, recording from
+ * t = 0; h_start > 0: the film at -t_warm, else the steady balance there. */
+int rd_film_track_run(rd_film *f, const rd_film_loads *ld, double t_end, double dt, double t_warm,
+                      double h_start, rd_film_track *tr, rd_error *err);
+void rd_film_track_at(const rd_film_track *tr, double t, rd_film_point *out);
+void rd_film_track_free(rd_film_track *tr);
+
+#endif
