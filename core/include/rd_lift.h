@@ -91,6 +91,12 @@ typedef struct rd_gas_params {
     int active_area;         /* enum rd_gas_area */
 } rd_gas_params;
 
+struct rd_film_track; /* core/liner/rd_film_track.h */
+
+/* The lubricated model's numerics and defaults. */
+#define RD_LIFT_FILM_STEP_DEG     0.25 /* numerics.film_step_deg default */
+#define RD_LIFT_FILM_STEP_MAX_DEG 2.0
+
 typedef struct rd_lift_params {
     rd_engine_params engine;
     rd_bore bore; /* a round bore of the ring's diameter (the default) is the installed
@@ -120,6 +126,13 @@ typedef struct rd_lift_params {
                   it saves steps but not instructions (README) */
     int cvode; /* 1: CVODE for every model; C only, default 0: the rigid model is integrated
                   by rd_lift_small.c (the tests compare the two) */
+    /* The lubricated friction model (friction.model RD_FRICTION_LUBRICATED):
+     * the running face, and the film's time step (crank degrees).  The film
+     * is solved once per run before the ring's motion (rd_lift_film.c);
+     * `film` is core's own (NULL from callers). */
+    rd_face_params face;
+    double film_step_deg;
+    const struct rd_film_track *film;
 } rd_lift_params;
 
 typedef struct rd_lift_event {
@@ -130,6 +143,35 @@ typedef struct rd_lift_event {
      * NAN if it never touched the flank in between. */
     double touch_deg;
 } rd_lift_event;
+
+/* The oil film of a lubricated run (rd_lift_film.c), per output sample:
+ * the film at the face's thinnest point, the friction on the ring split
+ * into the film's shear and the asperities' (N, + upwards, at the liner's
+ * speed past the piston), the power they take from the piston (W) and the
+ * regime; per whole cycle the friction work (J) and its mean effective
+ * pressure (work over the displaced volume pi D^2 / 4 x stroke, Pa). */
+enum rd_lube_regime { RD_REGIME_HYDRODYNAMIC = 0, RD_REGIME_MIXED = 1, RD_REGIME_BOUNDARY = 2 };
+#define RD_LUBE_MIXED_SHARE    0.01 /* asperity share of the radial load: mixed above */
+#define RD_LUBE_BOUNDARY_SHARE 0.9  /* boundary above */
+
+typedef struct rd_lift_lube {
+    int on;
+    double *min_film;                                  /* m */
+    double *hydrodynamic_friction, *asperity_friction; /* N */
+    double *power;                                     /* W */
+    double *asperity_share;                            /* of the radial load */
+    int *regime;                                       /* enum rd_lube_regime */
+    int cycles;                                        /* whole cycles */
+    double *friction_work;                             /* J, per cycle */
+    double *fmep;                                      /* Pa, per cycle */
+    double min_film_x;      /* where on the face the film is thinnest, m above its lower edge */
+    double composite_sigma; /* m */
+    double viscosity_min, viscosity_max; /* Pa s over the run */
+    double periodic_change;              /* the film's change over its last cycle, relative */
+    double film_step_deg;
+    long film_solves;
+    int held; /* film steps held at the largest film (the face pushed off) */
+} rd_lift_lube;
 
 typedef struct rd_lift_result {
     int segments, dof, samples;
@@ -182,6 +224,7 @@ typedef struct rd_lift_result {
      * share exceeds RD_LIFT_SEGMENT_WARN_DEG (a warning of the result, path
      * /discretization/segments). */
     char accuracy_warning[400];
+    rd_lift_lube lube; /* lubricated runs */
 } rd_lift_result;
 
 void rd_lift_params_default(rd_lift_params *p);

@@ -102,4 +102,23 @@ int rd_bore_validate(const rd_bore *b, double d, rd_error *err);
 double rd_bore_bend_term(int order, double amplitude);
 int rd_bore_convex_validate(double bend, double d, rd_error *err);
 
+/* The lubricated model's defaults: a barrel face (crown 5 um at the edges,
+ * centred), Rq 0.2 um on the face (and bore->roughness_rq 0.2 um on the
+ * liner), an SAE 5W-30-like oil (Vogel a 4.88e-5 Pa s, b 1197 K, c 141.15 K:
+ * 51 mPa s at 40 C, 8.5 at 100 C, 3.4 at 150 C) at 100 C, asperities of
+ * density 5e8 / m^2 and radius 0.3 mm (n beta sigma = 0.04, sigma / beta ~
+ * 1e-3 with the default roughness), boundary coefficient 0.1, E' from the
+ * ring's material on a grey cast-iron liner. */
+void rd_lube_params_default(rd_lube_params *l, rd_face_params *face);
+
+/* Range checks of the lubricated model's inputs (paths "/ring/face/...",
+ * "/bore/roughness_rq_m", "/physics/friction/..."): roughness within
+ * [1e-9, 5e-6] m, crown [0, 1e-4] m, taper (0, 5] deg, the oil's viscosity
+ * [1e-4, 10] Pa s, temperatures [-40, 250] deg C (kelvin typed as Celsius
+ * named as such), the Vogel law above 10 K from its pole, asperity density
+ * [1e6, 1e14] / m^2, radius [1e-7, 1e-2] m, mu_b [0, 1], E' 0 or [1e9, 1e12]
+ * Pa.  The face's fit to its height is rd_film_init's. */
+int rd_lube_validate(const rd_lube_params *l, const rd_face_params *face, double liner_rq,
+                     rd_error *err);
+
 #endif

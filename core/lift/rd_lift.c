@@ -85,6 +85,9 @@ void rd_lift_params_default(rd_lift_params *p)
     p->modes = 0;
     p->accuracy_deg = 0.1;
     p->flank_band = RD_LIFT_FLANK_BAND;
+    rd_lube_params_default(&p->friction.lube, &p->face);
+    p->bore.roughness_rq = 0.2e-6;
+    p->film_step_deg = RD_LIFT_FILM_STEP_DEG;
 }
 
 const char *rd_lift_model_name(int model)
@@ -134,6 +137,28 @@ static int validate_cycles(const rd_engine_params *e, rd_error *err)
 }
 
 /* Groove, gravity and friction. */
+/* The lubricated model: its inputs, a round bore (one film for the whole
+ * face), the film's step. */
+static int validate_lubricated(const rd_lift_params *p, rd_error *err)
+{
+    int rc = rd_lube_validate(&p->friction.lube, &p->face, p->bore.roughness_rq, err);
+    if (rc)
+        return rc;
+    if (p->bore.n_distortion > 0)
+        return rd_error_set(err, RD_EINVAL, "/bore/distortion",
+                            "the lubricated friction model solves one film for the whole running "
+                            "face (a round bore); a distorted bore, where the film varies around "
+                            "the ring, is not modelled yet: remove /bore/distortion or use "
+                            "coulomb or stribeck friction.");
+    if (rd_engine_tilted(&p->engine))
+        return rd_error_set(err, RD_EINVAL, "/engine/piston_tilt_deg",
+                            "the lubricated friction model does not take a tilting piston's own "
+                            "sliding on the liner yet: remove the tilt or use coulomb or "
+                            "stribeck friction.");
+    return rd_error_range(p->film_step_deg, 0.01, RD_LIFT_FILM_STEP_MAX_DEG,
+                          "/numerics/film_step_deg", "deg", err);
+}
+
 static int validate_physics(const rd_lift_params *p, rd_error *err)
 {
     int rc;
@@ -147,10 +172,13 @@ static int validate_physics(const rd_lift_params *p, rd_error *err)
                             "/physics/gravity = %d: use true or false.", p->gravity);
     const rd_friction_params *f = &p->friction;
     if (f->model != RD_FRICTION_NONE && f->model != RD_FRICTION_COULOMB &&
-        f->model != RD_FRICTION_STRIBECK)
+        f->model != RD_FRICTION_STRIBECK && f->model != RD_FRICTION_LUBRICATED)
         return rd_error_set(err, RD_EINVAL, "/physics/friction/model",
-                            "/physics/friction/model = %d is unknown: use coulomb or stribeck.",
+                            "/physics/friction/model = %d is unknown: use coulomb, stribeck or "
+                            "lubricated.",
                             f->model);
+    if (f->model == RD_FRICTION_LUBRICATED && (rc = validate_lubricated(p, err)))
+        return rc;
     if (f->model != RD_FRICTION_NONE &&
         (rc = rd_error_range(f->coefficient, 0.0, 10.0, "/physics/friction/coefficient", "", err)))
         return rc;
@@ -346,6 +374,7 @@ void rd_lift_result_cleanup(rd_lift_result *r)
     free(r->friction_force);
     free(r->flank);
     free(r->events);
+    rd_lift_lube_cleanup(&r->lube);
     memset(r, 0, sizeof *r);
     r->error_estimate = NAN;
     r->event_error_deg = NAN;

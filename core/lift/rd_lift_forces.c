@@ -74,7 +74,7 @@
 #define Q            RD_LIFT_Q
 #define V            RD_LIFT_V
 
-static double gas_at(const rd_gas_params *g, const double *val, double deg)
+double rd_lift_gas_at(const rd_gas_params *g, const double *val, double deg)
 {
     const double *x = g->crank_deg;
     int n = g->points;
@@ -253,6 +253,7 @@ typedef struct force_env {
     double cb, sb, bd, bdd; /* cos, sin of the tilt; its rate (1/s), acceleration (1/s^2) */
     double pa, pbh, pbl;    /* gas: above, behind, below, Pa */
     int gas, dynamic, fric; /* which elements the scene asks for */
+    rd_film_point film;     /* lubricated: the face's film at t (rd_lift_film.c) */
 } force_env;
 
 /* One segment's view: its state, its force and local Jacobian blocks (dq,
@@ -356,7 +357,8 @@ static void add_bore(rd_lift_model *c, const force_env *env, seg_view *s, double
             if (env->tilt) /* the groove frame's own axial speed at the point, beta' x */
                 u += env->bd * (rd_ring_get_section(c->ring)->R * c->e_r[2 * s->i] + d[0]);
             rd_liner_force lf;
-            rd_liner_eval(&c->liner, &(rd_liner_point){N, u, c->bo_area / (c->h * c->L_run)}, &lf);
+            rd_liner_eval(&c->liner,
+                          &(rd_liner_point){N, u, c->bo_area / (c->h * c->L_run), &env->film}, &lf);
             double F = lf.F, F_N = lf.F_N, F_u = lf.F_u;
             add3(s->f, &a, F);
             if (c->energy)
@@ -446,15 +448,17 @@ static void force_env_at(rd_lift_model *c, double t, force_env *env)
     env->gas = p->gas.points > 0 || c->gas_now;
     env->dynamic = env->gas && p->gas.active_area == RD_GAS_AREA_DYNAMIC;
     env->fric = p->friction.model != RD_FRICTION_NONE;
+    if (p->film) /* lubricated: the face's film now (rd_lift_film.c) */
+        rd_film_track_at(p->film, t, &env->film);
     env->pa = env->pbh = env->pbl = 0.0;
     if (c->gas_now) { /* the caller's pressures (rd_lift_model.h) */
         env->pa = c->gas_now[0];
         env->pbh = c->gas_now[1];
         env->pbl = c->gas_now[2];
     } else if (env->gas) {
-        env->pa = gas_at(&p->gas, p->gas.above, deg);
-        env->pbh = gas_at(&p->gas, p->gas.behind, deg);
-        env->pbl = gas_at(&p->gas, p->gas.below, deg);
+        env->pa = rd_lift_gas_at(&p->gas, p->gas.above, deg);
+        env->pbh = rd_lift_gas_at(&p->gas, p->gas.behind, deg);
+        env->pbl = rd_lift_gas_at(&p->gas, p->gas.below, deg);
     }
 }
 

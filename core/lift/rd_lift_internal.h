@@ -9,6 +9,7 @@
 #ifndef RD_LIFT_INTERNAL_H
 #define RD_LIFT_INTERNAL_H
 
+#include "rd_film_track.h"
 #include "rd_lift.h"
 
 /* Energy bookkeeping of one state (rd_lift_setup.energy).  Along a solution
@@ -71,5 +72,15 @@ int rd_lift_jacobian_check(const rd_ring_params *ring, int segments, const rd_li
  * seated on its inner, outer edge under a uniform couple. */
 int rd_lift_twist_stiffness(const rd_ring_params *ring, int segments, const rd_lift_params *p,
                             double k[3], rd_error *err);
+
+/* The lubricated model (rd_lift_film.c): the film of the running face over
+ * the run, solved before the ring's motion (`film` and `tr` the caller's,
+ * freed with rd_film_free and rd_film_track_free also after a failure),
+ * and the result's lubrication block from it (out's samples set). */
+int rd_lift_film_run(const rd_ring_params *rp, const rd_lift_params *p, rd_film *film,
+                     rd_film_track *tr, rd_error *err);
+int rd_lift_film_result(const rd_ring_params *rp, const rd_lift_params *p, const rd_film *film,
+                        const rd_film_track *tr, rd_lift_result *out, rd_error *err);
+void rd_lift_lube_cleanup(rd_lift_lube *lb);
 
 #endif

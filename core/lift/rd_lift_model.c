@@ -77,7 +77,7 @@ static void model_constants(rd_lift_model *c, const rd_ring_params *rp, const rd
     rd_liner_init(&c->liner, &p->friction,
                   rd_liner_ureg(&p->engine) *
                       (setup && setup->ureg_scale > 0 ? setup->ureg_scale : 1.0),
-                  s->run.height);
+                  s->run.height, M_PI * rp->diameter);
     c->h = s->run.height;
     rd_lift_landing_init(c, s, p);
 }

@@ -172,6 +172,8 @@ double rd_lift_squeeze(const rd_lift_model *m, double gap, double closing, doubl
  * Dv (n x 36 each) also their local derivatives df_i/dq_i, df_i/dv_i.  Sets
  * m->friction and m->fz_ext (rd_lift_forces.c). */
 void rd_lift_forces(rd_lift_model *m, double t, const double *y, double *Dq, double *Dv);
+/* A gas table's value at crank angle deg (linear, periodic over 720 deg). */
+double rd_lift_gas_at(const rd_gas_params *g, const double *val, double deg);
 
 /* Only m->friction and m->fz_ext of rd_lift_forces, the same numbers (the
  * same elements in the same order), without the flank and groove-back

@@ -507,6 +507,9 @@ int rd_lift_solve_setup(const rd_ring_params *rp, int segments, const rd_lift_pa
 {
     lift_solve s = {.p = p, .setup = setup, .out = out};
     int rc;
+    rd_film film = {0};
+    rd_film_track track = {0};
+    rd_lift_params pl;
     memset(out, 0, sizeof *out);
     out->error_estimate = NAN;
     out->event_error_deg = NAN;
@@ -515,9 +518,23 @@ int rd_lift_solve_setup(const rd_ring_params *rp, int segments, const rd_lift_pa
     out->event_error_model_deg = NAN;
     if ((rc = rd_lift_validate(p, rp, segments, err)))
         return rc;
+    if (p->friction.model == RD_FRICTION_LUBRICATED && !p->film) {
+        /* the film over the run, once, for every run of this solve */
+        if ((rc = rd_lift_film_run(rp, p, &film, &track, err))) {
+            rd_film_track_free(&track);
+            rd_film_free(&film);
+            return rc;
+        }
+        pl = *p;
+        pl.film = &track;
+        p = s.p = &pl;
+    }
     rd_ring *ring = rd_ring_create(rp, segments, 0, err);
-    if (!ring)
+    if (!ring) {
+        rd_film_track_free(&track);
+        rd_film_free(&film);
         return err ? err->code : RD_ENOMEM;
+    }
     s.ring = ring;
     int S = rd_lift_samples(p);
     if ((rc = result_alloc(out, S, segments, err)))
@@ -547,7 +564,13 @@ int rd_lift_solve_setup(const rd_ring_params *rp, int segments, const rd_lift_pa
     while (out->partial && out->n_events > 0 &&
            out->events[out->n_events - 1].crank_deg > out->crank_deg[out->samples - 1])
         out->n_events--; /* events after the last whole cycle */
+    if (track.pt && (rc == RD_OK || out->partial)) {
+        int frc = rd_lift_film_result(rp, p, &film, &track, out, err);
+        rc = rc == RD_OK ? frc : rc;
+    }
 out:
+    rd_film_track_free(&track);
+    rd_film_free(&film);
     for (int l = 0; l < 3; l++) {
         free(s.run[l].lift);
         free(s.run[l].events);

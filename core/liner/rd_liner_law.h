@@ -22,11 +22,18 @@
  *   local line load (share = its part s_k / L of the running face), so a
  *   uniform load gives exactly (1.11) with the ring's total force and the
  *   hydrodynamic part sums to K eta u h over the ring, independent of n.
+ *   Lubricated: the film of the face at this instant (rd_film_track.h,
+ *   per metre of circumference, C the circumference pi D):
+ *     F = share C (-Cc u + Fp - mu_b Wa T),
+ *   its Couette shear at the point's own speed, the pressure gradient's
+ *   shear and the asperity friction; N does not enter (the film's own
+ *   radial balance carries the face).
  */
 #ifndef RD_LINER_LAW_H
 #define RD_LINER_LAW_H
 
 #include "rd_engine.h"
+#include "rd_film_track.h"
 #include "rd_liner.h"
 
 #define RD_LINER_UREG_FRACTION 1e-3 /* u_reg / mean piston speed */
@@ -40,13 +47,16 @@ typedef struct rd_liner {
     double so_lim; /* Stribeck: So_lim */
     double kh;     /* Stribeck: K */
     double h;      /* the running face's axial height, m */
+    double mu_b;   /* lubricated: the asperities' boundary coefficient */
+    double circ;   /* lubricated: the liner's circumference pi D, m */
 } rd_liner;
 
 /* One point of the running face. */
 typedef struct rd_liner_point {
-    double N;     /* radial load the point puts on the liner, N */
-    double u;     /* sliding speed of the ring on the liner, m/s */
-    double share; /* the point's part s_k / L of the running face */
+    double N;                  /* radial load the point puts on the liner, N */
+    double u;                  /* sliding speed of the ring on the liner, m/s */
+    double share;              /* the point's part s_k / L of the running face */
+    const rd_film_point *film; /* lubricated: the face's film now */
 } rd_liner_point;
 
 /* What the liner does to the point. */
@@ -60,8 +70,8 @@ typedef struct rd_liner_force {
 double rd_liner_ureg(const rd_engine_params *e);
 
 /* The constants of friction f on a running face of height h (m), with
- * regularization speed ureg (m/s). */
-void rd_liner_init(rd_liner *l, const rd_friction_params *f, double ureg, double h);
+ * regularization speed ureg (m/s), in a liner of circumference circ (m). */
+void rd_liner_init(rd_liner *l, const rd_friction_params *f, double ureg, double h, double circ);
 
 /* The friction at one point (f->model != NONE). */
 void rd_liner_eval(const rd_liner *l, const rd_liner_point *in, rd_liner_force *out);

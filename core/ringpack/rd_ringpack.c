@@ -296,7 +296,8 @@ int rd_ringpack_model_init(rd_ringpack_model *m, const rd_ringpack_params *p, rd
     for (int i = 0; i < m->R; i++) {
         rd_section s;
         rd_section_init(&s, &p->rings[i].ring);
-        rd_liner_init(&m->liner[i], &p->friction, rd_liner_ureg(&p->engine), s.run.height);
+        rd_liner_init(&m->liner[i], &p->friction, rd_liner_ureg(&p->engine), s.run.height,
+                      M_PI * p->rings[i].ring.diameter);
         ring_geometry(m, i);
         m->mode[i] = p->rings[i].pinned == RD_PIN_UPPER ? RD_FLANK_UPPER : RD_FLANK_LOWER;
     }
@@ -387,7 +388,7 @@ double rd_ringpack_friction(const rd_ringpack_model *m, int i, double t, const d
     rd_engine_piston(&m->p->engine, m->omega * t, NULL, &v_p, NULL);
     double N = fmax(m->n_pre[i] + m->n_back[i] * f[1], 0.0);
     rd_liner_force lf;
-    rd_liner_eval(&m->liner[i], &(rd_liner_point){N, RP_ZD(m, y, i) - v_p, 1.0}, &lf);
+    rd_liner_eval(&m->liner[i], &(rd_liner_point){N, RP_ZD(m, y, i) - v_p, 1.0, NULL}, &lf);
     return lf.F;
 }
 
@@ -446,7 +447,8 @@ static double force_gradient(const rd_ringpack_model *m, int i, double t, const 
     rd_engine_piston(&m->p->engine, m->omega * t, NULL, &v_p, NULL);
     double n = m->n_pre[i] + m->n_back[i] * f[1];
     rd_liner_force lf;
-    rd_liner_eval(&m->liner[i], &(rd_liner_point){fmax(n, 0.0), RP_ZD(m, y, i) - v_p, 1.0}, &lf);
+    rd_liner_eval(&m->liner[i], &(rd_liner_point){fmax(n, 0.0), RP_ZD(m, y, i) - v_p, 1.0, NULL},
+                  &lf);
     if (!tables && n > 0.0)
         dF[2 * i + 2] += lf.F_N * m->n_back[i];
     return lf.F_u;

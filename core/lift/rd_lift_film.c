@@ -1,0 +1,163 @@
+/*
+ * rd_lift_film.c — the lubricated friction model in the lift analysis: the
+ * oil film of the rigid running face over the whole run (core/liner
+ * rd_film_track.h), solved once before the ring's motion, and the
+ * lubrication block of the result from it.
+ *
+ * The film's loads at time t: the liner slides past the face at the
+ * piston's speed U = ds/dt (the ring's own axial motion in its groove, um,
+ * is left out of the film's sliding speed; the friction each bore point
+ * feels takes its own speed, rd_liner_law.h); the radial load is the
+ * ring's elastic line load 2 F_t / D plus the gas behind the ring over the
+ * back face (per metre of the liner's circumference: times r_back /
+ * r_run); the film's edges see the gas below (lower edge) and above (upper
+ * edge).  A tilting piston's own sliding is left out of U.
+ *
+ * The film is axisymmetric (one film for the whole face): the lift's
+ * round bore.  A distorted bore (the film varying around the ring) is
+ * refused with the lubricated model (rd_lift.c).
+ */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "rd_film_track.h"
+#include "rd_lift_internal.h"
+#include "rd_lift_model.h"
+
+typedef struct film_scene {
+    const rd_lift_params *p;
+    double omega, w_el, back;
+} film_scene;
+
+static double viscosity_at(const rd_lube_params *l, double deg)
+{
+    if (l->viscosity > 0.0)
+        return l->viscosity;
+    double T = l->temperature_c;
+    if (l->temp_points > 0) {
+        rd_gas_params g = {.points = l->temp_points, .crank_deg = l->temp_crank_deg};
+        T = rd_lift_gas_at(&g, l->temp_c, deg);
+    }
+    return l->vogel_a * exp(l->vogel_b / (T + 273.15 - l->vogel_c));
+}
+
+static void loads_at(void *ctx, double t, double *U, double *eta, double *W, double *plo,
+                     double *phi)
+{
+    const film_scene *fs = ctx;
+    const rd_lift_params *p = fs->p;
+    double alpha = fs->omega * t, deg = alpha * 180.0 / M_PI, v;
+    rd_engine_piston(&p->engine, alpha, NULL, &v, NULL);
+    *U = v;
+    *eta = viscosity_at(&p->friction.lube, deg);
+    *W = fs->w_el;
+    *plo = *phi = 0.0;
+    if (p->gas.points > 0) {
+        *W += fs->back * rd_lift_gas_at(&p->gas, p->gas.behind, deg);
+        *plo = rd_lift_gas_at(&p->gas, p->gas.below, deg);
+        *phi = rd_lift_gas_at(&p->gas, p->gas.above, deg);
+    }
+}
+
+int rd_lift_film_run(const rd_ring_params *rp, const rd_lift_params *p, rd_film *film,
+                     rd_film_track *tr, rd_error *err)
+{
+    rd_section s;
+    rd_section_init(&s, rp);
+    int rc = rd_film_init(film, &p->face, s.run.height, RD_FILM_NODES, p->bore.roughness_rq,
+                          &p->friction.lube, rp->youngs_modulus, rp->poisson_ratio, err);
+    if (rc)
+        return rc;
+    film_scene fs = {.p = p, .omega = rd_engine_omega(&p->engine)};
+    fs.w_el = 2.0 * rp->tangential_force / rp->diameter;
+    fs.back = s.back.height * s.back.r / s.run.r;
+    rd_film_loads ld = {loads_at, &fs};
+    double cycle = 4.0 * M_PI / fs.omega, dt = p->film_step_deg * M_PI / 180.0 / fs.omega;
+    cycle = dt * ceil(cycle / dt - 1e-9);
+    return rd_film_track_run(film, &ld, p->engine.cycles * 4.0 * M_PI / fs.omega, dt, cycle, 0.0,
+                             tr, err);
+}
+
+/* The friction on the ring of film point pt (N, + up): the film's shear
+ * and the asperities', at the liner's speed past the piston. */
+static void friction_of(const rd_film_point *pt, double circ, double mu_b, double ureg,
+                        double *hydro, double *asp)
+{
+    *hydro = circ * (pt->Cc * pt->U + pt->Fp);
+    *asp = circ * mu_b * pt->Wa * tanh(pt->U / ureg);
+}
+
+int rd_lift_film_result(const rd_ring_params *rp, const rd_lift_params *p, const rd_film *film,
+                        const rd_film_track *tr, rd_lift_result *out, rd_error *err)
+{
+    rd_lift_lube *lb = &out->lube;
+    int S = out->samples;
+    size_t n = (size_t)(S > 0 ? S : 1);
+    int C = (int)floor(p->engine.cycles + 1e-9);
+    lb->on = 1;
+    lb->min_film = malloc(5 * n * sizeof(double));
+    lb->regime = malloc(n * sizeof(int));
+    lb->friction_work = calloc((size_t)(2 * (C > 0 ? C : 1)), sizeof(double));
+    if (!lb->min_film || !lb->regime || !lb->friction_work)
+        return rd_error_set(err, RD_ENOMEM, NULL, "out of memory (the lubrication block).");
+    lb->hydrodynamic_friction = lb->min_film + n;
+    lb->asperity_friction = lb->min_film + 2 * n;
+    lb->power = lb->min_film + 3 * n;
+    lb->asperity_share = lb->min_film + 4 * n;
+    lb->fmep = lb->friction_work + (C > 0 ? C : 1);
+    lb->cycles = C;
+    double omega = rd_engine_omega(&p->engine), circ = M_PI * rp->diameter;
+    double ureg = rd_liner_ureg(&p->engine), mu_b = p->friction.lube.boundary_coefficient;
+    for (int k = 0; k < S; k++) {
+        rd_film_point pt;
+        rd_film_track_at(tr, out->crank_deg[k] * M_PI / 180.0 / omega, &pt);
+        double h, a, load = pt.W + pt.Wa;
+        friction_of(&pt, circ, mu_b, ureg, &h, &a);
+        lb->min_film[k] = pt.h0;
+        lb->hydrodynamic_friction[k] = h;
+        lb->asperity_friction[k] = a;
+        lb->power[k] = (h + a) * pt.U;
+        lb->asperity_share[k] = load > 0.0 ? pt.Wa / load : 0.0;
+        lb->regime[k] = lb->asperity_share[k] > RD_LUBE_BOUNDARY_SHARE ? RD_REGIME_BOUNDARY
+                        : lb->asperity_share[k] > RD_LUBE_MIXED_SHARE  ? RD_REGIME_MIXED
+                                                                       : RD_REGIME_HYDRODYNAMIC;
+    }
+    /* per cycle: the power over the film's own steps (trapezoid) */
+    int per = (int)lround(720.0 / p->film_step_deg);
+    double stroke = 2.0 * p->engine.crank_radius,
+           Vd = 0.25 * M_PI * rp->diameter * rp->diameter * stroke;
+    for (int c = 0; c < C; c++) {
+        double w = 0.0;
+        for (int k = c * per; k < (c + 1) * per && k < tr->steps; k++) {
+            double h0, a0, h1, a1;
+            friction_of(&tr->pt[k], circ, mu_b, ureg, &h0, &a0);
+            friction_of(&tr->pt[k + 1], circ, mu_b, ureg, &h1, &a1);
+            w += 0.5 * tr->dt * ((h0 + a0) * tr->pt[k].U + (h1 + a1) * tr->pt[k + 1].U);
+        }
+        lb->friction_work[c] = w;
+        lb->fmep[c] = w / Vd;
+    }
+    lb->min_film_x = film->x_min;
+    lb->composite_sigma = film->sigma;
+    lb->viscosity_min = INFINITY;
+    lb->viscosity_max = 0.0;
+    for (double d = 0.0; d <= 720.0; d += 1.0) {
+        double e = viscosity_at(&p->friction.lube, d);
+        lb->viscosity_min = fmin(lb->viscosity_min, e);
+        lb->viscosity_max = fmax(lb->viscosity_max, e);
+    }
+    lb->periodic_change = tr->periodic_change;
+    lb->film_step_deg = p->film_step_deg;
+    lb->film_solves = tr->solves;
+    lb->held = tr->held;
+    return RD_OK;
+}
+
+void rd_lift_lube_cleanup(rd_lift_lube *lb)
+{
+    free(lb->min_film);
+    free(lb->regime);
+    free(lb->friction_work);
+    memset(lb, 0, sizeof *lb);
+}
