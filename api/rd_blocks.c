@@ -35,23 +35,34 @@ static const rd_block material = {NULL, "Material.", 0, 0, material_fields};
 /* Indexed by enum rd_section_shape. */
 static const char *const section_names[] = {"rectangle", "circle", NULL};
 
+/* The ring's rows, shared by the plain ring block and the one with a face. */
+#define RING_ROWS                                                                                  \
+    {"diameter",    RD_F_NUMBER, AT(ring.diameter),                                                \
+     RD_MIN(0.001), RD_MAX(5.0), .desc = "Nominal (= bore) diameter d, m."},                       \
+        {"radial_width", RD_F_NUMBER, AT(ring.radial_width), RD_MIN(1e-05),                        \
+         .desc = "Radial width b, m; at most d/4."},                                               \
+        {"axial_height", RD_F_NUMBER, AT(ring.axial_height), RD_MIN(1e-05),                        \
+         .desc =                                                                                   \
+             "Axial height h, m; at most d/2, with b/h from 0.05 to 20; equal to radial_width "    \
+             "for a circular section."},                                                           \
+        {"closed_gap", RD_F_NUMBER, AT(ring.closed_gap), RD_MIN(0.0),                              \
+         .desc = "Gap in the installed (closed) state, m; at most 10 % of the circumference "      \
+                 "(pi d / 10); not checked for a closed ring."},                                   \
+        {"tangential_force",                                                                       \
+         RD_F_NUMBER,                                                                              \
+         AT(ring.tangential_force),                                                                \
+         RD_MIN(0.0),                                                                              \
+         RD_MAX(100000.0),                                                                         \
+         .desc = "Tangential (pretension) force F_t, N; the contact analysis needs it > 0."},      \
+        {"section", RD_F_CHOICE, AT(ring.section), .choices = section_names,                       \
+         .desc = "Cross-section: rectangle b x h, or circle (a wire of diameter b = h). The lift " \
+                 "analysis needs rectangle."},                                                     \
+    {                                                                                              \
+        "material", RD_F_BLOCK, 0, .block = &material                                              \
+    }
+
 static const rd_field ring_fields[] = {
-    {"diameter", RD_F_NUMBER, AT(ring.diameter), RD_MIN(0.001), RD_MAX(5.0),
-     .desc = "Nominal (= bore) diameter d, m."},
-    {"radial_width", RD_F_NUMBER, AT(ring.radial_width), RD_MIN(1e-05),
-     .desc = "Radial width b, m; at most d/4."},
-    {"axial_height", RD_F_NUMBER, AT(ring.axial_height), RD_MIN(1e-05),
-     .desc = "Axial height h, m; at most d/2, with b/h from 0.05 to 20; equal to radial_width "
-             "for a circular section."},
-    {"closed_gap", RD_F_NUMBER, AT(ring.closed_gap), RD_MIN(0.0),
-     .desc = "Gap in the installed (closed) state, m; at most 10 % of the circumference "
-             "(pi d / 10); not checked for a closed ring."},
-    {"tangential_force", RD_F_NUMBER, AT(ring.tangential_force), RD_MIN(0.0), RD_MAX(100000.0),
-     .desc = "Tangential (pretension) force F_t, N; the contact analysis needs it > 0."},
-    {"section", RD_F_CHOICE, AT(ring.section), .choices = section_names,
-     .desc = "Cross-section: rectangle b x h, or circle (a wire of diameter b = h). The lift "
-             "analysis needs rectangle."},
-    {"material", RD_F_BLOCK, 0, .block = &material},
+    RING_ROWS,
     {.key = NULL},
 };
 const rd_block rd_block_ring = {
@@ -59,6 +70,80 @@ const rd_block rd_block_ring = {
     "The ring (every analysis). Defaults: the thesis ring. Ranges are checked by the server; "
     "those that depend on other fields are given in the descriptions.",
     0, 0, ring_fields};
+
+/* /ring/face: the running face of the lubricated friction model. */
+static const char *const profile_names[] = {"barrel", "taper", "flat", "table", NULL};
+static const rd_field face_table_fields[] = {
+    {"x_m", RD_F_TABLE, AT(face_table[0]), RD_MIN(2), RD_MAX(RD_FACE_TABLE_MAX), .required = 1,
+     .desc = "Axial positions from the face's lower edge, m, strictly increasing from 0 to the "
+             "running face's height."},
+    {"drop_m", RD_F_TABLE, AT(face_table[1]), RD_MIN(2), RD_MAX(RD_FACE_TABLE_MAX), .required = 1,
+     .desc = "The face's recess from the liner side at each x_m, m, each 0 to 1e-4 (the "
+             "smallest is where the film is thinnest)."},
+    {.key = NULL},
+};
+static const rd_block face_table_block = {
+    "FaceTable", "/ring/face/table: the profile as points, linear between them.", 0, 0,
+    face_table_fields};
+static const rd_field face_fields[] = {
+    {"profile", RD_F_CHOICE, AT(face.profile), .choices = profile_names,
+     .desc = "barrel: drop = crown ((x - x_c) / (L/2))^2, x_c = L/2 + offset. taper: drop = "
+             "tan(taper) x, the lower edge on the liner. flat: flat with rounded edges. table: "
+             "points (table)."},
+    {"crown_m", RD_F_NUMBER, AT(face.crown), RD_MIN(0), RD_MAX(1e-4),
+     .desc = "Barrel: the drop at the edges of a centred crown, m."},
+    {"offset_m", RD_F_NUMBER, AT(face.offset),
+     .desc = "Barrel: the crown's position above "
+             "mid-height, m; |offset| below half the "
+             "face's height."},
+    {"taper_deg", RD_F_NUMBER, AT(face.taper_deg), RD_MIN(0), RD_MAX(5),
+     .desc = "Taper: the face's angle to the liner, deg; above 0 with profile taper."},
+    {"edge_radius_m", RD_F_NUMBER, AT(face.edge_radius), RD_MIN(0), RD_MAX(0.01),
+     .desc = "Flat: the radius of each rounded edge, m, at most half the face's height."},
+    {"table", RD_F_OPTBLOCK, AT(face_table_given), .block = &face_table_block},
+    {"roughness_rq_m", RD_F_NUMBER, AT(face.roughness_rq), RD_MIN(1e-9), RD_MAX(5e-6),
+     .desc = "The face's Rq, m (the composite sigma = sqrt(Rq_face^2 + Rq_liner^2))."},
+    {.key = NULL},
+};
+static const rd_block face_block = {
+    "RingFace",
+    "/ring/face: the running face across its axial height and its roughness, read by the "
+    "lubricated friction model only (refused with other friction models). Default: a barrel, "
+    "crown 5 um, Rq 0.2 um.",
+    0, 0, face_fields};
+
+static const rd_field ring_face_fields[] = {
+    RING_ROWS,
+    {"face", RD_F_OPTBLOCK, AT(face_given), .block = &face_block},
+    {.key = NULL},
+};
+const rd_block rd_block_ring_face = {
+    "RingWithFace", "The ring (lift), with its running face for the lubricated friction model.", 0,
+    0, ring_face_fields};
+
+/* The face's table into the face (scene-owned arrays, borrowed). */
+int rd_scene_face_finish(struct rd_scene *s, int lubricated, rd_error *err)
+{
+    if (s->face_given && !lubricated)
+        return rd_error_set(err, RD_EINVAL, "/ring/face",
+                            "/ring/face is read by the lubricated friction model only: set "
+                            "/physics/friction/model to lubricated, or remove /ring/face.");
+    if (s->face_table_given != (s->face.profile == RD_FACE_TABLE))
+        return rd_error_set(err, RD_EINVAL, "/ring/face/table",
+                            s->face_table_given ? "/ring/face/table is read with profile table "
+                                                  "only."
+                                                : "profile table needs /ring/face/table.");
+    if (s->face_table_given) {
+        if (s->face_table[0].n != s->face_table[1].n)
+            return rd_error_set(err, RD_EINVAL, "/ring/face/table/drop_m",
+                                "x_m has %d values but drop_m has %d: the same length, please.",
+                                s->face_table[0].n, s->face_table[1].n);
+        s->face.points = s->face_table[0].n;
+        s->face.x = s->face_table[0].v;
+        s->face.drop = s->face_table[1].v;
+    }
+    return RD_OK;
+}
 
 static const rd_field modal_discretization[] = {
     {"segments", RD_F_INTEGER, AT(segments), RD_MIN(3), RD_MAX(2000),
@@ -170,7 +255,7 @@ void rd_static_scene_defaults(struct rd_scene *s)
 /* ---- engine, bore and friction: what lift and the ring pack share ---- */
 
 const char *const rd_kinematics_names[] = {"exact", "approximate", NULL};
-const char *const rd_friction_names[] = {"coulomb", "stribeck", NULL};
+const char *const rd_friction_names[] = {"coulomb", "stribeck", "lubricated", NULL};
 
 int rd_engine_scene_finish(const struct rd_engine_scene *es, rd_engine_params *e, rd_bore *b,
                            rd_friction_params *f, rd_error *err)

@@ -83,7 +83,11 @@ struct json_t *rd_registry_openapi(const rd_analysis_def *const *registry,
 /* ---- shared blocks (rd_blocks.c), referenced by the analyses ---- */
 /* Monotonic wall clock, s: what a runner reports as numerics.wall_s. */
 double rd_clock_s(void);
-extern const rd_block rd_block_ring;                  /* /ring, with /ring/material */
+extern const rd_block rd_block_ring;      /* /ring, with /ring/material */
+extern const rd_block rd_block_ring_face; /* the same with /ring/face (lift) */
+/* /ring/face into the scene's face (its table borrowed), refused unless the
+ * friction model is lubricated. */
+int rd_scene_face_finish(struct rd_scene *s, int lubricated, rd_error *err);
 extern const rd_block rd_block_discretization_modal;  /* 3..2000 segments, closed allowed */
 extern const rd_block rd_block_discretization_static; /* 4..2000, split ring */
 extern const rd_block rd_block_discretization_lift;   /* 4..1000, split ring */

@@ -163,6 +163,22 @@ static int csv_rows(json_t *result, const rd_csv_table *t, int ncols, strbuf *b,
     return RD_OK;
 }
 
+/* A column "object.member": the array `member` of the result's `object`;
+ * NULL when the result has no such object (its cells are empty). */
+static json_t *column_array(json_t *holder, const char *key)
+{
+    const char *dot = strchr(key, '.');
+    if (!dot)
+        return json_object_get(holder, key);
+    char obj[64];
+    size_t n = (size_t)(dot - key);
+    if (n >= sizeof obj)
+        return NULL;
+    memcpy(obj, key, n);
+    obj[n] = 0;
+    return json_object_get(json_object_get(holder, obj), dot + 1);
+}
+
 /* Rows from columns of equal-length arrays (in table->object, if named). */
 static int csv_arrays(json_t *result, const rd_csv_table *t, int ncols, strbuf *b,
                       const char *analysis, rd_error *err)
@@ -173,7 +189,7 @@ static int csv_arrays(json_t *result, const rd_csv_table *t, int ncols, strbuf *
     for (int c = 0; c < ncols; c++) {
         if (is_pointer(&t->columns[c]))
             continue;
-        json_t *a = json_object_get(holder, t->columns[c].key);
+        json_t *a = column_array(holder, t->columns[c].key);
         if (!json_is_array(a))
             return rd_error_set(err, RD_EINTERNAL, "", "malformed %s result: /%s is not an array",
                                 analysis, t->columns[c].key);
@@ -190,7 +206,7 @@ static int csv_arrays(json_t *result, const rd_csv_table *t, int ncols, strbuf *
         for (int c = 0; c < ncols; c++) {
             const rd_csv_column *col = &t->columns[c];
             const char *sep = c + 1 < ncols ? "," : "\n";
-            json_t *column = json_object_get(holder, col->key);
+            json_t *column = is_pointer(col) ? NULL : column_array(holder, col->key);
             if (is_pointer(col) ? pointer_cell(b, result, col, sep)
                                 : csv_cell(b, col, json_array_get(column, i), sep))
                 return rd_error_set(err, RD_EINTERNAL, "", "malformed %s result: /%s/%zu", analysis,
@@ -199,10 +215,26 @@ static int csv_arrays(json_t *result, const rd_csv_table *t, int ncols, strbuf *
     return RD_OK;
 }
 
-char *rd_result_csv(json_t *result, const rd_csv_table *t, const char *analysis, rd_error *err)
+#define CSV_COLUMNS_MAX 64
+
+char *rd_result_csv(json_t *result, const rd_csv_table *t0, const char *analysis, rd_error *err)
 {
     strbuf b = {NULL, 0, 0, 0};
-    int ncols = count_columns(t);
+    /* a column "object.member" whose object the result does not have (an
+     * optional block: lift's lubrication) is left out, header and cells */
+    rd_csv_column cols[CSV_COLUMNS_MAX + 1];
+    rd_csv_table tt = *t0, *t = &tt;
+    json_t *holder = t0->object ? json_object_get(result, t0->object) : result;
+    int ncols = 0;
+    for (int c = 0; c < count_columns(t0) && ncols < CSV_COLUMNS_MAX; c++) {
+        const rd_csv_column *col = &t0->columns[c];
+        if (!t0->rows && !is_pointer(col) && strchr(col->key, '.') &&
+            !column_array(holder, col->key))
+            continue;
+        cols[ncols++] = *col;
+    }
+    cols[ncols] = (rd_csv_column){NULL, NULL, 0};
+    tt.columns = cols;
     for (int c = 0; c < ncols; c++)
         sb_printf(&b, "%s%s", t->columns[c].header, c + 1 < ncols ? "," : "\n");
     int rc = t->rows ? csv_rows(result, t, ncols, &b, analysis, err)

@@ -224,6 +224,8 @@ void rd_scene_free(rd_scene *scene)
     if (scene->opts && scene->an->cleanup)
         scene->an->cleanup(scene->opts);
     free(scene->opts);
+    free(scene->face_table[0].v);
+    free(scene->face_table[1].v);
     free(scene->name);
     free(scene->description);
     free(scene);

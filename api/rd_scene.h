@@ -23,6 +23,7 @@
 #define RD_SCENE_H
 
 #include "rd_api.h"
+#include "rd_liner.h"
 #include "rd_modal.h"
 #include "rd_ring.h"
 
@@ -60,13 +61,18 @@ struct rd_scene {
     char *name;                       /* optional metadata, NULL when absent; owned */
     char *description;                /* optional metadata, NULL when absent; owned */
     rd_ring_params ring;              /* /ring */
-    int segments;                     /* /discretization/segments */
-    int closed;                       /* /discretization/closed: 1 joins the gap */
-    rd_modal_opts modal;              /* /modal: the modal analysis' options (a member, not
+    /* /ring/face (the analyses whose ring block is rd_block_ring_face): the
+     * running face's profile and roughness; face_given 1 when named */
+    rd_face_params face;
+    int face_given, face_table_given;
+    struct rd_table face_table[2]; /* x_m, drop_m */
+    int segments;                  /* /discretization/segments */
+    int closed;                    /* /discretization/closed: 1 joins the gap */
+    rd_modal_opts modal;           /* /modal: the modal analysis' options (a member, not
                             in opts, because callers and tests read it here) */
-    void *opts;                       /* the analysis' own options (an->opts_size bytes,
+    void *opts;                    /* the analysis' own options (an->opts_size bytes,
                             owned; an->cleanup frees what it holds) */
-    struct rd_issues *issues;         /* while parsing: where every problem is listed
+    struct rd_issues *issues;      /* while parsing: where every problem is listed
                                  (rd_schema_parse), or NULL; NULL afterwards */
 };
 

@@ -110,6 +110,7 @@ int rd_bore_convex_validate(double bend, double d, rd_error *err);
  * 1e-3 with the default roughness), boundary coefficient 0.1, E' from the
  * ring's material on a grey cast-iron liner. */
 void rd_lube_params_default(rd_lube_params *l, rd_face_params *face);
+#define RD_LINER_RQ_DEFAULT 0.2e-6 /* the liner's Rq default, m */
 
 /* Range checks of the lubricated model's inputs (paths "/ring/face/...",
  * "/bore/roughness_rq_m", "/physics/friction/..."): roughness within

@@ -86,7 +86,7 @@ void rd_lift_params_default(rd_lift_params *p)
     p->accuracy_deg = 0.1;
     p->flank_band = RD_LIFT_FLANK_BAND;
     rd_lube_params_default(&p->friction.lube, &p->face);
-    p->bore.roughness_rq = 0.2e-6;
+    p->bore.roughness_rq = RD_LINER_RQ_DEFAULT;
     p->film_step_deg = RD_LIFT_FILM_STEP_DEG;
 }
 

@@ -74,9 +74,7 @@ int rd_lift_film_run(const rd_ring_params *rp, const rd_lift_params *p, rd_film 
     fs.back = s.back.height * s.back.r / s.run.r;
     rd_film_loads ld = {loads_at, &fs};
     double cycle = 4.0 * M_PI / fs.omega, dt = p->film_step_deg * M_PI / 180.0 / fs.omega;
-    cycle = dt * ceil(cycle / dt - 1e-9);
-    return rd_film_track_run(film, &ld, p->engine.cycles * 4.0 * M_PI / fs.omega, dt, cycle, 0.0,
-                             tr, err);
+    return rd_film_track_run(film, &ld, p->engine.cycles * cycle, dt, cycle, cycle, 0.0, tr, err);
 }
 
 /* The friction on the ring of film point pt (N, + up): the film's shear
@@ -123,17 +121,20 @@ int rd_lift_film_result(const rd_ring_params *rp, const rd_lift_params *p, const
                         : lb->asperity_share[k] > RD_LUBE_MIXED_SHARE  ? RD_REGIME_MIXED
                                                                        : RD_REGIME_HYDRODYNAMIC;
     }
-    /* per cycle: the power over the film's own steps (trapezoid) */
-    int per = (int)lround(720.0 / p->film_step_deg);
-    double stroke = 2.0 * p->engine.crank_radius,
+    /* per cycle: the power over the film's own steps (trapezoid; they land on
+     * the cycles' ends) */
+    double cycle = 4.0 * M_PI / omega, stroke = 2.0 * p->engine.crank_radius,
            Vd = 0.25 * M_PI * rp->diameter * rp->diameter * stroke;
     for (int c = 0; c < C; c++) {
         double w = 0.0;
-        for (int k = c * per; k < (c + 1) * per && k < tr->steps; k++) {
-            double h0, a0, h1, a1;
-            friction_of(&tr->pt[k], circ, mu_b, ureg, &h0, &a0);
-            friction_of(&tr->pt[k + 1], circ, mu_b, ureg, &h1, &a1);
-            w += 0.5 * tr->dt * ((h0 + a0) * tr->pt[k].U + (h1 + a1) * tr->pt[k + 1].U);
+        for (int k = 0; k < tr->steps; k++) {
+            const rd_film_point *a = &tr->pt[k], *b = &tr->pt[k + 1];
+            double mid = 0.5 * (a->t + b->t), h0, a0, h1, a1;
+            if (mid < c * cycle || mid > (c + 1) * cycle)
+                continue;
+            friction_of(a, circ, mu_b, ureg, &h0, &a0);
+            friction_of(b, circ, mu_b, ureg, &h1, &a1);
+            w += 0.5 * (b->t - a->t) * ((h0 + a0) * a->U + (h1 + a1) * b->U);
         }
         lb->friction_work[c] = w;
         lb->fmep[c] = w / Vd;

@@ -8,6 +8,12 @@
 #include <stdlib.h>
 #include <string.h>
 
+/* Far from the roughness the laws are their smooth limits to double
+ * precision: the expected gap is h above H = 9 (Phi(-9) ~ 1e-19), phi_x is
+ * 1 above H = 64 (0.9 e^{-0.56 H} < 3e-16). */
+#define FAR_GAP 9.0
+#define FAR_H   64.0
+
 /* The face's drop at x (m from the lower edge), before its minimum is
  * taken off. */
 static double profile_at(const rd_face_params *fp, double L, double x)
@@ -198,18 +204,19 @@ void rd_film_solve(rd_film *f, double h0, double h0_dot, double U, double eta, d
         sf[RD_FILM_NODES_MAX];
     for (int j = 0; j + 1 < n; j++) { /* faces */
         double h = h0 + f->drop_mid[j], H = h / sg, hk = fmax(h, RD_FILM_PHI_X_H_MIN * sg);
-        f->kf[j] = rd_film_phi_x(H) * hk * hk * hk / (12.0 * eta);
-        hTf[j] = sg * rd_film_gap(H, NULL);
-        sf[j] = f->w_s * rd_film_phi_s(H);
+        f->kf[j] = (H > FAR_H ? 1.0 : rd_film_phi_x(H)) * hk * hk * hk / (12.0 * eta);
+        hTf[j] = H > FAR_GAP ? h : sg * rd_film_gap(H, NULL);
+        sf[j] = f->w_s != 0.0 ? f->w_s * rd_film_phi_s(H) : 0.0;
     }
     double Wa = 0.0;
     for (int i = 0; i < n; i++) {
-        double H = (h0 + f->drop[i]) / sg, g;
-        hT[i] = sg * rd_film_gap(H, &g);
+        double H = (h0 + f->drop[i]) / sg, g = 1.0;
+        hT[i] = H > FAR_GAP ? h0 + f->drop[i] : sg * rd_film_gap(H, &g);
         if (i > 0 && i < n - 1)
             src[i] = -(0.5 * U * (hTf[i] - hTf[i - 1]) + 0.5 * U * sg * (sf[i] - sf[i - 1])) / dx -
                      g * h0_dot;
-        Wa += ((i == 0 || i == n - 1) ? 0.5 : 1.0) * dx * f->gt_k * rd_film_gt_f52(H);
+        if (H < RD_FILM_GT_LAMBDA_MAX)
+            Wa += ((i == 0 || i == n - 1) ? 0.5 : 1.0) * dx * f->gt_k * rd_film_gt_f52(H);
     }
     f->p[0] = fmax(p_lo, 0.0);
     f->p[n - 1] = fmax(p_hi, 0.0);

@@ -1,6 +1,6 @@
 /*
- * rd_film_track.c — the film over a run: the face's radial balance, BDF2
- * in time (rd_film_track.h).
+ * rd_film_track.c — the film over a run: the face's radial balance,
+ * variable-step BDF2 in time (rd_film_track.h).
  */
 #include "rd_film_track.h"
 
@@ -13,6 +13,7 @@ typedef struct step_ctx {
     rd_film *f;
     double U, eta, W_ext, p_lo, p_hi, c1, hist, dt;
     rd_film_out o;
+    double last_h; /* where o was solved */
     long solves;
 } step_ctx;
 
@@ -20,64 +21,70 @@ static double residual(step_ctx *s, double h)
 {
     rd_film_solve(s->f, h, (s->c1 * h - s->hist) / s->dt, s->U, s->eta, s->p_lo, s->p_hi, &s->o);
     s->solves++;
+    s->last_h = h;
     return s->o.W + s->o.Wa - s->W_ext;
 }
 
-/* The root of the falling residual from the guess h: a bracket grown from
- * it, then secant steps kept inside the bracket (bisection when they leave
- * it or stall).  Returns the root (RD_FILM_H_MAX when the residual stays
- * positive there: *held = 1). */
+#define H_LOW (-3.9) /* the lowest film, sigmas: the asperity table's end */
+
+/* The root of the falling residual from the guess h: secant steps, kept
+ * inside the bracket once one is known (bisection when they leave it),
+ * grown towards the root before.  RD_FILM_H_MAX when
+ * the residual stays positive there (*held = 1). */
 static double balance(step_ctx *s, double h, int *held)
 {
-    double sg = s->f->sigma, lo = h, hi = h, rlo, rhi, r = residual(s, h);
+    double sg = s->f->sigma, lo = -INFINITY, hi = INFINITY;
+    double tol = 1e-9 * fmax(fabs(h), sg), scale = 1e-12 * fmax(s->W_ext, 1e-300);
+    double x0 = fmin(fmax(h, H_LOW * sg), RD_FILM_H_MAX), r0 = residual(s, x0);
     *held = 0;
-    if (r > 0.0) { /* too thin: grow upwards */
-        lo = h, rlo = r;
-        hi = h + 0.05 * fmax(h, sg);
-        while ((rhi = residual(s, hi)) > 0.0) {
-            lo = hi, rlo = rhi;
-            if (hi >= RD_FILM_H_MAX) {
-                *held = 1;
-                return RD_FILM_H_MAX;
-            }
-            hi = fmin(hi + 2.0 * (hi - h) + 0.05 * sg, RD_FILM_H_MAX);
+    if (r0 > 0.0)
+        lo = x0;
+    else
+        hi = x0;
+    double x1 = x0 + (r0 > 0.0 ? 1.0 : -1.0) * (1e-5 * fabs(x0) + 1e-5 * sg);
+    x1 = fmin(fmax(x1, H_LOW * sg), RD_FILM_H_MAX);
+    double r1 = residual(s, x1);
+    for (int it = 0; it < 200; it++) {
+        if (r1 > 0.0)
+            lo = fmax(lo, x1);
+        else
+            hi = fmin(hi, x1);
+        if (fabs(r1) <= scale)
+            return x1;
+        if (r1 > 0.0 && x1 >= RD_FILM_H_MAX) {
+            *held = 1;
+            return x1;
         }
-    } else {
-        hi = h, rhi = r;
-        lo = h - 0.05 * fmax(fabs(h), sg);
-        while ((rlo = residual(s, lo)) < 0.0) {
-            hi = lo, rhi = rlo;
-            lo -= 2.0 * (h - lo) + 0.05 * sg;
-        }
-    }
-    double tol = 1e-9 * fmax(fabs(lo), sg);
-    int side = 0;
-    for (int it = 0; it < 200 && hi - lo > tol; it++) {
-        /* Illinois: halve the weight of an end kept twice */
-        double x = (lo * rhi - hi * rlo) / (rhi - rlo);
-        if (!(x > lo && x < hi))
+        if (r1 < 0.0 && x1 <= H_LOW * sg)
+            return x1;
+        double x = x1 - r1 * (x1 - x0) / (r1 - r0);
+        int bracket = isfinite(lo) && isfinite(hi);
+        if (bracket && !(x > lo && x < hi))
             x = 0.5 * (lo + hi);
-        double rx = residual(s, x);
-        if (rx > 0.0) {
-            lo = x, rlo = rx;
-            if (side == -1)
-                rhi *= 0.5;
-            side = -1;
-        } else {
-            hi = x, rhi = rx;
-            if (side == 1)
-                rlo *= 0.5;
-            side = 1;
+        else if (!bracket) { /* grow towards the root, at most 4x the last step */
+            double d = x1 - x0, lim = 4.0 * fabs(d) + 1e-3 * sg;
+            if (!isfinite(x) || (r1 > 0.0) != (x > x1) || fabs(x - x1) > lim)
+                x = x1 + (r1 > 0.0 ? lim : -lim);
+            x = fmin(fmax(x, H_LOW * sg), RD_FILM_H_MAX);
         }
-        if (fabs(rx) <= 1e-12 * s->W_ext)
-            return x;
+        if (bracket && hi - lo < tol)
+            return s->last_h == x1 ? x1 : x;
+        x0 = x1, r0 = r1;
+        x1 = x;
+        r1 = residual(s, x1);
+        if (fabs(x1 - x0) < tol)
+            return x1;
     }
-    return 0.5 * (lo + hi);
+    return x1;
 }
 
-static void record(rd_film_point *pt, const step_ctx *s, double h)
+/* The point at t from the balance's last solve at h (solved again when the
+ * root was not its last evaluation). */
+static void record(rd_film_point *pt, step_ctx *s, double h, double t)
 {
-    residual((step_ctx *)s, h); /* the loads at the root itself */
+    if (s->last_h != h)
+        residual(s, h);
+    pt->t = t;
     pt->h0 = h;
     pt->W = s->o.W;
     pt->Wa = s->o.Wa;
@@ -87,63 +94,139 @@ static void record(rd_film_point *pt, const step_ctx *s, double h)
     pt->cavitated = s->o.cavitated;
 }
 
-int rd_film_track_run(rd_film *f, const rd_film_loads *ld, double t_end, double dt, double t_warm,
-                      double h_start, rd_film_track *tr, rd_error *err)
+static int append(rd_film_track *tr, step_ctx *s, double h, double t, rd_error *err)
+{
+    int n = tr->pt ? tr->steps + 1 : 0; /* points so far */
+    if (n + 1 > tr->cap) {
+        int cap = tr->cap ? 2 * tr->cap : 1024;
+        rd_film_point *p = realloc(tr->pt, (size_t)cap * sizeof *p);
+        if (!p)
+            return rd_error_set(err, RD_ENOMEM, NULL, "out of memory (the film's %d steps).", cap);
+        tr->pt = p;
+        tr->cap = cap;
+    }
+    record(&tr->pt[n], s, h, t);
+    tr->steps = n;
+    return RD_OK;
+}
+
+/* The next step's end from t: at most h, not past the next multiple of
+ * `period` nor t_end (landing on them). */
+static double next_end(double t, double h, double period, double t_end)
+{
+    double b = period * (floor(t / period * (1.0 + 1e-12) + 1e-9) + 1.0);
+    double e = fmin(t + h, fmin(b, t_end));
+    if (fmin(b, t_end) - e < 0.05 * h)
+        e = fmin(b, t_end);
+    return e;
+}
+
+/* BDF2 for the step to te = ts[0] + hn (backward Euler with one point). */
+static void history(step_ctx *s, const double *y, const double *ts, int have, double hn,
+                    double *guess)
+{
+    s->dt = hn;
+    if (have > 1) {
+        double w = hn / (ts[0] - ts[1]);
+        s->c1 = (1.0 + 2.0 * w) / (1.0 + w);
+        s->hist = (1.0 + w) * y[0] - w * w / (1.0 + w) * y[1];
+        *guess = y[0] + w * (y[0] - y[1]);
+    } else {
+        s->c1 = 1.0;
+        s->hist = y[0];
+        *guess = y[0];
+    }
+}
+
+/* The local error of the step to te: the corrector against the quadratic
+ * through the last three points (BDF2's error constant 2/9: 2/11 of the
+ * difference); 0 with fewer points. */
+static double local_error(const double *y, const double *ts, int have, double te, double yn)
+{
+    if (have < 3)
+        return 0.0;
+    double a = ts[0], b = ts[1], c = ts[2];
+    double pred = y[0] * (te - b) * (te - c) / ((a - b) * (a - c)) +
+                  y[1] * (te - a) * (te - c) / ((b - a) * (b - c)) +
+                  y[2] * (te - a) * (te - b) / ((c - a) * (c - b));
+    return (2.0 / 11.0) * fabs(yn - pred);
+}
+
+int rd_film_track_run(rd_film *f, const rd_film_loads *ld, double t_end, double dt_max,
+                      double period, double t_warm, double h_start, rd_film_track *tr,
+                      rd_error *err)
 {
     memset(tr, 0, sizeof *tr);
-    int warm = (int)ceil(t_warm / dt - 1e-9), steps = (int)ceil(t_end / dt - 1e-9);
-    tr->dt = dt;
-    tr->steps = steps;
-    tr->pt = calloc((size_t)steps + 1, sizeof *tr->pt);
-    if (!tr->pt)
-        return rd_error_set(err, RD_ENOMEM, NULL, "out of memory (the film's %d steps).",
-                            steps + 1);
-    step_ctx s = {.f = f};
-    double t = -warm * dt, h_prev = 0.0, h;
-    int held;
-    /* start: the steady balance at t (dh0/dt = 0: c1 = 0, hist = 0) */
+    step_ctx s = {.f = f, .dt = 1.0};
+    double t = -t_warm, sg = f->sigma, y[3] = {0}, ts[3] = {0};
+    int have = 1, held, rc;
     ld->at(ld->ctx, t, &s.U, &s.eta, &s.W_ext, &s.p_lo, &s.p_hi);
-    s.dt = dt;
-    h = h_start > 0.0 ? h_start : balance(&s, 3.0 * f->sigma, &held);
-    if (warm == 0) /* t = 0 itself: its loads at rest (dh0/dt = 0) */
-        record(&tr->pt[0], &s, h);
-    for (int k = -warm + 1; k <= steps; k++) {
-        t = k * dt;
-        ld->at(ld->ctx, t, &s.U, &s.eta, &s.W_ext, &s.p_lo, &s.p_hi);
-        int first = k == -warm + 1;
-        s.c1 = first ? 1.0 : 1.5; /* BE: (h - h_n)/dt; BDF2: (3h - 4h_n + h_n-1)/(2 dt) */
-        s.hist = first ? h : 2.0 * h - 0.5 * h_prev;
-        double guess = first ? h : 2.0 * h - h_prev;
-        double hn = balance(&s, guess, &held);
-        tr->held += held && k >= 0;
-        h_prev = h;
-        h = hn;
-        if (k >= 0)
-            record(&tr->pt[k], &s, h);
+    y[0] = h_start > 0.0 ? h_start : balance(&s, 3.0 * sg, &held);
+    ts[0] = t;
+    if (t_warm <= 0.0 && (rc = append(tr, &s, y[0], 0.0, err))) /* its loads at rest */
+        return rc;
+    double h = fmin(dt_max, 1e-4 * period);
+    while (t < t_end - 1e-12 * period) {
+        double te = next_end(t, h, period, t_end), hn = te - t, guess;
+        ld->at(ld->ctx, te, &s.U, &s.eta, &s.W_ext, &s.p_lo, &s.p_hi);
+        history(&s, y, ts, have, hn, &guess);
+        double yn = balance(&s, guess, &held), est = local_error(y, ts, have, te, yn);
+        double tol = RD_FILM_RTOL * fabs(yn) + 1e-3 * sg;
+        if (est > tol && hn > 1e-9 * period) { /* rejected: a smaller step */
+            h = hn * fmax(0.2, 0.9 * cbrt(tol / est));
+            continue;
+        }
+        y[2] = y[1], ts[2] = ts[1];
+        y[1] = y[0], ts[1] = ts[0];
+        y[0] = yn, ts[0] = te;
+        have = have < 3 ? have + 1 : 3;
+        t = te;
+        if (t >= -1e-9 * period) {
+            if ((rc = append(tr, &s, yn, fmax(t, 0.0), err)))
+                return rc;
+            tr->held += held;
+        }
+        h = est > 0.0 ? hn * fmin(2.0, fmax(0.2, 0.9 * cbrt(tol / est))) : 2.0 * hn;
+        h = fmin(h, dt_max);
     }
-    if (warm > 0 && steps >= warm) /* the last cycle against the one before */
-        tr->periodic_change = fabs(tr->pt[steps].h0 - tr->pt[steps - warm].h0) / tr->pt[steps].h0;
     tr->solves = s.solves;
+    if (tr->steps > 0 &&
+        t_end >= period * (1.0 - 1e-9)) { /* the last period against the one before */
+        rd_film_point a;
+        rd_film_track_at(tr, t_end - period, &a);
+        tr->periodic_change = fabs(tr->pt[tr->steps].h0 - a.h0) / tr->pt[tr->steps].h0;
+    }
     return RD_OK;
 }
 
 void rd_film_track_at(const rd_film_track *tr, double t, rd_film_point *out)
 {
-    double u = t / tr->dt;
-    int k = (int)floor(u);
-    if (k < 0)
-        k = 0;
-    if (k > tr->steps - 1)
-        k = tr->steps - 1;
-    double w = fmin(fmax(u - k, 0.0), 1.0);
-    const rd_film_point *a = &tr->pt[k], *b = &tr->pt[k + 1];
-    out->h0 = a->h0 + w * (b->h0 - a->h0);
-    out->W = a->W + w * (b->W - a->W);
-    out->Wa = a->Wa + w * (b->Wa - a->Wa);
-    out->Cc = a->Cc + w * (b->Cc - a->Cc);
-    out->Fp = a->Fp + w * (b->Fp - a->Fp);
-    out->U = a->U + w * (b->U - a->U);
-    out->cavitated = a->cavitated + w * (b->cavitated - a->cavitated);
+    int a = 0, b = tr->steps;
+    if (b == 0 || t <= tr->pt[0].t) {
+        *out = tr->pt[0];
+        return;
+    }
+    if (t >= tr->pt[b].t) {
+        *out = tr->pt[b];
+        return;
+    }
+    while (b - a > 1) { /* pt[a].t <= t < pt[b].t */
+        int m = (a + b) / 2;
+        if (tr->pt[m].t <= t)
+            a = m;
+        else
+            b = m;
+    }
+    const rd_film_point *p = &tr->pt[a], *q = &tr->pt[b];
+    double w = (t - p->t) / (q->t - p->t);
+    out->t = t;
+    out->h0 = p->h0 + w * (q->h0 - p->h0);
+    out->W = p->W + w * (q->W - p->W);
+    out->Wa = p->Wa + w * (q->Wa - p->Wa);
+    out->Cc = p->Cc + w * (q->Cc - p->Cc);
+    out->Fp = p->Fp + w * (q->Fp - p->Fp);
+    out->U = p->U + w * (q->U - p->U);
+    out->cavitated = p->cavitated + w * (q->cavitated - p->cavitated);
 }
 
 void rd_film_track_free(rd_film_track *tr)

@@ -8,15 +8,17 @@
  * ring's elastic pressure times its height plus the gas behind it) and the
  * gas pressures at the face's edges; the film thickness h0 follows from
  *     W_film(h0, dh0/dt) + W_asperity(h0) = W_ext,
- * integrated by BDF2 at a constant step (the first step backward Euler),
- * each step's h0 a bracketed secant root (W_film + W_a falls as h0 grows).
- * One cycle of warm-up (720 deg before t = 0) starts it on its periodic
- * orbit; `periodic_change` says how far h0 at the run's end still differs
+ * integrated by variable-step BDF2 (the first step backward Euler), each
+ * step's h0 a secant root kept in a bracket (W_film + W_a falls as h0
+ * grows).  The step follows the local error (the corrector against a
+ * quadratic predictor, Milne's device) to rtol * h0 + 1e-3 sigma, at most
+ * dt_max, and lands on every multiple of `period` (the cycles' ends).
+ * A warm-up (a cycle before t = 0) starts it on its periodic orbit; `periodic_change` says how far h0 at the run's end still differs
  * from one cycle earlier.
  *
  * Usage:
  *     rd_film_track tr;
- *     rc = rd_film_track_run(&film, &loads, t_end, dt, t_cycle, 0.0, &tr, err);
+ *     rc = rd_film_track_run(&film, &loads, t_end, dt_max, t_cycle, t_cycle, 0.0, &tr, err);
  *     rd_film_point pt; rd_film_track_at(&tr, t, &pt);   linear in t
  *     rd_film_track_free(&tr);
  */
@@ -37,23 +39,27 @@ typedef struct rd_film_loads {
 
 /* The film's state and loads at one instant, per metre of circumference. */
 typedef struct rd_film_point {
-    double h0, W, Wa, Cc, Fp, U, cavitated;
+    double t, h0, W, Wa, Cc, Fp, U, cavitated;
 } rd_film_point;
 
+#define RD_FILM_RTOL 1e-4 /* the step's local error on h0, relative */
+
 typedef struct rd_film_track {
-    int steps;              /* points at t = k dt, k = 0 .. steps */
-    double dt;              /* s */
-    rd_film_point *pt;      /* steps + 1 */
-    double periodic_change; /* |h0(end) - h0(end - t_cycle)| / h0(end); 0 for a run
-                             * shorter than a cycle */
+    int steps; /* points 0 .. steps: pt[0].t = 0, pt[steps].t = t_end */
+    int cap;   /* allocated points */
+    rd_film_point *pt;
+    double periodic_change; /* |h0(end) - h0(end - period)| / h0(end); 0 for a run
+                             * shorter than a period */
     long solves;            /* film solves, warm-up included */
     int held;               /* steps where h0 was held at RD_FILM_H_MAX */
 } rd_film_track;
 
-/* From t = -t_warm (s, a whole number of steps) to t_end, recording from
- * t = 0; h_start > 0: the film at -t_warm, else the steady balance there. */
-int rd_film_track_run(rd_film *f, const rd_film_loads *ld, double t_end, double dt, double t_warm,
-                      double h_start, rd_film_track *tr, rd_error *err);
+/* From t = -t_warm (s) to t_end, recording from t = 0, steps at most
+ * dt_max landing on the multiples of `period` (s, > 0); h_start > 0: the
+ * film at -t_warm, else the steady balance there. */
+int rd_film_track_run(rd_film *f, const rd_film_loads *ld, double t_end, double dt_max,
+                      double period, double t_warm, double h_start, rd_film_track *tr,
+                      rd_error *err);
 void rd_film_track_at(const rd_film_track *tr, double t, rd_film_point *out);
 void rd_film_track_free(rd_film_track *tr);
 

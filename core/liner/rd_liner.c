@@ -94,12 +94,15 @@ static int check_temperature(double T, const char *path, rd_error *err)
 /* The Vogel law stays 10 K clear of its pole at T = c. */
 static int check_vogel(const rd_lube_params *l, rd_error *err)
 {
-    if (!in_range(l->vogel_a, 1e-9, 1.0) || !in_range(l->vogel_b, 0.0, 1e4) ||
-        !in_range(l->vogel_c, 0.0, 400.0))
-        return rd_error_set(err, RD_EINVAL, "/physics/friction/oil/vogel",
-                            "the Vogel law needs a_pa_s in [1e-9, 1] Pa s, b_k in [0, 1e4] K and "
-                            "c_k in [0, 400] K (got %g, %g, %g).",
-                            l->vogel_a, l->vogel_b, l->vogel_c);
+    if (!in_range(l->vogel_a, 1e-9, 1.0))
+        return rd_error_set(err, RD_EINVAL, "/physics/friction/oil/vogel/a_pa_s",
+                            "a_pa_s = %g is outside [1e-9, 1] Pa s.", l->vogel_a);
+    if (!in_range(l->vogel_b, 0.0, 1e4))
+        return rd_error_set(err, RD_EINVAL, "/physics/friction/oil/vogel/b_k",
+                            "b_k = %g is outside [0, 1e4] K.", l->vogel_b);
+    if (!in_range(l->vogel_c, 0.0, 250.0))
+        return rd_error_set(err, RD_EINVAL, "/physics/friction/oil/vogel/c_k",
+                            "c_k = %g is outside [0, 250] K.", l->vogel_c);
     double Tmin = l->temperature_c;
     for (int k = 0; k < l->temp_points; k++)
         Tmin = fmin(Tmin, l->temp_c[k]);
@@ -111,17 +114,19 @@ static int check_vogel(const rd_lube_params *l, rd_error *err)
     return RD_OK;
 }
 
+/* Every field's range, whichever profile reads it. */
 static int check_face(const rd_face_params *f, rd_error *err)
 {
-    if (f->profile == RD_FACE_BARREL && !in_range(f->crown, 0.0, 1e-4))
+    if (!in_range(f->crown, 0.0, 1e-4))
         return rd_error_set(err, RD_EINVAL, "/ring/face/crown_m",
                             "crown_m = %g m is outside [0, 1e-4] m (the barrel's drop at the "
                             "face's edges; 0 is a flat face).",
                             f->crown);
-    if (f->profile == RD_FACE_TAPER && !(f->taper_deg > 0.0 && f->taper_deg <= 5.0))
+    if (!(f->taper_deg >= 0.0 && f->taper_deg <= 5.0) ||
+        (f->profile == RD_FACE_TAPER && f->taper_deg == 0.0))
         return rd_error_set(err, RD_EINVAL, "/ring/face/taper_deg",
                             "taper_deg = %g is outside (0, 5] deg.", f->taper_deg);
-    if (f->profile == RD_FACE_FLAT && !in_range(f->edge_radius, 0.0, 1e-2))
+    if (!in_range(f->edge_radius, 0.0, 1e-2))
         return rd_error_set(err, RD_EINVAL, "/ring/face/edge_radius_m",
                             "edge_radius_m = %g m is outside [0, 1e-2] m.", f->edge_radius);
     if (!in_range(f->roughness_rq, 1e-9, 5e-6))

@@ -229,6 +229,11 @@ static const struct {
     {"/ring/axial_height", "{\"ring\": {\"radial_width\": 1e-5}}"},
     {"/physics/friction/", "{\"physics\": {\"friction\": {\"model\": \"stribeck\"}}}"},
     {"/output/step_deg", "{\"engine\": {\"cycles\": 0.1}}"},
+    /* the lubricated model's fields are checked when it runs */
+    {"/physics/friction/oil/", "{\"physics\": {\"friction\": {\"model\": \"lubricated\"}}}"},
+    {"/physics/friction/asperity/", "{\"physics\": {\"friction\": {\"model\": \"lubricated\"}}}"},
+    {"/bore/roughness_rq_m", "{\"physics\": {\"friction\": {\"model\": \"lubricated\"}}}"},
+    {"/numerics/film_step_deg", "{\"physics\": {\"friction\": {\"model\": \"lubricated\"}}}"},
 };
 
 /* Copies the members of `from` into `to`, merging objects. */
