@@ -134,8 +134,15 @@ static int make_dirs(const char *dir, rd_error *err)
                                 strerror(errno));
         *p = c;
         if (c == '\0')
-            return RD_OK;
+            break;
     }
+    struct stat st;
+    if (stat(dir, &st) != 0 || !S_ISDIR(st.st_mode))
+        return rd_error_set(err, RD_EINVAL, "",
+                            "--data %s is not a directory: give the directory that holds (or "
+                            "will hold) jobs.sqlite3.",
+                            dir);
+    return RD_OK;
 }
 
 /* One server per store: two would each mark the other's running jobs
