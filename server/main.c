@@ -416,6 +416,12 @@ static int start_pools(struct server *s, const struct options *opt, rd_error *er
                            .on_final_ctx = &s->http};
     if (rd_sweeps_create(&sc, &s->sweeps, err) != RD_OK)
         return start_failed(err);
+    /* What the store's check found, one log line each. */
+    for (const char *line = rd_store_get_report(s->store); *line;) {
+        size_t n = strcspn(line, "\n");
+        fprintf(stderr, "ringdyn-server: %.*s\n", (int)n, line);
+        line += n + (line[n] == '\n');
+    }
     return 0;
 }
 
