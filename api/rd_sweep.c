@@ -11,6 +11,7 @@
  */
 #include "rd_sweep.h"
 
+#include <float.h>
 #include <jansson.h>
 #include <math.h>
 #include <stdarg.h>
@@ -72,6 +73,33 @@ static int lhs_design(rd_sweep *s, uint64_t seed)
 
 /* ---- values of a point --------------------------------------------------- */
 
+/* The number at t in [0, 1] of a range or random parameter (rd_sweep.h). */
+static double at(const param *q, double t)
+{
+    return q->log ? q->a * pow(q->b / q->a, t) : q->a + (q->b - q->a) * t;
+}
+
+/* The number of entry k of a range, endpoints exact. */
+static double range_number(const param *q, size_t k)
+{
+    if (k == 0)
+        return q->a;
+    if (k == q->n - 1)
+        return q->b;
+    return at(q, (double)k / (double)(q->n - 1));
+}
+
+/* A number as a JSON value.  Validation (check_finite) refuses every spec
+ * with a non-finite value, so NULL means out of memory; were one to slip
+ * through, it is written as null, which the point's scene then refuses
+ * (a row with its error, never a lost point). */
+static json_t *number_value(const param *q, double v)
+{
+    if (!isfinite(v))
+        return json_null();
+    return q->integer ? json_integer((json_int_t)llround(v)) : json_real(v);
+}
+
 /* Entry k of a values/range parameter (new reference).  A listed value is
  * copied, not shared: a later parameter may write inside it (/ring, then
  * /ring/diameter), and the spec must stay unmodified for other threads. */
@@ -79,13 +107,7 @@ static json_t *entry(const param *q, size_t k)
 {
     if (q->kind == P_VALUES)
         return json_deep_copy(json_array_get(q->values, k));
-    double t = q->n > 1 ? (double)k / (double)(q->n - 1) : 0.0;
-    double v = q->log ? q->a * pow(q->b / q->a, t) : q->a + (q->b - q->a) * t;
-    if (k == 0)
-        v = q->a;
-    else if (k == q->n - 1)
-        v = q->b;
-    return q->integer ? json_integer((json_int_t)llround(v)) : json_real(v);
+    return number_value(q, range_number(q, k));
 }
 
 json_t *rd_sweep_param_value(const rd_sweep *s, int p, size_t i)
@@ -97,7 +119,7 @@ json_t *rd_sweep_param_value(const rd_sweep *s, int p, size_t i)
         return entry(q, (i / q->stride) % q->n);
     double u = s->u[(size_t)p * s->points + i];
     if (q->kind == P_RANDOM)
-        return json_real(q->log ? q->a * pow(q->b / q->a, u) : q->a + (q->b - q->a) * u);
+        return number_value(q, at(q, u));
     size_t k = (size_t)(u * (double)q->n);
     return entry(q, k < q->n ? k : q->n - 1);
 }
@@ -477,6 +499,43 @@ static int try_value(const rd_sweep *s, int p, json_t *value, const char *where,
     return rc;
 }
 
+/* Every number of a range or random parameter p is finite (and above 0 on
+ * a log scale): finite endpoints can still overflow inside, when stop - start
+ * (linear) or stop / start (log) is beyond a double, and those points would
+ * hold +-inf or NaN, which JSON cannot carry.  RD_EINVAL (422): the spec is
+ * the client's mistake.  Random parameters are checked at every sample of
+ * the design, so this runs after lhs_design. */
+static int check_finite(const rd_sweep *s, int p, rd_error *err)
+{
+    const param *q = &s->p[p];
+    if (q->kind == P_VALUES)
+        return RD_OK;
+    int rnd = q->kind == P_RANDOM;
+    const char *lo = rnd ? "min" : "start", *hi = rnd ? "max" : "stop";
+    size_t m = rnd ? s->points : q->n, k = 0;
+    double v = 0;
+    for (; k < m; k++) {
+        v = rnd ? at(q, s->u[(size_t)p * s->points + k]) : range_number(q, k);
+        if (!isfinite(v) || (q->log && !(v > 0)))
+            break;
+    }
+    if (k == m)
+        return RD_OK;
+    char where[64], head[256];
+    snprintf(where, sizeof where, "/parameters/%d/%s", p, rnd ? "random" : "range");
+    snprintf(head, sizeof head, "%s (parameter %s): %s %zu of %zu is %g, not a finite number%s",
+             where, q->path, rnd ? "sample" : "value", k + 1, m, v, q->log ? " above 0" : "");
+    if (q->log)
+        return rd_error_set(err, RD_EINVAL, where,
+                            "%s: %s / %s = %.15g / %.15g is beyond a double; a log scale needs "
+                            "%s / %s from %g to %g",
+                            head, hi, lo, q->b, q->a, hi, lo, DBL_MIN, DBL_MAX);
+    return rd_error_set(err, RD_EINVAL, where,
+                        "%s: %s - %s = %.15g - (%.15g) overflows a double; a linear scale needs "
+                        "|%s - %s| <= %g",
+                        head, hi, lo, q->b, q->a, hi, lo, DBL_MAX);
+}
+
 /* Every value of parameter p that validation tries (rd_sweep.h). */
 static int check_param(const rd_sweep *s, int p, rd_error *err)
 {
@@ -551,11 +610,11 @@ static int parse_spec(rd_sweep *s, size_t max, rd_error *err)
                           "a latin_hypercube of %zu samples over %d parameters "
                           "holds more than %d entries",
                           s->points, s->np, RD_SWEEP_LHS_ENTRIES_MAX);
-    for (int p = 0; p < s->np; p++)
-        if (check_param(s, p, err))
-            return err->code;
     if ((s->combine == C_LHS && lhs_design(s, seed) != RD_OK) || spec_hash(s) != RD_OK)
         return rd_error_set(err, RD_ENOMEM, "", "out of memory while expanding the sweep");
+    for (int p = 0; p < s->np; p++)
+        if (check_finite(s, p, err) || check_param(s, p, err))
+            return err->code;
     return RD_OK;
 }
 

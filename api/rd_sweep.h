@@ -53,8 +53,14 @@
  * field or a value outside the scene's range is an error naming the parameter
  * and the scene's own message); ranges with count <= 1000 have every value
  * tried, longer ranges their endpoints; random designs their min and max.
+ * Before those, every number of every range and random parameter (all
+ * entries, all samples) must be finite, and above 0 on a log scale: finite
+ * endpoints whose difference (linear) or ratio (log) is beyond a double give
+ * +-inf or NaN inside, and such a spec is refused (RD_EINVAL, 422, path
+ * "/parameters/<p>/range" or ".../random").
  * Combinations of values can still be invalid: those points are rows with
- * their error (a failed point never fails the sweep).
+ * their error (a failed point never fails the sweep).  So every point is
+ * refused up front or is a row of the table: rows = points.
  *
  * The table: {"columns": [...], "rows": [[...], ...]}, columns = the
  * parameter paths, then the outputs as written, then "status" ("ok" or the
@@ -88,7 +94,8 @@ typedef struct rd_sweep rd_sweep; /* a parsed, validated spec; opaque, read-only
  * path (`ringdyn sweep run`).  Errors: RD_EJSON (not JSON), RD_EREQUEST
  * (400: any other problem of the spec, including a base scene or parameter
  * value the scene schema refuses and too many points) with `path` into the
- * spec, RD_ETOOLARGE (len > RD_API_BODY_MAX), RD_ENOMEM.  On success *out is
+ * spec, RD_EINVAL (422: a range or random parameter with a non-finite
+ * value, above), RD_ETOOLARGE (len > RD_API_BODY_MAX), RD_ENOMEM.  On success *out is
  * a new sweep (rd_sweep_free). */
 int rd_sweep_parse(const char *body, size_t len, size_t max_points, rd_sweep **out, rd_error *err);
 void rd_sweep_free(rd_sweep *sweep);

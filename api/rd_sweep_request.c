@@ -204,3 +204,23 @@ char *rd_sweep_request_failed_row(const rd_sweep_request *req, size_t i, const r
     free(scene_text);
     return text;
 }
+
+char *rd_sweep_request_spare_row(const rd_sweep_request *req)
+{
+    char *columns_text = rd_sweep_columns_json(req->sweep);
+    json_t *columns = columns_text ? json_loads(columns_text, 0, NULL) : NULL;
+    json_t *row = json_array();
+    size_t ncols = json_array_size(columns);
+    int bad = !row || ncols < 2;
+    for (size_t k = 0; !bad && k < ncols - 2; k++)
+        bad = json_array_append_new(row, json_null()) != 0;
+    char *text = NULL;
+    if (!bad && json_array_append_new(row, json_string(rd_error_code_name(RD_ENOMEM))) == 0 &&
+        json_array_append_new(row, json_string("the server ran out of memory while it ran this "
+                                               "point; run it again")) == 0)
+        text = json_dumps(row, DUMP_FLAGS);
+    json_decref(row);
+    json_decref(columns);
+    free(columns_text);
+    return text;
+}

@@ -46,4 +46,10 @@ void rd_sweep_request_cleanup(rd_sweep_request *req);
 char *rd_sweep_request_failed_row(const rd_sweep_request *req, size_t i, const rd_error *why,
                                   rd_error *err);
 
+/* The row of a point whose own row could not be made (memory ran out while
+ * it ran): every parameter and output null, status "out_of_memory".  The
+ * service makes it when a sweep is created, so that no point goes without a
+ * row (rows = points).  Caller frees; NULL on out of memory. */
+char *rd_sweep_request_spare_row(const rd_sweep_request *req);
+
 #endif

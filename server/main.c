@@ -352,6 +352,31 @@ static int start_failed(const rd_error *err)
     return -1;
 }
 
+/* What a client would otherwise meet as an error, checked before the store
+ * opens: every file of --examples is one GET /api/v1/examples can serve (its
+ * name, its JSON, its scene; rd_api_examples_json), and --token-file holds a
+ * token.  (--data is checked as the store opens, --static as HTTP starts.)
+ * 0, or -1 after printing why, naming the option, the file and the rule. */
+static int check_config(struct server *s, const struct options *opt)
+{
+    if (opt->examples_dir) {
+        rd_error err;
+        rd_error_init(&err);
+        char *list = rd_api_examples_json(opt->examples_dir, &err);
+        int ok = list != NULL;
+        free(list);
+        if (!ok) {
+            fprintf(stderr, "ringdyn-server: --examples %s: %s%s\n", opt->examples_dir, err.message,
+                    err.code == RD_EINVAL ? "; fix or remove that file, or leave out --examples"
+                                          : "");
+            return -1;
+        }
+    }
+    if (opt->token_file && !(s->token = read_token(opt->token_file)))
+        return -1;
+    return 0;
+}
+
 /* The metrics, the store and the two pools.  0, or -1 after printing why. */
 static int start_pools(struct server *s, const struct options *opt, rd_error *err)
 {
@@ -391,14 +416,19 @@ static int start_pools(struct server *s, const struct options *opt, rd_error *er
                            .on_final_ctx = &s->http};
     if (rd_sweeps_create(&sc, &s->sweeps, err) != RD_OK)
         return start_failed(err);
+    /* What the store's check found, one log line each. */
+    for (const char *line = rd_store_get_report(s->store); *line;) {
+        size_t n = strcspn(line, "\n");
+        fprintf(stderr, "ringdyn-server: %.*s\n", (int)n, line);
+        line += n + (line[n] == '\n');
+    }
     return 0;
 }
 
-/* The token and the HTTP server.  0, or -1 after printing why. */
+/* The HTTP server (the token was read by check_config).  0, or -1 after
+ * printing why. */
 static int start_http(struct server *s, const struct options *opt, rd_error *err)
 {
-    if (opt->token_file && !(s->token = read_token(opt->token_file)))
-        return -1;
     rd_http_config hc = {.host = opt->host,
                          .port = (int)opt->port,
                          .static_dir = opt->static_dir,
@@ -464,7 +494,8 @@ int main(int argc, char **argv)
     }
     sigset_t stop;
     block_signals(&stop);
-    if (start_pools(&s, &opt, &err) != 0 || start_http(&s, &opt, &err) != 0)
+    if (check_config(&s, &opt) != 0 || start_pools(&s, &opt, &err) != 0 ||
+        start_http(&s, &opt, &err) != 0)
         goto out;
 
     printf("ringdyn-server listening on http://%s:%d\n", rd_http_get_host(s.http),

@@ -47,6 +47,22 @@ typedef struct rd_store rd_store;
 int rd_store_create(const char *dir, rd_store **out, rd_error *err);
 void rd_store_free(rd_store *store); /* NULL is a no-op */
 
+/* Integrity (issue 45), for a store file:
+ * - a 0-byte jobs.sqlite3, or one SQLite finds damaged (PRAGMA quick_check,
+ *   or SQLITE_CORRUPT / SQLITE_NOTADB while opening), is moved aside to
+ *   jobs.sqlite3.damaged-<UTC time> (with its -wal) and the store starts
+ *   empty; the report says so, and how to recover what it held;
+ * - a WAL whose replay would drop committed writes (a bad checksum or salt
+ *   before later commits, or a bad header) is copied aside and the report
+ *   says how many commits are lost (rd_store_check.h);
+ * - each stored result (jobs.body) and finished sweep carries a CRC-32
+ *   written with it: a result that does not match is RD_EINTERNAL on read,
+ *   a sweep row that does not match is left out at load (and named in the
+ *   report).  Rows an older server wrote have no CRC and are not verified.
+ * The report: lines for the log ("" when nothing was found), valid until
+ * the next call or rd_store_free. */
+const char *rd_store_get_report(rd_store *store);
+
 /* A new row, every field of `row` written: a queued job's, or a finished
  * job's in one write (an inline run's) with, when `body` is not NULL, its
  * body (`row->body_len` bytes). */
@@ -70,7 +86,8 @@ int rd_store_load(rd_store *store, int (*each)(void *ctx, const rd_store_row *ro
 /* Deletes the row of job `id` (an unknown id is no error). */
 int rd_store_delete(rd_store *store, const char *id, rd_error *err);
 
-/* The stored body of job `id`: malloc'd, *len bytes (+ a NUL), or RD_ENOTFOUND. */
+/* The stored body of job `id`: malloc'd, *len bytes (+ a NUL), or
+ * RD_ENOTFOUND, or RD_EINTERNAL when it does not match its CRC-32. */
 int rd_store_read_body(rd_store *store, const char *id, char **body, size_t *len, rd_error *err);
 
 /* Retention of finished rows (succeeded, failed, cancelled, interrupted):

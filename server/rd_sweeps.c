@@ -54,6 +54,7 @@ struct sweep {
     rd_sweep_request req; /* NULL sweep once frozen and released */
     size_t n, next_point, running, done, failed;
     char **rows;
+    char *spare_row; /* rows[i] of a point whose row could not be made (shared) */
     int status, cancel;
     struct timespec created, started, finished; /* CLOCK_REALTIME; zero = not yet */
     /* A final sweep, rendered once (freeze_locked): its list entry, JSON and
@@ -242,9 +243,12 @@ static void unlink_locked(rd_sweeps *ss, struct sweep *sw)
 static void release_rows(struct sweep *sw)
 {
     for (size_t i = 0; sw->rows && i < sw->n; i++)
-        free(sw->rows[i]);
+        if (sw->rows[i] != sw->spare_row)
+            free(sw->rows[i]);
     free(sw->rows);
+    free(sw->spare_row);
     sw->rows = NULL;
+    sw->spare_row = NULL;
     rd_sweep_request_cleanup(&sw->req);
 }
 
@@ -415,7 +419,8 @@ static void *worker_main(void *arg)
             sw->failed += len < tail || strcmp(row + len - tail, ok_tail) != 0;
             sw->rows[i] = row;
             sw->done++;
-        } else if (!sw->cancel && !ss->stopping) { /* out of memory: the point has no row */
+        } else if (!sw->cancel && !ss->stopping) { /* out of memory: the spare row */
+            sw->rows[i] = sw->spare_row;
             sw->failed++;
             sw->done++;
         }
@@ -646,7 +651,8 @@ void rd_sweeps_post(rd_sweeps *ss, const char *body, size_t len, double wait_s, 
     sw->fidelity = sw->req.fidelity;
     memcpy(sw->hash, rd_sweep_hash(sw->req.sweep), sizeof sw->hash);
     sw->rows = calloc(sw->n ? sw->n : 1, sizeof *sw->rows);
-    if (!sw->rows || new_id(ss, sw->id) != 0) {
+    sw->spare_row = rd_sweep_request_spare_row(&sw->req);
+    if (!sw->rows || !sw->spare_row || new_id(ss, sw->id) != 0) {
         sweep_free(sw);
         reply_fail(r, RD_ENOMEM, "The server is out of memory.");
         return;

@@ -336,10 +336,12 @@ check "the waiting request is answered at shutdown" grep -qx '200\|202' "$WORK/l
 
 # ---- server C: the run-time limit ------------------------------------------
 # The slow job takes seconds even in a Release build; 0.5 s stops it early.
-# (its examples: a file whose name has a dot, which the api does not serve)
-mkdir -p "$WORK/dotted" && cp "$EXAMPLES/thesis_modal.json" "$WORK/dotted/thesis.modal.json"
+# (its examples: a file whose name has a dot, which the api does not serve; put
+# there after the start, which refuses such a file: config.sh)
+mkdir -p "$WORK/dotted" && cp "$EXAMPLES/thesis_modal.json" "$WORK/dotted/"
 start_server C --job-timeout 0.5 --examples "$WORK/dotted"
 C_PID=$SPID
+cp "$EXAMPLES/thesis_modal.json" "$WORK/dotted/thesis.modal.json"
 req GET /api/v1/examples/thesis.modal
 expect_error "example name with a dot, file present" 404 not_found
 req GET /api/v1/examples/bad%FFname

@@ -148,6 +148,12 @@ expect_error "an unknown pointer" 400 invalid_request /parameters/0/values/0
 post '/api/v1/sweeps' '{"base": {"analysis": "modal"}, "parameters": [{"path": "/discretization/segments",
   "values": [10, 2001]}], "outputs": ["/modes/0/frequency_hz"]}'
 expect_error "a value outside the scene's range" 400 invalid_request /parameters/0/values/1
+post '/api/v1/sweeps' '{"base": {"analysis": "modal"}, "parameters": [{"path": "/ring/tangential_force",
+  "random": {"min": -1e308, "max": 1e308}}], "combine": "latin_hypercube", "samples": 40,
+  "outputs": ["/modes/0/frequency_hz"]}'
+expect_error "finite min and max whose samples overflow (issue 45)" 422 invalid_scene /parameters/0/random
+check "... naming the parameter, the value and the allowed range" \
+  grep -q '/ring/tangential_force.*is -\?inf.*needs |max - min| <= 1.79769e+308' "$WORK/body"
 post '/api/v1/sweeps' '{"base": {"analysis": "modal"}'
 expect_error "not JSON" 400 invalid_json
 req POST /api/v1/sweeps -H 'Content-Type: text/plain' --data-binary "$SPEC"
