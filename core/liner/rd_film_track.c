@@ -14,6 +14,7 @@ typedef struct step_ctx {
     double U, eta, W_ext, p_lo, p_hi, c1, hist, dt;
     rd_film_out o;
     double last_h; /* where o was solved */
+    double slope;  /* dR/dh of the last root's final secant (< 0), 0 = none */
     long solves;
 } step_ctx;
 
@@ -34,14 +35,21 @@ static double residual(step_ctx *s, double h)
 static double balance(step_ctx *s, double h, int *held)
 {
     double sg = s->f->sigma, lo = -INFINITY, hi = INFINITY;
-    double tol = 1e-9 * fmax(fabs(h), sg), scale = 1e-12 * fmax(s->W_ext, 1e-300);
+    double tol = 1e-7 * fmax(fabs(h), sg), scale = 1e-12 * fmax(s->W_ext, 1e-300);
     double x0 = fmin(fmax(h, H_LOW * sg), RD_FILM_H_MAX), r0 = residual(s, x0);
     *held = 0;
     if (r0 > 0.0)
         lo = x0;
     else
         hi = x0;
-    double x1 = x0 + (r0 > 0.0 ? 1.0 : -1.0) * (1e-5 * fabs(x0) + 1e-5 * sg);
+    /* the first step: Newton with the last root's slope, else a small probe */
+    double probe = 1e-5 * fabs(x0) + 1e-5 * sg, x1 = x0 + (r0 > 0.0 ? probe : -probe);
+    if (s->slope < 0.0) {
+        double d = -r0 / s->slope, lim = 0.5 * fabs(x0) + sg;
+        x1 = x0 + fmax(-lim, fmin(lim, d));
+        if (fabs(x1 - x0) < probe)
+            x1 = x0 + (r0 > 0.0 ? probe : -probe);
+    }
     x1 = fmin(fmax(x1, H_LOW * sg), RD_FILM_H_MAX);
     double r1 = residual(s, x1);
     for (int it = 0; it < 200; it++) {
@@ -72,6 +80,8 @@ static double balance(step_ctx *s, double h, int *held)
         x0 = x1, r0 = r1;
         x1 = x;
         r1 = residual(s, x1);
+        if (r1 != r0 && x1 != x0)
+            s->slope = fmin((r1 - r0) / (x1 - x0), 0.0);
         if (fabs(x1 - x0) < tol)
             return x1;
     }
