@@ -35,7 +35,7 @@ static double residual(step_ctx *s, double h)
 static double balance(step_ctx *s, double h, int *held)
 {
     double sg = s->f->sigma, lo = -INFINITY, hi = INFINITY;
-    double tol = 1e-7 * fmax(fabs(h), sg), scale = 1e-12 * fmax(s->W_ext, 1e-300);
+    double tol = 1e-6 * fmax(fabs(h), sg), scale = 1e-12 * fmax(s->W_ext, 1e-300);
     double x0 = fmin(fmax(h, H_LOW * sg), RD_FILM_H_MAX), r0 = residual(s, x0);
     *held = 0;
     if (r0 > 0.0)
@@ -66,6 +66,8 @@ static double balance(step_ctx *s, double h, int *held)
         if (r1 < 0.0 && x1 <= H_LOW * sg)
             return x1;
         double x = x1 - r1 * (x1 - x0) / (r1 - r0);
+        if (fabs(x - x1) < tol) /* x1 is within tol of the root */
+            return x1;
         int bracket = isfinite(lo) && isfinite(hi);
         if (bracket && !(x > lo && x < hi))
             x = 0.5 * (lo + hi);
@@ -176,12 +178,14 @@ int rd_film_track_run(rd_film *f, const rd_film_loads *ld, double t_end, double 
     if (t_warm <= 0.0 && (rc = append(tr, &s, y[0], 0.0, err))) /* its loads at rest */
         return rc;
     double h = fmin(dt_max, 1e-4 * period);
+    /* the warm-up only brings the film near its orbit: a looser error, longer steps */
     while (t < t_end - 1e-12 * period) {
         double te = next_end(t, h, period, t_end), hn = te - t, guess;
         ld->at(ld->ctx, te, &s.U, &s.eta, &s.W_ext, &s.p_lo, &s.p_hi);
         history(&s, y, ts, have, hn, &guess);
         double yn = balance(&s, guess, &held), est = local_error(y, ts, have, te, yn);
-        double tol = RD_FILM_RTOL * fabs(yn) + 1e-3 * sg;
+        int loose = t < -0.25 * period; /* the warm-up but its last quarter period */
+        double tol = (loose ? RD_FILM_WARM_RTOL : RD_FILM_RTOL) * fabs(yn) + 1e-3 * sg;
         if (est > tol && hn > 1e-9 * period) { /* rejected: a smaller step */
             h = hn * fmax(0.2, 0.9 * cbrt(tol / est));
             continue;
@@ -197,7 +201,7 @@ int rd_film_track_run(rd_film *f, const rd_film_loads *ld, double t_end, double 
             tr->held += held;
         }
         h = est > 0.0 ? hn * fmin(2.0, fmax(0.2, 0.9 * cbrt(tol / est))) : 2.0 * hn;
-        h = fmin(h, dt_max);
+        h = fmin(h, te < -0.25 * period ? RD_FILM_WARM_STEPS * dt_max : dt_max);
     }
     tr->solves = s.solves;
     if (tr->steps > 0 &&
