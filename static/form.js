@@ -41,6 +41,8 @@ export class SceneForm {
     this.form = form;
     this.analysis = null;
     this.base = {};
+    this.reads = new Map(); // analysis -> Set of the top-level keys it reads (OpenAPI)
+    this.fieldPaths = new Map(); // analysis -> (path, scene) => the paths a shared field writes
     this.sources = new Map(); // block path -> Map(option value -> object)
     for (const input of this.inputs) if (input.dataset.hint) this.addHint(input);
     for (const list of form.querySelectorAll('[data-list]')) this.setupList(list);
@@ -67,6 +69,10 @@ export class SceneForm {
       const ref = s?.$ref ?? s?.allOf?.[0]?.$ref;
       return ref ? schemas[ref.split('/').pop()] : s;
     };
+    for (const [analysis, ref] of Object.entries(mapping)) {
+      const keys = Object.keys(resolve({ $ref: ref })?.properties ?? {});
+      if (keys.length) this.reads.set(analysis, new Set(keys));
+    }
     for (const input of this.form.querySelectorAll('[data-path]')) {
       if ('optional' in input.dataset) continue;
       const analysis = input.closest('[data-analysis]')?.dataset.analysis ?? shared;
@@ -99,15 +105,37 @@ export class SceneForm {
     hint.textContent = Number.isFinite(v) ? fn(v) : '';
   }
 
-  // Inputs that belong to `analysis`: the shared ones plus its own fieldset.
+  // Inputs that belong to `analysis`: the shared ones plus its own fieldset,
+  // less the shared ones it has no place for.
   inputsFor(analysis) {
-    return this.inputs.filter((input) => ownedBy(input, analysis));
+    return this.inputs.filter((input) => ownedBy(input, analysis) && this.pathsOf(input, analysis).length);
+  }
+
+  // Where `analysis` reads a shared field: its data-path, unless the
+  // analysis maps it (setFieldPaths: the ring pack reads the Ring fields in
+  // its first ring); [] = the analysis has no such field.  `scene` is the
+  // scene being read or loaded (a mapping may depend on it).
+  pathsOf(input, analysis, scene = this.base) {
+    const path = pathOf(input);
+    const map = this.fieldPaths.get(analysis);
+    return map && !input.closest('[data-analysis]') && input.dataset.path ? map(path, scene) : [path];
+  }
+
+  setFieldPaths(analysis, fn) {
+    this.fieldPaths.set(analysis, fn);
   }
 
   showAnalysis(analysis) {
     this.analysis = analysis;
     for (const fs of this.form.querySelectorAll('[data-analysis]')) {
       fs.hidden = fs.dataset.analysis !== analysis;
+    }
+    // A shared field the analysis has no place for is shown off (not sent).
+    for (const input of this.inputs) {
+      if (!input.dataset.path || input.closest('[data-analysis]')) continue;
+      const off = !this.pathsOf(input, analysis).length;
+      input.disabled = off;
+      input.closest('.field')?.classList.toggle('off', off);
     }
   }
 
@@ -131,6 +159,7 @@ export class SceneForm {
     this.reset();
     const { name, description, ...rest } = scene;
     this.base = structuredClone(rest);
+    const analysis = scene.analysis ?? this.analysis;
     for (const list of this.form.querySelectorAll('[data-list]')) {
       const rows = pointerGet(scene, list.dataset.list);
       if (Array.isArray(rows)) this.setRows(list, rows);
@@ -142,7 +171,8 @@ export class SceneForm {
         if (input.checked) this.matchSource(input.dataset.toggle, block);
         continue;
       }
-      const v = pointerGet(scene, input.dataset.path);
+      const [at] = this.pathsOf(input, analysis, scene);
+      const v = at === undefined ? undefined : pointerGet(scene, at);
       if (v !== undefined && v !== null && typeof v !== 'object') setValue(input, v);
     }
     this.syncToggles();
@@ -151,8 +181,12 @@ export class SceneForm {
 
   // Builds the scene for `analysis`.  Throws {message, path} for an empty or
   // non-numeric field; ranges are the server's to check (one source of truth).
+  // Only what the analysis reads is sent (the server refuses the rest): a
+  // loaded scene's blocks of another analysis stay behind.
   read(analysis) {
     const scene = { ...structuredClone(this.base), analysis };
+    const reads = this.reads.get(analysis);
+    for (const key of Object.keys(scene)) if (reads && !reads.has(key)) delete scene[key];
     const mine = this.inputsFor(analysis);
     // Toggled blocks first, so their fields below land in them.
     for (const toggle of mine.filter((i) => i.dataset.toggle)) {
@@ -176,8 +210,10 @@ export class SceneForm {
     for (const input of mine) {
       if (input.dataset.toggle || input.closest('[data-list]') || this.isOff(input)) continue;
       const v = readValue(input);
-      if (v === undefined) pointerDelete(scene, input.dataset.path);
-      else pointerSet(scene, input.dataset.path, v);
+      for (const at of this.pathsOf(input, analysis, scene)) {
+        if (v === undefined) pointerDelete(scene, at);
+        else pointerSet(scene, at, v);
+      }
     }
     return scene;
   }
@@ -347,13 +383,15 @@ export class SceneForm {
   fieldsFor(path) {
     if (!path) return [];
     const inputs = this.analysis ? this.inputsFor(this.analysis) : this.inputs;
-    const exact = inputs.filter((i) => pathOf(i) === path);
+    const at = (i) => (this.analysis ? this.pathsOf(i, this.analysis) : [pathOf(i)]);
+    const exact = inputs.filter((i) => at(i).includes(path));
     if (exact.length) return exact;
-    const below = inputs.filter((i) => pathOf(i).startsWith(`${path}/`));
+    const below = inputs.filter((i) => at(i).some((p) => p.startsWith(`${path}/`)));
     if (below.length) return below;
+    const longest = (i) => Math.max(...at(i).filter((p) => path.startsWith(`${p}/`)).map((p) => p.length));
     const above = inputs
-      .filter((i) => path.startsWith(`${pathOf(i)}/`))
-      .sort((a, b) => pathOf(b).length - pathOf(a).length);
+      .filter((i) => at(i).some((p) => path.startsWith(`${p}/`)))
+      .sort((a, b) => longest(b) - longest(a));
     return above.slice(0, 1);
   }
 
@@ -456,10 +494,10 @@ export function pointerGet(obj, path) {
 function pointerSet(obj, path, value) {
   const ts = tokens(path);
   let cur = obj;
-  for (const t of ts.slice(0, -1)) {
-    if (typeof cur[t] !== 'object' || cur[t] === null) cur[t] = {};
+  ts.slice(0, -1).forEach((t, i) => {
+    if (typeof cur[t] !== 'object' || cur[t] === null) cur[t] = /^\d+$/.test(ts[i + 1]) ? [] : {};
     cur = cur[t];
-  }
+  });
   cur[ts[ts.length - 1]] = value;
 }
 

@@ -1626,7 +1626,7 @@ for (const width of [1280, 390]) {
   });
 }
 
-// ---- ring pack (issue 15) ---------------------------------------------------
+// ---- ring pack ---------------------------------------------------
 
 test('ring pack tab: a live two-cycle run draws every volume\'s pressure, the lifts and the blow-by', { timeout: 120000 }, async () => {
   const skip = await unavailable('ringpack');
@@ -1711,6 +1711,68 @@ for (const width of [1280, 390]) {
       assert.equal(await page.textContent('#rp-model-1 td'), 'full');
       assert.match(await page.textContent('#rp-model-1 td.why'), /piston tilt/);
     } finally {
+      await page.setViewportSize({ width: 1280, height: 800 });
+    }
+  });
+}
+
+// A ring pack has no top-level ring: the page's Ring fields are the top
+// ring's on this tab, the diameter every ring's, the closed-ring box off, and
+// the blocks of a scene loaded on another tab stay behind (the server refuses
+// what an analysis does not read).
+for (const width of [1280, 390]) {
+  test(`${width} px: ring pack tab: the Ring fields go to the first ring, nothing else is sent, a refused value marks its field`, { timeout: 180000 }, async () => {
+    const skip = await unavailable('ringpack');
+    if (skip) return;
+    await page.setViewportSize({ width, height: 844 });
+    try {
+      const { examples } = await (await page.request.get(`${BASE}/api/v1/examples`)).json();
+      const pack = examples.find((e) => e.scene?.analysis === 'ringpack' && e.scene.rings?.length === 3);
+      const lift = examples.find((e) => e.scene?.analysis === 'lift');
+      assert.ok(pack && lift, 'a three-ring pack example and a lift example');
+      await page.waitForFunction((n) => document.querySelectorAll('#example option').length === n, examples.length + 1);
+      // a lift scene first: its groove, physics, output ... must not follow the tab change
+      await page.selectOption('#example', { index: examples.indexOf(lift) + 1 });
+      await selectTab('ringpack');
+      assert.ok(await page.isVisible('#f-ring-pack-note'));
+      assert.equal(await page.isDisabled('#f-closed'), true, 'a pack has no closed ring');
+      await page.fill('#f-rp-cycles', '2');
+      await page.fill('#f-closed-gap', '0.0006');
+      await runAnalysis('Run ringpack analysis');
+      await page.waitForSelector('#rp-models');
+      let r = (await shownJob()).result;
+      assert.equal(r.scene.rings.length, 1, 'no pack loaded: one ring');
+      assert.equal(r.scene.rings[0].ring.closed_gap, 0.0006, 'the typed closed gap is the ring\'s');
+      assert.equal(r.scene.groove, undefined);
+      // the three-ring example: the Ring fields show the top ring, edits go there only
+      await page.selectOption('#example', { index: examples.indexOf(pack) + 1 });
+      assert.equal(Number(await page.inputValue('#f-closed-gap')), pack.scene.rings[0].ring.closed_gap);
+      await page.fill('#f-rp-cycles', '2');
+      await page.fill('#f-closed-gap', '0.0005');
+      await page.fill('#f-diameter', '0.0766');
+      await runAnalysis('Run ringpack analysis');
+      await page.waitForSelector('#rp-models');
+      r = (await shownJob()).result;
+      assert.deepEqual(r.scene.rings.map((x) => x.ring.closed_gap),
+        [0.0005, ...pack.scene.rings.slice(1).map((x) => x.ring.closed_gap)]);
+      assert.deepEqual(r.scene.rings.map((x) => x.ring.diameter), [0.0766, 0.0766, 0.0766], 'one bore');
+      // the server's error at /rings/0/ring/closed_gap marks the Closed gap field
+      await page.fill('#f-closed-gap', '0.5');
+      await runAnalysis('Run ringpack analysis');
+      await page.waitForSelector('#error:not([hidden])');
+      assert.match(await page.textContent('#error'), /\/rings\/0\/ring\/closed_gap/);
+      assert.equal(await page.getAttribute('#f-closed-gap', 'aria-invalid'), 'true');
+      if (width === 390) {
+        const overflow = await page.evaluate(() => document.documentElement.scrollWidth - window.innerWidth);
+        assert.ok(overflow <= 0, `no sideways scrolling (${overflow} px)`);
+      }
+      await shot(`ringdyn-ringpack-ring-fields-${width}.png`, { fullPage: true });
+      // the other tabs get their shared fields back
+      await selectTab('modal');
+      assert.equal(await page.isDisabled('#f-closed'), false);
+      assert.equal(await page.isVisible('#f-ring-pack-note'), false);
+    } finally {
+      await page.getByRole('button', { name: 'Reset to defaults' }).click();
       await page.setViewportSize({ width: 1280, height: 800 });
     }
   });
