@@ -41,7 +41,8 @@ export class SceneForm {
     this.form = form;
     this.analysis = null;
     this.base = {};
-    this.reads = new Map(); // analysis -> Set of the top-level keys it reads (OpenAPI)
+    this.baseAnalysis = null; // the analysis of the loaded scene (`base`)
+    this.reads = new Map(); // analysis -> drops from a scene what the analysis does not read (OpenAPI)
     this.fieldPaths = new Map(); // analysis -> (path, scene) => the paths a shared field writes
     this.sources = new Map(); // block path -> Map(option value -> object)
     for (const input of this.inputs) if (input.dataset.hint) this.addHint(input);
@@ -70,8 +71,8 @@ export class SceneForm {
       return ref ? schemas[ref.split('/').pop()] : s;
     };
     for (const [analysis, ref] of Object.entries(mapping)) {
-      const keys = Object.keys(resolve({ $ref: ref })?.properties ?? {});
-      if (keys.length) this.reads.set(analysis, new Set(keys));
+      const schema = resolve({ $ref: ref });
+      if (schema?.properties) this.reads.set(analysis, (value) => prune(value, schema, resolve));
     }
     for (const input of this.form.querySelectorAll('[data-path]')) {
       if ('optional' in input.dataset) continue;
@@ -141,6 +142,7 @@ export class SceneForm {
 
   reset() {
     this.base = {};
+    this.baseAnalysis = null;
     for (const list of this.form.querySelectorAll('[data-list]')) this.setRows(list, []);
     for (const input of this.inputs) setValue(input, input.dataset.default);
     for (const select of this.form.querySelectorAll('[data-source]')) select.selectedIndex = preferredIndex(select);
@@ -160,6 +162,7 @@ export class SceneForm {
     const { name, description, ...rest } = scene;
     this.base = structuredClone(rest);
     const analysis = scene.analysis ?? this.analysis;
+    this.baseAnalysis = analysis;
     for (const list of this.form.querySelectorAll('[data-list]')) {
       const rows = pointerGet(scene, list.dataset.list);
       if (Array.isArray(rows)) this.setRows(list, rows);
@@ -181,12 +184,13 @@ export class SceneForm {
 
   // Builds the scene for `analysis`.  Throws {message, path} for an empty or
   // non-numeric field; ranges are the server's to check (one source of truth).
-  // Only what the analysis reads is sent (the server refuses the rest): a
-  // loaded scene's blocks of another analysis stay behind.
+  // A scene loaded for another analysis (then another tab chosen) keeps only
+  // what this analysis reads, by its schema: the server refuses the rest.  A
+  // scene loaded for this analysis goes as it is: its mistakes are the
+  // server's to name, not the page's to drop.
   read(analysis) {
     const scene = { ...structuredClone(this.base), analysis };
-    const reads = this.reads.get(analysis);
-    for (const key of Object.keys(scene)) if (reads && !reads.has(key)) delete scene[key];
+    if (this.baseAnalysis && this.baseAnalysis !== analysis) this.reads.get(analysis)?.(scene);
     const mine = this.inputsFor(analysis);
     // Toggled blocks first, so their fields below land in them.
     for (const toggle of mine.filter((i) => i.dataset.toggle)) {
@@ -432,6 +436,21 @@ export class SceneForm {
 function ownedBy(el, analysis) {
   const owner = el.closest('[data-analysis]');
   return !owner || owner.dataset.analysis === analysis;
+}
+
+// Deletes the members of `value` that `schema` (OpenAPI, resolved by
+// `resolve`) does not list, at every depth.
+function prune(value, schema, resolve) {
+  const s = resolve(schema);
+  if (Array.isArray(value)) {
+    if (s?.items) for (const v of value) prune(v, s.items, resolve);
+    return;
+  }
+  if (value === null || typeof value !== 'object' || !s?.properties) return;
+  for (const key of Object.keys(value)) {
+    if (key in s.properties) prune(value[key], s.properties[key], resolve);
+    else delete value[key];
+  }
 }
 
 function preferredIndex(select) {
