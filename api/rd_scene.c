@@ -164,6 +164,8 @@ static int refuse_not_read(const rd_analysis_def *const *registry, const rd_anal
         k += (size_t)snprintf(reads + k, sizeof reads - k, "%s%s", k ? ", " : "", f->key);
     json_object_foreach(root, key, v)
     {
+        if (reads_key(an, key))
+            continue;
         const char *where = elsewhere_of(an, key);
         int other = 0;
         for (int i = 0; others[i]; i++)
