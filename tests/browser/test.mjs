@@ -1219,6 +1219,30 @@ for (const width of [1280, 390]) {
   });
 }
 
+test('after its first quick polls the page long-polls (?wait=1); a job the server interrupted ends the wait at once', { timeout: 60000 }, async () => {
+  await page.goto(`${BASE}/`);
+  await page.waitForSelector('#tab-modal[aria-selected="true"]');
+  const urls = [];
+  const match = (url) => url.pathname.startsWith('/api/v1/jobs');
+  await page.route(match, (route) => {
+    if (route.request().method() === 'POST') return route.fulfill({ status: 202, json: { id: 'cut-job', status: 'running', progress: 0.1 } });
+    urls.push(new URL(route.request().url()).search);
+    if (urls.length < 5) return route.fulfill({ json: { id: 'cut-job', status: 'running', progress: 0.2 } });
+    return route.fulfill({ json: { id: 'cut-job', status: 'interrupted', progress: 0.3, error: { code: 'interrupted', message: 'The server stopped while the job ran.', path: '' } } });
+  });
+  try {
+    const t0 = Date.now();
+    await runAnalysis('Run modal analysis', 20000);
+    assert.ok(Date.now() - t0 < 15000, 'not polled until a timeout');
+    assert.deepEqual(urls, ['', '', '', '?wait=1', '?wait=1']);
+    assert.equal(await page.textContent('#status-text'), 'Job cut-job interrupted.');
+    assert.match(await page.textContent('#error'), /The server stopped while the job ran/);
+  } finally {
+    await page.unroute(match);
+    await page.getByRole('button', { name: 'Reset to defaults' }).click();
+  }
+});
+
 test('the server\'s eta_s is shown when a job has one; a job that fails leaves the old result marked out of date', { timeout: 60000 }, async () => {
   await page.goto(`${BASE}/`);
   await page.waitForSelector('#tab-modal[aria-selected="true"]');
