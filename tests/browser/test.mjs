@@ -1791,6 +1791,22 @@ for (const width of [1280, 390]) {
         assert.ok(overflow <= 0, `no sideways scrolling (${overflow} px)`);
       }
       await shot(`ringdyn-ringpack-ring-fields-${width}.png`, { fullPage: true });
+      // a sweep filled from this tab varies the top ring's closed gap and tabulates the blow-by
+      await page.fill('#f-closed-gap', '0.0005');
+      await page.click('#view-sweep');
+      await page.click('#sw-fill');
+      const spec = JSON.parse(await page.inputValue('#sw-spec'));
+      assert.equal(spec.parameters[0].path, '/rings/0/ring/closed_gap');
+      assert.equal(spec.base.ring, undefined);
+      assert.equal(spec.outputs[0], '/blowby/l_per_min');
+      spec.parameters[0].range.count = 2;
+      await page.fill('#sw-spec', JSON.stringify(spec));
+      await page.click('#sw-run');
+      await sweepDone('sw');
+      const sw = await newestSweep();
+      assert.equal(sw.table.rows.length, 2);
+      assert.ok(sw.table.rows.every((r) => r[1] > 0), `blow-by in every row: ${JSON.stringify(sw.table.rows)}`);
+      await page.click('#view-result');
       // the other tabs get their shared fields back
       await selectTab('modal');
       assert.equal(await page.isDisabled('#f-closed'), false);
