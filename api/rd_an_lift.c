@@ -27,7 +27,7 @@ struct lift_opts {
     int gas_given, squeeze_given;
     int max_steps;                /* /numerics/max_steps */
     struct rd_table gas_table[4]; /* crank_deg, above, behind, below */
-    int vogel_given, temp_table_given;
+    int vogel_given, temp_table_given, oil_given, asperity_given;
     struct rd_table temp_table[2]; /* /physics/friction/oil/temperature_table */
     double bore_rq;                /* /bore/roughness_rq_m; 0 = not given */
 };
@@ -162,8 +162,8 @@ static const rd_field friction_fields[] = {
      RD_MAX(1e15), .desc = "Stribeck only: So_lim of (2.9), -."},
     {"hydrodynamic_slope", RD_F_NUMBER, LO(lift.friction.hydrodynamic_slope), RD_MIN(0),
      RD_MAX(1e12), .desc = "Stribeck only: K of (2.9), -."},
-    {"oil", RD_F_BLOCK, 0, .block = &oil_block},
-    {"asperity", RD_F_BLOCK, 0, .block = &asperity_block},
+    {"oil", RD_F_OPTBLOCK, LO(oil_given), .block = &oil_block},
+    {"asperity", RD_F_OPTBLOCK, LO(asperity_given), .block = &asperity_block},
     {.key = NULL},
 };
 static const rd_block friction_block = {
@@ -384,6 +384,16 @@ static int lube_finish(struct rd_scene *s, struct lift_opts *o, rd_error *err)
     if (o->bore_rq > 0.0 && !lub)
         return rd_error_set(err, RD_EINVAL, "/bore/roughness_rq_m",
                             "/bore/roughness_rq_m is read by the lubricated friction model only.");
+    if (!lub && (o->oil_given || o->asperity_given))
+        return rd_error_set(err, RD_EINVAL,
+                            o->oil_given ? "/physics/friction/oil" : "/physics/friction/asperity",
+                            "%s is read by the lubricated friction model only (model is not "
+                            "lubricated).",
+                            o->oil_given ? "/physics/friction/oil" : "/physics/friction/asperity");
+    if (!lub && l->film_step_deg != RD_LIFT_FILM_STEP_DEG)
+        return rd_error_set(err, RD_EINVAL, "/numerics/film_step_deg",
+                            "/numerics/film_step_deg is read by the lubricated friction model "
+                            "only.");
     l->bore.roughness_rq = o->bore_rq > 0.0 ? o->bore_rq : RD_LINER_RQ_DEFAULT;
     if (o->vogel_given && l->friction.lube.viscosity > 0.0)
         return rd_error_set(err, RD_EINVAL, "/physics/friction/oil/vogel",
@@ -598,7 +608,7 @@ static json_t *lube_json(const rd_lift_result *res)
         "one film for the whole running face (a rigid profile on a round bore), solved before "
         "the ring's motion over the run plus one cycle of warm-up: the average Reynolds equation "
         "across the face (Patir-Cheng flow factors, gamma = 1; the Reynolds cavitation "
-        "condition; fully flooded; 81 points) with the squeeze term, Greenwood-Tripp asperity "
+        "condition; fully flooded; 41 points) with the squeeze term, Greenwood-Tripp asperity "
         "contact, and the radial balance elastic line load 2 F_t / D + gas behind = film + "
         "asperity load, by variable-step BDF2 (local error 1e-4 of the film, steps at most "
         "film_step_deg). Friction at the liner's speed past the "

@@ -2,7 +2,7 @@
  * bench_lube — the cost of the lubricated friction model (issue target: a
  * lubricated rigid-ring lift cycle <= 10 ms).
  *
- *   bench_lube [reps]      (default 5; median wall times)
+ *   bench_lube [reps [scene]]   (default 5 reps, median wall times; scene 0-3 alone)
  *
  * Scenes (one 720 deg cycle, thesis ring, rigid model, no error estimate):
  * 2400 rpm without gas, and 1000 / 2400 / 6000 rpm with the thesis gas
@@ -79,7 +79,10 @@ int main(int argc, char **argv)
     int gases[4] = {0, 1, 1, 1};
     printf("| scene | lubricated lift, ms | film alone, ms | film steps | film solves | "
            "Coulomb lift, ms |\n|---|---|---|---|---|---|\n");
+    int only = argc > 2 ? atoi(argv[2]) : -1;
     for (int s = 0; s < 4; s++) {
+        if (only >= 0 && s != only)
+            continue;
         rd_lift_params p;
         scene(&p, rpms[s], gases[s], RD_FRICTION_LUBRICATED);
         double lub = lift_ms(&rp, &p, reps), t[16];

@@ -50,7 +50,8 @@
 #define M_SQRT2 1.41421356237309504880
 #endif
 
-#define RD_FILM_NODES         81 /* points across the face, default */
+#define RD_FILM_NODES \
+    41 /* points across the face, default (0.2 % of the film, docs/lubrication.md) */
 #define RD_FILM_NODES_MAX     2001
 #define RD_FILM_PHI_X_H_MIN   0.5    /* phi_x's fit holds above this H */
 #define RD_FILM_GT_LAMBDA_MIN (-4.0) /* Greenwood-Tripp table range of h / sigma */
