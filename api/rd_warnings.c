@@ -22,6 +22,8 @@
  *   bore vs ring diameter > 1 %  the ring's nominal diameter is its bore's (core allows 2 %)
  *   numerics error > 5 %         the result's own error estimate (relative)
  *   lift event error > 5 deg     flank changes located to worse than 5 deg
+ *   oil viscosity > 1 Pa s       thicker than an engine oil at 0 C: mPa s typed as Pa s
+ *                                (hot engine oils are 0.003..0.05 Pa s)
  */
 #include "rd_warnings.h"
 
@@ -38,6 +40,7 @@
 #define BAR_LIKE_PA     1000.0 /* every gas table below this: typed in bar */
 #define BAR_LIKE_ONE_PA 200.0  /* one table below this while another is real */
 #define REAL_GAS_PA     1.0e4  /* a table above this was typed in Pa */
+#define OIL_THICK_PA_S  1.0    /* an engine oil near 0 C; above: mPa s typed as Pa s */
 
 /* Appends {code, path, message}; nonzero on out of memory. */
 #if defined(__GNUC__)
@@ -236,9 +239,23 @@ static int solver_note(json_t *scene, json_t *result, json_t *out)
     return warn(out, "solver_note", "", "the solver noted: %s", note);
 }
 
+static int oil_viscosity(json_t *scene, json_t *result, json_t *out)
+{
+    (void)result;
+    double eta = number_at(scene, "/physics/friction/oil/viscosity_pa_s");
+    if (eta > OIL_THICK_PA_S)
+        return warn(out, "oil_viscosity_unit", "/physics/friction/oil/viscosity_pa_s",
+                    "the oil's viscosity %g Pa s is thicker than an engine oil near 0 C (about "
+                    "1 Pa s; hot engine oils are 0.003-0.05 Pa s): a value in mPa s typed as "
+                    "Pa s? (1 mPa s = 0.001 Pa s)",
+                    eta);
+    return 0;
+}
+
 /* The rules, in the order their warnings are listed. */
 static int (*const rules[])(json_t *scene, json_t *result, json_t *out) = {
-    material, gas_in_bar, bore_diameter, error_estimate, event_error, accuracy_not_met, solver_note,
+    material,    gas_in_bar,       bore_diameter, error_estimate,
+    event_error, accuracy_not_met, solver_note,   oil_viscosity,
 };
 
 int rd_warnings_add(json_t *result)
