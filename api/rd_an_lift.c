@@ -287,7 +287,7 @@ static const rd_field numerics_fields[] = {
      .desc = "Estimate the error by a second run at rtol/10 and atol/10."},
     {"film_step_deg", RD_F_NUMBER, LO(lift.film_step_deg), RD_MIN(0.01),
      RD_MAX(RD_LIFT_FILM_STEP_MAX_DEG),
-     .desc = "The lubricated model's oil film: its largest time step, crank deg (default 1; "
+     .desc = "The lubricated model's oil film: its largest time step, crank deg (default 2; "
              "the steps follow the film's local error, 1e-4 of its thickness)."},
     {.key = NULL},
 };

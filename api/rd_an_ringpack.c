@@ -668,6 +668,21 @@ static const rd_csv_column csv_columns[] = {
 };
 static const rd_csv_table csv = {"table", NULL, csv_columns};
 
+/* What a scene of another analysis, or the page's single-ring fields, put at
+ * the top level: each ring of a pack has its own. */
+static const char *const elsewhere[] = {
+    "ring",
+    "each ring is /rings/i/ring (the first ring: /rings/0/ring)",
+    "material",
+    "each ring's material is /rings/i/ring/material",
+    "discretization",
+    "each ring's segment count is /rings/i/segments",
+    "segments",
+    "each ring's segment count is /rings/i/segments",
+    "groove",
+    "each ring's groove is /rings/i/groove",
+    NULL};
+
 const rd_analysis_def rd_an_ringpack = {
     .name = "ringpack",
     .scene = &scene_block,
@@ -678,4 +693,5 @@ const rd_analysis_def rd_an_ringpack = {
     .run = run,
     .csv = &csv,
     .page = "ringpack.js",
+    .elsewhere = elsewhere,
 };

@@ -30,7 +30,8 @@ typedef struct rd_scene rd_scene;
  * RD_EINVAL or RD_ELIMIT (valid JSON, invalid scene, 422) with `path`,
  * RD_ETOOLARGE (len > RD_API_BODY_MAX; the server refuses those earlier).
  * Unknown keys in the blocks the analysis reads are errors (typos must not
- * pass silently); blocks it does not read are ignored. */
+ * pass silently), and so are blocks it does not read (RD_EINVAL at their
+ * path, naming the block and the analysis). */
 int rd_scene_parse(const char *body, size_t len, rd_scene **out, rd_error *err);
 void rd_scene_free(rd_scene *scene);
 

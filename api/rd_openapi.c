@@ -1,8 +1,8 @@
 /*
  * rd_openapi — the OpenAPI scene schemas written from a registry
  * (rd_registry_openapi, declared in rd_registry.h): "Scene", oneOf the
- * analyses, one "<Name>Scene" per analysis with the blocks only other
- * analyses read described as ignored, and every named block they
+ * analyses, one "<Name>Scene" per analysis (closed: the blocks only other
+ * analyses read are refused), and every named block they
  * reference (rd_schema_block_openapi), with defaults read from a
  * defaults-filled scene of each analysis.
  */
@@ -14,36 +14,27 @@
 
 static const char scene_description[] =
     "The request body: one of the analyses' shapes, chosen by `analysis`. Only the blocks an "
-    "analysis reads are checked; every field has a default (the thesis ring and engine), so "
-    "{\"analysis\":\"modal\"} alone is valid. The blocks of the other analyses are known and "
-    "ignored without any check; unknown keys are an error (422 invalid_scene with the key's "
-    "path). Note that `numerics` and `contact` mean different things per analysis: `numerics` "
-    "is StaticNumerics for pretension and contact, LiftNumerics for lift (ignored by modal); "
-    "`contact` is ContactOptions for contact, LiftContact for lift (ignored by modal and "
+    "analysis reads are accepted; every field has a default (the thesis ring and engine), so "
+    "{\"analysis\":\"modal\"} alone is valid. A block another analysis reads is refused (422 "
+    "invalid_scene naming the block and the analysis: a value the analysis would ignore must "
+    "not pass silently), and so are unknown keys (422 invalid_scene with the key's path). Note "
+    "that `numerics` and `contact` mean different things per analysis: `numerics` is "
+    "StaticNumerics for pretension and contact, LiftNumerics for lift (refused by modal); "
+    "`contact` is ContactOptions for contact, LiftContact for lift (refused by modal and "
     "pretension). Parsing order (the first error is `error`; `errors` lists every problem the "
-    "schema finds, with core's first range error): JSON object, `analysis`, unknown keys and "
-    "JSON types block by block, then value ranges. Integers may be "
-    "written as reals with an integral value (20.0), except /bore/distortion/*/order. The job's "
-    "result echoes the scene with every default filled in.";
+    "schema finds, with core's first range error): JSON object, `analysis`, blocks the analysis "
+    "does not read, unknown keys and JSON types block by block, then value ranges. Integers may "
+    "be written as reals with an integral value (20.0), except /bore/distortion/*/order. The "
+    "job's result echoes the scene with every default filled in.";
 
-static const char ignored_description[] =
-    "A block this analysis does not read: accepted whatever it holds, never checked, not "
-    "echoed.";
-
-/* "<Name>Scene": the analysis' top-level block, "analysis" required, and
- * the blocks only other analyses read, described as ignored. */
-static json_t *analysis_schema(const rd_analysis_def *const *registry, const rd_analysis_def *an,
-                               json_t *schemas)
+/* "<Name>Scene": the analysis' top-level block, "analysis" required; its
+ * additionalProperties false refuses the blocks only other analyses read,
+ * as the parser does. */
+static json_t *analysis_schema(const rd_analysis_def *an, json_t *schemas)
 {
-    const char *ignored[64];
     rd_scene *defaults = rd_scene_defaults(an);
     json_t *o = defaults ? rd_schema_block_openapi(an->scene, defaults, schemas) : NULL;
-    json_t *props = json_object_get(o, "properties");
-    int bad = !o || !props || json_object_set_new(o, "required", json_pack("[s]", "analysis"));
-    rd_registry_ignored(registry, an, ignored, 64);
-    for (int i = 0; !bad && ignored[i]; i++)
-        bad |= json_object_set_new(props, ignored[i],
-                                   json_pack("{s:s}", "description", ignored_description));
+    int bad = !o || json_object_set_new(o, "required", json_pack("[s]", "analysis"));
     rd_scene_free(defaults);
     if (bad) {
         json_decref(o);
@@ -98,7 +89,7 @@ json_t *rd_registry_openapi(const rd_analysis_def *const *registry, const char *
     int bad = json_object_set_new(schemas, "Scene", scene_schema(registry));
     for (int i = 0; !bad && registry[i]; i++)
         bad |= json_object_set_new(schemas, registry[i]->scene->name,
-                                   analysis_schema(registry, registry[i], schemas));
+                                   analysis_schema(registry[i], schemas));
     if (bad) {
         rd_error_set(err, RD_ENOMEM, "", "out of memory while writing the OpenAPI document");
         json_decref(doc);

@@ -52,7 +52,7 @@ static int listed(const char *const *keys, int n, const char *key)
 int rd_registry_ignored(const rd_analysis_def *const *registry, const rd_analysis_def *an,
                         const char **keys, int max)
 {
-    /* The order "known:" lists them in (the contract's order); keys of
+    /* The contract's order (refusals are reported in the scene's); keys of
      * later analyses follow in registry order. */
     static const char *const contract[] = {"modal",   "pretension", "bore",     "engine",  "groove",
                                            "physics", "output",     "numerics", "contact", NULL};

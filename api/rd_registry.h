@@ -55,6 +55,10 @@ typedef struct rd_analysis_def {
     const rd_csv_table *csv; /* the main table, or NULL */
     const char *csv_none;    /* why there is no table (csv NULL) */
     const char *page;        /* "modal.js": its tab in static/, or "none" */
+    /* Top-level keys a user may send to this analysis that it reads
+     * somewhere else: NULL-ended pairs {key, where it is read}, named in
+     * their refusal (rd_scene.c).  May be NULL. */
+    const char *const *elsewhere;
 } rd_analysis_def;
 
 /* The built-in registry, NULL-ended, in enum rd_analysis order. */
@@ -65,7 +69,7 @@ const rd_analysis_def *rd_registry_find(const rd_analysis_def *const *registry, 
                                         int *index);
 
 /* The top-level keys that analyses of `registry` other than `an` read and
- * `an` does not: known to `an`'s scenes but ignored.  Written to keys[]
+ * `an` does not: refused in `an`'s scenes, naming `an`.  Written to keys[]
  * (at most max - 1, NULL-ended, in the contract's order); returns their
  * count. */
 int rd_registry_ignored(const rd_analysis_def *const *registry, const rd_analysis_def *an,

@@ -105,6 +105,96 @@ rd_scene *rd_scene_defaults(const rd_analysis_def *an)
     return scene_new(an, index);
 }
 
+/* Does `an`'s scene read the top-level `key`? */
+static int reads_key(const rd_analysis_def *an, const char *key)
+{
+    for (const rd_field *f = an->scene->fields; f->key; f++)
+        if (strcmp(f->key, key) == 0)
+            return 1;
+    return 0;
+}
+
+/* "a, b and c": the analyses of `registry` other than `an` that read `key`;
+ * returns their count. */
+static int list_readers(char *buf, size_t size, const rd_analysis_def *const *registry,
+                        const rd_analysis_def *an, const char *key)
+{
+    const char *names[32];
+    int n = 0;
+    for (int i = 0; registry[i] && n < 32; i++)
+        if (registry[i] != an && reads_key(registry[i], key))
+            names[n++] = registry[i]->name;
+    size_t k = 0;
+    buf[0] = '\0';
+    for (int i = 0; i < n && k < size; i++)
+        k += (size_t)snprintf(buf + k, size - k, "%s%s",
+                              i == 0       ? ""
+                              : i == n - 1 ? " and "
+                                           : ", ",
+                              names[i]);
+    return n;
+}
+
+/* Where `an` reads `key` instead (its `elsewhere` pairs), or NULL. */
+static const char *elsewhere_of(const rd_analysis_def *an, const char *key)
+{
+    for (const char *const *p = an->elsewhere; p && p[0]; p += 2)
+        if (strcmp(p[0], key) == 0)
+            return p[1];
+    return NULL;
+}
+
+/* Refuses every top-level key of `root` that `an` does not read but that
+ * means something elsewhere: a block other analyses read (`others`), or one
+ * of `an`'s `elsewhere` keys.  Such a block was once accepted and ignored,
+ * so a user who typed a value there got an answer that silently did not
+ * use it.  The keys refused go to refused[] (NULL-ended, at most max - 1),
+ * so that the table's check does not report them again as unknown. */
+static int refuse_not_read(const rd_analysis_def *const *registry, const rd_analysis_def *an,
+                           json_t *root, const char *const *others, const char **refused, int max,
+                           rd_issues *issues, rd_error *err)
+{
+    char path[RD_ERROR_PATH_MAX], reads[256], why[320], q[64];
+    const char *key;
+    json_t *v;
+    int rc = RD_OK, n = 0;
+    size_t k = 0;
+    reads[0] = '\0';
+    for (const rd_field *f = an->scene->fields; f->key && k < sizeof reads; f++)
+        k += (size_t)snprintf(reads + k, sizeof reads - k, "%s%s", k ? ", " : "", f->key);
+    json_object_foreach(root, key, v)
+    {
+        if (reads_key(an, key))
+            continue;
+        const char *where = elsewhere_of(an, key);
+        int other = 0;
+        for (int i = 0; others[i]; i++)
+            other |= strcmp(others[i], key) == 0;
+        if ((!where && !other) || n >= max - 1)
+            continue;
+        refused[n++] = key;
+        rd_schema_path_join(path, sizeof path, "", key);
+        rd_schema_quote(q, sizeof q, key);
+        if (where) {
+            snprintf(why, sizeof why, "%s", where);
+        } else {
+            char readers[128];
+            int several = list_readers(readers, sizeof readers, registry, an, key) > 1;
+            snprintf(why, sizeof why, "only the %s %s it; a %s scene reads: %s", readers,
+                     several ? "analyses read" : "analysis reads", an->name, reads);
+        }
+        rd_issues_add(issues, RD_EINVAL, path, reads, NULL,
+                      "%s: the %s analysis does not read a top-level %s; %s", path, an->name, q,
+                      why);
+        int r = rd_error_set(err, RD_EINVAL, path,
+                             "%s: the %s analysis does not read a top-level %s; %s", path, an->name,
+                             q, why);
+        rc = rc == RD_OK ? r : rc;
+    }
+    refused[n] = NULL;
+    return rc;
+}
+
 /* Core's first error, listed with the table's allowed values of its field;
  * the table's own note on the same field (its static range) gives way. */
 static void list_core_error(const rd_scene *s, const rd_error *err, rd_issues *issues)
@@ -127,7 +217,7 @@ int rd_scene_parse_issues(const rd_analysis_def *const *registry, json_t *root, 
                           rd_error *err, rd_issues *issues)
 {
     rd_scene *s = NULL;
-    const char *ignored[MAX_KEYS];
+    const char *others[MAX_KEYS], *refused[MAX_KEYS];
     int rc, index = -1;
 
     *out = NULL;
@@ -145,9 +235,11 @@ int rd_scene_parse_issues(const rd_analysis_def *const *registry, json_t *root, 
         rc = rd_error_set(err, RD_ENOMEM, "", "out of memory while reading the scene");
         goto out;
     }
-    rd_registry_ignored(registry, s->an, ignored, MAX_KEYS);
+    rd_registry_ignored(registry, s->an, others, MAX_KEYS);
+    rc = refuse_not_read(registry, s->an, root, others, refused, MAX_KEYS, issues, err);
     s->issues = issues;
-    rc = rd_schema_parse(root, s->an->scene, ignored, "", s, err);
+    int table_rc = rd_schema_parse(root, s->an->scene, refused, "", s, err);
+    rc = rc == RD_OK ? table_rc : rc;
     s->issues = NULL;
     /* Values and ranges: core's validators, messages passed on unchanged. */
     if (rc == RD_OK) {

@@ -13,9 +13,10 @@
  *   1. the body is a JSON object (RD_EJSON otherwise, with jansson's
  *      line/column/text);
  *   2. "analysis" names an analysis of the registry (rd_registry.h);
- *   3. every key the analysis reads is known (typos are errors, not ignored)
- *      and has the right JSON type (rd_schema.h); blocks that only other
- *      analyses read are ignored entirely;
+ *   3. a top-level block the analysis does not read (one other analyses
+ *      read, or one its registry entry says it reads elsewhere) is refused,
+ *      naming the block and the analysis; every other key is known (typos
+ *      are errors, not ignored) and has the right JSON type (rd_schema.h);
  *   4. the analysis' finish hook runs core's validators (rd_ring_validate,
  *      rd_modal_validate, ...); their errors pass through unchanged.
  */

@@ -152,16 +152,13 @@ static int in_list(const char *const *list, const char *key)
     return 0;
 }
 
-/* "a, b, c": the keys of `fields`, then those of `also` it lacks. */
-static void list_known(char *buf, size_t size, const rd_field *fields, const char *const *also)
+/* "a, b, c": the keys of `fields`. */
+static void list_known(char *buf, size_t size, const rd_field *fields)
 {
     size_t n = 0;
     buf[0] = '\0';
     for (const rd_field *f = fields; f->key && n < size; f++)
         n += (size_t)snprintf(buf + n, size - n, "%s%s", n ? ", " : "", f->key);
-    for (; also && *also && n < size; also++)
-        if (!find_field(fields, *also))
-            n += (size_t)snprintf(buf + n, size - n, "%s%s", n ? ", " : "", *also);
 }
 
 /* ---- every problem: issues, allowed values, did you mean ----------------- */
@@ -283,15 +280,13 @@ const char *rd_schema_closest(const char *word, const char *const *names)
     return best <= limit && best > 0 ? found : NULL;
 }
 
-/* The closest key of `fields` or `also` to `key`, or NULL. */
-static const char *closest_key(const char *key, const rd_field *fields, const char *const *also)
+/* The closest key of `fields` to `key`, or NULL. */
+static const char *closest_key(const char *key, const rd_field *fields)
 {
     const char *names[96];
     int n = 0;
     for (const rd_field *f = fields; f->key && n < 95; f++)
         names[n++] = f->key;
-    for (; also && *also && n < 95; also++)
-        names[n++] = *also;
     names[n] = NULL;
     return rd_schema_closest(key, names);
 }
@@ -470,8 +465,8 @@ static int item_unknown_keys(const rd_block *items, json_t *item, const char *at
     {
         if (find_field(items->fields, key))
             continue;
-        list_known(known, sizeof known, items->fields, NULL);
-        const char *dym = closest_key(key, items->fields, NULL);
+        list_known(known, sizeof known, items->fields);
+        const char *dym = closest_key(key, items->fields);
         rd_schema_quote(q, sizeof q, key);
         rd_schema_path_join(child, sizeof child, at, key);
         int r = report(s, err, RD_EINVAL, child, known, dym, "unknown field %s in %s (known: %s)",
@@ -614,8 +609,9 @@ static int parse_field(const rd_field *f, char *at, json_t *v, const char *path,
     return report(s, err, RD_EINTERNAL, path, NULL, NULL, "unhandled field type for %s", path);
 }
 
-/* Every key of `obj` that neither `block` nor `also` knows: a problem
- * each, with the closest known key when one is close. */
+/* Every key of `obj` that neither `block` nor `also` (keys the caller
+ * has refused already) knows: a problem each, with the closest of
+ * `block`'s keys when one is close. */
 static int unknown_keys(json_t *obj, const rd_block *block, const char *const *also,
                         const char *path, struct rd_scene *s, rd_error *err)
 {
@@ -627,8 +623,8 @@ static int unknown_keys(json_t *obj, const rd_block *block, const char *const *a
     {
         if (find_field(block->fields, key) || in_list(also, key))
             continue;
-        list_known(known, sizeof known, block->fields, also);
-        const char *dym = closest_key(key, block->fields, also);
+        list_known(known, sizeof known, block->fields);
+        const char *dym = closest_key(key, block->fields);
         rd_schema_quote(q, sizeof q, key);
         rd_schema_path_join(child, sizeof child, path, key);
         int r = report(s, err, RD_EINVAL, child, known, dym, "unknown field %s in %s (known: %s)",

@@ -137,10 +137,10 @@ const rd_field *rd_schema_find(const rd_block *block, const char *path);
 const char *rd_schema_closest(const char *word, const char *const *names);
 
 /* Parses the JSON object `obj` at JSON Pointer `path` into scene `s` by
- * `block`: unknown keys first (listing `block`'s keys, then `also`'s that
- * it lacks, as known), then every present field in table order.  `also`
- * (may be NULL) names keys that are known but not read: they are skipped
- * unchecked.  The first error goes to `err` (first error wins); the
+ * `block`: unknown keys first (listing `block`'s keys as known), then
+ * every present field in table order.  `also` (may be NULL) names keys
+ * the caller has refused already (rd_scene.c: blocks the analysis does
+ * not read): they are not reported again.  The first error goes to `err` (first error wins); the
  * parse goes on after an error, and when s->issues is set every problem
  * found is also listed there, together with values outside the table's
  * static ranges (listed only: core's validators decide about values). */

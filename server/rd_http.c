@@ -120,6 +120,8 @@ static const char *allowed_params(enum route r, const char *method)
         return post ? "wait, time_limit_s" : "limit, status, analysis, name, cursor";
     case ROUTE_SWEEPS:
         return post ? "wait" : "limit";
+    case ROUTE_JOB: /* GET and HEAD: the long poll */
+        return strcmp(method, MHD_HTTP_METHOD_DELETE) == 0 ? "" : "wait";
     default:
         return "";
     }

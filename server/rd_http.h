@@ -4,8 +4,8 @@
  *
  * Threading: libmicrohttpd's own epoll event loop on a small pool of
  * threads (limits.threads), so an open connection costs a socket and a
- * few kB, not a thread.  A request that waits for its job (?wait=S, or a
- * DELETE of a running job) is suspended (MHD_suspend_connection) and
+ * few kB, not a thread.  A request that waits for its job (?wait=S on a
+ * submission or on GET of a job, or a DELETE of a running job) is suspended (MHD_suspend_connection) and
  * resumed by the timer thread when the job ends or the wait is over, so it
  * blocks no thread.  The timer thread also enforces the request deadline:
  * a connection whose request (header and body) has not arrived complete
@@ -25,6 +25,10 @@
 
 /* Longest ?wait= a client may ask for, seconds. */
 #define RD_HTTP_WAIT_MAX 300
+/* Longest ?wait= of GET /api/v1/jobs/{id} (the long poll), seconds: below
+ * the idle timeouts of common proxies (60 s), so that a poll is answered
+ * rather than cut; a client that wants longer polls again. */
+#define RD_HTTP_POLL_MAX 60
 
 typedef struct rd_http_limits {
     int threads;               /* event-loop threads, >= 1 */

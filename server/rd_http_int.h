@@ -63,7 +63,7 @@ struct conn {
     int shut;     /* the deadline passed and the socket was shut down */
 };
 
-enum wait_kind { WAIT_NONE, WAIT_SUBMIT, WAIT_CANCEL, WAIT_SWEEP };
+enum wait_kind { WAIT_NONE, WAIT_SUBMIT, WAIT_CANCEL, WAIT_POLL, WAIT_SWEEP };
 
 /* Per-request state, kept by MHD in *req_cls between calls. */
 struct request {
@@ -153,6 +153,21 @@ struct MHD_Response *rd_http_job_response(const struct request *rq, rd_jobs_body
                                           int cached);
 enum MHD_Result rd_http_send_text(rd_http *h, struct MHD_Connection *c, struct request *rq,
                                   int status, char *body, const char *content_type);
+/* Room for an ETag: W/"<32 hex digits>" and its NUL. */
+#define RD_HTTP_ETAG_LEN 40
+/* The ETag of a representation whose uncompressed bytes are `len` at `data`
+ * (a finished job's JSON or CSV): weak, since the same tag stands for its
+ * gzip too. */
+void rd_http_etag(const char *data, size_t len, char *out);
+/* Does the request's If-None-Match name `etag` (weak comparison) or "*"? */
+int rd_http_none_match(struct MHD_Connection *c, const char *etag);
+/* r with `etag` and Cache-Control: no-cache in place of no-store (a
+ * finished result never changes: a client may keep it and revalidate);
+ * NULL in, NULL out. */
+struct MHD_Response *rd_http_with_etag(struct MHD_Response *r, const char *etag);
+/* 304 Not Modified for `etag`, no body. */
+enum MHD_Result rd_http_send_not_modified(rd_http *h, struct MHD_Connection *c, struct request *rq,
+                                          const char *etag);
 /* The contract's error body; `allow` (may be NULL) for 405. */
 enum MHD_Result rd_http_send_error(rd_http *h, struct MHD_Connection *c, struct request *rq,
                                    const rd_error *err, const char *allow);

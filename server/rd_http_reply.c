@@ -5,6 +5,7 @@
 #include "rd_http_int.h"
 
 #include <stdarg.h>
+#include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -167,6 +168,67 @@ enum MHD_Result rd_http_send_text(rd_http *h, struct MHD_Connection *c, struct r
                                   int status, char *body, const char *content_type)
 {
     return rd_http_send_response(h, c, rq, status, rd_http_text_response(rq, body, content_type));
+}
+
+/* ---- validators: ETag, If-None-Match, 304 ---- */
+
+void rd_http_etag(const char *data, size_t len, char *out)
+{
+    uint64_t hash[2];
+    rd_jobs_hash(data, len, hash);
+    snprintf(out, RD_HTTP_ETAG_LEN, "W/\"%016llx%016llx\"", (unsigned long long)hash[0],
+             (unsigned long long)hash[1]);
+}
+
+/* The opaque tag of an entity tag at `p` (its quoted string, "W/" dropped):
+ * start in *tag, length in *n; returns the text after it, or NULL when
+ * `p` holds no well-formed tag. */
+static const char *next_tag(const char *p, const char **tag, size_t *n)
+{
+    while (*p == ' ' || *p == '\t' || *p == ',')
+        p++;
+    if (p[0] == 'W' && p[1] == '/')
+        p += 2;
+    if (*p != '"')
+        return NULL;
+    const char *end = strchr(p + 1, '"');
+    if (!end)
+        return NULL;
+    *tag = p;
+    *n = (size_t)(end - p + 1);
+    return end + 1;
+}
+
+int rd_http_none_match(struct MHD_Connection *c, const char *etag)
+{
+    const char *inm = MHD_lookup_connection_value(c, MHD_HEADER_KIND, "If-None-Match");
+    if (!inm)
+        return 0;
+    const char *p = inm + strspn(inm, " \t");
+    if (p[0] == '*' && p[1 + strspn(p + 1, " \t")] == '\0')
+        return 1;
+    const char *mine = etag + (strncmp(etag, "W/", 2) == 0 ? 2 : 0), *tag;
+    size_t n;
+    while ((p = next_tag(p, &tag, &n)))
+        if (n == strlen(mine) && memcmp(tag, mine, n) == 0)
+            return 1;
+    return 0;
+}
+
+struct MHD_Response *rd_http_with_etag(struct MHD_Response *r, const char *etag)
+{
+    if (r)
+        MHD_del_response_header(r, MHD_HTTP_HEADER_CACHE_CONTROL, "no-store");
+    r = rd_http_with_header(r, MHD_HTTP_HEADER_ETAG, etag);
+    return rd_http_with_header(r, MHD_HTTP_HEADER_CACHE_CONTROL, "no-cache");
+}
+
+enum MHD_Result rd_http_send_not_modified(rd_http *h, struct MHD_Connection *c, struct request *rq,
+                                          const char *etag)
+{
+    struct MHD_Response *r = MHD_create_response_from_buffer(0, (void *)"", MHD_RESPMEM_PERSISTENT);
+    r = rd_http_with_etag(r, etag);
+    return rd_http_send_response(h, c, rq, MHD_HTTP_NOT_MODIFIED, r);
 }
 
 /* The contract's error body; `allow` (may be NULL) for 405. */

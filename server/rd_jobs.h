@@ -160,9 +160,11 @@ void rd_jobs_expire(rd_jobs *jobs);
  * rd_jobs_get does.  RD_ENOTFOUND for an unknown id. */
 int rd_jobs_cancel(rd_jobs *jobs, const char *id, rd_jobs_body **body, char **json, rd_error *err);
 
-/* The result of a succeeded job as CSV (rd_api_result_csv).  RD_ENOTFOUND for
- * an unknown id or a job without a result (the message gives its status). */
-int rd_jobs_result_csv(rd_jobs *jobs, const char *id, char **csv, rd_error *err);
+/* The result of a succeeded job as CSV (rd_api_result_csv); the job's
+ * analysis into `analysis` (may be NULL; at least 32 bytes).  Only final
+ * jobs have one.  RD_ENOTFOUND for an unknown id or a job without a result
+ * (the message gives its status). */
+int rd_jobs_result_csv(rd_jobs *jobs, const char *id, char **csv, char *analysis, rd_error *err);
 
 /* Which jobs a list shows. */
 typedef struct rd_jobs_filter {

@@ -157,13 +157,15 @@ static char *result_of(const rd_jobs_body *b)
     return copy;
 }
 
-int rd_jobs_result_csv(rd_jobs *jobs, const char *id, char **csv, rd_error *err)
+int rd_jobs_result_csv(rd_jobs *jobs, const char *id, char **csv, char *analysis, rd_error *err)
 {
     *csv = NULL;
     struct job *job;
     int acquired = rd_jobs_acquire_locked(jobs, id, &job, err);
     if (acquired != RD_OK)
         return acquired;
+    if (analysis)
+        memcpy(analysis, job->analysis, sizeof job->analysis);
     if (!has_body(job)) {
         int rc = rd_error_set(err, RD_ENOTFOUND, "", "Job %s has no result (status %s).", job->id,
                               rd_jobs_status_name(job->status));

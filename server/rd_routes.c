@@ -1,9 +1,11 @@
 /*
  * rd_routes — the /api/v1 handlers and /metrics (rd_http_int.h): health,
- * OpenAPI, examples, jobs (list, get, CSV, DELETE, submit and wait) and
+ * OpenAPI, examples, jobs (list, get and long poll, CSV, DELETE, submit and
+ * wait; ETag and 304 on finished ones) and
  * sweeps.  rd_http.c has routed the request and checked method, query
  * parameters, Host and token; the handlers answer (rd_http_reply.c) or
- * suspend the request (rd_http_conn.c).
+ * suspend the request (rd_http_conn.c): a submission or a job's GET with
+ * ?wait, a DELETE of a running job.
  */
 #include "rd_http_int.h"
 
@@ -158,43 +160,98 @@ static enum MHD_Result list_jobs(rd_http *h, struct MHD_Connection *c, struct re
     return rd_http_send_text(h, c, rq, MHD_HTTP_OK, body, RD_HTTP_JSON);
 }
 
-static enum MHD_Result job_route(rd_http *h, struct MHD_Connection *c, struct request *rq,
-                                 enum route route, const char *method, const char *id)
+/* The job as it is now: GET (conditional: a finished job carries an ETag
+ * of its JSON, and an If-None-Match that names it gets 304 and no body), a
+ * resumed long poll, a DELETE's answer (not conditional). */
+static enum MHD_Result send_job(rd_http *h, struct MHD_Connection *c, struct request *rq,
+                                const char *id, int conditional)
 {
     rd_error err;
     rd_error_init(&err);
-    char *body = NULL;
-    int rc;
-    if (route == ROUTE_JOB_CSV) {
-        rc = rd_jobs_result_csv(h->jobs, id, &body, &err);
-        if (rc != RD_OK)
-            return rd_http_send_error(h, c, rq, &err, NULL);
-        struct MHD_Response *r = rd_http_text_response(rq, body, "text/csv; charset=utf-8");
-        if (r) {
-            char disposition[64];
-            snprintf(disposition, sizeof disposition, "inline; filename=\"%.16s.csv\"", id);
-            r = rd_http_with_header(r, "Content-Disposition", disposition);
-        }
-        return rd_http_send_response(h, c, rq, MHD_HTTP_OK, r);
-    }
+    char *body = NULL, etag[RD_HTTP_ETAG_LEN] = "";
     rd_jobs_body *shared = NULL;
-    if (strcmp(method, MHD_HTTP_METHOD_DELETE) == 0) {
-        /* A final job is deleted (204); a queued or running one is
-         * cancelled and answered as it then is, as before. */
-        int deleted = 0;
-        if ((rc = rd_jobs_delete(h->jobs, id, &deleted, &err)) != RD_OK)
-            return rd_http_send_error(h, c, rq, &err, NULL);
-        if (deleted)
-            return rd_http_send_response(
-                h, c, rq, MHD_HTTP_NO_CONTENT,
-                MHD_create_response_from_buffer(0, (void *)"", MHD_RESPMEM_PERSISTENT));
-        if (!rd_jobs_is_final(h->jobs, id)) /* running: wait for it to stop */
-            return rd_http_suspend_for(h, c, rq, WAIT_CANCEL, id, CANCEL_WAIT_S);
-    }
-    rc = rd_jobs_get(h->jobs, id, 0, &shared, &body, NULL, &err);
-    if (rc != RD_OK)
+    int finished = 0;
+    if (rd_jobs_get(h->jobs, id, 0, &shared, &body, &finished, &err) != RD_OK)
         return rd_http_send_error(h, c, rq, &err, NULL);
-    return rd_http_send_response(h, c, rq, MHD_HTTP_OK, rd_http_job_response(rq, shared, body, 0));
+    if (finished && (shared || body))
+        rd_http_etag(shared ? shared->data : body, shared ? shared->len : strlen(body), etag);
+    if (etag[0] && conditional && rd_http_none_match(c, etag)) {
+        rd_jobs_body_release(shared);
+        free(body);
+        return rd_http_send_not_modified(h, c, rq, etag);
+    }
+    struct MHD_Response *r = rd_http_job_response(rq, shared, body, 0);
+    if (etag[0])
+        r = rd_http_with_etag(r, etag);
+    return rd_http_send_response(h, c, rq, MHD_HTTP_OK, r);
+}
+
+/* GET /api/v1/jobs/{id}/result.csv: a finished job's table (only those have
+ * one), to save as ringdyn-<analysis>-<id>.csv; an ETag of the CSV, 304 on
+ * a matching If-None-Match. */
+static enum MHD_Result get_csv(rd_http *h, struct MHD_Connection *c, struct request *rq,
+                               const char *id)
+{
+    rd_error err;
+    rd_error_init(&err);
+    char *body = NULL, analysis[32] = "", etag[RD_HTTP_ETAG_LEN];
+    if (rd_jobs_result_csv(h->jobs, id, &body, analysis, &err) != RD_OK)
+        return rd_http_send_error(h, c, rq, &err, NULL);
+    rd_http_etag(body, strlen(body), etag);
+    if (rd_http_none_match(c, etag)) {
+        free(body);
+        return rd_http_send_not_modified(h, c, rq, etag);
+    }
+    struct MHD_Response *r = rd_http_text_response(rq, body, "text/csv; charset=utf-8");
+    char disposition[96];
+    snprintf(disposition, sizeof disposition, "attachment; filename=\"ringdyn-%s-%s.csv\"",
+             analysis, id);
+    r = rd_http_with_header(r, "Content-Disposition", disposition);
+    return rd_http_send_response(h, c, rq, MHD_HTTP_OK, rd_http_with_etag(r, etag));
+}
+
+/* GET/HEAD of a job, with ?wait=S the long poll: a job not yet final
+ * suspends the request (no thread held) until it ends or S seconds pass
+ * (rd_routes_answer_waiter). */
+static enum MHD_Result get_job(rd_http *h, struct MHD_Connection *c, struct request *rq,
+                               const char *id)
+{
+    const char *wait = MHD_lookup_connection_value(c, MHD_GET_ARGUMENT_KIND, "wait");
+    double wait_s = 0;
+    if (wait && !rd_http_parse_seconds(wait, RD_HTTP_POLL_MAX, &wait_s)) {
+        char buf[64];
+        return rd_http_send_fail(h, c, rq, RD_EREQUEST,
+                                 "The query parameter wait must be a number of seconds from 0 to "
+                                 "%d (the long poll's limit; poll again for longer), not \"%s\".",
+                                 RD_HTTP_POLL_MAX, rd_http_printable(wait, buf, sizeof buf));
+    }
+    /* An unknown id counts as final: answered (404) at once. */
+    if (wait_s > 0 && !rd_jobs_is_final(h->jobs, id))
+        return rd_http_suspend_for(h, c, rq, WAIT_POLL, id, wait_s);
+    return send_job(h, c, rq, id, 1);
+}
+
+static enum MHD_Result job_route(rd_http *h, struct MHD_Connection *c, struct request *rq,
+                                 enum route route, const char *method, const char *id)
+{
+    if (route == ROUTE_JOB_CSV)
+        return get_csv(h, c, rq, id);
+    if (strcmp(method, MHD_HTTP_METHOD_DELETE) != 0)
+        return get_job(h, c, rq, id);
+    /* A final job is deleted (204); a queued or running one is cancelled
+     * and answered as it then is, as before. */
+    rd_error err;
+    rd_error_init(&err);
+    int deleted = 0;
+    if (rd_jobs_delete(h->jobs, id, &deleted, &err) != RD_OK)
+        return rd_http_send_error(h, c, rq, &err, NULL);
+    if (deleted)
+        return rd_http_send_response(
+            h, c, rq, MHD_HTTP_NO_CONTENT,
+            MHD_create_response_from_buffer(0, (void *)"", MHD_RESPMEM_PERSISTENT));
+    if (!rd_jobs_is_final(h->jobs, id)) /* running: wait for it to stop */
+        return rd_http_suspend_for(h, c, rq, WAIT_CANCEL, id, CANCEL_WAIT_S);
+    return send_job(h, c, rq, id, 0);
 }
 
 /* An rd_sweeps answer as a response, or a suspended wait (status 0). */
@@ -383,13 +440,7 @@ enum MHD_Result rd_routes_answer_waiter(rd_http *h, struct MHD_Connection *c, st
         rd_sweeps_answer_wait(h->sweeps, rq->job_id, rq->sweep, &sr);
         return sweep_reply(h, c, rq, &sr);
     }
-    rd_error err;
-    rd_error_init(&err);
-    char *body = NULL;
-    rd_jobs_body *shared = NULL;
-    if (rd_jobs_get(h->jobs, rq->job_id, 0, &shared, &body, NULL, &err) != RD_OK)
-        return rd_http_send_error(h, c, rq, &err, NULL);
-    return rd_http_send_response(h, c, rq, MHD_HTTP_OK, rd_http_job_response(rq, shared, body, 0));
+    return send_job(h, c, rq, rq->job_id, kind == WAIT_POLL);
 }
 
 /* Last call of POST /api/v1/jobs: parse, queue, maybe wait. */

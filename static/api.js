@@ -70,10 +70,13 @@ export async function getBlob(url, options) {
   return (await request(url, options, (resp) => resp.blob())).body;
 }
 
-const FINISHED = new Set(['succeeded', 'failed', 'cancelled']);
+// Every final status (interrupted: the server stopped while the job ran).
+const FINISHED = new Set(['succeeded', 'failed', 'cancelled', 'interrupted']);
 // Polls soon after the submission (a short job is then shown at once), then
-// every 500 ms.
-const POLL_MS = [100, 200, 300, 500];
+// long-polls (GET ?wait=LONG_POLL_S): answered as soon as the job ends, else
+// after that long with its progress.
+const POLL_MS = [100, 200, 300];
+const LONG_POLL_S = 1;
 const POLL_LIMIT_S = 900; // give up polling after 15 min (the job keeps its id)
 
 const sleep = (ms, signal) => new Promise((resolve, reject) => {
@@ -105,8 +108,12 @@ export async function watchJob(job, { signal, onUpdate = () => {} } = {}) {
     if (Date.now() > deadline) {
       throw new ApiError({ code: 'timeout', message: `Job ${job.id} is still ${job.status}; stopped waiting after ${POLL_LIMIT_S / 60} min. Its result will be at /api/v1/jobs/${job.id}.` });
     }
-    await sleep(POLL_MS[Math.min(i, POLL_MS.length - 1)], signal);
-    job = await getJSON(jobUrl(job.id), { signal });
+    const quick = i < POLL_MS.length;
+    if (quick) await sleep(POLL_MS[i], signal);
+    const asked = Date.now();
+    job = await getJSON(quick ? jobUrl(job.id) : `${jobUrl(job.id)}?wait=${LONG_POLL_S}`, { signal });
+    // Not held (a proxy in the way): do not poll in a tight loop.
+    if (!quick && !FINISHED.has(job.status) && Date.now() - asked < 100) await sleep(500, signal);
   }
   return job;
 }

@@ -39,6 +39,7 @@ const state = {
 };
 
 const form = new SceneForm($('scene-form'));
+for (const a of ANALYSES) if (a.fieldPaths) form.setFieldPaths(a.id, a.fieldPaths);
 
 function buildTabs() {
   const list = $('tabs');

@@ -53,6 +53,9 @@ export class SceneForm {
     this.form = form;
     this.analysis = null;
     this.base = {};
+    this.baseAnalysis = null; // the analysis of the loaded scene (`base`)
+    this.reads = new Map(); // analysis -> drops from a scene what the analysis does not read (OpenAPI)
+    this.fieldPaths = new Map(); // analysis -> (path, scene) => the paths a shared field writes
     this.sources = new Map(); // block path -> Map(option value -> object)
     for (const input of this.inputs) if (input.dataset.hint) this.addHint(input);
     for (const list of form.querySelectorAll('[data-list]')) this.setupList(list);
@@ -80,6 +83,10 @@ export class SceneForm {
       const ref = s?.$ref ?? s?.allOf?.[0]?.$ref;
       return ref ? schemas[ref.split('/').pop()] : s;
     };
+    for (const [analysis, ref] of Object.entries(mapping)) {
+      const schema = resolve({ $ref: ref });
+      if (schema?.properties) this.reads.set(analysis, (value) => prune(value, schema, resolve));
+    }
     for (const input of this.form.querySelectorAll('[data-path]')) {
       if ('optional' in input.dataset) continue;
       const analysis = input.closest('[data-analysis]')?.dataset.analysis ?? shared;
@@ -112,9 +119,24 @@ export class SceneForm {
     hint.textContent = Number.isFinite(v) ? fn(v) : '';
   }
 
-  // Inputs that belong to `analysis`: the shared ones plus its own fieldset.
+  // Inputs that belong to `analysis`: the shared ones plus its own fieldset,
+  // less the shared ones it has no place for.
   inputsFor(analysis) {
-    return this.inputs.filter((input) => ownedBy(input, analysis));
+    return this.inputs.filter((input) => ownedBy(input, analysis) && this.pathsOf(input, analysis).length);
+  }
+
+  // Where `analysis` reads a shared field: its data-path, unless the
+  // analysis maps it (setFieldPaths: the ring pack reads the Ring fields in
+  // its first ring); [] = the analysis has no such field.  `scene` is the
+  // scene being read or loaded (a mapping may depend on it).
+  pathsOf(input, analysis, scene = this.base) {
+    const path = pathOf(input);
+    const map = this.fieldPaths.get(analysis);
+    return map && !input.closest('[data-analysis]') && input.dataset.path ? map(path, scene) : [path];
+  }
+
+  setFieldPaths(analysis, fn) {
+    this.fieldPaths.set(analysis, fn);
   }
 
   showAnalysis(analysis) {
@@ -122,10 +144,18 @@ export class SceneForm {
     for (const fs of this.form.querySelectorAll('[data-analysis]')) {
       fs.hidden = fs.dataset.analysis !== analysis;
     }
+    // A shared field the analysis has no place for is shown off (not sent).
+    for (const input of this.inputs) {
+      if (!input.dataset.path || input.closest('[data-analysis]')) continue;
+      const off = !this.pathsOf(input, analysis).length;
+      input.disabled = off;
+      input.closest('.field')?.classList.toggle('off', off);
+    }
   }
 
   reset() {
     this.base = {};
+    this.baseAnalysis = null;
     for (const list of this.form.querySelectorAll('[data-list]')) this.setRows(list, []);
     for (const input of this.inputs) setValue(input, input.dataset.default);
     for (const select of this.form.querySelectorAll('[data-source]')) select.selectedIndex = preferredIndex(select);
@@ -145,6 +175,8 @@ export class SceneForm {
     this.reset();
     const { name, description, ...rest } = scene;
     this.base = structuredClone(rest);
+    const analysis = scene.analysis ?? this.analysis;
+    this.baseAnalysis = analysis;
     for (const list of this.form.querySelectorAll('[data-list]')) {
       const rows = pointerGet(scene, list.dataset.list);
       if (Array.isArray(rows)) this.setRows(list, rows);
@@ -156,7 +188,8 @@ export class SceneForm {
         if (input.checked) this.matchSource(input.dataset.toggle, block);
         continue;
       }
-      const v = pointerGet(scene, input.dataset.path);
+      const [at] = this.pathsOf(input, analysis, scene);
+      const v = at === undefined ? undefined : pointerGet(scene, at);
       if (v !== undefined && v !== null && typeof v !== 'object') setValue(input, v);
     }
     for (const select of this.form.querySelectorAll('select[data-mode]')) {
@@ -169,8 +202,13 @@ export class SceneForm {
 
   // Builds the scene for `analysis`.  Throws {message, path} for an empty or
   // non-numeric field; ranges are the server's to check (one source of truth).
+  // A scene loaded for another analysis (then another tab chosen) keeps only
+  // what this analysis reads, by its schema: the server refuses the rest.  A
+  // scene loaded for this analysis goes as it is: its mistakes are the
+  // server's to name, not the page's to drop.
   read(analysis) {
     const scene = { ...structuredClone(this.base), analysis };
+    if (this.baseAnalysis && this.baseAnalysis !== analysis) this.reads.get(analysis)?.(scene);
     const mine = this.inputsFor(analysis);
     // Toggled blocks first, so their fields below land in them.
     for (const toggle of mine.filter((i) => i.dataset.toggle)) {
@@ -200,12 +238,14 @@ export class SceneForm {
     for (const input of mine) {
       if (input.dataset.toggle || input.closest('[data-list]')) continue;
       if (this.isOff(input)) {
-        if (input.closest('[data-when]')) pointerDelete(scene, input.dataset.path);
+        if (input.closest('[data-when]')) for (const at of this.pathsOf(input, analysis, scene)) pointerDelete(scene, at);
         continue;
       }
       const v = readValue(input);
-      if (v === undefined) pointerDelete(scene, input.dataset.path);
-      else pointerSet(scene, input.dataset.path, v);
+      for (const at of this.pathsOf(input, analysis, scene)) {
+        if (v === undefined) pointerDelete(scene, at);
+        else pointerSet(scene, at, v);
+      }
     }
     return scene;
   }
@@ -390,13 +430,15 @@ export class SceneForm {
   fieldsFor(path) {
     if (!path) return [];
     const inputs = this.analysis ? this.inputsFor(this.analysis) : this.inputs;
-    const exact = inputs.filter((i) => pathOf(i) === path);
+    const at = (i) => (this.analysis ? this.pathsOf(i, this.analysis) : [pathOf(i)]);
+    const exact = inputs.filter((i) => at(i).includes(path));
     if (exact.length) return exact;
-    const below = inputs.filter((i) => pathOf(i).startsWith(`${path}/`));
+    const below = inputs.filter((i) => at(i).some((p) => p.startsWith(`${path}/`)));
     if (below.length) return below;
+    const longest = (i) => Math.max(...at(i).filter((p) => path.startsWith(`${p}/`)).map((p) => p.length));
     const above = inputs
-      .filter((i) => path.startsWith(`${pathOf(i)}/`))
-      .sort((a, b) => pathOf(b).length - pathOf(a).length);
+      .filter((i) => at(i).some((p) => path.startsWith(`${p}/`)))
+      .sort((a, b) => longest(b) - longest(a));
     return above.slice(0, 1);
   }
 
@@ -443,6 +485,21 @@ function ownedBy(el, analysis) {
 function whenHolds(when) {
   const select = document.getElementById(when.dataset.when);
   return Boolean(select) && (when.dataset.whenIn || '').split(/\s+/).includes(select.value);
+}
+
+// Deletes the members of `value` that `schema` (OpenAPI, resolved by
+// `resolve`) does not list, at every depth.
+function prune(value, schema, resolve) {
+  const s = resolve(schema);
+  if (Array.isArray(value)) {
+    if (s?.items) for (const v of value) prune(v, s.items, resolve);
+    return;
+  }
+  if (value === null || typeof value !== 'object' || !s?.properties) return;
+  for (const key of Object.keys(value)) {
+    if (key in s.properties) prune(value[key], s.properties[key], resolve);
+    else delete value[key];
+  }
 }
 
 function preferredIndex(select) {
@@ -505,10 +562,10 @@ export function pointerGet(obj, path) {
 function pointerSet(obj, path, value) {
   const ts = tokens(path);
   let cur = obj;
-  for (const t of ts.slice(0, -1)) {
-    if (typeof cur[t] !== 'object' || cur[t] === null) cur[t] = {};
+  ts.slice(0, -1).forEach((t, i) => {
+    if (typeof cur[t] !== 'object' || cur[t] === null) cur[t] = /^\d+$/.test(ts[i + 1]) ? [] : {};
     cur = cur[t];
-  }
+  });
   cur[ts[ts.length - 1]] = value;
 }
 

@@ -1,4 +1,4 @@
-// The ring pack analysis: renders a ringpack `result` (issue 15) as the
+// The ring pack analysis: renders a ringpack `result` as the
 // absolute gas pressures of every volume against crank angle (the cylinder
 // first, the crankcase last), each ring's lift, the mass flow into the
 // crankcase (the blow-by), and tables of each ring's model (name, DOF, why),
@@ -18,6 +18,21 @@ export const ringpack = {
   id: 'ringpack',
   label: 'Ring pack',
   runLabel: 'Run ringpack analysis',
+
+  // The page's shared Ring, Material and Segments fields on this tab: a pack
+  // has no top-level ring (the server refuses one), so they are the top
+  // ring's, /rings/0 (an engineer who types a closed gap there means the ring
+  // the form shows; the other rings keep what the loaded scene gave); the
+  // diameter is every ring's, as they share the bore.  A pack's rings are
+  // split: the closed-ring box has no place ([]).
+  fieldPaths(path, scene) {
+    const n = Array.isArray(scene?.rings) && scene.rings.length ? scene.rings.length : 1;
+    if (path === '/ring/diameter') return Array.from({ length: n }, (_, i) => `/rings/${i}/ring/diameter`);
+    if (path.startsWith('/ring/')) return [`/rings/0${path}`];
+    if (path === '/discretization/segments') return ['/rings/0/segments'];
+    if (path.startsWith('/discretization/')) return [];
+    return [path];
+  },
 
   render(result, job, container) {
     const crank = nums(result.crank_deg);

@@ -28,6 +28,8 @@ const DEFAULTS = {
   pretension: { param: '/ring/radial_width', outputs: ['/gap_opening_inner', '/conformability', '/numerics/wall_s'] },
   contact: { param: '/ring/radial_width', outputs: ['/uniform_pressure_pa', 'max(/pressure_pa)', 'min(/pressure_pa)', '/numerics/wall_s'] },
   lift: { param: '/engine/speed_rpm', outputs: ['max(/lift)', 'count(/events)', '/numerics/wall_s'] },
+  // the top ring's closed gap: what the blow-by answers to most directly
+  ringpack: { param: '/rings/0/ring/closed_gap', outputs: ['/blowby/l_per_min', '/blowby/kg_per_cycle', '/numerics/wall_s'] },
 };
 
 const pointer = (obj, path) => path.split('/').slice(1)

@@ -94,8 +94,8 @@ typedef struct rd_gas_params {
 struct rd_film_track; /* core/liner/rd_film_track.h */
 
 /* The lubricated model's numerics and defaults. */
-#define RD_LIFT_FILM_STEP_DEG     1.0 /* numerics.film_step_deg default: the film's largest step */
-#define RD_LIFT_FILM_STEP_MAX_DEG 2.0
+#define RD_LIFT_FILM_STEP_DEG     2.0 /* numerics.film_step_deg default: the film's largest step */
+#define RD_LIFT_FILM_STEP_MAX_DEG 10.0
 
 typedef struct rd_lift_params {
     rd_engine_params engine;

@@ -203,20 +203,34 @@ void rd_film_solve(rd_film *f, double h0, double h0_dot, double U, double eta, d
     double hT[RD_FILM_NODES_MAX], src[RD_FILM_NODES_MAX], hTf[RD_FILM_NODES_MAX],
         sf[RD_FILM_NODES_MAX];
     for (int j = 0; j + 1 < n; j++) { /* faces */
-        double h = h0 + f->drop_mid[j], H = h / sg, hk = fmax(h, RD_FILM_PHI_X_H_MIN * sg);
+        double h = h0 + f->drop_mid[j], H = h / sg, hk = fmax(h, RD_FILM_PHI_X_H_MIN * sg), g, dg,
+               f52;
         f->kf[j] = (H > FAR_H ? 1.0 : rd_film_phi_x(H)) * hk * hk * hk / (12.0 * eta);
-        hTf[j] = H > FAR_GAP ? h : sg * rd_film_gap(H, NULL);
+        if (H > FAR_GAP)
+            hTf[j] = h;
+        else {
+            rd_film_node_laws(H, &g, &dg, &f52);
+            hTf[j] = sg * g;
+        }
         sf[j] = f->w_s != 0.0 ? f->w_s * rd_film_phi_s(H) : 0.0;
     }
     double Wa = 0.0;
     for (int i = 0; i < n; i++) {
-        double H = (h0 + f->drop[i]) / sg, g = 1.0;
-        hT[i] = H > FAR_GAP ? h0 + f->drop[i] : sg * rd_film_gap(H, &g);
+        double H = (h0 + f->drop[i]) / sg, g = 1.0, gap, f52 = 0.0;
+        if (H > FAR_GAP)
+            hT[i] = h0 + f->drop[i];
+        else {
+            rd_film_node_laws(H, &gap, &g, &f52);
+            hT[i] = sg * gap;
+        }
         if (i > 0 && i < n - 1)
             src[i] = -(0.5 * U * (hTf[i] - hTf[i - 1]) + 0.5 * U * sg * (sf[i] - sf[i - 1])) / dx -
                      g * h0_dot;
-        if (H < RD_FILM_GT_LAMBDA_MAX)
-            Wa += ((i == 0 || i == n - 1) ? 0.5 : 1.0) * dx * f->gt_k * rd_film_gt_f52(H);
+        if (H < RD_FILM_GT_LAMBDA_MAX) {
+            if (H > FAR_GAP)
+                f52 = rd_film_gt_f52(H);
+            Wa += ((i == 0 || i == n - 1) ? 0.5 : 1.0) * dx * f->gt_k * f52;
+        }
     }
     f->p[0] = fmax(p_lo, 0.0);
     f->p[n - 1] = fmax(p_hi, 0.0);

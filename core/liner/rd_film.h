@@ -97,6 +97,10 @@ void rd_film_solve(rd_film *f, double h0, double h0_dot, double U, double eta, d
 double rd_film_phi_x(double H);
 double rd_film_phi_s(double H);
 double rd_film_gap(double H, double *dgap); /* h_T / sigma and d(h_T / sigma)/dH */
+/* The node laws at H from tables on the F_5/2 table's grid (cubic Hermite
+ * with the exact slopes; within 1e-7 of rd_film_gap): the expected gap, its
+ * slope and F_5/2; their far limits H, 1, 0 above RD_FILM_GT_LAMBDA_MAX. */
+void rd_film_node_laws(double H, double *gap, double *dgap, double *f52);
 /* Greenwood-Tripp F_n(lambda) = (1/sqrt(2 pi)) int_lambda^inf (s - lambda)^n
  * e^{-s^2/2} ds: F_5/2 from a table of ln F_5/2 (cubic Hermite, built once
  * by Gauss-Legendre quadrature; 0 above RD_FILM_GT_LAMBDA_MAX; the table's

@@ -72,6 +72,8 @@ double rd_film_gt_quad(double n, double l)
 #define GT_STEP 0.02
 #define GT_N    801 /* (RD_FILM_GT_LAMBDA_MAX - RD_FILM_GT_LAMBDA_MIN) / GT_STEP + 1 */
 static double gt_ln[GT_N], gt_dln[GT_N];
+/* the expected gap and its slope on the same grid, with their slopes */
+static double tb_gap[GT_N], tb_dgap[GT_N], tb_pdf[GT_N];
 static once_flag gt_once = ONCE_FLAG_INIT;
 
 static void gt_build(void)
@@ -81,7 +83,37 @@ static void gt_build(void)
         double f52 = rd_film_gt_quad(2.5, l), f32 = rd_film_gt_quad(1.5, l);
         gt_ln[i] = log(f52);
         gt_dln[i] = -2.5 * f32 / f52;
+        tb_gap[i] = rd_film_gap(l, &tb_dgap[i]);
+        tb_pdf[i] = exp(-0.5 * l * l) / sqrt(2.0 * M_PI);
     }
+}
+
+/* Cubic Hermite on cell i at t in [0, 1] from values v and slopes d (per unit H). */
+static double hermite(const double *v, const double *d, int i, double t)
+{
+    double t2 = t * t, t3 = t2 * t;
+    return (2 * t3 - 3 * t2 + 1) * v[i] + (t3 - 2 * t2 + t) * GT_STEP * d[i] +
+           (-2 * t3 + 3 * t2) * v[i + 1] + (t3 - t2) * GT_STEP * d[i + 1];
+}
+
+void rd_film_node_laws(double H, double *gap, double *dgap, double *f52)
+{
+    call_once(&gt_once, gt_build);
+    if (H >= RD_FILM_GT_LAMBDA_MAX) {
+        *gap = H;
+        *dgap = 1.0;
+        *f52 = 0.0;
+        return;
+    }
+    double u = (fmax(H, RD_FILM_GT_LAMBDA_MIN) - RD_FILM_GT_LAMBDA_MIN) / GT_STEP;
+    int i = (int)u;
+    if (i > GT_N - 2)
+        i = GT_N - 2;
+    double t = u - i;
+    *gap = H < RD_FILM_GT_LAMBDA_MIN ? rd_film_gap(H, dgap) : hermite(tb_gap, tb_dgap, i, t);
+    if (H >= RD_FILM_GT_LAMBDA_MIN)
+        *dgap = hermite(tb_dgap, tb_pdf, i, t);
+    *f52 = exp(hermite(gt_ln, gt_dln, i, t));
 }
 
 double rd_film_gt_f52(double l)

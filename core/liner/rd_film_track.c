@@ -14,6 +14,7 @@ typedef struct step_ctx {
     double U, eta, W_ext, p_lo, p_hi, c1, hist, dt;
     rd_film_out o;
     double last_h; /* where o was solved */
+    double slope;  /* dR/dh of the last root's final secant (< 0), 0 = none */
     long solves;
 } step_ctx;
 
@@ -34,14 +35,21 @@ static double residual(step_ctx *s, double h)
 static double balance(step_ctx *s, double h, int *held)
 {
     double sg = s->f->sigma, lo = -INFINITY, hi = INFINITY;
-    double tol = 1e-9 * fmax(fabs(h), sg), scale = 1e-12 * fmax(s->W_ext, 1e-300);
+    double tol = 1e-6 * fmax(fabs(h), sg), scale = 1e-12 * fmax(s->W_ext, 1e-300);
     double x0 = fmin(fmax(h, H_LOW * sg), RD_FILM_H_MAX), r0 = residual(s, x0);
     *held = 0;
     if (r0 > 0.0)
         lo = x0;
     else
         hi = x0;
-    double x1 = x0 + (r0 > 0.0 ? 1.0 : -1.0) * (1e-5 * fabs(x0) + 1e-5 * sg);
+    /* the first step: Newton with the last root's slope, else a small probe */
+    double probe = 1e-5 * fabs(x0) + 1e-5 * sg, x1 = x0 + (r0 > 0.0 ? probe : -probe);
+    if (s->slope < 0.0) {
+        double d = -r0 / s->slope, lim = 0.5 * fabs(x0) + sg;
+        x1 = x0 + fmax(-lim, fmin(lim, d));
+        if (fabs(x1 - x0) < probe)
+            x1 = x0 + (r0 > 0.0 ? probe : -probe);
+    }
     x1 = fmin(fmax(x1, H_LOW * sg), RD_FILM_H_MAX);
     double r1 = residual(s, x1);
     for (int it = 0; it < 200; it++) {
@@ -58,6 +66,8 @@ static double balance(step_ctx *s, double h, int *held)
         if (r1 < 0.0 && x1 <= H_LOW * sg)
             return x1;
         double x = x1 - r1 * (x1 - x0) / (r1 - r0);
+        if (fabs(x - x1) < tol) /* x1 is within tol of the root */
+            return x1;
         int bracket = isfinite(lo) && isfinite(hi);
         if (bracket && !(x > lo && x < hi))
             x = 0.5 * (lo + hi);
@@ -72,6 +82,8 @@ static double balance(step_ctx *s, double h, int *held)
         x0 = x1, r0 = r1;
         x1 = x;
         r1 = residual(s, x1);
+        if (r1 != r0 && x1 != x0)
+            s->slope = fmin((r1 - r0) / (x1 - x0), 0.0);
         if (fabs(x1 - x0) < tol)
             return x1;
     }
@@ -166,12 +178,14 @@ int rd_film_track_run(rd_film *f, const rd_film_loads *ld, double t_end, double 
     if (t_warm <= 0.0 && (rc = append(tr, &s, y[0], 0.0, err))) /* its loads at rest */
         return rc;
     double h = fmin(dt_max, 1e-4 * period);
+    /* the warm-up only brings the film near its orbit: a looser error, longer steps */
     while (t < t_end - 1e-12 * period) {
         double te = next_end(t, h, period, t_end), hn = te - t, guess;
         ld->at(ld->ctx, te, &s.U, &s.eta, &s.W_ext, &s.p_lo, &s.p_hi);
         history(&s, y, ts, have, hn, &guess);
         double yn = balance(&s, guess, &held), est = local_error(y, ts, have, te, yn);
-        double tol = RD_FILM_RTOL * fabs(yn) + 1e-3 * sg;
+        int loose = t < -0.25 * period; /* the warm-up but its last quarter period */
+        double tol = (loose ? RD_FILM_WARM_RTOL : RD_FILM_RTOL) * fabs(yn) + 1e-3 * sg;
         if (est > tol && hn > 1e-9 * period) { /* rejected: a smaller step */
             h = hn * fmax(0.2, 0.9 * cbrt(tol / est));
             continue;
@@ -187,7 +201,7 @@ int rd_film_track_run(rd_film *f, const rd_film_loads *ld, double t_end, double 
             tr->held += held;
         }
         h = est > 0.0 ? hn * fmin(2.0, fmax(0.2, 0.9 * cbrt(tol / est))) : 2.0 * hn;
-        h = fmin(h, dt_max);
+        h = fmin(h, te < -0.25 * period ? RD_FILM_WARM_STEPS * dt_max : dt_max);
     }
     tr->solves = s.solves;
     if (tr->steps > 0 &&

@@ -13,7 +13,9 @@
  * grows).  The step follows the local error (the corrector against a
  * quadratic predictor, Milne's device) to rtol * h0 + 1e-3 sigma, at most
  * dt_max, and lands on every multiple of `period` (the cycles' ends).
- * A warm-up (a cycle before t = 0) starts it on its periodic orbit; `periodic_change` says how far h0 at the run's end still differs
+ * A warm-up (a cycle before t = 0, its first three quarters at a looser
+ * error and longer steps: RD_FILM_WARM_RTOL, RD_FILM_WARM_STEPS) starts it
+ * on its periodic orbit; `periodic_change` says how far h0 at the run's end still differs
  * from one cycle earlier.
  *
  * Usage:
@@ -42,7 +44,9 @@ typedef struct rd_film_point {
     double t, h0, W, Wa, Cc, Fp, U, cavitated;
 } rd_film_point;
 
-#define RD_FILM_RTOL 1e-4 /* the step's local error on h0, relative */
+#define RD_FILM_RTOL       1e-4 /* the step's local error on h0, relative */
+#define RD_FILM_WARM_RTOL  1e-2 /* the same in the warm-up but its last quarter period */
+#define RD_FILM_WARM_STEPS 5.0  /* the warm-up's largest step, in dt_max */
 
 typedef struct rd_film_track {
     int steps; /* points 0 .. steps: pt[0].t = 0, pt[steps].t = t_end */

@@ -201,7 +201,8 @@ int rd_ringpack_validate(const rd_ringpack_params *p, rd_error *err)
     if (!rc && p->friction.model != RD_FRICTION_NONE && p->friction.model != RD_FRICTION_COULOMB)
         return rd_error_set(err, RD_EINVAL, "/physics/friction/model",
                             "/physics/friction/model: only coulomb is available in the ring "
-                            "pack (the rigid ring's Stribeck law is not carried over yet).");
+                            "pack (stribeck and the lubricated oil film are the lift "
+                            "analysis' only, not carried over to the pack's rings yet).");
     rc = rc ? rc : rd_error_range(p->atol, 1e-16, 1e-5, "/numerics/atol", "m", err);
     if (rc)
         return rc;

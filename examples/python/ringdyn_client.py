@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """A small client of the ringdyn HTTP API (API.md), standard library only.
 
-Submit a scene, wait for the job by polling, fetch the result and its CSV
+Submit a scene, wait for the job (a long poll), fetch the result and its CSV
 table; a refused scene or a failed job raises RingdynError carrying the
 server's JSON error (code, message, and the JSON Pointer `path` of the
 field at fault).
@@ -71,14 +71,19 @@ class Client:
         """POST the scene; the job as the server answers (finished if it ended within `wait` s)."""
         return self._request("POST", f"/api/v1/jobs?wait={wait:g}", scene)
 
-    def job(self, job_id):
-        return self._request("GET", "/api/v1/jobs/" + urllib.parse.quote(job_id))
+    def job(self, job_id, wait=0):
+        """The job; with `wait` > 0 (s, at most 60) the server holds the answer until the job
+        ends or that time has passed (a long poll)."""
+        query = f"?wait={wait:.3f}" if wait > 0 else ""
+        return self._request("GET", "/api/v1/jobs/" + urllib.parse.quote(job_id) + query)
 
     def cancel(self, job_id):
         return self._request("DELETE", "/api/v1/jobs/" + urllib.parse.quote(job_id))
 
     def wait(self, job, poll=0.5, timeout=600.0, on_progress=None):
-        """Polls `job` (a job object or id) until it has finished; returns it.
+        """Long-polls `job` (a job object or id) until it has finished; returns it. Each
+        request waits up to `poll` s on the server, which answers as soon as the job ends;
+        on_progress sees the job after each.
 
         Raises RingdynError if it ended otherwise than succeeded (failed,
         cancelled, interrupted: with .job set and .code the error's code or
@@ -92,8 +97,11 @@ class Client:
                 on_progress(job)
             if time.monotonic() > deadline:
                 raise RingdynError(f"job {job['id']} is still {job['status']} after {timeout:g} s", code="timeout")
-            time.sleep(poll)
-            job = self.job(job["id"])
+            hold = min(poll, 60.0, max(deadline - time.monotonic(), 0.0), self.timeout / 2)
+            asked = time.monotonic()
+            job = self.job(job["id"], wait=hold)
+            if job["status"] in LIVE and time.monotonic() - asked < min(hold, 0.1):
+                time.sleep(poll)  # not held (a proxy in the way): no tight loop
         if job["status"] != "succeeded":
             err = job.get("error") or {}
             raise RingdynError(err.get("message") or f"job {job['id']} {job['status']}",

@@ -241,9 +241,12 @@ static void test_analysis(void)
      * the schema, so a block one analysis reads is an error in another's
      * terms only */
     expect_error("{\"ring\":5,\"analysis\":\"lift\"}", RD_EINVAL, "/ring", "must be an object");
-    expect_ok("{\"analysis\":\"pretension\",\"bore\":{\"diameter\":\"x\"}}");
-    expect_ok("{\"analysis\":\"contact\",\"pretension\":7,\"engine\":[]}");
-    expect_ok("{\"analysis\":\"lift\",\"bore\":{},\"modal\":{\"modes\":\"x\"}}");
+    expect_error("{\"analysis\":\"pretension\",\"bore\":{\"diameter\":\"x\"}}", RD_EINVAL, "/bore",
+                 "the pretension analysis does not read a top-level \"bore\"");
+    expect_error("{\"analysis\":\"contact\",\"pretension\":7,\"engine\":[]}", RD_EINVAL,
+                 "/pretension", "only the pretension analysis reads it");
+    expect_error("{\"analysis\":\"lift\",\"bore\":{},\"modal\":{\"modes\":\"x\"}}", RD_EINVAL,
+                 "/modal", "a lift scene reads: analysis, name, description, ring, discretization");
     /* a long analysis name is quoted cut, still valid UTF-8 */
     expect_error("{\"analysis\":\"ééééééééééééééééééééééééééééééééééééééé\"}", RD_EINVAL,
                  "/analysis", "...\" (allowed");
@@ -309,9 +312,7 @@ static void test_unknown_fields(void)
                  "unknown field \"segmnets\" in /discretization (known: segments, closed)");
     expect_error("{\"analysis\":\"modal\",\"rnig\":{}}", RD_EINVAL, "/rnig",
                  "unknown field \"rnig\" in the scene (known: analysis, name, description, ring, "
-                 "discretization, modal, pretension, bore, engine, groove, physics, output, "
-                 "numerics, contact, rings, cylinder_pressure, crankcase_pressure_pa, "
-                 "gas_temperature_k)");
+                 "discretization, modal)");
     expect_error(
         "{\"analysis\":\"modal\",\"ring\":{\"diameter\":0.07,\"diametre\":0.07}}", RD_EINVAL,
         "/ring/diametre",
@@ -331,9 +332,13 @@ static void test_unknown_fields(void)
     /* case matters */
     expect_error("{\"analysis\":\"modal\",\"Ring\":{}}", RD_EINVAL, "/Ring", "unknown field");
 
-    /* blocks the modal analysis does not read are ignored entirely */
-    expect_ok("{\"analysis\":\"modal\",\"engine\":5,\"pretension\":{\"typo\":1},\"bore\":[],"
-              "\"groove\":null,\"physics\":{\"gravity\":\"yes\"},\"output\":{},\"numerics\":{}}");
+    /* blocks the modal analysis does not read are refused, whatever they hold */
+    expect_error("{\"analysis\":\"modal\",\"engine\":5}", RD_EINVAL, "/engine",
+                 "the modal analysis does not read a top-level \"engine\"");
+    expect_error("{\"analysis\":\"modal\",\"numerics\":{}}", RD_EINVAL, "/numerics",
+                 "only the pretension, contact, lift and ringpack analyses read it");
+    expect_error("{\"analysis\":\"ringpack\",\"ring\":{}}", RD_EINVAL, "/ring",
+                 "each ring is /rings/i/ring");
     expect_ok("{\"analysis\":\"modal\",\"name\":\"x\",\"description\":\"\",\"ring\":{},"
               "\"discretization\":{},\"modal\":{}}");
 }

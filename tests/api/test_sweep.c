@@ -226,7 +226,7 @@ static void test_bad_specs(void)
          "\"count\": 3}}",
          "", "/parameters/0/range", "allowed 3 to 2000", 1000},
         {"{\"path\": \"/engine/speed_rpm\", \"values\": [1000]}", "", "/parameters/0/values/0",
-         "not a field that a modal scene reads", 1000},
+         "the modal analysis does not read a top-level \"engine\"", 1000},
         {"{\"path\": \"/ring/diameter\", \"values\": []}", "", "/parameters/0/values", "non-empty",
          1000},
         {"{\"path\": \"/ring/diameter\", \"range\": {\"start\": 0.05, \"stop\": 0.1, \"count\": "

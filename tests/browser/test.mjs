@@ -1413,6 +1413,30 @@ for (const width of [1280, 390]) {
   });
 }
 
+test('after its first quick polls the page long-polls (?wait=1); a job the server interrupted ends the wait at once', { timeout: 60000 }, async () => {
+  await page.goto(`${BASE}/`);
+  await page.waitForSelector('#tab-modal[aria-selected="true"]');
+  const urls = [];
+  const match = (url) => url.pathname.startsWith('/api/v1/jobs');
+  await page.route(match, (route) => {
+    if (route.request().method() === 'POST') return route.fulfill({ status: 202, json: { id: 'cut-job', status: 'running', progress: 0.1 } });
+    urls.push(new URL(route.request().url()).search);
+    if (urls.length < 5) return route.fulfill({ json: { id: 'cut-job', status: 'running', progress: 0.2 } });
+    return route.fulfill({ json: { id: 'cut-job', status: 'interrupted', progress: 0.3, error: { code: 'interrupted', message: 'The server stopped while the job ran.', path: '' } } });
+  });
+  try {
+    const t0 = Date.now();
+    await runAnalysis('Run modal analysis', 20000);
+    assert.ok(Date.now() - t0 < 15000, 'not polled until a timeout');
+    assert.deepEqual(urls, ['', '', '', '?wait=1', '?wait=1']);
+    assert.equal(await page.textContent('#status-text'), 'Job cut-job interrupted.');
+    assert.match(await page.textContent('#error'), /The server stopped while the job ran/);
+  } finally {
+    await page.unroute(match);
+    await page.getByRole('button', { name: 'Reset to defaults' }).click();
+  }
+});
+
 test('the server\'s eta_s is shown when a job has one; a job that fails leaves the old result marked out of date', { timeout: 60000 }, async () => {
   await page.goto(`${BASE}/`);
   await page.waitForSelector('#tab-modal[aria-selected="true"]');
@@ -1820,7 +1844,7 @@ for (const width of [1280, 390]) {
   });
 }
 
-// ---- ring pack (issue 15) ---------------------------------------------------
+// ---- ring pack ---------------------------------------------------
 
 test('ring pack tab: a live two-cycle run draws every volume\'s pressure, the lifts and the blow-by', { timeout: 120000 }, async () => {
   const skip = await unavailable('ringpack');
@@ -1905,6 +1929,84 @@ for (const width of [1280, 390]) {
       assert.equal(await page.textContent('#rp-model-1 td'), 'full');
       assert.match(await page.textContent('#rp-model-1 td.why'), /piston tilt/);
     } finally {
+      await page.setViewportSize({ width: 1280, height: 800 });
+    }
+  });
+}
+
+// A ring pack has no top-level ring: the page's Ring fields are the top
+// ring's on this tab, the diameter every ring's, the closed-ring box off, and
+// the blocks of a scene loaded on another tab stay behind (the server refuses
+// what an analysis does not read).
+for (const width of [1280, 390]) {
+  test(`${width} px: ring pack tab: the Ring fields go to the first ring, nothing else is sent, a refused value marks its field`, { timeout: 180000 }, async () => {
+    const skip = await unavailable('ringpack');
+    if (skip) return;
+    await page.setViewportSize({ width, height: 844 });
+    try {
+      const { examples } = await (await page.request.get(`${BASE}/api/v1/examples`)).json();
+      const pack = examples.find((e) => e.scene?.analysis === 'ringpack' && e.scene.rings?.length === 3);
+      const lift = examples.find((e) => e.scene?.analysis === 'lift');
+      assert.ok(pack && lift, 'a three-ring pack example and a lift example');
+      await page.waitForFunction((n) => document.querySelectorAll('#example option').length === n, examples.length + 1);
+      // a lift scene first: its groove, physics, output ... must not follow the tab change
+      await page.selectOption('#example', { index: examples.indexOf(lift) + 1 });
+      await selectTab('ringpack');
+      assert.ok(await page.isVisible('#f-ring-pack-note'));
+      assert.equal(await page.isDisabled('#f-closed'), true, 'a pack has no closed ring');
+      await page.fill('#f-rp-cycles', '2');
+      await page.fill('#f-closed-gap', '0.0006');
+      await runAnalysis('Run ringpack analysis');
+      await page.waitForSelector('#rp-models');
+      let r = (await shownJob()).result;
+      assert.equal(r.scene.rings.length, 1, 'no pack loaded: one ring');
+      assert.equal(r.scene.rings[0].ring.closed_gap, 0.0006, 'the typed closed gap is the ring\'s');
+      assert.equal(r.scene.groove, undefined);
+      // the three-ring example: the Ring fields show the top ring, edits go there only
+      await page.selectOption('#example', { index: examples.indexOf(pack) + 1 });
+      assert.equal(Number(await page.inputValue('#f-closed-gap')), pack.scene.rings[0].ring.closed_gap);
+      await page.fill('#f-rp-cycles', '2');
+      await page.fill('#f-closed-gap', '0.0005');
+      await page.fill('#f-diameter', '0.0766');
+      await runAnalysis('Run ringpack analysis');
+      await page.waitForSelector('#rp-models');
+      r = (await shownJob()).result;
+      assert.deepEqual(r.scene.rings.map((x) => x.ring.closed_gap),
+        [0.0005, ...pack.scene.rings.slice(1).map((x) => x.ring.closed_gap)]);
+      assert.deepEqual(r.scene.rings.map((x) => x.ring.diameter), [0.0766, 0.0766, 0.0766], 'one bore');
+      // the server's error at /rings/0/ring/closed_gap marks the Closed gap field
+      await page.fill('#f-closed-gap', '0.5');
+      await runAnalysis('Run ringpack analysis');
+      await page.waitForSelector('#error:not([hidden])');
+      assert.match(await page.textContent('#error'), /\/rings\/0\/ring\/closed_gap/);
+      assert.equal(await page.getAttribute('#f-closed-gap', 'aria-invalid'), 'true');
+      if (width === 390) {
+        const overflow = await page.evaluate(() => document.documentElement.scrollWidth - window.innerWidth);
+        assert.ok(overflow <= 0, `no sideways scrolling (${overflow} px)`);
+      }
+      await shot(`ringdyn-ringpack-ring-fields-${width}.png`, { fullPage: true });
+      // a sweep filled from this tab varies the top ring's closed gap and tabulates the blow-by
+      await page.fill('#f-closed-gap', '0.0005');
+      await page.click('#view-sweep');
+      await page.click('#sw-fill');
+      const spec = JSON.parse(await page.inputValue('#sw-spec'));
+      assert.equal(spec.parameters[0].path, '/rings/0/ring/closed_gap');
+      assert.equal(spec.base.ring, undefined);
+      assert.equal(spec.outputs[0], '/blowby/l_per_min');
+      spec.parameters[0].range.count = 2;
+      await page.fill('#sw-spec', JSON.stringify(spec));
+      await page.click('#sw-run');
+      await sweepDone('sw');
+      const sw = await newestSweep();
+      assert.equal(sw.table.rows.length, 2);
+      assert.ok(sw.table.rows.every((r) => r[1] > 0), `blow-by in every row: ${JSON.stringify(sw.table.rows)}`);
+      await page.click('#view-result');
+      // the other tabs get their shared fields back
+      await selectTab('modal');
+      assert.equal(await page.isDisabled('#f-closed'), false);
+      assert.equal(await page.isVisible('#f-ring-pack-note'), false);
+    } finally {
+      await page.getByRole('button', { name: 'Reset to defaults' }).click();
       await page.setViewportSize({ width: 1280, height: 800 });
     }
   });

@@ -52,6 +52,17 @@ static void greenwood_tripp(void)
         worst = fmax(worst, fabs(t - q) / q);
     }
     CHECK(worst < 1e-6, "the F_5/2 table is %.3g off its quadrature (relative)", worst);
+    double wg = 0.0, wd = 0.0, wf = 0.0;
+    for (double H = -3.9; H < 11.9; H += 0.00731) {
+        double g, dg, f52, dref, gref = rd_film_gap(H, &dref);
+        rd_film_node_laws(H, &g, &dg, &f52);
+        wg = fmax(wg, fabs(g - gref) / gref);
+        wd = fmax(wd, fabs(dg - dref));
+        wf = fmax(wf, fabs(f52 - rd_film_gt_f52(H)) / rd_film_gt_f52(H));
+    }
+    CHECK(wg < 1e-6 && wd < 1e-9 && wf < 1e-12,
+          "the node laws' tables: gap %.3g, slope %.3g, F_5/2 %.3g off the direct laws", wg, wd,
+          wf);
     CHECK(rd_film_gt_f52(20.0) == 0.0, "F_5/2 beyond the table's range is 0");
     /* slope: dF_5/2/dl = -2.5 F_3/2 */
     double d = (rd_film_gt_f52(1.5 + 1e-5) - rd_film_gt_f52(1.5 - 1e-5)) / 2e-5;

@@ -70,7 +70,7 @@ if [ "$rc" -eq 1 ] && [[ $err == "ringdyn: cannot reach"* ]]; then ok "unreachab
 
 # 4. As a module: the result equals the server's own job; a cancelled job raises.
 if out=$(cd "$CLIENT" && timeout 120 "$PY" - "$BASE" 2>&1 <<'PY'
-import json, sys, urllib.request
+import json, sys, time, urllib.request
 from ringdyn_client import Client, RingdynError
 base = sys.argv[1]
 c = Client(base)
@@ -88,12 +88,18 @@ try:
     raise SystemExit("a cancelled job did not raise")
 except RingdynError as e:
     assert e.job is not None and e.job["status"] == "cancelled", (e.code, e.job)
+# wait() long-polls: a job of a few seconds is back as soon as it ends, not
+# after `poll` (the old client slept it between requests).
+t0 = time.monotonic()
+slow = c.wait(c.submit({"analysis": "lift", "engine": {"cycles": 3}, "numerics": {"model": "full"},
+                        "output": {"step_deg": 30}}), poll=30)
+assert slow["status"] == "succeeded" and time.monotonic() - t0 < 20, time.monotonic() - t0
 # A job the server stopped by its restart ends "interrupted": final at once,
 # not polled until the timeout (a client that knew only three final
 # statuses waited its 600 s).
 import time as _t
 class Stub(Client):
-    def job(self, job_id):
+    def job(self, job_id, wait=0):
         return {"id": job_id, "status": "interrupted",
                 "error": {"code": "interrupted", "message": "the server restarted"}}
 t0 = _t.monotonic()

@@ -1,0 +1,106 @@
+/*
+ * bench_lube — the cost of the lubricated friction model (issue target: a
+ * lubricated rigid-ring lift cycle <= 10 ms).
+ *
+ *   bench_lube [reps]      (default 5; median wall times)
+ *
+ * Scenes (one 720 deg cycle, thesis ring, rigid model, no error estimate):
+ * 2400 rpm without gas, and 1000 / 2400 / 6000 rpm with the thesis gas
+ * example's tables (examples/ scenes are not read: a firing pulse written
+ * here).  Per scene: the whole lift with lubricated friction, the film
+ * alone (rd_lift_film_run), the same lift with Coulomb friction, the film's
+ * steps and solves.  Instruction counts: bench/run.sh runs this under
+ * callgrind (`valgrind --tool=callgrind bench_lube 1`).
+ */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+
+#include "bench_util.h"
+#include "rd_lift_internal.h"
+
+#define PTS 73
+static double crank[PTS], above[PTS], behind[PTS], below[PTS];
+
+/* a fired cycle: polytropic compression and expansion (9:1), a 30 bar pulse
+ * near 370 deg, gauge Pa */
+static double cylinder(double deg)
+{
+    double a = (deg - 360.0) * M_PI / 180.0, r = 0.04345, l = 0.13, d = 0.0765;
+    double s = r * (1.0 - cos(a)) + l - sqrt(l * l - pow(r * sin(a), 2.0));
+    double area = 0.25 * M_PI * d * d, vc = area * 2.0 * r / 8.0;
+    double p = 1e5 * pow((vc + area * 2.0 * r) / (vc + area * s), 1.35) +
+               3.0e6 * exp(-pow((deg - 370.0) / 25.0, 2.0));
+    return deg > 180.0 && deg < 540.0 ? p : 1e5;
+}
+
+static void scene(rd_lift_params *p, double rpm, int gas, int model)
+{
+    rd_lift_params_default(p);
+    p->engine.speed_rpm = rpm;
+    p->engine.cycles = 1.0;
+    p->friction.model = model;
+    p->model = RD_LIFT_MODEL_RIGID;
+    p->estimate_error = 0;
+    if (gas) {
+        for (int k = 0; k < PTS; k++) {
+            crank[k] = 10.0 * k;
+            above[k] = behind[k] = cylinder(crank[k]);
+            below[k] = 0.2 * above[k];
+        }
+        p->gas = (rd_gas_params){PTS, crank, above, behind, below, RD_GAS_AREA_FIXED};
+    }
+}
+
+static double lift_ms(const rd_ring_params *rp, const rd_lift_params *p, int reps)
+{
+    double t[16];
+    for (int k = 0; k < reps; k++) {
+        rd_lift_result r;
+        rd_error err;
+        rd_error_init(&err);
+        double t0 = bench_now();
+        int rc = rd_lift_solve(rp, 20, p, NULL, &r, &err);
+        t[k] = 1e3 * (bench_now() - t0);
+        if (rc)
+            fprintf(stderr, "lift: %s\n", err.message);
+        rd_lift_result_cleanup(&r);
+    }
+    return bench_median(t, reps);
+}
+
+int main(int argc, char **argv)
+{
+    int reps = argc > 1 ? atoi(argv[1]) : 5;
+    reps = reps < 1 ? 1 : (reps > 15 ? 15 : reps);
+    rd_ring_params rp;
+    rd_ring_params_default(&rp);
+    double rpms[4] = {2400.0, 1000.0, 2400.0, 6000.0};
+    int gases[4] = {0, 1, 1, 1};
+    printf("| scene | lubricated lift, ms | film alone, ms | film steps | film solves | "
+           "Coulomb lift, ms |\n|---|---|---|---|---|---|\n");
+    for (int s = 0; s < 4; s++) {
+        rd_lift_params p;
+        scene(&p, rpms[s], gases[s], RD_FRICTION_LUBRICATED);
+        double lub = lift_ms(&rp, &p, reps), t[16];
+        rd_film_track tr = {0};
+        for (int k = 0; k < reps; k++) {
+            rd_film f;
+            rd_error err;
+            rd_error_init(&err);
+            rd_film_track_free(&tr);
+            double t0 = bench_now();
+            if (rd_lift_film_run(&rp, &p, &f, &tr, &err))
+                fprintf(stderr, "film: %s\n", err.message);
+            t[k] = 1e3 * (bench_now() - t0);
+            rd_film_free(&f);
+        }
+        double film = bench_median(t, reps);
+        scene(&p, rpms[s], gases[s], RD_FRICTION_COULOMB);
+        double cou = lift_ms(&rp, &p, reps);
+        printf("| %.0f rpm%s | %.1f | %.1f | %d | %ld | %.1f |\n", rpms[s], gases[s] ? ", gas" : "",
+               lub, film, tr.steps, tr.solves, cou);
+        rd_film_track_free(&tr);
+    }
+    return 0;
+}
