@@ -393,24 +393,24 @@ static json_t *member_value(const member *m, int n, const char *key)
     return NULL;
 }
 
-/* Decodes member `key` (key_len bytes) of the text into `o`: 0, or -1 when
- * out of memory.  An absent or undecodable member is left out. */
+/* Decodes member `key` (key_len bytes) of the text into `o`, once: 0, or
+ * -1 when out of memory.  An absent or undecodable member is left out. */
 static int take_member(json_t *o, const member *m, int n, const char *key, size_t key_len)
 {
     for (int i = 0; i < n; i++) {
         if (m[i].key_len != key_len || memcmp(m[i].key, key, key_len) != 0)
             continue;
-        json_t *v = json_loadb(m[i].value, m[i].value_len, JSON_DECODE_ANY, NULL);
-        if (!v)
-            return 0;
         char *name = malloc(key_len + 1);
-        if (!name) {
-            json_decref(v);
+        if (!name)
             return -1;
-        }
         memcpy(name, key, key_len);
         name[key_len] = '\0';
-        int rc = json_object_set_new(o, name, v);
+        int rc = 0;
+        json_t *v = json_object_get(o, name)
+                        ? NULL
+                        : json_loadb(m[i].value, m[i].value_len, JSON_DECODE_ANY, NULL);
+        if (v)
+            rc = json_object_set_new(o, name, v);
         free(name);
         return rc ? -1 : 0;
     }
@@ -419,7 +419,8 @@ static int take_member(json_t *o, const member *m, int n, const char *key, size_
 
 /* An object holding only the members `t` reads ("analysis" aside): what
  * rd_result_csv needs of the whole result (a pointer column: the member its
- * first token names).  NULL on out of memory. */
+ * first token names; an "object.member" column: the object).  NULL on out
+ * of memory. */
 static json_t *table_members(const member *m, int n, const rd_csv_table *t)
 {
     json_t *o = json_object();
@@ -430,7 +431,7 @@ static json_t *table_members(const member *m, int n, const rd_csv_table *t)
         if (is_pointer(&t->columns[c]))
             bad = take_member(o, m, n, key + 1, strcspn(key + 1, "/"));
         else if (!holder)
-            bad = take_member(o, m, n, key, strlen(key));
+            bad = take_member(o, m, n, key, strcspn(key, "."));
     }
     if (bad) {
         json_decref(o);

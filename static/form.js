@@ -10,7 +10,9 @@
 //   <select>                    -> the chosen option's value (a string choice)
 //   number                      -> a number; data-type="int" requires a whole one;
 //                                  data-optional: left empty, the field is absent
-//                                  from the scene (the server's default applies)
+//                                  from the scene (the server's default applies);
+//                                  with required too, no default is filled in
+//                                  but it must not be left empty
 // Structures:
 //   [data-list="/ptr"]          an editable list of rows (a <template> holds one
 //                               row; its inputs name their key with data-field);
@@ -21,6 +23,16 @@
 //   select[data-source="/ptr"]  for a toggled block: which prepared object
 //                               (setSource) the block starts from, e.g. the gas
 //                               pressure tables of an example.
+//   [data-when="id"]            fields that count only while the <select> of
+//     data-when-in="a b"        that id has one of these values (a friction
+//     data-clear="/p /q"        model's own inputs); otherwise hidden, and they
+//                               and the data-clear paths are left out of the
+//                               scene (also what a loaded scene had there).
+//                               Nested ones must all hold.
+//   select[data-mode]           such a <select> that is no scene field itself
+//                               (which of two inputs to send); a loaded scene
+//                               picks the first option whose data-if-set path
+//                               it sets to a non-zero value, else the first.
 
 const HINTS = {
   mm: (v) => `= ${fmt(v * 1e3)} mm`,
@@ -55,6 +67,7 @@ export class SceneForm {
     });
     form.addEventListener('change', (e) => {
       if (e.target.dataset.toggle) this.syncToggle(e.target);
+      this.syncWhens();
     });
     this.reset();
   }
@@ -146,6 +159,7 @@ export class SceneForm {
     for (const list of this.form.querySelectorAll('[data-list]')) this.setRows(list, []);
     for (const input of this.inputs) setValue(input, input.dataset.default);
     for (const select of this.form.querySelectorAll('[data-source]')) select.selectedIndex = preferredIndex(select);
+    for (const select of this.form.querySelectorAll('select[data-mode]')) select.selectedIndex = 0;
     this.syncToggles();
     this.clearMarks();
     this.updateHints();
@@ -177,6 +191,10 @@ export class SceneForm {
       const [at] = this.pathsOf(input, analysis, scene);
       const v = at === undefined ? undefined : pointerGet(scene, at);
       if (v !== undefined && v !== null && typeof v !== 'object') setValue(input, v);
+    }
+    for (const select of this.form.querySelectorAll('select[data-mode]')) {
+      const set = (o) => o.dataset.ifSet && ![undefined, null, 0, false, ''].includes(pointerGet(scene, o.dataset.ifSet));
+      select.value = ([...select.options].find(set) || select.options[0])?.value ?? '';
     }
     this.syncToggles();
     this.updateHints();
@@ -211,8 +229,18 @@ export class SceneForm {
       pointerDelete(scene, list.dataset.list);
       if (rows.length) pointerSet(scene, list.dataset.list, rows);
     }
+    // Fields of a choice not taken, and their data-clear paths, go (even
+    // where a loaded scene had them).
+    for (const when of this.form.querySelectorAll('[data-when]')) {
+      if (!ownedBy(when, analysis) || !this.isOff(when)) continue;
+      for (const path of (when.dataset.clear || '').split(/\s+/).filter(Boolean)) pointerDelete(scene, path);
+    }
     for (const input of mine) {
-      if (input.dataset.toggle || input.closest('[data-list]') || this.isOff(input)) continue;
+      if (input.dataset.toggle || input.closest('[data-list]')) continue;
+      if (this.isOff(input)) {
+        if (input.closest('[data-when]')) for (const at of this.pathsOf(input, analysis, scene)) pointerDelete(scene, at);
+        continue;
+      }
       const v = readValue(input);
       for (const at of this.pathsOf(input, analysis, scene)) {
         if (v === undefined) pointerDelete(scene, at);
@@ -224,11 +252,16 @@ export class SceneForm {
 
   // ---- toggled blocks --------------------------------------------------
 
-  // Is `el` inside a block whose toggle is off?
+  // Is `el` inside a block whose toggle is off, or a [data-when] whose
+  // choice is not taken?
   isOff(el) {
     const block = el.closest('[data-block]');
     const toggle = block && this.toggleOf(block);
-    return Boolean(toggle && (!toggle.checked || toggle.disabled));
+    if (toggle && (!toggle.checked || toggle.disabled)) return true;
+    for (let w = el.closest('[data-when]'); w; w = w.parentElement?.closest('[data-when]')) {
+      if (!whenHolds(w)) return true;
+    }
+    return false;
   }
 
   toggleOf(block) {
@@ -238,6 +271,16 @@ export class SceneForm {
 
   syncToggles() {
     for (const toggle of this.form.querySelectorAll('[data-toggle]')) this.syncToggle(toggle);
+    this.syncWhens();
+  }
+
+  // A [data-when] shows while its choice is taken; its controls are enabled
+  // while they count (their toggle on too).
+  syncWhens() {
+    for (const when of this.form.querySelectorAll('[data-when]')) {
+      when.hidden = !whenHolds(when);
+      for (const el of when.querySelectorAll('input, select, button')) el.disabled = this.isOff(el);
+    }
   }
 
   // A block's controls are disabled while its toggle is off; a toggle whose
@@ -438,6 +481,12 @@ function ownedBy(el, analysis) {
   return !owner || owner.dataset.analysis === analysis;
 }
 
+// Whether a [data-when]'s <select> has one of its data-when-in values.
+function whenHolds(when) {
+  const select = document.getElementById(when.dataset.when);
+  return Boolean(select) && (when.dataset.whenIn || '').split(/\s+/).includes(select.value);
+}
+
 // Deletes the members of `value` that `schema` (OpenAPI, resolved by
 // `resolve`) does not list, at every depth.
 function prune(value, schema, resolve) {
@@ -463,7 +512,7 @@ function readValue(input) {
   if (input.type === 'checkbox') return input.checked;
   if (input.tagName === 'SELECT') return input.value;
   if (input.value === '' && !input.validity.badInput) {
-    if ('optional' in input.dataset) return undefined;
+    if ('optional' in input.dataset && !input.required) return undefined;
     throw { code: 'invalid_value', message: 'must be a number (it is empty)', path: input.dataset.path };
   }
   const v = input.valueAsNumber;

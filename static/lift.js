@@ -3,7 +3,9 @@
 // lowest and highest segment, both flanks, the flank band where the events
 // are dated, the flank events), a strip of the flank state, the friction
 // force when friction is modelled, and tables of the events and the solver's
-// cost.
+// cost.  A lubricated run's `lubrication` adds the minimum film thickness and
+// the friction split (film shear, asperities, total) against crank angle, the
+// friction work and FMEP of each cycle, and what the film model covers.
 // A pure function of the result: optional fields may be missing.
 //
 // setup() is called once the shipped examples are known: the gas pressure
@@ -22,6 +24,9 @@ const EVENT_TEXT = {
 const FLANK_TEXT = { lower: 'on the lower flank', upper: 'on the upper flank', free: 'free (between the flanks)' };
 const EVENTS_SHOWN = 500; // rows of the event table
 const CRANK_STEPS = [90, 180, 360, 720, 1440, 3600, 7200, 14400];
+// The lubrication block's arrays with one value per output sample.
+const LUBE_SAMPLES = ['min_film_m', 'hydrodynamic_friction_n', 'asperity_friction_n', 'friction_power_w', 'asperity_share', 'regime'];
+const REGIME_TEXT = { hydrodynamic: 'hydrodynamic', mixed: 'mixed', boundary: 'boundary' };
 
 
 export const lift = {
@@ -65,10 +70,12 @@ export const lift = {
     fill(container,
       h('h3', {}, `Lift — the ring in its groove${title ? `, ${title}` : ''}`),
       h('p', { id: 'lf-summary' }, summary(result, events)),
+      lubeSummary(result.lubrication, crank),
       h('p', { id: 'cost', class: 'cost' }, h('strong', {}, 'Cost and accuracy: '), costLine(n)),
       resultLinks(job, 'lift', 'Lift table (CSV)'),
       zoomControl(crank, (range) => fill(plots, figures(sliceRun(result, events, range)))),
       plots,
+      lubeReadout(result.lubrication),
       h('div', { class: 'lift-tables' },
         h('div', {},
           h('div', { class: 'table-wrap events-wrap' }, eventTable(events)),
@@ -96,8 +103,9 @@ function figures(result) {
       : null,
     friction && typeof friction === 'object'
       ? h('figure', { class: 'plot wide' }, frictionPlot(result),
-        h('figcaption', {}, `Axial bore friction force on the ring (${friction.model || 'friction'}${isNum(friction.coefficient) ? `, μ = ${friction.coefficient}` : ''}).`))
+        h('figcaption', {}, `Axial bore friction force on the ring (${friction.model || 'friction'}${isNum(friction.coefficient) && friction.model !== 'lubricated' ? `, μ = ${friction.coefficient}` : ''}).`))
       : null,
+    ...lubeFigures(result),
   ];
 }
 
@@ -128,6 +136,11 @@ function sliceRun(result, events, range) {
   const cut = (a) => (Array.isArray(a) ? keep.map((i) => a[i]) : a);
   const out = { ...result, events: events.filter((e) => e.crank_deg >= c0 && e.crank_deg <= c1) };
   for (const k of ['crank_deg', 'lift', 'lift_min', 'lift_max', 'flank', 'friction_force']) out[k] = cut(result[k]);
+  const lub = result.lubrication;
+  if (lub && typeof lub === 'object') {
+    out.lubrication = { ...lub };
+    for (const k of LUBE_SAMPLES) out.lubrication[k] = cut(lub[k]);
+  }
   return out;
 }
 
@@ -395,6 +408,155 @@ function frictionPlot(result) {
   }),
   svg('line', { class: 'zero', x1: box.left, x2: box.left + box.width, y1: y(0), y2: y(0) }),
   f.length === crank.length ? svg('path', { class: 'friction', id: 'lf-friction-line', d: pathD(thin(crank, f).map(([c, v]) => [x(c), y(v)])) }) : null);
+}
+
+// ---- the oil film of a lubricated run (result.lubrication) ------------------
+
+const isLube = (lub) => lub !== null && typeof lub === 'object';
+
+// The thinnest film and the FMEP in one line under the summary.
+function lubeSummary(lub, crank) {
+  if (!isLube(lub)) return null;
+  const film = nums(lub.min_film_m);
+  const parts = [];
+  if (film.length && film.length === crank.length) {
+    const i = film.indexOf(Math.min(...film));
+    parts.push(`thinnest oil film ${um(film[i], 3)} µm at ${deg(crank[i])}`);
+  }
+  const fmep = nums(lub.fmep_pa);
+  if (fmep.length) parts.push(`FMEP ${fmep.map((p) => sig(p / 1e3)).join(', ')} kPa (${fmep.length === 1 ? 'the cycle' : 'per cycle'})`);
+  else if (Array.isArray(lub.fmep_pa)) parts.push('no whole cycle, so no FMEP');
+  return parts.length ? h('p', { id: 'lf-lube-summary' }, `Lubricated: ${parts.join('; ')}.`) : null;
+}
+
+// The oil's viscosity over the cycle ({min, max}, Pa s) in mPa s: one value
+// when constant; null without one.
+function viscosityText(v) {
+  if (!v || !isNum(v.min) || !isNum(v.max)) return null;
+  return v.max - v.min <= 1e-9 * v.max ? `${sig(v.min * 1e3)} mPa s` : `${sig(v.min * 1e3)}–${sig(v.max * 1e3)} mPa s`;
+}
+
+// The two plots of the film: its minimum thickness and the friction split
+// (none without a lubrication block).
+function lubeFigures(result) {
+  const lub = result.lubrication;
+  if (!isLube(lub)) return [];
+  const crank = nums(result.crank_deg);
+  const film = nums(lub.min_film_m);
+  const regime = Array.isArray(lub.regime) ? lub.regime : [];
+  const share = (r) => `${((regime.filter((x) => x === r).length / Math.max(1, regime.length)) * 100).toFixed(0)} %`;
+  const viscText = viscosityText(lub.viscosity_pa_s);
+  return [
+    film.length === crank.length && crank.length > 1
+      ? h('figure', { class: 'plot wide' }, filmPlot(crank, film, lub.composite_roughness_m),
+        h('figcaption', {}, 'Minimum oil film thickness between the running face and the liner against crank angle (one film for the whole circumference). ' +
+          (isNum(lub.composite_roughness_m) ? `Dashed: the composite roughness σ = ${um(lub.composite_roughness_m, 3)} µm; the asperities take load as the film nears a few σ. ` : '') +
+          (regime.length ? `Regime by the asperities' share of the load: hydrodynamic ${share('hydrodynamic')}, mixed ${share('mixed')}, boundary ${share('boundary')} of the samples` : '') +
+          (viscText ? `; η = ${viscText}.` : '.')))
+      : null,
+    crank.length > 1
+      ? h('figure', { class: 'plot wide' }, lubeFrictionPlot(crank, lub),
+        h('figcaption', {}, 'Friction on the ring from the film against crank angle, + upwards: the oil film\'s shear (hydrodynamic), the asperities\' contact friction and their total.'))
+      : null,
+  ];
+}
+
+function filmPlot(crank, film, sigma) {
+  const H = 240;
+  const box = { ...BOX, top: 34, height: H - 34 - 50 };
+  const v = film.map((f) => f * 1e6);
+  const s = isNum(sigma) ? sigma * 1e6 : null;
+  const vals = v.filter(isNum);
+  const y0 = Math.min(0, ...vals), y1 = Math.max(1e-3, ...vals, s ?? 0);
+  const pad = (y1 - y0) * 0.08;
+  const { x, ticks: xTicks } = crankAxis(crank);
+  const y = scale(y0, y1 + pad, box.top + box.height, box.top);
+  const i = v.indexOf(Math.min(...vals));
+  return svg('svg', {
+    id: 'lf-film', class: 'chart', viewBox: `0 0 ${W} ${H}`, role: 'img',
+    'aria-label': `Minimum oil film thickness against crank angle, ${sig(Math.min(...vals))} to ${sig(Math.max(...vals))} µm, thinnest at ${deg(crank[i])}.`,
+  },
+  legend([
+    [svg('path', { class: 'film', d: 'M-2,0H12' }), 'minimum film'],
+    s !== null ? [svg('path', { class: 'sigma', d: 'M-2,0H12' }), 'composite roughness σ'] : null,
+  ].filter(Boolean), { x: box.left, y: 14 }),
+  axes({
+    box, x, y, xTicks, yTicks: ticks(y0, y1 + pad, 4),
+    xLabel: 'crank angle (deg)', yLabel: 'film (µm)', yFormat: (t) => String(Number(t.toPrecision(4))),
+  }),
+  s !== null ? svg('line', { class: 'sigma', id: 'lf-film-sigma', x1: box.left, x2: box.left + box.width, y1: y(s), y2: y(s) }) : null,
+  svg('path', { class: 'film', id: 'lf-film-line', d: pathD(thin(crank, v).map(([c, f]) => [x(c), y(f)])) }),
+  svg('circle', { class: 'film-min', cx: x(crank[i]), cy: y(v[i]), r: 4 }, svg('title', {}, `thinnest: ${sig(v[i])} µm at ${deg(crank[i])}`)));
+}
+
+const SPLIT = [
+  ['hydrodynamic', 'lf-friction-hydro', 'oil film (hydrodynamic)'],
+  ['asperity', 'lf-friction-asperity', 'asperities'],
+  ['total', 'lf-friction-total', 'total'],
+];
+
+function lubeFrictionPlot(crank, lub) {
+  const H = 240;
+  const box = { ...BOX, top: 34, height: H - 34 - 50 };
+  const N = crank.length;
+  const hydro = nums(lub.hydrodynamic_friction_n).slice(0, N), asp = nums(lub.asperity_friction_n).slice(0, N);
+  const series = {
+    hydrodynamic: hydro.length === N ? hydro : null,
+    asperity: asp.length === N ? asp : null,
+    total: hydro.length === N && asp.length === N ? hydro.map((f, i) => f + asp[i]) : null,
+  };
+  const vals = Object.values(series).filter(Boolean).flat().filter(isNum);
+  const f0 = Math.min(0, ...vals), f1 = Math.max(0, ...vals);
+  const pad = (f1 - f0) * 0.08 || 1;
+  const { x, ticks: xTicks } = crankAxis(crank);
+  const y = scale(f0 - pad, f1 + pad, box.top + box.height, box.top);
+  const range = (k) => (series[k] ? `${SPLIT.find((q) => q[0] === k)[2]} ${sig(Math.min(...series[k]))} to ${sig(Math.max(...series[k]))} N` : null);
+  return svg('svg', {
+    id: 'lf-lube-friction', class: 'chart', viewBox: `0 0 ${W} ${H}`, role: 'img',
+    'aria-label': `Friction split against crank angle: ${SPLIT.map(([k]) => range(k)).filter(Boolean).join('; ')}.`,
+  },
+  legend(SPLIT.filter(([k]) => series[k]).map(([k, , text]) => [svg('path', { class: `split-${k}`, d: 'M-2,0H12' }), text]), { x: box.left, y: 14 }),
+  axes({
+    box, x, y, xTicks, yTicks: ticks(f0 - pad, f1 + pad, 4),
+    xLabel: 'crank angle (deg)', yLabel: 'friction (N)', yFormat: (v) => String(Number(v.toPrecision(4))),
+  }),
+  svg('line', { class: 'zero', x1: box.left, x2: box.left + box.width, y1: y(0), y2: y(0) }),
+  SPLIT.filter(([k]) => series[k]).map(([k, id]) => svg('path', { class: `split-${k}`, id, d: pathD(thin(crank, series[k]).map(([c, f]) => [x(c), y(f)])) })));
+}
+
+// Per cycle: friction work and FMEP; the film's facts; what the model is
+// (shown as text, not a tooltip).
+function lubeReadout(lub) {
+  if (!isLube(lub)) return null;
+  const work = nums(lub.friction_work_j), fmep = nums(lub.fmep_pa);
+  const cycles = !Array.isArray(lub.friction_work_j) ? null : h('table', { class: 'data', id: 'lf-fmep' },
+    h('caption', {}, work.length ? 'Friction of the ring per 720° cycle' : 'Friction per cycle: none (the run is shorter than one 720° cycle)'),
+    h('thead', {}, h('tr', {},
+      h('th', { scope: 'col', class: 'num' }, 'Cycle'),
+      h('th', { scope: 'col', class: 'num' }, 'Friction work (J)'),
+      h('th', { scope: 'col', class: 'num' }, 'FMEP (kPa)'))),
+    h('tbody', {}, work.map((w, i) => h('tr', {},
+      h('td', { class: 'num' }, String(i + 1)),
+      h('td', { class: 'num work' }, sig(w, 4)),
+      h('td', { class: 'num fmep' }, isNum(fmep[i]) ? sig(fmep[i] / 1e3, 4) : '—')))));
+  const facts = kvTable({
+    id: 'lf-lube-facts',
+    caption: 'Oil film',
+    rows: [
+      ['Composite roughness σ', isNum(lub.composite_roughness_m) ? `${um(lub.composite_roughness_m, 3)} µm` : undefined],
+      ['Thinnest point of the face', isNum(lub.min_film_at_m) ? `${fixed(lub.min_film_at_m, 3, 1e3)} mm above its lower edge` : undefined],
+      ['Viscosity', viscosityText(lub.viscosity_pa_s) ?? undefined],
+      ['Film steps (largest)', isNum(lub.film_step_deg) ? `${sig(lub.film_step_deg)}° crank` : undefined],
+      ['Film solves', isNum(lub.film_solves) ? String(lub.film_solves) : undefined],
+      ['Change over the last cycle (periodicity)', isNum(lub.periodic_change) ? percent(lub.periodic_change, 3) : undefined],
+      ['Steps held off the liner', isNum(lub.held_steps) ? String(lub.held_steps) : undefined],
+    ],
+  });
+  return h('section', { class: 'lube-readout', id: 'lf-lube', 'aria-label': 'Oil film' },
+    h('div', { class: 'lift-tables' }, h('div', { class: 'table-wrap' }, cycles), h('div', { class: 'table-wrap' }, facts)),
+    typeof lub.method === 'string' && lub.method
+      ? h('p', { class: 'method', id: 'lf-lube-method' }, h('strong', {}, 'Film model: '), lub.method)
+      : null);
 }
 
 // The events, each with where the mean lift touched the flank itself (after

@@ -756,6 +756,35 @@ static void test_lift_csv(void)
     }
     rd_result_doc_free(doc);
     rd_scene_free(s);
+
+    /* a lubricated run: the server's CSV (from the stored text) has the
+     * lubrication block's columns too, as the document's has */
+    s = NULL;
+    doc = NULL;
+    scene = "{\"analysis\":\"lift\",\"engine\":{\"speed_rpm\":2400,\"cycles\":1},"
+            "\"physics\":{\"friction\":{\"model\":\"lubricated\"}},\"output\":{\"step_deg\":5},"
+            "\"numerics\":{\"model\":\"rigid\",\"error_estimate\":false}}";
+    rd_error_init(&err);
+    CHECK(rd_scene_parse(scene, strlen(scene), &s, &err) == RD_OK, "parse: %s", err.message);
+    if (s && rd_scene_run_doc(s, NULL, &doc, &err) == RD_OK && doc) {
+        char *from_doc = rd_result_doc_csv(doc, &err), *text = rd_result_doc_json(doc);
+        char *from_text = text ? rd_api_result_csv(text, &err) : NULL;
+        const char *tail = ",min_film_m,hydrodynamic_friction_n,asperity_friction_n,"
+                           "friction_power_w,regime\n";
+        const char *nl = from_text ? strchr(from_text, '\n') : NULL;
+        CHECK(nl && (size_t)(nl + 1 - from_text) > strlen(tail) &&
+                  strncmp(nl + 1 - strlen(tail), tail, strlen(tail)) == 0,
+              "lubricated CSV header from the text: %.300s", from_text ? from_text : err.message);
+        CHECK(from_doc && from_text && strcmp(from_doc, from_text) == 0,
+              "lubricated: doc and text CSV");
+        free(from_doc);
+        free(from_text);
+        free(text);
+    } else {
+        CHECK(0, "lubricated run: %s", err.message);
+    }
+    rd_result_doc_free(doc);
+    rd_scene_free(s);
 }
 
 /* ---- examples ------------------------------------------------------------ */

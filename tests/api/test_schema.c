@@ -13,7 +13,10 @@
  *     the README shows is valid; the page's form keeps no default of its own;
  *   - a toy analysis added next to the built-in ones (one rd_analysis_def
  *     and one registry line, here in the test) is parsed, echoed,
- *     described in OpenAPI, run, and written as JSON and CSV.
+ *     described in OpenAPI, run, and written as JSON and CSV;
+ *   - a lubricated lift's `lubrication` block has every member the
+ *     OpenAPI document's LiftLubrication describes, of its type, and no
+ *     other; a lift without the model has none.
  *
  * usage: test_schema SOURCE_DIR (the repository: examples/, static/,
  * server/openapi.json, README.md)
@@ -686,6 +689,136 @@ static void test_toy(void)
     rd_scene_free(s);
 }
 
+/* ---- result schemas: the lift's lubrication block ------------------------- */
+
+static int conform_checked;
+
+/* `v` has the type `schema` (resolved) says, recursively: type, nullable,
+ * enum, required and properties (both ways: no member the schema lacks),
+ * items; `samples` > 0: arrays described per output sample have that length. */
+static void conform(json_t *schemas, json_t *schema, json_t *v, const char *path, size_t samples)
+{
+    const json_t *s = resolve(schemas, schema);
+    const char *type = json_string_value(json_object_get(s, "type"));
+    const char *desc = json_string_value(json_object_get(s, "description"));
+    conform_checked++;
+    CHECK(type != NULL, "%s: the schema has a type", path);
+    if (!type)
+        return;
+    if (json_is_null(v)) {
+        CHECK(json_is_true(json_object_get(s, "nullable")), "%s is null, not nullable", path);
+        return;
+    }
+    int ok = strcmp(type, "number") == 0    ? json_is_number(v)
+             : strcmp(type, "integer") == 0 ? json_is_integer(v)
+             : strcmp(type, "string") == 0  ? json_is_string(v)
+             : strcmp(type, "boolean") == 0 ? json_is_boolean(v)
+             : strcmp(type, "array") == 0   ? json_is_array(v)
+             : strcmp(type, "object") == 0  ? json_is_object(v)
+                                            : 0;
+    CHECK(ok, "%s is not of the schema's type %s", path, type);
+    if (!ok)
+        return;
+    json_t *choices = json_object_get(s, "enum");
+    if (choices) {
+        int found = 0;
+        size_t i;
+        json_t *c;
+        json_array_foreach(choices, i, c) found |= json_equal(c, v);
+        CHECK(found, "%s: %s is not in the schema's enum", path, json_string_value(v));
+    }
+    char child[256];
+    if (json_is_array(v)) {
+        if (samples && desc && strstr(desc, "per output sample"))
+            CHECK(json_array_size(v) == samples, "%s: %zu values, %zu samples", path,
+                  json_array_size(v), samples);
+        size_t i;
+        json_t *x;
+        json_array_foreach(v, i, x)
+        {
+            snprintf(child, sizeof child, "%s/%zu", path, i);
+            conform(schemas, json_object_get((json_t *)s, "items"), x, child, 0);
+        }
+    } else if (json_is_object(v)) {
+        json_t *props = json_object_get(s, "properties"), *x;
+        const char *key;
+        size_t i;
+        json_array_foreach(json_object_get(s, "required"), i, x)
+            CHECK(json_object_get(v, json_string_value(x)) != NULL, "%s: required %s missing", path,
+                  json_string_value(x));
+        json_object_foreach(v, key, x)
+        {
+            snprintf(child, sizeof child, "%s/%s", path, key);
+            json_t *sub = json_object_get(props, key);
+            CHECK(sub != NULL, "%s: not in the schema", child);
+            if (sub)
+                conform(schemas, sub, x, child, samples);
+        }
+    }
+}
+
+/* A lubricated lift's result against LiftResult.lubrication (LiftLubrication),
+ * on a thin oil that passes through all three regimes; a lift without the
+ * model has no such block. */
+static void test_lift_lubrication_schema(void)
+{
+    static const char *const bodies[] = {
+        "{\"analysis\":\"lift\",\"engine\":{\"speed_rpm\":2400,\"cycles\":1},"
+        "\"physics\":{\"friction\":{\"model\":\"lubricated\",\"oil\":{\"viscosity_pa_s\":3e-4}}},"
+        "\"numerics\":{\"model\":\"rigid\",\"error_estimate\":false},\"output\":{\"step_deg\":5}}",
+        "{\"analysis\":\"lift\",\"engine\":{\"cycles\":0.25},"
+        "\"numerics\":{\"model\":\"rigid\",\"error_estimate\":false},\"output\":{\"step_deg\":5}}",
+    };
+    json_t *doc = openapi(rd_registry);
+    json_t *schemas = schemas_of(doc);
+    json_t *lift = json_object_get(schemas, "LiftResult");
+    json_t *prop = json_object_get(json_object_get(lift, "properties"), "lubrication");
+    CHECK(prop != NULL, "LiftResult has a lubrication property");
+    size_t i;
+    json_t *x;
+    json_array_foreach(json_object_get(lift, "required"), i, x)
+        CHECK(strcmp(json_string_value(x), "lubrication") != 0,
+              "lubrication is not required (lubricated runs only)");
+    for (int k = 0; k < 2; k++) {
+        rd_scene *s = NULL;
+        rd_error err;
+        char *text = NULL;
+        rd_error_init(&err);
+        int rc = rd_scene_parse(bodies[k], strlen(bodies[k]), &s, &err);
+        if (rc == RD_OK)
+            rc = rd_scene_run(s, NULL, &text, &err);
+        CHECK(rc == RD_OK, "lift %d: %s", k, err.message);
+        json_t *res = text ? json_loads(text, 0, NULL) : NULL;
+        json_t *lub = json_object_get(res, "lubrication");
+        if (k == 1) {
+            CHECK(res && !lub, "a lift without the lubricated model has no lubrication block");
+        } else {
+            CHECK(lub != NULL, "a lubricated lift has a lubrication block");
+            size_t samples = json_array_size(json_object_get(res, "crank_deg"));
+            CHECK(samples == 145, "%zu samples", samples);
+            if (lub && prop)
+                conform(schemas, prop, lub, "/lubrication", samples);
+            CHECK(json_array_size(json_object_get(lub, "fmep_pa")) == 1, "one cycle: one FMEP");
+            static const char *const regimes[] = {"hydrodynamic", "mixed", "boundary"};
+            json_t *reg = json_object_get(lub, "regime");
+            for (int r = 0; r < 3; r++) {
+                int seen = 0;
+                for (size_t j = 0; j < json_array_size(reg); j++) {
+                    const char *got = json_string_value(json_array_get(reg, j));
+                    seen |= got && strcmp(got, regimes[r]) == 0;
+                }
+                CHECK(seen, "thin oil: the regime %s occurs (its name is checked)", regimes[r]);
+            }
+        }
+        json_decref(res);
+        free(text);
+        rd_scene_free(s);
+    }
+    /* 16 members, 6 arrays of 145, 2 of 1, 2 in viscosity_pa_s */
+    CHECK(conform_checked > 800, "%d values checked against the schema", conform_checked);
+    json_decref(doc);
+}
+
 /* ---- example names: one rule, 404 unknown, 400 malformed, never 500 ------- */
 
 static void write_file(const char *path, const char *text)
@@ -752,6 +885,7 @@ int main(int argc, char **argv)
     test_readme();
     test_page();
     test_toy();
+    test_lift_lubrication_schema();
     test_example_names();
     printf("%d range bounds probed, %d defaults compared\n", probes, defaults_checked);
     return check_done();

@@ -533,6 +533,80 @@ test('lift form: the friction and gas toggles put their blocks in the scene or l
   }
 });
 
+test('lift form: the lubricated model sends the face, the roughness and the oil, and only with it', { timeout: 60000 }, async () => {
+  const jobs = await interceptJobs(fixtures.liftResult());
+  const shown = (id) => page.isVisible(id);
+  try {
+    await page.getByRole('button', { name: 'Reset to defaults' }).click();
+    await selectTab('lift');
+    await page.check('#f-lf-friction');
+    assert.equal(await shown('#f-lf-lube'), false, 'coulomb: no lubricated inputs');
+    assert.equal(await shown('#f-lf-friction-coefficient'), true);
+    await page.selectOption('#f-lf-friction-model', 'lubricated');
+    assert.equal(await shown('#f-lf-lube'), true);
+    assert.equal(await shown('#f-lf-friction-coefficient'), false, 'lubricated: no Coulomb coefficient');
+    assert.equal(await shown('#f-lf-oil-viscosity'), false, 'the Vogel law by default: no constant viscosity');
+    // The defaults come from the served schema: the form sends them as they are.
+    await runAnalysis('Run lift analysis');
+    let scene = jobs.sent.at(-1);
+    assert.deepEqual(scene.physics.friction, { model: 'lubricated', oil: { temperature_c: 100 } });
+    assert.deepEqual(scene.ring.face, { profile: 'barrel', crown_m: 5e-6, roughness_rq_m: 2e-7 });
+    assert.equal(scene.bore, undefined, 'liner roughness empty: the server default');
+
+    await page.fill('#f-lf-liner-rq', '3e-7');
+    await page.selectOption('#f-lf-face-profile', 'taper');
+    assert.equal(await shown('#f-lf-face-crown'), false, 'taper: no crown');
+    await page.fill('#f-lf-face-taper', '0.5');
+    await page.selectOption('#f-lf-oil-mode', 'constant');
+    assert.equal(await shown('#f-lf-oil-temperature'), false);
+    // A constant viscosity left empty is refused by the page, naming the field.
+    await runAnalysis('Run lift analysis');
+    assert.match(await page.textContent('#error'), /viscosity/i);
+    assert.equal(await page.getAttribute('#f-lf-oil-viscosity', 'aria-invalid'), 'true');
+    await page.fill('#f-lf-oil-viscosity', '0.012');
+    await runAnalysis('Run lift analysis');
+    scene = jobs.sent.at(-1);
+    assert.deepEqual(scene.physics.friction, { model: 'lubricated', oil: { viscosity_pa_s: 0.012 } });
+    assert.deepEqual(scene.ring.face, { profile: 'taper', taper_deg: 0.5, roughness_rq_m: 2e-7 });
+    assert.deepEqual(scene.bore, { roughness_rq_m: 3e-7 });
+
+    // Back to Coulomb: nothing of the lubricated model goes (it would be refused).
+    await page.selectOption('#f-lf-friction-model', 'coulomb');
+    await runAnalysis('Run lift analysis');
+    scene = jobs.sent.at(-1);
+    assert.deepEqual(scene.physics.friction, { model: 'coulomb', coefficient: 0.1 });
+    assert.equal(scene.ring.face, undefined);
+    assert.equal(scene.bore, undefined);
+
+    // A loaded lubricated scene: its choices shown (constant oil), its fields
+    // the form has no input for kept while lubricated, gone with Coulomb.
+    const loaded = {
+      analysis: 'lift', engine: { speed_rpm: 2400, cycles: 1 },
+      ring: { face: { profile: 'barrel', crown_m: 4e-6, offset_m: 1e-4, roughness_rq_m: 1e-7 } },
+      bore: { roughness_rq_m: 4e-7 },
+      physics: { friction: { model: 'lubricated', oil: { viscosity_pa_s: 0.02 }, asperity: { boundary_coefficient: 0.12 } } },
+    };
+    await page.setInputFiles('#load-scene-file', { name: 'lube.json', mimeType: 'application/json', buffer: Buffer.from(JSON.stringify(loaded)) });
+    await page.waitForFunction(() => document.getElementById('f-lf-friction-model').value === 'lubricated');
+    assert.equal(await page.inputValue('#f-lf-oil-mode'), 'constant');
+    assert.equal(await page.inputValue('#f-lf-oil-viscosity'), '0.02');
+    await runAnalysis('Run lift analysis');
+    scene = jobs.sent.at(-1);
+    assert.deepEqual(scene.ring.face, loaded.ring.face);
+    assert.deepEqual(scene.bore, loaded.bore);
+    assert.deepEqual(scene.physics.friction, loaded.physics.friction);
+    await page.selectOption('#f-lf-friction-model', 'stribeck');
+    await runAnalysis('Run lift analysis');
+    scene = jobs.sent.at(-1);
+    assert.deepEqual(scene.physics.friction, { model: 'stribeck', coefficient: 0.1 });
+    assert.equal(scene.ring.face, undefined, 'a loaded face goes with another model');
+    assert.equal(scene.bore, undefined);
+  } finally {
+    await jobs.stop();
+    await page.getByRole('button', { name: 'Reset to defaults' }).click();
+  }
+});
+
 test('examples with gas tables and distortion rows load into the toggles and the list (examples served by the test)', { timeout: 60000 }, async () => {
   const gas = { crank_deg: [0, 360, 375, 720], above: [1e5, 5e6, 4e6, 1e5], behind: [1e5, 3e6, 3e6, 1e5], below: [1e5, 1e6, 1e6, 1e5], active_area: 'dynamic' };
   const served = [
@@ -643,6 +717,65 @@ test('renderers draw fixture results: points, marks and labels match the numbers
   r = await renderFixture('lift', long);
   assert.ok(r.meanPoints > 0 && r.meanPoints <= 4 * 700, `36001 samples drawn with ${r.meanPoints} points`);
   assert.ok(r.crankTicks.length <= 13, `${r.crankTicks.length} crank ticks`);
+});
+
+test('lift renderer: a lubricated result draws its film and friction split, per cycle and cut to one cycle; a bare block draws nothing of it', { timeout: 60000 }, async () => {
+  // Two cycles of a made-up film: thinnest (0.4 um) at 540 + 720 k deg.
+  const lf = fixtures.liftResult();
+  lf.crank_deg = [...lf.crank_deg, ...lf.crank_deg.slice(1).map((c) => c + 720)];
+  for (const k of ['lift', 'lift_min', 'lift_max', 'flank', 'friction_force']) lf[k] = [...lf[k], ...lf[k].slice(1)];
+  lf.scene.engine.cycles = 2;
+  lf.scene.physics.friction = { model: 'lubricated', coefficient: 0.1, oil: { viscosity_pa_s: 0, temperature_c: 100 } };
+  const c = lf.crank_deg, rad = (d) => (d * Math.PI) / 180;
+  lf.lubrication = {
+    min_film_m: c.map((a) => 0.4e-6 + 2e-6 * (1 - Math.cos(rad((a - 540) / 2)))),
+    hydrodynamic_friction_n: c.map((a) => 3 * Math.sin(rad(2 * a))),
+    asperity_friction_n: c.map((a) => (Math.cos(rad((a - 540) / 2)) > 0.99 ? 0.5 : 0)),
+    friction_power_w: c.map(() => 1), asperity_share: c.map(() => 0),
+    regime: c.map((a) => (Math.cos(rad((a - 540) / 2)) > 0.99 ? 'mixed' : 'hydrodynamic')),
+    friction_work_j: [1.25, 1.5], fmep_pa: [3125, 3750], min_film_at_m: 6e-4, composite_roughness_m: 2.83e-7,
+    viscosity_pa_s: { min: 0.0085, max: 0.0085 }, film_step_deg: 1, film_solves: 9000, periodic_change: 1e-5, held_steps: 0,
+    method: 'a made-up film for the test',
+  };
+  const drawn = await page.evaluate(async (result) => {
+    const mod = await import('/static/lift.js');
+    const box = document.createElement('div');
+    document.body.append(box);
+    const points = (sel) => (box.querySelector(sel)?.getAttribute('d')?.match(/[ML]/g) || []).length;
+    const state = () => ({
+      film: points('#lf-film-line'), hydro: points('#lf-friction-hydro'), asperity: points('#lf-friction-asperity'), total: points('#lf-friction-total'),
+      fmep: [...box.querySelectorAll('#lf-fmep td.fmep')].map((td) => td.textContent),
+      work: [...box.querySelectorAll('#lf-fmep td.work')].map((td) => td.textContent),
+      method: box.querySelector('#lf-lube-method')?.textContent, summary: box.querySelector('#lf-lube-summary')?.textContent,
+      caption: box.querySelector('#lf-film')?.closest('figure').querySelector('figcaption').textContent,
+    });
+    try {
+      mod.lift.render(result, null, box);
+      const whole = state();
+      const zoom = box.querySelector('#lf-zoom');
+      zoom.value = zoom.options[2].value; // cycle 2
+      zoom.dispatchEvent(new Event('change'));
+      const second = state();
+      mod.lift.render({ ...result, lubrication: {} }, null, box);
+      const bare = state();
+      return { whole, second, bare };
+    } finally {
+      box.remove();
+    }
+  }, lf);
+  assert.equal(drawn.whole.film, c.length);
+  for (const k of ['hydro', 'asperity', 'total']) assert.equal(drawn.whole[k], c.length, k);
+  assert.deepEqual(drawn.whole.fmep, ['3.125', '3.75'], 'FMEP in kPa, per cycle');
+  assert.deepEqual(drawn.whole.work, ['1.25', '1.5']);
+  assert.equal(drawn.whole.method, 'Film model: a made-up film for the test');
+  assert.match(drawn.whole.summary, /thinnest oil film 0\.400 µm at 540°; FMEP 3\.13, 3\.75 kPa \(per cycle\)/);
+  assert.match(drawn.whole.caption, /hydrodynamic 9\d %, mixed [1-9] %, boundary 0 %.*η = 8\.5 mPa s/);
+  // Cut to cycle 2: the film and the split follow the zoom; the per-cycle table stays.
+  assert.equal(drawn.second.film, 721);
+  assert.equal(drawn.second.total, 721);
+  assert.deepEqual(drawn.second.fmep, ['3.125', '3.75']);
+  assert.deepEqual(drawn.bare, { film: 0, hydro: 0, asperity: 0, total: 0, fmep: [], work: [], method: undefined, summary: undefined, caption: undefined });
+  assert.deepEqual(pageErrors, []);
 });
 
 test('renderers cope with results that have only the fields API.md promises', { timeout: 60000 }, async () => {
@@ -869,6 +1002,67 @@ async function fillLongLift() {
   await selectTab('lift');
   await page.fill('#f-lf-cycles', '40');
   await page.uncheck('#f-lf-error-estimate');
+}
+
+// A lubricated lift: one cycle at 2400 rpm on the rigid ring (the film is
+// solved on its own; about a second), at both widths.
+for (const width of [1280, 390]) {
+  test(`${width} px: a lubricated lift against the server draws the film and the friction split and shows FMEP per cycle and the model's method`, { skip: SKIP.lift, timeout: 180000 }, async () => {
+    await page.setViewportSize({ width, height: 844 });
+    try {
+      await page.getByRole('button', { name: 'Reset to defaults' }).click();
+      await selectTab('lift');
+      await page.fill('#f-lf-speed', '2400');
+      await page.fill('#f-lf-cycles', '1');
+      await page.selectOption('#f-lf-model', 'rigid');
+      await page.uncheck('#f-lf-error-estimate');
+      await page.check('#f-lf-friction');
+      await page.selectOption('#f-lf-friction-model', 'lubricated');
+      await page.fill('#f-lf-oil-temperature', '110');
+      await runAnalysis('Run lift analysis', 150000);
+      assert.equal(await page.isVisible('#error'), false, `unexpected error: ${await page.textContent('#error')}`);
+      const { result } = await shownJob();
+      assert.equal(result.scene.physics.friction.model, 'lubricated');
+      assert.equal(result.scene.physics.friction.oil.temperature_c, 110);
+      const lub = result.lubrication;
+      assert.ok(lub && lub.min_film_m.length === result.crank_deg.length, 'the result has its lubrication block');
+
+      // The film: one point per sample (fewer than 2800), the roughness line.
+      assert.equal(await page.locator('#lf-film').isVisible(), true);
+      assert.equal(pathPoints(await page.getAttribute('#lf-film-line', 'd')), result.crank_deg.length);
+      assert.equal(await page.locator('#lf-film-sigma').count(), 1);
+      const label = await page.getAttribute('#lf-film', 'aria-label');
+      const lo = Math.min(...lub.min_film_m) * 1e6;
+      assert.ok(label.includes(`${Number(lo.toPrecision(3))} to`), `film label names the thinnest film ${lo} µm: ${label}`);
+      // The split: film shear, asperities and total, each over the run.
+      assert.equal(await page.locator('#lf-lube-friction').isVisible(), true);
+      for (const id of ['#lf-friction-hydro', '#lf-friction-asperity', '#lf-friction-total']) {
+        assert.equal(pathPoints(await page.getAttribute(id, 'd')), result.crank_deg.length, id);
+      }
+      // Per cycle: work (J) and FMEP (kPa) as the result has them.
+      const rows = await page.$$eval('#lf-fmep tbody tr', (trs) => trs.map((tr) => ({
+        work: Number(tr.querySelector('.work').textContent), fmep: Number(tr.querySelector('.fmep').textContent),
+      })));
+      assert.equal(rows.length, 1, 'one cycle, one row');
+      assert.ok(Math.abs(rows[0].work - lub.friction_work_j[0]) <= 1e-3 * lub.friction_work_j[0], `work ${rows[0].work} vs ${lub.friction_work_j[0]}`);
+      assert.ok(Math.abs(rows[0].fmep - lub.fmep_pa[0] / 1e3) <= 1e-3 * lub.fmep_pa[0] / 1e3, `FMEP ${rows[0].fmep} kPa vs ${lub.fmep_pa[0]} Pa`);
+      assert.equal(await page.isVisible('#lf-fmep'), true);
+      assert.match(await page.textContent('#lf-lube-summary'), /FMEP \d.* kPa/);
+      // The method is on the page as text (not a tooltip), whole.
+      assert.equal(await page.isVisible('#lf-lube-method'), true);
+      assert.ok((await page.textContent('#lf-lube-method')).includes(lub.method), 'the whole method text');
+      // The CSV has the film's columns.
+      const csv = await page.request.get(`${BASE}${await page.getAttribute('#csv-link', 'href')}`);
+      assert.match((await csv.text()).split('\n')[0], /,min_film_m,hydrodynamic_friction_n,asperity_friction_n,friction_power_w,regime$/);
+      await settled();
+      const overflow = await page.evaluate(() => document.documentElement.scrollWidth - window.innerWidth);
+      assert.ok(overflow <= 0, `page scrolls sideways by ${overflow}px`);
+      assert.deepEqual(await smallText(), [], 'no text below 10 px');
+      await shot(`ringdyn-lift-lubricated-${width}.png`, { fullPage: true });
+    } finally {
+      await page.setViewportSize({ width: 1280, height: 800 });
+    }
+  });
 }
 
 for (const width of [1280, 390]) {
