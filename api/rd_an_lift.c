@@ -29,7 +29,7 @@ struct lift_opts {
     struct rd_table gas_table[4]; /* crank_deg, above, behind, below */
     int vogel_given, temp_table_given, oil_given, asperity_given;
     struct rd_table temp_table[2]; /* /physics/friction/oil/temperature_table */
-    double bore_rq;                /* /bore/roughness_rq_m; 0 = not given */
+    double bore_rq;                /* /bore/roughness_rq_m (default RD_LINER_RQ_DEFAULT) */
 };
 
 #define LO(member) offsetof(struct lift_opts, member)
@@ -326,6 +326,7 @@ static void defaults(struct rd_scene *s)
     struct lift_opts *o = s->opts;
     rd_lift_params_default(&o->lift);
     o->max_steps = (int)o->lift.max_steps;
+    o->bore_rq = o->lift.bore.roughness_rq;
     s->face = o->lift.face;
 }
 
@@ -381,7 +382,7 @@ static int lube_finish(struct rd_scene *s, struct lift_opts *o, rd_error *err)
     if (rc)
         return rc;
     l->face = s->face;
-    if (o->bore_rq > 0.0 && !lub)
+    if (o->bore_rq != RD_LINER_RQ_DEFAULT && !lub)
         return rd_error_set(err, RD_EINVAL, "/bore/roughness_rq_m",
                             "/bore/roughness_rq_m is read by the lubricated friction model only.");
     if (!lub && (o->oil_given || o->asperity_given))
@@ -394,7 +395,7 @@ static int lube_finish(struct rd_scene *s, struct lift_opts *o, rd_error *err)
         return rd_error_set(err, RD_EINVAL, "/numerics/film_step_deg",
                             "/numerics/film_step_deg is read by the lubricated friction model "
                             "only.");
-    l->bore.roughness_rq = o->bore_rq > 0.0 ? o->bore_rq : RD_LINER_RQ_DEFAULT;
+    l->bore.roughness_rq = o->bore_rq;
     if (o->vogel_given && l->friction.lube.viscosity > 0.0)
         return rd_error_set(err, RD_EINVAL, "/physics/friction/oil/vogel",
                             "give either viscosity_pa_s (a constant) or vogel, not both.");

@@ -208,7 +208,8 @@ int rd_film_track_run(rd_film *f, const rd_film_loads *ld, double t_end, double 
         t_end >= period * (1.0 - 1e-9)) { /* the last period against the one before */
         rd_film_point a;
         rd_film_track_at(tr, t_end - period, &a);
-        tr->periodic_change = fabs(tr->pt[tr->steps].h0 - a.h0) / tr->pt[tr->steps].h0;
+        tr->periodic_change =
+            fabs(tr->pt[tr->steps].h0 - a.h0) / fmax(fabs(tr->pt[tr->steps].h0), sg);
     }
     return RD_OK;
 }

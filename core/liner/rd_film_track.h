@@ -52,7 +52,7 @@ typedef struct rd_film_track {
     int steps; /* points 0 .. steps: pt[0].t = 0, pt[steps].t = t_end */
     int cap;   /* allocated points */
     rd_film_point *pt;
-    double periodic_change; /* |h0(end) - h0(end - period)| / h0(end); 0 for a run
+    double periodic_change; /* |h0(end) - h0(end - period)| / max(|h0(end)|, sigma); 0 for a run
                              * shorter than a period */
     long solves;            /* film solves, warm-up included */
     int held;               /* steps where h0 was held at RD_FILM_H_MAX */
