@@ -399,6 +399,10 @@ static int lube_finish(struct rd_scene *s, struct lift_opts *o, rd_error *err)
     if (o->vogel_given && l->friction.lube.viscosity > 0.0)
         return rd_error_set(err, RD_EINVAL, "/physics/friction/oil/vogel",
                             "give either viscosity_pa_s (a constant) or vogel, not both.");
+    if (o->temp_table_given && l->friction.lube.viscosity > 0.0)
+        return rd_error_set(err, RD_EINVAL, "/physics/friction/oil/temperature_table",
+                            "a constant viscosity_pa_s does not read the temperature: give "
+                            "either viscosity_pa_s or the temperature (Vogel law), not both.");
     if (o->temp_table_given) {
         if (o->temp_table[0].n != o->temp_table[1].n)
             return rd_error_set(err, RD_EINVAL, "/physics/friction/oil/temperature_table/value_c",

@@ -154,10 +154,17 @@ int rd_lube_validate(const rd_lube_params *l, const rd_face_params *face, double
                             l->viscosity > 10.0 ? " (a value in mPa s? 1 mPa s = 0.001 Pa s)" : "");
     if ((rc = check_temperature(l->temperature_c, "/physics/friction/oil/temperature_c", err)))
         return rc;
-    for (int k = 0; k < l->temp_points; k++)
-        if ((rc =
-                 check_temperature(l->temp_c[k], "/physics/friction/oil/temperature_c/value", err)))
+    for (int k = 0; k < l->temp_points; k++) {
+        if ((rc = check_temperature(l->temp_c[k], "/physics/friction/oil/temperature_table/value_c",
+                                    err)))
             return rc;
+        double x = l->temp_crank_deg[k];
+        if (!in_range(x, 0.0, 720.0) || (k > 0 && !(x > l->temp_crank_deg[k - 1])))
+            return rd_error_set(err, RD_EINVAL, "/physics/friction/oil/temperature_table/crank_deg",
+                                "crank_deg[%d] = %g: the angles must increase strictly within "
+                                "[0, 720] deg.",
+                                k, x);
+    }
     if (l->viscosity == 0.0 && (rc = check_vogel(l, err)))
         return rc;
     if (!in_range(l->asperity_density, 1e6, 1e14))
