@@ -7,6 +7,10 @@
  *     mid-stroke, the friction coefficient lowest mid-stroke;
  *   - trends: a more viscous oil gives a thicker film, more tension a
  *     thinner one;
+ *   - a Stribeck curve against the Hersey number eta |U| / W: the friction
+ *     coefficient falls from the mixed regime near the dead centres (600 rpm,
+ *     3 mPa s, F_t 40 N) to a minimum mid-stroke, and rises again on the
+ *     hydrodynamic branch (2400 rpm, 8.5 mPa s, F_t 10 N);
  *   - the friction work per cycle against the trapezoid of the sampled
  *     power (a second integration, on the output samples), and the ring's
  *     friction in the motion against the film's (they differ only by the
@@ -23,6 +27,7 @@
 
 #include "check.h"
 #include "rd_lift_internal.h"
+#include "rd_liner_law.h"
 
 #define PTS 73
 
@@ -151,6 +156,51 @@ static void trends(void)
     CHECK(tense < 0.9 * base, "more tension gives a thinner film (%g vs %g)", tense, base);
 }
 
+/* The friction coefficient |F| / W and the Hersey number at crank angle deg
+ * of the film alone (no gas), W the radial load it carries. */
+static void stribeck_point(double rpm, double eta, double Ft, double deg, double *mu,
+                           double *hersey)
+{
+    rd_ring_params rp;
+    rd_lift_params p;
+    scene(&rp, &p, 0);
+    p.engine.speed_rpm = rpm;
+    p.friction.lube.viscosity = eta;
+    rp.tangential_force = Ft;
+    rd_film f;
+    rd_film_track tr;
+    rd_error err = {0};
+    *mu = *hersey = NAN;
+    if (rd_lift_film_run(&rp, &p, &f, &tr, &err) == RD_OK) {
+        rd_film_point pt;
+        double w = rpm * M_PI / 30.0, circ = M_PI * rp.diameter;
+        rd_film_track_at(&tr, deg * M_PI / 180.0 / w, &pt);
+        double ureg = rd_liner_ureg(&p.engine);
+        double F = circ * (pt.Cc * pt.U + pt.Fp + 0.1 * pt.Wa * tanh(pt.U / ureg));
+        *mu = fabs(F) / (circ * (pt.W + pt.Wa));
+        *hersey = eta * fabs(pt.U) / (pt.W + pt.Wa);
+    }
+    CHECK(isfinite(*mu), "film at %g rpm: %s", rpm, err.message);
+    rd_film_track_free(&tr);
+    rd_film_free(&f);
+}
+
+static void stribeck(void)
+{
+    double mu_dc, he_dc, mu_mid, he_mid, mu_hyd, he_hyd;
+    stribeck_point(600.0, 0.003, 40.0, 2.0, &mu_dc, &he_dc);
+    stribeck_point(600.0, 0.003, 40.0, 81.0, &mu_mid, &he_mid);
+    stribeck_point(2400.0, 0.0085, 10.0, 81.0, &mu_hyd, &he_hyd);
+    printf("Stribeck: mu %.3g at Hersey %.3g, %.3g at %.3g, %.3g at %.3g\n", mu_dc, he_dc, mu_mid,
+           he_mid, mu_hyd, he_hyd);
+    CHECK(he_dc < he_mid && he_mid < he_hyd, "Hersey numbers in order: %g %g %g", he_dc, he_mid,
+          he_hyd);
+    CHECK(mu_dc > 5.0 * mu_mid, "mixed branch: mu %g near the dead centre, %g mid-stroke", mu_dc,
+          mu_mid);
+    CHECK(mu_hyd > 3.0 * mu_mid,
+          "hydrodynamic branch: mu %g at the higher Hersey, %g at the minimum", mu_hyd, mu_mid);
+}
+
 static void bad_input(void)
 {
     rd_ring_params rp;
@@ -263,6 +313,7 @@ static void energy(void)
 int main(void)
 {
     energy();
+    stribeck();
     bad_input();
     trends();
     magnitudes();
