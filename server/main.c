@@ -332,7 +332,7 @@ struct server {
 };
 
 /* SIGINT and SIGTERM blocked (sigwait takes them) before any thread starts,
- * so every thread inherits the mask; SIGPIPE ignored. */
+ * so every thread inherits the mask; SIGPIPE and SIGXFSZ ignored. */
 static void block_signals(sigset_t *stop)
 {
     sigemptyset(stop);
@@ -343,6 +343,9 @@ static void block_signals(sigset_t *stop)
     memset(&ignore, 0, sizeof ignore);
     ignore.sa_handler = SIG_IGN;
     sigaction(SIGPIPE, &ignore, NULL); /* a client hanging up must not kill us */
+    /* nor a file-size limit (ulimit -f): the store's write fails with EFBIG
+     * and the job says so, where SIGXFSZ's default action killed the server */
+    sigaction(SIGXFSZ, &ignore, NULL);
 }
 
 /* Prints the error that stopped the start; -1. */

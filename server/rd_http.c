@@ -3,10 +3,12 @@
  *
  * Request life cycle in libmicrohttpd: the access handler is called once
  * with the headers (upload_data_size 0), then once per chunk of body, then a
- * last time with upload_data_size 0.  The first call checks framing, Host
+ * last time with upload_data_size 0.  A request without a body is handled on
+ * that last call (has_body: an answer queued on the first call closes the
+ * connection), one with a body on the first.  Handling checks framing, Host
  * and token (rd_http_check_framing, rd_http_host_allowed,
  * rd_http_authorized), then routes.  Everything except POST /api/v1/jobs
- * and DELETE of a running job is answered on the first call.  For a POST
+ * and DELETE of a running job is answered there and then.  For a POST
  * the first call checks the method, Content-Type, ?wait= and a declared
  * Content-Length, so a bad request is refused before its body is read; the
  * chunks are then collected up to RD_API_BODY_MAX bytes (beyond that they
@@ -204,6 +206,42 @@ static enum MHD_Result begin_request(rd_http *h, struct MHD_Connection *c, struc
     return rd_routes_begin(h, c, rq, route, method, arg, url);
 }
 
+/* The request declares a body (Content-Length above 0, or Transfer-Encoding).
+ * One without is answered on MHD's last call, once it has been read whole:
+ * libmicrohttpd 0.9.75 closes the connection after an answer queued on the
+ * first call (the headers alone: it cannot know what follows), which
+ * dropped keep-alive and every pipelined request behind a GET.  A request
+ * with a body is still refused on the first call when it can be (method,
+ * Content-Type, size), before its body is read; that answer closes. */
+static int has_body(struct MHD_Connection *c)
+{
+    const char *len =
+        MHD_lookup_connection_value(c, MHD_HEADER_KIND, MHD_HTTP_HEADER_CONTENT_LENGTH);
+    if (MHD_lookup_connection_value(c, MHD_HEADER_KIND, MHD_HTTP_HEADER_TRANSFER_ENCODING))
+        return 1;
+    return len && len[strspn(len, "0")] != '\0';
+}
+
+/* A connection over a limit (rd_http_conn.c): 429 over --max-per-ip, 503
+ * over --max-connections, with Retry-After, then closed. */
+static enum MHD_Result refuse_over_limit(rd_http *h, struct MHD_Connection *c, struct request *rq,
+                                         int status)
+{
+    char message[200];
+    int per_ip = status == MHD_HTTP_TOO_MANY_REQUESTS;
+    snprintf(message, sizeof message,
+             "This %s holds its limit of %d open connections (%s): close one, or retry after "
+             "the time in Retry-After.",
+             per_ip ? "client address" : "server",
+             per_ip ? h->limits.per_ip_max : h->limits.connections_max,
+             per_ip ? "--max-per-ip" : "--max-connections");
+    rq->started = 1;
+    struct MHD_Response *r = rd_http_error_response(rq, "too_many_connections", message);
+    r = rd_http_with_header(r, MHD_HTTP_HEADER_RETRY_AFTER, "1");
+    r = rd_http_with_header(r, MHD_HTTP_HEADER_CONNECTION, "close");
+    return rd_http_send_response(h, c, rq, status, r);
+}
+
 static enum MHD_Result on_request(void *cls, struct MHD_Connection *c, const char *url,
                                   const char *method, const char *version, const char *upload_data,
                                   size_t *upload_data_size, void **req_cls)
@@ -229,6 +267,12 @@ static enum MHD_Result on_request(void *cls, struct MHD_Connection *c, const cha
         return rd_routes_answer_waiter(h, c, rq);
     }
     if (!rq->started) {
+        if (rq->conn && rq->conn->over)
+            return refuse_over_limit(h, c, rq, rq->conn->over);
+        if (!rq->deferred && !has_body(c)) {
+            rq->deferred = 1; /* answered on the next, last call */
+            return MHD_YES;
+        }
         rq->started = 1;
         return begin_request(h, c, rq, url, method, version);
     }
@@ -353,8 +397,8 @@ static int start(rd_http *h, const rd_http_config *cfg, struct sockaddr_storage 
     h->daemon = MHD_start_daemon(
         flags, (uint16_t)cfg->port, NULL, NULL, on_request, h, MHD_OPTION_SOCK_ADDR,
         (struct sockaddr *)addr, MHD_OPTION_THREAD_POOL_SIZE, (unsigned int)lim->threads,
-        MHD_OPTION_CONNECTION_LIMIT, (unsigned int)lim->connections_max,
-        MHD_OPTION_PER_IP_CONNECTION_LIMIT, (unsigned int)lim->per_ip_max,
+        MHD_OPTION_CONNECTION_LIMIT, (unsigned int)lim->connections_max + RD_HTTP_OVER_SLACK,
+        MHD_OPTION_PER_IP_CONNECTION_LIMIT, (unsigned int)lim->per_ip_max + RD_HTTP_OVER_SLACK,
         MHD_OPTION_CONNECTION_TIMEOUT, (unsigned int)lim->idle_timeout_s,
         MHD_OPTION_LISTEN_BACKLOG_SIZE, (unsigned int)LISTEN_BACKLOG, MHD_OPTION_NOTIFY_COMPLETED,
         on_completed, (void *)h, MHD_OPTION_NOTIFY_CONNECTION, rd_http_on_connection, (void *)h,

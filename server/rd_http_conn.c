@@ -5,6 +5,7 @@
  */
 #include "rd_http_int.h"
 
+#include <netinet/in.h>
 #include <pthread.h>
 #include <stdlib.h>
 #include <string.h>
@@ -15,6 +16,9 @@
 /* The timer thread's period: the latest a waiter is resumed after its
  * deadline, and the resolution of the request deadline. */
 #define TICK_S 0.1
+/* A connection over a limit is answered 429/503 on its first request, which
+ * must arrive within this (then it is shut without an answer). */
+#define OVER_DEADLINE_S 0.5
 /* How often the store's age limit is applied. */
 #define EXPIRE_EVERY_S 60.0
 
@@ -27,6 +31,38 @@ void rd_http_set_busy(rd_http *h, struct request *rq)
     pthread_mutex_lock(&h->mu);
     rq->conn->busy = 1;
     pthread_mutex_unlock(&h->mu);
+}
+
+/* The client's address of connection c into k (family 0 when unknown). */
+static void take_address(struct MHD_Connection *c, struct conn *k)
+{
+    const union MHD_ConnectionInfo *info =
+        MHD_get_connection_info(c, MHD_CONNECTION_INFO_CLIENT_ADDRESS);
+    const struct sockaddr *sa = info ? info->client_addr : NULL;
+    if (sa && sa->sa_family == AF_INET) {
+        k->family = AF_INET;
+        memcpy(k->addr, &((const struct sockaddr_in *)(const void *)sa)->sin_addr, 4);
+    } else if (sa && sa->sa_family == AF_INET6) {
+        k->family = AF_INET6;
+        memcpy(k->addr, &((const struct sockaddr_in6 *)(const void *)sa)->sin6_addr, 16);
+    }
+}
+
+/* 429 when k's address already holds --max-per-ip connections, 503 when
+ * the server holds --max-connections, else 0 (mu held, k not yet listed).
+ * libmicrohttpd's own limits stand RD_HTTP_OVER_SLACK above these and
+ * close what comes past them without an answer. */
+static int over_limit_locked(const rd_http *h, const struct conn *k)
+{
+    if (h->nconns - h->nover >= (size_t)h->limits.connections_max)
+        return MHD_HTTP_SERVICE_UNAVAILABLE;
+    if (!k->family)
+        return 0;
+    size_t len = k->family == AF_INET ? 4 : 16;
+    int same = 0;
+    for (const struct conn *o = h->conns; o; o = o->next)
+        same += o->family == k->family && !o->over && memcmp(o->addr, k->addr, len) == 0;
+    return same >= h->limits.per_ip_max ? MHD_HTTP_TOO_MANY_REQUESTS : 0;
 }
 
 /* MHD_OPTION_NOTIFY_CONNECTION: keeps rd_http.conns.  MHD calls CLOSED
@@ -48,12 +84,15 @@ void rd_http_on_connection(void *cls, struct MHD_Connection *c, void **socket_co
         }
         k->fd = info->connect_fd;
         k->since = rd_clock_mono_s();
+        take_address(c, k);
         pthread_mutex_lock(&h->mu);
+        k->over = over_limit_locked(h, k);
         k->next = h->conns;
         if (h->conns)
             h->conns->prev = k;
         h->conns = k;
         h->nconns++;
+        h->nover += k->over != 0;
         pthread_mutex_unlock(&h->mu);
         *socket_context = k;
         return;
@@ -69,6 +108,7 @@ void rd_http_on_connection(void *cls, struct MHD_Connection *c, void **socket_co
     if (k->next)
         k->next->prev = k->prev;
     h->nconns--;
+    h->nover -= k->over != 0;
     pthread_mutex_unlock(&h->mu);
     free(k);
     *socket_context = NULL;
@@ -79,7 +119,8 @@ void rd_http_on_connection(void *cls, struct MHD_Connection *c, void **socket_co
 static void enforce_deadline_locked(rd_http *h, double now)
 {
     for (struct conn *k = h->conns; k; k = k->next)
-        if (!k->busy && !k->shut && now - k->since > h->limits.request_deadline_s) {
+        if (!k->busy && !k->shut &&
+            now - k->since > (k->over ? OVER_DEADLINE_S : h->limits.request_deadline_s)) {
             shutdown(k->fd, SHUT_RDWR);
             k->shut = 1;
             h->deadline_closed++;

@@ -51,8 +51,14 @@ struct rd_http {
     struct request *waiters; /* suspended requests, waiting for their job */
     struct conn *conns;      /* every open connection */
     size_t nconns;
+    size_t nover; /* of them over a connection limit (struct conn.over) */
     size_t deadline_closed;
 };
+
+/* Connections past --max-connections or --max-per-ip that are still accepted
+ * and answered 503 / 429 (rd_http_conn.c); beyond these libmicrohttpd closes
+ * them unanswered. */
+#define RD_HTTP_OVER_SLACK 16
 
 /* Per-connection state (MHD_OPTION_NOTIFY_CONNECTION), in rd_http.conns. */
 struct conn {
@@ -61,6 +67,9 @@ struct conn {
     double since; /* CLOCK_MONOTONIC: the request now arriving began no earlier */
     int busy;     /* a complete request is being answered: no deadline */
     int shut;     /* the deadline passed and the socket was shut down */
+    int over;     /* over --max-per-ip (429) or --max-connections (503): refused */
+    int family;   /* the client's address (AF_INET, AF_INET6; 0 unknown) */
+    unsigned char addr[16];
 };
 
 enum wait_kind { WAIT_NONE, WAIT_SUBMIT, WAIT_CANCEL, WAIT_POLL, WAIT_SWEEP };
@@ -74,6 +83,7 @@ struct request {
     int resumed;                 /* the timer thread resumed it */
     double until;                /* CLOCK_MONOTONIC */
     char job_id[RD_JOBS_ID_LEN + 1];
+    int deferred; /* no body: answered on MHD's last call (keep-alive) */
     int started;  /* the headers have been handled */
     int replied;  /* a response is queued: drop whatever body follows */
     int has_wait; /* ?wait= was given */
@@ -179,6 +189,10 @@ rd_http_send_fail(rd_http *h, struct MHD_Connection *c, struct request *rq, int 
                   const char *fmt, ...);
 enum MHD_Result rd_http_send_not_found(rd_http *h, struct MHD_Connection *c, struct request *rq,
                                        const char *url);
+/* The contract's {"error": {"code", "message"}} body as a JSON response (NULL
+ * when out of memory), for an error outside core's status table. */
+struct MHD_Response *rd_http_error_response(const struct request *rq, const char *code,
+                                            const char *message);
 /* An error outside the status table of core (401, 403, 400 framing, 409). */
 enum MHD_Result rd_http_send_server_error(rd_http *h, struct MHD_Connection *c, struct request *rq,
                                           int status, const char *code, const char *message,

@@ -279,14 +279,20 @@ enum MHD_Result rd_http_send_not_found(rd_http *h, struct MHD_Connection *c, str
 /* An error the status table of core/rd_error.h has no code for (401, 403,
  * 400 for a framing fault): the same {"error": {"code", "message"}} shape,
  * written here.  `header`/`value` (may be NULL) adds one response header. */
-enum MHD_Result rd_http_send_server_error(rd_http *h, struct MHD_Connection *c, struct request *rq,
-                                          int status, const char *code, const char *message,
-                                          const char *header, const char *value)
+struct MHD_Response *rd_http_error_response(const struct request *rq, const char *code,
+                                            const char *message)
 {
     json_t *o = json_pack("{s:{s:s, s:s}}", "error", "code", code, "message", message);
     char *body = o ? json_dumps(o, JSON_COMPACT) : NULL;
     json_decref(o);
-    struct MHD_Response *r = rd_http_text_response(rq, body, RD_HTTP_JSON);
+    return rd_http_text_response(rq, body, RD_HTTP_JSON);
+}
+
+enum MHD_Result rd_http_send_server_error(rd_http *h, struct MHD_Connection *c, struct request *rq,
+                                          int status, const char *code, const char *message,
+                                          const char *header, const char *value)
+{
+    struct MHD_Response *r = rd_http_error_response(rq, code, message);
     if (r && header && MHD_add_response_header(r, header, value) != MHD_YES) {
         MHD_destroy_response(r);
         r = NULL;

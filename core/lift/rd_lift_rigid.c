@@ -38,14 +38,23 @@
  * uniform shape holds).  So k_theta is the split ring's static stiffness
  * seen by a uniform couple while it rests on one edge of a flank -- a static
  * condensation of the full model's K onto the mean twist:
- *     (K + kappa sum_i p_i p_i^T + sigma M / m_seg) u = f,
+ *     (K + kappa sum_i p_i p_i^T + S) u = f,
  *     f = e_t,i on every segment's rotations (a unit couple per segment),
  *     p_i . q_i = q_z,i + (r_i x d_i)_z, the axial displacement of segment
  *       i's edge point d_i = -+(b/2) e_r,i (its flank contact line at the
  *       segment's middle) held by a support kappa = 1e8 k_u / (n R^2) (rigid
  *       to 1e-8 of the twist),
- *     sigma = 1e-8 k_u / (n R^2): pins the in-plane rigid-body motions the
- *       supports leave free (f does no work on them),
+ *     S = 1e-6 x K's diagonal on the in-plane DOFs (x, y, rotation about
+ *       z): pins the in-plane rigid-body motions the supports leave free.
+ *       The plane ring's in-plane and out-of-plane DOFs are uncoupled in K
+ *       (a section symmetric about the mid-plane), the supports and f act
+ *       out of plane, so the in-plane part of u is 0 whatever S is (1e-2
+ *       gives the same k to the last digit); S only has to stand above the
+ *       factorization's round-off, ~kd eps max K_ii, which grows as n^3
+ *       (K's in-plane bending over the segment length cubed).  A shift
+ *       sigma M of 1e-8 k_u / (n R^2) (up to 0.3.15) fell below it past
+ *       n ~ 650 (dpbtrf failed at n = 700, 800, 1000, issue 45) and
+ *       stiffened the twist itself by ~1e-9,
  *     k_edge = n^2 / sum_i e_t,i . r_i(u)   (the couple n over the mean twist),
  * one band Cholesky per edge when the model opens.  The uniform twist about
  * the edge is an admissible u, so k_edge <= k_u (Rayleigh).  The rigid ring
@@ -78,7 +87,7 @@
 
 #define NX              3    /* z, theta, r */
 #define PIVOT_STIFFNESS 1e8  /* kappa / k_x: the support is rigid to 1e-8 of the twist */
-#define SHIFT_STIFFNESS 1e-8 /* sigma / k_x: pins the free in-plane motions, 1e-8 effect */
+#define IN_PLANE_SHIFT  1e-6 /* pins the in-plane motions: x (1 + this) on their diagonal */
 
 typedef struct rigid {
     rd_lift_model *m;
@@ -380,9 +389,7 @@ static int pivoted_twist_stiffness(const rd_lift_model *m, int edge, double k_un
     memcpy(B.ab, m->K.ab, (size_t)(B.kd + 1) * N * sizeof *B.ab);
     double R = rd_ring_get_section(m->ring)->R;
     double kappa = PIVOT_STIFFNESS * k_uniform / (m->n * R * R);
-    double sigma = SHIFT_STIFFNESS * k_uniform / (m->n * R * R);
     for (int i = 0; i < m->n; i++) {
-        const double *Mi = rd_ring_segment_mass_matrix(m->ring, i);
         double P[6][6] = {{0}};
         {
             const rd_section_flank *fl = &rd_ring_get_cross_section(m->ring)->lower;
@@ -397,7 +404,12 @@ static int pivoted_twist_stiffness(const rd_lift_model *m, int edge, double k_un
             for (int w = 0; w < 6; w++) {
                 int gi = rd_ring_band_index(m->ring, i, u), gj = rd_ring_band_index(m->ring, i, w);
                 if (gi <= gj)
-                    rd_band_add(&B, gi, gj, P[u][w] + sigma * Mi[6 * u + w] / Mi[0]);
+                    rd_band_add(&B, gi, gj, P[u][w]);
+            }
+        for (int u = 0; u < 6; u++) /* the in-plane DOFs: x, y, rotation about z */
+            if (u < 2 || u == 5) {
+                int g = rd_ring_band_index(m->ring, i, u);
+                RD_BAND_AT(&B, g, g) *= 1.0 + IN_PLANE_SHIFT;
             }
     }
     if ((rc = rd_band_cholesky(&B, err)))
