@@ -300,7 +300,7 @@ static const rd_field scene_fields[] = {
 };
 static const rd_block scene_block = {
     "RingpackScene",
-    "The ring pack (issue 15, thesis 2.4.4): the gas pressures in the lands and grooves "
+    "The ring pack (thesis 2.4.4): the gas pressures in the lands and grooves "
     "between 1 to 3 rings computed from one cylinder pressure by a compressible orifice "
     "network coupled both ways with the rings' axial motion, and the blow-by into the "
     "crankcase. All pressures are ABSOLUTE (the lift analysis' tables are gauge). Reads "
