@@ -450,6 +450,8 @@ static void force_env_at(rd_lift_model *c, double t, force_env *env)
     env->fric = p->friction.model != RD_FRICTION_NONE;
     if (p->film) /* lubricated: the face's film now (rd_lift_film.c) */
         rd_film_track_at(p->film, t, &env->film);
+    else /* none solved (a caller below rd_lift_solve_setup): no film force */
+        env->film = (rd_film_point){0};
     env->pa = env->pbh = env->pbl = 0.0;
     if (c->gas_now) { /* the caller's pressures (rd_lift_model.h) */
         env->pa = c->gas_now[0];
