@@ -151,7 +151,8 @@ char *rd_sweep_csv_from_table(const char *table_json, rd_error *err);
  * (modal: max(/modes/X/error_estimate) over the modes X; others
  * /numerics/error_estimate) and all(Q) of the compared quantity Q: modal
  * every frequency_hz, pretension /gap_opening_inner, contact
- * /mean_pressure_pa, lift /lift (plus /scene/groove/axial_clearance). */
+ * /mean_pressure_pa, lift /lift (plus /scene/groove/axial_clearance,
+ * /numerics/model/name and /numerics/segments_check). */
 typedef struct rd_sweep_fidelity_opts {
     const double *segments; /* NULL: the default ladder */
     size_t n_segments;
@@ -168,12 +169,21 @@ char *rd_sweep_fidelity_spec(const char *scene, size_t len, const rd_sweep_fidel
                              rd_error *err);
 
 /* The fidelity table from the table of a fidelity sweep: the all(Q) (and
- * clearance) columns are replaced by "error_vs_finest" — for each ok row,
- * max_k |q_k - Q_k| / |Q_k| against the finest ok run (most segments, then
- * smallest rtol), for lift max_k |q_k - Q_k| / axial clearance, the measure
- * the lift estimate uses — and "pareto": true for the ok rows that no other
- * ok row beats in both wall time and error estimate.  NULL + err (RD_EINTERNAL)
- * when `table_json` is not a fidelity table. */
+ * lift's clearance and segments_check) columns are replaced by
+ *   "error_vs_finest": for each ok row, max_k |q_k - Q_k| / |Q_k| against
+ *     the finest ok run (most segments, then smallest rtol), for lift
+ *     max_k |q_k - Q_k| / axial clearance, the measure the lift estimate uses;
+ *   "estimate_covers": the discretisations the row's estimate covers, words
+ *     of "segments time model" separated by spaces (null: no estimate);
+ *   "changes": those where the row's setting differs from the finest run's
+ *     ("" for the finest run itself);
+ *   "basis": "estimate" when the estimate covers every change and is not
+ *     below error_vs_finest, else "measured" (null: not comparable);
+ *   "error_on_basis": the row's error on that basis (never below what was
+ *     measured against the finest run);
+ *   "pareto": true for the rows no other row beats in both wall time and
+ *     error_on_basis.
+ * NULL + err (RD_EINTERNAL) when `table_json` is not a fidelity table. */
 char *rd_sweep_fidelity_table(const char *table_json, rd_error *err);
 
 /* ---- chunks: one sweep split over K processes ---------------------------

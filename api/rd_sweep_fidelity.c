@@ -11,11 +11,24 @@
  * better answer, not against the exact one: for the finest row it is 0 by
  * construction, and for the others it underestimates the true error by the
  * finest run's own error.
+ *
+ * The basis of each row's error (issue 44: the trade trusts only what it
+ * measured).  A row differs from the finest run in some of its
+ * discretisations ("changes": segments, time = the rtol, model = the model
+ * that ran); its estimate covers some ("estimate_covers": modal, pretension,
+ * contact the segment count, from their second solve; lift the time
+ * integration, plus the segment count when a flexible ring had its n/2 run,
+ * core/lift/rd_lift_solve.c compare_levels — the rigid ring's checks are in
+ * its flank-change error, not in the lift estimate).  The row's error is its
+ * estimate ("basis": "estimate") when that covers every change and is not
+ * below the measured difference; else the measured difference ("measured").
+ * So a row's error_on_basis is never below what was measured.
  */
 #include "rd_sweep.h"
 
 #include <jansson.h>
 #include <math.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "rd_api.h"
@@ -112,6 +125,7 @@ char *rd_sweep_fidelity_spec(const char *scene, size_t len, const rd_sweep_fidel
     if (lift && outputs) { /* and the model a lift run really integrated (auto's choice) */
         json_array_append_new(outputs, json_string("/scene/groove/axial_clearance"));
         json_array_append_new(outputs, json_string("/numerics/model/name"));
+        json_array_append_new(outputs, json_string("/numerics/segments_check"));
     }
     json_t *spec = json_pack("{s:o, s:o, s:s, s:o}", "base", base, "parameters", params, "combine",
                              "product", "outputs", outputs);
@@ -137,8 +151,11 @@ static int column(json_t *cols, const char *name, int prefix)
 }
 
 typedef struct {
-    int seg, rtol, wall, est, q, clearance, status;
+    int seg, rtol, model, ran, wall, est, q, clearance, check, status;
 } fidelity_cols;
+
+/* The discretisations, as named in "changes" and "estimate_covers". */
+enum { D_SEGMENTS = 1, D_TIME = 2, D_MODEL = 4 };
 
 static int row_ok(json_t *row, const fidelity_cols *c)
 {
@@ -188,31 +205,101 @@ static json_t *error_vs(json_t *row, json_t *finest, const fidelity_cols *c)
     return isfinite(e) ? json_real(e) : json_null();
 }
 
-/* No other ok row is at most as slow and at most as wrong, and better in one. */
-static int pareto(json_t *rows, json_t *row, const fidelity_cols *c)
+/* What the row's estimate covers (file comment); 0 when it has none. */
+static unsigned covers(json_t *row, const fidelity_cols *c)
 {
-    double w = cell(row, c->wall), e = cell(row, c->est);
-    if (!row_ok(row, c) || !isfinite(w) || !isfinite(e))
+    if (!row_ok(row, c) || !isfinite(cell(row, c->est)))
         return 0;
-    for (size_t i = 0; i < json_array_size(rows); i++) {
-        json_t *o = json_array_get(rows, i);
-        double ow = cell(o, c->wall), oe = cell(o, c->est);
-        if (o != row && row_ok(o, c) && ow <= w && oe <= e && (ow < w || oe < e))
+    if (c->clearance < 0) /* modal, pretension, contact: a second solve at other segments */
+        return D_SEGMENTS;
+    const char *ran = c->ran >= 0 ? json_string_value(json_array_get(row, (size_t)c->ran)) : NULL;
+    int rigid = ran && strcmp(ran, "rigid") == 0;
+    return D_TIME | (!rigid && isfinite(cell(row, c->check)) ? D_SEGMENTS : 0u);
+}
+
+static int same_value(json_t *row, json_t *finest, int k)
+{
+    return k < 0 || json_equal(json_array_get(row, (size_t)k), json_array_get(finest, (size_t)k));
+}
+
+/* Where the row's setting differs from the finest run's (for the model, the
+ * one that ran: auto's choice). */
+static unsigned changes(json_t *row, json_t *finest, const fidelity_cols *c)
+{
+    if (!finest)
+        return 0;
+    return (same_value(row, finest, c->seg) ? 0u : D_SEGMENTS) |
+           (same_value(row, finest, c->rtol) ? 0u : D_TIME) |
+           (same_value(row, finest, c->ran >= 0 ? c->ran : c->model) ? 0u : D_MODEL);
+}
+
+/* "segments time model" (those in `set`); null when `none_null` and empty. */
+static json_t *names(unsigned set, int none_null)
+{
+    char text[32] = "";
+    static const char *const word[] = {"segments", "time", "model"};
+    if (!set && none_null)
+        return json_null();
+    for (int k = 0; k < 3; k++)
+        if (set & (1u << k)) {
+            if (text[0])
+                strcat(text, " ");
+            strcat(text, word[k]);
+        }
+    return json_string(text);
+}
+
+/* The basis of the row's error: 1 estimate, 0 measured, -1 none (not
+ * comparable with the finest run); *e the error on it. */
+static int basis(json_t *row, json_t *finest, const fidelity_cols *c, double *e)
+{
+    json_t *vs = error_vs(row, finest, c);
+    double m = json_is_number(vs) ? json_number_value(vs) : NAN, est = cell(row, c->est);
+    unsigned need = changes(row, finest, c), have = covers(row, c);
+    json_decref(vs);
+    *e = NAN;
+    if (!isfinite(m))
+        return -1;
+    if (have && (need & ~have) == 0 && est >= m) {
+        *e = est;
+        return 1;
+    }
+    *e = m;
+    return 0;
+}
+
+/* Row i is on the front: no other row with a basis (e[j] not NaN) is at most
+ * as slow and at most as wrong on its basis, and better in one. */
+static int pareto(json_t *rows, size_t i, const double *e, const fidelity_cols *c)
+{
+    double w = cell(json_array_get(rows, i), c->wall);
+    if (isnan(e[i]) || !isfinite(w))
+        return 0;
+    for (size_t j = 0; j < json_array_size(rows); j++) {
+        double ow = cell(json_array_get(rows, j), c->wall);
+        if (j != i && !isnan(e[j]) && ow <= w && e[j] <= e[i] && (ow < w || e[j] < e[i]))
             return 0;
     }
     return 1;
 }
 
-/* One row of the fidelity table (new reference). */
-static json_t *fidelity_row(json_t *rows, json_t *r, json_t *finest, const fidelity_cols *c)
+/* Row i of the fidelity table (new reference); b[i], e[i] its basis. */
+static json_t *fidelity_row(json_t *rows, size_t i, json_t *finest, const int *b, const double *e,
+                            const fidelity_cols *c)
 {
-    json_t *out = json_array();
+    json_t *r = json_array_get(rows, i), *out = json_array();
     for (size_t k = 0; out && k < json_array_size(r); k++) {
-        if ((int)k == c->q || (int)k == c->clearance)
+        if ((int)k == c->q || (int)k == c->clearance || (int)k == c->check)
             continue;
         if ((int)k == c->status) {
             json_array_append_new(out, error_vs(r, finest, c));
-            json_array_append_new(out, json_boolean(pareto(rows, r, c)));
+            json_array_append_new(out, names(covers(r, c), 1));
+            json_array_append_new(out, row_ok(r, c) && finest ? names(changes(r, finest, c), 0)
+                                                              : json_null());
+            json_array_append_new(out, b[i] < 0 ? json_null()
+                                                : json_string(b[i] ? "estimate" : "measured"));
+            json_array_append_new(out, b[i] < 0 ? json_null() : json_real(e[i]));
+            json_array_append_new(out, json_boolean(pareto(rows, i, e, c)));
         }
         json_array_append(out, json_array_get(r, k));
     }
@@ -225,10 +312,13 @@ char *rd_sweep_fidelity_table(const char *table_json, rd_error *err)
     json_t *rows = json_object_get(t, "rows");
     fidelity_cols c = {column(cols, "/discretization/segments", 0),
                        column(cols, "/numerics/rtol", 0),
+                       column(cols, "/numerics/model", 0),
+                       column(cols, "/numerics/model/name", 0),
                        column(cols, "/numerics/wall_s", 0),
                        -1,
                        column(cols, "all(", 1),
                        column(cols, "/scene/groove/axial_clearance", 0),
+                       column(cols, "/numerics/segments_check", 0),
                        column(cols, "status", 0)};
     c.est = c.wall + 1;
     if (!json_is_array(rows) || c.seg < 0 || c.wall < 0 || c.q < 0 || c.status < 0 ||
@@ -237,19 +327,37 @@ char *rd_sweep_fidelity_table(const char *table_json, rd_error *err)
         rd_error_set(err, RD_EINTERNAL, "", "not the table of a fidelity sweep");
         return NULL;
     }
+    size_t n = json_array_size(rows);
     json_t *finest = finest_row(rows, &c), *ncols = json_array(), *nrows = json_array();
+    int *b = malloc((n ? n : 1) * sizeof *b);
+    double *e = malloc((n ? n : 1) * sizeof *e);
+    for (size_t i = 0; b && e && i < n; i++) {
+        json_t *r = json_array_get(rows, i);
+        e[i] = NAN;
+        b[i] = row_ok(r, &c) ? basis(r, finest, &c, &e[i]) : -1;
+    }
     for (size_t k = 0; k < json_array_size(cols); k++) {
-        if ((int)k == c.q || (int)k == c.clearance)
+        if ((int)k == c.q || (int)k == c.clearance || (int)k == c.check)
             continue;
         if ((int)k == c.status) {
-            json_array_append_new(ncols, json_string("error_vs_finest"));
-            json_array_append_new(ncols, json_string("pareto"));
+            static const char *const added[] = {"error_vs_finest", "estimate_covers", "changes",
+                                                "basis",           "error_on_basis",  "pareto"};
+            for (size_t a = 0; a < sizeof added / sizeof added[0]; a++)
+                json_array_append_new(ncols, json_string(added[a]));
         }
         json_array_append(ncols, json_array_get(cols, k));
     }
-    for (size_t i = 0; i < json_array_size(rows); i++)
-        json_array_append_new(nrows, fidelity_row(rows, json_array_get(rows, i), finest, &c));
-    json_t *out = json_pack("{s:o, s:o}", "columns", ncols, "rows", nrows);
+    for (size_t i = 0; b && e && i < n; i++)
+        json_array_append_new(nrows, fidelity_row(rows, i, finest, b, e, &c));
+    json_t *out = NULL;
+    if (b && e)
+        out = json_pack("{s:o, s:o}", "columns", ncols, "rows", nrows); /* steals both */
+    else {
+        json_decref(ncols);
+        json_decref(nrows);
+    }
+    free(b);
+    free(e);
     char *text = out ? json_dumps(out, DUMP_FLAGS | JSON_PRESERVE_ORDER) : NULL;
     json_decref(out);
     json_decref(t);

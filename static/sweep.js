@@ -2,8 +2,10 @@
 // through POST /api/v1/sweeps, follows its progress and plots an output
 // column against a parameter column of its table (rows done so far); "Speed
 // vs accuracy" runs the fidelity sweep of the form's scene ({"fidelity":
-// scene}) and plots wall time against the error estimate, the Pareto front
-// highlighted, with a button per Pareto setting that puts it into the form.
+// scene}) and plots wall time against each setting's error on its basis
+// (measured against the finest setting, or an estimate that covers what the
+// setting changes), the Pareto front highlighted, with a button per Pareto
+// setting that puts it into the form.
 //
 // setupSweeps({form, analysis, onApply}) wires the view tabs: `analysis()`
 // is the id of the analysis whose form is shown; `onApply(text)` is told
@@ -249,13 +251,38 @@ function sweepView({ form, analysis }) {
 // ---- the Speed vs accuracy view -------------------------------------------------------
 
 // The fidelity table's columns by role (rd_sweep.h: the parameters, then
-// wall time, the estimate, error_vs_finest, pareto, status, error).
+// wall time, the estimate, [lift: the model that ran], error_vs_finest,
+// estimate_covers, changes, basis, error_on_basis, pareto, status, error).
 function roles(cols) {
   const wall = cols.indexOf('/numerics/wall_s');
-  return { params: cols.slice(0, wall).map((c, k) => [c, k]), wall, est: wall + 1, vs: cols.indexOf('error_vs_finest'), pareto: cols.indexOf('pareto'), status: cols.indexOf('status') };
+  const at = (name) => cols.indexOf(name);
+  return {
+    params: cols.slice(0, wall).map((c, k) => [c, k]), wall, est: wall + 1, vs: at('error_vs_finest'),
+    covers: at('estimate_covers'), changes: at('changes'), basis: at('basis'), err: at('error_on_basis'),
+    pareto: at('pareto'), status: at('status'),
+  };
 }
 
 const SHORT = { '/discretization/segments': 'segments', '/numerics/rtol': 'rtol', '/numerics/model': 'model' };
+// "segments time" (the table's words) as the page says them.
+const scope = (words) => (words ? words.split(' ').join(', ') : '');
+const percent = (x) => `${sig(x * 100, 2)} %`;
+
+// What a row's error rests on, as its row says it.
+function basisText(r, c) {
+  if (r[c.basis] === 'estimate') return `estimate (covers: ${scope(r[c.covers])})`;
+  if (r[c.basis] === 'measured') return 'measured vs finest';
+  return 'none (not comparable with the finest run)';
+}
+
+// Why a row's estimate was not its basis (null when it was).
+function distrust(r, c) {
+  if (r[c.basis] !== 'measured' || !isNum(r[c.est])) return null;
+  const missing = (r[c.changes] || '').split(' ').filter((w) => w && !(r[c.covers] || '').split(' ').includes(w));
+  return missing.length
+    ? `its estimate covers ${scope(r[c.covers]) || 'nothing'}, not the ${missing.join(', ')} it changes`
+    : 'its estimate is below its measured difference from the finest run';
+}
 
 function fidelityView({ form, analysis, onApply }) {
   let table = null, scene = null;
@@ -286,26 +313,39 @@ function fidelityView({ form, analysis, onApply }) {
     const rows = table.rows.filter((r) => r[c.status] === 'ok');
     const name = (r) => c.params.map(([p, k]) => `${SHORT[p] ?? p} ${r[k]}`).join(', ');
     const target = Number($('fd-target').value) / 100;
-    const within = rows.filter((r) => isNum(r[c.est]) && r[c.est] <= target).sort((a, b) => a[c.wall] - b[c.wall])[0];
-    const pts = rows.map((r, i) => ({ x: r[c.wall], y: r[c.est], cls: r[c.pareto] ? 'pareto' : 'dominated', id: `fd-pt-${i}`, title: `${name(r)}: ${seconds(r[c.wall])}, estimated error ${sig(r[c.est], 2)}${r[c.pareto] ? ' (Pareto front)' : ''}` }));
-    const front = pts.filter((p) => p.cls === 'pareto');
-    const body = rows.map((r, i) => h('tr', { class: [r[c.pareto] ? 'pareto' : '', r === within ? 'chosen' : ''].join(' ').trim() || null, id: `fd-row-${i}` },
+    const cheapest = (rs) => rs.slice().sort((a, b) => a[c.wall] - b[c.wall])[0];
+    // Only rows with a basis: measured against the finest run, or an estimate
+    // covering every discretisation the row changes (error_on_basis).
+    const within = cheapest(rows.filter((r) => r[c.basis] && isNum(r[c.err]) && r[c.err] <= target));
+    // A cheaper row whose estimate alone would have passed: say why it is not taken.
+    const misled = cheapest(rows.filter((r) => isNum(r[c.est]) && r[c.est] <= target && isNum(r[c.vs]) && !(r[c.err] <= target)
+      && (!within || r[c.wall] < within[c.wall])));
+    const finest = rows.find((r) => r[c.changes] === '');
+    const pts = rows.map((r, i) => ({ x: r[c.wall], y: r[c.err], cls: `${r[c.pareto] ? 'pareto' : 'dominated'} ${r[c.basis] ?? 'none'}`, id: `fd-pt-${i}`, title: `${name(r)}: ${seconds(r[c.wall])}, error ${sig(r[c.err], 2)} (${basisText(r, c)})${r[c.pareto] ? ', Pareto front' : ''}` }));
+    const front = pts.filter((p) => p.cls.startsWith('pareto'));
+    const body = rows.map((r, i) => h('tr', { class: [r[c.pareto] ? 'pareto' : '', r === within ? 'chosen' : ''].join(' ').trim() || null, id: `fd-row-${i}`, 'data-basis': r[c.basis] ?? 'none' },
       c.params.map(([, k]) => h('td', { class: 'num' }, String(r[k]))),
       h('td', { class: 'num' }, seconds(r[c.wall])),
-      h('td', { class: 'num' }, sig(r[c.est], 2)),
+      h('td', { class: 'est' }, isNum(r[c.est]) ? `${sig(r[c.est], 2)}, covers ${scope(r[c.covers])}` : '—'),
       h('td', { class: 'num' }, sig(r[c.vs], 2)),
+      h('td', { class: 'basis' }, basisText(r, c)),
+      h('td', { class: 'num' }, sig(r[c.err], 2)),
       h('td', {}, r[c.pareto] ? h('button', { type: 'button', class: 'use', id: `fd-use-${i}`, 'aria-label': `Use ${name(r)} in the form` }, 'Use') : '')));
     const useButtons = new Map(rows.map((r, i) => [`fd-use-${i}`, r]));
+    const on = (r) => (r[c.basis] === 'estimate'
+      ? `on its estimate, ${percent(r[c.err])} (covers: ${scope(r[c.covers])}); measured against the finest run: ${percent(r[c.vs])}`
+      : `measured against the finest run${finest ? ` (${name(finest)})` : ''}: ${percent(r[c.err])}`);
     fill($('fd-result'),
       h('figure', { class: 'plot wide' },
-        scatter({ id: 'fd-plot', points: pts, front, xLog: true, yLog: true, xLabel: 'wall time (s, with the estimate)', yLabel: 'error estimate', label: `Wall time against error estimate of ${rows.length} settings; ${front.length} on the Pareto front` }),
-        h('figcaption', {}, 'Each fidelity setting of the scene: its cost (wall time of the run with its error estimate) against its estimated error, both log scales. Filled and joined: the Pareto front, the settings no other beats in both.')),
-      h('p', { id: 'fd-cheapest' }, within
-        ? ['Cheapest setting within ', `${sig(target * 100, 3)} %`, `: ${name(within)} (${seconds(within[c.wall])}). `, h('button', { type: 'button', id: 'fd-use-cheapest' }, 'Use it')]
-        : `No setting reaches an estimated error of ${sig(target * 100, 3)} %.`),
+        scatter({ id: 'fd-plot', points: pts, front, xLog: true, yLog: true, xLabel: 'wall time (s, with the estimate)', yLabel: 'error on its basis', label: `Wall time against error of ${rows.length} settings, each on its basis; ${front.length} on the Pareto front` }),
+        h('figcaption', {}, 'Each fidelity setting of the scene: its cost (wall time of the run with its error estimate) against its error, both log scales. A setting\'s error is its difference from the finest setting\'s result (measured), or its own estimate where that covers every discretisation the setting changes and is not below the measured difference; the table says which. Filled and joined: the Pareto front, the settings no other beats in both.')),
+      h('p', { id: 'fd-cheapest', 'data-basis': within?.[c.basis] ?? null }, within
+        ? ['Cheapest setting within ', `${sig(target * 100, 3)} %`, `: ${name(within)} (${seconds(within[c.wall])}), ${on(within)}. `, h('button', { type: 'button', id: 'fd-use-cheapest' }, 'Use it')]
+        : `No setting is within ${sig(target * 100, 3)} % measured against the finest run, or on an estimate that covers what the setting changes.`),
+      misled ? h('p', { class: 'hint', id: 'fd-distrusted' }, `Not ${name(misled)} (${seconds(misled[c.wall])}): ${distrust(misled, c) ?? 'its estimate is not its basis'}, and it differs from the finest run by ${percent(misled[c.vs])}.`) : null,
       h('div', { class: 'table-wrap' }, h('table', { class: 'modes', id: 'fd-table' },
-        h('caption', {}, 'Fidelity settings (ok runs). Error vs finest: against the finest setting run, which it underestimates by that run\'s own error.'),
-        h('thead', {}, h('tr', {}, c.params.map(([p]) => h('th', { scope: 'col' }, SHORT[p] ?? p)), h('th', { scope: 'col' }, 'wall'), h('th', { scope: 'col' }, 'estimate'), h('th', { scope: 'col' }, 'vs finest'), h('th', { scope: 'col' }, 'Pareto'))),
+        h('caption', {}, 'Fidelity settings (ok runs). Vs finest: the measured difference from the finest setting\'s result, which falls short of the true error by that run\'s own. Basis: what the error the recommendation uses rests on.'),
+        h('thead', {}, h('tr', {}, c.params.map(([p]) => h('th', { scope: 'col' }, SHORT[p] ?? p)), h('th', { scope: 'col' }, 'wall'), h('th', { scope: 'col' }, 'estimate, its scope'), h('th', { scope: 'col' }, 'vs finest'), h('th', { scope: 'col' }, 'basis'), h('th', { scope: 'col' }, 'error'), h('th', { scope: 'col' }, 'Pareto'))),
         h('tbody', {}, body))));
     for (const [id, r] of useButtons) $(id)?.addEventListener('click', () => apply(r));
     $('fd-use-cheapest')?.addEventListener('click', () => apply(within));

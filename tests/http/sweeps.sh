@@ -168,7 +168,10 @@ same "a fidelity sweep -> 200" "$STATUS" 200
 same "... kind fidelity" "$(json /kind)" fidelity
 same "... its fidelity table has 4 rows" "$(jcount /fidelity/rows)" 4
 same "... the finest run's error vs itself is 0" "$(json /fidelity/rows/3/3)" 0
-check "... the finest run is on the Pareto front" test "$(json /fidelity/rows/3/4)" = true
+same "... the modal estimate covers the segment count" "$(json /fidelity/rows/0/4)" segments
+same "... the finest run changes nothing against itself" "$(json /fidelity/rows/3/5)" ""
+same "... so its error rests on its estimate" "$(json /fidelity/rows/3/6)" estimate
+check "... the finest run is on the Pareto front" test "$(json /fidelity/rows/3/8)" = true
 post '/api/v1/sweeps' '{"fidelity": {"analysis": "modal"}, "segments": [5, 2]}'
 expect_error "fidelity segments out of range" 400 invalid_request /segments/1
 post '/api/v1/sweeps' '{"fidelity": {"analysis": "modal", "ring": {"diameter": -1}}}'
