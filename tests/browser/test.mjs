@@ -703,6 +703,12 @@ test('renderers draw fixture results: points, marks and labels match the numbers
   assert.equal(r.friction, true);
   r = await renderFixture('lift', fixtures.liftResult({ friction: false }));
   assert.equal(r.friction, false, 'no friction plot without friction in the scene');
+  // The estimate's scope is text beside the number, not a tooltip.
+  const scoped = fixtures.liftResult();
+  scoped.numerics = { error_estimate: 0.001, error_method: 'second run at rtol/10 and atol/10; the time integration only' };
+  r = await renderFixture('lift', scoped);
+  assert.ok(r.text.includes('What the estimate covers'), 'the scope row is shown');
+  assert.ok(r.text.includes('the time integration only'), 'the scope is visible text');
 
   // A long run: ticks every 180 deg for two cycles, and the lines are thinned.
   const two = fixtures.liftResult();
