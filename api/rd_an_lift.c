@@ -399,6 +399,21 @@ static int lube_finish(struct rd_scene *s, struct lift_opts *o, rd_error *err)
     if (o->vogel_given && l->friction.lube.viscosity > 0.0)
         return rd_error_set(err, RD_EINVAL, "/physics/friction/oil/vogel",
                             "give either viscosity_pa_s (a constant) or vogel, not both.");
+    if (l->friction.lube.viscosity > 0.0 && l->friction.lube.temperature_c != 100.0)
+        return rd_error_set(err, RD_EINVAL, "/physics/friction/oil/temperature_c",
+                            "a constant viscosity_pa_s does not read the temperature: give "
+                            "either viscosity_pa_s or the temperature (Vogel law), not both.");
+    const rd_face_params *fp = &l->face;
+    const char *unread = fp->profile != RD_FACE_BARREL && fp->crown != 5e-6      ? "crown_m"
+                         : fp->profile != RD_FACE_BARREL && fp->offset != 0.0    ? "offset_m"
+                         : fp->profile != RD_FACE_TAPER && fp->taper_deg != 0.0  ? "taper_deg"
+                         : fp->profile != RD_FACE_FLAT && fp->edge_radius != 0.0 ? "edge_radius_m"
+                                                                                 : NULL;
+    if (unread) {
+        char path[48];
+        snprintf(path, sizeof path, "/ring/face/%s", unread);
+        return rd_error_set(err, RD_EINVAL, path, "%s is not read by this face profile.", path);
+    }
     if (o->temp_table_given && l->friction.lube.viscosity > 0.0)
         return rd_error_set(err, RD_EINVAL, "/physics/friction/oil/temperature_table",
                             "a constant viscosity_pa_s does not read the temperature: give "
