@@ -196,14 +196,16 @@ static int initial_state(drv *d, double rtol, double atol, rd_error *err)
         vsum += m->vol[v + 1];
     }
     for (int i = 0; i < m->R; i++) {
-        RP_Z(m, y, i) = m->mode[i] == RD_FLANK_UPPER ? m->ca[i] : 0.0;
+        RP_Z(m, y, i) = m->mode[i] == RD_FLANK_UPPER             ? m->ca[i]
+                        : m->p->rings[i].pinned == RD_PIN_MIDDLE ? 0.5 * m->ca[i]
+                                                                 : 0.0;
         RP_ZD(m, y, i) = 0.0;
         RP_Z(m, ab, i) = atol;
         RP_ZD(m, ab, i) = atol * m->omega;
     }
     for (int k = 0; k < 4; k++) {
         RP_CUM(m, y, k) = 0.0;
-        RP_CUM(m, ab, k) = rtol * m->p->crankcase_pa * vsum / (RD_GASFLOW_R * m->p->T_lands);
+        RP_CUM(m, ab, k) = rtol * m->p->crankcase_pa * vsum / (m->law.R * m->p->T_lands);
     }
     for (int i = 0; i < m->R; i++) {
         int rc = m->lr[i] ? rd_packring_initial(m->lr[i], atol, y + m->off[i], ab + m->off[i], err)
@@ -505,7 +507,7 @@ static double stored_mass(const rd_ringpack_model *m, const double *y)
 {
     double s = 0.0;
     for (int v = 1; v <= m->V; v++)
-        s += RP_P(m, y, v - 1) * m->vol[v] / (RD_GASFLOW_R * m->temp[v]);
+        s += RP_P(m, y, v - 1) * m->vol[v] / (m->law.R * m->temp[v]);
     return s;
 }
 
@@ -655,8 +657,8 @@ static void balance(drv *d)
     double thru = fmax(r->inflow_kg + r->reverse_kg, 1e-300);
     r->mass_residual =
         fabs(r->inflow_kg - r->reverse_kg - r->blowby_kg - r->stored_change_kg) / thru;
-    r->blowby_l_per_min =
-        r->blowby_kg * (d->m.p->engine.speed_rpm / 2.0) / rd_ringpack_standard_density() * 1000.0;
+    r->blowby_l_per_min = r->blowby_kg * (d->m.p->engine.speed_rpm / 2.0) /
+                          rd_ringpack_standard_density(d->m.law.R) * 1000.0;
     double before = (a[2] - o[2]) - (a[3] - o[3]), change = 0.0;
     change = fabs(r->blowby_kg - before) / fmax(fabs(r->blowby_kg), 1e-300);
     for (int v = 1; v < nv - 1; v++) {

@@ -31,6 +31,10 @@ typedef struct rd_ringpack_model {
     double mass[RD_RINGPACK_RINGS_MAX], area[RD_RINGPACK_RINGS_MAX];
     double circ[RD_RINGPACK_RINGS_MAX]; /* pi d: the flank passages' width */
     double gap_area[RD_RINGPACK_RINGS_MAX], top_area, cd[RD_RINGPACK_RINGS_MAX];
+    double gap_cd[RD_RINGPACK_RINGS_MAX]; /* the end gap's C_d (an oil ring's: 1) */
+    rd_gasflow_slot
+        slot[2 * RD_RINGPACK_RINGS_MAX]; /* the flank passages' viscous limits, as areas */
+    int limited;                         /* flank_passage viscous_limited */
     int from[RD_RINGPACK_FLOWS_MAX], to[RD_RINGPACK_FLOWS_MAX]; /* network indices */
     int mode[RD_RINGPACK_RINGS_MAX]; /* enum rd_flank: lower, upper, free */
     /* friction (rd_ringpack.h): N = n_pre + n_back (p_groove - p_cc), N */
