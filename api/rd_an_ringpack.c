@@ -33,6 +33,7 @@ struct pack_opts {
     struct rd_engine_scene eng;          /* the tilt tables, /bore, the friction model */
     int synthetic_given, synthetic_kind; /* kind: index into synthetic_names */
     int max_steps;
+    double cycles;            /* /engine/cycles as given: 0 = "periodic" */
     struct rd_table table[2]; /* crank_deg, pressure_pa */
 };
 
@@ -97,10 +98,13 @@ static const rd_block bore_block = {
 static const rd_field engine_fields[] = {
     RD_ENGINE_CRANK_FIELDS(PO, pack.engine,
                            "Crank speed, rpm; at least 300 with physics.friction."),
-    {"cycles", RD_F_NUMBER, PO(pack.engine.cycles), RD_MIN(2), RD_MAX(RD_RINGPACK_CYCLES_MAX),
+    {"cycles", RD_F_NUMBER, PO(cycles), RD_MIN(2), RD_MAX(RD_RINGPACK_CYCLES_MAX),
+     .word = "periodic",
      .desc = "Whole 4-stroke cycles simulated from rest (all volumes at the crankcase "
              "pressure); the last is reported and compared with the one before "
-             "(periodicity)."},
+             "(periodicity). \"periodic\": cycles until the last one's change against the one "
+             "before is below /numerics/periodic_tolerance (at least 2, at most 50); the result "
+             "says how many ran (numerics.cycles) and whether it settled (periodic_reached)."},
     RD_ENGINE_TILT_FIELDS(
         PO, pack.engine,
         "Constant piston tilt about the pin axis (in the ring plane, 90 deg from the bore's angle "
@@ -321,7 +325,12 @@ static const rd_field numerics_fields[] = {
     {"max_steps", RD_F_INTEGER, PO(max_steps), RD_MIN(100), RD_MAX(1000000000),
      .desc = "CVODE steps allowed for the whole run."},
     {"error_estimate", RD_F_BOOL, PO(pack.estimate_error),
-     .desc = "Estimate the error by a second run at rtol/10 and atol/10."},
+     .desc = "Estimate the error by a second run at rtol/10 and atol/10 (as many cycles as the "
+             "run)."},
+    {"periodic_tolerance", RD_F_NUMBER, PO(pack.periodic_tolerance), RD_MIN(1e-6), RD_MAX(0.1),
+     .desc = "With /engine/cycles \"periodic\": the change of a cycle against the one before "
+             "(the result's periodicity: the blow-by's relative change and the largest pressure "
+             "change over each volume's peak) at which the run stops."},
     {.key = NULL},
 };
 static const rd_block numerics_block = {"PackNumerics", "/numerics of a ringpack scene.", 1, 0,
@@ -463,6 +472,7 @@ static void defaults(struct rd_scene *s)
     rd_ringpack_params_thesis(&o->pack);
     o->proto = o->pack.rings[0];
     o->max_steps = (int)o->pack.max_steps;
+    o->cycles = o->pack.engine.cycles;
     o->synthetic_kind = 0;
 }
 
@@ -534,6 +544,13 @@ static int finish(struct rd_scene *s, rd_error *err)
     struct pack_opts *o = s->opts;
     rd_ringpack_params *p = &o->pack;
     p->max_steps = o->max_steps;
+    p->periodic = o->cycles == 0.0; /* "periodic": at most the most cycles */
+    p->engine.cycles = p->periodic ? RD_RINGPACK_CYCLES_MAX : o->cycles;
+    if (!p->periodic && p->periodic_tolerance != 1e-3)
+        return rd_error_set(err, RD_EINVAL, "/numerics/periodic_tolerance",
+                            "/numerics/periodic_tolerance = %g is read only with /engine/cycles "
+                            "\"periodic\" (here %g cycles are run).",
+                            p->periodic_tolerance, o->cycles);
     int rc = cylinder_finish(o, err);
     rc = rc ? rc : rd_engine_scene_finish(&o->eng, &p->engine, &p->bore, &p->friction, err);
     rc = rc ? rc : rd_ringpack_validate(&o->pack, err);
@@ -699,6 +716,7 @@ static json_t *pack_numerics(const rd_scene *scene, const rd_ringpack_result *r,
 
 static json_t *pack_result(const rd_scene *scene, const rd_ringpack_result *r, double wall_s)
 {
+    const struct pack_opts *o = scene->opts;
     json_t *rings = json_array();
     for (int i = 0; rings && i < r->n_rings; i++)
         if (json_array_append_new(rings, ring_json(r, i)) != 0) {
@@ -706,15 +724,16 @@ static json_t *pack_result(const rd_scene *scene, const rd_ringpack_result *r, d
             rings = NULL;
         }
     return json_pack(
-        "{s:s, s:o, s:o, s:o, s:o, s:o, s:{s:o, s:o, s:o, s:o, s:o}, s:o, s:o, s:o}", "analysis",
-        rd_scene_analysis(scene), "scene", rd_scene_echo(scene), "crank_deg",
+        "{s:s, s:o, s:o, s:o, s:o, s:o, s:{s:o, s:o, s:o, s:o, s:o}, s:o, s:o, s:o, s:o}",
+        "analysis", rd_scene_analysis(scene), "scene", rd_scene_echo(scene), "crank_deg",
         rd_result_reals(r->crank_deg, r->samples, 1, 1.0), "volumes", volumes_json(r), "rings",
         rings, "flows", flows_json(r), "blowby", "kg_per_cycle", rd_result_real(r->blowby_kg),
         "l_per_min", rd_result_real(r->blowby_l_per_min), "reverse_kg_per_cycle",
         rd_result_real(r->reverse_kg), "inflow_kg_per_cycle", rd_result_real(r->inflow_kg),
         "mass_balance_residual", rd_result_real(r->mass_residual), "periodicity",
-        rd_result_real(r->periodicity), "table", table_json(r), "numerics",
-        pack_numerics(scene, r, wall_s));
+        rd_result_real(r->periodicity), "periodic_reached",
+        o->pack.periodic ? json_boolean(r->settled) : json_null(), "table", table_json(r),
+        "numerics", pack_numerics(scene, r, wall_s));
 }
 
 static int run(const rd_scene *s, const rd_monitor *mon, json_t **out, rd_error *err)

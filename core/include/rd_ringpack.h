@@ -151,8 +151,13 @@ typedef struct rd_ringpack_ring {
 } rd_ringpack_ring;
 
 typedef struct rd_ringpack_params {
-    rd_engine_params engine; /* cycles: whole cycles, 2..50 */
-    int n_rings;             /* 1..3 */
+    rd_engine_params engine; /* cycles: whole cycles, 2..50 (periodic: the most run) */
+    /* 1: run until a cycle's change against the one before (the result's
+     * periodicity) is below periodic_tolerance, at least 2 cycles and at
+     * most engine.cycles; 0: engine.cycles cycles */
+    int periodic;
+    double periodic_tolerance; /* 1e-6 .. 0.1, default 1e-3 */
+    int n_rings;               /* 1..3 */
     rd_ringpack_ring rings[RD_RINGPACK_RINGS_MAX];
     int cylinder_kind;       /* enum rd_cylinder_kind */
     int table_points;        /* RD_CYLINDER_TABLE: the trace, borrowed */
@@ -221,6 +226,8 @@ typedef struct rd_ringpack_result {
     double stored_change_kg; /* gas held in the volumes, end minus start of the cycle */
     double mass_residual;    /* |in - back - blowby - stored change| / throughput */
     double periodicity;      /* relative change of the last cycle against the one before */
+    int settled;             /* periodic: the change fell below the tolerance (else the
+                              * most cycles ran first); 0 otherwise */
     /* CVODE's work over the whole run (summed over the restarts) */
     long steps, rhs_evals, jac_evals, root_evals, restarts, err_test_fails, nonlin_fails;
     /* Per ring: the model integrated (RD_RINGPACK_AXIAL or enum

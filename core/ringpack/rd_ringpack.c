@@ -25,6 +25,7 @@ void rd_ringpack_params_default(rd_ringpack_params *p)
     p->engine.rod_length = 0.130;
     p->engine.kinematics = RD_KINEMATICS_EXACT;
     p->engine.cycles = 6.0;
+    p->periodic_tolerance = 1e-3;
     p->n_rings = 1;
     for (int i = 0; i < RD_RINGPACK_RINGS_MAX; i++) {
         rd_ringpack_ring *r = &p->rings[i];
@@ -241,6 +242,9 @@ int rd_ringpack_validate(const rd_ringpack_params *p, rd_error *err)
                             "/engine/cycles = %g must be a whole number of cycles (2 to 50): the "
                             "last two are compared for the periodic state.",
                             e->cycles);
+    rc = rc ? rc
+            : rd_error_range(p->periodic_tolerance, 1e-6, 0.1, "/numerics/periodic_tolerance", "",
+                             err);
     if (!rc && (p->n_rings < 1 || p->n_rings > RD_RINGPACK_RINGS_MAX))
         return rd_error_set(err, RD_EINVAL, "/rings", "/rings has %d rings; allowed 1 to %d.",
                             p->n_rings, RD_RINGPACK_RINGS_MAX);

@@ -63,10 +63,11 @@ typedef struct drv {
     SUNLinearSolver LS;
     rd_ringpack_newton *pn; /* with lift rings: the bordered Newton solver */
     double deg_per_s;
-    double *prev;     /* n_volumes x samples: the cycle before the last */
-    double cum[3][4]; /* cumulative masses at the starts of the last two cycles, end */
+    double *prev;     /* n_volumes x samples: the cycle before the one recorded */
+    double cum[3][4]; /* cumulative masses at the starts of that cycle and this, its end */
     double stored[3]; /* gas in the volumes then, kg */
-    int S, C;         /* samples per cycle (intervals), cycles */
+    int S, C;         /* samples per cycle (intervals), cycles (periodic: at most) */
+    int cyc, done;    /* the cycle being recorded (from 0); the run's last has ended */
     rd_ringpack_result *res;
     int cap[RD_RINGPACK_RINGS_MAX];
     int banded; /* flank_band > 0: events at the bands' edges */
@@ -323,9 +324,9 @@ static int drv_open(drv *d, const rd_ringpack_params *p, double rtol, double ato
  * dropped. */
 static int push_event(drv *d, int i, double t, int kind, double touch, rd_error *err)
 {
-    double deg = t * d->deg_per_s - 720.0 * (d->C - 1);
+    double deg = t * d->deg_per_s - 720.0 * d->cyc;
     rd_ringpack_result *r = d->res;
-    if (deg < 0.0) /* only the last cycle's are reported */
+    if (deg < 0.0) /* only the recorded cycle's are kept */
         return RD_OK;
     if (r->n_events[i] == d->cap[i]) {
         int cap = d->cap[i] ? 2 * d->cap[i] : 16;
@@ -336,7 +337,7 @@ static int push_event(drv *d, int i, double t, int kind, double touch, rd_error 
         d->cap[i] = cap;
     }
     r->events[i][r->n_events[i]++] =
-        (rd_lift_event){deg, kind, touch * d->deg_per_s - 720.0 * (d->C - 1)};
+        (rd_lift_event){deg, kind, touch * d->deg_per_s - 720.0 * d->cyc};
     return RD_OK;
 }
 
@@ -382,7 +383,7 @@ static int band_touch(drv *d, int i, double t, int flank, int seated, rd_error *
     band_state *b = &d->band[i];
     int rc = b->band != flank ? band_enter(d, i, t, flank, err) : RD_OK;
     if (!b->touched && b->landing >= 0)
-        d->res->events[i][b->landing].touch_deg = t * d->deg_per_s - 720.0 * (d->C - 1);
+        d->res->events[i][b->landing].touch_deg = t * d->deg_per_s - 720.0 * d->cyc;
     b->touched = 1;
     b->landing = -1;
     b->cand = seated ? NAN : t;
@@ -526,24 +527,48 @@ static void record_lift(const rd_ringpack_model *m, int i, double t, const doubl
         *lift < eps ? RD_FLANK_LOWER : (*lift > m->ca[i] - eps ? RD_FLANK_UPPER : RD_FLANK_FREE);
 }
 
-/* Sample j of the run (0 .. C S) at time t. */
-static void record(drv *d, int j, double t)
+/* Balance of the recorded cycle and its change against the one before. */
+static void balance(drv *d)
+{
+    rd_ringpack_result *r = d->res;
+    const double *a = d->cum[1], *b = d->cum[2], *o = d->cum[0];
+    int S = d->S, nv = d->m.V + 2;
+    r->inflow_kg = b[0] - a[0];
+    r->reverse_kg = b[1] - a[1];
+    r->blowby_kg = (b[2] - a[2]) - (b[3] - a[3]);
+    r->stored_change_kg = d->stored[2] - d->stored[1];
+    double thru = fmax(r->inflow_kg + r->reverse_kg, 1e-300);
+    r->mass_residual =
+        fabs(r->inflow_kg - r->reverse_kg - r->blowby_kg - r->stored_change_kg) / thru;
+    r->blowby_l_per_min = r->blowby_kg * (d->m.p->engine.speed_rpm / 2.0) /
+                          rd_ringpack_standard_density(d->m.law.R) * 1000.0;
+    double before = (a[2] - o[2]) - (a[3] - o[3]), change = 0.0;
+    change = fabs(r->blowby_kg - before) / fmax(fabs(r->blowby_kg), 1e-300);
+    for (int v = 1; v < nv - 1; v++) {
+        double top = 0.0, diff = 0.0;
+        for (int k = 0; k <= S; k++) {
+            double p = r->pressure[(size_t)v * (S + 1) + k];
+            top = fmax(top, p);
+            diff = fmax(diff, fabs(p - d->prev[(size_t)v * (S + 1) + k]));
+        }
+        change = fmax(change, diff / top);
+    }
+    r->periodicity = change;
+}
+
+/* Sample k (0 .. S) of the recorded cycle at time t. */
+static void record(drv *d, int k, double t)
 {
     rd_ringpack_model *m = &d->m;
     rd_ringpack_result *r = d->res;
     const double *y = N_VGetArrayPointer(d->y);
     double pv[RD_RINGPACK_VOLUMES_MAX], mdot[RD_RINGPACK_FLOWS_MAX];
-    int S = d->S, nv = m->V + 2, k = j - (d->C - 1) * S, kp = j - (d->C - 2) * S;
+    int S = d->S, nv = m->V + 2;
     rd_ringpack_pressures(m, t, y, pv);
-    int b = j - (d->C - 2) * S; /* cycle boundaries: b = 0, S, 2 S */
-    if (b >= 0 && b % S == 0) {
-        memcpy(d->cum[b / S], &RP_CUM(m, y, 0), 4 * sizeof(double));
-        d->stored[b / S] = stored_mass(m, y);
+    if (k == 0 || k == S) { /* the cycle's start (the run's) and end */
+        memcpy(d->cum[k ? 2 : 1], &RP_CUM(m, y, 0), 4 * sizeof(double));
+        d->stored[k ? 2 : 1] = stored_mass(m, y);
     }
-    for (int v = 0; kp >= 0 && kp <= S && v < nv; v++)
-        d->prev[(size_t)v * (S + 1) + kp] = pv[v];
-    if (k < 0)
-        return;
     double area[2 * RD_RINGPACK_RINGS_MAX];
     rd_ringpack_areas(m, y, area);
     rd_ringpack_flows(m, pv, area, mdot);
@@ -562,6 +587,50 @@ static void record(drv *d, int j, double t)
     }
     for (int f = 0; f < m->F; f++)
         r->flow[(size_t)f * (S + 1) + k] = mdot[f];
+}
+
+/* Column S of a rows x (S + 1) array into column 0. */
+static void end_to_start(double *a, int rows, int S)
+{
+    for (int v = 0; v < rows; v++)
+        a[(size_t)v * (S + 1)] = a[(size_t)v * (S + 1) + S];
+}
+
+/* The recorded cycle has ended: its balance and change against the cycle
+ * before; the run ends after the C-th (periodic: as soon as the change is
+ * below the tolerance, or after the C-th); else the next cycle starts from
+ * this one's end (its pressures kept as the one before, its events
+ * dropped). */
+static void cycle_end(drv *d)
+{
+    rd_ringpack_model *m = &d->m;
+    rd_ringpack_result *r = d->res;
+    const rd_ringpack_params *p = m->p;
+    int S = d->S, nv = m->V + 2;
+    if (d->cyc >= 1)
+        balance(d);
+    int settled = d->cyc >= 1 && p->periodic && r->periodicity < p->periodic_tolerance;
+    if (settled || d->cyc + 1 == d->C) {
+        d->done = 1;
+        r->cycles = d->cyc + 1;
+        r->settled = settled;
+        return;
+    }
+    memcpy(d->prev, r->pressure, (size_t)nv * (S + 1) * sizeof *d->prev);
+    memcpy(d->cum[0], d->cum[1], sizeof d->cum[0]);
+    memcpy(d->cum[1], d->cum[2], sizeof d->cum[1]);
+    d->stored[0] = d->stored[1];
+    d->stored[1] = d->stored[2];
+    end_to_start(r->pressure, nv, S);
+    end_to_start(r->lift, m->R, S);
+    end_to_start(r->friction, m->R, S);
+    end_to_start(r->flow, m->F, S);
+    for (int i = 0; i < m->R; i++) {
+        r->flank[(size_t)i * (S + 1)] = r->flank[(size_t)i * (S + 1) + S];
+        r->n_events[i] = 0;
+        d->band[i].landing = -1; /* a landing of this cycle awaits no touch in the next */
+    }
+    d->cyc++;
 }
 
 static int alloc_result(drv *d, rd_ringpack_result *r, rd_error *err)
@@ -620,7 +689,7 @@ static int integrate(drv *d, const rd_monitor *mon, rd_error *err)
     if (rc || (chunk && (flag = CVodeSetMaxNumSteps(d->cs.cv, chunk))))
         return rc ? rc : cv_fail(d, flag, "set-up", err);
     record(d, 0, 0.0);
-    for (int j = 1; j <= total; j++) {
+    for (int j = 1; j <= total && !d->done; j++) {
         double tout = j * dt;
         while (t < tout) {
             flag = CVode(d->cs.cv, tout, d->y, &t, CV_NORMAL);
@@ -637,40 +706,14 @@ static int integrate(drv *d, const rd_monitor *mon, rd_error *err)
                 t = tout;
             }
         }
-        record(d, j, t);
+        int k = j - d->cyc * d->S;
+        record(d, k, t);
+        if (k == d->S)
+            cycle_end(d);
         if ((rc = work_bound(d, t, err)) || (rc = rd_monitor_report(mon, (double)j / total, err)))
             return rc;
     }
     return RD_OK;
-}
-
-/* Balance of the last cycle and its change against the one before. */
-static void balance(drv *d)
-{
-    rd_ringpack_result *r = d->res;
-    const double *a = d->cum[1], *b = d->cum[2], *o = d->cum[0];
-    int S = d->S, nv = d->m.V + 2;
-    r->inflow_kg = b[0] - a[0];
-    r->reverse_kg = b[1] - a[1];
-    r->blowby_kg = (b[2] - a[2]) - (b[3] - a[3]);
-    r->stored_change_kg = d->stored[2] - d->stored[1];
-    double thru = fmax(r->inflow_kg + r->reverse_kg, 1e-300);
-    r->mass_residual =
-        fabs(r->inflow_kg - r->reverse_kg - r->blowby_kg - r->stored_change_kg) / thru;
-    r->blowby_l_per_min = r->blowby_kg * (d->m.p->engine.speed_rpm / 2.0) /
-                          rd_ringpack_standard_density(d->m.law.R) * 1000.0;
-    double before = (a[2] - o[2]) - (a[3] - o[3]), change = 0.0;
-    change = fabs(r->blowby_kg - before) / fmax(fabs(r->blowby_kg), 1e-300);
-    for (int v = 1; v < nv - 1; v++) {
-        double top = 0.0, diff = 0.0;
-        for (int k = 0; k <= S; k++) {
-            double p = r->pressure[(size_t)v * (S + 1) + k];
-            top = fmax(top, p);
-            diff = fmax(diff, fabs(p - d->prev[(size_t)v * (S + 1) + k]));
-        }
-        change = fmax(change, diff / top);
-    }
-    r->periodicity = change;
 }
 
 /* The lift rings' flank changes of the last cycle into the result. */
@@ -705,7 +748,6 @@ static int run_once(const rd_ringpack_params *p, double rtol, double atol, const
     rc = rc ? rc : integrate(&d, mon, err);
     if (!rc) {
         counters(&d, r);
-        balance(&d);
         rc = lift_events(&d, err);
     }
     drv_close(&d);
@@ -722,8 +764,12 @@ typedef struct acc {
 static int acc_solve(void *ctx, int level, const rd_monitor *mon, rd_error *err)
 {
     acc *a = ctx;
-    double f = level ? 0.1 : 1.0;
-    return run_once(a->p, a->p->rtol * f, a->p->atol * f, mon, level ? &a->ref : a->out, err);
+    if (!level)
+        return run_once(a->p, a->p->rtol, a->p->atol, mon, a->out, err);
+    rd_ringpack_params q = *a->p; /* as many cycles as the run it checks */
+    q.periodic = 0;
+    q.engine.cycles = a->out->cycles;
+    return run_once(&q, q.rtol * 0.1, q.atol * 0.1, mon, &a->ref, err);
 }
 
 /* The estimate: the larger of the blow-by's relative change and the

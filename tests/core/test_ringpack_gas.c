@@ -353,6 +353,39 @@ static void test_flank_pressure(void)
     rd_ringpack_result_cleanup(&lin);
 }
 
+/* engine.cycles periodic: it stops at the first cycle whose change is
+ * below the tolerance; the same count run as a fixed number of cycles
+ * gives the same answer to the last bit, one cycle fewer a change still
+ * above the tolerance. */
+static void test_periodic(void)
+{
+    rd_ringpack_params p;
+    rd_ringpack_result a, b, c;
+    rd_ringpack_params_thesis(&p);
+    p.estimate_error = 0;
+    p.periodic = 1;
+    p.engine.cycles = RD_RINGPACK_CYCLES_MAX;
+    if (solve(&p, &a, "periodic") != RD_OK)
+        return;
+    CHECK(a.settled && a.periodicity < 1e-3 && a.cycles >= 3 && a.cycles < 20,
+          "periodic: settled %d after %d cycles at %.3g", a.settled, a.cycles, a.periodicity);
+    p.periodic = 0;
+    p.engine.cycles = a.cycles;
+    if (solve(&p, &b, "fixed, as many") == RD_OK) {
+        CHECK(b.blowby_kg == a.blowby_kg && b.periodicity == a.periodicity &&
+                  b.n_events[0] == a.n_events[0] && !b.settled,
+              "fixed %d cycles: blow-by %.12g vs %.12g", b.cycles, b.blowby_kg, a.blowby_kg);
+        rd_ringpack_result_cleanup(&b);
+    }
+    p.engine.cycles = a.cycles - 1;
+    if (solve(&p, &c, "fixed, one fewer") == RD_OK) {
+        CHECK(c.periodicity >= 1e-3, "one cycle fewer: change %.3g", c.periodicity);
+        rd_ringpack_result_cleanup(&c);
+    }
+    printf("periodic: %d cycles, change %.3g\n", a.cycles, a.periodicity);
+    rd_ringpack_result_cleanup(&a);
+}
+
 /* ---- bad input ---------------------------------------------------------- */
 
 static void expect_bad(const rd_ringpack_params *p, const char *path, const char *what)
@@ -391,6 +424,9 @@ static void test_bad_input(void)
     p.gas_constant = 10.0;
     expect_bad(&p, "/physics/gas/gas_constant", "gas constant");
     rd_ringpack_params_thesis(&p);
+    p.periodic_tolerance = 0.5;
+    expect_bad(&p, "/numerics/periodic_tolerance", "periodic tolerance");
+    rd_ringpack_params_thesis(&p);
     p.active_area = RD_GAS_AREA_DYNAMIC;
     expect_bad(&p, "/physics/gas/flank_pressure", "linear with dynamic areas");
 }
@@ -403,6 +439,7 @@ int main(void)
     test_end_gap();
     test_thesis_pack();
     test_flank_pressure();
+    test_periodic();
     test_bad_input();
     return check_done();
 }
