@@ -103,6 +103,35 @@ int rd_ringpack_rhs(const rd_ringpack_model *m, double t, const double *y, doubl
 /* Names and volumes into the result. */
 void rd_ringpack_describe(const rd_ringpack_model *m, rd_ringpack_result *r);
 
+/* ---- the output (rd_ringpack_record.c) ---- */
+
+/* The cycle being recorded: its samples in `res` (k = 0 .. S), the cycle
+ * before's pressures, the cumulative masses and stored gas at the two
+ * cycles' starts and this one's end; cyc counts from 0; done once the
+ * run's last cycle has ended (the C-th, or with p->periodic the first
+ * whose change is below the tolerance). */
+typedef struct rd_ringpack_rec {
+    rd_ringpack_result *res;
+    double *prev;     /* n_volumes x (S + 1) */
+    double cum[3][4]; /* RP_CUM at the cycle before's start, this one's, its end */
+    double stored[3]; /* gas in the volumes then, kg */
+    int S, C;         /* samples per cycle (intervals), cycles (periodic: at most) */
+    int cyc, done;
+} rd_ringpack_rec;
+
+/* Allocates the result's arrays for S + 1 samples (d->S set) and names
+ * its volumes and flows. */
+int rd_ringpack_record_open(rd_ringpack_rec *d, const rd_ringpack_model *m, rd_ringpack_result *r,
+                            rd_error *err);
+/* Sample k of the recorded cycle at (t, y); flank[i]: an axial ring's
+ * flank (its band, or its mode), a lift ring's is its mean lift's. */
+void rd_ringpack_record(rd_ringpack_rec *d, const rd_ringpack_model *m, const int *flank, int k,
+                        double t, const double *y);
+/* After sample S: the cycle's balance and change (from the second on);
+ * done, or the next cycle starts from this one's end (its pressures
+ * become the cycle before's, the events recorded so far are dropped). */
+void rd_ringpack_cycle_end(rd_ringpack_rec *d, const rd_ringpack_model *m);
+
 /* ---- rings on the lift models (rd_ringpack_lift.c) ---- */
 
 /* What the scene needs of auto's choice: the full ring for a distorted
