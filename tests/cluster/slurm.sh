@@ -6,6 +6,7 @@
 #   B  one task cancelled while it runs (scancel JOBID_I): no chunk file, the
 #      reduce never runs; submitted again, only that task runs: same table;
 #   C  K = 24 above MaxArraySize = 10: 10 tasks, several chunks each; same table;
+#      a chunk lost: submitted again, its task reruns that chunk alone;
 #   D  a spec whose scene is invalid: slurm-submit.sh refuses it (exit 2), and
 #      array tasks given it directly end FAILED with exit code 2 (don't retry).
 # Prints the per-task overhead: (Slurm wall - xargs wall of the same K, P) x P / K.
@@ -70,8 +71,7 @@ echo "A: 8 tasks %3: $t_slurm s from submit to table, at most $most at once"
 
 # B: task 5 cancelled while its chunk runs, then submitted again.
 submit B 8 2
-wait_field "${jid}_5" JobState RUNNING
-sleep 0.3
+wait_ringdyn "${jid}_5"
 scancel "${jid}_5"
 wait_gone "$jid"
 [ "$(job_field "${jid}_5" JobState)" = CANCELLED ] || fail "B: task 5 $(job_field "${jid}_5" JobState)"
@@ -94,6 +94,15 @@ wait_job "$rid" "$jid" >/dev/null
 [ "$(array_tasks "$jid" | tr '\n' ' ')" = "0 1 2 3 4 5 6 7 8 9 " ] || fail "C: tasks $(array_tasks "$jid")"
 [ "$(ls "$work/C" | grep -c '^chunk-.*-of-000024.json$')" = 24 ] || fail "C: want 24 chunks"
 same_table "$work/C" "C (24 chunks in 10 tasks)"
+# A chunk lost from a packed task: the same command runs that task, and it
+# runs that chunk only (the task's other chunks keep their files).
+rm "$work/C/chunk-000013-of-000024.json" "$work/C/table.json" "$work/C/table.csv"
+touch -d '2000-01-01' "$work/C/chunk-000003-of-000024.json"
+submit C 24 3
+wait_job "$rid" "$jid" > /dev/null
+[ "$(array_tasks "$jid")" = 3 ] || fail "C: resubmitted $(array_tasks "$jid"), want task 3 only"
+[ -n "$(find "$work/C/chunk-000003-of-000024.json" -mtime +1000)" ] || fail "C: chunk 3 run again"
+same_table "$work/C" "C (chunk 13 lost, resubmitted)"
 
 # D: an invalid scene.  Refused before anything is submitted; run anyway, exit 2.
 sed 's/"segments": 120/"segments": 2/' "$work/spec.json" > "$work/bad.json"

@@ -113,6 +113,19 @@ wait_field() {  # wait_field JOB FIELD VALUE: up to 60 s
   fail "job $1: $2 is not $3 after 60 s: $(job_field "$1" "$2")"
 }
 
+wait_ringdyn() {  # wait_ringdyn JOB: until a ringdyn process runs in JOB (60 s)
+  local i id pid
+  for ((i = 0; i < 600; i++)); do
+    id=$(job_field "$1" JobId)
+    for pid in $(scontrol listpids "$id" 2> /dev/null | awk 'NR > 1 { print $1 }'); do
+      [ "$(cat "/proc/$pid/comm" 2> /dev/null)" = ringdyn ] && return 0
+    done
+    sleep 0.1
+  done
+  cluster_logs
+  fail "no ringdyn process in job $1 after 60 s: $(job_field "$1" JobState)"
+}
+
 wait_gone() {  # wait_gone JID: until no task of JID is pending or running (120 s)
   local i
   for ((i = 0; i < 600; i++)); do
