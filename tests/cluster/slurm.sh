@@ -23,9 +23,11 @@ done
 
 work=$(mktemp -d /tmp/ringdyn-slurm.XXXXXX)
 chmod 755 "$work"   # munged wants the socket's directories searchable by all
+exec 9> "$work/lock" && flock -n 9   # held while this run lives (slurm_lib.sh: reap_stale)
 export SLURM_CONF=$work/slurm.conf
 source "$(dirname "$0")/slurm_lib.sh"
 trap 'cluster_stop; rm -rf "$work"' EXIT
+trap 'exit 1' TERM INT HUP   # so that the EXIT trap runs
 cluster_start "$work"
 
 # The spec: 512 points of a modal scene, ~25 ms each here (a chunk lasts long

@@ -24,14 +24,28 @@ cluster_logs() {
   done >&2
 }
 
+reap_stale() {  # daemons of an earlier run killed before its trap ran (a ctest timeout)
+  local d f pid
+  for d in /tmp/ringdyn-slurm.*; do
+    # A live run holds its lock (fd 9 of slurm.sh): leave it alone.
+    [ "$d" != "$work" ] && [ -e "$d/lock" ] && flock -n "$d/lock" true || continue
+    for f in "$d"/slurmd.pid "$d"/slurmctld.pid "$d"/munged.pid; do
+      pid=$(cat "$f" 2> /dev/null) || continue
+      grep -qF "$d/" "/proc/$pid/cmdline" 2> /dev/null && kill -KILL "$pid"
+    done
+    rm -rf "$d"
+  done
+}
+
 cluster_start() {
   local h p1 p2 i
+  reap_stale
   h=$(hostname -s)
-  p1=$(free_port $((20000 + RANDOM % 20000)))
+  p1=$(free_port $((10000 + RANDOM % 20000)))   # below the ephemeral ports
   p2=$(free_port $((p1 + 1)))
   mkdir -p "$work/state" "$work/spool"
   mungekey --create --keyfile="$work/munge.key"
-  munged --force --key-file="$work/munge.key" --socket="$work/munge.sock" \
+  munged 9>&- --force --key-file="$work/munge.key" --socket="$work/munge.sock" \
     --pid-file="$work/munged.pid" --log-file="$work/munged.log" --seed-file="$work/munged.seed" \
     || { cluster_logs; fail "munged did not start"; }
   cat > "$SLURM_CONF" << EOF
@@ -66,8 +80,8 @@ SlurmdParameters=config_overrides
 NodeName=$h NodeAddr=127.0.0.1 CPUs=4 State=UNKNOWN
 PartitionName=test Nodes=$h Default=YES MaxTime=INFINITE State=UP
 EOF
-  slurmctld -f "$SLURM_CONF" || { cluster_logs; fail "slurmctld did not start"; }
-  slurmd -f "$SLURM_CONF" -N "$h" || { cluster_logs; fail "slurmd did not start"; }
+  slurmctld -f "$SLURM_CONF" 9>&- || { cluster_logs; fail "slurmctld did not start"; }
+  slurmd -f "$SLURM_CONF" -N "$h" 9>&- || { cluster_logs; fail "slurmd did not start"; }
   for ((i = 0; i < 100; i++)); do
     [ "$(sinfo -h -o %T 2> /dev/null)" = idle ] && return 0
     sleep 0.2
