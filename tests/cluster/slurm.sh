@@ -6,7 +6,7 @@
 #   B  one task cancelled while it runs (scancel JOBID_I): no chunk file, the
 #      reduce never runs; submitted again, only that task runs: same table;
 #   C  K = 24 above MaxArraySize = 10: 10 tasks, several chunks each; same table;
-#      a chunk lost: submitted again, its task reruns that chunk alone;
+#      chunks lost: submitted again, their tasks rerun those chunks alone;
 #   D  a spec whose scene is invalid: slurm-submit.sh refuses it (exit 2), and
 #      array tasks given it directly end FAILED with exit code 2 (don't retry).
 # Prints the per-task overhead: (Slurm wall - xargs wall of the same K, P) x P / K.
@@ -96,15 +96,16 @@ wait_job "$rid" "$jid" >/dev/null
 [ "$(array_tasks "$jid" | tr '\n' ' ')" = "0 1 2 3 4 5 6 7 8 9 " ] || fail "C: tasks $(array_tasks "$jid")"
 [ "$(ls "$work/C" | grep -c '^chunk-.*-of-000024.json$')" = 24 ] || fail "C: want 24 chunks"
 same_table "$work/C" "C (24 chunks in 10 tasks)"
-# A chunk lost from a packed task: the same command runs that task, and it
-# runs that chunk only (the task's other chunks keep their files).
-rm "$work/C/chunk-000013-of-000024.json" "$work/C/table.json" "$work/C/table.csv"
-touch -d '2000-01-01' "$work/C/chunk-000003-of-000024.json"
+# Chunks lost from packed tasks 3, 4 and 7: the same command runs those
+# tasks (--array=3-4,7), each only its lost chunk (the others keep their files).
+for i in 13 14 17; do rm "$work/C/chunk-0000$i-of-000024.json"; done
+rm "$work/C/table.json" "$work/C/table.csv"
+touch -d '2000-01-01' "$work/C"/chunk-0000{03,23}-of-000024.json
 submit C 24 3
 wait_job "$rid" "$jid" > /dev/null
-[ "$(array_tasks "$jid")" = 3 ] || fail "C: resubmitted $(array_tasks "$jid"), want task 3 only"
-[ -n "$(find "$work/C/chunk-000003-of-000024.json" -mtime +1000)" ] || fail "C: chunk 3 run again"
-same_table "$work/C" "C (chunk 13 lost, resubmitted)"
+[ "$(array_tasks "$jid" | tr '\n' ' ')" = "3 4 7 " ] || fail "C: resubmitted $(array_tasks "$jid"), want 3 4 7"
+[ "$(find "$work/C" -name 'chunk-*' -mtime +1000 | wc -l)" = 2 ] || fail "C: chunk 3 or 23 run again"
+same_table "$work/C" "C (chunks 13, 14, 17 lost, resubmitted)"
 
 # D: an invalid scene.  Refused before anything is submitted; run anyway, exit 2.
 sed 's/"segments": 120/"segments": 2/' "$work/spec.json" > "$work/bad.json"
