@@ -30,8 +30,9 @@ here=$(cd "$(dirname "$0")" && pwd)
 RINGDYN=$(realpath -e "${RINGDYN:-$(command -v ringdyn || echo build/cli/ringdyn)}")
 export RINGDYN
 
-n=$("$RINGDYN" sweep count "$spec")      # validates the spec: exit 2, nothing submitted
 K=${3:-64}
+[[ $K =~ ^[1-9][0-9]*$ && $P =~ ^([1-9][0-9]*)?$ ]] || { echo "$usage (K, P: positive)" >&2; exit 2; }
+n=$("$RINGDYN" sweep count "$spec")      # validates the spec: exit 2, nothing submitted
 [ "$K" -le "$n" ] || K=$n
 max=$(scontrol show config | sed -n 's/^MaxArraySize *= *//p')
 [ -n "$max" ] || { echo "slurm-submit: no MaxArraySize in scontrol show config" >&2; exit 1; }

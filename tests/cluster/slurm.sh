@@ -133,6 +133,15 @@ read -r jid rid <<< "$ids"
 wait_job "$rid" "$jid" > /dev/null
 t_slurm=$(since "$t0")
 cmp "$work/tiny.table.json" "$work/E/table.json" || fail "E: tables differ"
+# Every chunk there: no array, the reduce alone (ARRAY_JOBID "-").
+rm "$work/E/table.json"
+ids=$(bash "$deploy/slurm-submit.sh" "$work/tiny.json" "$work/E" 10 2) || fail "E: submit again"
+read -r jid rid <<< "$ids"
+[ "$jid" = - ] || fail "E: all chunks there, yet array $jid submitted"
+wait_job "$rid" - > /dev/null
+cmp "$work/tiny.table.json" "$work/E/table.json" || fail "E: reduce alone: tables differ"
+rc=0; bash "$deploy/slurm-submit.sh" "$work/tiny.json" "$work/E" 0 2 2> /dev/null || rc=$?
+[ $rc = 2 ] || fail "E: K = 0 accepted (exit $rc)"
 awk -v s="$t_slurm" -v x="$t_xargs" 'BEGIN { printf "E: 10 one-point tasks, 2 at once: \
 Slurm %.1f s, xargs %.1f s: per-task overhead %.2f s ((Slurm - xargs) x 2 / 10)\n", s, x, (s - x) * 2 / 10 }'
 echo "slurm: all checks passed"
