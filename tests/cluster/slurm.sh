@@ -62,7 +62,7 @@ same_table() {  # same_table DIR WHAT
 # A: 8 tasks, %3.  Concurrency is sampled while it runs (the node has 4 slots).
 t0=$(now)
 submit A 8 3
-scontrol show job "$jid" | grep -q 'ArrayTaskThrottle=3' || fail "A: array not throttled to 3"
+[ "$(job_field "$jid" ArrayTaskThrottle)" = 3 ] || fail "A: array not throttled to 3"
 most=$(wait_job "$rid" "$jid")
 t_slurm=$(since "$t0")
 [ "$most" -le 3 ] || fail "A: $most tasks ran at once, limit 3"

@@ -109,8 +109,10 @@ cluster_stop() {  # jobs cancelled, then slurmd, slurmctld, munged; never fails
   done
 }
 
-job_field() {  # job_field JOB FIELD: FIELD=value of `scontrol show job`
-  scontrol show job -o "$1" | grep -o "\b$2=[^ ]*" | head -n 1 | cut -d= -f2
+job_field() {  # job_field JOB FIELD: FIELD=value of `scontrol show job` (the first record's)
+  # awk reads to the end: an early exit would kill scontrol with SIGPIPE (pipefail).
+  scontrol show job -o "$1" | awk -v f="$2=" \
+    '!done { for (i = 1; i <= NF; i++) if (index($i, f) == 1) { print substr($i, length(f) + 1); done = 1; break } }'
 }
 
 array_tasks() {  # the task ids of array job JID, one a line
