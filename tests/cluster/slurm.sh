@@ -8,8 +8,10 @@
 #   C  K = 24 above MaxArraySize = 10: 10 tasks, several chunks each; same table;
 #      chunks lost: submitted again, their tasks rerun those chunks alone;
 #   D  a spec whose scene is invalid: slurm-submit.sh refuses it (exit 2), and
-#      array tasks given it directly end FAILED with exit code 2 (don't retry).
-# Prints the per-task overhead: (Slurm wall - xargs wall of the same K, P) x P / K.
+#      array tasks given it directly end FAILED with exit code 2 (don't retry);
+#   E  the per-task overhead, printed: 10 one-point tasks, 2 at once, against
+#      xargs -P 2 ((Slurm wall - xargs wall) x 2 / 10); with every chunk
+#      there, submitting again runs the reduce alone.
 # Needs root (slurmd runs jobs as any user): without it, it fails, saying so.
 # The daemons are stopped on every exit (trap).
 #   slurm.sh RINGDYN DEPLOY_DIR
@@ -31,8 +33,7 @@ trap 'exit 1' TERM INT HUP   # so that the EXIT trap runs
 cluster_start "$work"
 
 # The spec: 512 points of a modal scene, ~25 ms each here (a chunk lasts long
-# enough to be cancelled while it runs); outputs that do
-# not depend on timing.
+# enough to be cancelled while it runs); no output depends on timing.
 cat > "$work/spec.json" <<'EOF'
 {"base": {"analysis": "modal", "modal": {"modes": 4}, "discretization": {"segments": 120}},
  "parameters": [
