@@ -36,7 +36,7 @@ struct lift_opts {
 
 /* ---- scene ---------------------------------------------------------------- */
 
-static const char *const area_names[] = {"fixed", "dynamic", NULL};      /* enum rd_gas_area */
+static const char *const area_names[] = {"fixed", "dynamic", "linear", NULL}; /* enum rd_gas_area */
 static const char *const landing_names[] = {"penalty", "plastic", NULL}; /* enum rd_lift_landing */
 
 static const rd_field tilt_fields[] = {
@@ -184,7 +184,10 @@ static const rd_field gas_fields[] = {
     GAS_TABLE("below", 3, "Gauge pressure on the bottom face, Pa, each -1e6 to 1e9."),
     {"active_area", RD_F_CHOICE, LO(lift.gas.active_area), .choices = area_names,
      .desc = "fixed: full faces (thesis). dynamic: a face sealing on a flank sees the mean of "
-             "the groove-back pressure and its own side's."},
+             "the groove-back pressure and its own side's, weighted by its flank contact. "
+             "linear: every face carries the linear fall from the groove-back pressure to its "
+             "own side's (the classic ring-pack models'): their mean, and the slope's couple "
+             "A b (p_below - p_above) / 12 twisting the ring."},
     {.key = NULL},
 };
 static const rd_block gas_block = {

@@ -30,7 +30,12 @@
 #include "rd_liner.h"
 #include "rd_ring.h"
 
-enum rd_gas_area { RD_GAS_AREA_FIXED = 0, RD_GAS_AREA_DYNAMIC = 1 };
+/* The gas on the flank faces (rd_lift_forces.c): fixed full faces, each its
+ * own side's pressure; dynamic, a sealing face the mean of its own and the
+ * groove's, weighted by its flank contact; linear, every face the mean of
+ * its own and the groove's (the linear fall across the flank) with the
+ * couple of that slope. */
+enum rd_gas_area { RD_GAS_AREA_FIXED = 0, RD_GAS_AREA_DYNAMIC = 1, RD_GAS_AREA_LINEAR = 2 };
 /* How a landing on a flank is integrated: through the damped penalty alone,
  * or as a plastic impact (the ring's axial velocity towards the flank
  * arrested at the instant it reaches it, then the penalty carries the load). */

@@ -235,9 +235,11 @@ static int validate_gas(const rd_gas_params *g, rd_error *err)
         (rc = check_table(g->behind, g->points, "/physics/gas/behind", err)) ||
         (rc = check_table(g->below, g->points, "/physics/gas/below", err)))
         return rc;
-    if (g->active_area != RD_GAS_AREA_FIXED && g->active_area != RD_GAS_AREA_DYNAMIC)
+    if (g->active_area != RD_GAS_AREA_FIXED && g->active_area != RD_GAS_AREA_DYNAMIC &&
+        g->active_area != RD_GAS_AREA_LINEAR)
         return rd_error_set(err, RD_EINVAL, "/physics/gas/active_area",
-                            "/physics/gas/active_area = %d is unknown: use fixed or dynamic.",
+                            "/physics/gas/active_area = %d is unknown: use fixed, dynamic or "
+                            "linear.",
                             g->active_area);
     return RD_OK;
 }

@@ -62,6 +62,14 @@
  *   edge), i.e. the average (p_behind + p_own) / 2; a free face sees its
  *   own pressure.  The blend weight is the face's mean smoothstep(delta/d0)
  *   (3 x^2 - 2 x^3) over its contact points, C1 in the penetration.
+ *   linear (the classic ring-pack models'): every face, sealing or open,
+ *   carries the linear fall from the groove-back pressure (inner edge) to
+ *   its own side's (outer edge): the mean (p_behind + p_own) / 2 at the
+ *   face centroid, and the slope's first moment, per face A b (p_outer -
+ *   p_inner) / 12, as a couple about the segment's tangential axis: for
+ *   the two faces together (the load up from below, down from above) A b
+ *   (p_below - p_above) / 12, the groove's share cancelling; applied as
+ *   opposite axial forces at the inner and outer flank points (b apart).
  *
  */
 #include <math.h>
@@ -248,12 +256,12 @@ static void rank1_full(double *D, double s, const dir3 *a, const double *b)
 /* The time-dependent inputs of all elements at one time, computed once per
  * force call. */
 typedef struct force_env {
-    double sd, acc;         /* piston velocity ds/dt; pseudo-acceleration s'' - g */
-    int tilt;               /* the piston tilts (rd_lift_tilt.c) */
-    double cb, sb, bd, bdd; /* cos, sin of the tilt; its rate (1/s), acceleration (1/s^2) */
-    double pa, pbh, pbl;    /* gas: above, behind, below, Pa */
-    int gas, dynamic, fric; /* which elements the scene asks for */
-    rd_film_point film;     /* lubricated: the face's film at t (rd_lift_film.c) */
+    double sd, acc;                 /* piston velocity ds/dt; pseudo-acceleration s'' - g */
+    int tilt;                       /* the piston tilts (rd_lift_tilt.c) */
+    double cb, sb, bd, bdd;         /* cos, sin of the tilt; its rate (1/s), acceleration (1/s^2) */
+    double pa, pbh, pbl;            /* gas: above, behind, below, Pa */
+    int gas, dynamic, linear, fric; /* which elements the scene asks for */
+    rd_film_point film;             /* lubricated: the face's film at t (rd_lift_film.c) */
 } force_env;
 
 /* One segment's view: its state, its force and local Jacobian blocks (dq,
@@ -388,12 +396,33 @@ static void add_back(rd_lift_model *c, seg_view *s)
     }
 }
 
-/* Gas on the top, bottom and back faces (fixed or dynamic areas); returns
- * its axial force on the segment, N. */
+/* The couple of the linear flank pressure (header comment): on each of the
+ * segment's arc thirds, +F at its outer flank point and -F at its inner
+ * one, F b = (A/3) b (p_below - p_above) / 12, the first moment of the two
+ * faces' pressure slopes (the groove's share cancels).  No state
+ * dependence: the points' directions are the reference's. */
+static void add_gas_couple(const rd_lift_model *c, const force_env *env, seg_view *s)
+{
+    double F = c->face_area / ARC_POINTS * (env->pbl - env->pa) / 12.0;
+    for (int k = 0; k < ARC_POINTS; k++) {
+        size_t o = 2 * (FLANK_POINTS * (size_t)s->i + 2 * k);
+        dir3 in = axial_dir(c->fl_d + o), out = axial_dir(c->fl_d + o + 2);
+        add3(s->f, &out, F);
+        add3(s->f, &in, -F);
+    }
+}
+
+/* Gas on the top, bottom and back faces (fixed, dynamic or linear areas);
+ * returns its axial force on the segment, N. */
 static double add_gas(const rd_lift_model *c, const force_env *env, seg_view *s)
 {
     double ptop = env->pa, pbot = env->pbl;
     dir3 a = axial_dir(c->cen_d + 2 * s->i);
+    if (env->linear) {
+        ptop = 0.5 * (env->pa + env->pbh);
+        pbot = 0.5 * (env->pbl + env->pbh);
+        add_gas_couple(c, env, s);
+    }
     if (env->dynamic) {
         double wl = s->seal_lo / c->face_area, wu = s->seal_up / c->face_area;
         pbot += wl * 0.5 * (env->pbh - env->pbl);
@@ -447,6 +476,7 @@ static void force_env_at(rd_lift_model *c, double t, force_env *env)
     kinematics_at(c, t, env);
     env->gas = p->gas.points > 0 || c->gas_now;
     env->dynamic = env->gas && p->gas.active_area == RD_GAS_AREA_DYNAMIC;
+    env->linear = env->gas && p->gas.active_area == RD_GAS_AREA_LINEAR;
     env->fric = p->friction.model != RD_FRICTION_NONE;
     if (p->film) /* lubricated: the face's film now (rd_lift_film.c) */
         rd_film_track_at(p->film, t, &env->film);

@@ -113,6 +113,7 @@ static void model_areas(rd_lift_model *c, const rd_section *s, const rd_ring_sec
     double R = sec->R, ri = s->lower.r_in, ro = s->lower.r_out, phi = sec->span / c->n;
     c->L_run = s->run.r * sec->span;
     c->face_area = phi * R * s->lower.width;
+    c->face_width = s->lower.width;
     c->back_chord_area = s->back.height * 2.0 * s->back.r * sin(0.5 * phi);
     c->bo_area = s->run.area_rad * phi / ARC_POINTS;
     c->ba_area = s->back.area_rad * phi / ARC_POINTS;

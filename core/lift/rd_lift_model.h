@@ -128,6 +128,7 @@ typedef struct rd_lift_model {
     double *e_r;             /* n x 2: segment radial unit */
     double *e_t;             /* n x 2: segment tangential unit */
     double face_area, back_chord_area;
+    double face_width;      /* the flank face's radial width b, m */
     double *qbuf, *fbuf;    /* 12 n and 6 n scratch */
     double *MK;             /* n x 3 x 36: -M_i^-1 K_ij, j = i-1, i, i+1 */
     double *Dq, *Dv;        /* n x 36: local force derivatives (Jacobian) */

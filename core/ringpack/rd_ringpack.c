@@ -482,7 +482,8 @@ void rd_ringpack_faces(const rd_ringpack_model *m, int i, double t, const double
     out[0] = pv[2 * i + 1] - cc;
     out[1] = pv[2 * i + 2] - cc;
     out[2] = pv[rp_below(m, i)] - cc;
-    if (m->p->flank_pressure == RD_FLANK_PRESSURE_LINEAR) { /* groove -> land, linear */
+    if (m->p->flank_pressure == RD_FLANK_PRESSURE_LINEAR && !m->lr[i]) {
+        /* groove -> land, linear (a lift-model ring's own: RD_GAS_AREA_LINEAR) */
         out[0] = 0.5 * (out[0] + out[1]);
         out[2] = 0.5 * (out[2] + out[1]);
     }
@@ -676,9 +677,14 @@ int rd_ringpack_rhs(const rd_ringpack_model *m, double t, const double *y, doubl
 }
 
 /* auto's reasons (rd_ringpack_choose). */
-#define AXIAL_WHY                                                                                \
-    "auto: an axisymmetric pack ring without friction; the axial ring (lift, hard flank stops) " \
-    "meets the lift rigid ring's flank changes within 0.1 deg at a third of its cost"
+#define AXIAL_WHY                                                                                  \
+    "auto: an axisymmetric pack ring without friction and with full flank pressure; the axial "    \
+    "ring (lift, hard flank stops) meets the lift rigid ring's flank changes within 0.1 deg at a " \
+    "third of its cost"
+#define LINEAR_WHY                                                                           \
+    "auto: the linear flank pressure's couple twists the ring, which the axial ring cannot " \
+    "represent (0.2 deg off on the full-load example's top ring, the second ring's flutter " \
+    "changed); ~2x its cost (numerics.model)"
 #define RIGID_WHY                                                                             \
     "auto: friction twists the ring and the twist decides when it leaves a flank, which the " \
     "axial ring cannot represent (9 deg off); the full ring costs ~50x more (numerics.model)"
@@ -702,8 +708,13 @@ void rd_ringpack_choose(rd_ringpack_model *m, char (*why)[240])
             int fric = m->p->friction.model != RD_FRICTION_NONE;
             const char *need = NULL; /* a distorted bore, a tilt, dynamic areas */
             k = rd_packring_auto(m->p, &need);
-            snprintf(w, sizeof w, "%s", need ? need : fric ? RIGID_WHY : AXIAL_WHY);
-            k = need ? k : fric ? RD_LIFT_MODEL_RIGID : RD_RINGPACK_AXIAL;
+            int lin = m->p->flank_pressure == RD_FLANK_PRESSURE_LINEAR;
+            snprintf(w, sizeof w, "%s",
+                     need   ? need
+                     : fric ? RIGID_WHY
+                     : lin  ? LINEAR_WHY
+                            : AXIAL_WHY);
+            k = need ? k : fric || lin ? RD_LIFT_MODEL_RIGID : RD_RINGPACK_AXIAL;
         } else {
             char at[32];
             if (r->model != RD_LIFT_MODEL_AUTO)

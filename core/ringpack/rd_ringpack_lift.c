@@ -106,7 +106,8 @@ static int ring_frame(const rd_ringpack_params *p, int i, rd_lift_params *lp, do
     for (int k = 0; k < lp->bore.n_distortion && k < RD_BORE_ORDERS_MAX; k++)
         lp->bore.distortion[k].phase_deg =
             wrap_deg(p->bore.distortion[k].phase_deg - r->gap_angle_deg);
-    lp->gas.active_area = p->active_area;
+    lp->gas.active_area =
+        p->flank_pressure == RD_FLANK_PRESSURE_LINEAR ? RD_GAS_AREA_LINEAR : p->active_area;
     if (!rd_engine_tilted(&p->engine) || !gap_opposite(r))
         return 0;
     lp->engine.piston_tilt_deg = -p->engine.piston_tilt_deg;
@@ -145,6 +146,7 @@ static int lift_params(const rd_ringpack_model *m, int i, rd_packring *L)
     L->tab_top[0] = L->tab_top[1] = peak;
     L->tab_zero[0] = L->tab_zero[1] = 0.0;
     lp->gas = (rd_gas_params){2, L->tab_deg, L->tab_top, L->tab_zero, L->tab_zero, p->active_area};
+    /* ring_frame: the flank pressure's area rule */
     return ring_frame(p, i, lp, &L->tilt);
 }
 

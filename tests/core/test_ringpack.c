@@ -467,16 +467,21 @@ static void test_against_lift(void)
 
 /* The error estimate (rtol/10 run) against the true error (a run at
  * rtol 1e-11), for both quantities it covers, on a battery of scenes:
- * within a factor 3 either way (the standards' bar). */
+ * within a factor 3 either way (the standards' bar).  auto gives the
+ * lift's rigid ring under the default linear flank pressure; cases 1 and
+ * 4 run the axial ring (asked for): with rigid rings there the runs at
+ * rtol and rtol/10 see different numbers of the second ring's late
+ * bounces, so the event estimate is null (as the result says), which this
+ * battery cannot score. */
 static void test_error_estimate(void)
 {
     struct {
         int rings, motored;
         double rpm, rtol;
         int model; /* of the top ring; rigid: the lift model, with friction */
-    } cases[] = {{1, 0, 2400, 1e-4, RD_LIFT_MODEL_AUTO}, {3, 0, 2400, 1e-5, RD_LIFT_MODEL_AUTO},
+    } cases[] = {{1, 0, 2400, 1e-4, RD_LIFT_MODEL_AUTO}, {3, 0, 2400, 1e-5, RD_RINGPACK_AXIAL},
                  {3, 1, 2400, 1e-5, RD_LIFT_MODEL_AUTO}, {3, 0, 6000, 1e-4, RD_LIFT_MODEL_AUTO},
-                 {2, 0, 4000, 1e-5, RD_LIFT_MODEL_AUTO}, {1, 0, 2400, 1e-4, RD_LIFT_MODEL_RIGID}};
+                 {2, 0, 4000, 1e-5, RD_RINGPACK_AXIAL},  {1, 0, 2400, 1e-4, RD_LIFT_MODEL_RIGID}};
     for (int c = 0; c < 6; c++) {
         rd_ringpack_params p;
         rd_ringpack_result r, ref;
@@ -486,6 +491,8 @@ static void test_error_estimate(void)
         p.engine.cycles = 3;
         if (cases[c].motored)
             p.cylinder_kind = p.synthetic.kind = RD_CYLINDER_MOTORED;
+        if (cases[c].model == RD_RINGPACK_AXIAL)
+            p.model = RD_RINGPACK_AXIAL;
         if (cases[c].model == RD_LIFT_MODEL_RIGID) {
             p.rings[0].model = RD_LIFT_MODEL_RIGID;
             p.friction.model = RD_FRICTION_COULOMB;
