@@ -66,6 +66,9 @@ typedef struct rd_field {
     unsigned char only_false;       /* RD_F_BOOL that this analysis only allows false */
     unsigned char in_opts;          /* the offset is into the analysis' opts although the
                                       block's are not (a top-level option) */
+    unsigned char nullable;         /* JSON null is accepted (and may be echoed): the
+                                      block's parse hook gives it the meaning its
+                                      description says; OpenAPI: nullable, null in the enum */
     const char *desc;               /* the OpenAPI description */
     const char *extra;              /* RD_F_BLOCK: JSON schema combined with the block's
                                       (allOf), for what this analysis adds to a shared one */
