@@ -21,6 +21,7 @@ does not list, or an answer kind the document describes for an operation the
 test did not produce is reported; the last line gives the coverage.
 """
 import copy
+import gzip
 import json
 import os
 import re
@@ -44,10 +45,14 @@ PASSED = 0
 FAILED = 0
 
 
+QUIET = False  # --answers: only the failures and the summary
+
+
 def ok(name):
     global PASSED
     PASSED += 1
-    print("ok   - " + name)
+    if not QUIET:
+        print("ok   - " + name)
 
 
 def bad(name, why=""):
@@ -198,7 +203,10 @@ class Contract:
                 ok(name + " -> %s, no body, as documented" % status)
             return None
         mt = (ctype or "").split(";")[0].strip()
-        media = content.get(mt) or content.get(mt.split("/")[0] + "/*") or content.get("*/*")
+        media = content.get(mt)
+        if media is None and (mt.split("/")[0] + "/*" in content or "*/*" in content):
+            ok(name + " -> %s %s, a type the document allows" % (status, mt))  # (any file)
+            return None
         if media is None:
             bad(name, "%s %s %s: content type %r not in the document (%s)" %
                 (method, tmpl, status, mt, ", ".join(content)))
@@ -341,9 +349,40 @@ def replay(doc_file, dump_file):
     sys.exit(1 if FAILED else 0)
 
 
+def answers(doc_file, folder):
+    """contract.py --answers DOC DIR: the answers an HTTP test script kept
+    (tests/http/lib.sh: N.meta holds method, path, status, Content-Type and
+    Content-Encoding, tab-separated; N.body the body) checked against DOC.
+    libmicrohttpd's own error pages (HTML, for requests it refuses before
+    ringdyn sees them: README, docs/service.md) are outside the contract and
+    counted apart."""
+    global QUIET
+    QUIET = True
+    c = Contract(json.load(open(doc_file)))
+    metas = sorted((f for f in os.listdir(folder) if f.endswith(".meta")),
+                   key=lambda f: int(f.split(".")[0]))
+    mhd = 0
+    for f in metas:
+        fields = open(os.path.join(folder, f), encoding="utf-8", errors="replace").read()
+        method, path, status, ctype, cenc = (fields.rstrip("\n").split("\t") + [""] * 5)[:5]
+        body = open(os.path.join(folder, f[:-5] + ".body"), "rb").read()
+        if cenc.strip().lower() == "gzip" and body:
+            body = gzip.decompress(body)
+        if ctype.startswith("text/html") and int(status) >= 400 and b"ringdyn" not in body:
+            mhd += 1
+            continue
+        c.check("%s %s (%s)" % (method, path, f[:-5]), method, path, int(status), ctype, body)
+    print("contract: %d answers of this script validated against the served OpenAPI document "
+          "(%d answer kinds), %d failed; %d libmicrohttpd pages left out" %
+          (c.answers, len(c.seen), FAILED, mhd))
+    sys.exit(1 if FAILED else 0)
+
+
 def main():
     if len(sys.argv) == 4 and sys.argv[1] == "--replay":
         replay(sys.argv[2], sys.argv[3])
+    if len(sys.argv) == 4 and sys.argv[1] == "--answers":
+        answers(sys.argv[2], sys.argv[3])
     if len(sys.argv) != 4:
         sys.exit("usage: contract.py SERVER EXAMPLES_DIR STATIC_DIR")
     binary, examples, static = sys.argv[1:4]
