@@ -33,6 +33,7 @@ struct pack_opts {
     struct rd_engine_scene eng;          /* the tilt tables, /bore, the friction model */
     int synthetic_given, synthetic_kind; /* kind: index into synthetic_names */
     int max_steps;
+    double cycles;            /* /engine/cycles as given: 0 = "periodic" */
     struct rd_table table[2]; /* crank_deg, pressure_pa */
 };
 
@@ -40,7 +41,9 @@ struct pack_opts {
 
 /* ---- scene ---------------------------------------------------------------- */
 
-static const char *const pin_names[] = {"none", "lower", "upper", NULL}; /* enum rd_ringpack_pin */
+static const char *const pin_names[] = {"none", "lower", "upper", "middle",
+                                        NULL};                        /* enum rd_ringpack_pin */
+static const char *const kind_names[] = {"compression", "oil", NULL}; /* enum rd_ringpack_kind */
 static const char *const synthetic_names[] = {"fired", "motored", NULL};
 /* enum rd_lift_model_kind order, then RD_RINGPACK_AXIAL */
 static const char *const model_names[] = {"full", "rigid", "modal", "auto", "axial", NULL};
@@ -95,10 +98,13 @@ static const rd_block bore_block = {
 static const rd_field engine_fields[] = {
     RD_ENGINE_CRANK_FIELDS(PO, pack.engine,
                            "Crank speed, rpm; at least 300 with physics.friction."),
-    {"cycles", RD_F_NUMBER, PO(pack.engine.cycles), RD_MIN(2), RD_MAX(RD_RINGPACK_CYCLES_MAX),
+    {"cycles", RD_F_NUMBER, PO(cycles), RD_MIN(2), RD_MAX(RD_RINGPACK_CYCLES_MAX),
+     .word = "periodic",
      .desc = "Whole 4-stroke cycles simulated from rest (all volumes at the crankcase "
              "pressure); the last is reported and compared with the one before "
-             "(periodicity)."},
+             "(periodicity). \"periodic\": cycles until the last one's change against the one "
+             "before is below /numerics/periodic_tolerance (at least 2, at most 50); the result "
+             "says how many ran (numerics.cycles) and whether it settled (periodic_reached)."},
     RD_ENGINE_TILT_FIELDS(
         PO, pack.engine,
         "Constant piston tilt about the pin axis (in the ring plane, 90 deg from the bore's angle "
@@ -146,7 +152,9 @@ static const rd_field item_fields[] = {
      .desc = "C_d of the ring's passages (end gap, flanks; the first ring's also for "
              "the top-land entry), -."},
     {"pinned", RD_F_CHOICE, PO(proto.pinned), .choices = pin_names, .nullable = 1,
-     .desc = "lower / upper: the ring stays on that flank; none (or null): it moves."},
+     .desc = "lower / upper: the ring stays on that flank; middle: held at half its axial "
+             "clearance (both flank passages open: the limit of a fluttering ring); none (or "
+             "null): it moves (an oil ring's default: lower)."},
     /* this ring's model (rd_ringpack_lift.c) */
     {"model", RD_F_CHOICE, PO(proto.model), .choices = model_names,
      .desc = "This ring's model; auto: /numerics/model's. " MODEL_DESC},
@@ -154,6 +162,20 @@ static const rd_field item_fields[] = {
      .desc = "Segments n of the ring's full and modal models (and of the rigid model's geometry)."},
     {"modes", RD_F_INTEGER, PO(proto.modes), RD_MIN(0), RD_MAX(RD_LIFT_MODES_MAX),
      .desc = "Elastic modes of the modal model, at most 6 n - 6; 0 = 12 (or 6 n - 6)."},
+    {"kind", RD_F_CHOICE, PO(proto.kind), .choices = kind_names,
+     .desc = "compression: end gap and flank passages. oil: the oil-control ring, the last ring "
+             "only: its gas leak (gap, rails and drain holes together) is one effective area "
+             "leak_area_m2 from the land above it to the crankcase; held on its lower flank "
+             "unless pinned is given (none, or null: it moves)."},
+    {"end_gap_area_m2", RD_F_NUMBER, PO(proto.end_gap_area), RD_MIN(0), RD_MAX(1e-4),
+     .desc = "The end gap's flow area, m^2 (the discharge coefficient applies); 0 (the "
+             "default): the closed gap times the narrower of the radial clearances of the land "
+             "above and the land below the ring (the last ring: the land above). A compression "
+             "ring's only."},
+    {"leak_area_m2", RD_F_NUMBER, PO(proto.leak_area), RD_MIN(1e-12), RD_MAX(1e-4),
+     .desc = "kind oil: the effective leakage area C_d A from the land above to the crankcase, "
+             "m^2 (default 4.2e-8: the 0.3 mm x 0.2 mm gap at C_d 0.7 of the thesis pack's "
+             "stand-in). An oil ring's only."},
     {.key = NULL},
 };
 static const rd_block item_block = {"PackRing", "One ring of the pack, top ring first.", 1, 0,
@@ -190,8 +212,9 @@ static const rd_field cylinder_fields[] = {
 };
 static const rd_block cylinder_block = {
     "CylinderPressure",
-    "/cylinder_pressure: either a table (crank_deg and pressure_pa, absolute, linear, periodic "
-    "over 720 deg) or synthetic; absent or {}: synthetic with its defaults (fired).",
+    "/cylinder_pressure: either a table (crank_deg and pressure_pa, absolute, periodic over 720 "
+    "deg, a monotone C1 cubic between the points: it never overshoots them) or synthetic; absent "
+    "or {}: synthetic with its defaults (fired).",
     1, 0, cylinder_fields};
 
 static const rd_field temperature_fields[] = {
@@ -237,22 +260,51 @@ static const rd_block friction_block = {
 
 static const char *const area_names[] = {"fixed", "dynamic", NULL}; /* enum rd_gas_area */
 
+static const char *const passage_names[] = {"viscous_limited", "orifice",
+                                            NULL};                    /* enum rd_flank_passage */
+static const char *const pressure_names[] = {"full", "linear", NULL}; /* enum rd_flank_pressure */
+
 static const rd_field gas_fields[] = {
     {"active_area", RD_F_CHOICE, PO(pack.active_area), .choices = area_names,
      .desc = "As lift's /physics/gas/active_area. fixed: full faces (thesis). dynamic: a face "
-             "sealing on a flank sees the mean of the groove-back pressure and its own side's; "
-             "lift-model rings only (auto: rigid without friction; axial is refused)."},
+             "sealing on a flank sees the mean of the groove-back pressure and its own side's, "
+             "weighted by its flank contact (the lift models' contact, ~5 nm deep); lift-model "
+             "rings only (auto: rigid without friction; axial is refused); not with "
+             "flank_pressure linear."},
+    {"flank_pressure", RD_F_CHOICE, PO(pack.flank_pressure), .choices = pressure_names,
+     .desc = "The gas on the rings' flanks. full: each face carries its own land's pressure "
+             "(the thesis'). linear: each face carries the mean of the groove's and its land's "
+             "pressures, the linear fall across the flank from groove to land (sealed on it or "
+             "open), as the classic ring-pack models; a ring's net axial gas force is then half "
+             "the full one. Every ring model."},
+    {"flank_passage", RD_F_CHOICE, PO(pack.flank_passage), .choices = passage_names,
+     .desc = "The flank passages' law. viscous_limited: the smaller of the orifice flow and the "
+             "viscous (laminar, isothermal) slot flow pi (d - b) h^3 (p_a^2 - p_b^2) / (24 mu R "
+             "T b), h the flank's lift, b the ring's radial width, blended smoothly where they "
+             "cross; orifice: the orifice alone (25-36x the viscous flow at lifts of a few um)."},
+    {"heat_capacity_ratio", RD_F_NUMBER, PO(pack.kappa), RD_XMIN(1), RD_XMAX(1.67),
+     .desc = "The gas's heat capacity ratio k in the orifice law, -: above 1, below 1.67."},
+    {"gas_constant", RD_F_NUMBER, PO(pack.gas_constant), RD_MIN(50), RD_MAX(5000),
+     .desc = "The gas's specific gas constant R, J/(kg K) (air, and near enough burnt gas: 287); "
+             "also the blow-by's standard volume (101325 Pa, 20 C)."},
+    {"viscosity_pa_s", RD_F_NUMBER, PO(pack.gas_viscosity), RD_MIN(0), RD_MAX(0.001),
+     .desc = "The gas's dynamic viscosity in the flank passages, Pa s, 1e-6 to 1e-3; 0 (the "
+             "default): Sutherland's law for air at each passage's temperature (the mean of its "
+             "two volumes': 2.48e-5 Pa s at 450 K)."},
     {.key = NULL},
 };
 static const rd_block gas_block = {
     "PackGas",
-    "/physics/gas (ringpack): how the network's pressures load the rings' faces (the pressures "
-    "themselves are computed, never given).",
+    "/physics/gas (ringpack): the gas's properties, the flank passages' law and how the "
+    "network's pressures load the rings' faces (the pressures themselves are computed, never "
+    "given).",
     1, 0, gas_fields};
 
 static const rd_field physics_fields[] = {
     {"friction", RD_F_OPTBLOCK, PO(eng.friction_given), .block = &friction_block},
     {"gas", RD_F_BLOCK, 0, .block = &gas_block},
+    {"gravity", RD_F_BOOL, PO(pack.gravity),
+     .desc = "Gravity on the rings, g = 9.80665 m/s^2 along -z (as lift's)."},
     {.key = NULL},
 };
 static const rd_block physics_block = {
@@ -273,7 +325,12 @@ static const rd_field numerics_fields[] = {
     {"max_steps", RD_F_INTEGER, PO(max_steps), RD_MIN(100), RD_MAX(1000000000),
      .desc = "CVODE steps allowed for the whole run."},
     {"error_estimate", RD_F_BOOL, PO(pack.estimate_error),
-     .desc = "Estimate the error by a second run at rtol/10 and atol/10."},
+     .desc = "Estimate the error by a second run at rtol/10 and atol/10 (as many cycles as the "
+             "run)."},
+    {"periodic_tolerance", RD_F_NUMBER, PO(pack.periodic_tolerance), RD_MIN(1e-6), RD_MAX(0.1),
+     .desc = "With /engine/cycles \"periodic\": the change of a cycle against the one before "
+             "(the result's periodicity: the blow-by's relative change and the largest pressure "
+             "change over each volume's peak) at which the run stops."},
     {.key = NULL},
 };
 static const rd_block numerics_block = {"PackNumerics", "/numerics of a ringpack scene.", 1, 0,
@@ -287,7 +344,9 @@ static const rd_field scene_fields[] = {
     {"engine", RD_F_BLOCK, 0, .block = &engine_block},
     {"rings", RD_F_ITEMS, 0, .block = &item_block, RD_MIN(1), RD_MAX(RD_RINGPACK_RINGS_MAX),
      .parse = parse_rings, .echo = echo_rings,
-     .desc = "1 to 3 rings, top ring first; absent: one thesis ring."},
+     .desc = "1 to 3 rings, top ring first; absent: the thesis engine's pack (top ring, second "
+             "ring, oil-control ring; README \"Ring pack\"). Each ring's fields default to the "
+             "top ring's."},
     {"bore", RD_F_BLOCK, 0, .block = &bore_block},
     {"cylinder_pressure", RD_F_BLOCK, 0, .block = &cylinder_block},
     {"crankcase_pressure_pa", RD_F_NUMBER, PO(pack.crankcase_pa), RD_MIN(1e3), RD_MAX(1e7),
@@ -309,6 +368,30 @@ static const rd_block scene_block = {
     "and numerics (PackNumerics); not the top-level ring.",
     0, 0, scene_fields};
 
+/* The fields one kind of ring reads: an oil ring's leak area, a
+ * compression ring's end-gap area (each refused on the other kind where
+ * it differs from its default; the echo writes both). */
+static int kind_fields(const rd_ringpack_ring *r, double leak_default, const char *at,
+                       rd_error *err)
+{
+    char f[RD_ERROR_PATH_MAX];
+    if (r->kind == RD_RING_OIL && r->end_gap_area != 0.0) {
+        snprintf(f, sizeof f, "%s/end_gap_area_m2", at);
+        return rd_error_set(err, RD_EINVAL, f,
+                            "%s = %g m^2: an oil ring (kind oil) leaks through leak_area_m2 "
+                            "only; end_gap_area_m2 is a compression ring's.",
+                            f, r->end_gap_area);
+    }
+    if (r->kind == RD_RING_COMPRESSION && r->leak_area != leak_default) {
+        snprintf(f, sizeof f, "%s/leak_area_m2", at);
+        return rd_error_set(err, RD_EINVAL, f,
+                            "%s = %g m^2 is an oil ring's (kind oil); a compression ring leaks "
+                            "through its end gap (end_gap_area_m2, or closed_gap).",
+                            f, r->leak_area);
+    }
+    return RD_OK;
+}
+
 /* One item through a temporary scene (file comment). */
 static int parse_ring(json_t *item, const char *at, rd_scene *s, int i, rd_error *err)
 {
@@ -327,10 +410,14 @@ static int parse_ring(json_t *item, const char *at, rd_scene *s, int i, rd_error
     tmp.opts = &slot;
     tmp.ring = slot.proto.ring;
     int rc = rd_schema_parse(copy, &item_block, NULL, at, &tmp, err);
+    int pin_given = json_object_get(item, "pinned") != NULL;
     json_decref(copy);
     slot.proto.ring = tmp.ring;
     if (none)
         slot.proto.pinned = RD_PIN_FREE;
+    if (!rc && slot.proto.kind == RD_RING_OIL && !pin_given) /* no dynamics unless asked */
+        slot.proto.pinned = RD_PIN_LOWER;
+    rc = rc ? rc : kind_fields(&slot.proto, o->proto.leak_area, at, err);
     o->pack.rings[i] = slot.proto;
     return rc;
 }
@@ -382,9 +469,10 @@ static json_t *echo_rings(const rd_scene *s)
 static void defaults(struct rd_scene *s)
 {
     struct pack_opts *o = s->opts;
-    rd_ringpack_params_default(&o->pack);
+    rd_ringpack_params_thesis(&o->pack);
     o->proto = o->pack.rings[0];
     o->max_steps = (int)o->pack.max_steps;
+    o->cycles = o->pack.engine.cycles;
     o->synthetic_kind = 0;
 }
 
@@ -456,6 +544,13 @@ static int finish(struct rd_scene *s, rd_error *err)
     struct pack_opts *o = s->opts;
     rd_ringpack_params *p = &o->pack;
     p->max_steps = o->max_steps;
+    p->periodic = o->cycles == 0.0; /* "periodic": at most the most cycles */
+    p->engine.cycles = p->periodic ? RD_RINGPACK_CYCLES_MAX : o->cycles;
+    if (!p->periodic && p->periodic_tolerance != 1e-3)
+        return rd_error_set(err, RD_EINVAL, "/numerics/periodic_tolerance",
+                            "/numerics/periodic_tolerance = %g is read only with /engine/cycles "
+                            "\"periodic\" (here %g cycles are run).",
+                            p->periodic_tolerance, o->cycles);
     int rc = cylinder_finish(o, err);
     rc = rc ? rc : rd_engine_scene_finish(&o->eng, &p->engine, &p->bore, &p->friction, err);
     rc = rc ? rc : rd_ringpack_validate(&o->pack, err);
@@ -621,6 +716,7 @@ static json_t *pack_numerics(const rd_scene *scene, const rd_ringpack_result *r,
 
 static json_t *pack_result(const rd_scene *scene, const rd_ringpack_result *r, double wall_s)
 {
+    const struct pack_opts *o = scene->opts;
     json_t *rings = json_array();
     for (int i = 0; rings && i < r->n_rings; i++)
         if (json_array_append_new(rings, ring_json(r, i)) != 0) {
@@ -628,15 +724,16 @@ static json_t *pack_result(const rd_scene *scene, const rd_ringpack_result *r, d
             rings = NULL;
         }
     return json_pack(
-        "{s:s, s:o, s:o, s:o, s:o, s:o, s:{s:o, s:o, s:o, s:o, s:o}, s:o, s:o, s:o}", "analysis",
-        rd_scene_analysis(scene), "scene", rd_scene_echo(scene), "crank_deg",
+        "{s:s, s:o, s:o, s:o, s:o, s:o, s:{s:o, s:o, s:o, s:o, s:o}, s:o, s:o, s:o, s:o}",
+        "analysis", rd_scene_analysis(scene), "scene", rd_scene_echo(scene), "crank_deg",
         rd_result_reals(r->crank_deg, r->samples, 1, 1.0), "volumes", volumes_json(r), "rings",
         rings, "flows", flows_json(r), "blowby", "kg_per_cycle", rd_result_real(r->blowby_kg),
         "l_per_min", rd_result_real(r->blowby_l_per_min), "reverse_kg_per_cycle",
         rd_result_real(r->reverse_kg), "inflow_kg_per_cycle", rd_result_real(r->inflow_kg),
         "mass_balance_residual", rd_result_real(r->mass_residual), "periodicity",
-        rd_result_real(r->periodicity), "table", table_json(r), "numerics",
-        pack_numerics(scene, r, wall_s));
+        rd_result_real(r->periodicity), "periodic_reached",
+        o->pack.periodic ? json_boolean(r->settled) : json_null(), "table", table_json(r),
+        "numerics", pack_numerics(scene, r, wall_s));
 }
 
 static int run(const rd_scene *s, const rd_monitor *mon, json_t **out, rd_error *err)

@@ -563,8 +563,16 @@ static int parse_field(const rd_field *f, char *at, json_t *v, const char *path,
 {
     switch (f->type) {
     case RD_F_NUMBER:
-        if (!json_is_number(v))
-            return field_type_issue(s, err, f, path, "a number", v);
+        if (f->word && json_is_string(v) && strcmp(json_string_value(v), f->word) == 0) {
+            *(double *)at = 0.0;
+            return RD_OK;
+        }
+        if (!json_is_number(v)) {
+            char want[64];
+            snprintf(want, sizeof want, f->word ? "a number or \"%s\"" : "a number",
+                     f->word ? f->word : "");
+            return field_type_issue(s, err, f, path, want, v);
+        }
         *(double *)at = json_number_value(v);
         range_issue(f, *(double *)at, path, s);
         return RD_OK;

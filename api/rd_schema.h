@@ -70,6 +70,8 @@ typedef struct rd_field {
                                       block's parse hook gives it the meaning its
                                       description says; OpenAPI: nullable, null in the enum */
     const char *desc;               /* the OpenAPI description */
+    const char *word;               /* RD_F_NUMBER: this string is also accepted, stored (and
+                                      echoed back) as 0, e.g. "periodic" */
     const char *extra;              /* RD_F_BLOCK: JSON schema combined with the block's
                                       (allOf), for what this analysis adds to a shared one */
     /* The echoed value when it is not the stored one (a 0 meaning "the

@@ -75,6 +75,8 @@ static json_t *field_echo(const rd_field *f, const char *at, const struct rd_sce
     case RD_F_ANALYSIS: /* echoed by its hook */
         break;
     case RD_F_NUMBER:
+        if (f->word && *(const double *)at == 0.0)
+            return json_string(f->word);
         return rd_result_real(*(const double *)at);
     case RD_F_INTEGER:
         return json_integer(*(const int *)at);
@@ -259,7 +261,22 @@ json_t *rd_schema_field_openapi(const rd_field *f, const rd_block *in,
         json_decref(o);
         return NULL;
     }
-    return o;
+    if (!f->word)
+        return o;
+    /* a number or the word: {description, default, oneOf: [number, the word]} */
+    json_t *d = json_incref(json_object_get(o, "description")),
+           *v = json_incref(json_object_get(o, "default"));
+    json_object_del(o, "description");
+    json_object_del(o, "default");
+    json_t *w = json_pack("{s:o, s:[o, {s:s, s:[s]}]}", "description", d ? d : json_string(""),
+                          "oneOf", o, "type", "string", "enum", f->word);
+    if (w && v && json_object_set_new(w, "default", v) != 0) {
+        json_decref(w);
+        return NULL;
+    }
+    if (!w)
+        json_decref(v);
+    return w;
 }
 
 json_t *rd_schema_block_openapi(const rd_block *block, const struct rd_scene *defaults,

@@ -5,8 +5,9 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/install-deps.sh --test
-# The npm packages of the tests (browser: playwright-core; lint/openapi: @redocly/cli).
-for dir in tests/browser tests/lint/openapi; do
+# The npm packages of the tests (browser: playwright-core; lint/openapi: @redocly/cli;
+# cluster/k8s: kubernetes-models, the Kubernetes API schema).
+for dir in tests/browser tests/lint/openapi tests/cluster/k8s; do
   if [ -f "$dir/package.json" ]; then
     (cd "$dir" && npm install --no-audit --no-fund --loglevel=error)
   fi

@@ -84,6 +84,44 @@ void rd_gasflow_law_init(rd_gasflow_law *law, double kappa, double R);
 double rd_gasflow_flow(const rd_gasflow_law *law, double cd, double area, double p_a, double T_a,
                        double p_b, double T_b, double d[3]);
 
+/* Gas viscosity by Sutherland's law with air's constants (mu_0 1.716e-5
+ * Pa s at T_0 273.15 K, S 110.4 K):  mu = mu_0 (T/T_0)^1.5 (T_0 + S)/(T + S),
+ * Pa s (2.48e-5 at 450 K). */
+#define RD_GAS_MU0        1.716e-5
+#define RD_GAS_T0         273.15
+#define RD_GAS_SUTHERLAND 110.4
+double rd_gas_viscosity(double T);
+
+/* A flank passage's viscous limit (MODEL.md "Ring pack"; Namazian &
+ * Heywood): isothermal laminar flow of an ideal gas through a slot of
+ * width w, height h and length L (in the flow's direction),
+ *   mdot_v = w h^3 (p_a^2 - p_b^2) / (24 mu R T L),
+ * T the passage's temperature, mu its viscosity.  The passage carries the
+ * smaller of that and the orifice flow mdot_o (rd_gasflow_flow), blended
+ * smoothly where they cross:
+ *   mdot = sign (|mdot_o|^-4 + |mdot_v|^-4)^(-1/4)
+ * (within 1e-3 of the smaller where the two differ by 4x, 1.5e-2 by 2x, 0.84 of
+ * either where they are equal; C1 in the pressures and the area for
+ * h > 0: d mdot = (mdot/mdot_o)^5 d mdot_o + (mdot/mdot_v)^5 d mdot_v).
+ * h = area / w (the slot's mean height). */
+typedef struct rd_gasflow_slot {
+    double width;  /* w, m */
+    double length; /* L, m */
+    double mu;     /* Pa s */
+    double T;      /* K */
+} rd_gasflow_slot;
+
+/* The viscous slot flow alone (kg/s, a -> b positive) for the area
+ * (w h, m^2); d as rd_gasflow_flow's (d[2] per area). */
+double rd_gasflow_slot_flow(const rd_gasflow_slot *s, double R, double area, double p_a, double p_b,
+                            double d[3]);
+/* The limited flow (above): the orifice (law, cd, area, p, T as
+ * rd_gasflow_flow) and the slot s; d as rd_gasflow_flow's.  At equal
+ * pressures (zero flow) the derivatives in the pressures are the blend of
+ * the two laws' slopes, the one in the area 0. */
+double rd_gasflow_limited(const rd_gasflow_law *law, const rd_gasflow_slot *s, double cd,
+                          double area, double p_a, double T_a, double p_b, double T_b, double d[3]);
+
 enum rd_cylinder_kind { RD_CYLINDER_TABLE = 0, RD_CYLINDER_MOTORED = 1, RD_CYLINDER_FIRED = 2 };
 
 /* The synthetic trace's inputs. */

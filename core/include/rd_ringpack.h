@@ -19,12 +19,20 @@
  * constant pressure) below ring R.  Each volume holds ideal gas at its
  * given temperature (lands and grooves T_l, crankcase T_c):
  *   p V = m R_g T   and   dp/dt = R_g T / V * sum of the mass flows in.
- * Passages (rd_gasflow_orifice, discharge coefficient C_d of the ring):
- *   cylinder -> land_1         area pi d c_1 (the top land's clearance);
+ * Passages (rd_gasflow.h; discharge coefficient C_d of the ring):
+ *   cylinder -> land_1         orifice, area pi d c_1 (the top land's
+ *                              clearance);
  *   ring i upper flank, land_i -> groove_i,  area pi d max(a - z_i, 0);
  *   ring i lower flank, groove_i -> below_i, area pi d max(z_i, 0);
- *   ring i end gap,     land_i -> below_i,   area g_i c_i (closed gap times
- *                                            the land clearance);
+ *     each the orifice limited by the viscous slot flow (rd_gasflow_limited:
+ *     width pi (d - b), the flank's mean circumference, length b, the
+ *     ring's radial width, height area / width), or the orifice alone
+ *     (flank_passage);
+ *   ring i end gap,     land_i -> below_i,   orifice, area end_gap_area or
+ *                                            g_i min(c_i, c_{i+1}) (closed
+ *                                            gap times the narrower land
+ *                                            clearance; the last ring: c_i);
+ *                                            an oil ring: leak_area, C_d 1;
  * below_i = land_{i+1}, or the crankcase under the last ring.  Gas entering
  * the crevices takes the crevice temperature (Namazian & Heywood 1982), so
  * the cylinder -> land flow uses T_l whichever way it goes.
@@ -41,11 +49,13 @@
  * The axial ring: axial only (what the lift analysis' rigid model reduces
  * to for axisymmetric scenes without friction): lift z_i (0 = seated on the
  * lower flank, a = on the upper),
- *   m_i z_i'' = m_i s''(t) - m_i g + A_i (p_above - p_below),
+ *   m_i z_i'' = m_i s''(t) - m_i g + A_i (p_below - p_above),
  * s the piston's distance below TDC (rd_engine_piston; m s'' is the inertia
  * pseudo-force in the piston frame), A_i = b (pi (d - b) - g) the face area
  * and m_i = rho h A_i the mass; p_above = p(land_i), p_below = p(below_i)
- * (the lift analysis' "fixed" active areas).  The flanks are hard stops:
+ * (the lift analysis' "fixed" active areas; with flank_pressure linear
+ * each is averaged with the groove's, so A_i (p_below - p_above) / 2).
+ * With gravity 0 the m_i g term is left out.  The flanks are hard stops:
  * a ring stays seated while the net force presses it on the flank, leaves
  * when it changes sign, and lands inelastically (the oil film absorbs the
  * impact; MODEL.md "lift models").  Changes are located by CVODE's root
@@ -92,8 +102,27 @@
 #define RD_RINGPACK_VOLUMES_MAX (2 * RD_RINGPACK_RINGS_MAX + 2) /* with cylinder, crankcase */
 #define RD_RINGPACK_FLOWS_MAX   (3 * RD_RINGPACK_RINGS_MAX + 1)
 #define RD_RINGPACK_CYCLES_MAX  50
+/* An oil ring's default leakage area C_d A, m^2: the 0.3 x 0.2 mm gap at
+ * C_d 0.7 of the rectangular stand-in the thesis pack used before. */
+#define RD_RINGPACK_OIL_LEAK 4.2e-8
 
-enum rd_ringpack_pin { RD_PIN_FREE = 0, RD_PIN_LOWER = 1, RD_PIN_UPPER = 2 };
+/* A pinned ring is held: on a flank, or at half its axial clearance
+ * (middle: both flank passages open a/2, the limit of a fluttering ring). */
+enum rd_ringpack_pin { RD_PIN_FREE = 0, RD_PIN_LOWER = 1, RD_PIN_UPPER = 2, RD_PIN_MIDDLE = 3 };
+/* A ring's kind: a compression ring (end gap, flanks), or the oil-control
+ * ring (last only: its leakage through gap, rails and drain as one
+ * effective area leak_area, C_d included, from the land above it to the
+ * crankcase; held on its lower flank unless asked otherwise). */
+enum rd_ringpack_kind { RD_RING_COMPRESSION = 0, RD_RING_OIL = 1 };
+/* Flank passages: the smaller of the orifice and the viscous slot flow
+ * (rd_gasflow_limited), or the orifice alone. */
+enum rd_flank_passage { RD_PASSAGE_VISCOUS_LIMITED = 0, RD_PASSAGE_ORIFICE = 1 };
+/* The gas on a ring's flanks (faces): full (each face carries its own
+ * land's pressure, the thesis'), or linear (each face carries the mean of
+ * the groove's and its land's pressures: the linear fall from groove to
+ * land across the flank, sealed or open; the axial net gas force is then
+ * half the full one). */
+enum rd_flank_pressure { RD_FLANK_PRESSURE_FULL = 0, RD_FLANK_PRESSURE_LINEAR = 1 };
 /* The pack's own ring model beside the lift analysis' (enum
  * rd_lift_model_kind): axial lift only, hard flank stops (above). */
 #define RD_RINGPACK_AXIAL        4
@@ -113,18 +142,35 @@ typedef struct rd_ringpack_ring {
     int model;
     int segments; /* n of the full and modal models, 4..RD_RINGPACK_SEGMENTS_MAX */
     int modes;    /* elastic modes of the modal model, 0 = 12 */
+    /* The end gap's flow area, m^2 (C_d applies); 0: the rule, closed gap x
+     * the smaller of the radial clearances of the land above and the land
+     * below (the last ring: the land above) */
+    double end_gap_area;
+    int kind;         /* enum rd_ringpack_kind */
+    double leak_area; /* RD_RING_OIL: effective leakage area C_d A, m^2 */
 } rd_ringpack_ring;
 
 typedef struct rd_ringpack_params {
-    rd_engine_params engine; /* cycles: whole cycles, 2..50 */
-    int n_rings;             /* 1..3 */
+    rd_engine_params engine; /* cycles: whole cycles, 2..50 (periodic: the most run) */
+    /* 1: run until a cycle's change against the one before (the result's
+     * periodicity) is below periodic_tolerance, at least 2 cycles and at
+     * most engine.cycles; 0: engine.cycles cycles */
+    int periodic;
+    double periodic_tolerance; /* 1e-6 .. 0.1, default 1e-3 */
+    int n_rings;               /* 1..3 */
     rd_ringpack_ring rings[RD_RINGPACK_RINGS_MAX];
     int cylinder_kind;       /* enum rd_cylinder_kind */
     int table_points;        /* RD_CYLINDER_TABLE: the trace, borrowed */
     const double *table_deg; /* strictly increasing, 0 .. 720 covered */
     const double *table_pa;  /* absolute, Pa, > 0 */
     rd_cylinder_synthetic synthetic;
-    double crankcase_pa;         /* absolute, Pa */
+    double crankcase_pa; /* absolute, Pa */
+    /* physics.gas: heat capacity ratio k (1 < k < 1.67), gas constant R
+     * (J/(kg K)), viscosity (Pa s; 0: Sutherland's law, rd_gas_viscosity,
+     * at each flank passage's temperature: the mean of its two volumes') */
+    double kappa, gas_constant, gas_viscosity;
+    int flank_passage;           /* enum rd_flank_passage */
+    int flank_pressure;          /* enum rd_flank_pressure */
     double T_lands, T_crankcase; /* K */
     int gravity;                 /* 1: g along -z */
     double step_deg;             /* output sampling (rounded so 720 / step is whole) */
@@ -180,6 +226,8 @@ typedef struct rd_ringpack_result {
     double stored_change_kg; /* gas held in the volumes, end minus start of the cycle */
     double mass_residual;    /* |in - back - blowby - stored change| / throughput */
     double periodicity;      /* relative change of the last cycle against the one before */
+    int settled;             /* periodic: the change fell below the tolerance (else the
+                              * most cycles ran first); 0 otherwise */
     /* CVODE's work over the whole run (summed over the restarts) */
     long steps, rhs_evals, jac_evals, root_evals, restarts, err_test_fails, nonlin_fails;
     /* Per ring: the model integrated (RD_RINGPACK_AXIAL or enum
@@ -195,8 +243,17 @@ typedef struct rd_ringpack_result {
 } rd_ringpack_result;
 
 /* The defaults: one thesis ring in the thesis engine at 2400 rpm, 6 cycles,
- * a fired synthetic trace (60 bar at 15 deg), 1 bar crankcase, 450/380 K. */
+ * a fired synthetic trace (60 bar at 15 deg), 1 bar crankcase, 450/380 K;
+ * air (k 1.35, R 287, Sutherland's viscosity), viscous-limited flank
+ * passages, linear flank pressures, gravity on. */
 void rd_ringpack_params_default(rd_ringpack_params *p);
+/* The thesis engine's pack (the scene's default): the defaults with three
+ * rings, the thesis ring on top (h 1.2 mm, gap 0.3 mm, top land 5 x 0.4
+ * mm, axial clearance 30 um), a second ring (h 1.5 mm, gap 0.4 mm, land 4 x
+ * 0.3 mm, 40 um, gap at 180 deg) and an oil-control ring (h 2.5 mm, F_t 20
+ * N, land 3.5 x 0.2 mm, 40 um, gap at 90 deg, held on its lower flank,
+ * leak area RD_RINGPACK_OIL_LEAK). */
+void rd_ringpack_params_thesis(rd_ringpack_params *p);
 /* Every value, naming the scene field ("/rings/1/groove/axial_clearance"). */
 int rd_ringpack_validate(const rd_ringpack_params *p, rd_error *err);
 /* Runs; `out` is overwritten and owns its arrays (rd_ringpack_result_cleanup,
@@ -208,7 +265,8 @@ void rd_ringpack_result_cleanup(rd_ringpack_result *r);
 /* "axial", or the lift model's name (rd_lift_model_name); NULL if unknown. */
 const char *rd_ringpack_model_name(int model);
 
-/* Standard density of the blow-by gas, kg/m^3: 101325 / (R_g 293.15). */
-double rd_ringpack_standard_density(void);
+/* Standard density of the blow-by gas of gas constant R, kg/m^3:
+ * 101325 / (R 293.15). */
+double rd_ringpack_standard_density(double R);
 
 #endif

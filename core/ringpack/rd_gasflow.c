@@ -86,6 +86,68 @@ double rd_gasflow_orifice(double cd, double area, double p_a, double T_a, double
     return rd_gasflow_flow(&law, cd, area, p_a, T_a, p_b, T_b, NULL);
 }
 
+double rd_gas_viscosity(double T)
+{
+    return RD_GAS_MU0 * pow(T / RD_GAS_T0, 1.5) * (RD_GAS_T0 + RD_GAS_SUTHERLAND) /
+           (T + RD_GAS_SUTHERLAND);
+}
+
+double rd_gasflow_slot_flow(const rd_gasflow_slot *s, double R, double area, double p_a, double p_b,
+                            double d[3])
+{
+    double A = area > 0.0 ? area : 0.0;
+    /* mdot = k A^3 (p_a^2 - p_b^2), k = 1 / (w^2 24 mu R T L) */
+    double k = 1.0 / (s->width * s->width * 24.0 * s->mu * R * s->T * s->length);
+    double A3 = A * A * A, dp2 = p_a * p_a - p_b * p_b;
+    if (d) {
+        d[0] = 2.0 * k * A3 * p_a;
+        d[1] = -2.0 * k * A3 * p_b;
+        d[2] = 3.0 * k * A * A * dp2;
+    }
+    return k * A3 * dp2;
+}
+
+/* The blend (rd_gasflow.h) of two flows of the same sign: |m| = (|a|^-4 +
+ * |b|^-4)^(-1/4); the weights (m/a)^5 and (m/b)^5 into wa, wb. */
+static double blend(double a, double b, double *wa, double *wb)
+{
+    double x = fabs(a), y = fabs(b);
+    if (!(x > 0.0) || !(y > 0.0)) {
+        *wa = *wb = 0.0;
+        return 0.0;
+    }
+    double r = x < y ? x / y : y / x, small = x < y ? x : y; /* r <= 1 */
+    double m = small * pow(1.0 + r * r * r * r, -0.25), qa = m / x, qb = m / y;
+    *wa = qa * qa * qa * qa * qa;
+    *wb = qb * qb * qb * qb * qb;
+    return a > 0.0 ? m : -m;
+}
+
+double rd_gasflow_limited(const rd_gasflow_law *law, const rd_gasflow_slot *s, double cd,
+                          double area, double p_a, double T_a, double p_b, double T_b, double d[3])
+{
+    double dor[3], dsl[3], wo, ws;
+    double mo = rd_gasflow_flow(law, cd, area, p_a, T_a, p_b, T_b, d ? dor : NULL);
+    double ms = rd_gasflow_slot_flow(s, law->R, area, p_a, p_b, d ? dsl : NULL);
+    double m = blend(mo, ms, &wo, &ws);
+    if (!d)
+        return m;
+    if (m != 0.0) {
+        for (int k = 0; k < 3; k++)
+            d[k] = wo * dor[k] + ws * dsl[k];
+        return m;
+    }
+    /* zero flow: equal pressures (the blend of the slopes), or no area or
+     * no discharge (nothing flows, nothing opens at first order: the slot's
+     * A^3) */
+    d[2] = 0.0;
+    for (int k = 0; k < 2; k++) {
+        double sl = blend(dor[k], dsl[k], &wo, &ws);
+        d[k] = area > 0.0 && cd > 0.0 ? sl : 0.0;
+    }
+    return m;
+}
+
 /* ------------------------------------------------------- pressure tables */
 
 double rd_gasflow_table(int n, const double *x, const double *y, double deg)

@@ -25,6 +25,7 @@ void rd_ringpack_params_default(rd_ringpack_params *p)
     p->engine.rod_length = 0.130;
     p->engine.kinematics = RD_KINEMATICS_EXACT;
     p->engine.cycles = 6.0;
+    p->periodic_tolerance = 1e-3;
     p->n_rings = 1;
     for (int i = 0; i < RD_RINGPACK_RINGS_MAX; i++) {
         rd_ringpack_ring *r = &p->rings[i];
@@ -37,6 +38,8 @@ void rd_ringpack_params_default(rd_ringpack_params *p)
         r->pinned = RD_PIN_FREE;
         r->model = RD_LIFT_MODEL_AUTO;
         r->segments = 20;
+        r->kind = RD_RING_COMPRESSION;
+        r->leak_area = RD_RINGPACK_OIL_LEAK;
     }
     p->cylinder_kind = RD_CYLINDER_FIRED;
     p->synthetic.kind = RD_CYLINDER_FIRED;
@@ -45,6 +48,11 @@ void rd_ringpack_params_default(rd_ringpack_params *p)
     p->synthetic.compression_ratio = 10.5;
     p->synthetic.intake_pa = 1e5;
     p->crankcase_pa = 1e5;
+    p->kappa = RD_GASFLOW_KAPPA;
+    p->gas_constant = RD_GASFLOW_R;
+    p->gas_viscosity = 0.0; /* Sutherland */
+    p->flank_passage = RD_PASSAGE_VISCOUS_LIMITED;
+    p->flank_pressure = RD_FLANK_PRESSURE_LINEAR;
     p->T_lands = 450.0;
     p->T_crankcase = 380.0;
     p->gravity = 1;
@@ -59,9 +67,32 @@ void rd_ringpack_params_default(rd_ringpack_params *p)
     p->model = RD_LIFT_MODEL_AUTO;
 }
 
-double rd_ringpack_standard_density(void)
+void rd_ringpack_params_thesis(rd_ringpack_params *p)
 {
-    return 101325.0 / (RD_GASFLOW_R * 293.15);
+    rd_ringpack_params_default(p);
+    p->n_rings = 3;
+    static const struct {
+        double h, gap, ft, land_h, land_c, ca, gap_deg;
+    } t[3] = {{0.0012, 3e-4, 10.0, 0.005, 4e-4, 3e-5, 0.0},
+              {0.0015, 4e-4, 10.0, 0.004, 3e-4, 4e-5, 180.0},
+              {0.0025, 3e-4, 20.0, 0.0035, 2e-4, 4e-5, 90.0}};
+    for (int i = 0; i < 3; i++) {
+        rd_ringpack_ring *r = &p->rings[i];
+        r->ring.axial_height = t[i].h;
+        r->ring.closed_gap = t[i].gap;
+        r->ring.tangential_force = t[i].ft;
+        r->land_height = t[i].land_h;
+        r->land_clearance = t[i].land_c;
+        r->groove.axial_clearance = t[i].ca;
+        r->gap_angle_deg = t[i].gap_deg;
+    }
+    p->rings[2].kind = RD_RING_OIL;
+    p->rings[2].pinned = RD_PIN_LOWER;
+}
+
+double rd_ringpack_standard_density(double R)
+{
+    return 101325.0 / (R * 293.15);
 }
 
 static int validate_ring(const rd_ringpack_ring *r, int i, double bore, rd_error *err)
@@ -116,6 +147,13 @@ static int validate_ring(const rd_ringpack_ring *r, int i, double bore, rd_error
     rc = rc ? rc
             : rd_error_range(r->land_clearance, 1e-7, 0.25 * bore, FIELD("land/radial_clearance"),
                              "m", err);
+    rc = rc ? rc
+            : rd_error_range(r->end_gap_area, 0.0, 1e-4, FIELD("end_gap_area_m2"),
+                             "m^2 (0: closed gap x the narrower land clearance)", err);
+    rc = rc ? rc : rd_error_range(r->kind, 0, RD_RING_OIL, FIELD("kind"), "", err);
+    rc = rc ? rc : rd_error_range(r->pinned, 0, RD_PIN_MIDDLE, FIELD("pinned"), "", err);
+    if (!rc && r->kind == RD_RING_OIL)
+        rc = rd_error_range(r->leak_area, 1e-12, 1e-4, FIELD("leak_area_m2"), "m^2", err);
     rd_section s;
     rd_section_init(&s, &r->ring);
     if (!rc && r->groove.axial_clearance >= s.h)
@@ -125,6 +163,37 @@ static int validate_ring(const rd_ringpack_ring *r, int i, double bore, rd_error
                             "as the ring, outside this model.",
                             f, r->groove.axial_clearance, s.h);
 #undef FIELD
+    return rc;
+}
+
+/* physics.gas: the gas's properties and the flank laws. */
+static int gas_validate(const rd_ringpack_params *p, rd_error *err)
+{
+    const char *k = "/physics/gas/heat_capacity_ratio", *v = "/physics/gas/viscosity_pa_s";
+    if (!(p->kappa > 1.0 && p->kappa < 1.67))
+        return rd_error_set(err, RD_EINVAL, k,
+                            "%s = %g is out of range: allowed above 1 and below 1.67 (a "
+                            "monatomic gas's 5/3 is the upper limit).",
+                            k, p->kappa);
+    int rc =
+        rd_error_range(p->gas_constant, 50.0, 5000.0, "/physics/gas/gas_constant", "J/(kg K)", err);
+    if (!rc && p->gas_viscosity != 0.0 && !(p->gas_viscosity >= 1e-6 && p->gas_viscosity <= 1e-3))
+        return rd_error_set(err, RD_EINVAL, v,
+                            "%s = %g Pa s is out of range: allowed 1e-06 to 0.001 Pa s, or 0 "
+                            "(absent) for Sutherland's law at the passages' temperatures.",
+                            v, p->gas_viscosity);
+    rc = rc ? rc
+            : rd_error_range(p->flank_passage, 0, RD_PASSAGE_ORIFICE, "/physics/gas/flank_passage",
+                             "", err);
+    rc = rc ? rc
+            : rd_error_range(p->flank_pressure, 0, RD_FLANK_PRESSURE_LINEAR,
+                             "/physics/gas/flank_pressure", "", err);
+    if (!rc && p->flank_pressure == RD_FLANK_PRESSURE_LINEAR &&
+        p->active_area == RD_GAS_AREA_DYNAMIC)
+        return rd_error_set(err, RD_EINVAL, "/physics/gas/flank_pressure",
+                            "/physics/gas/flank_pressure = linear with /physics/gas/active_area "
+                            "= dynamic: both set the flanks' pressure (dynamic: the lift "
+                            "models' sealing-weighted half pressure); use one.");
     return rc;
 }
 
@@ -173,6 +242,9 @@ int rd_ringpack_validate(const rd_ringpack_params *p, rd_error *err)
                             "/engine/cycles = %g must be a whole number of cycles (2 to 50): the "
                             "last two are compared for the periodic state.",
                             e->cycles);
+    rc = rc ? rc
+            : rd_error_range(p->periodic_tolerance, 1e-6, 0.1, "/numerics/periodic_tolerance", "",
+                             err);
     if (!rc && (p->n_rings < 1 || p->n_rings > RD_RINGPACK_RINGS_MAX))
         return rd_error_set(err, RD_EINVAL, "/rings", "/rings has %d rings; allowed 1 to %d.",
                             p->n_rings, RD_RINGPACK_RINGS_MAX);
@@ -186,9 +258,19 @@ int rd_ringpack_validate(const rd_ringpack_params *p, rd_error *err)
         }
         rc = validate_ring(&p->rings[i], i, p->rings[0].ring.diameter, err);
     }
+    for (int i = 0; !rc && i + 1 < p->n_rings; i++) {
+        char f[32];
+        snprintf(f, sizeof f, "/rings/%d/kind", i % 10);
+        if (p->rings[i].kind == RD_RING_OIL)
+            return rd_error_set(err, RD_EINVAL, f,
+                                "%s = oil: the oil-control ring must be the last ring of the "
+                                "pack (it is ring %d of %d).",
+                                f, i + 1, p->n_rings);
+    }
     rc = rc ? rc
             : rd_error_range(p->crankcase_pa, 1e3, 1e7, "/crankcase_pressure_pa", "Pa (absolute)",
                              err);
+    rc = rc ? rc : gas_validate(p, err);
     rc = rc ? rc : rd_error_range(p->T_lands, 200.0, 1500.0, "/gas_temperature_k/lands", "K", err);
     rc = rc ? rc
             : rd_error_range(p->T_crankcase, 200.0, 1500.0, "/gas_temperature_k/crankcase", "K",
@@ -232,8 +314,26 @@ static void ring_geometry(rd_ringpack_model *m, int i)
     m->area[i] = s.lower.area_ring;
     m->mass[i] = r->ring.density * s.h * m->area[i];
     m->circ[i] = M_PI * d;
-    m->gap_area[i] = r->ring.closed_gap * c;
     m->cd[i] = r->discharge_coefficient;
+    m->gap_cd[i] = m->cd[i];
+    if (r->kind == RD_RING_OIL) { /* its effective leakage, C_d included */
+        m->gap_area[i] = r->leak_area;
+        m->gap_cd[i] = 1.0;
+    } else if (r->end_gap_area > 0.0) {
+        m->gap_area[i] = r->end_gap_area;
+    } else { /* the narrower of the lands above and below (the last: above) */
+        double c_below = i + 1 < m->R ? m->p->rings[i + 1].land_clearance : c;
+        m->gap_area[i] = r->ring.closed_gap * fmin(c, c_below);
+    }
+    /* the flank passages' slots: the flank's mean circumference, the
+     * ring's radial width, the mean temperature of the volumes either side
+     * (the upper: land and groove; the lower: groove and the volume below) */
+    for (int k = 0; k < 2; k++) {
+        double T_below = k == 0 || i + 1 < m->R ? m->p->T_lands : m->p->T_crankcase;
+        double T = 0.5 * (m->p->T_lands + T_below), mu = m->p->gas_viscosity;
+        m->slot[2 * i + k] =
+            (rd_gasflow_slot){M_PI * (d - s.b), s.b, mu > 0.0 ? mu : rd_gas_viscosity(T), T};
+    }
     m->n_pre[i] =
         2.0 * r->ring.tangential_force / (d * h_run) * h_run * (M_PI * d - r->ring.closed_gap);
     m->n_back[i] = h_back * 2.0 * M_PI * r_in;
@@ -300,10 +400,14 @@ int rd_ringpack_model_init(rd_ringpack_model *m, const rd_ringpack_params *p, rd
         rd_liner_init(&m->liner[i], &p->friction, rd_liner_ureg(&p->engine), s.run.height,
                       M_PI * p->rings[i].ring.diameter);
         ring_geometry(m, i);
-        m->mode[i] = p->rings[i].pinned == RD_PIN_UPPER ? RD_FLANK_UPPER : RD_FLANK_LOWER;
+        int pin = p->rings[i].pinned;
+        m->mode[i] = pin == RD_PIN_UPPER    ? RD_FLANK_UPPER
+                     : pin == RD_PIN_MIDDLE ? RD_FLANK_FREE
+                                            : RD_FLANK_LOWER;
     }
     rd_ringpack_choose(m, NULL);
-    rd_gasflow_law_init(&m->law, RD_GASFLOW_KAPPA, RD_GASFLOW_R);
+    rd_gasflow_law_init(&m->law, p->kappa, p->gas_constant);
+    m->limited = p->flank_passage == RD_PASSAGE_VISCOUS_LIMITED;
     int rc = cylinder_trace(m, err);
     return rc ? rc : cylinder_slopes(m, err);
 }
@@ -343,25 +447,32 @@ void rd_ringpack_areas(const rd_ringpack_model *m, const double *y, double *area
     }
 }
 
-/* Flow f's area (fa: the flank areas) and discharge coefficient. */
-static double flow_area(const rd_ringpack_model *m, int f, const double *fa, double *cd)
+/* Flow f's mass flow (kg/s, from -> to) at pressures pv and flank areas
+ * fa, and its derivatives (d: rd_gasflow_flow's, or NULL): the top land's
+ * entry and the end gaps orifices, the flank passages limited by their
+ * slots (flank_passage). */
+static double flow_of(const rd_ringpack_model *m, int f, const double *pv, const double *fa,
+                      double d[3])
 {
-    if (f == 0) {
-        *cd = m->cd[0];
-        return m->top_area;
-    }
+    int a = m->from[f], b = m->to[f];
+    if (f == 0)
+        return rd_gasflow_flow(&m->law, m->cd[0], m->top_area, pv[a], m->temp[a], pv[b], m->temp[b],
+                               d);
     int i = (f - 1) / 3, kind = (f - 1) % 3;
-    *cd = m->cd[i];
-    return kind == 2 ? m->gap_area[i] : fa[2 * i + kind];
+    if (kind == 2)
+        return rd_gasflow_flow(&m->law, m->gap_cd[i], m->gap_area[i], pv[a], m->temp[a], pv[b],
+                               m->temp[b], d);
+    double area = fa[2 * i + kind];
+    if (m->limited)
+        return rd_gasflow_limited(&m->law, &m->slot[2 * i + kind], m->cd[i], area, pv[a],
+                                  m->temp[a], pv[b], m->temp[b], d);
+    return rd_gasflow_flow(&m->law, m->cd[i], area, pv[a], m->temp[a], pv[b], m->temp[b], d);
 }
 
 void rd_ringpack_flows(const rd_ringpack_model *m, const double *pv, const double *fa, double *mdot)
 {
-    for (int f = 0; f < m->F; f++) {
-        double cd, area = flow_area(m, f, fa, &cd);
-        int a = m->from[f], b = m->to[f];
-        mdot[f] = rd_gasflow_flow(&m->law, cd, area, pv[a], m->temp[a], pv[b], m->temp[b], NULL);
-    }
+    for (int f = 0; f < m->F; f++)
+        mdot[f] = flow_of(m, f, pv, fa, NULL);
 }
 
 void rd_ringpack_faces(const rd_ringpack_model *m, int i, double t, const double *pv, double out[3])
@@ -371,6 +482,10 @@ void rd_ringpack_faces(const rd_ringpack_model *m, int i, double t, const double
     out[0] = pv[2 * i + 1] - cc;
     out[1] = pv[2 * i + 2] - cc;
     out[2] = pv[rp_below(m, i)] - cc;
+    if (m->p->flank_pressure == RD_FLANK_PRESSURE_LINEAR) { /* groove -> land, linear */
+        out[0] = 0.5 * (out[0] + out[1]);
+        out[2] = 0.5 * (out[2] + out[1]);
+    }
     if (g) { /* the test hook: the lift analysis' gauge tables */
         double deg = t * m->omega * 180.0 / M_PI;
         out[0] = rd_gasflow_table(g->points, g->crank_deg, g->above, deg);
@@ -415,9 +530,10 @@ void rd_ringpack_base_rhs(const rd_ringpack_model *m, double t, const double *y,
         dm[m->to[f]] += mdot[f];
     }
     for (int v = 1; v <= m->V; v++)
-        yd[v - 1] = RD_GASFLOW_R * m->temp[v] / m->vol[v] * dm[v];
+        yd[v - 1] = m->law.R * m->temp[v] / m->vol[v] * dm[v];
     for (int i = 0; i < m->R; i++) {
-        int free_ = m->mode[i] == RD_FLANK_FREE && !m->lr[i];
+        int free_ =
+            m->mode[i] == RD_FLANK_FREE && !m->lr[i] && m->p->rings[i].pinned == RD_PIN_FREE;
         RP_Z(m, yd, i) = free_ ? RP_ZD(m, y, i) : 0.0;
         RP_ZD(m, yd, i) = free_ ? rd_ringpack_ring_force(m, i, t, y, pv) / m->mass[i] : 0.0;
     }
@@ -437,9 +553,10 @@ static double force_gradient(const rd_ringpack_model *m, int i, double t, const 
 {
     int tables = m->p->face_tables != NULL;
     memset(dF, 0, (size_t)(m->V + 2) * sizeof *dF);
-    if (!tables) {
-        dF[2 * i + 1] -= m->area[i];
-        dF[rp_below(m, i)] += m->area[i];
+    if (!tables) { /* A (f[2] - f[0]); linear: the groove's halves cancel */
+        double w = m->p->flank_pressure == RD_FLANK_PRESSURE_LINEAR ? 0.5 : 1.0;
+        dF[2 * i + 1] -= w * m->area[i];
+        dF[rp_below(m, i)] += w * m->area[i];
     }
     if (m->p->friction.model != RD_FRICTION_COULOMB)
         return 0.0;
@@ -466,7 +583,7 @@ static void axial_jacobian(const rd_ringpack_model *m, int i, double t, const do
     for (int r = 0; r < N0; r++)
         J[(size_t)z * N0 + r] +=
             G[(size_t)(2 * i) * N0 + r] * du + G[(size_t)(2 * i + 1) * N0 + r] * dl;
-    if (m->mode[i] != RD_FLANK_FREE)
+    if (m->mode[i] != RD_FLANK_FREE || m->p->rings[i].pinned != RD_PIN_FREE)
         return;
     double dzd = force_gradient(m, i, t, y, pv, dF);
     J[(size_t)zd * N0 + z] = 1.0;
@@ -485,7 +602,7 @@ static void network_rows(const rd_ringpack_model *m, double D[][RD_RINGPACK_VOLU
     int N0 = m->N0, V = m->V, c0 = 4 * m->R;
     double scale[RD_RINGPACK_VOLUMES_MAX]; /* dp/dt per net inflow: R T / V */
     for (int v = 1; v <= V; v++)
-        scale[v] = RD_GASFLOW_R * m->temp[v] / m->vol[v];
+        scale[v] = m->law.R * m->temp[v] / m->vol[v];
     for (int w = 1; w <= V; w++) { /* pressure columns */
         double *col = J + (size_t)(w - 1) * N0;
         for (int v = 1; v <= V; v++)
@@ -515,9 +632,8 @@ void rd_ringpack_base_jacobian(const rd_ringpack_model *m, double t, const doubl
     memset(J, 0, N0 * N0 * sizeof *J);
     memset(G, 0, 2 * (size_t)m->R * N0 * sizeof *G);
     for (int f = 0; f < m->F; f++) {
-        double cd, A = flow_area(m, f, area, &cd);
         int a = m->from[f], b = m->to[f];
-        double mdot = rd_gasflow_flow(&m->law, cd, A, pv[a], m->temp[a], pv[b], m->temp[b], d);
+        double mdot = flow_of(m, f, pv, area, d);
         D[a][a] -= d[0];
         D[a][b] -= d[1];
         D[b][a] += d[0];
@@ -574,8 +690,13 @@ void rd_ringpack_choose(rd_ringpack_model *m, char (*why)[240])
         int k = r->model != RD_LIFT_MODEL_AUTO ? r->model : m->p->model;
         char w[240];
         if (r->pinned != RD_PIN_FREE) {
-            snprintf(w, sizeof w, "pinned on its %s flank: held there, no motion integrated",
-                     r->pinned == RD_PIN_LOWER ? "lower" : "upper");
+            if (r->pinned == RD_PIN_MIDDLE)
+                snprintf(w, sizeof w,
+                         "pinned at half its axial clearance: held there (both "
+                         "flank passages open), no motion integrated");
+            else
+                snprintf(w, sizeof w, "pinned on its %s flank: held there, no motion integrated",
+                         r->pinned == RD_PIN_LOWER ? "lower" : "upper");
             k = RD_RINGPACK_AXIAL;
         } else if (k == RD_LIFT_MODEL_AUTO) {
             int fric = m->p->friction.model != RD_FRICTION_NONE;

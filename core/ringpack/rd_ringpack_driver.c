@@ -63,11 +63,7 @@ typedef struct drv {
     SUNLinearSolver LS;
     rd_ringpack_newton *pn; /* with lift rings: the bordered Newton solver */
     double deg_per_s;
-    double *prev;     /* n_volumes x samples: the cycle before the last */
-    double cum[3][4]; /* cumulative masses at the starts of the last two cycles, end */
-    double stored[3]; /* gas in the volumes then, kg */
-    int S, C;         /* samples per cycle (intervals), cycles */
-    rd_ringpack_result *res;
+    rd_ringpack_rec rec; /* the recorded cycle (rd_ringpack_record.c) */
     int cap[RD_RINGPACK_RINGS_MAX];
     int banded; /* flank_band > 0: events at the bands' edges */
     band_state band[RD_RINGPACK_RINGS_MAX];
@@ -160,10 +156,10 @@ static int cv_fail(const drv *d, int flag, const char *what, rd_error *err)
 static int cv_failed(const drv *d, int flag, rd_error *err)
 {
     double t = 0.0;
-    long steps = d->res->steps, now = 0;
+    long steps = d->rec.res->steps, now = 0;
     if (CVodeGetCurrentTime(d->cs.cv, &t) || CVodeGetNumSteps(d->cs.cv, &now))
         return cv_fail(d, flag, "query", err);
-    rd_cvode_limit lim = {"ring-pack", "ring pack's run", d->m.p->max_steps, 720.0 * d->C,
+    rd_cvode_limit lim = {"ring-pack", "ring pack's run", d->m.p->max_steps, 720.0 * d->rec.C,
                           steps + now};
     return rd_cvode_failure(&d->cs, flag, t, &lim, err);
 }
@@ -180,7 +176,7 @@ static void drv_close(drv *d)
     if (d->abstol)
         N_VDestroy(d->abstol);
     rd_cvode_close_context(&d->cs);
-    free(d->prev);
+    free(d->rec.prev);
     rd_ringpack_model_cleanup(&d->m);
 }
 
@@ -196,14 +192,16 @@ static int initial_state(drv *d, double rtol, double atol, rd_error *err)
         vsum += m->vol[v + 1];
     }
     for (int i = 0; i < m->R; i++) {
-        RP_Z(m, y, i) = m->mode[i] == RD_FLANK_UPPER ? m->ca[i] : 0.0;
+        RP_Z(m, y, i) = m->mode[i] == RD_FLANK_UPPER             ? m->ca[i]
+                        : m->p->rings[i].pinned == RD_PIN_MIDDLE ? 0.5 * m->ca[i]
+                                                                 : 0.0;
         RP_ZD(m, y, i) = 0.0;
         RP_Z(m, ab, i) = atol;
         RP_ZD(m, ab, i) = atol * m->omega;
     }
     for (int k = 0; k < 4; k++) {
         RP_CUM(m, y, k) = 0.0;
-        RP_CUM(m, ab, k) = rtol * m->p->crankcase_pa * vsum / (RD_GASFLOW_R * m->p->T_lands);
+        RP_CUM(m, ab, k) = rtol * m->p->crankcase_pa * vsum / (m->law.R * m->p->T_lands);
     }
     for (int i = 0; i < m->R; i++) {
         int rc = m->lr[i] ? rd_packring_initial(m->lr[i], atol, y + m->off[i], ab + m->off[i], err)
@@ -219,7 +217,7 @@ static int initial_state(drv *d, double rtol, double atol, rd_error *err)
 static int open_rings(drv *d, rd_error *err)
 {
     rd_ringpack_model *m = &d->m;
-    rd_ringpack_result *r = d->res;
+    rd_ringpack_result *r = d->rec.res;
     rd_ringpack_choose(m, r->ring_why);
     for (int i = 0; i < m->R; i++) {
         int n = 0, modes = 0, rc;
@@ -321,9 +319,9 @@ static int drv_open(drv *d, const rd_ringpack_params *p, double rtol, double ato
  * dropped. */
 static int push_event(drv *d, int i, double t, int kind, double touch, rd_error *err)
 {
-    double deg = t * d->deg_per_s - 720.0 * (d->C - 1);
-    rd_ringpack_result *r = d->res;
-    if (deg < 0.0) /* only the last cycle's are reported */
+    double deg = t * d->deg_per_s - 720.0 * d->rec.cyc;
+    rd_ringpack_result *r = d->rec.res;
+    if (deg < 0.0) /* only the recorded cycle's are kept */
         return RD_OK;
     if (r->n_events[i] == d->cap[i]) {
         int cap = d->cap[i] ? 2 * d->cap[i] : 16;
@@ -334,7 +332,7 @@ static int push_event(drv *d, int i, double t, int kind, double touch, rd_error 
         d->cap[i] = cap;
     }
     r->events[i][r->n_events[i]++] =
-        (rd_lift_event){deg, kind, touch * d->deg_per_s - 720.0 * (d->C - 1)};
+        (rd_lift_event){deg, kind, touch * d->deg_per_s - 720.0 * d->rec.cyc};
     return RD_OK;
 }
 
@@ -350,8 +348,8 @@ static int flank_event(int flank, int leave)
  * its touch. */
 static int band_enter(drv *d, int i, double t, int flank, rd_error *err)
 {
-    int n = d->res->n_events[i], rc = push_event(d, i, t, flank_event(flank, 0), NAN, err);
-    d->band[i] = (band_state){flank, 0, d->res->n_events[i] > n ? n : -1, NAN};
+    int n = d->rec.res->n_events[i], rc = push_event(d, i, t, flank_event(flank, 0), NAN, err);
+    d->band[i] = (band_state){flank, 0, d->rec.res->n_events[i] > n ? n : -1, NAN};
     return rc;
 }
 
@@ -380,7 +378,7 @@ static int band_touch(drv *d, int i, double t, int flank, int seated, rd_error *
     band_state *b = &d->band[i];
     int rc = b->band != flank ? band_enter(d, i, t, flank, err) : RD_OK;
     if (!b->touched && b->landing >= 0)
-        d->res->events[i][b->landing].touch_deg = t * d->deg_per_s - 720.0 * (d->C - 1);
+        d->rec.res->events[i][b->landing].touch_deg = t * d->deg_per_s - 720.0 * d->rec.cyc;
     b->touched = 1;
     b->landing = -1;
     b->cand = seated ? NAN : t;
@@ -488,110 +486,36 @@ static int at_root(drv *d, double t, int all, rd_error *err)
     }
     if (rc || !axial)
         return rc;
-    if (!all && ++d->res->restarts > RESTARTS_MAX)
+    if (!all && ++d->rec.res->restarts > RESTARTS_MAX)
         return rd_error_set(err, RD_ELIMIT, "",
                             "More than %d flank changes near crank angle %.2f deg: a ring "
                             "chatters on its flank; pin it or change the clearances.",
                             RESTARTS_MAX, t * d->deg_per_s);
-    counters(d, d->res);
+    counters(d, d->rec.res);
     if ((flag = CVodeReInit(d->cs.cv, t, d->y)))
         return cv_fail(d, flag, "restart", err);
     return RD_OK;
 }
 
-/* ------------------------------------------------------------ sampling */
-
-static double stored_mass(const rd_ringpack_model *m, const double *y)
+/* Sample k of the recorded cycle at t (rd_ringpack_record). */
+static void record(drv *d, int k, double t)
 {
-    double s = 0.0;
-    for (int v = 1; v <= m->V; v++)
-        s += RP_P(m, y, v - 1) * m->vol[v] / (RD_GASFLOW_R * m->temp[v]);
-    return s;
-}
-
-/* A lift ring's sample: mean lift, its flank as the lift analysis reports
- * it (lower below eps, upper above c_a - eps), friction. */
-static void record_lift(const rd_ringpack_model *m, int i, double t, const double *y,
-                        const double *pv, double *lift, int *flank, double *friction)
-{
-    rd_packring *L = m->lr[i];
-    double f[3], up, lo, fz, eps = rd_packring_eps(L);
-    rd_ringpack_faces(m, i, t, pv, f);
-    rd_packring_gas(L, f);
-    *lift = rd_packring_areas(L, y + m->off[i], &up, &lo);
-    rd_packring_loads(L, t, y + m->off[i], &fz, friction);
-    *flank =
-        *lift < eps ? RD_FLANK_LOWER : (*lift > m->ca[i] - eps ? RD_FLANK_UPPER : RD_FLANK_FREE);
-}
-
-/* Sample j of the run (0 .. C S) at time t. */
-static void record(drv *d, int j, double t)
-{
-    rd_ringpack_model *m = &d->m;
-    rd_ringpack_result *r = d->res;
-    const double *y = N_VGetArrayPointer(d->y);
-    double pv[RD_RINGPACK_VOLUMES_MAX], mdot[RD_RINGPACK_FLOWS_MAX];
-    int S = d->S, nv = m->V + 2, k = j - (d->C - 1) * S, kp = j - (d->C - 2) * S;
-    rd_ringpack_pressures(m, t, y, pv);
-    int b = j - (d->C - 2) * S; /* cycle boundaries: b = 0, S, 2 S */
-    if (b >= 0 && b % S == 0) {
-        memcpy(d->cum[b / S], &RP_CUM(m, y, 0), 4 * sizeof(double));
-        d->stored[b / S] = stored_mass(m, y);
-    }
-    for (int v = 0; kp >= 0 && kp <= S && v < nv; v++)
-        d->prev[(size_t)v * (S + 1) + kp] = pv[v];
-    if (k < 0)
-        return;
-    double area[2 * RD_RINGPACK_RINGS_MAX];
-    rd_ringpack_areas(m, y, area);
-    rd_ringpack_flows(m, pv, area, mdot);
-    r->crank_deg[k] = 720.0 * k / S;
-    for (int v = 0; v < nv; v++)
-        r->pressure[(size_t)v * (S + 1) + k] = pv[v];
-    for (int i = 0; i < m->R; i++) {
-        size_t at = (size_t)i * (S + 1) + k;
-        if (m->lr[i]) {
-            record_lift(m, i, t, y, pv, &r->lift[at], &r->flank[at], &r->friction[at]);
-            continue;
-        }
-        r->lift[at] = RP_Z(m, y, i);
-        r->flank[at] = d->banded ? d->band[i].band : m->mode[i];
-        r->friction[at] = rd_ringpack_friction(m, i, t, y, pv);
-    }
-    for (int f = 0; f < m->F; f++)
-        r->flow[(size_t)f * (S + 1) + k] = mdot[f];
-}
-
-static int alloc_result(drv *d, rd_ringpack_result *r, rd_error *err)
-{
-    size_t n = (size_t)d->S + 1;
-    int nv = d->m.V + 2;
-    r->samples = d->S + 1;
-    r->cycles = d->C;
-    r->crank_deg = malloc(n * sizeof *r->crank_deg);
-    r->pressure = malloc(n * nv * sizeof *r->pressure);
-    r->lift = malloc(n * d->m.R * sizeof *r->lift);
-    r->flank = malloc(n * d->m.R * sizeof *r->flank);
-    r->friction = malloc(n * d->m.R * sizeof *r->friction);
-    r->flow = malloc(n * d->m.F * sizeof *r->flow);
-    d->prev = malloc(n * nv * sizeof *d->prev);
-    if (!r->crank_deg || !r->pressure || !r->lift || !r->flank || !r->friction || !r->flow ||
-        !d->prev)
-        return rd_error_set(err, RD_ENOMEM, "", "Out of memory for the ring pack's output.");
-    rd_ringpack_describe(&d->m, r);
-    return RD_OK;
+    int flank[RD_RINGPACK_RINGS_MAX];
+    for (int i = 0; i < d->m.R; i++)
+        flank[i] = d->banded ? d->band[i].band : d->m.mode[i];
+    rd_ringpack_record(&d->rec, &d->m, flank, k, t, N_VGetArrayPointer(d->y));
 }
 
 /* The work bound over the whole run (the restarts zero CVODE's counter). */
 static int work_bound(drv *d, double t, rd_error *err)
 {
     long now = 0;
-    if (!CVodeGetNumSteps(d->cs.cv, &now) && d->res->steps + now > d->m.p->max_steps)
+    if (!CVodeGetNumSteps(d->cs.cv, &now) && d->rec.res->steps + now > d->m.p->max_steps)
         return rd_error_set(err, RD_ELIMIT, "/numerics/max_steps",
                             "The run needed more than /numerics/max_steps = %ld CVODE steps "
                             "by crank angle %.2f deg (of %d cycles); raise it, or loosen "
                             "/numerics/rtol.",
-                            d->m.p->max_steps, t * d->deg_per_s, d->C);
+                            d->m.p->max_steps, t * d->deg_per_s, d->rec.C);
     return RD_OK;
 }
 
@@ -612,13 +536,13 @@ static long step_chunk(const rd_ringpack_model *m)
 /* The whole run: C cycles, sampled at every output angle. */
 static int integrate(drv *d, const rd_monitor *mon, rd_error *err)
 {
-    double t = 0.0, dt = 720.0 / d->S / d->deg_per_s;
-    int total = d->C * d->S, rc = at_root(d, 0.0, 1, err), flag;
+    double t = 0.0, dt = 720.0 / d->rec.S / d->deg_per_s;
+    int total = d->rec.C * d->rec.S, rc = at_root(d, 0.0, 1, err), flag;
     long chunk = step_chunk(&d->m);
     if (rc || (chunk && (flag = CVodeSetMaxNumSteps(d->cs.cv, chunk))))
         return rc ? rc : cv_fail(d, flag, "set-up", err);
     record(d, 0, 0.0);
-    for (int j = 1; j <= total; j++) {
+    for (int j = 1; j <= total && !d->rec.done; j++) {
         double tout = j * dt;
         while (t < tout) {
             flag = CVode(d->cs.cv, tout, d->y, &t, CV_NORMAL);
@@ -635,40 +559,17 @@ static int integrate(drv *d, const rd_monitor *mon, rd_error *err)
                 t = tout;
             }
         }
-        record(d, j, t);
+        int k = j - d->rec.cyc * d->rec.S;
+        record(d, k, t);
+        if (k == d->rec.S) {
+            rd_ringpack_cycle_end(&d->rec, &d->m);
+            for (int i = 0; !d->rec.done && i < d->m.R; i++)
+                d->band[i].landing = -1; /* a landing of the cycle before awaits no touch */
+        }
         if ((rc = work_bound(d, t, err)) || (rc = rd_monitor_report(mon, (double)j / total, err)))
             return rc;
     }
     return RD_OK;
-}
-
-/* Balance of the last cycle and its change against the one before. */
-static void balance(drv *d)
-{
-    rd_ringpack_result *r = d->res;
-    const double *a = d->cum[1], *b = d->cum[2], *o = d->cum[0];
-    int S = d->S, nv = d->m.V + 2;
-    r->inflow_kg = b[0] - a[0];
-    r->reverse_kg = b[1] - a[1];
-    r->blowby_kg = (b[2] - a[2]) - (b[3] - a[3]);
-    r->stored_change_kg = d->stored[2] - d->stored[1];
-    double thru = fmax(r->inflow_kg + r->reverse_kg, 1e-300);
-    r->mass_residual =
-        fabs(r->inflow_kg - r->reverse_kg - r->blowby_kg - r->stored_change_kg) / thru;
-    r->blowby_l_per_min =
-        r->blowby_kg * (d->m.p->engine.speed_rpm / 2.0) / rd_ringpack_standard_density() * 1000.0;
-    double before = (a[2] - o[2]) - (a[3] - o[3]), change = 0.0;
-    change = fabs(r->blowby_kg - before) / fmax(fabs(r->blowby_kg), 1e-300);
-    for (int v = 1; v < nv - 1; v++) {
-        double top = 0.0, diff = 0.0;
-        for (int k = 0; k <= S; k++) {
-            double p = r->pressure[(size_t)v * (S + 1) + k];
-            top = fmax(top, p);
-            diff = fmax(diff, fabs(p - d->prev[(size_t)v * (S + 1) + k]));
-        }
-        change = fmax(change, diff / top);
-    }
-    r->periodicity = change;
 }
 
 /* The lift rings' flank changes of the last cycle into the result. */
@@ -695,15 +596,14 @@ static int run_once(const rd_ringpack_params *p, double rtol, double atol, const
 {
     drv d;
     memset(&d, 0, sizeof d);
-    d.res = r;
-    d.C = (int)p->engine.cycles;
-    d.S = (int)lround(720.0 / p->step_deg);
+    d.rec.res = r;
+    d.rec.C = (int)p->engine.cycles;
+    d.rec.S = (int)lround(720.0 / p->step_deg);
     int rc = drv_open(&d, p, rtol, atol, err);
-    rc = rc ? rc : alloc_result(&d, r, err);
+    rc = rc ? rc : rd_ringpack_record_open(&d.rec, &d.m, r, err);
     rc = rc ? rc : integrate(&d, mon, err);
     if (!rc) {
         counters(&d, r);
-        balance(&d);
         rc = lift_events(&d, err);
     }
     drv_close(&d);
@@ -720,8 +620,12 @@ typedef struct acc {
 static int acc_solve(void *ctx, int level, const rd_monitor *mon, rd_error *err)
 {
     acc *a = ctx;
-    double f = level ? 0.1 : 1.0;
-    return run_once(a->p, a->p->rtol * f, a->p->atol * f, mon, level ? &a->ref : a->out, err);
+    if (!level)
+        return run_once(a->p, a->p->rtol, a->p->atol, mon, a->out, err);
+    rd_ringpack_params q = *a->p; /* as many cycles as the run it checks */
+    q.periodic = 0;
+    q.engine.cycles = a->out->cycles;
+    return run_once(&q, q.rtol * 0.1, q.atol * 0.1, mon, &a->ref, err);
 }
 
 /* The estimate: the larger of the blow-by's relative change and the

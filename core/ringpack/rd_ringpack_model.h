@@ -31,6 +31,10 @@ typedef struct rd_ringpack_model {
     double mass[RD_RINGPACK_RINGS_MAX], area[RD_RINGPACK_RINGS_MAX];
     double circ[RD_RINGPACK_RINGS_MAX]; /* pi d: the flank passages' width */
     double gap_area[RD_RINGPACK_RINGS_MAX], top_area, cd[RD_RINGPACK_RINGS_MAX];
+    double gap_cd[RD_RINGPACK_RINGS_MAX]; /* the end gap's C_d (an oil ring's: 1) */
+    rd_gasflow_slot
+        slot[2 * RD_RINGPACK_RINGS_MAX]; /* the flank passages' viscous limits, as areas */
+    int limited;                         /* flank_passage viscous_limited */
     int from[RD_RINGPACK_FLOWS_MAX], to[RD_RINGPACK_FLOWS_MAX]; /* network indices */
     int mode[RD_RINGPACK_RINGS_MAX]; /* enum rd_flank: lower, upper, free */
     /* friction (rd_ringpack.h): N = n_pre + n_back (p_groove - p_cc), N */
@@ -98,6 +102,35 @@ int rd_ringpack_rhs(const rd_ringpack_model *m, double t, const double *y, doubl
 
 /* Names and volumes into the result. */
 void rd_ringpack_describe(const rd_ringpack_model *m, rd_ringpack_result *r);
+
+/* ---- the output (rd_ringpack_record.c) ---- */
+
+/* The cycle being recorded: its samples in `res` (k = 0 .. S), the cycle
+ * before's pressures, the cumulative masses and stored gas at the two
+ * cycles' starts and this one's end; cyc counts from 0; done once the
+ * run's last cycle has ended (the C-th, or with p->periodic the first
+ * whose change is below the tolerance). */
+typedef struct rd_ringpack_rec {
+    rd_ringpack_result *res;
+    double *prev;     /* n_volumes x (S + 1) */
+    double cum[3][4]; /* RP_CUM at the cycle before's start, this one's, its end */
+    double stored[3]; /* gas in the volumes then, kg */
+    int S, C;         /* samples per cycle (intervals), cycles (periodic: at most) */
+    int cyc, done;
+} rd_ringpack_rec;
+
+/* Allocates the result's arrays for S + 1 samples (d->S set) and names
+ * its volumes and flows. */
+int rd_ringpack_record_open(rd_ringpack_rec *d, const rd_ringpack_model *m, rd_ringpack_result *r,
+                            rd_error *err);
+/* Sample k of the recorded cycle at (t, y); flank[i]: an axial ring's
+ * flank (its band, or its mode), a lift ring's is its mean lift's. */
+void rd_ringpack_record(rd_ringpack_rec *d, const rd_ringpack_model *m, const int *flank, int k,
+                        double t, const double *y);
+/* After sample S: the cycle's balance and change (from the second on);
+ * done, or the next cycle starts from this one's end (its pressures
+ * become the cycle before's, the events recorded so far are dropped). */
+void rd_ringpack_cycle_end(rd_ringpack_rec *d, const rd_ringpack_model *m);
 
 /* ---- rings on the lift models (rd_ringpack_lift.c) ---- */
 

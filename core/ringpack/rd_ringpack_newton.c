@@ -62,7 +62,6 @@ typedef struct pring {
     int N, off;
     double *X[3];    /* M_ii^-1 c_ik, N each */
     int pcol[3], np; /* the face pressures' state indices (above, behind, below) */
-    int face[3];     /* which face each column is */
     double *D[3];    /* d f_i / d p_k, N each, once (below) */
     int have_D;
     double *r1, *w; /* N scratch */
@@ -143,21 +142,27 @@ static void network_along(rd_ringpack_newton *nw, int i, const double *w, double
         out[r] += nw->gamma * (Gu[r] * du + Gl[r] * dl);
 }
 
-/* d f_i / d p_k of ring i.  The forces are affine in the face pressures;
- * with fixed active areas their coefficients are of the geometry alone, so
- * the quotients are computed once, at the first set-up, against CVODE's
- * f(t, y); dynamic areas weight them by the faces' sealing, a function of
- * the state: then at every set-up. */
-static int pressure_columns(rd_ringpack_newton *nw, int i, const double *g)
+/* d f_i / d p_k of ring i, p_k the state pressures its faces read (pv:
+ * the network's pressures, g: its faces' gauge pressures from them).  The
+ * forces are affine in the face pressures, and the faces in the state's
+ * (rd_ringpack_faces: each its volume's, or with flank_pressure linear
+ * averaged with the groove's); with fixed active areas their coefficients
+ * are of the geometry alone, so the quotients are computed once, at the
+ * first set-up, against CVODE's f(t, y); dynamic areas weight them by the
+ * faces' sealing, a function of the state: then at every set-up. */
+static int pressure_columns(rd_ringpack_newton *nw, int i, const double *pv, const double *g)
 {
     pring *pr = &nw->ring[i];
+    rd_ringpack_model *m = nw->m;
     const double *f0 = nw->fy + pr->off;
-    double g1[3];
+    double g1[3], pv1[RD_RINGPACK_VOLUMES_MAX];
+    memcpy(pv1, pv, (size_t)(m->V + 2) * sizeof *pv1);
     for (int c = 0; c < pr->np; c++) {
-        int f = pr->face[c], rc;
-        double dp = 1e-3 * fmax(fabs(g[f]), nw->m->p->crankcase_pa);
-        memcpy(g1, g, sizeof g1);
-        g1[f] += dp;
+        int v = pr->pcol[c] + 1, rc; /* the network index of the state pressure */
+        double dp = 1e-3 * fmax(fabs(pv[v] - m->p->crankcase_pa), m->p->crankcase_pa);
+        pv1[v] = pv[v] + dp;
+        rd_ringpack_faces(m, i, nw->t, pv1, g1);
+        pv1[v] = pv[v];
         rd_packring_gas(pr->L, g1);
         rc = rd_packring_rhs(pr->L, nw->t, (double *)nw->y + pr->off, pr->r1);
         rd_packring_gas(pr->L, g);
@@ -183,7 +188,7 @@ static int ring_block(rd_ringpack_newton *nw, int i, const double *pv)
     if ((rc = rd_packring_solver_setup(pr->L, nw->t, (double *)nw->y + pr->off, nw->gamma)))
         return rc;
     if ((!pr->have_D || nw->m->p->active_area == RD_GAS_AREA_DYNAMIC) &&
-        (rc = pressure_columns(nw, i, g)))
+        (rc = pressure_columns(nw, i, pv, g)))
         return rc;
     for (int c = 0; c < pr->np; c++) {
         for (int k = 0; k < pr->N; k++)
@@ -319,7 +324,6 @@ static int ring_open(rd_ringpack_newton *nw, int i, SUNContext ctx)
         if (cols[f] < 0)
             continue;
         pr->pcol[pr->np] = cols[f];
-        pr->face[pr->np] = f;
         pr->X[pr->np] = malloc((size_t)pr->N * sizeof(double));
         pr->D[pr->np] = malloc((size_t)pr->N * sizeof(double));
         if (!pr->X[pr->np] || !pr->D[pr->np])

@@ -978,7 +978,8 @@ static int pack_events(double band, json_t **events, double *stated)
 {
     char body[256];
     snprintf(body, sizeof body,
-             "{\"analysis\":\"ringpack\",\"engine\":{\"cycles\":2},\"output\":{\"step_deg\":5,"
+             "{\"analysis\":\"ringpack\",\"rings\":[{}],\"engine\":{\"cycles\":2},"
+             "\"output\":{\"step_deg\":5,"
              "\"flank_band\":%.17g},\"numerics\":{\"error_estimate\":false}}",
              band);
     rd_scene *s = NULL;

@@ -237,6 +237,8 @@ static const struct {
     {"/physics/friction/asperity/", "{\"physics\": {\"friction\": {\"model\": \"lubricated\"}}}"},
     {"/bore/roughness_rq_m", "{\"physics\": {\"friction\": {\"model\": \"lubricated\"}}}"},
     {"/numerics/film_step_deg", "{\"physics\": {\"friction\": {\"model\": \"lubricated\"}}}"},
+    /* the ring pack's tolerance is read only when it runs to periodicity */
+    {"/numerics/periodic_tolerance", "{\"engine\": {\"cycles\": \"periodic\"}}"},
 };
 
 /* Copies the members of `from` into `to`, merging objects. */

@@ -169,6 +169,14 @@ static void pack_vs_lift_x(int model, double mu, const extras *x, const char *wh
     p.engine.cycles = 2;
     p.estimate_error = 0;
     p.step_deg = 0.25;
+    /* the orifice passages these tolerances were measured on: the ring
+     * models are compared here, under the same pressures whatever law made
+     * them (with the viscous limit the full ring's leave, dated 1.8 deg
+     * after it left the flank at 1 % of the clearance, came 0.066 deg apart
+     * at a 0.25 deg output step and 0.17 deg at 0.1: the slower flight
+     * makes the band's date worse conditioned, not the models apart) */
+    p.flank_passage = RD_PASSAGE_ORIFICE;
+    p.flank_pressure = RD_FLANK_PRESSURE_FULL; /* the lift run's faces: the tables' pressures */
     p.rings[0].model = model;
     int n = x->segments ? x->segments : 20;
     p.rings[0].segments = n;
@@ -570,6 +578,7 @@ static void seated_lift(int area, double below, double *lift, int *S, int *model
     p.step_deg = 5.0;
     p.atol = 1e-14; /* the penetrations are ~1e-8 m */
     p.active_area = area;
+    p.flank_pressure = RD_FLANK_PRESSURE_FULL; /* dynamic areas are the lift models' own */
     p.model = area == RD_GAS_AREA_DYNAMIC ? RD_LIFT_MODEL_AUTO : RD_LIFT_MODEL_RIGID;
     p.face_tables = &g;
     rd_ringpack_result r;
@@ -631,6 +640,7 @@ static void test_dynamic_lift_and_mass(void)
     p.bore.distortion[0].amplitude = 4e-6;
     p.bore.distortion[0].phase_deg = 10.0;
     p.active_area = RD_GAS_AREA_DYNAMIC;
+    p.flank_pressure = RD_FLANK_PRESSURE_FULL; /* dynamic areas are the lift models' own */
     rd_ringpack_result r;
     if (run(&p, &r, "3 rings, tilt, bore, dynamic") == RD_OK) {
         check_mass(&p, &r, "3 rings, tilt, bore, dynamic");
