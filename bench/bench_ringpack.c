@@ -4,8 +4,9 @@
  * ring <= 10x the same ring's lift run alone).
  *
  *   bench_ringpack [--reps R]
- *     The thesis pack of examples/thesis_ringpack_*.json (three rings,
- *     synthetic cylinder pressure), motored 2400 rpm, full load 2400 and
+ *     The thesis pack of examples/thesis_ringpack_*.json (top, second and
+ *     oil ring, synthetic cylinder pressure; viscous-limited flank passages
+ *     and linear flank pressure, the defaults), motored 2400 rpm, full load 2400 and
  *     6000 rpm, at rtol 1e-6 without the error estimate (the API's default
  *     doubles it with an rtol/10 run, about 1.3x to 2x): wall time of six
  *     cycles from rest (median of R >= 3) divided by six, CVODE steps,
@@ -30,21 +31,11 @@
 #include "rd_lift.h"
 #include "rd_ringpack.h"
 
-/* The examples' pack (examples/thesis_ringpack_full_load_2400rpm.json). */
+/* The examples' pack (examples/thesis_ringpack_full_load_2400rpm.json: the
+ * scene's default pack, rd_ringpack_params_thesis, its oil ring held). */
 static void thesis_pack(rd_ringpack_params *p, double rpm, int motored, double peak_deg)
 {
-    static const double h[3] = {0.0012, 0.0015, 0.0025}, g[3] = {3e-4, 4e-4, 3e-4};
-    static const double ca[3] = {3e-5, 4e-5, 4e-5}, lh[3] = {0.005, 0.004, 0.0035};
-    static const double lc[3] = {4e-4, 3e-4, 2e-4};
-    rd_ringpack_params_default(p);
-    p->n_rings = 3;
-    for (int i = 0; i < 3; i++) {
-        p->rings[i].ring.axial_height = h[i];
-        p->rings[i].ring.closed_gap = g[i];
-        p->rings[i].groove.axial_clearance = ca[i];
-        p->rings[i].land_height = lh[i];
-        p->rings[i].land_clearance = lc[i];
-    }
+    rd_ringpack_params_thesis(p);
     p->engine.speed_rpm = rpm;
     p->engine.cycles = 6;
     p->estimate_error = 0;

@@ -9,6 +9,8 @@
 //   checkbox                    -> true / false
 //   <select>                    -> the chosen option's value (a string choice)
 //   number                      -> a number; data-type="int" requires a whole one;
+//                                  data-word="w" (a text input): the number or
+//                                  the word w itself (e.g. cycles "periodic");
 //                                  data-optional: left empty, the field is absent
 //                                  from the scene (the server's default applies);
 //                                  with required too, no default is filled in
@@ -511,6 +513,7 @@ function preferredIndex(select) {
 function readValue(input) {
   if (input.type === 'checkbox') return input.checked;
   if (input.tagName === 'SELECT') return input.value;
+  if (input.dataset.word !== undefined) return wordOrNumber(input);
   if (input.value === '' && !input.validity.badInput) {
     if ('optional' in input.dataset && !input.required) return undefined;
     throw { code: 'invalid_value', message: 'must be a number (it is empty)', path: input.dataset.path };
@@ -521,6 +524,17 @@ function readValue(input) {
   }
   if (input.dataset.type === 'int' && !Number.isInteger(v)) {
     throw { code: 'invalid_value', message: `must be a whole number, got ${v}`, path: input.dataset.path };
+  }
+  return v;
+}
+
+// A text input that takes a number or its one word (data-word).
+function wordOrNumber(input) {
+  const t = input.value.trim(), word = input.dataset.word;
+  if (t === word) return word;
+  const v = t === '' ? NaN : Number(t);
+  if (!Number.isFinite(v)) {
+    throw { code: 'invalid_value', message: `must be a number or "${word}"`, path: input.dataset.path };
   }
   return v;
 }

@@ -2027,15 +2027,20 @@ for (const width of [1280, 390]) {
       await selectTab('ringpack');
       // the defaults come from the server's schema
       assert.equal(await page.inputValue('#f-rp-area'), 'fixed');
+      assert.equal(await page.inputValue('#f-rp-pressure'), 'linear');
+      assert.equal(await page.inputValue('#f-rp-passage'), 'viscous_limited');
       assert.equal(await page.inputValue('#f-rp-model'), 'auto');
       assert.equal(Number(await page.inputValue('#f-rp-tilt')), 0);
       await page.fill('#f-rp-cycles', '2');
-      // dynamic active areas: auto runs the lift analysis' rigid ring and says why
+      // dynamic active areas (with full flank pressure): auto runs the lift
+      // analysis' rigid ring and says why
+      await page.selectOption('#f-rp-pressure', 'full');
       await page.selectOption('#f-rp-area', 'dynamic');
       await runAnalysis('Run ringpack analysis');
       await page.waitForSelector('#rp-models');
       let r = (await shownJob()).result;
       assert.equal(r.scene.physics.gas.active_area, 'dynamic');
+      assert.equal(r.scene.physics.gas.flank_pressure, 'full');
       assert.equal(r.scene.numerics.model, 'auto');
       const rows = await page.$$eval('#rp-models tbody tr', (trs) => trs.map((tr) => [...tr.children].map((c) => c.textContent)));
       assert.equal(rows.length, r.rings.length);

@@ -71,7 +71,7 @@ while IFS= read -r line || [ -n "$line" ]; do
   fi
 done <"$CASES"
 echo "# $n cases"
-check "at least 150 cases" test "$n" -ge 150
+check "at least 400 cases" test "$n" -ge 400
 
 req GET /api/v1/health
 same "the server still answers" "$STATUS" 200
