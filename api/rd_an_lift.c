@@ -490,7 +490,7 @@ static int lift_series(const rd_lift_result *res, json_t **segs, json_t **flank,
 }
 
 /* numerics.error_method: what the estimate measures, and what it does not
- * (README "Lift", **Segment count**: on friction scenes the segment count's
+ * (docs/lift.md, **Segment count**: on friction scenes the segment count's
  * error was 5-330x the rtol/10 estimate; the rigid ring is picked by auto
  * only where it matches the flexible ring, 0.027 deg at most measured). */
 #define METHOD_TIME                                                                             \
@@ -575,7 +575,7 @@ static json_t *lift_warnings(const rd_lift_result *res)
  *  "lift_segments", "twist_rad", "friction_force", "flank", "events",
  *  "numerics", "partial", "crank_deg_reached", "warnings"}: a run stopped by
  *  /numerics/max_steps after whole cycles succeeds with those cycles,
- *  partial = true, the angle reached and a warning (README "Lift", partial
+ *  partial = true, the angle reached and a warning (docs/lift.md, partial
  *  results; the page lists result.warnings); a run stopped by a cancel or
  *  the time limit returns the same beside its error (rd_api.h). */
 static json_t *lift_result(const rd_scene *scene, const rd_lift_result *res, double wall_s)

@@ -151,7 +151,7 @@ static const rd_field item_fields[] = {
     {"discharge_coefficient", RD_F_NUMBER, PO(proto.discharge_coefficient), RD_MIN(0), RD_MAX(1),
      .desc = "C_d of the ring's passages (end gap, flanks; the first ring's also for "
              "the top-land entry), -."},
-    {"pinned", RD_F_CHOICE, PO(proto.pinned), .choices = pin_names,
+    {"pinned", RD_F_CHOICE, PO(proto.pinned), .choices = pin_names, .nullable = 1,
      .desc = "lower / upper: the ring stays on that flank; middle: held at half its axial "
              "clearance (both flank passages open: the limit of a fluttering ring); none (or "
              "null): it moves (an oil ring's default: lower)."},

@@ -66,6 +66,9 @@ typedef struct rd_field {
     unsigned char only_false;       /* RD_F_BOOL that this analysis only allows false */
     unsigned char in_opts;          /* the offset is into the analysis' opts although the
                                       block's are not (a top-level option) */
+    unsigned char nullable;         /* JSON null is accepted (and may be echoed): the
+                                      block's parse hook gives it the meaning its
+                                      description says; OpenAPI: nullable, null in the enum */
     const char *desc;               /* the OpenAPI description */
     const char *word;               /* RD_F_NUMBER: this string is also accepted, stored (and
                                       echoed back) as 0, e.g. "periodic" */

@@ -225,6 +225,12 @@ static int field_keywords(json_t *o, const rd_field *f, const char *at,
         bad |= set_new(o, "description", json_string(f->desc));
     if (f->type == RD_F_CHOICE)
         bad |= set_new(o, "enum", choices_array(f));
+    if (f->nullable) { /* OpenAPI 3.0: "nullable", and null among the choices */
+        bad |= set_new(o, "nullable", json_true());
+        json_t *choices = json_object_get(o, "enum");
+        if (choices)
+            bad |= json_array_append_new(choices, json_null());
+    }
     if (f->only_false)
         bad |= set_new(o, "enum", json_pack("[b]", 0));
     if (f->type == RD_F_TABLE)

@@ -2,13 +2,14 @@
 # Installs the Debian packages ringdyn needs, only those that are missing.
 #   scripts/install-deps.sh          build + run dependencies
 #   scripts/install-deps.sh --test   also what the test suite needs (curl, chromium, node/npm, python3,
-#                                    clang with libFuzzer for the fuzz test, clang-format for the style check,
-#                                    Slurm and munge for the cluster test)
+#                                    python3-jsonschema for the OpenAPI contract test, clang with libFuzzer for
+#                                    the fuzz test, clang-format for the style check, Slurm and munge for the
+#                                    cluster test)
 set -euo pipefail
 pkgs=(build-essential cmake pkg-config libmicrohttpd-dev libjansson-dev libsqlite3-dev zlib1g-dev libsundials-dev
       liblapack-dev liblapacke-dev curl)
 if [ "${1:-}" = "--test" ]; then
-  pkgs+=(chromium nodejs npm valgrind python3 clang clang-format libclang-rt-14-dev
+  pkgs+=(chromium nodejs npm valgrind python3 python3-jsonschema clang clang-format libclang-rt-14-dev
          slurmctld slurmd slurm-client munge)
 fi
 missing=()

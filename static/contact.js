@@ -103,7 +103,9 @@ function figures(result, gaps) {
       ['Largest penetration', isNum(result.max_penetration) ? `${um(result.max_penetration, 3)} µm` : undefined],
       ['Contact stiffness', isNum(result.contact_stiffness) ? `${sig(result.contact_stiffness)} Pa/m` : undefined],
       ['Conformability k (1.4)', isNum(result.conformability) ? sig(result.conformability, 4) : undefined],
-      ['Error estimate (binned pressure)', err, { id: 'ct-error', title: n.error_method }],
+      ['Error estimate (binned pressure)', err, { id: 'ct-error' }],
+      // what the estimates cover, as text beside them (not a tooltip)
+      ['What the estimate covers', n.error_method ?? undefined, { id: 'ct-error-scope' }],
       ['Accuracy target', accuracy, { id: 'ct-accuracy' }],
       ['Segments / DOF', `${n.segments ?? '—'} / ${n.dof ?? '—'}`],
       ['Load steps / Newton iterations', `${n.load_steps ?? '—'} / ${n.iterations ?? '—'}`],

@@ -607,7 +607,7 @@ function costTable(result) {
     rows: [
       ['Error estimate (lift)', percent(n.error_estimate), { id: 'lf-error' }],
       // what the estimate covers, as text beside it (not a tooltip): a time-only estimate says so
-      ['What the estimate covers', n.error_method, { id: 'lf-error-scope' }],
+      ['What the estimate covers', n.error_method ?? undefined, { id: 'lf-error-scope' }],
       ['Event angle change in the check run', isNum(n.event_error_deg) ? `${sig(n.event_error_deg, 2)}°` : undefined],
       ['Ring model', n.model ? `${n.model.name} (${n.model.dof} DOF)` : undefined, { id: 'lf-model', title: n.model ? n.model.why : undefined }],
       ['Why this model', n.model ? n.model.why : undefined],

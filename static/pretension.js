@@ -59,7 +59,9 @@ function figures(result) {
       [['Conformability ', h('i', {}, 'k'), ' (1.4)'], sig(result.conformability, 4), { id: 'pt-k' }],
       ['Support force / moment (opposite the gap)', isNum(support.force_n) || isNum(support.moment_nm)
         ? `${sig(support.force_n)} N / ${sig(support.moment_nm)} N·m` : undefined],
-      ['Error estimate', err, { id: 'pt-error', title: n.error_method }],
+      ['Error estimate', err, { id: 'pt-error' }],
+      // what the estimate covers, as text beside it (not a tooltip)
+      ['What the estimate covers', n.error_method ?? undefined, { id: 'pt-error-scope' }],
       ['Segments / DOF', `${n.segments ?? '—'} / ${n.dof ?? '—'}`],
       ['Load steps / Newton iterations', `${n.load_steps ?? '—'} / ${n.iterations ?? '—'}`],
       ['Residual (tolerance)', isNum(n.residual) ? `${sig(n.residual, 2)} (${sig(n.tolerance, 2)})` : undefined],

@@ -168,7 +168,9 @@ function costTable(result) {
       ['Cycles', n.cycles ?? '—'],
       ['CVODE steps', n.steps ?? '—'],
       ['Restarts at flank changes', n.restarts ?? '—'],
-      ['Error estimate', isNum(n.error_estimate) ? sig(n.error_estimate, 2) : '—'],
+      ['Error estimate', isNum(n.error_estimate) ? sig(n.error_estimate, 2) : '—', { id: 'rp-error' }],
+      // what the estimate covers (the time integration only), as text beside it
+      ['What the estimate covers', n.error_method ?? undefined, { id: 'rp-error-scope' }],
       ['Event angle error', isNum(n.event_error_deg) ? `${sig(n.event_error_deg, 2)}°` : '—'],
       ['Wall time', isNum(n.wall_s) ? seconds(n.wall_s) : '—'],
     ],

@@ -1,4 +1,4 @@
-// The sweep views of the results panel (issue 16): "Sweep" runs a sweep spec
+// The sweep views of the results panel: "Sweep" runs a sweep spec
 // through POST /api/v1/sweeps, follows its progress and plots an output
 // column against a parameter column of its table (rows done so far); "Speed
 // vs accuracy" runs the fidelity sweep of the form's scene ({"fidelity":

@@ -21,7 +21,7 @@
  *     largest flank pressure) and 1e3 times the default;
  *   - ringpack: rtol at most 1e-5; with friction at least 100 rpm and rtol
  *     at most 1e-6.
- * README "Limits" has the table of the probes behind these edges.
+ * docs/limits.md has the table of the probes behind these edges.
  */
 #include <math.h>
 #include <stdio.h>
@@ -320,7 +320,7 @@ static void pack_edges(void)
     CHECK(err.code == RD_EINVAL && !strcmp(err.path, "/numerics/rtol"),
           "ringpack past rtol 1e-5: %d at %s", err.code, err.path);
     /* one ring (auto: the lift's rigid ring with friction); three rings at
-     * the same edge take ~28 s in Release (README "Limits"), too long here */
+     * the same edge take ~28 s in Release (docs/limits.md), too long here */
     int rc = pack(300.0, 1e-6, 1, 1, &pmin, &err);
     CHECK(rc == RD_OK && pmin > 0.0, "ringpack friction 300 rpm 1 ring: %s", err.message);
     pack(300.0 * (1.0 - 1e-9), 1e-6, 1, 1, &pmin, &err);

@@ -687,6 +687,37 @@ test('renderers draw fixture results: points, marks and labels match the numbers
   assert.match(r.boreLabel, /exaggerated/);
   assert.equal(r.distortionRows, ct.distortion.length);
 
+  // Pretension, contact and ring pack: the estimate's scope is visible text in its own row beside
+  // the number (the cell's text, not a title attribute), as lift's.
+  for (const [id, result, method] of [
+    ['pretension', fixtures.pretensionResult(), 'Richardson extrapolation from a second solve at 2n'],
+    ['contact', fixtures.contactResult(), 'the last two refinement levels; the contact law from a re-solve at 2 k_c'],
+    ['ringpack', fixtures.ringpackResult(), 'second run at rtol/10 and atol/10: the time integration only'],
+  ]) {
+    result.numerics = { ...result.numerics, error_estimate: 0.002, error_method: method };
+    const scope = await page.evaluate(async ({ id, result }) => {
+      const mod = await import(`/static/${id}.js`);
+      const box = document.createElement('div');
+      document.body.append(box);
+      try {
+        mod[id].render(result, null, box);
+        const cell = box.querySelector(`#${{ pretension: 'pt', contact: 'ct', ringpack: 'rp' }[id]}-error-scope`);
+        const row = cell?.closest('tr');
+        const shown = (el) => Boolean(el) && el.getClientRects().length > 0 && getComputedStyle(el).visibility !== 'hidden';
+        return {
+          text: cell?.textContent, label: row?.querySelector('th')?.textContent, visible: shown(cell),
+          titled: [...box.querySelectorAll('[title]')].some((e) => e.getAttribute('title') === result.numerics.error_method),
+        };
+      } finally {
+        box.remove();
+      }
+    }, { id, result });
+    assert.equal(scope.text, method, `${id}: the scope is the cell's text`);
+    assert.equal(scope.label, 'What the estimate covers', `${id}: in a row of its own`);
+    assert.ok(scope.visible, `${id}: the scope is visible`);
+    assert.equal(scope.titled, false, `${id}: not (only) a tooltip`);
+  }
+
   // Lift: band, one marker per event with its angle in the tooltip, flank runs, crank ticks every 90 deg for one cycle.
   const lf = fixtures.liftResult();
   r = await renderFixture('lift', lf);

@@ -184,5 +184,4 @@ check "metrics: ringdyn_build_info{version=\"$(json /version)\"} 1" \
   grep -q "^ringdyn_build_info{version=\"$(json /version)\"} 1$" <(curl -sS "$BASE/metrics")
 stop_server metrics "$SPID"
 
-echo "$PASSED passed, $FAILED failed"
-[ "$FAILED" -eq 0 ]
+finish

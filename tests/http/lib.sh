@@ -13,6 +13,8 @@ trap cleanup EXIT
 trap 'exit 130' INT TERM # so that the EXIT trap also runs when ctest times us out
 
 PASSED=0 FAILED=0
+LIB_DIR=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
+ANSWERS=0
 ok() { PASSED=$((PASSED + 1)); echo "ok   - $1"; }
 bad() { FAILED=$((FAILED + 1)); echo "FAIL - $1${2:+ ($2)}"; }
 # check NAME COMMAND...: passes when the command succeeds.
@@ -41,6 +43,9 @@ start_server() {
     exit 1
   fi
   BASE="http://127.0.0.1:${BASH_REMATCH[1]}"
+  # the contract every answer is checked against (finish), from the first server
+  [ -s "$WORK/openapi.json" ] ||
+    curl -sS --max-time 30 -o "$WORK/openapi.json" "$BASE/api/v1/openapi.json" 2>/dev/null || true
 }
 
 # stop_server NAME PID: SIGTERM, then the exit status within 30 s.
@@ -70,8 +75,37 @@ req() {
   local method=$1 path=$2; shift 2
   local how=(-X "$method")
   if [ "$method" = HEAD ]; then how=(-I); fi
+  rm -f "$WORK/body" # curl writes no file for an empty body: no stale one is read as this answer's
   STATUS=$(curl -sS --path-as-is --max-time 90 "${how[@]}" -o "$WORK/body" -D "$WORK/headers" \
              -w '%{http_code}' "${CURL_EXTRA[@]}" "$@" "$BASE$path" 2>"$WORK/curl.err") || STATUS=000
+  record_answer "$method" "$path"
+}
+# record_answer METHOD PATH: keeps the last answer ($WORK/answers/N.meta and
+# N.body) for finish, which validates every answer a script got against the
+# served OpenAPI document (contract.py --answers). HEAD and no answer: not kept.
+record_answer() {
+  if [ "$1" = HEAD ] || [ "$STATUS" = 000 ]; then return 0; fi
+  ANSWERS=$((ANSWERS + 1))
+  mkdir -p "$WORK/answers"
+  printf '%s\t%s\t%s\t%s\t%s\n' "$1" "$2" "$STATUS" "$(header Content-Type)" \
+    "$(header Content-Encoding)" >"$WORK/answers/$ANSWERS.meta"
+  cp "$WORK/body" "$WORK/answers/$ANSWERS.body" 2>/dev/null || : >"$WORK/answers/$ANSWERS.body"
+}
+# finish: every kept answer against the served document, then the summary
+# line and the script's exit status.
+finish() {
+  if [ "$ANSWERS" -gt 0 ]; then
+    if [ ! -s "$WORK/openapi.json" ]; then
+      bad "the answers against the OpenAPI document" "no document was served"
+    elif python3 "$LIB_DIR/contract.py" --answers "$WORK/openapi.json" "$WORK/answers" >"$WORK/contract.out" 2>&1; then
+      ok "$(tail -n 1 "$WORK/contract.out")"
+    else
+      cat "$WORK/contract.out"
+      bad "the answers against the OpenAPI document" "$(tail -n 1 "$WORK/contract.out")"
+    fi
+  fi
+  echo "$PASSED passed, $FAILED failed"
+  [ "$FAILED" -eq 0 ]
 }
 # post PATH BODY: a new job every time (the result cache would answer a
 # repeated scene with the earlier job; cache.sh tests the cache).
