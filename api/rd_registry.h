@@ -103,11 +103,24 @@ extern const rd_block rd_block_lift_distortion;
 
 /* The options of pretension and contact (their opts): the static numerics
  * block is shared, so both keep it at the same place. */
+#include "rd_bore_map.h"
 #include "rd_static.h"
+/* The contact analysis' bore map (rd_contact_map.c): /bore/layers,
+ * /bore/points and /contact/height as given, and the map they make. */
+struct rd_contact_map_scene {
+    int layers_given, points_given, height_given; /* present in the scene */
+    struct rd_table points[3];                    /* theta_deg, z, dr */
+    int fit_order;                                /* /bore/points/fit_order */
+    int height_all;                               /* /contact/height "all" */
+    double height;                                /* /contact/height, m */
+    rd_bore_map *map;                             /* the layers or the points' fit; owned */
+    rd_bore at;                                   /* the bore at `height` (finish) */
+};
 struct rd_static_scene {
-    rd_static_opts statics;        /* /numerics */
-    rd_pretension_opts pretension; /* /pretension */
-    rd_contact_opts contact;       /* /bore, /contact */
+    rd_static_opts statics;          /* /numerics */
+    rd_pretension_opts pretension;   /* /pretension */
+    rd_contact_opts contact;         /* /bore, /contact */
+    struct rd_contact_map_scene map; /* /bore/layers, /bore/points, /contact/height */
 };
 /* Their common defaults (the error estimate on, as the API promises). */
 void rd_static_scene_defaults(struct rd_scene *s);
