@@ -42,7 +42,7 @@ static const rd_field layer_fields[] = {
              "layer to layer."},
     {"diameter", RD_F_NUMBER, LY(bore.diameter), RD_MIN(0),
      .desc = "The layer's diameter, m (taper, thermal growth); absent or 0 = /bore/diameter "
-             "(or the ring's); within 2 % of the ring's."},
+             "(or the ring's); within 2 % of the ring's. The echo gives the diameter used."},
     {"distortion", RD_F_DISTORTION, LY(bore), .block = &rd_block_contact_distortion,
      RD_MAX(RD_BORE_ORDERS_MAX),
      .desc = "The layer's Fourier terms, as /bore/distortion (at most 16, the same rules)."},
@@ -50,8 +50,8 @@ static const rd_field layer_fields[] = {
 };
 const rd_block rd_block_bore_layer = {
     "BoreLayer",
-    "One layer of a bore map: r(theta) = D/2 + sum A_k cos(k (theta - phi_k)) at height z.", 1,
-    1, layer_fields};
+    "One layer of a bore map: r(theta) = D/2 + sum A_k cos(k (theta - phi_k)) at height z.", 1, 1,
+    layer_fields};
 
 static const rd_field points_fields[] = {
     {"theta_deg", RD_F_TABLE, ST(map.points[0]), RD_MIN(1), RD_MAX(RD_BORE_POINTS_MAX),
@@ -220,9 +220,9 @@ int rd_contact_map_finish(rd_scene *s, rd_error *err)
     if (rc != RD_OK || (!m->layers_given && !m->points_given))
         return rc;
     if (m->layers_given) {
-        for (int i = 0; i < m->map->n_layers; i++)
+        for (int i = 0; i < m->map->n_layers; i++) /* echoed as the diameter used */
             if (m->map->layer[i].bore.diameter == 0.0)
-                m->map->layer[i].bore.diameter = o->contact.bore.diameter;
+                m->map->layer[i].bore.diameter = D;
         rc = rd_bore_map_validate(m->map, d, err);
     } else {
         rd_bore_points p;
@@ -257,10 +257,9 @@ static json_t *bore_json(const rd_bore *b, double d)
     json_t *dist = json_array();
     for (int k = 0; dist && k < b->n_distortion; k++) {
         const rd_distortion *q = &b->distortion[k];
-        if (json_array_append_new(dist, json_pack("{s:i, s:o, s:o}", "order", q->order,
-                                                  "amplitude", rd_result_real(q->amplitude),
-                                                  "phase_deg", rd_result_real(q->phase_deg))) !=
-            0) {
+        if (json_array_append_new(dist, json_pack("{s:i, s:o, s:o}", "order", q->order, "amplitude",
+                                                  rd_result_real(q->amplitude), "phase_deg",
+                                                  rd_result_real(q->phase_deg))) != 0) {
             json_decref(dist);
             dist = NULL;
         }
@@ -278,11 +277,11 @@ static json_t *layer_row(const rd_bore_layer *L, const rd_contact_result *r, dou
         hi = fmax(hi, r->bin_pressure[b]);
     }
     return json_pack(
-        "{s:o, s:o, s:o, s:o, s:o, s:o, s:o, s:o, s:i, s:o, s:i, s:o}", "z_m",
-        rd_result_real(L->z), "diameter_m",
-        rd_result_real(L->bore.diameter > 0 ? L->bore.diameter : d), "contact_fraction",
-        rd_result_real(r->contact_fraction), "max_clearance", rd_result_real(r->max_clearance),
-        "max_clearance_angle_deg", rd_result_real(r->max_clearance_angle_deg), "mean_pressure_pa",
+        "{s:o, s:o, s:o, s:o, s:o, s:o, s:o, s:o, s:i, s:o, s:i, s:o}", "z_m", rd_result_real(L->z),
+        "diameter_m", rd_result_real(L->bore.diameter > 0 ? L->bore.diameter : d),
+        "contact_fraction", rd_result_real(r->contact_fraction), "max_clearance",
+        rd_result_real(r->max_clearance), "max_clearance_angle_deg",
+        rd_result_real(r->max_clearance_angle_deg), "mean_pressure_pa",
         rd_result_real(r->mean_pressure), "min_bin_pressure_pa", rd_result_real(lo),
         "max_bin_pressure_pa", rd_result_real(hi), "light_gaps", r->n_gaps, "tip_forces_n",
         rd_result_reals(r->tip_force, 2, 1, 1.0), "segments", r->stats.segments, "accuracy_met",

@@ -19,21 +19,26 @@ extern const rd_block rd_block_contact_distortion;
 
 /* The rows, for the contact scene's tables (ST is offsetof into struct
  * rd_static_scene). */
-#define RD_CONTACT_MAP_BORE_ROWS(ST)                                                             \
-    {"layers", RD_F_CUSTOM, ST(map.layers_given), .block = &rd_block_bore_layer, RD_MIN(1),     \
-     RD_MAX(RD_BORE_LAYERS_MAX), .parse = rd_contact_map_parse_layers,                           \
-     .echo = rd_contact_map_echo_layers,                                                         \
-     .desc = "The bore as layers down its height (a bore card): 1 to 50 {z, diameter, "         \
-             "distortion}, z strictly increasing; linear in z between them. With layers or "     \
+#define RD_CONTACT_MAP_BORE_ROWS(ST)                                                              \
+    {"layers",                                                                                    \
+     RD_F_CUSTOM,                                                                                 \
+     ST(map.layers_given),                                                                        \
+     .block = &rd_block_bore_layer,                                                               \
+     RD_MIN(1),                                                                                   \
+     RD_MAX(RD_BORE_LAYERS_MAX),                                                                  \
+     .parse = rd_contact_map_parse_layers,                                                        \
+     .echo = rd_contact_map_echo_layers,                                                          \
+     .desc = "The bore as layers down its height (a bore card): 1 to 50 {z, diameter, "           \
+             "distortion}, z strictly increasing; linear in z between them. With layers or "      \
              "points, /contact/height is needed and /bore/distortion is refused; /bore/diameter " \
-             "is the diameter of layers that give none."},                                       \
-    {                                                                                            \
-        "points", RD_F_OPTBLOCK, ST(map.points_given), .block = &rd_block_bore_points            \
+             "is the diameter of layers that give none."},                                        \
+    {                                                                                             \
+        "points", RD_F_OPTBLOCK, ST(map.points_given), .block = &rd_block_bore_points             \
     }
 #define RD_CONTACT_MAP_HEIGHT_ROW(ST)                                                            \
     {                                                                                            \
-        "height", RD_F_CUSTOM, ST(map.height_given), .parse = rd_contact_map_parse_height,       \
-            .echo = rd_contact_map_echo_height,                                                  \
+        "height", RD_F_CUSTOM, ST(map.height_given),                                             \
+            .parse = rd_contact_map_parse_height, .echo = rd_contact_map_echo_height,            \
             .extra = "{\"oneOf\": [{\"type\": \"number\", \"minimum\": 0, \"maximum\": 10}, "    \
                      "{\"type\": \"string\", \"enum\": [\"all\"]}]}",                            \
             .desc = "With /bore/layers or /bore/points: the height (m, down from the top of "    \

@@ -360,7 +360,8 @@ const rd_field *rd_schema_find(const rd_block *block, const char *path)
         memcpy(token, path, n);
         token[n] = '\0';
         path += n;
-        if (found && (found->type == RD_F_DISTORTION || (found->type == RD_F_CUSTOM && found->block)) &&
+        if (found &&
+            (found->type == RD_F_DISTORTION || (found->type == RD_F_CUSTOM && found->block)) &&
             strspn(token, "0123456789") == n)
             continue; /* the index of an item */
         found = find_field(block->fields, token);

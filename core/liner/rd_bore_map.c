@@ -320,8 +320,9 @@ static void blend(const rd_bore *a, const rd_bore *b, double t, double d, rd_bor
                 s += w * q->amplitude * sin(q->order * q->phase_deg * DEG);
             }
         }
-        out->distortion[j] = (rd_distortion){
-            .order = orders[j], .amplitude = hypot(c, s), .phase_deg = atan2(s, c) / orders[j] / DEG};
+        out->distortion[j] = (rd_distortion){.order = orders[j],
+                                             .amplitude = hypot(c, s),
+                                             .phase_deg = atan2(s, c) / orders[j] / DEG};
     }
     out->n_distortion = n < RD_BORE_ORDERS_MAX ? n : RD_BORE_ORDERS_MAX;
 }

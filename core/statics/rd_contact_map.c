@@ -21,7 +21,8 @@ int rd_contact_solve_layers(const rd_ring_params *p, int segments, const rd_cont
         rd_contact_opts oi = *o;
         oi.bore = map->layer[i].bore;
         rd_monitor_span span;
-        const rd_monitor *sub = rd_monitor_span_init(&span, mon, (double)i / n, (double)(i + 1) / n);
+        const rd_monitor *sub =
+            rd_monitor_span_init(&span, mon, (double)i / n, (double)(i + 1) / n);
         rd_error e;
         rd_error_init(&e);
         int rc = rd_contact_solve(p, segments, &oi, so, sub, &res[i], &e);

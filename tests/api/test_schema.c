@@ -237,6 +237,13 @@ static const struct {
     {"/physics/friction/asperity/", "{\"physics\": {\"friction\": {\"model\": \"lubricated\"}}}"},
     {"/bore/roughness_rq_m", "{\"physics\": {\"friction\": {\"model\": \"lubricated\"}}}"},
     {"/numerics/film_step_deg", "{\"physics\": {\"friction\": {\"model\": \"lubricated\"}}}"},
+    /* a bore map's points (36 angles: enough for fit_order 16) need a height */
+    {"/bore/points/",
+     "{\"contact\": {\"height\": \"all\"}, \"bore\": {\"points\": {"
+     "\"theta_deg\": [0,10,20,30,40,50,60,70,80,90,100,110,120,130,140,150,160,170,"
+     "180,190,200,210,220,230,240,250,260,270,280,290,300,310,320,330,340,350],"
+     "\"z\": [0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0],"
+     "\"dr\": [0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0]}}}"},
 };
 
 /* Copies the members of `from` into `to`, merging objects. */

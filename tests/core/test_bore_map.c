@@ -142,8 +142,8 @@ static void test_interpolation(void)
     double z = 0.029, t = (z - 0.02) / 0.03, worst = 0;
     CHECK(rd_bore_map_at(&m, z, D, &b, &err) == RD_OK, "at: %s", err.message);
     for (int i = 0; i < 720; i++) {
-        double want = (1 - t) * radius(&m.layer[1].bore, 0.5 * i) +
-                      t * radius(&m.layer[2].bore, 0.5 * i);
+        double want =
+            (1 - t) * radius(&m.layer[1].bore, 0.5 * i) + t * radius(&m.layer[2].bore, 0.5 * i);
         worst = fmax(worst, fabs(radius(&b, 0.5 * i) - want));
     }
     CHECK(worst < ROUND, "interpolated radius off by %.3g m", worst);
@@ -156,8 +156,8 @@ static void test_interpolation(void)
           b.n_distortion);
     worst = 0;
     for (int i = 0; i < 720; i++) {
-        double want = (1 - t) * radius(&m.layer[1].bore, 0.5 * i) +
-                      t * radius(&m.layer[2].bore, 0.5 * i);
+        double want =
+            (1 - t) * radius(&m.layer[1].bore, 0.5 * i) + t * radius(&m.layer[2].bore, 0.5 * i);
         worst = fmax(worst, fabs(radius(&b, 0.5 * i) - want));
     }
     CHECK(worst < ROUND, "union of orders off by %.3g m", worst);
@@ -263,8 +263,7 @@ static void test_errors(void)
                  "the layer at z = 0.01 m has 8: allowed fit_order 0 to 3");
     dr[5] = 1e-3;
     rd_error_init(&err);
-    expect_error(rd_bore_points_validate(&p, D, &err), &err, "/bore/points/dr/5",
-                 "out of range");
+    expect_error(rd_bore_points_validate(&p, D, &err), &err, "/bore/points/dr/5", "out of range");
 }
 
 int main(void)
