@@ -102,6 +102,7 @@ int rd_contact_map_parse_layers(const rd_field *f, json_t *v, const char *path, 
         return rd_error_set(err, n ? RD_ELIMIT : RD_EINVAL, path,
                             "%s has %zu layers; allowed %d to %d.", path, n, (int)f->min,
                             (int)f->max);
+    o->map.layers_given = 1;
     free(o->map.map);
     o->map.map = calloc(1, sizeof *o->map.map);
     if (!o->map.map)
@@ -141,7 +142,7 @@ static json_t *layers_json(const rd_scene *s, const rd_bore_map *m)
 json_t *rd_contact_map_echo_layers(const rd_scene *s)
 {
     const struct rd_static_scene *o = s->opts;
-    return layers_json(s, o->map.map);
+    return o->map.layers_given ? layers_json(s, o->map.map) : json_null();
 }
 
 int rd_contact_map_parse_height(const rd_field *f, json_t *v, const char *path, rd_scene *s,
@@ -149,6 +150,7 @@ int rd_contact_map_parse_height(const rd_field *f, json_t *v, const char *path, 
 {
     struct rd_static_scene *o = s->opts;
     (void)f;
+    o->map.height_given = 1;
     if (json_is_string(v) && strcmp(json_string_value(v), "all") == 0) {
         o->map.height_all = 1;
         return RD_OK;
@@ -163,6 +165,8 @@ int rd_contact_map_parse_height(const rd_field *f, json_t *v, const char *path, 
 json_t *rd_contact_map_echo_height(const rd_scene *s)
 {
     const struct rd_static_scene *o = s->opts;
+    if (!o->map.height_given)
+        return json_null();
     return o->map.height_all ? json_string("all") : rd_result_real(o->map.height);
 }
 

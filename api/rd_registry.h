@@ -59,6 +59,10 @@ typedef struct rd_analysis_def {
      * somewhere else: NULL-ended pairs {key, where it is read}, named in
      * their refusal (rd_scene.c).  May be NULL. */
     const char *const *elsewhere;
+    /* 1: reads general /ring/section shapes (objects: their properties and
+     * turned principal axes); 0: refuses them, naming the analysis
+     * (rd_section_scene.c). */
+    int general_sections;
 } rd_analysis_def;
 
 /* The built-in registry, NULL-ended, in enum rd_analysis order. */
@@ -83,6 +87,12 @@ int rd_registry_ignored(const rd_analysis_def *const *registry, const rd_analysi
  * memory. */
 struct json_t *rd_registry_openapi(const rd_analysis_def *const *registry,
                                    const char *template_json, rd_error *err);
+
+/* (rd_section_scene.c) /ring/section: "rectangle", "circle" or a general
+ * shape's object, into s->ring.section and s->ring.spec; and its echo. */
+int rd_section_parse(const rd_field *f, struct json_t *v, const char *path, struct rd_scene *s,
+                     rd_error *err);
+struct json_t *rd_section_echo(const struct rd_scene *s);
 
 /* ---- shared blocks (rd_blocks.c), referenced by the analyses ---- */
 /* Monotonic wall clock, s: what a runner reports as numerics.wall_s. */

@@ -609,7 +609,6 @@ static int parse_field(const rd_field *f, char *at, json_t *v, const char *path,
             return type_issue(s, err, path, "an array of objects", v);
         return f->parse(f, v, path, s, err);
     case RD_F_CUSTOM:
-        *(int *)at = 1;
         return f->parse(f, v, path, s, err);
     case RD_F_ANALYSIS:
         return RD_OK;

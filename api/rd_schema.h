@@ -49,12 +49,12 @@ enum rd_field_type {
                         hook and echoed by its `echo` (items whose blocks nest
                         shared ones, as the ring pack's rings); min/max count
                         the items; OpenAPI: items = `block` */
-    RD_F_CUSTOM      /* a value of any JSON type (a number or "all"; an array
-                        of `block` items) read by the field's `parse` hook,
-                        after the int at `offset` is set to 1, and echoed by
-                        its `echo` only when that int is set; OpenAPI: the
-                        JSON schema `extra`, or an array of `block` items
-                        (min/max count them) */
+    RD_F_CUSTOM      /* a value of any JSON type (a number or "all", a string
+                        or an object, an array of `block` items) read by the
+                        field's `parse` hook and echoed by its `echo`, which
+                        returns JSON null when the field is not echoed (not
+                        given); OpenAPI: the JSON schema `extra`, or an array
+                        of `block` items (min/max count them) */
 };
 
 /* How a bound is meant: none, inclusive, exclusive. */

@@ -69,9 +69,12 @@ static json_t *choice_echo(const rd_field *f, int k)
 static json_t *field_echo(const rd_field *f, const char *at, const struct rd_scene *s, int *skip)
 {
     *skip = 0;
-    if (f->type == RD_F_CUSTOM) {
-        *skip = !*(const int *)at;
-        return *skip ? NULL : f->echo(s);
+    if (f->type == RD_F_CUSTOM) { /* JSON null: not echoed */
+        json_t *v = f->echo(s);
+        *skip = json_is_null(v);
+        if (*skip)
+            json_decref(v);
+        return *skip ? NULL : v;
     }
     if (f->echo)
         return f->echo(s);
