@@ -325,15 +325,20 @@ static int run_all(const rd_scene *s, const rd_monitor *mon, rd_contact_build bu
             w = res[i].max_clearance > res[w].max_clearance ? i : w;
         json_t *rows = json_array();
         for (int i = 0; rows && i < m->n_layers; i++)
-            if (json_array_append_new(rows, layer_row(&m->layer[i], &res[i], s->ring.diameter)))
-                json_decref(rows), rows = NULL;
+            if (json_array_append_new(rows, layer_row(&m->layer[i], &res[i], s->ring.diameter))) {
+                json_decref(rows);
+                rows = NULL;
+            }
         *out = rows ? build(s, &m->layer[w].bore, &res[w], rd_clock_s() - t0) : NULL;
-        if (*out && (add_map(*out, s, &m->layer[w].bore, m->layer[w].z) ||
-                     json_object_set_new(*out, "layers", rows))) {
+        int bad = !*out || add_map(*out, s, &m->layer[w].bore, m->layer[w].z);
+        if (!bad) { /* the table goes to the result either way (jansson's _new) */
+            bad = json_object_set_new(*out, "layers", rows) != 0;
+            rows = NULL;
+        }
+        json_decref(rows);
+        if (bad && *out) {
             json_decref(*out);
             *out = NULL;
-        } else if (!*out) {
-            json_decref(rows);
         }
     }
     for (int i = 0; i < m->n_layers; i++)

@@ -118,9 +118,10 @@ static int fields(json_t *o, int shape, const char *path, rd_section_spec *sp, r
 {
     char at[RD_ERROR_PATH_MAX];
     json_t *side = json_object_get(o, "side"), *dbl = json_object_get(o, "double");
-    if (dbl && !json_is_boolean(dbl))
-        return rd_schema_path_join(at, sizeof at, path, "double"),
-               rd_schema_type_error(err, at, "true or false", dbl);
+    if (dbl && !json_is_boolean(dbl)) {
+        rd_schema_path_join(at, sizeof at, path, "double");
+        return rd_schema_type_error(err, at, "true or false", dbl);
+    }
     sp->double_sided = json_is_true(dbl);
     if (side) {
         rd_schema_path_join(at, sizeof at, path, "side");

@@ -11,6 +11,11 @@
  *       s of its own contact solve, then the table's CPU s, its ratio to
  *       the sum of the single solves (the overhead) and to the mean, the
  *       median and the largest single solve.  CPU times are medians of 3.
+ *   bench_bore_map LAYERS N single|table
+ *       only the single solves, or only the table, once each (N = 0:
+ *       refined): for instruction counts, which a loaded machine does not
+ *       move (valgrind --tool=callgrind --toggle-collect=rd_contact_solve
+ *       ... single, and --toggle-collect=rd_contact_solve_layers ... table).
  */
 #include <math.h>
 #include <stdio.h>
@@ -64,6 +69,8 @@ static void make_map(const rd_ring_params *p, int layers, rd_bore_map *m)
 int main(int argc, char **argv)
 {
     int layers = argc > 1 ? atoi(argv[1]) : 10, n = argc > 2 ? atoi(argv[2]) : 0;
+    const char *only = argc > 3 ? argv[3] : NULL;
+    int reps = only ? 1 : 3;
     if (layers < 1 || layers > RD_BORE_LAYERS_MAX) {
         fprintf(stderr, "usage: bench_bore_map [LAYERS (1..%d) [N]]\n", RD_BORE_LAYERS_MAX);
         return 2;
@@ -86,10 +93,10 @@ int main(int argc, char **argv)
     }
     double single[RD_BORE_LAYERS_MAX], sum = 0, worst = 0;
     printf("layer z_m segments contact_fraction max_clearance_m cpu_s\n");
-    for (int l = 0; l < layers; l++) {
-        double t[3];
+    for (int l = 0; l < layers && !(only && strcmp(only, "table") == 0); l++) {
+        double t[3] = {0, 0, 0};
         rd_contact_result r;
-        for (int rep = 0; rep < 3; rep++) {
+        for (int rep = 0; rep < reps; rep++) {
             rd_contact_opts ol = o;
             ol.bore = m.layer[l].bore;
             memset(&r, 0, sizeof r);
@@ -99,18 +106,20 @@ int main(int argc, char **argv)
                 return 1;
             }
             t[rep] = cpu_now() - t0;
-            if (rep < 2)
+            if (rep < reps - 1)
                 rd_contact_result_cleanup(&r);
         }
-        single[l] = median3(t[0], t[1], t[2]);
+        single[l] = reps == 1 ? t[0] : median3(t[0], t[1], t[2]);
         sum += single[l];
         worst = fmax(worst, single[l]);
         printf("%d %.4f %d %.6f %.4g %.3f\n", l, m.layer[l].z, r.stats.segments, r.contact_fraction,
                r.max_clearance, single[l]);
         rd_contact_result_cleanup(&r);
     }
-    double t[3];
-    for (int rep = 0; rep < 3; rep++) {
+    if (only && strcmp(only, "single") == 0)
+        return 0;
+    double t[3] = {0, 0, 0};
+    for (int rep = 0; rep < reps; rep++) {
         rd_contact_result *res = calloc((size_t)layers, sizeof *res);
         double t0 = cpu_now();
         int rc = rd_contact_solve_layers(&p, segments, &o, &m, &so, NULL, res, &err);
@@ -124,6 +133,10 @@ int main(int argc, char **argv)
         }
     }
     double all = median3(t[0], t[1], t[2]);
+    if (only) {
+        printf("table of %d layers: %.3f s CPU\n", layers, t[0]);
+        return 0;
+    }
     qsort(single, (size_t)layers, sizeof *single, cmp);
     double med = single[layers / 2];
     printf("table of %d layers: %.3f s CPU; / sum of single solves %.3f; / mean single %.2f, "

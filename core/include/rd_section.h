@@ -58,9 +58,10 @@ enum rd_section_shape {
 
 /* The fields of a general shape (rd_ring_params.spec); unused ones stay 0.
  * The Saint-Venant constant of a general shape is a numerical solution
- * (rd_section_torsion_polygon): rd_section_spec_solve computes it once
- * into J and J_error, and rd_section_init then reads it (else computes it
- * again on every call, ~0.1 s). */
+ * (rd_section_torsion_polygon, 0.1-1 s): rd_section_spec_solve computes it
+ * once into J and J_error, and rd_section_init reads it; unsolved, the
+ * section's J is NAN (rd_ring_create solves its own copy of the params
+ * then, so a beam always has it). */
 typedef struct rd_section_spec {
     int side;                                /* 0 top, 1 bottom */
     double width, height;                    /* bevel's legs, step's depth and height, m */

@@ -358,6 +358,17 @@ rd_ring *rd_ring_create_graded(const rd_ring_params *p, int segments, int closed
     if (!ring)
         goto nomem;
     ring->p = *p;
+    /* a general section's J, computed here unless the caller did
+     * (rd_section_spec_solve) */
+    if (p->section >= RD_SECTION_TAPER_FACE && !p->spec.solved) {
+        rd_section box; /* its b and h (J not yet) */
+        rd_section_init(&box, p);
+        if (rd_section_spec_solve(p->section, &ring->p.spec, box.b, box.h, err) != RD_OK) {
+            free(ring);
+            return NULL;
+        }
+    }
+    p = &ring->p;
     ring->n = n;
     ring->closed = closed ? 1 : 0;
     ring->joints = closed ? n : n - 1;

@@ -99,12 +99,8 @@ static void general(rd_section *s, const rd_ring_params *p)
     double c = cos(s->angle), sn = sin(s->angle);
     s->I_inplane = s->I_rr * c * c + 2.0 * s->I_rz * sn * c + s->I_zz * sn * sn;
     s->I_outplane = s->I_rr * sn * sn - 2.0 * s->I_rz * sn * c + s->I_zz * c * c;
-    double Jerr;
-    if (p->spec.solved)
-        s->J = p->spec.J;
-    else if (rd_section_torsion_solve(P, n, &s->J, &Jerr, NULL) != RD_OK)
-        s->J = rd_section_torsion_constant(s->b, s->h); /* out of memory: the box's */
-    s->shear_factor = 6.0 / 5.0;                        /* the rectangle's (docs/geometry.md) */
+    s->J = p->spec.solved ? p->spec.J : NAN; /* rd_section_spec_solve's, once */
+    s->shear_factor = 6.0 / 5.0;             /* the rectangle's (docs/geometry.md) */
     double M20 = MOM(2, 0), M11 = MOM(1, 1);
     s->S1 = ri * A + Su;
     s->S2 = ri * ri * A + 2.0 * ri * Su + M20;

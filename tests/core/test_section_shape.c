@@ -187,6 +187,15 @@ static void test_polygon_rectangle(void)
     CHECK(ok, "pretension: %s", e.message);
     if (ok)
         CHECK_REL(b.gap_opening_inner, a.gap_opening_inner, 1e-8, "x_a of the polygon");
+    /* unsolved: the section's J is NAN, and the ring solves its own copy */
+    rd_ring_params pu = pp;
+    pu.spec.solved = 0;
+    rd_section su;
+    rd_section_init(&su, &pu);
+    CHECK(isnan(su.J), "unsolved J %g", su.J);
+    rd_ring *ring = rd_ring_create(&pu, 20, 0, &e);
+    CHECK(ring && rd_ring_get_section(ring)->J == sp.J, "the ring's J: %s", e.message);
+    rd_ring_free(ring);
     rd_pretension_result_cleanup(&a);
     rd_pretension_result_cleanup(&b);
 }
