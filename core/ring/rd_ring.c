@@ -347,6 +347,18 @@ rd_ring *rd_ring_create(const rd_ring_params *p, int segments, int closed, rd_er
     return rd_ring_create_graded(p, segments, closed, NULL, err);
 }
 
+/* The ring's copy of p, with a general section's J computed here unless
+ * the caller did (rd_section_spec_solve). */
+static int own_params(rd_ring *ring, const rd_ring_params *p, rd_error *err)
+{
+    ring->p = *p;
+    if (p->section < RD_SECTION_TAPER_FACE || p->spec.solved)
+        return RD_OK;
+    rd_section box; /* its b and h (J not yet) */
+    rd_section_init(&box, p);
+    return rd_section_spec_solve(p->section, &ring->p.spec, box.b, box.h, err);
+}
+
 rd_ring *rd_ring_create_graded(const rd_ring_params *p, int segments, int closed,
                                const double *weights, rd_error *err)
 {
@@ -357,16 +369,9 @@ rd_ring *rd_ring_create_graded(const rd_ring_params *p, int segments, int closed
     ring = calloc(1, sizeof *ring);
     if (!ring)
         goto nomem;
-    ring->p = *p;
-    /* a general section's J, computed here unless the caller did
-     * (rd_section_spec_solve) */
-    if (p->section >= RD_SECTION_TAPER_FACE && !p->spec.solved) {
-        rd_section box; /* its b and h (J not yet) */
-        rd_section_init(&box, p);
-        if (rd_section_spec_solve(p->section, &ring->p.spec, box.b, box.h, err) != RD_OK) {
-            free(ring);
-            return NULL;
-        }
+    if (own_params(ring, p, err) != RD_OK) {
+        free(ring);
+        return NULL;
     }
     p = &ring->p;
     ring->n = n;
