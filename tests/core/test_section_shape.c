@@ -21,7 +21,10 @@
 #include <math.h>
 #include <string.h>
 
+#include <lapacke.h>
+
 #include "check.h"
+#include "rd_internal.h"
 #include "rd_section.h"
 #include "rd_static.h"
 
@@ -200,6 +203,40 @@ static void test_polygon_rectangle(void)
     rd_pretension_result_cleanup(&b);
 }
 
+/* The beam of a turned section: under pure tip moments a cantilever's
+ * rotations are (L / E) [[I_rr, I_rz], [I_rz, I_zz]]^-1 M in the local
+ * (axial y, radial-inward z) frame (unsymmetric bending: M_y = E (k_y int
+ * z^2 - k_z int y z), M_z = E (-k_y int y z + k_z int y^2), z = -(r - R),
+ * y = z_section), whatever the shear: the rotation block of Kc^-1. */
+static void test_turned_beam(void)
+{
+    rd_ring_params p = ring_with(RD_SECTION_INNER_STEP);
+    p.spec.width = 0.0008, p.spec.height = 0.0005;
+    rd_error e;
+    rd_error_init(&e);
+    rd_ring *ring = rd_ring_create(&p, 24, 0, &e);
+    CHECK(ring != NULL, "%s", e.message);
+    if (!ring)
+        return;
+    const rd_section *s = rd_ring_get_cross_section(ring);
+    const double *K = rd_ring_joint_stiffness(ring, 0), *P0 = rd_ring_reference_point(ring, 0),
+                 *P1 = rd_ring_reference_point(ring, 1);
+    double C[36], L = hypot(P1[0] - P0[0], P1[1] - P0[1]);
+    lapack_int piv[6];
+    memcpy(C, K, sizeof C);
+    CHECK(LAPACKE_dgetrf(LAPACK_ROW_MAJOR, 6, 6, C, 6, piv) == 0 &&
+              LAPACKE_dgetri(LAPACK_ROW_MAJOR, 6, C, 6, piv) == 0,
+          "Kc inverts");
+    double det = s->I_rr * s->I_zz - s->I_rz * s->I_rz, f = L / p.youngs_modulus / det;
+    double want[2][2] = {{f * s->I_zz, -f * s->I_rz}, {-f * s->I_rz, f * s->I_rr}};
+    CHECK(fabs(s->angle) > 0.02, "a turned section: %g rad", s->angle);
+    for (int r = 0; r < 2; r++)
+        for (int c = 0; c < 2; c++)
+            CHECK_ABS(C[6 * (4 + r) + 4 + c], want[r][c], 1e-9 * fabs(want[0][0]),
+                      "rotation compliance %d %d", r, c);
+    rd_ring_free(ring);
+}
+
 static void expect(int shape, const rd_section_spec *sp, const char *path, const char *words)
 {
     double pts[RD_SECTION_POINTS_MAX][2];
@@ -242,6 +279,7 @@ int main(void)
     test_moments();
     test_torsion();
     test_polygon_rectangle();
+    test_turned_beam();
     test_errors();
     return check_done();
 }
