@@ -8,6 +8,7 @@
 #include <stddef.h>
 #include <stdio.h>
 
+#include "rd_contact_map.h"
 #include "rd_json.h"
 #include "rd_registry.h"
 #include "rd_scene.h"
@@ -31,32 +32,22 @@ static json_t *echo_stiffness(const rd_scene *s)
     return rd_result_real(k > 0 ? k : rd_contact_default_stiffness(&s->ring));
 }
 
-static const rd_field distortion_fields[] = {
-    {"order", RD_F_INTEGER, offsetof(rd_distortion, order), RD_MIN(1), RD_MAX(64), .required = 1,
-     .desc = "Fourier order k; a JSON integer (20.0 is refused here)."},
-    {"amplitude", RD_F_NUMBER, offsetof(rd_distortion, amplitude), .required = 1,
-     .desc = "Radius change A_k, m; |A_k| at most 1 % of the ring diameter, their sum too, and "
-             "sum |A_k| (k^2 + 2) at most the bore radius (a convex bore)."},
-    {"phase_deg", RD_F_NUMBER, offsetof(rd_distortion, phase_deg), RD_MIN(-360), RD_MAX(360),
-     .desc = "Phase phi_k, degrees from the gap middle."},
-    {.key = NULL},
-};
-static const rd_block distortion_block = {
-    "BoreDistortion", "One Fourier term of the bore distortion.", 0, 1, distortion_fields};
-
 static const rd_field bore_fields[] = {
     {"diameter", RD_F_NUMBER, ST(contact.bore.diameter), RD_MIN(0.0), .echo = echo_bore_diameter,
      .desc = "Bore diameter D, m; absent or 0 = the ring's diameter; otherwise within 2 % of it "
              "(0.98 d to 1.02 d). The echo gives the diameter used."},
-    {"distortion", RD_F_DISTORTION, ST(contact.bore), .block = &distortion_block,
+    {"distortion", RD_F_DISTORTION, ST(contact.bore), .block = &rd_block_contact_distortion,
      RD_MAX(RD_BORE_ORDERS_MAX),
      .desc = "Fourier terms of the bore's out-of-roundness, at most 16; the sum of |amplitude| "
              "is at most 1 % of the ring diameter. Default: none (a round bore)."},
+    RD_CONTACT_MAP_BORE_ROWS(ST),
     {.key = NULL},
 };
 static const rd_block bore_block = {
-    "Bore", "/bore (contact): the bore r_b(theta) = D/2 + sum A_k cos(k (theta - phi_k)).", 1, 0,
-    bore_fields};
+    "Bore",
+    "/bore (contact): the bore r_b(theta) = D/2 + sum A_k cos(k (theta - phi_k)), the same at "
+    "every height, or a bore map (layers or points) with /contact/height.",
+    1, 0, bore_fields};
 
 /* rd_contact_opts.flexible_face: 0 rigid, 1 flexible (the index). */
 static const char *const face_names[] = {"rigid", "flexible", NULL};
@@ -83,6 +74,7 @@ static const rd_field contact_fields[] = {
              "the contact law's share alone makes the error estimates miss numerics.accuracy, "
              "the refinement is repeated at 4 times it (since 0.3.2), and the result's "
              "contact_stiffness gives the stiffness used."},
+    RD_CONTACT_MAP_HEIGHT_ROW(ST),
     {.key = NULL},
 };
 static const rd_block contact_block = {
@@ -111,15 +103,21 @@ static int finish(struct rd_scene *s, rd_error *err)
 {
     struct rd_static_scene *o = s->opts;
     int rc = rd_static_validate(&o->statics, s->segments, s->closed, err);
-    return rc != RD_OK ? rc : rd_contact_validate(&o->contact, &s->ring, err);
+    rc = rc != RD_OK ? rc : rd_contact_validate(&o->contact, &s->ring, err);
+    return rc != RD_OK ? rc : rd_contact_map_finish(s, err);
 }
 
-static json_t *distortion_bounds(const rd_scene *scene, const rd_contact_result *res)
+static void cleanup(void *opts)
 {
-    const struct rd_static_scene *o = scene->opts;
+    struct rd_static_scene *o = opts;
+    rd_contact_map_cleanup(&o->map);
+}
+
+static json_t *distortion_bounds(const rd_bore *bore, const rd_contact_result *res)
+{
     json_t *dist = json_array();
-    for (int k = 0; dist && k < o->contact.bore.n_distortion; k++) {
-        const rd_distortion *d = &o->contact.bore.distortion[k];
+    for (int k = 0; dist && k < bore->n_distortion; k++) {
+        const rd_distortion *d = &bore->distortion[k];
         if (json_array_append_new(dist,
                                   json_pack("{s:i, s:o, s:o, s:o}", "order", d->order, "amplitude",
                                             rd_result_real(d->amplitude), "phase_deg",
@@ -222,7 +220,8 @@ static int contact_accuracy(json_t *out, const rd_contact_result *res)
     return bad;
 }
 
-static json_t *contact_result(const rd_scene *scene, const rd_contact_result *res, double wall_s)
+static json_t *contact_result(const rd_scene *scene, const rd_bore *bore,
+                              const rd_contact_result *res, double wall_s)
 {
     int n = res->points;
     /* the binned pressure's estimate, as refined (since 0.3.10, where it was
@@ -252,7 +251,7 @@ static json_t *contact_result(const rd_scene *scene, const rd_contact_result *re
         "max_clearance_angle_deg", rd_result_real(res->max_clearance_angle_deg), "max_penetration",
         rd_result_real(res->max_penetration), "contact_stiffness", rd_result_real(res->stiffness),
         "conformability", rd_result_real(res->conformability), "distortion",
-        distortion_bounds(scene, res), "support", rd_static_result_support(&res->stats), "numerics",
+        distortion_bounds(bore, res), "support", rd_static_result_support(&res->stats), "numerics",
         rd_static_result_numerics(&res->stats, wall_s, method));
     if (out && contact_accuracy(out, res) != 0) {
         json_decref(out);
@@ -261,16 +260,10 @@ static json_t *contact_result(const rd_scene *scene, const rd_contact_result *re
     return out;
 }
 
+/* The plain bore, the bore at /contact/height, or every layer. */
 static int run(const rd_scene *s, const rd_monitor *mon, json_t **out, rd_error *err)
 {
-    const struct rd_static_scene *o = s->opts;
-    rd_contact_result res;
-    double t0 = rd_clock_s();
-    int rc = rd_contact_solve(&s->ring, s->segments, &o->contact, &o->statics, mon, &res, err);
-    if (rc == RD_OK)
-        *out = contact_result(s, &res, rd_clock_s() - t0);
-    rd_contact_result_cleanup(&res);
-    return rc;
+    return rd_contact_map_run(s, mon, contact_result, out, err);
 }
 
 static const rd_csv_column csv_columns[] = {
@@ -288,6 +281,7 @@ const rd_analysis_def rd_an_contact = {
     .opts_size = sizeof(struct rd_static_scene),
     .defaults = rd_static_scene_defaults,
     .finish = finish,
+    .cleanup = cleanup,
     .run = run,
     .csv = &csv,
     .page = "contact.js",

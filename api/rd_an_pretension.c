@@ -7,6 +7,7 @@
 #include <math.h>
 #include <stddef.h>
 #include <stdlib.h>
+#include <string.h>
 
 #include "rd_json.h"
 #include "rd_registry.h"
@@ -58,15 +59,45 @@ static int finish(struct rd_scene *s, rd_error *err)
  *  "gap_opening_neutral", "free_gap_formula", "conformability", "support",
  *  "shape":{"angle_deg","x","y","z","reference_x","reference_y"} (n + 2
  *  points), "numerics"} */
-static json_t *pretension_result(const rd_scene *scene, const rd_pretension_result *res,
-                                 double wall_s)
+/* "section": the properties the beam used (rd_section.h): area, centroid
+ * [radius, height above the section's bottom], principal angle (from the
+ * radial axis toward +z), second moments about the centroid, principal
+ * moments, Saint-Venant J (series, closed form, or finite elements with
+ * its estimate; 0 when exact), shear factor. */
+static json_t *section_json(const rd_ring_params *p)
+{
+    rd_section s;
+    rd_section_init(&s, p);
+    double J_err = p->section >= RD_SECTION_TAPER_FACE ? p->spec.J_error : 0.0;
+    return json_pack(
+        "{s:s, s:o, s:[o, o], s:o, s:{s:o, s:o, s:o}, s:[o, o], s:o, s:o, s:o, s:s}", "shape",
+        p->section == RD_SECTION_RECTANGLE ? "rectangle"
+        : p->section == RD_SECTION_CIRCLE  ? "circle"
+                                           : "general",
+        "area_m2", rd_result_real(s.area), "centroid_m", rd_result_real(s.R),
+        rd_result_real(s.z_c + 0.5 * s.h), "principal_angle_deg",
+        rd_result_real(s.angle * 180.0 / PI), "second_moments_m4", "rr", rd_result_real(s.I_rr),
+        "zz", rd_result_real(s.I_zz), "rz", rd_result_real(s.I_rz), "principal_moments_m4",
+        rd_result_real(s.I_inplane), rd_result_real(s.I_outplane), "torsion_constant_m4",
+        rd_result_real(s.J), "torsion_constant_error_m4", rd_result_real(J_err), "shear_factor",
+        rd_result_real(s.shear_factor), "torsion_method",
+        p->section == RD_SECTION_RECTANGLE ? "series"
+        : p->section == RD_SECTION_CIRCLE  ? "closed form"
+                                           : "finite elements (Prandtl stress function), "
+                                             "Richardson-extrapolated");
+}
+
+static json_t *pretension_result(const rd_scene *scene, const rd_ring_params *ring,
+                                 const rd_pretension_result *res, double wall_s)
 {
     int np = res->points;
     double *rx = malloc((size_t)np * sizeof *rx), *ry = malloc((size_t)np * sizeof *ry);
     json_t *out = NULL;
     if (!rx || !ry)
         goto out;
-    double R = 0.5 * (scene->ring.diameter - scene->ring.radial_width);
+    rd_section sec;
+    rd_section_init(&sec, ring);
+    double R = sec.R; /* the centroid circle: 0.5 (d - b) for a rectangle */
     for (int k = 0; k < np; k++) {
         rx[k] = R * cos(res->angle_deg[k] * PI / 180.0);
         ry[k] = R * sin(res->angle_deg[k] * PI / 180.0);
@@ -85,6 +116,10 @@ static json_t *pretension_result(const rd_scene *scene, const rd_pretension_resu
         "reference_y", rd_result_reals(ry, np, 1, 1.0), "numerics",
         rd_static_result_numerics(&res->stats, wall_s,
                                   "Richardson extrapolation (order 2) of x_a and x_c"));
+    if (out && json_object_set_new(out, "section", section_json(ring)) != 0) {
+        json_decref(out);
+        out = NULL;
+    }
 out:
     free(rx);
     free(ry);
@@ -95,11 +130,17 @@ static int run(const rd_scene *s, const rd_monitor *mon, json_t **out, rd_error 
 {
     const struct rd_static_scene *o = s->opts;
     rd_pretension_result res;
+    memset(&res, 0, sizeof res);
     double t0 = rd_clock_s();
-    int rc =
-        rd_pretension_solve(&s->ring, s->segments, &o->pretension, &o->statics, mon, &res, err);
+    rd_ring_params ring = s->ring; /* a general section's J computed once, here */
+    int rc = ring.section >= RD_SECTION_TAPER_FACE
+                 ? rd_section_spec_solve(ring.section, &ring.spec, ring.radial_width,
+                                         ring.axial_height, err)
+                 : RD_OK;
     if (rc == RD_OK)
-        *out = pretension_result(s, &res, rd_clock_s() - t0);
+        rc = rd_pretension_solve(&ring, s->segments, &o->pretension, &o->statics, mon, &res, err);
+    if (rc == RD_OK)
+        *out = pretension_result(s, &ring, &res, rd_clock_s() - t0);
     rd_pretension_result_cleanup(&res);
     return rc;
 }
@@ -124,4 +165,5 @@ const rd_analysis_def rd_an_pretension = {
     .run = run,
     .csv = &csv,
     .page = "pretension.js",
+    .general_sections = 1,
 };

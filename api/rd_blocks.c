@@ -32,33 +32,52 @@ static const rd_field material_fields[] = {
 };
 static const rd_block material = {NULL, "Material.", 0, 0, material_fields};
 
-/* Indexed by enum rd_section_shape. */
-static const char *const section_names[] = {"rectangle", "circle", NULL};
+/* /ring/section's JSON schema: a name or a general shape's object. */
+#define SECTION_SCHEMA                                                                           \
+    "{\"default\": \"rectangle\", \"oneOf\": [{\"type\": \"string\", \"enum\": [\"rectangle\", " \
+    "\"circle\"]}, {\"type\": \"object\", \"additionalProperties\": false, \"required\": "       \
+    "[\"shape\"], "                                                                              \
+    "\"properties\": {\"shape\": {\"type\": \"string\", \"enum\": [\"taper_face\", "             \
+    "\"inner_bevel\", "                                                                          \
+    "\"inner_step\", \"keystone\", \"polygon\"]}, \"side\": {\"type\": \"string\", \"enum\": "   \
+    "[\"top\", \"bottom\"], \"default\": \"top\"}, \"width_m\": {\"type\": \"number\"}, "        \
+    "\"height_m\": {\"type\": \"number\"}, \"angle_deg\": {\"type\": \"number\"}, \"double\": "  \
+    "{\"type\": \"boolean\", \"default\": false}, \"points_m\": {\"type\": \"array\", "          \
+    "\"minItems\": 3, \"maxItems\": 64, \"items\": {\"type\": \"array\", \"minItems\": 2, "      \
+    "\"maxItems\": 2, \"items\": {\"type\": \"number\"}}}}}]}"
 
 /* The ring's rows, shared by the plain ring block and the one with a face. */
-#define RING_ROWS                                                                                  \
-    {"diameter",    RD_F_NUMBER, AT(ring.diameter),                                                \
-     RD_MIN(0.001), RD_MAX(5.0), .desc = "Nominal (= bore) diameter d, m."},                       \
-        {"radial_width", RD_F_NUMBER, AT(ring.radial_width), RD_MIN(1e-05),                        \
-         .desc = "Radial width b, m; at most d/4."},                                               \
-        {"axial_height", RD_F_NUMBER, AT(ring.axial_height), RD_MIN(1e-05),                        \
-         .desc =                                                                                   \
-             "Axial height h, m; at most d/2, with b/h from 0.05 to 20; equal to radial_width "    \
-             "for a circular section."},                                                           \
-        {"closed_gap", RD_F_NUMBER, AT(ring.closed_gap), RD_MIN(0.0),                              \
-         .desc = "Gap in the installed (closed) state, m; at most 10 % of the circumference "      \
-                 "(pi d / 10); not checked for a closed ring."},                                   \
-        {"tangential_force",                                                                       \
-         RD_F_NUMBER,                                                                              \
-         AT(ring.tangential_force),                                                                \
-         RD_MIN(0.0),                                                                              \
-         RD_MAX(100000.0),                                                                         \
-         .desc = "Tangential (pretension) force F_t, N; the contact analysis needs it > 0."},      \
-        {"section", RD_F_CHOICE, AT(ring.section), .choices = section_names,                       \
-         .desc = "Cross-section: rectangle b x h, or circle (a wire of diameter b = h). The lift " \
-                 "analysis needs rectangle."},                                                     \
-    {                                                                                              \
-        "material", RD_F_BLOCK, 0, .block = &material                                              \
+#define RING_ROWS                                                                                 \
+    {"diameter",    RD_F_NUMBER, AT(ring.diameter),                                               \
+     RD_MIN(0.001), RD_MAX(5.0), .desc = "Nominal (= bore) diameter d, m."},                      \
+        {"radial_width", RD_F_NUMBER, AT(ring.radial_width), RD_MIN(1e-05),                       \
+         .desc = "Radial width b, m; at most d/4."},                                              \
+        {"axial_height", RD_F_NUMBER, AT(ring.axial_height), RD_MIN(1e-05),                       \
+         .desc =                                                                                  \
+             "Axial height h, m; at most d/2, with b/h from 0.05 to 20; equal to radial_width "   \
+             "for a circular section."},                                                          \
+        {"closed_gap", RD_F_NUMBER, AT(ring.closed_gap), RD_MIN(0.0),                             \
+         .desc = "Gap in the installed (closed) state, m; at most 10 % of the circumference "     \
+                 "(pi d / 10); not checked for a closed ring."},                                  \
+        {"tangential_force",                                                                      \
+         RD_F_NUMBER,                                                                             \
+         AT(ring.tangential_force),                                                               \
+         RD_MIN(0.0),                                                                             \
+         RD_MAX(100000.0),                                                                        \
+         .desc = "Tangential (pretension) force F_t, N; the contact analysis needs it > 0."},     \
+        {"section",                                                                               \
+         RD_F_CUSTOM,                                                                             \
+         AT(ring.section),                                                                        \
+         .parse = rd_section_parse,                                                               \
+         .echo = rd_section_echo,                                                                 \
+         .extra = SECTION_SCHEMA,                                                                 \
+         .desc = "Cross-section: rectangle b x h, circle (a wire of diameter b = h), or a "       \
+                 "general shape in the b x h box (docs/geometry.md): taper_face (angle_deg), "    \
+                 "inner_bevel / inner_step (side, width_m, height_m), keystone (angle_deg, "      \
+                 "double, side), polygon (points_m). The lift analysis needs rectangle; general " \
+                 "shapes are read by the pretension analysis only."},                             \
+    {                                                                                             \
+        "material", RD_F_BLOCK, 0, .block = &material                                             \
     }
 
 static const rd_field ring_fields[] = {

@@ -59,6 +59,10 @@ typedef struct rd_analysis_def {
      * somewhere else: NULL-ended pairs {key, where it is read}, named in
      * their refusal (rd_scene.c).  May be NULL. */
     const char *const *elsewhere;
+    /* 1: reads general /ring/section shapes (objects: their properties and
+     * turned principal axes); 0: refuses them, naming the analysis
+     * (rd_section_scene.c). */
+    int general_sections;
 } rd_analysis_def;
 
 /* The built-in registry, NULL-ended, in enum rd_analysis order. */
@@ -84,6 +88,12 @@ int rd_registry_ignored(const rd_analysis_def *const *registry, const rd_analysi
 struct json_t *rd_registry_openapi(const rd_analysis_def *const *registry,
                                    const char *template_json, rd_error *err);
 
+/* (rd_section_scene.c) /ring/section: "rectangle", "circle" or a general
+ * shape's object, into s->ring.section and s->ring.spec; and its echo. */
+int rd_section_parse(const rd_field *f, struct json_t *v, const char *path, struct rd_scene *s,
+                     rd_error *err);
+struct json_t *rd_section_echo(const struct rd_scene *s);
+
 /* ---- shared blocks (rd_blocks.c), referenced by the analyses ---- */
 /* Monotonic wall clock, s: what a runner reports as numerics.wall_s. */
 double rd_clock_s(void);
@@ -103,11 +113,24 @@ extern const rd_block rd_block_lift_distortion;
 
 /* The options of pretension and contact (their opts): the static numerics
  * block is shared, so both keep it at the same place. */
+#include "rd_bore_map.h"
 #include "rd_static.h"
+/* The contact analysis' bore map (rd_contact_map.c): /bore/layers,
+ * /bore/points and /contact/height as given, and the map they make. */
+struct rd_contact_map_scene {
+    int layers_given, points_given, height_given; /* present in the scene */
+    struct rd_table points[3];                    /* theta_deg, z, dr */
+    int fit_order;                                /* /bore/points/fit_order */
+    int height_all;                               /* /contact/height "all" */
+    double height;                                /* /contact/height, m */
+    rd_bore_map *map;                             /* the layers or the points' fit; owned */
+    rd_bore at;                                   /* the bore at `height` (finish) */
+};
 struct rd_static_scene {
-    rd_static_opts statics;        /* /numerics */
-    rd_pretension_opts pretension; /* /pretension */
-    rd_contact_opts contact;       /* /bore, /contact */
+    rd_static_opts statics;          /* /numerics */
+    rd_pretension_opts pretension;   /* /pretension */
+    rd_contact_opts contact;         /* /bore, /contact */
+    struct rd_contact_map_scene map; /* /bore/layers, /bore/points, /contact/height */
 };
 /* Their common defaults (the error estimate on, as the API promises). */
 void rd_static_scene_defaults(struct rd_scene *s);

@@ -333,6 +333,9 @@ void rd_schema_allowed(const rd_field *f, char *buf, size_t size)
     case RD_F_ITEMS:
         snprintf(buf, size, "an array of objects");
         break;
+    case RD_F_CUSTOM:
+        snprintf(buf, size, "%s", f->block ? "an array of objects" : "see its description");
+        break;
     case RD_F_STRING:
         snprintf(buf, size, "a string");
         break;
@@ -357,7 +360,9 @@ const rd_field *rd_schema_find(const rd_block *block, const char *path)
         memcpy(token, path, n);
         token[n] = '\0';
         path += n;
-        if (found && found->type == RD_F_DISTORTION && strspn(token, "0123456789") == n)
+        if (found &&
+            (found->type == RD_F_DISTORTION || (found->type == RD_F_CUSTOM && found->block)) &&
+            strspn(token, "0123456789") == n)
             continue; /* the index of an item */
         found = find_field(block->fields, token);
         if (!found)
@@ -610,6 +615,8 @@ static int parse_field(const rd_field *f, char *at, json_t *v, const char *path,
     case RD_F_ITEMS:
         if (!json_is_array(v))
             return type_issue(s, err, path, "an array of objects", v);
+        return f->parse(f, v, path, s, err);
+    case RD_F_CUSTOM:
         return f->parse(f, v, path, s, err);
     case RD_F_ANALYSIS:
         return RD_OK;

@@ -45,10 +45,16 @@ enum rd_field_type {
                         min/max count its items */
     RD_F_DISTORTION, /* rd_bore at `offset`: an array of `block` items
                         ({order, amplitude, phase_deg}); max counts the items */
-    RD_F_ITEMS       /* an array of `block` objects read by the field's `parse`
+    RD_F_ITEMS,      /* an array of `block` objects read by the field's `parse`
                         hook and echoed by its `echo` (items whose blocks nest
                         shared ones, as the ring pack's rings); min/max count
                         the items; OpenAPI: items = `block` */
+    RD_F_CUSTOM      /* a value of any JSON type (a number or "all", a string
+                        or an object, an array of `block` items) read by the
+                        field's `parse` hook and echoed by its `echo`, which
+                        returns JSON null when the field is not echoed (not
+                        given); OpenAPI: the JSON schema `extra`, or an array
+                        of `block` items (min/max count them) */
 };
 
 /* How a bound is meant: none, inclusive, exclusive. */

@@ -69,6 +69,13 @@ static json_t *choice_echo(const rd_field *f, int k)
 static json_t *field_echo(const rd_field *f, const char *at, const struct rd_scene *s, int *skip)
 {
     *skip = 0;
+    if (f->type == RD_F_CUSTOM) { /* JSON null: not echoed */
+        json_t *v = f->echo(s);
+        *skip = json_is_null(v);
+        if (*skip)
+            json_decref(v);
+        return *skip ? NULL : v;
+    }
     if (f->echo)
         return f->echo(s);
     switch (f->type) {
@@ -106,6 +113,7 @@ static json_t *field_echo(const rd_field *f, const char *at, const struct rd_sce
     case RD_F_DISTORTION:
         return distortion_echo((const rd_bore *)at);
     case RD_F_ITEMS: /* echoed by its hook */
+    case RD_F_CUSTOM:
         break;
     }
     return NULL;
@@ -190,6 +198,7 @@ static const char *type_name(enum rd_field_type t)
     case RD_F_TABLE:
     case RD_F_DISTORTION:
     case RD_F_ITEMS:
+    case RD_F_CUSTOM: /* with a block; without one, `extra` is the schema */
         return "array";
     default:
         return "string";
@@ -235,11 +244,12 @@ static int field_keywords(json_t *o, const rd_field *f, const char *at,
         bad |= set_new(o, "enum", json_pack("[b]", 0));
     if (f->type == RD_F_TABLE)
         bad |= set_new(o, "items", json_pack("{s:s}", "type", "number"));
-    if (f->type == RD_F_DISTORTION || f->type == RD_F_ITEMS) {
+    if (f->type == RD_F_DISTORTION || f->type == RD_F_ITEMS || f->type == RD_F_CUSTOM) {
         rd_field item = {.key = f->key, .block = f->block};
         bad |= set_new(o, "items", block_ref(&item, defaults, components));
     }
-    int count = f->type == RD_F_TABLE || f->type == RD_F_DISTORTION || f->type == RD_F_ITEMS;
+    int count = f->type == RD_F_TABLE || f->type == RD_F_DISTORTION || f->type == RD_F_ITEMS ||
+                f->type == RD_F_CUSTOM;
     return bad | add_default(o, f, at) | add_bounds(o, f, count);
 }
 
@@ -249,6 +259,14 @@ json_t *rd_schema_field_openapi(const rd_field *f, const rd_block *in,
     static const char zero_item[64]; /* the defaults of an array item: all 0 */
     if (f->type == RD_F_BLOCK || f->type == RD_F_OPTBLOCK)
         return block_ref(f, defaults, components);
+    if (f->type == RD_F_CUSTOM && !f->block) { /* its own schema, with the description */
+        json_t *o = json_loads(f->extra ? f->extra : "{}", 0, NULL);
+        if (o && f->desc && json_object_set_new(o, "description", json_string(f->desc)) != 0) {
+            json_decref(o);
+            o = NULL;
+        }
+        return o;
+    }
     if (in->items && f->offset + sizeof(double) > sizeof zero_item)
         return NULL; /* an item larger than zero_item: widen it */
     const char *at = (in->items    ? zero_item

@@ -91,6 +91,9 @@ int rd_bore_distorted(const rd_bore *b, double ring_diameter);
  * |A_k| and their sum at most 1 % of d, phases within +-360 deg, and
  * convex (rd_bore_convex_validate). */
 int rd_bore_validate(const rd_bore *b, double d, rd_error *err);
+/* The same checks for a bore found at JSON Pointer `at` ("/bore",
+ * "/bore/layers/3"): its paths are `at` + "/diameter", "/distortion/...". */
+int rd_bore_validate_at(const rd_bore *b, double d, const char *at, rd_error *err);
 
 /* The convex-bore rule of a distorted bore r = D/2 + sum A_k cos(k (t -
  * phi_k)), shared by the contact and lift analyses: its curvature stays

@@ -39,6 +39,7 @@ typedef struct rd_ring_params {
     double poisson_ratio;    /* nu, - */
     double density;          /* rho, kg/m^3 */
     int section;             /* enum rd_section_shape; default rectangle */
+    rd_section_spec spec;    /* a general shape's fields (rd_section.h) */
 } rd_ring_params;
 
 /* Allowed ranges, shared by validation and documentation. */
@@ -57,6 +58,8 @@ typedef struct rd_ring_section {
     double G;            /* shear modulus E / (2 (1 + nu)) */
     double shear_factor; /* form factor for shear: 6/5 rectangle, 10/9 circle (Tab. 3.1) */
     double span;         /* angle covered by the ring, rad */
+    double angle;        /* principal axes turned from r toward z, rad (rd_section.h); 0 for
+                            the rectangle and the circle */
 } rd_ring_section;
 
 /* Mass properties of one rigid segment, in the segment's local cylindrical

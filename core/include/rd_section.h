@@ -34,6 +34,8 @@
 #ifndef RD_SECTION_H
 #define RD_SECTION_H
 
+#include "rd_error.h"
+
 struct rd_ring_params;
 
 /* Cross-section shape.  The thesis ring is rectangular (b x h).  A circular
@@ -42,8 +44,34 @@ struct rd_ring_params;
 enum rd_section_shape {
     RD_SECTION_RECTANGLE = 0,
     RD_SECTION_CIRCLE = 1,
-    RD_SECTION_SHAPES /* their count: a new shape goes above it */
+    /* General shapes (ring.section objects), each a polygon inside the b x h
+     * box (rd_section_outline); their properties are computed from it. */
+    RD_SECTION_TAPER_FACE = 2,  /* the running face turned by angle_deg, its lower edge at b */
+    RD_SECTION_INNER_BEVEL = 3, /* the inner top (bottom) corner cut: legs width x height */
+    RD_SECTION_INNER_STEP = 4,  /* a width x height notch at the inner top (bottom) corner */
+    RD_SECTION_KEYSTONE = 5,    /* the top (bottom; both if double_sided) flank turned by
+                                   angle_deg, the section thinner inside */
+    RD_SECTION_POLYGON = 6,     /* points: its bounding box is b x h */
+    RD_SECTION_SHAPES           /* their count: a new shape goes above it */
 };
+#define RD_SECTION_POINTS_MAX 64
+
+/* The fields of a general shape (rd_ring_params.spec); unused ones stay 0.
+ * The Saint-Venant constant of a general shape is a numerical solution
+ * (rd_section_torsion_polygon, 0.1-1 s): rd_section_spec_solve computes it
+ * once into J and J_error, and rd_section_init reads it; unsolved, the
+ * section's J is NAN (rd_ring_create solves its own copy of the params
+ * then, so a beam always has it). */
+typedef struct rd_section_spec {
+    int side;                                /* 0 top, 1 bottom */
+    double width, height;                    /* bevel's legs, step's depth and height, m */
+    double angle_deg;                        /* taper, keystone */
+    int double_sided;                        /* keystone on both flanks */
+    int n_points;                            /* polygon: 3..RD_SECTION_POINTS_MAX */
+    double points[RD_SECTION_POINTS_MAX][2]; /* polygon: (radial out, axial up), m */
+    int solved;                              /* J, J_error below hold the shape's */
+    double J, J_error;                       /* m^4: extrapolated, and its estimate */
+} rd_section_spec;
 
 /* A cylindrical face: the running face or the back face. */
 typedef struct rd_section_side {
@@ -66,6 +94,7 @@ typedef struct rd_section_flank {
 
 typedef struct rd_section {
     int shape;    /* enum rd_section_shape */
+    double r_c;   /* general shapes: centroid's radial position from the inner edge, m */
     double b, h;  /* radial width and axial height of its bounding box, m */
     double D;     /* reference diameter d - b, m */
     double R;     /* reference radius: the centroid's, D / 2, m */
@@ -98,5 +127,41 @@ double rd_section_face_profile(const rd_section *s, double z);
 
 /* Saint-Venant torsion constant of a solid a x c rectangle (series solution). */
 double rd_section_torsion_constant(double a, double c);
+
+/* The outline of a general shape (shape = enum rd_section_shape >=
+ * RD_SECTION_TAPER_FACE) with fields `spec` in the b x h box: its n points
+ * (u radial from the inner edge, v axial from the bottom, m) written to
+ * pts, counter-clockwise.  Checks the fields (paths "/ring/section/..."):
+ * side 0 or 1, a bevel's and a step's legs inside the box, angles that
+ * leave a section, a polygon of 3..RD_SECTION_POINTS_MAX points that does
+ * not cross itself, has an area, and whose bounding box is b x h (relative
+ * 1e-9; any origin). */
+int rd_section_outline(int shape, const rd_section_spec *spec, double b, double h, double (*pts)[2],
+                       int *n, rd_error *err);
+
+/* int_A u^a v^b dA of the polygon (counter-clockwise), exact (Green's
+ * theorem, Gauss-Legendre on each edge), a + b <= 4. */
+double rd_section_polygon_moment(const double (*pts)[2], int n, int a, int b);
+
+/* Saint-Venant torsion constant of the polygon by finite elements: the
+ * Prandtl stress function, -laplace phi = 2 in the section, phi = 0 on its
+ * boundary, J = 2 int phi dA, on linear triangles (the polygon cut into
+ * triangles, then each split in four `level` times), solved by conjugate
+ * gradients.  The discrete J is below the exact one and rises with level,
+ * its error ~ 4^-level (smooth solutions; slower at re-entrant corners).
+ * RD_ENOMEM, RD_ENOCONV (the iteration), RD_EINVAL (not a simple polygon). */
+int rd_section_torsion_polygon(const double (*pts)[2], int n, int level, double *J, rd_error *err);
+
+/* J of a general shape from its three finest levels: the finest level
+ * holding at most ~40000 triangles, Richardson-extrapolated as h^2 (J_L +
+ * (J_L - J_{L-1}) / 3); J_error the change of that extrapolation from the
+ * pair of levels below (measured: 15x the true error on the rectangle,
+ * 6.3e-6 against 4e-7 of J, tests/core/test_section_shape.c). */
+int rd_section_torsion_solve(const double (*pts)[2], int n, double *J, double *J_error,
+                             rd_error *err);
+
+/* Computes spec->J and J_error for shape `shape` in the b x h box once
+ * (rd_section_spec's contract); the outline's errors otherwise. */
+int rd_section_spec_solve(int shape, rd_section_spec *spec, double b, double h, rd_error *err);
 
 #endif

@@ -309,6 +309,14 @@ int rd_pretension_solve(const rd_ring_params *p, int segments, const rd_pretensi
 int rd_contact_solve(const rd_ring_params *p, int segments, const rd_contact_opts *o,
                      const rd_static_opts *so, const rd_monitor *mon, rd_contact_result *out,
                      rd_error *err);
+/* The contact solve in every layer of a bore map (rd_bore_map.h): res[i]
+ * (the caller's array of map->n_layers results, each cleaned up by the
+ * caller, also after a failure) is rd_contact_solve with o's bore replaced
+ * by layer i's.  A layer's failure names the layer in its message. */
+struct rd_bore_map;
+int rd_contact_solve_layers(const rd_ring_params *p, int segments, const rd_contact_opts *o,
+                            const struct rd_bore_map *map, const rd_static_opts *so,
+                            const rd_monitor *mon, rd_contact_result *res, rd_error *err);
 void rd_pretension_result_cleanup(rd_pretension_result *r);
 void rd_contact_result_cleanup(rd_contact_result *r);
 

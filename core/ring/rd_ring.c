@@ -98,6 +98,13 @@ int rd_ring_validate(const rd_ring_params *p, int segments, int closed, rd_error
                             "a circular section needs axial_height = radial_width (the wire "
                             "diameter); got %g m and %g m.",
                             p->axial_height, p->radial_width);
+    if (p->section >= RD_SECTION_TAPER_FACE) {
+        double pts[RD_SECTION_POINTS_MAX][2];
+        int n;
+        if ((rc = rd_section_outline(p->section, &p->spec, p->radial_width, p->axial_height, pts,
+                                     &n, err)))
+            return rc;
+    }
     if (!closed &&
         (rc = rd_error_range(p->closed_gap, 0.0, 0.1 * M_PI * p->diameter, "/ring/closed_gap",
                              "m (at most 10 % of the circumference)", err)))
@@ -133,6 +140,7 @@ static void section_view(const rd_section *sec, const rd_ring_params *p, int clo
     s->I_outplane = sec->I_outplane;
     s->J = sec->J;
     s->shear_factor = sec->shear_factor;
+    s->angle = sec->angle;
     s->span = closed ? 2.0 * M_PI : 2.0 * M_PI - p->closed_gap / s->R;
 }
 
@@ -213,6 +221,33 @@ static void skew(const double v[3], double out[9])
     out[8] = 0;
 }
 
+/* Kc of a section whose principal axes are turned by `a` from the radial
+ * one toward +z (rd_section.h): with T the turn about the chord x taking
+ * the local (y axial, z radial inward) components to the principal ones
+ * (y' = cos a y + sin a z, z' = -sin a y + cos a z), Kc := T6^T Kc T6,
+ * T6 = diag(T, T).  The rectangle and the circle (a = 0) skip it. */
+static void turn_principal(double Kc[36], double a)
+{
+    double T[36] = {0}, W[36] = {0}, c = cos(a), s = sin(a);
+    for (int b = 0; b < 2; b++) {
+        int o = 3 * b;
+        M6(T, o, o) = 1.0;
+        M6(T, o + 1, o + 1) = c, M6(T, o + 1, o + 2) = s;
+        M6(T, o + 2, o + 1) = -s, M6(T, o + 2, o + 2) = c;
+    }
+    for (int r = 0; r < 6; r++) /* W = Kc T */
+        for (int q = 0; q < 6; q++)
+            for (int k = 0; k < 6; k++)
+                M6(W, r, q) += M6(Kc, r, k) * M6(T, k, q);
+    for (int r = 0; r < 6; r++) /* Kc = T^T W */
+        for (int q = 0; q < 6; q++) {
+            double v = 0.0;
+            for (int k = 0; k < 6; k++)
+                v += M6(T, k, r) * M6(W, k, q);
+            M6(Kc, r, q) = v;
+        }
+}
+
 static void cantilever_stiffness(const rd_ring_params *p, const rd_ring_section *s, double L,
                                  double Kc[36])
 {
@@ -229,6 +264,8 @@ static void cantilever_stiffness(const rd_ring_params *p, const rd_ring_section 
     M6(Kc, 2, 4) = M6(Kc, 4, 2) = 6.0 * E * Ii / (L * L * (1.0 + Pi));
     M6(Kc, 4, 4) = (4.0 + Pi) * E * Ii / (L * (1.0 + Pi));
     M6(Kc, 3, 3) = G * s->J / L;
+    if (s->angle != 0.0)
+        turn_principal(Kc, s->angle);
 }
 
 void rd_ring_segment_frame(const rd_ring *ring, int i, double e_r[3], double e_t[3])
@@ -310,6 +347,18 @@ rd_ring *rd_ring_create(const rd_ring_params *p, int segments, int closed, rd_er
     return rd_ring_create_graded(p, segments, closed, NULL, err);
 }
 
+/* The ring's copy of p, with a general section's J computed here unless
+ * the caller did (rd_section_spec_solve). */
+static int own_params(rd_ring *ring, const rd_ring_params *p, rd_error *err)
+{
+    ring->p = *p;
+    if (p->section < RD_SECTION_TAPER_FACE || p->spec.solved)
+        return RD_OK;
+    rd_section box; /* its b and h (J not yet) */
+    rd_section_init(&box, p);
+    return rd_section_spec_solve(p->section, &ring->p.spec, box.b, box.h, err);
+}
+
 rd_ring *rd_ring_create_graded(const rd_ring_params *p, int segments, int closed,
                                const double *weights, rd_error *err)
 {
@@ -320,7 +369,11 @@ rd_ring *rd_ring_create_graded(const rd_ring_params *p, int segments, int closed
     ring = calloc(1, sizeof *ring);
     if (!ring)
         goto nomem;
-    ring->p = *p;
+    if (own_params(ring, p, err) != RD_OK) {
+        free(ring);
+        return NULL;
+    }
+    p = &ring->p;
     ring->n = n;
     ring->closed = closed ? 1 : 0;
     ring->joints = closed ? n : n - 1;

@@ -67,6 +67,47 @@ static void rectangle(rd_section *s)
     s->Z = (ro * ro - ri * ri) / 2.0 * h * h * h / 12.0;
 }
 
+/* int u^a v^b dA of the outline P (n points). */
+#define MOM(a, b) rd_section_polygon_moment(P, n, (a), (b))
+
+/* A general shape (rd_section_shape.c): its outline's moments in the box
+ * frame (u from the inner edge at r_i = d/2 - b, v from the bottom), the
+ * principal axes, and J computed once (p->spec) or now.  An outline the
+ * validation refuses leaves the rectangle's numbers. */
+static void general(rd_section *s, const rd_ring_params *p)
+{
+    double pts[RD_SECTION_POINTS_MAX][2];
+    int n;
+    if (rd_section_outline(p->section, &p->spec, s->b, s->h, pts, &n, NULL) != RD_OK) {
+        rectangle(s);
+        return;
+    }
+    const double(*P)[2] = (const double(*)[2])pts;
+    double A = MOM(0, 0), Su = MOM(1, 0), Sv = MOM(0, 1), uc = Su / A, vc = Sv / A;
+    double ri = 0.5 * p->diameter - s->b;
+    s->area = A;
+    s->r_c = uc;
+    s->R = ri + uc;
+    s->D = 2.0 * s->R;
+    s->z_c = vc - 0.5 * s->h;
+    s->I_rr = MOM(2, 0) - A * uc * uc;
+    s->I_zz = MOM(0, 2) - A * vc * vc;
+    s->I_rz = MOM(1, 1) - A * uc * vc;
+    double d = s->I_rr - s->I_zz;
+    s->angle = d != 0.0 ? 0.5 * atan(2.0 * s->I_rz / d)
+                        : (s->I_rz != 0.0 ? copysign(M_PI / 4, s->I_rz) : 0.0);
+    double c = cos(s->angle), sn = sin(s->angle);
+    s->I_inplane = s->I_rr * c * c + 2.0 * s->I_rz * sn * c + s->I_zz * sn * sn;
+    s->I_outplane = s->I_rr * sn * sn - 2.0 * s->I_rz * sn * c + s->I_zz * c * c;
+    s->J = p->spec.solved ? p->spec.J : NAN; /* rd_section_spec_solve's, once */
+    s->shear_factor = 6.0 / 5.0;             /* the rectangle's (docs/geometry.md) */
+    double M20 = MOM(2, 0), M11 = MOM(1, 1);
+    s->S1 = ri * A + Su;
+    s->S2 = ri * ri * A + 2.0 * ri * Su + M20;
+    s->S3 = ri * ri * ri * A + 3.0 * ri * ri * Su + 3.0 * ri * M20 + MOM(3, 0);
+    s->Z = ri * s->I_zz + MOM(1, 2) - 2.0 * vc * M11 + vc * vc * Su;
+}
+
 /* The faces of the b x h box: running face outside, back face inside, both
  * touching at mid-height; flat flanks over the whole width. */
 static void faces(rd_section *s, const rd_ring_params *p)
@@ -85,6 +126,23 @@ static void faces(rd_section *s, const rd_ring_params *p)
     s->upper = s->lower;
 }
 
+/* A general shape's faces: those of its box, from the centroid at R. */
+static void general_faces(rd_section *s, const rd_ring_params *p)
+{
+    double b = s->b, h = s->h, ro = 0.5 * p->diameter, ri = ro - b;
+    s->run = (rd_section_side){.height = h, .d = ro - s->R, .r = ro, .z_touch = -s->z_c};
+    s->back = (rd_section_side){.height = h, .d = ri - s->R, .r = ri, .z_touch = -s->z_c};
+    s->run.area_rad = h * ro;
+    s->back.area_rad = h * ri;
+    s->lower = (rd_section_flank){.d_in = ri - s->R,
+                                  .d_out = ro - s->R,
+                                  .r_in = ri,
+                                  .r_out = ro,
+                                  .width = b,
+                                  .area_ring = b * (M_PI * (ri + ro) - p->closed_gap)};
+    s->upper = s->lower;
+}
+
 void rd_section_init(rd_section *s, const rd_ring_params *p)
 {
     memset(s, 0, sizeof *s);
@@ -93,12 +151,18 @@ void rd_section_init(rd_section *s, const rd_ring_params *p)
     s->h = p->axial_height;
     s->D = p->diameter - s->b;
     s->R = 0.5 * s->D;
+    if (p->section >= RD_SECTION_TAPER_FACE) {
+        general(s, p);
+        general_faces(s, p);
+        return;
+    }
     if (p->section == RD_SECTION_CIRCLE)
         circle(s);
     else
         rectangle(s);
     /* symmetric shapes: centroid at mid-height, principal axes r and z */
     s->z_c = s->I_rz = s->angle = 0.0;
+    s->r_c = 0.5 * s->b;
     s->I_inplane = s->I_rr;
     s->I_outplane = s->I_zz;
     faces(s, p);

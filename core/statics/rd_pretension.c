@@ -69,17 +69,22 @@ static int pretension_outputs(const rd_ring_params *p, const rd_static_problem *
     const rd_ring *ring = pb->ring;
     int n = pb->n;
     double s = rd_ring_get_segment_angle(ring, 0) - 0.5 * rd_ring_segment_phi_at(ring, 0);
-    double Ri = pb->R - 0.5 * pb->b;
+    /* the inner face: R - b/2 (rectangle, circle), or where a general
+     * section's box has it, at the box's mid-height and top (rd_section.h:
+     * the centroid is the origin) */
+    const rd_section *sec = rd_ring_get_cross_section(ring);
+    double Ri = sec->shape >= RD_SECTION_TAPER_FACE ? sec->R + sec->back.d : pb->R - 0.5 * pb->b;
+    double zc = sec->z_c;
     const double *P0 = rd_ring_reference_point(ring, 0), *Pn = rd_ring_reference_point(ring, n - 1);
-    double ia[3] = {Ri * cos(s) - P0[0], Ri * sin(s) - P0[1], 0.0};
-    double ib[3] = {Ri * cos(s) - Pn[0], -Ri * sin(s) - Pn[1], 0.0};
+    double ia[3] = {Ri * cos(s) - P0[0], Ri * sin(s) - P0[1], zc != 0.0 ? -zc : 0.0};
+    double ib[3] = {Ri * cos(s) - Pn[0], -Ri * sin(s) - Pn[1], ia[2]};
     double ya[3], yb[3], d[3];
     rd_static_point_at(pb, 0, ia, ya);
     rd_static_point_at(pb, n - 1, ib, yb);
     for (int k = 0; k < 3; k++)
         d[k] = ya[k] - yb[k];
     out->gap_opening_inner = sqrt(rd_dot3(d, d));
-    ia[2] = ib[2] = 0.5 * pb->h;
+    ia[2] = ib[2] = 0.5 * pb->h - zc;
     rd_static_point_at(pb, 0, ia, ya);
     rd_static_point_at(pb, n - 1, ib, yb);
     out->lateral_opening = fabs(ya[2] - yb[2]);

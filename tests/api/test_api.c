@@ -293,9 +293,13 @@ static void test_type_errors(void)
     expect_type_error("/name", json_integer(3), "a string, got number 3");
     expect_type_error("/description", json_array(), "a string, got an array");
     expect_type_error("/ring/section", json_string("oval"),
-                      "one of \"rectangle\", \"circle\", got string \"oval\"");
+                      "one of \"rectangle\", \"circle\", or an object {\"shape\": "
+                      "\"taper_face\" | \"inner_bevel\" | \"inner_step\" | \"keystone\" | "
+                      "\"polygon\", ...}, got string \"oval\"");
     expect_type_error("/ring/section", json_integer(0),
-                      "one of \"rectangle\", \"circle\", got number 0");
+                      "one of \"rectangle\", \"circle\", or an object {\"shape\": "
+                      "\"taper_face\" | \"inner_bevel\" | \"inner_step\" | \"keystone\" | "
+                      "\"polygon\", ...}, got number 0");
 
     /* a long string value is quoted cut with "..." */
     char *body = scene_with("/ring/diameter",

@@ -188,7 +188,7 @@ static void walk(const rd_analysis_def *an, const rd_block *block, const char *p
         snprintf(path, sizeof path, "%s/%s", prefix, f->key);
         if (f->type == RD_F_BLOCK || f->type == RD_F_OPTBLOCK) {
             walk(an, f->block, path, item, fn);
-        } else if (f->type == RD_F_DISTORTION) {
+        } else if (f->type == RD_F_DISTORTION || (f->type == RD_F_CUSTOM && f->block)) {
             fn(an, f, path, item);
             strcat(path, "/0");
             walk(an, f->block, path, 1, fn);
@@ -200,7 +200,7 @@ static void walk(const rd_analysis_def *an, const rd_block *block, const char *p
 
 /* Sets `v` (stolen) at JSON Pointer `path` in `root`, creating objects on
  * the way; a "0" step makes a one-item array whose item has the required
- * fields of a distortion term. */
+ * fields of a distortion term (of a bore layer under "layers"). */
 static void set_path(json_t *root, const char *path, json_t *v)
 {
     char buf[256], *save = NULL;
@@ -210,8 +210,10 @@ static void set_path(json_t *root, const char *path, json_t *v)
     for (; (next = strtok_r(NULL, "/", &save)) != NULL; key = next) {
         json_t *child = json_is_array(at) ? json_array_get(at, 0) : json_object_get(at, key);
         if (!child) {
-            child = strcmp(next, "0") == 0 ? json_pack("[{s:i, s:f}]", "order", 2, "amplitude", 0.0)
-                                           : json_object();
+            child = strcmp(next, "0") != 0 ? json_object()
+                    : strcmp(key, "layers") == 0
+                        ? json_pack("[{s:f}]", "z", 0.0)
+                        : json_pack("[{s:i, s:f}]", "order", 2, "amplitude", 0.0);
             json_object_set_new(at, key, child);
         }
         at = child;
@@ -239,6 +241,15 @@ static const struct {
     {"/numerics/film_step_deg", "{\"physics\": {\"friction\": {\"model\": \"lubricated\"}}}"},
     /* the ring pack's tolerance is read only when it runs to periodicity */
     {"/numerics/periodic_tolerance", "{\"engine\": {\"cycles\": \"periodic\"}}"},
+    /* a bore map (its layers; points with 36 angles, enough for fit_order 16)
+     * needs a height */
+    {"/bore/layers/", "{\"contact\": {\"height\": 0}}"},
+    {"/bore/points/",
+     "{\"contact\": {\"height\": \"all\"}, \"bore\": {\"points\": {"
+     "\"theta_deg\": [0,10,20,30,40,50,60,70,80,90,100,110,120,130,140,150,160,170,"
+     "180,190,200,210,220,230,240,250,260,270,280,290,300,310,320,330,340,350],"
+     "\"z\": [0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0],"
+     "\"dr\": [0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0]}}}"},
 };
 
 /* Copies the members of `from` into `to`, merging objects. */

@@ -1,0 +1,77 @@
+/*
+ * rd_contact_map — the contact analysis' bore maps in the api
+ * (rd_bore_map.h): the rows of /bore/layers, /bore/points and
+ * /contact/height with their hooks, the scene's checks, and the result
+ * pieces (the bore at the height, the fit, the layers table).  Used by
+ * rd_an_contact.c only; the state is struct rd_contact_map_scene
+ * (rd_registry.h) in the contact options.
+ */
+#ifndef RD_CONTACT_MAP_H
+#define RD_CONTACT_MAP_H
+
+#include "rd_registry.h"
+
+struct json_t;
+
+/* One Fourier term of the contact bore's distortion (/bore/distortion and
+ * each layer's). */
+extern const rd_block rd_block_contact_distortion;
+
+/* The rows, for the contact scene's tables (ST is offsetof into struct
+ * rd_static_scene). */
+#define RD_CONTACT_MAP_BORE_ROWS(ST)                                                              \
+    {"layers",                                                                                    \
+     RD_F_CUSTOM,                                                                                 \
+     ST(map.layers_given),                                                                        \
+     .block = &rd_block_bore_layer,                                                               \
+     RD_MIN(1),                                                                                   \
+     RD_MAX(RD_BORE_LAYERS_MAX),                                                                  \
+     .parse = rd_contact_map_parse_layers,                                                        \
+     .echo = rd_contact_map_echo_layers,                                                          \
+     .desc = "The bore as layers down its height (a bore card): 1 to 50 {z, diameter, "           \
+             "distortion}, z strictly increasing; linear in z between them. With layers or "      \
+             "points, /contact/height is needed and /bore/distortion is refused; /bore/diameter " \
+             "is the diameter of layers that give none."},                                        \
+    {                                                                                             \
+        "points", RD_F_OPTBLOCK, ST(map.points_given), .block = &rd_block_bore_points             \
+    }
+#define RD_CONTACT_MAP_HEIGHT_ROW(ST)                                                            \
+    {                                                                                            \
+        "height", RD_F_CUSTOM, ST(map.height_given),                                             \
+            .parse = rd_contact_map_parse_height, .echo = rd_contact_map_echo_height,            \
+            .extra = "{\"oneOf\": [{\"type\": \"number\", \"minimum\": 0, \"maximum\": 10}, "    \
+                     "{\"type\": \"string\", \"enum\": [\"all\"]}]}",                            \
+            .desc = "With /bore/layers or /bore/points: the height (m, down from the top of "    \
+                    "the bore, within the first and last layers) the ring sits at, or \"all\": " \
+                    "a contact at every layer, reported as the `layers` table (the full result " \
+                    "is the layer with the largest light gap). Refused without a bore map."      \
+    }
+
+extern const rd_block rd_block_bore_layer;  /* one layer {z, diameter, distortion} */
+extern const rd_block rd_block_bore_points; /* /bore/points */
+
+int rd_contact_map_parse_layers(const rd_field *f, struct json_t *v, const char *path,
+                                struct rd_scene *s, rd_error *err);
+struct json_t *rd_contact_map_echo_layers(const struct rd_scene *s);
+int rd_contact_map_parse_height(const rd_field *f, struct json_t *v, const char *path,
+                                struct rd_scene *s, rd_error *err);
+struct json_t *rd_contact_map_echo_height(const struct rd_scene *s);
+
+/* After the plain bore's checks: the map's rules (named in each message),
+ * the fit of the points, and the bore at the height. */
+int rd_contact_map_finish(struct rd_scene *s, rd_error *err);
+/* Frees what the map state holds. */
+void rd_contact_map_cleanup(struct rd_contact_map_scene *m);
+
+/* Runs the scene's contact: the plain bore, the bore at the height, or
+ * (height "all") every layer.  *out is the result object from `build`
+ * for the solve reported (the layer with the largest light gap for
+ * "all"), with the map's pieces added: height_m, bore_at_height,
+ * bore_fit {residual_rms_m, layers}, layers [...].  NULL *out on success
+ * means out of memory. */
+typedef struct json_t *(*rd_contact_build)(const struct rd_scene *scene, const rd_bore *bore,
+                                           const rd_contact_result *res, double wall_s);
+int rd_contact_map_run(const struct rd_scene *s, const rd_monitor *mon, rd_contact_build build,
+                       struct json_t **out, rd_error *err);
+
+#endif
