@@ -51,7 +51,7 @@ export const ringpack = {
     ];
     fill(container,
       h('h3', {}, `Ring pack — ${rings.length} ring${rings.length === 1 ? '' : 's'}${isNum(rpm) ? ` at ${sig(rpm, 5)} rpm` : ''}`),
-      h('p', { id: 'rp-summary' }, `Blow-by ${isNum(b.l_per_min) ? sig(b.l_per_min) : '—'} L/min (${isNum(b.kg_per_cycle) ? sig(b.kg_per_cycle) : '—'} kg per cycle, at 1.01325 bar and 20 °C); back into the cylinder ${isNum(b.reverse_kg_per_cycle) ? sig(b.reverse_kg_per_cycle) : '—'} kg per cycle; last cycle against the one before: ${isNum(result.periodicity) ? sig(result.periodicity, 2) : '—'}.`),
+      h('p', { id: 'rp-summary' }, `Blow-by ${isNum(b.l_per_min) ? sig(b.l_per_min) : '—'} L/min (${isNum(b.kg_per_cycle) ? sig(b.kg_per_cycle) : '—'} kg per cycle, at 1.01325 bar and 20 °C); back into the cylinder ${isNum(b.reverse_kg_per_cycle) ? sig(b.reverse_kg_per_cycle) : '—'} kg per cycle; last cycle against the one before: ${isNum(result.periodicity) ? sig(result.periodicity, 2) : '—'}${periodicText(result)}.`),
       resultLinks(job, 'ringpack', 'Ring pack table (CSV)'),
       h('div', { id: 'rp-plots' }, figs),
       h('div', { class: 'table-wrap' }, modelTable(result)),
@@ -155,6 +155,14 @@ function modelTable(result) {
     h('tbody', {}, models.map((m, i) => h('tr', { id: `rp-model-${i + 1}` },
       h('th', { scope: 'row' }, String(i + 1)), h('td', {}, m.name ?? '—'), h('td', { class: 'num' }, dof(m)),
       h('td', { class: 'why' }, m.why ?? '')))));
+}
+
+// With cycles "periodic": whether the run settled, and after how many cycles.
+function periodicText(result) {
+  const n = result.numerics?.cycles;
+  if (result.periodic_reached === true) return ` (periodic: settled after ${n} cycles)`;
+  if (result.periodic_reached === false) return ` (periodic: NOT settled within ${n} cycles; the last is reported)`;
+  return '';
 }
 
 function costTable(result) {

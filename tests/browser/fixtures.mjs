@@ -213,7 +213,7 @@ export function contactRoundResult() {
 // api/rd_an_ringpack.c's result): ring 1 (30 µm clearance) lifts to its upper
 // flank around 90-300 deg, ring 2 (40 µm) hops half-way, ring 3 (40 µm) stays
 // seated.  The flank band, when not null, is numerics.flank_band.
-export function ringpackResult({ band = 0.01 } = {}) {
+export function ringpackResult({ band = 0.01, periodic } = {}) {
   const crank = Array.from({ length: 361 }, (_, i) => 2 * i);
   const ramp = (a, a0, a1) => Math.min(1, Math.max(0, (a - a0) / (a1 - a0)));
   const cas = [3e-5, 4e-5, 4e-5];
@@ -252,6 +252,7 @@ export function ringpackResult({ band = 0.01 } = {}) {
     flows: [{ name: 'ring_3_end_gap', from: 'third_land', to: 'crankcase', mass_flow_kg_s: crank.map((a) => 2e-5 * Math.exp(-(((a - 380) / 50) ** 2))) }],
     blowby: { kg_per_cycle: 1.4e-6, l_per_min: 1.39, reverse_kg_per_cycle: 2.9e-5, inflow_kg_per_cycle: 3.0e-5, mass_balance_residual: 6e-10 },
     periodicity: 0.004,
+    ...(periodic !== undefined ? { periodic_reached: periodic } : {}),
     numerics: {
       model: [model, model, model], steps: 1200, restarts: 8, cycles: 2, wall_s: 0.37, error_estimate: null, event_error_deg: null,
       ...(band !== null ? { flank_band: band } : {}),

@@ -1877,7 +1877,9 @@ for (const width of [1280, 390]) {
       // The ring pack: each ring's band at both flanks of its groove, on the lift plot's scale.
       await selectTab('ringpack');
       for (const band of [0.01, 0, null]) {
-        const rp = fixtures.ringpackResult({ band });
+        // cycles "periodic": the summary says whether it settled (band 0.01: not, 0: yes)
+        const periodic = band === 0.01 ? false : band === 0 ? true : undefined;
+        const rp = fixtures.ringpackResult({ band, periodic });
         const rjobs = await interceptJobs(rp);
         try {
           await runAnalysis('Run ringpack analysis');
@@ -1885,6 +1887,10 @@ for (const width of [1280, 390]) {
           await rjobs.stop();
         }
         await page.waitForSelector('#rp-lift');
+        const said = await page.textContent('#rp-summary');
+        if (periodic === false) assert.match(said, /periodic: NOT settled within 2 cycles/);
+        else if (periodic === true) assert.match(said, /periodic: settled after 2 cycles/);
+        else assert.doesNotMatch(said, /periodic:/);
         const d = await bandDrawing('#rp-lift');
         if (!band) {
           assert.deepEqual(d.strips, [], `ring pack, flank_band ${band}: no band drawn`);
