@@ -683,8 +683,8 @@ int rd_ringpack_rhs(const rd_ringpack_model *m, double t, const double *y, doubl
     "third of its cost"
 #define LINEAR_WHY                                                                           \
     "auto: the linear flank pressure's couple twists the ring, which the axial ring cannot " \
-    "represent (0.2 deg off on the full-load example's top ring, the second ring's flutter " \
-    "changed); ~2x its cost (numerics.model)"
+    "represent (3.5 % off in blow-by on the motored and 6000 rpm examples); 3-5x its cost "  \
+    "(numerics.model)"
 #define RIGID_WHY                                                                             \
     "auto: friction twists the ring and the twist decides when it leaves a flank, which the " \
     "axial ring cannot represent (9 deg off); the full ring costs ~50x more (numerics.model)"
