@@ -547,7 +547,7 @@ static int finish(struct rd_scene *s, rd_error *err)
     p->max_steps = o->max_steps;
     p->periodic = o->cycles == 0.0; /* "periodic": at most the most cycles */
     p->engine.cycles = p->periodic ? RD_RINGPACK_CYCLES_MAX : o->cycles;
-    if (!p->periodic && p->periodic_tolerance != 1e-3)
+    if (!p->periodic && p->periodic_tolerance != RD_RINGPACK_PERIODIC_TOL)
         return rd_error_set(err, RD_EINVAL, "/numerics/periodic_tolerance",
                             "/numerics/periodic_tolerance = %g is read only with /engine/cycles "
                             "\"periodic\" (here %g cycles are run).",

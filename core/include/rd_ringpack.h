@@ -98,10 +98,11 @@
 #include "rd_lift.h"
 #include "rd_ring.h"
 
-#define RD_RINGPACK_RINGS_MAX   3
-#define RD_RINGPACK_VOLUMES_MAX (2 * RD_RINGPACK_RINGS_MAX + 2) /* with cylinder, crankcase */
-#define RD_RINGPACK_FLOWS_MAX   (3 * RD_RINGPACK_RINGS_MAX + 1)
-#define RD_RINGPACK_CYCLES_MAX  50
+#define RD_RINGPACK_RINGS_MAX    3
+#define RD_RINGPACK_VOLUMES_MAX  (2 * RD_RINGPACK_RINGS_MAX + 2) /* with cylinder, crankcase */
+#define RD_RINGPACK_FLOWS_MAX    (3 * RD_RINGPACK_RINGS_MAX + 1)
+#define RD_RINGPACK_CYCLES_MAX   50
+#define RD_RINGPACK_PERIODIC_TOL 1e-3 /* numerics.periodic_tolerance's default */
 /* An oil ring's default leakage area C_d A, m^2: the 0.3 x 0.2 mm gap at
  * C_d 0.7 of the rectangular stand-in the thesis pack used before. */
 #define RD_RINGPACK_OIL_LEAK 4.2e-8

@@ -25,7 +25,7 @@ void rd_ringpack_params_default(rd_ringpack_params *p)
     p->engine.rod_length = 0.130;
     p->engine.kinematics = RD_KINEMATICS_EXACT;
     p->engine.cycles = 6.0;
-    p->periodic_tolerance = 1e-3;
+    p->periodic_tolerance = RD_RINGPACK_PERIODIC_TOL;
     p->n_rings = 1;
     for (int i = 0; i < RD_RINGPACK_RINGS_MAX; i++) {
         rd_ringpack_ring *r = &p->rings[i];

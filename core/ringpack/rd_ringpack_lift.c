@@ -146,7 +146,6 @@ static int lift_params(const rd_ringpack_model *m, int i, rd_packring *L)
     L->tab_top[0] = L->tab_top[1] = peak;
     L->tab_zero[0] = L->tab_zero[1] = 0.0;
     lp->gas = (rd_gas_params){2, L->tab_deg, L->tab_top, L->tab_zero, L->tab_zero, p->active_area};
-    /* ring_frame: the flank pressure's area rule */
     return ring_frame(p, i, lp, &L->tilt);
 }
 
