@@ -7,7 +7,7 @@
 #                                    cluster test)
 set -euo pipefail
 pkgs=(build-essential cmake pkg-config libmicrohttpd-dev libjansson-dev libsqlite3-dev zlib1g-dev libsundials-dev
-      liblapack-dev liblapacke-dev curl)
+      liblapack-dev liblapacke-dev libgsl-dev curl)
 if [ "${1:-}" = "--test" ]; then
   pkgs+=(chromium nodejs npm valgrind python3 python3-jsonschema clang clang-format libclang-rt-14-dev
          slurmctld slurmd slurm-client munge)
