@@ -275,6 +275,35 @@ static const rd_csv_column csv_columns[] = {
 };
 static const rd_csv_table csv = {NULL, NULL, csv_columns};
 
+static const char *const result_keys[] = {"analysis",
+                                          "scene",
+                                          "angle_deg",
+                                          "pressure_pa",
+                                          "clearance",
+                                          "bore_radius",
+                                          "width_deg",
+                                          "mean_pressure_pa",
+                                          "uniform_pressure_pa",
+                                          "contact_fraction",
+                                          "max_clearance",
+                                          "max_clearance_angle_deg",
+                                          "max_penetration",
+                                          "contact_stiffness",
+                                          "conformability",
+                                          "distortion",
+                                          "support",
+                                          "numerics",
+                                          "warnings",
+                                          "light_gaps",
+                                          "contact_patches",
+                                          "tip_forces_n",
+                                          "pressure_bins",
+                                          "height_m",
+                                          "bore_at_height",
+                                          "bore_fit",
+                                          "layers",
+                                          NULL};
+
 const rd_analysis_def rd_an_contact = {
     .name = "contact",
     .scene = &scene_block,
@@ -285,4 +314,5 @@ const rd_analysis_def rd_an_contact = {
     .run = run,
     .csv = &csv,
     .page = "contact.js",
+    .result_keys = result_keys,
 };

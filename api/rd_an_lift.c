@@ -681,6 +681,24 @@ static const rd_csv_column csv_columns[] = {
 };
 static const rd_csv_table csv = {NULL, NULL, csv_columns};
 
+static const char *const result_keys[] = {"analysis",
+                                          "scene",
+                                          "crank_deg",
+                                          "lift",
+                                          "lift_min",
+                                          "lift_max",
+                                          "lift_segments",
+                                          "twist_rad",
+                                          "friction_force",
+                                          "flank",
+                                          "events",
+                                          "numerics",
+                                          "warnings",
+                                          "lubrication",
+                                          "partial",
+                                          "crank_deg_reached",
+                                          NULL};
+
 const rd_analysis_def rd_an_lift = {
     .name = "lift",
     .scene = &scene_block,
@@ -691,4 +709,5 @@ const rd_analysis_def rd_an_lift = {
     .run = run,
     .csv = &csv,
     .page = "lift.js",
+    .result_keys = result_keys,
 };

@@ -190,6 +190,10 @@ static const rd_csv_column csv_columns[] = {
 };
 static const rd_csv_table csv = {NULL, "modes", csv_columns};
 
+static const char *const result_keys[] = {"analysis",          "scene", "rigid_body_modes",
+                                          "segment_angle_deg", "modes", "numerics",
+                                          "warnings",          NULL};
+
 const rd_analysis_def rd_an_modal = {
     .name = "modal",
     .scene = &scene_block,
@@ -200,4 +204,5 @@ const rd_analysis_def rd_an_modal = {
     .predict = predict,
     .csv = &csv,
     .page = "modal.js",
+    .result_keys = result_keys,
 };

@@ -156,6 +156,20 @@ static const rd_csv_column csv_columns[] = {
 };
 static const rd_csv_table csv = {"shape", NULL, csv_columns};
 
+static const char *const result_keys[] = {"analysis",
+                                          "scene",
+                                          "gap_opening_inner",
+                                          "lateral_opening",
+                                          "gap_opening_neutral",
+                                          "free_gap_formula",
+                                          "conformability",
+                                          "support",
+                                          "shape",
+                                          "numerics",
+                                          "warnings",
+                                          "section",
+                                          NULL};
+
 const rd_analysis_def rd_an_pretension = {
     .name = "pretension",
     .scene = &scene_block,
@@ -165,5 +179,6 @@ const rd_analysis_def rd_an_pretension = {
     .run = run,
     .csv = &csv,
     .page = "pretension.js",
+    .result_keys = result_keys,
     .general_sections = 1,
 };

@@ -781,6 +781,10 @@ static const char *const elsewhere[] = {
     "each ring's groove is /rings/i/groove",
     NULL};
 
+static const char *const result_keys[] = {
+    "analysis",         "scene", "crank_deg", "volumes",  "rings", "flows", "blowby", "periodicity",
+    "periodic_reached", "table", "numerics",  "warnings", NULL};
+
 const rd_analysis_def rd_an_ringpack = {
     .name = "ringpack",
     .scene = &scene_block,
@@ -791,5 +795,6 @@ const rd_analysis_def rd_an_ringpack = {
     .run = run,
     .csv = &csv,
     .page = "ringpack.js",
+    .result_keys = result_keys,
     .elsewhere = elsewhere,
 };

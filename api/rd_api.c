@@ -169,6 +169,40 @@ int rd_scene_parse_report(const char *body, size_t len, rd_scene **out, rd_error
     return rc;
 }
 
+int rd_scene_parse_report_as(const char *body, size_t len, const char *analysis, rd_scene **out,
+                             rd_error *err, char **error_json)
+{
+    json_t *root = analysis && len <= RD_API_BODY_MAX ? json_loadb(body, len, 0, NULL) : NULL;
+    if (!json_is_object(root)) { /* not JSON, or not an object: the usual answer */
+        json_decref(root);
+        return rd_scene_parse_report(body, len, out, err, error_json);
+    }
+    json_t *given = json_object_get(root, "analysis");
+    int rc = RD_OK;
+    *out = NULL;
+    if (!given)
+        rc = json_object_set_new(root, "analysis", json_string(analysis)) == 0 ? RD_OK : RD_ENOMEM;
+    else if (!json_is_string(given) || strcmp(json_string_value(given), analysis) != 0)
+        rc = rd_error_set(err, RD_EREQUEST, "/analysis",
+                          "/analysis: this path takes a %s (\"analysis\" absent or \"%s\"); "
+                          "submit other scenes to /api/v1/jobs",
+                          analysis, analysis);
+    char *text = rc == RD_OK ? json_dumps(root, JSON_COMPACT) : NULL;
+    json_decref(root);
+    if (rc == RD_OK && !text)
+        rc = RD_ENOMEM;
+    if (rc == RD_ENOMEM)
+        rd_error_set(err, RD_ENOMEM, "", "out of memory while reading the body");
+    if (rc != RD_OK) {
+        if (error_json)
+            *error_json = rd_api_error_json(err);
+        return rc;
+    }
+    rc = rd_scene_parse_report(text, strlen(text), out, err, error_json);
+    free(text);
+    return rc;
+}
+
 int rd_api_http_status(int code)
 {
     switch (code) {

@@ -94,6 +94,14 @@ char *rd_api_openapi_json(const char *template_json, rd_error *err);
 int rd_scene_parse_report(const char *body, size_t len, rd_scene **out, rd_error *err,
                           char **error_json);
 
+/* rd_scene_parse_report of a body posted to a study's own path
+ * (POST /api/v1/calibrations: `analysis` "calibration"): a JSON object
+ * without "analysis" is taken as that analysis; one that names another is
+ * refused (RD_EREQUEST at /analysis, 400).  `analysis` NULL: exactly
+ * rd_scene_parse_report. */
+int rd_scene_parse_report_as(const char *body, size_t len, const char *analysis, rd_scene **out,
+                             rd_error *err, char **error_json);
+
 /* {"error": {"code": "...", "message": "...", "path": "..."}}; path omitted when empty. */
 char *rd_api_error_json(const rd_error *err);
 

@@ -63,6 +63,10 @@ typedef struct rd_analysis_def {
      * turned principal axes); 0: refuses them, naming the analysis
      * (rd_section_scene.c). */
     int general_sections;
+    /* The top-level members of its result (NULL-ended; the OpenAPI result
+     * schema's properties, tests/api/test_schema.c): what a study's result
+     * pointer may start with (rd_study.h). */
+    const char *const *result_keys;
 } rd_analysis_def;
 
 /* The built-in registry, NULL-ended, in enum rd_analysis order. */

@@ -78,12 +78,15 @@ static int parse_analysis(const rd_analysis_def *const *registry, json_t *root, 
 
 /* A zeroed scene of `an` with the common and the analysis' defaults:
  * the thesis ring, cut as the thesis recommends (3.3). */
+static const struct rd_scene_ops scene_ops = {rd_scene_parse_value, rd_scene_free};
+
 static rd_scene *scene_new(const rd_analysis_def *an, int index)
 {
     rd_scene *s = calloc(1, sizeof *s);
     if (!s)
         return NULL;
     s->analysis = index;
+    s->ops = &scene_ops;
     s->an = an;
     if (an->opts_size && !(s->opts = calloc(1, an->opts_size))) {
         free(s);

@@ -47,7 +47,8 @@ enum rd_analysis {
     RD_ANALYSIS_PRETENSION,
     RD_ANALYSIS_CONTACT,
     RD_ANALYSIS_LIFT,
-    RD_ANALYSIS_RINGPACK
+    RD_ANALYSIS_RINGPACK,
+    RD_ANALYSIS_CALIBRATION
 };
 
 /* An array of numbers read from the scene (malloc'd). */
@@ -56,8 +57,18 @@ struct rd_table {
     int n;
 };
 
+/* What a study (an analysis that runs other scenes, rd_study.h) needs of
+ * this module, handed down in every scene: the analyses stay below
+ * rd_scene.c, which lists them, with no circle of calls through the
+ * registry (tests/lint/layers.py). */
+struct rd_scene_ops {
+    int (*parse_value)(struct json_t *value, rd_scene **out, rd_error *err);
+    void (*free)(rd_scene *scene);
+};
+
 struct rd_scene {
     int analysis;                     /* index into the registry it was parsed with */
+    const struct rd_scene_ops *ops;   /* rd_scene_parse_value and rd_scene_free */
     const struct rd_analysis_def *an; /* that registry entry */
     char *name;                       /* optional metadata, NULL when absent; owned */
     char *description;                /* optional metadata, NULL when absent; owned */

@@ -30,6 +30,8 @@ enum { EXIT_INPUT = RD_CLI_EXIT_INPUT, EXIT_RUN = RD_CLI_EXIT_RUN };
 static const char usage[] =
     "usage: ringdyn run [--csv] SCENE   run a scene, print the result JSON (or CSV)\n"
     "       ringdyn check SCENE         validate a scene, print it with defaults filled\n"
+    "       ringdyn calibrate SPEC      fit a scene's parameters to measurements (a calibration;\n"
+    "                                   \"analysis\" may be left out), print the result JSON\n"
     "       ringdyn sweep count|scene|run|reduce ...   sweeps (ringdyn sweep --help)\n"
     "       ringdyn openapi TEMPLATE    print the OpenAPI document built on TEMPLATE\n"
     "       ringdyn --version | --help\n"
@@ -59,10 +61,11 @@ static int read_scene(const char *name, char **buf, size_t *len, rd_error *err)
     }
 }
 
-/* `run` and `check`: parse, then print the echo (check) or run and print
+/* `run`, `check` and `calibrate` (`as`: the analysis a body without one
+ * is taken as): parse, then print the echo (check) or run and print
  * the result as pretty JSON or CSV.  A run stopped by a signal prints the
  * partial result it returned (a lift run's whole cycles), then fails. */
-static int command(const char *file, int run, int csv)
+static int command(const char *file, int run, int csv, const char *as)
 {
     rd_error err, stopped;
     rd_scene *scene = NULL;
@@ -75,7 +78,7 @@ static int command(const char *file, int run, int csv)
     rd_error_init(&err);
     rd_error_init(&stopped);
     if (read_scene(file, &body, &len, &err) != RD_OK ||
-        rd_scene_parse(body, len, &scene, &err) != RD_OK) {
+        rd_scene_parse_report_as(body, len, as, &scene, &err, NULL) != RD_OK) {
         status = rd_cli_fail(&err);
         goto out;
     }
@@ -166,6 +169,8 @@ int main(int argc, char **argv)
         return rd_sweep_cli_main(argc - 2, argv + 2);
     if (argc == 3 && strcmp(argv[1], "openapi") == 0)
         return openapi(argv[2]);
+    if (argc == 3 && strcmp(argv[1], "calibrate") == 0)
+        return command(argv[2], 1, 0, "calibration");
     if (argc < 3 || (strcmp(argv[1], "run") != 0 && strcmp(argv[1], "check") != 0))
         goto usage;
     int run = strcmp(argv[1], "run") == 0;
@@ -179,7 +184,7 @@ int main(int argc, char **argv)
     }
     if (!file)
         goto usage;
-    return command(file, run, csv);
+    return command(file, run, csv, NULL);
 usage:
     fputs(usage, stderr);
     return EXIT_INPUT;

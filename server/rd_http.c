@@ -51,9 +51,13 @@ static enum route match_route(const char *url, char *arg, size_t argsz)
     static const struct {
         const char *path;
         enum route route;
-    } fixed[] = {{"/api/v1/jobs", ROUTE_JOBS},     {"/api/v1/examples", ROUTE_EXAMPLES},
-                 {"/api/v1/health", ROUTE_HEALTH}, {"/api/v1/openapi.json", ROUTE_OPENAPI},
-                 {"/metrics", ROUTE_METRICS},      {"/api/v1/sweeps", ROUTE_SWEEPS}};
+    } fixed[] = {{"/api/v1/jobs", ROUTE_JOBS},
+                 {"/api/v1/examples", ROUTE_EXAMPLES},
+                 {"/api/v1/health", ROUTE_HEALTH},
+                 {"/api/v1/openapi.json", ROUTE_OPENAPI},
+                 {"/metrics", ROUTE_METRICS},
+                 {"/api/v1/sweeps", ROUTE_SWEEPS},
+                 {"/api/v1/calibrations", ROUTE_CALIBRATIONS}};
     arg[0] = '\0';
     for (size_t i = 0; i < sizeof fixed / sizeof fixed[0]; i++)
         if (strcmp(url, fixed[i].path) == 0)
@@ -107,6 +111,8 @@ static const char *allowed_methods(enum route r)
     case ROUTE_JOB:
     case ROUTE_SWEEP:
         return "GET, HEAD, DELETE";
+    case ROUTE_CALIBRATIONS:
+        return "POST";
     default:
         return "GET, HEAD";
     }
@@ -120,6 +126,8 @@ static const char *allowed_params(enum route r, const char *method)
     switch (r) {
     case ROUTE_JOBS:
         return post ? "wait, time_limit_s" : "limit, status, analysis, name, cursor";
+    case ROUTE_CALIBRATIONS:
+        return "wait, time_limit_s";
     case ROUTE_SWEEPS:
         return post ? "wait" : "limit";
     case ROUTE_JOB: /* GET and HEAD: the long poll */

@@ -93,6 +93,7 @@ struct request {
     int too_large; /* the body passed RD_API_BODY_MAX: the rest is dropped */
     int no_memory;
     int sweep;           /* a POST /api/v1/sweeps; with WAIT_SWEEP: a wait that answers it */
+    const char *as;      /* a POST to a study's path: the analysis its body is ("calibration") */
     int gzip;            /* the client accepts gzip */
     const char *cache;   /* X-Ringdyn-Cache of a submission: "hit", "miss", "bypass", or NULL */
     double time_limit_s; /* ?time_limit_s=, 0 when not given */
@@ -112,7 +113,8 @@ enum route {
     ROUTE_STATIC,
     ROUTE_SWEEPS,
     ROUTE_SWEEP,
-    ROUTE_SWEEP_CSV
+    ROUTE_SWEEP_CSV,
+    ROUTE_CALIBRATIONS
 };
 
 /* ---- rd_http_util.c ---- */

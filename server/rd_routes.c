@@ -466,7 +466,8 @@ enum MHD_Result rd_routes_finish_submit(rd_http *h, struct MHD_Connection *c, st
         rd_jobs_hash(rq->body ? rq->body : "", rq->body ? rq->len : 0, opts.idem_hash);
     rd_scene *scene = NULL;
     char *errors = NULL; /* the error body with every problem (rd_api.h) */
-    int rc = rd_scene_parse_report(rq->body ? rq->body : "", rq->len, &scene, &err, &errors);
+    int rc =
+        rd_scene_parse_report_as(rq->body ? rq->body : "", rq->len, rq->as, &scene, &err, &errors);
     free(rq->body);
     rq->body = NULL;
     if (rc != RD_OK && err.code != RD_OK && errors)
@@ -532,6 +533,9 @@ enum MHD_Result rd_routes_begin(rd_http *h, struct MHD_Connection *c, struct req
         return get_openapi(h, c, rq);
     case ROUTE_METRICS:
         return get_metrics(h, c, rq);
+    case ROUTE_CALIBRATIONS: /* POST only: a job whose analysis is calibration */
+        rq->as = "calibration";
+        return begin_submit(h, c, rq);
     case ROUTE_SWEEPS:
         if (strcmp(method, MHD_HTTP_METHOD_POST) == 0) {
             rq->sweep = 1;

@@ -50,8 +50,14 @@
 #include "rd_error.h"
 
 #define RD_FIT_PARAMS_MAX 16
-#define RD_FIT_REL_STEP   1e-3 /* forward-difference step, relative to the scale s_j */
-#define RD_FIT_RANK_TOL   1e-7 /* w_k / w_1 below this: a direction the data cannot fix */
+/* The forward-difference step, relative to the scale s_j: large enough that
+ * a solver's own error in the residuals (rtol 1e-6 leaves ~1e-5 of a ring
+ * pack's blow-by) stays ~1e-3 of the differences (at 1e-3 the Jacobian of a
+ * correlated ring-pack fit was wrong enough to crawl 69 iterations where
+ * this takes 7); its truncation error, ~h f''/(2 f') ~ 0.5 %, moves the
+ * standard errors by that much and the optimum not at all. */
+#define RD_FIT_REL_STEP 1e-2
+#define RD_FIT_RANK_TOL 1e-7 /* w_k / w_1 below this: a direction the data cannot fix */
 
 /* Evaluates the weighted residuals at `n_points` parameter vectors at once:
  * x[k] (n_params values) -> r[k] (n_resid values), k < n_points.  Returns
@@ -66,14 +72,18 @@ typedef struct rd_fit_problem {
     rd_fit_eval_fn eval;
     void *ctx;
     size_t max_points;     /* at most this many parameter vectors evaluated (0: 50 (p + 1)) */
-    double xtol;           /* converged when every step |du_j| <= xtol (|u_j| + xtol) (0: 1e-8) */
+    double xtol;           /* converged when a step moves every x_j by <= xtol s_j (0: 1e-8) */
     double gtol;           /* ... or the scaled gradient is below gtol (0: 1e-10) */
+    double ftol;           /* ... or a step lowers chi^2 by <= ftol max(1, chi^2); 0: not used */
+    double stol;           /* ... or a step moves every x_j by <= stol of its standard error
+                    (from the Jacobian there); 0: not used */
     const rd_monitor *mon; /* progress (points used / max_points) and cancel; may be NULL */
 } rd_fit_problem;
 
 /* Why the fit stopped (all but RD_FIT_BUDGET are convergence). */
 enum rd_fit_stop {
-    RD_FIT_STEP,       /* the step fell below xtol */
+    RD_FIT_STEP,       /* the step fell below xtol or stol standard errors, or chi^2's fall
+                          below ftol */
     RD_FIT_GRADIENT,   /* the gradient fell below gtol */
     RD_FIT_EXACT,      /* chi^2 below 1e-28 m: the data fitted exactly */
     RD_FIT_NOPROGRESS, /* no step lowers chi^2 any more (the noise of the residuals) */

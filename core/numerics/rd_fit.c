@@ -283,15 +283,43 @@ out:
     return rc;
 }
 
-/* Iterates until a convergence test, the budget or an error. */
+/* Did the last step dx move every parameter by at most stol of its
+ * standard error (the covariance from GSL's Jacobian at u, mapped to x)? */
+static int below_errors(const fit_ctx *c, gsl_multifit_nlinear_workspace *w, const double *dx)
+{
+    if (!(c->fp->stol > 0))
+        return 0;
+    gsl_matrix *cov = gsl_matrix_alloc(c->p, c->p);
+    gsl_vector *u = gsl_multifit_nlinear_position(w);
+    int ok = cov && gsl_multifit_nlinear_covar(gsl_multifit_nlinear_jac(w), 0.0, cov) == 0;
+    for (size_t j = 0; ok && j < c->p; j++) {
+        double sd = fabs(dx_du(c->fp, j, gsl_vector_get(u, j))) * sqrt(gsl_matrix_get(cov, j, j));
+        ok = isfinite(sd) && fabs(dx[j]) <= c->fp->stol * sd;
+    }
+    gsl_matrix_free(cov);
+    return ok;
+}
+
+/* Iterates until a convergence test, the budget or an error.  The step
+ * test is on x, relative to each parameter's scale (GSL's own is on u). */
 static int iterate(fit_ctx *c, gsl_multifit_nlinear_workspace *w, double xtol, double gtol,
                    rd_fit_result *res)
 {
+    double prev[RD_FIT_PARAMS_MAX];
+    gsl_vector *u = gsl_multifit_nlinear_position(w);
+    for (size_t j = 0; j < c->p; j++)
+        prev[j] = x_of_u(c->fp, j, gsl_vector_get(u, j));
+    double last = INFINITY;
     for (;;) {
         double chi2 = 0;
         gsl_vector *f = gsl_multifit_nlinear_residual(w);
         for (size_t i = 0; i < c->m; i++)
             chi2 += gsl_vector_get(f, i) * gsl_vector_get(f, i);
+        if (c->fp->ftol > 0 && last - chi2 <= c->fp->ftol * fmax(1.0, chi2)) {
+            res->stop = RD_FIT_STEP;
+            return RD_OK;
+        }
+        last = chi2;
         if (chi2 < 1e-28 * (double)c->m) {
             res->stop = RD_FIT_EXACT;
             return RD_OK;
@@ -313,10 +341,21 @@ static int iterate(fit_ctx *c, gsl_multifit_nlinear_workspace *w, double xtol, d
         if (status != GSL_SUCCESS)
             return rd_error_set(c->err, RD_ENUMERIC, "", "the least-squares solver failed: %s",
                                 gsl_strerror(status));
+        double step = 0, dx[RD_FIT_PARAMS_MAX];
+        for (size_t j = 0; j < c->p; j++) {
+            double x = x_of_u(c->fp, j, gsl_vector_get(u, j));
+            dx[j] = x - prev[j];
+            step = fmax(step, fabs(dx[j]) / scale_of(c->fp, j, x));
+            prev[j] = x;
+        }
+        if (step <= xtol || below_errors(c, w, dx)) {
+            res->stop = RD_FIT_STEP;
+            return RD_OK;
+        }
         int info = 0;
-        gsl_multifit_nlinear_test(xtol, gtol, 0.0, &info, w);
-        if (info) {
-            res->stop = info == 1 ? RD_FIT_STEP : RD_FIT_GRADIENT;
+        gsl_multifit_nlinear_test(0.0, gtol, 0.0, &info, w);
+        if (info == 2) {
+            res->stop = RD_FIT_GRADIENT;
             return RD_OK;
         }
     }
@@ -363,8 +402,12 @@ static int finish(fit_ctx *c, gsl_multifit_nlinear_workspace *w, rd_fit_result *
     for (size_t j = 0; j < c->p; j++) {
         double uj = gsl_vector_get(u, j);
         res->x[j] = x_of_u(c->fp, j, uj);
-        double t = sin(uj), tol = 1e-9;
-        res->at_bound[j] = t <= -1 + tol ? -1 : t >= 1 - tol ? 1 : 0;
+        double near = 1e-6 * (c->fp->hi[j] - c->fp->lo[j]);
+        res->at_bound[j] = res->x[j] <= c->fp->lo[j] + near   ? -1
+                           : res->x[j] >= c->fp->hi[j] - near ? 1
+                                                              : 0;
+        if (res->at_bound[j]) /* within 1e-6 of the range: the bound itself */
+            res->x[j] = res->at_bound[j] < 0 ? c->fp->lo[j] : c->fp->hi[j];
     }
     res->chi2 = 0;
     for (size_t i = 0; i < c->m; i++) {

@@ -119,6 +119,18 @@ static void test_registry(void)
         CHECK(got && strcmp(got, ref) == 0, "%s: in the Scene discriminator", an->name);
         CHECK(count_examples(an->name) >= 1, "%s: at least one example in examples/", an->name);
         CHECK(an->csv || (an->csv_none && *an->csv_none), "%s: a CSV table or why none", an->name);
+        /* result_keys (what a study's observe pointer may start with) are
+         * exactly the members of its OpenAPI result schema */
+        char result[128];
+        size_t stem = strlen(an->scene->name) - strlen("Scene");
+        snprintf(result, sizeof result, "%.*sResult", (int)stem, an->scene->name);
+        json_t *props = json_object_get(json_object_get(schemas, result), "properties");
+        size_t nkeys = 0;
+        for (const char *const *k = an->result_keys; k && *k; k++, nkeys++)
+            CHECK(json_object_get(props, *k) != NULL, "%s: result key %s in %s", an->name, *k,
+                  result);
+        CHECK(nkeys > 0 && nkeys == json_object_size(props), "%s: %zu result keys, %s has %zu",
+              an->name, nkeys, result, json_object_size(props));
         CHECK(an->page != NULL, "%s: a page tab or \"none\"", an->name);
         if (an->page && strcmp(an->page, "none") != 0) {
             char rel[256], import[300];
@@ -228,9 +240,17 @@ static void set_path(json_t *root, const char *path, json_t *v)
  * thin width (b/h <= 20); the Stribeck parameters are read only by that
  * model; the finest output step needs a short run (at most 200000
  * samples). */
+/* A calibration needs a base, parameters and measurements (no defaults). */
+#define MIN_CALIBRATION                                                                        \
+    "{\"base\": {\"analysis\": \"modal\"}, \"parameters\": [{\"path\": "                       \
+    "\"/ring/tangential_force\", \"min\": 5, \"max\": 20}], \"measurements\": [{\"observe\": " \
+    "\"/modes/0/frequency_hz\", \"value\": 100, \"sigma\": 1}]}"
+
 static const struct {
     const char *prefix, *scene;
 } companions[] = {
+    {"/numerics/max_runs", MIN_CALIBRATION},
+    {"/numerics/threads", MIN_CALIBRATION},
     {"/ring/axial_height", "{\"ring\": {\"radial_width\": 1e-5}}"},
     {"/physics/friction/", "{\"physics\": {\"friction\": {\"model\": \"stribeck\"}}}"},
     {"/output/step_deg", "{\"engine\": {\"cycles\": 0.1}}"},
@@ -375,8 +395,11 @@ static void test_ranges(void)
 
 static json_t *echo_of(const rd_analysis_def *an)
 {
-    char body[128];
-    snprintf(body, sizeof body, "{\"analysis\":\"%s\"}", an->name);
+    char body[512];
+    if (strcmp(an->name, "calibration") == 0) /* no bare calibration: the smallest one */
+        snprintf(body, sizeof body, "{\"analysis\":\"calibration\",%s", MIN_CALIBRATION + 1);
+    else
+        snprintf(body, sizeof body, "{\"analysis\":\"%s\"}", an->name);
     rd_scene *s = NULL;
     rd_error err;
     rd_error_init(&err);

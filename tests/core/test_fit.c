@@ -166,6 +166,41 @@ static void test_coverage(void)
     CHECK(fabs(f2 - 0.954) < 0.026, "within 2 sigma %.3f of the time, want 0.954", f2);
 }
 
+/* stol: a noisy fit stopped once its steps are 1e-3 of its standard
+ * errors lands within 1e-2 of them from the fully converged one. */
+static void test_stol(void)
+{
+    const double truth[3] = {5, 1.5, 1}, lo[3] = {0, 0.1, -10}, hi[3] = {20, 10, 10},
+                 x0[3] = {1, 0.5, 0};
+    uint64_t seed = 3;
+    data d;
+    fill(&d, 1, truth, 0.05, &seed);
+    rd_fit_problem fp = {.n_params = 3,
+                         .n_resid = NT,
+                         .lo = lo,
+                         .hi = hi,
+                         .start = x0,
+                         .eval = eval,
+                         .ctx = &d,
+                         .xtol = 1e-14};
+    rd_fit_result full, early;
+    rd_error err;
+    rd_error_init(&err);
+    CHECK(rd_fit_solve(&fp, &full, &err) == RD_OK, "%s", err.message);
+    fp.stol = 1e-3;
+    CHECK(rd_fit_solve(&fp, &early, &err) == RD_OK, "%s", err.message);
+    for (int j = 0; j < 3; j++)
+        CHECK(fabs(early.x[j] - full.x[j]) <= 1e-2 * full.std_error[j],
+              "parameter %d: %.12g stopped early, %.12g converged (std error %g)", j, early.x[j],
+              full.x[j], full.std_error[j]);
+    CHECK(early.points <= full.points && early.stop != RD_FIT_BUDGET,
+          "stol stops (%s) after %zu evaluations, not more than %zu", rd_fit_stop_name(early.stop),
+          early.points, full.points);
+    printf("stol 1e-3: %zu evaluations, %zu to xtol 1e-14\n", early.points, full.points);
+    rd_fit_result_cleanup(&full);
+    rd_fit_result_cleanup(&early);
+}
+
 static void test_product(void)
 {
     const double truth[2] = {2, 3}, lo[2] = {0.1, 0.1}, hi[2] = {10, 10}, x0[2] = {1, 1};
@@ -199,7 +234,8 @@ static void test_bound_and_rosenbrock(void)
     rd_error_init(&err);
     CHECK(rd_fit_solve(&fp, &res, &err) == RD_OK, "%s", err.message);
     CHECK(res.at_bound[1] == -1 && res.x[1] == -0.5 && res.at_bound[0] == 0,
-          "a slope below its bound stops at it (%g, flag %d)", res.x[1], res.at_bound[1]);
+          "a slope below its bound stops at it (%g, flag %d; intercept %g, flag %d, stop %s)",
+          res.x[1], res.at_bound[1], res.x[0], res.at_bound[0], rd_fit_stop_name(res.stop));
     rd_fit_result_cleanup(&res);
 
     const double rlo[2] = {-5, -5}, rhi[2] = {5, 5}, r0[2] = {-1.2, 1};
@@ -264,6 +300,7 @@ int main(void)
     test_exponential_exact();
     test_line_covariance();
     test_coverage();
+    test_stol();
     test_product();
     test_bound_and_rosenbrock();
     test_budget_and_errors();
