@@ -39,8 +39,7 @@ static void fold(json_t *v, double *lo, double *hi, double *sum, size_t *n, json
     }
 }
 
-/* The cell of output o for a result (new reference; NULL out of memory). */
-static json_t *output_value(const output *o, json_t *result)
+json_t *rd_sweep_output_value(const output *o, json_t *result)
 {
     if (o->kind == O_POINTER) {
         json_t *v;
@@ -88,7 +87,7 @@ static int append_outputs(const rd_sweep *s, json_t *row, const char *result_tex
     json_t *result = json_loads(result_text, 0, NULL);
     int rc = result ? 0 : -1;
     for (int k = 0; rc == 0 && k < s->no; k++)
-        rc = json_array_append_new(row, output_value(&s->o[k], result));
+        rc = json_array_append_new(row, rd_sweep_output_value(&s->o[k], result));
     json_decref(result);
     if (rc == 0)
         rc = json_array_append_new(row, json_string("ok"));
@@ -111,6 +110,17 @@ static int append_failure(const rd_sweep *s, json_t *row, const rd_error *e)
     return rc;
 }
 
+int rd_sweep_run_scene(json_t *scene, const rd_monitor *mon, char **result, rd_error *e)
+{
+    rd_scene *sc = NULL;
+    *result = NULL;
+    int status = rd_scene_parse_value(scene, &sc, e);
+    if (status == RD_OK)
+        status = rd_scene_run(sc, mon, result, e);
+    rd_scene_free(sc);
+    return status;
+}
+
 int rd_sweep_run_point(const rd_sweep *s, size_t i, const rd_monitor *mon, char **row,
                        rd_error *err)
 {
@@ -126,13 +136,14 @@ int rd_sweep_run_point(const rd_sweep *s, size_t i, const rd_monitor *mon, char 
         rc = json_array_append_new(r, rd_sweep_param_value(s, p, i));
     rd_error e;
     rd_error_init(&e);
-    rd_scene *sc = NULL;
     char *result = NULL;
     int status = RD_ENOMEM;
-    if (rc == 0) {
-        status = rd_scene_parse_value(scene, &sc, &e);
-        if (status == RD_OK)
-            status = rd_scene_run(sc, mon, &result, &e);
+    if (rc == 0 && s->over.n) {
+        status = rd_sweep_over_run(s, i, scene, mon, r, err);
+        if (status != RD_OK)
+            goto out;
+    } else if (rc == 0) {
+        status = rd_sweep_run_scene(scene, mon, &result, &e);
         if (status == RD_ECANCELED) {
             rd_error_set(err, RD_ECANCELED, "", "the sweep was cancelled at point %zu", i);
             goto out;
@@ -144,7 +155,6 @@ int rd_sweep_run_point(const rd_sweep *s, size_t i, const rd_monitor *mon, char 
     status = *row ? RD_OK : rd_error_set(err, RD_ENOMEM, "", "out of memory at point %zu", i);
 out:
     free(result);
-    rd_scene_free(sc);
     json_decref(scene);
     json_decref(r);
     return status;
