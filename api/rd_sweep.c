@@ -257,7 +257,7 @@ static int parse_random(json_t *r, const char *path, param *q, rd_error *err)
 
 /* A parameter at `path` in the spec (/parameters/k, or /over without
  * random): {"path", one of values/range/random}. */
-int rd_sweep_parse_param(json_t *v, const char *path, int random_ok, param *q, rd_error *err)
+static int parse_param(json_t *v, const char *path, int random_ok, param *q, rd_error *err)
 {
     static const char *const keys[] = {"path", "values", "range", "random", NULL};
     static const char *const over_keys[] = {"path", "values", "range", NULL};
@@ -265,6 +265,12 @@ int rd_sweep_parse_param(json_t *v, const char *path, int random_ok, param *q, r
     char sub[80];
     if (!json_is_object(v))
         return spec_error(err, path, "%s must be an object {path, %s}", path, forms);
+    if (!random_ok && json_object_get(v, "random"))
+        return spec_error(err, path,
+                          "%s takes \"values\" or \"range\", not \"random\": every value of "
+                          "an over is run (use a random parameter with \"combine\": "
+                          "\"latin_hypercube\" to sample)",
+                          path);
     if (known_keys(v, random_ok ? keys : over_keys, path, err))
         return err->code;
     json_t *p = json_object_get(v, "path");
@@ -442,7 +448,7 @@ static int parse_lists(rd_sweep *s, json_t *spec, rd_error *err)
         int p = s->np;
         char path[64];
         snprintf(path, sizeof path, "/parameters/%d", p);
-        if (rd_sweep_parse_param(json_array_get(params, (size_t)p), path, 1, &s->p[p], err))
+        if (parse_param(json_array_get(params, (size_t)p), path, 1, &s->p[p], err))
             return err->code;
         for (int q = 0; q < p; q++)
             if (strcmp(s->p[q].path, s->p[p].path) == 0)
@@ -558,8 +564,7 @@ static int check_finite(const rd_sweep *s, const param *q, int p, const char *pr
 
 /* Every value of q that validation tries (rd_sweep.h); p its index, or -1
  * for the over; errors at `prefix` (/parameters/p or /over). */
-int rd_sweep_check_param(const rd_sweep *s, const param *q, int p, const char *prefix,
-                         rd_error *err)
+static int check_param(const rd_sweep *s, const param *q, int p, const char *prefix, rd_error *err)
 {
     const char *what = p < 0 ? "over" : "parameter";
     char where[96];
@@ -626,9 +631,10 @@ static int parse_spec(rd_sweep *s, size_t max, rd_error *err)
         return rc == RD_ENOMEM ? rd_error_set(err, rc, "", "%s", e.message)
                                : spec_error(err, path, "the base scene is invalid: %s", e.message);
     }
-    if (parse_lists(s, spec, err) || rd_sweep_over_parse(s, spec, err) ||
-        parse_combine(s, spec, err) || parse_seed(spec, &seed, err) ||
-        count_points(s, spec, max, err))
+    json_t *over = json_object_get(spec, "over");
+    if (parse_lists(s, spec, err) || (over && parse_param(over, "/over", 0, &s->over, err)) ||
+        rd_sweep_over_check(s, spec, err) || parse_combine(s, spec, err) ||
+        parse_seed(spec, &seed, err) || count_points(s, spec, max, err))
         return err->code;
     if (s->combine == C_LHS && (double)s->points * s->np > RD_SWEEP_LHS_ENTRIES_MAX)
         return spec_error(err, "/samples",
@@ -640,10 +646,10 @@ static int parse_spec(rd_sweep *s, size_t max, rd_error *err)
     for (int p = 0; p < s->np; p++) {
         char at[64];
         snprintf(at, sizeof at, "/parameters/%d", p);
-        if (rd_sweep_check_param(s, &s->p[p], p, at, err))
+        if (check_param(s, &s->p[p], p, at, err))
             return err->code;
     }
-    return s->over.n ? rd_sweep_check_param(s, &s->over, -1, "/over", err) : RD_OK;
+    return s->over.n ? check_param(s, &s->over, -1, "/over", err) : RD_OK;
 }
 
 int rd_sweep_parse(const char *body, size_t len, size_t max_points, rd_sweep **out, rd_error *err)
