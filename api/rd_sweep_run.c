@@ -174,7 +174,10 @@ static int collect(const rd_sweep *s, size_t k, const char *result_text, json_t 
                                                   : "true or false");
             name_value(s, k, e);
         }
-        rc = rc == RD_OK && json_array_append_new(cells, c) != 0 ? RD_ENOMEM : rc;
+        if (rc != RD_OK)
+            json_decref(c);
+        else if (json_array_append_new(cells, c) != 0)
+            rc = RD_ENOMEM;
     }
     if (rc == RD_OK && json_array_append(runs, cells) != 0)
         rc = RD_ENOMEM;
