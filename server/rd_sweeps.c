@@ -30,6 +30,7 @@
 #include <unistd.h>
 
 #include <jansson.h>
+#include <math.h>
 
 #include "rd_api.h"
 #include "rd_clock.h"
@@ -52,8 +53,7 @@ struct sweep {
     char hash[RD_SWEEPS_ID_LEN + 1]; /* rd_sweep_hash */
     int fidelity;
     rd_sweep_request req; /* NULL sweep once frozen and released */
-    size_t n, next_point, running, done, failed;
-    size_t m, partial; /* runs per point; runs done of the points running (progress) */
+    size_t n, next_point, running, done, failed, m, partial; /* m: runs per point */
     char **rows;
     char *spare_row; /* rows[i] of a point whose row could not be made (shared) */
     int status, cancel;
@@ -83,7 +83,7 @@ struct point_ctx {
     struct sweep *sw;
     double deadline; /* CLOCK_MONOTONIC */
     int timed_out;
-    size_t runs; /* of this point, done as its monitor last said (in sw->partial) */
+    size_t runs; /* done, as its monitor last said (< m); sw->partial sums them */
 };
 
 static int is_final(int status)
@@ -343,13 +343,12 @@ static void notify_final(rd_sweeps *ss)
         ss->cfg.on_final(ss->cfg.on_final_ctx);
 }
 
-/* rd_monitor.report: counts the point's runs done; non-zero asks it to stop. */
+/* rd_monitor.report: counts runs done (the last with the row); non-zero asks to stop. */
 static int report(void *arg, double fraction)
 {
     struct point_ctx *p = arg;
-    size_t m = p->sw->m, k = (size_t)(fraction * (double)m + 1e-9);
+    size_t k = (size_t)fmin(fraction * (double)p->sw->m + 1e-9, (double)(p->sw->m - 1));
     pthread_mutex_lock(&p->ss->mu);
-    k = k < m ? k : m - 1; /* the last run is counted when the point's row is stored */
     p->sw->partial = p->sw->partial - p->runs + k;
     p->runs = k;
     int stop = p->sw->cancel || p->ss->stopping;
@@ -378,9 +377,9 @@ static char *run_point(struct point_ctx *ctx, size_t i)
     rd_error_init(&why);
     if (rc == RD_ECANCELED)
         rd_error_set(&why, RD_ETIMEOUT, "",
-                     "Point %zu ran longer than the service's time limit of %g s per point "
-                     "(--job-timeout); run it with `ringdyn sweep run`, which has none.",
-                     i, ss->cfg.timeout_s);
+                     "Point %zu passed the service's time limit of %g s per run (--job-timeout; "
+                     "%zu runs); run it with `ringdyn sweep run`, which has none.",
+                     i, ss->cfg.timeout_s, sw->m);
     else
         why = err;
     rd_error_init(&err);
@@ -415,7 +414,8 @@ static void *worker_main(void *arg)
             sw->status = SW_RUNNING;
             clock_gettime(CLOCK_REALTIME, &sw->started);
         }
-        struct point_ctx ctx = {ss, sw, rd_clock_mono_s() + ss->cfg.timeout_s, 0, 0};
+        struct point_ctx ctx = {
+            .ss = ss, .sw = sw, .deadline = rd_clock_mono_s() + ss->cfg.timeout_s * (double)sw->m};
         pthread_mutex_unlock(&ss->mu);
         char *row = run_point(&ctx, i);
         pthread_mutex_lock(&ss->mu);
