@@ -1446,6 +1446,7 @@ for (const width of [1280, 390]) {
       }
       await shot(`ringdyn-sweep-over-${width}.png`, { fullPage: true });
     } finally {
+      await page.fill('#sw-spec', ''); // the next opening of the view fills it from the form again
       await page.setViewportSize({ width: 1280, height: 800 });
       await page.click('#view-result');
     }
