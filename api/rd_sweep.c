@@ -103,7 +103,7 @@ static json_t *number_value(const param *q, double v)
 /* Entry k of a values/range parameter (new reference).  A listed value is
  * copied, not shared: a later parameter may write inside it (/ring, then
  * /ring/diameter), and the spec must stay unmodified for other threads. */
-static json_t *entry(const param *q, size_t k)
+json_t *rd_sweep_entry(const param *q, size_t k)
 {
     if (q->kind == P_VALUES)
         return json_deep_copy(json_array_get(q->values, k));
@@ -114,14 +114,14 @@ json_t *rd_sweep_param_value(const rd_sweep *s, int p, size_t i)
 {
     const param *q = &s->p[p];
     if (s->combine == C_ZIP)
-        return entry(q, i);
+        return rd_sweep_entry(q, i);
     if (s->combine == C_PRODUCT)
-        return entry(q, (i / q->stride) % q->n);
+        return rd_sweep_entry(q, (i / q->stride) % q->n);
     double u = s->u[(size_t)p * s->points + i];
     if (q->kind == P_RANDOM)
         return number_value(q, at(q, u));
     size_t k = (size_t)(u * (double)q->n);
-    return entry(q, k < q->n ? k : q->n - 1);
+    return rd_sweep_entry(q, k < q->n ? k : q->n - 1);
 }
 
 /* `scene` (or, when NULL, a deep copy of the base) with `value` written at
@@ -255,15 +255,23 @@ static int parse_random(json_t *r, const char *path, param *q, rd_error *err)
     return RD_OK;
 }
 
-/* parameters[k]: {"path", one of values/range/random}. */
-static int parse_param(json_t *v, int k, param *q, rd_error *err)
+/* A parameter at `path` in the spec (/parameters/k, or /over without
+ * random): {"path", one of values/range/random}. */
+static int parse_param(json_t *v, const char *path, int random_ok, param *q, rd_error *err)
 {
     static const char *const keys[] = {"path", "values", "range", "random", NULL};
-    char path[64], sub[80];
-    snprintf(path, sizeof path, "/parameters/%d", k);
+    static const char *const over_keys[] = {"path", "values", "range", NULL};
+    const char *forms = random_ok ? "values|range|random" : "values|range";
+    char sub[80];
     if (!json_is_object(v))
-        return spec_error(err, path, "%s must be an object {path, values|range|random}", path);
-    if (known_keys(v, keys, path, err))
+        return spec_error(err, path, "%s must be an object {path, %s}", path, forms);
+    if (!random_ok && json_object_get(v, "random"))
+        return spec_error(err, path,
+                          "%s takes \"values\" or \"range\", not \"random\": every value of "
+                          "an over is run (use a random parameter with \"combine\": "
+                          "\"latin_hypercube\" to sample)",
+                          path);
+    if (known_keys(v, random_ok ? keys : over_keys, path, err))
         return err->code;
     json_t *p = json_object_get(v, "path");
     if (!json_is_string(p) || !rd_jsonptr_valid(json_string_value(p)) ||
@@ -276,8 +284,9 @@ static int parse_param(json_t *v, int k, param *q, rd_error *err)
     json_t *values = json_object_get(v, "values"), *range = json_object_get(v, "range"),
            *random = json_object_get(v, "random");
     if ((values != NULL) + (range != NULL) + (random != NULL) != 1)
-        return spec_error(err, path, "%s needs exactly one of \"values\", \"range\", \"random\"",
-                          path);
+        return spec_error(err, path, "%s needs exactly one of %s", path,
+                          random_ok ? "\"values\", \"range\", \"random\""
+                                    : "\"values\", \"range\"");
     if (range) {
         snprintf(sub, sizeof sub, "%s/range", path);
         return parse_range(range, sub, q, err);
@@ -341,6 +350,16 @@ static int count_points(rd_sweep *s, json_t *spec, size_t max, rd_error *err)
         for (int p = 0; p < s->np; p++)
             total = s->combine == C_ZIP ? (double)s->p[0].n : total * (double)s->p[p].n;
     }
+    double runs = total * (double)rd_sweep_runs_per_point(s);
+    if (runs > (double)max && s->over.n)
+        return spec_error(err, "/over",
+                          "the sweep has %.0f points x %zu over values = %.0f runs, more than the "
+                          "limit of %zu runs%s",
+                          total, s->over.n, runs, max,
+                          max < RD_SWEEP_POINTS_MAX
+                              ? "; run larger sweeps with the same binary on a cluster: "
+                                "ringdyn sweep run SPEC --index I --chunks K --out DIR"
+                              : "; split it into several specs");
     if (total > (double)max)
         return spec_error(err, s->combine == C_LHS ? "/samples" : "/parameters",
                           "the sweep has %.0f points, more than the limit of %zu%s", total, max,
@@ -410,8 +429,11 @@ static int parse_seed(json_t *spec, uint64_t *seed, rd_error *err)
 static int parse_lists(rd_sweep *s, json_t *spec, rd_error *err)
 {
     json_t *params = json_object_get(spec, "parameters"), *outs = json_object_get(spec, "outputs");
-    if (!json_is_array(params) || json_array_size(params) == 0)
-        return spec_error(err, "/parameters", "/parameters must be a non-empty array");
+    if (json_object_get(spec, "over") ? params && !json_is_array(params)
+                                      : !json_is_array(params) || json_array_size(params) == 0)
+        return spec_error(err, "/parameters",
+                          "/parameters must be a non-empty array (with \"over\": an array, "
+                          "possibly empty, or left out for one point)");
     if (json_array_size(params) > RD_SWEEP_PARAMS_MAX)
         return spec_error(err, "/parameters", "/parameters has %zu entries, more than %d",
                           json_array_size(params), RD_SWEEP_PARAMS_MAX);
@@ -424,7 +446,9 @@ static int parse_lists(rd_sweep *s, json_t *spec, rd_error *err)
                           json_array_size(outs), RD_SWEEP_OUTPUTS_MAX);
     for (s->np = 0; s->np < (int)json_array_size(params); s->np++) {
         int p = s->np;
-        if (parse_param(json_array_get(params, (size_t)p), p, &s->p[p], err))
+        char path[64];
+        snprintf(path, sizeof path, "/parameters/%d", p);
+        if (parse_param(json_array_get(params, (size_t)p), path, 1, &s->p[p], err))
             return err->code;
         for (int q = 0; q < p; q++)
             if (strcmp(s->p[q].path, s->p[p].path) == 0)
@@ -459,10 +483,12 @@ static void value_text(const json_t *v, char *buf, size_t size)
 }
 
 /* Applies `value` (stolen) alone to the base and checks that the scene is
- * valid and reads parameter p's path; errors point at `where` in the spec. */
-static int try_value(const rd_sweep *s, int p, json_t *value, const char *where, rd_error *err)
+ * valid and reads q's path; errors point at `where` in the spec and call q
+ * `what` ("parameter", "over"). */
+static int try_value(const rd_sweep *s, const param *q, const char *what, json_t *value,
+                     const char *where, rd_error *err)
 {
-    const char *path = s->p[p].path;
+    const char *path = q->path;
     char text[64];
     value_text(value, text, sizeof text);
     int oom = 0;
@@ -471,9 +497,9 @@ static int try_value(const rd_sweep *s, int p, json_t *value, const char *where,
         return rd_error_set(err, RD_ENOMEM, "", "out of memory while checking the sweep spec");
     if (!scene)
         return spec_error(err, where,
-                          "parameter %s cannot be set in the base scene: a part of "
+                          "%s %s cannot be set in the base scene: a part of "
                           "the path is not an object or array element",
-                          path);
+                          what, path);
     rd_error e;
     rd_error_init(&e);
     rd_scene *sc = NULL;
@@ -482,7 +508,7 @@ static int try_value(const rd_sweep *s, int p, json_t *value, const char *where,
     if (rc == RD_ENOMEM)
         return rd_error_set(err, rc, "", "out of memory while checking the sweep spec");
     if (rc != RD_OK)
-        return spec_error(err, where, "parameter %s = %s gives an invalid scene: %s", path, text,
+        return spec_error(err, where, "%s %s = %s gives an invalid scene: %s", what, path, text,
                           e.message);
     char *echo = rd_scene_to_json(sc);
     json_t *doc = echo ? json_loads(echo, 0, NULL) : NULL, *at;
@@ -491,7 +517,7 @@ static int try_value(const rd_sweep *s, int p, json_t *value, const char *where,
     rc = !doc || found == -2
              ? rd_error_set(err, RD_ENOMEM, "", "out of memory while checking the sweep spec")
          : found == 0 ? RD_OK
-                      : spec_error(err, where, "parameter %s is not a field that a %s scene reads",
+                      : spec_error(err, where, "%s %s is not a field that a %s scene reads", what,
                                    path, analysis);
     json_decref(doc);
     free(echo);
@@ -505,9 +531,8 @@ static int try_value(const rd_sweep *s, int p, json_t *value, const char *where,
  * hold +-inf or NaN, which JSON cannot carry.  RD_EINVAL (422): the spec is
  * the client's mistake.  Random parameters are checked at every sample of
  * the design, so this runs after lhs_design. */
-static int check_finite(const rd_sweep *s, int p, rd_error *err)
+static int check_finite(const rd_sweep *s, const param *q, int p, const char *prefix, rd_error *err)
 {
-    const param *q = &s->p[p];
     if (q->kind == P_VALUES)
         return RD_OK;
     int rnd = q->kind == P_RANDOM;
@@ -522,9 +547,10 @@ static int check_finite(const rd_sweep *s, int p, rd_error *err)
     if (k == m)
         return RD_OK;
     char where[64], head[256];
-    snprintf(where, sizeof where, "/parameters/%d/%s", p, rnd ? "random" : "range");
-    snprintf(head, sizeof head, "%s (parameter %s): %s %zu of %zu is %g, not a finite number%s",
-             where, q->path, rnd ? "sample" : "value", k + 1, m, v, q->log ? " above 0" : "");
+    snprintf(where, sizeof where, "%s/%s", prefix, rnd ? "random" : "range");
+    snprintf(head, sizeof head, "%s (%s %s): %s %zu of %zu is %g, not a finite number%s", where,
+             p < 0 ? "over" : "parameter", q->path, rnd ? "sample" : "value", k + 1, m, v,
+             q->log ? " above 0" : "");
     if (q->log)
         return rd_error_set(err, RD_EINVAL, where,
                             "%s: %s / %s = %.15g / %.15g is beyond a double; a log scale needs "
@@ -536,26 +562,29 @@ static int check_finite(const rd_sweep *s, int p, rd_error *err)
                         head, hi, lo, q->b, q->a, hi, lo, DBL_MAX);
 }
 
-/* Every value of parameter p that validation tries (rd_sweep.h). */
-static int check_param(const rd_sweep *s, int p, rd_error *err)
+/* Every value of q that validation tries (rd_sweep.h); p its index, or -1
+ * for the over; errors at `prefix` (/parameters/p or /over). */
+static int check_param(const rd_sweep *s, const param *q, int p, const char *prefix, rd_error *err)
 {
-    const param *q = &s->p[p];
+    const char *what = p < 0 ? "over" : "parameter";
     char where[96];
+    if (check_finite(s, q, p, prefix, err))
+        return err->code;
     if (q->kind == P_RANDOM) {
-        snprintf(where, sizeof where, "/parameters/%d/random/min", p);
-        if (try_value(s, p, json_real(q->a), where, err))
+        snprintf(where, sizeof where, "%s/random/min", prefix);
+        if (try_value(s, q, what, json_real(q->a), where, err))
             return err->code;
-        snprintf(where, sizeof where, "/parameters/%d/random/max", p);
-        return try_value(s, p, json_real(q->b), where, err);
+        snprintf(where, sizeof where, "%s/random/max", prefix);
+        return try_value(s, q, what, json_real(q->b), where, err);
     }
     for (size_t k = 0; k < q->n; k++) {
         if (q->kind == P_RANGE && q->n > RANGE_CHECK_ALL && k > 0 && k < q->n - 1)
             k = q->n - 1;
         if (q->kind == P_VALUES)
-            snprintf(where, sizeof where, "/parameters/%d/values/%zu", p, k);
+            snprintf(where, sizeof where, "%s/values/%zu", prefix, k);
         else
-            snprintf(where, sizeof where, "/parameters/%d/range", p);
-        if (try_value(s, p, entry(q, k), where, err))
+            snprintf(where, sizeof where, "%s/range", prefix);
+        if (try_value(s, q, what, rd_sweep_entry(q, k), where, err))
             return err->code;
     }
     return RD_OK;
@@ -578,8 +607,8 @@ static int spec_hash(rd_sweep *s)
 /* Steps after the JSON is decoded: shape, base, parameters, size, design. */
 static int parse_spec(rd_sweep *s, size_t max, rd_error *err)
 {
-    static const char *const keys[] = {"base",    "parameters", "combine",     "samples", "seed",
-                                       "outputs", "name",       "description", NULL};
+    static const char *const keys[] = {"base", "parameters", "over", "combine",     "samples",
+                                       "seed", "outputs",    "name", "description", NULL};
     json_t *spec = s->spec;
     uint64_t seed;
     if (!json_is_object(spec))
@@ -602,8 +631,10 @@ static int parse_spec(rd_sweep *s, size_t max, rd_error *err)
         return rc == RD_ENOMEM ? rd_error_set(err, rc, "", "%s", e.message)
                                : spec_error(err, path, "the base scene is invalid: %s", e.message);
     }
-    if (parse_lists(s, spec, err) || parse_combine(s, spec, err) || parse_seed(spec, &seed, err) ||
-        count_points(s, spec, max, err))
+    json_t *over = json_object_get(spec, "over");
+    if (parse_lists(s, spec, err) || (over && parse_param(over, "/over", 0, &s->over, err)) ||
+        rd_sweep_over_check(s, spec, err) || parse_combine(s, spec, err) ||
+        parse_seed(spec, &seed, err) || count_points(s, spec, max, err))
         return err->code;
     if (s->combine == C_LHS && (double)s->points * s->np > RD_SWEEP_LHS_ENTRIES_MAX)
         return spec_error(err, "/samples",
@@ -612,10 +643,13 @@ static int parse_spec(rd_sweep *s, size_t max, rd_error *err)
                           s->points, s->np, RD_SWEEP_LHS_ENTRIES_MAX);
     if ((s->combine == C_LHS && lhs_design(s, seed) != RD_OK) || spec_hash(s) != RD_OK)
         return rd_error_set(err, RD_ENOMEM, "", "out of memory while expanding the sweep");
-    for (int p = 0; p < s->np; p++)
-        if (check_finite(s, p, err) || check_param(s, p, err))
+    for (int p = 0; p < s->np; p++) {
+        char at[64];
+        snprintf(at, sizeof at, "/parameters/%d", p);
+        if (check_param(s, &s->p[p], p, at, err))
             return err->code;
-    return RD_OK;
+    }
+    return s->over.n ? check_param(s, &s->over, -1, "/over", err) : RD_OK;
 }
 
 int rd_sweep_parse(const char *body, size_t len, size_t max_points, rd_sweep **out, rd_error *err)
@@ -662,6 +696,11 @@ size_t rd_sweep_points(const rd_sweep *s)
     return s->points;
 }
 
+size_t rd_sweep_runs_per_point(const rd_sweep *s)
+{
+    return s->over.n ? s->over.n : 1;
+}
+
 const char *rd_sweep_hash(const rd_sweep *s)
 {
     return s->hash;
@@ -673,10 +712,10 @@ char *rd_sweep_columns_json(const rd_sweep *s)
     for (int p = 0; cols && p < s->np; p++)
         json_array_append_new(cols, json_string(s->p[p].path));
     for (int k = 0; cols && k < s->no; k++)
-        json_array_append_new(cols, json_string(s->o[k].text));
+        rd_sweep_over_columns(s, &s->o[k], cols);
     json_array_append_new(cols, json_string("status"));
     json_array_append_new(cols, json_string("error"));
-    size_t want = (size_t)(s->np + s->no + 2);
+    size_t want = (size_t)(s->np + s->no * (s->over.n ? RD_SWEEP_OVER_COLUMNS : 1) + 2);
     char *text = json_array_size(cols) == want ? json_dumps(cols, JSON_COMPACT) : NULL;
     json_decref(cols);
     return text;

@@ -13,6 +13,7 @@
  *        "random": {"min": a, "max": b, "scale": "linear"|"log"}}, ...],
  *    "combine": "product" | "zip" | "latin_hypercube",   default "product"
  *    "samples": S, "seed": s,                            latin_hypercube only
+ *    "over": {"path": P, "values" | "range"},            optional (below)
  *    "outputs": [O, ...]}
  * P is a JSON Pointer into the scene; missing objects on the way are created.
  * A range holds a + (b - a) k/(n-1) (linear) or a (b/a)^(k/(n-1)) (log, a and
@@ -66,6 +67,25 @@
  * parameter paths, then the outputs as written, then "status" ("ok" or the
  * error code of the point, e.g. "not_converged") and "error" (null or the
  * message, with the field path when there is one).  Rows are in point order.
+ *
+ * Over (issue 42): with "over": {"path": P, "values": [...] | "range": {...}}
+ * (a parameter's forms, no random) every point is run once per over value
+ * v_0..v_{m-1} (written at P after the point's parameters), and each output
+ * O has five columns instead of one, in this order and with these names:
+ *   "min:O", "max:O"   the smallest / largest O over the m runs,
+ *   "mean:O"           their mean (a real),
+ *   "argmin:O", "argmax:O"  the over value (as JSON, the value itself) of
+ *                      the first run reaching the min / max.
+ * "parameters" may then be left out (or []): the sweep has one point.  A
+ * point is ok only when all its m runs are: the first run that fails (over
+ * order) gives the point its status and the message "over P = v: <why>",
+ * with null aggregates (the runs after it are not made).  O null in any run
+ * (a pointer naming nothing) gives five nulls; O neither a number nor null
+ * (a pointer to a string or array) fails the point (invalid_request naming
+ * O).  all(P) outputs are refused up front.  P is validated like a parameter
+ * (errors at /over/values/k or /over/range) and may be neither a
+ * parameter's path nor hold one (/over/path).  Limits count runs = points x
+ * m (the message says so); chunks hold whole points; progress counts runs.
  * Reals in rows are written with 15 significant digits (RD_SWEEP_REAL_DIGITS):
  * every value a person types survives, and a table reads the same everywhere.
  */
@@ -77,19 +97,21 @@
 
 #include "rd_error.h"
 
-/* Hard ceilings: points of one sweep (the CLI's limit; a service passes a
- * lower one), parameters, outputs, and S * parameters of a Latin hypercube
+/* Hard ceilings: runs of one sweep, points x over values (the CLI's limit;
+ * a service passes a lower one), parameters, outputs, and S * parameters of a Latin hypercube
  * (its design is held in memory, 8 bytes per entry). */
 #define RD_SWEEP_POINTS_MAX      1000000
 #define RD_SWEEP_PARAMS_MAX      32
 #define RD_SWEEP_OUTPUTS_MAX     64
 #define RD_SWEEP_LHS_ENTRIES_MAX 8000000
 #define RD_SWEEP_REAL_DIGITS     15
+#define RD_SWEEP_OVER_COLUMNS    5 /* min:, max:, mean:, argmin:, argmax: per output */
 
 typedef struct rd_sweep rd_sweep; /* a parsed, validated spec; opaque, read-only */
 
 /* Parses and validates a spec.  `max_points` (clamped to
- * RD_SWEEP_POINTS_MAX) is the caller's limit; a sweep above it is refused,
+ * RD_SWEEP_POINTS_MAX) is the caller's limit on runs (points x over values);
+ * a sweep above it is refused,
  * and when max_points < RD_SWEEP_POINTS_MAX the message names the cluster
  * path (`ringdyn sweep run`).  Errors: RD_EJSON (not JSON), RD_EREQUEST
  * (400: any other problem of the spec, including a base scene or parameter
@@ -103,6 +125,9 @@ void rd_sweep_free(rd_sweep *sweep);
 /* Number of points N. */
 size_t rd_sweep_points(const rd_sweep *sweep);
 
+/* Runs per point: the number of over values, 1 without "over". */
+size_t rd_sweep_runs_per_point(const rd_sweep *sweep);
+
 /* 16 hex digits: FNV-1a 64 of the canonical spec (compact JSON, keys sorted,
  * reals with 17 digits).  Borrowed; lives as long as the sweep. */
 const char *rd_sweep_hash(const rd_sweep *sweep);
@@ -114,8 +139,8 @@ char *rd_sweep_columns_json(const rd_sweep *sweep);
  * (RD_ENOMEM, or RD_EINVAL for i out of range). */
 char *rd_sweep_point_scene(const rd_sweep *sweep, size_t i, rd_error *err);
 
-/* Runs point i and writes its table row, a JSON array, to *row (caller
- * frees).  A point whose scene is invalid or whose run fails is still
+/* Runs point i (once per over value) and writes its table row, a JSON
+ * array, to *row (caller frees); `mon` sees the fraction of its runs.  A point whose scene is invalid or whose run fails is still
  * RD_OK: its row carries the status and message.  Returns RD_ECANCELED when
  * `mon` asked to stop (no row: the sweep is being cancelled, not the point),
  * RD_ENOMEM, or RD_EINVAL for i out of range.  `mon` may be NULL; thread-safe

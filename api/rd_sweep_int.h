@@ -1,7 +1,9 @@
 /*
  * rd_sweep_int — what the files of a sweep share and nothing else sees: the
  * parsed spec (struct rd_sweep) and the values of a point.  rd_sweep.c
- * parses, validates and expands; rd_sweep_run.c runs a point.
+ * parses, validates and expands; rd_sweep_run.c runs a point;
+ * rd_sweep_over.c checks the "over" member against the spec and names its
+ * columns.
  */
 #ifndef RD_SWEEP_INT_H
 #define RD_SWEEP_INT_H
@@ -40,15 +42,31 @@ struct rd_sweep {
     output o[RD_SWEEP_OUTPUTS_MAX];
     int no;
     int combine;
+    param over; /* "over": n = 0 when absent; never random */
     size_t points;
     double *u; /* latin_hypercube: u[p * points + i] in [0, 1) */
     char hash[17];
 };
+
+/* Entry k of a values/range parameter (new reference; NULL out of memory). */
+json_t *rd_sweep_entry(const param *q, size_t k);
 
 /* The value of parameter p at point i (new reference; NULL out of memory). */
 json_t *rd_sweep_param_value(const rd_sweep *s, int p, size_t i);
 
 /* The scene of point i (new reference), NULL when out of memory. */
 json_t *rd_sweep_point_json(const rd_sweep *s, size_t i);
+
+/* ---- over (rd_sweep_over.c) ---- */
+
+/* What s->over (parsed, n > 0; nothing when n = 0) asks of the rest of the
+ * spec: its path is neither a parameter's nor holds one, no all() output,
+ * no "combine" without parameters.  Errors RD_EREQUEST at /over/path,
+ * /outputs/k or /combine. */
+int rd_sweep_over_check(const rd_sweep *s, json_t *spec, rd_error *err);
+
+/* Appends output o's column names to cols: its text, or with an over the
+ * RD_SWEEP_OVER_COLUMNS names "min:O" ... "argmax:O". */
+void rd_sweep_over_columns(const rd_sweep *s, const output *o, json_t *cols);
 
 #endif

@@ -30,6 +30,7 @@
 #include <unistd.h>
 
 #include <jansson.h>
+#include <math.h>
 
 #include "rd_api.h"
 #include "rd_clock.h"
@@ -52,7 +53,7 @@ struct sweep {
     char hash[RD_SWEEPS_ID_LEN + 1]; /* rd_sweep_hash */
     int fidelity;
     rd_sweep_request req; /* NULL sweep once frozen and released */
-    size_t n, next_point, running, done, failed;
+    size_t n, next_point, running, done, failed, m, partial; /* m: runs per point */
     char **rows;
     char *spare_row; /* rows[i] of a point whose row could not be made (shared) */
     int status, cancel;
@@ -82,6 +83,7 @@ struct point_ctx {
     struct sweep *sw;
     double deadline; /* CLOCK_MONOTONIC */
     int timed_out;
+    size_t runs; /* done, as its monitor last said (< m); sw->partial sums them */
 };
 
 static int is_final(int status)
@@ -146,13 +148,14 @@ static json_t *sweep_object(const struct sweep *sw)
     json_t *o = json_object();
     if (!o)
         return NULL;
-    int bad = 0;
-    bad |= json_object_set_new(o, "id", json_string(sw->id));
+    int bad = json_object_set_new(o, "id", json_string(sw->id));
     bad |= json_object_set_new(o, "kind", json_string(sw->fidelity ? "fidelity" : "sweep"));
     bad |= json_object_set_new(o, "status", json_string(status_names[sw->status]));
-    bad |=
-        json_object_set_new(o, "progress", json_real(sw->n ? (double)sw->done / (double)sw->n : 1));
+    size_t m = sw->m ? sw->m : 1, runs = sw->n * m; /* progress counts runs */
+    bad |= json_object_set_new(
+        o, "progress", json_real(runs ? (double)(sw->done * m + sw->partial) / (double)runs : 1));
     bad |= json_object_set_new(o, "points", json_integer((json_int_t)sw->n));
+    bad |= json_object_set_new(o, "runs", json_integer((json_int_t)runs));
     bad |= json_object_set_new(o, "done", json_integer((json_int_t)sw->done));
     bad |= json_object_set_new(o, "failed", json_integer((json_int_t)sw->failed));
     bad |= json_object_set_new(o, "spec_hash", json_string(sw->hash));
@@ -340,12 +343,14 @@ static void notify_final(rd_sweeps *ss)
         ss->cfg.on_final(ss->cfg.on_final_ctx);
 }
 
-/* rd_monitor.report: non-zero asks the point to stop. */
+/* rd_monitor.report: counts runs done (the last with the row); non-zero asks to stop. */
 static int report(void *arg, double fraction)
 {
-    (void)fraction;
     struct point_ctx *p = arg;
+    size_t k = (size_t)fmin(fraction * (double)p->sw->m + 1e-9, (double)(p->sw->m - 1));
     pthread_mutex_lock(&p->ss->mu);
+    p->sw->partial = p->sw->partial - p->runs + k;
+    p->runs = k;
     int stop = p->sw->cancel || p->ss->stopping;
     pthread_mutex_unlock(&p->ss->mu);
     if (!stop && rd_clock_mono_s() >= p->deadline) {
@@ -355,25 +360,26 @@ static int report(void *arg, double fraction)
     return stop;
 }
 
-/* Runs point i of sw (no lock held); the row, or NULL when the sweep is
- * being stopped. */
-static char *run_point(rd_sweeps *ss, struct sweep *sw, size_t i)
+/* Runs point i of sw (no lock held) under ctx; the row, or NULL when the
+ * sweep is being stopped. */
+static char *run_point(struct point_ctx *ctx, size_t i)
 {
-    struct point_ctx ctx = {ss, sw, rd_clock_mono_s() + ss->cfg.timeout_s, 0};
-    rd_monitor mon = {report, &ctx};
+    rd_sweeps *ss = ctx->ss;
+    struct sweep *sw = ctx->sw;
+    rd_monitor mon = {report, ctx};
     rd_error err;
     rd_error_init(&err);
     char *row = NULL;
     int rc = rd_sweep_run_point(sw->req.sweep, i, &mon, &row, &err);
-    if (rc == RD_OK || (rc == RD_ECANCELED && !ctx.timed_out))
+    if (rc == RD_OK || (rc == RD_ECANCELED && !ctx->timed_out))
         return row;
     rd_error why;
     rd_error_init(&why);
     if (rc == RD_ECANCELED)
         rd_error_set(&why, RD_ETIMEOUT, "",
-                     "Point %zu ran longer than the service's time limit of %g s per point "
-                     "(--job-timeout); run it with `ringdyn sweep run`, which has none.",
-                     i, ss->cfg.timeout_s);
+                     "Point %zu passed the service's time limit of %g s per run (--job-timeout; "
+                     "%zu runs); run it with `ringdyn sweep run`, which has none.",
+                     i, ss->cfg.timeout_s, sw->m);
     else
         why = err;
     rd_error_init(&err);
@@ -408,9 +414,12 @@ static void *worker_main(void *arg)
             sw->status = SW_RUNNING;
             clock_gettime(CLOCK_REALTIME, &sw->started);
         }
+        struct point_ctx ctx = {
+            .ss = ss, .sw = sw, .deadline = rd_clock_mono_s() + ss->cfg.timeout_s * (double)sw->m};
         pthread_mutex_unlock(&ss->mu);
-        char *row = run_point(ss, sw, i);
+        char *row = run_point(&ctx, i);
         pthread_mutex_lock(&ss->mu);
+        sw->partial -= ctx.runs;
         if (is_final(sw->status)) { /* ended under it (shutdown): the row comes too late */
             free(row);
         } else if (row) {
@@ -648,6 +657,7 @@ void rd_sweeps_post(rd_sweeps *ss, const char *body, size_t len, double wait_s, 
         return;
     }
     sw->n = rd_sweep_points(sw->req.sweep);
+    sw->m = rd_sweep_runs_per_point(sw->req.sweep);
     sw->fidelity = sw->req.fidelity;
     memcpy(sw->hash, rd_sweep_hash(sw->req.sweep), sizeof sw->hash);
     sw->rows = calloc(sw->n ? sw->n : 1, sizeof *sw->rows);

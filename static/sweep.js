@@ -7,6 +7,10 @@
 // setting changes), the Pareto front highlighted, with a button per Pareto
 // setting that puts it into the form.
 //
+// A sweep with "over" has, per output O, the columns min:O max:O mean:O
+// argmin:O argmax:O (rd_sweep.h): plotting any of the first three draws the
+// mean line with a shaded band from min to max.
+//
 // setupSweeps({form, analysis, onApply}) wires the view tabs: `analysis()`
 // is the id of the analysis whose form is shown; `onApply(text)` is told
 // when a setting went into the form.
@@ -105,11 +109,13 @@ function runner(prefix, { submit, onUpdate, onDone }) {
         signal: controller.signal,
         onUpdate: (s) => {
           run.id = s.id;
-          status(`Sweep ${s.id} ${s.status} — ${s.done} of ${s.points} points${s.failed ? ` (${s.failed} failed)` : ''}`, s.progress);
+          const runs = s.runs && s.runs !== s.points ? ` (${s.runs} runs)` : '';
+          status(`Sweep ${s.id} ${s.status} — ${s.done} of ${s.points} points${runs}${s.failed ? ` (${s.failed} failed)` : ''}`, s.progress);
           onUpdate(s);
         },
       });
-      status(`Sweep ${sweep.id} ${sweep.status}: ${sweep.done} of ${sweep.points} points${sweep.failed ? `, ${sweep.failed} failed (see their rows)` : ''}.`);
+      const runs = sweep.runs && sweep.runs !== sweep.points ? ` (${sweep.runs} runs)` : '';
+      status(`Sweep ${sweep.id} ${sweep.status}: ${sweep.done} of ${sweep.points} points${runs}${sweep.failed ? `, ${sweep.failed} failed (see their rows)` : ''}.`);
       onDone(sweep);
     } catch (err) {
       if (err.name === 'AbortError') status(run.id ? `Stopped following sweep ${run.id}.` : 'Cancelled.');
@@ -152,17 +158,30 @@ function axis(v, log, r0, r1) {
   return { map: (x) => f(log ? Math.log10(x) : x), ticks: tk, at: f, format: log ? (e) => `1e${e}` : (x) => sig(x, 3) };
 }
 
-// points: [{x, y, cls, title, id}], `line` joins them in x order (or the
-// `front` subset); returns the <svg>.
+// The shaded band from p.lo to p.hi over the points (in x order), and a bar
+// from lo to hi at each point (all a single point shows).
+function band(id, pts, X, Y) {
+  const b = pts.filter((p) => isNum(p.lo) && isNum(p.hi));
+  if (!b.length) return null;
+  const up = b.map((p) => [X.map(p.x), Y.map(p.hi)]), down = b.map((p) => [X.map(p.x), Y.map(p.lo)]).reverse();
+  return svg('g', { class: 'band', id: `${id}-band`, 'data-points': b.length },
+    b.length > 1 ? svg('path', { class: 'band-area', d: `${pathD(up.concat(down))}Z` }) : null,
+    b.map((p) => svg('line', { class: 'band-bar', x1: X.map(p.x), x2: X.map(p.x), y1: Y.map(p.lo), y2: Y.map(p.hi) })));
+}
+
+// points: [{x, y, cls, title, id}, optional lo/hi: the band], `line` joins
+// them in x order (or the `front` subset); returns the <svg>.
 function scatter({ id, points, xLabel, yLabel, xLog = false, yLog = false, front = null, label }) {
   const W = 560, H = 340, box = { left: 72, top: 16, width: 460, height: 260 };
   const ok = points.filter((p) => isNum(p.x) && isNum(p.y) && (!xLog || p.x > 0) && (!yLog || p.y > 0));
   if (!ok.length) return h('p', { class: 'hint', id: `${id}-empty` }, 'No point with numbers in both columns yet.');
   const X = axis(ok.map((p) => p.x), xLog, box.left, box.left + box.width);
-  const Y = axis(ok.map((p) => p.y), yLog, box.top + box.height, box.top);
+  const ys = ok.flatMap((p) => [p.y, p.lo, p.hi].filter((v) => isNum(v) && (!yLog || v > 0)));
+  const Y = axis(ys, yLog, box.top + box.height, box.top);
   const line = (front ?? ok).filter((p) => ok.includes(p)).slice().sort((a, b) => a.x - b.x);
   return svg('svg', { id, class: 'chart sweep-plot', viewBox: `0 0 ${W} ${H}`, role: 'img', 'aria-label': label },
     axes({ box, x: X.at, y: Y.at, xTicks: X.ticks, yTicks: Y.ticks, xLabel, yLabel, xFormat: X.format, yFormat: Y.format }),
+    band(id, line, X, Y),
     svg('path', { class: front ? 'front-line' : 'series', d: pathD(line.map((p) => [X.map(p.x), Y.map(p.y)])) }),
     ok.map((p) => svg('circle', { cx: X.map(p.x).toFixed(2), cy: Y.map(p.y).toFixed(2), r: 5, class: `pt ${p.cls ?? ''}`, id: p.id, 'data-x': p.x, 'data-y': p.y },
       svg('title', {}, p.title))));
@@ -184,12 +203,22 @@ function sweepView({ form, analysis }) {
   const columns = () => shown?.table?.columns ?? [];
   const nParams = () => (shown?.spec_parameters ?? 0);
   const numericCol = (k) => (shown?.table?.rows ?? []).some((r) => isNum(r[k]));
+  // Over columns: "min:O" -> {min, max, mean} column indices of O (all three present).
+  const overOf = (k) => {
+    const cols = columns(), m = /^(min|max|mean):(.*)$/.exec(cols[k] ?? '');
+    if (!m) return null;
+    const at = (a) => cols.indexOf(`${a}:${m[2]}`);
+    const o = { name: m[2], min: at('min'), max: at('max'), mean: at('mean') };
+    return o.min >= 0 && o.max >= 0 && o.mean >= 0 ? o : null;
+  };
   const chosen = { x: null, y: null }; // what the user picked, kept while the columns have it
   function setChoices() {
     const cols = columns();
     const opts = (ks) => ks.map((k) => h('option', { value: String(k) }, cols[k]));
     const params = cols.map((_, k) => k).filter((k) => k < nParams());
-    const outs = cols.map((_, k) => k).filter((k) => k >= nParams() && k < cols.length - 2 && numericCol(k));
+    // the means first: what an over table is plotted by (its band from min to max)
+    const outs = cols.map((_, k) => k).filter((k) => k >= nParams() && k < cols.length - 2 && numericCol(k))
+      .sort((a, b) => (cols[b].startsWith('mean:') ? 1 : 0) - (cols[a].startsWith('mean:') ? 1 : 0) || a - b);
     fill($('sw-x'), opts(params.concat(outs)));
     fill($('sw-y'), opts(outs.concat(params)));
     for (const a of ['x', 'y']) {
@@ -200,20 +229,26 @@ function sweepView({ form, analysis }) {
   function draw() {
     if (!shown?.table) return;
     const cols = columns(), rows = shown.table.rows;
-    const xk = Number($('sw-x').value), yk = Number($('sw-y').value);
+    const xk = Number($('sw-x').value), ykChosen = Number($('sw-y').value);
     const st = cols.length - 2;
-    const pts = rows.map((r, i) => ({ x: r[xk], y: r[yk], cls: r[st] === 'ok' ? '' : 'failed', id: `sw-pt-${i}`, title: `${cols[xk]} = ${sig(r[xk], 4)}, ${cols[yk]} = ${sig(r[yk], 4)}${r[st] === 'ok' ? '' : ` — ${r[st]}: ${r[st + 1]}`}` }));
+    const over = overOf(ykChosen), yk = over ? over.mean : ykChosen;
+    const yName = over ? `${over.name} (mean, band min to max)` : cols[yk] ?? '';
+    const range = (r) => (over && isNum(r[over.min]) ? `, range ${sig(r[over.min], 4)} to ${sig(r[over.max], 4)}` : '');
+    const pts = rows.map((r, i) => ({ x: r[xk], y: r[yk], lo: over ? r[over.min] : null, hi: over ? r[over.max] : null, cls: r[st] === 'ok' ? '' : 'failed', id: `sw-pt-${i}`, title: `${cols[xk]} = ${sig(r[xk], 4)}, ${cols[yk]} = ${sig(r[yk], 4)}${range(r)}${r[st] === 'ok' ? '' : ` — ${r[st]}: ${r[st + 1]}`}` }));
     const failed = rows.filter((r) => r[st] !== 'ok');
+    const caption = over
+      ? `${over.name} against ${cols[xk]}: the mean over the over values (line and markers) and the band from their min to their max, per point done (${rows.length} of ${shown.points}); hover a marker for its values.`
+      : `${cols[yk]} against ${cols[xk]}, one marker per point done (${rows.length} of ${shown.points}); hover a marker for its values.`;
     fill($('sw-result'),
       h('figure', { class: 'plot wide' },
-        scatter({ id: 'sw-plot', points: pts, xLabel: cols[xk] ?? '', yLabel: cols[yk] ?? '', label: `${cols[yk]} against ${cols[xk]}: ${rows.length} of ${shown.points} points` }),
-        h('figcaption', {}, `${cols[yk]} against ${cols[xk]}, one marker per point done (${rows.length} of ${shown.points}); hover a marker for its values.`)),
+        scatter({ id: 'sw-plot', points: pts, xLabel: cols[xk] ?? '', yLabel: yName, label: `${yName} against ${cols[xk]}: ${rows.length} of ${shown.points} points` }),
+        h('figcaption', {}, caption)),
       failed.length ? h('ul', { class: 'warnings', id: 'sw-failed' }, failed.slice(0, 20).map((r) =>
         h('li', {}, `${cols.slice(0, nParams()).map((c, k) => `${c} = ${sig(r[k], 4)}`).join(', ')}: ${r[st]} — ${r[st + 1]}`))) : null);
   }
   function show(sweep, spec) {
     const first = !shown || shown.id !== sweep.id;
-    shown = { ...sweep, spec_parameters: spec ? spec.parameters.length : shown?.spec_parameters ?? 0 };
+    shown = { ...sweep, spec_parameters: spec ? (spec.parameters ?? []).length : shown?.spec_parameters ?? 0 };
     if (first) chosen.x = chosen.y = null;
     setChoices();
     $('sw-choose').hidden = false;

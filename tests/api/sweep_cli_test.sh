@@ -2,7 +2,8 @@
 # ringdyn sweep end to end: a spec run as K chunks by parallel processes
 # (xargs -P, and the array-job environment variables) and reduced gives the
 # same table, byte for byte, as one process; reduce names missing chunks and
-# refuses chunks of another spec; bad specs exit 2 with the spec path.
+# refuses chunks of another spec; bad specs exit 2 with the spec path.  modal_over
+# is an over sweep (its chunks hold whole points).
 #   sweep_cli_test.sh RINGDYN SWEEPS_DIR
 set -u
 ringdyn=$1 sweeps=$2
@@ -11,7 +12,7 @@ trap 'rm -rf "$work"' EXIT
 failed=0
 fail() { echo "FAIL: $*" >&2; failed=1; }
 
-for spec in modal_grid modal_lhs; do
+for spec in modal_grid modal_lhs modal_over; do
   s=$sweeps/$spec.json
   n=$("$ringdyn" sweep count "$s") || fail "$spec: count exit $?"
   "$ringdyn" sweep run "$s" --out "$work/$spec.1" || fail "$spec: single run exit $?"

@@ -1405,6 +1405,53 @@ for (const width of [1280, 390]) {
     }
   });
 
+  test(`${width} px: an over sweep plots the mean against the parameter with a band from min to max (issue 42)`, { timeout: 240000 }, async () => {
+    await page.setViewportSize({ width, height: 844 });
+    try {
+      await page.getByRole('button', { name: 'Reset to defaults' }).click();
+      await selectTab('contact');
+      await page.click('#view-sweep');
+      const over = { base: { analysis: 'contact', bore: { distortion: [{ order: 2, amplitude: 5e-6, phase_deg: 0 }] } },
+        parameters: [{ path: '/ring/tangential_force', values: [8, 10, 12] }],
+        over: { path: '/bore/distortion/0/phase_deg', range: { start: 0, stop: 90, count: 4 } },
+        outputs: ['/mean_pressure_pa', 'max(/pressure_pa)'] };
+      await page.fill('#sw-spec', JSON.stringify(over));
+      await page.click('#sw-run');
+      await sweepDone('sw');
+      const sw = await newestSweep();
+      assert.equal(sw.runs, 12, '3 points x 4 over values');
+      const col = (name) => sw.table.columns.indexOf(name);
+      assert.equal(col('min:max(/pressure_pa)'), 6);
+      // The mean is plotted first, with its band: one bar per point, the area over all three.
+      assert.equal(await page.$eval('#sw-y option:checked', (o) => o.textContent), 'mean:/mean_pressure_pa');
+      const pts = await circles('sw-plot');
+      assert.deepEqual(pts.map((p) => p.y), sw.table.rows.map((r) => r[col('mean:/mean_pressure_pa')]));
+      assert.equal(await page.getAttribute('#sw-plot-band', 'data-points'), '3');
+      const area = await page.locator('#sw-plot-band .band-area').boundingBox();
+      assert.ok(area && area.width > 0 && area.height > 0, 'the band is drawn');
+      // Choosing max(/pressure_pa)'s max column draws that output's band; each bar
+      // spans min (below) to max (above) around its mean marker (screen y falls as values grow).
+      await page.selectOption('#sw-y', { label: 'max:max(/pressure_pa)' });
+      const bars = await page.$$eval('#sw-plot-band line.band-bar', (ls) => ls.map((l) => [Number(l.getAttribute('y1')), Number(l.getAttribute('y2'))]));
+      const means = await circles('sw-plot');
+      assert.equal(bars.length, 3);
+      assert.deepEqual(means.map((p) => p.y), sw.table.rows.map((r) => r[col('mean:max(/pressure_pa)')]));
+      bars.forEach(([lo, hi], i) => assert.ok(lo > hi && lo >= means[i].cy && means[i].cy >= hi, `bar ${i}: min below, max above the mean`));
+      assert.match(await page.textContent('#sw-result figcaption'), /band from their min to their max/);
+      if (width === 390) {
+        const overflow = await page.evaluate(() => document.documentElement.scrollWidth - window.innerWidth);
+        assert.ok(overflow <= 0, `no sideways scrolling (${overflow} px)`);
+        await settled();
+        assert.deepEqual(await smallText(), [], 'over sweep view');
+      }
+      await shot(`ringdyn-sweep-over-${width}.png`, { fullPage: true });
+    } finally {
+      await page.fill('#sw-spec', ''); // the next opening of the view fills it from the form again
+      await page.setViewportSize({ width: 1280, height: 800 });
+      await page.click('#view-result');
+    }
+  });
+
   test(`${width} px: speed vs accuracy plots wall time against the error estimate, the Pareto front marked; a Pareto setting goes back into the form`, { timeout: 240000 }, async () => {
     await page.setViewportSize({ width, height: 844 });
     try {

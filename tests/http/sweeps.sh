@@ -178,6 +178,31 @@ post '/api/v1/sweeps' '{"fidelity": {"analysis": "modal", "ring": {"diameter": -
 expect_error "fidelity scene invalid" 400 invalid_request /fidelity/ring/diameter
 post '/api/v1/sweeps' '{"fidelity": {"analysis": "modal"}, "segmnts": [5]}'
 expect_error "fidelity unknown field" 400 invalid_request /segmnts
+# ---- over: the service's table = the cluster path's; runs count -------------------
+OVER='{"base": {"analysis": "modal", "modal": {"modes": 3, "error_estimate": false}},
+ "parameters": [{"path": "/ring/radial_width", "values": [0.0029, 0.0032, 0.0035]}],
+ "over": {"path": "/ring/closed_gap", "range": {"start": 1e-4, "stop": 5e-4, "count": 4}},
+ "outputs": ["/modes/0/frequency_hz", "/modes/2/frequency_hz"]}'
+post '/api/v1/sweeps?wait=60' "$OVER"
+same "an over sweep -> 200" "$STATUS" 200
+same "... 3 points, 12 runs" "$(json /points) $(json /runs)" "3 12"
+same "... progress 1 when done" "$(json /progress)" 1
+same "... its columns: min, max, mean, argmin, argmax per output" \
+  "$(json /table/columns/1) $(json /table/columns/5) $(json /table/columns/10)" \
+  "min:/modes/0/frequency_hz argmax:/modes/0/frequency_hz argmax:/modes/2/frequency_hz"
+table_of "$WORK/body" >"$WORK/over-service.json"
+printf '%s' "$OVER" >"$WORK/over.json"
+seq 0 2 | xargs -P 3 -I{} "$CLI" sweep run "$WORK/over.json" --index {} --chunks 3 \
+  --out "$WORK/over-chunks" 2>"$WORK/cli.err"
+"$CLI" sweep reduce "$WORK/over-chunks" >"$WORK/over-cli.json"
+check "over: service table = run x 3 chunks + reduce (byte for byte)" \
+  cmp -s <(cat "$WORK/over-service.json"; echo) "$WORK/over-cli.json"
+post '/api/v1/sweeps' '{"base": {"analysis": "modal"}, "parameters": [{"path": "/ring/radial_width",
+  "range": {"start": 0.0025, "stop": 0.0035, "count": 13}}], "over": {"path": "/ring/closed_gap",
+  "values": [2e-4, 3e-4, 4e-4, 5e-4]}, "outputs": ["/modes/0/frequency_hz"]}'
+expect_error "13 points x 4 over values over --sweep-max-points 50" 400 invalid_request /over
+check "... the message counts the runs" grep -q '13 points x 4 over values = 52 runs, more than the limit of 50 runs' "$WORK/body"
+
 stop_server S "$S_PID"
 
 # ---- finished sweeps outlive the server; unfinished ones end interrupted ------------
