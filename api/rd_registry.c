@@ -16,11 +16,12 @@ extern const rd_analysis_def rd_an_contact;
 extern const rd_analysis_def rd_an_lift;
 extern const rd_analysis_def rd_an_ringpack;
 extern const rd_analysis_def rd_an_calibration;
+extern const rd_analysis_def rd_an_sensitivity;
 
 /* In enum rd_analysis order; a new analysis goes at the end. */
 const rd_analysis_def *const rd_registry[] = {
-    &rd_an_modal,    &rd_an_pretension,  &rd_an_contact, &rd_an_lift,
-    &rd_an_ringpack, &rd_an_calibration, NULL,
+    &rd_an_modal,    &rd_an_pretension,  &rd_an_contact,     &rd_an_lift,
+    &rd_an_ringpack, &rd_an_calibration, &rd_an_sensitivity, NULL,
 };
 
 const rd_analysis_def *rd_registry_find(const rd_analysis_def *const *registry, const char *name,

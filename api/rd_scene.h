@@ -48,7 +48,8 @@ enum rd_analysis {
     RD_ANALYSIS_CONTACT,
     RD_ANALYSIS_LIFT,
     RD_ANALYSIS_RINGPACK,
-    RD_ANALYSIS_CALIBRATION
+    RD_ANALYSIS_CALIBRATION,
+    RD_ANALYSIS_SENSITIVITY
 };
 
 /* An array of numbers read from the scene (malloc'd). */

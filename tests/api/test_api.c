@@ -229,16 +229,16 @@ static void test_analysis(void)
 {
     expect_error("{}", RD_EINVAL, "/analysis",
                  "\"analysis\" is missing (available: modal, pretension, contact, lift, ringpack, "
-                 "calibration)");
+                 "calibration, sensitivity)");
     expect_error("{\"ring\":{}}", RD_EINVAL, "/analysis", "missing");
     expect_error("{\"analysis\":42}", RD_EINVAL, "/analysis",
                  "/analysis must be a string, got number 42");
     expect_error("{\"analysis\":null}", RD_EINVAL, "/analysis", "must be a string, got null");
-    expect_error(
-        "{\"analysis\":\"modes\"}", RD_EINVAL, "/analysis",
-        "unknown analysis \"modes\" (allowed: modal, pretension, contact, lift, ringpack, "
-        "calibration; "
-        "available in this version: modal, pretension, contact, lift, ringpack, calibration)");
+    expect_error("{\"analysis\":\"modes\"}", RD_EINVAL, "/analysis",
+                 "unknown analysis \"modes\" (allowed: modal, pretension, contact, lift, ringpack, "
+                 "calibration, sensitivity; "
+                 "available in this version: modal, pretension, contact, lift, ringpack, "
+                 "calibration, sensitivity)");
     expect_error("{\"analysis\":\"Modal\"}", RD_EINVAL, "/analysis", "unknown analysis");
     /* the analysis is decided before anything else is looked at: it picks
      * the schema, so a block one analysis reads is an error in another's
@@ -343,7 +343,8 @@ static void test_unknown_fields(void)
     expect_error("{\"analysis\":\"modal\",\"engine\":5}", RD_EINVAL, "/engine",
                  "the modal analysis does not read a top-level \"engine\"");
     expect_error("{\"analysis\":\"modal\",\"numerics\":{}}", RD_EINVAL, "/numerics",
-                 "only the pretension, contact, lift, ringpack and calibration analyses read it");
+                 "only the pretension, contact, lift, ringpack, calibration and sensitivity "
+                 "analyses read it");
     expect_error("{\"analysis\":\"ringpack\",\"ring\":{}}", RD_EINVAL, "/ring",
                  "each ring is /rings/i/ring");
     expect_ok("{\"analysis\":\"modal\",\"name\":\"x\",\"description\":\"\",\"ring\":{},"

@@ -246,11 +246,22 @@ static void set_path(json_t *root, const char *path, json_t *v)
     "\"/ring/tangential_force\", \"min\": 5, \"max\": 20}], \"measurements\": [{\"observe\": " \
     "\"/modes/0/frequency_hz\", \"value\": 100, \"sigma\": 1}]}"
 
+/* And a sensitivity needs a base, parameters and outputs. */
+#define MIN_SENSITIVITY                                                  \
+    "{\"base\": {\"analysis\": \"modal\"}, \"parameters\": [{\"path\": " \
+    "\"/ring/tangential_force\"}], \"outputs\": [\"/modes/0/frequency_hz\"]}"
+
+/* The studies' whole scenes, for their own fields. */
+static const struct {
+    const char *analysis, *scene;
+} study_scenes[] = {
+    {"calibration", MIN_CALIBRATION},
+    {"sensitivity", MIN_SENSITIVITY},
+};
+
 static const struct {
     const char *prefix, *scene;
 } companions[] = {
-    {"/numerics/max_runs", MIN_CALIBRATION},
-    {"/numerics/threads", MIN_CALIBRATION},
     {"/ring/axial_height", "{\"ring\": {\"radial_width\": 1e-5}}"},
     {"/physics/friction/", "{\"physics\": {\"friction\": {\"model\": \"stribeck\"}}}"},
     {"/output/step_deg", "{\"engine\": {\"cycles\": 0.1}}"},
@@ -295,6 +306,12 @@ static int probe(const rd_analysis_def *an, const char *path, json_t *v, char *e
     for (size_t i = 0; i < sizeof companions / sizeof companions[0]; i++)
         if (strncmp(path, companions[i].prefix, strlen(companions[i].prefix)) == 0) {
             json_t *c = json_loads(companions[i].scene, 0, NULL);
+            merge(scene, c);
+            json_decref(c);
+        }
+    for (size_t i = 0; i < sizeof study_scenes / sizeof study_scenes[0]; i++)
+        if (strcmp(study_scenes[i].analysis, an->name) == 0) {
+            json_t *c = json_loads(study_scenes[i].scene, 0, NULL);
             merge(scene, c);
             json_decref(c);
         }
@@ -396,8 +413,10 @@ static void test_ranges(void)
 static json_t *echo_of(const rd_analysis_def *an)
 {
     char body[512];
-    if (strcmp(an->name, "calibration") == 0) /* no bare calibration: the smallest one */
+    if (strcmp(an->name, "calibration") == 0) /* no bare study: the smallest one */
         snprintf(body, sizeof body, "{\"analysis\":\"calibration\",%s", MIN_CALIBRATION + 1);
+    else if (strcmp(an->name, "sensitivity") == 0)
+        snprintf(body, sizeof body, "{\"analysis\":\"sensitivity\",%s", MIN_SENSITIVITY + 1);
     else
         snprintf(body, sizeof body, "{\"analysis\":\"%s\"}", an->name);
     rd_scene *s = NULL;

@@ -1,0 +1,185 @@
+/*
+ * test_sensitivity — sensitivities against closed forms:
+ *   - modal: the ring's stiffness is linear in E (the shear modulus
+ *     E / (2 (1 + nu)) with it) and its mass in rho, so every frequency is
+ *     c sqrt(E / rho): df/dE = f / (2 E), df/drho = -f / (2 rho) exactly at
+ *     any n; and no frequency reads the tangential force (0, flagged);
+ *   - the steady ring pack of the shipped example: its top-land entry and
+ *     end gap are orifices with the same C_d, so the mass flow is
+ *     proportional to C_d and the land pressure independent of it;
+ *   - the error estimate against the true error (the closed form's) on a
+ *     battery of given steps where truncation dominates: within x3;
+ *   - bad specs: 400 with the field named.
+ * Usage: test_sensitivity EXAMPLES_DIR
+ */
+#include <jansson.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "check.h"
+#include "rd_api.h"
+
+static json_t *run_text(const char *text, rd_error *err)
+{
+    rd_scene *s = NULL;
+    char *out = NULL;
+    json_t *r = NULL;
+    rd_error_init(err);
+    if (rd_scene_parse(text, strlen(text), &s, err) == RD_OK &&
+        rd_scene_run(s, NULL, &out, err) == RD_OK)
+        r = json_loads(out, 0, NULL);
+    free(out);
+    rd_scene_free(s);
+    return r;
+}
+
+static json_t *deriv(json_t *r, int out, int param)
+{
+    return json_array_get(
+        json_object_get(json_array_get(json_object_get(r, "outputs"), (size_t)out), "derivatives"),
+        (size_t)param);
+}
+static double num(json_t *o, const char *key)
+{
+    return json_number_value(json_object_get(o, key));
+}
+static double out_value(json_t *r, int out)
+{
+    return num(json_array_get(json_object_get(r, "outputs"), (size_t)out), "value");
+}
+
+static void test_modal(void)
+{
+    const char *spec =
+        "{\"analysis\": \"sensitivity\", \"base\": {\"analysis\": \"modal\", \"modal\": "
+        "{\"modes\": 3}}, \"parameters\": [{\"path\": \"/ring/material/youngs_modulus\"}, "
+        "{\"path\": \"/ring/material/density\"}, {\"path\": \"/ring/tangential_force\"}], "
+        "\"outputs\": [\"/modes/0/frequency_hz\", \"/modes/2/frequency_hz\"]}";
+    rd_error err;
+    json_t *r = run_text(spec, &err);
+    CHECK(r != NULL, "modal sensitivity: %s %s", err.path, err.message);
+    for (int k = 0; r && k < 2; k++) {
+        double f = out_value(r, k);
+        json_t *dE = deriv(r, k, 0), *drho = deriv(r, k, 1), *dF = deriv(r, k, 2);
+        double wantE = f / (2 * num(dE, "at")), wantr = -f / (2 * num(drho, "at"));
+        CHECK_REL(num(dE, "derivative"), wantE, 1e-7, "mode %d: df/dE = f / 2E", k);
+        CHECK_REL(num(drho, "derivative"), wantr, 1e-7, "mode %d: df/drho = -f / 2 rho", k);
+        CHECK(fabs(num(dE, "derivative") - wantE) <= num(dE, "error_estimate") &&
+                  fabs(num(drho, "derivative") - wantr) <= num(drho, "error_estimate"),
+              "mode %d: the default step's estimates bound the true errors", k);
+        CHECK_REL(num(dE, "elasticity"), 0.5, 1e-7, "mode %d: elasticity 1/2 in E", k);
+        CHECK(json_is_true(json_object_get(dE, "significant")), "df/dE significant");
+        CHECK(num(dF, "derivative") == 0 && json_is_false(json_object_get(dF, "significant")),
+              "mode %d: the tangential force moves no frequency (%g, flagged)", k,
+              num(dF, "derivative"));
+    }
+    CHECK(r && json_integer_value(json_object_get(r, "runs")) == 13, "1 + 4 x 3 runs");
+    json_decref(r);
+}
+
+/* Given steps of 2 to 20 % of E and rho: the estimate |D(h) - D(2h)|/3
+ * against the true error of D(h) (the closed form's), within x3. */
+static void test_estimate_battery(void)
+{
+    const double rel[4] = {0.02, 0.05, 0.1, 0.2};
+    const double E = 2.1e11, rho = 7850;
+    int n = 0;
+    double worst = 1;
+    for (int i = 0; i < 4; i++) {
+        char spec[1024];
+        snprintf(spec, sizeof spec,
+                 "{\"analysis\": \"sensitivity\", \"base\": {\"analysis\": \"modal\", \"modal\": "
+                 "{\"modes\": 2}}, \"parameters\": [{\"path\": \"/ring/material/youngs_modulus\", "
+                 "\"step\": %.17g}, {\"path\": \"/ring/material/density\", \"step\": %.17g}], "
+                 "\"outputs\": [\"/modes/0/frequency_hz\", \"/modes/1/frequency_hz\"]}",
+                 rel[i] * E, rel[i] * rho);
+        rd_error err;
+        json_t *r = run_text(spec, &err);
+        CHECK(r != NULL, "battery %g: %s", rel[i], err.message);
+        for (int k = 0; r && k < 2; k++)
+            for (int j = 0; j < 2; j++) {
+                double f = out_value(r, k), x = j ? rho : E;
+                double want = j ? -f / (2 * x) : f / (2 * x);
+                json_t *d = deriv(r, k, j);
+                double truth = fabs(num(d, "derivative") - want), est = num(d, "error_estimate");
+                double ratio = est / truth;
+                CHECK(ratio >= 1.0 / 3 && ratio <= 3,
+                      "step %g, mode %d, param %d: estimate %.3g, "
+                      "true error %.3g",
+                      rel[i], k, j, est, truth);
+                worst = fmax(worst, fmax(ratio, 1 / ratio));
+                n++;
+            }
+        json_decref(r);
+    }
+    printf("error estimate over %d derivatives: within x%.2f of the true error\n", n, worst);
+}
+
+static void test_ringpack(const char *examples)
+{
+    char path[1024];
+    snprintf(path, sizeof path, "%s/sensitivity_ringpack_steady.json", examples);
+    json_t *spec = json_load_file(path, 0, NULL);
+    char *text = json_dumps(spec, JSON_COMPACT);
+    rd_error err;
+    json_t *r = run_text(text, &err);
+    CHECK(r != NULL, "ring-pack sensitivity: %s %s", err.path, err.message);
+    json_t *dm = deriv(r, 0, 0), *dp = deriv(r, 1, 0);
+    double cd = num(dm, "at");
+    CHECK_REL(num(dm, "derivative"), out_value(r, 0) / cd, 1e-4,
+              "d(blow-by)/dC_d = blow-by / C_d (orifices in series, one C_d)");
+    CHECK(fabs(num(dp, "derivative")) <= num(dp, "error_estimate") &&
+              json_is_false(json_object_get(dp, "significant")),
+          "d(p_land)/dC_d = 0 within its estimate (%g +- %g), flagged", num(dp, "derivative"),
+          num(dp, "error_estimate"));
+    json_decref(r);
+    free(text);
+    json_decref(spec);
+}
+
+static void refused(const char *what, const char *spec, const char *path)
+{
+    rd_scene *s = NULL;
+    rd_error err;
+    rd_error_init(&err);
+    int rc = rd_scene_parse(spec, strlen(spec), &s, &err);
+    CHECK(rc == RD_EREQUEST && strcmp(err.path, path) == 0, "%s: %d at %s (%s), want 400 at %s",
+          what, rc, err.path, err.message, path);
+    rd_scene_free(s);
+}
+
+static void test_bad_input(void)
+{
+    refused("a pointer to nothing",
+            "{\"analysis\": \"sensitivity\", \"base\": {\"analysis\": \"modal\"}, \"parameters\": "
+            "[{\"path\": \"/ring/width\"}], \"outputs\": [\"/modes/0/frequency_hz\"]}",
+            "/parameters/0/path");
+    refused("a zero base value without a step",
+            "{\"analysis\": \"sensitivity\", \"base\": {\"analysis\": \"lift\"}, \"parameters\": "
+            "[{\"path\": \"/engine/piston_tilt_deg\"}], \"outputs\": [\"/lift_max\"]}",
+            "/parameters/0/step");
+    refused("a step that leaves the scene's range",
+            "{\"analysis\": \"sensitivity\", \"base\": {\"analysis\": \"modal\"}, \"parameters\": "
+            "[{\"path\": \"/ring/tangential_force\", \"step\": 100}], \"outputs\": "
+            "[\"/modes/0/frequency_hz\"]}",
+            "/parameters/0");
+    refused("an output of another analysis",
+            "{\"analysis\": \"sensitivity\", \"base\": {\"analysis\": \"modal\"}, \"parameters\": "
+            "[{\"path\": \"/ring/tangential_force\"}], \"outputs\": [\"/blowby/l_per_min\"]}",
+            "/outputs/0");
+    refused("no outputs",
+            "{\"analysis\": \"sensitivity\", \"base\": {\"analysis\": \"modal\"}, \"parameters\": "
+            "[{\"path\": \"/ring/tangential_force\"}]}",
+            "/outputs");
+}
+
+int main(int argc, char **argv)
+{
+    test_bad_input();
+    test_modal();
+    test_estimate_battery();
+    test_ringpack(argc > 1 ? argv[1] : "examples");
+    return check_done();
+}
