@@ -42,6 +42,11 @@ const setText = (set) => {
   return e.length ? e.map(([k, v]) => `${k} = ${typeof v === 'number' ? sig(v, 4) : JSON.stringify(v)}`).join(', ') : 'the base scene';
 };
 
+// A JSON Pointer that may break after each '/' on a narrow screen.
+const ptr = (p) => String(p).split('/').flatMap((t, k) => (k ? [h('wbr', {}), `/${t}`] : t ? [t] : []));
+// A number that does not break at the '-' of its exponent.
+const nb = (text, cls) => h('span', { class: cls ? `nb ${cls}` : 'nb' }, text);
+
 // The k-th sigma of a measurement: one for all values, or one per value.
 const sigmaAt = (sigma, k) => (Array.isArray(sigma) ? (sigma.length === 1 ? sigma[0] : sigma[k]) : sigma);
 
@@ -85,7 +90,7 @@ function scalarPlot(id, observe, items) {
         isNum(m.fitted) ? diamond(x + 0, Y.map(m.fitted), 6.5, { class: 'cal-fitted', 'data-y': m.fitted }) : null);
     }),
     legend([
-      [svg('g', {}, svg('line', { x1: 0, x2: 0, y1: -6, y2: 6, class: 'cal-errbar-line' }), svg('circle', { cx: 0, cy: 0, r: 4, class: 'cal-measured' })], 'measured ± 1 sigma'],
+      [svg('g', {}, svg('line', { x1: 0, x2: 0, y1: -6, y2: 6, class: 'cal-errbar-line' }), svg('circle', { cx: 0, cy: 0, r: 4, class: 'cal-measured' })), 'measured ± 1 sigma'],
       [diamond(0, 0, 5.5, { class: 'cal-fitted' }), 'fitted'],
     ], { x: BOX.left + 4, y: 14, id: `${id}-legend` }));
 }
@@ -120,19 +125,22 @@ const valueText = (p) => `${sig(p.value, 4)}${isNum(p.std_error) ? ` ± ${sig(p.
 
 function paramTable(r) {
   const rows = r.parameters.map((p, k) => h('tr', { id: `cal-param-${k}`, class: p.identifiable ? null : 'unidentifiable', 'data-identifiable': String(p.identifiable) },
-    h('th', { scope: 'row', class: 'path' }, h('code', {}, p.path)),
-    h('td', { class: 'num value', 'data-value': p.value }, sig(p.value, 4)),
-    h('td', { class: 'num std', 'data-std-error': isNum(p.std_error) ? p.std_error : null },
-      isNum(p.std_error) ? [`± ${sig(p.std_error, 2)}`, isNum(p.value) && p.value !== 0 ? h('span', { class: 'rel' }, ` (${sig(Math.abs(p.std_error / p.value) * 100, 2)} %)`) : null] : '—'),
-    h('td', { class: 'num bounds' }, `${sig(p.min, 3)} to ${sig(p.max, 3)}`, h('span', { class: 'start' }, `start ${sig(p.start, 3)}`)),
+    h('th', { scope: 'row', class: 'path' }, h('code', {}, ptr(p.path))),
+    h('td', { class: 'num fit' },
+      h('span', { class: 'nb value', 'data-value': p.value }, sig(p.value, 4)),
+      isNum(p.std_error)
+        ? [' ', h('span', { class: 'nb std', 'data-std-error': p.std_error }, `± ${sig(p.std_error, 2)}`),
+          isNum(p.value) && p.value !== 0 ? h('span', { class: 'rel' }, `(${sig(Math.abs(p.std_error / p.value) * 100, 2)} %)`) : null].flat()
+        : [' ', h('span', { class: 'std none' }, '± — (the data do not fix it)')]),
+    h('td', { class: 'num bounds' }, nb(sig(p.min, 3)), ' to ', nb(sig(p.max, 3)), h('span', { class: 'start' }, 'start ', nb(sig(p.start, 3)))),
     h('td', { class: 'state' },
       p.identifiable ? 'identifiable' : h('strong', { class: 'bad' }, 'not identifiable'),
       p.at_bound ? h('span', { class: 'at-bound' }, `at its ${p.at_bound} bound`) : null)));
   return h('div', { class: 'table-wrap' }, h('table', { class: 'modes cal-table', id: 'cal-params' },
     h('caption', {}, 'Fitted parameters: the value with its standard error (linearised at the optimum, from the sigmas as given); "not identifiable": the measurements fix only a combination of it with other parameters, or its ±2 standard errors span its whole range — its value is one of many that fit equally.'),
     h('thead', {}, h('tr', {},
-      h('th', { scope: 'col' }, 'Parameter'), h('th', { scope: 'col' }, 'Fitted'), h('th', { scope: 'col' }, 'Std error'),
-      h('th', { scope: 'col' }, 'Bounds'), h('th', { scope: 'col' }, 'Identifiable'))),
+      h('th', { scope: 'col' }, 'Parameter'), h('th', { scope: 'col' }, 'Fitted ± std error'),
+      h('th', { scope: 'col' }, 'Bounds'), h('th', { scope: 'col' }, 'Status'))),
     h('tbody', {}, rows)));
 }
 
@@ -148,17 +156,24 @@ function corrTable(r) {
 }
 
 function measTable(r, sigmas) {
-  const cell = (v) => (Array.isArray(v) ? `trace of ${v.length}` : sig(v, 4));
-  const sgText = (s) => (Array.isArray(s) ? (s.length === 1 ? ` ± ${sig(s[0], 3)}` : ' ± per sample') : isNum(s) ? ` ± ${sig(s, 3)}` : '');
+  const cell = (v) => (Array.isArray(v) ? `trace of ${v.length}` : nb(sig(v, 4)));
+  const sgText = (s) => {
+    const one = Array.isArray(s) && s.length === 1 ? s[0] : s;
+    if (Array.isArray(one)) return [' ', '± per sample'];
+    return isNum(one) ? [' ', nb(`± ${sig(one, 3)}`)] : null;
+  };
   return h('div', { class: 'table-wrap' }, h('table', { class: 'modes cal-table', id: 'cal-measurements' },
     h('caption', {}, 'Each measurement: its variation of the base scene, what it observes, the measured value(s) with sigma, the model at the fitted parameters, and the residual in sigmas (a trace: the root mean square of its samples\').'),
-    h('thead', {}, h('tr', {}, h('th', { scope: 'col' }, '#'), h('th', { scope: 'col' }, 'Set, observed'), h('th', { scope: 'col' }, 'Measured'), h('th', { scope: 'col' }, 'Fitted'), h('th', { scope: 'col' }, 'Residual (σ)'))),
+    h('thead', {}, h('tr', {}, h('th', { scope: 'col' }, '#'), h('th', { scope: 'col' }, 'Set, observed'), h('th', { scope: 'col' }, 'Measured'), h('th', { scope: 'col' }, 'Fitted'), h('th', { scope: 'col' }, 'Resid\u00adual (σ)'))),
     h('tbody', {}, r.measurements.map((m, i) => h('tr', { id: `cal-meas-${i}` },
       h('td', { class: 'num' }, String(i + 1)),
-      h('td', { class: 'set' }, setText(m.set), h('br', {}), h('code', {}, m.observe)),
-      h('td', { class: 'num' }, `${cell(m.measured)}${sgText(sigmas[i])}`),
+      h('td', { class: 'set' }, Object.keys(m.set ?? {}).length
+        ? Object.entries(m.set).map(([k, v]) => h('span', { class: 'set-item' }, ptr(k), ' = ', nb(typeof v === 'number' ? sig(v, 4) : JSON.stringify(v))))
+        : h('span', { class: 'set-item' }, 'the base scene'),
+      h('code', { class: 'set-item' }, ptr(m.observe))),
+      h('td', { class: 'num' }, cell(m.measured), sgText(sigmas[i])),
       h('td', { class: 'num' }, cell(m.fitted)),
-      h('td', { class: 'num' }, sig(m.residual, 3)))))));
+      h('td', { class: 'num' }, nb(sig(m.residual, 3))))))));
 }
 
 function plots(r, sigmas) {
