@@ -1709,6 +1709,21 @@ for (const width of [1280, 390]) {
       if (width === 390) {
         const o = await page.evaluate(() => document.documentElement.scrollWidth - window.innerWidth);
         assert.ok(o <= 0, `no sideways scrolling with the error shown (${o} px)`);
+      } else {
+        // A parameter the data cannot fix (the pinned second ring's tangential force): marked, no std error.
+        const unid = structuredClone(spec);
+        unid.parameters.push({ path: '/rings/1/ring/tangential_force', min: 5, max: 20 });
+        await page.fill('#cal-spec', JSON.stringify(unid, null, 2));
+        await page.click('#cal-run');
+        await calDone();
+        const ru = (await serverJob(/^Calibration (\w+) succeeded/.exec(await page.textContent('#cal-status-text'))[1])).result;
+        assert.equal(ru.parameters[1].identifiable, false);
+        assert.equal(await page.getAttribute('#cal-param-1', 'data-identifiable'), 'false');
+        assert.equal(await page.textContent('#cal-param-1 .state strong'), 'not identifiable');
+        assert.equal(await page.$eval('#cal-param-1 .std', (e) => e.dataset.stdError ?? null), null, 'no standard error shown');
+        assert.match(await page.textContent('#cal-verdict'), /^Not identifiable: \/rings\/1\/ring\/tangential_force/);
+        assert.deepEqual(await page.$$eval('#cal-notes li', (lis) => lis.map((li) => li.textContent)), ru.notes);
+        assert.equal(await page.locator('#cal-correlation').count(), 1);
       }
     } finally {
       await page.fill('#cal-spec', '');
