@@ -19,6 +19,7 @@ import { getBlob, getJSON, postJSON, deleteUrl, ApiError } from './api.js';
 import { h, fill, isNum, sig, seconds } from './html.js';
 import { svg, scale, ticks, axes, pathD } from './svg.js';
 import { saveBlob } from './script.js';
+import { calibrateView } from './calibrate.js';
 
 const $ = (id) => document.getElementById(id);
 // Each poll brings the whole table so far: every 0.4 s, every 2 s for a
@@ -407,7 +408,7 @@ function fidelityView({ form, analysis, onApply }) {
 // ---- the view tabs ---------------------------------------------------------------
 
 export function setupSweeps({ form, analysis, onApply }) {
-  const views = { result: null, sweep: sweepView({ form, analysis }), fidelity: fidelityView({ form, analysis, onApply }) };
+  const views = { result: null, sweep: sweepView({ form, analysis }), fidelity: fidelityView({ form, analysis, onApply }), calibrate: calibrateView({ form, analysis }) };
   const ids = Object.keys(views);
   const select = (id) => {
     for (const v of ids) {

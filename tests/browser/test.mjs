@@ -1602,6 +1602,137 @@ for (const width of [1280, 390]) {
   });
 }
 
+// ---- the Calibrate view (issue 42 item 1) --------------------------------------
+
+const calDone = (word = 'succeeded', timeout = 90000) => page.waitForFunction(
+  (w) => new RegExp(`^Calibration \\w+ ${w}`).test(document.getElementById('cal-status-text').textContent) && !document.getElementById('cal-run').disabled,
+  word, { timeout });
+
+for (const width of [1280, 390]) {
+  test(`${width} px: the shipped calibration runs from the Calibrate view: fitted parameter ± standard error, notes as text, measured (± sigma) vs fitted; bounds reversed name their field`, { timeout: 150000 }, async () => {
+    await page.setViewportSize({ width, height: 844 });
+    try {
+      await page.click('#view-calibrate');
+      assert.equal(await page.getAttribute('#view-calibrate', 'aria-selected'), 'true');
+      assert.equal(await page.isVisible('#result-view'), false, 'the result view is hidden');
+      await page.getByRole('button', { name: 'Fill from the example' }).click();
+      await page.waitForFunction(() => document.getElementById('cal-spec').value.includes('leak_area_m2'));
+      const spec = JSON.parse(await page.inputValue('#cal-spec'));
+      const shipped = await (await page.request.get(`${BASE}/api/v1/examples/calibration_ringpack_blowby`)).json();
+      assert.deepEqual(spec, shipped, 'the editor holds the shipped example');
+      assert.equal(spec.measurements.length, 4);
+      await page.getByRole('button', { name: 'Run calibration' }).click();
+      await calDone();
+      const id = /^Calibration (\w+) succeeded/.exec(await page.textContent('#cal-status-text'))[1];
+      const job = await serverJob(id);
+      const r = job.result;
+      assert.equal(r.analysis, 'calibration');
+      assert.match(await page.textContent('#cal-status-text'), new RegExp(`${r.runs} scene runs`));
+
+      // The parameter table: the server's value and standard error, bounds, identifiable.
+      const rows = await page.$$eval('#cal-params tbody tr', (trs) => trs.map((tr) => ({
+        path: tr.querySelector('.path').textContent, value: Number(tr.querySelector('.value').dataset.value),
+        std: Number(tr.querySelector('.std').dataset.stdError), stdText: tr.querySelector('.std').textContent,
+        state: tr.querySelector('.state').textContent, bounds: tr.querySelector('.bounds').textContent })));
+      assert.equal(rows.length, 1);
+      assert.equal(rows[0].path, '/rings/2/leak_area_m2');
+      assert.equal(rows[0].value, r.parameters[0].value);
+      assert.ok(r.parameters[0].std_error > 0, 'the example is identifiable');
+      assert.equal(rows[0].std, r.parameters[0].std_error);
+      assert.match(rows[0].stdText, /^± \d/);
+      assert.equal(rows[0].state, 'identifiable');
+      assert.match(rows[0].bounds, /^1e-8 to 2e-7/);
+      // the fit should find 5.5e-8 within a few standard errors (the example's own claim)
+      assert.ok(Math.abs(r.parameters[0].value - 5.5e-8) < 4 * r.parameters[0].std_error, `${r.parameters[0].value} ± ${r.parameters[0].std_error}`);
+      assert.match(await page.textContent('#cal-runs'), new RegExp(`^${r.runs}$`));
+      assert.match(await page.textContent('#cal-chi2'), new RegExp(`/ ${r.dof}`));
+      assert.match(await page.textContent('#cal-converged'), new RegExp(`\\(stop: ${r.stop}\\)`));
+
+      // The notes: shown as text (not a tooltip), every one of the server's.
+      assert.ok(r.notes.length > 0, 'the server gave notes');
+      assert.deepEqual(await page.$$eval('#cal-notes li', (lis) => lis.map((li) => li.textContent)), r.notes);
+      assert.equal(await page.isVisible('#cal-notes'), true);
+      assert.match(await page.textContent('#cal-notes-title'), /do not cover/);
+
+      // Measured vs fitted: 4 measured points with error bars of ± sigma, 4 fitted diamonds, none in the legend.
+      const plot = await page.$eval('#cal-plot-0', (s) => {
+        const data = (sel) => [...s.querySelectorAll(sel)].filter((e) => !e.closest('.legend'));
+        return {
+          label: s.getAttribute('aria-label'),
+          measured: data('circle.cal-measured').map((c) => ({ y: Number(c.dataset.y), cy: Number(c.getAttribute('cy')), cx: Number(c.getAttribute('cx')), title: c.querySelector('title').textContent })),
+          fitted: data('.cal-fitted').map((p) => ({ tag: p.tagName, y: Number(p.dataset.y) })),
+          bars: data('g.cal-errbar').map((g) => {
+            const l = g.querySelector('line');
+            return { lo: Number(g.dataset.lo), hi: Number(g.dataset.hi), y1: Number(l.getAttribute('y1')), y2: Number(l.getAttribute('y2')), x: Number(l.getAttribute('x1')) };
+          }),
+          legend: [...s.querySelectorAll('.legend text')].map((t) => t.textContent),
+        };
+      });
+      assert.match(plot.label, /\/blowby\/l_per_min: measured .* and fitted at 4 measurements/);
+      assert.equal(plot.measured.length, 4);
+      assert.equal(plot.fitted.length, 4);
+      assert.equal(plot.bars.length, 4);
+      assert.ok(plot.fitted.every((f) => f.tag === 'path'), 'fitted: another marker than the measured circles');
+      assert.deepEqual(plot.measured.map((p) => p.y), r.measurements.map((m) => m.measured));
+      assert.deepEqual(plot.fitted.map((p) => p.y), r.measurements.map((m) => m.fitted));
+      plot.bars.forEach((b, i) => {
+        const { value, sigma } = spec.measurements[i];
+        assert.ok(Math.abs(b.lo - (value - sigma)) < 1e-12 && Math.abs(b.hi - (value + sigma)) < 1e-12, `bar ${i}: measured ± sigma`);
+        assert.ok(b.y1 > plot.measured[i].cy && plot.measured[i].cy > b.y2, `bar ${i} spans its point`);
+        assert.equal(b.x, plot.measured[i].cx);
+      });
+      assert.match(plot.measured[0].title, /\/engine\/speed_rpm = 1500/);
+      assert.deepEqual(plot.legend, ['measured ± 1 sigma', 'fitted']);
+      assert.equal(await page.locator('#cal-measurements tbody tr').count(), 4);
+
+      const overflow = await page.evaluate(() => document.documentElement.scrollWidth - window.innerWidth);
+      assert.ok(overflow <= 0, `no sideways scrolling (${overflow} px)`);
+      if (width === 390) {
+        await settled();
+        assert.deepEqual(await smallText(), [], 'calibrate view');
+      }
+      await shot(`ringdyn-calibrate-${width}.png`, { fullPage: true });
+
+      // Bounds reversed: the server's message next to the editor with its path; no job.
+      const jobsBefore = (await (await page.request.get(`${BASE}/api/v1/jobs?limit=200`)).json()).jobs.length;
+      const bad = structuredClone(spec);
+      Object.assign(bad.parameters[0], { min: 2e-7, max: 1e-8 });
+      await page.fill('#cal-spec', JSON.stringify(bad, null, 2));
+      await page.click('#cal-run');
+      await page.waitForSelector('#cal-error:not([hidden])');
+      assert.match(await page.textContent('#cal-error'), /min .* must be below max .*bounds reversed/);
+      assert.equal(await page.textContent('#cal-error code'), '/parameters/0');
+      assert.equal((await (await page.request.get(`${BASE}/api/v1/jobs?limit=200`)).json()).jobs.length, jobsBefore);
+      assert.equal(await page.$$eval('#cal-result > *', (es) => es.length), 0, 'no result shown for a refused spec');
+      // Chromium logs the 400 as a failed resource load: expected here.
+      for (let i = consoleErrors.length - 1; i >= 0; i--) if (/status of 400/.test(consoleErrors[i])) consoleErrors.splice(i, 1);
+      if (width === 390) {
+        const o = await page.evaluate(() => document.documentElement.scrollWidth - window.innerWidth);
+        assert.ok(o <= 0, `no sideways scrolling with the error shown (${o} px)`);
+      } else {
+        // A parameter the data cannot fix (the pinned second ring's tangential force): marked, no std error.
+        const unid = structuredClone(spec);
+        unid.parameters.push({ path: '/rings/1/ring/tangential_force', min: 5, max: 20 });
+        await page.fill('#cal-spec', JSON.stringify(unid, null, 2));
+        await page.click('#cal-run');
+        await calDone();
+        const ru = (await serverJob(/^Calibration (\w+) succeeded/.exec(await page.textContent('#cal-status-text'))[1])).result;
+        assert.equal(ru.parameters[1].identifiable, false);
+        assert.equal(await page.getAttribute('#cal-param-1', 'data-identifiable'), 'false');
+        assert.equal(await page.textContent('#cal-param-1 .state strong'), 'not identifiable');
+        assert.equal(await page.$eval('#cal-param-1 .std', (e) => e.dataset.stdError ?? null), null, 'no standard error shown');
+        assert.match(await page.textContent('#cal-verdict'), /^Not identifiable: \/rings\/1\/ring\/tangential_force/);
+        assert.deepEqual(await page.$$eval('#cal-notes li', (lis) => lis.map((li) => li.textContent)), ru.notes);
+        assert.equal(await page.locator('#cal-correlation').count(), 1);
+      }
+    } finally {
+      await page.fill('#cal-spec', '');
+      await page.setViewportSize({ width: 1280, height: 800 });
+      await page.click('#view-result');
+    }
+  });
+}
+
 test('after its first quick polls the page long-polls (?wait=1); a job the server interrupted ends the wait at once', { timeout: 60000 }, async () => {
   await page.goto(`${BASE}/`);
   await page.waitForSelector('#tab-modal[aria-selected="true"]');
