@@ -41,19 +41,12 @@ static const rd_block numerics_block = {
     numerics_fields};
 
 /* Stores a deep copy of the given value (checked in finish). */
-static int keep(json_t **slot, int *given, json_t *v, const char *path, rd_error *err)
-{
-    json_decref(*slot);
-    *slot = json_deep_copy(v);
-    *given = 1;
-    return *slot ? RD_OK : rd_error_set(err, RD_ENOMEM, path, "out of memory for %s", path);
-}
 
 static int parse_base(const rd_field *f, json_t *v, const char *path, rd_scene *s, rd_error *err)
 {
     struct rd_calibration *c = s->opts;
     (void)f;
-    return keep(&c->base_json, &c->base_given, v, path, err);
+    return rd_study_keep(&c->base_json, &c->base_given, v, path, err);
 }
 
 static int parse_parameters(const rd_field *f, json_t *v, const char *path, rd_scene *s,
@@ -61,7 +54,7 @@ static int parse_parameters(const rd_field *f, json_t *v, const char *path, rd_s
 {
     struct rd_calibration *c = s->opts;
     (void)f;
-    return keep(&c->params_json, &c->params_given, v, path, err);
+    return rd_study_keep(&c->params_json, &c->params_given, v, path, err);
 }
 
 static int parse_measurements(const rd_field *f, json_t *v, const char *path, rd_scene *s,
@@ -69,16 +62,12 @@ static int parse_measurements(const rd_field *f, json_t *v, const char *path, rd
 {
     struct rd_calibration *c = s->opts;
     (void)f;
-    return keep(&c->meas_json, &c->meas_given, v, path, err);
+    return rd_study_keep(&c->meas_json, &c->meas_given, v, path, err);
 }
 
-static json_t *echo_of(json_t *v)
-{
-    return v ? json_incref(v) : json_null();
-}
 static json_t *echo_base(const rd_scene *s)
 {
-    return echo_of(((struct rd_calibration *)s->opts)->base_json);
+    return rd_study_echo(((struct rd_calibration *)s->opts)->base_json);
 }
 static json_t *echo_parameters(const rd_scene *s)
 {
@@ -86,7 +75,7 @@ static json_t *echo_parameters(const rd_scene *s)
 }
 static json_t *echo_measurements(const rd_scene *s)
 {
-    return echo_of(((struct rd_calibration *)s->opts)->meas_json);
+    return rd_study_echo(((struct rd_calibration *)s->opts)->meas_json);
 }
 
 static const rd_field scene_fields[] = {

@@ -39,46 +39,35 @@ struct sens {
 
 #define ERR(path, ...) rd_error_set(err, RD_EREQUEST, path, __VA_ARGS__)
 
-static int keep(json_t **slot, int *given, json_t *v, const char *path, rd_error *err)
-{
-    json_decref(*slot);
-    *slot = json_deep_copy(v);
-    *given = 1;
-    return *slot ? RD_OK : rd_error_set(err, RD_ENOMEM, path, "out of memory for %s", path);
-}
 static int parse_base(const rd_field *f, json_t *v, const char *path, rd_scene *s, rd_error *err)
 {
     struct sens *o = s->opts;
     (void)f;
-    return keep(&o->base_json, &o->base_given, v, path, err);
+    return rd_study_keep(&o->base_json, &o->base_given, v, path, err);
 }
 static int parse_params(const rd_field *f, json_t *v, const char *path, rd_scene *s, rd_error *err)
 {
     struct sens *o = s->opts;
     (void)f;
-    return keep(&o->params_json, &o->params_given, v, path, err);
+    return rd_study_keep(&o->params_json, &o->params_given, v, path, err);
 }
 static int parse_outputs(const rd_field *f, json_t *v, const char *path, rd_scene *s, rd_error *err)
 {
     struct sens *o = s->opts;
     (void)f;
-    return keep(&o->outputs_json, &o->outputs_given, v, path, err);
-}
-static json_t *echo_json(json_t *v)
-{
-    return v ? json_incref(v) : json_null();
+    return rd_study_keep(&o->outputs_json, &o->outputs_given, v, path, err);
 }
 static json_t *echo_base(const rd_scene *s)
 {
-    return echo_json(((struct sens *)s->opts)->base_json);
+    return rd_study_echo(((struct sens *)s->opts)->base_json);
 }
 static json_t *echo_params(const rd_scene *s)
 {
-    return echo_json(((struct sens *)s->opts)->params_json);
+    return rd_study_echo(((struct sens *)s->opts)->params_json);
 }
 static json_t *echo_outputs(const rd_scene *s)
 {
-    return echo_json(((struct sens *)s->opts)->outputs_json);
+    return rd_study_echo(((struct sens *)s->opts)->outputs_json);
 }
 
 static const rd_field numerics_fields[] = {

@@ -19,6 +19,19 @@ static int is_study(const char *analysis)
     return strcmp(analysis, "calibration") == 0 || strcmp(analysis, "sensitivity") == 0;
 }
 
+int rd_study_keep(json_t **slot, int *given, json_t *v, const char *path, rd_error *err)
+{
+    json_decref(*slot);
+    *slot = json_deep_copy(v);
+    *given = 1;
+    return *slot ? RD_OK : rd_error_set(err, RD_ENOMEM, path, "out of memory for %s", path);
+}
+
+json_t *rd_study_echo(json_t *kept)
+{
+    return kept ? json_incref(kept) : json_null();
+}
+
 int rd_study_base_parse(json_t *v, const struct rd_scene_ops *ops, rd_study_base *b, rd_error *err)
 {
     memset(b, 0, sizeof *b);

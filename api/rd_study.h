@@ -30,6 +30,13 @@ typedef struct rd_study_base {
     const rd_analysis_def *an;      /* its analysis */
 } rd_study_base;
 
+/* A study's custom fields (base, parameters, ...) are kept as given and
+ * checked together in its finish hook: *slot gets a deep copy of `v`,
+ * *given 1 (RD_ENOMEM at `path`).  rd_study_echo is their echo (a new
+ * reference; JSON null when not given). */
+int rd_study_keep(json_t **slot, int *given, json_t *v, const char *path, rd_error *err);
+json_t *rd_study_echo(json_t *kept);
+
 /* `v` (at /base) into b: a scene object of an analysis that is not a study
  * (its errors at "/base" + their path), parsed with `ops` (the study's own
  * scene's).  On error b holds nothing. */

@@ -23,6 +23,7 @@
 
 #include "check.h"
 #include "rd_api.h"
+#include "seeded_normal.h"
 
 static const char *examples;
 
@@ -109,20 +110,6 @@ static json_t *spec_of(json_t *base, json_t *ms, const double *start)
                      ps, "measurements", ms);
 }
 
-/* splitmix64 and Box-Muller: seeded normal deviates. */
-static uint64_t mix(uint64_t *s)
-{
-    uint64_t z = (*s += 0x9E3779B97F4A7C15ull);
-    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
-    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
-    return z ^ (z >> 31);
-}
-static double normal(uint64_t *s)
-{
-    double u1 = ((double)(mix(s) >> 11) + 0.5) * 0x1p-53, u2 = (double)(mix(s) >> 11) * 0x1p-53;
-    return sqrt(-2 * log(u1)) * cos(6.283185307179586 * u2);
-}
-
 /* Each value of each measurement + sigma * N(0, 1). */
 static json_t *noisy(json_t *ms, uint64_t *seed)
 {
@@ -134,12 +121,14 @@ static json_t *noisy(json_t *ms, uint64_t *seed)
         double sd = json_number_value(json_object_get(m, "sigma"));
         json_t *v = json_object_get(m, "value");
         if (json_is_number(v)) {
-            json_object_set_new(m, "value", json_real(json_number_value(v) + sd * normal(seed)));
+            json_object_set_new(m, "value",
+                                json_real(json_number_value(v) + sd * seeded_normal(seed)));
             continue;
         }
         for (size_t i = 0; i < json_array_size(v); i++)
             json_array_set_new(
-                v, i, json_real(json_number_value(json_array_get(v, i)) + sd * normal(seed)));
+                v, i,
+                json_real(json_number_value(json_array_get(v, i)) + sd * seeded_normal(seed)));
     }
     return out;
 }

@@ -10,6 +10,7 @@
 
 #include "check.h"
 #include "rd_fit.h"
+#include "seeded_normal.h"
 
 #define NT 20
 
@@ -51,20 +52,6 @@ static int eval(void *ctx, size_t n, const double *const *x, double *const *r, r
     return RD_OK;
 }
 
-/* splitmix64 and Box-Muller: seeded normal deviates. */
-static uint64_t mix(uint64_t *s)
-{
-    uint64_t z = (*s += 0x9E3779B97F4A7C15ull);
-    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
-    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
-    return z ^ (z >> 31);
-}
-static double normal(uint64_t *s)
-{
-    double u1 = ((double)(mix(s) >> 11) + 0.5) * 0x1p-53, u2 = (double)(mix(s) >> 11) * 0x1p-53;
-    return sqrt(-2 * log(u1)) * cos(6.283185307179586 * u2);
-}
-
 static void fill(data *d, int model, const double *truth, double sigma, uint64_t *seed)
 {
     memset(d, 0, sizeof *d);
@@ -73,7 +60,7 @@ static void fill(data *d, int model, const double *truth, double sigma, uint64_t
     for (int i = 0; i < NT; i++) {
         d->t[i] = 0.2 * i;
         d->sigma[i] = sigma * (1 + 0.05 * i); /* unequal weights */
-        d->y[i] = model_at(d, truth, i) + (seed ? d->sigma[i] * normal(seed) : 0);
+        d->y[i] = model_at(d, truth, i) + (seed ? d->sigma[i] * seeded_normal(seed) : 0);
     }
 }
 
