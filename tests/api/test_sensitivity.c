@@ -130,6 +130,8 @@ static void test_ringpack(const char *examples)
     double cd = num(dm, "at");
     CHECK_REL(num(dm, "derivative"), out_value(r, 0) / cd, 1e-4,
               "d(blow-by)/dC_d = blow-by / C_d (orifices in series, one C_d)");
+    CHECK(fabs(num(dp, "elasticity")) <= 1e-4, "d(p_land)/dC_d C_d / p_land = %g, 0 within 1e-4",
+          num(dp, "elasticity"));
     CHECK(fabs(num(dp, "derivative")) <= num(dp, "error_estimate") &&
               json_is_false(json_object_get(dp, "significant")),
           "d(p_land)/dC_d = 0 within its estimate (%g +- %g), flagged", num(dp, "derivative"),
