@@ -414,11 +414,17 @@ static int finish(fit_ctx *c, gsl_multifit_nlinear_workspace *w, rd_fit_result *
         res->resid[i] = gsl_vector_get(f, i);
         res->chi2 += res->resid[i] * res->resid[i];
     }
+    /* x snapped to a bound (or moved since the last Jacobian): the Jacobian
+     * there, after which the residuals at x are the last ones known (found
+     * or evaluated by jacobian_at); they replace GSL's at the unsnapped u. */
     if (!c->have_jac || memcmp(c->jac_x, res->x, c->p * sizeof *res->x) != 0) {
-        if (!c->have_last || memcmp(c->last_x, res->x, c->p * sizeof *res->x) != 0)
-            remember(c, res->x, res->resid);
         if (jacobian_at(c, res->x) != GSL_SUCCESS)
             return c->err->code != RD_OK ? c->err->code : RD_EINTERNAL;
+        res->chi2 = 0;
+        for (size_t i = 0; i < c->m; i++) {
+            res->resid[i] = c->last_r[i];
+            res->chi2 += res->resid[i] * res->resid[i];
+        }
     }
     res->points = c->points;
     return uncertainty(c, res, c->err);

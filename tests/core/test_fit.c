@@ -223,6 +223,14 @@ static void test_bound_and_rosenbrock(void)
     CHECK(res.at_bound[1] == -1 && res.x[1] == -0.5 && res.at_bound[0] == 0,
           "a slope below its bound stops at it (%g, flag %d; intercept %g, flag %d, stop %s)",
           res.x[1], res.at_bound[1], res.x[0], res.at_bound[0], rd_fit_stop_name(res.stop));
+    /* the reported residuals are those at the reported (snapped) x */
+    double chi2 = 0;
+    for (int i = 0; i < NT; i++) {
+        double r = (model_at(&d, res.x, i) - d.y[i]) / d.sigma[i];
+        chi2 += r * r;
+        CHECK_REL(res.resid[i], r, 1e-12, "residual %d at the bound", i);
+    }
+    CHECK_REL(res.chi2, chi2, 1e-12, "chi2 at the bound");
     rd_fit_result_cleanup(&res);
 
     const double rlo[2] = {-5, -5}, rhi[2] = {5, 5}, r0[2] = {-1.2, 1};
