@@ -34,7 +34,10 @@ struct sens {
     rd_study_base base;
     size_t np, no;
     const char *path[PARAMS_MAX], *output[OUTPUTS_MAX];
-    double x[PARAMS_MAX], step[PARAMS_MAX]; /* step 0: chosen at run time */
+    double x[PARAMS_MAX]; /* the parameters' values in the base */
+    double h[PARAMS_MAX]; /* their steps, given or chosen (finish) */
+    double eps;           /* the outputs' relative run-to-run noise (noise_of) */
+    const char *eps_from; /* how eps was taken, for the note */
 };
 
 #define ERR(path, ...) rd_error_set(err, RD_EREQUEST, path, __VA_ARGS__)
@@ -106,6 +109,25 @@ static const rd_block scene_block = {
     "error of each derivative.",
     0, 0, scene_fields};
 
+/* eps: the relative noise of the base's outputs from run to run — 10 times
+ * its solver tolerance (numerics rtol, else tolerance), else 1e-12 (a direct
+ * solver).  Not its error estimate: a discretisation error is smooth in the
+ * parameters and cancels in a difference. */
+static double noise_of(const rd_study_base *b, const char **from)
+{
+    json_t *num = json_object_get(b->echo, "numerics");
+    json_t *t = json_object_get(num, "rtol");
+    *from = "10 numerics.rtol";
+    if (!json_is_number(t)) {
+        t = json_object_get(num, "tolerance");
+        *from = "10 numerics.tolerance";
+    }
+    if (json_is_number(t) && json_number_value(t) > 0)
+        return 10 * json_number_value(t);
+    *from = "1e-12 (a direct solver)";
+    return 1e-12;
+}
+
 static int check_param(struct sens *o, size_t j, rd_error *err)
 {
     json_t *item = json_array_get(o->params_json, j);
@@ -116,12 +138,11 @@ static int check_param(struct sens *o, size_t j, rd_error *err)
     json_t *v;
     if (!json_is_object(item))
         return ERR(at, "%s must be an object {path, step}", at);
-    json_object_foreach(
-        item, key, v) if (strcmp(key, "path") != 0 &&
-                          strcmp(key, "step") !=
-                              0) return ERR(at,
-                                            "%s/%s is not a field of %s (its fields: path, step)",
-                                            at, key, at);
+    json_object_foreach(item, key, v)
+    {
+        if (strcmp(key, "path") != 0 && strcmp(key, "step") != 0)
+            return ERR(at, "%s/%s is not a field of %s (its fields: path, step)", at, key, at);
+    }
     o->path[j] = json_string_value(json_object_get(item, "path"));
     int rc = rd_study_number_at(&o->base, o->path[j], path, &o->x[j], err);
     for (size_t k = 0; rc == RD_OK && k < j; k++)
@@ -131,14 +152,15 @@ static int check_param(struct sens *o, size_t j, rd_error *err)
         return rc;
     json_t *st = json_object_get(item, "step");
     snprintf(path, sizeof path, "%s/step", at);
-    o->step[j] = json_number_value(st);
-    if (st && !(json_is_number(st) && o->step[j] > 0 && isfinite(o->step[j])))
+    if (st && !(json_is_number(st) && json_number_value(st) > 0 && isfinite(json_number_value(st))))
         return ERR(path, "%s must be a number above 0", path);
     if (!st && o->x[j] == 0)
         return ERR(path, "%s is needed: %s is 0 in the base, so no step follows from its value",
                    path, o->path[j]);
+    /* the step that balances truncation (~h^2) and noise (~eps/h) */
+    o->h[j] = st ? json_number_value(st) : fmax(cbrt(o->eps), 1e-4) * fabs(o->x[j]);
     /* the farthest points must be scenes the analysis takes */
-    double h = st ? o->step[j] : 1e-2 * fabs(o->x[j]), far[2] = {o->x[j] - 2 * h, o->x[j] + 2 * h};
+    double h = o->h[j], far[2] = {o->x[j] - 2 * h, o->x[j] + 2 * h};
     for (int s = 0; s < 2 && rc == RD_OK; s++) {
         char what[160];
         snprintf(what, sizeof what, "%s = %g (the base's value %s twice the step)", o->path[j],
@@ -162,6 +184,7 @@ static int finish(rd_scene *s, rd_error *err)
         rc = rd_study_base_parse(o->base_json, s->ops, &o->base, err);
     if (rc != RD_OK)
         return rc;
+    o->eps = noise_of(&o->base, &o->eps_from);
     size_t np = json_array_size(o->params_json), no = json_array_size(o->outputs_json);
     if (!json_is_array(o->params_json) || np < 1 || np > PARAMS_MAX)
         return ERR("/parameters", "/parameters must be an array of 1 to %d parameters", PARAMS_MAX);
@@ -205,25 +228,6 @@ static int value_of(const struct sens *o, const rd_study_run *r, size_t k, const
     return RD_OK;
 }
 
-/* eps: the relative noise of the base's outputs from run to run — 10 times
- * its solver tolerance (numerics rtol, else tolerance), else 1e-12 (a direct
- * solver).  Not its error estimate: a discretisation error is smooth in the
- * parameters and cancels in a difference. */
-static double noise_of(const rd_study_base *b, const char **from)
-{
-    json_t *num = json_object_get(b->echo, "numerics");
-    json_t *t = json_object_get(num, "rtol");
-    *from = "10 numerics.rtol";
-    if (!json_is_number(t)) {
-        t = json_object_get(num, "tolerance");
-        *from = "10 numerics.tolerance";
-    }
-    if (json_is_number(t) && json_number_value(t) > 0)
-        return 10 * json_number_value(t);
-    *from = "1e-12 (a direct solver)";
-    return 1e-12;
-}
-
 static json_t *derivative_json(const struct sens *o, size_t j, const double *f, double v,
                                double e_abs, double h)
 {
@@ -238,33 +242,28 @@ static json_t *derivative_json(const struct sens *o, size_t j, const double *f, 
 static int run(const rd_scene *s, const rd_monitor *mon, json_t **result, rd_error *err)
 {
     const struct sens *o = s->opts;
-    double t0 = rd_clock_s(), h[PARAMS_MAX], at[4], base_v[OUTPUTS_MAX];
+    double t0 = rd_clock_s(), at[4], base_v[OUTPUTS_MAX];
     size_t nr = 1 + 4 * o->np;
     rd_study_run *runs = calloc(nr, sizeof *runs);
-    const char *from = "";
     int rc = runs ? RD_OK : rd_error_set(err, RD_ENOMEM, "", "out of memory");
     *result = NULL;
     if (rc == RD_OK) {
-        runs[0].ops = o->base.ops;
         rc = rd_study_scene(&o->base, NULL, NULL, NULL, 0, &runs[0].scene, err);
     }
     if (rc == RD_OK)
-        rc = rd_study_run_batch(runs, 1, o->threads, mon, 0.0, err);
+        rc = rd_study_run_batch(&o->base, runs, 1, o->threads, mon, 0.0, err);
     for (size_t k = 0; k < o->no && rc == RD_OK; k++)
         rc = value_of(o, &runs[0], k, "of the base", &base_v[k], err);
-    double eps = noise_of(&o->base, &from);
     for (size_t j = 0; j < o->np && rc == RD_OK; j++) {
-        h[j] = o->step[j] > 0 ? o->step[j] : fmax(cbrt(eps), 1e-4) * fabs(o->x[j]);
         const double mult[4] = {-1, 1, -2, 2};
         for (int q = 0; q < 4 && rc == RD_OK; q++) {
             rd_study_run *r = &runs[1 + 4 * j + (size_t)q];
-            at[q] = o->x[j] + mult[q] * h[j];
-            r->ops = o->base.ops;
+            at[q] = o->x[j] + mult[q] * o->h[j];
             rc = rd_study_scene(&o->base, NULL, &o->path[j], &at[q], 1, &r->scene, err);
         }
     }
     if (rc == RD_OK)
-        rc = rd_study_run_batch(runs + 1, nr - 1, o->threads, mon, 1.0 / (double)nr, err);
+        rc = rd_study_run_batch(&o->base, runs + 1, nr - 1, o->threads, mon, 1.0 / (double)nr, err);
     json_t *outs = rc == RD_OK ? json_array() : NULL;
     for (size_t k = 0; outs && k < o->no && rc == RD_OK; k++) {
         json_t *ds = json_array();
@@ -278,7 +277,7 @@ static int run(const rd_scene *s, const rd_monitor *mon, json_t **result, rd_err
             }
             if (rc == RD_OK)
                 json_array_append_new(
-                    ds, derivative_json(o, j, f, base_v[k], eps * fabs(base_v[k]), h[j]));
+                    ds, derivative_json(o, j, f, base_v[k], o->eps * fabs(base_v[k]), o->h[j]));
         }
         json_array_append_new(outs, json_pack("{s:s, s:f, s:o}", "observe", o->output[k], "value",
                                               base_v[k], "derivatives", ds));
@@ -290,7 +289,7 @@ static int run(const rd_scene *s, const rd_monitor *mon, json_t **result, rd_err
              "run-to-run noise over the step, taken as %s = %.3g of each output. It does not "
              "cover the model's own error (its error estimate) nor an output that jumps between "
              "the steps (a flank change, a regime switch).",
-             from, eps);
+             o->eps_from, o->eps);
     if (rc == RD_OK) {
         long cpus = sysconf(_SC_NPROCESSORS_ONLN);
         int threads = o->threads > 0 ? o->threads : cpus > 0 ? (int)cpus : 1;

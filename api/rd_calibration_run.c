@@ -70,14 +70,12 @@ static int eval(void *ctx, size_t n_points, const double *const *x, double *cons
     size_t ng = c->ng, nr = n_points * ng;
     rd_study_run *runs = calloc(nr, sizeof *runs);
     int rc = runs ? RD_OK : rd_error_set(err, RD_ENOMEM, "", "out of memory for the runs");
-    for (size_t k = 0; k < nr && rc == RD_OK; k++) {
-        runs[k].ops = c->base.ops;
+    for (size_t k = 0; k < nr && rc == RD_OK; k++)
         rc = rd_study_scene(&c->base, c->m[c->group_meas[k % ng]].set, e->ptrs, x[k / ng], c->np,
                             &runs[k].scene, err);
-    }
     double fraction = (double)e->evaluations / (double)e->max_points;
     if (rc == RD_OK)
-        rc = rd_study_run_batch(runs, nr, c->threads, e->mon, fraction, err);
+        rc = rd_study_run_batch(&c->base, runs, nr, c->threads, e->mon, fraction, err);
     for (size_t k = 0; k < n_points && rc == RD_OK; k++)
         for (size_t j = 0, off = 0; j < c->nm && rc == RD_OK; off += c->m[j++].n) {
             const rd_study_run *run = &runs[k * ng + c->m[j].group];

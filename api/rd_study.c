@@ -232,6 +232,7 @@ int rd_study_values(json_t *result, const char *ptr, double *out, size_t max, si
 /* ---- the batch on threads ------------------------------------------------ */
 
 typedef struct batch {
+    const struct rd_scene_ops *ops; /* the base's: how each run is parsed and freed */
     rd_study_run *runs;
     size_t n;
     pthread_mutex_t lock;
@@ -259,12 +260,12 @@ static int caller_report(void *ctx, double f)
     return atomic_load(&b->stop);
 }
 
-static void run_one(rd_study_run *r, const rd_monitor *mon)
+static void run_one(const struct rd_scene_ops *ops, rd_study_run *r, const rd_monitor *mon)
 {
     rd_scene *sc = NULL;
     rd_error_init(&r->err);
     r->result = NULL;
-    r->rc = r->ops->parse_value(r->scene, &sc, &r->err);
+    r->rc = ops->parse_value(r->scene, &sc, &r->err);
     if (r->rc == RD_OK) {
         r->rc = sc->an->run(sc, mon, &r->result, &r->err);
         if (r->rc == RD_OK && !r->result)
@@ -275,7 +276,7 @@ static void run_one(rd_study_run *r, const rd_monitor *mon)
         }
     }
     if (sc)
-        r->ops->free(sc);
+        ops->free(sc);
 }
 
 static void work(batch *b, const rd_monitor *mon)
@@ -286,7 +287,7 @@ static void work(batch *b, const rd_monitor *mon)
         pthread_mutex_unlock(&b->lock);
         if (i >= b->n)
             return;
-        run_one(&b->runs[i], mon);
+        run_one(b->ops, &b->runs[i], mon);
     }
 }
 
@@ -298,14 +299,14 @@ static void *helper_main(void *arg)
     return NULL;
 }
 
-int rd_study_run_batch(rd_study_run *runs, size_t n, int threads, const rd_monitor *mon,
-                       double fraction, rd_error *err)
+int rd_study_run_batch(const rd_study_base *base, rd_study_run *runs, size_t n, int threads,
+                       const rd_monitor *mon, double fraction, rd_error *err)
 {
     long cpus = sysconf(_SC_NPROCESSORS_ONLN);
     size_t t = threads > 0 ? (size_t)threads : cpus > 0 ? (size_t)cpus : 1;
     t = t > RD_STUDY_THREADS_MAX ? RD_STUDY_THREADS_MAX : t;
     t = t > n ? n : t;
-    batch b = {.runs = runs, .n = n, .outer = mon, .fraction = fraction};
+    batch b = {.ops = base->ops, .runs = runs, .n = n, .outer = mon, .fraction = fraction};
     pthread_t tid[RD_STUDY_THREADS_MAX];
     size_t started = 0;
     atomic_init(&b.stop, 0);

@@ -73,11 +73,9 @@ int rd_study_check_observe(const rd_study_base *b, const char *ptr, const char *
  * else. */
 int rd_study_values(json_t *result, const char *ptr, double *out, size_t max, size_t *n);
 
-/* One run of a batch: `scene` (the caller's reference; parsed again here
- * with `ops`) in, `result` (new reference, NULL when it failed) and rc/err
- * out. */
+/* One run of a batch: `scene` (the caller's reference; parsed again here)
+ * in, `result` (new reference, NULL when it failed) and rc/err out. */
 typedef struct rd_study_run {
-    const struct rd_scene_ops *ops;
     json_t *scene;
     json_t *result;
     int rc;
@@ -89,7 +87,7 @@ typedef struct rd_study_run {
  * thread among them.  A run's own failure is in its rc/err; the batch
  * returns RD_ECANCELED (every run stopped) when `mon` asked to stop,
  * reporting `fraction` to it as it goes, or RD_ENOMEM. */
-int rd_study_run_batch(rd_study_run *runs, size_t n, int threads, const rd_monitor *mon,
-                       double fraction, rd_error *err);
+int rd_study_run_batch(const rd_study_base *b, rd_study_run *runs, size_t n, int threads,
+                       const rd_monitor *mon, double fraction, rd_error *err);
 
 #endif

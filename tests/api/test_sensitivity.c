@@ -64,6 +64,8 @@ static void test_modal(void)
         double f = out_value(r, k);
         json_t *dE = deriv(r, k, 0), *drho = deriv(r, k, 1), *dF = deriv(r, k, 2);
         double wantE = f / (2 * num(dE, "at")), wantr = -f / (2 * num(drho, "at"));
+        /* default step h = cbrt(1e-12) |x| = 1e-4 |x|: truncation ~ h^2/8 ~ 1e-9, noise
+         * 1e-12/1e-4 = 1e-8 of f'; 1e-7 leaves a margin of 10 */
         CHECK_REL(num(dE, "derivative"), wantE, 1e-7, "mode %d: df/dE = f / 2E", k);
         CHECK_REL(num(drho, "derivative"), wantr, 1e-7, "mode %d: df/drho = -f / 2 rho", k);
         CHECK(fabs(num(dE, "derivative") - wantE) <= num(dE, "error_estimate") &&
