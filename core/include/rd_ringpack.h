@@ -149,6 +149,9 @@ typedef struct rd_ringpack_ring {
     double end_gap_area;
     int kind;         /* enum rd_ringpack_kind */
     double leak_area; /* RD_RING_OIL: effective leakage area C_d A, m^2 */
+    /* The running face of the lubricated friction model (rd_liner.h; the
+     * lift analysis' ring.face), each ring its own. */
+    rd_face_params face;
 } rd_ringpack_ring;
 
 typedef struct rd_ringpack_params {
@@ -182,7 +185,14 @@ typedef struct rd_ringpack_params {
     double rtol, atol;           /* atol on the lifts, m */
     long max_steps;              /* CVODE steps for the whole run */
     int estimate_error;          /* 1: second run at rtol/10, atol/10 */
-    rd_friction_params friction; /* model NONE (default) or COULOMB */
+    /* model NONE (default), COULOMB or LUBRICATED: each ring's own oil film
+     * (its face, friction.lube, bore.roughness_rq; rd_ringpack_film.c): the
+     * film of a cycle is integrated, at its end, over the pressures and
+     * speeds the ring's faces saw in it, and carries the ring's friction in
+     * the next cycle (the first cycle's film: no gas); film_step_deg its
+     * largest time step, crank deg */
+    rd_friction_params friction;
+    double film_step_deg;
     int model;                   /* every ring's model unless its own says (rd_ringpack_ring) */
     /* Carried to the lift-model rings (rd_ringpack_lift.c): the bore every
      * ring runs in (rd_bore, rd_liner.h; distortion phases from
@@ -239,6 +249,12 @@ typedef struct rd_ringpack_result {
     char ring_why[RD_RINGPACK_RINGS_MAX][240];
     double ring_stiffness[RD_RINGPACK_RINGS_MAX];
     int states; /* CVODE's unknowns: 2R pressures, 2R axial slots, 4 masses, the lift rings' */
+    /* Lubricated friction: each ring's oil film over the last cycle (the
+     * lift analysis' block, one cycle), and film_lag: how far that film (from
+     * the cycle before's pressures) is from the film the last cycle's own
+     * pressures give, max |h0 - h0'| / max(h0', sigma) over the cycle. */
+    rd_lift_lube lube[RD_RINGPACK_RINGS_MAX];
+    double film_lag[RD_RINGPACK_RINGS_MAX];
     double error_estimate;  /* from the rtol/10 run; NAN if none */
     double event_error_deg; /* largest flank-change angle change in that run; NAN if none */
 } rd_ringpack_result;

@@ -30,7 +30,7 @@ typedef struct film_scene {
     double omega, w_el, back;
 } film_scene;
 
-static double viscosity_at(const rd_lube_params *l, double deg)
+double rd_lift_lube_viscosity(const rd_lube_params *l, double deg)
 {
     if (l->viscosity > 0.0)
         return l->viscosity;
@@ -50,7 +50,7 @@ static void loads_at(void *ctx, double t, double *U, double *eta, double *W, dou
     double alpha = fs->omega * t, deg = alpha * 180.0 / M_PI, v;
     rd_engine_piston(&p->engine, alpha, NULL, &v, NULL);
     *U = v;
-    *eta = viscosity_at(&p->friction.lube, deg);
+    *eta = rd_lift_lube_viscosity(&p->friction.lube, deg);
     *W = fs->w_el;
     *plo = *phi = 0.0;
     if (p->gas.points > 0) {
@@ -89,10 +89,18 @@ static void friction_of(const rd_film_point *pt, double circ, double mu_b, doubl
 int rd_lift_film_result(const rd_ring_params *rp, const rd_lift_params *p, const rd_film *film,
                         const rd_film_track *tr, rd_lift_result *out, rd_error *err)
 {
-    rd_lift_lube *lb = &out->lube;
-    int S = out->samples;
+    int rc = rd_lift_lube_fill(&out->lube, film, tr, &p->friction.lube, &p->engine, rp->diameter,
+                               out->crank_deg, out->samples, 0.0,
+                               (int)floor(p->engine.cycles + 1e-9), err);
+    out->lube.film_step_deg = p->film_step_deg;
+    return rc;
+}
+
+int rd_lift_lube_fill(rd_lift_lube *lb, const rd_film *film, const rd_film_track *tr,
+                      const rd_lube_params *l, const rd_engine_params *e, double diameter,
+                      const double *crank_deg, int S, double t_first, int C, rd_error *err)
+{
     size_t n = (size_t)(S > 0 ? S : 1);
-    int C = (int)floor(p->engine.cycles + 1e-9);
     lb->on = 1;
     lb->min_film = malloc(5 * n * sizeof(double));
     lb->regime = malloc(n * sizeof(int));
@@ -105,11 +113,11 @@ int rd_lift_film_result(const rd_ring_params *rp, const rd_lift_params *p, const
     lb->asperity_share = lb->min_film + 4 * n;
     lb->fmep = lb->friction_work + (C > 0 ? C : 1);
     lb->cycles = C;
-    double omega = rd_engine_omega(&p->engine), circ = M_PI * rp->diameter;
-    double ureg = rd_liner_ureg(&p->engine), mu_b = p->friction.lube.boundary_coefficient;
+    double omega = rd_engine_omega(e), circ = M_PI * diameter;
+    double ureg = rd_liner_ureg(e), mu_b = l->boundary_coefficient;
     for (int k = 0; k < S; k++) {
         rd_film_point pt;
-        rd_film_track_at(tr, out->crank_deg[k] * M_PI / 180.0 / omega, &pt);
+        rd_film_track_at(tr, t_first + crank_deg[k] * M_PI / 180.0 / omega, &pt);
         double h, a, load = pt.W + pt.Wa;
         friction_of(&pt, circ, mu_b, ureg, &h, &a);
         lb->min_film[k] = pt.h0;
@@ -123,14 +131,14 @@ int rd_lift_film_result(const rd_ring_params *rp, const rd_lift_params *p, const
     }
     /* per cycle: the power over the film's own steps (trapezoid; they land on
      * the cycles' ends) */
-    double cycle = 4.0 * M_PI / omega, stroke = 2.0 * p->engine.crank_radius,
-           Vd = 0.25 * M_PI * rp->diameter * rp->diameter * stroke;
+    double cycle = 4.0 * M_PI / omega, stroke = 2.0 * e->crank_radius,
+           Vd = 0.25 * M_PI * diameter * diameter * stroke;
     for (int c = 0; c < C; c++) {
-        double w = 0.0;
+        double w = 0.0, t0 = t_first + c * cycle;
         for (int k = 0; k < tr->steps; k++) {
             const rd_film_point *a = &tr->pt[k], *b = &tr->pt[k + 1];
             double mid = 0.5 * (a->t + b->t), h0, a0, h1, a1;
-            if (mid < c * cycle || mid > (c + 1) * cycle)
+            if (mid < t0 || mid > t0 + cycle)
                 continue;
             friction_of(a, circ, mu_b, ureg, &h0, &a0);
             friction_of(b, circ, mu_b, ureg, &h1, &a1);
@@ -144,12 +152,11 @@ int rd_lift_film_result(const rd_ring_params *rp, const rd_lift_params *p, const
     lb->viscosity_min = INFINITY;
     lb->viscosity_max = 0.0;
     for (double d = 0.0; d <= 720.0; d += 1.0) {
-        double e = viscosity_at(&p->friction.lube, d);
-        lb->viscosity_min = fmin(lb->viscosity_min, e);
-        lb->viscosity_max = fmax(lb->viscosity_max, e);
+        double v = rd_lift_lube_viscosity(l, d);
+        lb->viscosity_min = fmin(lb->viscosity_min, v);
+        lb->viscosity_max = fmax(lb->viscosity_max, v);
     }
     lb->periodic_change = tr->periodic_change;
-    lb->film_step_deg = p->film_step_deg;
     lb->film_solves = tr->solves;
     lb->held = tr->held;
     return RD_OK;

@@ -81,6 +81,15 @@ int rd_lift_film_run(const rd_ring_params *rp, const rd_lift_params *p, rd_film 
                      rd_film_track *tr, rd_error *err);
 int rd_lift_film_result(const rd_ring_params *rp, const rd_lift_params *p, const rd_film *film,
                         const rd_film_track *tr, rd_lift_result *out, rd_error *err);
+/* The lubrication block lb from a film track over S samples at crank
+ * angles crank_deg (deg from t_first, s), the friction work and FMEP of C
+ * whole cycles from t_first (the ring pack's rings too, rd_ringpack_film.c);
+ * lb->film_step_deg is the caller's. */
+int rd_lift_lube_fill(rd_lift_lube *lb, const rd_film *film, const rd_film_track *tr,
+                      const rd_lube_params *l, const rd_engine_params *e, double diameter,
+                      const double *crank_deg, int S, double t_first, int C, rd_error *err);
 void rd_lift_lube_cleanup(rd_lift_lube *lb);
+/* The oil's viscosity at crank angle deg, Pa s (rd_lube_params). */
+double rd_lift_lube_viscosity(const rd_lube_params *l, double deg);
 
 #endif

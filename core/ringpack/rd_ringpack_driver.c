@@ -290,7 +290,7 @@ static int drv_open(drv *d, const rd_ringpack_params *p, double rtol, double ato
     d->banded = p->flank_band > 0.0;
     if ((rc = rd_cvode_open(&d->cs, d->deg_per_s, err)))
         return rc;
-    if ((rc = open_rings(d, err)))
+    if ((rc = open_rings(d, err)) || (rc = rd_ringpack_films_open(&d->m, d->rec.S, err)))
         return rc;
     sunindextype N = d->m.N;
     d->y = N_VNew_Serial(N, d->cs.ctx);
@@ -501,9 +501,12 @@ static int at_root(drv *d, double t, int all, rd_error *err)
 static void record(drv *d, int k, double t)
 {
     int flank[RD_RINGPACK_RINGS_MAX];
+    double pv[RD_RINGPACK_VOLUMES_MAX], *y = N_VGetArrayPointer(d->y);
     for (int i = 0; i < d->m.R; i++)
         flank[i] = d->banded ? d->band[i].band : d->m.mode[i];
-    rd_ringpack_record(&d->rec, &d->m, flank, k, t, N_VGetArrayPointer(d->y));
+    rd_ringpack_record(&d->rec, &d->m, flank, k, t, y);
+    rd_ringpack_pressures(&d->m, t, y, pv);
+    rd_ringpack_films_sample(&d->m, k, t, pv);
 }
 
 /* The work bound over the whole run (the restarts zero CVODE's counter). */
@@ -565,6 +568,8 @@ static int integrate(drv *d, const rd_monitor *mon, rd_error *err)
             rd_ringpack_cycle_end(&d->rec, &d->m);
             for (int i = 0; !d->rec.done && i < d->m.R; i++)
                 d->band[i].landing = -1; /* a landing of the cycle before awaits no touch */
+            if (!d->rec.done && (rc = rd_ringpack_films_cycle(&d->m, d->rec.cyc, err)))
+                return rc;
         }
         if ((rc = work_bound(d, t, err)) || (rc = rd_monitor_report(mon, (double)j / total, err)))
             return rc;
@@ -606,6 +611,7 @@ static int run_once(const rd_ringpack_params *p, double rtol, double atol, const
         counters(&d, r);
         rc = lift_events(&d, err);
     }
+    rc = rc ? rc : rd_ringpack_films_result(&d.m, r, err);
     drv_close(&d);
     return rc;
 }
@@ -686,7 +692,9 @@ void rd_ringpack_result_cleanup(rd_ringpack_result *r)
     free(r->flank);
     free(r->friction);
     free(r->flow);
-    for (int i = 0; i < RD_RINGPACK_RINGS_MAX; i++)
+    for (int i = 0; i < RD_RINGPACK_RINGS_MAX; i++) {
         free(r->events[i]);
+        rd_lift_lube_cleanup(&r->lube[i]);
+    }
     memset(r, 0, sizeof *r);
 }

@@ -131,6 +131,8 @@ static int lift_params(const rd_ringpack_model *m, int i, rd_packring *L)
     lp->groove = p->rings[i].groove;
     lp->gravity = p->gravity;
     lp->friction = p->friction;
+    lp->face = p->rings[i].face;
+    lp->film_step_deg = p->film_step_deg;
     lp->rtol = p->rtol;
     lp->atol = p->atol;
     lp->max_steps = p->max_steps;
@@ -191,6 +193,11 @@ int rd_packring_open(rd_ringpack_model *m, int i, SUNContext ctx, int *N, int *m
     *modes_out = modes;
     *k = L->m.k;
     return RD_OK;
+}
+
+void rd_packring_film(rd_packring *L, const rd_film_track *tr)
+{
+    L->lp.film = tr;
 }
 
 void rd_packring_close(rd_packring *L)

@@ -46,6 +46,8 @@ typedef struct rd_ringpack_model {
     rd_packring *lr[RD_RINGPACK_RINGS_MAX];
     int off[RD_RINGPACK_RINGS_MAX];
     int kind[RD_RINGPACK_RINGS_MAX]; /* RD_RINGPACK_AXIAL or enum rd_lift_model_kind */
+    /* the lubricated model: each ring's oil film (rd_ringpack_film.c), else NULL */
+    struct rd_packfilm *film[RD_RINGPACK_RINGS_MAX];
 } rd_ringpack_model;
 
 /* Network index of the volume below ring i (land_{i+1} or the crankcase). */
@@ -70,6 +72,11 @@ void rd_ringpack_areas(const rd_ringpack_model *m, const double *y, double *area
  * areas `area` (rd_ringpack_areas). */
 void rd_ringpack_flows(const rd_ringpack_model *m, const double *pv, const double *area,
                        double *mdot);
+/* The gas around ring i at t, gauge against the crankcase: the land
+ * above, the groove behind, the volume below (the test hook's tables when
+ * set). */
+void rd_ringpack_around(const rd_ringpack_model *m, int i, double t, const double *pv,
+                        double out[3]);
 /* Ring i's gauge pressures above, behind, below (against the crankcase;
  * the network's, or the test hook's tables), Pa. */
 void rd_ringpack_faces(const rd_ringpack_model *m, int i, double t, const double *pv,
@@ -102,6 +109,23 @@ int rd_ringpack_rhs(const rd_ringpack_model *m, double t, const double *y, doubl
 
 /* Names and volumes into the result. */
 void rd_ringpack_describe(const rd_ringpack_model *m, rd_ringpack_result *r);
+
+/* ---- the oil films (rd_ringpack_film.c; the lubricated model) ---- */
+
+typedef struct rd_packfilm rd_packfilm;
+/* Each ring's film for the first cycle (no gas), S samples a cycle; the
+ * lift rings rub on it.  Nothing without the lubricated model. */
+int rd_ringpack_films_open(rd_ringpack_model *m, int S, rd_error *err);
+/* The pressures around each ring at sample k of the cycle (pv: the
+ * network's, rd_ringpack_pressures). */
+void rd_ringpack_films_sample(rd_ringpack_model *m, int k, double t, const double *pv);
+/* At a cycle's end: each film of cycle `next` from the cycle's samples. */
+int rd_ringpack_films_cycle(rd_ringpack_model *m, int next, rd_error *err);
+/* Ring i's film at time t (s; m->film[i] set). */
+void rd_ringpack_film_at(const rd_ringpack_model *m, int i, double t, rd_film_point *pt);
+/* The lubrication blocks and film_lag of the last cycle into r. */
+int rd_ringpack_films_result(rd_ringpack_model *m, rd_ringpack_result *r, rd_error *err);
+void rd_ringpack_films_close(rd_ringpack_model *m);
 
 /* ---- the output (rd_ringpack_record.c) ---- */
 
@@ -167,6 +191,8 @@ double rd_packring_areas(rd_packring *L, const double *y, double *up, double *lo
 void rd_packring_area_slope(rd_packring *L, const double *y, const double *w, double *du,
                             double *dl);
 /* Its axial load without the flanks (N, +z up) and friction (N) at (t, y). */
+/* Its lift parameters' film (the lubricated model: rd_ringpack_film.c). */
+void rd_packring_film(rd_packring *L, const rd_film_track *tr);
 void rd_packring_loads(rd_packring *L, double t, const double *y, double *fz, double *friction);
 /* Its event threshold eps and clearance. */
 double rd_packring_eps(const rd_packring *L);

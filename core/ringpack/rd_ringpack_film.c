@@ -1,0 +1,203 @@
+/*
+ * rd_ringpack_film.c — the lubricated friction model on the pack's rings
+ * (physics.friction.model lubricated; rd_ringpack.h): each ring's oil film
+ * (core/liner rd_film_track.h, the lift analysis' film: one rigid face, its
+ * radial balance with the squeeze film in time), coupled with the gas
+ * network a cycle at a time.
+ *
+ * The film of ring i feels the piston's sliding speed, the oil's viscosity
+ * at the crank angle, the radial load 2 F_t / D + (p_groove - p_cc) h_back
+ * r_back / r_run and, at its edges, the lands' gas (below and above the
+ * ring, gauge against the crankcase), as the lift analysis' film does with
+ * its tables (rd_lift_film.c).  Those pressures are the network's, which
+ * the rings' motion (and so the friction) decides.  The coupling is lagged
+ * by one cycle: during cycle c each ring rubs on the film integrated, at
+ * the end of cycle c - 1, over the pressures that cycle recorded at its
+ * output samples (linear between them); the first cycle's film has no gas
+ * (the volumes start at the crankcase pressure) and a cycle of warm-up.
+ * Each cycle's film starts where the one before ended, so h0 is continuous.
+ * As the pack settles to its periodic state the pressures of two cycles
+ * agree and so does the film with the pressures it rubs under; film_lag
+ * (the result) measures what is left: the last cycle's film against a film
+ * integrated over the last cycle's own pressures from the same start.
+ *
+ * The friction is the film's (rd_liner_law.h, lubricated): the axial and
+ * pinned rings' in rd_ringpack_friction, the lift rings' through their
+ * lift parameters' film (rd_packring_film).  A film track holds pack time:
+ * its points are shifted to the cycle they serve.
+ */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "rd_film_track.h"
+#include "rd_lift_internal.h"
+#include "rd_ringpack_model.h"
+
+struct rd_packfilm {
+    rd_film film;
+    rd_film_track tr;   /* the film of the cycle running (pack time) */
+    double *gas;        /* 3 x (S + 1): above, behind, below (gauge, Pa) at the cycle's samples */
+    double w_el, back;  /* N/m: the elastic line load; the back face's share of p_groove */
+    double period, dt;  /* s: a cycle, the film's largest step */
+    const double *load; /* the samples the loads read (gas, or NULL: no gas) */
+    const rd_ringpack_params *p;
+    int S;
+};
+
+static void loads_at(void *ctx, double t, double *U, double *eta, double *W, double *plo,
+                     double *phi)
+{
+    const rd_packfilm *f = ctx;
+    double omega = 4.0 * M_PI / f->period, v, x = t / f->period * f->S;
+    rd_engine_piston(&f->p->engine, omega * t, NULL, &v, NULL);
+    *U = v;
+    *eta = rd_lift_lube_viscosity(&f->p->friction.lube, t / f->period * 720.0);
+    *W = f->w_el;
+    *plo = *phi = 0.0;
+    if (!f->load)
+        return;
+    int k = (int)floor(x), n = f->S + 1;
+    k = k < 0 ? 0 : k >= f->S ? f->S - 1 : k;
+    double w = fmin(fmax(x - k, 0.0), 1.0);
+    const double *g = f->load;
+#define AT(row) (g[(row) * n + k] + w * (g[(row) * n + k + 1] - g[(row) * n + k]))
+    *phi = AT(0);
+    *W += f->back * AT(1);
+    *plo = AT(2);
+#undef AT
+}
+
+/* The film over one cycle from h_start (0: the balance after a cycle of
+ * warm-up) under f->load, its points moved to start at t0 (s). */
+static int cycle_film(rd_packfilm *f, double h_start, double t0, rd_film_track *tr,
+                      rd_error *err)
+{
+    rd_film_loads ld = {loads_at, f};
+    int rc = rd_film_track_run(&f->film, &ld, f->period, f->dt, f->period,
+                               h_start > 0.0 ? 0.0 : f->period, h_start, tr, err);
+    for (int k = 0; !rc && k <= tr->steps; k++)
+        tr->pt[k].t += t0;
+    return rc;
+}
+
+int rd_ringpack_films_open(rd_ringpack_model *m, int S, rd_error *err)
+{
+    const rd_ringpack_params *p = m->p;
+    if (p->friction.model != RD_FRICTION_LUBRICATED)
+        return RD_OK;
+    for (int i = 0; i < m->R; i++) {
+        const rd_ring_params *rp = &p->rings[i].ring;
+        rd_packfilm *f = calloc(1, sizeof *f);
+        if (!f || !(f->gas = calloc(3 * ((size_t)S + 1), sizeof *f->gas))) {
+            free(f);
+            return rd_error_set(err, RD_ENOMEM, "", "Out of memory for ring %d's oil film.", i + 1);
+        }
+        m->film[i] = f;
+        f->p = p;
+        f->S = S;
+        f->period = 4.0 * M_PI / m->omega;
+        f->dt = p->film_step_deg * M_PI / 180.0 / m->omega;
+        rd_section s;
+        rd_section_init(&s, rp);
+        f->w_el = 2.0 * rp->tangential_force / rp->diameter;
+        f->back = s.back.height * s.back.r / s.run.r;
+        int rc = rd_film_init(&f->film, &p->rings[i].face, s.run.height, RD_FILM_NODES,
+                              p->bore.roughness_rq, &p->friction.lube, rp->youngs_modulus,
+                              rp->poisson_ratio, err);
+        rc = rc ? rc : cycle_film(f, 0.0, 0.0, &f->tr, err); /* no gas yet */
+        if (rc)
+            return rc;
+        if (m->lr[i])
+            rd_packring_film(m->lr[i], &f->tr);
+    }
+    return RD_OK;
+}
+
+void rd_ringpack_films_sample(rd_ringpack_model *m, int k, double t, const double *pv)
+{
+    for (int i = 0; i < m->R; i++) {
+        rd_packfilm *f = m->film[i];
+        if (!f)
+            continue;
+        double g[3];
+        rd_ringpack_around(m, i, t, pv, g);
+        for (int r = 0; r < 3; r++)
+            f->gas[(size_t)r * (f->S + 1) + k] = g[r];
+    }
+}
+
+int rd_ringpack_films_cycle(rd_ringpack_model *m, int next, rd_error *err)
+{
+    for (int i = 0; i < m->R; i++) {
+        rd_packfilm *f = m->film[i];
+        if (!f)
+            continue;
+        rd_film_track tr;
+        f->load = f->gas;
+        int rc = cycle_film(f, f->tr.pt[f->tr.steps].h0, next * f->period, &tr, err);
+        if (rc) {
+            rd_film_track_free(&tr);
+            return rc;
+        }
+        rd_film_track_free(&f->tr);
+        f->tr = tr; /* in place: the lift ring keeps &f->tr */
+        for (int r = 0; r < 3; r++) /* this cycle's end starts the next */
+            f->gas[(size_t)r * (f->S + 1)] = f->gas[(size_t)r * (f->S + 1) + f->S];
+    }
+    return RD_OK;
+}
+
+void rd_ringpack_film_at(const rd_ringpack_model *m, int i, double t, rd_film_point *pt)
+{
+    rd_film_track_at(&m->film[i]->tr, t, pt);
+}
+
+/* Ring i's film_lag (rd_ringpack.h): the film over the last cycle's own
+ * pressures from the same start, against the film the cycle used. */
+static int film_lag(rd_packfilm *f, double *lag, rd_error *err)
+{
+    rd_film_track chk;
+    const rd_film_track *tr = &f->tr;
+    f->load = f->gas;
+    int rc = cycle_film(f, tr->pt[0].h0, tr->pt[0].t, &chk, err);
+    *lag = 0.0;
+    for (int k = 0; !rc && k <= tr->steps; k++) {
+        rd_film_point a;
+        rd_film_track_at(&chk, tr->pt[k].t, &a);
+        *lag = fmax(*lag, fabs(tr->pt[k].h0 - a.h0) / fmax(a.h0, f->film.sigma));
+    }
+    rd_film_track_free(&chk);
+    return rc;
+}
+
+int rd_ringpack_films_result(rd_ringpack_model *m, rd_ringpack_result *r, rd_error *err)
+{
+    for (int i = 0; i < m->R; i++) {
+        rd_packfilm *f = m->film[i];
+        if (!f)
+            continue;
+        const rd_ringpack_params *p = m->p;
+        int rc = rd_lift_lube_fill(&r->lube[i], &f->film, &f->tr, &p->friction.lube, &p->engine,
+                                   p->rings[i].ring.diameter, r->crank_deg, r->samples,
+                                   f->tr.pt[0].t, 1, err);
+        r->lube[i].film_step_deg = p->film_step_deg;
+        if (rc || (rc = film_lag(f, &r->film_lag[i], err)))
+            return rc;
+    }
+    return RD_OK;
+}
+
+void rd_ringpack_films_close(rd_ringpack_model *m)
+{
+    for (int i = 0; i < RD_RINGPACK_RINGS_MAX; i++) {
+        rd_packfilm *f = m->film[i];
+        if (!f)
+            continue;
+        rd_film_track_free(&f->tr);
+        rd_film_free(&f->film);
+        free(f->gas);
+        free(f);
+        m->film[i] = NULL;
+    }
+}
