@@ -17,6 +17,7 @@
 
 #include "rd_json.h"
 #include "rd_lift.h"
+#include "rd_lube_json.h"
 #include "rd_registry.h"
 #include "rd_scene.h"
 #include "rd_static.h"
@@ -27,9 +28,6 @@ struct lift_opts {
     int gas_given, squeeze_given;
     int max_steps;                /* /numerics/max_steps */
     struct rd_table gas_table[4]; /* crank_deg, above, behind, below */
-    int vogel_given, temp_table_given, oil_given, asperity_given;
-    struct rd_table temp_table[2]; /* /physics/friction/oil/temperature_table */
-    double bore_rq;                /* /bore/roughness_rq_m (default RD_LINER_RQ_DEFAULT) */
 };
 
 #define LO(member) offsetof(struct lift_opts, member)
@@ -56,8 +54,7 @@ static const rd_field bore_fields[] = {
                    "pressure, hence the friction, then varies around the ring; the ring starts "
                    "from its static equilibrium in this bore, and the scene never runs the rigid "
                    "model."),
-    {"roughness_rq_m", RD_F_NUMBER, LO(bore_rq), RD_MIN(1e-9), RD_MAX(5e-6),
-     .desc = "The liner's Rq, m; read by the lubricated friction model only. Default 0.2 um."},
+    RD_BORE_ROUGHNESS_FIELD,
     {.key = NULL},
 };
 static const rd_block bore_block = {
@@ -90,64 +87,6 @@ static const rd_field groove_fields[] = {
 };
 static const rd_block groove_block = {"Groove", "/groove (lift).", 1, 0, groove_fields};
 
-static const rd_field vogel_fields[] = {
-    {"a_pa_s", RD_F_NUMBER, LO(lift.friction.lube.vogel_a), RD_MIN(1e-9), RD_MAX(1),
-     .desc = "a of eta = a exp(b / (T - c)), Pa s."},
-    {"b_k", RD_F_NUMBER, LO(lift.friction.lube.vogel_b), RD_MIN(0), RD_MAX(1e4), .desc = "b, K."},
-    {"c_k", RD_F_NUMBER, LO(lift.friction.lube.vogel_c), RD_MIN(0), RD_MAX(250),
-     .desc = "c, K (T in kelvin)."},
-    {.key = NULL},
-};
-static const rd_block vogel_block = {
-    "Vogel",
-    "/physics/friction/oil/vogel: eta = a exp(b / (T - c)), T the liner temperature in kelvin. "
-    "Default: an SAE 5W-30-like oil (a 4.88e-5 Pa s, b 1197 K, c 141.15 K: 51 mPa s at 40 C, "
-    "8.5 at 100 C, 3.4 at 150 C).",
-    1, 0, vogel_fields};
-static const rd_field temp_table_fields[] = {
-    {"crank_deg", RD_F_TABLE, LO(temp_table[0]), RD_MIN(2), RD_MAX(RD_LIFT_TABLE_MAX),
-     .required = 1, .desc = "Crank angles, deg, strictly increasing within 0..720."},
-    {"value_c", RD_F_TABLE, LO(temp_table[1]), RD_MIN(2), RD_MAX(RD_LIFT_TABLE_MAX), .required = 1,
-     .desc = "Liner temperature at each angle, deg C, each -40 to 250."},
-    {.key = NULL},
-};
-static const rd_block temp_table_block = {
-    "OilTemperatureTable",
-    "/physics/friction/oil/temperature_table: the liner temperature vs crank angle (linear, "
-    "periodic over 720 deg) in place of temperature_c.",
-    1, 0, temp_table_fields};
-static const rd_field oil_fields[] = {
-    {"viscosity_pa_s", RD_F_NUMBER, LO(lift.friction.lube.viscosity), RD_MIN(0), RD_MAX(10),
-     .desc = "A constant dynamic viscosity, Pa s (1e-4 to 10); 0 = the Vogel law at the liner "
-             "temperature (default)."},
-    {"vogel", RD_F_OPTBLOCK, LO(vogel_given), .block = &vogel_block},
-    {"temperature_c", RD_F_NUMBER, LO(lift.friction.lube.temperature_c), RD_MIN(-40), RD_MAX(250),
-     .desc = "The liner temperature, deg C (default 100)."},
-    {"temperature_table", RD_F_OPTBLOCK, LO(temp_table_given), .block = &temp_table_block},
-    {.key = NULL},
-};
-static const rd_block oil_block = {"Oil", "/physics/friction/oil: the lubricated model's oil.", 1,
-                                   0, oil_fields};
-static const rd_field asperity_fields[] = {
-    {"density_per_m2", RD_F_NUMBER, LO(lift.friction.lube.asperity_density), RD_MIN(1e6),
-     RD_MAX(1e14), .desc = "Asperity density n, per m^2 (default 5e8)."},
-    {"radius_m", RD_F_NUMBER, LO(lift.friction.lube.asperity_radius), RD_MIN(1e-7), RD_MAX(1e-2),
-     .desc = "Asperity tip radius beta, m (default 3e-4: n beta sigma = 0.04 with the default "
-             "roughness)."},
-    {"boundary_coefficient", RD_F_NUMBER, LO(lift.friction.lube.boundary_coefficient), RD_MIN(0),
-     RD_MAX(1), .desc = "Friction coefficient of the asperity load (default 0.1)."},
-    {"composite_modulus_pa", RD_F_NUMBER, LO(lift.friction.lube.composite_modulus), RD_MIN(0),
-     RD_MAX(1e12),
-     .desc = "E' with 1/E' = (1 - nu_1^2)/E_1 + (1 - nu_2^2)/E_2, Pa (1e9 to 1e12); 0 = the "
-             "ring's material on a grey cast-iron liner (E 120 GPa, nu 0.26)."},
-    {.key = NULL},
-};
-static const rd_block asperity_block = {
-    "Asperity",
-    "/physics/friction/asperity: Greenwood-Tripp asperity contact, W_a = (16 sqrt 2 / 15) pi (n "
-    "beta sigma)^2 sqrt(sigma / beta) E' A F_5/2(h / sigma).",
-    1, 0, asperity_fields};
-
 static const rd_field friction_fields[] = {
     RD_FRICTION_FIELDS(LO, lift.friction,
                        "coulomb: F = -mu N tanh(u / u_reg). stribeck: thesis (2.9) with the "
@@ -162,8 +101,7 @@ static const rd_field friction_fields[] = {
      RD_MAX(1e15), .desc = "Stribeck only: So_lim of (2.9), -."},
     {"hydrodynamic_slope", RD_F_NUMBER, LO(lift.friction.hydrodynamic_slope), RD_MIN(0),
      RD_MAX(1e12), .desc = "Stribeck only: K of (2.9), -."},
-    {"oil", RD_F_OPTBLOCK, LO(oil_given), .block = &oil_block},
-    {"asperity", RD_F_OPTBLOCK, LO(asperity_given), .block = &asperity_block},
+    RD_LUBE_FRICTION_FIELDS,
     {.key = NULL},
 };
 static const rd_block friction_block = {
@@ -329,7 +267,8 @@ static void defaults(struct rd_scene *s)
     struct lift_opts *o = s->opts;
     rd_lift_params_default(&o->lift);
     o->max_steps = (int)o->lift.max_steps;
-    o->bore_rq = o->lift.bore.roughness_rq;
+    s->lube.bore_rq = o->lift.bore.roughness_rq;
+    s->lube.lube = o->lift.friction.lube;
     s->face = o->lift.face;
 }
 
@@ -338,8 +277,6 @@ static void cleanup(void *opts)
     struct lift_opts *o = opts;
     for (int k = 0; k < 4; k++)
         free(o->gas_table[k].v);
-    free(o->temp_table[0].v);
-    free(o->temp_table[1].v);
     rd_engine_scene_cleanup(&o->eng);
 }
 
@@ -385,52 +322,12 @@ static int lube_finish(struct rd_scene *s, struct lift_opts *o, rd_error *err)
     if (rc)
         return rc;
     l->face = s->face;
-    if (o->bore_rq != RD_LINER_RQ_DEFAULT && !lub)
-        return rd_error_set(err, RD_EINVAL, "/bore/roughness_rq_m",
-                            "/bore/roughness_rq_m is read by the lubricated friction model only.");
-    if (!lub && (o->oil_given || o->asperity_given))
-        return rd_error_set(err, RD_EINVAL,
-                            o->oil_given ? "/physics/friction/oil" : "/physics/friction/asperity",
-                            "%s is read by the lubricated friction model only (model is not "
-                            "lubricated).",
-                            o->oil_given ? "/physics/friction/oil" : "/physics/friction/asperity");
     if (!lub && l->film_step_deg != RD_LIFT_FILM_STEP_DEG)
         return rd_error_set(err, RD_EINVAL, "/numerics/film_step_deg",
                             "/numerics/film_step_deg is read by the lubricated friction model "
                             "only.");
-    l->bore.roughness_rq = o->bore_rq;
-    if (o->vogel_given && l->friction.lube.viscosity > 0.0)
-        return rd_error_set(err, RD_EINVAL, "/physics/friction/oil/vogel",
-                            "give either viscosity_pa_s (a constant) or vogel, not both.");
-    if (l->friction.lube.viscosity > 0.0 && l->friction.lube.temperature_c != 100.0)
-        return rd_error_set(err, RD_EINVAL, "/physics/friction/oil/temperature_c",
-                            "a constant viscosity_pa_s does not read the temperature: give "
-                            "either viscosity_pa_s or the temperature (Vogel law), not both.");
-    const rd_face_params *fp = &l->face;
-    const char *unread = fp->profile != RD_FACE_BARREL && fp->crown != 5e-6      ? "crown_m"
-                         : fp->profile != RD_FACE_BARREL && fp->offset != 0.0    ? "offset_m"
-                         : fp->profile != RD_FACE_TAPER && fp->taper_deg != 0.0  ? "taper_deg"
-                         : fp->profile != RD_FACE_FLAT && fp->edge_radius != 0.0 ? "edge_radius_m"
-                                                                                 : NULL;
-    if (unread) {
-        char path[48];
-        snprintf(path, sizeof path, "/ring/face/%s", unread);
-        return rd_error_set(err, RD_EINVAL, path, "%s is not read by this face profile.", path);
-    }
-    if (o->temp_table_given && l->friction.lube.viscosity > 0.0)
-        return rd_error_set(err, RD_EINVAL, "/physics/friction/oil/temperature_table",
-                            "a constant viscosity_pa_s does not read the temperature: give "
-                            "either viscosity_pa_s or the temperature (Vogel law), not both.");
-    if (o->temp_table_given) {
-        if (o->temp_table[0].n != o->temp_table[1].n)
-            return rd_error_set(err, RD_EINVAL, "/physics/friction/oil/temperature_table/value_c",
-                                "crank_deg has %d values but value_c has %d.", o->temp_table[0].n,
-                                o->temp_table[1].n);
-        l->friction.lube.temp_points = o->temp_table[0].n;
-        l->friction.lube.temp_crank_deg = o->temp_table[0].v;
-        l->friction.lube.temp_c = o->temp_table[1].v;
-    }
-    return RD_OK;
+    rc = rd_scene_lube_finish(s, lub, &l->friction.lube, &l->bore.roughness_rq, err);
+    return rc ? rc : rd_face_unread(&l->face, "/ring", err);
 }
 
 /* The optional physics the scene named, the gas tables, the engine's tilt,
@@ -601,45 +498,19 @@ static json_t *lift_result(const rd_scene *scene, const rd_lift_result *res, dou
         rd_result_real(res->crank_deg_reached), "warnings", lift_warnings(res));
 }
 
-static const char *const regime_names[] = {"hydrodynamic", "mixed", "boundary"};
-
-/* The lubrication block of a lubricated run (rd_lift.h rd_lift_lube). */
-static json_t *lube_json(const rd_lift_result *res)
-{
-    const rd_lift_lube *lb = &res->lube;
-    int N = res->samples;
-    json_t *reg = json_array();
-    for (int k = 0; reg && k < N; k++)
-        if (json_array_append_new(reg, json_string(regime_names[lb->regime[k]])))
-            return json_decref(reg), NULL;
-    return json_pack(
-        "{s:o, s:o, s:o, s:o, s:o, s:o, s:o, s:o, s:o, s:o, s:{s:o, s:o}, s:o, s:I, s:o, s:i, "
-        "s:s}",
-        "min_film_m", rd_result_reals(lb->min_film, N, 1, 1.0), "hydrodynamic_friction_n",
-        rd_result_reals(lb->hydrodynamic_friction, N, 1, 1.0), "asperity_friction_n",
-        rd_result_reals(lb->asperity_friction, N, 1, 1.0), "friction_power_w",
-        rd_result_reals(lb->power, N, 1, 1.0), "asperity_share",
-        rd_result_reals(lb->asperity_share, N, 1, 1.0), "regime", reg, "friction_work_j",
-        rd_result_reals(lb->friction_work, lb->cycles, 1, 1.0), "fmep_pa",
-        rd_result_reals(lb->fmep, lb->cycles, 1, 1.0), "min_film_at_m",
-        rd_result_real(lb->min_film_x), "composite_roughness_m",
-        rd_result_real(lb->composite_sigma), "viscosity_pa_s", "min",
-        rd_result_real(lb->viscosity_min), "max", rd_result_real(lb->viscosity_max),
-        "film_step_deg", rd_result_real(lb->film_step_deg), "film_solves",
-        (json_int_t)lb->film_solves, "periodic_change", rd_result_real(lb->periodic_change),
-        "held_steps", lb->held, "method",
-        "one film for the whole running face (a rigid profile on a round bore), solved before "
-        "the ring's motion over the run plus one cycle of warm-up: the average Reynolds equation "
-        "across the face (Patir-Cheng flow factors, gamma = 1; the Reynolds cavitation "
-        "condition; fully flooded; 41 points) with the squeeze term, Greenwood-Tripp asperity "
-        "contact, and the radial balance elastic line load 2 F_t / D + gas behind = film + "
-        "asperity load, by variable-step BDF2 (local error 1e-4 of the film, steps at most "
-        "film_step_deg). Friction at the liner's speed past the "
-        "piston. Not covered: the film's error in time and across the face (not estimated), "
-        "Patir-Cheng shear-stress factors, oil starvation, mass-conserving cavitation, the film "
-        "varying around the ring, the ring's radial motion in the lift model (its bore contact "
-        "is the penalty's).");
-}
+/* The lubrication block's method (rd_result_lube). */
+#define LUBE_METHOD                                                                            \
+    "one film for the whole running face (a rigid profile on a round bore), solved before "    \
+    "the ring's motion over the run plus one cycle of warm-up: the average Reynolds equation " \
+    "across the face (Patir-Cheng flow factors, gamma = 1; the Reynolds cavitation "           \
+    "condition; fully flooded; 41 points) with the squeeze term, Greenwood-Tripp asperity "    \
+    "contact, and the radial balance elastic line load 2 F_t / D + gas behind = film + "       \
+    "asperity load, by variable-step BDF2 (local error 1e-4 of the film, steps at most "       \
+    "film_step_deg). Friction at the liner's speed past the "                                  \
+    "piston. Not covered: the film's error in time and across the face (not estimated), "      \
+    "Patir-Cheng shear-stress factors, oil starvation, mass-conserving cavitation, the film "  \
+    "varying around the ring, the ring's radial motion in the lift model (its bore contact "   \
+    "is the penalty's)."
 
 static int run(const rd_scene *s, const rd_monitor *mon, json_t **out, rd_error *err)
 {
@@ -649,7 +520,9 @@ static int run(const rd_scene *s, const rd_monitor *mon, json_t **out, rd_error 
     int rc = rd_lift_solve(&s->ring, s->segments, &o->lift, mon, &res, err);
     if (rc == RD_OK || res.partial) { /* a stopped run's whole cycles come with its error */
         *out = lift_result(s, &res, rd_clock_s() - t0);
-        if (*out && res.lube.on && json_object_set_new(*out, "lubrication", lube_json(&res)) != 0) {
+        if (*out && res.lube.on &&
+            json_object_set_new(*out, "lubrication",
+                                rd_result_lube(&res.lube, res.samples, LUBE_METHOD)) != 0) {
             json_decref(*out);
             *out = NULL;
         }

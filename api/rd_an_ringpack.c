@@ -24,6 +24,7 @@
 #include "rd_json.h"
 #include "rd_registry.h"
 #include "rd_ringpack.h"
+#include "rd_ringpack_json.h"
 #include "rd_scene.h"
 #include "rd_static.h"
 
@@ -35,6 +36,9 @@ struct pack_opts {
     int max_steps;
     double cycles;            /* /engine/cycles as given: 0 = "periodic" */
     struct rd_table table[2]; /* crank_deg, pressure_pa */
+    /* each ring's /rings/i/ring/face: given, and its table (owned) */
+    int face_given[RD_RINGPACK_RINGS_MAX], face_table_given[RD_RINGPACK_RINGS_MAX];
+    struct rd_table face_table[RD_RINGPACK_RINGS_MAX][2];
 };
 
 #define PO(member) offsetof(struct pack_opts, member)
@@ -87,6 +91,7 @@ static const rd_field bore_fields[] = {
                    "bore's angle 0 (ring i sees phi_k - gap_angle_deg). Every free ring then needs "
                    "a flexible model (auto: full; axial and rigid are refused) and starts from its "
                    "static equilibrium in this bore, as in lift."),
+    RD_BORE_ROUGHNESS_FIELD,
     {.key = NULL},
 };
 static const rd_block bore_block = {
@@ -139,8 +144,9 @@ static const rd_block land_block = {"PackLand", "The land (crevice) above the ri
                                     land_fields};
 
 static const rd_field item_fields[] = {
-    {"ring", RD_F_BLOCK, 0, .block = &rd_block_ring,
-     .desc = "The ring block: section (rectangle), closed gap (its end gap in the bore), density. "
+    {"ring", RD_F_BLOCK, 0, .block = &rd_block_ring_face,
+     .desc = "The ring block: section (rectangle), closed gap (its end gap in the bore), density, "
+             "and its running face (read by the lubricated friction model: each ring its own). "
              "All rings share the bore: every diameter equals the first ring's."},
     {"groove", RD_F_BLOCK, 0, .block = &groove_block},
     {"land", RD_F_BLOCK, 0, .block = &land_block},
@@ -248,9 +254,15 @@ static const rd_field friction_fields[] = {
     RD_FRICTION_FIELDS(PO, pack.friction,
                        "coulomb: F = -mu N tanh(u / u_reg) on each ring, N its bore normal force "
                        "(the pretension plus its groove's gas on the back face), u its sliding "
-                       "speed on the liner (the lift analysis' law). stribeck: refused, not "
-                       "available in the pack yet.",
+                       "speed on the liner (the lift analysis' law). lubricated: each ring's oil "
+                       "film on its running face (/rings/i/ring/face), as lift's, loaded by the "
+                       "pack's own pressures (its groove behind it, its lands at the face's "
+                       "edges), each cycle's film integrated over the cycle before's pressures "
+                       "(the result's rings[i].lubrication.film_lag says how far that lags); "
+                       "reads oil, asperity and /bore/roughness_rq_m. stribeck: refused, not "
+                       "available in the pack.",
                        "Coulomb coefficient mu, -."),
+    RD_LUBE_FRICTION_FIELDS,
     {.key = NULL},
 };
 static const rd_block friction_block = {
@@ -328,6 +340,10 @@ static const rd_field numerics_fields[] = {
     {"error_estimate", RD_F_BOOL, PO(pack.estimate_error),
      .desc = "Estimate the error by a second run at rtol/10 and atol/10 (as many cycles as the "
              "run)."},
+    {"film_step_deg", RD_F_NUMBER, PO(pack.film_step_deg), RD_MIN(0.01),
+     RD_MAX(RD_LIFT_FILM_STEP_MAX_DEG),
+     .desc = "The lubricated model's oil films: their largest time step, crank deg (default 2; "
+             "read with physics.friction.model lubricated only)."},
     {"periodic_tolerance", RD_F_NUMBER, PO(pack.periodic_tolerance), RD_MIN(1e-6), RD_MAX(0.1),
      .desc = "With /engine/cycles \"periodic\": the change of a cycle against the one before "
              "(the result's periodicity: the blow-by's relative change and the largest pressure "
@@ -393,6 +409,28 @@ static int kind_fields(const rd_ringpack_ring *r, double leak_default, const cha
     return RD_OK;
 }
 
+/* Ring i's face table into its face (o's arrays, borrowed). */
+static int item_face(struct pack_opts *o, int i, const char *at, rd_face_params *face,
+                     rd_error *err)
+{
+    char f[RD_ERROR_PATH_MAX];
+    snprintf(f, sizeof f, "%s/ring/face/table", at);
+    if (o->face_table_given[i] != (face->profile == RD_FACE_TABLE))
+        return rd_error_set(err, RD_EINVAL, f,
+                            o->face_table_given[i] ? "%s is read with profile table only."
+                                                   : "profile table needs %s.",
+                            f);
+    if (!o->face_table_given[i])
+        return RD_OK;
+    if (o->face_table[i][0].n != o->face_table[i][1].n)
+        return rd_error_set(err, RD_EINVAL, f, "%s: x_m has %d values but drop_m has %d.", f,
+                            o->face_table[i][0].n, o->face_table[i][1].n);
+    face->points = o->face_table[i][0].n;
+    face->x = o->face_table[i][0].v;
+    face->drop = o->face_table[i][1].v;
+    return RD_OK;
+}
+
 /* One item through a temporary scene (file comment). */
 static int parse_ring(json_t *item, const char *at, rd_scene *s, int i, rd_error *err)
 {
@@ -410,10 +448,18 @@ static int parse_ring(json_t *item, const char *at, rd_scene *s, int i, rd_error
     rd_scene tmp = *s;
     tmp.opts = &slot;
     tmp.ring = slot.proto.ring;
+    tmp.face = slot.proto.face;
+    tmp.face_given = tmp.face_table_given = 0;
+    memset(tmp.face_table, 0, sizeof tmp.face_table);
     int rc = rd_schema_parse(copy, &item_block, NULL, at, &tmp, err);
     int pin_given = json_object_get(item, "pinned") != NULL;
     json_decref(copy);
     slot.proto.ring = tmp.ring;
+    slot.proto.face = tmp.face;
+    memcpy(o->face_table[i], tmp.face_table, sizeof tmp.face_table); /* owned by o */
+    o->face_given[i] = tmp.face_given;
+    o->face_table_given[i] = tmp.face_table_given;
+    rc = rc ? rc : item_face(o, i, at, &slot.proto.face, err);
     if (none)
         slot.proto.pinned = RD_PIN_FREE;
     if (!rc && slot.proto.kind == RD_RING_OIL && !pin_given) /* no dynamics unless asked */
@@ -453,6 +499,10 @@ static json_t *echo_rings(const rd_scene *s)
         rd_scene tmp = *s;
         tmp.opts = &slot;
         tmp.ring = slot.proto.ring;
+        tmp.face = slot.proto.face;
+        tmp.face_given = o->face_given[i];
+        tmp.face_table_given = o->face_table_given[i];
+        memcpy(tmp.face_table, o->face_table[i], sizeof tmp.face_table);
         json_t *item = json_object();
         int bad = !item || rd_schema_echo(&item_block, &tmp, item) != 0;
         if (!bad && slot.proto.pinned == RD_PIN_FREE)
@@ -472,6 +522,9 @@ static void defaults(struct rd_scene *s)
     struct pack_opts *o = s->opts;
     rd_ringpack_params_thesis(&o->pack);
     o->proto = o->pack.rings[0];
+    s->face = o->proto.face;
+    s->lube.lube = o->pack.friction.lube;
+    s->lube.bore_rq = o->pack.bore.roughness_rq;
     o->max_steps = (int)o->pack.max_steps;
     o->cycles = o->pack.engine.cycles;
     o->synthetic_kind = 0;
@@ -480,8 +533,11 @@ static void defaults(struct rd_scene *s)
 static void cleanup(void *opts)
 {
     struct pack_opts *o = opts;
-    for (int k = 0; k < 2; k++)
+    for (int k = 0; k < 2; k++) {
         free(o->table[k].v);
+        for (int i = 0; i < RD_RINGPACK_RINGS_MAX; i++)
+            free(o->face_table[i][k].v);
+    }
     rd_engine_scene_cleanup(&o->eng);
 }
 
@@ -540,6 +596,34 @@ static int solver_ranges(const struct pack_opts *o, rd_error *err)
     return RD_OK;
 }
 
+/* The lubricated model's inputs (each ring's face, the oil, the liner),
+ * each refused by name with another friction model. */
+static int lube_finish(struct rd_scene *s, struct pack_opts *o, rd_error *err)
+{
+    rd_ringpack_params *p = &o->pack;
+    int lub = p->friction.model == RD_FRICTION_LUBRICATED;
+    for (int i = 0; i < p->n_rings; i++) {
+        char at[32];
+        snprintf(at, sizeof at, "/rings/%d/ring", i % 10);
+        if (o->face_given[i] && !lub) {
+            char f[RD_ERROR_PATH_MAX];
+            snprintf(f, sizeof f, "%s/face", at);
+            return rd_error_set(err, RD_EINVAL, f,
+                                "%s is read by the lubricated friction model only: set "
+                                "/physics/friction/model to lubricated, or remove it.",
+                                f);
+        }
+        int rc = rd_face_unread(&p->rings[i].face, at, err);
+        if (rc)
+            return rc;
+    }
+    if (!lub && p->film_step_deg != RD_LIFT_FILM_STEP_DEG)
+        return rd_error_set(err, RD_EINVAL, "/numerics/film_step_deg",
+                            "/numerics/film_step_deg is read by the lubricated friction model "
+                            "only.");
+    return rd_scene_lube_finish(s, lub, &p->friction.lube, &p->bore.roughness_rq, err);
+}
+
 static int finish(struct rd_scene *s, rd_error *err)
 {
     struct pack_opts *o = s->opts;
@@ -554,187 +638,9 @@ static int finish(struct rd_scene *s, rd_error *err)
                             p->periodic_tolerance, o->cycles);
     int rc = cylinder_finish(o, err);
     rc = rc ? rc : rd_engine_scene_finish(&o->eng, &p->engine, &p->bore, &p->friction, err);
+    rc = rc ? rc : lube_finish(s, o, err);
     rc = rc ? rc : rd_ringpack_validate(&o->pack, err);
     return rc ? rc : solver_ranges(o, err);
-}
-
-/* ---- result --------------------------------------------------------------- */
-
-static const char *const flank_names[] = {"lower", "upper", "free"};
-static const char *const event_names[] = {"leave_lower", "reach_upper", "leave_upper",
-                                          "reach_lower"};
-
-static json_t *volumes_json(const rd_ringpack_result *r)
-{
-    json_t *a = json_array();
-    int N = r->samples, bad = !a;
-    for (int v = 0; !bad && v < r->n_volumes; v++) {
-        int fixed = v > 0 && v < r->n_volumes - 1;
-        bad |= json_array_append_new(
-            a, json_pack("{s:s, s:o, s:o}", "name", r->volume_name[v], "pressure_pa",
-                         rd_result_reals(r->pressure + (size_t)v * N, N, 1, 1.0), "volume_m3",
-                         fixed ? rd_result_real(r->volume_m3[v]) : json_null()));
-    }
-    if (bad) {
-        json_decref(a);
-        return NULL;
-    }
-    return a;
-}
-
-static json_t *ring_json(const rd_ringpack_result *r, int i)
-{
-    int N = r->samples, bad = 0;
-    json_t *flank = json_array(), *events = json_array();
-    bad |= !flank || !events;
-    for (int k = 0; !bad && k < N; k++) {
-        int f = r->flank[(size_t)i * N + k];
-        bad |= json_array_append_new(flank, json_string(f >= 0 && f < 3 ? flank_names[f] : "free"));
-    }
-    for (int e = 0; !bad && e < r->n_events[i]; e++) {
-        int kind = r->events[i][e].kind;
-        bad |= json_array_append_new(
-            events,
-            json_pack("{s:o, s:s, s:o}", "crank_deg", rd_result_real(r->events[i][e].crank_deg),
-                      "event", kind >= 0 && kind < 4 ? event_names[kind] : "unknown", "touch_deg",
-                      rd_result_real(r->events[i][e].touch_deg)));
-    }
-    if (bad) {
-        json_decref(flank);
-        json_decref(events);
-        return NULL;
-    }
-    return json_pack("{s:o, s:o, s:o, s:o}", "lift",
-                     rd_result_reals(r->lift + (size_t)i * N, N, 1, 1.0), "flank", flank, "events",
-                     events, "friction_n", rd_result_reals(r->friction + (size_t)i * N, N, 1, 1.0));
-}
-
-static json_t *flows_json(const rd_ringpack_result *r)
-{
-    json_t *a = json_array();
-    int N = r->samples, bad = !a;
-    for (int f = 0; !bad && f < r->n_flows; f++)
-        bad |= json_array_append_new(
-            a, json_pack("{s:s, s:s, s:s, s:o}", "name", r->flow_name[f], "from",
-                         r->volume_name[r->flow_from[f]], "to", r->volume_name[r->flow_to[f]],
-                         "mass_flow_kg_s", rd_result_reals(r->flow + (size_t)f * N, N, 1, 1.0)));
-    if (bad) {
-        json_decref(a);
-        return NULL;
-    }
-    return a;
-}
-
-/* The CSV table's columns: fixed names for up to three rings, null where a
- * ring or volume is absent. */
-static json_t *table_json(const rd_ringpack_result *r)
-{
-    static const char *const pcol[] = {"cylinder_pa",    "top_land_pa", "groove_1_pa",
-                                       "second_land_pa", "groove_2_pa", "third_land_pa",
-                                       "groove_3_pa"};
-    static const char *const lcol[] = {"lift_1_m", "lift_2_m", "lift_3_m"};
-    int N = r->samples, bad = 0;
-    json_t *t = json_object(), *nulls = json_array(), *cc = json_array();
-    bad |= !t || !nulls || !cc;
-    for (int k = 0; !bad && k < N; k++) {
-        double in = 0.0; /* into the crankcase: the last ring's lower flank and end gap */
-        for (int f = 0; f < r->n_flows; f++)
-            if (r->flow_to[f] == r->n_volumes - 1)
-                in += r->flow[(size_t)f * N + k];
-        bad |= json_array_append_new(nulls, json_null()) ||
-               json_array_append_new(cc, rd_result_real(in));
-    }
-    bad |= !t || json_object_set_new(t, "crank_deg", rd_result_reals(r->crank_deg, N, 1, 1.0));
-    for (int v = 0; !bad && v < 7; v++)
-        bad |= json_object_set_new(t, pcol[v],
-                                   v < r->n_volumes - 1
-                                       ? rd_result_reals(r->pressure + (size_t)v * N, N, 1, 1.0)
-                                       : rd_json_copy(nulls));
-    for (int i = 0; !bad && i < 3; i++)
-        bad |=
-            json_object_set_new(t, lcol[i],
-                                i < r->n_rings ? rd_result_reals(r->lift + (size_t)i * N, N, 1, 1.0)
-                                               : rd_json_copy(nulls));
-    bad |= json_object_set(t, "blowby_kg_s", cc);
-    json_decref(nulls);
-    json_decref(cc);
-    if (bad) {
-        json_decref(t);
-        return NULL;
-    }
-    return t;
-}
-
-/* numerics.model: per ring {name, dof, modes, why} (as the lift analysis'
- * numerics.model). */
-static json_t *ring_models(const rd_ringpack_result *r, int *lifted)
-{
-    json_t *a = json_array();
-    int bad = !a;
-    *lifted = 0;
-    for (int i = 0; !bad && i < r->n_rings; i++) {
-        const char *name = rd_ringpack_model_name(r->ring_model[i]);
-        *lifted |= r->ring_model[i] != RD_RINGPACK_AXIAL;
-        bad |= json_array_append_new(
-            a, json_pack("{s:s, s:i, s:i, s:s}", "name", name ? name : "unknown", "dof",
-                         r->ring_dof[i], "modes", r->ring_modes[i], "why", r->ring_why[i]));
-    }
-    if (bad) {
-        json_decref(a);
-        return NULL;
-    }
-    return a;
-}
-
-static json_t *pack_numerics(const rd_scene *scene, const rd_ringpack_result *r, double wall_s)
-{
-    const struct pack_opts *o = scene->opts;
-    int estimated = isfinite(r->error_estimate), lifted;
-    json_t *models = ring_models(r, &lifted);
-    return json_pack(
-        "{s:o, s:i, s:o, s:s, s:I, s:I, s:I, s:I, s:I, s:I, s:I, s:o, s:o, s:o, s:o, s:o, s:i, "
-        "s:o}",
-        "model", models, "dof", r->states, "wall_s", rd_result_real(wall_s), "solver",
-        lifted ? "SUNDIALS CVODE, BDF (order <= 2), Newton on the coupled system by block "
-                 "elimination: each lift-model ring's own solver, the network's dense "
-                 "Schur complement; root finding for the flank changes"
-               : "SUNDIALS CVODE, BDF with a dense Newton linear solver (difference-quotient "
-                 "Jacobian), root finding for the flank changes, restarted at each",
-        "steps", (json_int_t)r->steps, "rhs_evals", (json_int_t)r->rhs_evals, "jac_evals",
-        (json_int_t)r->jac_evals, "root_evals", (json_int_t)r->root_evals, "restarts",
-        (json_int_t)r->restarts, "error_test_fails", (json_int_t)r->err_test_fails,
-        "nonlinear_failures", (json_int_t)r->nonlin_fails, "rtol", rd_result_real(o->pack.rtol),
-        "atol", rd_result_real(o->pack.atol), "error_estimate", rd_result_real(r->error_estimate),
-        "event_error_deg", rd_result_real(r->event_error_deg), "error_method",
-        estimated ? json_string("second run at rtol/10 and atol/10: the larger of "
-                                "the blow-by's relative change and the largest "
-                                "pressure change over the cylinder peak; the "
-                                "largest shift of a matched flank change (null "
-                                "when the runs' flank changes differ in number)")
-                  : json_null(),
-        "cycles", r->cycles, "flank_band", rd_result_real(o->pack.flank_band));
-}
-
-static json_t *pack_result(const rd_scene *scene, const rd_ringpack_result *r, double wall_s)
-{
-    const struct pack_opts *o = scene->opts;
-    json_t *rings = json_array();
-    for (int i = 0; rings && i < r->n_rings; i++)
-        if (json_array_append_new(rings, ring_json(r, i)) != 0) {
-            json_decref(rings);
-            rings = NULL;
-        }
-    return json_pack(
-        "{s:s, s:o, s:o, s:o, s:o, s:o, s:{s:o, s:o, s:o, s:o, s:o}, s:o, s:o, s:o, s:o}",
-        "analysis", rd_scene_analysis(scene), "scene", rd_scene_echo(scene), "crank_deg",
-        rd_result_reals(r->crank_deg, r->samples, 1, 1.0), "volumes", volumes_json(r), "rings",
-        rings, "flows", flows_json(r), "blowby", "kg_per_cycle", rd_result_real(r->blowby_kg),
-        "l_per_min", rd_result_real(r->blowby_l_per_min), "reverse_kg_per_cycle",
-        rd_result_real(r->reverse_kg), "inflow_kg_per_cycle", rd_result_real(r->inflow_kg),
-        "mass_balance_residual", rd_result_real(r->mass_residual), "periodicity",
-        rd_result_real(r->periodicity), "periodic_reached",
-        o->pack.periodic ? json_boolean(r->settled) : json_null(), "table", table_json(r),
-        "numerics", pack_numerics(scene, r, wall_s));
 }
 
 static int run(const rd_scene *s, const rd_monitor *mon, json_t **out, rd_error *err)
@@ -744,7 +650,7 @@ static int run(const rd_scene *s, const rd_monitor *mon, json_t **out, rd_error 
     double t0 = rd_clock_s();
     int rc = rd_ringpack_solve(&o->pack, mon, &res, err);
     if (rc == RD_OK)
-        *out = pack_result(s, &res, rd_clock_s() - t0);
+        *out = rd_ringpack_json(s, &o->pack, &res, rd_clock_s() - t0);
     rd_ringpack_result_cleanup(&res);
     return rc;
 }

@@ -140,6 +140,65 @@ const rd_block rd_block_ring_face = {
     "RingWithFace", "The ring (lift), with its running face for the lubricated friction model.", 0,
     0, ring_face_fields};
 
+/* The lubricated model's oil and asperities (moved from the lift analysis:
+ * the ring pack offers the model too). */
+static const rd_field vogel_fields[] = {
+    {"a_pa_s", RD_F_NUMBER, AT(lube.lube.vogel_a), RD_MIN(1e-9), RD_MAX(1),
+     .desc = "a of eta = a exp(b / (T - c)), Pa s."},
+    {"b_k", RD_F_NUMBER, AT(lube.lube.vogel_b), RD_MIN(0), RD_MAX(1e4), .desc = "b, K."},
+    {"c_k", RD_F_NUMBER, AT(lube.lube.vogel_c), RD_MIN(0), RD_MAX(250),
+     .desc = "c, K (T in kelvin)."},
+    {.key = NULL},
+};
+static const rd_block vogel_block = {
+    "Vogel",
+    "/physics/friction/oil/vogel: eta = a exp(b / (T - c)), T the liner temperature in kelvin. "
+    "Default: an SAE 5W-30-like oil (a 4.88e-5 Pa s, b 1197 K, c 141.15 K: 51 mPa s at 40 C, "
+    "8.5 at 100 C, 3.4 at 150 C).",
+    0, 0, vogel_fields};
+static const rd_field temp_table_fields[] = {
+    {"crank_deg", RD_F_TABLE, AT(lube.temp_table[0]), RD_MIN(2), RD_MAX(RD_LIFT_TABLE_MAX),
+     .required = 1, .desc = "Crank angles, deg, strictly increasing within 0..720."},
+    {"value_c", RD_F_TABLE, AT(lube.temp_table[1]), RD_MIN(2), RD_MAX(RD_LIFT_TABLE_MAX),
+     .required = 1, .desc = "Liner temperature at each angle, deg C, each -40 to 250."},
+    {.key = NULL},
+};
+static const rd_block temp_table_block = {
+    "OilTemperatureTable",
+    "/physics/friction/oil/temperature_table: the liner temperature vs crank angle (linear, "
+    "periodic over 720 deg) in place of temperature_c.",
+    0, 0, temp_table_fields};
+static const rd_field oil_fields[] = {
+    {"viscosity_pa_s", RD_F_NUMBER, AT(lube.lube.viscosity), RD_MIN(0), RD_MAX(10),
+     .desc = "A constant dynamic viscosity, Pa s (1e-4 to 10); 0 = the Vogel law at the liner "
+             "temperature (default)."},
+    {"vogel", RD_F_OPTBLOCK, AT(lube.vogel_given), .block = &vogel_block},
+    {"temperature_c", RD_F_NUMBER, AT(lube.lube.temperature_c), RD_MIN(-40), RD_MAX(250),
+     .desc = "The liner temperature, deg C (default 100)."},
+    {"temperature_table", RD_F_OPTBLOCK, AT(lube.temp_table_given), .block = &temp_table_block},
+    {.key = NULL},
+};
+const rd_block rd_block_oil = {"Oil", "/physics/friction/oil: the lubricated model's oil.", 0, 0,
+                               oil_fields};
+static const rd_field asperity_fields[] = {
+    {"density_per_m2", RD_F_NUMBER, AT(lube.lube.asperity_density), RD_MIN(1e6), RD_MAX(1e14),
+     .desc = "Asperity density n, per m^2 (default 5e8)."},
+    {"radius_m", RD_F_NUMBER, AT(lube.lube.asperity_radius), RD_MIN(1e-7), RD_MAX(1e-2),
+     .desc = "Asperity tip radius beta, m (default 3e-4: n beta sigma = 0.04 with the default "
+             "roughness)."},
+    {"boundary_coefficient", RD_F_NUMBER, AT(lube.lube.boundary_coefficient), RD_MIN(0), RD_MAX(1),
+     .desc = "Friction coefficient of the asperity load (default 0.1)."},
+    {"composite_modulus_pa", RD_F_NUMBER, AT(lube.lube.composite_modulus), RD_MIN(0), RD_MAX(1e12),
+     .desc = "E' with 1/E' = (1 - nu_1^2)/E_1 + (1 - nu_2^2)/E_2, Pa (1e9 to 1e12); 0 = the "
+             "ring's material on a grey cast-iron liner (E 120 GPa, nu 0.26)."},
+    {.key = NULL},
+};
+const rd_block rd_block_asperity = {
+    "Asperity",
+    "/physics/friction/asperity: Greenwood-Tripp asperity contact, W_a = (16 sqrt 2 / 15) pi (n "
+    "beta sigma)^2 sqrt(sigma / beta) E' A F_5/2(h / sigma).",
+    0, 0, asperity_fields};
+
 /* The face's table into the face (scene-owned arrays, borrowed). */
 int rd_scene_face_finish(struct rd_scene *s, int lubricated, rd_error *err)
 {
@@ -162,6 +221,56 @@ int rd_scene_face_finish(struct rd_scene *s, int lubricated, rd_error *err)
         s->face.drop = s->face_table[1].v;
     }
     return RD_OK;
+}
+
+int rd_scene_lube_finish(struct rd_scene *s, int lub, rd_lube_params *l, double *liner_rq,
+                         rd_error *err)
+{
+    struct rd_lube_scene *o = &s->lube;
+    if (o->bore_rq != RD_LINER_RQ_DEFAULT && !lub)
+        return rd_error_set(err, RD_EINVAL, "/bore/roughness_rq_m",
+                            "/bore/roughness_rq_m is read by the lubricated friction model only.");
+    if (!lub && (o->oil_given || o->asperity_given))
+        return rd_error_set(err, RD_EINVAL,
+                            o->oil_given ? "/physics/friction/oil" : "/physics/friction/asperity",
+                            "%s is read by the lubricated friction model only (model is not "
+                            "lubricated).",
+                            o->oil_given ? "/physics/friction/oil" : "/physics/friction/asperity");
+    *l = o->lube;
+    *liner_rq = o->bore_rq;
+    if (o->vogel_given && l->viscosity > 0.0)
+        return rd_error_set(err, RD_EINVAL, "/physics/friction/oil/vogel",
+                            "give either viscosity_pa_s (a constant) or vogel, not both.");
+    if (l->viscosity > 0.0 && (l->temperature_c != 100.0 || o->temp_table_given))
+        return rd_error_set(err, RD_EINVAL,
+                            o->temp_table_given ? "/physics/friction/oil/temperature_table"
+                                                : "/physics/friction/oil/temperature_c",
+                            "a constant viscosity_pa_s does not read the temperature: give "
+                            "either viscosity_pa_s or the temperature (Vogel law), not both.");
+    if (o->temp_table_given) {
+        if (o->temp_table[0].n != o->temp_table[1].n)
+            return rd_error_set(err, RD_EINVAL, "/physics/friction/oil/temperature_table/value_c",
+                                "crank_deg has %d values but value_c has %d.", o->temp_table[0].n,
+                                o->temp_table[1].n);
+        l->temp_points = o->temp_table[0].n;
+        l->temp_crank_deg = o->temp_table[0].v;
+        l->temp_c = o->temp_table[1].v;
+    }
+    return RD_OK;
+}
+
+int rd_face_unread(const rd_face_params *fp, const char *prefix, rd_error *err)
+{
+    const char *unread = fp->profile != RD_FACE_BARREL && fp->crown != 5e-6      ? "crown_m"
+                         : fp->profile != RD_FACE_BARREL && fp->offset != 0.0    ? "offset_m"
+                         : fp->profile != RD_FACE_TAPER && fp->taper_deg != 0.0  ? "taper_deg"
+                         : fp->profile != RD_FACE_FLAT && fp->edge_radius != 0.0 ? "edge_radius_m"
+                                                                                 : NULL;
+    if (!unread)
+        return RD_OK;
+    char path[RD_ERROR_PATH_MAX];
+    snprintf(path, sizeof path, "%s/face/%s", prefix, unread);
+    return rd_error_set(err, RD_EINVAL, path, "%s is not read by this face profile.", path);
 }
 
 static const rd_field modal_discretization[] = {

@@ -106,6 +106,32 @@ extern const rd_block rd_block_ring_face; /* the same with /ring/face (lift) */
 /* /ring/face into the scene's face (its table borrowed), refused unless the
  * friction model is lubricated. */
 int rd_scene_face_finish(struct rd_scene *s, int lubricated, rd_error *err);
+/* The lubricated model's oil and asperity blocks (their offsets into the
+ * scene's `lube`, struct rd_lube_scene); an analysis that offers the model
+ * puts RD_LUBE_FRICTION_FIELDS in its friction block, RD_BORE_ROUGHNESS_FIELD
+ * in its bore block, fills s->lube's defaults (rd_lube_params_default) and
+ * finishes with rd_scene_lube_finish. */
+extern const rd_block rd_block_oil, rd_block_asperity;
+#define RD_LUBE_FRICTION_FIELDS                                                      \
+    {"oil", RD_F_OPTBLOCK, offsetof(struct rd_scene, lube.oil_given), .in_scene = 1, \
+     .block = &rd_block_oil},                                                        \
+    {                                                                                \
+        "asperity", RD_F_OPTBLOCK, offsetof(struct rd_scene, lube.asperity_given),   \
+            .in_scene = 1, .block = &rd_block_asperity                               \
+    }
+#define RD_BORE_ROUGHNESS_FIELD                                                               \
+    {                                                                                         \
+        "roughness_rq_m", RD_F_NUMBER, offsetof(struct rd_scene, lube.bore_rq),               \
+            .in_scene = 1, RD_MIN(1e-9), RD_MAX(5e-6),                                        \
+            .desc = "The liner's Rq, m; read by the lubricated friction model only. Default " \
+                    "0.2 um."                                                                 \
+    }
+/* The scene's oil, asperities and liner roughness into core's (the
+ * temperature table borrowed), each refused by name unless `lubricated`. */
+int rd_scene_lube_finish(struct rd_scene *s, int lubricated, rd_lube_params *lube, double *liner_rq,
+                         rd_error *err);
+/* A face field its profile does not read, refused (at prefix/face/...). */
+int rd_face_unread(const rd_face_params *fp, const char *prefix, rd_error *err);
 extern const rd_block rd_block_discretization_modal;  /* 3..2000 segments, closed allowed */
 extern const rd_block rd_block_discretization_static; /* 4..2000, split ring */
 extern const rd_block rd_block_discretization_lift;   /* 4..1000, split ring */

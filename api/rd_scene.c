@@ -321,6 +321,8 @@ void rd_scene_free(rd_scene *scene)
     free(scene->opts);
     free(scene->face_table[0].v);
     free(scene->face_table[1].v);
+    free(scene->lube.temp_table[0].v);
+    free(scene->lube.temp_table[1].v);
     free(scene->name);
     free(scene->description);
     free(scene);

@@ -79,13 +79,22 @@ struct rd_scene {
     rd_face_params face;
     int face_given, face_table_given;
     struct rd_table face_table[2]; /* x_m, drop_m */
-    int segments;                  /* /discretization/segments */
-    int closed;                    /* /discretization/closed: 1 joins the gap */
-    rd_modal_opts modal;           /* /modal: the modal analysis' options (a member, not
+    /* /physics/friction/oil and /asperity, /bore/roughness_rq_m: the
+     * lubricated model's oil, rough contact and liner (the analyses that
+     * offer it: rd_block_oil, rd_block_asperity, rd_scene_lube_finish) */
+    struct rd_lube_scene {
+        rd_lube_params lube;
+        int vogel_given, temp_table_given, oil_given, asperity_given;
+        struct rd_table temp_table[2]; /* crank_deg, value_c */
+        double bore_rq;                /* the liner's Rq, m */
+    } lube;
+    int segments;             /* /discretization/segments */
+    int closed;               /* /discretization/closed: 1 joins the gap */
+    rd_modal_opts modal;      /* /modal: the modal analysis' options (a member, not
                             in opts, because callers and tests read it here) */
-    void *opts;                    /* the analysis' own options (an->opts_size bytes,
+    void *opts;               /* the analysis' own options (an->opts_size bytes,
                             owned; an->cleanup frees what it holds) */
-    struct rd_issues *issues;      /* while parsing: where every problem is listed
+    struct rd_issues *issues; /* while parsing: where every problem is listed
                                  (rd_schema_parse), or NULL; NULL afterwards */
 };
 

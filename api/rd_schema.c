@@ -662,7 +662,7 @@ int rd_schema_parse(json_t *obj, const rd_block *block, const char *const *also,
         if (!v)
             continue; /* absent: the default stays */
         rd_schema_path_join(child, sizeof child, path, f->key);
-        char *at = f->in_opts ? (char *)s->opts : base;
+        char *at = f->in_opts ? (char *)s->opts : f->in_scene ? (char *)s : base;
         int r = parse_field(f, at + f->offset, v, child, s, err);
         if (rc == RD_OK)
             rc = r;

@@ -72,6 +72,8 @@ typedef struct rd_field {
     unsigned char only_false;       /* RD_F_BOOL that this analysis only allows false */
     unsigned char in_opts;          /* the offset is into the analysis' opts although the
                                       block's are not (a top-level option) */
+    unsigned char in_scene;         /* the offset is into the scene although the block's are
+                                      into the opts (a shared block's given flag) */
     unsigned char nullable;         /* JSON null is accepted (and may be echoed): the
                                       block's parse hook gives it the meaning its
                                       description says; OpenAPI: nullable, null in the enum */

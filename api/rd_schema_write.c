@@ -124,7 +124,7 @@ int rd_schema_echo(const rd_block *block, const struct rd_scene *s, json_t *out)
     const char *base = cbase_of(block, s);
     for (const rd_field *f = block->fields; f->key; f++) {
         int skip;
-        const char *at = f->in_opts ? (const char *)s->opts : base;
+        const char *at = f->in_opts ? (const char *)s->opts : f->in_scene ? (const char *)s : base;
         json_t *v = field_echo(f, at + f->offset, s, &skip);
         if (!skip && set_new(out, f->key, v) != 0)
             return -1;
@@ -269,9 +269,10 @@ json_t *rd_schema_field_openapi(const rd_field *f, const rd_block *in,
     }
     if (in->items && f->offset + sizeof(double) > sizeof zero_item)
         return NULL; /* an item larger than zero_item: widen it */
-    const char *at = (in->items    ? zero_item
-                      : f->in_opts ? (const char *)defaults->opts
-                                   : cbase_of(in, defaults)) +
+    const char *at = (in->items     ? zero_item
+                      : f->in_opts  ? (const char *)defaults->opts
+                      : f->in_scene ? (const char *)defaults
+                                    : cbase_of(in, defaults)) +
                      f->offset;
     json_t *o = json_object();
     if (!o || set_new(o, "type", json_string(type_name(f->type))) != 0 ||

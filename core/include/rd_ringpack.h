@@ -182,9 +182,9 @@ typedef struct rd_ringpack_params {
      * axial clearance, where flank changes are dated (above); 0 to
      * RD_LIFT_FLANK_BAND_MAX, default RD_LIFT_FLANK_BAND */
     double flank_band;
-    double rtol, atol;           /* atol on the lifts, m */
-    long max_steps;              /* CVODE steps for the whole run */
-    int estimate_error;          /* 1: second run at rtol/10, atol/10 */
+    double rtol, atol;  /* atol on the lifts, m */
+    long max_steps;     /* CVODE steps for the whole run */
+    int estimate_error; /* 1: second run at rtol/10, atol/10 */
     /* model NONE (default), COULOMB or LUBRICATED: each ring's own oil film
      * (its face, friction.lube, bore.roughness_rq; rd_ringpack_film.c): the
      * film of a cycle is integrated, at its end, over the pressures and
@@ -193,7 +193,7 @@ typedef struct rd_ringpack_params {
      * largest time step, crank deg */
     rd_friction_params friction;
     double film_step_deg;
-    int model;                   /* every ring's model unless its own says (rd_ringpack_ring) */
+    int model; /* every ring's model unless its own says (rd_ringpack_ring) */
     /* Carried to the lift-model rings (rd_ringpack_lift.c): the bore every
      * ring runs in (rd_bore, rd_liner.h; distortion phases from
      * the bore's angle 0, each ring's taken from its gap at gap_angle_deg),

@@ -117,7 +117,9 @@ int rd_lift_lube_fill(rd_lift_lube *lb, const rd_film *film, const rd_film_track
     double ureg = rd_liner_ureg(e), mu_b = l->boundary_coefficient;
     for (int k = 0; k < S; k++) {
         rd_film_point pt;
-        rd_film_track_at(tr, t_first + crank_deg[k] * M_PI / 180.0 / omega, &pt);
+        double t = t_first + crank_deg[k] * M_PI / 180.0 / omega;
+        rd_film_track_at(tr, t, &pt);
+        rd_engine_piston(e, omega * t, NULL, &pt.U, NULL); /* exact, as the motion's friction */
         double h, a, load = pt.W + pt.Wa;
         friction_of(&pt, circ, mu_b, ureg, &h, &a);
         lb->min_film[k] = pt.h0;

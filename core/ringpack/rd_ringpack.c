@@ -100,40 +100,6 @@ double rd_ringpack_standard_density(double R)
     return 101325.0 / (R * 293.15);
 }
 
-/* The lubricated model's inputs, each ring's face under /rings/i (the
- * liner's checks name /ring/face), and the round bore its one film per
- * ring needs. */
-static int lube_validate(const rd_ringpack_params *p, rd_error *err)
-{
-    if (p->friction.model != RD_FRICTION_LUBRICATED)
-        return RD_OK;
-    int rc = rd_error_range(p->film_step_deg, 0.01, RD_LIFT_FILM_STEP_MAX_DEG,
-                            "/numerics/film_step_deg", "deg", err);
-    if (!rc && rd_bore_distorted(&p->bore, p->rings[0].ring.diameter))
-        return rd_error_set(err, RD_EINVAL, "/bore/distortion",
-                            "/bore/distortion with the lubricated friction model: each ring's "
-                            "film is one for its whole face (axisymmetric); a film varying around "
-                            "the ring is not modelled. Remove the distortion, or use coulomb.");
-    if (!rc && (p->engine.piston_tilt_deg != 0.0 || p->engine.tilt_points > 0))
-        return rd_error_set(err, RD_EINVAL, "/engine/piston_tilt_deg",
-                            "a piston tilt with the lubricated friction model: the film takes the "
-                            "piston's sliding speed, not the tilt's own; remove the tilt, or use "
-                            "coulomb.");
-    for (int i = 0; !rc && i < p->n_rings; i++) {
-        rd_error re;
-        rd_error_init(&re);
-        if ((rc = rd_lube_validate(&p->friction.lube, &p->rings[i].face, p->bore.roughness_rq,
-                                   &re))) {
-            char at[RD_ERROR_PATH_MAX];
-            if (strncmp(re.path, "/ring/", 6) != 0)
-                return rd_error_set(err, rc, re.path, "%.400s", re.message);
-            snprintf(at, sizeof at, "/rings/%d%.100s", i % 10, re.path);
-            return rd_error_set(err, rc, at, "/rings/%d: %.400s", i, re.message);
-        }
-    }
-    return rc;
-}
-
 static int validate_ring(const rd_ringpack_ring *r, int i, double bore, rd_error *err)
 {
     char at[16], f[RD_ERROR_PATH_MAX];
@@ -323,7 +289,7 @@ int rd_ringpack_validate(const rd_ringpack_params *p, rd_error *err)
         return rd_error_set(err, RD_EINVAL, "/physics/friction/model",
                             "/physics/friction/model: stribeck is the lift analysis' only; the "
                             "ring pack takes coulomb or lubricated (the oil film).");
-    rc = rc ? rc : lube_validate(p, err);
+    rc = rc ? rc : rd_ringpack_lube_validate(p, err);
     rc = rc ? rc : rd_error_range(p->atol, 1e-16, 1e-5, "/numerics/atol", "m", err);
     if (rc)
         return rc;
@@ -515,23 +481,6 @@ void rd_ringpack_flows(const rd_ringpack_model *m, const double *pv, const doubl
         mdot[f] = flow_of(m, f, pv, fa, NULL);
 }
 
-void rd_ringpack_around(const rd_ringpack_model *m, int i, double t, const double *pv,
-                        double out[3])
-{
-    const rd_gas_params *g = m->p->face_tables;
-    double cc = m->p->crankcase_pa;
-    if (g) { /* the test hook: the lift analysis' gauge tables */
-        double deg = t * m->omega * 180.0 / M_PI;
-        out[0] = rd_gasflow_table(g->points, g->crank_deg, g->above, deg);
-        out[1] = rd_gasflow_table(g->points, g->crank_deg, g->behind, deg);
-        out[2] = rd_gasflow_table(g->points, g->crank_deg, g->below, deg);
-        return;
-    }
-    out[0] = pv[2 * i + 1] - cc;
-    out[1] = pv[2 * i + 2] - cc;
-    out[2] = pv[rp_below(m, i)] - cc;
-}
-
 void rd_ringpack_faces(const rd_ringpack_model *m, int i, double t, const double *pv, double out[3])
 {
     rd_ringpack_around(m, i, t, pv, out);
@@ -553,10 +502,9 @@ static void liner_force(const rd_ringpack_model *m, int i, double t, const doubl
     *n = m->n_pre[i] + m->n_back[i] * f[1];
     if (m->film[i])
         rd_ringpack_film_at(m, i, t, &pt);
-    rd_liner_eval(&m->liner[i],
-                  &(rd_liner_point){fmax(*n, 0.0), RP_ZD(m, y, i) - v_p, 1.0,
-                                    m->film[i] ? &pt : NULL},
-                  lf);
+    rd_liner_eval(
+        &m->liner[i],
+        &(rd_liner_point){fmax(*n, 0.0), RP_ZD(m, y, i) - v_p, 1.0, m->film[i] ? &pt : NULL}, lf);
 }
 
 double rd_ringpack_friction(const rd_ringpack_model *m, int i, double t, const double *y,

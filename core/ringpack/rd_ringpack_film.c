@@ -27,12 +27,65 @@
  * its points are shifted to the cycle they serve.
  */
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "rd_film_track.h"
+#include "rd_gasflow.h"
 #include "rd_lift_internal.h"
 #include "rd_ringpack_model.h"
+
+/* The lubricated model's inputs, each ring's face under /rings/i (the
+ * liner's checks name /ring/face), and the round bore its one film per
+ * ring needs. */
+int rd_ringpack_lube_validate(const rd_ringpack_params *p, rd_error *err)
+{
+    if (p->friction.model != RD_FRICTION_LUBRICATED)
+        return RD_OK;
+    int rc = rd_error_range(p->film_step_deg, 0.01, RD_LIFT_FILM_STEP_MAX_DEG,
+                            "/numerics/film_step_deg", "deg", err);
+    if (!rc && rd_bore_distorted(&p->bore, p->rings[0].ring.diameter))
+        return rd_error_set(err, RD_EINVAL, "/bore/distortion",
+                            "/bore/distortion with the lubricated friction model: each ring's "
+                            "film is one for its whole face (axisymmetric); a film varying around "
+                            "the ring is not modelled. Remove the distortion, or use coulomb.");
+    if (!rc && (p->engine.piston_tilt_deg != 0.0 || p->engine.tilt_points > 0))
+        return rd_error_set(err, RD_EINVAL, "/engine/piston_tilt_deg",
+                            "a piston tilt with the lubricated friction model: the film takes the "
+                            "piston's sliding speed, not the tilt's own; remove the tilt, or use "
+                            "coulomb.");
+    for (int i = 0; !rc && i < p->n_rings; i++) {
+        rd_error re;
+        rd_error_init(&re);
+        if ((rc = rd_lube_validate(&p->friction.lube, &p->rings[i].face, p->bore.roughness_rq,
+                                   &re))) {
+            char at[RD_ERROR_PATH_MAX];
+            if (strncmp(re.path, "/ring/", 6) != 0)
+                return rd_error_set(err, rc, re.path, "%.400s", re.message);
+            snprintf(at, sizeof at, "/rings/%d%.100s", i % 10, re.path);
+            return rd_error_set(err, rc, at, "/rings/%d: %.400s", i, re.message);
+        }
+    }
+    return rc;
+}
+
+void rd_ringpack_around(const rd_ringpack_model *m, int i, double t, const double *pv,
+                        double out[3])
+{
+    const rd_gas_params *g = m->p->face_tables;
+    double cc = m->p->crankcase_pa;
+    if (g) { /* the test hook: the lift analysis' gauge tables */
+        double deg = t * m->omega * 180.0 / M_PI;
+        out[0] = rd_gasflow_table(g->points, g->crank_deg, g->above, deg);
+        out[1] = rd_gasflow_table(g->points, g->crank_deg, g->behind, deg);
+        out[2] = rd_gasflow_table(g->points, g->crank_deg, g->below, deg);
+        return;
+    }
+    out[0] = pv[2 * i + 1] - cc;
+    out[1] = pv[2 * i + 2] - cc;
+    out[2] = pv[rp_below(m, i)] - cc;
+}
 
 struct rd_packfilm {
     rd_film film;
@@ -61,7 +114,7 @@ static void loads_at(void *ctx, double t, double *U, double *eta, double *W, dou
     k = k < 0 ? 0 : k >= f->S ? f->S - 1 : k;
     double w = fmin(fmax(x - k, 0.0), 1.0);
     const double *g = f->load;
-#define AT(row) (g[(row) * n + k] + w * (g[(row) * n + k + 1] - g[(row) * n + k]))
+#define AT(row) (g[(row)*n + k] + w * (g[(row)*n + k + 1] - g[(row)*n + k]))
     *phi = AT(0);
     *W += f->back * AT(1);
     *plo = AT(2);
@@ -70,8 +123,7 @@ static void loads_at(void *ctx, double t, double *U, double *eta, double *W, dou
 
 /* The film over one cycle from h_start (0: the balance after a cycle of
  * warm-up) under f->load, its points moved to start at t0 (s). */
-static int cycle_film(rd_packfilm *f, double h_start, double t0, rd_film_track *tr,
-                      rd_error *err)
+static int cycle_film(rd_packfilm *f, double h_start, double t0, rd_film_track *tr, rd_error *err)
 {
     rd_film_loads ld = {loads_at, f};
     int rc = rd_film_track_run(&f->film, &ld, f->period, f->dt, f->period,
@@ -141,7 +193,7 @@ int rd_ringpack_films_cycle(rd_ringpack_model *m, int next, rd_error *err)
             return rc;
         }
         rd_film_track_free(&f->tr);
-        f->tr = tr; /* in place: the lift ring keeps &f->tr */
+        f->tr = tr;                 /* in place: the lift ring keeps &f->tr */
         for (int r = 0; r < 3; r++) /* this cycle's end starts the next */
             f->gas[(size_t)r * (f->S + 1)] = f->gas[(size_t)r * (f->S + 1) + f->S];
     }

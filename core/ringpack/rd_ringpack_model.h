@@ -113,6 +113,9 @@ void rd_ringpack_describe(const rd_ringpack_model *m, rd_ringpack_result *r);
 /* ---- the oil films (rd_ringpack_film.c; the lubricated model) ---- */
 
 typedef struct rd_packfilm rd_packfilm;
+/* The lubricated model's inputs (each ring's face named under /rings/i),
+ * and the round bore and untilted piston its one film per ring needs. */
+int rd_ringpack_lube_validate(const rd_ringpack_params *p, rd_error *err);
 /* Each ring's film for the first cycle (no gas), S samples a cycle; the
  * lift rings rub on it.  Nothing without the lubricated model. */
 int rd_ringpack_films_open(rd_ringpack_model *m, int S, rd_error *err);
