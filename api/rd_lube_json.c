@@ -17,7 +17,7 @@ json_t *rd_result_lube(const rd_lift_lube *lb, int N, const char *method)
             return json_decref(reg), NULL;
     return json_pack(
         "{s:o, s:o, s:o, s:o, s:o, s:o, s:o, s:o, s:o, s:o, s:{s:o, s:o}, s:o, s:I, s:o, s:i, "
-        "s:s}",
+        "s:o, s:o, s:s}",
         "min_film_m", rd_result_reals(lb->min_film, N, 1, 1.0), "hydrodynamic_friction_n",
         rd_result_reals(lb->hydrodynamic_friction, N, 1, 1.0), "asperity_friction_n",
         rd_result_reals(lb->asperity_friction, N, 1, 1.0), "friction_power_w",
@@ -30,5 +30,6 @@ json_t *rd_result_lube(const rd_lift_lube *lb, int N, const char *method)
         rd_result_real(lb->viscosity_min), "max", rd_result_real(lb->viscosity_max),
         "film_step_deg", rd_result_real(lb->film_step_deg), "film_solves",
         (json_int_t)lb->film_solves, "periodic_change", rd_result_real(lb->periodic_change),
-        "held_steps", lb->held, "method", method);
+        "held_steps", lb->held, "film_error", rd_result_real(lb->film_error), "friction_work_error",
+        rd_result_real(lb->work_error), "method", method);
 }

@@ -45,10 +45,14 @@ static json_t *volumes_json(const rd_ringpack_result *r)
     "film_lag: the film of the reported cycle against the film its own pressures give, max "       \
     "|h0 - h0'| / max(h0', sigma); it tracked the distance from the settled film within x3 "       \
     "(0.4-1.8, 2400 rpm fired and motored, 3-5 cycles) where the pack's periodicity is below "     \
-    "0.1. Not covered: a pack that has not settled (periodicity above 1e-2: run more cycles or "   \
-    "\"periodic\"), the film's own error in time and across the face (not estimated), "            \
-    "shear-stress factors, starvation, mass-conserving cavitation, a film varying around the "     \
-    "ring. Friction work and FMEP: the reported (last) cycle."
+    "0.1. film_error and friction_work_error (with numerics.error_estimate): the reported "        \
+    "cycle's film against the same film, from the same start, on a grid twice as fine (81 "        \
+    "points, half the steps, a quarter of the local error); as the lift's, within x0.35-1.24 of "  \
+    "the error against a grid 8 times finer. Not covered: a pack that has not settled "            \
+    "(periodicity above 1e-2: run more cycles or "                                                 \
+    "\"periodic\"), the model (shear-stress factors, starvation, mass-conserving cavitation, a "   \
+    "film varying around the "                                                                     \
+    "ring). Friction work and FMEP: the reported (last) cycle."
 
 static json_t *ring_json(const rd_ringpack_result *r, int i)
 {

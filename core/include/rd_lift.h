@@ -176,6 +176,11 @@ typedef struct rd_lift_lube {
     double film_step_deg;
     long film_solves;
     int held; /* film steps held at the largest film (the face pushed off) */
+    /* The film's error estimate (NAN: not estimated): against the same film
+     * on a grid twice as fine (points, steps, local error / 4), the largest
+     * relative film difference max |h - h'| / max(|h'|, sigma) over the
+     * samples, and the largest relative friction-work difference. */
+    double film_error, work_error;
 } rd_lift_lube;
 
 typedef struct rd_lift_result {

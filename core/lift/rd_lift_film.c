@@ -63,17 +63,25 @@ static void loads_at(void *ctx, double t, double *U, double *eta, double *W, dou
 int rd_lift_film_run(const rd_ring_params *rp, const rd_lift_params *p, rd_film *film,
                      rd_film_track *tr, rd_error *err)
 {
+    return rd_lift_film_run_at(rp, p, 1, film, tr, err);
+}
+
+int rd_lift_film_run_at(const rd_ring_params *rp, const rd_lift_params *p, int fine, rd_film *film,
+                        rd_film_track *tr, rd_error *err)
+{
     rd_section s;
     rd_section_init(&s, rp);
-    int rc = rd_film_init(film, &p->face, s.run.height, RD_FILM_NODES, p->bore.roughness_rq,
-                          &p->friction.lube, rp->youngs_modulus, rp->poisson_ratio, err);
+    int rc = rd_film_init(film, &p->face, s.run.height, fine * (RD_FILM_NODES - 1) + 1,
+                          p->bore.roughness_rq, &p->friction.lube, rp->youngs_modulus,
+                          rp->poisson_ratio, err);
     if (rc)
         return rc;
+    film->rtol /= (double)fine * fine;
     film_scene fs = {.p = p, .omega = rd_engine_omega(&p->engine)};
     fs.w_el = 2.0 * rp->tangential_force / rp->diameter;
     fs.back = s.back.height * s.back.r / s.run.r;
     rd_film_loads ld = {loads_at, &fs};
-    double cycle = 4.0 * M_PI / fs.omega, dt = p->film_step_deg * M_PI / 180.0 / fs.omega;
+    double cycle = 4.0 * M_PI / fs.omega, dt = p->film_step_deg / fine * M_PI / 180.0 / fs.omega;
     return rd_film_track_run(film, &ld, p->engine.cycles * cycle, dt, cycle, cycle, 0.0, tr, err);
 }
 
@@ -113,6 +121,7 @@ int rd_lift_lube_fill(rd_lift_lube *lb, const rd_film *film, const rd_film_track
     lb->asperity_share = lb->min_film + 4 * n;
     lb->fmep = lb->friction_work + (C > 0 ? C : 1);
     lb->cycles = C;
+    lb->film_error = lb->work_error = NAN;
     double omega = rd_engine_omega(e), circ = M_PI * diameter;
     double ureg = rd_liner_ureg(e), mu_b = l->boundary_coefficient;
     for (int k = 0; k < S; k++) {
@@ -162,6 +171,37 @@ int rd_lift_lube_fill(rd_lift_lube *lb, const rd_film *film, const rd_film_track
     lb->film_solves = tr->solves;
     lb->held = tr->held;
     return RD_OK;
+}
+
+void rd_lift_lube_compare(rd_lift_lube *lb, const rd_lift_lube *fine, int S)
+{
+    double fe = 0.0, we = 0.0;
+    for (int k = 0; k < S; k++)
+        fe = fmax(fe, fabs(lb->min_film[k] - fine->min_film[k]) /
+                          fmax(fabs(fine->min_film[k]), lb->composite_sigma));
+    for (int c = 0; c < lb->cycles && c < fine->cycles; c++)
+        we = fmax(we, fabs(lb->friction_work[c] - fine->friction_work[c]) /
+                          fmax(fabs(fine->friction_work[c]), 1e-300));
+    lb->film_error = fe;
+    lb->work_error = we;
+}
+
+int rd_lift_film_estimate(const rd_ring_params *rp, const rd_lift_params *p, rd_lift_result *out,
+                          rd_error *err)
+{
+    rd_film f;
+    rd_film_track tr = {0};
+    rd_lift_lube fine = {0};
+    int rc = rd_lift_film_run_at(rp, p, 2, &f, &tr, err);
+    rc = rc ? rc
+            : rd_lift_lube_fill(&fine, &f, &tr, &p->friction.lube, &p->engine, rp->diameter,
+                                out->crank_deg, out->samples, 0.0, out->lube.cycles, err);
+    if (!rc)
+        rd_lift_lube_compare(&out->lube, &fine, out->samples);
+    rd_lift_lube_cleanup(&fine);
+    rd_film_track_free(&tr);
+    rd_film_free(&f);
+    return rc;
 }
 
 void rd_lift_lube_cleanup(rd_lift_lube *lb)

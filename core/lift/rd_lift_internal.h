@@ -79,6 +79,11 @@ int rd_lift_twist_stiffness(const rd_ring_params *ring, int segments, const rd_l
  * and the result's lubrication block from it (out's samples set). */
 int rd_lift_film_run(const rd_ring_params *rp, const rd_lift_params *p, rd_film *film,
                      rd_film_track *tr, rd_error *err);
+/* The same on a grid `fine` times finer: (RD_FILM_NODES - 1) fine + 1
+ * points, steps at most film_step_deg / fine, local error RD_FILM_RTOL /
+ * fine^2 (the error estimate's second film: 2; the tests' reference: 8). */
+int rd_lift_film_run_at(const rd_ring_params *rp, const rd_lift_params *p, int fine, rd_film *film,
+                        rd_film_track *tr, rd_error *err);
 int rd_lift_film_result(const rd_ring_params *rp, const rd_lift_params *p, const rd_film *film,
                         const rd_film_track *tr, rd_lift_result *out, rd_error *err);
 /* The lubrication block lb from a film track over S samples at crank
@@ -88,6 +93,13 @@ int rd_lift_film_result(const rd_ring_params *rp, const rd_lift_params *p, const
 int rd_lift_lube_fill(rd_lift_lube *lb, const rd_film *film, const rd_film_track *tr,
                       const rd_lube_params *l, const rd_engine_params *e, double diameter,
                       const double *crank_deg, int S, double t_first, int C, rd_error *err);
+/* lb's film_error and work_error against `fine`, the same block (S
+ * samples) of a film on a grid twice as fine. */
+void rd_lift_lube_compare(rd_lift_lube *lb, const rd_lift_lube *fine, int S);
+/* The lift's film estimate: its film again on a grid twice as fine
+ * (rd_lift_film_run_at, 2), compared with out's lubrication block. */
+int rd_lift_film_estimate(const rd_ring_params *rp, const rd_lift_params *p, rd_lift_result *out,
+                          rd_error *err);
 void rd_lift_lube_cleanup(rd_lift_lube *lb);
 /* The oil's viscosity at crank angle deg, Pa s (rd_lube_params). */
 double rd_lift_lube_viscosity(const rd_lube_params *l, double deg);

@@ -566,6 +566,8 @@ int rd_lift_solve_setup(const rd_ring_params *rp, int segments, const rd_lift_pa
         out->n_events--; /* events after the last whole cycle */
     if (track.pt && (rc == RD_OK || out->partial)) {
         int frc = rd_lift_film_result(rp, p, &film, &track, out, err);
+        if (frc == RD_OK && p->estimate_error)
+            frc = rd_lift_film_estimate(rp, p, out, err);
         rc = rc == RD_OK ? frc : rc;
     }
 out:

@@ -79,6 +79,7 @@ int rd_film_init(rd_film *f, const rd_face_params *face, double L, int nodes, do
                  const rd_lube_params *lube, double E, double nu, rd_error *err)
 {
     memset(f, 0, sizeof *f);
+    f->rtol = RD_FILM_RTOL;
     int rc = face_validate(face, L, err);
     if (rc)
         return rc;

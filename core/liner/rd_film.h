@@ -53,11 +53,13 @@
 #define RD_FILM_NODES \
     41 /* points across the face, default (0.2 % of the film, docs/lubrication.md) */
 #define RD_FILM_NODES_MAX     2001
+#define RD_FILM_RTOL          1e-4   /* a film track's local error on h0, relative (rd_film.rtol) */
 #define RD_FILM_PHI_X_H_MIN   0.5    /* phi_x's fit holds above this H */
 #define RD_FILM_GT_LAMBDA_MIN (-4.0) /* Greenwood-Tripp table range of h / sigma */
 #define RD_FILM_GT_LAMBDA_MAX 12.0
 
 typedef struct rd_film {
+    double rtol;               /* the film track's local error on h0 (RD_FILM_RTOL by init) */
     int n;                     /* nodes */
     double L, dx;              /* face height, node spacing, m */
     double sigma;              /* composite Rq, m */

@@ -185,7 +185,7 @@ int rd_film_track_run(rd_film *f, const rd_film_loads *ld, double t_end, double 
         history(&s, y, ts, have, hn, &guess);
         double yn = balance(&s, guess, &held), est = local_error(y, ts, have, te, yn);
         int loose = t < -0.25 * period; /* the warm-up but its last quarter period */
-        double tol = (loose ? RD_FILM_WARM_RTOL : RD_FILM_RTOL) * fabs(yn) + 1e-3 * sg;
+        double tol = (loose ? fmax(RD_FILM_WARM_RTOL, f->rtol) : f->rtol) * fabs(yn) + 1e-3 * sg;
         if (est > tol && hn > 1e-9 * period) { /* rejected: a smaller step */
             h = hn * fmax(0.2, 0.9 * cbrt(tol / est));
             continue;

@@ -44,7 +44,6 @@ typedef struct rd_film_point {
     double t, h0, W, Wa, Cc, Fp, U, cavitated;
 } rd_film_point;
 
-#define RD_FILM_RTOL       1e-4 /* the step's local error on h0, relative */
 #define RD_FILM_WARM_RTOL  1e-2 /* the same in the warm-up but its last quarter period */
 #define RD_FILM_WARM_STEPS 5.0  /* the warm-up's largest step, in dt_max */
 

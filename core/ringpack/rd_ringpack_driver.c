@@ -631,6 +631,7 @@ static int acc_solve(void *ctx, int level, const rd_monitor *mon, rd_error *err)
     rd_ringpack_params q = *a->p; /* as many cycles as the run it checks */
     q.periodic = 0;
     q.engine.cycles = a->out->cycles;
+    q.estimate_error = 0; /* the films' own estimate is the main run's */
     return run_once(&q, q.rtol * 0.1, q.atol * 0.1, mon, &a->ref, err);
 }
 

@@ -121,15 +121,51 @@ static void loads_at(void *ctx, double t, double *U, double *eta, double *W, dou
 #undef AT
 }
 
-/* The film over one cycle from h_start (0: the balance after a cycle of
- * warm-up) under f->load, its points moved to start at t0 (s). */
-static int cycle_film(rd_packfilm *f, double h_start, double t0, rd_film_track *tr, rd_error *err)
+/* The film `film` over one cycle from h_start (0: the balance after a
+ * cycle of warm-up) under f->load, steps at most dt (s), its points moved
+ * to start at t0 (s). */
+static int cycle_film_on(rd_packfilm *f, rd_film *film, double dt, double h_start, double t0,
+                         rd_film_track *tr, rd_error *err)
 {
     rd_film_loads ld = {loads_at, f};
-    int rc = rd_film_track_run(&f->film, &ld, f->period, f->dt, f->period,
-                               h_start > 0.0 ? 0.0 : f->period, h_start, tr, err);
+    int rc = rd_film_track_run(film, &ld, f->period, dt, f->period, h_start > 0.0 ? 0.0 : f->period,
+                               h_start, tr, err);
     for (int k = 0; !rc && k <= tr->steps; k++)
         tr->pt[k].t += t0;
+    return rc;
+}
+
+static int cycle_film(rd_packfilm *f, double h_start, double t0, rd_film_track *tr, rd_error *err)
+{
+    return cycle_film_on(f, &f->film, f->dt, h_start, t0, tr, err);
+}
+
+/* Ring i's film error estimate (rd_lift_lube): the last cycle's film again
+ * from the same start on a grid twice as fine (points, steps, local error
+ * / 4), its block against the reported one. */
+static int film_estimate(rd_packfilm *f, int i, rd_ringpack_result *r, rd_error *err)
+{
+    const rd_ringpack_params *p = f->p;
+    const rd_ring_params *rp = &p->rings[i].ring;
+    rd_film fine;
+    rd_film_track tr = {0};
+    rd_lift_lube lb = {0};
+    rd_section s;
+    rd_section_init(&s, rp);
+    int rc = rd_film_init(&fine, &p->rings[i].face, s.run.height, 2 * (RD_FILM_NODES - 1) + 1,
+                          p->bore.roughness_rq, &p->friction.lube, rp->youngs_modulus,
+                          rp->poisson_ratio, err);
+    fine.rtol /= 4.0;
+    f->load = f->gas;
+    rc = rc ? rc : cycle_film_on(f, &fine, 0.5 * f->dt, f->tr.pt[0].h0, f->tr.pt[0].t, &tr, err);
+    rc = rc ? rc
+            : rd_lift_lube_fill(&lb, &fine, &tr, &p->friction.lube, &p->engine, rp->diameter,
+                                r->crank_deg, r->samples, f->tr.pt[0].t, 1, err);
+    if (!rc)
+        rd_lift_lube_compare(&r->lube[i], &lb, r->samples);
+    rd_lift_lube_cleanup(&lb);
+    rd_film_track_free(&tr);
+    rd_film_free(&fine);
     return rc;
 }
 
@@ -234,7 +270,8 @@ int rd_ringpack_films_result(rd_ringpack_model *m, rd_ringpack_result *r, rd_err
                                    p->rings[i].ring.diameter, r->crank_deg, r->samples,
                                    f->tr.pt[0].t, 1, err);
         r->lube[i].film_step_deg = p->film_step_deg;
-        if (rc || (rc = film_lag(f, &r->film_lag[i], err)))
+        if (rc || (rc = film_lag(f, &r->film_lag[i], err)) ||
+            (p->estimate_error && (rc = film_estimate(f, i, r, err))))
             return rc;
     }
     return RD_OK;
