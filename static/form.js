@@ -31,6 +31,12 @@
 //                               and the data-clear paths are left out of the
 //                               scene (also what a loaded scene had there).
 //                               Nested ones must all hold.
+//   [data-each="/ptr"]          a <template> repeated once per element of the
+//                               array at /ptr in the loaded scene (at least
+//                               once): in each copy "{i}" in the attributes
+//                               becomes the element's index and "{n}" in the
+//                               attributes and text its number (index + 1),
+//                               e.g. data-path="/rings/{i}/ring/face/profile".
 //   select[data-mode]           such a <select> that is no scene field itself
 //                               (which of two inputs to send); a loaded scene
 //                               picks the first option whose data-if-set path
@@ -61,6 +67,7 @@ export class SceneForm {
     this.sources = new Map(); // block path -> Map(option value -> object)
     for (const input of this.inputs) if (input.dataset.hint) this.addHint(input);
     for (const list of form.querySelectorAll('[data-list]')) this.setupList(list);
+    this.eaches = [...form.querySelectorAll('[data-each]')];
     form.addEventListener('input', (e) => {
       const input = e.target.closest('[data-path], [data-toggle]');
       if (!input) return;
@@ -89,11 +96,19 @@ export class SceneForm {
       const schema = resolve({ $ref: ref });
       if (schema?.properties) this.reads.set(analysis, (value) => prune(value, schema, resolve));
     }
-    for (const input of this.form.querySelectorAll('[data-path]')) {
+    // A repeated template's fields: the first copy's path (the schema's items).
+    const fields = [
+      ...[...this.form.querySelectorAll('[data-path]')].map((input) => [input, input]),
+      ...this.eaches.flatMap((each) => [...each.querySelector('template').content.querySelectorAll('[data-path]')].map((input) => [input, each])),
+    ];
+    for (const [input, at] of fields) {
       if ('optional' in input.dataset) continue;
-      const analysis = input.closest('[data-analysis]')?.dataset.analysis ?? shared;
+      const analysis = at.closest('[data-analysis]')?.dataset.analysis ?? shared;
       let schema = resolve({ $ref: mapping[analysis] });
-      for (const t of tokens(input.dataset.path)) schema = resolve(resolve(schema)?.properties?.[t]);
+      for (const t of tokens(input.dataset.path.replaceAll('{i}', '0'))) {
+        const s = resolve(schema);
+        schema = resolve(/^\d+$/.test(t) ? s?.items : s?.properties?.[t]);
+      }
       const d = schema?.default;
       if (d !== undefined) input.dataset.default = typeof d === 'number' ? formatDefault(d) : String(d);
     }
@@ -159,6 +174,7 @@ export class SceneForm {
     this.base = {};
     this.baseAnalysis = null;
     for (const list of this.form.querySelectorAll('[data-list]')) this.setRows(list, []);
+    for (const each of this.eaches) this.setCopies(each, 1);
     for (const input of this.inputs) setValue(input, input.dataset.default);
     for (const select of this.form.querySelectorAll('[data-source]')) select.selectedIndex = preferredIndex(select);
     for (const select of this.form.querySelectorAll('select[data-mode]')) select.selectedIndex = 0;
@@ -182,6 +198,10 @@ export class SceneForm {
     for (const list of this.form.querySelectorAll('[data-list]')) {
       const rows = pointerGet(scene, list.dataset.list);
       if (Array.isArray(rows)) this.setRows(list, rows);
+    }
+    for (const each of this.eaches) {
+      const items = pointerGet(scene, each.dataset.each);
+      this.setCopies(each, Array.isArray(items) ? Math.max(1, items.length) : 1);
     }
     for (const input of this.inputs) {
       if (input.dataset.toggle) {
@@ -352,6 +372,29 @@ export class SceneForm {
       select.append(opt);
     }
     select.value = value;
+  }
+
+  // ---- repeated templates ----------------------------------------------
+
+  // `count` copies of the template of a [data-each], its fields at their
+  // defaults.
+  setCopies(each, count) {
+    const template = each.querySelector('template');
+    for (const copy of [...each.children]) if (copy !== template) copy.remove();
+    for (let i = 0; i < count; i++) {
+      const copy = template.content.cloneNode(true);
+      const fill = (t) => t.replaceAll('{i}', String(i)).replaceAll('{n}', String(i + 1));
+      for (const el of copy.querySelectorAll('*')) {
+        for (const a of el.attributes) if (/\{[in]\}/.test(a.value)) a.value = fill(a.value);
+      }
+      const walker = document.createTreeWalker(copy, NodeFilter.SHOW_TEXT);
+      for (let n = walker.nextNode(); n; n = walker.nextNode()) if (n.data.includes('{n}')) n.data = fill(n.data);
+      for (const input of copy.querySelectorAll('[data-path]')) {
+        setValue(input, input.dataset.default);
+        if (input.dataset.hint) this.addHint(input);
+      }
+      each.append(copy);
+    }
   }
 
   // ---- editable lists --------------------------------------------------

@@ -13,6 +13,7 @@
 
 import { svg, scale, ticks, axes, pathD, stepTicks, legend } from './svg.js';
 import { h, fill, isNum, fixed, sig, seconds, percent, kvTable, resultLinks, nums, um, deg } from './html.js';
+import { W, BOX, isLube, thin, thinnest, filmPlot, filmCaption, lubeFrictionPlot, FRICTION_CAPTION, filmFactRows } from './lube.js';
 
 const GAS_EXAMPLE = 'thesis_lift_gas_6000rpm';
 const EVENT_TEXT = {
@@ -233,28 +234,6 @@ function costLine(n) {
   return parts.join(' · ');
 }
 
-// At most about 4 points per bucket of samples: the first, the lowest, the
-// highest and the last, so a long run draws the same envelope with fewer points.
-function thin(xs, ys, buckets = 700) {
-  const N = Math.min(xs.length, ys.length);
-  if (N <= 4 * buckets) return xs.slice(0, N).map((x, i) => [x, ys[i]]);
-  const out = [];
-  const per = N / buckets;
-  for (let b = 0; b < buckets; b++) {
-    const i0 = Math.floor(b * per), i1 = Math.min(N, Math.floor((b + 1) * per));
-    let lo = i0, hi = i0;
-    for (let i = i0; i < i1; i++) {
-      if (ys[i] < ys[lo]) lo = i;
-      if (ys[i] > ys[hi]) hi = i;
-    }
-    for (const i of [...new Set([i0, lo, hi, i1 - 1])].sort((a, c) => a - c)) out.push([xs[i], ys[i]]);
-  }
-  return out;
-}
-
-const W = 720;
-const BOX = { left: 64, width: W - 64 - 16 };
-
 function crankAxis(crank) {
   const c0 = Math.min(...crank), c1 = Math.max(...crank);
   const x = scale(c0, c1, BOX.left, BOX.left + BOX.width);
@@ -412,28 +391,16 @@ function frictionPlot(result) {
 
 // ---- the oil film of a lubricated run (result.lubrication) ------------------
 
-const isLube = (lub) => lub !== null && typeof lub === 'object';
-
 // The thinnest film and the FMEP in one line under the summary.
 function lubeSummary(lub, crank) {
   if (!isLube(lub)) return null;
-  const film = nums(lub.min_film_m);
   const parts = [];
-  if (film.length && film.length === crank.length) {
-    const i = film.indexOf(Math.min(...film));
-    parts.push(`thinnest oil film ${um(film[i], 3)} µm at ${deg(crank[i])}`);
-  }
+  const least = thinnest(lub, crank);
+  if (least) parts.push(`thinnest oil film ${um(least.m, 3)} µm at ${deg(crank[least.i])}`);
   const fmep = nums(lub.fmep_pa);
   if (fmep.length) parts.push(`FMEP ${fmep.map((p) => sig(p / 1e3)).join(', ')} kPa (${fmep.length === 1 ? 'the cycle' : 'per cycle'})`);
   else if (Array.isArray(lub.fmep_pa)) parts.push('no whole cycle, so no FMEP');
   return parts.length ? h('p', { id: 'lf-lube-summary' }, `Lubricated: ${parts.join('; ')}.`) : null;
-}
-
-// The oil's viscosity over the cycle ({min, max}, Pa s) in mPa s: one value
-// when constant; null without one.
-function viscosityText(v) {
-  if (!v || !isNum(v.min) || !isNum(v.max)) return null;
-  return v.max - v.min <= 1e-9 * v.max ? `${sig(v.min * 1e3)} mPa s` : `${sig(v.min * 1e3)}–${sig(v.max * 1e3)} mPa s`;
 }
 
 // The two plots of the film: its minimum thickness and the friction split
@@ -443,85 +410,15 @@ function lubeFigures(result) {
   if (!isLube(lub)) return [];
   const crank = nums(result.crank_deg);
   const film = nums(lub.min_film_m);
-  const regime = Array.isArray(lub.regime) ? lub.regime : [];
-  const share = (r) => `${((regime.filter((x) => x === r).length / Math.max(1, regime.length)) * 100).toFixed(0)} %`;
-  const viscText = viscosityText(lub.viscosity_pa_s);
+  const opts = { id: 'lf', axis: crankAxis(crank) };
   return [
     film.length === crank.length && crank.length > 1
-      ? h('figure', { class: 'plot wide' }, filmPlot(crank, film, lub.composite_roughness_m),
-        h('figcaption', {}, 'Minimum oil film thickness between the running face and the liner against crank angle (one film for the whole circumference). ' +
-          (isNum(lub.composite_roughness_m) ? `Dashed: the composite roughness σ = ${um(lub.composite_roughness_m, 3)} µm; the asperities take load as the film nears a few σ. ` : '') +
-          (regime.length ? `Regime by the asperities' share of the load: hydrodynamic ${share('hydrodynamic')}, mixed ${share('mixed')}, boundary ${share('boundary')} of the samples` : '') +
-          (viscText ? `; η = ${viscText}.` : '.')))
+      ? h('figure', { class: 'plot wide' }, filmPlot(crank, film, lub.composite_roughness_m, opts), h('figcaption', {}, filmCaption(lub)))
       : null,
     crank.length > 1
-      ? h('figure', { class: 'plot wide' }, lubeFrictionPlot(crank, lub),
-        h('figcaption', {}, 'Friction on the ring from the film against crank angle, + upwards: the oil film\'s shear (hydrodynamic), the asperities\' contact friction and their total.'))
+      ? h('figure', { class: 'plot wide' }, lubeFrictionPlot(crank, lub, opts), h('figcaption', {}, FRICTION_CAPTION))
       : null,
   ];
-}
-
-function filmPlot(crank, film, sigma) {
-  const H = 240;
-  const box = { ...BOX, top: 34, height: H - 34 - 50 };
-  const v = film.map((f) => f * 1e6);
-  const s = isNum(sigma) ? sigma * 1e6 : null;
-  const vals = v.filter(isNum);
-  const y0 = Math.min(0, ...vals), y1 = Math.max(1e-3, ...vals, s ?? 0);
-  const pad = (y1 - y0) * 0.08;
-  const { x, ticks: xTicks } = crankAxis(crank);
-  const y = scale(y0, y1 + pad, box.top + box.height, box.top);
-  const i = v.indexOf(Math.min(...vals));
-  return svg('svg', {
-    id: 'lf-film', class: 'chart', viewBox: `0 0 ${W} ${H}`, role: 'img',
-    'aria-label': `Minimum oil film thickness against crank angle, ${sig(Math.min(...vals))} to ${sig(Math.max(...vals))} µm, thinnest at ${deg(crank[i])}.`,
-  },
-  legend([
-    [svg('path', { class: 'film', d: 'M-2,0H12' }), 'minimum film'],
-    s !== null ? [svg('path', { class: 'sigma', d: 'M-2,0H12' }), 'composite roughness σ'] : null,
-  ].filter(Boolean), { x: box.left, y: 14 }),
-  axes({
-    box, x, y, xTicks, yTicks: ticks(y0, y1 + pad, 4),
-    xLabel: 'crank angle (deg)', yLabel: 'film (µm)', yFormat: (t) => String(Number(t.toPrecision(4))),
-  }),
-  s !== null ? svg('line', { class: 'sigma', id: 'lf-film-sigma', x1: box.left, x2: box.left + box.width, y1: y(s), y2: y(s) }) : null,
-  svg('path', { class: 'film', id: 'lf-film-line', d: pathD(thin(crank, v).map(([c, f]) => [x(c), y(f)])) }),
-  svg('circle', { class: 'film-min', cx: x(crank[i]), cy: y(v[i]), r: 4 }, svg('title', {}, `thinnest: ${sig(v[i])} µm at ${deg(crank[i])}`)));
-}
-
-const SPLIT = [
-  ['hydrodynamic', 'lf-friction-hydro', 'oil film (hydrodynamic)'],
-  ['asperity', 'lf-friction-asperity', 'asperities'],
-  ['total', 'lf-friction-total', 'total'],
-];
-
-function lubeFrictionPlot(crank, lub) {
-  const H = 240;
-  const box = { ...BOX, top: 34, height: H - 34 - 50 };
-  const N = crank.length;
-  const hydro = nums(lub.hydrodynamic_friction_n).slice(0, N), asp = nums(lub.asperity_friction_n).slice(0, N);
-  const series = {
-    hydrodynamic: hydro.length === N ? hydro : null,
-    asperity: asp.length === N ? asp : null,
-    total: hydro.length === N && asp.length === N ? hydro.map((f, i) => f + asp[i]) : null,
-  };
-  const vals = Object.values(series).filter(Boolean).flat().filter(isNum);
-  const f0 = Math.min(0, ...vals), f1 = Math.max(0, ...vals);
-  const pad = (f1 - f0) * 0.08 || 1;
-  const { x, ticks: xTicks } = crankAxis(crank);
-  const y = scale(f0 - pad, f1 + pad, box.top + box.height, box.top);
-  const range = (k) => (series[k] ? `${SPLIT.find((q) => q[0] === k)[2]} ${sig(Math.min(...series[k]))} to ${sig(Math.max(...series[k]))} N` : null);
-  return svg('svg', {
-    id: 'lf-lube-friction', class: 'chart', viewBox: `0 0 ${W} ${H}`, role: 'img',
-    'aria-label': `Friction split against crank angle: ${SPLIT.map(([k]) => range(k)).filter(Boolean).join('; ')}.`,
-  },
-  legend(SPLIT.filter(([k]) => series[k]).map(([k, , text]) => [svg('path', { class: `split-${k}`, d: 'M-2,0H12' }), text]), { x: box.left, y: 14 }),
-  axes({
-    box, x, y, xTicks, yTicks: ticks(f0 - pad, f1 + pad, 4),
-    xLabel: 'crank angle (deg)', yLabel: 'friction (N)', yFormat: (v) => String(Number(v.toPrecision(4))),
-  }),
-  svg('line', { class: 'zero', x1: box.left, x2: box.left + box.width, y1: y(0), y2: y(0) }),
-  SPLIT.filter(([k]) => series[k]).map(([k, id]) => svg('path', { class: `split-${k}`, id, d: pathD(thin(crank, series[k]).map(([c, f]) => [x(c), y(f)])) })));
 }
 
 // Per cycle: friction work and FMEP; the film's facts; what the model is
@@ -542,15 +439,7 @@ function lubeReadout(lub) {
   const facts = kvTable({
     id: 'lf-lube-facts',
     caption: 'Oil film',
-    rows: [
-      ['Composite roughness σ', isNum(lub.composite_roughness_m) ? `${um(lub.composite_roughness_m, 3)} µm` : undefined],
-      ['Thinnest point of the face', isNum(lub.min_film_at_m) ? `${fixed(lub.min_film_at_m, 3, 1e3)} mm above its lower edge` : undefined],
-      ['Viscosity', viscosityText(lub.viscosity_pa_s) ?? undefined],
-      ['Film steps (largest)', isNum(lub.film_step_deg) ? `${sig(lub.film_step_deg)}° crank` : undefined],
-      ['Film solves', isNum(lub.film_solves) ? String(lub.film_solves) : undefined],
-      ['Change over the last cycle (periodicity)', isNum(lub.periodic_change) ? percent(lub.periodic_change, 3) : undefined],
-      ['Steps held off the liner', isNum(lub.held_steps) ? String(lub.held_steps) : undefined],
-    ],
+    rows: filmFactRows(lub),
   });
   return h('section', { class: 'lube-readout', id: 'lf-lube', 'aria-label': 'Oil film' },
     h('div', { class: 'lift-tables' }, h('div', { class: 'table-wrap' }, cycles), h('div', { class: 'table-wrap' }, facts)),

@@ -4,11 +4,15 @@
 // crankcase (the blow-by), and tables of each ring's model (name, DOF, why),
 // the balance and the solver's cost.  With a flank band (numerics.flank_band
 // > 0) each ring's lift is drawn over the band at its groove's flanks, in the
-// ring's colour: where its flank changes are dated.
+// ring's colour: where its flank changes are dated.  With the lubricated
+// friction model each ring's `lubrication` adds its readout (FMEP, friction
+// work, the thinnest film and where, film_lag, the regime shares), its film
+// and friction split against crank angle, and what the film model covers.
 // A pure function of the result: optional fields may be missing.
 
 import { svg, scale, ticks, axes, pathD, stepTicks, legend } from './svg.js';
-import { h, fill, isNum, sig, seconds, kvTable, resultLinks, nums, um } from './html.js';
+import { h, fill, isNum, sig, seconds, kvTable, resultLinks, nums, um, deg } from './html.js';
+import { isLube, thinnest, regimeText, filmPlot, lubeFrictionPlot, filmFactRows } from './lube.js';
 
 const W = 720;
 const BOX = { left: 64, width: W - 64 - 16 };
@@ -52,8 +56,10 @@ export const ringpack = {
     fill(container,
       h('h3', {}, `Ring pack — ${rings.length} ring${rings.length === 1 ? '' : 's'}${isNum(rpm) ? ` at ${sig(rpm, 5)} rpm` : ''}`),
       h('p', { id: 'rp-summary' }, `Blow-by ${isNum(b.l_per_min) ? sig(b.l_per_min) : '—'} L/min (${isNum(b.kg_per_cycle) ? sig(b.kg_per_cycle) : '—'} kg per cycle, at 1.01325 bar and 20 °C); back into the cylinder ${isNum(b.reverse_kg_per_cycle) ? sig(b.reverse_kg_per_cycle) : '—'} kg per cycle; last cycle against the one before: ${isNum(result.periodicity) ? sig(result.periodicity, 2) : '—'}${periodicText(result)}.`),
+      lubeSummary(crank, rings),
       resultLinks(job, 'ringpack', 'Ring pack table (CSV)'),
       h('div', { id: 'rp-plots' }, figs),
+      crank.length < 2 ? null : lubeSection(crank, rings, result),
       h('div', { class: 'table-wrap' }, modelTable(result)),
       h('div', { class: 'table-wrap' }, costTable(result)),
     );
@@ -140,6 +146,77 @@ function blowbyPlot(crank, result) {
   const total = crank.map((_, k) => flows.reduce((s, f) => s + (nums(f.mass_flow_kg_s)[k] ?? 0), 0));
   return chart('rp-blowby', crank, [{ label: 'into the crankcase', values: total }], 'mass flow (g/s)', 1e3,
     `Blow-by mass flow against crank angle, up to ${sig(Math.max(...total) * 1e3)} g/s.`);
+}
+
+// ---- each ring's oil film (rings[i].lubrication) ---------------------------
+
+// The rings with a lubrication block: [{lub, n}], n = the ring's number.
+const lubed = (rings) => rings.map((r, i) => ({ lub: r?.lubrication, n: i + 1 })).filter(({ lub }) => isLube(lub));
+
+// The reported cycle's value of a one-element array (friction_work_j, fmep_pa).
+const cycleValue = (a) => nums(a).at(-1);
+
+// The pack's FMEP (the rings' sum) and each ring's, under the summary.
+function lubeSummary(crank, rings) {
+  const list = lubed(rings);
+  if (!list.length) return null;
+  const fmep = list.map(({ lub }) => cycleValue(lub.fmep_pa));
+  const least = list.map(({ lub, n }) => ({ n, t: thinnest(lub, crank) })).filter((x) => x.t)
+    .reduce((a, b) => (a && a.t.m <= b.t.m ? a : b), null);
+  const parts = [];
+  if (fmep.every(isNum)) parts.push(`FMEP of the pack ${sig(fmep.reduce((a, b) => a + b, 0) / 1e3)} kPa (${list.map(({ n }, k) => `ring ${n} ${sig(fmep[k] / 1e3)}`).join(', ')} kPa)`);
+  if (least) parts.push(`thinnest oil film ${um(least.t.m, 3)} µm (ring ${least.n} at ${deg(crank[least.t.i])})`);
+  return parts.length ? h('p', { id: 'rp-lube-summary' }, `Lubricated: ${parts.join('; ')}.`) : null;
+}
+
+// A face as the scene gives it: "barrel, crown 5 µm".
+function faceText(face) {
+  if (!face || typeof face !== 'object') return null;
+  const p = face.profile;
+  if (p === 'barrel' && isNum(face.crown_m)) return `barrel face, crown ${sig(face.crown_m * 1e6)} µm`;
+  if (p === 'taper' && isNum(face.taper_deg)) return `taper face, ${sig(face.taper_deg)}°`;
+  if (p === 'flat' && isNum(face.edge_radius_m)) return `flat face, edge radius ${sig(face.edge_radius_m * 1e3)} mm`;
+  return typeof p === 'string' ? `${p} face` : null;
+}
+
+function lubeSection(crank, rings, result) {
+  const list = lubed(rings);
+  if (!list.length) return null;
+  const scene = Array.isArray(result.scene?.rings) ? result.scene.rings : [];
+  return h('section', { id: 'rp-lube', 'aria-label': 'Oil film of each ring' },
+    list.map(({ lub, n }) => ringLube(crank, lub, n, scene[n - 1]?.ring?.face)));
+}
+
+// One ring's readout, its two plots and its film model (collapsed).
+function ringLube(crank, lub, n, face) {
+  const id = `rp-${n}`;
+  const film = nums(lub.min_film_m);
+  const least = thinnest(lub, crank);
+  const work = cycleValue(lub.friction_work_j), fmep = cycleValue(lub.fmep_pa);
+  const readout = kvTable({
+    id: `${id}-lube`,
+    caption: `Ring ${n}: friction over the reported cycle and its film`,
+    rows: [
+      ['FMEP', isNum(fmep) ? `${sig(fmep / 1e3, 4)} kPa` : '—', { id: `${id}-fmep` }],
+      ['Friction work', isNum(work) ? `${sig(work, 4)} J` : '—', { id: `${id}-work` }],
+      ['Thinnest film', least ? `${um(least.m, 3)} µm at ${deg(crank[least.i])}` : '—', { id: `${id}-thinnest` }],
+      ['Film lag (film_lag)', isNum(lub.film_lag) ? sig(lub.film_lag, 3) : '—', { id: `${id}-film-lag` }],
+      ['Regime (share of the samples)', regimeText(lub) ?? '—', { id: `${id}-regime` }],
+      ...filmFactRows(lub),
+    ],
+  });
+  const axis = crankAxis(crank);
+  const sigma = isNum(lub.composite_roughness_m) ? `; dashed: the composite roughness σ = ${um(lub.composite_roughness_m, 3)} µm` : '';
+  return h('section', { class: 'rp-ring-lube', id: `${id}-oil`, 'aria-label': `Ring ${n}'s oil film` },
+    h('h4', {}, `Ring ${n}: oil film${faceText(face) ? ` (${faceText(face)})` : ''}`),
+    h('div', { class: 'table-wrap' }, readout),
+    film.length === crank.length ? h('figure', { class: 'plot wide' }, filmPlot(crank, film, lub.composite_roughness_m, { id, axis }),
+      h('figcaption', {}, `Ring ${n}: the minimum oil film thickness against crank angle${sigma}.`)) : null,
+    h('figure', { class: 'plot wide' }, lubeFrictionPlot(crank, lub, { id, axis }),
+      h('figcaption', {}, `Ring ${n}: friction from its film against crank angle, + upwards: the film's shear (hydrodynamic), the asperities' and their total.`)),
+    typeof lub.method === 'string' && lub.method
+      ? h('details', { class: 'method', id: `${id}-method` }, h('summary', {}, `Ring ${n}'s film model: what it covers`), h('p', {}, lub.method))
+      : null);
 }
 
 // Each ring's model from numerics.model [{name, dof, modes, why}]: which

@@ -2343,6 +2343,162 @@ for (const width of [1280, 390]) {
   });
 }
 
+// ---- ring pack, lubricated: each ring's oil film ----------------------------
+
+const LUBE_PACK = 'ringpack_lubricated_2400rpm';
+
+// Loads the shipped example `name` from the example list (the page moves to its tab).
+async function loadExample(name) {
+  const { examples } = await (await page.request.get(`${BASE}/api/v1/examples`)).json();
+  const i = examples.findIndex((e) => e.name === name);
+  assert.ok(i >= 0, `the server ships ${name}`);
+  await page.waitForFunction((n) => document.querySelectorAll('#example option').length === n, examples.length + 1);
+  await page.selectOption('#example', { index: i + 1 });
+  return examples[i].scene;
+}
+
+// A scene POSTed to the server as it is: its status (202 accepted, 422
+// refused) and message; an accepted job is cancelled at once.
+async function serverTakes(scene) {
+  const resp = await page.request.post(`${BASE}/api/v1/jobs?wait=0`, { data: scene });
+  const body = await resp.json();
+  if (resp.status() === 202) await page.request.delete(`${BASE}/api/v1/jobs/${body.id}`);
+  return { status: resp.status(), message: body.error?.message };
+}
+
+// A number in a readout cell ("3.408 kPa" -> 3.408).
+const cellNumber = (text) => Number(text.trim().split(/\s/)[0]);
+const near = (a, b, rel, what) => assert.ok(Math.abs(a - b) <= rel * Math.abs(b), `${what}: ${a} vs ${b}`);
+
+for (const width of [1280, 390]) {
+  test(`${width} px: ring pack, lubricated: the shipped example runs and each ring's film, friction split and readout show the result's numbers`, { timeout: 180000 }, async () => {
+    const skip = await unavailable('ringpack');
+    if (skip) return;
+    await page.setViewportSize({ width, height: 844 });
+    try {
+      const ex = await loadExample(LUBE_PACK);
+      await page.waitForSelector('fieldset[data-analysis="ringpack"]:not([hidden])');
+      // the form shows the friction model and each ring's face as loaded
+      assert.equal(await page.isChecked('#f-rp-friction'), true);
+      assert.equal(await page.inputValue('#f-rp-friction-model'), 'lubricated');
+      assert.equal(await page.isVisible('#f-rp-friction-coefficient'), false, 'lubricated: no Coulomb coefficient');
+      assert.deepEqual(await page.$$eval('#f-rp-faces select', (ss) => ss.map((x) => x.value)), ex.rings.map((r) => r.ring.face.profile));
+      assert.equal(Number(await page.inputValue('#f-rp-face-1-crown')), ex.rings[0].ring.face.crown_m);
+      assert.equal(Number(await page.inputValue('#f-rp-face-2-taper')), ex.rings[1].ring.face.taper_deg);
+      assert.equal(Number(await page.inputValue('#f-rp-face-3-edge')), ex.rings[2].ring.face.edge_radius_m);
+      assert.equal(await page.isVisible('#f-rp-face-1-taper'), false, 'a barrel has no taper angle');
+      await runAnalysis('Run ringpack analysis', 150000);
+      assert.equal(await page.isVisible('#error'), false, `unexpected error: ${await page.textContent('#error')}`);
+      await page.waitForSelector('#rp-lube');
+      const { result } = await shownJob();
+      const crank = result.crank_deg;
+      assert.equal(result.scene.physics.friction.model, 'lubricated');
+      assert.deepEqual(result.scene.rings.map((r) => r.ring.face.profile), ex.rings.map((r) => r.ring.face.profile));
+      let fmepSum = 0;
+      for (const [k, ring] of result.rings.entries()) {
+        const lub = ring.lubrication, id = `#rp-${k + 1}`;
+        assert.ok(lub && lub.min_film_m.length === crank.length, `ring ${k + 1} has its lubrication block`);
+        // the film and the split: one point per sample
+        assert.equal(await page.locator(`${id}-film`).isVisible(), true);
+        assert.equal(pathPoints(await page.getAttribute(`${id}-film-line`, 'd')), crank.length);
+        assert.equal(await page.locator(`${id}-film-sigma`).count(), 1);
+        for (const line of ['hydro', 'asperity', 'total']) {
+          assert.equal(pathPoints(await page.getAttribute(`${id}-friction-${line}`, 'd')), crank.length, `${id} ${line}`);
+        }
+        // the readout: FMEP (kPa), work (J), the thinnest film and where, film_lag, the regimes
+        near(cellNumber(await page.textContent(`${id}-fmep`)), lub.fmep_pa[0] / 1e3, 1e-3, `ring ${k + 1} FMEP`);
+        assert.match(await page.textContent(`${id}-fmep`), / kPa$/);
+        near(cellNumber(await page.textContent(`${id}-work`)), lub.friction_work_j[0], 1e-3, `ring ${k + 1} work`);
+        const lo = Math.min(...lub.min_film_m), at = crank[lub.min_film_m.indexOf(lo)];
+        assert.equal(await page.textContent(`${id}-thinnest`), `${(lo * 1e6).toFixed(3)} µm at ${Number(at.toFixed(1))}°`);
+        near(cellNumber(await page.textContent(`${id}-film-lag`)), lub.film_lag, 5e-3, `ring ${k + 1} film_lag`);
+        const share = (r) => `${((lub.regime.filter((x) => x === r).length / lub.regime.length) * 100).toFixed(0)} %`;
+        assert.equal(await page.textContent(`${id}-regime`), `hydrodynamic ${share('hydrodynamic')}, mixed ${share('mixed')}, boundary ${share('boundary')}`);
+        // the film model's text, whole, in a collapsed details element
+        assert.equal(await page.$eval(`${id}-method`, (d) => d.open), false);
+        await page.click(`${id}-method summary`);
+        assert.equal(await page.isVisible(`${id}-method p`), true);
+        assert.equal(await page.textContent(`${id}-method p`), lub.method);
+        fmepSum += lub.fmep_pa[0];
+      }
+      assert.ok((await page.textContent('#rp-lube-summary')).includes(`FMEP of the pack ${Number((fmepSum / 1e3).toPrecision(3))} kPa`));
+      await settled();
+      const overflow = await page.evaluate(() => document.documentElement.scrollWidth - window.innerWidth);
+      assert.ok(overflow <= 0, `page scrolls sideways by ${overflow}px`);
+      assert.deepEqual(await smallText(), [], 'no text below 10 px');
+      await shot(`ringdyn-ringpack-lubricated-${width}.png`, { fullPage: true });
+    } finally {
+      await page.getByRole('button', { name: 'Reset to defaults' }).click();
+      await page.setViewportSize({ width: 1280, height: 800 });
+    }
+  });
+}
+
+test('ring pack form: lubricated with changed faces, Coulomb and no friction each build a scene the server accepts, with nothing the model does not read', { timeout: 120000 }, async () => {
+  const skip = await unavailable('ringpack');
+  if (skip) return;
+  const jobs = await interceptJobs(fixtures.ringpackResult());
+  const sent = async () => {
+    await runAnalysis('Run ringpack analysis');
+    assert.equal(await page.isVisible('#error'), false, `unexpected error: ${await page.textContent('#error')}`);
+    return jobs.sent.at(-1);
+  };
+  const faces = (scene) => scene.rings.map((r) => r.ring.face);
+  try {
+    const ex = await loadExample(LUBE_PACK);
+    // ring 1 a smaller crown, ring 2 flat instead of taper, ring 3 a taper, a constant viscosity
+    await page.fill('#f-rp-face-1-crown', '3e-6');
+    await page.selectOption('#f-rp-face-2-profile', 'flat');
+    assert.equal(await page.isVisible('#f-rp-face-2-taper'), false);
+    await page.fill('#f-rp-face-2-edge', '0.0002');
+    await page.selectOption('#f-rp-face-3-profile', 'taper');
+    await page.fill('#f-rp-face-3-taper', '1');
+    await page.fill('#f-rp-face-3-rq', '3e-7');
+    await page.fill('#f-rp-liner-rq', '1.5e-7');
+    let scene = await sent();
+    assert.deepEqual(faces(scene), [
+      { profile: 'barrel', crown_m: 3e-6 },
+      { profile: 'flat', edge_radius_m: 0.0002 },
+      { profile: 'taper', taper_deg: 1, roughness_rq_m: 3e-7 },
+    ]);
+    assert.deepEqual(scene.physics.friction, { model: 'lubricated', oil: { temperature_c: 100 } });
+    assert.deepEqual(scene.bore, { roughness_rq_m: 1.5e-7 });
+    assert.deepEqual(scene.rings.map((r) => r.groove), ex.rings.map((r) => r.groove), 'the rest of the pack as loaded');
+    assert.deepEqual(await serverTakes(scene), { status: 202, message: undefined });
+
+    // Coulomb: μ, no face, oil or liner roughness
+    await page.selectOption('#f-rp-friction-model', 'coulomb');
+    assert.equal(await page.isVisible('#f-rp-lube'), false);
+    await page.fill('#f-rp-friction-coefficient', '0.12');
+    scene = await sent();
+    assert.deepEqual(scene.physics.friction, { model: 'coulomb', coefficient: 0.12 });
+    assert.deepEqual(faces(scene), [undefined, undefined, undefined]);
+    assert.equal(scene.bore, undefined);
+    assert.deepEqual(await serverTakes(scene), { status: 202, message: undefined });
+
+    // no friction
+    await page.uncheck('#f-rp-friction');
+    scene = await sent();
+    assert.equal(scene.physics.friction, undefined);
+    assert.deepEqual(faces(scene), [undefined, undefined, undefined]);
+    assert.deepEqual(await serverTakes(scene), { status: 202, message: undefined });
+
+    // without a loaded pack: one ring, its face at the schema's defaults
+    await page.getByRole('button', { name: 'Reset to defaults' }).click();
+    await selectTab('ringpack');
+    assert.equal(await page.locator('#f-rp-faces .ring-face').count(), 1);
+    await page.check('#f-rp-friction');
+    await page.selectOption('#f-rp-friction-model', 'lubricated');
+    await page.fill('#f-rp-cycles', '2');
+    scene = await sent();
+    assert.deepEqual(faces(scene), [{ profile: 'barrel', crown_m: 5e-6 }]);
+    assert.deepEqual(await serverTakes(scene), { status: 202, message: undefined });
+  } finally {
+    await jobs.stop();
+    await page.getByRole('button', { name: 'Reset to defaults' }).click();
+  }
+});
+
 test('no console errors or uncaught exceptions', () => {
   assert.deepEqual(pageErrors, []);
   assert.deepEqual(consoleErrors.filter((t) => !expectedConsole(t)), []);
