@@ -12,6 +12,7 @@
 #include <unistd.h>
 
 #include "rd_jsonptr.h"
+#include "rd_result_schema.h"
 #include "rd_scene.h"
 
 static int is_study(const char *analysis)
@@ -188,20 +189,7 @@ int rd_study_check_observe(const rd_study_base *b, const char *ptr, const char *
         return rd_error_set(err, RD_EREQUEST, path,
                             "%s must be a JSON Pointer into the result (\"/blowby/l_per_min\")",
                             path);
-    const char *end = strchr(ptr + 1, '/');
-    size_t len = end ? (size_t)(end - ptr - 1) : strlen(ptr + 1);
-    char list[400];
-    size_t used = 0;
-    list[0] = '\0';
-    for (const char *const *k = b->an->result_keys; k && *k; k++) {
-        if (strlen(*k) == len && strncmp(*k, ptr + 1, len) == 0)
-            return RD_OK;
-        if (used < sizeof list)
-            used += (size_t)snprintf(list + used, sizeof list - used, "%s%s", used ? ", " : "", *k);
-    }
-    return rd_error_set(err, RD_EREQUEST, path,
-                        "%s = \"%s\" names no member of a %s result (its members: %s)", path, ptr,
-                        b->an->name, list);
+    return rd_result_pointer_check(b->an->name, ptr, path, err);
 }
 
 static void collect(json_t *v, double *out, size_t max, size_t *n, int *bad)

@@ -20,6 +20,7 @@
 #include <string.h>
 
 #include "rd_jsonptr.h"
+#include "rd_result_schema.h"
 #include "rd_scene.h"
 #include "rd_sweep_int.h"
 
@@ -604,6 +605,18 @@ static int spec_hash(rd_sweep *s)
     return RD_OK;
 }
 
+/* Each output's pointer against the analysis' result schema. */
+static int check_outputs(const rd_sweep *s, const char *analysis, rd_error *err)
+{
+    for (int k = 0; k < s->no; k++) {
+        char path[32];
+        snprintf(path, sizeof path, "/outputs/%d", k);
+        if (rd_result_pointer_check(analysis, s->o[k].ptr, path, err))
+            return err->code;
+    }
+    return RD_OK;
+}
+
 /* Steps after the JSON is decoded: shape, base, parameters, size, design. */
 static int parse_spec(rd_sweep *s, size_t max, rd_error *err)
 {
@@ -624,6 +637,9 @@ static int parse_spec(rd_sweep *s, size_t max, rd_error *err)
     rd_error_init(&e);
     rd_scene *sc = NULL;
     int rc = rd_scene_parse_value(s->base, &sc, &e);
+    char analysis[32] = "";
+    if (rc == RD_OK)
+        snprintf(analysis, sizeof analysis, "%s", rd_scene_analysis(sc));
     rd_scene_free(sc);
     if (rc != RD_OK) {
         char path[RD_ERROR_PATH_MAX + 8]; /* rd_error_set truncates to RD_ERROR_PATH_MAX */
@@ -632,7 +648,8 @@ static int parse_spec(rd_sweep *s, size_t max, rd_error *err)
                                : spec_error(err, path, "the base scene is invalid: %s", e.message);
     }
     json_t *over = json_object_get(spec, "over");
-    if (parse_lists(s, spec, err) || (over && parse_param(over, "/over", 0, &s->over, err)) ||
+    if (parse_lists(s, spec, err) || check_outputs(s, analysis, err) ||
+        (over && parse_param(over, "/over", 0, &s->over, err)) ||
         rd_sweep_over_check(s, spec, err) || parse_combine(s, spec, err) ||
         parse_seed(spec, &seed, err) || count_points(s, spec, max, err))
         return err->code;

@@ -20,7 +20,7 @@
 #include <jansson.h>
 
 #include "rd_api.h"
-#include "rd_openapi.h"
+#include "rd_openapi_doc.h"
 
 /* How long DELETE waits for a running job to acknowledge the cancellation. */
 #define CANCEL_WAIT_S 5.0

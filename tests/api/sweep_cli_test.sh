@@ -72,7 +72,7 @@ wait $pid; rc=$?
 [ $rc = 1 ] && [ -z "$(ls -A "$work/int" 2>/dev/null)" ] || fail "interrupted: rc $rc, $(ls -A "$work/int")"
 
 # Bad input: exit 2 and the error JSON with the spec path.
-echo '{"base": {"analysis": "modal"}, "parameters": [{"path": "/discretization/segments", "values": [2001]}], "outputs": ["/x"]}' > "$work/bad.json"
+echo '{"base": {"analysis": "modal"}, "parameters": [{"path": "/discretization/segments", "values": [2001]}], "outputs": ["/numerics/dof"]}' > "$work/bad.json"
 out=$("$ringdyn" sweep count "$work/bad.json" 2>&1); rc=$?
 [ $rc = 2 ] && [[ $out == *'"path":"/parameters/0/values/0"'* ]] || fail "bad spec: rc $rc, $out"
 out=$("$ringdyn" sweep run "$sweeps/modal_lhs.json" --index 7 --chunks 4 --out "$work/x" 2>&1); rc=$?

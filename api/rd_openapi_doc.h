@@ -1,14 +1,16 @@
 /*
- * rd_openapi — server/openapi.json, embedded at build time.
+ * rd_openapi_doc — server/openapi.json, embedded at build time.
  *
- * The build (server/embed.cmake) turns openapi.json into rd_openapi.c, so the
- * binary serves GET /api/v1/openapi.json with no file to install; the
+ * The build (api/embed.cmake) turns openapi.json into rd_openapi_doc.c, in
+ * the api library: the server serves GET /api/v1/openapi.json with no file
+ * to install, and the api checks result pointers against its result schemas
+ * (rd_result_schema.h); the
  * document's "@RINGDYN_VERSION@" is replaced by the project version.  It holds
  * everything but the scene schemas, which rd_api_openapi_json writes into it
  * from the api's tables (api/rd_registry.h) when the document is served.
  */
-#ifndef RD_OPENAPI_H
-#define RD_OPENAPI_H
+#ifndef RD_OPENAPI_DOC_H
+#define RD_OPENAPI_DOC_H
 
 #include <stddef.h>
 
