@@ -511,7 +511,8 @@ static json_t *lift_result(const rd_scene *scene, const rd_lift_result *res, dou
     "against the same film on a grid twice as fine (81 points, half the steps, a quarter of "  \
     "the local error): within x0.45-1.24 (film) and x0.35-0.90 (work) of the error against a " \
     "grid 8 times finer on an 18-scene battery. Not covered: the model (Patir-Cheng "          \
-    "shear-stress factors, oil starvation, mass-conserving cavitation, the film "              \
+    "shear-stress factors, oil passed on from other rings (supply is one film for the run), "  \
+    "mass-conserving cavitation, the film "                                                    \
     "varying around the ring, the ring's radial motion in the lift model (its bore contact "   \
     "is the penalty's)."
 

@@ -13,11 +13,13 @@
 #include <stddef.h>
 #include <stdio.h>
 #include <stdlib.h>
+#include <string.h>
 #include <time.h>
 
 #include "rd_json.h"
 #include "rd_registry.h"
 #include "rd_scene.h"
+#include "rd_schema.h"
 
 #define AT(member) offsetof(struct rd_scene, member)
 
@@ -230,6 +232,10 @@ int rd_scene_lube_finish(struct rd_scene *s, int lub, rd_lube_params *l, double 
     if (o->bore_rq != RD_LINER_RQ_DEFAULT && !lub)
         return rd_error_set(err, RD_EINVAL, "/bore/roughness_rq_m",
                             "/bore/roughness_rq_m is read by the lubricated friction model only.");
+    if (!lub && o->lube.supply_film > 0.0)
+        return rd_error_set(err, RD_EINVAL, "/physics/friction/supply",
+                            "/physics/friction/supply is read by the lubricated friction model "
+                            "only (model is not lubricated).");
     if (!lub && (o->oil_given || o->asperity_given))
         return rd_error_set(err, RD_EINVAL,
                             o->oil_given ? "/physics/friction/oil" : "/physics/friction/asperity",
@@ -257,6 +263,35 @@ int rd_scene_lube_finish(struct rd_scene *s, int lub, rd_lube_params *l, double 
         l->temp_c = o->temp_table[1].v;
     }
     return RD_OK;
+}
+
+int rd_supply_parse(const rd_field *f, json_t *v, const char *path, struct rd_scene *s,
+                    rd_error *err)
+{
+    (void)f;
+    if (json_is_string(v) && strcmp(json_string_value(v), "flooded") == 0) {
+        s->lube.lube.supply_film = 0.0;
+        return RD_OK;
+    }
+    json_t *h = json_object_get(v, "film_m");
+    if (!json_is_object(v) || json_object_size(v) != 1 || !json_is_number(h))
+        return rd_schema_type_error(err, path, "\"flooded\" or {\"film_m\": a number}", v);
+    double x = json_number_value(h);
+    char at[RD_ERROR_PATH_MAX];
+    rd_schema_path_join(at, sizeof at, path, "film_m");
+    if (!(x >= 1e-8 && x <= 1e-3))
+        return rd_error_set(err, RD_EINVAL, at,
+                            "%s = %g m is out of range: allowed 1e-8 to 1e-3 m (the oil film on "
+                            "the liner; \"flooded\" for as much as the face takes in).",
+                            at, x);
+    s->lube.lube.supply_film = x;
+    return RD_OK;
+}
+
+json_t *rd_supply_echo(const struct rd_scene *s)
+{
+    double x = s->lube.lube.supply_film;
+    return x > 0.0 ? json_pack("{s:f}", "film_m", x) : json_string("flooded");
 }
 
 int rd_face_unread(const rd_face_params *fp, const char *prefix, rd_error *err)

@@ -112,12 +112,33 @@ int rd_scene_face_finish(struct rd_scene *s, int lubricated, rd_error *err);
  * in its bore block, fills s->lube's defaults (rd_lube_params_default) and
  * finishes with rd_scene_lube_finish. */
 extern const rd_block rd_block_oil, rd_block_asperity;
-#define RD_LUBE_FRICTION_FIELDS                                                      \
-    {"oil", RD_F_OPTBLOCK, offsetof(struct rd_scene, lube.oil_given), .in_scene = 1, \
-     .block = &rd_block_oil},                                                        \
-    {                                                                                \
-        "asperity", RD_F_OPTBLOCK, offsetof(struct rd_scene, lube.asperity_given),   \
-            .in_scene = 1, .block = &rd_block_asperity                               \
+int rd_supply_parse(const rd_field *f, struct json_t *v, const char *path, struct rd_scene *s,
+                    rd_error *err);
+struct json_t *rd_supply_echo(const struct rd_scene *s);
+#define RD_SUPPLY_SCHEMA                                                                         \
+    "{\"oneOf\": [{\"type\": \"string\", \"enum\": [\"flooded\"]}, {\"type\": \"object\", "      \
+    "\"required\": [\"film_m\"], \"additionalProperties\": false, \"properties\": {\"film_m\": " \
+    "{\"type\": \"number\", \"minimum\": 1e-8, \"maximum\": 1e-3, \"description\": \"The oil "   \
+    "film "                                                                                      \
+    "on the liner ahead of the ring, m.\"}}}], \"default\": \"flooded\"}"
+#define RD_LUBE_FRICTION_FIELDS                                                                  \
+    {"oil", RD_F_OPTBLOCK, offsetof(struct rd_scene, lube.oil_given), .in_scene = 1,             \
+     .block = &rd_block_oil},                                                                    \
+        {"supply",                                                                               \
+         RD_F_CUSTOM,                                                                            \
+         offsetof(struct rd_scene, lube.lube.supply_film),                                       \
+         .in_scene = 1,                                                                          \
+         .parse = rd_supply_parse,                                                               \
+         .echo = rd_supply_echo,                                                                 \
+         .extra = RD_SUPPLY_SCHEMA,                                                              \
+         .desc = "The oil the face is fed: \"flooded\" (default: as much as it takes in) or "    \
+                 "{\"film_m\": h_s}, the oil film on the liner ahead of the ring (1e-8 to 1e-3 " \
+                 "m): where the face would take in more than U h_s, its inlet is starved (a "    \
+                 "meniscus inside the face, dry ahead of it; less than half the thinnest gap: "  \
+                 "the face runs dry, on its asperities). Read by the lubricated model only."},   \
+    {                                                                                            \
+        "asperity", RD_F_OPTBLOCK, offsetof(struct rd_scene, lube.asperity_given),               \
+            .in_scene = 1, .block = &rd_block_asperity                                           \
     }
 #define RD_BORE_ROUGHNESS_FIELD                                                               \
     {                                                                                         \

@@ -50,7 +50,9 @@ static json_t *volumes_json(const rd_ringpack_result *r)
     "points, half the steps, a quarter of the local error); as the lift's, within x0.35-1.24 of "  \
     "the error against a grid 8 times finer. Not covered: a pack that has not settled "            \
     "(periodicity above 1e-2: run more cycles or "                                                 \
-    "\"periodic\"), the model (shear-stress factors, starvation, mass-conserving cavitation, a "   \
+    "\"periodic\"), the model (shear-stress factors, oil passed from ring to ring (supply: one "   \
+    "film for "                                                                                    \
+    "every ring), mass-conserving cavitation, a "                                                  \
     "film varying around the "                                                                     \
     "ring). Friction work and FMEP: the reported (last) cycle."
 

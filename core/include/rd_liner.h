@@ -55,6 +55,8 @@ typedef struct rd_lube_params {
     double boundary_coefficient; /* mu_b of the asperity load */
     double composite_modulus;    /* E' (1/E' = sum (1 - nu_i^2)/E_i), Pa; 0 = the
                                           * ring's material on a grey cast-iron liner */
+    double supply_film;          /* the oil film on the liner ahead of the ring, m: a starved inlet
+                           where the face would take in more (rd_film.h); 0 = fully flooded */
 } rd_lube_params;
 
 typedef struct rd_friction_params {

@@ -5,6 +5,7 @@
 #include "rd_film.h"
 
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -96,6 +97,7 @@ int rd_film_init(rd_film *f, const rd_face_params *face, double L, int nodes, do
     f->gt_k =
         16.0 * M_SQRT2 / 15.0 * M_PI * nbs * nbs * sqrt(f->sigma / lube->asperity_radius) * Ep;
     f->mu_b = lube->boundary_coefficient;
+    f->supply = lube->supply_film;
     double *block = calloc((size_t)(9 * n), sizeof(double));
     f->cav = calloc((size_t)n, sizeof(int));
     if (!block || !f->cav) {
@@ -155,17 +157,31 @@ static void tridiag(rd_film *f)
         p[i] = (r[i] - c[i] * p[i + 1]) / b[i];
 }
 
+/* A starved inlet's meniscus (rd_film.h): nodes 0 .. k (counted from the
+ * inlet edge, in the liner's direction dir) dry at the inlet gas pin;
+ * k <= 0: none (flooded; node 0 is the edge). */
+typedef struct meniscus {
+    int dir, k;
+    double pin;
+} meniscus;
+
+static int node_at(const rd_film *f, int dir, int k)
+{
+    return dir > 0 ? k : f->n - 1 - k;
+}
+
 /* The rows of the film equation -(k p')' = src (finite volumes) into the
- * system, a cavitated node's row p = 0; returns nothing, the system is f's. */
-static void assemble(rd_film *f, const double *src)
+ * system, a cavitated node's row p = 0, a dry node's p = the inlet's gas. */
+static void assemble(rd_film *f, const double *src, const meniscus *mn)
 {
     int n = f->n;
     double idx2 = 1.0 / (f->dx * f->dx);
     for (int i = 1; i <= n - 2; i++) {
-        if (f->cav[i]) {
+        int k = mn->dir > 0 ? i : n - 1 - i; /* from the inlet */
+        if (f->cav[i] || k <= mn->k) {
             f->a[i] = f->c[i] = 0.0;
             f->b[i] = 1.0;
-            f->r[i] = 0.0;
+            f->r[i] = k <= mn->k ? mn->pin : 0.0;
             continue;
         }
         f->a[i] = -f->kf[i - 1] * idx2;
@@ -176,15 +192,16 @@ static void assemble(rd_film *f, const double *src)
 }
 
 /* Film content theta downstream of a rupture: the flow q that left the full
- * film, 2 q / (U h_T) (at most 1), walked in the liner's direction. */
+ * film, 2 q / (U h_T) (at most 1), walked in the liner's direction; the dry
+ * inlet nodes none. */
 static double couette(rd_film *f, const double *hT, double U, double eta)
 {
     int n = f->n, dir = U >= 0.0 ? 1 : -1;
     double Cc = 0.0, q = 0.0;
     for (int k = 0; k < n; k++) {
         int i = dir > 0 ? k : n - 1 - k;
-        double theta = 1.0;
-        if (f->cav[i] && U != 0.0) {
+        double theta = k < f->dry ? 0.0 : 1.0;
+        if (k >= f->dry && f->cav[i] && U != 0.0) {
             int up = i - dir; /* the node upstream */
             if (up >= 0 && up < n && !f->cav[up])
                 q = f->qf[dir > 0 ? up : i]; /* the face between them */
@@ -194,6 +211,128 @@ static double couette(rd_film *f, const double *hT, double U, double eta)
         Cc += w * f->dx * theta * eta / hT[i];
     }
     return Cc;
+}
+
+/* The pressures (primal-dual active set on the cavitated set) with the
+ * edges at p_lo, p_hi and the meniscus mn. */
+static void pressures(rd_film *f, const double *src, double p_lo, double p_hi, const meniscus *mn)
+{
+    int n = f->n;
+    double idx2 = 1.0 / (f->dx * f->dx);
+    f->p[0] = fmax(p_lo, 0.0);
+    f->p[n - 1] = fmax(p_hi, 0.0);
+    for (int k = 0; k <= mn->k && k < n; k++)
+        f->cav[node_at(f, mn->dir, k)] = 0;
+    for (int it = 0; it < 4 * n; it++) {
+        assemble(f, src, mn);
+        tridiag(f);
+        int changed = 0;
+        for (int i = 1; i <= n - 2; i++) {
+            if ((mn->dir > 0 ? i : n - 1 - i) <= mn->k)
+                continue;
+            int now = f->cav[i];
+            if (now) { /* the multiplier (A p - src)_i, p_i = 0 */
+                double lam = (-f->kf[i - 1] * f->p[i - 1] - f->kf[i] * f->p[i + 1]) * idx2 - src[i];
+                now = lam > 0.0;
+            } else
+                now = f->p[i] < 0.0;
+            if (now != f->cav[i]) {
+                f->cav[i] = now;
+                changed = 1;
+            }
+        }
+        if (!changed)
+            break;
+    }
+}
+
+/* The film's loads from the pressures of the last solve (meniscus mn). */
+typedef struct film_in {
+    const double *src, *hT, *hTf, *sf;
+    double h0, U, eta, p_lo, p_hi;
+} film_in;
+
+static void outputs(rd_film *f, const film_in *in, const meniscus *mn, rd_film_out *o)
+{
+    int n = f->n;
+    double dx = f->dx, sg = f->sigma, W = 0.0, Fp = 0.0, cav = 0.0;
+    f->dry = mn->k >= n - 2 ? n : mn->k > 0 ? mn->k + 1 : 0; /* node 0 (k 0) is the edge */
+    f->dry_dir = mn->dir;
+    for (int i = 0; i < n; i++) {
+        if (f->cav[i] || f->p[i] < 0.0)
+            f->p[i] = 0.0;
+        W += ((i == 0 || i == n - 1) ? 0.5 : 1.0) * dx * f->p[i];
+        cav += f->cav[i] ? 1.0 : 0.0;
+    }
+    for (int j = 0; j + 1 < n; j++) {
+        double dp = f->p[j + 1] - f->p[j];
+        f->qf[j] = -f->kf[j] * dp / dx + 0.5 * in->U * in->hTf[j] + 0.5 * in->U * sg * in->sf[j];
+        Fp -= 0.5 * fmax(in->h0 + f->drop_mid[j], 0.0) * dp;
+    }
+    o->W = W;
+    o->Fp = Fp;
+    o->Cc = couette(f, in->hT, in->U, in->eta);
+    o->cavitated = cav / (n - 2);
+    o->h_min = in->h0;
+}
+
+/* The flow into the film past the meniscus (nodes 0..k dry from the inlet),
+ * in the liner's direction: the flux through the face after node k. */
+static double inflow_at(rd_film *f, const film_in *in, meniscus *mn, int k)
+{
+    mn->k = k;
+    pressures(f, in->src, in->p_lo, in->p_hi, mn);
+    int a = node_at(f, mn->dir, k), b = node_at(f, mn->dir, k + 1), face = mn->dir > 0 ? a : b;
+    return -f->kf[face] * (f->p[b] - mn->pin) / f->dx +
+           0.5 * fabs(in->U) * (in->hTf[face] + f->sigma * in->sf[face]);
+}
+
+/* A starved inlet (rd_film.h): where the flooded film takes in more than
+ * the liner brings (U h_s), the meniscus between the last node from the
+ * inlet whose film would still take in more and the next, found by
+ * bisection on the nodes up to the thinnest point; the loads are those of
+ * the two films blended linearly in their inflows (so they move
+ * continuously with h0).  All dry when even at the thinnest point the film
+ * would take in more (the oil passes under the face). */
+static void starve(rd_film *f, const film_in *in, meniscus *mn, rd_film_out *o)
+{
+    double want = fabs(in->U) * f->supply;
+    int n = f->n, kmin = 0;
+    for (int k = 0; k < n; k++) /* the thinnest point, from the inlet */
+        if (in->hT[node_at(f, mn->dir, k)] < in->hT[node_at(f, mn->dir, kmin)])
+            kmin = k;
+    double glo = inflow_at(f, in, mn, 0) - want, ghi;
+    if (glo <= 0.0) { /* flooded: the liner brings enough */
+        outputs(f, in, mn, o);
+        return;
+    }
+    if (kmin < 1 || (ghi = inflow_at(f, in, mn, kmin) - want) >= 0.0) {
+        mn->k = n - 2; /* all dry */
+        pressures(f, in->src, in->p_lo, in->p_hi, mn);
+        outputs(f, in, mn, o);
+        o->Fp = 0.0;
+        return;
+    }
+    int lo = 0, hi = kmin; /* g(lo) > 0 >= g(hi) */
+    while (hi - lo > 1) {
+        int m = (lo + hi) / 2;
+        double g = inflow_at(f, in, mn, m) - want;
+        if (g > 0.0)
+            lo = m, glo = g;
+        else
+            hi = m, ghi = g;
+    }
+    rd_film_out a, b;
+    inflow_at(f, in, mn, hi);
+    outputs(f, in, mn, &b);
+    inflow_at(f, in, mn, lo);
+    outputs(f, in, mn, &a);
+    double w = glo / (glo - ghi); /* 0 at lo, 1 at hi */
+    o->W = (1.0 - w) * a.W + w * b.W;
+    o->Fp = (1.0 - w) * a.Fp + w * b.Fp;
+    o->Cc = (1.0 - w) * a.Cc + w * b.Cc;
+    o->cavitated = (1.0 - w) * a.cavitated + w * b.cavitated;
+    o->h_min = a.h_min;
 }
 
 void rd_film_solve(rd_film *f, double h0, double h0_dot, double U, double eta, double p_lo,
@@ -233,44 +372,13 @@ void rd_film_solve(rd_film *f, double h0, double h0_dot, double U, double eta, d
             Wa += ((i == 0 || i == n - 1) ? 0.5 : 1.0) * dx * f->gt_k * f52;
         }
     }
-    f->p[0] = fmax(p_lo, 0.0);
-    f->p[n - 1] = fmax(p_hi, 0.0);
-    for (int it = 0; it < 4 * n; it++) { /* primal-dual active set */
-        assemble(f, src);
-        tridiag(f);
-        int changed = 0;
-        double idx2 = 1.0 / (dx * dx);
-        for (int i = 1; i <= n - 2; i++) {
-            int now = f->cav[i];
-            if (now) { /* the multiplier (A p - src)_i, p_i = 0 */
-                double lam = (-f->kf[i - 1] * f->p[i - 1] - f->kf[i] * f->p[i + 1]) * idx2 - src[i];
-                now = lam > 0.0;
-            } else
-                now = f->p[i] < 0.0;
-            if (now != f->cav[i]) {
-                f->cav[i] = now;
-                changed = 1;
-            }
-        }
-        if (!changed)
-            break;
+    meniscus mn = {U >= 0.0 ? 1 : -1, -1, fmax(U >= 0.0 ? p_lo : p_hi, 0.0)};
+    film_in in = {src, hT, hTf, sf, h0, U, eta, p_lo, p_hi};
+    if (f->supply > 0.0 && U != 0.0) {
+        starve(f, &in, &mn, o);
+    } else {
+        pressures(f, src, p_lo, p_hi, &mn);
+        outputs(f, &in, &mn, o);
     }
-    double W = 0.0, Fp = 0.0, cav = 0.0;
-    for (int i = 0; i < n; i++) {
-        if (f->cav[i] || f->p[i] < 0.0)
-            f->p[i] = 0.0;
-        W += ((i == 0 || i == n - 1) ? 0.5 : 1.0) * dx * f->p[i];
-        cav += f->cav[i] ? 1.0 : 0.0;
-    }
-    for (int j = 0; j + 1 < n; j++) {
-        double dp = f->p[j + 1] - f->p[j];
-        f->qf[j] = -f->kf[j] * dp / dx + 0.5 * U * hTf[j] + 0.5 * U * sg * sf[j];
-        Fp -= 0.5 * fmax(h0 + f->drop_mid[j], 0.0) * dp;
-    }
-    o->W = W;
     o->Wa = Wa;
-    o->Fp = Fp;
-    o->Cc = couette(f, hT, U, eta);
-    o->cavitated = cav / (n - 2);
-    o->h_min = h0;
 }

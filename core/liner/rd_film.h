@@ -14,10 +14,19 @@
  *     w_s = (sigma_liner^2 - sigma_ring^2) / sigma^2 (the liner slides, the
  *     ring does not), phi_x = 1 - 0.90 e^{-0.56 H} and phi_s the Patir-Cheng
  *     fits at H = h / sigma (phi_x's fit is for H >= 0.5: held there below);
- *     p = the gas pressures at the edges (fully flooded), the Reynolds
+ *     p = the gas pressures at the edges, the Reynolds
  *     (Swift-Stieber) condition p >= 0 inside, solved as the discrete
  *     obstacle problem on `nodes` points (finite volumes, primal-dual active
  *     set: dp/dx = 0 where the film ruptures follows from it);
+ *   - a starved inlet (supply > 0, the oil film h_s on the liner ahead of
+ *     the face): where the flooded film would take in more than the liner
+ *     brings, U h_s, the film starts at a meniscus x_m inside the face,
+ *     the inlet edge's gas pressure from the edge to x_m (dry: no film, no
+ *     shear), x_m found so that the flow into the film at x_m is U h_s:
+ *     between the last node (from the inlet) whose film, dry up to it,
+ *     would still take in more and the next, the two films' loads blended
+ *     linearly in their inflows; with less oil than half the thinnest gap the
+ *     whole face is dry (the oil passes under it);
  *   - the asperity pressure of Greenwood-Tripp, K F_5/2(h / sigma),
  *     K = (16 sqrt(2) / 15) pi (n beta sigma)^2 sqrt(sigma / beta) E', E' the
  *     composite modulus 1/E' = (1 - nu_1^2)/E_1 + (1 - nu_2^2)/E_2;
@@ -71,6 +80,9 @@ typedef struct rd_film {
     double *a, *b, *c, *r, *p; /* the tridiagonal system and the pressures */
     double *kf, *qf;           /* the faces' flow coefficients and flows */
     int *cav;                  /* 1: node in the cavitated set (kept between solves) */
+    double supply;             /* the liner's oil film ahead of the face, m; 0: flooded */
+    int dry;                   /* the last solve: nodes dry at the inlet (a starved inlet) */
+    int dry_dir;               /* +1: they are counted from the lower edge, -1 the upper */
 } rd_film;
 
 /* One solve, per metre of circumference. */
