@@ -24,6 +24,7 @@
 #include <stdlib.h>
 
 #include "check.h"
+#include "fired_cycle.h"
 #include "rd_lift_internal.h"
 
 /* Below these the reference's own error (fine 8 against fine 4: ~10-40 %
@@ -37,16 +38,10 @@
 #define PTS 73
 static double crank[PTS], above[PTS], behind[PTS], below[PTS];
 
-/* a fired cycle, gauge Pa: polytropic compression and expansion (9:1) and a
- * 30 bar pulse near 370 deg */
+/* the fired cycle as gauge Pa */
 static double cylinder(double deg)
 {
-    double a = (deg - 360.0) * M_PI / 180.0, r = 0.04345, l = 0.13, d = 0.0765;
-    double s = r * (1.0 - cos(a)) + l - sqrt(l * l - pow(r * sin(a), 2.0));
-    double area = 0.25 * M_PI * d * d, vc = area * 2.0 * r / 8.0;
-    double p = 1e5 * pow((vc + area * 2.0 * r) / (vc + area * s), 1.35) +
-               3.0e6 * exp(-pow((deg - 370.0) / 25.0, 2.0)) - 1e5;
-    return deg > 180.0 && deg < 540.0 ? fmax(p, 0.0) : 0.0;
+    return fmax(fired_cycle_pa(deg) - 1e5, 0.0);
 }
 
 static void scene(rd_ring_params *rp, rd_lift_params *p, double rpm, int gas, double crown)
