@@ -10,6 +10,10 @@
 
 #include <math.h>
 
+#ifndef M_PI
+#define M_PI 3.14159265358979323846
+#endif
+
 static inline double fired_cycle_pa(double deg)
 {
     double a = (deg - 360.0) * M_PI / 180.0, r = 0.04345, l = 0.13, d = 0.0765;
