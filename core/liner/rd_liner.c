@@ -167,6 +167,11 @@ int rd_lube_validate(const rd_lube_params *l, const rd_face_params *face, double
     }
     if (l->viscosity == 0.0 && (rc = check_vogel(l, err)))
         return rc;
+    if (l->supply_film != 0.0 && !in_range(l->supply_film, 1e-8, 1e-3))
+        return rd_error_set(err, RD_EINVAL, "/physics/friction/supply/film_m",
+                            "film_m = %g m is outside [1e-8, 1e-3] m (the oil film on the liner; "
+                            "0 for a flooded face).",
+                            l->supply_film);
     if (!in_range(l->asperity_density, 1e6, 1e14))
         return rd_error_set(err, RD_EINVAL, "/physics/friction/asperity/density_per_m2",
                             "density_per_m2 = %g is outside [1e6, 1e14] per m^2.",
