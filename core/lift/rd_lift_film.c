@@ -82,7 +82,7 @@ int rd_lift_film_run_at(const rd_ring_params *rp, const rd_lift_params *p, int f
     fs.back = s.back.height * s.back.r / s.run.r;
     rd_film_loads ld = {loads_at, &fs};
     double cycle = 4.0 * M_PI / fs.omega, dt = p->film_step_deg / fine * M_PI / 180.0 / fs.omega;
-    return rd_film_track_run(film, &ld, p->engine.cycles * cycle, dt, cycle, cycle, 0.0, tr, err);
+    return rd_film_track_run(film, &ld, p->engine.cycles * cycle, dt, cycle, cycle, NAN, tr, err);
 }
 
 /* The friction on the ring of film point pt (N, + up): the film's shear

@@ -173,7 +173,7 @@ int rd_film_track_run(rd_film *f, const rd_film_loads *ld, double t_end, double 
     double t = -t_warm, sg = f->sigma, y[3] = {0}, ts[3] = {0};
     int have = 1, held, rc;
     ld->at(ld->ctx, t, &s.U, &s.eta, &s.W_ext, &s.p_lo, &s.p_hi);
-    y[0] = h_start > 0.0 ? h_start : balance(&s, 3.0 * sg, &held);
+    y[0] = isnan(h_start) ? balance(&s, 3.0 * sg, &held) : h_start;
     ts[0] = t;
     if (t_warm <= 0.0 && (rc = append(tr, &s, y[0], 0.0, err))) /* its loads at rest */
         return rc;

@@ -20,7 +20,7 @@
  *
  * Usage:
  *     rd_film_track tr;
- *     rc = rd_film_track_run(&film, &loads, t_end, dt_max, t_cycle, t_cycle, 0.0, &tr, err);
+ *     rc = rd_film_track_run(&film, &loads, t_end, dt_max, t_cycle, t_cycle, NAN, &tr, err);
  *     rd_film_point pt; rd_film_track_at(&tr, t, &pt);   linear in t
  *     rd_film_track_free(&tr);
  */
@@ -58,8 +58,9 @@ typedef struct rd_film_track {
 } rd_film_track;
 
 /* From t = -t_warm (s) to t_end, recording from t = 0, steps at most
- * dt_max landing on the multiples of `period` (s, > 0); h_start > 0: the
- * film at -t_warm, else the steady balance there. */
+ * dt_max landing on the multiples of `period` (s, > 0); h_start: the film
+ * at -t_warm (m; below 0 where the asperities carry the face), NAN: the
+ * steady balance there. */
 int rd_film_track_run(rd_film *f, const rd_film_loads *ld, double t_end, double dt_max,
                       double period, double t_warm, double h_start, rd_film_track *tr,
                       rd_error *err);

@@ -131,15 +131,15 @@ static void loads_at(void *ctx, double t, double *U, double *eta, double *W, dou
 #undef AT
 }
 
-/* The film `film` over one cycle from h_start (0: the balance after a
+/* The film `film` over one cycle from h_start (NAN: the balance after a
  * cycle of warm-up) under f->load, steps at most dt (s), its points moved
  * to start at t0 (s). */
 static int cycle_film_on(rd_packfilm *f, rd_film *film, double dt, double h_start, double t0,
                          rd_film_track *tr, rd_error *err)
 {
     rd_film_loads ld = {loads_at, f};
-    int rc = rd_film_track_run(film, &ld, f->period, dt, f->period, h_start > 0.0 ? 0.0 : f->period,
-                               h_start, tr, err);
+    int rc = rd_film_track_run(film, &ld, f->period, dt, f->period,
+                               isnan(h_start) ? f->period : 0.0, h_start, tr, err);
     for (int k = 0; !rc && k <= tr->steps; k++)
         tr->pt[k].t += t0;
     return rc;
@@ -203,7 +203,7 @@ int rd_ringpack_films_open(rd_ringpack_model *m, int S, rd_error *err)
         int rc = rd_film_init(&f->film, &p->rings[i].face, s.run.height, RD_FILM_NODES,
                               p->bore.roughness_rq, &p->friction.lube, rp->youngs_modulus,
                               rp->poisson_ratio, err);
-        rc = rc ? rc : cycle_film(f, 0.0, 0.0, &f->tr, err); /* no gas yet */
+        rc = rc ? rc : cycle_film(f, NAN, 0.0, &f->tr, err); /* no gas yet */
         if (rc)
             return rc;
         if (m->lr[i])
