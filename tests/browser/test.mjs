@@ -2385,7 +2385,7 @@ for (const width of [1280, 390]) {
       assert.deepEqual(await page.$$eval('#f-rp-faces select', (ss) => ss.map((x) => x.value)), ex.rings.map((r) => r.ring.face.profile));
       assert.equal(Number(await page.inputValue('#f-rp-face-1-crown')), ex.rings[0].ring.face.crown_m);
       assert.equal(Number(await page.inputValue('#f-rp-face-2-taper')), ex.rings[1].ring.face.taper_deg);
-      assert.equal(Number(await page.inputValue('#f-rp-face-3-edge')), ex.rings[2].ring.face.edge_radius_m);
+      assert.equal(Number(await page.inputValue('#f-rp-face-3-crown')), ex.rings[2].ring.face.crown_m);
       assert.equal(await page.isVisible('#f-rp-face-1-taper'), false, 'a barrel has no taper angle');
       await runAnalysis('Run ringpack analysis', 150000);
       assert.equal(await page.isVisible('#error'), false, `unexpected error: ${await page.textContent('#error')}`);
