@@ -145,9 +145,20 @@ export function lubeFrictionPlot(crank, lub, { id, axis }) {
   shown.map(([k, suffix]) => svg('path', { class: `split-${k}`, id: `${id}-${suffix}`, d: pathD(thin(crank, series[k]).map(([c, f]) => [x(c), y(f)])) })));
 }
 
-// The film's facts as kvTable rows (a value undefined where the block lacks it).
-export function filmFactRows(lub) {
+// The oil the scene fed the face (its physics.friction.supply): "starved
+// inlet: 1 µm of oil on the liner" for {film_m}; null when flooded (the
+// default, "flooded" or absent) or not readable.
+export function supplyText(supply) {
+  const h = supply !== null && typeof supply === 'object' ? supply.film_m : undefined;
+  return isNum(h) && h > 0 ? `starved inlet: ${sig(h * 1e6)} µm of oil on the liner` : null;
+}
+
+// The film's facts as kvTable rows (a value undefined where the block lacks
+// it); `supply` is the scene's physics.friction.supply (a row when starved),
+// `id` the prefix of that row's id (lf, rp-2: lf-supply, rp-2-supply).
+export function filmFactRows(lub, { supply, id } = {}) {
   return [
+    ['Oil supply', supplyText(supply) ?? undefined, { id: id ? `${id}-supply` : undefined }],
     ['Composite roughness σ', isNum(lub.composite_roughness_m) ? `${um(lub.composite_roughness_m, 3)} µm` : undefined],
     ['Thinnest point of the face', isNum(lub.min_film_at_m) ? `${fixed(lub.min_film_at_m, 3, 1e3)} mm above its lower edge` : undefined],
     ['Viscosity', viscosityText(lub.viscosity_pa_s) ?? undefined],

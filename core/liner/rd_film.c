@@ -298,7 +298,10 @@ static void starve(rd_film *f, const film_in *in, meniscus *mn, rd_film_out *o)
 {
     double want = fabs(in->U) * f->supply;
     int n = f->n, kmin = 0;
-    for (int k = 0; k < n; k++) /* the thinnest point, from the inlet */
+    /* the thinnest point from the inlet, up to the last face (a meniscus
+     * sits between nodes k and k + 1, so k <= n - 2: at the outlet node,
+     * inflow_at would read past the faces) */
+    for (int k = 0; k < n - 1; k++)
         if (in->hT[node_at(f, mn->dir, k)] < in->hT[node_at(f, mn->dir, kmin)])
             kmin = k;
     double glo = inflow_at(f, in, mn, 0) - want, ghi;

@@ -2499,6 +2499,218 @@ test('ring pack form: lubricated with changed faces, Coulomb and no friction eac
   }
 });
 
+// ---- the oil supply: physics.friction.supply, starved by the film on the liner
+
+// Loads `scene` as a scene file; waits until `ready` (a page function) holds.
+async function loadSceneFile(scene, ready, arg) {
+  await page.setInputFiles('#load-scene-file', { name: 'scene.json', mimeType: 'application/json', buffer: Buffer.from(JSON.stringify(scene)) });
+  await page.waitForFunction(ready, arg);
+}
+
+// The scene the form builds for `analysis`, as the page POSTs it (answered
+// by interceptJobs), with no error shown.
+async function formScene(jobs, analysis) {
+  await runAnalysis(`Run ${analysis} analysis`);
+  assert.equal(await page.isVisible('#error'), false, `unexpected error: ${await page.textContent('#error')}`);
+  return jobs.sent.at(-1);
+}
+
+// The server accepts `scene`: 202 (queued, then cancelled by serverTakes)
+// or 200 (a quarter-cycle lift can finish within ?wait=0).
+async function takes(scene) {
+  const r = await serverTakes(scene);
+  assert.ok(r.status === 202 || r.status === 200, `the server refused the scene: ${r.status} ${r.message}`);
+}
+
+// A field that fits the viewport and shows its µm hint.
+async function fieldFits(id) {
+  const box = await page.locator(id).boundingBox();
+  const width = await page.evaluate(() => window.innerWidth);
+  assert.ok(box && box.x >= 0 && box.x + box.width <= width, `${id} within the ${width} px viewport: ${JSON.stringify(box)}`);
+  const overflow = await page.evaluate(() => document.documentElement.scrollWidth - window.innerWidth);
+  assert.ok(overflow <= 0, `page scrolls sideways by ${overflow}px`);
+}
+
+for (const width of [1280, 390]) {
+  test(`${width} px: lift, lubricated: the oil film on the liner is sent as physics.friction.supply {film_m}, the server runs it and the readout says the inlet is starved; its echo loads back; Coulomb sends no supply`, { skip: SKIP.lift, timeout: 180000 }, async () => {
+    await page.setViewportSize({ width, height: 844 });
+    try {
+      await page.getByRole('button', { name: 'Reset to defaults' }).click();
+      await selectTab('lift');
+      await page.fill('#f-lf-speed', '2400');
+      await page.fill('#f-lf-cycles', '0.25');
+      await page.selectOption('#f-lf-model', 'rigid');
+      await page.uncheck('#f-lf-error-estimate');
+      await page.check('#f-lf-friction');
+      assert.equal(await page.isVisible('#f-lf-supply-film'), false, 'coulomb: no oil film field');
+      await page.selectOption('#f-lf-friction-model', 'lubricated');
+      assert.equal(await page.isVisible('#f-lf-supply-film'), true);
+      assert.equal(await page.inputValue('#f-lf-supply-film'), '', 'empty by default: flooded');
+      assert.equal(await page.getAttribute('#f-lf-supply-film', 'placeholder'), 'flooded');
+      const jobs = await interceptJobs(fixtures.liftResult());
+      let scene;
+      try {
+        scene = await formScene(jobs, 'lift');
+        assert.equal(scene.physics.friction.supply, undefined, 'empty: no supply sent (the server floods the face)');
+        await page.fill('#f-lf-supply-film', '1e-6');
+        assert.equal(await page.textContent('#f-lf-supply-film-hint'), '= 1 µm');
+        await fieldFits('#f-lf-supply-film');
+        scene = await formScene(jobs, 'lift');
+        assert.deepEqual(scene.physics.friction.supply, { film_m: 1e-6 });
+        assert.equal(scene.physics.friction.model, 'lubricated');
+        await takes(scene);
+        // Coulomb: no supply (the server would refuse it with that model).
+        await page.selectOption('#f-lf-friction-model', 'coulomb');
+        const coulomb = await formScene(jobs, 'lift');
+        assert.equal(coulomb.physics.friction.model, 'coulomb');
+        assert.equal(coulomb.physics.friction.supply, undefined);
+        await takes(coulomb);
+        const refused = structuredClone(coulomb);
+        refused.physics.friction.supply = { film_m: 1e-6 };
+        assert.equal((await serverTakes(refused)).status, 422, 'what the page must not send');
+        await page.selectOption('#f-lf-friction-model', 'lubricated');
+        assert.equal(await page.inputValue('#f-lf-supply-film'), '1e-6', 'the field keeps its value while hidden');
+      } finally {
+        await jobs.stop();
+      }
+
+      // Run against the server: the readout names the starved inlet.
+      await runAnalysis('Run lift analysis', 150000);
+      assert.equal(await page.isVisible('#error'), false, `unexpected error: ${await page.textContent('#error')}`);
+      const job = await shownJob();
+      assert.deepEqual(job.result.scene.physics.friction.supply, { film_m: 1e-6 }, 'the echo');
+      assert.ok(job.result.lubrication, 'a lubrication block');
+      assert.equal(await page.textContent('#lf-supply'), 'starved inlet: 1 µm of oil on the liner');
+      assert.equal(await page.isVisible('#lf-supply'), true);
+      await settled();
+      const overflow = await page.evaluate(() => document.documentElement.scrollWidth - window.innerWidth);
+      assert.ok(overflow <= 0, `page scrolls sideways by ${overflow}px`);
+      await shot(`ringdyn-lift-supply-${width}.png`, { fullPage: true });
+
+      // The job reopened from its address: the echo fills the form and is sent as it was.
+      await page.goto(`${BASE}/?job=${encodeURIComponent(job.id)}`);
+      await page.waitForFunction(() => document.getElementById('f-lf-supply-film').value === '1e-6' &&
+        document.getElementById('f-lf-friction-model').value === 'lubricated');
+      assert.equal(await page.textContent('#f-lf-supply-film-hint'), '= 1 µm');
+      const again = await interceptJobs(fixtures.liftResult());
+      try {
+        scene = await formScene(again, 'lift');
+        assert.deepEqual(scene.physics.friction.supply, { film_m: 1e-6 });
+        await takes(scene);
+        // An echo of a flooded run ("supply": "flooded", a string): the field
+        // empty, the word sent back as it was; a film typed in replaces it.
+        const flooded = structuredClone(job.result.scene);
+        flooded.physics.friction.supply = 'flooded';
+        await loadSceneFile(flooded, () => document.getElementById('f-lf-supply-film').value === '');
+        assert.equal(await page.inputValue('#f-lf-friction-model'), 'lubricated');
+        assert.equal(await page.textContent('#f-lf-supply-film-hint'), '');
+        scene = await formScene(again, 'lift');
+        assert.equal(scene.physics.friction.supply, 'flooded');
+        await takes(scene);
+        await page.fill('#f-lf-supply-film', '2e-6');
+        scene = await formScene(again, 'lift');
+        assert.deepEqual(scene.physics.friction.supply, { film_m: 2e-6 });
+        // Another model drops the loaded word too.
+        await loadSceneFile(flooded, () => document.getElementById('f-lf-supply-film').value === '');
+        await page.selectOption('#f-lf-friction-model', 'stribeck');
+        scene = await formScene(again, 'lift');
+        assert.equal(scene.physics.friction.supply, undefined);
+        await takes(scene);
+      } finally {
+        await again.stop();
+      }
+    } finally {
+      await page.goto(`${BASE}/`);
+      await page.waitForSelector('#tab-modal[aria-selected="true"]');
+      await page.setViewportSize({ width: 1280, height: 800 });
+    }
+  });
+
+  test(`${width} px: ring pack, lubricated: the oil film on the liner is sent as physics.friction.supply {film_m} and the server takes it; its echo loads back; Coulomb sends no supply`, { timeout: 120000 }, async () => {
+    const skip = await unavailable('ringpack');
+    if (skip) return;
+    await page.setViewportSize({ width, height: 844 });
+    const jobs = await interceptJobs(fixtures.ringpackResult());
+    try {
+      const ex = await loadExample(LUBE_PACK);
+      await page.waitForSelector('fieldset[data-analysis="ringpack"]:not([hidden])');
+      assert.equal(await page.inputValue('#f-rp-friction-model'), 'lubricated');
+      assert.equal(await page.isVisible('#f-rp-supply-film'), true);
+      assert.equal(await page.inputValue('#f-rp-supply-film'), '', 'the example is flooded');
+      let scene = await formScene(jobs, 'ringpack');
+      assert.equal(scene.physics.friction.supply, ex.physics.friction.supply, 'as the example has it');
+      await page.fill('#f-rp-supply-film', '1e-6');
+      assert.equal(await page.textContent('#f-rp-supply-film-hint'), '= 1 µm');
+      await fieldFits('#f-rp-supply-film');
+      scene = await formScene(jobs, 'ringpack');
+      assert.deepEqual(scene.physics.friction.supply, { film_m: 1e-6 });
+      await takes(scene);
+      await page.locator('#f-rp-lube').screenshot({ path: path.join(SHOT_DIR, `ringdyn-ringpack-supply-form-${width}.png`) });
+
+      // The echo of each kind loads back: {film_m} into the field, "flooded" as an empty field.
+      const echo = structuredClone(scene);
+      echo.physics.friction.supply = { film_m: 3e-6 };
+      await loadSceneFile(echo, () => document.getElementById('f-rp-supply-film').value === '0.000003' ||
+        document.getElementById('f-rp-supply-film').value === '3e-6');
+      scene = await formScene(jobs, 'ringpack');
+      assert.deepEqual(scene.physics.friction.supply, { film_m: 3e-6 });
+      echo.physics.friction.supply = 'flooded';
+      await loadSceneFile(echo, () => document.getElementById('f-rp-supply-film').value === '');
+      assert.equal(await page.inputValue('#f-rp-friction-model'), 'lubricated');
+      scene = await formScene(jobs, 'ringpack');
+      assert.equal(scene.physics.friction.supply, 'flooded');
+      await takes(scene);
+
+      // Coulomb: no supply, typed or loaded.
+      await page.fill('#f-rp-supply-film', '1e-6');
+      await page.selectOption('#f-rp-friction-model', 'coulomb');
+      assert.equal(await page.isVisible('#f-rp-supply-film'), false);
+      scene = await formScene(jobs, 'ringpack');
+      assert.equal(scene.physics.friction.model, 'coulomb');
+      assert.equal(scene.physics.friction.supply, undefined);
+      await takes(scene);
+    } finally {
+      await jobs.stop();
+      await page.getByRole('button', { name: 'Reset to defaults' }).click();
+      await page.setViewportSize({ width: 1280, height: 800 });
+    }
+  });
+}
+
+test('lube readouts: a starved supply in the scene is named next to the film facts (lift and each ring of a pack); flooded says nothing', { timeout: 60000 }, async () => {
+  const lub = (n) => ({ min_film_m: Array.from({ length: n }, () => 1e-6), composite_roughness_m: 2.8e-7 });
+  const lf = fixtures.liftResult();
+  lf.scene.physics.friction = { model: 'lubricated', supply: { film_m: 2.5e-6 } };
+  lf.lubrication = lub(lf.crank_deg.length);
+  const rp = fixtures.ringpackResult();
+  rp.scene.physics = { friction: { model: 'lubricated', supply: { film_m: 1e-6 } } };
+  for (const ring of rp.rings) ring.lubrication = lub(rp.crank_deg.length);
+  const drawn = await page.evaluate(async ({ lf, rp }) => {
+    const out = {};
+    for (const [id, result] of [['lift', lf], ['ringpack', rp]]) {
+      const mod = await import(`/static/${id}.js`);
+      const box = document.createElement('div');
+      document.body.append(box);
+      const cells = () => [...box.querySelectorAll('[id$="-supply"]')].map((td) => [td.id, td.textContent, td.closest('tr').querySelector('th').textContent]);
+      try {
+        mod[id].render(result, null, box);
+        out[id] = cells();
+        result.scene.physics.friction.supply = 'flooded';
+        mod[id].render(result, null, box);
+        out[`${id} flooded`] = cells();
+      } finally {
+        box.remove();
+      }
+    }
+    return out;
+  }, { lf, rp });
+  assert.deepEqual(drawn.lift, [['lf-supply', 'starved inlet: 2.5 µm of oil on the liner', 'Oil supply']]);
+  assert.deepEqual(drawn.ringpack, [1, 2, 3].map((n) => [`rp-${n}-supply`, 'starved inlet: 1 µm of oil on the liner', 'Oil supply']));
+  assert.deepEqual(drawn['lift flooded'], []);
+  assert.deepEqual(drawn['ringpack flooded'], []);
+  assert.deepEqual(pageErrors, []);
+});
+
 test('no console errors or uncaught exceptions', () => {
   assert.deepEqual(pageErrors, []);
   assert.deepEqual(consoleErrors.filter((t) => !expectedConsole(t)), []);
