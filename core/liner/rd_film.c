@@ -42,7 +42,7 @@ static double profile_at(const rd_face_params *fp, double L, double x)
     }
 }
 
-static int face_validate(const rd_face_params *fp, double L, rd_error *err)
+int rd_film_face_validate(const rd_face_params *fp, double L, rd_error *err)
 {
     if (fp->profile == RD_FACE_BARREL && fabs(fp->offset) >= 0.5 * L)
         return rd_error_set(err, RD_EINVAL, "/ring/face/offset",
@@ -81,7 +81,7 @@ int rd_film_init(rd_film *f, const rd_face_params *face, double L, int nodes, do
 {
     memset(f, 0, sizeof *f);
     f->rtol = RD_FILM_RTOL;
-    int rc = face_validate(face, L, err);
+    int rc = rd_film_face_validate(face, L, err);
     if (rc)
         return rc;
     int n = nodes < 3 ? 3 : (nodes > RD_FILM_NODES_MAX ? RD_FILM_NODES_MAX : nodes);
@@ -257,7 +257,6 @@ static void outputs(rd_film *f, const film_in *in, const meniscus *mn, rd_film_o
     int n = f->n;
     double dx = f->dx, sg = f->sigma, W = 0.0, Fp = 0.0, cav = 0.0;
     f->dry = mn->k >= n - 2 ? n : mn->k > 0 ? mn->k + 1 : 0; /* node 0 (k 0) is the edge */
-    f->dry_dir = mn->dir;
     for (int i = 0; i < n; i++) {
         if (f->cav[i] || f->p[i] < 0.0)
             f->p[i] = 0.0;

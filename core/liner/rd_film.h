@@ -81,8 +81,8 @@ typedef struct rd_film {
     double *kf, *qf;           /* the faces' flow coefficients and flows */
     int *cav;                  /* 1: node in the cavitated set (kept between solves) */
     double supply;             /* the liner's oil film ahead of the face, m; 0: flooded */
-    int dry;                   /* the last solve: nodes dry at the inlet (a starved inlet) */
-    int dry_dir;               /* +1: they are counted from the lower edge, -1 the upper */
+    int dry; /* the last solve: nodes dry at the inlet (a starved inlet), from the edge the
+              * liner comes from */
 } rd_film;
 
 /* One solve, per metre of circumference. */
@@ -98,6 +98,8 @@ typedef struct rd_film_out {
 /* Builds the face of height L (m) on `nodes` points (3 ..
  * RD_FILM_NODES_MAX) and checks the profile (paths "/ring/face/..."); E,
  * nu: the ring's material (for E' when lube's composite_modulus is 0). */
+/* The profile's fit to a face of height L alone (rd_film_init's first check). */
+int rd_film_face_validate(const rd_face_params *face, double L, rd_error *err);
 int rd_film_init(rd_film *f, const rd_face_params *face, double L, int nodes, double liner_rq,
                  const rd_lube_params *lube, double E, double nu, rd_error *err);
 void rd_film_free(rd_film *f);

@@ -61,14 +61,9 @@ int rd_ringpack_lube_validate(const rd_ringpack_params *p, rd_error *err)
         const rd_ring_params *rp = &p->rings[i].ring;
         rd_section s;
         rd_section_init(&s, rp);
-        rd_film f;
         rc = rd_lube_validate(&p->friction.lube, &p->rings[i].face, p->bore.roughness_rq, &re);
-        if (!rc) { /* the face on its ring's running face (a table's ends, ...) */
-            rc = rd_film_init(&f, &p->rings[i].face, s.run.height, RD_FILM_NODES,
-                              p->bore.roughness_rq, &p->friction.lube, rp->youngs_modulus,
-                              rp->poisson_ratio, &re);
-            rd_film_free(&f);
-        }
+        if (!rc) /* the face on its ring's running face (a table's ends, ...) */
+            rc = rd_film_face_validate(&p->rings[i].face, s.run.height, &re);
         if (rc) {
             char at[RD_ERROR_PATH_MAX];
             if (strncmp(re.path, "/ring/", 6) != 0)
