@@ -20,14 +20,7 @@
 #include "fired_cycle.h"
 #include "rd_lift_internal.h"
 
-#define PTS 73
-static double crank[PTS], above[PTS], behind[PTS], below[PTS];
-
-/* a fired cycle (tests/core/fired_cycle.h), absolute Pa used as gauge */
-static double cylinder(double deg)
-{
-    return fired_cycle_pa(deg);
-}
+static fired_tables tables;
 
 static void scene(rd_lift_params *p, double rpm, int gas, int model)
 {
@@ -37,14 +30,8 @@ static void scene(rd_lift_params *p, double rpm, int gas, int model)
     p->friction.model = model;
     p->model = RD_LIFT_MODEL_RIGID;
     p->estimate_error = 0;
-    if (gas) {
-        for (int k = 0; k < PTS; k++) {
-            crank[k] = 10.0 * k;
-            above[k] = behind[k] = cylinder(crank[k]);
-            below[k] = 0.2 * above[k];
-        }
-        p->gas = (rd_gas_params){PTS, crank, above, behind, below, RD_GAS_AREA_FIXED};
-    }
+    if (gas) /* absolute used as gauge, as measured */
+        p->gas = fired_cycle_gas(&tables, 0.0);
 }
 
 static double lift_ms(const rd_ring_params *rp, const rd_lift_params *p, int reps)

@@ -10,6 +10,8 @@
 
 #include <math.h>
 
+#include "rd_lift.h"
+
 #ifndef M_PI
 #define M_PI 3.14159265358979323846
 #endif
@@ -22,6 +24,26 @@ static inline double fired_cycle_pa(double deg)
     double p = 1e5 * pow((vc + area * 2.0 * r) / (vc + area * s), 1.35) +
                3.0e6 * exp(-pow((deg - 370.0) / 25.0, 2.0));
     return deg > 180.0 && deg < 540.0 ? p : 1e5;
+}
+
+/* The lift's gas tables from it, every 10 deg (0..720): above and behind
+ * the cycle less `base` (Pa, not below 0), below a fifth of that, fixed
+ * active areas; the arrays are t's. */
+#define FIRED_CYCLE_POINTS 73
+typedef struct fired_tables {
+    double crank[FIRED_CYCLE_POINTS], above[FIRED_CYCLE_POINTS], behind[FIRED_CYCLE_POINTS],
+        below[FIRED_CYCLE_POINTS];
+} fired_tables;
+
+static inline rd_gas_params fired_cycle_gas(fired_tables *t, double base)
+{
+    for (int k = 0; k < FIRED_CYCLE_POINTS; k++) {
+        t->crank[k] = 10.0 * k;
+        t->above[k] = t->behind[k] = fmax(fired_cycle_pa(t->crank[k]) - base, 0.0);
+        t->below[k] = 0.2 * t->above[k];
+    }
+    return (rd_gas_params){FIRED_CYCLE_POINTS, t->crank, t->above,
+                           t->behind,          t->below, RD_GAS_AREA_FIXED};
 }
 
 #endif

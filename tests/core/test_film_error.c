@@ -35,14 +35,7 @@
 #define FILM_FLOOR 1e-5
 #define WORK_FLOOR 1e-4
 
-#define PTS 73
-static double crank[PTS], above[PTS], behind[PTS], below[PTS];
-
-/* the fired cycle as gauge Pa */
-static double cylinder(double deg)
-{
-    return fmax(fired_cycle_pa(deg) - 1e5, 0.0);
-}
+static fired_tables tables;
 
 static void scene(rd_ring_params *rp, rd_lift_params *p, double rpm, int gas, double crown)
 {
@@ -52,14 +45,8 @@ static void scene(rd_ring_params *rp, rd_lift_params *p, double rpm, int gas, do
     p->engine.cycles = 1.0;
     p->friction.model = RD_FRICTION_LUBRICATED;
     p->face.crown = crown;
-    if (gas) {
-        for (int k = 0; k < PTS; k++) {
-            crank[k] = 10.0 * k;
-            above[k] = behind[k] = cylinder(crank[k]);
-            below[k] = 0.2 * above[k];
-        }
-        p->gas = (rd_gas_params){PTS, crank, above, behind, below, RD_GAS_AREA_FIXED};
-    }
+    if (gas) /* gauge */
+        p->gas = fired_cycle_gas(&tables, 1e5);
 }
 
 /* The film of the lift run `out` (its samples) on grid `fine`: the true
