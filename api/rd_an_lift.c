@@ -91,8 +91,9 @@ static const rd_field friction_fields[] = {
     RD_FRICTION_FIELDS(LO, lift.friction,
                        "coulomb: F = -mu N tanh(u / u_reg). stribeck: thesis (2.9) with the "
                        "Sommerfeld number (1.11). lubricated: the oil film on the running face "
-                       "(average Reynolds with Patir-Cheng flow factors, the Reynolds "
-                       "cavitation condition, fully flooded) and Greenwood-Tripp asperity "
+                       "(average Reynolds with Patir-Cheng flow factors, the Reynolds or the "
+                       "mass-conserving JFO cavitation condition, flooded or starved) and "
+                       "Greenwood-Tripp asperity "
                        "contact; reads oil, asperity, /ring/face and /bore/roughness_rq_m.",
                        "Coulomb coefficient mu (also C_Coulomb of 2.9), -."),
     {"viscosity", RD_F_NUMBER, LO(lift.friction.viscosity), RD_MIN(1e-05), RD_MAX(10),
@@ -502,8 +503,9 @@ static json_t *lift_result(const rd_scene *scene, const rd_lift_result *res, dou
 #define LUBE_METHOD                                                                            \
     "one film for the whole running face (a rigid profile on a round bore), solved before "    \
     "the ring's motion over the run plus one cycle of warm-up: the average Reynolds equation " \
-    "across the face (Patir-Cheng flow factors, gamma = 1; the Reynolds cavitation "           \
-    "condition; fully flooded; 41 points) with the squeeze term, Greenwood-Tripp asperity "    \
+    "across the face (Patir-Cheng flow factors, gamma = 1; the cavitation condition and the "  \
+    "oil supply of physics.friction; 41 points) with the squeeze term, Greenwood-Tripp "       \
+    "asperity "                                                                                \
     "contact, and the radial balance elastic line load 2 F_t / D + gas behind = film + "       \
     "asperity load, by variable-step BDF2 (local error 1e-4 of the film, steps at most "       \
     "film_step_deg). Friction at the liner's speed past the "                                  \
@@ -512,7 +514,7 @@ static json_t *lift_result(const rd_scene *scene, const rd_lift_result *res, dou
     "the local error): within x0.45-1.24 (film) and x0.35-0.90 (work) of the error against a " \
     "grid 8 times finer on an 18-scene battery. Not covered: the model (Patir-Cheng "          \
     "shear-stress factors, oil passed on from other rings (supply is one film for the run), "  \
-    "mass-conserving cavitation, the film "                                                    \
+    "the film "                                                                                \
     "varying around the ring, the ring's radial motion in the lift model (its bore contact "   \
     "is the penalty's)."
 

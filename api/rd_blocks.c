@@ -225,6 +225,8 @@ int rd_scene_face_finish(struct rd_scene *s, int lubricated, rd_error *err)
     return RD_OK;
 }
 
+const char *const rd_cavitation_names[] = {"reynolds", "jfo", NULL};
+
 int rd_scene_lube_finish(struct rd_scene *s, int lub, rd_lube_params *l, double *liner_rq,
                          rd_error *err)
 {
@@ -236,6 +238,11 @@ int rd_scene_lube_finish(struct rd_scene *s, int lub, rd_lube_params *l, double 
         return rd_error_set(err, RD_EINVAL, "/physics/friction/supply",
                             "/physics/friction/supply is read by the lubricated friction model "
                             "only (model is not lubricated).");
+    if (!lub && o->lube.cavitation != RD_CAVITATION_REYNOLDS)
+        return rd_error_set(err, RD_EINVAL, "/physics/friction/cavitation",
+                            "/physics/friction/cavitation \"%s\" is read by the lubricated "
+                            "friction model only (model is not lubricated).",
+                            rd_cavitation_names[o->lube.cavitation]);
     if (!lub && (o->oil_given || o->asperity_given))
         return rd_error_set(err, RD_EINVAL,
                             o->oil_given ? "/physics/friction/oil" : "/physics/friction/asperity",

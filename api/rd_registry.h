@@ -121,9 +121,21 @@ struct json_t *rd_supply_echo(const struct rd_scene *s);
     "{\"type\": \"number\", \"minimum\": 1e-8, \"maximum\": 1e-3, \"description\": \"The oil "   \
     "film "                                                                                      \
     "on the liner ahead of the ring, m.\"}}}], \"default\": \"flooded\"}"
+extern const char *const rd_cavitation_names[]; /* enum rd_cavitation */
 #define RD_LUBE_FRICTION_FIELDS                                                                  \
     {"oil", RD_F_OPTBLOCK, offsetof(struct rd_scene, lube.oil_given), .in_scene = 1,             \
      .block = &rd_block_oil},                                                                    \
+        {"cavitation",                                                                           \
+         RD_F_CHOICE,                                                                            \
+         offsetof(struct rd_scene, lube.lube.cavitation),                                        \
+         .in_scene = 1,                                                                          \
+         .choices = rd_cavitation_names,                                                         \
+         .desc = "Where the film ruptures: \"reynolds\" (default; Swift-Stieber: p >= 0, the "   \
+                 "flow lost downstream of a rupture) or \"jfo\" (mass-conserving, "              \
+                 "Jakobsson-Floberg-Olsson in Elrod-Adams' form: a cavity's oil carried by the " \
+                 "liner and kept from one instant to the next, the film reforming where its "    \
+                 "flow meets it, e.g. before an outlet edge under gas pressure). Read by the "   \
+                 "lubricated model only."},                                                      \
         {"supply",                                                                               \
          RD_F_CUSTOM,                                                                            \
          offsetof(struct rd_scene, lube.lube.supply_film),                                       \

@@ -34,27 +34,25 @@ static json_t *volumes_json(const rd_ringpack_result *r)
 }
 
 /* A pack ring's lubrication block's method (rd_result_lube). */
-#define PACK_LUBE_METHOD                                                                           \
-    "the lift analysis' film (one for the whole running face: a rigid profile on a round bore; "   \
-    "the average Reynolds equation across the face with Patir-Cheng flow factors, gamma = 1, the " \
-    "Reynolds cavitation condition, fully flooded, 41 points, with the squeeze term; "             \
-    "Greenwood-Tripp asperity contact; the radial balance 2 F_t / D + groove gas behind = film + " \
-    "asperity load by variable-step BDF2, steps at most film_step_deg), loaded by the pack's own " \
-    "pressures and coupled a cycle at a time: each cycle the ring rubs on the film integrated "    \
-    "over the cycle before's pressures (the first cycle's: no gas, after a cycle of warm-up). "    \
-    "film_lag: the film of the reported cycle against the film its own pressures give, max "       \
-    "|h0 - h0'| / max(h0', sigma); it tracked the distance from the settled film within x3 "       \
-    "(0.4-1.8, 2400 rpm fired and motored, 3-5 cycles) where the pack's periodicity is below "     \
-    "0.1. film_error and friction_work_error (with numerics.error_estimate): the reported "        \
-    "cycle's film against the same film, from the same start, on a grid twice as fine (81 "        \
-    "points, half the steps, a quarter of the local error); as the lift's, within x0.35-1.24 of "  \
-    "the error against a grid 8 times finer. Not covered: a pack that has not settled "            \
-    "(periodicity above 1e-2: run more cycles or "                                                 \
-    "\"periodic\"), the model (shear-stress factors, oil passed from ring to ring (supply: one "   \
-    "film for "                                                                                    \
-    "every ring), mass-conserving cavitation, a "                                                  \
-    "film varying around the "                                                                     \
-    "ring). Friction work and FMEP: the reported (last) cycle."
+#define PACK_LUBE_METHOD                                                                       \
+    "the lift analysis' film (one for the whole running face: a rigid profile on a round "     \
+    "bore; the average Reynolds equation across the face with Patir-Cheng flow factors, gamma" \
+    " = 1, the cavitation condition and the oil supply of physics.friction, 41 points, with "  \
+    "the squeeze term; Greenwood-Tripp asperity contact; the radial balance 2 F_t / D + "      \
+    "groove gas behind = film + asperity load by variable-step BDF2, steps at most "           \
+    "film_step_deg), loaded by the pack's own pressures and coupled a cycle at a time: each "  \
+    "cycle the ring rubs on the film integrated over the cycle before's pressures (the first " \
+    "cycle's: no gas, after a cycle of warm-up). film_lag: the film of the reported cycle "    \
+    "against the film its own pressures give, max |h0 - h0'| / max(h0', sigma); it tracked "   \
+    "the distance from the settled film within x3 (0.4-1.8, 2400 rpm fired and motored, 3-5 "  \
+    "cycles) where the pack's periodicity is below 0.1. film_error and friction_work_error "   \
+    "(with numerics.error_estimate): the reported cycle's film against the same film, from "   \
+    "the same start, on a grid twice as fine (81 points, half the steps, a quarter of the "    \
+    "local error); as the lift's, within x0.35-1.24 of the error against a grid 8 times "      \
+    "finer. Not covered: a pack that has not settled (periodicity above 1e-2: run more cycles" \
+    " or \"periodic\"), the model (shear-stress factors, oil passed from ring to ring "        \
+    "(supply: one film for every ring), a film varying around the ring). Friction work and "   \
+    "FMEP: the reported (last) cycle."
 
 static json_t *ring_json(const rd_ringpack_result *r, int i)
 {

@@ -57,7 +57,15 @@ typedef struct rd_lube_params {
                                           * ring's material on a grey cast-iron liner */
     double supply_film;          /* the oil film on the liner ahead of the ring, m: a starved inlet
                            where the face would take in more (rd_film.h); 0 = fully flooded */
+    int cavitation;              /* enum rd_cavitation */
 } rd_lube_params;
+
+/* Where the film ruptures (physics.friction.cavitation): the Reynolds
+ * (Swift-Stieber) condition, p >= 0 with the film's flow lost downstream of
+ * a rupture, or the mass-conserving Jakobsson-Floberg-Olsson condition
+ * (Elrod-Adams: the cavity's oil content carried by the liner and kept in
+ * time, the film reforming where its flow meets it; rd_film.h). */
+enum rd_cavitation { RD_CAVITATION_REYNOLDS = 0, RD_CAVITATION_JFO = 1 };
 
 typedef struct rd_friction_params {
     int model;                    /* enum rd_friction_model; NONE = not modelled */

@@ -98,7 +98,8 @@ int rd_film_init(rd_film *f, const rd_face_params *face, double L, int nodes, do
         16.0 * M_SQRT2 / 15.0 * M_PI * nbs * nbs * sqrt(f->sigma / lube->asperity_radius) * Ep;
     f->mu_b = lube->boundary_coefficient;
     f->supply = lube->supply_film;
-    double *block = calloc((size_t)(9 * n), sizeof(double));
+    f->jfo = lube->cavitation == RD_CAVITATION_JFO;
+    double *block = calloc((size_t)(12 * n), sizeof(double));
     f->cav = calloc((size_t)n, sizeof(int));
     if (!block || !f->cav) {
         free(block);
@@ -115,6 +116,9 @@ int rd_film_init(rd_film *f, const rd_face_params *face, double L, int nodes, do
     f->p = block + 6 * n;
     f->kf = block + 7 * n;
     f->qf = block + 8 * n;
+    f->theta = block + 9 * n;
+    f->content = block + 10 * n;
+    f->hist_dt = block + 11 * n;
     double lo = INFINITY;
     for (int i = 0; i < n; i++) {
         f->drop[i] = profile_at(face, L, i * f->dx);
@@ -343,7 +347,7 @@ void rd_film_solve(rd_film *f, double h0, double h0_dot, double U, double eta, d
     int n = f->n;
     double sg = f->sigma, dx = f->dx;
     double hT[RD_FILM_NODES_MAX], src[RD_FILM_NODES_MAX], hTf[RD_FILM_NODES_MAX],
-        sf[RD_FILM_NODES_MAX];
+        sf[RD_FILM_NODES_MAX], gn[RD_FILM_NODES_MAX];
     for (int j = 0; j + 1 < n; j++) { /* faces */
         double h = h0 + f->drop_mid[j], H = h / sg, hk = fmax(h, RD_FILM_PHI_X_H_MIN * sg), g, dg,
                f52;
@@ -365,6 +369,7 @@ void rd_film_solve(rd_film *f, double h0, double h0_dot, double U, double eta, d
             rd_film_node_laws(H, &gap, &g, &f52);
             hT[i] = sg * gap;
         }
+        gn[i] = g;
         if (i > 0 && i < n - 1)
             src[i] = -(0.5 * U * (hTf[i] - hTf[i - 1]) + 0.5 * U * sg * (sf[i] - sf[i - 1])) / dx -
                      g * h0_dot;
@@ -376,7 +381,10 @@ void rd_film_solve(rd_film *f, double h0, double h0_dot, double U, double eta, d
     }
     meniscus mn = {U >= 0.0 ? 1 : -1, -1, fmax(U >= 0.0 ? p_lo : p_hi, 0.0)};
     film_in in = {src, hT, hTf, sf, h0, U, eta, p_lo, p_hi};
-    if (f->supply > 0.0 && U != 0.0) {
+    if (f->jfo) {
+        rd_film_nodes nd = {hT, gn, hTf, sf, h0, h0_dot, U, eta, p_lo, p_hi};
+        rd_film_jfo_solve(f, &nd, o);
+    } else if (f->supply > 0.0 && U != 0.0) {
         starve(f, &in, &mn, o);
     } else {
         pressures(f, src, p_lo, p_hi, &mn);

@@ -15,7 +15,7 @@
  *     ring does not), phi_x = 1 - 0.90 e^{-0.56 H} and phi_s the Patir-Cheng
  *     fits at H = h / sigma (phi_x's fit is for H >= 0.5: held there below);
  *     p = the gas pressures at the edges, the Reynolds
- *     (Swift-Stieber) condition p >= 0 inside, solved as the discrete
+ *     (Swift-Stieber) condition p >= 0 inside (by default), solved as the discrete
  *     obstacle problem on `nodes` points (finite volumes, primal-dual active
  *     set: dp/dx = 0 where the film ruptures follows from it);
  *   - a starved inlet (supply > 0, the oil film h_s on the liner ahead of
@@ -27,6 +27,12 @@
  *     would still take in more and the next, the two films' loads blended
  *     linearly in their inflows; with less oil than half the thinnest gap the
  *     whole face is dry (the oil passes under it);
+ *   - with cavitation "jfo" (f->jfo) the mass-conserving conditions
+ *     instead of the Reynolds condition and the meniscus above
+ *     (rd_film_jfo.c): each node full (p >= the cavity's pressure) or in a
+ *     cavity (its oil content theta h_T, 0 <= theta < 1, carried by the
+ *     liner at U/2 and kept in time), the flow conserved through every
+ *     rupture and reformation; a starved inlet brings the content 2 h_s / h_T;
  *   - the asperity pressure of Greenwood-Tripp, K F_5/2(h / sigma),
  *     K = (16 sqrt(2) / 15) pi (n beta sigma)^2 sqrt(sigma / beta) E', E' the
  *     composite modulus 1/E' = (1 - nu_1^2)/E_1 + (1 - nu_2^2)/E_2;
@@ -83,7 +89,22 @@ typedef struct rd_film {
     double supply;             /* the liner's oil film ahead of the face, m; 0: flooded */
     int dry; /* the last solve: nodes dry at the inlet (a starved inlet), from the edge the
               * liner comes from */
+    /* cavitation "jfo": the content theta h_T (m) at the nodes after the
+     * last solve, and the time step that the next solve closes: d(theta
+     * h_T)/dt = c1_dt theta h_T - hist_dt (set by the film's track from its
+     * BDF history; c1_dt = 0: the film alone, d(theta h_T)/dt = theta dh_T/dh
+     * dh0/dt) */
+    int jfo;
+    double *theta, *content, *hist_dt;
+    double c1_dt;
 } rd_film;
+
+/* One solve's nodes and faces (rd_film_solve fills them for the solvers). */
+typedef struct rd_film_nodes {
+    const double *hT, *g;   /* nodes: the expected gap, m; its slope dh_T/dh */
+    const double *hTf, *sf; /* faces: the expected gap, m; w_s phi_s */
+    double h0, h0_dot, U, eta, p_lo, p_hi;
+} rd_film_nodes;
 
 /* One solve, per metre of circumference. */
 typedef struct rd_film_out {
@@ -109,6 +130,10 @@ void rd_film_free(rd_film *f);
  * pressures at the lower and upper edges (Pa; cavitation at 0). */
 void rd_film_solve(rd_film *f, double h0, double h0_dot, double U, double eta, double p_lo,
                    double p_hi, rd_film_out *o);
+
+/* The mass-conserving solve (rd_film_jfo.c), rd_film_solve's with f->jfo:
+ * o's film loads (not Wa). */
+void rd_film_jfo_solve(rd_film *f, const rd_film_nodes *in, rd_film_out *o);
 
 /* The laws, for the tests and the cycle (H = h / sigma): */
 double rd_film_phi_x(double H);

@@ -133,20 +133,45 @@ static double next_end(double t, double h, double period, double t_end)
     return e;
 }
 
-/* BDF2 for the step to te = ts[0] + hn (backward Euler with one point). */
+/* BDF2 for the step to te = ts[0] + hn (backward Euler with one point);
+ * with cavitation "jfo" the same for the film's content at the nodes
+ * (content[0] the last accepted step's, content[1] the one before). */
 static void history(step_ctx *s, const double *y, const double *ts, int have, double hn,
-                    double *guess)
+                    double *guess, double *const content[2])
 {
     s->dt = hn;
+    double a0 = 1.0, a1 = 0.0;
     if (have > 1) {
         double w = hn / (ts[0] - ts[1]);
         s->c1 = (1.0 + 2.0 * w) / (1.0 + w);
-        s->hist = (1.0 + w) * y[0] - w * w / (1.0 + w) * y[1];
+        a0 = 1.0 + w;
+        a1 = -w * w / (1.0 + w);
         *guess = y[0] + w * (y[0] - y[1]);
     } else {
         s->c1 = 1.0;
-        s->hist = y[0];
         *guess = y[0];
+    }
+    s->hist = a0 * y[0] + a1 * y[1];
+    rd_film *f = s->f;
+    if (!f->jfo)
+        return;
+    f->c1_dt = s->c1 / hn;
+    for (int i = 0; i < f->n; i++)
+        f->hist_dt[i] = (a0 * content[0][i] + a1 * content[1][i]) / hn;
+}
+
+/* The film's content at the accepted h into content[0] (the one before
+ * into content[1]). */
+static void accept_content(step_ctx *s, double h, double *const content[2])
+{
+    rd_film *f = s->f;
+    if (!f->jfo)
+        return;
+    if (s->last_h != h)
+        residual(s, h);
+    for (int i = 0; i < f->n; i++) {
+        content[1][i] = content[0][i];
+        content[0][i] = f->content[i];
     }
 }
 
@@ -164,17 +189,15 @@ static double local_error(const double *y, const double *ts, int have, double te
     return (2.0 / 11.0) * fabs(yn - pred);
 }
 
-int rd_film_track_run(rd_film *f, const rd_film_loads *ld, double t_end, double dt_max,
-                      double period, double t_warm, double h_start, rd_film_track *tr,
-                      rd_error *err)
+/* The steps from ts[0] = -t_warm (y[0] the film there) to t_end. */
+static int track(step_ctx *s_, const rd_film_loads *ld, double t_end, double dt_max, double period,
+                 double t_warm, double *y, double *ts, double *const content[2], rd_film_track *tr,
+                 rd_error *err)
 {
-    memset(tr, 0, sizeof *tr);
-    step_ctx s = {.f = f, .dt = 1.0};
-    double t = -t_warm, sg = f->sigma, y[3] = {0}, ts[3] = {0};
-    int have = 1, held, rc;
-    ld->at(ld->ctx, t, &s.U, &s.eta, &s.W_ext, &s.p_lo, &s.p_hi);
-    y[0] = isnan(h_start) ? balance(&s, 3.0 * sg, &held) : h_start;
-    ts[0] = t;
+    step_ctx s = *s_;
+    rd_film *f = s.f;
+    double t = ts[0], sg = f->sigma;
+    int have = 1, held = 0, rc;
     if (t_warm <= 0.0 && (rc = append(tr, &s, y[0], 0.0, err))) /* its loads at rest */
         return rc;
     double h = fmin(dt_max, 1e-4 * period);
@@ -182,7 +205,7 @@ int rd_film_track_run(rd_film *f, const rd_film_loads *ld, double t_end, double 
     while (t < t_end - 1e-12 * period) {
         double te = next_end(t, h, period, t_end), hn = te - t, guess;
         ld->at(ld->ctx, te, &s.U, &s.eta, &s.W_ext, &s.p_lo, &s.p_hi);
-        history(&s, y, ts, have, hn, &guess);
+        history(&s, y, ts, have, hn, &guess, content);
         double yn = balance(&s, guess, &held), est = local_error(y, ts, have, te, yn);
         int loose = t < -0.25 * period; /* the warm-up but its last quarter period */
         double tol = (loose ? fmax(RD_FILM_WARM_RTOL, f->rtol) : f->rtol) * fabs(yn) + 1e-3 * sg;
@@ -193,6 +216,7 @@ int rd_film_track_run(rd_film *f, const rd_film_loads *ld, double t_end, double 
         y[2] = y[1], ts[2] = ts[1];
         y[1] = y[0], ts[1] = ts[0];
         y[0] = yn, ts[0] = te;
+        accept_content(&s, yn, content);
         have = have < 3 ? have + 1 : 3;
         t = te;
         if (t >= -1e-9 * period) {
@@ -212,6 +236,32 @@ int rd_film_track_run(rd_film *f, const rd_film_loads *ld, double t_end, double 
             fabs(tr->pt[tr->steps].h0 - a.h0) / fmax(fabs(tr->pt[tr->steps].h0), sg);
     }
     return RD_OK;
+}
+
+int rd_film_track_run(rd_film *f, const rd_film_loads *ld, double t_end, double dt_max,
+                      double period, double t_warm, double h_start, rd_film_track *tr,
+                      rd_error *err)
+{
+    memset(tr, 0, sizeof *tr);
+    step_ctx s = {.f = f, .dt = 1.0};
+    double t = -t_warm, y[3] = {0}, ts[3] = {0};
+    int held, rc;
+    double *content[2] = {NULL, NULL};
+    if (f->jfo) { /* the film alone at the start (c1_dt 0: its steady content) */
+        f->c1_dt = 0.0;
+        content[0] = calloc((size_t)(2 * f->n), sizeof(double));
+        if (!content[0])
+            return rd_error_set(err, RD_ENOMEM, NULL, "out of memory (the film's content).");
+        content[1] = content[0] + f->n;
+    }
+    ld->at(ld->ctx, t, &s.U, &s.eta, &s.W_ext, &s.p_lo, &s.p_hi);
+    y[0] = isnan(h_start) ? balance(&s, 3.0 * f->sigma, &held) : h_start;
+    ts[0] = t;
+    accept_content(&s, y[0], content);
+    rc = track(&s, ld, t_end, dt_max, period, t_warm, y, ts, content, tr, err);
+    free(content[0]);
+    f->c1_dt = 0.0;
+    return rc;
 }
 
 void rd_film_track_at(const rd_film_track *tr, double t, rd_film_point *out)

@@ -167,6 +167,10 @@ int rd_lube_validate(const rd_lube_params *l, const rd_face_params *face, double
     }
     if (l->viscosity == 0.0 && (rc = check_vogel(l, err)))
         return rc;
+    if (l->cavitation != RD_CAVITATION_REYNOLDS && l->cavitation != RD_CAVITATION_JFO)
+        return rd_error_set(err, RD_EINVAL, "/physics/friction/cavitation",
+                            "cavitation %d is not a model: reynolds (0) or jfo (1).",
+                            l->cavitation);
     if (l->supply_film != 0.0 && !in_range(l->supply_film, 1e-8, 1e-3))
         return rd_error_set(err, RD_EINVAL, "/physics/friction/supply/film_m",
                             "film_m = %g m is outside [1e-8, 1e-3] m (the oil film on the liner; "
