@@ -9,7 +9,7 @@
  * example's tables (examples/ scenes are not read: a firing pulse written
  * here).  Per scene: the whole lift with lubricated friction, the film
  * alone (rd_lift_film_run), the same lift with Coulomb friction, the film's
- * steps and solves.  Instruction counts: bench/run.sh runs this under
+ * steps and solves, the film with the JFO cavitation.  Instruction counts: bench/run.sh runs this under
  * callgrind (`valgrind --tool=callgrind bench_lube 1`).
  */
 #include <math.h>
@@ -59,8 +59,10 @@ int main(int argc, char **argv)
     rd_ring_params_default(&rp);
     double rpms[4] = {2400.0, 1000.0, 2400.0, 6000.0};
     int gases[4] = {0, 1, 1, 1};
-    printf("| scene | lubricated lift, ms | film alone, ms | film steps | film solves | "
-           "Coulomb lift, ms | the estimate's film, ms |\n|---|---|---|---|---|---|---|\n");
+    printf(
+        "| scene | lubricated lift, ms | film alone, ms | film steps | film solves | "
+        "Coulomb lift, ms | the estimate's film, ms | film alone with JFO cavitation, ms (solves) "
+        "|\n|---|---|---|---|---|---|---|---|\n");
     int only = argc > 2 ? atoi(argv[2]) : -1;
     for (int s = 0; s < 4; s++) {
         if (only >= 0 && s != only)
@@ -94,10 +96,26 @@ int main(int argc, char **argv)
             rd_film_free(&f);
         }
         double fine = bench_median(t, reps);
+        p.friction.lube.cavitation = RD_CAVITATION_JFO;
+        long jfo_solves = 0;
+        for (int k = 0; k < reps; k++) { /* the film with mass-conserving cavitation */
+            rd_film f;
+            rd_film_track tj = {0};
+            rd_error err;
+            rd_error_init(&err);
+            double t0 = bench_now();
+            if (rd_lift_film_run(&rp, &p, &f, &tj, &err))
+                fprintf(stderr, "film: %s\n", err.message);
+            t[k] = 1e3 * (bench_now() - t0);
+            jfo_solves = tj.solves;
+            rd_film_track_free(&tj);
+            rd_film_free(&f);
+        }
+        double jfo = bench_median(t, reps);
         scene(&p, rpms[s], gases[s], RD_FRICTION_COULOMB);
         double cou = lift_ms(&rp, &p, reps);
-        printf("| %.0f rpm%s | %.1f | %.1f | %d | %ld | %.1f | %.1f |\n", rpms[s],
-               gases[s] ? ", gas" : "", lub, film, tr.steps, tr.solves, cou, fine);
+        printf("| %.0f rpm%s | %.1f | %.1f | %d | %ld | %.1f | %.1f | %.1f (%ld) |\n", rpms[s],
+               gases[s] ? ", gas" : "", lub, film, tr.steps, tr.solves, cou, fine, jfo, jfo_solves);
         rd_film_track_free(&tr);
     }
     return 0;

@@ -7,7 +7,8 @@
  * film's error; the true error is taken against a grid 8 times as fine
  * (321 points, film_step_deg / 8, RD_FILM_RTOL / 64).
  *
- * Battery: the thesis ring, rigid lift scenes of one cycle, barrel faces
+ * Battery (once with each cavitation condition, Reynolds and JFO): the
+ * thesis ring, rigid lift scenes of one cycle, barrel faces
  * of crown 2, 5 and 10 um, 1000 / 2400 / 6000 rpm, with and without a fired
  * gas cycle behind and above the ring (the gas written here, as
  * bench/bench_lube.c's), the default oil and roughness.  Measured: the
@@ -37,7 +38,8 @@
 
 static fired_tables tables;
 
-static void scene(rd_ring_params *rp, rd_lift_params *p, double rpm, int gas, double crown)
+static void scene(rd_ring_params *rp, rd_lift_params *p, double rpm, int gas, double crown,
+                  int cavitation)
 {
     rd_ring_params_default(rp);
     rd_lift_params_default(p);
@@ -45,6 +47,7 @@ static void scene(rd_ring_params *rp, rd_lift_params *p, double rpm, int gas, do
     p->engine.cycles = 1.0;
     p->friction.model = RD_FRICTION_LUBRICATED;
     p->face.crown = crown;
+    p->friction.lube.cavitation = cavitation;
     if (gas) /* gauge */
         p->gas = fired_cycle_gas(&tables, 1e5);
 }
@@ -76,17 +79,19 @@ static int truth(const rd_ring_params *rp, const rd_lift_params *p, const rd_lif
     return rc;
 }
 
-int main(void)
+/* The battery with one cavitation condition. */
+static void battery(int cav)
 {
     static const double rpms[] = {1000.0, 2400.0, 6000.0}, crowns[] = {2e-6, 5e-6, 10e-6};
     double lo[2] = {INFINITY, INFINITY}, hi[2] = {0.0, 0.0};
     int counted[2] = {0, 0};
+    const char *name = cav ? "JFO" : "Reynolds";
     for (int g = 0; g < 2; g++)
         for (int r = 0; r < 3; r++)
             for (int c = 0; c < 3; c++) {
                 rd_ring_params rp;
                 rd_lift_params p;
-                scene(&rp, &p, rpms[r], g, crowns[c]);
+                scene(&rp, &p, rpms[r], g, crowns[c], cav);
                 p.estimate_error = 1;
                 p.model = RD_LIFT_MODEL_RIGID;
                 rd_lift_result out;
@@ -100,10 +105,10 @@ int main(void)
                     continue;
                 }
                 double fe = out.lube.film_error, we = out.lube.work_error;
-                printf("%4.0f rpm %s crown %2.0f um: film est %.2e true %.2e (fine 4: %.1e) "
+                printf("%s %4.0f rpm %s crown %2.0f um: film est %.2e true %.2e (fine 4: %.1e) "
                        "ratio %.2f; work est %.2e true %.2e ratio %.2f\n",
-                       rpms[r], g ? "gas   " : "no gas", crowns[c] * 1e6, fe, ft, fr, fe / ft, we,
-                       wt, we / wt);
+                       name, rpms[r], g ? "gas   " : "no gas", crowns[c] * 1e6, fe, ft, fr, fe / ft,
+                       we, wt, we / wt);
                 double est[2] = {fe, we}, tru[2] = {ft, wt}, floor_[2] = {FILM_FLOOR, WORK_FLOOR};
                 for (int q = 0; q < 2; q++) {
                     if (!(tru[q] > floor_[q]))
@@ -113,16 +118,22 @@ int main(void)
                     hi[q] = fmax(hi[q], ratio);
                     counted[q]++;
                     CHECK(ratio >= 1.0 / 3.0 && ratio <= 3.0,
-                          "%s estimate %.3g against the true %.3g (%.0f rpm, %s, crown %g)",
-                          q ? "friction work" : "film", est[q], tru[q], rpms[r],
+                          "%s: %s estimate %.3g against the true %.3g (%.0f rpm, %s, crown %g)",
+                          name, q ? "friction work" : "film", est[q], tru[q], rpms[r],
                           g ? "gas" : "no gas", crowns[c]);
                 }
                 rd_lift_result_cleanup(&out);
             }
-    printf("film estimate / true over %d scenes: %.2f .. %.2f; friction work over %d: %.2f .. "
-           "%.2f\n",
-           counted[0], lo[0], hi[0], counted[1], lo[1], hi[1]);
-    CHECK(counted[0] >= 15 && counted[1] >= 10, "scenes above the floors: %d, %d", counted[0],
-          counted[1]);
+    printf("%s: film estimate / true over %d scenes: %.2f .. %.2f; friction work over %d: %.2f "
+           ".. %.2f\n",
+           name, counted[0], lo[0], hi[0], counted[1], lo[1], hi[1]);
+    CHECK(counted[0] >= 15 && counted[1] >= 10, "%s: scenes above the floors: %d, %d", name,
+          counted[0], counted[1]);
+}
+
+int main(void)
+{
+    battery(RD_CAVITATION_REYNOLDS);
+    battery(RD_CAVITATION_JFO);
     return check_done();
 }
