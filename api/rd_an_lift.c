@@ -15,6 +15,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 
+#include "rd_contact_map.h"
 #include "rd_json.h"
 #include "rd_lift.h"
 #include "rd_lube_json.h"
@@ -26,8 +27,10 @@ struct lift_opts {
     rd_lift_params lift;
     struct rd_engine_scene eng; /* the tilt tables, /bore, the friction model */
     int gas_given, squeeze_given;
-    int max_steps;                /* /numerics/max_steps */
-    struct rd_table gas_table[4]; /* crank_deg, above, behind, below */
+    int max_steps;                   /* /numerics/max_steps */
+    struct rd_table gas_table[4];    /* crank_deg, above, behind, below */
+    struct rd_contact_map_scene map; /* /bore/layers (its layers_given and map only) */
+    int ring_z_given;                /* /bore/ring_z_tdc_m */
 };
 
 #define LO(member) offsetof(struct lift_opts, member)
@@ -48,12 +51,48 @@ static const rd_block tilt_block = {
     "|piston_tilt_deg| + the largest |tilt_deg| at most 2 deg.",
     1, 0, tilt_fields};
 
+/* /bore/ring_z_tdc_m: a depth in m, read with /bore/layers. */
+static int ring_z_parse(const rd_field *f, json_t *v, const char *path, rd_scene *s, rd_error *err)
+{
+    struct lift_opts *o = s->opts;
+    (void)f;
+    if (!json_is_number(v))
+        return rd_schema_type_error(err, path, "a depth in m", v);
+    o->ring_z_given = 1;
+    o->lift.ring_z_tdc = json_number_value(v);
+    return RD_OK;
+}
+
+static json_t *ring_z_echo(const rd_scene *s)
+{
+    const struct lift_opts *o = s->opts;
+    return o->ring_z_given ? rd_result_real(o->lift.ring_z_tdc) : json_null();
+}
+
+static json_t *layers_echo(const rd_scene *s)
+{
+    const struct lift_opts *o = s->opts;
+    return o->map.layers_given ? rd_bore_layers_json(s, o->map.map) : json_null();
+}
+
 static const rd_field bore_fields[] = {
     RD_BORE_FIELDS(LO, "Bore diameter D, m; 0 = the ring's diameter; otherwise within 2 % of it.",
                    "Fourier terms of the bore's out-of-roundness, at most 16. The radial contact "
                    "pressure, hence the friction, then varies around the ring; the ring starts "
                    "from its static equilibrium in this bore, and the scene never runs the rigid "
                    "model."),
+    {"layers", RD_F_CUSTOM, LO(map.layers_given), .block = &rd_block_bore_layer, RD_MIN(1),
+     RD_MAX(RD_BORE_LAYERS_MAX), .parse = rd_contact_map_parse_layers, .echo = layers_echo,
+     .desc = "A bore that changes down its height (a bore card, as the contact analysis'): 1 to "
+             "50 {z, diameter, distortion}, z strictly increasing, linear in z between them. The "
+             "ring meets the bore at its current depth, ring_z_tdc_m plus the piston's travel "
+             "from TDC: the layers must cover the whole stroke. With layers, /bore/distortion is "
+             "refused and /bore/diameter is the diameter of layers that give none; the full or "
+             "modal ring runs (as on any distorted bore)."},
+    {"ring_z_tdc_m", RD_F_CUSTOM, LO(ring_z_given), .parse = ring_z_parse, .echo = ring_z_echo,
+     .extra = "{\"type\": \"number\", \"minimum\": 0, \"maximum\": 10}",
+     .desc = "With /bore/layers (and only then): the ring's depth below the top of the bore at "
+             "TDC, m, on the layers' z axis."},
     RD_BORE_ROUGHNESS_FIELD,
     {.key = NULL},
 };
@@ -279,6 +318,7 @@ static void cleanup(void *opts)
     for (int k = 0; k < 4; k++)
         free(o->gas_table[k].v);
     rd_engine_scene_cleanup(&o->eng);
+    rd_contact_map_cleanup(&o->map);
 }
 
 /* The gas tables: all four, of the same length; rd_lift_params borrows them. */
@@ -331,6 +371,30 @@ static int lube_finish(struct rd_scene *s, struct lift_opts *o, rd_error *err)
     return rc ? rc : rd_face_unread(&l->face, "/ring", err);
 }
 
+/* /bore/layers and /bore/ring_z_tdc_m: each given with the other; the
+ * layers' diameters default to /bore/diameter (echoed as used); core
+ * checks the map against the stroke. */
+static int map_finish(const rd_scene *s, struct lift_opts *o, rd_error *err)
+{
+    rd_lift_params *l = &o->lift;
+    l->bore_map = NULL;
+    if (o->ring_z_given != o->map.layers_given)
+        return rd_error_set(err, RD_EINVAL, "/bore/ring_z_tdc_m",
+                            o->ring_z_given
+                                ? "/bore/ring_z_tdc_m is read with /bore/layers only (the ring's "
+                                  "depth on the map): give the layers or remove it."
+                                : "/bore/ring_z_tdc_m is missing: with /bore/layers, give the "
+                                  "ring's depth below the top of the bore at TDC (m).");
+    if (!o->map.layers_given)
+        return RD_OK;
+    double D = l->bore.diameter > 0.0 ? l->bore.diameter : s->ring.diameter;
+    for (int i = 0; i < o->map.map->n_layers; i++)
+        if (o->map.map->layer[i].bore.diameter == 0.0)
+            o->map.map->layer[i].bore.diameter = D;
+    l->bore_map = o->map.map;
+    return RD_OK;
+}
+
 /* The optional physics the scene named, the gas tables, the engine's tilt,
  * the bore and the friction model, then core's checks. */
 static int finish(struct rd_scene *s, rd_error *err)
@@ -350,6 +414,8 @@ static int finish(struct rd_scene *s, rd_error *err)
             return rc;
     }
     int rc = rd_engine_scene_finish(&o->eng, &l->engine, &l->bore, &l->friction, err);
+    if (rc == RD_OK)
+        rc = map_finish(s, o, err);
     if (rc == RD_OK)
         rc = lube_finish(s, o, err);
     return rc != RD_OK ? rc : rd_lift_validate(l, &s->ring, s->segments, err);

@@ -1,5 +1,6 @@
 /*
- * rd_contact_map — bore maps in the contact scene (rd_contact_map.h).
+ * rd_contact_map — bore maps in the contact scene (rd_contact_map.h); the
+ * layers' hooks are lift's too.
  *
  * /bore/layers is read item by item through a temporary scene whose
  * options are the layer (rd_block_bore_layer's offsets are into an
@@ -94,7 +95,9 @@ static int parse_layer(json_t *item, const char *at, rd_scene *s, rd_bore_layer 
 int rd_contact_map_parse_layers(const rd_field *f, json_t *v, const char *path, rd_scene *s,
                                 rd_error *err)
 {
-    struct rd_static_scene *o = s->opts;
+    /* the field's offset is the map state's layers_given in the options (rd_contact_map.h) */
+    struct rd_contact_map_scene *m =
+        (void *)((char *)s->opts + f->offset - offsetof(struct rd_contact_map_scene, layers_given));
     if (!json_is_array(v))
         return rd_schema_type_error(err, path, "an array of {z, diameter, distortion}", v);
     size_t n = json_array_size(v);
@@ -102,17 +105,17 @@ int rd_contact_map_parse_layers(const rd_field *f, json_t *v, const char *path, 
         return rd_error_set(err, n ? RD_ELIMIT : RD_EINVAL, path,
                             "%s has %zu layers; allowed %d to %d.", path, n, (int)f->min,
                             (int)f->max);
-    o->map.layers_given = 1;
-    free(o->map.map);
-    o->map.map = calloc(1, sizeof *o->map.map);
-    if (!o->map.map)
+    m->layers_given = 1;
+    free(m->map);
+    m->map = calloc(1, sizeof *m->map);
+    if (!m->map)
         return rd_error_set(err, RD_ENOMEM, path, "out of memory while reading %s", path);
-    o->map.map->n_layers = (int)n;
-    o->map.map->residual_rms = NAN;
+    m->map->n_layers = (int)n;
+    m->map->residual_rms = NAN;
     for (size_t i = 0; i < n; i++) {
         char at[RD_ERROR_PATH_MAX];
         snprintf(at, sizeof at, "%s/%zu", path, i);
-        int rc = parse_layer(json_array_get(v, i), at, s, &o->map.map->layer[i], err);
+        int rc = parse_layer(json_array_get(v, i), at, s, &m->map->layer[i], err);
         if (rc != RD_OK)
             return rc;
     }
@@ -120,7 +123,7 @@ int rd_contact_map_parse_layers(const rd_field *f, json_t *v, const char *path, 
 }
 
 /* The layers of `m` as the scene gives them. */
-static json_t *layers_json(const rd_scene *s, const rd_bore_map *m)
+json_t *rd_bore_layers_json(const rd_scene *s, const rd_bore_map *m)
 {
     json_t *a = json_array();
     for (int i = 0; a && m && i < m->n_layers; i++) {
@@ -142,7 +145,7 @@ static json_t *layers_json(const rd_scene *s, const rd_bore_map *m)
 json_t *rd_contact_map_echo_layers(const rd_scene *s)
 {
     const struct rd_static_scene *o = s->opts;
-    return o->map.layers_given ? layers_json(s, o->map.map) : json_null();
+    return o->map.layers_given ? rd_bore_layers_json(s, o->map.map) : json_null();
 }
 
 int rd_contact_map_parse_height(const rd_field *f, json_t *v, const char *path, rd_scene *s,
@@ -303,7 +306,7 @@ static int add_map(json_t *out, const rd_scene *s, const rd_bore *b, double z)
         bad |= json_object_set_new(out, "bore_fit",
                                    json_pack("{s:o, s:o}", "residual_rms_m",
                                              rd_result_real(m->residual_rms), "layers",
-                                             layers_json(s, m)));
+                                             rd_bore_layers_json(s, m)));
     return bad;
 }
 

@@ -3,8 +3,8 @@
  * (rd_bore_map.h): the rows of /bore/layers, /bore/points and
  * /contact/height with their hooks, the scene's checks, and the result
  * pieces (the bore at the height, the fit, the layers table).  Used by
- * rd_an_contact.c only; the state is struct rd_contact_map_scene
- * (rd_registry.h) in the contact options.
+ * rd_an_contact.c, and for /bore/layers by rd_an_lift.c; the state is
+ * struct rd_contact_map_scene (rd_registry.h) in the analysis' options.
  */
 #ifndef RD_CONTACT_MAP_H
 #define RD_CONTACT_MAP_H
@@ -50,8 +50,12 @@ extern const rd_block rd_block_contact_distortion;
 extern const rd_block rd_block_bore_layer;  /* one layer {z, diameter, distortion} */
 extern const rd_block rd_block_bore_points; /* /bore/points */
 
+/* /bore/layers into the struct rd_contact_map_scene whose layers_given is at
+ * the field's offset in the analysis' options (contact's and lift's). */
 int rd_contact_map_parse_layers(const rd_field *f, struct json_t *v, const char *path,
                                 struct rd_scene *s, rd_error *err);
+/* The layers of m as a scene gives them (a new reference; NULL on out of memory). */
+struct json_t *rd_bore_layers_json(const struct rd_scene *s, const rd_bore_map *m);
 struct json_t *rd_contact_map_echo_layers(const struct rd_scene *s);
 int rd_contact_map_parse_height(const rd_field *f, struct json_t *v, const char *path,
                                 struct rd_scene *s, rd_error *err);

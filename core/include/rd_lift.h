@@ -25,6 +25,7 @@
 #ifndef RD_LIFT_H
 #define RD_LIFT_H
 
+#include "rd_bore_map.h"
 #include "rd_engine.h"
 #include "rd_error.h"
 #include "rd_liner.h"
@@ -107,6 +108,12 @@ typedef struct rd_lift_params {
     rd_bore bore; /* a round bore of the ring's diameter (the default) is the installed
                      reference; otherwise the ring starts from its static equilibrium in
                      it (rd_lift_start.c) */
+    /* A bore that changes along its height (borrowed; NULL: `bore` everywhere,
+     * and then `bore` must be the default round one): the ring meets the bore
+     * of the map at its current depth, ring_z_tdc + the piston's travel from
+     * TDC (rd_lift_bore.c); the map must cover the whole stroke. */
+    const rd_bore_map *bore_map;
+    double ring_z_tdc; /* with bore_map: the ring's depth below the top of the bore at TDC, m */
     rd_groove_params groove;
     int gravity; /* 1: g = 9.80665 m/s^2 along -z */
     rd_friction_params friction;
@@ -252,5 +259,9 @@ void rd_lift_result_cleanup(rd_lift_result *r);
 /* The flank/bore penalty stiffness (Pa/m) used when p->contact_stiffness is 0
  * (rd_lift.c explains the rule); p and ring must be valid. */
 double rd_lift_contact_stiffness_default(const rd_ring_params *ring, const rd_lift_params *p);
+
+/* 1 if the ring meets anything but the round bore of its diameter d (a
+ * distortion, another diameter, or a bore map). */
+int rd_lift_bore_distorted(const rd_lift_params *p, double d);
 
 #endif

@@ -446,11 +446,13 @@ static void kinematics_at(rd_lift_model *c, double t, force_env *env)
     double *k = c->kin;
     env->tilt = rd_engine_tilted(&p->engine);
     if (t != c->kin_t) {
-        double s, sdd = 0.0, deg = c->omega * t * 180.0 / M_PI;
+        double s = 0.0, sdd = 0.0, deg = c->omega * t * 180.0 / M_PI;
         k[0] = 0.0;
         if (!c->piston_fixed)
             rd_engine_piston(&p->engine, c->omega * t, &s, &k[0], &sdd);
         k[1] = sdd - c->g_on;
+        if (c->bo_layers) /* a bore map: the bore at the ring's depth now */
+            rd_lift_bore_at_travel(c, s);
         if (env->tilt) {
             double b, b1, b2, dps = c->omega * 180.0 / M_PI, r = M_PI / 180.0;
             rd_engine_tilt_at(&p->engine, deg, &b, &b1, &b2);

@@ -46,6 +46,7 @@ void rd_lift_model_cleanup(rd_lift_model *c)
     free(c->ba_d);
     free(c->cen_d);
     free(c->bo_gap);
+    free(c->bo_layers);
     free(c->e_r);
     free(c->e_t);
     free(c->qbuf);

@@ -124,7 +124,9 @@ typedef struct rd_lift_model {
     double bo_area, ba_area; /* per point */
     double *cen_d;           /* n x 2: face centroid offsets */
     double *bo_gap;          /* n x ARC_POINTS: the bore's outward offset at each bore
-                            * point (rd_lift_bore.c), NULL for the round bore */
+                            * point (rd_lift_bore.c), NULL for the round bore; with a bore
+                            * map, at the ring's depth of the last force call's t */
+    double *bo_layers;       /* a bore map: n_layers x (n x ARC_POINTS), each layer's offsets */
     double *e_r;             /* n x 2: segment radial unit */
     double *e_t;             /* n x 2: segment tangential unit */
     double face_area, back_chord_area;
@@ -280,6 +282,9 @@ int rd_lift_rigid_twist(rd_lift_model *m, double k[3], rd_error *err);
  * m->bo_gap (NULL for a round one), and the static equilibrium of the
  * installed ring in it (y0: 12 n values, the rates 0). */
 int rd_lift_bore_init(rd_lift_model *m, rd_error *err);
+/* A bore map: m->bo_gap at the ring's depth when the piston has travelled
+ * s (m) from TDC (linear in depth between the map's layers, as the map). */
+void rd_lift_bore_at_travel(rd_lift_model *m, double s);
 int rd_lift_bore_static(const rd_ring *ring, const rd_lift_params *p, double *y0, rd_error *err);
 
 /* The modal model (rd_lift_modal.c): the 6 rigid-body and `modes` lowest

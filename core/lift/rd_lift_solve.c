@@ -76,12 +76,12 @@ static void choose_model(const rd_lift_params *p, int n, double ring_d, rd_lift_
         snprintf(out->why, sizeof out->why,
                  "asked for (numerics.model = modal, %d elastic modes%s)%s", out->modes,
                  p->modes ? "" : " by default",
-                 rd_bore_distorted(&p->bore, ring_d) && out->modes < 6 * n - 6
+                 rd_lift_bore_distorted(p, ring_d) && out->modes < 6 * n - 6
                      ? "; with a distorted bore its truncated basis cannot hold the stiff bore "
                        "contact's equilibrium: flank changes measured up to 100 deg off the "
                        "full model's, use full"
                      : "");
-    } else if (rd_bore_distorted(&p->bore, ring_d)) {
+    } else if (rd_lift_bore_distorted(p, ring_d)) {
         snprintf(out->why, sizeof out->why,
                  "auto: the bore is distorted, so the contact pressure and the friction vary "
                  "around the ring, which the rigid ring cannot represent, and the modal model is "
@@ -486,7 +486,7 @@ static int bore_start(lift_solve *s, rd_error *err)
     s->su = s->setup ? *s->setup : (rd_lift_setup){0};
     s->suh = s->su;
     s->setup_half = s->setup;
-    if (!rd_bore_distorted(&s->p->bore, s->rp->diameter) || s->su.y0)
+    if (!rd_lift_bore_distorted(s->p, s->rp->diameter) || s->su.y0)
         return RD_OK;
     s->y0 = malloc(12 * (size_t)(n + nh) * sizeof *s->y0);
     if (!s->y0)
