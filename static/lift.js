@@ -76,7 +76,7 @@ export const lift = {
       resultLinks(job, 'lift', 'Lift table (CSV)'),
       zoomControl(crank, (range) => fill(plots, figures(sliceRun(result, events, range)))),
       plots,
-      lubeReadout(result.lubrication, result.scene?.physics?.friction?.supply),
+      lubeReadout(result.lubrication, result.scene?.physics?.friction?.supply, result.scene?.physics?.friction?.cavitation),
       h('div', { class: 'lift-tables' },
         h('div', {},
           h('div', { class: 'table-wrap events-wrap' }, eventTable(events)),
@@ -423,7 +423,7 @@ function lubeFigures(result) {
 
 // Per cycle: friction work and FMEP; the film's facts; what the model is
 // (shown as text, not a tooltip).
-function lubeReadout(lub, supply) {
+function lubeReadout(lub, supply, cavitation) {
   if (!isLube(lub)) return null;
   const work = nums(lub.friction_work_j), fmep = nums(lub.fmep_pa);
   const cycles = !Array.isArray(lub.friction_work_j) ? null : h('table', { class: 'data', id: 'lf-fmep' },
@@ -439,7 +439,7 @@ function lubeReadout(lub, supply) {
   const facts = kvTable({
     id: 'lf-lube-facts',
     caption: 'Oil film',
-    rows: filmFactRows(lub, { supply, id: 'lf' }),
+    rows: filmFactRows(lub, { supply, cavitation, id: 'lf' }),
   });
   return h('section', { class: 'lube-readout', id: 'lf-lube', 'aria-label': 'Oil film' },
     h('div', { class: 'lift-tables' }, h('div', { class: 'table-wrap' }, cycles), h('div', { class: 'table-wrap' }, facts)),

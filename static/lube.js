@@ -153,12 +153,21 @@ export function supplyText(supply) {
   return isNum(h) && h > 0 ? `starved inlet: ${sig(h * 1e6)} µm of oil on the liner` : null;
 }
 
+// The scene's cavitation condition (its physics.friction.cavitation): "jfo"
+// the mass-conserving one, anything else (the default "reynolds", absent)
+// the Reynolds (Swift-Stieber) one.
+export function cavitationText(cavitation) {
+  return cavitation === 'jfo' ? 'JFO (mass-conserving)' : 'Reynolds';
+}
+
 // The film's facts as kvTable rows (a value undefined where the block lacks
 // it); `supply` is the scene's physics.friction.supply (a row when starved),
-// `id` the prefix of that row's id (lf, rp-2: lf-supply, rp-2-supply).
-export function filmFactRows(lub, { supply, id } = {}) {
+// `cavitation` its physics.friction.cavitation (always a row), `id` the
+// prefix of those rows' ids (lf, rp-2: lf-supply, rp-2-cavitation).
+export function filmFactRows(lub, { supply, cavitation, id } = {}) {
   return [
     ['Oil supply', supplyText(supply) ?? undefined, { id: id ? `${id}-supply` : undefined }],
+    ['Cavitation', cavitationText(cavitation), { id: id ? `${id}-cavitation` : undefined }],
     ['Composite roughness σ', isNum(lub.composite_roughness_m) ? `${um(lub.composite_roughness_m, 3)} µm` : undefined],
     ['Thinnest point of the face', isNum(lub.min_film_at_m) ? `${fixed(lub.min_film_at_m, 3, 1e3)} mm above its lower edge` : undefined],
     ['Viscosity', viscosityText(lub.viscosity_pa_s) ?? undefined],

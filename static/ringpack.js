@@ -183,12 +183,13 @@ function lubeSection(crank, rings, result) {
   const list = lubed(rings);
   if (!list.length) return null;
   const scene = Array.isArray(result.scene?.rings) ? result.scene.rings : [];
+  const friction = result.scene?.physics?.friction;
   return h('section', { id: 'rp-lube', 'aria-label': 'Oil film of each ring' },
-    list.map(({ lub, n }) => ringLube(crank, lub, n, scene[n - 1]?.ring?.face, result.scene?.physics?.friction?.supply)));
+    list.map(({ lub, n }) => ringLube(crank, lub, n, scene[n - 1]?.ring?.face, friction?.supply, friction?.cavitation)));
 }
 
 // One ring's readout, its two plots and its film model (collapsed).
-function ringLube(crank, lub, n, face, supply) {
+function ringLube(crank, lub, n, face, supply, cavitation) {
   const id = `rp-${n}`;
   const film = nums(lub.min_film_m);
   const least = thinnest(lub, crank);
@@ -202,7 +203,7 @@ function ringLube(crank, lub, n, face, supply) {
       ['Thinnest film', least ? `${um(least.m, 3)} µm at ${deg(crank[least.i])}` : '—', { id: `${id}-thinnest` }],
       ['Film lag (film_lag)', isNum(lub.film_lag) ? sig(lub.film_lag, 3) : '—', { id: `${id}-film-lag` }],
       ['Regime (share of the samples)', regimeText(lub) ?? '—', { id: `${id}-regime` }],
-      ...filmFactRows(lub, { supply, id }),
+      ...filmFactRows(lub, { supply, cavitation, id }),
     ],
   });
   const axis = crankAxis(crank);

@@ -546,10 +546,11 @@ test('lift form: the lubricated model sends the face, the roughness and the oil,
     assert.equal(await shown('#f-lf-lube'), true);
     assert.equal(await shown('#f-lf-friction-coefficient'), false, 'lubricated: no Coulomb coefficient');
     assert.equal(await shown('#f-lf-oil-viscosity'), false, 'the Vogel law by default: no constant viscosity');
-    // The defaults come from the served schema: the form sends them as they are.
+    // The defaults come from the served schema: the form sends them as they are
+    // (the cavitation choice too, as every choice).
     await runAnalysis('Run lift analysis');
     let scene = jobs.sent.at(-1);
-    assert.deepEqual(scene.physics.friction, { model: 'lubricated', oil: { temperature_c: 100 } });
+    assert.deepEqual(scene.physics.friction, { model: 'lubricated', cavitation: 'reynolds', oil: { temperature_c: 100 } });
     assert.deepEqual(scene.ring.face, { profile: 'barrel', crown_m: 5e-6, roughness_rq_m: 2e-7 });
     assert.equal(scene.bore, undefined, 'liner roughness empty: the server default');
 
@@ -566,7 +567,7 @@ test('lift form: the lubricated model sends the face, the roughness and the oil,
     await page.fill('#f-lf-oil-viscosity', '0.012');
     await runAnalysis('Run lift analysis');
     scene = jobs.sent.at(-1);
-    assert.deepEqual(scene.physics.friction, { model: 'lubricated', oil: { viscosity_pa_s: 0.012 } });
+    assert.deepEqual(scene.physics.friction, { model: 'lubricated', cavitation: 'reynolds', oil: { viscosity_pa_s: 0.012 } });
     assert.deepEqual(scene.ring.face, { profile: 'taper', taper_deg: 0.5, roughness_rq_m: 2e-7 });
     assert.deepEqual(scene.bore, { roughness_rq_m: 3e-7 });
 
@@ -594,7 +595,7 @@ test('lift form: the lubricated model sends the face, the roughness and the oil,
     scene = jobs.sent.at(-1);
     assert.deepEqual(scene.ring.face, loaded.ring.face);
     assert.deepEqual(scene.bore, loaded.bore);
-    assert.deepEqual(scene.physics.friction, loaded.physics.friction);
+    assert.deepEqual(scene.physics.friction, { ...loaded.physics.friction, cavitation: 'reynolds' }, 'as loaded, the cavitation choice at its default');
     await page.selectOption('#f-lf-friction-model', 'stribeck');
     await runAnalysis('Run lift analysis');
     scene = jobs.sent.at(-1);
@@ -2461,7 +2462,7 @@ test('ring pack form: lubricated with changed faces, Coulomb and no friction eac
       { profile: 'flat', edge_radius_m: 0.0002 },
       { profile: 'taper', taper_deg: 1, roughness_rq_m: 3e-7 },
     ]);
-    assert.deepEqual(scene.physics.friction, { model: 'lubricated', oil: { temperature_c: 100 } });
+    assert.deepEqual(scene.physics.friction, { model: 'lubricated', cavitation: 'reynolds', oil: { temperature_c: 100 } });
     assert.deepEqual(scene.bore, { roughness_rq_m: 1.5e-7 });
     assert.deepEqual(scene.rings.map((r) => r.groove), ex.rings.map((r) => r.groove), 'the rest of the pack as loaded');
     assert.deepEqual(await serverTakes(scene), { status: 202, message: undefined });
@@ -2708,6 +2709,202 @@ test('lube readouts: a starved supply in the scene is named next to the film fac
   assert.deepEqual(drawn.ringpack, [1, 2, 3].map((n) => [`rp-${n}-supply`, 'starved inlet: 1 µm of oil on the liner', 'Oil supply']));
   assert.deepEqual(drawn['lift flooded'], []);
   assert.deepEqual(drawn['ringpack flooded'], []);
+  assert.deepEqual(pageErrors, []);
+});
+
+// ---- the cavitation condition: physics.friction.cavitation, Reynolds or JFO
+
+// The cavitation select of tab `pre` (lf, rp): shown, its two choices, its note.
+async function cavitationSelect(pre) {
+  const id = `#f-${pre}-cavitation`;
+  assert.equal(await page.isVisible(id), true);
+  assert.deepEqual(await page.$$eval(`${id} option`, (os) => os.map((o) => [o.value, o.textContent])),
+    [['reynolds', 'Reynolds (Swift–Stieber)'], ['jfo', 'JFO (mass-conserving)']]);
+  assert.equal(await page.textContent(`label[for="f-${pre}-cavitation"]`), 'Cavitation');
+  assert.ok((await page.getAttribute(id, 'aria-describedby')).split(/\s+/).includes(`f-${pre}-cavitation-note`));
+  assert.equal(await page.isVisible(`#f-${pre}-cavitation-note`), true);
+  assert.match(await page.textContent(`#f-${pre}-cavitation-note`), /Reynolds: .*JFO: /);
+}
+
+for (const width of [1280, 390]) {
+  test(`${width} px: lift, lubricated: the cavitation select sends physics.friction.cavitation "jfo", the server runs it and the readout says JFO; its echo loads back; Coulomb sends no cavitation`, { skip: SKIP.lift, timeout: 180000 }, async () => {
+    await page.setViewportSize({ width, height: 844 });
+    try {
+      await page.getByRole('button', { name: 'Reset to defaults' }).click();
+      await selectTab('lift');
+      await page.fill('#f-lf-speed', '2400');
+      await page.fill('#f-lf-cycles', '0.25');
+      await page.selectOption('#f-lf-model', 'rigid');
+      await page.uncheck('#f-lf-error-estimate');
+      await page.check('#f-lf-friction');
+      assert.equal(await page.isVisible('#f-lf-cavitation'), false, 'coulomb: no cavitation select');
+      await page.selectOption('#f-lf-friction-model', 'lubricated');
+      await cavitationSelect('lf');
+      assert.equal(await page.inputValue('#f-lf-cavitation'), 'reynolds', 'the schema\'s default');
+      const jobs = await interceptJobs(fixtures.liftResult());
+      let scene;
+      try {
+        scene = await formScene(jobs, 'lift');
+        assert.equal(scene.physics.friction.cavitation, 'reynolds', 'the default, sent as every choice is');
+        await takes(scene);
+        await page.selectOption('#f-lf-cavitation', 'jfo');
+        await fieldFits('#f-lf-cavitation');
+        scene = await formScene(jobs, 'lift');
+        assert.equal(scene.physics.friction.cavitation, 'jfo');
+        assert.equal(scene.physics.friction.model, 'lubricated');
+        await takes(scene);
+        // Coulomb: no cavitation (the server would refuse "jfo" with that model).
+        await page.selectOption('#f-lf-friction-model', 'coulomb');
+        assert.equal(await page.isVisible('#f-lf-cavitation'), false);
+        const coulomb = await formScene(jobs, 'lift');
+        assert.equal(coulomb.physics.friction.model, 'coulomb');
+        assert.equal(coulomb.physics.friction.cavitation, undefined);
+        await takes(coulomb);
+        const refused = structuredClone(coulomb);
+        refused.physics.friction.cavitation = 'jfo';
+        const r = await serverTakes(refused);
+        assert.equal(r.status, 422, 'what the page must not send');
+        assert.match(r.message, /\/physics\/friction\/cavitation/);
+        await page.selectOption('#f-lf-friction-model', 'lubricated');
+        assert.equal(await page.inputValue('#f-lf-cavitation'), 'jfo', 'the select keeps its choice while hidden');
+      } finally {
+        await jobs.stop();
+      }
+
+      // Run against the server: the readout names the JFO condition.
+      await runAnalysis('Run lift analysis', 150000);
+      assert.equal(await page.isVisible('#error'), false, `unexpected error: ${await page.textContent('#error')}`);
+      const job = await shownJob();
+      assert.equal(job.result.scene.physics.friction.cavitation, 'jfo', 'the echo');
+      assert.ok(job.result.lubrication, 'a lubrication block');
+      assert.equal(await page.textContent('#lf-cavitation'), 'JFO (mass-conserving)');
+      assert.equal(await page.$eval('#lf-cavitation', (td) => td.closest('tr').querySelector('th').textContent), 'Cavitation');
+      assert.equal(await page.isVisible('#lf-cavitation'), true);
+      await settled();
+      const overflow = await page.evaluate(() => document.documentElement.scrollWidth - window.innerWidth);
+      assert.ok(overflow <= 0, `page scrolls sideways by ${overflow}px`);
+      await shot(`ringdyn-lift-cavitation-${width}.png`, { fullPage: true });
+
+      // The job reopened from its address: the echo sets the select and is sent as it was.
+      await page.goto(`${BASE}/?job=${encodeURIComponent(job.id)}`);
+      await page.waitForFunction(() => document.getElementById('f-lf-cavitation').value === 'jfo' &&
+        document.getElementById('f-lf-friction-model').value === 'lubricated');
+      assert.equal(await page.isVisible('#f-lf-cavitation'), true);
+      const again = await interceptJobs(fixtures.liftResult());
+      try {
+        scene = await formScene(again, 'lift');
+        assert.equal(scene.physics.friction.cavitation, 'jfo');
+        await takes(scene);
+        // An echo of a Reynolds run sets it back; a scene without the field: the default.
+        const reynolds = structuredClone(job.result.scene);
+        reynolds.physics.friction.cavitation = 'reynolds';
+        await loadSceneFile(reynolds, () => document.getElementById('f-lf-cavitation').value === 'reynolds');
+        scene = await formScene(again, 'lift');
+        assert.equal(scene.physics.friction.cavitation, 'reynolds');
+        await loadSceneFile(job.result.scene, () => document.getElementById('f-lf-cavitation').value === 'jfo');
+        const bare = structuredClone(job.result.scene);
+        delete bare.physics.friction.cavitation;
+        await loadSceneFile(bare, () => document.getElementById('f-lf-cavitation').value === 'reynolds');
+        // Another model drops a loaded "jfo".
+        await loadSceneFile(job.result.scene, () => document.getElementById('f-lf-cavitation').value === 'jfo');
+        await page.selectOption('#f-lf-friction-model', 'stribeck');
+        scene = await formScene(again, 'lift');
+        assert.equal(scene.physics.friction.model, 'stribeck');
+        assert.equal(scene.physics.friction.cavitation, undefined);
+        await takes(scene);
+      } finally {
+        await again.stop();
+      }
+    } finally {
+      await page.goto(`${BASE}/`);
+      await page.waitForSelector('#tab-modal[aria-selected="true"]');
+      await page.setViewportSize({ width: 1280, height: 800 });
+    }
+  });
+
+  test(`${width} px: ring pack, lubricated: the cavitation select sends physics.friction.cavitation "jfo" and the server takes it; its echo loads back; Coulomb sends no cavitation`, { timeout: 120000 }, async () => {
+    const skip = await unavailable('ringpack');
+    if (skip) return;
+    await page.setViewportSize({ width, height: 844 });
+    const jobs = await interceptJobs(fixtures.ringpackResult());
+    try {
+      const ex = await loadExample(LUBE_PACK);
+      await page.waitForSelector('fieldset[data-analysis="ringpack"]:not([hidden])');
+      assert.equal(await page.inputValue('#f-rp-friction-model'), 'lubricated');
+      assert.equal(ex.physics.friction.cavitation, undefined, 'the example leaves it to the default');
+      await cavitationSelect('rp');
+      assert.equal(await page.inputValue('#f-rp-cavitation'), 'reynolds');
+      let scene = await formScene(jobs, 'ringpack');
+      assert.equal(scene.physics.friction.cavitation, 'reynolds');
+      await page.selectOption('#f-rp-cavitation', 'jfo');
+      await fieldFits('#f-rp-cavitation');
+      scene = await formScene(jobs, 'ringpack');
+      assert.equal(scene.physics.friction.cavitation, 'jfo');
+      await takes(scene);
+      await page.locator('#f-rp-lube').screenshot({ path: path.join(SHOT_DIR, `ringdyn-ringpack-cavitation-form-${width}.png`) });
+
+      // The echo of each choice loads back into the select.
+      const echo = structuredClone(scene);
+      echo.physics.friction.cavitation = 'reynolds';
+      await loadSceneFile(echo, () => document.getElementById('f-rp-cavitation').value === 'reynolds');
+      scene = await formScene(jobs, 'ringpack');
+      assert.equal(scene.physics.friction.cavitation, 'reynolds');
+      echo.physics.friction.cavitation = 'jfo';
+      await loadSceneFile(echo, () => document.getElementById('f-rp-cavitation').value === 'jfo');
+      scene = await formScene(jobs, 'ringpack');
+      assert.equal(scene.physics.friction.cavitation, 'jfo');
+
+      // Coulomb: no cavitation, chosen or loaded.
+      await page.selectOption('#f-rp-friction-model', 'coulomb');
+      assert.equal(await page.isVisible('#f-rp-cavitation'), false);
+      scene = await formScene(jobs, 'ringpack');
+      assert.equal(scene.physics.friction.model, 'coulomb');
+      assert.equal(scene.physics.friction.cavitation, undefined);
+      await takes(scene);
+    } finally {
+      await jobs.stop();
+      await page.getByRole('button', { name: 'Reset to defaults' }).click();
+      await page.setViewportSize({ width: 1280, height: 800 });
+    }
+  });
+}
+
+test('lube readouts: the scene\'s cavitation condition is named next to the film facts (lift and each ring of a pack): JFO for "jfo", Reynolds otherwise', { timeout: 60000 }, async () => {
+  const lub = (n) => ({ min_film_m: Array.from({ length: n }, () => 1e-6), composite_roughness_m: 2.8e-7 });
+  const lf = fixtures.liftResult();
+  lf.scene.physics.friction = { model: 'lubricated', cavitation: 'jfo' };
+  lf.lubrication = lub(lf.crank_deg.length);
+  const rp = fixtures.ringpackResult();
+  rp.scene.physics = { friction: { model: 'lubricated', cavitation: 'jfo' } };
+  for (const ring of rp.rings) ring.lubrication = lub(rp.crank_deg.length);
+  const drawn = await page.evaluate(async ({ lf, rp }) => {
+    const out = {};
+    for (const [id, result] of [['lift', lf], ['ringpack', rp]]) {
+      const mod = await import(`/static/${id}.js`);
+      const box = document.createElement('div');
+      document.body.append(box);
+      const cells = () => [...box.querySelectorAll('[id$="-cavitation"]')].map((td) => [td.id, td.textContent, td.closest('tr').querySelector('th').textContent]);
+      try {
+        mod[id].render(result, null, box);
+        out[id] = cells();
+        result.scene.physics.friction.cavitation = 'reynolds';
+        mod[id].render(result, null, box);
+        out[`${id} reynolds`] = cells();
+        delete result.scene.physics.friction.cavitation;
+        mod[id].render(result, null, box);
+        out[`${id} absent`] = cells();
+      } finally {
+        box.remove();
+      }
+    }
+    return out;
+  }, { lf, rp });
+  assert.deepEqual(drawn.lift, [['lf-cavitation', 'JFO (mass-conserving)', 'Cavitation']]);
+  assert.deepEqual(drawn.ringpack, [1, 2, 3].map((n) => [`rp-${n}-cavitation`, 'JFO (mass-conserving)', 'Cavitation']));
+  for (const k of ['reynolds', 'absent']) {
+    assert.deepEqual(drawn[`lift ${k}`], [['lf-cavitation', 'Reynolds', 'Cavitation']], k);
+    assert.deepEqual(drawn[`ringpack ${k}`], [1, 2, 3].map((n) => [`rp-${n}-cavitation`, 'Reynolds', 'Cavitation']), k);
+  }
   assert.deepEqual(pageErrors, []);
 });
 
