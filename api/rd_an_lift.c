@@ -536,7 +536,9 @@ static json_t *lift_warnings(const rd_lift_result *res)
 }
 
 /* {"analysis", "scene", "crank_deg", "lift", "lift_min", "lift_max",
- *  "lift_segments", "twist_rad", "friction_force", "flank", "events",
+ *  "lift_segments", "twist_rad", "friction_force", "bore_pressure_min_pa",
+ *  "bore_pressure_max_pa", "bore_pressure_angle_deg", "bore_pressure_pa", ("ring_depth_m"
+ *  with a bore map), "flank", "events",
  *  "numerics", "partial", "crank_deg_reached", "warnings"}: a run stopped by
  *  /numerics/max_steps after whole cycles succeeds with those cycles,
  *  partial = true, the angle reached and a warning (docs/lift.md, partial
@@ -552,17 +554,44 @@ static json_t *lift_result(const rd_scene *scene, const rd_lift_result *res, dou
         json_decref(events);
         return NULL;
     }
-    return json_pack(
-        "{s:s, s:o, s:o, s:o, s:o, s:o, s:o, s:o, s:o, s:o, s:o, s:o, s:b, s:o, "
+    json_t *out = json_pack(
+        "{s:s, s:o, s:o, s:o, s:o, s:o, s:o, s:o, s:o, s:o, s:o, s:o, s:o, s:o, s:b, s:o, "
         "s:o}",
         "analysis", rd_scene_analysis(scene), "scene", rd_scene_echo(scene), "crank_deg",
         rd_result_reals(res->crank_deg, N, 1, 1.0), "lift", rd_result_reals(res->lift, N, 1, 1.0),
         "lift_min", rd_result_reals(res->lift_min, N, 1, 1.0), "lift_max",
         rd_result_reals(res->lift_max, N, 1, 1.0), "lift_segments", segs, "twist_rad",
         rd_result_reals(res->twist, N, 1, 1.0), "friction_force",
-        rd_result_reals(res->friction_force, N, 1, 1.0), "flank", flank, "events", events,
+        rd_result_reals(res->friction_force, N, 1, 1.0), "bore_pressure_min_pa",
+        rd_result_reals(res->bore_pressure_min, N, 1, 1.0), "bore_pressure_max_pa",
+        rd_result_reals(res->bore_pressure_max, N, 1, 1.0), "flank", flank, "events", events,
         "numerics", lift_numerics(scene, res, wall_s), "partial", res->partial, "crank_deg_reached",
         rd_result_real(res->crank_deg_reached), "warnings", lift_warnings(res));
+    int n = res->segments;
+    double R = 0.5 * (scene->ring.diameter - scene->ring.radial_width);
+    double gap = scene->ring.closed_gap / R * 57.29577951308232, centre[RD_LIFT_SEGMENTS_MAX];
+    for (int i = 0; i < n && i < RD_LIFT_SEGMENTS_MAX; i++)
+        centre[i] = 0.5 * gap + (i + 0.5) * (360.0 - gap) / n;
+    json_t *bins = json_array();
+    for (int k = 0; bins && k < N; k++)
+        if (json_array_append_new(bins,
+                                  rd_result_reals(res->bore_pressure + (size_t)k * n, n, 1, 1.0))) {
+            json_decref(bins);
+            bins = NULL;
+        }
+    int bad =
+        !out || !bins || n > RD_LIFT_SEGMENTS_MAX ||
+        json_object_set_new(out, "bore_pressure_angle_deg", rd_result_reals(centre, n, 1, 1.0)) ||
+        json_object_set_new(out, "bore_pressure_pa", bins);
+    if (!out)
+        json_decref(bins);
+    if (!bad && res->ring_depth)
+        bad = json_object_set_new(out, "ring_depth_m", rd_result_reals(res->ring_depth, N, 1, 1.0));
+    if (bad) {
+        json_decref(out);
+        return NULL;
+    }
+    return out;
 }
 
 /* The lubrication block's method (rd_result_lube). */
@@ -614,6 +643,9 @@ static const rd_csv_column csv_columns[] = {
     {"lift_max_m", "lift_max", 0},
     {"twist_rad", "twist_rad", 0},
     {"friction_force_n", "friction_force", 0},
+    {"bore_pressure_min_pa", "bore_pressure_min_pa", RD_CSV_OPTIONAL},
+    {"bore_pressure_max_pa", "bore_pressure_max_pa", RD_CSV_OPTIONAL},
+    {"ring_depth_m", "ring_depth_m", RD_CSV_OPTIONAL},
     {"flank", "flank", 1},
     {"flank_band", "/numerics/flank_band", 0},
     {"axial_clearance_m", "/scene/groove/axial_clearance", 0},
@@ -635,6 +667,11 @@ static const char *const result_keys[] = {"analysis",
                                           "lift_segments",
                                           "twist_rad",
                                           "friction_force",
+                                          "bore_pressure_min_pa",
+                                          "bore_pressure_max_pa",
+                                          "bore_pressure_angle_deg",
+                                          "bore_pressure_pa",
+                                          "ring_depth_m",
                                           "flank",
                                           "events",
                                           "numerics",

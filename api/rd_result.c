@@ -100,7 +100,7 @@ static void csv_text(strbuf *b, const char *s, const char *sep)
  * anything else (or a missing value) is malformed: -1. */
 static int csv_cell(strbuf *b, const rd_csv_column *c, json_t *v, const char *sep)
 {
-    if (c->text) {
+    if (c->text & 1) {
         if (!json_is_string(v))
             return -1;
         csv_text(b, json_string_value(v), sep);
@@ -221,14 +221,15 @@ char *rd_result_csv(json_t *result, const rd_csv_table *t0, const char *analysis
 {
     strbuf b = {NULL, 0, 0, 0};
     /* a column "object.member" whose object the result does not have (an
-     * optional block: lift's lubrication) is left out, header and cells */
+     * optional block: lift's lubrication), or an optional column's absent
+     * member, is left out, header and cells */
     rd_csv_column cols[CSV_COLUMNS_MAX + 1];
     rd_csv_table tt = *t0, *t = &tt;
     json_t *holder = t0->object ? json_object_get(result, t0->object) : result;
     int ncols = 0;
     for (int c = 0; c < count_columns(t0) && ncols < CSV_COLUMNS_MAX; c++) {
         const rd_csv_column *col = &t0->columns[c];
-        if (!t0->rows && !is_pointer(col) && strchr(col->key, '.') &&
+        if (!t0->rows && !is_pointer(col) && (strchr(col->key, '.') || (col->text & RD_CSV_OPTIONAL)) &&
             !column_array(holder, col->key))
             continue;
         cols[ncols++] = *col;

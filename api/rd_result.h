@@ -31,8 +31,10 @@ struct rd_result_doc;
  * used; an empty cell when the result has none. */
 typedef struct rd_csv_column {
     const char *header, *key;
-    int text;
+    int text; /* 1: cells are text; RD_CSV_OPTIONAL added: a member the result may
+               * leave out (the column then too) */
 } rd_csv_column;
+#define RD_CSV_OPTIONAL 2
 
 /* A result's main table.  Either `rows` names an array of objects (one row
  * each, a column per key), or the columns are equal-length arrays found in

@@ -199,7 +199,12 @@ typedef struct rd_lift_result {
     double *lift_segments;  /* samples x segments, row-major (sample-major) */
     double *twist;          /* mean twist (rotation about the tangent), rad, per sample */
     double *friction_force; /* axial bore friction on the ring, N, per sample */
-    int *flank;             /* enum rd_flank per sample */
+    /* the radial contact pressure on the running face, Pa, per sample: each
+     * segment's mean (samples x segments, as lift_segments), and the smallest
+     * and the largest of them (uniform in a round bore) */
+    double *bore_pressure, *bore_pressure_min, *bore_pressure_max;
+    double *ring_depth; /* with a bore map: the ring's depth on it, m, per sample; else NULL */
+    int *flank;         /* enum rd_flank per sample */
     int n_events;
     rd_lift_event *events;
     /* Solver work (CVODE counters) */

@@ -410,6 +410,10 @@ void rd_lift_result_cleanup(rd_lift_result *r)
     free(r->lift_segments);
     free(r->twist);
     free(r->friction_force);
+    free(r->bore_pressure);
+    free(r->bore_pressure_min);
+    free(r->bore_pressure_max);
+    free(r->ring_depth);
     free(r->flank);
     free(r->events);
     rd_lift_lube_cleanup(&r->lube);

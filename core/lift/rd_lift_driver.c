@@ -615,6 +615,28 @@ static int advance_or_stick(driver *d, double tout, flank_track *tr, rd_lift_run
     return advance(d, tout, tr, o, mon, frac, err);
 }
 
+/* Sample k's bore pressure per segment, its extremes and the ring's depth on a
+ * bore map (state yf, the full one). */
+static void store_bore(rd_lift_model *c, rd_lift_result *res, int k, double tout, const double *yf)
+{
+    if (!res->bore_pressure)
+        return;
+    double *seg = res->bore_pressure + (size_t)k * c->n;
+    double lo = INFINITY, hi = -INFINITY;
+    rd_lift_bore_pressure(c, tout, yf, seg);
+    for (int i = 0; i < c->n; i++) {
+        lo = fmin(lo, seg[i]);
+        hi = fmax(hi, seg[i]);
+    }
+    res->bore_pressure_min[k] = lo;
+    res->bore_pressure_max[k] = hi;
+    if (res->ring_depth) {
+        double s = 0.0, v, a;
+        rd_engine_piston(&c->p->engine, c->omega * tout, &s, &v, &a);
+        res->ring_depth[k] = c->p->ring_z_tdc + s;
+    }
+}
+
 /* The outputs of sample k at time tout (state in d->y). */
 static void store_sample(driver *d, int k, double deg, double tout, rd_lift_run *o,
                          const rd_lift_setup *setup)
@@ -648,6 +670,7 @@ static void store_sample(driver *d, int k, double deg, double tout, rd_lift_run 
         if (c->p->friction.model != RD_FRICTION_NONE)
             d->form.loads(d->form.user, tout, yy);
         res->friction_force[k] = c->friction;
+        store_bore(c, res, k, tout, yf);
         res->flank[k] =
             L < c->eps ? RD_FLANK_LOWER : (L > c->ca - c->eps ? RD_FLANK_UPPER : RD_FLANK_FREE);
     }

@@ -496,6 +496,24 @@ static void force_env_at(rd_lift_model *c, double t, force_env *env)
     }
 }
 
+void rd_lift_bore_pressure(rd_lift_model *c, double t, const double *y, double *seg)
+{
+    force_env env;
+    kinematics_at(c, t, &env); /* the bore at the ring's depth */
+    for (int i = 0; i < c->n; i++) {
+        double sum = 0.0;
+        for (int k = 0; k < ARC_POINTS; k++) { /* as add_bore */
+            size_t o = 2 * (ARC_POINTS * (size_t)i + k);
+            dir3 b = radial_dir(c->bo_d + o, c->bo_e + o);
+            double ur = dot3(&b, Q(y, i)), urd = dot3(&b, V(y, i)), P_d, P_dd;
+            if (c->bo_gap)
+                ur -= c->bo_gap[ARC_POINTS * (size_t)i + k];
+            sum += contact_pressure(c, c->delta_pre + ur, urd, c->c_rad, &P_d, &P_dd);
+        }
+        seg[i] = sum / ARC_POINTS;
+    }
+}
+
 /* Every element on one segment, in the order of the sums (file head): the
  * one list of the full forces, for every model (rd_lift_forces,
  * rd_lift_forces_segment).  *ftot gathers the bore friction, *fz the axial

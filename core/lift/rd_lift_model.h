@@ -185,6 +185,13 @@ double rd_lift_gas_at(const rd_gas_params *g, const double *val, double deg);
  * without the Jacobian; m->fbuf is left partial.  For the root function and the samples (rd_lift_model.c). */
 void rd_lift_loads(rd_lift_model *m, double t, const double *y);
 
+/* The radial contact pressure on the running face at state y (the full
+ * state, 12 n) and time t (the bore at the ring's depth then): each
+ * segment's mean over its bore points into seg (n values), Pa.  The
+ * segment's, not a point's: a rigid segment on a curved bore bears on some
+ * of its points only. */
+void rd_lift_bore_pressure(rd_lift_model *m, double t, const double *y, double *seg);
+
 /* rd_lift_loads for one segment i at state (q, v) (6 values each; f: 6
  * scratch), the ring's loads being n times its (the rigid model). */
 void rd_lift_loads_segment(rd_lift_model *m, double t, int i, const double *q, const double *v,

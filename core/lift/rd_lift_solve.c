@@ -427,7 +427,7 @@ static int compare_levels(void *ctx, rd_error *err)
 }
 
 /* The result's arrays for S samples of n segments. */
-static int result_alloc(rd_lift_result *out, int S, int n, rd_error *err)
+static int result_alloc(rd_lift_result *out, const rd_lift_params *p, int S, int n, rd_error *err)
 {
     out->segments = n;
     out->dof = 6 * n;
@@ -439,9 +439,14 @@ static int result_alloc(rd_lift_result *out, int S, int n, rd_error *err)
     out->lift_segments = malloc((size_t)S * n * sizeof(double));
     out->twist = malloc((size_t)S * sizeof(double));
     out->friction_force = malloc((size_t)S * sizeof(double));
+    out->bore_pressure = malloc((size_t)S * n * sizeof(double));
+    out->bore_pressure_min = malloc((size_t)S * sizeof(double));
+    out->bore_pressure_max = malloc((size_t)S * sizeof(double));
+    out->ring_depth = p->bore_map ? malloc((size_t)S * sizeof(double)) : NULL;
     out->flank = malloc((size_t)S * sizeof(int));
     if (!out->crank_deg || !out->lift || !out->lift_min || !out->lift_max || !out->lift_segments ||
-        !out->twist || !out->friction_force || !out->flank)
+        !out->twist || !out->friction_force || !out->flank || !out->bore_pressure ||
+        !out->bore_pressure_min || !out->bore_pressure_max || (p->bore_map && !out->ring_depth))
         return rd_error_set(err, RD_ENOMEM, "", "Out of memory for %d lift samples x %d segments.",
                             S, n);
     return RD_OK;
@@ -537,7 +542,7 @@ int rd_lift_solve_setup(const rd_ring_params *rp, int segments, const rd_lift_pa
     }
     s.ring = ring;
     int S = rd_lift_samples(p);
-    if ((rc = result_alloc(out, S, segments, err)))
+    if ((rc = result_alloc(out, p, S, segments, err)))
         goto out;
     choose_model(p, segments, rp->diameter, out);
     s.rp = rp;

@@ -261,26 +261,32 @@ static const struct {
 
 static const struct {
     const char *prefix, *scene;
+    const char *analysis; /* only for this analysis; NULL: any */
 } companions[] = {
-    {"/ring/axial_height", "{\"ring\": {\"radial_width\": 1e-5}}"},
-    {"/physics/friction/", "{\"physics\": {\"friction\": {\"model\": \"stribeck\"}}}"},
-    {"/output/step_deg", "{\"engine\": {\"cycles\": 0.1}}"},
+    {"/ring/axial_height", "{\"ring\": {\"radial_width\": 1e-5}}", NULL},
+    {"/physics/friction/", "{\"physics\": {\"friction\": {\"model\": \"stribeck\"}}}", NULL},
+    {"/output/step_deg", "{\"engine\": {\"cycles\": 0.1}}", NULL},
     /* the lubricated model's fields are checked when it runs */
-    {"/physics/friction/oil/", "{\"physics\": {\"friction\": {\"model\": \"lubricated\"}}}"},
-    {"/physics/friction/asperity/", "{\"physics\": {\"friction\": {\"model\": \"lubricated\"}}}"},
-    {"/bore/roughness_rq_m", "{\"physics\": {\"friction\": {\"model\": \"lubricated\"}}}"},
-    {"/numerics/film_step_deg", "{\"physics\": {\"friction\": {\"model\": \"lubricated\"}}}"},
+    {"/physics/friction/oil/", "{\"physics\": {\"friction\": {\"model\": \"lubricated\"}}}", NULL},
+    {"/physics/friction/asperity/", "{\"physics\": {\"friction\": {\"model\": \"lubricated\"}}}",
+     NULL},
+    {"/bore/roughness_rq_m", "{\"physics\": {\"friction\": {\"model\": \"lubricated\"}}}", NULL},
+    {"/numerics/film_step_deg", "{\"physics\": {\"friction\": {\"model\": \"lubricated\"}}}", NULL},
     /* the ring pack's tolerance is read only when it runs to periodicity */
-    {"/numerics/periodic_tolerance", "{\"engine\": {\"cycles\": \"periodic\"}}"},
+    {"/numerics/periodic_tolerance", "{\"engine\": {\"cycles\": \"periodic\"}}", NULL},
     /* a bore map (its layers; points with 36 angles, enough for fit_order 16)
      * needs a height */
-    {"/bore/layers/", "{\"contact\": {\"height\": 0}}"},
+    {"/bore/layers/", "{\"contact\": {\"height\": 0}}", "contact"},
+    /* lift's: the ring's depth on it, a layer alone (a stroke of 0 .. 2 crank radii
+     * outside it is the map's rule, refused at /bore/layers) */
+    {"/bore/layers/", "{\"bore\": {\"ring_z_tdc_m\": 0}}", "lift"},
     {"/bore/points/",
      "{\"contact\": {\"height\": \"all\"}, \"bore\": {\"points\": {"
      "\"theta_deg\": [0,10,20,30,40,50,60,70,80,90,100,110,120,130,140,150,160,170,"
      "180,190,200,210,220,230,240,250,260,270,280,290,300,310,320,330,340,350],"
      "\"z\": [0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0],"
-     "\"dr\": [0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0]}}}"},
+     "\"dr\": [0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0]}}}",
+     NULL},
 };
 
 /* Copies the members of `from` into `to`, merging objects. */
@@ -304,7 +310,8 @@ static int probe(const rd_analysis_def *an, const char *path, json_t *v, char *e
 {
     json_t *scene = json_pack("{s:s}", "analysis", an->name);
     for (size_t i = 0; i < sizeof companions / sizeof companions[0]; i++)
-        if (strncmp(path, companions[i].prefix, strlen(companions[i].prefix)) == 0) {
+        if (strncmp(path, companions[i].prefix, strlen(companions[i].prefix)) == 0 &&
+            (!companions[i].analysis || strcmp(companions[i].analysis, an->name) == 0)) {
             json_t *c = json_loads(companions[i].scene, 0, NULL);
             merge(scene, c);
             json_decref(c);
