@@ -2939,6 +2939,7 @@ async function emptyMap(pre) {
     await page.getByRole('button', { name: 'Remove layer 1', exact: true }).click();
   }
   assert.equal(await page.evaluate(() => document.activeElement.id), `f-${pre}-layers-add`, 'focus back on the add button');
+  await settled(); // the drawing follows at the next frame
 }
 
 // What a bore map drawing (svg#id) shows: its label, the depth range and
@@ -3073,7 +3074,7 @@ for (const width of [1280, 390]) {
       assert.equal(await page.inputValue('#f-lf-layers-1-z'), '0.1');
       assert.equal(await page.inputValue('#f-lf-layers-1-distortion-1-phase_deg'), '20');
       assert.equal(await page.inputValue('#f-lf-layers-0-diameter'), String(job.result.scene.bore.layers[0].diameter), 'the diameter used');
-      assert.equal(await page.isVisible('#f-lf-map-plot'), true, 'drawn from the echo');
+      await page.waitForSelector('#f-lf-map-plot', { state: 'visible' }); // drawn from the echo
       const again = await interceptJobs(fixtures.liftResult());
       try {
         scene = await formScene(again, 'lift');
