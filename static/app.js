@@ -16,6 +16,7 @@ import { ringpack } from './ringpack.js';
 import { curlText, pythonText, saveBlob } from './script.js';
 import { watchCharts, addExportButtons } from './charts.js';
 import { setupSweeps } from './sweep.js';
+import { setupBoreMaps } from './boremap.js';
 
 const ANALYSES = [modal, pretension, contact, lift, ringpack];
 
@@ -440,6 +441,8 @@ watchCharts($('result-body'), () => {
   const entry = state.results.get(state.analysis.id);
   addExportButtons($('result-body'), `ringdyn-${state.analysis.id}-${entry?.job?.id ?? 'result'}`);
 });
+// The bore maps of the Contact and Lift tabs, drawn as they are entered.
+setupBoreMaps(form);
 $('scene-form').addEventListener('submit', run);
 $('cancel').addEventListener('click', cancel);
 $('reset').addEventListener('click', () => {

@@ -40,8 +40,10 @@ export function watchCharts(root, onAdded = () => {}) {
 }
 
 function fit(s) {
+  // Removed (a chart redrawn as its inputs change): no longer watched.
+  if (!s.isConnected) { resize.unobserve(s); return; }
   const width = s.getBoundingClientRect().width;
-  if (!s.isConnected || width < 1) return; // hidden: fitted when shown
+  if (width < 1) return; // hidden: fitted when shown
   const [x0, y0, w, h] = s.dataset.viewBox.split(/[\s,]+/).map(Number);
   let vb = [x0, y0, w, h];
   // Growing the viewBox shrinks the scale, which grows the text: 3 rounds settle it.

@@ -6,6 +6,7 @@
 
 import { svg, scale, ticks, axes, pathD, polar, legend } from './svg.js';
 import { h, fill, isNum, fixed, sig, seconds, percent, kvTable, resultLinks, newtonCost, nums, um, deg } from './html.js';
+import { boreMapFigure } from './boremap.js';
 
 const MPa = (v, d = 3) => (isNum(v) ? `${sig(v / 1e6, d)} MPa` : '—');
 
@@ -19,13 +20,14 @@ export const contact = {
     const gaps = lightGaps(result);
     const count = nums(result.clearance).length;
     fill(container,
-      h('h3', {}, 'Contact with the bore — pressure around the circumference'),
+      h('h3', {}, `Contact with the bore — pressure around the circumference${isNum(result.height_m) ? ` at z = ${mm(result.height_m)} mm` : ''}`),
       h('p', { id: 'ct-summary' },
         `Mean pressure ${MPa(result.mean_pressure_pa)} against the uniform ${MPa(result.uniform_pressure_pa)}; `,
         isNum(result.contact_fraction) ? `${fixed(result.contact_fraction, 1, 100)} % of the circumference in contact; ` : '',
         gaps.length
           ? `light gaps on ${gaps.length} of ${count} segments, largest ${um(result.max_clearance)} µm at ${deg(maxGapAngle(result, gaps))}.`
           : 'no light gap: the ring touches the bore all round.'),
+      mapReadout(result),
       h('p', { id: 'cost', class: 'cost' }, h('strong', {}, 'Cost and accuracy: '), newtonCost(n)),
       resultLinks(job, 'contact', 'Pressure table (CSV)'),
       h('div', { class: 'result-grid' },
@@ -37,11 +39,64 @@ export const contact = {
         ? h('figure', { class: 'plot wide' }, cartesianPlot(result, gaps),
           h('figcaption', {}, 'The same pressure against the angle from the gap, its axis fitted to the values so that small departures from p0 show (dashed: p0).'))
         : null,
+      boreMapFigure(result.scene, 'ct-map', { height: result.scene?.contact?.height ?? null, shown: result.height_m ?? null },
+        result.scene?.contact?.height === 'all'
+          ? 'Lines: the layers, where the ring was solved (the thick one is the layer shown above).'
+          : 'Line: the height of the ring.'),
+      layersTable(result),
       patchTable(result),
       distortionTable(result),
     );
   },
 };
+
+const mm = (m) => sig(m * 1e3, 4);
+
+// With a bore map: the height of the ring and the bore there;
+// with contact.height "all", which layer the plots show.
+function mapReadout(result) {
+  if (!isNum(result.height_m)) return null;
+  const b = result.bore_at_height || {};
+  const orders = (Array.isArray(b.distortion) ? b.distortion : []).filter((d) => isNum(d.amplitude) && d.amplitude !== 0);
+  const bore = [
+    isNum(b.diameter) ? `D = ${sig(b.diameter * 1e3, 5)} mm` : null,
+    orders.length
+      ? `order${orders.length > 1 ? 's' : ''} ${orders.map((d) => `${d.order} (${um(d.amplitude)} µm${d.phase_deg ? ` at ${deg(d.phase_deg)}` : ''})`).join(', ')}`
+      : 'round',
+  ].filter(Boolean).join(', ');
+  const z = mm(result.height_m);
+  return h('p', { id: 'ct-height' }, result.scene?.contact?.height === 'all'
+    ? `Bore map, the ring at every layer: shown here is the layer with the largest light gap, z = ${z} mm down the bore (the bore there: ${bore}); the table below lists every layer.`
+    : `Bore map: the ring at z = ${z} mm down the bore (the bore there: ${bore}).`);
+}
+
+// With contact.height "all": one row per layer of the map.
+function layersTable(result) {
+  const rows = Array.isArray(result.layers) ? result.layers : [];
+  if (!rows.length) return null;
+  const MPa0 = (v) => fixed(v, 4, 1e-6);
+  const body = rows.map((l) => h('tr', { class: isNum(result.height_m) && Math.abs(l.z_m - result.height_m) < 1e-12 ? 'shown' : null },
+    h('td', { class: 'num' }, isNum(l.z_m) ? mm(l.z_m) : '—'),
+    h('td', { class: 'num' }, isNum(l.diameter_m) ? sig(l.diameter_m * 1e3, 5) : '—'),
+    h('td', { class: 'num' }, isNum(l.contact_fraction) ? fixed(l.contact_fraction, 1, 100) : '—'),
+    h('td', { class: 'num' }, isNum(l.max_clearance) ? `${um(l.max_clearance)}${l.max_clearance > 0 && isNum(l.max_clearance_angle_deg) ? ` at ${deg(l.max_clearance_angle_deg)}` : ''}` : '—'),
+    h('td', { class: 'num' }, MPa0(l.mean_pressure_pa)),
+    h('td', { class: 'num' }, `${MPa0(l.min_bin_pressure_pa)} – ${MPa0(l.max_bin_pressure_pa)}`),
+    h('td', { class: 'num' }, isNum(l.segments) ? String(l.segments) : '—'),
+    h('td', {}, l.accuracy_met === true ? 'met' : l.accuracy_met === false ? 'not met' : '—')));
+  return h('div', { class: 'table-wrap' }, h('table', { class: 'data', id: 'ct-layers' },
+    h('caption', {}, 'Contact at every layer of the bore map (the highlighted row is the one plotted)'),
+    h('thead', {}, h('tr', {},
+      h('th', { scope: 'col', class: 'num' }, 'z (mm)'),
+      h('th', { scope: 'col', class: 'num' }, 'D (mm)'),
+      h('th', { scope: 'col', class: 'num' }, 'Contact (%)'),
+      h('th', { scope: 'col', class: 'num' }, 'Largest light gap (µm)'),
+      h('th', { scope: 'col', class: 'num' }, 'Mean pressure (MPa)'),
+      h('th', { scope: 'col', class: 'num' }, '10° bins (MPa)'),
+      h('th', { scope: 'col', class: 'num' }, 'Segments'),
+      h('th', { scope: 'col' }, 'Accuracy'))),
+    h('tbody', {}, body)));
+}
 
 // Indices of the segments that do not touch the bore (clearance > 0).
 function lightGaps(result) {

@@ -19,6 +19,18 @@
 //   [data-list="/ptr"]          an editable list of rows (a <template> holds one
 //                               row; its inputs name their key with data-field);
 //                               0 rows = the field is absent.  data-max caps it.
+//                               The rows sit in the list's <tbody>, or in its
+//                               [data-rows] element (rows that are not table
+//                               rows).  A row may hold a list of its own (an
+//                               element [data-list][data-field="key"] in the
+//                               template): its rows are the row's array at that
+//                               key, left out when it has none (a bore map's
+//                               layers, each with its distortion orders).
+//                               In a row, data-label="… {n} …" gives a label (a
+//                               button's aria-label) the row's number; {p} is the
+//                               number of the row the list sits in.  An input's
+//                               data-next="step": a row added after one whose
+//                               value is a number starts at that value + step.
 //   input[data-toggle="/ptr"]   a checkbox that puts a whole block in the scene;
 //                               unchecked, the block is absent.  The inputs of
 //                               that block sit in [data-block="/ptr"].
@@ -30,7 +42,14 @@
 //     data-clear="/p /q"        model's own inputs); otherwise hidden, and they
 //                               and the data-clear paths are left out of the
 //                               scene (also what a loaded scene had there).
-//                               Nested ones must all hold.
+//                               Nested ones must all hold.  The id of a
+//                               [data-list] has the value "rows" while the list
+//                               has rows, else "none" (the fields a bore map
+//                               needs; the distortion a map replaces).
+//   input[data-word-for="id"]   a checkbox that sends its data-word instead of
+//     data-word="w"             the number of the input of that id (disabled
+//                               while checked); a loaded scene with the word
+//                               there checks it (contact height "all").
 //   [data-each="/ptr"]          a <template> repeated once per element of the
 //                               array at /ptr in the loaded scene (at least
 //                               once): in each copy "{i}" in the attributes
@@ -66,7 +85,7 @@ export class SceneForm {
     this.fieldPaths = new Map(); // analysis -> (path, scene) => the paths a shared field writes
     this.sources = new Map(); // block path -> Map(option value -> object)
     for (const input of this.inputs) if (input.dataset.hint) this.addHint(input);
-    for (const list of form.querySelectorAll('[data-list]')) this.setupList(list);
+    this.setupLists();
     this.eaches = [...form.querySelectorAll('[data-each]')];
     form.addEventListener('input', (e) => {
       const input = e.target.closest('[data-path], [data-toggle]');
@@ -173,14 +192,27 @@ export class SceneForm {
   reset() {
     this.base = {};
     this.baseAnalysis = null;
-    for (const list of this.form.querySelectorAll('[data-list]')) this.setRows(list, []);
+    for (const list of this.lists) this.setRows(list, []);
     for (const each of this.eaches) this.setCopies(each, 1);
     for (const input of this.inputs) setValue(input, input.dataset.default);
     for (const select of this.form.querySelectorAll('[data-source]')) select.selectedIndex = preferredIndex(select);
     for (const select of this.form.querySelectorAll('select[data-mode]')) select.selectedIndex = 0;
+    for (const box of this.form.querySelectorAll('[data-word-for]')) box.checked = false;
     this.syncToggles();
     this.clearMarks();
     this.updateHints();
+    this.changed();
+  }
+
+  // The lists that are no row's own (a row's list is filled with its row).
+  get lists() {
+    return [...this.form.querySelectorAll('[data-list]')].filter((l) => !l.parentElement.closest('[data-list]'));
+  }
+
+  // Tells listeners (the live bore map) that the form changed without an
+  // input event: loaded, reset, a list row added or removed.
+  changed() {
+    this.form.dispatchEvent(new CustomEvent('formchange'));
   }
 
   updateHints() {
@@ -195,7 +227,7 @@ export class SceneForm {
     this.base = structuredClone(rest);
     const analysis = scene.analysis ?? this.analysis;
     this.baseAnalysis = analysis;
-    for (const list of this.form.querySelectorAll('[data-list]')) {
+    for (const list of this.lists) {
       const rows = pointerGet(scene, list.dataset.list);
       if (Array.isArray(rows)) this.setRows(list, rows);
     }
@@ -218,8 +250,14 @@ export class SceneForm {
       const set = (o) => o.dataset.ifSet && ![undefined, null, 0, false, ''].includes(pointerGet(scene, o.dataset.ifSet));
       select.value = ([...select.options].find(set) || select.options[0])?.value ?? '';
     }
+    for (const box of this.form.querySelectorAll('[data-word-for]')) {
+      const target = document.getElementById(box.dataset.wordFor);
+      const [at] = target ? this.pathsOf(target, analysis, scene) : [];
+      box.checked = at !== undefined && pointerGet(scene, at) === box.dataset.word;
+    }
     this.syncToggles();
     this.updateHints();
+    this.changed();
   }
 
   // Builds the scene for `analysis`.  Throws {message, path} for an empty or
@@ -241,13 +279,9 @@ export class SceneForm {
       const start = kept !== null && typeof kept === 'object' && !Array.isArray(kept) ? kept : {};
       pointerSet(scene, path, { ...start, ...structuredClone(this.sourceValue(path) || {}) });
     }
-    for (const list of this.form.querySelectorAll('[data-list]')) {
+    for (const list of this.lists) {
       if (!ownedBy(list, analysis) || this.isOff(list)) continue;
-      const rows = [...list.querySelectorAll('tbody tr')].map((tr) => {
-        const row = {};
-        for (const input of tr.querySelectorAll('[data-field]')) row[input.dataset.field] = readValue(input);
-        return row;
-      });
+      const rows = this.readList(list);
       pointerDelete(scene, list.dataset.list);
       if (rows.length) pointerSet(scene, list.dataset.list, rows);
     }
@@ -303,6 +337,11 @@ export class SceneForm {
       when.hidden = !whenHolds(when);
       for (const el of when.querySelectorAll('input, select, button')) el.disabled = this.isOff(el);
     }
+    for (const box of this.form.querySelectorAll('[data-word-for]')) {
+      const target = document.getElementById(box.dataset.wordFor);
+      if (target) target.disabled = box.checked || this.isOff(target);
+    }
+    for (const list of this.form.querySelectorAll('[data-list]')) this.syncListButtons(list);
   }
 
   // A block's controls are disabled while its toggle is off; a toggle whose
@@ -399,72 +438,129 @@ export class SceneForm {
 
   // ---- editable lists --------------------------------------------------
 
-  setupList(list) {
-    list.querySelector('[data-list-add]')?.addEventListener('click', () => {
-      this.addRow(list);
-      const rows = list.querySelectorAll('tbody tr');
-      rows[rows.length - 1]?.querySelector('input')?.focus();
-    });
-    list.addEventListener('click', (e) => {
-      const button = e.target.closest('[data-list-remove]');
-      if (!button) return;
-      const tr = button.closest('tr');
-      const next = tr.nextElementSibling || tr.previousElementSibling;
-      tr.remove();
-      this.numberRows(list);
-      // Keep the keyboard focus in the list.
-      (next?.querySelector('[data-list-remove]') || list.querySelector('[data-list-add]'))?.focus();
+  // One click handler for every list's add and remove buttons, also those of
+  // the lists in rows added later.
+  setupLists() {
+    this.form.addEventListener('click', (e) => {
+      const add = e.target.closest('[data-list-add]');
+      const remove = e.target.closest('[data-list-remove]');
+      const list = (add || remove)?.closest('[data-list]');
+      if (!list) return;
+      if (add) {
+        const row = this.addRow(list, {}, true);
+        own(list, row, '[data-field]:is(input, select)')[0]?.focus();
+      } else {
+        const row = rowsOf(list).find((r) => r.contains(remove));
+        if (!row) return;
+        const next = row.nextElementSibling || row.previousElementSibling;
+        row.remove();
+        this.numberRows(list);
+        // Keep the keyboard focus in the list.
+        ((next && own(list, next, '[data-list-remove]')[0]) || own(list, list, '[data-list-add]')[0])?.focus();
+      }
+      this.syncWhens();
+      this.changed();
     });
   }
 
-  // A new row with the template's defaults, or with `values` ({field: v}).
-  addRow(list, values = {}) {
-    const tbody = list.querySelector('tbody');
-    const tr = list.querySelector('template').content.firstElementChild.cloneNode(true);
-    tbody.append(tr);
-    const inputs = [...tr.querySelectorAll('[data-field]')];
+  // A new row with the template's defaults, or with `values` ({field: v};
+  // a row's own list: its array of rows).  `added`: by the add button (a
+  // data-next field continues from the row before).
+  addRow(list, values = {}, added = false) {
+    const template = own(list, list, 'template')[0];
+    const row = template.content.firstElementChild.cloneNode(true);
+    const before = rowsOf(list).at(-1);
+    rowBox(list).append(row);
+    const inputs = own(list, row, '[data-field]:is(input, select)');
     for (const input of inputs) {
       const v = values[input.dataset.field];
-      setValue(input, v !== undefined && v !== null && typeof v !== 'object' ? v : input.dataset.default);
+      const prev = added && before && input.dataset.next !== undefined
+        ? own(list, before, `[data-field="${input.dataset.field}"]`)[0]?.valueAsNumber : NaN;
+      if (v !== undefined && v !== null && typeof v !== 'object') setValue(input, v);
+      else if (Number.isFinite(prev)) setValue(input, Number((prev + Number(input.dataset.next)).toPrecision(12)));
+      else setValue(input, input.dataset.default);
       if (input.dataset.hint) this.addHint(input); // its id is set by numberRows
     }
+    for (const inner of innerLists(list, row)) {
+      const rows = values[inner.dataset.field];
+      this.setRows(inner, Array.isArray(rows) ? rows : []);
+    }
     this.numberRows(list);
-    for (const input of inputs) this.updateHint(input);
-    return tr;
+    for (const input of row.querySelectorAll('[data-field]')) this.updateHint(input);
+    return row;
   }
 
   setRows(list, rows) {
-    list.querySelector('tbody').replaceChildren();
+    rowBox(list).replaceChildren();
     for (const r of rows) this.addRow(list, r && typeof r === 'object' ? r : {});
     this.numberRows(list);
   }
 
-  // Row i's inputs get id, data-path (/list/i/field) and label "… {n}" = i + 1.
+  // The rows of a list as the scene takes them (throws as read() does);
+  // a row's own list goes in at its key when it has rows.
+  readList(list) {
+    return rowsOf(list).map((row) => {
+      const out = {};
+      for (const input of own(list, row, '[data-field]:is(input, select)')) {
+        const v = readValue(input);
+        if (v !== undefined) out[input.dataset.field] = v;
+      }
+      for (const inner of innerLists(list, row)) {
+        const rows = this.readList(inner);
+        if (rows.length) out[inner.dataset.field] = rows;
+      }
+      return out;
+    });
+  }
+
+  // Row i's inputs get id, data-path (/list/i/field) and their labels
+  // "… {n}" = i + 1; a row's own lists their path (/list/i/key) and numbers.
   numberRows(list) {
-    const rows = [...list.querySelectorAll('tbody tr')];
-    rows.forEach((tr, i) => {
-      for (const input of tr.querySelectorAll('[data-field]')) {
+    const rows = rowsOf(list);
+    const p = list.dataset.parentN ?? '';
+    const text = (el, n) => {
+      const t = el.dataset.label.replaceAll('{n}', n).replaceAll('{p}', p);
+      if (el.tagName === 'BUTTON') el.setAttribute('aria-label', t);
+      else el.textContent = t;
+    };
+    rows.forEach((row, i) => {
+      for (const input of own(list, row, '[data-field]:is(input, select)')) {
         const label = input.parentElement.querySelector('label');
         const hint = input.parentElement.querySelector('.unit-hint');
         input.id = `${list.id}-${i}-${input.dataset.field}`;
         input.dataset.path = `${list.dataset.list}/${i}/${input.dataset.field}`;
-        if (label) {
-          label.htmlFor = input.id;
-          label.textContent = label.dataset.label.replace('{n}', i + 1);
-        }
+        if (label) label.htmlFor = input.id;
         if (hint) {
           hint.id = `${input.id}-hint`;
           input.setAttribute('aria-describedby', hint.id);
         }
       }
-      const remove = tr.querySelector('[data-list-remove]');
-      if (remove) remove.setAttribute('aria-label', remove.dataset.label.replace('{n}', i + 1));
+      for (const el of own(list, row, '[data-label]')) text(el, String(i + 1));
+      const head = own(list, row, '[data-row-head]')[0];
+      if (head) {
+        head.id = `${list.id}-${i}-head`;
+        row.setAttribute('aria-labelledby', head.id);
+      }
+      for (const inner of innerLists(list, row)) {
+        inner.id = `${list.id}-${i}-${inner.dataset.field}`;
+        inner.dataset.list = `${list.dataset.list}/${i}/${inner.dataset.field}`;
+        inner.dataset.parentN = String(i + 1);
+        this.numberRows(inner);
+      }
     });
+    for (const el of own(list, list, '[data-label]')) if (!rows.some((r) => r.contains(el))) text(el, '');
+    this.syncListButtons(list);
     const max = Number(list.dataset.max) || Infinity;
-    const add = list.querySelector('[data-list-add]');
+    const count = own(list, list, '[data-list-count]').find((c) => !rows.some((r) => r.contains(c)));
+    if (count) count.textContent = `${rows.length} of ${Number.isFinite(max) ? max : 'any'} ${list.dataset.unit || 'rows'}`;
+  }
+
+  // The add button: off at data-max rows, and while the list does not count.
+  syncListButtons(list) {
+    const max = Number(list.dataset.max) || Infinity;
+    const rows = rowsOf(list);
+    const add = own(list, list, '[data-list-add]').find((b) => !rows.some((r) => r.contains(b)));
     if (add) add.disabled = rows.length >= max || this.isOff(list);
-    const count = list.querySelector('[data-list-count]');
-    if (count) count.textContent = `${rows.length} of ${Number.isFinite(max) ? max : 'any'} rows`;
   }
 
   // ---- errors ------------------------------------------------------------
@@ -526,10 +622,37 @@ function ownedBy(el, analysis) {
   return !owner || owner.dataset.analysis === analysis;
 }
 
-// Whether a [data-when]'s <select> has one of its data-when-in values.
+// Whether a [data-when]'s <select> has one of its data-when-in values (a
+// list's value: "rows" or "none").
 function whenHolds(when) {
-  const select = document.getElementById(when.dataset.when);
-  return Boolean(select) && (when.dataset.whenIn || '').split(/\s+/).includes(select.value);
+  const el = document.getElementById(when.dataset.when);
+  if (!el) return false;
+  const value = el.matches('[data-list]') ? (rowsOf(el).length ? 'rows' : 'none') : el.value;
+  return (when.dataset.whenIn || '').split(/\s+/).includes(value);
+}
+
+// ---- list rows ---------------------------------------------------------
+
+// Where a list's rows are: its [data-rows] element or its table's <tbody>
+// (not those of a list in one of its rows).
+function rowBox(list) {
+  return [...list.querySelectorAll('[data-rows], tbody')].find((b) => b.closest('[data-list]') === list);
+}
+
+function rowsOf(list) {
+  const box = rowBox(list);
+  return box ? [...box.children] : [];
+}
+
+// The elements below `root` matching `sel` that belong to `list` itself,
+// not to a list in one of its rows.
+function own(list, root, sel) {
+  return [...root.querySelectorAll(sel)].filter((el) => el.closest('[data-list]') === list);
+}
+
+// The lists of a row of `list`.
+function innerLists(list, row) {
+  return [...row.querySelectorAll('[data-list]')].filter((l) => l.parentElement.closest('[data-list]') === list);
 }
 
 // Deletes the members of `value` that `schema` (OpenAPI, resolved by
@@ -554,6 +677,8 @@ function preferredIndex(select) {
 
 // One field's scene value (see the encoding above); undefined = leave it out.
 function readValue(input) {
+  const word = input.id ? document.querySelector(`[data-word-for="${input.id}"]`) : null;
+  if (word?.checked) return word.dataset.word;
   if (input.type === 'checkbox') return input.checked;
   if (input.tagName === 'SELECT') return input.value;
   if (input.dataset.word !== undefined) return wordOrNumber(input);

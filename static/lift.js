@@ -14,6 +14,7 @@
 import { svg, scale, ticks, axes, pathD, stepTicks, legend } from './svg.js';
 import { h, fill, isNum, fixed, sig, seconds, percent, kvTable, resultLinks, nums, um, deg } from './html.js';
 import { W, BOX, isLube, thin, thinnest, filmPlot, filmCaption, lubeFrictionPlot, FRICTION_CAPTION, filmFactRows } from './lube.js';
+import { boreMapFigure } from './boremap.js';
 
 const GAS_EXAMPLE = 'thesis_lift_gas_6000rpm';
 const EVENT_TEXT = {
@@ -76,6 +77,7 @@ export const lift = {
       resultLinks(job, 'lift', 'Lift table (CSV)'),
       zoomControl(crank, (range) => fill(plots, figures(sliceRun(result, events, range)))),
       plots,
+      liftBoreMap(result.scene),
       lubeReadout(result.lubrication, result.scene?.physics?.friction?.supply, result.scene?.physics?.friction?.cavitation),
       h('div', { class: 'lift-tables' },
         h('div', {},
@@ -85,6 +87,13 @@ export const lift = {
     );
   },
 };
+
+// A bore map (bore.layers) with the ring's travel down it, TDC to BDC.
+function liftBoreMap(scene) {
+  const z = scene?.bore?.ring_z_tdc_m, r = scene?.engine?.crank_radius;
+  const travel = isNum(z) && isNum(r) ? [z, z + 2 * r] : null;
+  return boreMapFigure(scene, 'lf-map', { travel }, travel ? 'Dashed band: the ring\'s travel, from its depth at TDC down two crank radii to BDC; the ring met the bore at its current depth.' : '');
+}
 
 // The figures of a (possibly cut to one cycle) lift result.
 function figures(result) {

@@ -2908,6 +2908,393 @@ test('lube readouts: the scene\'s cavitation condition is named next to the film
   assert.deepEqual(pageErrors, []);
 });
 
+// ---- the bore map: bore.layers on the Contact and Lift tabs ------------------
+
+// Two layers down 100 mm: order 2 growing from 2 to 10 µm, order 4 below.
+const MAP = [
+  { z: 0, distortion: [{ order: 2, amplitude: 2e-6, phase_deg: 0 }] },
+  { z: 0.1, distortion: [{ order: 2, amplitude: 10e-6, phase_deg: 0 }, { order: 4, amplitude: 3e-6, phase_deg: 20 }] },
+];
+
+// Enters `layers` into the map of tab `pre` (ct, lf) with its buttons.
+async function enterMap(pre, layers) {
+  for (const [i, l] of layers.entries()) {
+    assert.equal(await page.textContent(`#f-${pre}-layers-add`), 'Add a layer');
+    await page.click(`#f-${pre}-layers-add`);
+    assert.equal(await page.evaluate(() => document.activeElement.id), `f-${pre}-layers-${i}-z`, 'focus on the new layer');
+    await page.fill(`#f-${pre}-layers-${i}-z`, String(l.z));
+    if (l.diameter) await page.fill(`#f-${pre}-layers-${i}-diameter`, String(l.diameter));
+    for (const [j, d] of (l.distortion || []).entries()) {
+      await page.getByRole('button', { name: `Add an order to layer ${i + 1}`, exact: true }).click();
+      await page.fill(`#f-${pre}-layers-${i}-distortion-${j}-order`, String(d.order));
+      await page.fill(`#f-${pre}-layers-${i}-distortion-${j}-amplitude`, String(d.amplitude));
+      await page.fill(`#f-${pre}-layers-${i}-distortion-${j}-phase_deg`, String(d.phase_deg ?? 0));
+    }
+  }
+}
+
+// Removes every layer of the map of tab `pre` with its buttons.
+async function emptyMap(pre) {
+  while (await page.locator(`#f-${pre}-layers .layer`).count()) {
+    await page.getByRole('button', { name: 'Remove layer 1', exact: true }).click();
+  }
+  assert.equal(await page.evaluate(() => document.activeElement.id), `f-${pre}-layers-add`, 'focus back on the add button');
+  await settled(); // the drawing follows at the next frame
+}
+
+// What a bore map drawing (svg#id) shows: its label, the depth range and
+// plot box, the layer marks, the travel band and the height line.
+async function mapDrawing(id) {
+  await settled();
+  return page.$eval(`#${id}`, (s) => {
+    const [left, top, width, height] = s.dataset.box.split(' ').map(Number);
+    const travel = s.querySelector(`#${s.id}-travel`);
+    const line = s.querySelector(`line#${s.id}-height`);
+    const r = s.getBoundingClientRect();
+    return {
+      label: s.getAttribute('aria-label'), role: s.getAttribute('role'), visible: r.width > 0 && r.height > 0,
+      zmin: Number(s.dataset.zmin), zmax: Number(s.dataset.zmax), box: { left, top, width, height },
+      layers: [...s.querySelectorAll(`#${s.id}-layers .bm-layer`)].map((p) => Number(p.dataset.z)),
+      travel: travel && { y: Number(travel.getAttribute('y')), h: Number(travel.getAttribute('height')), z0: Number(travel.dataset.z0), z1: Number(travel.dataset.z1) },
+      height: line && { y: Number(line.getAttribute('y1')), z: Number(line.dataset.z) },
+      image: Boolean(s.querySelector('image.bm-image')?.getAttribute('href')?.startsWith('data:image/png')),
+      bar: s.querySelectorAll('.bm-bar-ticks text').length,
+    };
+  });
+}
+
+// The y of depth z (m) in a drawing from mapDrawing.
+const mapY = (d, z) => d.box.top + ((z - d.zmin) / (d.zmax - d.zmin)) * d.box.height;
+
+for (const width of [1280, 390]) {
+  test(`${width} px: lift, bore map: two layers are sent as bore.layers with bore.ring_z_tdc_m (no /bore/distortion), drawn with the ring's travel; the server runs it; its echo loads back; a map short of the stroke shows the server's 422 at the field; an empty map sends neither`, { skip: SKIP.lift, timeout: 180000 }, async () => {
+    await page.setViewportSize({ width, height: 844 });
+    try {
+      await page.getByRole('button', { name: 'Reset to defaults' }).click();
+      await selectTab('lift');
+      await page.fill('#f-segments', '12');
+      await page.fill('#f-lf-speed', '1000');
+      await page.fill('#f-lf-cycles', '0.05');
+      await page.uncheck('#f-lf-error-estimate');
+      await page.check('#f-lf-friction');
+      await page.selectOption('#f-lf-friction-model', 'coulomb');
+      // No layers: no depth field, no drawing.
+      assert.equal(await page.isVisible('#f-lf-ring-z'), false);
+      assert.equal(await page.isVisible('#f-lf-map'), false);
+      assert.equal(await page.isVisible('fieldset:has(#f-lf-layers) > legend:text-is("Bore map (layers down the bore)")'), true);
+      const jobs = await interceptJobs(fixtures.liftResult());
+      let scene;
+      try {
+        scene = await formScene(jobs, 'lift');
+        assert.equal(scene.bore, undefined, 'no map: no bore block');
+
+        await enterMap('lf', MAP);
+        assert.match(await page.textContent('label[for="f-lf-layers-1-z"]'), /^Layer 2: Depth z \(m\)$/);
+        assert.equal(await page.textContent('#f-lf-layers-1-z-hint'), '= 100 mm');
+        assert.equal(await page.textContent('#f-lf-layers > .list-actions [data-list-count]'), '2 of 50 layers');
+        assert.equal(await page.textContent('#f-lf-layers-1-distortion [data-list-count]'), '2 of 16 orders');
+        assert.equal(await page.isVisible('#f-lf-ring-z'), true, 'a map asks for the ring depth');
+        // The ring depth is required with a map: empty, the page says so.
+        const before = jobs.sent.length;
+        await runAnalysis('Run lift analysis');
+        assert.equal(jobs.sent.length, before, 'nothing sent');
+        assert.match(await page.textContent('#error'), /Ring depth at TDC \(m\): must be a number/);
+        assert.equal(await page.getAttribute('#f-lf-ring-z', 'aria-invalid'), 'true');
+        await page.fill('#f-lf-ring-z', '0.005');
+        assert.equal(await page.textContent('#f-lf-ring-z-hint'), '= 5 mm');
+        for (const id of ['#f-lf-ring-z', '#f-lf-layers-1-z', '#f-lf-layers-1-diameter', '#f-lf-layers-1-distortion-1-amplitude', '.layer[aria-labelledby="f-lf-layers-1-head"] .layer-head .remove', '#f-lf-layers-add', '#f-lf-map-plot']) await fieldFits(id);
+        scene = await formScene(jobs, 'lift');
+        assert.deepEqual(scene.bore, { layers: MAP, ring_z_tdc_m: 0.005 });
+        assert.deepEqual(scene.physics.friction.model, 'coulomb');
+        await takes(scene);
+
+        // The drawing: both layers, the depth range, the travel band where the ring runs.
+        let d = await mapDrawing('f-lf-map-plot');
+        assert.ok(d.visible && d.image && d.role === 'img', 'drawn');
+        assert.match(d.label, /^Bore map: the radius's departure from the first layer's mean radius, -[\d.]+ to \+[\d.]+ µm, over the angle from the gap \(0 to 360°\) and the depth z 0 to 100 mm \(2 layers\); the ring's travel 5 to 91\.9 mm \(TDC to BDC\)\.$/);
+        const limit = await page.$eval('#f-lf-map-plot', (s) => Number(s.dataset.limitUm));
+        assert.ok(limit > 10 && limit <= 13, `largest departure ${limit} µm: order 2 at 10 µm plus order 4 at 3 µm at 100 mm`);
+        assert.deepEqual(d.layers, [0, 0.1]);
+        assert.ok(d.bar >= 3, 'a colour scale with ticks');
+        const crank = Number(await page.inputValue('#f-lf-crank'));
+        assert.equal(d.travel.z0, 0.005);
+        assert.ok(Math.abs(d.travel.z1 - (0.005 + 2 * crank)) < 1e-12);
+        assert.ok(Math.abs(d.travel.y - mapY(d, 0.005)) < 0.01, `TDC at y ${d.travel.y} vs ${mapY(d, 0.005)}`);
+        assert.ok(Math.abs(d.travel.y + d.travel.h - mapY(d, 0.005 + 2 * crank)) < 0.01, 'BDC');
+        assert.ok(d.travel.y > d.box.top && d.travel.y < d.box.top + d.box.height / 10, 'TDC just below the top layer');
+        // It follows the form: a deeper ring moves the band.
+        await page.fill('#f-lf-ring-z', '0.01');
+        d = await mapDrawing('f-lf-map-plot');
+        assert.equal(d.travel.z0, 0.01);
+        assert.ok(Math.abs(d.travel.y - mapY(d, 0.01)) < 0.01);
+        assert.match(d.label, /travel 10 to 96\.9 mm/);
+        await page.fill('#f-lf-ring-z', '0.005');
+        if (width === 390) assert.deepEqual(await smallText(), [], 'the map and its drawing are readable at 390 px');
+        await page.locator('fieldset[data-analysis="lift"]:has(#f-lf-layers)').screenshot({ path: path.join(SHOT_DIR, `ringdyn-lift-map-form-${width}.png`) });
+
+        // A loaded scene's single distortion is not sent with a map.
+        const loaded = structuredClone(scene);
+        loaded.bore = { distortion: [{ order: 2, amplitude: 4e-6 }] };
+        await loadSceneFile(loaded, () => document.querySelectorAll('#f-lf-layers .layer').length === 0);
+        assert.equal(await page.isVisible('#f-lf-bore-note'), true);
+        scene = await formScene(jobs, 'lift');
+        assert.deepEqual(scene.bore, { distortion: [{ order: 2, amplitude: 4e-6 }] }, 'no map: the loaded distortion goes');
+        await enterMap('lf', MAP);
+        await page.fill('#f-lf-ring-z', '0.005');
+        assert.equal(await page.isVisible('#f-lf-bore-note'), false);
+        scene = await formScene(jobs, 'lift');
+        assert.deepEqual(scene.bore, { layers: MAP, ring_z_tdc_m: 0.005 }, 'with a map it does not');
+      } finally {
+        await jobs.stop();
+      }
+
+      // Run against the server: the result draws the map with the travel.
+      await runAnalysis('Run lift analysis', 150000);
+      assert.equal(await page.isVisible('#error'), false, `unexpected error: ${await page.textContent('#error')}`);
+      const job = await shownJob();
+      assert.equal(job.result.scene.bore.ring_z_tdc_m, 0.005, 'the echo');
+      assert.deepEqual(job.result.scene.bore.layers.map((l) => l.z), [0, 0.1]);
+      assert.ok(job.result.crank_deg.length > 1, 'lift samples');
+      assert.equal(await page.locator('#lf-plots svg.chart').first().isVisible(), true);
+      const r = await mapDrawing('lf-map');
+      assert.ok(r.visible && r.image);
+      assert.deepEqual(r.layers, [0, 0.1]);
+      assert.match(r.label, /the depth z 0 to 100 mm \(2 layers\); the ring's travel 5 to 91\.9 mm/);
+      assert.ok(Math.abs(r.travel.y - mapY(r, 0.005)) < 0.01);
+      await settled();
+      const overflow = await page.evaluate(() => document.documentElement.scrollWidth - window.innerWidth);
+      assert.ok(overflow <= 0, `page scrolls sideways by ${overflow}px`);
+      await shot(`ringdyn-lift-map-${width}.png`, { fullPage: true });
+
+      // The job reopened from its address: the echo fills the map and is sent as it was.
+      await page.goto(`${BASE}/?job=${encodeURIComponent(job.id)}`);
+      await page.waitForFunction(() => document.getElementById('f-lf-layers-1-distortion-1-order')?.value === '4' &&
+        document.getElementById('f-lf-ring-z').value === '0.005');
+      assert.equal(await page.getAttribute('#tab-lift', 'aria-selected'), 'true');
+      assert.equal(await page.inputValue('#f-lf-layers-1-z'), '0.1');
+      assert.equal(await page.inputValue('#f-lf-layers-1-distortion-1-phase_deg'), '20');
+      assert.equal(await page.inputValue('#f-lf-layers-0-diameter'), String(job.result.scene.bore.layers[0].diameter), 'the diameter used');
+      await page.waitForSelector('#f-lf-map-plot', { state: 'visible' }); // drawn from the echo
+      const again = await interceptJobs(fixtures.liftResult());
+      try {
+        scene = await formScene(again, 'lift');
+        assert.deepEqual(scene.bore.layers, job.result.scene.bore.layers);
+        assert.equal(scene.bore.ring_z_tdc_m, 0.005);
+        await takes(scene);
+        // Emptied, the map sends neither its layers nor the ring depth.
+        await emptyMap('lf');
+        assert.equal(await page.isVisible('#f-lf-ring-z'), false);
+        assert.equal(await page.isVisible('#f-lf-map'), false);
+        scene = await formScene(again, 'lift');
+        assert.equal(scene.bore.layers, undefined);
+        assert.equal(scene.bore.ring_z_tdc_m, undefined);
+        await takes(scene);
+      } finally {
+        await again.stop();
+      }
+
+      // A map that does not cover the ring's travel: the server's 422 at the map.
+      await enterMap('lf', [{ z: 0 }, { z: 0.05 }]);
+      await page.fill('#f-lf-ring-z', '0.005');
+      const short = await mapDrawing('f-lf-map-plot');
+      assert.match(short.label, /, beyond the map\.$/);
+      assert.match(await page.textContent('#f-lf-map-msg'), /leaves the map/);
+      await runAnalysis('Run lift analysis');
+      const text = await page.textContent('#error');
+      assert.match(text, /^Bore map \(layers down the bore\): /, `named by the map: ${text}`);
+      assert.match(text, /\/bore\/layers covers 0 to 0\.05 m: the map must cover the ring's whole travel/);
+      assert.equal(await page.getAttribute('#f-lf-layers-1-z', 'aria-invalid'), 'true');
+      assert.equal(await page.getAttribute('#f-lf-ring-z', 'aria-invalid'), null);
+      assert.equal(await page.isVisible('#f-lf-layers-1-z'), true);
+      await shot(`ringdyn-lift-map-refused-${width}.png`);
+      await page.fill('#f-lf-layers-1-z', '0.1');
+      assert.equal(await page.getAttribute('#f-lf-layers-1-z', 'aria-invalid'), null, 'editing clears the mark');
+    } finally {
+      await page.goto(`${BASE}/`);
+      await page.waitForSelector('#tab-modal[aria-selected="true"]');
+      await page.setViewportSize({ width: 1280, height: 800 });
+    }
+  });
+
+  test(`${width} px: contact, bore map: layers with a height send bore.layers and contact.height (the distortion list is hidden and not sent), "all" by its checkbox; the server runs it and shows height_m; its echo loads back; an empty map sends neither`, { skip: SKIP.contact, timeout: 180000 }, async () => {
+    await page.setViewportSize({ width, height: 844 });
+    try {
+      await page.getByRole('button', { name: 'Reset to defaults' }).click();
+      await selectTab('contact');
+      await page.fill('#f-segments', '12');
+      await page.getByRole('button', { name: 'Add a distortion order' }).click();
+      assert.equal(await page.isVisible('#f-ct-height'), false, 'no map: no height');
+      assert.equal(await page.isVisible('#f-distortion-off'), false);
+      const jobs = await interceptJobs(fixtures.contactResult());
+      let scene;
+      try {
+        await enterMap('ct', MAP);
+        // The map replaces the one distortion list: hidden, a note in its place.
+        assert.equal(await page.isVisible('#f-distortion'), false);
+        assert.equal(await page.isVisible('#f-distortion-off'), true);
+        assert.equal(await page.isVisible('#f-ct-height'), true);
+        assert.equal(await page.isChecked('#f-ct-height-all'), false);
+        await page.fill('#f-ct-height', '0.02');
+        assert.equal(await page.textContent('#f-ct-height-hint'), '= 20 mm');
+        for (const id of ['#f-ct-height', '#f-ct-height-all', '#f-ct-layers-0-z', '#f-ct-layers-1-distortion-1-phase_deg', '#f-ct-map-plot']) await fieldFits(id);
+        scene = await formScene(jobs, 'contact');
+        assert.deepEqual(scene.bore, { layers: MAP });
+        assert.equal(scene.contact.height, 0.02);
+        await takes(scene);
+        const d = await mapDrawing('f-ct-map-plot');
+        assert.ok(d.visible && d.image);
+        assert.match(d.label, /the depth z 0 to 100 mm \(2 layers\); the ring at z = 20 mm\.$/);
+        assert.deepEqual(d.layers, [0, 0.1]);
+        assert.equal(d.height.z, 0.02);
+        assert.ok(Math.abs(d.height.y - mapY(d, 0.02)) < 0.01, 'the height line at 20 mm');
+        assert.equal(d.travel, null);
+        // "all" by the checkbox: the number field is set aside.
+        await page.check('#f-ct-height-all');
+        assert.equal(await page.isDisabled('#f-ct-height'), true);
+        scene = await formScene(jobs, 'contact');
+        assert.equal(scene.contact.height, 'all');
+        assert.match((await mapDrawing('f-ct-map-plot')).label, /the ring at every layer\.$/);
+        await page.uncheck('#f-ct-height-all');
+        assert.equal(await page.isDisabled('#f-ct-height'), false);
+        if (width === 390) assert.deepEqual(await smallText(), [], 'the map and its drawing are readable at 390 px');
+        await page.locator('fieldset[data-analysis="contact"]').screenshot({ path: path.join(SHOT_DIR, `ringdyn-contact-map-form-${width}.png`) });
+
+        // Emptied, the map sends neither layers nor height; the list is back and sent.
+        await emptyMap('ct');
+        assert.equal(await page.isVisible('#f-ct-height'), false);
+        assert.equal(await page.isVisible('#f-distortion'), true);
+        assert.equal(await page.isVisible('#f-ct-map'), false);
+        scene = await formScene(jobs, 'contact');
+        assert.equal(scene.bore.layers, undefined);
+        assert.equal(scene.contact.height, undefined);
+        assert.deepEqual(scene.bore.distortion, [{ order: 2, amplitude: 5e-6, phase_deg: 0 }]);
+        await page.getByRole('button', { name: 'Remove distortion 1' }).click();
+        await enterMap('ct', MAP);
+        await page.fill('#f-ct-height', '0.02');
+      } finally {
+        await jobs.stop();
+      }
+
+      // Run against the server: the height and the bore there are named, the map drawn.
+      await runAnalysis('Run contact analysis', 150000);
+      assert.equal(await page.isVisible('#error'), false, `unexpected error: ${await page.textContent('#error')}`);
+      const job = await shownJob();
+      assert.equal(job.result.height_m, 0.02);
+      assert.match(await page.textContent('#ct-height'), /^Bore map: the ring at z = 20 mm down the bore \(the bore there: D = 76\.5 mm, orders 2 \(3\.60 µm\), 4 \(0\.60 µm at 20°\)\)\.$/);
+      assert.match(await page.textContent('#result-body h3'), /at z = 20 mm$/);
+      const r = await mapDrawing('ct-map');
+      assert.ok(r.visible && r.image);
+      assert.ok(Math.abs(r.height.y - mapY(r, 0.02)) < 0.01);
+      await settled();
+      const overflow = await page.evaluate(() => document.documentElement.scrollWidth - window.innerWidth);
+      assert.ok(overflow <= 0, `page scrolls sideways by ${overflow}px`);
+      await shot(`ringdyn-contact-map-${width}.png`, { fullPage: true });
+
+      // The job reopened from its address: the echo fills the map and the height.
+      await page.goto(`${BASE}/?job=${encodeURIComponent(job.id)}`);
+      await page.waitForFunction(() => document.getElementById('f-ct-layers-1-distortion-1-order')?.value === '4' &&
+        document.getElementById('f-ct-height').value === '0.02');
+      assert.equal(await page.getAttribute('#tab-contact', 'aria-selected'), 'true');
+      assert.equal(await page.isVisible('#f-distortion'), false);
+      const again = await interceptJobs(fixtures.contactResult());
+      try {
+        scene = await formScene(again, 'contact');
+        assert.deepEqual(scene.bore.layers, job.result.scene.bore.layers);
+        assert.equal(scene.contact.height, 0.02);
+        assert.equal(scene.bore.distortion, undefined, 'the echo\'s empty list is not sent with the map');
+        await takes(scene);
+        // An echo of "all" checks the box.
+        const all = structuredClone(job.result.scene);
+        all.contact.height = 'all';
+        await loadSceneFile(all, () => document.getElementById('f-ct-height-all').checked);
+        assert.equal(await page.inputValue('#f-ct-height'), '');
+        scene = await formScene(again, 'contact');
+        assert.equal(scene.contact.height, 'all');
+      } finally {
+        await again.stop();
+      }
+      // The server runs "all": a row per layer, the plotted one marked.
+      await runAnalysis('Run contact analysis', 150000);
+      assert.equal(await page.isVisible('#error'), false, `unexpected error: ${await page.textContent('#error')}`);
+      const allJob = await shownJob();
+      assert.equal(await page.locator('#ct-layers tbody tr').count(), allJob.result.layers.length);
+      assert.equal(await page.locator('#ct-layers tbody tr.shown').count(), 1);
+      assert.match(await page.textContent('#ct-height'), new RegExp(`every layer: .* z = ${Number((allJob.result.height_m * 1e3).toPrecision(4))} mm`));
+      assert.equal(await page.locator('#ct-map-height .bm-each').count(), 2);
+      // A height outside the map: the server's 422 at the height field.
+      await page.uncheck('#f-ct-height-all');
+      await page.fill('#f-ct-height', '0.2');
+      await runAnalysis('Run contact analysis');
+      const text = await page.textContent('#error');
+      assert.match(text, /^Height of the ring z \(m down the bore\): .*outside the bore map: allowed 0 to 0\.1 m/, text);
+      assert.equal(await page.getAttribute('#f-ct-height', 'aria-invalid'), 'true');
+    } finally {
+      await page.goto(`${BASE}/`);
+      await page.waitForSelector('#tab-modal[aria-selected="true"]');
+      await page.setViewportSize({ width: 1280, height: 800 });
+    }
+  });
+}
+
+test('bore map renderers: an "all" contact lists every layer and marks the one plotted; a lift draws the travel; results without a map draw none', { timeout: 60000 }, async () => {
+  const ct = fixtures.contactResult();
+  ct.scene.bore = { diameter: 0.0765, layers: [{ z: 0, diameter: 0.0765, distortion: [] }, { z: 0.02, diameter: 0.0765, distortion: [{ order: 4, amplitude: 8e-6, phase_deg: 0 }] }, { z: 0.04, diameter: 0.07652, distortion: [] }] };
+  ct.scene.contact = { height: 'all' };
+  ct.height_m = 0.02;
+  ct.bore_at_height = { diameter: 0.0765, distortion: [{ order: 4, amplitude: 8e-6, phase_deg: 0 }] };
+  ct.layers = ct.scene.bore.layers.map((l, i) => ({ z_m: l.z, diameter_m: l.diameter, contact_fraction: [1, 0.8, 1][i], max_clearance: [0, 2e-6, 0][i], max_clearance_angle_deg: [null, 45, null][i], mean_pressure_pa: 2.1e5, min_bin_pressure_pa: [2e5, 0, 2e5][i], max_bin_pressure_pa: 2.3e5, light_gaps: [0, 4, 0][i], segments: 80, accuracy_met: true }));
+  const lf = fixtures.liftResult();
+  lf.scene.bore = { layers: [{ z: 0, distortion: [{ order: 2, amplitude: 3e-6 }] }, { z: 0.1 }], ring_z_tdc_m: 0.004 };
+  lf.scene.engine.crank_radius = 0.04;
+  const drawn = await page.evaluate(async ({ ct, lf, plain }) => {
+    const out = {};
+    for (const [name, id, result] of [['ct', 'contact', ct], ['lf', 'lift', lf], ['ct plain', 'contact', plain.ct], ['lf plain', 'lift', plain.lf]]) {
+      const mod = await import(`/static/${id}.js`);
+      const box = document.createElement('div');
+      document.body.append(box);
+      try {
+        mod[id].render(result, null, box);
+        const map = box.querySelector('svg.bore-map');
+        out[name] = {
+          map: map?.id ?? null, label: map?.getAttribute('aria-label'),
+          layers: [...box.querySelectorAll('svg.bore-map [id$="-layers"] .bm-layer')].length,
+          each: [...box.querySelectorAll('svg.bore-map .bm-each')].map((l) => [Number(l.dataset.z), l.classList.contains('bm-shown')]),
+          travel: box.querySelector('svg.bore-map rect[id$="-travel"]') && ['z0', 'z1'].map((k) => Number(box.querySelector('svg.bore-map rect[id$="-travel"]').dataset[k])),
+          rows: [...box.querySelectorAll('#ct-layers tbody tr')].map((tr) => [...tr.children].map((td) => td.textContent)),
+          shown: [...box.querySelectorAll('#ct-layers tbody tr')].map((tr) => tr.classList.contains('shown')),
+          height: box.querySelector('#ct-height')?.textContent ?? null,
+          text: box.textContent,
+        };
+      } finally {
+        box.remove();
+      }
+    }
+    return out;
+  }, { ct, lf, plain: { ct: fixtures.contactResult(), lf: fixtures.liftResult() } });
+  assert.equal(drawn.ct.map, 'ct-map');
+  assert.equal(drawn.ct.layers, 3);
+  assert.deepEqual(drawn.ct.each, [[0, false], [0.02, true], [0.04, false]]);
+  assert.match(drawn.ct.label, /depth z 0 to 40 mm \(3 layers\); the ring at every layer\./);
+  // order 4 at 8 µm in the middle, +10 µm of radius at the bottom
+  assert.match(drawn.ct.label, /-10 to \+10 µm/);
+  assert.deepEqual(drawn.ct.shown, [false, true, false]);
+  assert.deepEqual(drawn.ct.rows[1], ['20', '76.5', '80.0', '2.00 at 45°', '0.2100', '0.0000 – 0.2300', '80', 'met']);
+  assert.equal(drawn.ct.rows[2][1], '76.52');
+  assert.equal(drawn.ct.height, 'Bore map, the ring at every layer: shown here is the layer with the largest light gap, z = 20 mm down the bore (the bore there: D = 76.5 mm, order 4 (8.00 µm)); the table below lists every layer.');
+  assert.doesNotMatch(drawn.ct.text, /\bnull\b|undefined|NaN/);
+  assert.equal(drawn.lf.map, 'lf-map');
+  assert.equal(drawn.lf.travel[0], 0.004);
+  assert.ok(Math.abs(drawn.lf.travel[1] - 0.084) < 1e-12);
+  assert.match(drawn.lf.label, /the ring's travel 4 to 84 mm \(TDC to BDC\)\.$/);
+  assert.doesNotMatch(drawn.lf.text, /\bnull\b|undefined|NaN/);
+  for (const k of ['ct plain', 'lf plain']) {
+    assert.equal(drawn[k].map, null, k);
+    assert.equal(drawn[k].height, null, k);
+    assert.deepEqual(drawn[k].rows, [], k);
+  }
+  assert.deepEqual(pageErrors, []);
+});
+
 test('no console errors or uncaught exceptions', () => {
   assert.deepEqual(pageErrors, []);
   assert.deepEqual(consoleErrors.filter((t) => !expectedConsole(t)), []);
