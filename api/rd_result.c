@@ -229,7 +229,8 @@ char *rd_result_csv(json_t *result, const rd_csv_table *t0, const char *analysis
     int ncols = 0;
     for (int c = 0; c < count_columns(t0) && ncols < CSV_COLUMNS_MAX; c++) {
         const rd_csv_column *col = &t0->columns[c];
-        if (!t0->rows && !is_pointer(col) && (strchr(col->key, '.') || (col->text & RD_CSV_OPTIONAL)) &&
+        if (!t0->rows && !is_pointer(col) &&
+            (strchr(col->key, '.') || (col->text & RD_CSV_OPTIONAL)) &&
             !column_array(holder, col->key))
             continue;
         cols[ncols++] = *col;
