@@ -972,7 +972,7 @@ test('lift against the server: band, event markers, friction plot and flank stri
   assert.equal(result.numerics.flank_band, 0.01);
   assert.equal(await page.locator('#lf-lift rect.flank-band:not(.legend *)').count(), 2);
   const csvLines = (await csvResp.text()).trim().split('\n');
-  assert.equal(csvLines[0], 'crank_deg,lift_m,lift_min_m,lift_max_m,twist_rad,friction_force_n,flank,flank_band,axial_clearance_m');
+  assert.equal(csvLines[0], 'crank_deg,lift_m,lift_min_m,lift_max_m,twist_rad,friction_force_n,bore_pressure_min_pa,bore_pressure_max_pa,flank,flank_band,axial_clearance_m');
   assert.equal(csvLines.length, result.crank_deg.length + 1);
   assert.ok(csvLines.slice(1).every((l) => l.split(',').slice(-2).map(Number).join() === `0.01,${result.scene.groove.axial_clearance}`),
     `every CSV row ends with the band and the clearance: ${csvLines[1]}`);
