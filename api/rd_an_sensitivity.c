@@ -282,13 +282,14 @@ static int run(const rd_scene *s, const rd_monitor *mon, json_t **result, rd_err
         json_array_append_new(outs, json_pack("{s:s, s:f, s:o}", "observe", o->output[k], "value",
                                               base_v[k], "derivatives", ds));
     }
-    char note[400];
+    char note[640];
     snprintf(note, sizeof note,
              "Derivatives of the discretised model by central differences at +-h; each "
              "error_estimate is the truncation |D(h) - D(2h)|/3 (Richardson) plus the outputs' "
-             "run-to-run noise over the step, taken as %s = %.3g of each output. It does not "
-             "cover the model's own error (its error estimate) nor an output that jumps between "
-             "the steps (a flank change, a regime switch).",
+             "run-to-run noise over the step, taken as %s = %.3g of each output: a bound, "
+             "far above the true error where the runs are more accurate than their tolerance "
+             "(a steady state). It does not cover the model's own error (its error estimate) "
+             "nor an output that jumps between the steps (a flank change, a regime switch).",
              o->eps_from, o->eps);
     if (rc == RD_OK) {
         long cpus = sysconf(_SC_NPROCESSORS_ONLN);

@@ -7,6 +7,12 @@
  *   - the steady ring pack of the shipped example: its top-land entry and
  *     end gap are orifices with the same C_d, so the mass flow is
  *     proportional to C_d and the land pressure independent of it;
+ *   - the same ring held at half its clearance (both flank passages open,
+ *     viscous-limited: the slot's share does not scale with C_d), whose
+ *     land and groove pressures do depend on C_d: the derivatives against
+ *     those of the steady network solved in the test (ringpack_steady.h:
+ *     the laws written again, nested bisection to round-off) by a central
+ *     difference of 1e-3 C_d (truncation ~1e-7), within 1e-4;
  *   - the error estimate against the true error (the closed form's) on a
  *     battery of given steps where truncation dominates: within x3;
  *   - bad specs: 400 with the field named.
@@ -20,6 +26,7 @@
 
 #include "check.h"
 #include "rd_api.h"
+#include "ringpack_steady.h"
 
 static json_t *run_text(const char *text, rd_error *err)
 {
@@ -143,6 +150,87 @@ static void test_ringpack(const char *examples)
     json_decref(spec);
 }
 
+/* A number at a JSON Pointer of the scene echo. */
+static double at(json_t *scene, const char *ptr)
+{
+    char buf[128];
+    snprintf(buf, sizeof buf, "%s", ptr);
+    json_t *o = scene;
+    for (char *k = strtok(buf, "/"); k && o; k = strtok(NULL, "/"))
+        o = json_is_array(o) ? json_array_get(o, (size_t)atoi(k)) : json_object_get(o, k);
+    CHECK(json_is_number(o), "the base scene's echo has %s", ptr);
+    return json_number_value(o);
+}
+
+/* The steady network's parameters from the base run's scene echo (what the
+ * run used, defaults filled in), C_d set to cd. */
+static void held_params(json_t *sc, double cd, rd_ringpack_params *p)
+{
+    rd_ringpack_params_default(p);
+    rd_ringpack_ring *r = &p->rings[0];
+    r->pinned = RD_PIN_MIDDLE;
+    r->discharge_coefficient = cd;
+    r->ring.diameter = at(sc, "/rings/0/ring/diameter");
+    r->ring.radial_width = at(sc, "/rings/0/ring/radial_width");
+    r->ring.closed_gap = at(sc, "/rings/0/ring/closed_gap");
+    r->groove.axial_clearance = at(sc, "/rings/0/groove/axial_clearance");
+    r->land_clearance = at(sc, "/rings/0/land/radial_clearance");
+    p->T_lands = at(sc, "/gas_temperature_k/lands");
+    p->T_crankcase = at(sc, "/gas_temperature_k/crankcase");
+    p->crankcase_pa = at(sc, "/crankcase_pressure_pa");
+    p->kappa = at(sc, "/physics/gas/heat_capacity_ratio");
+    p->gas_constant = at(sc, "/physics/gas/gas_constant");
+    p->gas_viscosity = at(sc, "/physics/gas/viscosity_pa_s");
+    p->engine.speed_rpm = at(sc, "/engine/speed_rpm");
+}
+
+static void test_ringpack_held(void)
+{
+    const char *spec =
+        "{\"analysis\": \"sensitivity\", \"base\": {\"analysis\": \"ringpack\", \"rings\": "
+        "[{\"pinned\": \"middle\"}], \"cylinder_pressure\": {\"crank_deg\": [0, 720], "
+        "\"pressure_pa\": [500000, 500000]}, \"engine\": {\"cycles\": 12}, \"numerics\": "
+        "{\"rtol\": 1e-10, \"error_estimate\": false}}, \"parameters\": [{\"path\": "
+        "\"/rings/0/discharge_coefficient\"}], \"outputs\": [\"/volumes/1/pressure_pa/719\", "
+        "\"/volumes/2/pressure_pa/719\", \"/blowby/kg_per_cycle\"]}";
+    rd_error err;
+    json_t *r = run_text(spec, &err), *spec_json = json_loads(spec, 0, NULL);
+    char *base = json_dumps(json_object_get(spec_json, "base"), JSON_COMPACT);
+    json_t *b = run_text(base, &err), *sc = json_object_get(b, "scene");
+    free(base);
+    json_decref(spec_json);
+    CHECK(r != NULL && sc != NULL, "held ring sensitivity: %s %s", err.path, err.message);
+    if (!r || !sc) {
+        json_decref(r);
+        json_decref(b);
+        return;
+    }
+    double cd = num(deriv(r, 0, 0), "at"), h = 1e-3 * cd, pl[3], pg[3], m[3];
+    for (int k = 0; k < 3; k++) {
+        rd_ringpack_params p;
+        held_params(sc, cd + (k - 1) * h, &p);
+        m[k] = steady(&p, 5e5, &pl[k], &pg[k], 1) * 120.0 / p.engine.speed_rpm;
+    }
+    double want[3] = {(pl[2] - pl[0]) / (2 * h), (pg[2] - pg[0]) / (2 * h),
+                      (m[2] - m[0]) / (2 * h)};
+    double value[3] = {pl[1], pg[1], m[1]};
+    const char *name[3] = {"land", "groove", "blow-by"};
+    for (int o = 0; o < 3; o++) {
+        json_t *d = deriv(r, o, 0);
+        CHECK_REL(out_value(r, o), value[o], 1e-6, "held ring: the %s at C_d %.2f, steady %.9g",
+                  name[o], cd, value[o]);
+        CHECK_REL(num(d, "derivative"), want[o], 1e-4,
+                  "held ring: d(%s)/dC_d %.9g, the steady network's %.9g", name[o],
+                  num(d, "derivative"), want[o]);
+        CHECK(json_is_true(json_object_get(d, "significant")), "held ring: d(%s)/dC_d significant",
+              name[o]);
+        printf("held ring: d(%s)/dC_d = %.9g (steady network %.9g, estimate %.2g)\n", name[o],
+               num(d, "derivative"), want[o], num(d, "error_estimate"));
+    }
+    json_decref(r);
+    json_decref(b);
+}
+
 static void refused(const char *what, const char *spec, const char *path)
 {
     rd_scene *s = NULL;
@@ -185,5 +273,6 @@ int main(int argc, char **argv)
     test_modal();
     test_estimate_battery();
     test_ringpack(argc > 1 ? argv[1] : "examples");
+    test_ringpack_held();
     return check_done();
 }
