@@ -413,7 +413,11 @@ static int finish(struct rd_scene *s, rd_error *err)
         if (rc != RD_OK)
             return rc;
     }
+    rd_lift_params d;
+    rd_lift_params_default(&d);
     int rc = rd_engine_scene_finish(&o->eng, &l->engine, &l->bore, &l->friction, err);
+    if (rc == RD_OK)
+        rc = rd_friction_unread(&l->friction, &d.friction, err);
     if (rc == RD_OK)
         rc = map_finish(s, o, err);
     if (rc == RD_OK)

@@ -638,6 +638,9 @@ static int finish(struct rd_scene *s, rd_error *err)
                             p->periodic_tolerance, o->cycles);
     int rc = cylinder_finish(o, err);
     rc = rc ? rc : rd_engine_scene_finish(&o->eng, &p->engine, &p->bore, &p->friction, err);
+    rd_ringpack_params d;
+    rd_ringpack_params_default(&d);
+    rc = rc ? rc : rd_friction_unread(&p->friction, &d.friction, err);
     rc = rc ? rc : lube_finish(s, o, err);
     rc = rc ? rc : rd_ringpack_validate(&o->pack, err);
     return rc ? rc : solver_ranges(o, err);

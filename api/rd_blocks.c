@@ -427,6 +427,34 @@ void rd_static_scene_defaults(struct rd_scene *s)
 const char *const rd_kinematics_names[] = {"exact", "approximate", NULL};
 const char *const rd_friction_names[] = {"coulomb", "stribeck", "lubricated", NULL};
 
+int rd_friction_unread(const rd_friction_params *f, const rd_friction_params *z, rd_error *err)
+{
+    if (f->model == RD_FRICTION_LUBRICATED && f->coefficient != z->coefficient)
+        return rd_error_set(err, RD_EINVAL, "/physics/friction/coefficient",
+                            "/physics/friction/coefficient = %g is read by the coulomb and "
+                            "stribeck models only (model lubricated: its boundary friction is "
+                            "/physics/friction/asperity/boundary_coefficient).",
+                            f->coefficient);
+    if (f->model == RD_FRICTION_STRIBECK)
+        return RD_OK;
+    const struct {
+        const char *key;
+        double v, v0;
+    } st[] = {{"viscosity", f->viscosity, z->viscosity},
+              {"sommerfeld_transition", f->sommerfeld_transition, z->sommerfeld_transition},
+              {"hydrodynamic_slope", f->hydrodynamic_slope, z->hydrodynamic_slope}};
+    for (size_t k = 0; k < sizeof st / sizeof st[0]; k++) {
+        if (st[k].v == st[k].v0)
+            continue;
+        char at[64];
+        snprintf(at, sizeof at, "/physics/friction/%s", st[k].key);
+        return rd_error_set(
+            err, RD_EINVAL, at, "%s = %g is read by the stribeck model only (model is %s).", at,
+            st[k].v, f->model == RD_FRICTION_NONE ? "none" : rd_friction_names[f->model - 1]);
+    }
+    return RD_OK;
+}
+
 int rd_engine_scene_finish(const struct rd_engine_scene *es, rd_engine_params *e, rd_bore *b,
                            rd_friction_params *f, rd_error *err)
 {

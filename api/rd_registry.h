@@ -225,6 +225,12 @@ struct rd_engine_scene {
 extern const char *const rd_kinematics_names[]; /* enum rd_kinematics */
 extern const char *const rd_friction_names[];   /* enum rd_friction_model - 1 */
 
+/* A friction field the chosen model (f->model) does not read, given other
+ * than the analysis' default (z): RD_EINVAL naming it -- the Coulomb
+ * coefficient with the lubricated model (its boundary friction is the
+ * asperity block's), Stribeck's three with another model. */
+int rd_friction_unread(const rd_friction_params *f, const rd_friction_params *z, rd_error *err);
+
 /* Core's friction model, tilt table (borrowed: both tables, of the same
  * length, else RD_EINVAL at /engine/piston_tilt/tilt_deg) and bore from
  * what the scene gave. */
