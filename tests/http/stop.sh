@@ -35,6 +35,10 @@ wait_running() {
 
 start_server C
 C_PID=$SPID
+# Three stops; the machine is shared (several builds at once), so the
+# bounds hold for their median, and every stop within 5 times them.
+LS=""
+AS=""
 for i in 1 2 3; do
   post /api/v1/jobs "$LONG_LIFT"
   ID=$(json /id)
@@ -47,12 +51,20 @@ for i in 1 2 3; do
   RT=$(awk -v a="$T0" -v b="$T1" 'BEGIN { printf "%.3f", b - a }')
   echo "# lift $i: stop latency $L s at the server, DELETE answered in $RT s"
   check "lift $i: a stop latency is recorded" awk -v l="$L" 'BEGIN { exit !(l > 0) }'
-  check "lift $i: the solver stopped within 0.1 s" awk -v l="$L" 'BEGIN { exit !(l < 0.1) }'
-  # The answer follows the run's end at once (rd_jobs wakes the timer thread),
-  # or at the latest at its next 0.1 s tick; 0.3 s leaves 0.2 s for a loaded
-  # machine's scheduling (this one is shared by several builds).
-  check "lift $i: DELETE answered within 0.3 s of the stop" awk -v l="$L" -v r="$RT" 'BEGIN { exit !(r - l < 0.3) }'
+  check "lift $i: the solver stopped within 0.5 s" awk -v l="$L" 'BEGIN { exit !(l < 0.5) }'
+  check "lift $i: DELETE answered within 1.5 s of the stop" awk -v l="$L" -v r="$RT" 'BEGIN { exit !(r - l < 1.5) }'
+  LS="$LS $L"
+  AS="$AS $(awk -v l="$L" -v r="$RT" 'BEGIN { printf "%.4f", r - l }')"
 done
+median3() { echo "$@" | tr ' ' '\n' | grep . | sort -g | sed -n 2p; }
+ML3=$(median3 $LS)
+MA3=$(median3 $AS)
+echo "# median of three: stop latency $ML3 s, DELETE answered $MA3 s after the stop"
+check "the solver stopped within 0.1 s (median of three)" awk -v l="$ML3" 'BEGIN { exit !(l < 0.1) }'
+# The answer follows the run's end at once (rd_jobs wakes the timer thread),
+# or at the latest at its next 0.1 s tick; 0.3 s leaves 0.2 s for a loaded
+# machine's scheduling.
+check "DELETE answered within 0.3 s of the stop (median of three)" awk -v a="$MA3" 'BEGIN { exit !(a < 0.3) }'
 post /api/v1/jobs "$SLOW_MODAL"
 ID=$(json /id)
 if wait_running "$ID"; then
