@@ -30,7 +30,7 @@ struct lift_opts {
     int max_steps;                   /* /numerics/max_steps */
     struct rd_table gas_table[4];    /* crank_deg, above, behind, below */
     struct rd_contact_map_scene map; /* /bore/layers (its layers_given and map only) */
-    int ring_z_given;                /* /bore/ring_z_tdc_m */
+    struct rd_ring_depth ring_z;     /* /bore/ring_z_tdc_m */
 };
 
 #define LO(member) offsetof(struct lift_opts, member)
@@ -51,22 +51,10 @@ static const rd_block tilt_block = {
     "|piston_tilt_deg| + the largest |tilt_deg| at most 2 deg.",
     1, 0, tilt_fields};
 
-/* /bore/ring_z_tdc_m: a depth in m, read with /bore/layers. */
-static int ring_z_parse(const rd_field *f, json_t *v, const char *path, rd_scene *s, rd_error *err)
-{
-    struct lift_opts *o = s->opts;
-    (void)f;
-    if (!json_is_number(v))
-        return rd_schema_type_error(err, path, "a depth in m", v);
-    o->ring_z_given = 1;
-    o->lift.ring_z_tdc = json_number_value(v);
-    return RD_OK;
-}
-
 static json_t *ring_z_echo(const rd_scene *s)
 {
     const struct lift_opts *o = s->opts;
-    return o->ring_z_given ? rd_result_real(o->lift.ring_z_tdc) : json_null();
+    return o->ring_z.given ? rd_result_real(o->ring_z.z) : json_null();
 }
 
 static json_t *layers_echo(const rd_scene *s)
@@ -89,8 +77,8 @@ static const rd_field bore_fields[] = {
              "from TDC: the layers must cover the whole stroke. With layers, /bore/distortion is "
              "refused and /bore/diameter is the diameter of layers that give none; the full or "
              "modal ring runs (as on any distorted bore)."},
-    {"ring_z_tdc_m", RD_F_CUSTOM, LO(ring_z_given), .parse = ring_z_parse, .echo = ring_z_echo,
-     .extra = "{\"type\": \"number\", \"minimum\": 0, \"maximum\": 10}",
+    {"ring_z_tdc_m", RD_F_CUSTOM, LO(ring_z.given), .parse = rd_ring_depth_parse,
+     .echo = ring_z_echo, .extra = "{\"type\": \"number\", \"minimum\": 0, \"maximum\": 10}",
      .desc = "With /bore/layers (and only then): the ring's depth below the top of the bore at "
              "TDC, m, on the layers' z axis."},
     RD_BORE_ROUGHNESS_FIELD,
@@ -371,28 +359,14 @@ static int lube_finish(struct rd_scene *s, struct lift_opts *o, rd_error *err)
     return rc ? rc : rd_face_unread(&l->face, "/ring", err);
 }
 
-/* /bore/layers and /bore/ring_z_tdc_m: each given with the other; the
- * layers' diameters default to /bore/diameter (echoed as used); core
- * checks the map against the stroke. */
+/* /bore/layers and /bore/ring_z_tdc_m (rd_ring_depth_finish); core checks
+ * the map against the stroke. */
 static int map_finish(const rd_scene *s, struct lift_opts *o, rd_error *err)
 {
     rd_lift_params *l = &o->lift;
-    l->bore_map = NULL;
-    if (o->ring_z_given != o->map.layers_given)
-        return rd_error_set(err, RD_EINVAL, "/bore/ring_z_tdc_m",
-                            o->ring_z_given
-                                ? "/bore/ring_z_tdc_m is read with /bore/layers only (the ring's "
-                                  "depth on the map): give the layers or remove it."
-                                : "/bore/ring_z_tdc_m is missing: with /bore/layers, give the "
-                                  "ring's depth below the top of the bore at TDC (m).");
-    if (!o->map.layers_given)
-        return RD_OK;
     double D = l->bore.diameter > 0.0 ? l->bore.diameter : s->ring.diameter;
-    for (int i = 0; i < o->map.map->n_layers; i++)
-        if (o->map.map->layer[i].bore.diameter == 0.0)
-            o->map.map->layer[i].bore.diameter = D;
-    l->bore_map = o->map.map;
-    return RD_OK;
+    l->ring_z_tdc = o->ring_z.z;
+    return rd_ring_depth_finish(&o->map, &o->ring_z, D, "the ring's", &l->bore_map, err);
 }
 
 /* The optional physics the scene named, the gas tables, the engine's tilt,

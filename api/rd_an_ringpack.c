@@ -21,6 +21,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "rd_contact_map.h"
 #include "rd_json.h"
 #include "rd_registry.h"
 #include "rd_ringpack.h"
@@ -39,6 +40,8 @@ struct pack_opts {
     /* each ring's /rings/i/ring/face: given, and its table (owned) */
     int face_given[RD_RINGPACK_RINGS_MAX], face_table_given[RD_RINGPACK_RINGS_MAX];
     struct rd_table face_table[RD_RINGPACK_RINGS_MAX][2];
+    struct rd_contact_map_scene map; /* /bore/layers (its layers_given and map only) */
+    struct rd_ring_depth ring_z;     /* /bore/ring_z_tdc_m: the top ring's */
 };
 
 #define PO(member) offsetof(struct pack_opts, member)
@@ -82,6 +85,18 @@ static const rd_block tilt_block = {
     "modelled.",
     1, 0, tilt_fields};
 
+static json_t *layers_echo(const rd_scene *s)
+{
+    const struct pack_opts *o = s->opts;
+    return o->map.layers_given ? rd_bore_layers_json(s, o->map.map) : json_null();
+}
+
+static json_t *ring_z_echo(const rd_scene *s)
+{
+    const struct pack_opts *o = s->opts;
+    return o->ring_z.given ? rd_result_real(o->ring_z.z) : json_null();
+}
+
 static const rd_field bore_fields[] = {
     RD_BORE_FIELDS(PO,
                    "Bore diameter D, m; 0 = the rings' diameter; otherwise within 2 % of it (the "
@@ -91,6 +106,22 @@ static const rd_field bore_fields[] = {
                    "bore's angle 0 (ring i sees phi_k - gap_angle_deg). Every free ring then needs "
                    "a flexible model (auto: full; axial and rigid are refused) and starts from its "
                    "static equilibrium in this bore, as in lift."),
+    {"layers", RD_F_CUSTOM, PO(map.layers_given), .block = &rd_block_bore_layer, RD_MIN(1),
+     RD_MAX(RD_BORE_LAYERS_MAX), .parse = rd_contact_map_parse_layers, .echo = layers_echo,
+     .desc = "A bore that changes down its height (a bore card, as lift's): 1 to 50 {z, "
+             "diameter, distortion}, z strictly increasing, linear in z between them, phases "
+             "from the bore's angle 0 (ring i sees phi_k - gap_angle_deg). Each moving ring "
+             "meets the bore at its own depth: ring_z_tdc_m plus the rings and lands above it "
+             "plus the piston's travel from TDC; the layers must cover every moving ring's whole "
+             "travel. With layers, /bore/distortion is refused and /bore/diameter is the "
+             "diameter of layers that give none; as on any distorted bore each moving ring runs "
+             "a flexible model (auto: full)."},
+    {"ring_z_tdc_m", RD_F_CUSTOM, PO(ring_z.given), .parse = rd_ring_depth_parse,
+     .echo = ring_z_echo, .extra = "{\"type\": \"number\", \"minimum\": 0, \"maximum\": 10}",
+     .desc = "With /bore/layers (and only then): the top ring's depth below the top of the bore "
+             "at TDC, m, on the layers' z axis (the point of the ring lift's ring_z_tdc_m "
+             "names); ring i sits lower by the axial heights of the rings above it and the "
+             "heights of the lands between them."},
     RD_BORE_ROUGHNESS_FIELD,
     {.key = NULL},
 };
@@ -539,6 +570,7 @@ static void cleanup(void *opts)
             free(o->face_table[i][k].v);
     }
     rd_engine_scene_cleanup(&o->eng);
+    rd_contact_map_cleanup(&o->map);
 }
 
 /* A table or the synthetic trace, never both; the table's two columns alike. */
@@ -641,6 +673,10 @@ static int finish(struct rd_scene *s, rd_error *err)
     rd_ringpack_params d;
     rd_ringpack_params_default(&d);
     rc = rc ? rc : rd_friction_unread(&p->friction, &d.friction, err);
+    p->ring_z_tdc = o->ring_z.z;
+    double D = p->bore.diameter > 0.0 ? p->bore.diameter : p->rings[0].ring.diameter;
+    rc =
+        rc ? rc : rd_ring_depth_finish(&o->map, &o->ring_z, D, "the top ring's", &p->bore_map, err);
     rc = rc ? rc : lube_finish(s, o, err);
     rc = rc ? rc : rd_ringpack_validate(&o->pack, err);
     return rc ? rc : solver_ranges(o, err);

@@ -122,6 +122,40 @@ int rd_contact_map_parse_layers(const rd_field *f, json_t *v, const char *path, 
     return RD_OK;
 }
 
+int rd_ring_depth_parse(const rd_field *f, json_t *v, const char *path, rd_scene *s, rd_error *err)
+{
+    struct rd_ring_depth *rz =
+        (void *)((char *)s->opts + f->offset - offsetof(struct rd_ring_depth, given));
+    if (!json_is_number(v))
+        return rd_schema_type_error(err, path, "a depth in m", v);
+    rz->given = 1;
+    rz->z = json_number_value(v);
+    return RD_OK;
+}
+
+int rd_ring_depth_finish(struct rd_contact_map_scene *m, const struct rd_ring_depth *rz, double D,
+                         const char *who, const rd_bore_map **map, rd_error *err)
+{
+    *map = NULL;
+    if (rz->given && !m->layers_given)
+        return rd_error_set(err, RD_EINVAL, "/bore/ring_z_tdc_m",
+                            "/bore/ring_z_tdc_m is read with /bore/layers only (%s depth on the "
+                            "map): give the layers or remove it.",
+                            who);
+    if (m->layers_given && !rz->given)
+        return rd_error_set(err, RD_EINVAL, "/bore/ring_z_tdc_m",
+                            "/bore/ring_z_tdc_m is missing: with /bore/layers, give %s depth "
+                            "below the top of the bore at TDC (m).",
+                            who);
+    if (!m->layers_given)
+        return RD_OK;
+    for (int i = 0; i < m->map->n_layers; i++)
+        if (m->map->layer[i].bore.diameter == 0.0)
+            m->map->layer[i].bore.diameter = D;
+    *map = m->map;
+    return RD_OK;
+}
+
 /* The layers of `m` as the scene gives them. */
 json_t *rd_bore_layers_json(const rd_scene *s, const rd_bore_map *m)
 {

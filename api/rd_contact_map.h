@@ -61,6 +61,22 @@ int rd_contact_map_parse_height(const rd_field *f, struct json_t *v, const char 
                                 struct rd_scene *s, rd_error *err);
 struct json_t *rd_contact_map_echo_height(const struct rd_scene *s);
 
+/* /bore/ring_z_tdc_m of lift and the ring pack: the (top) ring's depth
+ * below the top of the bore at TDC, m, read with /bore/layers. */
+struct rd_ring_depth {
+    int given;
+    double z;
+};
+/* Into the struct rd_ring_depth whose `given` is at the field's offset in
+ * the analysis' options. */
+int rd_ring_depth_parse(const rd_field *f, struct json_t *v, const char *path, struct rd_scene *s,
+                        rd_error *err);
+/* Lift's and the ring pack's map: /bore/layers and /bore/ring_z_tdc_m each
+ * given with the other (`who`: whose depth, for the message); the layers'
+ * diameters default to D (echoed as used); *map the layers, or NULL. */
+int rd_ring_depth_finish(struct rd_contact_map_scene *m, const struct rd_ring_depth *rz, double D,
+                         const char *who, const rd_bore_map **map, rd_error *err);
+
 /* After the plain bore's checks: the map's rules (named in each message),
  * the fit of the points, and the bore at the height. */
 int rd_contact_map_finish(struct rd_scene *s, rd_error *err);

@@ -204,10 +204,25 @@ typedef struct rd_ringpack_params {
      * (auto: rigid); the axial ring takes none of them. */
     rd_bore bore;
     int active_area;
+    /* A bore that changes down its height (rd_bore_map.h; borrowed, NULL:
+     * none), its layers' phases from the bore's angle 0 as bore's: each
+     * moving ring meets it at its own depth, ring_z_tdc (the top ring's
+     * depth below the top of the bore at TDC, m) plus the rings and lands
+     * above it (rd_ringpack_ring_depth) plus the piston's travel, as the
+     * lift analysis' ring does (rd_lift_params.bore_map); every layer the
+     * same bore gives /bore/distortion's run bit for bit.  Like a distorted
+     * bore it needs a flexible ring (auto: full). */
+    const rd_bore_map *bore_map;
+    double ring_z_tdc;
     /* Test hook: the ring faces' pressures from these gauge tables (above,
      * below; behind for friction) instead of the network's.  NULL normally. */
     const rd_gas_params *face_tables;
 } rd_ringpack_params;
+
+/* Ring i's depth at TDC on a bore map: ring_z_tdc plus, for every ring
+ * above it, its axial height and the land below it (rings[j].land_height
+ * of the ring under it), m. */
+double rd_ringpack_ring_depth(const rd_ringpack_params *p, int i);
 
 typedef struct rd_ringpack_result {
     int samples, n_rings, n_volumes, n_flows, cycles;

@@ -50,6 +50,11 @@ int rd_ringpack_lube_validate(const rd_ringpack_params *p, rd_error *err)
                             "/bore/distortion with the lubricated friction model: each ring's "
                             "film is one for its whole face (axisymmetric); a film varying around "
                             "the ring is not modelled. Remove the distortion, or use coulomb.");
+    if (!rc && p->bore_map)
+        return rd_error_set(err, RD_EINVAL, "/bore/layers",
+                            "/bore/layers with the lubricated friction model: each ring's film is "
+                            "one for its whole face (a round bore); a film varying around the "
+                            "ring is not modelled. Remove the layers, or use coulomb.");
     if (!rc && (p->engine.piston_tilt_deg != 0.0 || p->engine.tilt_points > 0))
         return rd_error_set(err, RD_EINVAL, "/engine/piston_tilt_deg",
                             "a piston tilt with the lubricated friction model: the film takes the "

@@ -74,6 +74,7 @@ struct rd_packring {
     double circ;                 /* pi d */
     rd_lift_flank_track track;
     rd_lift_run events;
+    rd_bore_map map; /* a bore map in the ring's frame (its gap at angle 0) */
     /* its Newton solver: the second-order one (rd_lift_newton.c) for a form
      * with blocks, else CVODE's dense or band LU of I - gamma J from the
      * form's Jacobian, as the lift driver picks (rd_lift_driver.c) */
@@ -148,6 +149,17 @@ static int lift_params(const rd_ringpack_model *m, int i, rd_packring *L)
     L->tab_top[0] = L->tab_top[1] = peak;
     L->tab_zero[0] = L->tab_zero[1] = 0.0;
     lp->gas = (rd_gas_params){2, L->tab_deg, L->tab_top, L->tab_zero, L->tab_zero, p->active_area};
+    if (p->bore_map) { /* the map in the ring's frame, at the ring's own depth */
+        L->map = *p->bore_map;
+        for (int j = 0; j < L->map.n_layers; j++) {
+            rd_bore *b = &L->map.layer[j].bore;
+            for (int k = 0; k < b->n_distortion && k < RD_BORE_ORDERS_MAX; k++)
+                b->distortion[k].phase_deg =
+                    wrap_deg(b->distortion[k].phase_deg - p->rings[i].gap_angle_deg);
+        }
+        lp->bore_map = &L->map;
+        lp->ring_z_tdc = rd_ringpack_ring_depth(p, i);
+    }
     return ring_frame(p, i, lp, &L->tilt);
 }
 
@@ -233,7 +245,7 @@ int rd_packring_initial(rd_packring *L, double atol, double *y, double *ab, rd_e
 {
     rd_lift_setup su = {0};
     const rd_ring_params *rp = rd_ring_get_params(L->ring);
-    if (rd_bore_distorted(&L->lp.bore, rp->diameter)) { /* its static equilibrium there */
+    if (rd_lift_bore_distorted(&L->lp, rp->diameter)) { /* its static equilibrium there */
         int rc;
         free(L->y0);
         if (!(L->y0 = malloc(12 * (size_t)L->m.n * sizeof *L->y0)))
@@ -390,14 +402,25 @@ int rd_packring_solver_solve(rd_packring *L, double *x, double *b)
     "it "                                                                                        \
     "is exact for an axisymmetric pack"
 
+/* The bore or a layer of its map out of round or not of the rings'
+ * diameter. */
+static int bore_distorted(const rd_ringpack_params *p)
+{
+    double d = p->rings[0].ring.diameter;
+    int distorted = rd_bore_distorted(&p->bore, d);
+    for (int j = 0; p->bore_map && j < p->bore_map->n_layers; j++)
+        distorted |= rd_bore_distorted(&p->bore_map->layer[j].bore, d);
+    return distorted;
+}
+
 static int needs_flexible(const rd_ringpack_params *p)
 {
-    return rd_bore_distorted(&p->bore, p->rings[0].ring.diameter) || rd_engine_tilted(&p->engine);
+    return bore_distorted(p) || rd_engine_tilted(&p->engine);
 }
 
 int rd_packring_auto(const rd_ringpack_params *p, const char **why)
 {
-    if (rd_bore_distorted(&p->bore, p->rings[0].ring.diameter)) {
+    if (bore_distorted(p)) {
         *why = BORE_WHY;
         return RD_LIFT_MODEL_FULL;
     }
@@ -424,12 +447,13 @@ static int validate_model(const rd_ringpack_params *p, int i, rd_error *err)
         snprintf(at, sizeof at, "/numerics/model");
     const char *name = rd_ringpack_model_name(k);
     if (needs_flexible(p) && (k == RD_RINGPACK_AXIAL || k == RD_LIFT_MODEL_RIGID)) {
-        int bore = rd_bore_distorted(&p->bore, r->ring.diameter);
+        int bore = bore_distorted(p);
         return rd_error_set(err, RD_EINVAL, at,
                             "%s = %s cannot represent %s: the %s varies around the ring; use "
                             "auto, modal or full.",
                             at, name,
-                            bore ? "a distorted bore (/bore/distortion, /bore/diameter)"
+                            bore ? "a distorted bore (/bore/distortion, /bore/layers, "
+                                   "/bore/diameter)"
                                  : "a tilted piston (/engine/piston_tilt_deg, /engine/piston_tilt)",
                             bore ? "contact pressure" : "flank gap");
     }
@@ -451,6 +475,39 @@ static int validate_model(const rd_ringpack_params *p, int i, rd_error *err)
     return RD_OK;
 }
 
+double rd_ringpack_ring_depth(const rd_ringpack_params *p, int i)
+{
+    double z = p->ring_z_tdc;
+    for (int j = 1; j <= i && j < p->n_rings; j++) {
+        rd_section s; /* the section's bounding box: its axial height */
+        rd_section_init(&s, &p->rings[j - 1].ring);
+        z += s.h + p->rings[j].land_height;
+    }
+    return z;
+}
+
+/* A bore map's own rules, then that it covers moving ring i's whole
+ * travel (named by ring; the lift analysis' own check then holds). */
+static int map_covers(const rd_ringpack_params *p, int i, rd_error *err)
+{
+    const rd_bore_map *m = p->bore_map;
+    if (!m || m->n_layers < 1)
+        return RD_OK;
+    int rc = rd_bore_map_validate(m, p->rings[0].ring.diameter, err);
+    if (!rc)
+        rc = rd_error_range(p->ring_z_tdc, 0.0, RD_BORE_Z_MAX, "/bore/ring_z_tdc_m", "m", err);
+    double lo = rd_ringpack_ring_depth(p, i), hi = lo + 2.0 * p->engine.crank_radius;
+    double top = m->layer[0].z, bottom = m->layer[m->n_layers - 1].z;
+    if (!rc && (lo < top || hi > bottom))
+        return rd_error_set(err, RD_EINVAL, "/bore/layers",
+                            "ring %d runs from %g m (TDC: /bore/ring_z_tdc_m = %g m for the top "
+                            "ring, plus the rings and lands above it) to %g m (BDC) down the "
+                            "bore, but /bore/layers covers %g to %g m: the map must cover every "
+                            "moving ring's whole travel.",
+                            i + 1, lo, p->ring_z_tdc, hi, top, bottom);
+    return rc;
+}
+
 int rd_packring_validate(const rd_ringpack_params *p, rd_error *err)
 {
     if (p->active_area != RD_GAS_AREA_FIXED && p->active_area != RD_GAS_AREA_DYNAMIC)
@@ -469,7 +526,13 @@ int rd_packring_validate(const rd_ringpack_params *p, rd_error *err)
         lp.bore = p->bore;
         lp.groove = r->groove;
         lp.model = RD_LIFT_MODEL_FULL;
-        int rc = rd_lift_validate(&lp, &r->ring, r->segments, err);
+        int rc = map_covers(p, i, err);
+        if (!rc && p->bore_map) {
+            lp.bore_map = p->bore_map;
+            lp.ring_z_tdc = rd_ringpack_ring_depth(p, i);
+        }
+        if (!rc)
+            rc = rd_lift_validate(&lp, &r->ring, r->segments, err);
         if (!rc)
             rc = validate_model(p, i, err);
         if (rc)

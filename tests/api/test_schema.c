@@ -277,9 +277,10 @@ static const struct {
     /* a bore map (its layers; points with 36 angles, enough for fit_order 16)
      * needs a height */
     {"/bore/layers/", "{\"contact\": {\"height\": 0}}", "contact"},
-    /* lift's: the ring's depth on it, a layer alone (a stroke of 0 .. 2 crank radii
+    /* lift's and the ring pack's: the (top) ring's depth on it, a layer alone (a stroke of 0 .. 2 crank radii
      * outside it is the map's rule, refused at /bore/layers) */
     {"/bore/layers/", "{\"bore\": {\"ring_z_tdc_m\": 0}}", "lift"},
+    {"/bore/layers/", "{\"bore\": {\"ring_z_tdc_m\": 0}}", "ringpack"},
     {"/bore/points/",
      "{\"contact\": {\"height\": \"all\"}, \"bore\": {\"points\": {"
      "\"theta_deg\": [0,10,20,30,40,50,60,70,80,90,100,110,120,130,140,150,160,170,"

@@ -82,6 +82,9 @@ typedef struct extras {
     double rtol, atol, step_deg; /* 0: the defaults below */
     int lift_cycles;             /* the lift run's, its last compared; 0: 1 */
     double band;                 /* output.flank_band of both runs (BANDS below) */
+    const rd_bore_map *map;      /* the pack's bore map (its phases from the bore's angle 0) */
+    const rd_bore_map *lift_map; /* the same map as the ring sees it */
+    double ring_z;               /* the ring's depth on both maps at TDC, m */
 } extras;
 
 /* The last comparison's pack events (crank deg, the first 8) and its
@@ -186,6 +189,8 @@ static void pack_vs_lift_x(int model, double mu, const extras *x, const char *wh
     p.engine.tilt_crank_deg = x->tilt.tilt_crank_deg;
     p.engine.tilt_deg = x->tilt.tilt_deg;
     p.bore = x->bore;
+    p.bore_map = x->map;
+    p.ring_z_tdc = x->ring_z;
     p.active_area = x->area;
     p.flank_band = x->band;
     int want = model == RD_LIFT_MODEL_AUTO ? x->expect : model;
@@ -235,6 +240,8 @@ static void pack_vs_lift_x(int model, double mu, const extras *x, const char *wh
     lp.engine.tilt_crank_deg = x->lift_tilt.tilt_crank_deg;
     lp.engine.tilt_deg = x->lift_tilt.tilt_deg;
     lp.bore = x->lift_bore;
+    lp.bore_map = x->lift_map;
+    lp.ring_z_tdc = x->ring_z;
     lp.groove = p.rings[0].groove;
     lp.friction = p.friction;
     lp.gravity = p.gravity;
@@ -560,6 +567,70 @@ static void test_bore(void)
           dl);
 }
 
+/* A bore map along the stroke (rd_ringpack_params.bore_map): the pack's
+ * ring, its gap at 90 deg, on a map whose order 2 grows down the bore
+ * (2, 10, 16 um at 0, 50, 120 mm; phase 30 deg from the bore's angle 0),
+ * against the lift run (two cycles, the last compared) on the same map in
+ * the ring's frame (phase -60) at the same depth (4 mm at TDC): the flank
+ * changes within test_bore's tolerances, the friction within MAP_FRICTION
+ * of its size (measured 8.7e-4; 1.3e-4 with every layer the same bore, as
+ * test_bore).  The friction hardly depends on the depth (its normal force
+ * is mostly the pretension's, whatever the bore's shape: 9.8e-4 with the
+ * lift run 20 mm lower), so the depth is checked through the flank
+ * changes: 20 mm lower, the landings move 0.23 deg (0.012 at the same
+ * depth).  Ring i's depth: ring_z_tdc plus the rings and lands above it. */
+#define MAP_FRICTION 2e-3
+static rd_bore_map map_pack, map_lift;
+
+static void map_layers(rd_bore_map *m, double phase)
+{
+    const double z[3] = {0.0, 0.05, 0.12}, a[3] = {2e-6, 10e-6, 16e-6};
+    memset(m, 0, sizeof *m);
+    m->n_layers = 3;
+    m->residual_rms = NAN;
+    for (int j = 0; j < 3; j++) {
+        m->layer[j].z = z[j];
+        m->layer[j].bore.n_distortion = 1;
+        m->layer[j].bore.distortion[0] = (rd_distortion){2, a[j], phase};
+    }
+}
+
+static void test_map(void)
+{
+    map_layers(&map_pack, 30.0);
+    map_layers(&map_lift, -60.0);
+    extras x = {.gap_deg = 90.0, .expect = RD_LIFT_MODEL_FULL, .segments = 12, .lift_cycles = 2};
+    x.map = &map_pack;
+    x.lift_map = &map_lift;
+    x.ring_z = 0.004;
+    double dl, dg;
+    pack_vs_lift_x(RD_LIFT_MODEL_AUTO, 0.1, &x, "bore map, gap at 90", &dl, &dg);
+    double same = friction_gap;
+    CHECK(dl <= TOL_LEAVE && dg <= TOL_LAND, "map: leaves %.4f, landings %.4f deg", dl, dg);
+    CHECK(same <= MAP_FRICTION, "map: friction %.3g of its size", same);
+    double dg_same = dg;
+    /* the depth matters: the lift run 20 mm lower on the same map */
+    rd_bore_map lower = map_lift;
+    for (int j = 0; j < lower.n_layers; j++)
+        lower.layer[j].z -= 0.02;
+    lower.layer[0].z = 0.0;
+    x.lift_map = &lower;
+    pack_vs_lift_x(RD_LIFT_MODEL_AUTO, 0.1, &x, "bore map, lift run 20 mm lower", &dl, &dg);
+    printf("map: friction within %.2e of its size; landings within %.4f deg (%.2e and %.4f deg "
+           "with the lift run 20 mm lower)\n",
+           same, dg_same, friction_gap, dg);
+    CHECK(dg > 5.0 * dg_same, "map: 20 mm lower, the landings %.4f deg apart (same depth %.4f)", dg,
+          dg_same);
+    rd_ringpack_params p;
+    rd_ringpack_params_thesis(&p);
+    p.ring_z_tdc = 0.002;
+    double want = 0.002 + p.rings[0].ring.axial_height + p.rings[1].land_height +
+                  p.rings[1].ring.axial_height + p.rings[2].land_height;
+    CHECK(fabs(rd_ringpack_ring_depth(&p, 2) - want) < 1e-15 &&
+              rd_ringpack_ring_depth(&p, 0) == 0.002,
+          "ring depths: the third ring at %g m, want %g", rd_ringpack_ring_depth(&p, 2), want);
+}
+
 /* (6) Dynamic active areas, closed form.  A ring pressed on its lower
  * flank by fixed gauge face pressures (the pack's test hook): above P_a,
  * behind P_b, below 0.  Sealing on the flank, its bottom face sees across
@@ -660,6 +731,7 @@ int main(void)
     test_mass_flexible();
     test_tilt();
     test_bore();
+    test_map();
     test_dynamic_seated();
     test_dynamic_lift_and_mass();
     return check_done();
