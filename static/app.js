@@ -159,14 +159,14 @@ function showEntry(entry) {
 
 // ---- compare runs: a kept result drawn dashed under the next ones --------
 
-const runLabel = (job) => `job ${job?.id ?? 'unknown'}`;
+const keptLabel = (job) => `job ${job?.id ?? 'unknown'}`;
 
 // The keep / clear buttons and the note for the shown entry; a kept run of
 // this analysis (another job) is drawn over its charts.
 function showCompare(entry) {
   const k = keptRun();
   const mine = k && k.key === state.analysis.id;
-  const same = mine && k.label === runLabel(entry.job);
+  const same = mine && k.label === keptLabel(entry.job);
   $('compare').hidden = false;
   $('keep-run').disabled = Boolean(same);
   $('clear-kept').hidden = !k;
@@ -183,7 +183,7 @@ function keepShown() {
   const entry = state.results.get(state.analysis.id);
   if (!entry) return;
   clearKept($('result-body'));
-  keepRun($('result-body'), state.analysis.id, runLabel(entry.job));
+  keepRun($('result-body'), state.analysis.id, keptLabel(entry.job));
   showCompare(entry);
 }
 
@@ -504,7 +504,7 @@ watchCharts($('result-body'), () => {
   addExportButtons($('result-body'), `ringdyn-${state.analysis.id}-${entry?.job?.id ?? 'result'}`);
   // A chart redrawn (a mode shape, a cycle zoom) gets the kept run again.
   const k = keptRun();
-  if (entry && k && k.key === state.analysis.id && k.label !== runLabel(entry.job)) overlayKept($('result-body'), k.key);
+  if (entry && k && k.key === state.analysis.id && k.label !== keptLabel(entry.job)) overlayKept($('result-body'), k.key);
 });
 $('keep-run').addEventListener('click', keepShown);
 $('clear-kept').addEventListener('click', clearShownKept);

@@ -7,6 +7,7 @@ import assert from 'node:assert/strict';
 import fs from 'node:fs';
 import path from 'node:path';
 import * as fixtures from './fixtures.mjs';
+import { interactTests } from './interact.mjs';
 
 const CHROMIUM = '/usr/bin/chromium';
 const BASE = (process.env.RINGDYN_URL || '').replace(/\/$/, '');
@@ -3293,6 +3294,14 @@ test('bore map renderers: an "all" contact lists every layer and marks the one p
     assert.deepEqual(drawn[k].rows, [], k);
   }
   assert.deepEqual(pageErrors, []);
+});
+
+// Hover readout, zoom, compare runs and the error list (interact.mjs).
+interactTests({ page: () => page, BASE, runAnalysis, selectTab, shownJob, pageErrors });
+test('interact tests leave the page at 1280 px', async () => {
+  await page.setViewportSize({ width: 1280, height: 800 });
+  await page.goto(`${BASE}/`);
+  await page.waitForSelector('#tab-modal[aria-selected="true"]');
 });
 
 test('no console errors or uncaught exceptions', () => {
