@@ -5,7 +5,8 @@
 // is a series, inverted through them to data; a chart without lines offers
 // its markers (circles, kindMarker's triangles) instead.  So every view gets
 // this without telling it its data, and the numbers are the drawn ones: to
-// 0.01 viewBox units, a few 1e-5 of the axis span, shown to 1e-4 of it.
+// 0.01 viewBox units, a few 1e-5 of the axis span, shown to 1e-3 of it
+// (finer would show the drawing's rounding: 17.999 for 18).
 //
 //   hover / touch   a readout of the nearest point of each series (x, y)
 //   drag            zooms to the dragged range of x (and of y when the box is
@@ -101,10 +102,10 @@ export function seriesOf(st) {
 
 // ---- formatting -----------------------------------------------------------
 
-// `v` to about 1e-4 of `span`: the resolution the drawing holds.
+// `v` to about 1e-3 of `span` (the drawing holds a few 1e-5 of it).
 export function formatValue(v, span) {
   if (!Number.isFinite(v)) return '—';
-  const res = Math.abs(span) * 1e-4 || Math.abs(v) * 1e-4 || 1e-12;
+  const res = Math.abs(span) * 1e-3 || Math.abs(v) * 1e-3 || 1e-12;
   if (Math.abs(v) < res) return '0';
   const digits = Math.floor(Math.log10(Math.abs(v))) - Math.floor(Math.log10(res)) + 1;
   return String(Number(v.toPrecision(Math.min(12, Math.max(1, digits)))));

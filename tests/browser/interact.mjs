@@ -69,9 +69,9 @@ export function interactTests({ page: pageOf, BASE, runAnalysis, selectTab, show
     })));
   }
 
-  // A readout's text is its value to 1e-4 of the span (plotui.js formatValue).
+  // A readout's text is its value to 1e-3 of the span (plotui.js formatValue).
   const shownClose = (text, v, span, what) => {
-    assert.ok(Math.abs(Number(text) - v) <= Math.abs(span) * 2e-4, `${what}: shown ${text} for ${v}`);
+    assert.ok(Math.abs(Number(text) - v) <= Math.abs(span) * 1e-3, `${what}: shown ${text} for ${v}`);
   };
 
   async function drag(sel, f0, f1, fy0 = 0.5, fy1 = fy0 + 0.01) {
