@@ -412,6 +412,7 @@ export function interact(s) {
     if (!p || !inBox(st.plot.box, p)) return;
     drag = { x: p.x, y: p.y, clientX: e.clientX, clientY: e.clientY, id: e.pointerId };
     if (e.pointerType === 'mouse') e.preventDefault(); // no text selection
+    else showHover(st, e); // a tap has no move before it
   });
   s.addEventListener('pointermove', (e) => {
     showHover(st, e);
