@@ -436,7 +436,13 @@ export function interact(s) {
     if (b.x1 - b.x0 < 1) return;
     const z = shownScales(st);
     zoomTo(s, [z.x.invert(b.x0), z.x.invert(b.x1)], b.tall ? [z.y.invert(b.y1), z.y.invert(b.y0)] : null);
+    // The click that ends a drag is not a click on what it ends over (a mode's marker).
+    st.dragged = true;
+    setTimeout(() => { st.dragged = false; }, 0);
   };
+  s.addEventListener('click', (e) => {
+    if (st.dragged) { e.stopPropagation(); e.preventDefault(); st.dragged = false; }
+  }, true);
   s.addEventListener('pointerup', (e) => end(e, true));
   s.addEventListener('pointercancel', (e) => end(e, false));
   s.addEventListener('pointerleave', (e) => { if (e.pointerType === 'mouse' && !drag) hideHover(st); });
