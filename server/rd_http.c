@@ -94,6 +94,31 @@ static enum route match_route(const char *url, char *arg, size_t argsz)
     return ROUTE_STATIC;
 }
 
+/* The route template a request is counted under in /metrics (bounded:
+ * never the raw URL). */
+static rd_metrics_route metrics_route(const char *url)
+{
+    char arg[PATH_ARG_MAX];
+    static const rd_metrics_route of[] = {
+        [ROUTE_NONE] = RD_METRICS_ROUTE_OTHER,
+        [ROUTE_JOBS] = RD_METRICS_ROUTE_JOBS,
+        [ROUTE_JOB] = RD_METRICS_ROUTE_JOB,
+        [ROUTE_JOB_CSV] = RD_METRICS_ROUTE_JOB_CSV,
+        [ROUTE_EXAMPLES] = RD_METRICS_ROUTE_EXAMPLES,
+        [ROUTE_EXAMPLE] = RD_METRICS_ROUTE_EXAMPLE,
+        [ROUTE_HEALTH] = RD_METRICS_ROUTE_HEALTH,
+        [ROUTE_OPENAPI] = RD_METRICS_ROUTE_OPENAPI,
+        [ROUTE_METRICS] = RD_METRICS_ROUTE_METRICS,
+        [ROUTE_STATIC] = RD_METRICS_ROUTE_STATIC,
+        [ROUTE_SWEEPS] = RD_METRICS_ROUTE_SWEEPS,
+        [ROUTE_SWEEP] = RD_METRICS_ROUTE_SWEEP,
+        [ROUTE_SWEEP_CSV] = RD_METRICS_ROUTE_SWEEP_CSV,
+        [ROUTE_CALIBRATIONS] = RD_METRICS_ROUTE_CALIBRATIONS,
+    };
+    enum route r = url ? match_route(url, arg, sizeof arg) : ROUTE_NONE;
+    return (size_t)r < sizeof of / sizeof of[0] ? of[r] : RD_METRICS_ROUTE_OTHER;
+}
+
 /* Job data, examples and metrics need the token; the page, the OpenAPI
  * document and the health check (no job data) do not, so that the page can
  * load and ask for the token and a container health check needs no secret. */
@@ -262,6 +287,10 @@ static enum MHD_Result on_request(void *cls, struct MHD_Connection *c, const cha
             return MHD_NO; /* closes the connection */
         *req_cls = rq;
         rq->c = c;
+        rq->t0 = rd_clock_mono_s();
+        rq->metrics_route = metrics_route(url);
+        if (method && strlen(method) < sizeof rq->method)
+            memcpy(rq->method, method, strlen(method) + 1);
         const union MHD_ConnectionInfo *info =
             MHD_get_connection_info(c, MHD_CONNECTION_INFO_SOCKET_CONTEXT);
         rq->conn = info ? info->socket_context : NULL;

@@ -98,6 +98,9 @@ struct request {
     const char *cache;   /* X-Ringdyn-Cache of a submission: "hit", "miss", "bypass", or NULL */
     double time_limit_s; /* ?time_limit_s=, 0 when not given */
     int replayed;        /* the Idempotency-Key named an earlier job with this body */
+    double t0;           /* CLOCK_MONOTONIC at its first call: the request's duration */
+    rd_metrics_route metrics_route; /* its route template for /metrics */
+    char method[8];                 /* its method ("" when longer: counted as "other") */
 };
 
 enum route {

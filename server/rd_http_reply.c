@@ -13,6 +13,7 @@
 #include <jansson.h>
 
 #include "rd_api.h"
+#include "rd_clock.h"
 #include "rd_gzip.h"
 
 /* What a cached answer puts before the cached job's JSON (minus its '{'). */
@@ -40,8 +41,14 @@ enum MHD_Result rd_http_send_response(rd_http *h, struct MHD_Connection *c, stru
     rd_http_set_busy(h, rq);
     enum MHD_Result ok = MHD_queue_response(c, (unsigned)status, r);
     MHD_destroy_response(r);
-    if (ok == MHD_YES)
-        rd_metrics_count_http(h->metrics, status);
+    if (ok == MHD_YES) {
+        /* A page file that does not exist is not the page: any URL would
+         * otherwise count as "static". */
+        rd_metrics_route route = rq->metrics_route;
+        if (route == RD_METRICS_ROUTE_STATIC && status == MHD_HTTP_NOT_FOUND)
+            route = RD_METRICS_ROUTE_OTHER;
+        rd_metrics_count_http(h->metrics, route, rq->method, status, rd_clock_mono_s() - rq->t0);
+    }
     return ok;
 }
 

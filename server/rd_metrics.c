@@ -23,6 +23,33 @@ static const double duration_bounds[] = {0.01, 0.05, 0.1, 0.25, 0.5, 1,  2.5,
                                          5,    10,   30,  60,   120, 300};
 #define NBOUNDS (sizeof duration_bounds / sizeof duration_bounds[0])
 
+/* Upper bounds (s) of the HTTP request-duration buckets: most answers take
+ * well under a millisecond; a long poll waits up to 300 s. */
+static const double request_bounds[] = {0.0005, 0.001, 0.0025, 0.005, 0.01, 0.025, 0.05, 0.1,
+                                        0.25,   0.5,   1,      2.5,   5,    10,    30,   300};
+#define NREQ_BOUNDS (sizeof request_bounds / sizeof request_bounds[0])
+
+static const char *const route_names[RD_METRICS_NROUTES] = {"/api/v1/jobs",
+                                                            "/api/v1/jobs/{id}",
+                                                            "/api/v1/jobs/{id}/result.csv",
+                                                            "/api/v1/sweeps",
+                                                            "/api/v1/sweeps/{id}",
+                                                            "/api/v1/sweeps/{id}/table.csv",
+                                                            "/api/v1/calibrations",
+                                                            "/api/v1/examples",
+                                                            "/api/v1/examples/{name}",
+                                                            "/api/v1/health",
+                                                            "/api/v1/openapi.json",
+                                                            "/metrics",
+                                                            "static",
+                                                            "other"};
+
+/* The methods counted by name; anything else is "other" (the last). */
+static const char *const method_names[] = {"GET",    "HEAD",  "POST",    "PUT",
+                                           "DELETE", "PATCH", "OPTIONS", "other"};
+#define NMETHODS (sizeof method_names / sizeof method_names[0])
+#define NSTATUS  (HTTP_STATUS_MAX - HTTP_STATUS_MIN + 1)
+
 /* Series of the labelled run histogram: (analysis, outcome) pairs are few
  * (the registry's analyses x four final states); beyond this many, runs are
  * counted under analysis="other". */
@@ -39,9 +66,17 @@ struct series {
 enum { CACHE_HIT, CACHE_MISS, CACHE_BYPASS, CACHE_NKINDS };
 static const char *const cache_names[CACHE_NKINDS] = {"hit", "miss", "bypass"};
 
+/* One route's request counts and durations. */
+struct route_stats {
+    uint64_t count[NMETHODS][NSTATUS];
+    uint64_t buckets[NREQ_BOUNDS]; /* cumulative */
+    uint64_t total;
+    double sum;
+};
+
 struct rd_metrics {
     pthread_mutex_t mu;
-    uint64_t http[HTTP_STATUS_MAX - HTTP_STATUS_MIN + 1];
+    struct route_stats http[RD_METRICS_NROUTES];
     uint64_t duration_buckets[NBOUNDS]; /* cumulative: runs <= bound */
     uint64_t duration_count;
     double duration_sum;
@@ -71,12 +106,37 @@ void rd_metrics_free(rd_metrics *m)
     free(m);
 }
 
-void rd_metrics_count_http(rd_metrics *m, int status)
+const char *rd_metrics_route_name(rd_metrics_route route)
+{
+    return (unsigned)route < RD_METRICS_NROUTES ? route_names[route] : "other";
+}
+
+static size_t method_index(const char *method)
+{
+    for (size_t i = 0; method && i + 1 < NMETHODS; i++)
+        if (strcmp(method, method_names[i]) == 0)
+            return i;
+    return NMETHODS - 1;
+}
+
+void rd_metrics_count_http(rd_metrics *m, rd_metrics_route route, const char *method, int status,
+                           double seconds)
 {
     if (!m || status < HTTP_STATUS_MIN || status > HTTP_STATUS_MAX)
         return;
+    if ((unsigned)route >= RD_METRICS_NROUTES)
+        route = RD_METRICS_ROUTE_OTHER;
+    if (!(seconds >= 0)) /* also NaN: a clock that went wrong counts as instant */
+        seconds = 0;
+    size_t k = method_index(method);
     pthread_mutex_lock(&m->mu);
-    m->http[status - HTTP_STATUS_MIN]++;
+    struct route_stats *r = &m->http[route];
+    r->count[k][status - HTTP_STATUS_MIN]++;
+    for (size_t i = 0; i < NREQ_BOUNDS; i++)
+        if (seconds <= request_bounds[i])
+            r->buckets[i]++;
+    r->total++;
+    r->sum += seconds;
     pthread_mutex_unlock(&m->mu);
 }
 
@@ -246,7 +306,7 @@ static void render_durations(struct text *t, const rd_metrics *m)
     }
 }
 
-/* The counters: jobs, cache, inline runs, HTTP responses (mu held). */
+/* The counters: jobs, cache, inline runs (mu held). */
 static void render_counters(struct text *t, const rd_metrics *m)
 {
     text_printf(t, "# HELP ringdyn_jobs_total Jobs that ran, by analysis and outcome.\n"
@@ -267,12 +327,45 @@ static void render_counters(struct text *t, const rd_metrics *m)
                 "# TYPE ringdyn_inline_runs_total counter\n"
                 "ringdyn_inline_runs_total %llu\n",
                 (unsigned long long)m->inline_runs);
-    text_printf(t, "# HELP ringdyn_http_requests_total HTTP responses sent, by status code.\n"
+}
+
+/* HTTP responses by route, method and status, and their durations by
+ * route; only the label sets seen so far (mu held). */
+static void render_http(struct text *t, const rd_metrics *m)
+{
+    text_printf(t, "# HELP ringdyn_http_requests_total HTTP responses sent, by route template, "
+                   "method and status code.\n"
                    "# TYPE ringdyn_http_requests_total counter\n");
-    for (int s = HTTP_STATUS_MIN; s <= HTTP_STATUS_MAX; s++)
-        if (m->http[s - HTTP_STATUS_MIN])
-            text_printf(t, "ringdyn_http_requests_total{status=\"%d\"} %llu\n", s,
-                        (unsigned long long)m->http[s - HTTP_STATUS_MIN]);
+    for (size_t r = 0; r < RD_METRICS_NROUTES; r++)
+        for (size_t k = 0; m->http[r].total && k < NMETHODS; k++)
+            for (int s = 0; s < (int)NSTATUS; s++)
+                if (m->http[r].count[k][s])
+                    text_printf(t,
+                                "ringdyn_http_requests_total{route=\"%s\",method=\"%s\","
+                                "status=\"%d\"} %llu\n",
+                                route_names[r], method_names[k], s + HTTP_STATUS_MIN,
+                                (unsigned long long)m->http[r].count[k][s]);
+    text_printf(t, "# HELP ringdyn_http_request_duration_seconds Time from a request's arrival "
+                   "to its response, by route template (a long poll's wait included).\n"
+                   "# TYPE ringdyn_http_request_duration_seconds histogram\n");
+    for (size_t r = 0; r < RD_METRICS_NROUTES; r++) {
+        const struct route_stats *rs = &m->http[r];
+        if (!rs->total)
+            continue;
+        for (size_t i = 0; i < NREQ_BOUNDS; i++)
+            text_printf(t,
+                        "ringdyn_http_request_duration_seconds_bucket{route=\"%s\",le=\"%g\"} "
+                        "%llu\n",
+                        route_names[r], request_bounds[i], (unsigned long long)rs->buckets[i]);
+        text_printf(t,
+                    "ringdyn_http_request_duration_seconds_bucket{route=\"%s\",le=\"+Inf\"} "
+                    "%llu\n",
+                    route_names[r], (unsigned long long)rs->total);
+        text_printf(t, "ringdyn_http_request_duration_seconds_sum{route=\"%s\"} %.9g\n",
+                    route_names[r], rs->sum);
+        text_printf(t, "ringdyn_http_request_duration_seconds_count{route=\"%s\"} %llu\n",
+                    route_names[r], (unsigned long long)rs->total);
+    }
 }
 
 char *rd_metrics_render(rd_metrics *m, const char *const *state_names, const size_t *state_counts,
@@ -283,6 +376,7 @@ char *rd_metrics_render(rd_metrics *m, const char *const *state_names, const siz
     pthread_mutex_lock(&m->mu);
     render_durations(&t, m);
     render_counters(&t, m);
+    render_http(&t, m);
     pthread_mutex_unlock(&m->mu);
 
     if (t.failed) {

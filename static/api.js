@@ -3,18 +3,21 @@
 // An error the page can show: the server's {"error":{code,message,path}} or a
 // client-side failure (network, timeout) in the same shape.
 export class ApiError extends Error {
-  constructor({ code = 'error', message = 'Unknown error', path = '' } = {}, status = 0) {
+  // `errors`: every problem the server found (its first is this one).
+  constructor({ code = 'error', message = 'Unknown error', path = '', errors = null, errors_omitted: omitted = 0 } = {}, status = 0) {
     super(message);
     this.code = code;
     this.path = path || '';
     this.status = status;
+    this.errors = Array.isArray(errors) ? errors.filter((e) => e && typeof e === 'object') : null;
+    this.errors_omitted = Number(omitted) || 0;
   }
 }
 
 async function errorFrom(resp) {
   let body = null;
   try { body = await resp.json(); } catch { /* not JSON: fall back to the status line */ }
-  const e = body && body.error ? body.error : { message: `HTTP ${resp.status} ${resp.statusText}` };
+  const e = body && body.error ? { ...body.error, errors: body.errors, errors_omitted: body.errors_omitted } : { message: `HTTP ${resp.status} ${resp.statusText}` };
   if (resp.status === 429) {
     const after = resp.headers.get('Retry-After');
     e.message = `${e.message || 'The job queue is full'}${after ? ` — retry in ${after} s` : ''}`;

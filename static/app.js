@@ -15,6 +15,7 @@ import { lift } from './lift.js';
 import { ringpack } from './ringpack.js';
 import { curlText, pythonText, saveBlob } from './script.js';
 import { watchCharts, addExportButtons } from './charts.js';
+import { keepRun, keptRun, clearKept, overlayKept } from './plotui.js';
 import { setupSweeps } from './sweep.js';
 import { setupBoreMaps } from './boremap.js';
 
@@ -85,18 +86,40 @@ function setStatus(text, progress) {
   else if (progress !== undefined) bar.value = progress;
 }
 
-function showError(err) {
-  const box = $('error');
-  const fields = form.mark(err.path, 'error');
+// One problem of an error: "Field label: message (path)", its fields marked.
+function errorItem(err, focus) {
+  const fields = form.mark(err.path, 'error', focus);
   const where = fields.length ? `${form.nameOf(fields)}: ` : '';
-  box.replaceChildren();
   const strong = document.createElement('strong');
   strong.textContent = where;
-  box.append(strong, err.message || 'Unknown error');
-  if (err.path && !box.textContent.includes(err.path)) {
+  const parts = [strong, err.message || 'Unknown error'];
+  if (err.path && !`${where}${err.message}`.includes(err.path)) {
     const code = document.createElement('code');
     code.textContent = err.path;
-    box.append(' (', code, ')');
+    parts.push(' (', code, ')');
+  }
+  return parts;
+}
+
+// Shows an error and every problem it lists (the server's `errors`: the
+// first is `error` itself), marking the field of each; the first is focused.
+function showError(err) {
+  const box = $('error');
+  box.replaceChildren();
+  const list = Array.isArray(err.errors) && err.errors.length ? err.errors : [err];
+  if (list.length === 1) {
+    box.append(...errorItem(list[0], true));
+  } else {
+    const ul = document.createElement('ul');
+    ul.className = 'error-list';
+    list.forEach((e, i) => {
+      const li = document.createElement('li');
+      li.dataset.path = e.path || '';
+      li.append(...errorItem(e, i === 0));
+      ul.append(li);
+    });
+    box.append(ul);
+    if (err.errors_omitted > 0) box.append(`… and ${err.errors_omitted} more.`);
   }
   box.hidden = false;
 }
@@ -114,6 +137,7 @@ function showEntry(entry) {
   const warnings = $('result-warnings');
   if (!entry) {
     body.replaceChildren();
+    $('compare').hidden = true;
     $('results-empty').hidden = false;
     note.hidden = true;
     warnings.hidden = true;
@@ -122,6 +146,7 @@ function showEntry(entry) {
   $('results-empty').hidden = true;
   state.analysis.render(entry.result, entry.job, body);
   markStale(entry);
+  showCompare(entry);
   // Warnings the server attaches to a result (strings or {message, path}).
   const list = Array.isArray(entry.result.warnings) ? entry.result.warnings : [];
   warnings.replaceChildren(...list.map((w) => {
@@ -130,6 +155,43 @@ function showEntry(entry) {
     return li;
   }));
   warnings.hidden = list.length === 0;
+}
+
+// ---- compare runs: a kept result drawn dashed under the next ones --------
+
+const keptLabel = (job) => `job ${job?.id ?? 'unknown'}`;
+
+// The keep / clear buttons and the note for the shown entry; a kept run of
+// this analysis (another job) is drawn over its charts.
+function showCompare(entry) {
+  const k = keptRun();
+  const mine = k && k.key === state.analysis.id;
+  const same = mine && k.label === keptLabel(entry.job);
+  $('compare').hidden = false;
+  $('keep-run').disabled = Boolean(same);
+  $('clear-kept').hidden = !k;
+  if (!k) $('compare-note').textContent = '';
+  else if (!mine) $('compare-note').textContent = `Kept for comparison: ${k.label} of ${k.key}.`;
+  else if (same) $('compare-note').textContent = `This run (${k.label}) is kept: the next ${state.analysis.label.toLowerCase()} run draws over it, dashed.`;
+  else {
+    const n = overlayKept($('result-body'), k.key);
+    $('compare-note').textContent = `Dashed: ${k.label}, kept for comparison${n ? '' : ' (no chart in common with this result)'}.`;
+  }
+}
+
+function keepShown() {
+  const entry = state.results.get(state.analysis.id);
+  if (!entry) return;
+  clearKept($('result-body'));
+  keepRun($('result-body'), state.analysis.id, keptLabel(entry.job));
+  showCompare(entry);
+}
+
+function clearShownKept() {
+  clearKept($('result-body'));
+  const entry = state.results.get(state.analysis.id);
+  if (entry) showCompare(entry);
+  $('compare-note').textContent = 'Comparison cleared.';
 }
 
 function markStale(entry) {
@@ -282,7 +344,7 @@ async function reopen(id) {
   try {
     job = await getJSON(`/api/v1/jobs/${encodeURIComponent(id)}`);
   } catch (err) {
-    showError({ ...err, message: `Job ${id} from the page address: ${err.message}` });
+    showError({ ...err, errors: null, message: `Job ${id} from the page address: ${err.message}` });
     return;
   }
   const name = job.analysis ?? job.result?.analysis;
@@ -440,7 +502,12 @@ selectAnalysis(state.analysis);
 watchCharts($('result-body'), () => {
   const entry = state.results.get(state.analysis.id);
   addExportButtons($('result-body'), `ringdyn-${state.analysis.id}-${entry?.job?.id ?? 'result'}`);
+  // A chart redrawn (a mode shape, a cycle zoom) gets the kept run again.
+  const k = keptRun();
+  if (entry && k && k.key === state.analysis.id && k.label !== keptLabel(entry.job)) overlayKept($('result-body'), k.key);
 });
+$('keep-run').addEventListener('click', keepShown);
+$('clear-kept').addEventListener('click', clearShownKept);
 // The bore maps of the Contact and Lift tabs, drawn as they are entered.
 setupBoreMaps(form);
 $('scene-form').addEventListener('submit', run);

@@ -64,7 +64,7 @@ function axis(v, r0, r1) {
 const W = 560, H = 350, BOX = { left: 76, top: 34, width: 456, height: 250 };
 
 // The fitted marker: a diamond (another shape than the measured circle).
-const diamond = (x, y, s, attrs) => svg('path', { d: `M${x},${y - s}L${x + s},${y}L${x},${y + s}L${x - s},${y}Z`, ...attrs });
+const diamond = (x, y, s, attrs) => svg('path', { d: `M${x},${y - s}L${x + s},${y}L${x},${y + s}L${x - s},${y}Z`, 'data-cx': x, 'data-cy': y, ...attrs });
 
 // Scalar measurements of one observed pointer: x = measurement number, y = value.
 // items: [{i (index in the result), m (result measurement), sigma}].
@@ -86,8 +86,8 @@ function scalarPlot(id, observe, items) {
           svg('line', { x1: x, x2: x, y1: lo, y2: hi }),
           svg('line', { x1: x - cap, x2: x + cap, y1: lo, y2: lo }),
           svg('line', { x1: x - cap, x2: x + cap, y1: hi, y2: hi })) : null,
-        isNum(m.measured) ? svg('circle', { class: 'cal-measured', cx: x.toFixed(2), cy: Y.map(m.measured).toFixed(2), r: 5, 'data-y': m.measured }, svg('title', {}, what)) : null,
-        isNum(m.fitted) ? diamond(x + 0, Y.map(m.fitted), 6.5, { class: 'cal-fitted', 'data-y': m.fitted }) : null);
+        isNum(m.measured) ? svg('circle', { class: 'cal-measured', cx: x.toFixed(2), cy: Y.map(m.measured).toFixed(2), r: 5, 'data-y': m.measured, 'data-name': 'measured' }, svg('title', {}, what)) : null,
+        isNum(m.fitted) ? diamond(x + 0, Y.map(m.fitted), 6.5, { class: 'cal-fitted', 'data-y': m.fitted, 'data-name': 'fitted' }) : null);
     }),
     legend([
       [svg('g', {}, svg('line', { x1: 0, x2: 0, y1: -6, y2: 6, class: 'cal-errbar-line' }), svg('circle', { cx: 0, cy: 0, r: 4, class: 'cal-measured' })), 'measured ± 1 sigma'],
@@ -111,8 +111,8 @@ function tracePlot(id, i, m, sigma) {
   return svg('svg', { id, class: 'chart cal-plot', viewBox: `0 0 ${W} ${H}`, role: 'img', 'aria-label': `Measurement #${i + 1}, ${m.observe} (${setText(m.set)}): measured and fitted trace of ${n} samples`, 'data-observe': m.observe },
     axes({ box: BOX, x: X.map, y: Y.map, xTicks: X.ticks.filter((t) => Number.isInteger(t)), yTicks: Y.ticks, xLabel: 'sample index', yLabel: m.observe, xFormat: (t) => String(t), yFormat: Y.format }),
     whole && n > 1 ? svg('path', { class: 'cal-band', d: `${pathD(up.concat(down))}Z` }) : null,
-    svg('path', { class: 'cal-measured-line', d: pathD(meas.map((v, k) => [X.map(k), Y.map(v)])) }),
-    svg('path', { class: 'cal-fitted-line', d: pathD(fit.map((v, k) => [X.map(k), Y.map(v)])) }),
+    svg('path', { class: 'cal-measured-line', 'data-name': 'measured', d: pathD(meas.map((v, k) => [X.map(k), Y.map(v)])) }),
+    svg('path', { class: 'cal-fitted-line', 'data-name': 'fitted', d: pathD(fit.map((v, k) => [X.map(k), Y.map(v)])) }),
     legend([
       [svg('line', { x1: -6, x2: 6, y1: 0, y2: 0, class: 'cal-measured-line' }), whole ? 'measured (band ± 1 sigma)' : 'measured'],
       [svg('line', { x1: -6, x2: 6, y1: 0, y2: 0, class: 'cal-fitted-line' }), 'fitted'],

@@ -14,6 +14,7 @@
 // PNG drawn from that SVG at twice its size.
 
 import { saveBlob } from './script.js';
+import { interact, tidyReadout } from './plotui.js';
 
 const NS = 'http://www.w3.org/2000/svg';
 const CHARTS = 'svg[viewBox]:not(.icon)';
@@ -25,12 +26,14 @@ const resize = new ResizeObserver((entries) => { for (const e of entries) fit(e.
 // onAdded() runs after charts were added (e.g. to give them export buttons).
 export function watchCharts(root, onAdded = () => {}) {
   const scan = () => {
+    tidyReadout();
     let added = false;
     for (const s of root.querySelectorAll(CHARTS)) {
       if (known.has(s)) continue;
       known.add(s);
       s.dataset.viewBox = s.getAttribute('viewBox');
       resize.observe(s);
+      interact(s); // hover readout and zoom (plotui.js)
       added = true;
     }
     if (added) onAdded();
@@ -144,6 +147,8 @@ export function figureSvg(figure) {
   out.append(bg);
   let y = 0;
   charts.forEach((s, i) => {
+    // The pointer's marks are not the figure's.
+    for (const el of s.querySelectorAll(':scope > .hover-layer, :scope > .zoom-box')) el.remove();
     const copy = s.cloneNode(true);
     inlineStyles(s, copy);
     copy.removeAttribute('style'); // the outer box's CSS size

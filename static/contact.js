@@ -377,7 +377,7 @@ function cartesianPlot(result, gaps) {
   isNum(p0) ? svg('line', { class: 'p0', id: 'ct-cart-p0', x1: box.left, x2: box.left + box.width, y1: y(p0 / 1e6), y2: y(p0 / 1e6) }) : null,
   gaps.map((i) => svg('rect', { class: 'band', x: x(angles[i]) - box.width / (2 * k), y: box.top, width: box.width / k, height: box.height },
     svg('title', {}, `Light gap at ${deg(angles[i])}`))),
-  svg('path', { class: 'p-line', id: 'ct-cart-line', d: pathD(angles.slice(0, k).map((a, i) => [x(a), y(mpa[i])])) }),
+  svg('path', { class: 'p-line', id: 'ct-cart-line', 'data-name': 'pressure', d: pathD(angles.slice(0, k).map((a, i) => [x(a), y(mpa[i])])) }),
   svg('g', { class: 'p-points' }, angles.slice(0, k).map((a, i) => svg('circle', { class: 'p-mk', cx: x(a), cy: y(mpa[i]), r: 2.5 },
     svg('title', {}, `${deg(a)}: ${MPa(p[i], 5)}`)))));
 }

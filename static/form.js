@@ -591,8 +591,9 @@ export class SceneForm {
     return text(this.form.querySelector(`label[for="${fields[0].id}"]`)) || pathOf(fields[0]);
   }
 
-  // Highlights the fields of an error path; returns them (first one focused).
-  mark(path, errorId) {
+  // Highlights the fields of an error path; returns them (the first one
+  // focused unless `focus` is false).
+  mark(path, errorId, focus = true) {
     const fields = this.fieldsFor(path);
     for (const input of fields) {
       input.setAttribute('aria-invalid', 'true');
@@ -600,8 +601,10 @@ export class SceneForm {
       (input.closest('.field') || input.closest('td'))?.classList.add('invalid');
     }
     // Centred, so the sticky run bar (which shows the message) does not cover it.
-    fields[0]?.focus({ preventScroll: true });
-    fields[0]?.scrollIntoView({ block: 'center' });
+    if (focus) {
+      fields[0]?.focus({ preventScroll: true });
+      fields[0]?.scrollIntoView({ block: 'center' });
+    }
     return fields;
   }
 

@@ -214,7 +214,7 @@ function gasPlot(result, t) {
     box, x, y, xTicks, yTicks: ticks(0, top * 1.08, 4),
     xLabel: 'crank angle (deg)', yLabel: 'pressure (bar)', yFormat: (v) => String(Number(v.toPrecision(4))),
   }),
-  series.map(([k, pts]) => svg('path', { class: `gas-${k}`, id: `lf-gas-${k}`, 'data-points': pts.length, d: pathD(pts.map(([c, p]) => [x(c), y(p)])) })));
+  series.map(([k, pts]) => svg('path', { class: `gas-${k}`, id: `lf-gas-${k}`, 'data-name': GAS_TEXT[k], 'data-points': pts.length, d: pathD(pts.map(([c, p]) => [x(c), y(p)])) })));
 }
 
 function summary(result, events) {
@@ -341,7 +341,7 @@ function liftPlot(result, events) {
   flankBands,
   flankLine('lf-lower', 0, 'lower flank'),
   cl !== null ? flankLine('lf-upper', cl, `upper flank (clearance ${um(clearance)} µm)`, true) : null,
-  mean.length === N ? svg('path', { class: 'mean', id: 'lf-mean', d: pathD(thin(crank, mean).map(([c, v]) => [x(c), y(v)])) }) : null,
+  mean.length === N ? svg('path', { class: 'mean', id: 'lf-mean', 'data-name': 'mean lift', d: pathD(thin(crank, mean).map(([c, v]) => [x(c), y(v)])) }) : null,
   svg('g', { class: 'events' }, markers));
 }
 
@@ -395,7 +395,7 @@ function frictionPlot(result) {
     xLabel: 'crank angle (deg)', yLabel: 'friction (N)', yFormat: (v) => String(Number(v.toPrecision(4))),
   }),
   svg('line', { class: 'zero', x1: box.left, x2: box.left + box.width, y1: y(0), y2: y(0) }),
-  f.length === crank.length ? svg('path', { class: 'friction', id: 'lf-friction-line', d: pathD(thin(crank, f).map(([c, v]) => [x(c), y(v)])) }) : null);
+  f.length === crank.length ? svg('path', { class: 'friction', id: 'lf-friction-line', 'data-name': 'friction', d: pathD(thin(crank, f).map(([c, v]) => [x(c), y(v)])) }) : null);
 }
 
 // ---- the oil film of a lubricated run (result.lubrication) ------------------

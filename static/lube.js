@@ -99,7 +99,7 @@ export function filmPlot(crank, film, sigma, { id, axis }) {
     xLabel: 'crank angle (deg)', yLabel: 'film (µm)', yFormat: (t) => String(Number(t.toPrecision(4))),
   }),
   s !== null ? svg('line', { class: 'sigma', id: `${id}-film-sigma`, x1: box.left, x2: box.left + box.width, y1: y(s), y2: y(s) }) : null,
-  svg('path', { class: 'film', id: `${id}-film-line`, d: pathD(thin(crank, v).map(([c, f]) => [x(c), y(f)])) }),
+  svg('path', { class: 'film', id: `${id}-film-line`, 'data-name': 'minimum film', d: pathD(thin(crank, v).map(([c, f]) => [x(c), y(f)])) }),
   svg('circle', { class: 'film-min', cx: x(crank[i]), cy: y(v[i]), r: 4 }, svg('title', {}, `thinnest: ${sig(v[i])} µm at ${deg(crank[i])}`)));
 }
 
@@ -142,7 +142,7 @@ export function lubeFrictionPlot(crank, lub, { id, axis }) {
     xLabel: 'crank angle (deg)', yLabel: 'friction (N)', yFormat: (v) => String(Number(v.toPrecision(4))),
   }),
   svg('line', { class: 'zero', x1: box.left, x2: box.left + box.width, y1: y(0), y2: y(0) }),
-  shown.map(([k, suffix]) => svg('path', { class: `split-${k}`, id: `${id}-${suffix}`, d: pathD(thin(crank, series[k]).map(([c, f]) => [x(c), y(f)])) })));
+  shown.map(([k, suffix, text]) => svg('path', { class: `split-${k}`, id: `${id}-${suffix}`, 'data-name': text, d: pathD(thin(crank, series[k]).map(([c, f]) => [x(c), y(f)])) })));
 }
 
 // The oil the scene fed the face (its physics.friction.supply): "starved

@@ -193,6 +193,7 @@ function shapeView(m, result) {
     note.textContent = `Ring seen along the cylinder axis, ${closed ? 'joint' : 'gap'} at the top; dashed: undeformed. Radial displacement, exaggerated.`;
   } else {
     drawing = unrolledView(angles, m.shape?.axial || [], m.shape?.twist || [], `Mode ${m.mode}, ${kind}, ${hz(m.frequency_hz)} Hz: axial displacement against angle`);
+    drawing.dataset.compare = `shape-mode-${m.mode}`; // a kept run is compared mode for mode (plotui.js)
     note.textContent = 'Ring unrolled: axial displacement against angle from the gap (0°); dashed: twist, scaled to fit.';
   }
   return [caption, drawing, note];
@@ -240,7 +241,7 @@ function unrolledView(angles, axial, twist, label) {
       yFormat: (v) => String(Number(v.toPrecision(3))),
     }),
     svg('line', { class: 'zero', x1: box.left, x2: box.left + box.width, y1: y(0), y2: y(0) }),
-    tw ? svg('path', { class: 'twist', d: path(twist.map((v) => v * tw)) }) : null,
-    svg('path', { class: 'deformed', d: path(axial) }),
+    tw ? svg('path', { class: 'twist', 'data-name': 'twist (scaled)', d: path(twist.map((v) => v * tw)) }) : null,
+    svg('path', { class: 'deformed', 'data-name': 'axial displacement', d: path(axial) }),
     svg('g', { class: 'nodes' }, angles.map((a, i) => svg('circle', { cx: x(a), cy: y(axial[i] || 0), r: 2.5 }))));
 }

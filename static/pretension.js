@@ -149,5 +149,5 @@ function zPlot(result) {
     xLabel: 'angle from the gap (deg)', yLabel: 'z (µm)', yFormat: (v) => String(Number(v.toPrecision(4))),
   }),
   svg('line', { class: 'zero', x1: box.left, x2: box.left + box.width, y1: y(0), y2: y(0) }),
-  svg('path', { class: 'free', d: pathD(a.slice(0, k).map((ang, i) => [x(ang), y(zs[i])])) }));
+  svg('path', { class: 'free', 'data-name': 'free shape', d: pathD(a.slice(0, k).map((ang, i) => [x(ang), y(zs[i])])) }));
 }

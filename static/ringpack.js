@@ -48,7 +48,7 @@ export const ringpack = {
       h('figure', { class: 'plot wide' }, pressurePlot(crank, volumes),
         h('figcaption', {}, 'Absolute gas pressures of the last cycle against crank angle (0° = firing TDC): the cylinder (the input trace), the lands and grooves from the top down, the crankcase.')),
       h('figure', { class: 'plot wide' }, liftPlot(crank, rings, result),
-        h('figcaption', {}, `Each ring's lift above its groove's lower flank (rigid rings)${flankBand(result) !== null
+        h('figcaption', { id: 'rp-lift-caption' }, `Each ring's lift above its groove's lower flank (${modelsText(result)})${flankBand(result) !== null
           ? `; strips: the flank band at each flank of each groove, ${bandText(flankBand(result))} of its axial clearance, whose edge dates the ring's flank changes` : ''}.`)),
       h('figure', { class: 'plot wide' }, blowbyPlot(crank, result),
         h('figcaption', {}, 'Mass flow into the crankcase (the blow-by; negative: back out of it).')),
@@ -91,7 +91,7 @@ function chart(id, crank, series, yLabel, factor, label, extra = {}) {
     axes({ box, x, y, xTicks, yTicks: ticks(lo, hi + pad, 4), xLabel: 'crank angle (deg)', yLabel, yFormat: (v) => String(Number(v.toPrecision(4))) }),
     extra.under ? extra.under(x, y, box) : null,
     series.map((s, i) => svg('path', {
-      id: `${id}-${i}`, 'data-points': s.values.length, style: `fill:none;stroke:${COLORS[i % COLORS.length]};stroke-width:1.6`,
+      id: `${id}-${i}`, 'data-name': s.label, 'data-points': s.values.length, style: `fill:none;stroke:${COLORS[i % COLORS.length]};stroke-width:1.6`,
       d: pathD(s.values.map((v, k) => [x(crank[k]), y(v * factor)])),
     })));
 }
@@ -218,6 +218,22 @@ function ringLube(crank, lub, n, face, supply, cavitation) {
     typeof lub.method === 'string' && lub.method
       ? h('details', { class: 'method', id: `${id}-method` }, h('summary', {}, `Ring ${n}'s film model: what it covers`), h('p', {}, lub.method))
       : null);
+}
+
+// The models that ran, for a caption: "axial rings", or per ring when they
+// differ ("ring 1 full, rings 2–3 axial"); from numerics.model.
+function modelsText(result) {
+  const models = Array.isArray(result.numerics?.model) ? result.numerics.model : [];
+  const names = models.map((m) => (typeof m?.name === 'string' ? m.name : '?'));
+  if (!names.length) return 'ring models not reported';
+  if (names.every((n) => n === names[0])) return `${names[0]} ring${names.length === 1 ? '' : 's'}`;
+  const runs = [];
+  names.forEach((n, i) => {
+    const last = runs[runs.length - 1];
+    if (last && last.name === n) last.to = i + 1;
+    else runs.push({ name: n, from: i + 1, to: i + 1 });
+  });
+  return runs.map((r) => (r.from === r.to ? `ring ${r.from} ${r.name}` : `rings ${r.from}–${r.to} ${r.name}`)).join(', ');
 }
 
 // Each ring's model from numerics.model [{name, dof, modes, why}]: which

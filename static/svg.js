@@ -14,10 +14,23 @@ export function svg(tag, attrs = {}, ...children) {
   return node;
 }
 
-// Linear map from [d0, d1] to [r0, r1].
+// Linear map from [d0, d1] to [r0, r1]; f.domain, f.range and f.invert
+// (screen back to data) let charts.js read values off a drawn chart.
 export function scale(d0, d1, r0, r1) {
   const k = d1 === d0 ? 0 : (r1 - r0) / (d1 - d0);
-  return (v) => r0 + (v - d0) * k;
+  const f = (v) => r0 + (v - d0) * k;
+  f.domain = [d0, d1];
+  f.range = [r0, r1];
+  f.invert = (p) => (k === 0 ? d0 : d0 + (p - r0) / k);
+  return f;
+}
+
+// What axes() drew with, by its <g>: charts.js reads values off the chart
+// (hover readout), zooms it (redraws the axes at a new range) and draws a
+// kept run over it.  Only scales from scale() can be read back.
+const plots = new WeakMap();
+export function plotOf(axesGroup) {
+  return plots.get(axesGroup) ?? null;
 }
 
 // About `count` round tick values (1, 2, 5 x 10^k steps) covering [lo, hi].
@@ -36,13 +49,17 @@ export function ticks(lo, hi, count = 5) {
 // The marker of each mode kind: different shape *and* colour so the chart
 // also reads in grey scale.  (x, y) is the centre, s the half size.
 export function kindMarker(kind, x, y, s = 5, attrs = {}) {
+  // data-cx / data-cy: the centre, where charts.js reads the value.
   if (kind === 'in_plane') {
-    return svg('circle', { cx: x, cy: y, r: s, class: 'mk mk-in', ...attrs });
+    return svg('circle', { cx: x, cy: y, r: s, class: 'mk mk-in', 'data-name': 'in-plane', ...attrs });
   }
   const h = s * 1.15;
   return svg('path', {
     d: `M${x},${y - h * 1.15}L${x + h},${y + h * 0.85}L${x - h},${y + h * 0.85}Z`,
     class: 'mk mk-out',
+    'data-name': 'out-of-plane',
+    'data-cx': x,
+    'data-cy': y,
     ...attrs,
   });
 }
@@ -55,8 +72,10 @@ export function markerIcon(kind) {
 
 // Axes with ticks, grid and labels for a plot area inside `box`
 // ({left, top, width, height}); returns a <g>.
-export function axes({ box, x, y, xTicks, yTicks, xLabel, yLabel, xFormat = String, yFormat = String }) {
+export function axes(args) {
+  const { box, x, y, xTicks, yTicks, xLabel, yLabel, xFormat = String, yFormat = String } = args;
   const g = svg('g', { class: 'axes' });
+  plots.set(g, args);
   const bottom = box.top + box.height;
   const right = box.left + box.width;
   for (const t of yTicks) {

@@ -181,9 +181,9 @@ function scatter({ id, points, xLabel, yLabel, xLog = false, yLog = false, front
   const Y = axis(ys, yLog, box.top + box.height, box.top);
   const line = (front ?? ok).filter((p) => ok.includes(p)).slice().sort((a, b) => a.x - b.x);
   return svg('svg', { id, class: 'chart sweep-plot', viewBox: `0 0 ${W} ${H}`, role: 'img', 'aria-label': label },
-    axes({ box, x: X.at, y: Y.at, xTicks: X.ticks, yTicks: Y.ticks, xLabel, yLabel, xFormat: X.format, yFormat: Y.format }),
+    axes({ box, x: X.at, y: Y.at, xTicks: X.ticks, yTicks: Y.ticks, xLabel, yLabel, xFormat: X.format, yFormat: Y.format, xLog, yLog }),
     band(id, line, X, Y),
-    svg('path', { class: front ? 'front-line' : 'series', d: pathD(line.map((p) => [X.map(p.x), Y.map(p.y)])) }),
+    svg('path', { class: front ? 'front-line' : 'series', 'data-name': front ? 'Pareto front' : yLabel, d: pathD(line.map((p) => [X.map(p.x), Y.map(p.y)])) }),
     ok.map((p) => svg('circle', { cx: X.map(p.x).toFixed(2), cy: Y.map(p.y).toFixed(2), r: 5, class: `pt ${p.cls ?? ''}`, id: p.id, 'data-x': p.x, 'data-y': p.y },
       svg('title', {}, p.title))));
 }

@@ -7,6 +7,7 @@ import assert from 'node:assert/strict';
 import fs from 'node:fs';
 import path from 'node:path';
 import * as fixtures from './fixtures.mjs';
+import { interactTests } from './interact.mjs';
 
 const CHROMIUM = '/usr/bin/chromium';
 const BASE = (process.env.RINGDYN_URL || '').replace(/\/$/, '');
@@ -1474,6 +1475,14 @@ for (const width of [1280, 390]) {
       assert.ok(front.length >= 1);
       for (let i = 1; i < front.length; i++) assert.ok(front[i].y < front[i - 1].y, 'the Pareto front trades time for error');
       assert.equal(pathPoints(await page.getAttribute('#fd-plot .front-line', 'd')), front.length);
+      // The hover readout reads the front off its log axes (plotui.js).
+      await page.locator('#fd-plot').scrollIntoViewIfNeeded();
+      const fb = await page.$eval('#fd-plot', (s) => { const r = s.querySelector(':scope > .axes path.axis').getBoundingClientRect(); return { x: r.left, y: r.top, w: r.width, h: r.height }; });
+      await page.mouse.move(1, 1);
+      await page.mouse.move(fb.x + fb.w / 2, fb.y + fb.h / 2, { steps: 2 });
+      const read = await page.$eval('.chart-readout:not([hidden]) tr[data-series="Pareto front"]', (r) => [Number(r.dataset.x), Number(r.dataset.y)]);
+      assert.ok(front.some((p) => Math.abs(read[0] / p.x - 1) < 1e-3 && Math.abs(read[1] / p.y - 1) < 1e-3), `${read} is a point of the front`);
+      await page.mouse.move(1, 1);
       assert.equal(await page.locator('#fd-table button.use').count(), front.length);
       // Each marker at the row's error on its basis (the modal estimate covers the segment count).
       assert.deepEqual(pts.map((p) => p.y), ok.map((r) => r[c('error_on_basis')]));
@@ -3293,6 +3302,14 @@ test('bore map renderers: an "all" contact lists every layer and marks the one p
     assert.deepEqual(drawn[k].rows, [], k);
   }
   assert.deepEqual(pageErrors, []);
+});
+
+// Hover readout, zoom, compare runs and the error list (interact.mjs).
+interactTests({ page: () => page, BASE, runAnalysis, selectTab, shownJob, pageErrors });
+test('interact tests leave the page at 1280 px', async () => {
+  await page.setViewportSize({ width: 1280, height: 800 });
+  await page.goto(`${BASE}/`);
+  await page.waitForSelector('#tab-modal[aria-selected="true"]');
 });
 
 test('no console errors or uncaught exceptions', () => {

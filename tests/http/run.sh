@@ -247,8 +247,8 @@ req GET /metrics
 same "metrics 200" "$STATUS" 200
 check "metrics: jobs gauge" grep -q '^ringdyn_jobs{state="succeeded"} [1-9]' "$WORK/body"
 check "metrics: duration histogram" grep -q '^ringdyn_job_duration_seconds_count [1-9]' "$WORK/body"
-check "metrics: requests by status" grep -q '^ringdyn_http_requests_total{status="404"} [1-9]' "$WORK/body"
-check "metrics: 413 counted" grep -q '^ringdyn_http_requests_total{status="413"}' "$WORK/body"
+check "metrics: requests by status" grep -q '^ringdyn_http_requests_total{route="[^"]*",method="[A-Z]*",status="404"} [1-9]' "$WORK/body"
+check "metrics: 413 counted" grep -q '^ringdyn_http_requests_total{route="/api/v1/jobs",method="POST",status="413"}' "$WORK/body"
 
 stop_server A "$A_PID"
 
