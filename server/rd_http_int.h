@@ -18,6 +18,7 @@
 #include <arpa/inet.h>
 #include <pthread.h>
 #include <stddef.h>
+#include <stdint.h>
 #include <sys/socket.h>
 
 #include <microhttpd.h>
@@ -160,6 +161,14 @@ struct MHD_Response *rd_http_with_header(struct MHD_Response *r, const char *nam
  * worth it. */
 struct MHD_Response *rd_http_text_response(const struct request *rq, char *body,
                                            const char *content_type);
+/* A response sending `len` bytes at `data`, which the shared `body` owns
+ * (a reference the response takes over: released when MHD is done with it,
+ * or here on failure), or, to a client that accepts gzip when `len` is
+ * worth it, the body's form `gz_form` (rd_jobs_form; -1: none), made once
+ * per body. */
+struct MHD_Response *rd_http_body_response(const struct request *rq, rd_jobs_body *body,
+                                           const char *data, size_t len, int gz_form,
+                                           const char *content_type);
 /* A job's answer: its shared JSON `body` (released when sent), or `json`. */
 struct MHD_Response *rd_http_job_response(const struct request *rq, rd_jobs_body *body, char *json,
                                           int cached);
@@ -171,6 +180,8 @@ enum MHD_Result rd_http_send_text(rd_http *h, struct MHD_Connection *c, struct r
  * (a finished job's JSON or CSV): weak, since the same tag stands for its
  * gzip too. */
 void rd_http_etag(const char *data, size_t len, char *out);
+/* The same from the rd_jobs_hash of those bytes. */
+void rd_http_etag_of_hash(const uint64_t hash[2], char *out);
 /* Does the request's If-None-Match name `etag` (weak comparison) or "*"? */
 int rd_http_none_match(struct MHD_Connection *c, const char *etag);
 /* r with `etag` and Cache-Control: no-cache in place of no-store (a

@@ -194,15 +194,24 @@ static enum MHD_Result get_csv(rd_http *h, struct MHD_Connection *c, struct requ
 {
     rd_error err;
     rd_error_init(&err);
-    char *body = NULL, analysis[32] = "", etag[RD_HTTP_ETAG_LEN];
-    if (rd_jobs_result_csv(h->jobs, id, &body, analysis, &err) != RD_OK)
+    char analysis[32] = "", etag[RD_HTTP_ETAG_LEN];
+    rd_jobs_body *body = NULL;
+    const char *csv = NULL;
+    size_t len = 0;
+    uint64_t hash[2];
+    if (rd_jobs_result_body(h->jobs, id, &body, analysis, &err) != RD_OK)
         return rd_http_send_error(h, c, rq, &err, NULL);
-    rd_http_etag(body, strlen(body), etag);
+    if (rd_jobs_body_form(body, RD_JOBS_CSV, &csv, &len, hash, &err) != RD_OK) {
+        rd_jobs_body_release(body);
+        return rd_http_send_error(h, c, rq, &err, NULL);
+    }
+    rd_http_etag_of_hash(hash, etag);
     if (rd_http_none_match(c, etag)) {
-        free(body);
+        rd_jobs_body_release(body);
         return rd_http_send_not_modified(h, c, rq, etag);
     }
-    struct MHD_Response *r = rd_http_text_response(rq, body, "text/csv; charset=utf-8");
+    struct MHD_Response *r =
+        rd_http_body_response(rq, body, csv, len, RD_JOBS_CSV_GZIP, "text/csv; charset=utf-8");
     char disposition[96];
     snprintf(disposition, sizeof disposition, "attachment; filename=\"ringdyn-%s-%s.csv\"",
              analysis, id);
