@@ -54,6 +54,8 @@ struct rd_http {
     size_t nconns;
     size_t nover; /* of them over a connection limit (struct conn.over) */
     size_t deadline_closed;
+    double idle_since; /* CLOCK_MONOTONIC when in_flight last dropped to 0 */
+    int trim_due;      /* a request ended since freed memory was last returned */
 };
 
 /* Connections past --max-connections or --max-per-ip that are still accepted
@@ -91,7 +93,8 @@ struct request {
     double wait_s;
     char *body; /* POST body so far, NUL-terminated, <= RD_API_BODY_MAX bytes */
     size_t len, cap;
-    int too_large; /* the body passed RD_API_BODY_MAX: the rest is dropped */
+    int body_mapped; /* `body` is a mapping of `cap` bytes (rd_http_body_reserve) */
+    int too_large;   /* the body passed RD_API_BODY_MAX: the rest is dropped */
     int no_memory;
     int sweep;           /* a POST /api/v1/sweeps; with WAIT_SWEEP: a wait that answers it */
     const char *as;      /* a POST to a study's path: the analysis its body is ("calibration") */
@@ -135,6 +138,12 @@ int rd_http_parse_count(const char *s, long min, long max, long *out);
 const char *rd_http_after_prefix(const char *s, const char *prefix);
 /* Is `method` one of the comma-separated tokens in `allow`? */
 int rd_http_method_allowed(const char *allow, const char *method);
+/* Room for `need` bytes (<= RD_API_BODY_MAX + 1) in rq->body, its `len`
+ * bytes and NUL kept: malloc'd up to 64 KiB, past that a mapping of its
+ * own.  0, or -1 when out of memory (rq unchanged). */
+int rd_http_body_reserve(struct request *rq, size_t need);
+/* Frees rq->body (either kind); len and cap 0. */
+void rd_http_body_free(struct request *rq);
 
 /* ---- rd_http_conn.c ---- */
 

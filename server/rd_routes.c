@@ -385,24 +385,12 @@ void rd_routes_take_body(struct request *rq, const char *data, size_t n)
         return;
     if (n > RD_API_BODY_MAX - rq->len) {
         rq->too_large = 1;
-        free(rq->body);
-        rq->body = NULL;
-        rq->len = rq->cap = 0;
+        rd_http_body_free(rq);
         return;
     }
-    if (rq->len + n + 1 > rq->cap) {
-        size_t cap = rq->cap ? rq->cap : 4096;
-        while (cap < rq->len + n + 1)
-            cap *= 2;
-        if (cap > RD_API_BODY_MAX + 1)
-            cap = RD_API_BODY_MAX + 1;
-        char *body = realloc(rq->body, cap);
-        if (!body) {
-            rq->no_memory = 1;
-            return;
-        }
-        rq->body = body;
-        rq->cap = cap;
+    if (rd_http_body_reserve(rq, rq->len + n + 1) != 0) {
+        rq->no_memory = 1;
+        return;
     }
     memcpy(rq->body + rq->len, data, n);
     rq->len += n;
@@ -477,8 +465,7 @@ enum MHD_Result rd_routes_finish_submit(rd_http *h, struct MHD_Connection *c, st
     char *errors = NULL; /* the error body with every problem (rd_api.h) */
     int rc =
         rd_scene_parse_report_as(rq->body ? rq->body : "", rq->len, rq->as, &scene, &err, &errors);
-    free(rq->body);
-    rq->body = NULL;
+    rd_http_body_free(rq);
     if (rc != RD_OK && err.code != RD_OK && errors)
         return rd_http_send_text(h, c, rq, rd_api_http_status(err.code), errors, RD_HTTP_JSON);
     free(errors);
