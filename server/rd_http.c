@@ -286,11 +286,17 @@ static enum MHD_Result on_request(void *cls, struct MHD_Connection *c, const cha
         return begin_request(h, c, rq, url, method, version);
     }
     if (*upload_data_size) {
-        if (!rq->replied)
+        enum MHD_Result ok = MHD_YES;
+        if (!rq->replied) {
             rd_routes_take_body(rq, upload_data, *upload_data_size);
+            if (rq->too_large)
+                ok = rd_http_refuse_body_now(h, rq);
+        }
         *upload_data_size = 0;
-        return MHD_YES;
+        return ok;
     }
+    if (rq->refused_raw) /* answered on the socket: the body has ended, close */
+        return MHD_NO;
     if (rq->replied)
         return MHD_YES;
     return rd_routes_finish_submit(h, c, rq);

@@ -95,6 +95,7 @@ struct request {
     size_t len, cap;
     int body_mapped; /* `body` is a mapping of `cap` bytes (rd_http_body_reserve) */
     int too_large;   /* the body passed RD_API_BODY_MAX: the rest is dropped */
+    int refused_raw; /* its 413 was written on the socket (rd_http_refuse_body_now) */
     int no_memory;
     int sweep;           /* a POST /api/v1/sweeps; with WAIT_SWEEP: a wait that answers it */
     const char *as;      /* a POST to a study's path: the analysis its body is ("calibration") */
@@ -219,6 +220,10 @@ struct MHD_Response *rd_http_error_response(const struct request *rq, const char
 enum MHD_Result rd_http_send_server_error(rd_http *h, struct MHD_Connection *c, struct request *rq,
                                           int status, const char *code, const char *message,
                                           const char *header, const char *value);
+
+/* A chunked body over RD_API_BODY_MAX as it arrives: 413 written on the
+ * socket at once, the rest of the body dropped; MHD_NO to close at once. */
+enum MHD_Result rd_http_refuse_body_now(rd_http *h, struct request *rq);
 
 /* ---- rd_http_access.c ---- */
 

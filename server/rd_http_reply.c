@@ -9,6 +9,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/socket.h>
 
 #include <jansson.h>
 
@@ -311,4 +312,48 @@ enum MHD_Result rd_http_send_server_error(rd_http *h, struct MHD_Connection *c, 
         r = NULL;
     }
     return rd_http_send_response(h, c, rq, status, r);
+}
+
+/* A body that passed RD_API_BODY_MAX while it was arriving (only a chunked
+ * one can: a declared Content-Length over it is refused before the body).
+ * libmicrohttpd (0.9.75, and 1.0.1 alike) queues a response only before
+ * the body or after the whole of it, and a chunk may declare up to 2^64-1
+ * bytes, so waiting for the end meant waiting for the request deadline.
+ * The 413 is written on the socket here, in the connection's own thread
+ * while MHD writes nothing on it (no response is queued), and its write
+ * side shut: the client has its answer at once.  What the client still
+ * sends is read and dropped until it closes, the request deadline shuts
+ * the socket, or the body ends (rd_http_body_refused then closes); a close
+ * at once would reset the connection under unread data, and the client
+ * could lose the answer.  Returns MHD_NO (close now) when the answer could
+ * not be written whole. */
+enum MHD_Result rd_http_refuse_body_now(rd_http *h, struct request *rq)
+{
+    rd_error err;
+    rd_error_init(&err);
+    rd_error_set(&err, RD_ETOOLARGE, "", "The body is larger than the limit of %d bytes.",
+                 RD_API_BODY_MAX);
+    char *json = rd_api_error_json(&err);
+    char head[256];
+    int n = json ? snprintf(head, sizeof head,
+                            "HTTP/1.1 413 Content Too Large\r\nConnection: close\r\n"
+                            "Content-Type: application/json\r\nCache-Control: no-store\r\n"
+                            "Content-Length: %zu\r\n\r\n",
+                            strlen(json))
+                 : -1;
+    int written = 0;
+    rq->replied = 1;
+    rq->refused_raw = 1;
+    if (rq->conn && n > 0 && (size_t)n < sizeof head) {
+        struct iovec iov[2] = {{head, (size_t)n}, {json, strlen(json)}};
+        struct msghdr msg = {.msg_iov = iov, .msg_iovlen = 2};
+        ssize_t sent = sendmsg(rq->conn->fd, &msg, MSG_NOSIGNAL | MSG_DONTWAIT);
+        written = sent == (ssize_t)((size_t)n + strlen(json));
+        if (written) {
+            shutdown(rq->conn->fd, SHUT_WR);
+            rd_metrics_count_http(h->metrics, MHD_HTTP_CONTENT_TOO_LARGE);
+        }
+    }
+    free(json);
+    return written ? MHD_YES : MHD_NO;
 }
