@@ -308,14 +308,17 @@ static void on_job_finish(void *ctx, const char *analysis, int status, double ru
 /* glibc returns freed memory above 128 kB at the top of a thread's arena to
  * the kernel (madvise) and maps larger blocks afresh, so every small job
  * (a modal job allocates and frees ~250 kB) paid ~60 page faults, about
- * 0.08 of its 0.9 ms of server CPU.  Kept up to 32 MiB per arena and mapped
+ * 0.08 of its 0.9 ms of server CPU.  Kept up to 8 MiB per arena and mapped
  * only from 8 MiB, a job reuses its predecessor's pages (0.3 faults per
- * job).  A refusal (a sanitizer's allocator refuses every mallopt) is not
- * an error: jobs only run slower. */
+ * job).  (32 MiB until issue 45: an arena other than the main one gives
+ * back its top only then, not even to malloc_trim, so bursts of large
+ * bodies left up to 32 MiB per HTTP thread for good; rd_http_conn.c trims
+ * the rest when the server goes idle.)  A refusal (a sanitizer's allocator
+ * refuses every mallopt) is not an error: jobs only run slower. */
 static void tune_malloc(void)
 {
 #if defined(__GLIBC__)
-    (void)mallopt(M_TRIM_THRESHOLD, 32 << 20);
+    (void)mallopt(M_TRIM_THRESHOLD, 8 << 20);
     (void)mallopt(M_MMAP_THRESHOLD, 8 << 20);
 #endif
 }

@@ -17,7 +17,8 @@
  * (rd_http_suspend_for) until the job ends or the wait is over; the timer
  * thread resumes it and MHD calls the handler once more
  * (rd_routes_answer_waiter).  A succeeded job is sent from its shared JSON
- * (rd_http_job_response), never copied per request.
+ * (rd_http_job_response), its CSV and gzip from forms made once with it
+ * (rd_http_body_response), never copied per request.
  *
  * This file is the top of the layer (rd_http_int.h lists the floors): the
  * route table, the handler MHD calls, and the life cycle.
@@ -314,11 +315,17 @@ static enum MHD_Result on_request(void *cls, struct MHD_Connection *c, const cha
         return begin_request(h, c, rq, url, method, version);
     }
     if (*upload_data_size) {
-        if (!rq->replied)
+        enum MHD_Result ok = MHD_YES;
+        if (!rq->replied) {
             rd_routes_take_body(rq, upload_data, *upload_data_size);
+            if (rq->too_large)
+                ok = rd_http_refuse_body_now(h, rq);
+        }
         *upload_data_size = 0;
-        return MHD_YES;
+        return ok;
     }
+    if (rq->refused_raw) /* answered on the socket: the body has ended, close */
+        return MHD_NO;
     if (rq->replied)
         return MHD_YES;
     return rd_routes_finish_submit(h, c, rq);
@@ -335,7 +342,7 @@ static void on_completed(void *cls, struct MHD_Connection *c, void **req_cls,
     struct request *rq = *req_cls;
     if (!rq)
         return;
-    free(rq->body);
+    rd_http_body_free(rq);
     pthread_mutex_lock(&h->mu);
     if (rq->waiting != WAIT_NONE && !rq->resumed) { /* still listed (daemon stop) */
         if (rq->prev)
@@ -351,8 +358,11 @@ static void on_completed(void *cls, struct MHD_Connection *c, void **req_cls,
     }
     free(rq);
     *req_cls = NULL;
-    if (--h->in_flight == 0)
+    if (--h->in_flight == 0) {
         pthread_cond_broadcast(&h->idle);
+        h->idle_since = rd_clock_mono_s();
+        h->trim_due = 1;
+    }
     pthread_mutex_unlock(&h->mu);
 }
 

@@ -18,6 +18,7 @@
 #include <arpa/inet.h>
 #include <pthread.h>
 #include <stddef.h>
+#include <stdint.h>
 #include <sys/socket.h>
 
 #include <microhttpd.h>
@@ -53,6 +54,8 @@ struct rd_http {
     size_t nconns;
     size_t nover; /* of them over a connection limit (struct conn.over) */
     size_t deadline_closed;
+    double idle_since; /* CLOCK_MONOTONIC when in_flight last dropped to 0 */
+    int trim_due;      /* a request ended since freed memory was last returned */
 };
 
 /* Connections past --max-connections or --max-per-ip that are still accepted
@@ -90,7 +93,9 @@ struct request {
     double wait_s;
     char *body; /* POST body so far, NUL-terminated, <= RD_API_BODY_MAX bytes */
     size_t len, cap;
-    int too_large; /* the body passed RD_API_BODY_MAX: the rest is dropped */
+    int body_mapped; /* `body` is a mapping of `cap` bytes (rd_http_body_reserve) */
+    int too_large;   /* the body passed RD_API_BODY_MAX: the rest is dropped */
+    int refused_raw; /* its 413 was written on the socket (rd_http_refuse_body_now) */
     int no_memory;
     int sweep;           /* a POST /api/v1/sweeps; with WAIT_SWEEP: a wait that answers it */
     const char *as;      /* a POST to a study's path: the analysis its body is ("calibration") */
@@ -137,6 +142,12 @@ int rd_http_parse_count(const char *s, long min, long max, long *out);
 const char *rd_http_after_prefix(const char *s, const char *prefix);
 /* Is `method` one of the comma-separated tokens in `allow`? */
 int rd_http_method_allowed(const char *allow, const char *method);
+/* Room for `need` bytes (<= RD_API_BODY_MAX + 1) in rq->body, its `len`
+ * bytes and NUL kept: malloc'd up to 64 KiB, past that a mapping of its
+ * own.  0, or -1 when out of memory (rq unchanged). */
+int rd_http_body_reserve(struct request *rq, size_t need);
+/* Frees rq->body (either kind); len and cap 0. */
+void rd_http_body_free(struct request *rq);
 
 /* ---- rd_http_conn.c ---- */
 
@@ -163,6 +174,14 @@ struct MHD_Response *rd_http_with_header(struct MHD_Response *r, const char *nam
  * worth it. */
 struct MHD_Response *rd_http_text_response(const struct request *rq, char *body,
                                            const char *content_type);
+/* A response sending `len` bytes at `data`, which the shared `body` owns
+ * (a reference the response takes over: released when MHD is done with it,
+ * or here on failure), or, to a client that accepts gzip when `len` is
+ * worth it, the body's form `gz_form` (rd_jobs_form; -1: none), made once
+ * per body. */
+struct MHD_Response *rd_http_body_response(const struct request *rq, rd_jobs_body *body,
+                                           const char *data, size_t len, int gz_form,
+                                           const char *content_type);
 /* A job's answer: its shared JSON `body` (released when sent), or `json`. */
 struct MHD_Response *rd_http_job_response(const struct request *rq, rd_jobs_body *body, char *json,
                                           int cached);
@@ -174,6 +193,8 @@ enum MHD_Result rd_http_send_text(rd_http *h, struct MHD_Connection *c, struct r
  * (a finished job's JSON or CSV): weak, since the same tag stands for its
  * gzip too. */
 void rd_http_etag(const char *data, size_t len, char *out);
+/* The same from the rd_jobs_hash of those bytes. */
+void rd_http_etag_of_hash(const uint64_t hash[2], char *out);
 /* Does the request's If-None-Match name `etag` (weak comparison) or "*"? */
 int rd_http_none_match(struct MHD_Connection *c, const char *etag);
 /* r with `etag` and Cache-Control: no-cache in place of no-store (a
@@ -202,6 +223,10 @@ struct MHD_Response *rd_http_error_response(const struct request *rq, const char
 enum MHD_Result rd_http_send_server_error(rd_http *h, struct MHD_Connection *c, struct request *rq,
                                           int status, const char *code, const char *message,
                                           const char *header, const char *value);
+
+/* A chunked body over RD_API_BODY_MAX as it arrives: 413 written on the
+ * socket at once, the rest of the body dropped; MHD_NO to close at once. */
+enum MHD_Result rd_http_refuse_body_now(rd_http *h, struct request *rq);
 
 /* ---- rd_http_access.c ---- */
 

@@ -9,6 +9,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/socket.h>
 
 #include <jansson.h>
 
@@ -109,21 +110,48 @@ struct MHD_Response *rd_http_text_response(const struct request *rq, char *body,
     return r;
 }
 
+/* A response of `len` bytes at `data`, owned by the shared `body`, which MHD
+ * releases when done with it (and which is released here on failure). */
+static struct MHD_Response *from_body(rd_jobs_body *body, const char *data, size_t len, int gz,
+                                      const char *content_type)
+{
+    struct MHD_Response *r = MHD_create_response_from_buffer_with_free_callback_cls(
+        len, (void *)data, rd_jobs_body_release, body);
+    if (!r) {
+        rd_jobs_body_release(body);
+        return NULL;
+    }
+    if ((gz && !add_gzip_headers(r)) ||
+        MHD_add_response_header(r, MHD_HTTP_HEADER_CONTENT_TYPE, content_type) != MHD_YES ||
+        MHD_add_response_header(r, MHD_HTTP_HEADER_CACHE_CONTROL, "no-store") != MHD_YES) {
+        MHD_destroy_response(r); /* releases the body */
+        return NULL;
+    }
+    return r;
+}
+
+struct MHD_Response *rd_http_body_response(const struct request *rq, rd_jobs_body *body,
+                                           const char *data, size_t len, int gz_form,
+                                           const char *content_type)
+{
+    rd_error ignored;
+    rd_error_init(&ignored);
+    const char *gz = NULL;
+    size_t gz_len = 0;
+    if (rq->gzip && gz_form >= 0 && len >= RD_GZIP_MIN_BYTES &&
+        rd_jobs_body_form(body, (rd_jobs_form)gz_form, &gz, &gz_len, NULL, &ignored) != RD_OK)
+        gz = NULL; /* out of memory: send it as it is */
+    return gz ? from_body(body, gz, gz_len, 1, content_type)
+              : from_body(body, data, len, 0, content_type);
+}
+
 /* A cached job's shared JSON with "cached":true as its first member: two
- * pieces sent as they are (no copy), or, gzipped, one per-request copy. */
+ * pieces sent as they are, or its gzip, made once per body (no copy per
+ * request either way). */
 static struct MHD_Response *cached_response(const struct request *rq, rd_jobs_body *body)
 {
-    if (rq->gzip && body->len >= RD_GZIP_MIN_BYTES) {
-        size_t n = sizeof cached_prefix - 1 + body->len - 1;
-        char *joined = malloc(n + 1);
-        if (joined) {
-            memcpy(joined, cached_prefix, sizeof cached_prefix - 1);
-            memcpy(joined + sizeof cached_prefix - 1, body->data + 1, body->len - 1);
-            joined[n] = '\0';
-        }
-        rd_jobs_body_release(body);
-        return rd_http_text_response(rq, joined, RD_HTTP_JSON);
-    }
+    if (rq->gzip && body->len >= RD_GZIP_MIN_BYTES)
+        return rd_http_body_response(rq, body, body->data, body->len, RD_JOBS_CACHED, RD_HTTP_JSON);
     struct MHD_IoVec iov[2] = {{cached_prefix, sizeof cached_prefix - 1},
                                {body->data + 1, body->len - 1}};
     struct MHD_Response *r = MHD_create_response_from_iovec(iov, 2, rd_jobs_body_release, body);
@@ -149,26 +177,7 @@ struct MHD_Response *rd_http_job_response(const struct request *rq, rd_jobs_body
         return rd_http_text_response(rq, json, RD_HTTP_JSON);
     if (cached)
         return cached_response(rq, body);
-    const char *data = body->data;
-    size_t len = body->len;
-    int gz = rq->gzip && len >= RD_GZIP_MIN_BYTES && rd_jobs_body_gzip(body, &data, &len) == RD_OK;
-    if (!gz) {
-        data = body->data;
-        len = body->len;
-    }
-    struct MHD_Response *r = MHD_create_response_from_buffer_with_free_callback_cls(
-        len, (void *)data, rd_jobs_body_release, body);
-    if (!r) {
-        rd_jobs_body_release(body);
-        return NULL;
-    }
-    if ((gz && !add_gzip_headers(r)) ||
-        MHD_add_response_header(r, MHD_HTTP_HEADER_CONTENT_TYPE, RD_HTTP_JSON) != MHD_YES ||
-        MHD_add_response_header(r, MHD_HTTP_HEADER_CACHE_CONTROL, "no-store") != MHD_YES) {
-        MHD_destroy_response(r); /* releases the body */
-        return NULL;
-    }
-    return r;
+    return rd_http_body_response(rq, body, body->data, body->len, RD_JOBS_GZIP, RD_HTTP_JSON);
 }
 
 enum MHD_Result rd_http_send_text(rd_http *h, struct MHD_Connection *c, struct request *rq,
@@ -179,12 +188,17 @@ enum MHD_Result rd_http_send_text(rd_http *h, struct MHD_Connection *c, struct r
 
 /* ---- validators: ETag, If-None-Match, 304 ---- */
 
+void rd_http_etag_of_hash(const uint64_t hash[2], char *out)
+{
+    snprintf(out, RD_HTTP_ETAG_LEN, "W/\"%016llx%016llx\"", (unsigned long long)hash[0],
+             (unsigned long long)hash[1]);
+}
+
 void rd_http_etag(const char *data, size_t len, char *out)
 {
     uint64_t hash[2];
     rd_jobs_hash(data, len, hash);
-    snprintf(out, RD_HTTP_ETAG_LEN, "W/\"%016llx%016llx\"", (unsigned long long)hash[0],
-             (unsigned long long)hash[1]);
+    rd_http_etag_of_hash(hash, out);
 }
 
 /* The opaque tag of an entity tag at `p` (its quoted string, "W/" dropped):
@@ -305,4 +319,48 @@ enum MHD_Result rd_http_send_server_error(rd_http *h, struct MHD_Connection *c, 
         r = NULL;
     }
     return rd_http_send_response(h, c, rq, status, r);
+}
+
+/* A body that passed RD_API_BODY_MAX while it was arriving (only a chunked
+ * one can: a declared Content-Length over it is refused before the body).
+ * libmicrohttpd (0.9.75, and 1.0.1 alike) queues a response only before
+ * the body or after the whole of it, and a chunk may declare up to 2^64-1
+ * bytes, so waiting for the end meant waiting for the request deadline.
+ * The 413 is written on the socket here, in the connection's own thread
+ * while MHD writes nothing on it (no response is queued), and its write
+ * side shut: the client has its answer at once.  What the client still
+ * sends is read and dropped until it closes, the request deadline shuts
+ * the socket, or the body ends (rd_http_body_refused then closes); a close
+ * at once would reset the connection under unread data, and the client
+ * could lose the answer.  Returns MHD_NO (close now) when the answer could
+ * not be written whole. */
+enum MHD_Result rd_http_refuse_body_now(rd_http *h, struct request *rq)
+{
+    rd_error err;
+    rd_error_init(&err);
+    rd_error_set(&err, RD_ETOOLARGE, "", "The body is larger than the limit of %d bytes.",
+                 RD_API_BODY_MAX);
+    char *json = rd_api_error_json(&err);
+    char head[256];
+    int n = json ? snprintf(head, sizeof head,
+                            "HTTP/1.1 413 Content Too Large\r\nConnection: close\r\n"
+                            "Content-Type: application/json\r\nCache-Control: no-store\r\n"
+                            "Content-Length: %zu\r\n\r\n",
+                            strlen(json))
+                 : -1;
+    int written = 0;
+    rq->replied = 1;
+    rq->refused_raw = 1;
+    if (rq->conn && n > 0 && (size_t)n < sizeof head) {
+        struct iovec iov[2] = {{head, (size_t)n}, {json, strlen(json)}};
+        struct msghdr msg = {.msg_iov = iov, .msg_iovlen = 2};
+        ssize_t sent = sendmsg(rq->conn->fd, &msg, MSG_NOSIGNAL | MSG_DONTWAIT);
+        written = sent == (ssize_t)((size_t)n + strlen(json));
+        if (written) {
+            shutdown(rq->conn->fd, SHUT_WR);
+            rd_metrics_count_http(h->metrics, MHD_HTTP_CONTENT_TOO_LARGE);
+        }
+    }
+    free(json);
+    return written ? MHD_YES : MHD_NO;
 }

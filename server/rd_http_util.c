@@ -1,17 +1,29 @@
 /*
- * rd_http_util — the bottom of the HTTP layer (rd_http_int.h): text checks
- * and the parsing of paths, media types and query values.  Calls nothing
- * else of the server.
+ * rd_http_util — the bottom of the HTTP layer (rd_http_int.h): text checks,
+ * the parsing of paths, media types and query values, and the buffers of
+ * request bodies.  Calls nothing else of the server.
  *
  * Paths arrive percent-decoded by rd_http_unescape_path, which turns an
  * encoded NUL into DEL (0x7f) so that it cannot cut the C string short;
  * every path with a control character is then refused (404).
+ *
+ * Request bodies past BODY_HEAP_MAX live in a mapping of their own: a burst
+ * of 1 MiB bodies, freed into the HTTP threads' arenas, stayed there (main.c
+ * keeps up to 32 MiB at each arena's top, and malloc_trim cannot return an
+ * arena's top other than the main one's); a mapping goes back to the
+ * kernel when the request ends, and only the pages a body fills are touched.
  */
+#define _DEFAULT_SOURCE /* MAP_ANONYMOUS */
 #include "rd_http_int.h"
 
 #include <stdlib.h>
 #include <string.h>
 #include <strings.h>
+#include <sys/mman.h>
+#include <unistd.h>
+
+/* Bodies up to this are malloc'd (a scene is a few kB). */
+#define BODY_HEAP_MAX (64 * 1024)
 
 /* A copy of `s` fit for a message: rd_http_printable ASCII only, at most n-1 bytes.
  * (Error bodies must be valid UTF-8; request text need not be.) */
@@ -145,4 +157,48 @@ int rd_http_method_allowed(const char *allow, const char *method)
             p++;
     }
     return 0;
+}
+
+int rd_http_body_reserve(struct request *rq, size_t need)
+{
+    if (need <= rq->cap)
+        return 0;
+    if (need <= BODY_HEAP_MAX) {
+        size_t cap = rq->cap ? rq->cap : 4096;
+        while (cap < need)
+            cap *= 2;
+        if (cap > BODY_HEAP_MAX)
+            cap = BODY_HEAP_MAX;
+        char *body = realloc(rq->body, cap);
+        if (!body)
+            return -1;
+        rq->body = body;
+        rq->cap = cap;
+        return 0;
+    }
+    size_t page = (size_t)sysconf(_SC_PAGESIZE);
+    size_t cap = (RD_API_BODY_MAX + 1 + page - 1) / page * page;
+    if (need > cap || rq->body_mapped)
+        return -1; /* a mapping already holds the most a body may be */
+    char *body = mmap(NULL, cap, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
+    if (body == MAP_FAILED)
+        return -1;
+    if (rq->body)
+        memcpy(body, rq->body, rq->len + 1);
+    free(rq->body);
+    rq->body = body;
+    rq->cap = cap;
+    rq->body_mapped = 1;
+    return 0;
+}
+
+void rd_http_body_free(struct request *rq)
+{
+    if (rq->body_mapped)
+        munmap(rq->body, rq->cap);
+    else
+        free(rq->body);
+    rq->body = NULL;
+    rq->len = rq->cap = 0;
+    rq->body_mapped = 0;
 }

@@ -160,11 +160,13 @@ void rd_jobs_expire(rd_jobs *jobs);
  * rd_jobs_get does.  RD_ENOTFOUND for an unknown id. */
 int rd_jobs_cancel(rd_jobs *jobs, const char *id, rd_jobs_body **body, char **json, rd_error *err);
 
-/* The result of a succeeded job as CSV (rd_api_result_csv); the job's
- * analysis into `analysis` (may be NULL; at least 32 bytes).  Only final
- * jobs have one.  RD_ENOTFOUND for an unknown id or a job without a result
- * (the message gives its status). */
-int rd_jobs_result_csv(rd_jobs *jobs, const char *id, char **csv, char *analysis, rd_error *err);
+/* The shared body of a job with a result (as rd_jobs_get gives it; release
+ * with rd_jobs_body_release), for its CSV; the job's analysis into
+ * `analysis` (may be NULL; at least 32 bytes).  Only final jobs have one.
+ * RD_ENOTFOUND for an unknown id or a job without a result (the message
+ * gives its status). */
+int rd_jobs_result_body(rd_jobs *jobs, const char *id, rd_jobs_body **body, char *analysis,
+                        rd_error *err);
 
 /* Which jobs a list shows. */
 typedef struct rd_jobs_filter {
@@ -185,9 +187,24 @@ int rd_jobs_list(rd_jobs *jobs, const rd_jobs_filter *f, char **json, rd_error *
  * RD_ENOTFOUND for an unknown id. */
 int rd_jobs_delete(rd_jobs *jobs, const char *id, int *deleted, rd_error *err);
 
-/* The gzip of a shared body, made once per body (the first caller pays) and
- * kept with it: *data and *len are valid while the body is held.  RD_ENOMEM. */
-int rd_jobs_body_gzip(rd_jobs_body *body, const char **data, size_t *len);
+/* What a shared body is sent as besides its JSON, each made once per body
+ * (the first request pays; those that ask meanwhile wait for it and share
+ * the same bytes) and kept with it while it is held, so N connections
+ * sending a result's CSV or gzip hold one copy, not N. */
+typedef enum rd_jobs_form {
+    RD_JOBS_GZIP,     /* the JSON, gzipped */
+    RD_JOBS_CACHED,   /* the JSON with "cached":true first (a result cache hit), gzipped */
+    RD_JOBS_CSV,      /* the result as CSV (rd_api_result_csv) */
+    RD_JOBS_CSV_GZIP, /* that CSV, gzipped */
+} rd_jobs_form;
+
+/* `form` of a shared body: *data and *len are valid while the body is held;
+ * `hash` (may be NULL) receives rd_jobs_hash of the form's bytes before
+ * compression (the ETag of the CSV), computed once.  RD_ENOMEM, or for the
+ * CSV RD_EINTERNAL (the stored result is the api's own output: a failure to
+ * write it is ours). */
+int rd_jobs_body_form(rd_jobs_body *body, rd_jobs_form form, const char **data, size_t *len,
+                      uint64_t hash[2], rd_error *err);
 
 /* Current number of jobs in each state (RD_JOB_NSTATUS entries). */
 void rd_jobs_get_counts(rd_jobs *jobs, size_t *counts);

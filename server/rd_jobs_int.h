@@ -52,14 +52,23 @@
 
 #include "rd_jobs.h"
 
+/* One derived form of a body (rd_jobs_form): NULL until made. */
+struct form {
+    char *data;
+    size_t len;
+    uint64_t hash[2]; /* of the bytes before compression */
+};
+
 struct body {
     rd_jobs_body pub; /* first: the public view is a pointer to it */
     rd_jobs *jobs;
     struct job *owner; /* the job whose `body` this is, NULL once it is gone */
     int refs;
     char *data;
-    char *gz; /* its gzip, made once by rd_jobs_body_gzip, or NULL */
-    size_t gz_len;
+    /* Guards `forms`: held while one is made, so it is made once; a form
+     * never changes once set and lives as long as the body. */
+    pthread_mutex_t make;
+    struct form forms[4]; /* by rd_jobs_form */
 };
 
 struct job {
@@ -215,6 +224,9 @@ int rd_jobs_load_store(rd_jobs *jobs, rd_error *err);
 
 /* ---- rd_jobs_body.c ---- */
 
+/* A body owning the malloc'd `data` (freed on failure), no reference yet;
+ * NULL when out of memory. */
+struct body *rd_jobs_body_new(rd_jobs *jobs, char *data, size_t len);
 /* Frees a body that no request holds (NULL is a no-op). */
 void rd_jobs_body_free(struct body *b);
 /* Holds `b` as the most recently read body; returns the one it replaces

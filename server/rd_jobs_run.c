@@ -222,16 +222,8 @@ static void notify(rd_jobs *jobs, const char *analysis, int status, double secon
  * run's reference on `job`. */
 static void publish(rd_jobs *jobs, struct job *job, struct run_end *e, const char *analysis)
 {
-    struct body *kept = e->body ? calloc(1, sizeof *kept) : NULL;
+    struct body *kept = e->body ? rd_jobs_body_new(jobs, e->body, e->body_len) : NULL;
     struct body *dropped = NULL;
-    if (kept) {
-        kept->jobs = jobs;
-        kept->data = e->body;
-        kept->pub.data = e->body;
-        kept->pub.len = e->body_len;
-    } else {
-        free(e->body);
-    }
     e->body = NULL;
 
     pthread_mutex_lock(&jobs->mu);

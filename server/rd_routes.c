@@ -194,15 +194,24 @@ static enum MHD_Result get_csv(rd_http *h, struct MHD_Connection *c, struct requ
 {
     rd_error err;
     rd_error_init(&err);
-    char *body = NULL, analysis[32] = "", etag[RD_HTTP_ETAG_LEN];
-    if (rd_jobs_result_csv(h->jobs, id, &body, analysis, &err) != RD_OK)
+    char analysis[32] = "", etag[RD_HTTP_ETAG_LEN];
+    rd_jobs_body *body = NULL;
+    const char *csv = NULL;
+    size_t len = 0;
+    uint64_t hash[2];
+    if (rd_jobs_result_body(h->jobs, id, &body, analysis, &err) != RD_OK)
         return rd_http_send_error(h, c, rq, &err, NULL);
-    rd_http_etag(body, strlen(body), etag);
+    if (rd_jobs_body_form(body, RD_JOBS_CSV, &csv, &len, hash, &err) != RD_OK) {
+        rd_jobs_body_release(body);
+        return rd_http_send_error(h, c, rq, &err, NULL);
+    }
+    rd_http_etag_of_hash(hash, etag);
     if (rd_http_none_match(c, etag)) {
-        free(body);
+        rd_jobs_body_release(body);
         return rd_http_send_not_modified(h, c, rq, etag);
     }
-    struct MHD_Response *r = rd_http_text_response(rq, body, "text/csv; charset=utf-8");
+    struct MHD_Response *r =
+        rd_http_body_response(rq, body, csv, len, RD_JOBS_CSV_GZIP, "text/csv; charset=utf-8");
     char disposition[96];
     snprintf(disposition, sizeof disposition, "attachment; filename=\"ringdyn-%s-%s.csv\"",
              analysis, id);
@@ -376,24 +385,12 @@ void rd_routes_take_body(struct request *rq, const char *data, size_t n)
         return;
     if (n > RD_API_BODY_MAX - rq->len) {
         rq->too_large = 1;
-        free(rq->body);
-        rq->body = NULL;
-        rq->len = rq->cap = 0;
+        rd_http_body_free(rq);
         return;
     }
-    if (rq->len + n + 1 > rq->cap) {
-        size_t cap = rq->cap ? rq->cap : 4096;
-        while (cap < rq->len + n + 1)
-            cap *= 2;
-        if (cap > RD_API_BODY_MAX + 1)
-            cap = RD_API_BODY_MAX + 1;
-        char *body = realloc(rq->body, cap);
-        if (!body) {
-            rq->no_memory = 1;
-            return;
-        }
-        rq->body = body;
-        rq->cap = cap;
+    if (rd_http_body_reserve(rq, rq->len + n + 1) != 0) {
+        rq->no_memory = 1;
+        return;
     }
     memcpy(rq->body + rq->len, data, n);
     rq->len += n;
@@ -468,8 +465,7 @@ enum MHD_Result rd_routes_finish_submit(rd_http *h, struct MHD_Connection *c, st
     char *errors = NULL; /* the error body with every problem (rd_api.h) */
     int rc =
         rd_scene_parse_report_as(rq->body ? rq->body : "", rq->len, rq->as, &scene, &err, &errors);
-    free(rq->body);
-    rq->body = NULL;
+    rd_http_body_free(rq);
     if (rc != RD_OK && err.code != RD_OK && errors)
         return rd_http_send_text(h, c, rq, rd_api_http_status(err.code), errors, RD_HTTP_JSON);
     free(errors);

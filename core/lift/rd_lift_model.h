@@ -359,8 +359,11 @@ int rd_lift_check_rigid(const rd_ring *ring, const rd_lift_params *p, const rd_l
  * one whole cycle (err cleared), else `why` (rd_lift_partial.c). */
 int rd_lift_keep_partial(rd_lift_result *out, const rd_lift_params *p, const rd_lift_run *r,
                          int why, rd_error *err);
-/* A run stopped in its error-estimate run: every cycle, no estimate. */
-void rd_lift_estimate_stopped(rd_lift_result *out, const rd_lift_params *p);
+/* A run stopped in its error-estimate run (`why`: a stop, or RD_ELIMIT at
+ * `reached_deg`): every cycle, no estimate; returns RD_OK for RD_ELIMIT (err
+ * cleared), else `why` (rd_lift_partial.c). */
+int rd_lift_estimate_stopped(rd_lift_result *out, const rd_lift_params *p, int why,
+                             double reached_deg, rd_error *err);
 
 /* The flank-change state machine of the events (rd_lift_driver.c header):
  * the committed flank (enum rd_flank) and the time a pending leave started

@@ -9,7 +9,9 @@
  * (its rtol/10 run would need the same work again).  A max_steps stop then
  * succeeds; a monitor stop keeps its error code (the caller decides: the
  * server keeps the partial result beside the job's error).  Stopped in the
- * error-estimate run, every cycle is there and only the estimate is lost. */
+ * error-estimate run (by a stop or by max_steps: at rtol/10 a free-flying
+ * elastic ring may need ~3x the main run's steps), every cycle is there and
+ * only the estimate is lost. */
 #include <math.h>
 #include <stdio.h>
 
@@ -51,17 +53,34 @@ int rd_lift_keep_partial(rd_lift_result *out, const rd_lift_params *p, const rd_
 }
 
 /* Stopped in the error-estimate run: every cycle is there, the estimate is
- * not; the result is partial (at the run's end) and says so. */
-void rd_lift_estimate_stopped(rd_lift_result *out, const rd_lift_params *p)
+ * not; the result is partial (at the run's end) and says so.  `why` is the
+ * stop (RD_ELIMIT: /numerics/max_steps ran out at `reached_deg` in the
+ * rtol/10 or n/2 run, which costs more steps than the main one; the run
+ * then succeeds, as a max_steps stop after whole cycles does), `err` is
+ * cleared for RD_ELIMIT.  Returns the code the run ends with. */
+int rd_lift_estimate_stopped(rd_lift_result *out, const rd_lift_params *p, int why,
+                             double reached_deg, rd_error *err)
 {
     out->partial = 1;
-    out->partial_stop = RD_ECANCELED;
+    out->partial_stop = why == RD_ELIMIT ? RD_ELIMIT : RD_ECANCELED;
     out->crank_deg_reached = 720.0 * p->engine.cycles;
     out->error_estimate = NAN;
     out->event_error_deg = NAN;
+    if (why != RD_ELIMIT) {
+        snprintf(out->warning, sizeof out->warning,
+                 "Partial result: the run was stopped (cancelled or out of time) in its "
+                 "error-estimate run (rtol/10); every cycle is returned, without an error "
+                 "estimate.  To get one, allow it more time or make it cheaper: fewer cycles, a "
+                 "cheaper model (/numerics/model), or a looser /numerics/rtol.");
+        return why;
+    }
     snprintf(out->warning, sizeof out->warning,
-             "Partial result: the run was stopped (cancelled or out of time) in its error-estimate "
-             "run (rtol/10); every cycle is returned, without an error estimate.  To get one, "
-             "allow it more time or make it cheaper: fewer cycles, a cheaper model "
-             "(/numerics/model), or a looser /numerics/rtol.");
+             "Partial result: the error-estimate run (rtol/10, or n/2 segments) used its "
+             "/numerics/max_steps = %ld steps by crank angle %.1f deg of %.1f; every cycle of "
+             "the main run is returned, without an error estimate.  To get one, raise max_steps "
+             "or make the run cheaper: fewer cycles, a cheaper model (/numerics/model), or a "
+             "looser /numerics/rtol.",
+             p->max_steps, reached_deg, 720.0 * p->engine.cycles);
+    rd_error_init(err);
+    return RD_OK;
 }

@@ -557,8 +557,9 @@ int rd_lift_solve_setup(const rd_ring_params *rp, int segments, const rd_lift_pa
                              .reference = s.half ? "rtol/10 and atol/10, and at n/2 segments"
                                                  : "rtol/10 and atol/10"};
     rc = rd_accuracy_run(&plan, mon, NULL, err);
-    if ((rc == RD_ECANCELED || rc == RD_ETIMEOUT) && s.main_done)
-        rd_lift_estimate_stopped(out, p);
+    if ((rc == RD_ECANCELED || rc == RD_ETIMEOUT || rc == RD_ELIMIT) && s.main_done)
+        rc = rd_lift_estimate_stopped(out, p, rc, fmax(s.run[1].reached_deg, s.run[2].reached_deg),
+                                      err);
     if (out->model == RD_LIFT_MODEL_MODAL && s.run[0].dof > 0)
         out->dof = s.run[0].dof; /* with the correction shapes kept */
     out->n_events = s.run[0].n_events;

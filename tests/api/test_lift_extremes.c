@@ -15,14 +15,19 @@
  * (1.4 s in all), full n = 4 0.01-0.1 s, modal n = 4 0.05-0.9 s, full
  * n = 1000 at 30000 rpm 2.1 s.
  *
- * Left out, for their cost: the full and modal models at 1 rpm with a large
- * axial clearance.  There the ring flies freely for seconds of physical time
- * (36 deg at 1 rpm is 6 s) and its undamped elastic vibration sets the step:
- * full n = 4 takes ~240 000 CVODE steps (7.6 s) and its error-estimate
- * solve at rtol/10 passes numerics.max_steps, which stops it with
- * limit_exceeded naming the crank angle reached; modal n = 4 converges in
- * 95 s.  The full model at n = 1000 with a 5 mm clearance takes 65 s at
- * 30000 rpm.
+ * The full model at n = 4, 1 rpm, c_a = 5 mm: the ring flies freely for
+ * seconds of physical time (36 deg at 1 rpm is 6 s; no gravity in the
+ * default scene, the piston's 6e-4 m/s^2 lifts it across the clearance) and
+ * its undamped elastic vibration sets the step: the main run takes ~242 000
+ * CVODE steps (3.3 s), its error-estimate run at rtol/10 ~3x that and passes
+ * numerics.max_steps (500 000) at 26.5 deg.  Up to 0.3.x that failed the
+ * whole run with limit_exceeded; now the main run's result is returned
+ * without an estimate (partial, with a warning at /numerics/max_steps), as
+ * a run whose estimate is cancelled is (full_free_flight, 6.7 s).
+ *
+ * Left out, for their cost: the modal model at 1 rpm with a large axial
+ * clearance (converges in 95 s), the full model at n = 1000 with a 5 mm
+ * clearance (65 s at 30000 rpm).
  */
 #include <stdio.h>
 #include <stdlib.h>
@@ -83,6 +88,35 @@ static void converges(const char *model, int segments, double rpm, double ca, do
             rpm, ca, cr, rc == RD_OK ? "converged" : "FAILED", dt);
 }
 
+/* The full ring at n = 4, 1 rpm, c_a = 5 mm (header comment): succeeds with
+ * the main run whole, both flank changes, and no error estimate, said by a
+ * warning at /numerics/max_steps. */
+static void full_free_flight(void)
+{
+    char body[512];
+    rd_scene *sc = NULL;
+    rd_error err;
+    rd_error_init(&err);
+    scene(body, sizeof body, "full", 4, 1.0, 5e-3, 1e-6);
+    double t0 = now_s();
+    int rc = rd_scene_parse(body, strlen(body), &sc, &err);
+    char *result = NULL;
+    if (rc == RD_OK)
+        rc = rd_scene_run(sc, NULL, &result, &err);
+    CHECK(rc == RD_OK && result, "full n = 4, 1 rpm, c_a 5e-3: %s (%s)", err.message, err.path);
+    if (result) {
+        CHECK(strstr(result, "\"partial\":true") && strstr(result, "\"crank_deg_reached\":36") &&
+                  strstr(result, "\"path\":\"/numerics/max_steps\"") &&
+                  strstr(result, "error-estimate run") && strstr(result, "\"reach_upper\"") &&
+                  strstr(result, "\"error_estimate\":null"),
+              "full n = 4, 1 rpm, c_a 5e-3: the main run without its estimate, warned");
+    }
+    fprintf(stderr, "    full  n =    4      1 rpm  c_a 0.005 c_r 1e-06  %s  %.3f s\n",
+            rc == RD_OK ? "converged, no estimate (max_steps)" : "FAILED", now_s() - t0);
+    free(result);
+    rd_scene_free(sc);
+}
+
 /* The scene is refused when parsed (before any work), at `path`, with a
  * status the contract answers with a 4xx. */
 static void refused(const char *what, int segments, double rpm, double ca, double cr,
@@ -114,14 +148,16 @@ int main(void)
      * and 1000 segments, while 600 and 900 passed) */
     for (int n = 650; n < 1000; n += 50)
         converges("rigid", n, 1000.0, 3e-5, 5e-4);
-    /* the full model: n = 4 at every corner but 1 rpm with c_a = 5 mm, and
-     * n = 1000 at 30000 rpm, the smallest clearances (header comment) */
+    /* the full model: n = 4 at every corner but 1 rpm with c_a = 5 mm (its
+     * own check below), and n = 1000 at 30000 rpm, the smallest clearances
+     * (header comment) */
     for (int b = 0; b < 2; b++)
         for (int c = 0; c < 2; c++)
             for (int d = 0; d < 2; d++)
                 if (b == 1 || c == 0)
                     converges("full", 4, rpms[b], cas[c], crs[d]);
     converges("full", 1000, 30000.0, 1e-7, 1e-6);
+    full_free_flight();
     /* the modal model (n <= 200) at n = 4, 30000 rpm */
     for (int c = 0; c < 2; c++)
         converges("modal", 4, 30000.0, cas[c], 1e-2);
