@@ -358,7 +358,8 @@ enum MHD_Result rd_http_refuse_body_now(rd_http *h, struct request *rq)
         written = sent == (ssize_t)((size_t)n + strlen(json));
         if (written) {
             shutdown(rq->conn->fd, SHUT_WR);
-            rd_metrics_count_http(h->metrics, MHD_HTTP_CONTENT_TOO_LARGE);
+            rd_metrics_count_http(h->metrics, rq->metrics_route, rq->method,
+                                  MHD_HTTP_CONTENT_TOO_LARGE, rd_clock_mono_s() - rq->t0);
         }
     }
     free(json);
