@@ -63,6 +63,17 @@ static json_t *layers_echo(const rd_scene *s)
     return o->map.layers_given ? rd_bore_layers_json(s, o->map.map) : json_null();
 }
 
+static const rd_field points_fields[] = {
+    RD_BORE_POINTS_FIELDS(LO),
+    {.key = NULL},
+};
+static const rd_block points_block = {
+    "LiftBorePoints",
+    "/bore/points (lift): a measured bore (theta, z, dr), fitted per layer of equal z by least "
+    "squares up to fit_order, as the contact analysis' /bore/points; the same length for the "
+    "three tables.",
+    1, 0, points_fields};
+
 static const rd_field bore_fields[] = {
     RD_BORE_FIELDS(LO, "Bore diameter D, m; 0 = the ring's diameter; otherwise within 2 % of it.",
                    "Fourier terms of the bore's out-of-roundness, at most 16. The radial contact "
@@ -77,10 +88,14 @@ static const rd_field bore_fields[] = {
              "from TDC: the layers must cover the whole stroke. With layers, /bore/distortion is "
              "refused and /bore/diameter is the diameter of layers that give none; the full or "
              "modal ring runs (as on any distorted bore)."},
+    {"points", RD_F_OPTBLOCK, LO(map.points_given), .block = &points_block,
+     .desc = "The bore map as measured points instead of layers (not both), fitted per layer "
+             "(the result's bore_fit gives the layers and the residual); read with "
+             "ring_z_tdc_m, as layers are."},
     {"ring_z_tdc_m", RD_F_CUSTOM, LO(ring_z.given), .parse = rd_ring_depth_parse,
      .echo = ring_z_echo, .extra = "{\"type\": \"number\", \"minimum\": 0, \"maximum\": 10}",
-     .desc = "With /bore/layers (and only then): the ring's depth below the top of the bore at "
-             "TDC, m, on the layers' z axis."},
+     .desc = "With /bore/layers or /bore/points (and only then): the ring's depth below the "
+             "top of the bore at TDC, m, on the map's z axis."},
     RD_BORE_ROUGHNESS_FIELD,
     {.key = NULL},
 };
@@ -359,14 +374,15 @@ static int lube_finish(struct rd_scene *s, struct lift_opts *o, rd_error *err)
     return rc ? rc : rd_face_unread(&l->face, "/ring", err);
 }
 
-/* /bore/layers and /bore/ring_z_tdc_m (rd_ring_depth_finish); core checks
+/* /bore/layers or /bore/points and /bore/ring_z_tdc_m (rd_ring_depth_finish); core checks
  * the map against the stroke. */
 static int map_finish(const rd_scene *s, struct lift_opts *o, rd_error *err)
 {
     rd_lift_params *l = &o->lift;
     double D = l->bore.diameter > 0.0 ? l->bore.diameter : s->ring.diameter;
     l->ring_z_tdc = o->ring_z.z;
-    return rd_ring_depth_finish(&o->map, &o->ring_z, D, "the ring's", &l->bore_map, err);
+    return rd_ring_depth_finish(&o->map, &o->ring_z, s->ring.diameter, D, "the ring's",
+                                &l->bore_map, err);
 }
 
 /* The optional physics the scene named, the gas tables, the engine's tilt,
@@ -565,6 +581,9 @@ static json_t *lift_result(const rd_scene *scene, const rd_lift_result *res, dou
         json_decref(bins);
     if (!bad && res->ring_depth)
         bad = json_object_set_new(out, "ring_depth_m", rd_result_reals(res->ring_depth, N, 1, 1.0));
+    const struct lift_opts *o = scene->opts;
+    if (!bad && o->map.points_given)
+        bad = json_object_set_new(out, "bore_fit", rd_bore_fit_json(scene, &o->map));
     if (bad) {
         json_decref(out);
         return NULL;
@@ -650,6 +669,7 @@ static const char *const result_keys[] = {"analysis",
                                           "bore_pressure_angle_deg",
                                           "bore_pressure_pa",
                                           "ring_depth_m",
+                                          "bore_fit",
                                           "flank",
                                           "events",
                                           "numerics",

@@ -97,6 +97,17 @@ static json_t *ring_z_echo(const rd_scene *s)
     return o->ring_z.given ? rd_result_real(o->ring_z.z) : json_null();
 }
 
+static const rd_field points_fields[] = {
+    RD_BORE_POINTS_FIELDS(PO),
+    {.key = NULL},
+};
+static const rd_block points_block = {
+    "PackBorePoints",
+    "/bore/points (ringpack): a measured bore (theta, z, dr; theta from the bore's angle 0), "
+    "fitted per layer of equal z by least squares up to fit_order, as the contact analysis' "
+    "/bore/points; the same length for the three tables.",
+    1, 0, points_fields};
+
 static const rd_field bore_fields[] = {
     RD_BORE_FIELDS(PO,
                    "Bore diameter D, m; 0 = the rings' diameter; otherwise within 2 % of it (the "
@@ -116,10 +127,15 @@ static const rd_field bore_fields[] = {
              "travel. With layers, /bore/distortion is refused and /bore/diameter is the "
              "diameter of layers that give none; as on any distorted bore each moving ring runs "
              "a flexible model (auto: full)."},
+    {"points", RD_F_OPTBLOCK, PO(map.points_given), .block = &points_block,
+     .desc = "The bore map as measured points instead of layers (not both), fitted per layer "
+             "(the result's bore_fit gives the layers and the residual); read with "
+             "ring_z_tdc_m, as layers are."},
     {"ring_z_tdc_m", RD_F_CUSTOM, PO(ring_z.given), .parse = rd_ring_depth_parse,
      .echo = ring_z_echo, .extra = "{\"type\": \"number\", \"minimum\": 0, \"maximum\": 10}",
-     .desc = "With /bore/layers (and only then): the top ring's depth below the top of the bore "
-             "at TDC, m, on the layers' z axis (the point of the ring lift's ring_z_tdc_m "
+     .desc = "With /bore/layers or /bore/points (and only then): the top ring's depth below "
+             "the top of the bore at TDC, m, on the map's z axis (the point of the ring lift's "
+             "ring_z_tdc_m "
              "names); ring i sits lower by the axial heights of the rings above it and the "
              "heights of the lands between them."},
     RD_BORE_ROUGHNESS_FIELD,
@@ -675,8 +691,9 @@ static int finish(struct rd_scene *s, rd_error *err)
     rc = rc ? rc : rd_friction_unread(&p->friction, &d.friction, err);
     p->ring_z_tdc = o->ring_z.z;
     double D = p->bore.diameter > 0.0 ? p->bore.diameter : p->rings[0].ring.diameter;
-    rc =
-        rc ? rc : rd_ring_depth_finish(&o->map, &o->ring_z, D, "the top ring's", &p->bore_map, err);
+    rc = rc ? rc
+            : rd_ring_depth_finish(&o->map, &o->ring_z, p->rings[0].ring.diameter, D,
+                                   "the top ring's", &p->bore_map, err);
     rc = rc ? rc : lube_finish(s, o, err);
     rc = rc ? rc : rd_ringpack_validate(&o->pack, err);
     return rc ? rc : solver_ranges(o, err);
@@ -690,6 +707,11 @@ static int run(const rd_scene *s, const rd_monitor *mon, json_t **out, rd_error 
     int rc = rd_ringpack_solve(&o->pack, mon, &res, err);
     if (rc == RD_OK)
         *out = rd_ringpack_json(s, &o->pack, &res, rd_clock_s() - t0);
+    if (rc == RD_OK && *out && o->map.points_given &&
+        json_object_set_new(*out, "bore_fit", rd_bore_fit_json(s, &o->map)) != 0) {
+        json_decref(*out);
+        *out = NULL;
+    }
     rd_ringpack_result_cleanup(&res);
     return rc;
 }
@@ -727,8 +749,9 @@ static const char *const elsewhere[] = {
     NULL};
 
 static const char *const result_keys[] = {
-    "analysis",         "scene", "crank_deg", "volumes",  "rings", "flows", "blowby", "periodicity",
-    "periodic_reached", "table", "numerics",  "warnings", NULL};
+    "analysis", "scene",       "crank_deg",        "volumes", "rings",    "flows",
+    "blowby",   "periodicity", "periodic_reached", "table",   "numerics", "warnings",
+    "bore_fit", NULL};
 
 const rd_analysis_def rd_an_ringpack = {
     .name = "ringpack",

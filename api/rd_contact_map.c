@@ -55,18 +55,7 @@ const rd_block rd_block_bore_layer = {
     layer_fields};
 
 static const rd_field points_fields[] = {
-    {"theta_deg", RD_F_TABLE, ST(map.points[0]), RD_MIN(1), RD_MAX(RD_BORE_POINTS_MAX),
-     .required = 1, .desc = "Angle of each point, deg from the gap middle, -720 to 720."},
-    {"z", RD_F_TABLE, ST(map.points[1]), RD_MIN(1), RD_MAX(RD_BORE_POINTS_MAX), .required = 1,
-     .desc = "Height of each point, m, down from the top of the bore: points of equal z are "
-             "one layer (at most 50 layers)."},
-    {"dr", RD_F_TABLE, ST(map.points[2]), RD_MIN(1), RD_MAX(RD_BORE_POINTS_MAX), .required = 1,
-     .desc = "The radius' departure from /bore/diameter / 2 (or the ring's) at each point, m, "
-             "outward positive; |dr| at most 1 % of the ring diameter."},
-    {"fit_order", RD_F_INTEGER, ST(map.fit_order), RD_MIN(0), RD_MAX(RD_BORE_ORDERS_MAX),
-     .desc = "Highest Fourier order K fitted per layer by least squares (with the layer's mean "
-             "radius); needs 2K + 1 points at distinct angles in every layer. The result's "
-             "bore_fit gives the layers and the residual."},
+    RD_BORE_POINTS_FIELDS(ST),
     {.key = NULL},
 };
 const rd_block rd_block_bore_points = {
@@ -133,22 +122,32 @@ int rd_ring_depth_parse(const rd_field *f, json_t *v, const char *path, rd_scene
     return RD_OK;
 }
 
-int rd_ring_depth_finish(struct rd_contact_map_scene *m, const struct rd_ring_depth *rz, double D,
-                         const char *who, const rd_bore_map **map, rd_error *err)
+int rd_ring_depth_finish(struct rd_contact_map_scene *m, const struct rd_ring_depth *rz, double d,
+                         double D, const char *who, const rd_bore_map **map, rd_error *err)
 {
     *map = NULL;
-    if (rz->given && !m->layers_given)
+    int given = m->layers_given || m->points_given;
+    if (m->layers_given && m->points_given)
+        return rd_error_set(err, RD_EINVAL, "/bore/points",
+                            "/bore/points and /bore/layers are two ways to give the bore map: "
+                            "give one.");
+    if (rz->given && !given)
         return rd_error_set(err, RD_EINVAL, "/bore/ring_z_tdc_m",
-                            "/bore/ring_z_tdc_m is read with /bore/layers only (%s depth on the "
-                            "map): give the layers or remove it.",
+                            "/bore/ring_z_tdc_m is read with a bore map only (/bore/layers or "
+                            "/bore/points: %s depth on the map): give the map or remove it.",
                             who);
-    if (m->layers_given && !rz->given)
+    if (given && !rz->given)
         return rd_error_set(err, RD_EINVAL, "/bore/ring_z_tdc_m",
-                            "/bore/ring_z_tdc_m is missing: with /bore/layers, give %s depth "
+                            "/bore/ring_z_tdc_m is missing: with a bore map, give %s depth "
                             "below the top of the bore at TDC (m).",
                             who);
-    if (!m->layers_given)
+    if (!given)
         return RD_OK;
+    if (m->points_given) {
+        int rc = rd_bore_map_of_points(m, d, D, err);
+        if (rc)
+            return rc;
+    }
     for (int i = 0; i < m->map->n_layers; i++)
         if (m->map->layer[i].bore.diameter == 0.0)
             m->map->layer[i].bore.diameter = D;
@@ -252,6 +251,26 @@ static int map_rules(const struct rd_static_scene *o, rd_error *err)
     return RD_OK;
 }
 
+int rd_bore_map_of_points(struct rd_contact_map_scene *m, double d, double D, rd_error *err)
+{
+    rd_bore_points p;
+    free(m->map);
+    m->map = malloc(sizeof *m->map);
+    if (!m->map)
+        return rd_error_set(err, RD_ENOMEM, "/bore/points", "out of memory for the bore map");
+    int rc = points_of(m, &p, err);
+    rc = rc != RD_OK ? rc : rd_bore_points_validate(&p, d, err);
+    return rc != RD_OK ? rc : rd_bore_map_fit(&p, D, m->map, err);
+}
+
+json_t *rd_bore_fit_json(const rd_scene *s, const struct rd_contact_map_scene *m)
+{
+    if (!m->points_given || !m->map)
+        return NULL;
+    return json_pack("{s:o, s:o}", "residual_rms_m", rd_result_real(m->map->residual_rms), "layers",
+                     rd_bore_layers_json(s, m->map));
+}
+
 int rd_contact_map_finish(rd_scene *s, rd_error *err)
 {
     struct rd_static_scene *o = s->opts;
@@ -266,14 +285,7 @@ int rd_contact_map_finish(rd_scene *s, rd_error *err)
                 m->map->layer[i].bore.diameter = D;
         rc = rd_bore_map_validate(m->map, d, err);
     } else {
-        rd_bore_points p;
-        free(m->map);
-        m->map = malloc(sizeof *m->map);
-        if (!m->map)
-            return rd_error_set(err, RD_ENOMEM, "/bore/points", "out of memory for the bore map");
-        rc = points_of(m, &p, err);
-        rc = rc != RD_OK ? rc : rd_bore_points_validate(&p, d, err);
-        rc = rc != RD_OK ? rc : rd_bore_map_fit(&p, D, m->map, err);
+        rc = rd_bore_map_of_points(m, d, D, err);
     }
     if (rc == RD_OK && !m->height_all)
         rc = rd_bore_map_at(m->map, m->height, d, &m->at, err);
@@ -336,11 +348,9 @@ static int add_map(json_t *out, const rd_scene *s, const rd_bore *b, double z)
     const rd_bore_map *m = o->map.map;
     int bad = json_object_set_new(out, "height_m", rd_result_real(z));
     bad |= json_object_set_new(out, "bore_at_height", bore_json(b, s->ring.diameter));
+    (void)m;
     if (!bad && o->map.points_given)
-        bad |= json_object_set_new(out, "bore_fit",
-                                   json_pack("{s:o, s:o}", "residual_rms_m",
-                                             rd_result_real(m->residual_rms), "layers",
-                                             rd_bore_layers_json(s, m)));
+        bad |= json_object_set_new(out, "bore_fit", rd_bore_fit_json(s, &o->map));
     return bad;
 }
 

@@ -47,6 +47,40 @@ extern const rd_block rd_block_contact_distortion;
                     "is the layer with the largest light gap). Refused without a bore map."      \
     }
 
+/* /bore/points' rows (AT is offsetof into the analysis' options, whose
+ * struct rd_contact_map_scene is `map`): contact's block, lift's and the
+ * ring pack's. */
+#define RD_BORE_POINTS_FIELDS(AT)                                                                 \
+    {"theta_deg",                                                                                 \
+     RD_F_TABLE,                                                                                  \
+     AT(map.points[0]),                                                                           \
+     RD_MIN(1),                                                                                   \
+     RD_MAX(RD_BORE_POINTS_MAX),                                                                  \
+     .required = 1,                                                                               \
+     .desc = "Angle of each point, deg from the gap middle, -720 to 720."},                       \
+        {"z",                                                                                     \
+         RD_F_TABLE,                                                                              \
+         AT(map.points[1]),                                                                       \
+         RD_MIN(1),                                                                               \
+         RD_MAX(RD_BORE_POINTS_MAX),                                                              \
+         .required = 1,                                                                           \
+         .desc = "Height of each point, m, down from the top of the bore: points of equal z are " \
+                 "one layer (at most 50 layers)."},                                               \
+        {"dr",                                                                                    \
+         RD_F_TABLE,                                                                              \
+         AT(map.points[2]),                                                                       \
+         RD_MIN(1),                                                                               \
+         RD_MAX(RD_BORE_POINTS_MAX),                                                              \
+         .required = 1,                                                                           \
+         .desc = "The radius' departure from /bore/diameter / 2 (or the ring's) at each point, "  \
+                 "m, outward positive; |dr| at most 1 % of the ring diameter."},                  \
+    {                                                                                             \
+        "fit_order", RD_F_INTEGER, AT(map.fit_order), RD_MIN(0), RD_MAX(RD_BORE_ORDERS_MAX),      \
+            .desc = "Highest Fourier order K fitted per layer by least squares (with the "        \
+                    "layer's mean radius); needs 2K + 1 points at distinct angles in every "      \
+                    "layer. The result's bore_fit gives the layers and the residual."             \
+    }
+
 extern const rd_block rd_block_bore_layer;  /* one layer {z, diameter, distortion} */
 extern const rd_block rd_block_bore_points; /* /bore/points */
 
@@ -71,11 +105,18 @@ struct rd_ring_depth {
  * the analysis' options. */
 int rd_ring_depth_parse(const rd_field *f, struct json_t *v, const char *path, struct rd_scene *s,
                         rd_error *err);
-/* Lift's and the ring pack's map: /bore/layers and /bore/ring_z_tdc_m each
+/* Lift's and the ring pack's map: /bore/layers or /bore/points (fitted,
+ * rings of diameter d about the bore's D) and /bore/ring_z_tdc_m each
  * given with the other (`who`: whose depth, for the message); the layers'
- * diameters default to D (echoed as used); *map the layers, or NULL. */
-int rd_ring_depth_finish(struct rd_contact_map_scene *m, const struct rd_ring_depth *rz, double D,
-                         const char *who, const rd_bore_map **map, rd_error *err);
+ * diameters default to D (echoed as used); *map the map, or NULL. */
+int rd_ring_depth_finish(struct rd_contact_map_scene *m, const struct rd_ring_depth *rz, double d,
+                         double D, const char *who, const rd_bore_map **map, rd_error *err);
+/* /bore/points fitted per layer into m->map (allocated; rings of diameter
+ * d about the bore's D): core's checks and fit (rd_bore_map.h). */
+int rd_bore_map_of_points(struct rd_contact_map_scene *m, double d, double D, rd_error *err);
+/* With /bore/points: the result's bore_fit {residual_rms_m, layers}; NULL
+ * without points (or out of memory). */
+struct json_t *rd_bore_fit_json(const struct rd_scene *s, const struct rd_contact_map_scene *m);
 
 /* After the plain bore's checks: the map's rules (named in each message),
  * the fit of the points, and the bore at the height. */

@@ -259,6 +259,12 @@ static const struct {
     {"sensitivity", MIN_SENSITIVITY},
 };
 
+/* 36 points on one layer at z = 0 (enough angles for fit_order 16). */
+#define POINTS36                                                                              \
+    "\"theta_deg\": [0,10,20,30,40,50,60,70,80,90,100,110,120,130,140,150,160,170,180,190,"   \
+    "200,210,220,230,240,250,260,270,280,290,300,310,320,330,340,350], \"z\": [0,0,0,0,0,0,"  \
+    "0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0], \"dr\": [0,0,0,0,0,0,0,0," \
+    "0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0]"
 static const struct {
     const char *prefix, *scene;
     const char *analysis; /* only for this analysis; NULL: any */
@@ -282,12 +288,9 @@ static const struct {
     {"/bore/layers/", "{\"bore\": {\"ring_z_tdc_m\": 0}}", "lift"},
     {"/bore/layers/", "{\"bore\": {\"ring_z_tdc_m\": 0}}", "ringpack"},
     {"/bore/points/",
-     "{\"contact\": {\"height\": \"all\"}, \"bore\": {\"points\": {"
-     "\"theta_deg\": [0,10,20,30,40,50,60,70,80,90,100,110,120,130,140,150,160,170,"
-     "180,190,200,210,220,230,240,250,260,270,280,290,300,310,320,330,340,350],"
-     "\"z\": [0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0],"
-     "\"dr\": [0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0]}}}",
-     NULL},
+     "{\"contact\": {\"height\": \"all\"}, \"bore\": {\"points\": {" POINTS36 "}}}", "contact"},
+    {"/bore/points/", "{\"bore\": {\"ring_z_tdc_m\": 0, \"points\": {" POINTS36 "}}}", "lift"},
+    {"/bore/points/", "{\"bore\": {\"ring_z_tdc_m\": 0, \"points\": {" POINTS36 "}}}", "ringpack"},
 };
 
 /* Copies the members of `from` into `to`, merging objects. */
