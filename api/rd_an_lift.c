@@ -89,9 +89,7 @@ static const rd_field bore_fields[] = {
              "refused and /bore/diameter is the diameter of layers that give none; the full or "
              "modal ring runs (as on any distorted bore)."},
     {"points", RD_F_OPTBLOCK, LO(map.points_given), .block = &points_block,
-     .desc = "The bore map as measured points instead of layers (not both), fitted per layer "
-             "(the result's bore_fit gives the layers and the residual); read with "
-             "ring_z_tdc_m, as layers are."},
+     .desc = RD_BORE_POINTS_DESC},
     {"ring_z_tdc_m", RD_F_CUSTOM, LO(ring_z.given), .parse = rd_ring_depth_parse,
      .echo = ring_z_echo, .extra = "{\"type\": \"number\", \"minimum\": 0, \"maximum\": 10}",
      .desc = "With /bore/layers or /bore/points (and only then): the ring's depth below the "

@@ -81,6 +81,12 @@ extern const rd_block rd_block_contact_distortion;
                     "layer. The result's bore_fit gives the layers and the residual."             \
     }
 
+/* /bore/points' description in lift and the ring pack (read with ring_z_tdc_m). */
+#define RD_BORE_POINTS_DESC                                                                \
+    "The bore map as measured points instead of layers (not both), fitted per layer (the " \
+    "result's bore_fit gives the layers and the residual); read with ring_z_tdc_m, as "    \
+    "layers are."
+
 extern const rd_block rd_block_bore_layer;  /* one layer {z, diameter, distortion} */
 extern const rd_block rd_block_bore_points; /* /bore/points */
 

@@ -578,7 +578,9 @@ static void test_bore(void)
  * is mostly the pretension's, whatever the bore's shape: 9.8e-4 with the
  * lift run 20 mm lower), so the depth is checked through the flank
  * changes: 20 mm lower, the landings move 0.23 deg (0.012 at the same
- * depth).  Ring i's depth: ring_z_tdc plus the rings and lands above it. */
+ * depth).  Every layer the same bore: /bore/distortion's run bit for bit
+ * (lift, friction, pressures).  Ring i's depth: ring_z_tdc plus the rings
+ * and lands above it. */
 #define MAP_FRICTION 2e-3
 static rd_bore_map map_pack, map_lift;
 
@@ -621,6 +623,38 @@ static void test_map(void)
            same, dg_same, friction_gap, dg);
     CHECK(dg > 5.0 * dg_same, "map: 20 mm lower, the landings %.4f deg apart (same depth %.4f)", dg,
           dg_same);
+    /* every layer the same bore: /bore/distortion's run to the last bit */
+    rd_ringpack_params q[2];
+    rd_ringpack_result rr[2];
+    rd_bore_map flat;
+    map_layers(&flat, 30.0);
+    for (int j = 0; j < flat.n_layers; j++)
+        flat.layer[j].bore.distortion[0].amplitude = 8e-6;
+    for (int k = 0; k < 2; k++) {
+        rd_ringpack_params_default(&q[k]);
+        q[k].engine.cycles = 2;
+        q[k].estimate_error = 0;
+        q[k].rings[0].segments = 8;
+        q[k].rings[0].gap_angle_deg = 40.0;
+        q[k].friction.model = RD_FRICTION_COULOMB;
+        q[k].friction.coefficient = 0.1;
+    }
+    q[0].bore = flat.layer[0].bore;
+    q[1].bore_map = &flat;
+    q[1].ring_z_tdc = 0.004;
+    int ok = run(&q[0], &rr[0], "plain distorted bore") == RD_OK;
+    ok = (run(&q[1], &rr[1], "the same bore at every layer") == RD_OK) && ok;
+    if (ok) {
+        size_t S = (size_t)rr[0].samples;
+        CHECK(rr[1].samples == rr[0].samples &&
+                  memcmp(rr[0].lift, rr[1].lift, S * sizeof *rr[0].lift) == 0 &&
+                  memcmp(rr[0].friction, rr[1].friction, S * sizeof *rr[0].friction) == 0 &&
+                  memcmp(rr[0].pressure, rr[1].pressure,
+                         S * (size_t)rr[0].n_volumes * sizeof *rr[0].pressure) == 0,
+              "map: every layer the same bore gives /bore/distortion's run bit for bit");
+    }
+    rd_ringpack_result_cleanup(&rr[0]);
+    rd_ringpack_result_cleanup(&rr[1]);
     rd_ringpack_params p;
     rd_ringpack_params_thesis(&p);
     p.ring_z_tdc = 0.002;
