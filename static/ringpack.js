@@ -5,9 +5,10 @@
 // with its net mass per cycle, and tables of each ring's model (name, DOF,
 // why), the balance and the solver's cost.  Each ring's flank changes
 // (rings[i].events) are marked on its lift curve, and with friction (any
-// model) each ring's bore friction force is drawn.  With a flank band (numerics.flank_band
-// > 0) each ring's lift is drawn over the band at its groove's flanks, in the
-// ring's colour: where its flank changes are dated.  With the lubricated
+// model) each ring's bore friction force is drawn.  With a flank band
+// (numerics.flank_band > 0) each ring's lift is drawn over the band at its
+// groove's flanks, in the ring's colour: where its flank changes are dated.
+// With the lubricated
 // friction model each ring's `lubrication` adds its readout (FMEP, friction
 // work, the thinnest film and where, film_lag, the regime shares), its film
 // and friction split against crank angle, and what the film model covers.
@@ -150,7 +151,7 @@ function eventGlyph(kind, stroke) {
   });
 }
 
-// The events of ring n (from 1) that are drawable: [{event, crank_deg, ...}].
+// A ring's events that can be drawn: [{event, crank_deg, touch_deg}].
 const ringEvents = (r) => (Array.isArray(r?.events) ? r.events : [])
   .filter((e) => e && isNum(e.crank_deg) && typeof e.event === 'string');
 

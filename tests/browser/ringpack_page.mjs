@@ -245,6 +245,20 @@ export function ringpackPageTests({ page: pageOf, BASE, runAnalysis, selectTab, 
         assert.deepEqual(flowRows.map((x) => x.series), ring1.series.map((s) => s.name));
         await page().mouse.move(1, 1);
 
+        // Zoomed (plotui.js), each marker moves with the axis and keeps its size.
+        const [z0, z1] = [r.crank_deg.at(-1) * 0.25, r.crank_deg.at(-1) * 0.75];
+        await page().evaluate(async (range) => (await import('/static/plotui.js')).zoomTo(document.getElementById('rp-lift'), range), [z0, z1]);
+        const z = await drawn();
+        const [[a0, q0], [a1, q1]] = [z.xTicks[0], z.xTicks.at(-1)];
+        assert.ok(a0 >= z0 && a1 <= z1, `zoomed ticks ${a0}..${a1}`);
+        const before = (await page().$$eval('#rp-lift .rp-ev path', (ps) => ps.map((p) => p.getAttribute('d'))));
+        z.markers.forEach((m) => {
+          assert.ok(Math.abs(m.x - (q0 + ((m.crank - a0) * (q1 - q0)) / (a1 - a0))) < 0.05, `zoomed: ring ${m.ring} ${m.event} at x ${m.x}`);
+          assert.ok(/^m0,-?6\.5l6,-?10h-12z$/.test(m.d), `zoomed: marker ${m.d} keeps its size`);
+        });
+        assert.equal(before.length, z.markers.length);
+        await page().evaluate(async () => (await import('/static/plotui.js')).zoomTo(document.getElementById('rp-lift'), null));
+
         // Live without friction: no friction chart, the rest as before.
         await page().uncheck('#f-rp-friction');
         await runAnalysis('Run ringpack analysis', 120000);
