@@ -62,8 +62,12 @@ function fit(s) {
     vb = next;
     if (same) break;
   }
-  const text = vb.map((v) => Number(v.toFixed(1))).join(' ');
-  if (s.getAttribute('viewBox') !== text) s.setAttribute('viewBox', text);
+  // Within half a unit of the box shown: kept.  Setting it would resize the
+  // chart, whose next fit can land back here (0.1-0.2 units apart: a chart
+  // that never settles, seen with the ring pack's friction chart at 390 px).
+  const now = (s.getAttribute('viewBox') || '').split(/[\s,]+/).map(Number);
+  if (now.length === 4 && vb.every((v, i) => Math.abs(v - now[i]) < 0.5)) return;
+  s.setAttribute('viewBox', vb.map((v) => Number(v.toFixed(1))).join(' '));
 }
 
 // The box of what is drawn in `s`, in its viewBox units.

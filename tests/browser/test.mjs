@@ -8,6 +8,7 @@ import fs from 'node:fs';
 import path from 'node:path';
 import * as fixtures from './fixtures.mjs';
 import { interactTests } from './interact.mjs';
+import { ringpackPageTests } from './ringpack_page.mjs';
 
 const CHROMIUM = '/usr/bin/chromium';
 const BASE = (process.env.RINGDYN_URL || '').replace(/\/$/, '');
@@ -3311,6 +3312,9 @@ test('interact tests leave the page at 1280 px', async () => {
   await page.goto(`${BASE}/`);
   await page.waitForSelector('#tab-modal[aria-selected="true"]');
 });
+
+// The ring pack's events, friction and flow splits (ringpack_page.mjs).
+ringpackPageTests({ page: () => page, BASE, runAnalysis, selectTab, shownJob, smallText, settled, pageErrors });
 
 test('no console errors or uncaught exceptions', () => {
   assert.deepEqual(pageErrors, []);
