@@ -46,7 +46,10 @@
  *    sit on the tilt plane, g_i = 0 (beta' = beta) or 180 (beta' = -beta,
  *    its gap's side goes down); other angles are refused (rd_packring_validate);
  *  - active_area: the lift model's own (fixed, or dynamic: a face sealing
- *    on a flank sees the mean of the groove's pressure and its own side's).
+ *    on a flank sees the mean of the groove's pressure and its own side's);
+ *  - a bore map (rd_ringpack_params.bore_map): a copy per ring with every
+ *    layer's phases turned as the bore's, met at the ring's own depth
+ *    (rd_ringpack_ring_depth) as the lift analysis' ring meets its map.
  */
 #include <math.h>
 #include <stdlib.h>
