@@ -345,10 +345,8 @@ static json_t *layer_row(const rd_bore_layer *L, const rd_contact_result *r, dou
 static int add_map(json_t *out, const rd_scene *s, const rd_bore *b, double z)
 {
     const struct rd_static_scene *o = s->opts;
-    const rd_bore_map *m = o->map.map;
     int bad = json_object_set_new(out, "height_m", rd_result_real(z));
     bad |= json_object_set_new(out, "bore_at_height", bore_json(b, s->ring.diameter));
-    (void)m;
     if (!bad && o->map.points_given)
         bad |= json_object_set_new(out, "bore_fit", rd_bore_fit_json(s, &o->map));
     return bad;
