@@ -29,7 +29,7 @@ struct lift_opts {
     int gas_given, squeeze_given;
     int max_steps;                   /* /numerics/max_steps */
     struct rd_table gas_table[4];    /* crank_deg, above, behind, below */
-    struct rd_contact_map_scene map; /* /bore/layers (its layers_given and map only) */
+    struct rd_contact_map_scene map; /* /bore/layers or /bore/points, and the map */
     struct rd_ring_depth ring_z;     /* /bore/ring_z_tdc_m */
 };
 

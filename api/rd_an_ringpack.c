@@ -40,7 +40,7 @@ struct pack_opts {
     /* each ring's /rings/i/ring/face: given, and its table (owned) */
     int face_given[RD_RINGPACK_RINGS_MAX], face_table_given[RD_RINGPACK_RINGS_MAX];
     struct rd_table face_table[RD_RINGPACK_RINGS_MAX][2];
-    struct rd_contact_map_scene map; /* /bore/layers (its layers_given and map only) */
+    struct rd_contact_map_scene map; /* /bore/layers or /bore/points, and the map */
     struct rd_ring_depth ring_z;     /* /bore/ring_z_tdc_m: the top ring's */
 };
 
@@ -133,9 +133,8 @@ static const rd_field bore_fields[] = {
      .echo = ring_z_echo, .extra = "{\"type\": \"number\", \"minimum\": 0, \"maximum\": 10}",
      .desc = "With /bore/layers or /bore/points (and only then): the top ring's depth below "
              "the top of the bore at TDC, m, on the map's z axis (the point of the ring lift's "
-             "ring_z_tdc_m "
-             "names); ring i sits lower by the axial heights of the rings above it and the "
-             "heights of the lands between them."},
+             "ring_z_tdc_m names); ring i sits lower by the axial heights of the rings above it "
+             "and the heights of the lands between them."},
     RD_BORE_ROUGHNESS_FIELD,
     {.key = NULL},
 };
