@@ -63,14 +63,51 @@ static int finish(struct rd_scene *s, rd_error *err)
  * [radius, height above the section's bottom], principal angle (from the
  * radial axis toward +z), second moments about the centroid, principal
  * moments, Saint-Venant J (series, closed form, or finite elements with
- * its estimate; 0 when exact), shear factor. */
+ * its estimate; 0 when exact), shear factor, and the outline they are
+ * integrated over. */
+/* The section's outline, [u, v] per point (u radial from its inner edge, v
+ * axial from its bottom, m, counter-clockwise): the rectangle's corners, the
+ * circle as OUTLINE_CIRCLE points on it, a general shape's polygon
+ * (rd_section_outline: what its properties are integrated over). */
+#define OUTLINE_CIRCLE 48
+static json_t *outline_json(const rd_ring_params *p)
+{
+    double pts[RD_SECTION_POINTS_MAX > OUTLINE_CIRCLE ? RD_SECTION_POINTS_MAX : OUTLINE_CIRCLE][2];
+    double b = p->radial_width, h = p->axial_height;
+    int n = 0;
+    if (p->section == RD_SECTION_CIRCLE) {
+        for (n = 0; n < OUTLINE_CIRCLE; n++) {
+            double a = 2.0 * PI * n / OUTLINE_CIRCLE;
+            pts[n][0] = 0.5 * b * (1.0 + cos(a));
+            pts[n][1] = 0.5 * h * (1.0 + sin(a));
+        }
+    } else if (p->section >= RD_SECTION_TAPER_FACE) {
+        rd_error err;
+        rd_error_init(&err);
+        if (rd_section_outline(p->section, &p->spec, b, h, pts, &n, &err) != RD_OK)
+            return json_null(); /* the scene's checks ran this outline already */
+    } else {
+        const double box[4][2] = {{0.0, 0.0}, {b, 0.0}, {b, h}, {0.0, h}};
+        memcpy(pts, box, sizeof box);
+        n = 4;
+    }
+    json_t *a = json_array();
+    for (int i = 0; a && i < n; i++)
+        if (json_array_append_new(a, json_pack("[o, o]", rd_result_real(pts[i][0]),
+                                               rd_result_real(pts[i][1]))) != 0) {
+            json_decref(a);
+            a = NULL;
+        }
+    return a;
+}
+
 static json_t *section_json(const rd_ring_params *p)
 {
     rd_section s;
     rd_section_init(&s, p);
     double J_err = p->section >= RD_SECTION_TAPER_FACE ? p->spec.J_error : 0.0;
     return json_pack(
-        "{s:s, s:o, s:[o, o], s:o, s:{s:o, s:o, s:o}, s:[o, o], s:o, s:o, s:o, s:s}", "shape",
+        "{s:s, s:o, s:[o, o], s:o, s:{s:o, s:o, s:o}, s:[o, o], s:o, s:o, s:o, s:s, s:o}", "shape",
         p->section == RD_SECTION_RECTANGLE ? "rectangle"
         : p->section == RD_SECTION_CIRCLE  ? "circle"
                                            : "general",
@@ -84,7 +121,8 @@ static json_t *section_json(const rd_ring_params *p)
         p->section == RD_SECTION_RECTANGLE ? "series"
         : p->section == RD_SECTION_CIRCLE  ? "closed form"
                                            : "finite elements (Prandtl stress function), "
-                                             "Richardson-extrapolated");
+                                             "Richardson-extrapolated",
+        "outline_m", outline_json(p));
 }
 
 static json_t *pretension_result(const rd_scene *scene, const rd_ring_params *ring,

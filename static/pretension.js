@@ -33,6 +33,7 @@ export const pretension = {
         h('figure', { class: 'plot' }, shapePlot(result),
           h('figcaption', {}, 'The ring in its plane seen from the cylinder head, gap (0°) to the right (+x), true scale. ' +
             'Dashed: closed (reference) shape; solid: free shape opened by the pretension.')),
+        sectionPlot(result),
         lateral ? h('figure', { class: 'plot' }, zPlot(result),
           h('figcaption', {}, 'Axial (z) displacement of the centroid line against the angle from the gap: the lateral forces twist the ring out of its plane.')) : null),
       h('div', { class: 'table-wrap' }, figures(result)),
@@ -150,4 +151,39 @@ function zPlot(result) {
   }),
   svg('line', { class: 'zero', x1: box.left, x2: box.left + box.width, y1: y(0), y2: y(0) }),
   svg('path', { class: 'free', 'data-name': 'free shape', d: pathD(a.slice(0, k).map((ang, i) => [x(ang), y(zs[i])])) }));
+}
+
+// The cross-section the beam's properties come from (section.outline_m:
+// [radial from its inner edge, axial from its bottom], m), true scale, the
+// running face to the right and the combustion side up; its centroid and
+// the in-plane principal axis (section.principal_angle_deg from the radial
+// axis toward +z).  Nothing without an outline.
+function sectionPlot(result) {
+  const sec = result.section || {};
+  const pts = (Array.isArray(sec.outline_m) ? sec.outline_m : [])
+    .filter((p) => Array.isArray(p) && isNum(p[0]) && isNum(p[1]));
+  if (pts.length < 3) return null;
+  const us = pts.map((p) => p[0]), vs = pts.map((p) => p[1]);
+  const u0 = Math.min(...us), u1 = Math.max(...us), v0 = Math.min(...vs), v1 = Math.max(...vs);
+  const W = 420, H = 260, pad = 40;
+  const k = Math.min((W - 2 * pad) / ((u1 - u0) || 1), (H - 2 * pad) / ((v1 - v0) || 1));
+  const X = (u) => W / 2 + (u - (u0 + u1) / 2) * k, Y = (v) => H / 2 - (v - (v0 + v1) / 2) * k;
+  const D = Number(result.scene?.ring?.diameter), b = u1 - u0;
+  const c = Array.isArray(sec.centroid_m) ? sec.centroid_m : [];
+  // the centroid's radius counts from the ring's axis: the inner edge is at D/2 - b
+  const cu = isNum(c[0]) && isNum(D) ? c[0] - (D / 2 - b) : NaN, cv = c[1];
+  const parts = [svg('path', { class: 'section-outline', id: 'pt-section-outline', 'data-points': pts.length, d: pathD(pts.map(([u, v]) => [X(u), Y(v)]), true) })];
+  if (isNum(cu) && isNum(cv)) {
+    const a = ((Number(sec.principal_angle_deg) || 0) * Math.PI) / 180, L = 0.45 * Math.max(u1 - u0, v1 - v0) * k;
+    const x = X(cu), y = Y(cv);
+    parts.push(svg('path', { class: 'dimension', id: 'pt-section-axis', d: pathD([[x - L * Math.cos(a), y + L * Math.sin(a)], [x + L * Math.cos(a), y - L * Math.sin(a)]]) }),
+      svg('circle', { class: 'corner', id: 'pt-section-centroid', cx: x, cy: y, r: 3.5 }, svg('title', {}, `Centroid: ${mm(c[0], 3)} mm from the ring's axis, ${mm(cv, 3)} mm above the bottom`)));
+  }
+  parts.push(svg('text', { class: 'tick', x: W - 4, y: H / 2, 'text-anchor': 'end', 'dominant-baseline': 'middle' }, 'face'),
+    svg('text', { class: 'tick', x: W / 2, y: 14, 'text-anchor': 'middle' }, 'top (combustion side)'));
+  const shape = sec.shape === 'general' ? (result.scene?.ring?.section?.shape || 'general').replace(/_/g, ' ') : (sec.shape || 'section');
+  return h('figure', { class: 'plot' },
+    svg('svg', { id: 'pt-section', class: 'chart', viewBox: `0 0 ${W} ${H}`, role: 'img', 'aria-label': `The ${shape} cross-section, ${pts.length} outline points, true scale.` }, ...parts),
+    h('figcaption', {}, `The cross-section (${shape}, ${mm(b, 2)} × ${mm(v1 - v0, 2)} mm, true scale), the running face to the right, the combustion side up: `
+      + `the dot is its centroid, the line its in-plane principal axis at ${isNum(sec.principal_angle_deg) ? sig(sec.principal_angle_deg, 3) : '—'}° from the radial direction.`));
 }

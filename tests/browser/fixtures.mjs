@@ -27,6 +27,11 @@ export function pretensionResult({ lateral = 0 } = {}) {
     free_gap_formula: 0.0090518,
     conformability: 0.0214,
     support: { force_n: 1.2e-9, moment_nm: 3.4e-11 },
+    // an inner bevel on the top edge: 0.6 x 0.4 mm off the 2.9 x 1.2 mm box
+    section: {
+      shape: 'general', area_m2: 3.36e-6, centroid_m: [0.0368, 0.00058], principal_angle_deg: -2.1,
+      outline_m: [[0, 0], [0.0029, 0], [0.0029, 0.0012], [0.0006, 0.0012], [0, 0.0008]],
+    },
     shape: {
       angle_deg: angle,
       x: free.map((t) => R * Math.cos(t)),

@@ -329,6 +329,10 @@ async function renderFixture(id, result) {
         freePoints: points('#pt-free'),
         referencePoints: points('#pt-reference'),
         zPlot: Boolean(q('#pt-z-plot')),
+        sectionPoints: Number(q('#pt-section-outline')?.dataset.points ?? 0),
+        sectionPath: (q('#pt-section-outline')?.getAttribute('d')?.match(/[ML]/g) || []).length,
+        sectionCentroid: Boolean(q('#pt-section-centroid')),
+        sectionAxis: Boolean(q('#pt-section-axis')),
         pressurePoints: points('#ct-pressure'),
         lightGaps: all('.light-gaps .light-gap').length,
         maxGapLabel: q('#ct-max-gap-label')?.textContent,
@@ -675,6 +679,9 @@ test('renderers draw fixture results: points, marks and labels match the numbers
   assert.equal(r.referencePoints, pt.shape.reference_x.length);
   assert.equal(r.zPlot, true);
   assert.match(r.xaCell, /^9\.214 mm/);
+  assert.equal(r.sectionPoints, pt.section.outline_m.length, 'the section outline: one point each');
+  assert.equal(r.sectionPath, pt.section.outline_m.length, 'the outline path has a vertex per point');
+  assert.ok(r.sectionCentroid && r.sectionAxis, 'the centroid and the principal axis are drawn');
   r = await renderFixture('pretension', fixtures.pretensionResult({ lateral: 0 }));
   assert.equal(r.zPlot, false, 'no z plot without a lateral opening');
 
