@@ -24,6 +24,7 @@
  *   lift event error > 5 deg     flank changes located to worse than 5 deg
  *   oil viscosity > 1 Pa s       thicker than an engine oil at 0 C: mPa s typed as Pa s
  *                                (hot engine oils are 0.003..0.05 Pa s)
+ *   a ring pack's bore not round while every ring is held: not read (bore_unread)
  */
 #include "rd_warnings.h"
 
@@ -31,6 +32,7 @@
 #include <math.h>
 #include <stdarg.h>
 #include <stdio.h>
+#include <string.h>
 
 #include "rd_json.h"
 
@@ -252,10 +254,35 @@ static int oil_viscosity(json_t *scene, json_t *result, json_t *out)
     return 0;
 }
 
+/* A ring pack whose bore is not round (distortion, layers or points) but
+ * whose rings all stand still (held on a flank: no model with degrees of
+ * freedom in numerics.model): only moving rings meet the bore (the gas
+ * network keeps the rings' diameter), so the bore was not read. */
+static int bore_unread(json_t *scene, json_t *result, json_t *out)
+{
+    const char *an = json_string_value(json_object_get(scene, "analysis"));
+    json_t *bore = json_object_get(scene, "bore");
+    if (!an || strcmp(an, "ringpack") != 0 || !json_is_object(bore))
+        return 0;
+    int given = json_array_size(json_object_get(bore, "distortion")) > 0 ||
+                json_is_array(json_object_get(bore, "layers")) ||
+                json_is_object(json_object_get(bore, "points"));
+    json_t *models = json_object_get(json_object_get(result, "numerics"), "model");
+    for (size_t i = 0; given && i < json_array_size(models); i++)
+        if (json_number_value(json_object_get(json_array_get(models, i), "dof")) > 0)
+            return 0;
+    if (!given || !json_is_array(models))
+        return 0;
+    return warn(out, "bore_unread", "/bore",
+                "every ring is held on its flank, and only moving rings meet the bore: its "
+                "distortion or map changed nothing here (the gas network keeps the rings' "
+                "diameter).");
+}
+
 /* The rules, in the order their warnings are listed. */
 static int (*const rules[])(json_t *scene, json_t *result, json_t *out) = {
-    material,    gas_in_bar,       bore_diameter, error_estimate,
-    event_error, accuracy_not_met, solver_note,   oil_viscosity,
+    material,         gas_in_bar,  bore_diameter, error_estimate, event_error,
+    accuracy_not_met, solver_note, oil_viscosity, bore_unread,
 };
 
 int rd_warnings_add(json_t *result)

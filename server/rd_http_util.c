@@ -8,10 +8,11 @@
  * every path with a control character is then refused (404).
  *
  * Request bodies past BODY_HEAP_MAX live in a mapping of their own: a burst
- * of 1 MiB bodies, freed into the HTTP threads' arenas, stayed there (main.c
- * keeps up to 32 MiB at each arena's top, and malloc_trim cannot return an
- * arena's top other than the main one's); a mapping goes back to the
- * kernel when the request ends, and only the pages a body fills are touched.
+ * of 1 MiB bodies, freed into the HTTP threads' arenas, stayed there (an
+ * arena keeps up to main.c's trim threshold at its top, and malloc_trim
+ * cannot return an arena's top other than the main one's); a mapping goes
+ * back to the kernel when the request ends, and only the pages a body fills
+ * are touched.
  */
 #define _DEFAULT_SOURCE /* MAP_ANONYMOUS */
 #include "rd_http_int.h"

@@ -226,6 +226,9 @@ static void test_lift_points(void)
     json_t *pack = run(scene);
     CHECK(json_array_size(json_object_get(json_object_get(pack, "bore_fit"), "layers")) == 2,
           "ring pack: bore_fit with 2 layers");
+    json_t *w = json_array_get(json_object_get(pack, "warnings"), 0);
+    CHECK(w && strcmp(json_string_value(json_object_get(w, "code")), "bore_unread") == 0,
+          "ring pack, its ring held: the map is said to be unread");
     json_decref(pack);
 #undef LIFT_HEAD
 }

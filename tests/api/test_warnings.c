@@ -102,6 +102,17 @@ static void synthetic(const char *json, const char *want)
 static void test_edges(void)
 {
     synthetic("{\"scene\": {}}", "");
+    /* a ring pack's bore, read by moving rings only */
+    synthetic("{\"scene\": {\"analysis\": \"ringpack\", \"bore\": {\"distortion\": [{\"order\": "
+              "2}]}}, \"numerics\": {\"model\": [{\"name\": \"axial\", \"dof\": 0}]}}",
+              "bore_unread");
+    synthetic("{\"scene\": {\"analysis\": \"ringpack\", \"bore\": {\"distortion\": [{\"order\": "
+              "2}]}}, \"numerics\": {\"model\": [{\"name\": \"full\", \"dof\": 120}, {\"name\": "
+              "\"axial\", \"dof\": 0}]}}",
+              "");
+    synthetic("{\"scene\": {\"analysis\": \"ringpack\", \"bore\": {\"distortion\": []}}, "
+              "\"numerics\": {\"model\": [{\"name\": \"axial\", \"dof\": 0}]}}",
+              "");
     synthetic("{\"scene\": {\"ring\": {\"material\": {\"density\": 1000}}}}", "");
     synthetic("{\"scene\": {\"ring\": {\"material\": {\"density\": 999}}}}", "density_unit");
     synthetic("{\"scene\": {\"ring\": {\"material\": {\"density\": 25001}}}}", "density_unit");
