@@ -75,26 +75,56 @@ typedef struct rd_static_opts {
                            default 0.03, 0..1 */
 } rd_static_opts;
 
+/* The ring's free shape (since 0.3.16; rd_free_shape.c).  RD_FREE_CLOSED,
+ * the default and every analysis' model before: the closed shape is
+ * stress-free and F_t on the gap faces stands for the ring's pretension.
+ * RD_FREE_PRESSURE: the ring is made with the free shape that a round bore
+ * of its diameter closes to its closed gap with the radial pressure
+ * p(theta) = p0 (1 + sum a_k cos k theta), or a table of p / p0, p0 =
+ * 2 F_t / (d h), theta from the point opposite the gap (uniform: no orders,
+ * no table); that shape is stress-free, closing it stresses the ring, and
+ * its gap faces are free.  Tables: theta_deg strictly increasing from 0
+ * (the pressure mirrored about the point opposite the gap) or from -180,
+ * to 180; linear between the points. */
+enum rd_free_kind { RD_FREE_CLOSED = 0, RD_FREE_PRESSURE = 1 };
+#define RD_FREE_ORDERS_MAX 16
+#define RD_FREE_POINTS_MAX 721
+typedef struct rd_free_shape {
+    int kind; /* enum rd_free_kind */
+    int n_orders;
+    int order[RD_FREE_ORDERS_MAX];        /* k, 2..64 (1 would push the ring off centre) */
+    double amplitude[RD_FREE_ORDERS_MAX]; /* a_k, -1..1; p stays > 0 everywhere */
+    int n_points;                         /* table: 0 or 2..RD_FREE_POINTS_MAX */
+    double theta_deg[RD_FREE_POINTS_MAX];
+    double value[RD_FREE_POINTS_MAX]; /* p / p0, 0..20 */
+} rd_free_shape;
+
 typedef struct rd_pretension_opts {
-    int method;           /* enum rd_pretension_method */
-    double lateral_force; /* F_l, N, >= 0 */
+    int method;                      /* enum rd_pretension_method */
+    double lateral_force;            /* F_l, N, >= 0 */
+    const rd_free_shape *free_shape; /* NULL or RD_FREE_CLOSED: the stress-free closed ring
+                                        opened by F_t; otherwise the free shape itself (F_l
+                                        on it), its gap and the force that closes it */
 } rd_pretension_opts;
 
 typedef struct rd_contact_opts {
-    rd_bore bore;           /* the bore (rd_liner.h) */
-    int points_per_segment; /* m, 1..RD_CONTACT_POINTS_MAX, default 10 (bench_static:
+    rd_bore bore;                    /* the bore (rd_liner.h) */
+    int points_per_segment;          /* m, 1..RD_CONTACT_POINTS_MAX, default 10 (bench_static:
                                5 moves a distorted bore's pressures by ~0.2 p0, 10 by ~0.05,
                                at n = 40); above 640 segments no more than keep the points
                                360/6400 deg apart, and at least 5 (rd_contact_points) */
-    double stiffness;       /* k, Pa/m; 0 = default (see rd_contact_default_stiffness) */
-    double accuracy;        /* a: refine n until the error estimates meet a (pressure, of
+    double stiffness;                /* k, Pa/m; 0 = default (see rd_contact_default_stiffness) */
+    double accuracy;                 /* a: refine n until the error estimates meet a (pressure, of
                                p0), 2a (contact fraction), 5a (largest light gap, relative;
                                or the gap is certainly under 0.1 um) and 100a deg (gap
                                edges); default 0.01, 1e-4..0.5 */
-    int max_segments;       /* refinement stops here (the first pair n, 2n always runs);
+    int max_segments;                /* refinement stops here (the first pair n, 2n always runs);
                                default 1280 (640 in 0.3.0, 320 before),
                                4..RD_STATIC_SEGMENTS_MAX */
-    int flexible_face;      /* 1 (default): each segment's running face bent and sheared
+    const rd_free_shape *free_shape; /* NULL or RD_FREE_CLOSED: the stress-free closed ring
+                                        pressed out by F_t on its gap faces; otherwise the
+                                        ring made with this free shape, its gap faces free */
+    int flexible_face;               /* 1 (default): each segment's running face bent and sheared
                                with the ring between its joints (rd_contact_face.c), from 80
                                segments on; 0: rigid arcs (binned pressure within 0.02 p0 of
                                the exact reference on 15 of the 32 battery bores, against 22
@@ -185,10 +215,20 @@ typedef struct rd_pretension_result {
     double gap_opening_neutral; /* distance between the face centroids, m */
     double free_gap_formula;    /* closed gap + m of (1.4)-(1.5), m */
     double conformability;      /* k of (1.4) */
+    /* With a free shape (rd_free_shape; NAN otherwise): the gap between the
+     * running face's tips at mid-height, m, and the tangential force that
+     * closes the free shape to the closed gap by forces normal to the gap
+     * faces at their centroids (the force method's), N. */
+    double free_gap, tangential_force;
     /* Deformed centroid line, n + 2 points: first face, the n reference
      * points, last face; x, y, z each; and each point's reference angle. */
     int points;
     double *x, *y, *z, *angle_deg;
+    /* The running face at the centroid's height over the same n + 2 points
+     * (the free ends' outer corners, the segments' middles): polar angle
+     * from the point opposite the gap about the closed ring's centre, deg,
+     * increasing, and radius, m: the free shape as a gauge measures it. */
+    double *face_theta_deg, *face_radius;
 } rd_pretension_result;
 
 typedef struct rd_contact_result {
@@ -297,6 +337,14 @@ double rd_contact_gap_floor(const rd_ring_params *p);
  * bores with 5 points as with 10, the hardest bore's CPU time 0.20 -> 0.16 s
  * (half the points' evaluations, about half the Newton iteration's cost). */
 int rd_contact_points(int m, int n);
+
+/* Checks a free shape (paths "/ring/pressure_distribution/..."): the orders, amplitudes and tables' ranges, p > 0
+ * around the ring, and that the section's principal axes are not turned
+ * (the installed twist is not modelled yet). */
+int rd_free_shape_validate(const rd_free_shape *fs, const rd_ring_params *p, rd_error *err);
+/* p(theta) / p0 of a RD_FREE_PRESSURE shape at theta (rad, from the point
+ * opposite the gap); 1 for a uniform one. */
+double rd_free_shape_pressure(const rd_free_shape *fs, double theta);
 
 /* Conformability k (1.4) and the free gap m from (1.5). */
 double rd_ring_conformability(const rd_ring_params *p);

@@ -134,7 +134,9 @@ static int contact_setup(rd_static_problem *pb, const rd_ring_params *p, const r
 {
     int n = pb->n, m = rd_contact_points(o->points_per_segment, n);
     const rd_ring *ring = pb->ring;
-    pb->Ft = p->tangential_force;
+    /* a ring made with a free shape: its rest pushes it out, its gap faces are free */
+    int free = o->free_shape && o->free_shape->kind != RD_FREE_CLOSED;
+    pb->Ft = free ? 0.0 : p->tangential_force;
     pb->method = RD_PRETENSION_FORCE;
     pb->co = o;
     for (int q = 0; q < o->bore.n_distortion; q++) {
@@ -167,7 +169,7 @@ static int contact_setup(rd_static_problem *pb, const rd_ring_params *p, const r
      * at k, 1.500 N and 16-30 updates; at 100 k, 1.473 N and 3-8 updates,
      * bench_static --battery: binned pressure within 0.02 p0 on 22 bores
      * either way at n <= 320, the tip forces' worst error 300 -> 116 %) */
-    pb->tip_mult = o->flexible_face && n >= RD_CONTACT_FACE_MIN_SEGMENTS;
+    pb->tip_mult = o->flexible_face && n >= RD_CONTACT_FACE_MIN_SEGMENTS && !free;
     if (!pb->cp || !pb->mult || !pb->pe)
         return RD_ENOMEM;
     pb->area = pb->cp + (size_t)6 * n * m + 14 * (size_t)n;
@@ -572,7 +574,8 @@ int rd_contact_once_graded(const rd_ring_params *p, int segments, const double *
     if (!ring)
         return err ? err->code : RD_EINVAL;
     if ((rc = rd_static_problem_init(&pb, ring, &rd_contact_static_loads)) != RD_OK ||
-        (rc = contact_setup(&pb, p, o)) != RD_OK)
+        (rc = contact_setup(&pb, p, o)) != RD_OK ||
+        (rc = rd_free_shape_prestrain(&pb, p, o->free_shape, err)) != RD_OK)
         goto out;
     if (from && from->n >= 2)
         warm_start(&pb, from);

@@ -17,6 +17,7 @@ void rd_contact_opts_default(rd_contact_opts *o)
     o->accuracy = 0.01;
     o->max_segments = 1280;
     o->flexible_face = 1;
+    o->free_shape = NULL;
 }
 
 double rd_contact_default_stiffness(const rd_ring_params *p)
@@ -52,7 +53,7 @@ int rd_contact_validate(const rd_contact_opts *o, const rd_ring_params *p, rd_er
                             "place in the bore is undetermined).",
                             p->tangential_force);
     int rc = rd_bore_validate(&o->bore, d, err);
-    if (rc != RD_OK)
+    if (rc != RD_OK || (rc = rd_free_shape_validate(o->free_shape, p, err)) != RD_OK)
         return rc;
     if (o->points_per_segment < 1 || o->points_per_segment > RD_CONTACT_POINTS_MAX)
         return rd_error_set(err, RD_EINVAL, "/contact/points_per_segment",

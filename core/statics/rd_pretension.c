@@ -26,6 +26,7 @@ void rd_pretension_opts_default(rd_pretension_opts *o)
 {
     o->method = RD_PRETENSION_FORCE;
     o->lateral_force = 0.0;
+    o->free_shape = NULL;
 }
 
 /* Largest load parameter k = F_t (D - b)^2 / (4 E I) (rd_ring_conformability)
@@ -60,6 +61,37 @@ int rd_pretension_validate(const rd_pretension_opts *o, const rd_ring_params *p,
             p->tangential_force, k, k_max, segments, PRETENSION_K_MAX_N4,
             p->tangential_force * k_max / k);
     return RD_OK;
+}
+
+/* The running face's tips at the centroid's height (the free gap) and its
+ * n + 2 points (rd_pretension_result.face_*; their arrays allocated). */
+static void running_face(const rd_static_problem *pb, double s, const double *P0, const double *Pn,
+                         rd_pretension_result *out)
+{
+    const rd_section *sec = rd_ring_get_cross_section(pb->ring);
+    int n = pb->n;
+    double ya[3], yb[3], d[3];
+    double Ro = sec->shape >= RD_SECTION_TAPER_FACE ? sec->R + sec->run.d : pb->R + 0.5 * pb->b;
+    double oa[3] = {Ro * cos(s) - P0[0], Ro * sin(s) - P0[1], 0.0};
+    double ob[3] = {Ro * cos(s) - Pn[0], -Ro * sin(s) - Pn[1], 0.0};
+    rd_static_point_at(pb, 0, oa, ya);
+    rd_static_point_at(pb, n - 1, ob, yb);
+    for (int k = 0; k < 3; k++)
+        d[k] = ya[k] - yb[k];
+    out->free_gap = pb->e0 ? sqrt(rd_dot3(d, d)) : NAN;
+    out->tangential_force = NAN;
+    for (int k = 0; k < n + 2; k++) {
+        double y[3];
+        if (k == 0 || k == n + 1) {
+            rd_static_point_at(pb, k ? n - 1 : 0, k ? ob : oa, y);
+        } else {
+            const double *P = rd_ring_reference_point(pb->ring, k - 1);
+            double c[3] = {(Ro / pb->R - 1.0) * P[0], (Ro / pb->R - 1.0) * P[1], 0.0};
+            rd_static_point_at(pb, k - 1, c, y);
+        }
+        out->face_theta_deg[k] = remainder(atan2(y[1], y[0]) - M_PI, 2.0 * M_PI) * 180.0 / M_PI;
+        out->face_radius[k] = hypot(y[0], y[1]);
+    }
 }
 
 /* Openings and the deformed centroid line of a solved problem. */
@@ -101,8 +133,12 @@ static int pretension_outputs(const rd_ring_params *p, const rd_static_problem *
     out->y = malloc((size_t)(n + 2) * sizeof *out->y);
     out->z = malloc((size_t)(n + 2) * sizeof *out->z);
     out->angle_deg = malloc((size_t)(n + 2) * sizeof *out->angle_deg);
-    if (!out->x || !out->y || !out->z || !out->angle_deg)
+    out->face_theta_deg = malloc((size_t)(n + 2) * sizeof *out->face_theta_deg);
+    out->face_radius = malloc((size_t)(n + 2) * sizeof *out->face_radius);
+    if (!out->x || !out->y || !out->z || !out->angle_deg || !out->face_theta_deg ||
+        !out->face_radius)
         return rd_error_set(err, RD_ENOMEM, "", "Out of memory for the deformed shape.");
+    running_face(pb, s, P0, Pn, out);
     for (int k = 0; k < n + 2; k++) {
         double y[3], ang;
         if (k == 0) {
@@ -123,8 +159,17 @@ static int pretension_outputs(const rd_ring_params *p, const rd_static_problem *
     return RD_OK;
 }
 
+/* The free shape of o, NULL for the stress-free closed ring. */
+static const rd_free_shape *free_shape_of(const rd_pretension_opts *o)
+{
+    return o->free_shape && o->free_shape->kind != RD_FREE_CLOSED ? o->free_shape : NULL;
+}
+
+/* One solve at `segments` with F_t = Ft on the gap faces (the ring's own
+ * without a free shape; with one 0 for the free shape, below 0 to close
+ * it). */
 static int pretension_once(const rd_ring_params *p, int segments, const rd_pretension_opts *o,
-                           const rd_static_opts *so, const rd_monitor *mon,
+                           double Ft, const rd_static_opts *so, const rd_monitor *mon,
                            rd_pretension_result *out, rd_error *err)
 {
     rd_static_problem pb;
@@ -136,14 +181,24 @@ static int pretension_once(const rd_ring_params *p, int segments, const rd_prete
         rc = rd_error_set(err, RD_ENOMEM, "", "Out of memory for the %d-segment ring.", segments);
         goto out;
     }
-    pb.Ft = p->tangential_force;
+    pb.Ft = Ft;
     pb.Fl = o->lateral_force;
     pb.method = o->method;
     pb.jseg = segments - 1;
     for (int k = 0; k < 6; k++)
         pb.mask[k] = 1.0;
-    pb.F_ref = fmax(fmax(pb.Ft, pb.Fl),
+    pb.F_ref = fmax(fmax(fabs(pb.Ft), pb.Fl),
                     1e-3 * rd_ring_get_section(ring)->G * rd_ring_get_section(ring)->area * 1e-9);
+    if ((rc = rd_free_shape_prestrain(&pb, p, free_shape_of(o), err)) != RD_OK)
+        goto out;
+    if (pb.e0) /* the free shape's scale: its largest joint force closed */
+        for (int j = 0; j < segments - 1; j++) {
+            double F[3] = {0, 0, 0};
+            for (int r = 0; r < 3; r++)
+                for (int c = 0; c < 6; c++)
+                    F[r] += pb.Kc[36 * j + 6 * r + c] * pb.e0[6 * j + c];
+            pb.F_ref = fmax(pb.F_ref, sqrt(rd_dot3(F, F)));
+        }
     if ((rc = rd_static_solve_path(&pb, so, mon, &out->stats, err)) != RD_OK)
         goto out;
     rd_static_stats_fill(&pb, &out->stats);
@@ -151,6 +206,53 @@ static int pretension_once(const rd_ring_params *p, int segments, const rd_prete
 out:
     rd_static_problem_cleanup(&pb);
     rd_ring_free(ring);
+    return rc;
+}
+
+/* The force F that closes the free shape to the closed gap: the gap
+ * faces' centroids 2 R sin(s) apart, s the first face's angle, as in the
+ * closed reference.  Secant from F = 0 (the free shape, *free) and the
+ * thin-ring estimate E I (g - g_c) / (3 pi R^3), to 1e-9 of the opening. */
+static int closing_force(const rd_ring_params *p, int segments, const rd_pretension_opts *o,
+                         const rd_static_opts *so, const rd_pretension_result *free, double *F,
+                         rd_error *err)
+{
+    rd_section sec;
+    rd_section_init(&sec, p);
+    double s = 0.5 * p->closed_gap / sec.R; /* the first face's angle (rd_ring.c) */
+    double gc = 2.0 * sec.R * sin(s), g0 = free->gap_opening_neutral, open = g0 - gc;
+    double Fa = 0.0, ga = g0,
+           Fb = p->youngs_modulus * sec.I_inplane * open / (3.0 * M_PI * pow(sec.R, 3));
+    for (int it = 0; it < 20; it++) {
+        rd_pretension_result r;
+        memset(&r, 0, sizeof r);
+        int rc = pretension_once(p, segments, o, -Fb, so, NULL, &r, err);
+        double gb = r.gap_opening_neutral;
+        rd_pretension_result_cleanup(&r);
+        if (rc)
+            return rc;
+        if (fabs(gb - gc) <= 1e-9 * fabs(open)) {
+            *F = Fb;
+            return RD_OK;
+        }
+        double Fn = Fb - (gb - gc) * (Fb - Fa) / (gb - ga);
+        Fa = Fb;
+        ga = gb;
+        Fb = Fn;
+    }
+    return rd_error_set(err, RD_ENOCONV, "/ring",
+                        "the force that closes the free shape was not found in 20 solves.");
+}
+
+/* A free shape's solve at `segments`: the shape, then the force that
+ * closes it. */
+static int free_once(const rd_ring_params *p, int segments, const rd_pretension_opts *o,
+                     const rd_static_opts *so, const rd_monitor *mon, rd_pretension_result *out,
+                     rd_error *err)
+{
+    int rc = pretension_once(p, segments, o, 0.0, so, mon, out, err);
+    if (rc == RD_OK && free_shape_of(o))
+        rc = closing_force(p, segments, o, so, out, &out->tangential_force, err);
     return rc;
 }
 
@@ -162,7 +264,9 @@ void rd_pretension_result_cleanup(rd_pretension_result *r)
     free(r->y);
     free(r->z);
     free(r->angle_deg);
-    r->x = r->y = r->z = r->angle_deg = NULL;
+    free(r->face_theta_deg);
+    free(r->face_radius);
+    r->x = r->y = r->z = r->angle_deg = r->face_theta_deg = r->face_radius = NULL;
 }
 
 /* The accuracy driver's view of one pretension run. */
@@ -177,9 +281,11 @@ typedef struct pretension_run {
 static int pretension_level(void *ctx, int level, const rd_monitor *mon, rd_error *err)
 {
     pretension_run *run = ctx;
-    if (level == 0)
-        return pretension_once(run->p, run->segments, run->o, run->so, mon, run->out, err);
-    return pretension_once(run->p, run->ref_segments, run->o, run->so, mon, &run->ref, err);
+    int n = level == 0 ? run->segments : run->ref_segments;
+    rd_pretension_result *out = level == 0 ? run->out : &run->ref;
+    if (free_shape_of(run->o))
+        return free_once(run->p, n, run->o, run->so, mon, out, err);
+    return pretension_once(run->p, n, run->o, run->p->tangential_force, run->so, mon, out, err);
 }
 
 /* Relative error of f_n from f_n and f_m, Richardson with order 2 in n. */
@@ -197,6 +303,8 @@ static int pretension_compare(void *ctx, rd_error *err)
     double e = relative_error(run->out->gap_opening_inner, n, run->ref.gap_opening_inner, m);
     if (run->o->lateral_force > 0.0)
         e = fmax(e, relative_error(run->out->lateral_opening, n, run->ref.lateral_opening, m));
+    if (free_shape_of(run->o))
+        e = fmax(e, relative_error(run->out->tangential_force, n, run->ref.tangential_force, m));
     run->out->stats.reference_segments = m;
     run->out->stats.error_estimate = e;
     return RD_OK;
@@ -211,7 +319,8 @@ int rd_pretension_solve(const rd_ring_params *p, int segments, const rd_pretensi
     out->stats.error_estimate = NAN;
     if ((rc = rd_ring_validate(p, segments, 0, err)) ||
         (rc = rd_static_validate(so, segments, 0, err)) ||
-        (rc = rd_pretension_validate(o, p, segments, err)))
+        (rc = rd_pretension_validate(o, p, segments, err)) ||
+        (rc = rd_free_shape_validate(o->free_shape, p, err)))
         return rc;
     int m = rd_accuracy_refined_segments(segments, RD_STATIC_SEGMENTS_MAX);
     pretension_run run = {

@@ -128,20 +128,42 @@ typedef struct joint_state {
     double energy;
 } joint_state;
 
-static void joint_state_fill(const rd_static_problem *pb, int j, const double *xA, const double *QA,
-                             const double *xB, const double *QB, joint_state *s)
+/* [d; t] of joint j, with Dx and psi. */
+static void joint_strain(const rd_static_problem *pb, int j, const double *xA, const double *QA,
+                         const double *xB, const double *QB, double Dx[3], double psi[3],
+                         double dt[6])
 {
-    const double *E = pb->E + 9 * j, *dP0 = pb->dP0 + 3 * j, *Kc = pb->Kc + 36 * j;
-    double dl[3], Rrel[9], dt[6];
+    const double *E = pb->E + 9 * j, *dP0 = pb->dP0 + 3 * j;
+    double dl[3], Rrel[9];
     for (int k = 0; k < 3; k++)
-        s->Dx[k] = xB[k] - xA[k];
-    mtv3(QA, s->Dx, dl);
+        Dx[k] = xB[k] - xA[k];
+    mtv3(QA, Dx, dl);
     for (int k = 0; k < 3; k++)
         dl[k] -= dP0[k];
     rd_mv3(E, dl, dt);
     mtm3(QA, QB, Rrel);
-    rd_static_rot_log(Rrel, s->psi);
-    rd_mv3(E, s->psi, dt + 3);
+    rd_static_rot_log(Rrel, psi);
+    rd_mv3(E, psi, dt + 3);
+}
+
+void rd_static_joint_strain(const rd_static_problem *pb, int j, const double *xA, const double *QA,
+                            const double *xB, const double *QB, double dt[6])
+{
+    double Dx[3], psi[3];
+    joint_strain(pb, j, xA, QA, xB, QB, Dx, psi, dt);
+}
+
+static void joint_state_fill(const rd_static_problem *pb, int j, const double *xA, const double *QA,
+                             const double *xB, const double *QB, joint_state *s)
+{
+    const double *Kc = pb->Kc + 36 * j;
+    double dt[6];
+    joint_strain(pb, j, xA, QA, xB, QB, s->Dx, s->psi, dt);
+    if (pb->e0) { /* a free shape: its strain is the rest (rd_free_shape.c) */
+        double f = rd_static_force_factor(pb);
+        for (int k = 0; k < 6; k++)
+            dt[k] -= f * pb->e0[6 * j + k];
+    }
     s->energy = 0.0;
     for (int r = 0; r < 6; r++) {
         s->fm[r] = 0.0;

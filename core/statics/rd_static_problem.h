@@ -35,6 +35,8 @@ typedef struct rd_static_problem {
     const double *Kc;
     double *E;   /* 9 per joint: rows chord, axial, radial */
     double *dP0; /* 3 per joint: P_B - P_A */
+    double *e0;  /* 6 per joint or NULL: the free shape's [d; t] (rd_free_shape.c), the
+                    joints' rest, taken on with F_t's load factor; NULL: the reference */
     double *x;   /* 3n */
     double *Q;   /* 9n */
     double lambda;
@@ -174,6 +176,9 @@ void rd_static_jl_inv_t(const double psi[3], const double v[3], double out[3]);
 void rd_static_joint_residual(const rd_static_problem *pb, int j, const double *xA,
                               const double *QA, const double *xB, const double *QB, double g[12],
                               double *energy);
+/* Joint j's [d; t] (rd_static.h) at those states, its rest e0 not subtracted. */
+void rd_static_joint_strain(const rd_static_problem *pb, int j, const double *xA, const double *QA,
+                            const double *xB, const double *QB, double dt[6]);
 /* Their exact derivative: K[12 r + c] = d g_r / d DOF c, DOFs (dx_A, dpsi_A,
  * dx_B, dpsi_B) as in rd_static.c. */
 void rd_static_joint_tangent(const rd_static_problem *pb, int j, const double *xA, const double *QA,
@@ -196,6 +201,14 @@ int rd_static_tangent_planar(rd_static_problem *pb, rd_blocktri part[2], double 
 /* A segment's DOFs in each half, in the halves' order (in-plane dx, dy,
  * dpsi_z; out-of-plane dz, dpsi_x, dpsi_y). */
 extern const int rd_plane_dof[2][3];
+
+/* (rd_free_shape.c) pb->e0 for the free shape fs of the ring with params
+ * p (pb set up by rd_static_problem_init): RD_FREE_PRESSURE from the
+ * pressure's loads on the closed ring, the joints' forces found by statics
+ * from each free end to the section opposite the gap.  Nothing for NULL or
+ * RD_FREE_CLOSED.  RD_ENOMEM, or RD_EINVAL (a singular joint). */
+int rd_free_shape_prestrain(rd_static_problem *pb, const rd_ring_params *p, const rd_free_shape *fs,
+                            rd_error *err);
 
 /* Strain energy, support force and moment, sizes, after a solve. */
 void rd_static_stats_fill(rd_static_problem *pb, rd_static_stats *st);

@@ -1,0 +1,333 @@
+/*
+ * rd_free_shape — a ring made with a free shape (rd_static.h's
+ * rd_free_shape): its check, its pressure law, and the joints' rest e0 it
+ * gives the static chain (rd_static_problem.h), so that the free shape is
+ * the chain's stress-free state and closing it stresses the ring.
+ *
+ * The joints' law stays [f; m] = Kc ([d; t] - e0), e0 the [d; t] the joint
+ * has in the free shape, measured with the chain's exact kinematics from
+ * the closed reference: the free shape carries no force exactly, however
+ * large its displacement from the closed ring (a gap of ~10 mm on a
+ * 100 mm ring turns the segments by up to ~0.1 rad), and for every state
+ * the strain is measured from it as today's from the closed ring.
+ *
+ * From a pressure (RD_FREE_PRESSURE).  Wanted: the ring closed in a round
+ * bore of its diameter (its closed reference: the running face on the
+ * bore, the gap at its closed width) carrying p(theta) on its running face
+ * and nothing on its gap faces.  That state is statically determinate: a
+ * joint carries what the pressure puts on the segments between it and its
+ * free end, so its [f; m] follows by summing the segments' loads from each
+ * free end up to the section opposite the gap, and e0 = -Kc^-1 [f; m]
+ * makes that state an equilibrium with [d; t] = 0.  The free shape is then
+ * the chain's solution without loads (rd_pretension.c), geometrically
+ * exact: no linearised free shape is closed into the bore (one from the
+ * thin-ring formulas, closed exactly, misses the pressure by 5-12 %, the
+ * issue notes).  A pressure over a split ring does not balance exactly
+ * (uniform p over the arc less the closed gap g leaves 2 F_t g / d):
+ * order-1 terms that cancel it are added (balanced_loads), and the two
+ * halves are each summed from their own end.
+ *
+ * Not built: a measured free shape (a table of the running face's radius)
+ * as the rest.  The pressure is the fourth derivative of the shape: at the
+ * scale of a 7 mm segment of the thesis ring 1 % of p0 is 7 nm of radius
+ * (E I dr / l^4 = 0.01 q), so the rest taken point by point from a table
+ * of the solved free shape itself (42 to 642 points, cubic Hermite, the
+ * centroid line not stretched) gave the pressure back only within 4-36 %
+ * of p0; a measured shape needs a smoothed (low-order) fit and an
+ * accuracy stated with it.
+ */
+#include <lapacke.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "rd_static_problem.h"
+
+/* Linear interpolation of a table at t (its ends held). */
+static double table_at(const double *x, const double *y, int n, double t)
+{
+    if (t <= x[0])
+        return y[0];
+    if (t >= x[n - 1])
+        return y[n - 1];
+    int lo = 0, hi = n - 1;
+    while (hi - lo > 1) {
+        int mid = (lo + hi) / 2;
+        if (x[mid] <= t)
+            lo = mid;
+        else
+            hi = mid;
+    }
+    double w = (t - x[lo]) / (x[hi] - x[lo]);
+    return y[lo] + w * (y[hi] - y[lo]);
+}
+
+/* A table mirrored about the point opposite the gap: it starts at 0. */
+static int mirrored(const rd_free_shape *fs)
+{
+    return fs->n_points > 0 && fs->theta_deg[0] == 0.0;
+}
+
+double rd_free_shape_pressure(const rd_free_shape *fs, double theta)
+{
+    theta = remainder(theta, 2.0 * M_PI);
+    if (fs->n_points > 0) {
+        double t = theta * 180.0 / M_PI;
+        return table_at(fs->theta_deg, fs->value, fs->n_points, mirrored(fs) ? fabs(t) : t);
+    }
+    double r = 1.0;
+    for (int q = 0; q < fs->n_orders; q++)
+        r += fs->amplitude[q] * cos(fs->order[q] * theta);
+    return r;
+}
+
+/* The table's angles: min_points..RD_FREE_POINTS_MAX, strictly
+ * increasing, from 0 or -180 to 180. */
+static int table_check(const rd_free_shape *fs, const char *path, int min_points, rd_error *err)
+{
+    int n = fs->n_points;
+    const double *t = fs->theta_deg;
+    if (n < min_points || n > RD_FREE_POINTS_MAX)
+        return rd_error_set(err, RD_EINVAL, path, "%s has %d points: allowed %d to %d.", path, n,
+                            min_points, RD_FREE_POINTS_MAX);
+    for (int i = 0; i < n; i++) {
+        if (!isfinite(t[i]) || t[i] < -180.0 || t[i] > 180.0)
+            return rd_error_set(err, RD_EINVAL, path,
+                                "%s[%d] = %g deg is out of range: allowed -180 to 180 deg (from "
+                                "the point opposite the gap).",
+                                path, i, t[i]);
+        if (i > 0 && !(t[i] > t[i - 1]))
+            return rd_error_set(err, RD_EINVAL, path,
+                                "%s[%d] = %g deg does not increase (the one before is %g deg).",
+                                path, i, t[i], t[i - 1]);
+    }
+    if (!(t[0] == 0.0 || t[0] == -180.0) || t[n - 1] != 180.0)
+        return rd_error_set(err, RD_EINVAL, path,
+                            "%s runs from %g to %g deg: run from 0 (the pressure mirrored about "
+                            "the point opposite the gap) or from -180 (the whole ring) to 180.",
+                            path, t[0], t[n - 1]);
+    return RD_OK;
+}
+
+static int pressure_check(const rd_free_shape *fs, rd_error *err)
+{
+    const char *path = "/ring/pressure_distribution";
+    if (fs->n_orders > 0 && fs->n_points > 0)
+        return rd_error_set(err, RD_EINVAL, path,
+                            "%s has both orders and a table (theta_deg, ratio): give one.", path);
+    if (fs->n_orders < 0 || fs->n_orders > RD_FREE_ORDERS_MAX)
+        return rd_error_set(err, RD_EINVAL, "/ring/pressure_distribution/orders",
+                            "/ring/pressure_distribution/orders has %d entries: allowed 0 to %d.",
+                            fs->n_orders, RD_FREE_ORDERS_MAX);
+    for (int q = 0; q < fs->n_orders; q++) {
+        if (fs->order[q] < 2 || fs->order[q] > 64)
+            return rd_error_set(err, RD_EINVAL, "/ring/pressure_distribution/orders",
+                                "/ring/pressure_distribution/orders/%d/order = %d is out of "
+                                "range: allowed 2 to 64 (order 1 pushes the ring off the bore's "
+                                "centre; a pressure of it has no equilibrium).",
+                                q, fs->order[q]);
+        if (!isfinite(fs->amplitude[q]) || fabs(fs->amplitude[q]) > 1.0)
+            return rd_error_set(err, RD_EINVAL, "/ring/pressure_distribution/orders",
+                                "/ring/pressure_distribution/orders/%d/amplitude = %g is out of "
+                                "range: allowed -1 to 1 (of the mean pressure p0).",
+                                q, fs->amplitude[q]);
+    }
+    if (fs->n_points > 0) {
+        int rc = table_check(fs, "/ring/pressure_distribution/theta_deg", 2, err);
+        if (rc)
+            return rc;
+        for (int i = 0; i < fs->n_points; i++)
+            if (!isfinite(fs->value[i]) || fs->value[i] < 0.0 || fs->value[i] > 20.0)
+                return rd_error_set(err, RD_EINVAL, "/ring/pressure_distribution/ratio",
+                                    "/ring/pressure_distribution/ratio[%d] = %g is out of range: "
+                                    "allowed 0 to 20 (of the mean pressure p0).",
+                                    i, fs->value[i]);
+    }
+    /* the pressure pushes everywhere: a ring pulled from the bore is not
+     * this shape's ring */
+    double lo = INFINITY, at = 0.0;
+    for (int k = 0; k <= 7200; k++) {
+        double t = -M_PI + 2.0 * M_PI * k / 7200.0, v = rd_free_shape_pressure(fs, t);
+        if (v < lo) {
+            lo = v;
+            at = t;
+        }
+    }
+    if (!(lo > 0.0))
+        return rd_error_set(err, RD_EINVAL, path,
+                            "%s falls to %.4g p0 at %.1f deg from the point opposite the gap: "
+                            "the pressure must stay above 0 around the ring.",
+                            path, lo, at * 180.0 / M_PI);
+    return RD_OK;
+}
+
+int rd_free_shape_validate(const rd_free_shape *fs, const rd_ring_params *p, rd_error *err)
+{
+    if (!fs || fs->kind == RD_FREE_CLOSED)
+        return RD_OK;
+    if (fs->kind != RD_FREE_PRESSURE)
+        return rd_error_set(err, RD_EINVAL, "/ring", "unknown free shape kind %d.", fs->kind);
+    rd_section sec;
+    rd_section_init(&sec, p);
+    if (fabs(sec.angle) > 1e-12)
+        return rd_error_set(
+            err, RD_EINVAL, "/ring/section",
+            "/ring/section's principal axes are turned by %.3g deg: a ring made with a free shape "
+            "(%s) twists when closed, and that twist is not modelled yet.  Give a section "
+            "symmetric about its mid-height (rectangle, circle, or a taper face), or leave the "
+            "free shape out (the stress-free closed ring opened by F_t).",
+            sec.angle * 180.0 / M_PI, "/ring/pressure_distribution");
+    return pressure_check(fs, err);
+}
+
+/* ---- the pressure's rest --------------------------------------------------- */
+
+/* 8-point Gauss-Legendre on [-1, 1]. */
+static const double gl_x[8] = {-0.9602898564975363, -0.7966664774136267, -0.5255324099163290,
+                               -0.1834346424956498, 0.1834346424956498,  0.5255324099163290,
+                               0.7966664774136267,  0.9602898564975363};
+static const double gl_w[8] = {0.1012285362903763, 0.2223810344533745, 0.3137066458778873,
+                               0.3626837833783620, 0.3626837833783620, 0.3137066458778873,
+                               0.2223810344533745, 0.1012285362903763};
+
+/* e0 = -Kc^-1 fm for joint j. */
+static int rest_of(const rd_static_problem *pb, int j, const double fm[6], double e0[6])
+{
+    double K[36], b[6];
+    lapack_int ipiv[6];
+    memcpy(K, pb->Kc + 36 * j, sizeof K);
+    for (int k = 0; k < 6; k++)
+        b[k] = -fm[k];
+    if (LAPACKE_dgesv(LAPACK_ROW_MAJOR, 6, 1, K, 6, ipiv, b, 1) != 0)
+        return RD_EINVAL;
+    memcpy(e0, b, sizeof b);
+    return RD_OK;
+}
+
+/* Each segment's load (force and moment about its reference point, 6 per
+ * segment) from the pressure p0 w(theta) on its running face, at radius
+ * r_o and the centroid's height, as the contact points carry it
+ * (rd_contact.c): w = p / p0 (what 0), cos theta (1) or sin theta (2). */
+static void pressure_loads(const rd_static_problem *pb, const rd_ring_params *p,
+                           const rd_free_shape *fs, int what, double *f)
+{
+    double r_o = pb->R + 0.5 * pb->b, p0 = 2.0 * p->tangential_force / (p->diameter * pb->h);
+    static const double eye[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1};
+    for (int i = 0; i < pb->n; i++) {
+        double a_i = rd_ring_get_segment_angle(pb->ring, i),
+               phi = rd_ring_segment_phi_at(pb->ring, i);
+        const double *P = rd_ring_reference_point(pb->ring, i);
+        memset(f + 6 * i, 0, 6 * sizeof *f);
+        for (int q = 0; q < 8; q++) {
+            double a = a_i + 0.5 * phi * gl_x[q], w = 0.5 * phi * gl_w[q], t = a - M_PI;
+            double v = what == 0 ? rd_free_shape_pressure(fs, t) : what == 1 ? cos(t) : sin(t);
+            double pr = p0 * v * pb->h * r_o * w;
+            double F[3] = {-pr * cos(a), -pr * sin(a), 0.0};
+            double c[3] = {r_o * cos(a) - P[0], r_o * sin(a) - P[1], 0.0};
+            rd_static_add_force(eye, c, F, f + 6 * i);
+        }
+    }
+}
+
+/* The pressure's loads balanced: a pressure over the split ring's arc
+ * leaves a net force (uniform: 2 F_t sin(g / 2R) toward the gap's side),
+ * which the ring in the bore cannot carry.  The order-1 terms c cos theta
+ * + s sin theta that cancel it are added (uniform pressure on the thesis
+ * ring: c = 2.2e-3, i.e. 0.2 % of p0); without them the net force sits on
+ * the section opposite the gap, 5-11 % of its segment's pressure at 40-80
+ * segments. */
+static int balanced_loads(const rd_static_problem *pb, const rd_ring_params *p,
+                          const rd_free_shape *fs, double *f)
+{
+    int n = pb->n;
+    double *g = malloc((size_t)12 * n * sizeof *g);
+    if (!g)
+        return RD_ENOMEM;
+    pressure_loads(pb, p, fs, 0, f);
+    pressure_loads(pb, p, fs, 1, g);
+    pressure_loads(pb, p, fs, 2, g + 6 * n);
+    double A[4] = {0, 0, 0, 0}, r[2] = {0, 0};
+    for (int i = 0; i < n; i++)
+        for (int k = 0; k < 2; k++) {
+            r[k] -= f[6 * i + k];
+            A[2 * k] += g[6 * i + k];
+            A[2 * k + 1] += g[6 * n + 6 * i + k];
+        }
+    double det = A[0] * A[3] - A[1] * A[2];
+    double c = (r[0] * A[3] - A[1] * r[1]) / det, sn = (A[0] * r[1] - A[2] * r[0]) / det;
+    for (int i = 0; i < 6 * n; i++)
+        f[i] += c * g[i] + sn * g[6 * n + i];
+    free(g);
+    return RD_OK;
+}
+
+/* The joints' [f; m] in the closed ring under the segments' loads f, each
+ * half summed from its own free end (the header), and their rests. */
+static int pressure_rest(rd_static_problem *pb, const double *f)
+{
+    int n = pb->n;
+    double S[3] = {0, 0, 0}, Mo[3] = {0, 0, 0};
+    for (int side = 0; side < 2; side++) {
+        memset(S, 0, sizeof S);
+        memset(Mo, 0, sizeof Mo);
+        /* side 0: joints 0..pb-1 from the first end; side 1: the rest from the last */
+        int first = side == 0 ? 0 : n - 2, last = side == 0 ? pb->pb - 1 : pb->pb,
+            step = side ? -1 : 1;
+        for (int j = first; side == 0 ? j <= last : j >= last; j += step) {
+            int i = side == 0 ? j : j + 1; /* the segment this joint's sum takes in */
+            const double *xi = pb->x + 3 * i;
+            double xf[3];
+            rd_cross3(xi, f + 6 * i, xf);
+            for (int k = 0; k < 3; k++) {
+                S[k] += f[6 * i + k];
+                Mo[k] += f[6 * i + 3 + k] + xf[k];
+            }
+            const double *xA = pb->x + 3 * j, *xB = xA + 3, *E = pb->E + 9 * j;
+            double F[3], Mg[3], Dx[3], t[3], u[3], fm[6];
+            for (int k = 0; k < 3; k++)
+                Dx[k] = xB[k] - xA[k];
+            if (side == 0) { /* F = -S, Mg = F x Dx - (Mo - xA x S) */
+                double FxD[3];
+                for (int k = 0; k < 3; k++)
+                    F[k] = -S[k];
+                rd_cross3(F, Dx, FxD);
+                rd_cross3(xA, S, t);
+                for (int k = 0; k < 3; k++)
+                    Mg[k] = FxD[k] - (Mo[k] - t[k]);
+            } else { /* F = S, Mg = Mo - xB x S */
+                rd_cross3(xB, S, t);
+                for (int k = 0; k < 3; k++) {
+                    F[k] = S[k];
+                    Mg[k] = Mo[k] - t[k];
+                }
+            }
+            rd_mv3(E, F, u);
+            memcpy(fm, u, sizeof u);
+            rd_mv3(E, Mg, u);
+            memcpy(fm + 3, u, sizeof u);
+            if (rest_of(pb, j, fm, pb->e0 + 6 * j) != RD_OK)
+                return RD_EINVAL;
+        }
+    }
+    return RD_OK;
+}
+
+int rd_free_shape_prestrain(rd_static_problem *pb, const rd_ring_params *p, const rd_free_shape *fs,
+                            rd_error *err)
+{
+    if (!fs || fs->kind == RD_FREE_CLOSED)
+        return RD_OK;
+    int n = pb->n;
+    pb->e0 = calloc((size_t)6 * n, sizeof *pb->e0);
+    if (!pb->e0)
+        return rd_error_set(err, RD_ENOMEM, "", "Out of memory for the free shape.");
+    double *f = malloc((size_t)6 * n * sizeof *f);
+    if (!f)
+        return rd_error_set(err, RD_ENOMEM, "", "Out of memory for the free shape.");
+    int rc = balanced_loads(pb, p, fs, f);
+    if (rc == RD_OK)
+        rc = pressure_rest(pb, f);
+    free(f);
+    return rc == RD_OK ? RD_OK
+                       : rd_error_set(err, RD_EINVAL, "/ring", "a joint's stiffness is singular.");
+}
