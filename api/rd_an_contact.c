@@ -102,6 +102,7 @@ static const rd_block scene_block = {
 static int finish(struct rd_scene *s, rd_error *err)
 {
     struct rd_static_scene *o = s->opts;
+    o->contact.free_shape = s->free_shape.kind != RD_FREE_CLOSED ? &s->free_shape : NULL;
     int rc = rd_static_validate(&o->statics, s->segments, s->closed, err);
     rc = rc != RD_OK ? rc : rd_contact_validate(&o->contact, &s->ring, err);
     return rc != RD_OK ? rc : rd_contact_map_finish(s, err);
@@ -253,7 +254,8 @@ static json_t *contact_result(const rd_scene *scene, const rd_bore *bore,
         "conformability", rd_result_real(res->conformability), "distortion",
         distortion_bounds(bore, res), "support", rd_static_result_support(&res->stats), "numerics",
         rd_static_result_numerics(&res->stats, wall_s, method));
-    if (out && contact_accuracy(out, res) != 0) {
+    if (out && (contact_accuracy(out, res) != 0 ||
+                json_object_set_new(out, "free_shape_model", rd_free_shape_model(scene)) != 0)) {
         json_decref(out);
         out = NULL;
     }
@@ -302,6 +304,7 @@ static const char *const result_keys[] = {"analysis",
                                           "bore_at_height",
                                           "bore_fit",
                                           "layers",
+                                          "free_shape_model",
                                           NULL};
 
 const rd_analysis_def rd_an_contact = {
@@ -315,4 +318,5 @@ const rd_analysis_def rd_an_contact = {
     .csv = &csv,
     .page = "contact.js",
     .result_keys = result_keys,
+    .free_shapes = 1,
 };

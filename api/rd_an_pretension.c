@@ -51,8 +51,10 @@ static const rd_block scene_block = {
 static int finish(struct rd_scene *s, rd_error *err)
 {
     struct rd_static_scene *o = s->opts;
+    o->pretension.free_shape = s->free_shape.kind != RD_FREE_CLOSED ? &s->free_shape : NULL;
     int rc = rd_static_validate(&o->statics, s->segments, s->closed, err);
-    return rc != RD_OK ? rc : rd_pretension_validate(&o->pretension, &s->ring, s->segments, err);
+    rc = rc != RD_OK ? rc : rd_pretension_validate(&o->pretension, &s->ring, s->segments, err);
+    return rc != RD_OK ? rc : rd_free_shape_validate(o->pretension.free_shape, &s->ring, err);
 }
 
 /* {"analysis", "scene", "gap_opening_inner", "lateral_opening",
@@ -125,6 +127,21 @@ static json_t *section_json(const rd_ring_params *p)
         "outline_m", outline_json(p));
 }
 
+/* "free_shape": the solved free shape's running face (polar about the
+ * closed ring's centre, from the point opposite the gap), the gap between
+ * its tips, and the tangential force: the one that closes it (a pressure
+ * distribution's shape) or F_t itself (the stress-free closed ring's). */
+static json_t *free_shape_json(const rd_scene *scene, const rd_ring_params *ring,
+                               const rd_pretension_result *res)
+{
+    int np = res->points, made = scene->free_shape.kind != RD_FREE_CLOSED;
+    return json_pack("{s:o, s:o, s:o, s:o}", "theta_deg",
+                     rd_result_reals(res->face_theta_deg, np, 1, 1.0), "radius_m",
+                     rd_result_reals(res->face_radius, np, 1, 1.0), "free_gap_m",
+                     rd_result_real(res->free_gap), "tangential_force_n",
+                     rd_result_real(made ? res->tangential_force : ring->tangential_force));
+}
+
 static json_t *pretension_result(const rd_scene *scene, const rd_ring_params *ring,
                                  const rd_pretension_result *res, double wall_s)
 {
@@ -154,7 +171,9 @@ static json_t *pretension_result(const rd_scene *scene, const rd_ring_params *ri
         "reference_y", rd_result_reals(ry, np, 1, 1.0), "numerics",
         rd_static_result_numerics(&res->stats, wall_s,
                                   "Richardson extrapolation (order 2) of x_a and x_c"));
-    if (out && json_object_set_new(out, "section", section_json(ring)) != 0) {
+    if (out && (json_object_set_new(out, "section", section_json(ring)) != 0 ||
+                json_object_set_new(out, "free_shape", free_shape_json(scene, ring, res)) != 0 ||
+                json_object_set_new(out, "free_shape_model", rd_free_shape_model(scene)) != 0)) {
         json_decref(out);
         out = NULL;
     }
@@ -206,6 +225,8 @@ static const char *const result_keys[] = {"analysis",
                                           "numerics",
                                           "warnings",
                                           "section",
+                                          "free_shape",
+                                          "free_shape_model",
                                           NULL};
 
 const rd_analysis_def rd_an_pretension = {
@@ -219,4 +240,5 @@ const rd_analysis_def rd_an_pretension = {
     .page = "pretension.js",
     .result_keys = result_keys,
     .general_sections = 1,
+    .free_shapes = 1,
 };

@@ -48,38 +48,66 @@ static const rd_block material = {NULL, "Material.", 0, 0, material_fields};
     "\"minItems\": 3, \"maxItems\": 64, \"items\": {\"type\": \"array\", \"minItems\": 2, "      \
     "\"maxItems\": 2, \"items\": {\"type\": \"number\"}}}}}]}"
 
+/* /ring/pressure_distribution's JSON schema. */
+#define PRESSURE_SCHEMA                                                                           \
+    "{\"oneOf\": [{\"type\": \"string\", \"enum\": [\"uniform\"]}, {\"type\": \"object\", "       \
+    "\"additionalProperties\": false, \"required\": [\"orders\"], \"properties\": {\"orders\": "  \
+    "{\"type\": \"array\", \"maxItems\": 16, \"items\": {\"type\": \"object\", "                  \
+    "\"additionalProperties\": false, \"required\": [\"order\", \"amplitude\"], \"properties\": " \
+    "{\"order\": {\"type\": \"integer\", \"minimum\": 2, \"maximum\": 64}, \"amplitude\": "       \
+    "{\"type\": \"number\", \"minimum\": -1, \"maximum\": 1}}}}}}, {\"type\": \"object\", "       \
+    "\"additionalProperties\": false, \"required\": [\"theta_deg\", \"ratio\"], \"properties\": " \
+    "{\"theta_deg\": {\"type\": \"array\", \"minItems\": 2, \"maxItems\": 721, \"items\": "       \
+    "{\"type\": \"number\"}}, \"ratio\": {\"type\": \"array\", \"minItems\": 2, \"maxItems\": "   \
+    "721, \"items\": {\"type\": \"number\", \"minimum\": 0, \"maximum\": 20}}}}]}"
+
 /* The ring's rows, shared by the plain ring block and the one with a face. */
-#define RING_ROWS                                                                                 \
-    {"diameter",    RD_F_NUMBER, AT(ring.diameter),                                               \
-     RD_MIN(0.001), RD_MAX(5.0), .desc = "Nominal (= bore) diameter d, m."},                      \
-        {"radial_width", RD_F_NUMBER, AT(ring.radial_width), RD_MIN(1e-05),                       \
-         .desc = "Radial width b, m; at most d/4."},                                              \
-        {"axial_height", RD_F_NUMBER, AT(ring.axial_height), RD_MIN(1e-05),                       \
-         .desc =                                                                                  \
-             "Axial height h, m; at most d/2, with b/h from 0.05 to 20; equal to radial_width "   \
-             "for a circular section."},                                                          \
-        {"closed_gap", RD_F_NUMBER, AT(ring.closed_gap), RD_MIN(0.0),                             \
-         .desc = "Gap in the installed (closed) state, m; at most 10 % of the circumference "     \
-                 "(pi d / 10); not checked for a closed ring."},                                  \
-        {"tangential_force",                                                                      \
-         RD_F_NUMBER,                                                                             \
-         AT(ring.tangential_force),                                                               \
-         RD_MIN(0.0),                                                                             \
-         RD_MAX(100000.0),                                                                        \
-         .desc = "Tangential (pretension) force F_t, N; the contact analysis needs it > 0."},     \
-        {"section",                                                                               \
-         RD_F_CUSTOM,                                                                             \
-         AT(ring.section),                                                                        \
-         .parse = rd_section_parse,                                                               \
-         .echo = rd_section_echo,                                                                 \
-         .extra = SECTION_SCHEMA,                                                                 \
-         .desc = "Cross-section: rectangle b x h, circle (a wire of diameter b = h), or a "       \
-                 "general shape in the b x h box (docs/geometry.md): taper_face (angle_deg), "    \
-                 "inner_bevel / inner_step (side, width_m, height_m), keystone (angle_deg, "      \
-                 "double, side), polygon (points_m). The lift analysis needs rectangle; general " \
-                 "shapes are read by the pretension analysis only."},                             \
-    {                                                                                             \
-        "material", RD_F_BLOCK, 0, .block = &material                                             \
+#define RING_ROWS                                                                                  \
+    {"diameter",    RD_F_NUMBER, AT(ring.diameter),                                                \
+     RD_MIN(0.001), RD_MAX(5.0), .desc = "Nominal (= bore) diameter d, m."},                       \
+        {"radial_width", RD_F_NUMBER, AT(ring.radial_width), RD_MIN(1e-05),                        \
+         .desc = "Radial width b, m; at most d/4."},                                               \
+        {"axial_height", RD_F_NUMBER, AT(ring.axial_height), RD_MIN(1e-05),                        \
+         .desc =                                                                                   \
+             "Axial height h, m; at most d/2, with b/h from 0.05 to 20; equal to radial_width "    \
+             "for a circular section."},                                                           \
+        {"closed_gap", RD_F_NUMBER, AT(ring.closed_gap), RD_MIN(0.0),                              \
+         .desc = "Gap in the installed (closed) state, m; at most 10 % of the circumference "      \
+                 "(pi d / 10); not checked for a closed ring."},                                   \
+        {"tangential_force",                                                                       \
+         RD_F_NUMBER,                                                                              \
+         AT(ring.tangential_force),                                                                \
+         RD_MIN(0.0),                                                                              \
+         RD_MAX(100000.0),                                                                         \
+         .desc = "Tangential (pretension) force F_t, N; the contact analysis needs it > 0."},      \
+        {"section",                                                                                \
+         RD_F_CUSTOM,                                                                              \
+         AT(ring.section),                                                                         \
+         .parse = rd_section_parse,                                                                \
+         .echo = rd_section_echo,                                                                  \
+         .extra = SECTION_SCHEMA,                                                                  \
+         .desc = "Cross-section: rectangle b x h, circle (a wire of diameter b = h), or a "        \
+                 "general shape in the b x h box (docs/geometry.md): taper_face (angle_deg), "     \
+                 "inner_bevel / inner_step (side, width_m, height_m), keystone (angle_deg, "       \
+                 "double, side), polygon (points_m). The lift analysis needs rectangle; general "  \
+                 "shapes are read by the pretension analysis only."},                              \
+        {"pressure_distribution",                                                                  \
+         RD_F_CUSTOM,                                                                              \
+         AT(free_shape),                                                                           \
+         .parse = rd_free_shape_parse,                                                             \
+         .echo = rd_free_shape_echo,                                                               \
+         .nullable = 1,                                                                            \
+         .extra = PRESSURE_SCHEMA,                                                                 \
+         .desc = "The ring made with the free shape that a round bore of its diameter closes "     \
+                 "to its closed gap with this radial pressure (p0 = 2 F_t / (d h) its mean; "      \
+                 "theta from the point opposite the gap): \"uniform\", {\"orders\": [{\"order\": " \
+                 "k, \"amplitude\": a_k}]} for p / p0 = 1 + sum a_k cos k theta (k 2..64), or "    \
+                 "{\"theta_deg\": [...], \"ratio\": [...]} (p / p0, from 0 mirrored or -180, to "  \
+                 "180). Absent: the stress-free closed ring opened by F_t on its gap faces. Read " \
+                 "by the pretension and contact analyses; sections symmetric about mid-height "    \
+                 "only."},                                                                         \
+    {                                                                                              \
+        "material", RD_F_BLOCK, 0, .block = &material                                              \
     }
 
 static const rd_field ring_fields[] = {

@@ -63,6 +63,10 @@ typedef struct rd_analysis_def {
      * turned principal axes); 0: refuses them, naming the analysis
      * (rd_section_scene.c). */
     int general_sections;
+    /* 1: reads /ring/pressure_distribution (the ring made with that
+     * pressure's free shape); 0: refuses it, naming the analysis
+     * (rd_free_shape_scene.c). */
+    int free_shapes;
     /* The top-level members of its result (NULL-ended; the OpenAPI result
      * schema's properties, tests/api/test_schema.c): what a study's result
      * pointer may start with (rd_study.h). */
@@ -97,6 +101,16 @@ struct json_t *rd_registry_openapi(const rd_analysis_def *const *registry,
 int rd_section_parse(const rd_field *f, struct json_t *v, const char *path, struct rd_scene *s,
                      rd_error *err);
 struct json_t *rd_section_echo(const struct rd_scene *s);
+/* (rd_free_shape_scene.c) /ring/pressure_distribution: "uniform", orders or
+ * a table, into s->free_shape; and its echo (JSON null when absent). */
+int rd_free_shape_parse(const rd_field *f, struct json_t *v, const char *path, struct rd_scene *s,
+                        rd_error *err);
+struct json_t *rd_free_shape_echo(const struct rd_scene *s);
+/* The result's "free_shape_model": which ring the statics solved, as a
+ * string: "stress_free_closed" (the closed ring stress-free, F_t on its gap
+ * faces) or "pressure_distribution" (made with that pressure's free shape,
+ * its gap faces free).  NULL on out of memory. */
+struct json_t *rd_free_shape_model(const struct rd_scene *s);
 
 /* ---- shared blocks (rd_blocks.c), referenced by the analyses ---- */
 /* Monotonic wall clock, s: what a runner reports as numerics.wall_s. */

@@ -27,6 +27,7 @@
 #include "rd_liner.h"
 #include "rd_modal.h"
 #include "rd_ring.h"
+#include "rd_static.h"
 
 struct json_t; /* jansson; api-internal headers use it without including jansson.h */
 struct rd_analysis_def;
@@ -74,6 +75,7 @@ struct rd_scene {
     char *name;                       /* optional metadata, NULL when absent; owned */
     char *description;                /* optional metadata, NULL when absent; owned */
     rd_ring_params ring;              /* /ring */
+    rd_free_shape free_shape;         /* /ring/pressure_distribution (RD_FREE_CLOSED: absent) */
     /* /ring/face (the analyses whose ring block is rd_block_ring_face): the
      * running face's profile and roughness; face_given 1 when named */
     rd_face_params face;

@@ -215,9 +215,9 @@ typedef struct rd_pretension_result {
     double gap_opening_neutral; /* distance between the face centroids, m */
     double free_gap_formula;    /* closed gap + m of (1.4)-(1.5), m */
     double conformability;      /* k of (1.4) */
-    /* With a free shape (rd_free_shape; NAN otherwise): the gap between the
-     * running face's tips at mid-height, m, and the tangential force that
-     * closes the free shape to the closed gap by forces normal to the gap
+    /* The gap between the running face's tips at the centroid's height, m;
+     * and with a free shape (rd_free_shape; NAN otherwise) the tangential
+     * force that closes it to the closed gap by forces normal to the gap
      * faces at their centroids (the force method's), N. */
     double free_gap, tangential_force;
     /* Deformed centroid line, n + 2 points: first face, the n reference

@@ -78,7 +78,7 @@ static void running_face(const rd_static_problem *pb, double s, const double *P0
     rd_static_point_at(pb, n - 1, ob, yb);
     for (int k = 0; k < 3; k++)
         d[k] = ya[k] - yb[k];
-    out->free_gap = pb->e0 ? sqrt(rd_dot3(d, d)) : NAN;
+    out->free_gap = sqrt(rd_dot3(d, d));
     out->tangential_force = NAN;
     for (int k = 0; k < n + 2; k++) {
         double y[3];

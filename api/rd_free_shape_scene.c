@@ -1,0 +1,159 @@
+/*
+ * rd_free_shape_scene — /ring/pressure_distribution in the api (issue 46's
+ * names): the ring made with the free shape of a radial pressure
+ * distribution (rd_static.h's rd_free_shape):
+ *   "uniform"
+ *   {"orders": [{"order": k, "amplitude": a_k}, ...]}   p / p0 = 1 + sum a_k cos k theta
+ *   {"theta_deg": [...], "ratio": [...]}                p / p0 as a table
+ * theta from the point opposite the gap.  Absent or null: the stress-free
+ * closed ring opened by F_t (every analysis' model before).  Read by the
+ * pretension and contact analyses (rd_analysis_def.free_shapes), refused
+ * by the others, naming them; a key it does not know is refused, naming it.
+ * Core checks the values (rd_free_shape_validate, from the analyses'
+ * finish).
+ */
+#include <jansson.h>
+#include <stdio.h>
+#include <string.h>
+
+#include "rd_json.h"
+#include "rd_registry.h"
+#include "rd_scene.h"
+
+static int orders(json_t *v, const char *path, rd_free_shape *fs, rd_error *err)
+{
+    char at[RD_ERROR_PATH_MAX];
+    rd_schema_path_join(at, sizeof at, path, "orders");
+    if (!json_is_array(v) || json_array_size(v) > RD_FREE_ORDERS_MAX)
+        return rd_error_set(err, RD_EINVAL, at,
+                            "%s must be an array of at most %d {\"order\", \"amplitude\"}.", at,
+                            RD_FREE_ORDERS_MAX);
+    size_t i;
+    json_t *it;
+    json_array_foreach(v, i, it)
+    {
+        json_t *k = json_object_get(it, "order"), *a = json_object_get(it, "amplitude");
+        if (!json_is_object(it) || json_object_size(it) != 2 || !json_is_integer(k) ||
+            !json_is_number(a))
+            return rd_error_set(err, RD_EINVAL, at,
+                                "%s/%zu must be {\"order\": an integer, \"amplitude\": a number} "
+                                "and nothing else.",
+                                at, i);
+        fs->order[i] = (int)json_integer_value(k);
+        fs->amplitude[i] = json_number_value(a);
+    }
+    fs->n_orders = (int)json_array_size(v);
+    return RD_OK;
+}
+
+static int column(json_t *o, const char *key, const char *path, double *out, int *n, rd_error *err)
+{
+    char at[RD_ERROR_PATH_MAX];
+    json_t *v = json_object_get(o, key);
+    rd_schema_path_join(at, sizeof at, path, key);
+    if (!v)
+        return rd_error_set(err, RD_EINVAL, at, "%s is missing: a table needs theta_deg and ratio.",
+                            at);
+    if (!json_is_array(v) || json_array_size(v) < 2 || json_array_size(v) > RD_FREE_POINTS_MAX)
+        return rd_error_set(err, RD_EINVAL, at, "%s must be an array of 2 to %d numbers.", at,
+                            RD_FREE_POINTS_MAX);
+    size_t i;
+    json_t *x;
+    json_array_foreach(v, i, x)
+    {
+        if (!json_is_number(x))
+            return rd_schema_type_error(err, at, "an array of numbers", v);
+        out[i] = json_number_value(x);
+    }
+    *n = (int)json_array_size(v);
+    return RD_OK;
+}
+
+int rd_free_shape_parse(const rd_field *f, json_t *v, const char *path, rd_scene *s, rd_error *err)
+{
+    (void)f;
+    rd_free_shape *fs = &s->free_shape;
+    memset(fs, 0, sizeof *fs);
+    if (json_is_null(v))
+        return RD_OK;
+    if (!s->an->free_shapes)
+        return rd_error_set(err, RD_EINVAL, path,
+                            "%s is read by the pretension and contact analyses only (the free "
+                            "shape it gives the ring); the %s analysis models the stress-free "
+                            "closed ring: remove it.",
+                            path, s->an->name);
+    fs->kind = RD_FREE_PRESSURE;
+    if (json_is_string(v) && strcmp(json_string_value(v), "uniform") == 0)
+        return RD_OK;
+    if (!json_is_object(v))
+        return rd_schema_type_error(err, path,
+                                    "\"uniform\", {\"orders\": [...]} or {\"theta_deg\": [...], "
+                                    "\"ratio\": [...]}",
+                                    v);
+    const char *key;
+    json_t *x;
+    json_object_foreach(v, key, x)
+    {
+        char at[RD_ERROR_PATH_MAX];
+        rd_schema_path_join(at, sizeof at, path, key);
+        if (strcmp(key, "orders") && strcmp(key, "theta_deg") && strcmp(key, "ratio"))
+            return rd_error_set(err, RD_EINVAL, at,
+                                "unknown field \"%.60s\" in %s (known: orders, or theta_deg and "
+                                "ratio)",
+                                key, path);
+    }
+    json_t *o = json_object_get(v, "orders");
+    if (o && (json_object_get(v, "theta_deg") || json_object_get(v, "ratio")))
+        return rd_error_set(err, RD_EINVAL, path,
+                            "%s has both orders and a table (theta_deg, ratio): give one.", path);
+    if (o)
+        return orders(o, path, fs, err);
+    int nt = 0, nr = 0;
+    int rc = column(v, "theta_deg", path, fs->theta_deg, &nt, err);
+    if (rc == RD_OK)
+        rc = column(v, "ratio", path, fs->value, &nr, err);
+    if (rc == RD_OK && nt != nr) {
+        char at[RD_ERROR_PATH_MAX];
+        rd_schema_path_join(at, sizeof at, path, "ratio");
+        return rd_error_set(err, RD_EINVAL, at, "%s has %d values for %d angles (theta_deg).", at,
+                            nr, nt);
+    }
+    fs->n_points = nt;
+    return rc;
+}
+
+json_t *rd_free_shape_echo(const rd_scene *s)
+{
+    const rd_free_shape *fs = &s->free_shape;
+    if (fs->kind == RD_FREE_CLOSED)
+        return json_null();
+    if (fs->n_orders == 0 && fs->n_points == 0)
+        return json_string("uniform");
+    json_t *o = json_object();
+    if (!o)
+        return NULL;
+    int bad = 0;
+    if (fs->n_orders > 0) {
+        json_t *a = json_array();
+        for (int q = 0; a && q < fs->n_orders; q++)
+            bad |=
+                json_array_append_new(a, json_pack("{s:i, s:o}", "order", fs->order[q], "amplitude",
+                                                   rd_result_real(fs->amplitude[q])));
+        bad |= json_object_set_new(o, "orders", a);
+    } else {
+        bad |= json_object_set_new(o, "theta_deg",
+                                   rd_result_reals(fs->theta_deg, fs->n_points, 1, 1.0));
+        bad |= json_object_set_new(o, "ratio", rd_result_reals(fs->value, fs->n_points, 1, 1.0));
+    }
+    if (bad) {
+        json_decref(o);
+        return NULL;
+    }
+    return o;
+}
+
+json_t *rd_free_shape_model(const rd_scene *s)
+{
+    return json_string(s->free_shape.kind == RD_FREE_CLOSED ? "stress_free_closed"
+                                                            : "pressure_distribution");
+}
