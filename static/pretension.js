@@ -27,6 +27,7 @@ export const pretension = {
         isNum(result.free_gap_formula) ? ` (formula 1.5: ${mm(result.free_gap_formula)} mm)` : '',
         isNum(xc) ? [', lateral opening ', h('i', {}, 'x'), h('sub', {}, 'c'), ` = ${mm(xc, 3)} mm`] : '',
         '.'),
+      modelNote(result),
       h('p', { id: 'cost', class: 'cost' }, h('strong', {}, 'Cost and accuracy: '), newtonCost(n)),
       resultLinks(job, 'pretension', 'Free shape (CSV)'),
       h('div', { class: 'result-grid' },
@@ -34,6 +35,7 @@ export const pretension = {
           h('figcaption', {}, 'The ring in its plane seen from the cylinder head, gap (0°) to the right (+x), true scale. ' +
             'Dashed: closed (reference) shape; solid: free shape opened by the pretension.')),
         sectionPlot(result),
+        freeShapePlot(result),
         lateral ? h('figure', { class: 'plot' }, zPlot(result),
           h('figcaption', {}, 'Axial (z) displacement of the centroid line against the angle from the gap: the lateral forces twist the ring out of its plane.')) : null),
       h('div', { class: 'table-wrap' }, figures(result)),
@@ -58,6 +60,9 @@ function figures(result) {
       ['Gap opening at the neutral axis', isNum(result.gap_opening_neutral) ? `${mm(result.gap_opening_neutral, 3)} mm` : undefined],
       ['Free gap from the formula (1.5)', `${mm(m, 3)} mm`, { id: 'pt-formula' }],
       [['Conformability ', h('i', {}, 'k'), ' (1.4)'], sig(result.conformability, 4), { id: 'pt-k' }],
+      ['Free gap at the running face', isNum(result.free_shape?.free_gap_m) ? `${mm(result.free_shape.free_gap_m, 3)} mm` : undefined, { id: 'pt-free-gap' }],
+      ['Tangential force that closes it', isNum(result.free_shape?.tangential_force_n)
+        ? `${sig(result.free_shape.tangential_force_n, 5)} N${result.free_shape_model === 'pressure_distribution' ? ' (computed)' : ' (given: F_t)'}` : undefined, { id: 'pt-ft' }],
       ['Support force / moment (opposite the gap)', isNum(support.force_n) || isNum(support.moment_nm)
         ? `${sig(support.force_n)} N / ${sig(support.moment_nm)} N·m` : undefined],
       ['Error estimate', err, { id: 'pt-error' }],
@@ -70,6 +75,47 @@ function figures(result) {
       ['Solver', n.solver],
     ],
   });
+}
+
+// Which ring was solved (result.free_shape_model), in words beside the result.
+function modelNote(result) {
+  const m = result.free_shape_model;
+  if (!m) return null;
+  const pd = result.scene?.ring?.pressure_distribution;
+  const what = pd === 'uniform' ? 'a uniform pressure'
+    : pd?.orders ? `p/p₀ = 1 ${pd.orders.map((o) => `${o.amplitude < 0 ? '−' : '+'} ${Math.abs(o.amplitude)} cos ${o.order}θ`).join(' ')}`
+      : 'the tabulated pressure';
+  return h('p', { id: 'pt-model', class: 'hint' }, m === 'pressure_distribution'
+    ? `The ring is made with the free shape that a round bore of its diameter closes to its closed gap with ${what} (θ from the point opposite the gap); that free shape is solved geometrically exactly, and its gap faces carry nothing.`
+    : 'The ring is the stress-free closed ring opened by F_t on its gap faces (the thesis model). Give ring.pressure_distribution for a ring made with the free shape of a pressure distribution.');
+}
+
+// The free shape as a gauge measures it (result.free_shape): the running
+// face's radius less d/2 (mm) against the angle from the point opposite the
+// gap.  Nothing without it.
+function freeShapePlot(result) {
+  const f = result.free_shape || {};
+  const t = nums(f.theta_deg), r = nums(f.radius_m), d = Number(result.scene?.ring?.diameter);
+  const k = Math.min(t.length, r.length);
+  if (k < 2 || !isNum(d)) return null;
+  const dr = r.slice(0, k).map((v) => (v - d / 2) * 1e3);
+  const W = 420, H = 240;
+  const box = { left: 62, top: 14, width: W - 62 - 12, height: H - 14 - 50 };
+  const lo = Math.min(0, ...dr), hi = Math.max(0, ...dr), pad = (hi - lo) * 0.08 || 0.01;
+  const x = scale(-180, 180, box.left, box.left + box.width);
+  const y = scale(lo - pad, hi + pad, box.top + box.height, box.top);
+  return h('figure', { class: 'plot' },
+    svg('svg', {
+      id: 'pt-free-shape', class: 'chart', viewBox: `0 0 ${W} ${H}`, role: 'img',
+      'aria-label': `Free shape: running-face radius less d/2 from ${sig(Math.min(...dr), 3)} to ${sig(Math.max(...dr), 3)} mm, ${k} points; free gap ${mm(f.free_gap_m)} mm.`,
+    },
+    axes({
+      box, x, y, xTicks: [-180, -90, 0, 90, 180], yTicks: ticks(lo - pad, hi + pad, 4),
+      xLabel: 'angle from the point opposite the gap (deg)', yLabel: 'r − d/2 (mm)', yFormat: (v) => String(Number(v.toPrecision(4))),
+    }),
+    svg('line', { class: 'zero', x1: box.left, x2: box.left + box.width, y1: y(0), y2: y(0) }),
+    svg('path', { class: 'free', id: 'pt-free-radius', 'data-points': k, d: pathD(t.slice(0, k).map((a, i) => [x(a), y(dr[i])])) })),
+    h('figcaption', {}, `The free shape as a gauge measures it: the running face's radius about the closed ring's centre less the bore's d/2, against the angle from the point opposite the gap; the free gap between its tips is ${mm(f.free_gap_m, 3)} mm.`));
 }
 
 // The free and the closed shape in the ring plane, x right, y up, one scale

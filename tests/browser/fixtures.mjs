@@ -40,6 +40,12 @@ export function pretensionResult({ lateral = 0 } = {}) {
       reference_x: angle.map((a) => R * Math.cos(rad(a))),
       reference_y: angle.map((a) => R * Math.sin(rad(a))),
     },
+    free_shape_model: 'stress_free_closed',
+    free_shape: {
+      theta_deg: free.map((t) => ((t * 180) / Math.PI) - 180),
+      radius_m: free.map((t) => D / 2 + 0.0004 * (1 - Math.cos(t - Math.PI))),
+      free_gap_m: 0.0096, tangential_force_n: FT,
+    },
     numerics: {
       segments: n, dof: 6 * n, wall_s: 0.0123, solver: 'Newton, banded LU (dgbsv)', load_steps: 4, iterations: 17,
       residual: 3.1e-12, tolerance: 1e-9, reference_segments: 40, error_estimate: 0.0042, error_method: 'Richardson, n and 2n',

@@ -333,6 +333,9 @@ async function renderFixture(id, result) {
         sectionPath: (q('#pt-section-outline')?.getAttribute('d')?.match(/[ML]/g) || []).length,
         sectionCentroid: Boolean(q('#pt-section-centroid')),
         sectionAxis: Boolean(q('#pt-section-axis')),
+        freeRadius: Number(q('#pt-free-radius')?.dataset.points ?? 0),
+        modelNote: q('#pt-model')?.textContent,
+        ftCell: q('#pt-ft')?.textContent,
         pressurePoints: points('#ct-pressure'),
         lightGaps: all('.light-gaps .light-gap').length,
         maxGapLabel: q('#ct-max-gap-label')?.textContent,
@@ -682,8 +685,17 @@ test('renderers draw fixture results: points, marks and labels match the numbers
   assert.equal(r.sectionPoints, pt.section.outline_m.length, 'the section outline: one point each');
   assert.equal(r.sectionPath, pt.section.outline_m.length, 'the outline path has a vertex per point');
   assert.ok(r.sectionCentroid && r.sectionAxis, 'the centroid and the principal axis are drawn');
-  r = await renderFixture('pretension', fixtures.pretensionResult({ lateral: 0 }));
+  assert.equal(r.freeRadius, pt.free_shape.theta_deg.length, 'the free shape: one point each');
+  assert.match(r.modelNote, /stress-free closed ring opened by F_t/);
+  assert.match(r.ftCell, /^10 N \(given: F_t\)/);
+  const made = fixtures.pretensionResult({ lateral: 0 });
+  made.free_shape_model = 'pressure_distribution';
+  made.scene.ring = { ...made.scene.ring, pressure_distribution: { orders: [{ order: 2, amplitude: 0.15 }, { order: 3, amplitude: -0.2 }] } };
+  made.free_shape.tangential_force_n = 9.7346;
+  r = await renderFixture('pretension', made);
   assert.equal(r.zPlot, false, 'no z plot without a lateral opening');
+  assert.match(r.modelNote, /p\/p₀ = 1 \+ 0\.15 cos 2θ − 0\.2 cos 3θ/, 'the pressure named in words');
+  assert.match(r.ftCell, /^9\.7346 N \(computed\)/);
 
   // Contact: one polar point per angle, one arc per segment with clearance > 0.
   const ct = fixtures.contactResult();
