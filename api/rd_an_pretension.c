@@ -158,7 +158,7 @@ static json_t *pretension_result(const rd_scene *scene, const rd_ring_params *ri
         ry[k] = R * sin(res->angle_deg[k] * PI / 180.0);
     }
     out = json_pack(
-        "{s:s, s:o, s:o, s:o, s:o, s:o, s:o, s:o, s:{s:o, s:o, s:o, s:o, s:o, s:o}, s:o}",
+        "{s:s, s:o, s:o, s:o, s:o, s:o, s:o, s:o, s:{s:o, s:o, s:o, s:o, s:o, s:o, s:o}, s:o}",
         "analysis", rd_scene_analysis(scene), "scene", rd_scene_echo(scene), "gap_opening_inner",
         rd_result_real(res->gap_opening_inner), "lateral_opening",
         rd_result_real(res->lateral_opening), "gap_opening_neutral",
@@ -168,7 +168,9 @@ static json_t *pretension_result(const rd_scene *scene, const rd_ring_params *ri
         "shape", "angle_deg", rd_result_reals(res->angle_deg, np, 1, 1.0), "x",
         rd_result_reals(res->x, np, 1, 1.0), "y", rd_result_reals(res->y, np, 1, 1.0), "z",
         rd_result_reals(res->z, np, 1, 1.0), "reference_x", rd_result_reals(rx, np, 1, 1.0),
-        "reference_y", rd_result_reals(ry, np, 1, 1.0), "numerics",
+        "reference_y", rd_result_reals(ry, np, 1, 1.0), "static_twist_deg",
+        res->static_twist_deg ? rd_result_reals(res->static_twist_deg, np, 1, 1.0) : json_null(),
+        "numerics",
         rd_static_result_numerics(&res->stats, wall_s,
                                   "Richardson extrapolation (order 2) of x_a and x_c"));
     if (out && (json_object_set_new(out, "section", section_json(ring)) != 0 ||

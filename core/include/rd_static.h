@@ -229,6 +229,14 @@ typedef struct rd_pretension_result {
      * from the point opposite the gap about the closed ring's centre, deg,
      * increasing, and radius, m: the free shape as a gauge measures it. */
     double *face_theta_deg, *face_radius;
+    /* With a free shape (NULL otherwise): the twist of the ring closed by the
+     * pressure it was made for (rd_free_shape.c's rd_free_shape_installed),
+     * each section's turn about the ring's tangent relative to the section
+     * opposite the gap, deg, positive the ring makers' positive twist (the
+     * inner edge down, away from the combustion side), at the same n + 2
+     * points (the free ends take their segments'); geometrically exact, 0
+     * for a section symmetric about its mid-height. */
+    double *static_twist_deg;
 } rd_pretension_result;
 
 typedef struct rd_contact_result {
@@ -242,6 +250,11 @@ typedef struct rd_contact_result {
     double *bore_radius;     /* bore radius at the segment's middle, m */
     double *width_deg;       /* the segment's arc on the ring, deg: all alike unless the
                                 refinement graded them (grade_* below) */
+    double *twist_deg;       /* the section's turn about the ring's tangent, deg, positive the
+                                ring makers' positive twist (the inner edge down, away from
+                                the combustion side +z), relative to the section opposite the
+                                gap (held in its tilts): 0 unless the section's principal axes
+                                are turned and the ring is made with a free shape */
     double mean_pressure;    /* mean of the segment pressures over their arcs, Pa */
     double uniform_pressure; /* 2 F_t / (d h) (1.3), Pa */
     double contact_fraction; /* contact length / running-face length (point clearances,

@@ -222,13 +222,20 @@ static void skew(const double v[3], double out[9])
 }
 
 /* Kc of a section whose principal axes are turned by `a` from the radial
- * one toward +z (rd_section.h): with T the turn about the chord x taking
- * the local (y axial, z radial inward) components to the principal ones
- * (y' = cos a y + sin a z, z' = -sin a y + cos a z), Kc := T6^T Kc T6,
- * T6 = diag(T, T).  The rectangle and the circle (a = 0) skip it. */
+ * one toward +z (rd_section.h): the in-plane principal axis p1 = cos a e_r
+ * + sin a e_z, the other p2 = -sin a e_r + cos a e_z.  With T the turn about
+ * the chord x taking the local (y axial, z radial outward: e3 = e1 x e2)
+ * components to the principal ones (y' = v.p2 = cos a y - sin a z,
+ * z' = v.p1 = sin a y + cos a z), Kc := T6^T Kc T6, T6 = diag(T, T).  The
+ * bending block about (axial, radial) is then E/L [[I_rr, -I_rz], [-I_rz,
+ * I_zz]] up to the cantilever's factors: a rotation theta moves the section
+ * point (r', z') along the chord by theta_z r' - theta_r z'.  (Before
+ * 0.3.16 T turned by -a, as if z were radial inward: every turned section
+ * was solved mirrored about its mid-height; tests/core/test_free_shape.c
+ * checks the sign now.)  The rectangle and the circle (a = 0) skip it. */
 static void turn_principal(double Kc[36], double a)
 {
-    double T[36] = {0}, W[36] = {0}, c = cos(a), s = sin(a);
+    double T[36] = {0}, W[36] = {0}, c = cos(a), s = -sin(a);
     for (int b = 0; b < 2; b++) {
         int o = 3 * b;
         M6(T, o, o) = 1.0;

@@ -145,7 +145,10 @@ static int contact_setup(rd_static_problem *pb, const rd_ring_params *p, const r
         pb->bore_phase[2 * q + 1] = sin(kp);
     }
     pb->m = m;
-    pb->r_o = pb->R + 0.5 * pb->b;
+    /* the running face: radius and the height where it touches (a
+     * rectangle's R + b/2 and its mid-height, the centroid's) */
+    const rd_section *sec = rd_ring_get_cross_section(ring);
+    pb->r_o = sec->run.r;
     pb->bore_dr = (o->bore.diameter > 0.0 ? 0.5 * o->bore.diameter : 0.5 * p->diameter) - pb->r_o;
     pb->p0 = 2.0 * p->tangential_force / (p->diameter * pb->h); /* over the running face */
     pb->k = o->stiffness > 0.0 ? o->stiffness : rd_contact_default_stiffness(p);
@@ -186,7 +189,7 @@ static int contact_setup(rd_static_problem *pb, const rd_ring_params *p, const r
             double *c = pb->cp + 3 * (m * i + k);
             c[0] = pb->r_o * cos(a) - P[0];
             c[1] = pb->r_o * sin(a) - P[1];
-            c[2] = 0.0;
+            c[2] = sec->run.z_touch;
         }
     }
     pb->cp0 = pb->cp + 3 * n * m;
@@ -412,11 +415,12 @@ static int contact_outputs(const rd_ring_params *p, const rd_contact_opts *o,
     out->clearance = malloc((size_t)n * sizeof *out->clearance);
     out->bore_radius = malloc((size_t)n * sizeof *out->bore_radius);
     out->width_deg = malloc((size_t)n * sizeof *out->width_deg);
+    out->twist_deg = malloc((size_t)n * sizeof *out->twist_deg);
     double *t = malloc((size_t)n * pb->m * sizeof *t), *c = malloc((size_t)n * pb->m * sizeof *c);
     double *ts = malloc((size_t)n * sizeof *ts), *at = malloc((size_t)n * sizeof *at);
     rc = RD_ENOMEM;
     if (!out->angle_deg || !out->pressure || !out->clearance || !out->bore_radius ||
-        !out->width_deg || !t || !c || !ts || !at)
+        !out->width_deg || !out->twist_deg || !t || !c || !ts || !at)
         goto out;
     double sum = 0.0, wsum = 0.0, psum = 0.0;
     int graded = 0;
@@ -427,6 +431,10 @@ static int contact_outputs(const rd_ring_params *p, const rd_contact_opts *o,
         ts[i] = out->max_clearance_angle_deg;
         out->width_deg[i] = rd_ring_segment_phi_at(pb->ring, i) * 180.0 / M_PI;
         graded |= out->width_deg[i] != out->width_deg[0];
+        /* the section's turn about the ring's tangent, the ring makers' sign */
+        double w[3], a = rd_ring_get_segment_angle(pb->ring, i);
+        rd_static_rot_log(pb->Q + 9 * i, w);
+        out->twist_deg[i] = (w[0] * sin(a) - w[1] * cos(a)) * 180.0 / M_PI;
         sum += out->pressure[i];
         psum += out->pressure[i] * out->width_deg[i];
         wsum += out->width_deg[i];
@@ -611,5 +619,6 @@ void rd_contact_result_cleanup(rd_contact_result *r)
     free(r->clearance);
     free(r->bore_radius);
     free(r->width_deg);
-    r->angle_deg = r->pressure = r->clearance = r->bore_radius = r->width_deg = NULL;
+    free(r->twist_deg);
+    r->angle_deg = r->pressure = r->clearance = r->bore_radius = r->width_deg = r->twist_deg = NULL;
 }

@@ -38,6 +38,7 @@
  */
 #include <lapacke.h>
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -167,16 +168,7 @@ int rd_free_shape_validate(const rd_free_shape *fs, const rd_ring_params *p, rd_
         return RD_OK;
     if (fs->kind != RD_FREE_PRESSURE)
         return rd_error_set(err, RD_EINVAL, "/ring", "unknown free shape kind %d.", fs->kind);
-    rd_section sec;
-    rd_section_init(&sec, p);
-    if (fabs(sec.angle) > 1e-12)
-        return rd_error_set(
-            err, RD_EINVAL, "/ring/section",
-            "/ring/section's principal axes are turned by %.3g deg: a ring made with a free shape "
-            "(%s) twists when closed, and that twist is not modelled yet.  Give a section "
-            "symmetric about its mid-height (rectangle, circle, or a taper face), or leave the "
-            "free shape out (the stress-free closed ring opened by F_t).",
-            sec.angle * 180.0 / M_PI, "/ring/pressure_distribution");
+    (void)p;
     return pressure_check(fs, err);
 }
 
@@ -190,41 +182,65 @@ static const double gl_w[8] = {0.1012285362903763, 0.2223810344533745, 0.3137066
                                0.3626837833783620, 0.3626837833783620, 0.3137066458778873,
                                0.2223810344533745, 0.1012285362903763};
 
-/* e0 = -Kc^-1 fm for joint j. */
+/* Joint j's rest for the in-plane forces fm (chord, radial, about the
+ * axis: components 0, 2, 4 of [d; t]; the rest 0): a planar free shape,
+ * e0_in = -(Kc^-1)_in,in fm_in, e0_out = 0.  For a symmetric section Kc
+ * does not couple the two groups and this is -Kc^-1 fm.  For one whose
+ * principal axes are turned it is the compliance with the out-of-plane
+ * forces zero (the inverse of the in-plane Schur complement): an open ring
+ * with free ends and no out-of-plane loads carries no out-of-plane force or
+ * moment, so closed in the round bore it twists out of its plane until it
+ * carries exactly fm in its plane (rd_free_shape.c's header). */
 static int rest_of(const rd_static_problem *pb, int j, const double fm[6], double e0[6])
 {
-    double K[36], b[6];
+    double K[36], C[36] = {0};
     lapack_int ipiv[6];
     memcpy(K, pb->Kc + 36 * j, sizeof K);
     for (int k = 0; k < 6; k++)
-        b[k] = -fm[k];
-    if (LAPACKE_dgesv(LAPACK_ROW_MAJOR, 6, 1, K, 6, ipiv, b, 1) != 0)
+        C[7 * k] = 1.0;
+    if (LAPACKE_dgesv(LAPACK_ROW_MAJOR, 6, 6, K, 6, ipiv, C, 6) != 0)
         return RD_EINVAL;
-    memcpy(e0, b, sizeof b);
+    static const int in[3] = {0, 2, 4};
+    memset(e0, 0, 6 * sizeof *e0);
+    for (int r = 0; r < 3; r++)
+        for (int c = 0; c < 3; c++)
+            e0[in[r]] -= C[6 * in[r] + in[c]] * fm[in[c]];
     return RD_OK;
 }
 
 /* Each segment's load (force and moment about its reference point, 6 per
  * segment) from the pressure p0 w(theta) on its running face, at radius
  * r_o and the centroid's height, as the contact points carry it
- * (rd_contact.c): w = p / p0 (what 0), cos theta (1) or sin theta (2). */
+ * (rd_contact.c): w = p / p0 (what 0), cos theta (1) or sin theta (2);
+ * what 3: the balanced p / p0 (terms: balanced_loads' c, s) as 8 points a
+ * segment of (offset, force), 48 values a segment, into f. */
 static void pressure_loads(const rd_static_problem *pb, const rd_ring_params *p,
-                           const rd_free_shape *fs, int what, double *f)
+                           const rd_free_shape *fs, int what, const double *terms, double *f)
 {
-    double r_o = pb->R + 0.5 * pb->b, p0 = 2.0 * p->tangential_force / (p->diameter * pb->h);
+    const rd_section *sec = rd_ring_get_cross_section(pb->ring);
+    double r_o = sec->run.r, z = sec->run.z_touch,
+           p0 = 2.0 * p->tangential_force / (p->diameter * pb->h);
     static const double eye[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1};
     for (int i = 0; i < pb->n; i++) {
         double a_i = rd_ring_get_segment_angle(pb->ring, i),
                phi = rd_ring_segment_phi_at(pb->ring, i);
         const double *P = rd_ring_reference_point(pb->ring, i);
-        memset(f + 6 * i, 0, 6 * sizeof *f);
+        if (what != 3)
+            memset(f + 6 * i, 0, 6 * sizeof *f);
         for (int q = 0; q < 8; q++) {
             double a = a_i + 0.5 * phi * gl_x[q], w = 0.5 * phi * gl_w[q], t = a - M_PI;
             double v = what == 0 ? rd_free_shape_pressure(fs, t) : what == 1 ? cos(t) : sin(t);
+            if (what == 3) /* the balanced pressure, balanced_loads' terms */
+                v = rd_free_shape_pressure(fs, t) + terms[0] * cos(t) + terms[1] * sin(t);
             double pr = p0 * v * pb->h * r_o * w;
             double F[3] = {-pr * cos(a), -pr * sin(a), 0.0};
-            double c[3] = {r_o * cos(a) - P[0], r_o * sin(a) - P[1], 0.0};
-            rd_static_add_force(eye, c, F, f + 6 * i);
+            double c[3] = {r_o * cos(a) - P[0], r_o * sin(a) - P[1], z};
+            if (what == 3) { /* per point: offset, force */
+                memcpy(f + 48 * i + 6 * q, c, sizeof c);
+                memcpy(f + 48 * i + 6 * q + 3, F, sizeof F);
+            } else {
+                rd_static_add_force(eye, c, F, f + 6 * i);
+            }
         }
     }
 }
@@ -237,15 +253,15 @@ static void pressure_loads(const rd_static_problem *pb, const rd_ring_params *p,
  * the section opposite the gap, 5-11 % of its segment's pressure at 40-80
  * segments. */
 static int balanced_loads(const rd_static_problem *pb, const rd_ring_params *p,
-                          const rd_free_shape *fs, double *f)
+                          const rd_free_shape *fs, double *f, double terms[2])
 {
     int n = pb->n;
     double *g = malloc((size_t)12 * n * sizeof *g);
     if (!g)
         return RD_ENOMEM;
-    pressure_loads(pb, p, fs, 0, f);
-    pressure_loads(pb, p, fs, 1, g);
-    pressure_loads(pb, p, fs, 2, g + 6 * n);
+    pressure_loads(pb, p, fs, 0, NULL, f);
+    pressure_loads(pb, p, fs, 1, NULL, g);
+    pressure_loads(pb, p, fs, 2, NULL, g + 6 * n);
     double A[4] = {0, 0, 0, 0}, r[2] = {0, 0};
     for (int i = 0; i < n; i++)
         for (int k = 0; k < 2; k++) {
@@ -257,6 +273,8 @@ static int balanced_loads(const rd_static_problem *pb, const rd_ring_params *p,
     double c = (r[0] * A[3] - A[1] * r[1]) / det, sn = (A[0] * r[1] - A[2] * r[0]) / det;
     for (int i = 0; i < 6 * n; i++)
         f[i] += c * g[i] + sn * g[6 * n + i];
+    terms[0] = c;
+    terms[1] = sn;
     free(g);
     return RD_OK;
 }
@@ -324,10 +342,102 @@ int rd_free_shape_prestrain(rd_static_problem *pb, const rd_ring_params *p, cons
     double *f = malloc((size_t)6 * n * sizeof *f);
     if (!f)
         return rd_error_set(err, RD_ENOMEM, "", "Out of memory for the free shape.");
-    int rc = balanced_loads(pb, p, fs, f);
+    double terms[2];
+    int rc = balanced_loads(pb, p, fs, f, terms);
     if (rc == RD_OK)
         rc = pressure_rest(pb, f);
     free(f);
     return rc == RD_OK ? RD_OK
                        : rd_error_set(err, RD_EINVAL, "/ring", "a joint's stiffness is singular.");
+}
+
+/* ---- the ring closed by the pressure it was made for --------------------- */
+
+/* The design pressure as dead loads: per segment 8 points of (body offset,
+ * global force) in pb->dead, scaled by the load factor with the rest. */
+static void dead_residual(const rd_static_problem *pb, double *r)
+{
+    double fac = rd_static_force_factor(pb);
+    for (int i = 0; i < pb->n; i++)
+        for (int q = 0; q < 8; q++) {
+            const double *d = pb->dead + 48 * i + 6 * q;
+            double F[3] = {fac * d[3], fac * d[4], fac * d[5]}, f[6] = {0};
+            rd_static_add_force(pb->Q + 9 * i, d, F, f);
+            for (int k = 0; k < 6; k++)
+                r[6 * i + k] -= f[k];
+        }
+}
+
+/* d(moment)/d(turn w) of a dead force F at the arm a = Q c: [F]x [a]x. */
+static void dead_jacobian(const rd_static_problem *pb, int i, double J[36])
+{
+    double fac = rd_static_force_factor(pb);
+    for (int q = 0; q < 8; q++) {
+        const double *d = pb->dead + 48 * i + 6 * q;
+        double a[3], F[3] = {fac * d[3], fac * d[4], fac * d[5]};
+        rd_mv3(pb->Q + 9 * i, d, a);
+        /* [F]x [a]x v = F x (a x v) = a (F.v) - v (F.a) */
+        for (int r = 0; r < 3; r++)
+            for (int c = 0; c < 3; c++)
+                J[(3 + r) + 6 * (3 + c)] += a[r] * F[c] - (r == c ? rd_dot3(F, a) : 0.0);
+    }
+}
+
+static const rd_static_loads dead_loads = {.residual = dead_residual,
+                                           .segment_jacobian = dead_jacobian};
+
+int rd_free_shape_installed(const rd_ring_params *p, int segments, const rd_free_shape *fs,
+                            const rd_static_opts *so, double *twist_deg, rd_error *err)
+{
+    rd_static_problem pb;
+    rd_static_stats st;
+    memset(&st, 0, sizeof st);
+    int rc;
+    rd_ring *ring = rd_ring_create(p, segments, 0, err);
+    if (!ring)
+        return err ? err->code : RD_EINVAL;
+    if ((rc = rd_static_problem_init(&pb, ring, &dead_loads)) != RD_OK ||
+        !(pb.dead = malloc((size_t)48 * segments * sizeof *pb.dead))) {
+        rc = rd_error_set(err, RD_ENOMEM, "", "Out of memory for the installed ring.");
+        goto out;
+    }
+    if ((rc = rd_free_shape_prestrain(&pb, p, fs, err)) != RD_OK)
+        goto out;
+    double *f = malloc((size_t)6 * segments * sizeof *f), terms[2];
+    rc = f ? balanced_loads(&pb, p, fs, f, terms) : RD_ENOMEM;
+    free(f);
+    if (rc != RD_OK) {
+        rc = rd_error_set(err, RD_ENOMEM, "", "Out of memory for the installed ring.");
+        goto out;
+    }
+    pressure_loads(&pb, p, fs, 3, terms, pb.dead);
+    for (int k = 0; k < 6; k++)
+        pb.mask[k] = 1.0;
+    pb.F_ref = p->tangential_force;
+    if ((rc = rd_static_solve_path(&pb, so, NULL, &st, err)) != RD_OK) {
+        if (rc == RD_ENOCONV) {
+            rd_section sec;
+            rd_section_init(&sec, p);
+            char why[RD_ERROR_MESSAGE_MAX];
+            snprintf(why, sizeof why, "%s", err ? err->message : "");
+            rc = rd_error_set(
+                err, RD_ENOCONV, "/ring/section",
+                "the ring closed by its pressure distribution has no equilibrium with this "
+                "section: its principal axes are turned by %.3g deg, and the twist that closing "
+                "turns them further grows without bound (the twist's coupling rises with the "
+                "twist; a ring whose linear twist nears the principal angle turns over).  Lower "
+                "F_t or the section's asymmetry.  (%s)",
+                sec.angle * 180.0 / M_PI, why);
+        }
+        goto out;
+    }
+    for (int i = 0; i < segments; i++) {
+        double w[3], a = rd_ring_get_segment_angle(ring, i);
+        rd_static_rot_log(pb.Q + 9 * i, w);
+        twist_deg[i] = (w[0] * sin(a) - w[1] * cos(a)) * 180.0 / M_PI;
+    }
+out:
+    rd_static_problem_cleanup(&pb);
+    rd_ring_free(ring);
+    return rc;
 }

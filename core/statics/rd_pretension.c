@@ -253,6 +253,15 @@ static int free_once(const rd_ring_params *p, int segments, const rd_pretension_
     int rc = pretension_once(p, segments, o, 0.0, so, mon, out, err);
     if (rc == RD_OK && free_shape_of(o))
         rc = closing_force(p, segments, o, so, out, &out->tangential_force, err);
+    if (rc == RD_OK && free_shape_of(o)) {
+        out->static_twist_deg = malloc((size_t)(segments + 2) * sizeof *out->static_twist_deg);
+        if (!out->static_twist_deg)
+            return rd_error_set(err, RD_ENOMEM, "", "Out of memory for the twist.");
+        rc =
+            rd_free_shape_installed(p, segments, o->free_shape, so, out->static_twist_deg + 1, err);
+        out->static_twist_deg[0] = out->static_twist_deg[1];
+        out->static_twist_deg[segments + 1] = out->static_twist_deg[segments];
+    }
     return rc;
 }
 
@@ -266,6 +275,8 @@ void rd_pretension_result_cleanup(rd_pretension_result *r)
     free(r->angle_deg);
     free(r->face_theta_deg);
     free(r->face_radius);
+    free(r->static_twist_deg);
+    r->static_twist_deg = NULL;
     r->x = r->y = r->z = r->angle_deg = r->face_theta_deg = r->face_radius = NULL;
 }
 

@@ -88,6 +88,7 @@ void rd_static_problem_cleanup(rd_static_problem *pb)
     free(pb->E);
     free(pb->dP0);
     free(pb->e0);
+    free(pb->dead);
     free(pb->x);
     free(pb->Q);
     free(pb->cp);

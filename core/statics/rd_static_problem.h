@@ -33,12 +33,14 @@ typedef struct rd_static_problem {
     int n;
     double R, b, h;
     const double *Kc;
-    double *E;   /* 9 per joint: rows chord, axial, radial */
-    double *dP0; /* 3 per joint: P_B - P_A */
-    double *e0;  /* 6 per joint or NULL: the free shape's [d; t] (rd_free_shape.c), the
+    double *E;    /* 9 per joint: rows chord, axial, radial */
+    double *dP0;  /* 3 per joint: P_B - P_A */
+    double *e0;   /* 6 per joint or NULL: the free shape's [d; t] (rd_free_shape.c), the
                     joints' rest, taken on with F_t's load factor; NULL: the reference */
-    double *x;   /* 3n */
-    double *Q;   /* 9n */
+    double *dead; /* rd_free_shape.c's installed ring: 8 points a segment of (body offset,
+                     global force), dead loads taken on with the rest; else NULL */
+    double *x;    /* 3n */
+    double *Q;    /* 9n */
     double lambda;
     double lambda_start; /* where the load path starts (a warm start: past 0) */
     double step_start;   /* the load path's first step (0: all of it at once) */
@@ -209,6 +211,17 @@ extern const int rd_plane_dof[2][3];
  * RD_FREE_CLOSED.  RD_ENOMEM, or RD_EINVAL (a singular joint). */
 int rd_free_shape_prestrain(rd_static_problem *pb, const rd_ring_params *p, const rd_free_shape *fs,
                             rd_error *err);
+
+/* (rd_free_shape.c) The ring made with the free shape fs closed by the
+ * pressure it was made for, as dead loads, the section opposite the gap
+ * held: each segment's turn about the ring's tangent, deg, ring makers'
+ * sign (rd_contact_result.twist_deg), into twist_deg (segments).  In its
+ * plane the ring closes to round exactly (the out-of-plane forces of an
+ * open ring without out-of-plane loads are zero), so this is the static
+ * twist under that pressure; the bore's contact across the running face's
+ * height, which a twisted ring moves to an edge, is not in it. */
+int rd_free_shape_installed(const rd_ring_params *p, int segments, const rd_free_shape *fs,
+                            const rd_static_opts *so, double *twist_deg, rd_error *err);
 
 /* Strain energy, support force and moment, sizes, after a solve. */
 void rd_static_stats_fill(rd_static_problem *pb, rd_static_stats *st);

@@ -16,12 +16,19 @@
  *    ovality" with an odd order), and a table;
  *  - the stress-free closed ring is untouched (a NULL free shape and
  *    RD_FREE_CLOSED give the same numbers bit for bit);
+ *  - the installed twist of a section whose principal axes are turned:
+ *    against the thin curved beam's closed form at a small load (written
+ *    out here, derived in docs/pretension.md), against the same ring closed
+ *    by the bore (the contact solve: a second method), its sign (a top
+ *    inner bevel twists positive, a bottom one by as much negative), and
+ *    the geometric nonlinearity that raises it at larger loads;
  *  - bad input: order 1, a pressure that reaches 0, a table that does not
- *    increase or stops short of the gap, a section whose axes are turned. */
+ *    increase or stops short of the gap. */
 #include <stdlib.h>
 #include <string.h>
 
 #include "check.h"
+#include "rd_section.h"
 #include "rd_static.h"
 
 #define PI 3.14159265358979323846
@@ -209,12 +216,136 @@ static void bad_input(void)
     refused("angles not increasing", &t, &p, "/ring/pressure_distribution/theta_deg");
     t.theta_deg[2] = 170;
     refused("a table short of the gap", &t, &p, "/ring/pressure_distribution/theta_deg");
-    rd_ring_params bev = p;
-    bev.section = RD_SECTION_INNER_BEVEL;
-    bev.spec.width = 0.4 * p.radial_width;
-    bev.spec.height = 0.4 * p.axial_height;
+}
+
+/* ---- the installed twist -------------------------------------------------- */
+
+/* The thesis ring with a slanted section: a parallelogram whose vertical
+ * inner and outer faces are offset axially by 0.3 h.  Its centroid is at
+ * mid-height (the running face's pressure has no couple about the
+ * centroid) and its principal axes are turned by 7.7 deg. */
+static rd_ring_params slanted(double Ft)
+{
+    rd_ring_params p;
+    rd_ring_params_default(&p);
+    double b = p.radial_width, h = p.axial_height, d = 0.3 * h;
+    double pts[4][2] = {{0, 0}, {b, d}, {b, h}, {0, h - d}};
+    memset(&p.spec, 0, sizeof p.spec);
+    p.section = RD_SECTION_POLYGON;
+    p.spec.n_points = 4;
+    memcpy(p.spec.points, pts, sizeof pts);
+    p.tangential_force = Ft;
+    rd_error err;
+    CHECK(rd_section_spec_solve(p.section, &p.spec, b, h, &err) == RD_OK, "%s", err.message);
+    return p;
+}
+
+/* The thin curved beam's twist (docs/pretension.md): with free ends and no
+ * out-of-plane loads the out-of-plane moment and torque vanish, so
+ * kappa_2 = -(I_rz / I_zz) kappa_1, kappa_1 = M / (E I_eff), and Love's
+ * kinematics give w'' + w = R^2 (I_rz / I_zz) M / (E I_eff), beta = -w / R up
+ * to the tilts; for M = q r_o R (1 + cos theta) (theta from the point
+ * opposite the gap, q = 2 F_t / d) and that section held:
+ *   twist = (K / R) (1 + theta sin theta / 2 - cos theta),
+ *   K = (I_rz / I_zz) q r_o R^3 / (E I_eff),  I_eff = I_rr - I_rz^2 / I_zz,
+ * deg, positive the inner edge down: the twist grows toward the gap with
+ * theta sin theta, not with the local moment. */
+static double closed_twist_deg(const rd_ring_params *p, double theta)
+{
+    rd_section s;
+    rd_section_init(&s, p);
+    double q = 2.0 * p->tangential_force / p->diameter, R = s.R,
+           Ieff = s.I_rr - s.I_rz * s.I_rz / s.I_zz,
+           K = (s.I_rz / s.I_zz) * q * s.run.r * R * R * R / (p->youngs_modulus * Ieff);
+    return (K / R) * (1.0 + 0.5 * theta * sin(theta) - cos(theta)) * 180.0 / PI;
+}
+
+/* The installed twist's worst difference from the closed form, of its
+ * largest value; and that largest value. */
+static double twist_vs_closed(const rd_ring_params *p, int n, double *largest)
+{
     rd_free_shape uni = {.kind = RD_FREE_PRESSURE};
-    refused("a section whose axes are turned", &uni, &bev, "/ring/section");
+    rd_pretension_result r;
+    rd_error err;
+    int rc = free_solve(p, n, &uni, &r, &err);
+    CHECK(rc == RD_OK && r.static_twist_deg, "installed twist: %s", err.message);
+    double worst = 0.0, big = 0.0, model_big = 0.0;
+    for (int k = 1; rc == RD_OK && k <= n; k++) {
+        double want = closed_twist_deg(p, r.angle_deg[k] * PI / 180.0 - PI);
+        worst = fmax(worst, fabs(r.static_twist_deg[k] - want));
+        big = fmax(big, fabs(want));
+        model_big = fmax(model_big, fabs(r.static_twist_deg[k]));
+    }
+    *largest = model_big;
+    rd_pretension_result_cleanup(&r);
+    return worst / big;
+}
+
+static void twist(void)
+{
+    double big, big1;
+    rd_ring_params p = slanted(0.1);
+    double e = twist_vs_closed(&p, 80, &big);
+    printf("slanted section, F_t = 0.1 N: largest twist %.5f deg, worst |twist - closed form| "
+           "%.3g of it\n",
+           big, e);
+    CHECK(e < 0.02, "the linear twist against the thin curved beam's closed form (%.3g)", e);
+
+    /* a second method: the same ring closed by the bore (contact) */
+    rd_free_shape uni = {.kind = RD_FREE_PRESSURE};
+    rd_contact_result c;
+    rd_pretension_result r;
+    rd_error err;
+    CHECK(contact_solve(&p, 80, &uni, &c, &err) == RD_OK, "%s", err.message);
+    CHECK(free_solve(&p, 80, &uni, &r, &err) == RD_OK, "%s", err.message);
+    double worst = 0.0;
+    for (int i = 0; i < 80; i++)
+        worst = fmax(worst, fabs(c.twist_deg[i] - r.static_twist_deg[i + 1]));
+    printf("the same ring closed by the bore: worst twist difference %.3g of %.5f deg\n", worst,
+           big);
+    CHECK(worst < 0.02 * big, "closed by the bore or by its pressure: the same twist (%.3g deg)",
+          worst);
+    rd_contact_result_cleanup(&c);
+    rd_pretension_result_cleanup(&r);
+
+    /* geometric nonlinearity: the twist turns the principal axes further */
+    rd_ring_params p1 = slanted(1.0);
+    double e1 = twist_vs_closed(&p1, 80, &big1);
+    printf("slanted section, F_t = 1 N: largest twist %.4f deg, %.1f %% above ten times the "
+           "0.1 N one (linear)\n",
+           big1, 100.0 * (big1 / (10.0 * big) - 1.0));
+    CHECK(big1 > 10.0 * big * 1.05 && e1 > 0.05,
+          "the nonlinear twist exceeds ten times the linear one (%.4f vs %.4f deg)", big1,
+          10.0 * big);
+
+    /* the sign: a relief on the top inner edge twists positive (the inner edge
+     * down), on the bottom inner edge negative, by the same amount */
+    rd_ring_params top, bottom;
+    rd_ring_params_default(&top);
+    memset(&top.spec, 0, sizeof top.spec);
+    top.section = RD_SECTION_INNER_BEVEL;
+    top.spec.width = 0.3 * top.radial_width;
+    top.spec.height = 0.3 * top.axial_height;
+    bottom = top;
+    bottom.spec.side = 1;
+    CHECK(rd_section_spec_solve(top.section, &top.spec, top.radial_width, top.axial_height, &err) ==
+                  RD_OK &&
+              rd_section_spec_solve(bottom.section, &bottom.spec, bottom.radial_width,
+                                    bottom.axial_height, &err) == RD_OK,
+          "%s", err.message);
+    rd_pretension_result rt, rb;
+    CHECK(free_solve(&top, 40, &uni, &rt, &err) == RD_OK, "%s", err.message);
+    CHECK(free_solve(&bottom, 40, &uni, &rb, &err) == RD_OK, "%s", err.message);
+    double at_gap = rt.static_twist_deg[1], mirror = 0.0;
+    for (int k = 0; k < rt.points; k++)
+        mirror = fmax(mirror, fabs(rt.static_twist_deg[k] + rb.static_twist_deg[k]));
+    printf("inner bevel 0.3 b x 0.3 h, F_t = 10 N: twist at the gap %+.4f deg (top), %+.4f deg "
+           "(bottom)\n",
+           at_gap, rb.static_twist_deg[1]);
+    CHECK(at_gap > 0.0, "a top inner bevel twists positive (%.4f deg)", at_gap);
+    CHECK(mirror < 1e-6 * fabs(at_gap), "the bottom bevel is its mirror (%.3g deg)", mirror);
+    rd_pretension_result_cleanup(&rt);
+    rd_pretension_result_cleanup(&rb);
 }
 
 /* A table of p / p0 (mirrored) against the same pressure as orders. */
@@ -243,5 +374,6 @@ int main(void)
     table_round_trip();
     closed_unchanged();
     bad_input();
+    twist();
     return check_done();
 }

@@ -204,10 +204,15 @@ static void test_polygon_rectangle(void)
 }
 
 /* The beam of a turned section: under pure tip moments a cantilever's
- * rotations are (L / E) [[I_rr, I_rz], [I_rz, I_zz]]^-1 M in the local
- * (axial y, radial-inward z) frame (unsymmetric bending: M_y = E (k_y int
- * z^2 - k_z int y z), M_z = E (-k_y int y z + k_z int y^2), z = -(r - R),
- * y = z_section), whatever the shear: the rotation block of Kc^-1. */
+ * rotations are C M, C = (L / E) [[I_rr, -I_rz], [-I_rz, I_zz]]^-1 =
+ * (L / (E det)) [[I_zz, I_rz], [I_rz, I_rr]], in the local (axial y, radial
+ * outward z: e3 = e1 x e2) frame: a rotation (theta_y, theta_z) moves the
+ * section point (r', z') along the chord by theta_y r' - theta_z z', so the
+ * bending energy is E / (2 L) (theta_y^2 I_rr - 2 theta_y theta_z I_rz +
+ * theta_z^2 I_zz), whatever the shear: the rotation block of Kc^-1.  (Until
+ * 0.3.16 this test took the radial axis inward, as Kc's turn did: every
+ * turned section was solved mirrored; test_free_shape checks the twist's
+ * sign against the ring makers' rule.) */
 static void test_turned_beam(void)
 {
     rd_ring_params p = ring_with(RD_SECTION_INNER_STEP);
@@ -228,7 +233,7 @@ static void test_turned_beam(void)
               LAPACKE_dgetri(LAPACK_ROW_MAJOR, 6, C, 6, piv) == 0,
           "Kc inverts");
     double det = s->I_rr * s->I_zz - s->I_rz * s->I_rz, f = L / p.youngs_modulus / det;
-    double want[2][2] = {{f * s->I_zz, -f * s->I_rz}, {-f * s->I_rz, f * s->I_rr}};
+    double want[2][2] = {{f * s->I_zz, f * s->I_rz}, {f * s->I_rz, f * s->I_rr}};
     CHECK(fabs(s->angle) > 0.02, "a turned section: %g rad", s->angle);
     for (int r = 0; r < 2; r++)
         for (int c = 0; c < 2; c++)
