@@ -3,6 +3,7 @@
  * rd_gasflow.h).
  */
 #include "rd_gasflow.h"
+#include "rd_interp.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -10,6 +11,7 @@
 #include <string.h>
 
 #include "rd_internal.h"
+#include "rd_interp.h"
 
 double rd_gasflow_critical_ratio(double kappa)
 {
@@ -155,20 +157,7 @@ double rd_gasflow_table(int n, const double *x, const double *y, double deg)
     double t = fmod(deg, 720.0);
     if (t < 0.0)
         t += 720.0;
-    if (t <= x[0])
-        return y[0];
-    if (t >= x[n - 1])
-        return y[n - 1];
-    int lo = 0, hi = n - 1; /* x[lo] <= t < x[hi] */
-    while (hi - lo > 1) {
-        int mid = (lo + hi) / 2;
-        if (x[mid] <= t)
-            lo = mid;
-        else
-            hi = mid;
-    }
-    double w = (t - x[lo]) / (x[hi] - x[lo]);
-    return y[lo] + w * (y[hi] - y[lo]);
+    return rd_interp_linear(x, y, n, t);
 }
 
 /* Fritsch-Butland slope at point k of a periodic table (the point before

@@ -42,26 +42,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "rd_interp.h"
 #include "rd_static_problem.h"
-
-/* Linear interpolation of a table at t (its ends held). */
-static double table_at(const double *x, const double *y, int n, double t)
-{
-    if (t <= x[0])
-        return y[0];
-    if (t >= x[n - 1])
-        return y[n - 1];
-    int lo = 0, hi = n - 1;
-    while (hi - lo > 1) {
-        int mid = (lo + hi) / 2;
-        if (x[mid] <= t)
-            lo = mid;
-        else
-            hi = mid;
-    }
-    double w = (t - x[lo]) / (x[hi] - x[lo]);
-    return y[lo] + w * (y[hi] - y[lo]);
-}
 
 /* A table mirrored about the point opposite the gap: it starts at 0. */
 static int mirrored(const rd_free_shape *fs)
@@ -74,7 +56,7 @@ double rd_free_shape_pressure(const rd_free_shape *fs, double theta)
     theta = remainder(theta, 2.0 * M_PI);
     if (fs->n_points > 0) {
         double t = theta * 180.0 / M_PI;
-        return table_at(fs->theta_deg, fs->value, fs->n_points, mirrored(fs) ? fabs(t) : t);
+        return rd_interp_linear(fs->theta_deg, fs->value, fs->n_points, mirrored(fs) ? fabs(t) : t);
     }
     double r = 1.0;
     for (int q = 0; q < fs->n_orders; q++)
