@@ -3,7 +3,6 @@
  * rd_gasflow.h).
  */
 #include "rd_gasflow.h"
-#include "rd_interp.h"
 
 #include <math.h>
 #include <stdio.h>
