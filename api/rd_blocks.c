@@ -104,7 +104,7 @@ static const rd_block material = {NULL, "Material.", 0, 0, material_fields};
                  "k, \"amplitude\": a_k}]} for p / p0 = 1 + sum a_k cos k theta (k 2..64), or "    \
                  "{\"theta_deg\": [...], \"ratio\": [...]} (p / p0, from 0 mirrored or -180, to "  \
                  "180). Absent: the stress-free closed ring opened by F_t on its gap faces. Read " \
-                 "by the pretension and contact analyses; sections symmetric about mid-height "    \
+                 "by the pretension and contact analyses (a turned section twists when closed: "   \
                  "only."},                                                                         \
     {                                                                                              \
         "material", RD_F_BLOCK, 0, .block = &material                                              \

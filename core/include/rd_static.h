@@ -351,9 +351,10 @@ double rd_contact_gap_floor(const rd_ring_params *p);
  * (half the points' evaluations, about half the Newton iteration's cost). */
 int rd_contact_points(int m, int n);
 
-/* Checks a free shape (paths "/ring/pressure_distribution/..."): the orders, amplitudes and tables' ranges, p > 0
- * around the ring, and that the section's principal axes are not turned
- * (the installed twist is not modelled yet). */
+/* Checks a free shape (paths "/ring/pressure_distribution/..."): the
+ * orders, amplitudes and tables' ranges, and p > 0 around the ring.  Any
+ * section: a turned one twists when closed (rd_pretension_result's
+ * static_twist_deg). */
 int rd_free_shape_validate(const rd_free_shape *fs, const rd_ring_params *p, rd_error *err);
 /* p(theta) / p0 of a RD_FREE_PRESSURE shape at theta (rad, from the point
  * opposite the gap); 1 for a uniform one. */
