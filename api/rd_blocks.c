@@ -105,7 +105,7 @@ static const rd_block material = {NULL, "Material.", 0, 0, material_fields};
                  "{\"theta_deg\": [...], \"ratio\": [...]} (p / p0, from 0 mirrored or -180, to "  \
                  "180). Absent: the stress-free closed ring opened by F_t on its gap faces. Read " \
                  "by the pretension and contact analyses (a turned section twists when closed: "   \
-                 "only."},                                                                         \
+                 "pretension gives shape.static_twist_deg)."},                                     \
     {                                                                                              \
         "material", RD_F_BLOCK, 0, .block = &material                                              \
     }
