@@ -176,12 +176,12 @@ static void explain_task(const char *dir, const char *job_id, const char *line, 
     int exit_code = atoi(code);
     if (strcmp(state, "CANCELLED") == 0)
         rd_error_set(why, RD_ECANCELED, "",
-                     "Task %s of Slurm job %s was cancelled outside the service (JobState "
+                     "Array task %s of Slurm job %s was cancelled outside the service (JobState "
                      "CANCELLED): its chunk is missing; submit the sweep again.",
                      task, job_id);
     else
         rd_error_set(why, exit_code == 2 ? RD_EINVAL : RD_EINTERNAL, "",
-                     "Task %s of Slurm job %s ended %s with exit code %s (%s): %s", task, job_id,
+                     "Array task %s of Slurm job %s ended %s with exit code %s (%s): %s", task, job_id,
                      state, code,
                      exit_code == 2   ? "invalid input, retrying cannot help"
                      : exit_code == 1 ? "the run could not finish; submit the sweep again"
