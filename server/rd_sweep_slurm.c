@@ -181,8 +181,8 @@ static void explain_task(const char *dir, const char *job_id, const char *line, 
                      task, job_id);
     else
         rd_error_set(why, exit_code == 2 ? RD_EINVAL : RD_EINTERNAL, "",
-                     "Array task %s of Slurm job %s ended %s with exit code %s (%s): %s", task, job_id,
-                     state, code,
+                     "Array task %s of Slurm job %s ended %s with exit code %s (%s): %s", task,
+                     job_id, state, code,
                      exit_code == 2   ? "invalid input, retrying cannot help"
                      : exit_code == 1 ? "the run could not finish; submit the sweep again"
                                       : "see its log",

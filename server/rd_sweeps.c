@@ -13,6 +13,10 @@
  * A point's monitor (report) reads the sweep's cancel flag, the stop flag
  * and the point's deadline: the run returns RD_ECANCELED at its next report
  * (the solvers report often enough for a stop within ~100 ms).
+ *
+ * The list, rendering and a sweep's end are in rd_sweeps_state.c; sweeps on
+ * an executor (Slurm) and the thread that steps them in rd_sweeps_exec.c
+ * (rd_sweeps_int.h).  The workers skip those sweeps.
  */
 #define _XOPEN_SOURCE 700
 
