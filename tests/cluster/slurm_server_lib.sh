@@ -7,6 +7,7 @@ server_start() {  # server_start NAME ARGS...: a server on a free port; its URL 
   shift
   "$server" --port 0 --data :memory: "$@" > "$work/$name.out" 2> "$work/$name.err" &
   servers+=($!)
+  server_names+=("$name")
   for ((i = 0; i < 100; i++)); do
     u=$(sed -n 's/^ringdyn-server listening on //p' "$work/$name.out")
     [ -n "$u" ] && break
@@ -15,10 +16,20 @@ server_start() {  # server_start NAME ARGS...: a server on a free port; its URL 
   [ -n "$u" ] || fail "server $name did not start: $(cat "$work/$name.err")"
   printf -v "$name" '%s' "$u"
 }
+server_names=()
 servers_stop() {  # the servers this script started, by pid
   local pid
   for pid in "${servers[@]}"; do kill "$pid" 2> /dev/null || true; done
   for pid in "${servers[@]}"; do wait "$pid" 2> /dev/null || true; done
+  servers=()
+}
+servers_check() {  # stops the servers; none may have reported a sanitizer error or a leak
+  local name
+  servers_stop
+  for name in "${server_names[@]}"; do
+    ! grep -q 'Sanitizer\|runtime error' "$work/$name.err" \
+      || fail "server $name: $(grep -m 5 'Sanitizer\|runtime error\|#[0-9]' "$work/$name.err")"
+  done
 }
 
 post_sweep() {  # post_sweep URL SPEC: the new sweep's id
