@@ -5,6 +5,7 @@ servers=()
 server_start() {  # server_start NAME ARGS...: a server on a free port; its URL in $NAME
   local name=$1 i u=
   shift
+  : > "$work/$name.out"   # exists before the server starts: the polling below never races its redirect
   "$server" --port 0 --data :memory: "$@" > "$work/$name.out" 2> "$work/$name.err" &
   servers+=($!)
   server_names+=("$name")
