@@ -231,6 +231,18 @@ char *rd_sweep_chunk_name(size_t c, size_t k);
 /* Everything of the chunk file before its first row (caller frees). */
 char *rd_sweep_chunk_head(const rd_sweep *sweep, size_t c, size_t k);
 
+/* Largest chunk file rd_sweep_chunk_read takes (its rows are held in memory). */
+#define RD_SWEEP_CHUNK_FILE_MAX ((size_t)1 << 30)
+
+/* Reads chunk c of K from `dir` (rd_sweep_chunk.c): rows[first..end) of
+ * the chunk get the rows as its process wrote them, byte for byte the text
+ * rd_sweep_run_point gave (caller frees each); `rows` has the sweep's N
+ * entries and the others are not touched.  RD_ENOTFOUND: no such file;
+ * RD_EINVAL: the file is not this sweep's chunk c of K or is damaged (rows
+ * left NULL); RD_EREQUEST: it cannot be read; RD_ENOMEM. */
+int rd_sweep_chunk_read(const rd_sweep *sweep, const char *dir, size_t c, size_t k, char **rows,
+                        rd_error *err);
+
 /* Reads every chunk file of `dir` and writes the whole table to `out`, as
  * JSON or (csv != 0) CSV, streaming one chunk at a time (memory bounded by
  * the largest chunk).  Before writing anything it checks that the chunks of

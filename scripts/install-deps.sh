@@ -4,13 +4,13 @@
 #   scripts/install-deps.sh --test   also what the test suite needs (curl, chromium, node/npm, python3,
 #                                    python3-jsonschema for the OpenAPI contract test, clang with libFuzzer for
 #                                    the fuzz test, clang-format for the style check, Slurm and munge for the
-#                                    cluster test)
+#                                    cluster tests, jq and GNU time for the Slurm executor's)
 set -euo pipefail
 pkgs=(build-essential cmake pkg-config libmicrohttpd-dev libjansson-dev libsqlite3-dev zlib1g-dev libsundials-dev
       liblapack-dev liblapacke-dev libgsl-dev curl)
 if [ "${1:-}" = "--test" ]; then
   pkgs+=(chromium nodejs npm valgrind python3 python3-jsonschema clang clang-format libclang-rt-14-dev
-         slurmctld slurmd slurm-client munge)
+         slurmctld slurmd slurm-client munge jq time)
 fi
 missing=()
 for p in "${pkgs[@]}"; do

@@ -17,6 +17,8 @@
  * (at most DRAIN_S), close the connections, join the workers, close the
  * store, exit 0.
  */
+#define _XOPEN_SOURCE 700
+
 #include <errno.h>
 #include <math.h>
 #if defined(__GLIBC__)
@@ -26,6 +28,8 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
 
 #include "rd_api.h"
 #include "rd_http.h"
@@ -33,6 +37,7 @@
 #include "rd_metrics.h"
 #include "rd_store.h"
 #include "rd_sweep.h"
+#include "rd_sweep_slurm.h"
 #include "rd_sweeps.h"
 
 /* --allow-host may be given this many times. */
@@ -67,6 +72,11 @@ struct options {
     int n_allow_hosts;
     const char *token_file;
     long sweep_max_points;
+    /* --sweep-executor slurm (docs/cluster.md): 0 local, 1 slurm */
+    int sweep_slurm;
+    const char *sweep_shared_dir, *sweep_ringdyn, *sweep_slurm_script;
+    long sweep_slurm_min_points; /* -1: above --sweep-max-points only */
+    long sweep_slurm_tasks, sweep_slurm_max_running;
 };
 
 static void usage(FILE *f)
@@ -91,7 +101,21 @@ static void usage(FILE *f)
         "                    jobs queued or running when the server stopped end 'interrupted'\n"
         "  --sweep-max-points N  runs (points x over values) a sweep may have (default 10000,\n"
         "                    1..1000000); a larger one is refused with the cluster path\n"
-        "                    (ringdyn sweep run --chunks K).\n"
+        "                    (ringdyn sweep run --chunks K), unless an executor takes it:\n"
+        "  --sweep-executor local|slurm  where sweeps above --sweep-max-points run\n"
+        "                    (default local: they are refused).  slurm: as one job array\n"
+        "                    of SCRIPT tasks (sbatch, squeue, scancel, scontrol from PATH;\n"
+        "                    SLURM_CONF as for them), the rows read from their chunk files:\n"
+        "  --sweep-shared-dir DIR  a directory every node sees (required with slurm)\n"
+        "  --sweep-slurm-script SCRIPT  deploy/slurm-sweep.sh, the same path on every node\n"
+        "                    (required with slurm)\n"
+        "  --sweep-ringdyn PATH  the ringdyn binary the tasks run (default: the ringdyn\n"
+        "                    beside ringdyn-server, or ../cli/ringdyn in a build tree)\n"
+        "  --sweep-slurm-min-points N  also sweeps of at least N runs go to Slurm\n"
+        "                    (0: every sweep; default: only those above --sweep-max-points)\n"
+        "  --sweep-slurm-tasks K  array tasks (= chunks) per sweep (default 16, 1..100000)\n"
+        "  --sweep-slurm-max-running P  at most P tasks of a sweep at once (--array=...%%P;\n"
+        "                    default: no limit)\n"
         "                    Sweeps run on --threads workers of their own; finished ones are "
         "stored\n"
         "connections (libmicrohttpd's epoll event loop; an open connection holds no thread):\n"
@@ -158,6 +182,30 @@ static int set_limit_option(struct options *o, const char *arg, size_t name_len,
     return ok;
 }
 
+/* The sweep executor's options: 1 taken, 0 a bad value, -1 not one of them. */
+static int set_sweep_option(struct options *o, const char *arg, size_t name_len, const char *value)
+{
+    int ok = 1;
+    if (IS("--sweep-executor")) {
+        ok = strcmp(value, "local") == 0 || strcmp(value, "slurm") == 0;
+        o->sweep_slurm = strcmp(value, "slurm") == 0;
+    } else if (IS("--sweep-shared-dir"))
+        o->sweep_shared_dir = value;
+    else if (IS("--sweep-ringdyn"))
+        o->sweep_ringdyn = value;
+    else if (IS("--sweep-slurm-script"))
+        o->sweep_slurm_script = value;
+    else if (IS("--sweep-slurm-min-points"))
+        ok = parse_long(value, 0, RD_SWEEP_POINTS_MAX, &o->sweep_slurm_min_points);
+    else if (IS("--sweep-slurm-tasks"))
+        ok = parse_long(value, 1, 100000, &o->sweep_slurm_tasks);
+    else if (IS("--sweep-slurm-max-running"))
+        ok = parse_long(value, 1, 100000, &o->sweep_slurm_max_running);
+    else
+        return -1;
+    return ok;
+}
+
 /* Every other option: 1 taken, 0 a bad value, -1 unknown. */
 static int set_option(struct options *o, const char *arg, size_t name_len, const char *value)
 {
@@ -195,8 +243,8 @@ static int set_option(struct options *o, const char *arg, size_t name_len, const
     else if (IS("--job-timeout")) {
         o->job_timeout = strtod(value, &end);
         ok = end != value && !*end && o->job_timeout > 0 && o->job_timeout <= 86400;
-    } else
-        return set_limit_option(o, arg, name_len, value);
+    } else if ((ok = set_limit_option(o, arg, name_len, value)) < 0)
+        return set_sweep_option(o, arg, name_len, value);
     return ok;
 }
 #undef IS
@@ -329,7 +377,10 @@ struct server {
     rd_store *store;
     rd_jobs *jobs;
     rd_sweeps *sweeps;
-    rd_http *http; /* on_job_final reads it through &http */
+    rd_sweep_slurm *slurm; /* --sweep-executor slurm */
+    rd_sweep_exec exec;
+    char *shared_dir, *script, *ringdyn; /* its paths, resolved (realpath) */
+    rd_http *http;                       /* on_job_final reads it through &http */
     char *token;
     const char *data_dir;
     char data_buf[4096];
@@ -384,6 +435,64 @@ static int check_config(struct server *s, const struct options *opt)
     return 0;
 }
 
+/* `path` resolved (realpath), or NULL after printing why, naming `option`. */
+static char *resolve(const char *option, const char *path, int want_dir)
+{
+    char *real = path ? realpath(path, NULL) : NULL;
+    struct stat st;
+    const char *why = !path                  ? "is required with --sweep-executor slurm"
+                      : !real                ? strerror(errno)
+                      : stat(real, &st) != 0 ? strerror(errno)
+                      : want_dir != !!S_ISDIR(st.st_mode)
+                          ? (want_dir ? "is not a directory" : "is a directory")
+                          : NULL;
+    if (why) {
+        fprintf(stderr, "ringdyn-server: %s %s: %s\n", option, path ? path : "", why);
+        free(real);
+        return NULL;
+    }
+    return real;
+}
+
+/* --sweep-ringdyn's default: the ringdyn beside this binary, or in the build
+ * tree's cli/ (ringdyn-server is in server/). */
+static const char *default_ringdyn(char *buf, size_t n)
+{
+    char self[4096];
+    ssize_t len = readlink("/proc/self/exe", self, sizeof self - 1);
+    if (len <= 0)
+        return NULL;
+    self[len] = '\0';
+    char *slash = strrchr(self, '/');
+    *slash = '\0';
+    snprintf(buf, n, "%s/ringdyn", self);
+    if (access(buf, X_OK) != 0)
+        snprintf(buf, n, "%s/../cli/ringdyn", self);
+    return buf;
+}
+
+/* The Slurm executor of --sweep-executor slurm.  0, or -1 after printing why. */
+static int start_executor(struct server *s, const struct options *opt, rd_error *err)
+{
+    char buf[4200];
+    const char *ringdyn =
+        opt->sweep_ringdyn ? opt->sweep_ringdyn : default_ringdyn(buf, sizeof buf);
+    if (!(s->shared_dir = resolve("--sweep-shared-dir", opt->sweep_shared_dir, 1)) ||
+        !(s->script = resolve("--sweep-slurm-script", opt->sweep_slurm_script, 0)) ||
+        !(s->ringdyn = resolve("--sweep-ringdyn", ringdyn, 0)))
+        return -1;
+    if (access(s->ringdyn, X_OK) != 0) {
+        fprintf(stderr, "ringdyn-server: --sweep-ringdyn %s: not executable\n", s->ringdyn);
+        return -1;
+    }
+    rd_sweep_slurm_config c = {.script = s->script,
+                               .ringdyn = s->ringdyn,
+                               .max_running = (size_t)opt->sweep_slurm_max_running};
+    if (rd_sweep_slurm_create(&c, &s->slurm, &s->exec, err) != RD_OK)
+        return start_failed(err);
+    return 0;
+}
+
 /* The metrics, the store and the two pools.  0, or -1 after printing why. */
 static int start_pools(struct server *s, const struct options *opt, rd_error *err)
 {
@@ -421,6 +530,15 @@ static int start_pools(struct server *s, const struct options *opt, rd_error *er
                            .store = s->store,
                            .on_final = on_job_final,
                            .on_final_ctx = &s->http};
+    if (opt->sweep_slurm) {
+        if (start_executor(s, opt, err) != 0)
+            return -1;
+        sc.exec = &s->exec;
+        sc.shared_dir = s->shared_dir;
+        sc.exec_min_points = opt->sweep_slurm_min_points < 0 ? (size_t)opt->sweep_max_points + 1
+                                                             : (size_t)opt->sweep_slurm_min_points;
+        sc.exec_chunks = (size_t)opt->sweep_slurm_tasks;
+    }
     if (rd_sweeps_create(&sc, &s->sweeps, err) != RD_OK)
         return start_failed(err);
     /* What the store's check found, one log line each. */
@@ -467,6 +585,10 @@ static void free_server(struct server *s)
     rd_http_free(s->http);
     rd_jobs_free(s->jobs);
     rd_sweeps_free(s->sweeps);
+    rd_sweep_slurm_free(s->slurm);
+    free(s->shared_dir);
+    free(s->script);
+    free(s->ringdyn);
     rd_store_free(s->store);
     rd_metrics_free(s->metrics);
     free(s->token);
@@ -483,6 +605,8 @@ int main(int argc, char **argv)
                           .keep_mb = 512,
                           .keep_days = 30,
                           .sweep_max_points = RD_SWEEPS_POINTS_DEFAULT,
+                          .sweep_slurm_min_points = -1,
+                          .sweep_slurm_tasks = 16,
                           .limits = {.threads = 4,
                                      .connections_max = 1000,
                                      .per_ip_max = 64,

@@ -5,7 +5,11 @@
  * A sweep is parsed and validated whole before anything runs
  * (rd_sweep_request_parse: a spec, or {"fidelity": scene, ...}) with the
  * service's point limit (`max_points`; above it the 400 names the cluster
- * path, `ringdyn sweep run ... --chunks K`).  It is then `queued`; the
+ * path, `ringdyn sweep run ... --chunks K`), unless an executor is
+ * configured: then a sweep above the limit (or of at least
+ * exec_min_points) runs on it (rd_sweep_exec.h, rd_sweeps_exec.c), its
+ * rows read from the chunk files its tasks write, and it may also end
+ * `failed` (a task failed or vanished; "error" says which and why).  It is then `queued`; the
  * workers (`threads` of them, the server's --threads) take its points in
  * order, several at once, one sweep after the other in submission order.
  * A point runs rd_sweep_run_point under a monitor that stops it when the
@@ -34,6 +38,7 @@
 
 #include "rd_error.h"
 #include "rd_store.h"
+#include "rd_sweep_exec.h"
 
 /* Sweep ids: 16 lowercase hex digits, as job ids. */
 #define RD_SWEEPS_ID_LEN 16
@@ -47,6 +52,13 @@ typedef struct rd_sweeps_config {
     int queue_max;     /* unfinished sweeps at once, >= 1 */
     int keep_max;      /* finished sweeps kept, >= 1 */
     rd_store *store;   /* finished sweeps persist here (borrowed); NULL: memory only */
+    /* An executor (borrowed; NULL: every sweep runs on the workers).  A
+     * sweep of more than max_points runs, or of at least exec_min_points,
+     * runs there as exec_chunks tasks (at most its points) in
+     * shared_dir/sweep-<id>; a fidelity sweep always runs here. */
+    const rd_sweep_exec *exec;
+    const char *shared_dir; /* borrowed */
+    size_t exec_min_points, exec_chunks;
     /* Called (no lock held) when a sweep reaches a final state, so that
      * requests waiting for it can be woken.  May be NULL. */
     void (*on_final)(void *ctx);

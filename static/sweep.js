@@ -26,7 +26,17 @@ const $ = (id) => document.getElementById(id);
 // sweep of more than 1000 points (up to about 1 MB a poll at 10^4).
 const POLL_MS = 400;
 const POLL_LARGE_MS = 2000;
-const FINAL = new Set(['succeeded', 'cancelled', 'interrupted']);
+const FINAL = new Set(['succeeded', 'failed', 'cancelled', 'interrupted']);
+
+// Where a sweep runs: the service's own workers, or a Slurm job array (a
+// server started with --sweep-executor slurm; docs/cluster.md) with its job
+// id, the chunk files read and the scheduler's state at the service's last poll.
+export function sweepWhere(s) {
+  if (s.executor !== 'slurm') return "on the service's workers";
+  const c = s.cluster ?? {};
+  const job = c.job_id ? `Slurm job ${c.job_id}` : 'Slurm (being submitted)';
+  return `on ${job}: ${c.chunks_done ?? 0} of ${c.chunks ?? '?'} chunks${c.scheduler ? `, ${c.scheduler}` : ''}`;
+}
 
 // What a sweep of each analysis tabulates by default, and the parameter the
 // example varies (+-20 % around the form's value, 5 points).
@@ -111,12 +121,14 @@ function runner(prefix, { submit, onUpdate, onDone }) {
         onUpdate: (s) => {
           run.id = s.id;
           const runs = s.runs && s.runs !== s.points ? ` (${s.runs} runs)` : '';
-          status(`Sweep ${s.id} ${s.status} — ${s.done} of ${s.points} points${runs}${s.failed ? ` (${s.failed} failed)` : ''}`, s.progress);
+          status(`Sweep ${s.id} ${s.status} — ${s.done} of ${s.points} points${runs}${s.failed ? ` (${s.failed} failed)` : ''} ${sweepWhere(s)}`, s.progress);
           onUpdate(s);
         },
       });
       const runs = sweep.runs && sweep.runs !== sweep.points ? ` (${sweep.runs} runs)` : '';
-      status(`Sweep ${sweep.id} ${sweep.status}: ${sweep.done} of ${sweep.points} points${runs}${sweep.failed ? `, ${sweep.failed} failed (see their rows)` : ''}.`);
+      status(`Sweep ${sweep.id} ${sweep.status}: ${sweep.done} of ${sweep.points} points${runs}${sweep.failed ? `, ${sweep.failed} failed (see their rows)` : ''} ${sweepWhere(sweep)}.`);
+      // A sweep on Slurm fails as a whole when a task does: the task, its exit code and why.
+      if (sweep.error) showError(sweep.error);
       onDone(sweep);
     } catch (err) {
       if (err.name === 'AbortError') status(run.id ? `Stopped following sweep ${run.id}.` : 'Cancelled.');

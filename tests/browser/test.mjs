@@ -1376,6 +1376,8 @@ for (const width of [1280, 390]) {
       await sweepDone('sw');
       const sw = await newestSweep();
       assert.equal(sw.status, 'succeeded');
+      assert.equal(sw.executor, 'local');
+      assert.match(await page.textContent('#sw-status-text'), /5 of 5 points on the service's workers\.$/);
       assert.equal(sw.table.rows.length, 5);
       // One marker per point; x = the parameter, y = the first output, as the server's table has them.
       const pts = await circles('sw-plot');
@@ -1423,6 +1425,39 @@ for (const width of [1280, 390]) {
       assert.equal(JSON.parse(await page.inputValue('#sw-spec')).parameters[0].path, '/ring/radial_width');
     } finally {
       await page.setViewportSize({ width: 1280, height: 800 });
+      await page.click('#view-result');
+    }
+  });
+
+  if (width === 1280) test('a sweep on Slurm says so with its job and chunks; a failed task fails it with the reason (canned answers, issue 43)', { timeout: 60000 }, async () => {
+    // A server with --sweep-executor slurm answers like these (tests/cluster/slurm_server.sh runs the real one).
+    const id = '00000000000000aa';
+    const cluster = { job_id: '4242', chunks: 8, chunks_done: 3, tasks_pending: 2, tasks_running: 2, scheduler: '2 running, 2 pending', dir: '/shared/sweep-00000000000000aa' };
+    const base = { id, kind: 'sweep', points: 512, runs: 512, failed: 0, spec_hash: '0123456789abcdef', created: '2026-12-03T08:00:00.000Z', started: '2026-12-03T08:00:01.000Z', executor: 'slurm',
+      table: { columns: ['/ring/radial_width', '/modes/0/frequency_hz', 'status', 'error'], rows: [] } };
+    const running = { ...base, status: 'running', progress: 0.375, done: 192, finished: null, cluster };
+    const message = 'Array task 7 of Slurm job 4242 ended FAILED with exit code 2:0 (invalid input, retrying cannot help): segments = 2 is out of range';
+    const failed = { ...base, status: 'failed', progress: 0.375, done: 192, finished: '2026-12-03T08:00:09.000Z',
+      cluster: { ...cluster, tasks_pending: 0, tasks_running: 0, scheduler: 'no task pending or running' }, error: { code: 'invalid_scene', message } };
+    let gets = 0;
+    const json = (route, status, body) => route.fulfill({ status, contentType: 'application/json', body: JSON.stringify(body) });
+    const post = (route) => (route.request().method() === 'POST' ? json(route, 202, running) : route.continue());
+    const get = (route) => json(route, 200, ++gets < 3 ? running : failed);
+    await page.route(`${BASE}/api/v1/sweeps`, post);
+    await page.route(`${BASE}/api/v1/sweeps/${id}`, get);
+    try {
+      await page.getByRole('button', { name: 'Reset to defaults' }).click();
+      await selectTab('modal');
+      await page.click('#view-sweep');
+      await page.click('#sw-run');
+      await page.waitForFunction(() => /running — 192 of 512 points on Slurm job 4242: 3 of 8 chunks, 2 running, 2 pending$/.test(document.getElementById('sw-status-text').textContent));
+      await sweepDone('sw', 'failed', 20000);
+      assert.match(await page.textContent('#sw-status-text'), /failed: 192 of 512 points on Slurm job 4242: 3 of 8 chunks, no task pending or running\.$/);
+      assert.equal(await page.isVisible('#sw-error'), true);
+      assert.match(await page.textContent('#sw-error'), /Array task 7 of Slurm job 4242 ended FAILED with exit code 2:0/);
+    } finally {
+      await page.unroute(`${BASE}/api/v1/sweeps`, post);
+      await page.unroute(`${BASE}/api/v1/sweeps/${id}`, get);
       await page.click('#view-result');
     }
   });
