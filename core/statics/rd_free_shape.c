@@ -18,7 +18,12 @@
  * joint carries what the pressure puts on the segments between it and its
  * free end, so its [f; m] follows by summing the segments' loads from each
  * free end up to the section opposite the gap, and e0 = -Kc^-1 [f; m]
- * makes that state an equilibrium with [d; t] = 0.  The free shape is then
+ * makes that state an equilibrium with [d; t] = 0 (rest_of: the in-plane
+ * part only, so the free shape is planar; for a section whose principal
+ * axes are turned, from the compliance with the out-of-plane forces zero,
+ * so that closed it carries exactly [f; m] in its plane and twists out of
+ * it).  The pressure acts at the running face's radius and height (the
+ * section's run.r, run.z_touch), as the contact points do.  The free shape is then
  * the chain's solution without loads (rd_pretension.c), geometrically
  * exact: no linearised free shape is closed into the bore (one from the
  * thin-ring formulas, closed exactly, misses the pressure by 5-12 %, the
@@ -26,6 +31,10 @@
  * (uniform p over the arc less the closed gap g leaves 2 F_t g / d):
  * order-1 terms that cancel it are added (balanced_loads), and the two
  * halves are each summed from their own end.
+ *
+ * The installed ring (rd_free_shape_installed): the ring so made, closed
+ * by that pressure as dead loads with the section opposite the gap held,
+ * gives the static twist; in its plane it closes to round exactly.
  *
  * Not built: a measured free shape (a table of the running face's radius)
  * as the rest.  The pressure is the fourth derivative of the shape: at the

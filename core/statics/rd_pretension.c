@@ -13,6 +13,12 @@
  * separation of the inner top corners, the face centroids' distance, and the
  * deformed centroid line.  Error estimate: Richardson (order 2 in n) from a
  * second solve at 2n (n/2 above the segment limit), by rd_accuracy.
+ *
+ * A ring made with a free shape (rd_free_shape.c): the same solve without
+ * gap forces finds that shape from its joints' rest; a secant on whole
+ * solves (closing_force) the tangential force that closes it to the closed
+ * gap, and rd_free_shape_installed its static twist; the estimate then also
+ * covers the closing force (not the twist).
  */
 #include "rd_accuracy.h"
 #include "rd_static_problem.h"
