@@ -140,14 +140,8 @@ static void *worker_main(void *arg)
         if (sw->running == 0 && sw->body)
             rd_sweeps_release_rows(sw);
         pthread_cond_broadcast(&ss->idle);
-        if (rd_sweeps_settle_locked(ss, sw)) {
-            ss->notifying++;
-            pthread_mutex_unlock(&ss->mu);
-            rd_sweeps_notify_final(ss);
-            pthread_mutex_lock(&ss->mu);
-            ss->notifying--;
-            pthread_cond_broadcast(&ss->idle);
-        }
+        if (rd_sweeps_settle_locked(ss, sw))
+            rd_sweeps_notify_final_locked(ss);
     }
     pthread_mutex_unlock(&ss->mu);
     return NULL;
@@ -367,12 +361,7 @@ void rd_sweeps_post(rd_sweeps *ss, const char *body, size_t len, double wait_s, 
             ss->cfg.queue_max);
         return;
     }
-    sw->prev = ss->tail;
-    if (ss->tail)
-        ss->tail->next = sw;
-    else
-        ss->head = sw;
-    ss->tail = sw;
+    rd_sweeps_link_locked(ss, sw);
     char id[RD_SWEEPS_ID_LEN + 1];
     memcpy(id, sw->id, sizeof id);
     int final = rd_sweeps_settle_locked(

@@ -75,14 +75,8 @@ void *rd_sweeps_exec_main(void *arg)
             pthread_mutex_unlock(&ss->mu);
             int phase = rd_sweep_remote_step(sw->remote, cancel, &why);
             pthread_mutex_lock(&ss->mu);
-            if (exec_apply_locked(ss, sw, phase, &why)) {
-                ss->notifying++;
-                pthread_mutex_unlock(&ss->mu);
-                rd_sweeps_notify_final(ss);
-                pthread_mutex_lock(&ss->mu);
-                ss->notifying--;
-                pthread_cond_broadcast(&ss->idle);
-            }
+            if (exec_apply_locked(ss, sw, phase, &why))
+                rd_sweeps_notify_final_locked(ss);
         }
         if (!ss->stopping)
             wait_work_locked(ss, EXEC_POLL_S);

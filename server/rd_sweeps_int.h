@@ -89,6 +89,11 @@ void rd_sweeps_freeze_locked(rd_sweeps *ss, struct sweep *sw);
  * the server stops.  Returns 1 when it became final. */
 int rd_sweeps_settle_locked(rd_sweeps *ss, struct sweep *sw);
 void rd_sweeps_notify_final(rd_sweeps *ss);
+/* The same from a caller that holds ss->mu: released around the
+ * notification (counted in ss->notifying, so a stop waits for it). */
+void rd_sweeps_notify_final_locked(rd_sweeps *ss);
+/* Appends `sw` to the list (rd_sweeps_unlink_locked's inverse). */
+void rd_sweeps_link_locked(rd_sweeps *ss, struct sweep *sw);
 /* Stores point i's row (taken) and counts it done, failed unless ok. */
 void rd_sweeps_store_row_locked(struct sweep *sw, size_t i, char *row);
 /* rd_store_sweep_load's callback: a stored sweep back in memory. */

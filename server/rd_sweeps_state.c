@@ -275,11 +275,26 @@ int rd_sweeps_load_one(void *ctx, const char *id, const char *meta, const char *
         rd_sweeps_sweep_free(sw);
         return RD_OK;
     }
+    rd_sweeps_link_locked(ss, sw);
+    return RD_OK;
+}
+
+void rd_sweeps_notify_final_locked(rd_sweeps *ss)
+{
+    ss->notifying++;
+    pthread_mutex_unlock(&ss->mu);
+    rd_sweeps_notify_final(ss);
+    pthread_mutex_lock(&ss->mu);
+    ss->notifying--;
+    pthread_cond_broadcast(&ss->idle);
+}
+
+void rd_sweeps_link_locked(rd_sweeps *ss, struct sweep *sw)
+{
     sw->prev = ss->tail;
     if (ss->tail)
         ss->tail->next = sw;
     else
         ss->head = sw;
     ss->tail = sw;
-    return RD_OK;
 }

@@ -32,16 +32,8 @@ trap 'cluster_stop; rm -rf "$work"' EXIT
 trap 'exit 1' TERM INT HUP   # so that the EXIT trap runs
 cluster_start "$work"
 
-# The spec: 512 points of a modal scene, ~25 ms each here (a chunk lasts long
-# enough to be cancelled while it runs); no output depends on timing.
-cat > "$work/spec.json" <<'EOF'
-{"base": {"analysis": "modal", "modal": {"modes": 4}, "discretization": {"segments": 120}},
- "parameters": [
-   {"path": "/ring/diameter", "random": {"min": 0.06, "max": 0.1}},
-   {"path": "/ring/radial_width", "random": {"min": 0.002, "max": 0.004}}],
- "combine": "latin_hypercube", "samples": 512, "seed": 43,
- "outputs": ["/modes/0/frequency_hz", "max(/modes/*/error_estimate)", "count(/modes)"]}
-EOF
+# The spec (slurm_lib.sh: modal_spec): 512 points of a modal scene.
+modal_spec "$work/spec.json"
 export RINGDYN=$ringdyn
 t0=$(now)
 "$ringdyn" sweep run "$work/spec.json" --out "$work/ref"

@@ -171,3 +171,17 @@ wait_job() {  # wait_job RID JID: until RID ends (120 s); prints the most JID ta
   cluster_logs
   fail "job $1 not done after 120 s: $(scontrol show job "$1" | head -n 5)"
 }
+
+# modal_spec FILE: the sweep both cluster tests run, 512 points of a modal
+# scene (~25 ms each here: a chunk lasts long enough to be cancelled while
+# it runs); no output depends on timing.
+modal_spec() {
+  cat > "$1" <<'EOF'
+{"base": {"analysis": "modal", "modal": {"modes": 4}, "discretization": {"segments": 120}},
+ "parameters": [
+   {"path": "/ring/diameter", "random": {"min": 0.06, "max": 0.1}},
+   {"path": "/ring/radial_width", "random": {"min": 0.002, "max": 0.004}}],
+ "combine": "latin_hypercube", "samples": 512, "seed": 43,
+ "outputs": ["/modes/0/frequency_hz", "max(/modes/*/error_estimate)", "count(/modes)"]}
+EOF
+}

@@ -45,14 +45,7 @@ server_start local --threads 2
 server_start slurm --threads 2 --sweep-max-points 100 --sweep-slurm-tasks 8 "${slurm_args[@]}"
 
 # A: 512 modal points (as slurm.sh), above the slurm server's limit of 100.
-cat > "$work/modal.json" <<'JSON'
-{"base": {"analysis": "modal", "modal": {"modes": 4}, "discretization": {"segments": 120}},
- "parameters": [
-   {"path": "/ring/diameter", "random": {"min": 0.06, "max": 0.1}},
-   {"path": "/ring/radial_width", "random": {"min": 0.002, "max": 0.004}}],
- "combine": "latin_hypercube", "samples": 512, "seed": 43,
- "outputs": ["/modes/0/frequency_hz", "max(/modes/*/error_estimate)", "count(/modes)"]}
-JSON
+modal_spec "$work/modal.json"
 t0=$(now)
 lid=$(post_sweep "$local" "$work/modal.json")
 sid=$(post_sweep "$slurm" "$work/modal.json")
