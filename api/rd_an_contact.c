@@ -103,7 +103,8 @@ static int finish(struct rd_scene *s, rd_error *err)
 {
     struct rd_static_scene *o = s->opts;
     o->contact.free_shape = s->free_shape.kind != RD_FREE_CLOSED ? &s->free_shape : NULL;
-    int rc = rd_static_validate(&o->statics, s->segments, s->closed, err);
+    int rc = rd_free_shape_finish(s, err);
+    rc = rc != RD_OK ? rc : rd_static_validate(&o->statics, s->segments, s->closed, err);
     rc = rc != RD_OK ? rc : rd_contact_validate(&o->contact, &s->ring, err);
     return rc != RD_OK ? rc : rd_contact_map_finish(s, err);
 }
@@ -262,10 +263,20 @@ static json_t *contact_result(const rd_scene *scene, const rd_bore *bore,
     return out;
 }
 
-/* The plain bore, the bore at /contact/height, or every layer. */
+/* The plain bore, the bore at /contact/height, or every layer; with a
+ * measured free shape, the ring fitted to it first. */
 static int run(const rd_scene *s, const rd_monitor *mon, json_t **out, rd_error *err)
 {
-    return rd_contact_map_run(s, mon, contact_result, out, err);
+    const struct rd_static_scene *o = s->opts;
+    rd_free_run fr;
+    int rc = rd_free_run_prepare(s, &s->ring, &o->statics, &fr, err);
+    if (rc == RD_OK)
+        rc = rd_contact_map_run(s, &fr.ring, fr.free_shape, mon, contact_result, out, err);
+    if (rc == RD_OK && *out && rd_free_run_result(*out, &fr) != 0) {
+        json_decref(*out);
+        *out = NULL;
+    }
+    return rc;
 }
 
 static const rd_csv_column csv_columns[] = {
@@ -305,6 +316,7 @@ static const char *const result_keys[] = {"analysis",
                                           "bore_fit",
                                           "layers",
                                           "free_shape_model",
+                                          "free_shape_fit",
                                           NULL};
 
 const rd_analysis_def rd_an_contact = {

@@ -52,7 +52,8 @@ static int finish(struct rd_scene *s, rd_error *err)
 {
     struct rd_static_scene *o = s->opts;
     o->pretension.free_shape = s->free_shape.kind != RD_FREE_CLOSED ? &s->free_shape : NULL;
-    int rc = rd_static_validate(&o->statics, s->segments, s->closed, err);
+    int rc = rd_free_shape_finish(s, err);
+    rc = rc != RD_OK ? rc : rd_static_validate(&o->statics, s->segments, s->closed, err);
     rc = rc != RD_OK ? rc : rd_pretension_validate(&o->pretension, &s->ring, s->segments, err);
     return rc != RD_OK ? rc : rd_free_shape_validate(o->pretension.free_shape, &s->ring, err);
 }
@@ -131,10 +132,10 @@ static json_t *section_json(const rd_ring_params *p)
  * closed ring's centre, from the point opposite the gap), the gap between
  * its tips, and the tangential force: the one that closes it (a pressure
  * distribution's shape) or F_t itself (the stress-free closed ring's). */
-static json_t *free_shape_json(const rd_scene *scene, const rd_ring_params *ring,
+static json_t *free_shape_json(int made, const rd_ring_params *ring,
                                const rd_pretension_result *res)
 {
-    int np = res->points, made = scene->free_shape.kind != RD_FREE_CLOSED;
+    int np = res->points;
     return json_pack("{s:o, s:o, s:o, s:o}", "theta_deg",
                      rd_result_reals(res->face_theta_deg, np, 1, 1.0), "radius_m",
                      rd_result_reals(res->face_radius, np, 1, 1.0), "free_gap_m",
@@ -142,10 +143,11 @@ static json_t *free_shape_json(const rd_scene *scene, const rd_ring_params *ring
                      rd_result_real(made ? res->tangential_force : ring->tangential_force));
 }
 
-static json_t *pretension_result(const rd_scene *scene, const rd_ring_params *ring,
+static json_t *pretension_result(const rd_scene *scene, const rd_free_run *fr,
                                  const rd_pretension_result *res, double wall_s)
 {
     int np = res->points;
+    const rd_ring_params *ring = &fr->ring;
     double *rx = malloc((size_t)np * sizeof *rx), *ry = malloc((size_t)np * sizeof *ry);
     json_t *out = NULL;
     if (!rx || !ry)
@@ -174,8 +176,10 @@ static json_t *pretension_result(const rd_scene *scene, const rd_ring_params *ri
         rd_static_result_numerics(&res->stats, wall_s,
                                   "Richardson extrapolation (order 2) of x_a and x_c"));
     if (out && (json_object_set_new(out, "section", section_json(ring)) != 0 ||
-                json_object_set_new(out, "free_shape", free_shape_json(scene, ring, res)) != 0 ||
-                json_object_set_new(out, "free_shape_model", rd_free_shape_model(scene)) != 0)) {
+                json_object_set_new(out, "free_shape",
+                                    free_shape_json(fr->free_shape != NULL, ring, res)) != 0 ||
+                json_object_set_new(out, "free_shape_model", rd_free_shape_model(scene)) != 0 ||
+                rd_free_run_result(out, fr) != 0)) {
         json_decref(out);
         out = NULL;
     }
@@ -191,15 +195,21 @@ static int run(const rd_scene *s, const rd_monitor *mon, json_t **out, rd_error 
     rd_pretension_result res;
     memset(&res, 0, sizeof res);
     double t0 = rd_clock_s();
-    rd_ring_params ring = s->ring; /* a general section's J computed once, here */
-    int rc = ring.section >= RD_SECTION_TAPER_FACE
-                 ? rd_section_spec_solve(ring.section, &ring.spec, ring.radial_width,
-                                         ring.axial_height, err)
-                 : RD_OK;
+    rd_ring_params sr = s->ring; /* a general section's J computed once, here */
+    int rc =
+        sr.section >= RD_SECTION_TAPER_FACE
+            ? rd_section_spec_solve(sr.section, &sr.spec, sr.radial_width, sr.axial_height, err)
+            : RD_OK;
+    rd_free_run fr; /* the ring, fitted first to a measured free shape */
     if (rc == RD_OK)
-        rc = rd_pretension_solve(&ring, s->segments, &o->pretension, &o->statics, mon, &res, err);
+        rc = rd_free_run_prepare(s, &sr, &o->statics, &fr, err);
+    const rd_ring_params *ring = &fr.ring;
+    rd_pretension_opts po = o->pretension;
+    po.free_shape = fr.free_shape;
     if (rc == RD_OK)
-        *out = pretension_result(s, &ring, &res, rd_clock_s() - t0);
+        rc = rd_pretension_solve(ring, s->segments, &po, &o->statics, mon, &res, err);
+    if (rc == RD_OK)
+        *out = pretension_result(s, &fr, &res, rd_clock_s() - t0);
     rd_pretension_result_cleanup(&res);
     return rc;
 }
@@ -229,6 +239,7 @@ static const char *const result_keys[] = {"analysis",
                                           "section",
                                           "free_shape",
                                           "free_shape_model",
+                                          "free_shape_fit",
                                           NULL};
 
 const rd_analysis_def rd_an_pretension = {

@@ -61,6 +61,14 @@ static const rd_block material = {NULL, "Material.", 0, 0, material_fields};
     "{\"type\": \"number\"}}, \"ratio\": {\"type\": \"array\", \"minItems\": 2, \"maxItems\": "   \
     "721, \"items\": {\"type\": \"number\", \"minimum\": 0, \"maximum\": 20}}}}]}"
 
+#define FREE_TABLE_SCHEMA                                                                          \
+    "{\"type\": \"object\", \"additionalProperties\": false, \"required\": [\"theta_deg\", "       \
+    "\"radius_m\"], \"properties\": {\"theta_deg\": {\"type\": \"array\", \"minItems\": 8, "       \
+    "\"maxItems\": 721, \"items\": {\"type\": \"number\", \"minimum\": -180, \"maximum\": 180}}, " \
+    "\"radius_m\": {\"type\": \"array\", \"minItems\": 8, \"maxItems\": 721, \"items\": "          \
+    "{\"type\": \"number\"}}, \"fit_order\": {\"type\": \"integer\", \"minimum\": 2, "             \
+    "\"maximum\": 12, \"default\": 6}}}"
+
 /* The ring's rows, shared by the plain ring block and the one with a face. */
 #define RING_ROWS                                                                                  \
     {"diameter",    RD_F_NUMBER, AT(ring.diameter),                                                \
@@ -106,6 +114,21 @@ static const rd_block material = {NULL, "Material.", 0, 0, material_fields};
                  "180). Absent: the stress-free closed ring opened by F_t on its gap faces. Read " \
                  "by the pretension and contact analyses (a turned section twists when closed: "   \
                  "pretension gives shape.static_twist_deg)."},                                     \
+        {"free_shape",                                                                             \
+         RD_F_CUSTOM,                                                                              \
+         AT(free_table),                                                                           \
+         .parse = rd_free_table_parse,                                                             \
+         .echo = rd_free_table_echo,                                                               \
+         .nullable = 1,                                                                            \
+         .extra = FREE_TABLE_SCHEMA,                                                               \
+         .desc = "A measured free shape: the running face's radius radius_m (m) at theta_deg "     \
+                 "from the point opposite the gap, about any centre; one side (from 0-20 to 150 "  \
+                 "deg or more) or the whole ring (-150 to 150 or more), no point in the gap. "     \
+                 "ringdyn fits F_t and the pressure orders 2..fit_order (default 6) whose exact "  \
+                 "free shape is closest to it (the centre and, whole, the angle's origin free) "   \
+                 "and solves that ring; result free_shape_fit. Instead of "                        \
+                 "pressure_distribution; tangential_force then follows from it. Read by the "      \
+                 "pretension and contact analyses."},                                              \
     {                                                                                              \
         "material", RD_F_BLOCK, 0, .block = &material                                              \
     }

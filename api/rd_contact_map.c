@@ -353,8 +353,8 @@ static int add_map(json_t *out, const rd_scene *s, const rd_bore *b, double z)
 }
 
 /* height "all": every layer, the full result for the largest light gap. */
-static int run_all(const rd_scene *s, const rd_monitor *mon, rd_contact_build build, json_t **out,
-                   rd_error *err)
+static int run_all(const rd_scene *s, const rd_ring_params *ring, const rd_contact_opts *oc,
+                   const rd_monitor *mon, rd_contact_build build, json_t **out, rd_error *err)
 {
     const struct rd_static_scene *o = s->opts;
     const rd_bore_map *m = o->map.map;
@@ -362,8 +362,7 @@ static int run_all(const rd_scene *s, const rd_monitor *mon, rd_contact_build bu
     rd_contact_result *res = calloc((size_t)m->n_layers, sizeof *res);
     if (!res)
         return rd_error_set(err, RD_ENOMEM, "", "out of memory for %d layers", m->n_layers);
-    int rc =
-        rd_contact_solve_layers(&s->ring, s->segments, &o->contact, m, &o->statics, mon, res, err);
+    int rc = rd_contact_solve_layers(ring, s->segments, oc, m, &o->statics, mon, res, err);
     if (rc == RD_OK) {
         int w = 0;
         for (int i = 1; i < m->n_layers; i++)
@@ -392,18 +391,19 @@ static int run_all(const rd_scene *s, const rd_monitor *mon, rd_contact_build bu
     return rc;
 }
 
-int rd_contact_map_run(const rd_scene *s, const rd_monitor *mon, rd_contact_build build,
-                       json_t **out, rd_error *err)
+int rd_contact_map_run(const rd_scene *s, const rd_ring_params *ring, const rd_free_shape *fs,
+                       const rd_monitor *mon, rd_contact_build build, json_t **out, rd_error *err)
 {
     const struct rd_static_scene *o = s->opts;
-    if (o->map.map && o->map.height_all)
-        return run_all(s, mon, build, out, err);
     rd_contact_opts oc = o->contact;
+    oc.free_shape = fs;
+    if (o->map.map && o->map.height_all)
+        return run_all(s, ring, &oc, mon, build, out, err);
     if (o->map.map)
         oc.bore = o->map.at;
     rd_contact_result res;
     double t0 = rd_clock_s();
-    int rc = rd_contact_solve(&s->ring, s->segments, &oc, &o->statics, mon, &res, err);
+    int rc = rd_contact_solve(ring, s->segments, &oc, &o->statics, mon, &res, err);
     if (rc == RD_OK) {
         *out = build(s, &oc.bore, &res, rd_clock_s() - t0);
         if (*out && o->map.map && add_map(*out, s, &oc.bore, o->map.height)) {

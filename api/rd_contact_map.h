@@ -135,10 +135,12 @@ void rd_contact_map_cleanup(struct rd_contact_map_scene *m);
  * for the solve reported (the layer with the largest light gap for
  * "all"), with the map's pieces added: height_m, bore_at_height,
  * bore_fit {residual_rms_m, layers}, layers [...].  NULL *out on success
- * means out of memory. */
+ * means out of memory.  `ring` and `fs` are the ring solved and its free
+ * shape (rd_free_run: the scene's, or fitted to a measured free shape). */
 typedef struct json_t *(*rd_contact_build)(const struct rd_scene *scene, const rd_bore *bore,
                                            const rd_contact_result *res, double wall_s);
-int rd_contact_map_run(const struct rd_scene *s, const rd_monitor *mon, rd_contact_build build,
+int rd_contact_map_run(const struct rd_scene *s, const rd_ring_params *ring,
+                       const rd_free_shape *fs, const rd_monitor *mon, rd_contact_build build,
                        struct json_t **out, rd_error *err);
 
 #endif

@@ -154,6 +154,145 @@ json_t *rd_free_shape_echo(const rd_scene *s)
 
 json_t *rd_free_shape_model(const rd_scene *s)
 {
-    return json_string(s->free_shape.kind == RD_FREE_CLOSED ? "stress_free_closed"
-                                                            : "pressure_distribution");
+    return json_string(s->free_table.n_points > 0             ? "measured_free_shape"
+                       : s->free_shape.kind == RD_FREE_CLOSED ? "stress_free_closed"
+                                                              : "pressure_distribution");
+}
+
+/* ---- /ring/free_shape: a measured free shape ------------------------------ */
+
+int rd_free_table_parse(const rd_field *f, json_t *v, const char *path, rd_scene *s, rd_error *err)
+{
+    (void)f;
+    rd_free_table *t = &s->free_table;
+    memset(t, 0, sizeof *t);
+    if (json_is_null(v))
+        return RD_OK;
+    if (!s->an->free_shapes)
+        return rd_error_set(err, RD_EINVAL, path,
+                            "%s is read by the pretension and contact analyses only (the ring "
+                            "made with that free shape); the %s analysis models the stress-free "
+                            "closed ring: remove it.",
+                            path, s->an->name);
+    if (!json_is_object(v))
+        return rd_schema_type_error(
+            err, path, "{\"theta_deg\": [...], \"radius_m\": [...], \"fit_order\": K}", v);
+    const char *key;
+    json_t *x;
+    json_object_foreach(v, key, x)
+    {
+        char at[RD_ERROR_PATH_MAX];
+        rd_schema_path_join(at, sizeof at, path, key);
+        if (strcmp(key, "theta_deg") && strcmp(key, "radius_m") && strcmp(key, "fit_order"))
+            return rd_error_set(err, RD_EINVAL, at,
+                                "unknown field \"%.60s\" in %s (known: theta_deg, radius_m, "
+                                "fit_order)",
+                                key, path);
+    }
+    json_t *k = json_object_get(v, "fit_order");
+    t->fit_order = 6;
+    if (k && !json_is_integer(k)) {
+        char at[RD_ERROR_PATH_MAX];
+        rd_schema_path_join(at, sizeof at, path, "fit_order");
+        return rd_schema_type_error(err, at, "an integer (2 to 12)", k);
+    }
+    if (k)
+        t->fit_order = (int)json_integer_value(k);
+    int nt = 0, nr = 0;
+    int rc = column(v, "theta_deg", path, t->theta_deg, &nt, err);
+    if (rc == RD_OK)
+        rc = column(v, "radius_m", path, t->radius, &nr, err);
+    if (rc == RD_OK && nt != nr) {
+        char at[RD_ERROR_PATH_MAX];
+        rd_schema_path_join(at, sizeof at, path, "radius_m");
+        return rd_error_set(err, RD_EINVAL, at, "%s has %d values for %d angles (theta_deg).", at,
+                            nr, nt);
+    }
+    t->n_points = nt;
+    return rc;
+}
+
+json_t *rd_free_table_echo(const rd_scene *s)
+{
+    const rd_free_table *t = &s->free_table;
+    if (t->n_points == 0)
+        return json_null();
+    return json_pack("{s:o, s:o, s:i}", "theta_deg",
+                     rd_result_reals(t->theta_deg, t->n_points, 1, 1.0), "radius_m",
+                     rd_result_reals(t->radius, t->n_points, 1, 1.0), "fit_order", t->fit_order);
+}
+
+int rd_free_shape_finish(const rd_scene *s, rd_error *err)
+{
+    if (s->free_table.n_points == 0)
+        return RD_OK;
+    if (s->free_shape.kind != RD_FREE_CLOSED)
+        return rd_error_set(err, RD_EINVAL, "/ring/free_shape",
+                            "/ring/free_shape and /ring/pressure_distribution both describe how "
+                            "the ring was made: give one (the measured shape's pressure is "
+                            "fitted from it).");
+    rd_ring_params d;
+    rd_ring_params_default(&d);
+    if (s->ring.tangential_force != d.tangential_force)
+        return rd_error_set(err, RD_EINVAL, "/ring/tangential_force",
+                            "/ring/tangential_force = %g N is not read with /ring/free_shape: the "
+                            "measured free shape gives F_t (free_shape_fit.tangential_force_n in "
+                            "the result); leave it out.",
+                            s->ring.tangential_force);
+    return rd_free_table_validate(&s->free_table, &s->ring, err);
+}
+
+int rd_free_run_prepare(const rd_scene *s, const rd_ring_params *ring, const rd_static_opts *so,
+                        rd_free_run *r, rd_error *err)
+{
+    memset(r, 0, sizeof *r);
+    r->ring = *ring;
+    r->free_shape = s->free_shape.kind != RD_FREE_CLOSED ? &s->free_shape : NULL;
+    if (s->free_table.n_points == 0)
+        return RD_OK;
+    rd_static_opts fo = *so;
+    fo.estimate_error = 0;
+    int rc = rd_free_shape_fit(ring, RD_FREE_FIT_SEGMENTS, &s->free_table, &fo, &r->fit, err);
+    if (rc != RD_OK)
+        return rc;
+    r->fitted = 1;
+    r->points = s->free_table.n_points;
+    r->ring.tangential_force = r->fit.tangential_force;
+    r->free_shape = &r->fit.shape;
+    return RD_OK;
+}
+
+int rd_free_run_result(json_t *out, const rd_free_run *r)
+{
+    if (!r->fitted)
+        return json_object_set_new(out, "free_shape_fit", json_null()) != 0;
+    const rd_free_fit *f = &r->fit;
+    json_t *orders = json_array();
+    for (int q = 0; orders && q < f->shape.n_orders; q++)
+        if (json_array_append_new(
+                orders, json_pack("{s:i, s:o, s:o, s:o}", "order", f->shape.order[q], "amplitude",
+                                  rd_result_real(f->shape.amplitude[q]), "standard_error",
+                                  rd_result_real(f->amplitude_se[q]), "segments_error",
+                                  rd_result_real(f->amplitude_error[q]))) != 0) {
+            json_decref(orders);
+            orders = NULL;
+        }
+    json_t *o = json_pack(
+        "{s:o*, s:o, s:o, s:o, s:o, s:o, s:o, s:o, s:[o, o], s:o, s:o, s:i, s:i, s:i, s:i, s:s}",
+        "orders", orders, "tangential_force_n", rd_result_real(f->tangential_force),
+        "tangential_force_standard_error_n", rd_result_real(f->tangential_force_se),
+        "tangential_force_segments_error_n", rd_result_real(f->tangential_force_error),
+        "pressure_standard_error_max", rd_result_real(f->pressure_se_max), "pressure_min_ratio",
+        rd_result_real(f->pressure_min), "pressure_min_theta_deg",
+        rd_result_real(f->pressure_min_deg), "residual_rms_m", rd_result_real(f->residual_rms),
+        "centre_m", rd_result_real(f->centre[0]), rd_result_real(f->centre[1]), "rotation_deg",
+        rd_result_real(f->rotation_deg), "residual_max_m", rd_result_real(f->residual_max),
+        "points", r->points, "parameters", f->parameters, "segments", f->segments, "iterations",
+        f->iterations, "note",
+        "The pressure p / p0 = 1 + sum a_k cos k theta (theta from the point opposite the gap) "
+        "and F_t whose exact free shape is closest to the table in least squares. "
+        "standard_error: the table's scatter about that shape (s^2 (J^T J)^-1, s from the "
+        "residual); segments_error: the chain's, from the fit at half the segments. Neither "
+        "covers a systematic error of the table nor orders above fit_order.");
+    return json_object_set_new(out, "free_shape_fit", o) != 0;
 }

@@ -108,9 +108,36 @@ int rd_free_shape_parse(const rd_field *f, struct json_t *v, const char *path, s
 struct json_t *rd_free_shape_echo(const struct rd_scene *s);
 /* The result's "free_shape_model": which ring the statics solved, as a
  * string: "stress_free_closed" (the closed ring stress-free, F_t on its gap
- * faces) or "pressure_distribution" (made with that pressure's free shape,
- * its gap faces free).  NULL on out of memory. */
+ * faces), "pressure_distribution" (made with that pressure's free shape,
+ * its gap faces free) or "measured_free_shape" (the pressure fitted to
+ * /ring/free_shape).  NULL on out of memory. */
 struct json_t *rd_free_shape_model(const struct rd_scene *s);
+/* (rd_free_shape_scene.c) /ring/free_shape: a measured table into
+ * s->free_table, and its echo (JSON null when absent). */
+int rd_free_table_parse(const rd_field *f, struct json_t *v, const char *path, struct rd_scene *s,
+                        rd_error *err);
+struct json_t *rd_free_table_echo(const struct rd_scene *s);
+/* The free-shape fields' checks across the ring block, from the
+ * pretension and contact finish hooks: pressure_distribution or free_shape,
+ * not both; with a measured shape, tangential_force left at its default
+ * (the fit gives it); the table's values (rd_free_table_validate). */
+int rd_free_shape_finish(const struct rd_scene *s, rd_error *err);
+/* The ring a free-shape analysis solves: `ring` (the scene's, a general
+ * section's torsion solved) and the scene's pressure, or
+ * with a measured free shape the fitted F_t and pressure (rd_free_shape_fit
+ * with RD_FREE_FIT_SEGMENTS segments, and half as many for its error). */
+#define RD_FREE_FIT_SEGMENTS 160
+typedef struct rd_free_run {
+    rd_ring_params ring;
+    const rd_free_shape *free_shape; /* NULL: the stress-free closed ring */
+    int fitted, points;              /* points: the table's */
+    rd_free_fit fit;
+} rd_free_run;
+int rd_free_run_prepare(const struct rd_scene *s, const rd_ring_params *ring,
+                        const rd_static_opts *so, rd_free_run *r, rd_error *err);
+/* The result's "free_shape_fit" (null without a measured shape) added to
+ * out; nonzero on out of memory. */
+int rd_free_run_result(struct json_t *out, const rd_free_run *r);
 
 /* ---- shared blocks (rd_blocks.c), referenced by the analyses ---- */
 /* Monotonic wall clock, s: what a runner reports as numerics.wall_s. */

@@ -76,6 +76,7 @@ struct rd_scene {
     char *description;                /* optional metadata, NULL when absent; owned */
     rd_ring_params ring;              /* /ring */
     rd_free_shape free_shape;         /* /ring/pressure_distribution (RD_FREE_CLOSED: absent) */
+    rd_free_table free_table;         /* /ring/free_shape (n_points 0: absent) */
     /* /ring/face (the analyses whose ring block is rd_block_ring_face): the
      * running face's profile and roughness; face_given 1 when named */
     rd_face_params face;

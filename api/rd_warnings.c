@@ -25,6 +25,8 @@
  *   oil viscosity > 1 Pa s       thicker than an engine oil at 0 C: mPa s typed as Pa s
  *                                (hot engine oils are 0.003..0.05 Pa s)
  *   a ring pack's bore not round while every ring is held: not read (bore_unread)
+ *   a measured free shape's fitted pressure below 0 somewhere: the ring
+ *   leaves a round bore there (free_shape_leaves_bore)
  */
 #include "rd_warnings.h"
 
@@ -279,10 +281,28 @@ static int bore_unread(json_t *scene, json_t *result, json_t *out)
                 "diameter).");
 }
 
+/* A measured free shape whose fitted pressure falls below 0 somewhere: a
+ * round bore does not hold the ring there (a light gap), and the orders are
+ * likely a truncation of a pressure the table's shape puts at the tips. */
+static int free_shape_leaves_bore(json_t *scene, json_t *result, json_t *out)
+{
+    (void)scene;
+    json_t *fit = json_object_get(result, "free_shape_fit");
+    double lo = number_at(fit, "/pressure_min_ratio"),
+           at = number_at(fit, "/pressure_min_theta_deg");
+    if (!json_is_object(fit) || !(lo < 0.0))
+        return 0;
+    return warn(out, "free_shape_leaves_bore", "/ring/free_shape",
+                "the pressure fitted to the measured free shape falls to %.3g p0 at %.1f deg from "
+                "the point opposite the gap: closed in a round bore the ring leaves it there. "
+                "Check the table (its centre, its tips), or fit fewer orders.",
+                lo, at);
+}
+
 /* The rules, in the order their warnings are listed. */
 static int (*const rules[])(json_t *scene, json_t *result, json_t *out) = {
     material,         gas_in_bar,  bore_diameter, error_estimate, event_error,
-    accuracy_not_met, solver_note, oil_viscosity, bore_unread,
+    accuracy_not_met, solver_note, oil_viscosity, bore_unread,    free_shape_leaves_bore,
 };
 
 int rd_warnings_add(json_t *result)

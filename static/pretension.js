@@ -62,7 +62,7 @@ function figures(result) {
       [['Conformability ', h('i', {}, 'k'), ' (1.4)'], sig(result.conformability, 4), { id: 'pt-k' }],
       ['Free gap at the running face', isNum(result.free_shape?.free_gap_m) ? `${mm(result.free_shape.free_gap_m, 3)} mm` : undefined, { id: 'pt-free-gap' }],
       ['Tangential force that closes it', isNum(result.free_shape?.tangential_force_n)
-        ? `${sig(result.free_shape.tangential_force_n, 5)} N${result.free_shape_model === 'pressure_distribution' ? ' (computed)' : ' (given: F_t)'}` : undefined, { id: 'pt-ft' }],
+        ? `${sig(result.free_shape.tangential_force_n, 5)} N${result.free_shape_model && result.free_shape_model !== 'stress_free_closed' ? ' (computed)' : ' (given: F_t)'}` : undefined, { id: 'pt-ft' }],
       ['Support force / moment (opposite the gap)', isNum(support.force_n) || isNum(support.moment_nm)
         ? `${sig(support.force_n)} N / ${sig(support.moment_nm)} N·m` : undefined],
       ['Error estimate', err, { id: 'pt-error' }],
@@ -85,9 +85,34 @@ function modelNote(result) {
   const what = pd === 'uniform' ? 'a uniform pressure'
     : pd?.orders ? `p/p₀ = 1 ${pd.orders.map((o) => `${o.amplitude < 0 ? '−' : '+'} ${Math.abs(o.amplitude)} cos ${o.order}θ`).join(' ')}`
       : 'the tabulated pressure';
+  if (m === 'measured_free_shape') return measuredNote(result.free_shape_fit || {});
   return h('p', { id: 'pt-model', class: 'hint' }, m === 'pressure_distribution'
     ? `The ring is made with the free shape that a round bore of its diameter closes to its closed gap with ${what} (θ from the point opposite the gap); that free shape is solved geometrically exactly, and its gap faces carry nothing.`
     : 'The ring is the stress-free closed ring opened by F_t on its gap faces (the thesis model). Give ring.pressure_distribution for a ring made with the free shape of a pressure distribution.');
+}
+
+// The pressure fitted to a measured free shape (result.free_shape_fit), in
+// words with its standard errors (the table's scatter) and the chain's error.
+function measuredNote(f) {
+  const orders = (f.orders || []).map((o) => `${o.amplitude < 0 ? '−' : '+'} ${sig(Math.abs(o.amplitude), 3)}(±${sig(o.standard_error, 2)}) cos ${o.order}θ`).join(' ');
+  return h('p', { id: 'pt-model', class: 'hint' },
+    `The ring is made with the measured free shape (ring.free_shape, ${f.points ?? '—'} points): the pressure whose exact free shape is closest to it is p/p₀ = 1 ${orders} with F_t = ${sig(f.tangential_force_n, 5)} N (±${sig(f.tangential_force_standard_error_n, 2)}); `
+    + `the points lie ${sig((f.residual_rms_m ?? NaN) * 1e6, 2)} µm RMS from that shape (largest ${sig((f.residual_max_m ?? NaN) * 1e6, 2)} µm). `
+    + `± is the table's scatter; the chain's own error is ${sig(Math.max(...(f.orders || []).map((o) => o.segments_error ?? 0), 0), 2)} of p₀ at most; neither covers a systematic error of the table or orders above ${(f.orders || []).length + 1}. `
+    + (isNum(f.pressure_min_ratio) && f.pressure_min_ratio < 0 ? `The fitted pressure falls to ${sig(f.pressure_min_ratio, 3)} p₀ at ${sig(f.pressure_min_theta_deg, 3)}°: the ring leaves a round bore there.` : ''));
+}
+
+// The measured points in the fitted shape's frame (the table's centre and
+// angle origin as fitted): [theta_deg, radius_m] each, or [].
+function measuredPoints(result) {
+  const t = nums(result.scene?.ring?.free_shape?.theta_deg), r = nums(result.scene?.ring?.free_shape?.radius_m);
+  const fit = result.free_shape_fit;
+  if (!fit || !Array.isArray(fit.centre_m)) return [];
+  const [x0, y0] = fit.centre_m, rot = (fit.rotation_deg || 0) * Math.PI / 180;
+  return t.slice(0, r.length).map((a, i) => {
+    const X = x0 + r[i] * Math.cos(a * Math.PI / 180 + rot), Y = y0 + r[i] * Math.sin(a * Math.PI / 180 + rot);
+    return [Math.atan2(Y, X) * 180 / Math.PI, Math.hypot(X, Y)];
+  });
 }
 
 // The free shape as a gauge measures it (result.free_shape): the running
@@ -99,6 +124,7 @@ function freeShapePlot(result) {
   const k = Math.min(t.length, r.length);
   if (k < 2 || !isNum(d)) return null;
   const dr = r.slice(0, k).map((v) => (v - d / 2) * 1e3);
+  const meas = measuredPoints(result).map(([a, v]) => [a, (v - d / 2) * 1e3]);
   const W = 420, H = 240;
   const box = { left: 62, top: 14, width: W - 62 - 12, height: H - 14 - 50 };
   const lo = Math.min(0, ...dr), hi = Math.max(0, ...dr), pad = (hi - lo) * 0.08 || 0.01;
@@ -114,8 +140,11 @@ function freeShapePlot(result) {
       xLabel: 'angle from the point opposite the gap (deg)', yLabel: 'r − d/2 (mm)', yFormat: (v) => String(Number(v.toPrecision(4))),
     }),
     svg('line', { class: 'zero', x1: box.left, x2: box.left + box.width, y1: y(0), y2: y(0) }),
-    svg('path', { class: 'free', id: 'pt-free-radius', 'data-points': k, d: pathD(t.slice(0, k).map((a, i) => [x(a), y(dr[i])])) })),
-    h('figcaption', {}, `The free shape as a gauge measures it: the running face's radius about the closed ring's centre less the bore's d/2, against the angle from the point opposite the gap; the free gap between its tips is ${mm(f.free_gap_m, 3)} mm.`));
+    svg('path', { class: 'free', id: 'pt-free-radius', 'data-points': k, d: pathD(t.slice(0, k).map((a, i) => [x(a), y(dr[i])])) }),
+    meas.length ? svg('g', { id: 'pt-free-measured', class: 'measured', 'data-points': meas.length },
+      ...meas.map(([a, v]) => svg('circle', { cx: x(a), cy: y(v), r: 2 }))) : null),
+    h('figcaption', {}, `The free shape as a gauge measures it: the running face's radius about the closed ring's centre less the bore's d/2, against the angle from the point opposite the gap; the free gap between its tips is ${mm(f.free_gap_m, 3)} mm.`
+      + (meas.length ? ` Dots: the measured points (ring.free_shape) placed as fitted; the line is the fitted ring's free shape.` : '')));
 }
 
 // The free and the closed shape in the ring plane, x right, y up, one scale

@@ -97,7 +97,62 @@ typedef struct rd_free_shape {
     int n_points;                         /* table: 0 or 2..RD_FREE_POINTS_MAX */
     double theta_deg[RD_FREE_POINTS_MAX];
     double value[RD_FREE_POINTS_MAX]; /* p / p0, 0..20 */
+    int measured; /* 1: the orders fitted to a measured free shape (rd_free_fit): the pressure
+                     may fall to 0 or below somewhere (the ring leaves the bore there), and
+                     |a_k| up to 5 */
 } rd_free_shape;
+
+/* A measured free shape (since 0.3.17; rd_free_fit.c): the running face's
+ * radius about a centre, at angles from the point opposite the gap; either
+ * one side (theta_deg from <= 20 to >= 150, mirrored) or the whole ring
+ * (from <= -150 to >= 150), strictly increasing, no point in the gap.
+ * Ring makers describe a free shape by its pressure; the pressure is the
+ * shape's fourth derivative (1 % of p0 is ~7 nm of radius over a 7 mm
+ * segment of the thesis ring), so the shape is not differentiated:
+ * rd_free_shape_fit finds F_t and the orders 2..fit_order of the pressure
+ * whose exact free shape (rd_pretension's, the same chain) is closest to
+ * the points in least squares, the table's centre (and, whole, its
+ * rotation) free. */
+#define RD_FREE_FIT_ORDER_MAX 12
+typedef struct rd_free_table {
+    int n_points; /* 0: none; else 8..RD_FREE_POINTS_MAX (and 4 more than the parameters) */
+    double theta_deg[RD_FREE_POINTS_MAX];
+    double radius[RD_FREE_POINTS_MAX]; /* m, within 30 % of d / 2 */
+    int fit_order;                     /* K: the pressure's orders 2..K; default 6, 2..12 */
+} rd_free_table;
+
+/* The fit (rd_free_shape_fit). */
+typedef struct rd_free_fit {
+    rd_free_shape shape;        /* the fitted pressure (kind RD_FREE_PRESSURE, measured 1) */
+    double tangential_force;    /* F_t it implies, N (p0 = 2 F_t / (d h)) */
+    double tangential_force_se; /* its standard error from the residual, N */
+    double amplitude_se[RD_FREE_ORDERS_MAX]; /* each a_k's standard error */
+    double tangential_force_error;           /* the chain's error: |fit(n) - fit(n / 2)| / 3, N */
+    double amplitude_error[RD_FREE_ORDERS_MAX]; /* the same for each a_k */
+    double pressure_se_max; /* the largest standard error of p / p0 around the ring */
+    double pressure_min, pressure_min_deg; /* the fitted p / p0's least value, and where */
+    double centre[2];    /* the table's centre in the fitted shape's frame (x toward the
+                                  point opposite the gap, from the closed ring's centre), m */
+    double rotation_deg; /* the table's turn (whole tables; 0 mirrored) */
+    double residual_rms, residual_max; /* measured - fitted radius, m */
+    int segments;                      /* the chain the fit solved */
+    int parameters, iterations;
+} rd_free_fit;
+
+/* 0 or the table's error (its field under /ring/free_shape). */
+int rd_free_table_validate(const rd_free_table *t, const rd_ring_params *p, rd_error *err);
+/* Fits t (rd_free_table) with the exact free shapes of p's ring at
+ * `segments` (the fit's chain: 80..320 of them is ample, rd_free_fit.c):
+ * Gauss-Newton on (F_t, F_t a_k, centre, turn), the pressure's columns of
+ * the Jacobian by whole solves, once.  The standard errors are those of a
+ * least-squares fit whose residual is the measurement's scatter: they do
+ * not cover the model itself (the chain gives a pressure back within
+ * 0.3-0.8 % of p0, test_free_shape).  RD_ENOCONV when it does not settle in
+ * 30 iterations; RD_EINVAL when the table does not fix the orders (a
+ * singular fit) or a point falls in the fitted shape's gap.  It fits again
+ * at segments / 2 for the chain's error (order 2 in n, *_error). */
+int rd_free_shape_fit(const rd_ring_params *p, int segments, const rd_free_table *t,
+                      const rd_static_opts *so, rd_free_fit *out, rd_error *err);
 
 typedef struct rd_pretension_opts {
     int method;                      /* enum rd_pretension_method */

@@ -118,11 +118,12 @@ static int pressure_check(const rd_free_shape *fs, rd_error *err)
                                 "range: allowed 2 to 64 (order 1 pushes the ring off the bore's "
                                 "centre; a pressure of it has no equilibrium).",
                                 q, fs->order[q]);
-        if (!isfinite(fs->amplitude[q]) || fabs(fs->amplitude[q]) > 1.0)
+        double a_max = fs->measured ? 5.0 : 1.0;
+        if (!isfinite(fs->amplitude[q]) || fabs(fs->amplitude[q]) > a_max)
             return rd_error_set(err, RD_EINVAL, "/ring/pressure_distribution/orders",
                                 "/ring/pressure_distribution/orders/%d/amplitude = %g is out of "
-                                "range: allowed -1 to 1 (of the mean pressure p0).",
-                                q, fs->amplitude[q]);
+                                "range: allowed -%g to %g (of the mean pressure p0).",
+                                q, fs->amplitude[q], a_max, a_max);
     }
     if (fs->n_points > 0) {
         int rc = table_check(fs, "/ring/pressure_distribution/theta_deg", 2, err);
@@ -135,6 +136,8 @@ static int pressure_check(const rd_free_shape *fs, rd_error *err)
                                     "allowed 0 to 20 (of the mean pressure p0).",
                                     i, fs->value[i]);
     }
+    if (fs->measured) /* a measured ring may leave the bore somewhere */
+        return RD_OK;
     /* the pressure pushes everywhere: a ring pulled from the bore is not
      * this shape's ring */
     double lo = INFINITY, at = 0.0;

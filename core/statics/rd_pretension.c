@@ -271,6 +271,16 @@ static int free_once(const rd_ring_params *p, int segments, const rd_pretension_
     return rc;
 }
 
+int rd_pretension_free_face(const rd_ring_params *p, int segments, const rd_free_shape *fs,
+                            const rd_static_opts *so, rd_pretension_result *out, rd_error *err)
+{
+    rd_pretension_opts o;
+    rd_pretension_opts_default(&o);
+    o.free_shape = fs;
+    memset(out, 0, sizeof *out);
+    return pretension_once(p, segments, &o, 0.0, so, NULL, out, err);
+}
+
 void rd_pretension_result_cleanup(rd_pretension_result *r)
 {
     if (!r)

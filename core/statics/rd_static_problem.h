@@ -223,6 +223,14 @@ int rd_free_shape_prestrain(rd_static_problem *pb, const rd_ring_params *p, cons
 int rd_free_shape_installed(const rd_ring_params *p, int segments, const rd_free_shape *fs,
                             const rd_static_opts *so, double *twist_deg, rd_error *err);
 
+/* (rd_pretension.c) The free shape of the ring made with fs at `segments`,
+ * no load on it: out's face_theta_deg and face_radius (n + 2 points, the
+ * tips first and last) and openings, as rd_pretension_solve's level run,
+ * without the closing force, the twist or an estimate.  For the measured
+ * free shape's fit (rd_free_fit.c). */
+int rd_pretension_free_face(const rd_ring_params *p, int segments, const rd_free_shape *fs,
+                            const rd_static_opts *so, rd_pretension_result *out, rd_error *err);
+
 /* Strain energy, support force and moment, sizes, after a solve. */
 void rd_static_stats_fill(rd_static_problem *pb, rd_static_stats *st);
 

@@ -324,7 +324,7 @@ static void test_unknown_fields(void)
         "{\"analysis\":\"modal\",\"ring\":{\"diameter\":0.07,\"diametre\":0.07}}", RD_EINVAL,
         "/ring/diametre",
         "unknown field \"diametre\" in /ring (known: diameter, radial_width, axial_height, "
-        "closed_gap, tangential_force, section, pressure_distribution, material)");
+        "closed_gap, tangential_force, section, pressure_distribution, free_shape, material)");
     expect_error(
         "{\"analysis\":\"modal\",\"ring\":{\"material\":{\"E\":2e11}}}", RD_EINVAL,
         "/ring/material/E",

@@ -113,6 +113,14 @@ static void test_edges(void)
     synthetic("{\"scene\": {\"analysis\": \"ringpack\", \"bore\": {\"distortion\": []}}, "
               "\"numerics\": {\"model\": [{\"name\": \"axial\", \"dof\": 0}]}}",
               "");
+    /* a measured free shape's fitted pressure, at 0 and just below */
+    synthetic("{\"scene\": {}, \"free_shape_fit\": {\"pressure_min_ratio\": 0, "
+              "\"pressure_min_theta_deg\": 170}}",
+              "");
+    synthetic("{\"scene\": {}, \"free_shape_fit\": {\"pressure_min_ratio\": -1e-3, "
+              "\"pressure_min_theta_deg\": 170}}",
+              "free_shape_leaves_bore");
+    synthetic("{\"scene\": {}, \"free_shape_fit\": null}", "");
     synthetic("{\"scene\": {\"ring\": {\"material\": {\"density\": 1000}}}}", "");
     synthetic("{\"scene\": {\"ring\": {\"material\": {\"density\": 999}}}}", "density_unit");
     synthetic("{\"scene\": {\"ring\": {\"material\": {\"density\": 25001}}}}", "density_unit");

@@ -335,6 +335,8 @@ async function renderFixture(id, result) {
         sectionAxis: Boolean(q('#pt-section-axis')),
         freeRadius: Number(q('#pt-free-radius')?.dataset.points ?? 0),
         modelNote: q('#pt-model')?.textContent,
+        measuredPoints: Number(q('#pt-free-measured')?.dataset.points ?? 0),
+        measuredDots: all('#pt-free-measured circle').length,
         ftCell: q('#pt-ft')?.textContent,
         pressurePoints: points('#ct-pressure'),
         lightGaps: all('.light-gaps .light-gap').length,
@@ -696,6 +698,22 @@ test('renderers draw fixture results: points, marks and labels match the numbers
   assert.equal(r.zPlot, false, 'no z plot without a lateral opening');
   assert.match(r.modelNote, /p\/p₀ = 1 \+ 0\.15 cos 2θ − 0\.2 cos 3θ/, 'the pressure named in words');
   assert.match(r.ftCell, /^9\.7346 N \(computed\)/);
+  assert.equal(r.measuredPoints, 0, 'no measured points without ring.free_shape');
+  // A measured free shape: the fit in words, the points drawn as dots.
+  const meas = fixtures.pretensionResult({ lateral: 0 });
+  meas.free_shape_model = 'measured_free_shape';
+  meas.scene.ring = { ...meas.scene.ring, free_shape: { theta_deg: [0, 60, 120, 170], radius_m: [0.03826, 0.03839, 0.03871, 0.03900], fit_order: 3 } };
+  meas.free_shape_fit = {
+    orders: [{ order: 2, amplitude: 0.1501, standard_error: 7e-5, segments_error: 3e-5 }, { order: 3, amplitude: -0.2002, standard_error: 2.5e-4, segments_error: 1e-5 }],
+    tangential_force_n: 10.0025, tangential_force_standard_error_n: 1.6e-4, residual_rms_m: 2.8e-8, residual_max_m: 5.8e-8,
+    pressure_min_ratio: 0.706, pressure_min_theta_deg: -113.5, centre_m: [-2.6e-7, 0], rotation_deg: 0, points: 4,
+  };
+  r = await renderFixture('pretension', meas);
+  assert.equal(r.measuredPoints, 4, 'one dot per measured point');
+  assert.equal(r.measuredDots, 4);
+  assert.match(r.modelNote, /p\/p₀ = 1 \+ 0\.15\(±7\.0e-5\) cos 2θ − 0\.2\(±2\.5e-4\) cos 3θ with F_t = 10\.002 N/, 'the fit in words');
+  assert.match(r.modelNote, /0\.028 µm RMS/);
+  assert.match(r.ftCell, /\(computed\)/);
 
   // Contact: one polar point per angle, one arc per segment with clearance > 0.
   const ct = fixtures.contactResult();
