@@ -110,7 +110,8 @@ static json_t *section_json(const rd_ring_params *p)
     rd_section_init(&s, p);
     double J_err = p->section >= RD_SECTION_TAPER_FACE ? p->spec.J_error : 0.0;
     return json_pack(
-        "{s:s, s:o, s:[o, o], s:o, s:{s:o, s:o, s:o}, s:[o, o], s:o, s:o, s:o, s:s, s:o}", "shape",
+        "{s:s, s:o, s:[o, o], s:o, s:{s:o, s:o, s:o}, s:[o, o], s:o, s:o, s:o, s:o, s:s, s:o}",
+        "shape",
         p->section == RD_SECTION_RECTANGLE ? "rectangle"
         : p->section == RD_SECTION_CIRCLE  ? "circle"
                                            : "general",
@@ -120,7 +121,8 @@ static json_t *section_json(const rd_ring_params *p)
         "zz", rd_result_real(s.I_zz), "rz", rd_result_real(s.I_rz), "principal_moments_m4",
         rd_result_real(s.I_inplane), rd_result_real(s.I_outplane), "torsion_constant_m4",
         rd_result_real(s.J), "torsion_constant_error_m4", rd_result_real(J_err), "shear_factor",
-        rd_result_real(s.shear_factor), "torsion_method",
+        rd_result_real(s.shear_factor), "shear_factor_axial", rd_result_real(s.shear_factor_axial),
+        "torsion_method",
         p->section == RD_SECTION_RECTANGLE ? "series"
         : p->section == RD_SECTION_CIRCLE  ? "closed form"
                                            : "finite elements (Prandtl stress function), "

@@ -57,8 +57,9 @@ typedef struct rd_ring_section {
     double J;            /* Saint-Venant torsion constant (rectangle: series; circle: pi a^4/2) */
     double G;            /* shear modulus E / (2 (1 + nu)) */
     double shear_factor; /* form factor for shear: 6/5 rectangle, 10/9 circle (Tab. 3.1) */
-    double span;         /* angle covered by the ring, rad */
-    double angle;        /* principal axes turned from r toward z, rad (rd_section.h); 0 for
+    double shear_factor_axial; /* the same for the out-of-plane shear (rd_section.h) */
+    double span;               /* angle covered by the ring, rad */
+    double angle;              /* principal axes turned from r toward z, rad (rd_section.h); 0 for
                             the rectangle and the circle */
 } rd_ring_section;
 

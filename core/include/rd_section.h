@@ -107,7 +107,11 @@ typedef struct rd_section {
     double I_inplane, I_outplane; /* principal moments, m^4 (I_rr and I_zz at angle 0) */
     double J;                     /* Saint-Venant torsion constant, m^4 (rectangle: series; circle
                           * pi a^4 / 2), not the polar moment */
-    double shear_factor;          /* shear form factor: 6/5 rectangle, 10/9 circle (Tab. 3.1) */
+    double shear_factor;          /* shear form factor for the in-plane shear (along the in-plane
+                                     principal axis, radial for symmetric shapes): 6/5 rectangle,
+                                     10/9 circle (Tab. 3.1); a general shape's by the energy
+                                     method on its outline (Jourawski's shear flow) */
+    double shear_factor_axial;    /* the same for the out-of-plane (axial) shear */
     /* Moments about the ring axis, for the swept segment's mass (rd_ring.c):
      * S1 = int r dA (= A R), S2 = int r^2 dA, S3 = int r^3 dA, Z = int r z^2 dA. */
     double S1, S2, S3, Z;

@@ -140,6 +140,7 @@ static void section_view(const rd_section *sec, const rd_ring_params *p, int clo
     s->I_outplane = sec->I_outplane;
     s->J = sec->J;
     s->shear_factor = sec->shear_factor;
+    s->shear_factor_axial = sec->shear_factor_axial;
     s->angle = sec->angle;
     s->span = closed ? 2.0 * M_PI : 2.0 * M_PI - p->closed_gap / s->R;
 }
@@ -260,7 +261,7 @@ static void cantilever_stiffness(const rd_ring_params *p, const rd_ring_section 
 {
     double E = p->youngs_modulus, G = s->G, A = s->area;
     double Io = s->I_outplane, Ii = s->I_inplane;
-    double Po = 12.0 * E * Io * s->shear_factor / (G * A * L * L);
+    double Po = 12.0 * E * Io * s->shear_factor_axial / (G * A * L * L);
     double Pi = 12.0 * E * Ii * s->shear_factor / (G * A * L * L);
     memset(Kc, 0, 36 * sizeof *Kc);
     M6(Kc, 0, 0) = E * A / L;

@@ -14,6 +14,9 @@
  *     its estimate of the closed form;
  *   - a polygon section equal to the rectangle gives the rectangle's
  *     properties, and its beam the rectangle's pretension answer;
+ *   - the energy method's shear form factors: the rectangle's 6/5 both
+ *     ways, and a rhombus' 31/30 both ways (its integral A / I^2 int S^2 / t
+ *     in closed form: t = 2a (1 - |y| / c), I = a c^3 / 3);
  *   - bad input: a self-intersecting polygon, a bevel larger than the
  *     section, a keystone angle that leaves no section, a polygon whose box
  *     is not b x h: refused at the field, naming the value and the range.
@@ -156,6 +159,25 @@ static void test_torsion(void)
 }
 
 /* A polygon equal to the rectangle: the rectangle's section and beam. */
+static void test_shear_factors(void)
+{
+    rd_ring_params p = ring_with(RD_SECTION_POLYGON);
+    double rect[4][2] = {{0, 0}, {B, 0}, {B, H}, {0, H}};
+    memcpy(p.spec.points, rect, sizeof rect);
+    p.spec.n_points = 4;
+    rd_section s;
+    rd_section_init(&s, &p);
+    printf("shear form factors: rectangle %.9f, %.9f (6/5)", s.shear_factor, s.shear_factor_axial);
+    CHECK_REL(s.shear_factor, 1.2, 1e-6, "the rectangle's in-plane shear factor");
+    CHECK_REL(s.shear_factor_axial, 1.2, 1e-6, "the rectangle's axial shear factor");
+    double rhomb[4][2] = {{0.5 * B, 0}, {B, 0.5 * H}, {0.5 * B, H}, {0, 0.5 * H}};
+    memcpy(p.spec.points, rhomb, sizeof rhomb);
+    rd_section_init(&s, &p);
+    printf("; rhombus %.9f, %.9f (31/30)\n", s.shear_factor, s.shear_factor_axial);
+    CHECK_REL(s.shear_factor, 31.0 / 30.0, 1e-6, "the rhombus' in-plane shear factor");
+    CHECK_REL(s.shear_factor_axial, 31.0 / 30.0, 1e-6, "the rhombus' axial shear factor");
+}
+
 static void test_polygon_rectangle(void)
 {
     rd_ring_params pr = ring_with(RD_SECTION_RECTANGLE), pp = ring_with(RD_SECTION_POLYGON);
@@ -283,6 +305,7 @@ int main(void)
 {
     test_moments();
     test_torsion();
+    test_shear_factors();
     test_polygon_rectangle();
     test_turned_beam();
     test_errors();
