@@ -69,8 +69,10 @@ typedef struct rd_section_spec {
     int double_sided;                        /* keystone on both flanks */
     int n_points;                            /* polygon: 3..RD_SECTION_POINTS_MAX */
     double points[RD_SECTION_POINTS_MAX][2]; /* polygon: (radial out, axial up), m */
-    int solved;                              /* J, J_error below hold the shape's */
+    int solved;                              /* J, J_error and the shear factors below hold
+                                                the shape's */
     double J, J_error;                       /* m^4: extrapolated, and its estimate */
+    double shear_factor, shear_factor_axial; /* rd_section_shear_factors' */
 } rd_section_spec;
 
 /* A cylindrical face: the running face or the back face. */
@@ -167,5 +169,15 @@ int rd_section_torsion_solve(const double (*pts)[2], int n, double *J, double *J
 /* Computes spec->J and J_error for shape `shape` in the b x h box once
  * (rd_section_spec's contract); the outline's errors otherwise. */
 int rd_section_spec_solve(int shape, rd_section_spec *spec, double b, double h, rd_error *err);
+
+/* The principal angle from the moments (rd_section.angle's rule). */
+double rd_section_principal_angle(double I_rr, double I_zz, double I_rz);
+/* The energy method's shear form factors of the polygon P (n points) for
+ * shear along its in-plane and its out-of-plane principal axis, into out
+ * (rd_section.shear_factor, shear_factor_axial): kappa = A / I^2 int
+ * S(w)^2 / t(w) dw over the lines w = const across it (Jourawski's shear
+ * flow), by the midpoint rule on 4000 lines; 0.1-0.4 ms, so computed once
+ * (rd_section_spec_solve). */
+void rd_section_shear_factors(const double (*P)[2], int n, double out[2]);
 
 #endif

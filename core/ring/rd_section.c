@@ -74,65 +74,6 @@ static void rectangle(rd_section *s)
  * frame (u from the inner edge at r_i = d/2 - b, v from the bottom), the
  * principal axes, and J computed once (p->spec) or now.  An outline the
  * validation refuses leaves the rectangle's numbers. */
-/* The polygon's chord on the line w = c (w the coordinate along the unit
- * vector e from the point o): the summed length of its pieces inside. */
-static double chord(const double (*P)[2], int n, const double o[2], const double e[2], double c)
-{
-    double q[RD_SECTION_POINTS_MAX];
-    int m = 0;
-    for (int k = 0; k < n; k++) {
-        const double *a = P[k], *b = P[(k + 1) % n];
-        double wa = (a[0] - o[0]) * e[0] + (a[1] - o[1]) * e[1];
-        double wb = (b[0] - o[0]) * e[0] + (b[1] - o[1]) * e[1];
-        if ((wa < c) == (wb < c)) /* (half-open: a vertex on the line counts once) */
-            continue;
-        double t = (c - wa) / (wb - wa);
-        double x = a[0] + t * (b[0] - a[0]) - o[0], y = a[1] + t * (b[1] - a[1]) - o[1];
-        q[m++] = -x * e[1] + y * e[0]; /* along the line */
-    }
-    for (int i = 1; i < m; i++) /* insertion sort: a few crossings */
-        for (int j = i; j > 0 && q[j - 1] > q[j]; j--) {
-            double t = q[j];
-            q[j] = q[j - 1];
-            q[j - 1] = t;
-        }
-    double len = 0.0;
-    for (int i = 0; i + 1 < m; i += 2)
-        len += q[i + 1] - q[i];
-    return len;
-}
-
-/* The energy method's shear form factor for a shear force along e
- * (Jourawski's shear flow across each line w = const, w from the
- * centroid o): kappa = A / I^2 int S(w)^2 / t(w) dw, t the chord, S the
- * first moment of the part beyond w, I = int w^2 t dw; the rectangle's
- * 6/5 and the circle's 10/9.  Midpoint rule on SHEAR_SLICES lines (second
- * order; 1e-7 on the rectangle). */
-#define SHEAR_SLICES 4000
-static double shear_form_factor(const double (*P)[2], int n, const double o[2], const double e[2])
-{
-    double lo = INFINITY, hi = -INFINITY;
-    for (int k = 0; k < n; k++) {
-        double w = (P[k][0] - o[0]) * e[0] + (P[k][1] - o[1]) * e[1];
-        lo = fmin(lo, w);
-        hi = fmax(hi, w);
-    }
-    double dw = (hi - lo) / SHEAR_SLICES, t[SHEAR_SLICES], A = 0.0, I = 0.0, S = 0.0, k = 0.0;
-    for (int i = 0; i < SHEAR_SLICES; i++) {
-        double w = lo + (i + 0.5) * dw;
-        t[i] = chord(P, n, o, e, w);
-        A += t[i] * dw;
-        I += w * w * t[i] * dw;
-    }
-    for (int i = SHEAR_SLICES - 1; i >= 0; i--) { /* S from the far side */
-        double w = lo + (i + 0.5) * dw, f = w * t[i] * dw;
-        if (t[i] > 0.0)
-            k += (S + 0.5 * f) * (S + 0.5 * f) / t[i] * dw;
-        S += f;
-    }
-    return A * k / (I * I);
-}
-
 static void general(rd_section *s, const rd_ring_params *p)
 {
     double pts[RD_SECTION_POINTS_MAX][2];
@@ -152,18 +93,16 @@ static void general(rd_section *s, const rd_ring_params *p)
     s->I_rr = MOM(2, 0) - A * uc * uc;
     s->I_zz = MOM(0, 2) - A * vc * vc;
     s->I_rz = MOM(1, 1) - A * uc * vc;
-    double d = s->I_rr - s->I_zz;
-    s->angle = d != 0.0 ? 0.5 * atan(2.0 * s->I_rz / d)
-                        : (s->I_rz != 0.0 ? copysign(M_PI / 4, s->I_rz) : 0.0);
+    s->angle = rd_section_principal_angle(s->I_rr, s->I_zz, s->I_rz);
     double c = cos(s->angle), sn = sin(s->angle);
     s->I_inplane = s->I_rr * c * c + 2.0 * s->I_rz * sn * c + s->I_zz * sn * sn;
     s->I_outplane = s->I_rr * sn * sn - 2.0 * s->I_rz * sn * c + s->I_zz * c * c;
     s->J = p->spec.solved ? p->spec.J : NAN; /* rd_section_spec_solve's, once */
-    /* the shear along each principal axis: in-plane p1 = (cos a, sin a),
-     * out-of-plane p2 = (-sin a, cos a) */
-    double o[2] = {uc, vc}, p1[2] = {c, sn}, p2[2] = {-sn, c};
-    s->shear_factor = shear_form_factor(P, n, o, p1);
-    s->shear_factor_axial = shear_form_factor(P, n, o, p2);
+    double sf[2] = {p->spec.shear_factor, p->spec.shear_factor_axial};
+    if (!p->spec.solved) /* rd_section_spec_solve's, once; else here */
+        rd_section_shear_factors(P, n, sf);
+    s->shear_factor = sf[0];
+    s->shear_factor_axial = sf[1];
     double M20 = MOM(2, 0), M11 = MOM(1, 1);
     s->S1 = ri * A + Su;
     s->S2 = ri * ri * A + 2.0 * ri * Su + M20;
