@@ -23,9 +23,10 @@
  *
  * Gauss-Newton: the shape is nearly linear in c (the free shape's
  * displacement from the closed ring is linear in the pressure to ~2 %), so
- * the pressure's columns of the Jacobian are taken once, by whole solves at
- * the start (K solves), and the rigid columns each iteration (no solve);
- * each iteration costs one free solve and settles by a factor ~50.
+ * the pressure's columns of the Jacobian are taken once, by K whole solves
+ * at the start of the first of the two fits (at segments / 2, reused at
+ * segments), and the rigid columns each iteration (no solve); each
+ * iteration costs one free solve and settles by a factor ~50.
  *
  * The standard errors are those of the least-squares fit, s^2 (J^T J)^-1,
  * s^2 = SSR / (N - P): they measure the table's scatter about the model's
@@ -40,7 +41,7 @@
 
 #include "rd_static_problem.h"
 
-#define FIT_PARAMS_MAX (RD_FREE_FIT_ORDER_MAX + 2)
+#define FIT_PARAMS_MAX (RD_FREE_FIT_ORDER_MAX + 3) /* F_t, the orders, x0, y0, turn */
 #define FIT_ITER_MAX   30
 
 static int mirrored_table(const rd_free_table *t)
@@ -352,12 +353,20 @@ static void errors_out(const fitter *f, const double *C, double s2, rd_free_fit 
 }
 
 /* Settled: every parameter's last step below 1e-9 of its scale (F_t for
- * the pressure's, 1e-3 of the radius for the centre, 1e-3 rad the turn). */
-static int settled(const fitter *f, const double *dq)
+ * the pressure's, 1e-3 of the radius for the centre, 1e-3 rad the turn) or
+ * below a thousandth of its standard error (e the residuals, C the last
+ * step's (J^T J)^-1). */
+static int settled(const fitter *f, const double *dq, const double *e, const double *C)
 {
+    double ssr = 0.0;
+    for (int i = 0; i < f->N; i++)
+        ssr += e[i] * e[i];
     for (int j = 0; j < f->P; j++) {
         double scale = j < f->K ? f->q[0] : j < f->rigid0 + 2 ? 5e-4 * f->p->diameter : 1e-3;
-        if (fabs(dq[j]) > 1e-9 * scale)
+        /* or a thousandth of its standard error: the high orders' steps
+         * stop at the solves' own noise times k^4 */
+        double se = sqrt(ssr / (f->N - f->P) * C[j * f->P + j]);
+        if (fabs(dq[j]) > fmax(1e-9 * scale, 1e-3 * se))
             return 0;
     }
     return 1;
@@ -385,6 +394,8 @@ static int iterate(fitter *f, double *J, double *e, double *e1, double *C, rd_fr
     if (!f->have_J && (rc = pressure_columns(f, e, J, err)) != RD_OK)
         goto out;
     f->have_J = 1;
+    double last = INFINITY;
+    int retakes = 0;
     for (out->iterations = 1; out->iterations <= FIT_ITER_MAX; out->iterations++) {
         double dq[FIT_PARAMS_MAX];
         rigid_columns(f, &c, e, J, e1);
@@ -402,8 +413,20 @@ static int iterate(fitter *f, double *J, double *e, double *e1, double *C, rd_fr
         if ((rc = fit_solve(f, &fs, f->q[0], &c, err)) != RD_OK)
             goto out;
         residuals(f, f->q, &c, e, &outside);
-        if (settled(f, dq))
+        if (settled(f, dq, e, C))
             break;
+        /* a step that shrank less than 3x: the pressure's columns again, here
+         * (far from where they were taken, the chord settles slowly on
+         * the high orders: K = 12 from twice the start's F_t took > 30) */
+        double size = 0.0;
+        for (int j = 0; j < f->K; j++)
+            size = fmax(size, fabs(dq[j]) / f->q[0]);
+        if (size > last / 3.0 && retakes < 3) {
+            if ((rc = pressure_columns(f, e, J, err)) != RD_OK)
+                goto out;
+            retakes++;
+        }
+        last = size;
     }
     if (out->iterations > FIT_ITER_MAX) {
         rc = rd_error_set(err, RD_ENOCONV, "/ring/free_shape",

@@ -367,6 +367,7 @@ int main(void)
     recovers("1 + 0.15 cos 2t - 0.2 cos 3t, whole", &oval, 1, 6, 1e-4, -0.005);
     design stiff = {.Ft = 20.0, .K = 2, .order = {2, 4}, .amp = {0.1, 0.05}};
     recovers("F_t 20 N, orders 2 and 4, whole", &stiff, 1, 6, 0.0, 0.0);
+    recovers("the same, every order to 12", &stiff, 1, 12, 1e-4, 0.002);
     closed_again();
     scatter();
     bad_input();
