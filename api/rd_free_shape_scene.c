@@ -46,14 +46,17 @@ static int orders(json_t *v, const char *path, rd_free_shape *fs, rd_error *err)
     return RD_OK;
 }
 
-static int column(json_t *o, const char *key, const char *path, double *out, int *n, rd_error *err)
+/* Column `key` of the table o (pair: the other column's name, for the
+ * message when it is missing). */
+static int column(json_t *o, const char *key, const char *pair, const char *path, double *out,
+                  int *n, rd_error *err)
 {
     char at[RD_ERROR_PATH_MAX];
     json_t *v = json_object_get(o, key);
     rd_schema_path_join(at, sizeof at, path, key);
     if (!v)
-        return rd_error_set(err, RD_EINVAL, at, "%s is missing: a table needs theta_deg and ratio.",
-                            at);
+        return rd_error_set(err, RD_EINVAL, at, "%s is missing: a table needs theta_deg and %s.",
+                            at, pair);
     if (!json_is_array(v) || json_array_size(v) < 2 || json_array_size(v) > RD_FREE_POINTS_MAX)
         return rd_error_set(err, RD_EINVAL, at, "%s must be an array of 2 to %d numbers.", at,
                             RD_FREE_POINTS_MAX);
@@ -69,6 +72,54 @@ static int column(json_t *o, const char *key, const char *path, double *out, int
     return RD_OK;
 }
 
+/* The object v's keys: each one of the three given (known: their words),
+ * or the first other refused at its path. */
+static int keys_known(json_t *v, const char *path, const char *const keys[3], const char *known,
+                      rd_error *err)
+{
+    const char *key;
+    json_t *x;
+    json_object_foreach(v, key, x)
+    {
+        if (strcmp(key, keys[0]) && strcmp(key, keys[1]) && strcmp(key, keys[2])) {
+            char at[RD_ERROR_PATH_MAX];
+            rd_schema_path_join(at, sizeof at, path, key);
+            return rd_error_set(err, RD_EINVAL, at, "unknown field \"%.60s\" in %s (known: %s)",
+                                key, path, known);
+        }
+    }
+    return RD_OK;
+}
+
+/* A table's theta_deg and its column `key`, as long as each other, into t
+ * and y; their length in *n. */
+static int angle_table(json_t *v, const char *path, const char *key, double *t, double *y, int *n,
+                       rd_error *err)
+{
+    int nt = 0, nr = 0;
+    int rc = column(v, "theta_deg", key, path, t, &nt, err);
+    if (rc == RD_OK)
+        rc = column(v, key, key, path, y, &nr, err);
+    if (rc == RD_OK && nt != nr) {
+        char at[RD_ERROR_PATH_MAX];
+        rd_schema_path_join(at, sizeof at, path, key);
+        return rd_error_set(err, RD_EINVAL, at, "%s has %d values for %d angles (theta_deg).", at,
+                            nr, nt);
+    }
+    *n = nt;
+    return rc;
+}
+
+/* A free-shape field given to an analysis that does not read it. */
+static int refused_here(const rd_scene *s, const char *path, rd_error *err)
+{
+    return rd_error_set(err, RD_EINVAL, path,
+                        "%s is read by the pretension and contact analyses only (the free shape "
+                        "it gives the ring); the %s analysis models the stress-free closed ring: "
+                        "remove it.",
+                        path, s->an->name);
+}
+
 int rd_free_shape_parse(const rd_field *f, json_t *v, const char *path, rd_scene *s, rd_error *err)
 {
     (void)f;
@@ -77,11 +128,7 @@ int rd_free_shape_parse(const rd_field *f, json_t *v, const char *path, rd_scene
     if (json_is_null(v))
         return RD_OK;
     if (!s->an->free_shapes)
-        return rd_error_set(err, RD_EINVAL, path,
-                            "%s is read by the pretension and contact analyses only (the free "
-                            "shape it gives the ring); the %s analysis models the stress-free "
-                            "closed ring: remove it.",
-                            path, s->an->name);
+        return refused_here(s, path, err);
     fs->kind = RD_FREE_PRESSURE;
     if (json_is_string(v) && strcmp(json_string_value(v), "uniform") == 0)
         return RD_OK;
@@ -90,36 +137,17 @@ int rd_free_shape_parse(const rd_field *f, json_t *v, const char *path, rd_scene
                                     "\"uniform\", {\"orders\": [...]} or {\"theta_deg\": [...], "
                                     "\"ratio\": [...]}",
                                     v);
-    const char *key;
-    json_t *x;
-    json_object_foreach(v, key, x)
-    {
-        char at[RD_ERROR_PATH_MAX];
-        rd_schema_path_join(at, sizeof at, path, key);
-        if (strcmp(key, "orders") && strcmp(key, "theta_deg") && strcmp(key, "ratio"))
-            return rd_error_set(err, RD_EINVAL, at,
-                                "unknown field \"%.60s\" in %s (known: orders, or theta_deg and "
-                                "ratio)",
-                                key, path);
-    }
+    static const char *const keys[3] = {"orders", "theta_deg", "ratio"};
+    int rc = keys_known(v, path, keys, "orders, or theta_deg and ratio", err);
+    if (rc != RD_OK)
+        return rc;
     json_t *o = json_object_get(v, "orders");
     if (o && (json_object_get(v, "theta_deg") || json_object_get(v, "ratio")))
         return rd_error_set(err, RD_EINVAL, path,
                             "%s has both orders and a table (theta_deg, ratio): give one.", path);
     if (o)
         return orders(o, path, fs, err);
-    int nt = 0, nr = 0;
-    int rc = column(v, "theta_deg", path, fs->theta_deg, &nt, err);
-    if (rc == RD_OK)
-        rc = column(v, "ratio", path, fs->value, &nr, err);
-    if (rc == RD_OK && nt != nr) {
-        char at[RD_ERROR_PATH_MAX];
-        rd_schema_path_join(at, sizeof at, path, "ratio");
-        return rd_error_set(err, RD_EINVAL, at, "%s has %d values for %d angles (theta_deg).", at,
-                            nr, nt);
-    }
-    fs->n_points = nt;
-    return rc;
+    return angle_table(v, path, "ratio", fs->theta_deg, fs->value, &fs->n_points, err);
 }
 
 json_t *rd_free_shape_echo(const rd_scene *s)
@@ -169,26 +197,14 @@ int rd_free_table_parse(const rd_field *f, json_t *v, const char *path, rd_scene
     if (json_is_null(v))
         return RD_OK;
     if (!s->an->free_shapes)
-        return rd_error_set(err, RD_EINVAL, path,
-                            "%s is read by the pretension and contact analyses only (the ring "
-                            "made with that free shape); the %s analysis models the stress-free "
-                            "closed ring: remove it.",
-                            path, s->an->name);
+        return refused_here(s, path, err);
     if (!json_is_object(v))
         return rd_schema_type_error(
             err, path, "{\"theta_deg\": [...], \"radius_m\": [...], \"fit_order\": K}", v);
-    const char *key;
-    json_t *x;
-    json_object_foreach(v, key, x)
-    {
-        char at[RD_ERROR_PATH_MAX];
-        rd_schema_path_join(at, sizeof at, path, key);
-        if (strcmp(key, "theta_deg") && strcmp(key, "radius_m") && strcmp(key, "fit_order"))
-            return rd_error_set(err, RD_EINVAL, at,
-                                "unknown field \"%.60s\" in %s (known: theta_deg, radius_m, "
-                                "fit_order)",
-                                key, path);
-    }
+    static const char *const keys[3] = {"theta_deg", "radius_m", "fit_order"};
+    int rc = keys_known(v, path, keys, "theta_deg, radius_m, fit_order", err);
+    if (rc != RD_OK)
+        return rc;
     json_t *k = json_object_get(v, "fit_order");
     t->fit_order = 6;
     if (k && !json_is_integer(k)) {
@@ -198,18 +214,7 @@ int rd_free_table_parse(const rd_field *f, json_t *v, const char *path, rd_scene
     }
     if (k)
         t->fit_order = (int)json_integer_value(k);
-    int nt = 0, nr = 0;
-    int rc = column(v, "theta_deg", path, t->theta_deg, &nt, err);
-    if (rc == RD_OK)
-        rc = column(v, "radius_m", path, t->radius, &nr, err);
-    if (rc == RD_OK && nt != nr) {
-        char at[RD_ERROR_PATH_MAX];
-        rd_schema_path_join(at, sizeof at, path, "radius_m");
-        return rd_error_set(err, RD_EINVAL, at, "%s has %d values for %d angles (theta_deg).", at,
-                            nr, nt);
-    }
-    t->n_points = nt;
-    return rc;
+    return angle_table(v, path, "radius_m", t->theta_deg, t->radius, &t->n_points, err);
 }
 
 json_t *rd_free_table_echo(const rd_scene *s)
