@@ -583,7 +583,7 @@ static int lift_events(drv *d, rd_error *err)
     for (int i = 0; i < d->m.R; i++) {
         if (!d->m.lr[i])
             continue;
-        const rd_lift_run *o = rd_packring_events(d->m.lr[i]);
+        const rd_lift_pass *o = rd_packring_events(d->m.lr[i]);
         for (int e = 0; e < o->n_events; e++) { /* its absolute angles; NAN stays NAN */
             const rd_lift_event *ev = &o->events[e];
             int rc = push_event(d, i, ev->crank_deg / d->deg_per_s, ev->kind,

@@ -76,7 +76,7 @@ struct rd_packring {
     N_Vector ys, yd;             /* views on the ring's part of the pack's vectors */
     double circ;                 /* pi d */
     rd_lift_flank_track track;
-    rd_lift_run events;
+    rd_lift_pass events;
     rd_bore_map map; /* a bore map in the ring's frame (its gap at angle 0) */
     /* its Newton solver: the second-order one (rd_lift_newton.c) for a form
      * with blocks, else CVODE's dense or band LU of I - gamma J from the
@@ -343,7 +343,7 @@ rd_lift_flank_track *rd_packring_track(rd_packring *L)
     return &L->track;
 }
 
-rd_lift_run *rd_packring_events(rd_packring *L)
+rd_lift_pass *rd_packring_events(rd_packring *L)
 {
     return &L->events;
 }

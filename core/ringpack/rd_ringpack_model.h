@@ -202,7 +202,7 @@ double rd_packring_eps(const rd_packring *L);
 /* The flank-change tracker (rd_lift_track_roots) and its events (absolute
  * crank angles). */
 rd_lift_flank_track *rd_packring_track(rd_packring *L);
-rd_lift_run *rd_packring_events(rd_packring *L);
+rd_lift_pass *rd_packring_events(rd_packring *L);
 /* Its own Newton solver (M = I - gamma J of its states at fixed
  * pressures): opened once (nonzero: out of memory), set up at (t, y,
  * gamma) (y: its states; nonzero: failed, positive recoverable), and
