@@ -62,7 +62,12 @@
 
 #include "rd_ringpack_model.h"
 
+/* What a job keeps (rd_packring_create: the parameters, ring, model and
+ * form, the bore start) and what one run adds (rd_packring_open: the views,
+ * the flank tracker, the events, the Newton solver; the gas and the film
+ * of the moment). */
 struct rd_packring {
+    int kind, modes; /* its model (enum rd_lift_model_kind), a modal one's elastic modes */
     rd_ring *ring;
     rd_lift_params lp;
     double tab_deg[2], tab_top[2], tab_zero[2]; /* the stiffness rule's table */
@@ -171,41 +176,57 @@ const char *rd_ringpack_model_name(int model)
     return model == RD_RINGPACK_AXIAL ? "axial" : rd_lift_model_name(model);
 }
 
-int rd_packring_open(rd_ringpack_model *m, int i, SUNContext ctx, int *N, int *modes_out, double *k,
-                     rd_error *err)
+int rd_packring_create(const rd_ringpack_model *m, int i, rd_packring **out, rd_error *err)
 {
     const rd_ringpack_ring *pr = &m->p->rings[i];
+    int n = pr->segments, rc;
     rd_packring *L = calloc(1, sizeof *L);
+    *out = NULL;
     if (!L)
         return rd_error_set(err, RD_ENOMEM, "", "Out of memory for ring %d's lift model.", i + 1);
-    m->lr[i] = L;
+    L->kind = m->kind[i];
+    L->modes = pr->modes ? pr->modes : (12 < 6 * n - 6 ? 12 : 6 * n - 6);
     if (lift_params(m, i, L))
-        return rd_error_set(err, RD_ENOMEM, "", "Out of memory for ring %d's lift model.", i + 1);
-    int n = pr->segments;
-    int modes = pr->modes ? pr->modes : (12 < 6 * n - 6 ? 12 : 6 * n - 6);
-    int rc = rd_lift_validate(&L->lp, &pr->ring, n, err);
-    if (rc)
+        rc = rd_error_set(err, RD_ENOMEM, "", "Out of memory for ring %d's lift model.", i + 1);
+    else if ((rc = rd_lift_validate(&L->lp, &pr->ring, n, err)))
+        ;
+    else if (!(L->ring = rd_ring_create(&pr->ring, n, 0, err)))
+        rc = err ? err->code : RD_ENOMEM;
+    else if (!(rc = rd_lift_model_init(&L->m, L->ring, &L->lp, NULL, err)))
+        rc = rd_lift_form_open(&L->m, L->kind, L->modes, &L->form, err);
+    if (rc == RD_OK) {
+        L->m.gas_now = L->gas;
+        L->circ = M_PI * pr->ring.diameter;
+        L->seg = malloc(3 * (size_t)n * sizeof *L->seg);
+        L->zero = calloc((size_t)L->form.N, sizeof *L->zero);
+        L->seg_w = L->seg ? L->seg + n : NULL;
+        L->seg_0 = L->seg ? L->seg + 2 * n : NULL;
+        if (!L->seg || !L->zero)
+            rc = rd_error_set(err, RD_ENOMEM, "", "Out of memory for ring %d's lift model.", i + 1);
+        else
+            L->form.lift(L->form.user, L->zero, L->seg_0);
+    }
+    if (rc) {
+        rd_packring_free(L);
         return rc;
-    L->ring = rd_ring_create(&pr->ring, n, 0, err);
-    if (!L->ring)
-        return err ? err->code : RD_ENOMEM;
-    if ((rc = rd_lift_model_init(&L->m, L->ring, &L->lp, NULL, err)) ||
-        (rc = rd_lift_form_open(&L->m, m->kind[i], modes, &L->form, err)))
-        return rc;
-    L->m.gas_now = L->gas;
-    L->circ = M_PI * pr->ring.diameter;
-    L->seg = malloc(3 * (size_t)n * sizeof *L->seg);
-    L->zero = calloc((size_t)L->form.N, sizeof *L->zero);
-    L->seg_w = L->seg ? L->seg + n : NULL;
-    L->seg_0 = L->seg ? L->seg + 2 * n : NULL;
+    }
+    *out = L;
+    return RD_OK;
+}
+
+int rd_packring_open(rd_ringpack_model *m, int i, rd_packring *L, SUNContext ctx, int *N,
+                     int *modes, double *k, rd_error *err)
+{
+    m->lr[i] = L;
+    memset(L->gas, 0, sizeof L->gas);
+    L->m.kin_t = NAN; /* as a model just made */
     L->ys = N_VMake_Serial(L->form.N, NULL, ctx);
     L->yd = N_VMake_Serial(L->form.N, NULL, ctx);
-    if (!L->seg || !L->zero || !L->ys || !L->yd)
+    if (!L->ys || !L->yd)
         return rd_error_set(err, RD_ENOMEM, "", "Out of memory for ring %d's lift model.", i + 1);
-    L->form.lift(L->form.user, L->zero, L->seg_0);
     L->track = rd_lift_track_seated(L->m.banded, 0.0, NAN);
     *N = (int)L->form.N;
-    *modes_out = modes;
+    *modes = L->modes;
     *k = L->m.k;
     return RD_OK;
 }
@@ -219,10 +240,6 @@ void rd_packring_close(rd_packring *L)
 {
     if (!L)
         return;
-    if (L->form.close)
-        L->form.close(&L->form);
-    rd_lift_model_cleanup(&L->m);
-    rd_ring_free(L->ring);
     if (L->LS)
         SUNLinSolFree(L->LS);
     if (L->J)
@@ -231,11 +248,28 @@ void rd_packring_close(rd_packring *L)
     for (size_t k = 0; k < sizeof v / sizeof v[0]; k++)
         if (v[k])
             N_VDestroy(v[k]);
+    free(L->events.events);
+    L->LS = NULL;
+    L->S = L->J = NULL;
+    L->nw = NULL;
+    L->ys = L->yd = L->x = L->b = L->t1 = L->t2 = L->t3 = NULL;
+    L->events = (rd_lift_pass){0};
+    L->lp.film = NULL; /* the run's film (rd_packring_film) */
+}
+
+void rd_packring_free(rd_packring *L)
+{
+    if (!L)
+        return;
+    rd_packring_close(L);
+    if (L->form.close)
+        L->form.close(&L->form);
+    rd_lift_model_cleanup(&L->m);
+    rd_ring_free(L->ring);
     free(L->seg);
     free(L->zero);
     free(L->tilt);
     free(L->y0);
-    free(L->events.events);
     free(L);
 }
 
@@ -248,15 +282,17 @@ int rd_packring_initial(rd_packring *L, double atol, double *y, double *ab, rd_e
 {
     rd_lift_setup su = {0};
     const rd_ring_params *rp = rd_ring_get_params(L->ring);
-    if (rd_lift_bore_distorted(&L->lp, rp->diameter)) { /* its static equilibrium there */
-        int rc;
-        free(L->y0);
-        if (!(L->y0 = malloc(12 * (size_t)L->m.n * sizeof *L->y0)))
-            return rd_error_set(err, RD_ENOMEM, "", "Out of memory for the bore start.");
-        if ((rc = rd_lift_bore_static(L->ring, &L->lp, L->y0, err)))
+    if (rd_lift_bore_distorted(&L->lp, rp->diameter) && !L->y0) { /* its static equilibrium */
+        double *y0 = malloc(12 * (size_t)L->m.n * sizeof *y0);
+        int rc = y0 ? rd_lift_bore_static(L->ring, &L->lp, y0, err)
+                    : rd_error_set(err, RD_ENOMEM, "", "Out of memory for the bore start.");
+        if (rc) {
+            free(y0);
             return rc;
-        su.y0 = L->y0;
+        }
+        L->y0 = y0; /* the same for every run: solved once */
     }
+    su.y0 = L->y0;
     return L->form.initial(L->form.user, &su, atol, y, ab, err);
 }
 
