@@ -186,14 +186,14 @@ int rd_packring_create(const rd_ringpack_model *m, int i, rd_packring **out, rd_
         return rd_error_set(err, RD_ENOMEM, "", "Out of memory for ring %d's lift model.", i + 1);
     L->kind = m->kind[i];
     L->modes = pr->modes ? pr->modes : (12 < 6 * n - 6 ? 12 : 6 * n - 6);
-    if (lift_params(m, i, L))
-        rc = rd_error_set(err, RD_ENOMEM, "", "Out of memory for ring %d's lift model.", i + 1);
-    else if ((rc = rd_lift_validate(&L->lp, &pr->ring, n, err)))
-        ;
-    else if (!(L->ring = rd_ring_create(&pr->ring, n, 0, err)))
+    rc = lift_params(m, i, L)
+             ? rd_error_set(err, RD_ENOMEM, "", "Out of memory for ring %d's lift model.", i + 1)
+             : RD_OK;
+    rc = rc ? rc : rd_lift_validate(&L->lp, &pr->ring, n, err);
+    if (!rc && !(L->ring = rd_ring_create(&pr->ring, n, 0, err)))
         rc = err ? err->code : RD_ENOMEM;
-    else if (!(rc = rd_lift_model_init(&L->m, L->ring, &L->lp, NULL, err)))
-        rc = rd_lift_form_open(&L->m, L->kind, L->modes, &L->form, err);
+    rc = rc ? rc : rd_lift_model_init(&L->m, L->ring, &L->lp, NULL, err);
+    rc = rc ? rc : rd_lift_form_open(&L->m, L->kind, L->modes, &L->form, err);
     if (rc == RD_OK) {
         L->m.gas_now = L->gas;
         L->circ = M_PI * pr->ring.diameter;
