@@ -33,9 +33,10 @@
  *   rd_lift_partial.c what a stopped run keeps
  *   rd_lift_check.c   auto's run-time check of a rigid run on a friction
  *                     scene: the full ring over the rigid run's flights
- *   rd_lift_solve.c   the public solve (the model's choice and its check,
- *                     the accuracy driver's solves: rtol/10 and n/2, and
- *                     their comparison), on top
+ *   rd_lift_solve.c   the public handle and solve (what a scene's runs
+ *                     share, the model's choice and its check, the accuracy
+ *                     driver's solves: rtol/10 and n/2, and their
+ *                     comparison), on top
  *   rd_lift_hooks.c   the test hooks (Jacobian check, twist stiffness)
  * The piston's kinematics and tilt are core/engine's (rd_engine.h).
  *

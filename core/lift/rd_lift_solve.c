@@ -1,9 +1,11 @@
 /*
- * rd_lift_solve.c — the lift analysis' public solve (rd_lift.h): the model a
+ * rd_lift_solve.c — the lift analysis' public handle and solve (rd_lift.h):
+ * the scene checked once and what its runs share (the ring and its n/2
+ * ring, the lubricated film, a distorted bore's static starts), the model a
  * scene gets, the accuracy plan (rd_accuracy.h: the scene at rtol and again
- * at rtol/10 for the error estimate), the static start in a distorted bore,
- * the result's arrays.  The top of the lift folder: it calls the driver,
- * the static start and the partial-result keeping, nothing calls it back.
+ * at rtol/10 for the error estimate), the result's arrays.  The top of the
+ * lift folder: it calls the driver, the static start and the
+ * partial-result keeping, nothing calls it back.
  *
  * Error estimate (estimate_error): the accuracy driver (rd_accuracy.h) runs
  * the scene again at rtol/10 and atol/10; the estimate is the largest lift
@@ -102,10 +104,6 @@ static void choose_model(const rd_lift_params *p, int n, double ring_d, rd_lift_
     }
 }
 
-/* The solves of the accuracy driver and what they keep.  Level 1, the
- * reference, is the scene at rtol/10 and atol/10 (the time integration's
- * error) and, for the flexible models, the scene at n/2 segments at the
- * scene's tolerances (the segment count's error, below). */
 /* The handle (rd_lift.h): the scene, checked once, and what its runs share,
  * each made by the first run that needs it. */
 struct rd_lift {
@@ -119,6 +117,10 @@ struct rd_lift {
     double *y0, *y0_half; /* a distorted bore's static starts of n and n/2 segments */
 };
 
+/* The solves of the accuracy driver and what they keep.  Level 1, the
+ * reference, is the scene at rtol/10 and atol/10 (the time integration's
+ * error) and, for the flexible models, the scene at n/2 segments at the
+ * scene's tolerances (the segment count's error, below). */
 typedef struct lift_solve {
     rd_lift *h;
     const rd_ring *ring;

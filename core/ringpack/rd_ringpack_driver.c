@@ -3,7 +3,8 @@
  * layout in rd_ringpack.h): set-up, the flank state machine at CVODE's
  * roots, the output of the last cycle, the balance and periodicity of the
  * last two cycles, and the error estimate (rd_accuracy: the run again at
- * rtol/10, atol/10).
+ * rtol/10, atol/10); the public handle (rd_ringpack_create/run/free) that
+ * keeps the lift rings' models for its runs.
  *
  * Roots of an axial ring: a seated ring watches its net force F (it leaves
  * when F stops pressing it on the flank), a free ring watches z and a - z

@@ -7,8 +7,11 @@
  * rd_lift_model (geometry, mass, stiffness, force elements) and its form
  * (rd_lift_rigid_open, rd_lift_modal_open or the full model), built from a
  * rd_lift_params that carries the pack's engine, groove, gravity and
- * friction.  Its states are appended to the pack's (rd_ringpack_model.h)
- * and its right-hand side is the form's, called on them.
+ * friction, all made once per job (rd_packring_create: the pack's handle
+ * keeps them across its runs and accuracy levels, whose parameters differ
+ * only in what the model does not read: cycles, tolerances).  Its states
+ * are appended to the pack's (rd_ringpack_model.h) and its right-hand side
+ * is the form's, called on them.
  *
  * Gas: the lift model's gas tables are replaced by the pack's pressures of
  * the moment (rd_lift_model.gas_now), gauge against the crankcase like the
