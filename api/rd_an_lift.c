@@ -31,6 +31,9 @@ struct lift_opts {
     struct rd_table gas_table[4];    /* crank_deg, above, behind, below */
     struct rd_contact_map_scene map; /* /bore/layers or /bore/points, and the map */
     struct rd_ring_depth ring_z;     /* /bore/ring_z_tdc_m */
+    /* core's handle, made by finish (which checks the scene through it) and
+     * run by run: the scene is checked once per job */
+    rd_lift *handle;
 };
 
 #define LO(member) offsetof(struct lift_opts, member)
@@ -320,6 +323,7 @@ static void cleanup(void *opts)
         free(o->gas_table[k].v);
     rd_engine_scene_cleanup(&o->eng);
     rd_contact_map_cleanup(&o->map);
+    rd_lift_free(o->handle);
 }
 
 /* The gas tables: all four, of the same length; rd_lift_params borrows them. */
@@ -410,7 +414,8 @@ static int finish(struct rd_scene *s, rd_error *err)
         rc = map_finish(s, o, err);
     if (rc == RD_OK)
         rc = lube_finish(s, o, err);
-    return rc != RD_OK ? rc : rd_lift_validate(l, &s->ring, s->segments, err);
+    /* core's checks, and the handle run will run (it borrows the tables above) */
+    return rc != RD_OK ? rc : rd_lift_create(&s->ring, s->segments, l, &o->handle, err);
 }
 
 /* ---- result --------------------------------------------------------------- */
@@ -613,7 +618,7 @@ static int run(const rd_scene *s, const rd_monitor *mon, json_t **out, rd_error 
     const struct lift_opts *o = s->opts;
     rd_lift_result res;
     double t0 = rd_clock_s();
-    int rc = rd_lift_solve(&s->ring, s->segments, &o->lift, mon, &res, err);
+    int rc = rd_lift_run(o->handle, mon, &res, err);
     if (rc == RD_OK || res.partial) { /* a stopped run's whole cycles come with its error */
         *out = lift_result(s, &res, rd_clock_s() - t0);
         if (*out && res.lube.on &&

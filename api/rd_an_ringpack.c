@@ -42,6 +42,9 @@ struct pack_opts {
     struct rd_table face_table[RD_RINGPACK_RINGS_MAX][2];
     struct rd_contact_map_scene map; /* /bore/layers or /bore/points, and the map */
     struct rd_ring_depth ring_z;     /* /bore/ring_z_tdc_m: the top ring's */
+    /* core's handle, made by finish (which checks the scene through it) and
+     * run by run: the scene is checked once per job */
+    rd_ringpack *handle;
 };
 
 #define PO(member) offsetof(struct pack_opts, member)
@@ -584,6 +587,7 @@ static void cleanup(void *opts)
     }
     rd_engine_scene_cleanup(&o->eng);
     rd_contact_map_cleanup(&o->map);
+    rd_ringpack_free(o->handle);
 }
 
 /* A table or the synthetic trace, never both; the table's two columns alike. */
@@ -692,7 +696,8 @@ static int finish(struct rd_scene *s, rd_error *err)
             : rd_ring_depth_finish(&o->map, &o->ring_z, p->rings[0].ring.diameter, D,
                                    "the top ring's", &p->bore_map, err);
     rc = rc ? rc : lube_finish(s, o, err);
-    rc = rc ? rc : rd_ringpack_validate(&o->pack, err);
+    /* core's checks, and the handle run will run (it borrows the tables above) */
+    rc = rc ? rc : rd_ringpack_create(&o->pack, &o->handle, err);
     return rc ? rc : solver_ranges(o, err);
 }
 
@@ -701,7 +706,7 @@ static int run(const rd_scene *s, const rd_monitor *mon, json_t **out, rd_error 
     const struct pack_opts *o = s->opts;
     rd_ringpack_result res;
     double t0 = rd_clock_s();
-    int rc = rd_ringpack_solve(&o->pack, mon, &res, err);
+    int rc = rd_ringpack_run(o->handle, mon, &res, err);
     if (rc == RD_OK)
         *out = rd_ringpack_json(s, &o->pack, &res, rd_clock_s() - t0);
     if (rc == RD_OK && *out && o->map.points_given &&

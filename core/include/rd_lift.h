@@ -255,8 +255,51 @@ const char *rd_lift_model_name(int model);
 /* Checks every value, naming the scene field ("/engine/speed_rpm", ...). */
 int rd_lift_validate(const rd_lift_params *p, const rd_ring_params *ring, int segments,
                      rd_error *err);
-/* Runs; `out` is overwritten and owns its arrays (rd_lift_result_cleanup,
- * also after a failure).  The monitor reports progress and may cancel. */
+
+/*
+ * The lift analysis as a handle: validate and build once, run as often as
+ * needed.
+ *
+ * rd_lift_create checks the scene once (rd_lift_validate's messages) and
+ * builds the ring of `segments` segments (rd_ring).  What every run of the
+ * scene shares is made by the first run that needs it and kept: the
+ * lubricated model's film over the run, the ring of n/2 segments of the
+ * error estimate and of auto's check, the static start in a distorted bore.
+ * Each rd_lift_run then gives, bit for bit, what a fresh rd_lift_solve of
+ * the same scene gives.
+ *
+ * Use:
+ *     rd_lift *lift = NULL;
+ *     rd_lift_result res;
+ *     int rc = rd_lift_create(&ring, segments, &params, &lift, err);
+ *     if (rc == RD_OK)
+ *         rc = rd_lift_run(lift, mon, &res, err);  (as often as wanted)
+ *     ... res ...
+ *     rd_lift_result_cleanup(&res);                (also after a failed run)
+ *     rd_lift_free(lift);
+ *
+ * Ownership: the handle copies *ring and *p; the arrays they point to (gas
+ * tables, the tilt table, a bore map, a section's spec) are borrowed and
+ * must outlive the handle.  A handle runs one run at a time (it is not
+ * thread-safe); different handles are independent.  rd_lift_free(NULL) is a
+ * no-op.
+ */
+typedef struct rd_lift rd_lift;
+
+/* Validates (RD_EINVAL & co. with the field's path, nothing allocated) and
+ * builds; *out is NULL on failure. */
+int rd_lift_create(const rd_ring_params *ring, int segments, const rd_lift_params *p, rd_lift **out,
+                   rd_error *err);
+/* One run of the scene: `out` is overwritten and owns its arrays
+ * (rd_lift_result_cleanup, also after a failure).  The monitor reports
+ * progress and may cancel (the result then keeps its whole cycles, see
+ * rd_lift_result.partial). */
+int rd_lift_run(rd_lift *h, const rd_monitor *mon, rd_lift_result *out, rd_error *err);
+void rd_lift_free(rd_lift *h);
+
+/* rd_lift_create, rd_lift_run, rd_lift_free: one run; `out` is overwritten
+ * and owns its arrays (rd_lift_result_cleanup, also after a failure, a
+ * refused scene included). */
 int rd_lift_solve(const rd_ring_params *ring, int segments, const rd_lift_params *p,
                   const rd_monitor *mon, rd_lift_result *out, rd_error *err);
 void rd_lift_result_cleanup(rd_lift_result *r);

@@ -288,8 +288,49 @@ void rd_ringpack_params_default(rd_ringpack_params *p);
 void rd_ringpack_params_thesis(rd_ringpack_params *p);
 /* Every value, naming the scene field ("/rings/1/groove/axial_clearance"). */
 int rd_ringpack_validate(const rd_ringpack_params *p, rd_error *err);
-/* Runs; `out` is overwritten and owns its arrays (rd_ringpack_result_cleanup,
- * also after a failure).  The monitor reports progress and may cancel. */
+
+/*
+ * The ring pack as a handle: validate once, keep each ring's model.
+ *
+ * rd_ringpack_create checks the scene once (rd_ringpack_validate's
+ * messages).  The first run makes each ring that runs on a lift model
+ * (rigid, full, modal) once: its lift parameters, checked
+ * (rd_lift_validate), its rd_ring, its lift model (K, M^-1, the contact
+ * geometry) and its form (the rigid ring's twist stiffnesses, the modal
+ * basis), and in a distorted bore its static start; every later run and
+ * accuracy level (the run again at rtol/10, rd_accuracy.h) reuses them.
+ * Each rd_ringpack_run gives, bit for bit, what a fresh rd_ringpack_solve
+ * of the same scene gives.
+ *
+ * Use:
+ *     rd_ringpack *pack = NULL;
+ *     rd_ringpack_result res;
+ *     int rc = rd_ringpack_create(&params, &pack, err);
+ *     if (rc == RD_OK)
+ *         rc = rd_ringpack_run(pack, mon, &res, err);  (as often as wanted)
+ *     ... res ...
+ *     rd_ringpack_result_cleanup(&res);                (also after a failed run)
+ *     rd_ringpack_free(pack);
+ *
+ * Ownership: the handle copies *p; the arrays it points to (the cylinder
+ * table, the tilt table, a bore map, the test hook's tables) are borrowed
+ * and must outlive the handle.  A handle runs one run at a time (it is not
+ * thread-safe).  rd_ringpack_free(NULL) is a no-op.
+ */
+typedef struct rd_ringpack rd_ringpack;
+
+/* Validates (nothing allocated on failure) and makes the handle; *out is
+ * NULL on failure. */
+int rd_ringpack_create(const rd_ringpack_params *p, rd_ringpack **out, rd_error *err);
+/* One run: `out` is overwritten and owns its arrays
+ * (rd_ringpack_result_cleanup, also after a failure).  The monitor
+ * reports progress and may cancel. */
+int rd_ringpack_run(rd_ringpack *h, const rd_monitor *mon, rd_ringpack_result *out, rd_error *err);
+void rd_ringpack_free(rd_ringpack *h);
+
+/* rd_ringpack_create, rd_ringpack_run, rd_ringpack_free: one run; `out` is
+ * overwritten and owns its arrays (rd_ringpack_result_cleanup, also after
+ * a failure, a refused scene included). */
 int rd_ringpack_solve(const rd_ringpack_params *p, const rd_monitor *mon, rd_ringpack_result *out,
                       rd_error *err);
 void rd_ringpack_result_cleanup(rd_ringpack_result *r);

@@ -87,11 +87,11 @@ static int run_window(const rd_ring *ring, const rd_lift_params *p, const rd_lif
     rd_lift_setup su = {.y0 = y0, .t0_deg = t0, .t1_deg = t1, .stop_events = cnt ? cnt : 1};
     rd_lift_result res;
     memset(&res, 0, sizeof res);
-    rd_lift_run run = {.rtol = CHECK_RTOL * p->rtol,
-                       .atol = CHECK_RTOL * p->atol,
-                       .res = &res,
-                       .lift = lift,
-                       .samples = 2};
+    rd_lift_pass run = {.rtol = CHECK_RTOL * p->rtol,
+                        .atol = CHECK_RTOL * p->atol,
+                        .res = &res,
+                        .lift = lift,
+                        .samples = 2};
     double *buf[8] = {NULL};
     int rc = RD_OK;
     /* store_sample writes the result's per-sample arrays: two samples */

@@ -215,7 +215,7 @@ int rd_lift_form_open(rd_lift_model *m, int model, int modes, rd_lift_form *form
  * Its steps are bounded by 1 crank degree when a gas table may hold a
  * feature a step could pass over, else by 10 (the roots are looked at
  * least that often; the seated phases then take ~1 step per 10 deg). */
-static int small_open(driver *d, const rd_lift_setup *setup, const rd_lift_run *o, rd_error *err)
+static int small_open(driver *d, const rd_lift_setup *setup, const rd_lift_pass *o, rd_error *err)
 {
     int rc, b = d->m.banded ? 0 : +1, rootdir[N_ROOTS] = {-1, b, -1, b, 0};
     if (!d->y || !d->abstol)
@@ -232,7 +232,7 @@ static int small_open(driver *d, const rd_lift_setup *setup, const rd_lift_run *
 }
 
 static int driver_open(driver *d, const rd_ring *ring, const rd_lift_params *p,
-                       const rd_lift_setup *setup, int model, const rd_lift_run *o, rd_error *err)
+                       const rd_lift_setup *setup, int model, const rd_lift_pass *o, rd_error *err)
 {
     memset(d, 0, sizeof *d);
     int rc = rd_lift_model_init(&d->m, ring, p, setup, err);
@@ -285,7 +285,7 @@ static int driver_open(driver *d, const rd_ring *ring, const rd_lift_params *p,
 
 /* ---------------------------------------------------------------- events */
 
-static int push_event(rd_lift_run *o, double deg, int kind, double touch_deg, rd_error *err)
+static int push_event(rd_lift_pass *o, double deg, int kind, double touch_deg, rd_error *err)
 {
     if (o->n_events == o->cap_events) {
         int cap = o->cap_events ? 2 * o->cap_events : 16;
@@ -303,7 +303,7 @@ static int push_event(rd_lift_run *o, double deg, int kind, double touch_deg, rd
 /* Without a band: a seated ring leaves when the load turns away (rf[4]
  * with sign `away`) and the lift then confirms it (rf[confirm] > 0). */
 static int track_seated(flank_track *tr, const int *rf, int away, int confirm, int kind, double t,
-                        double deg_per_s, rd_lift_run *o, rd_error *err)
+                        double deg_per_s, rd_lift_pass *o, rd_error *err)
 {
     if (rf[4] == away)
         tr->cand = t;
@@ -321,7 +321,7 @@ static int track_seated(flank_track *tr, const int *rf, int away, int confirm, i
 /* The mean lift reached the flank it is in the band of (state): the
  * landing's touch, and the leave watch from there (a ring landing against
  * its load leaves again). */
-static void touch_flank(flank_track *tr, double t, double deg_per_s, double fz, rd_lift_run *o)
+static void touch_flank(flank_track *tr, double t, double deg_per_s, double fz, rd_lift_pass *o)
 {
     int away = tr->state == RD_FLANK_UPPER ? -1 : +1;
     tr->touched = 1;
@@ -335,7 +335,7 @@ static void touch_flank(flank_track *tr, double t, double deg_per_s, double fz, 
  * moves out; touch_deg where it reached the flank, or left it (the load
  * turning away while it touched, else the band's edge). */
 static int track_band(flank_track *tr, const int *rf, double t, double deg_per_s, double fz,
-                      rd_lift_run *o, rd_error *err)
+                      rd_lift_pass *o, rd_error *err)
 {
     if (tr->state == RD_FLANK_FREE) {
         int upper = rf[3] < 0;
@@ -369,7 +369,7 @@ static int track_band(flank_track *tr, const int *rf, double t, double deg_per_s
 }
 
 int rd_lift_track_roots(flank_track *tr, const int *rf, double t, double deg_per_s, double fz,
-                        rd_lift_run *o, rd_error *err)
+                        rd_lift_pass *o, rd_error *err)
 {
     if (tr->banded)
         return track_band(tr, rf, t, deg_per_s, fz, o, err);
@@ -521,7 +521,7 @@ static int step_error(driver *d, int flag, rd_error *err)
 
 /* Integrates to tout in chunks of d->chunk steps, handling the roots on the
  * way and asking the monitor between chunks (at progress `frac`). */
-static int advance(driver *d, double tout, flank_track *tr, rd_lift_run *o, const rd_monitor *mon,
+static int advance(driver *d, double tout, flank_track *tr, rd_lift_pass *o, const rd_monitor *mon,
                    double frac, rd_error *err)
 {
     double *yy = N_VGetArrayPointer(d->y), t = 0.0;
@@ -583,7 +583,7 @@ static int may_stick(driver *d, const flank_track *tr, double t)
 /* advance(), or the sticking phase to tout while the ring sticks: at its
  * end (the load turned away) the leave candidate is dated and CVODE
  * restarts from the quasi-static state, its counters carried over. */
-static int advance_or_stick(driver *d, double tout, flank_track *tr, rd_lift_run *o,
+static int advance_or_stick(driver *d, double tout, flank_track *tr, rd_lift_pass *o,
                             const rd_monitor *mon, double frac, rd_error *err)
 {
     double tl = 0.0;
@@ -638,7 +638,7 @@ static void store_bore(rd_lift_model *c, rd_lift_result *res, int k, double tout
 }
 
 /* The outputs of sample k at time tout (state in d->y). */
-static void store_sample(driver *d, int k, double deg, double tout, rd_lift_run *o,
+static void store_sample(driver *d, int k, double deg, double tout, rd_lift_pass *o,
                          const rd_lift_setup *setup)
 {
     rd_lift_model *c = &d->m;
@@ -705,7 +705,7 @@ static int store_counters(driver *d, rd_lift_result *r, rd_error *err)
 }
 
 int rd_lift_integrate(const rd_ring *ring, const rd_lift_params *p, const rd_lift_setup *setup,
-                      int model, const rd_monitor *mon, rd_lift_run *o, rd_error *err)
+                      int model, const rd_monitor *mon, rd_lift_pass *o, rd_error *err)
 {
     driver d;
     int rc = driver_open(&d, ring, p, setup, model, o, err);

@@ -33,9 +33,10 @@
  *   rd_lift_partial.c what a stopped run keeps
  *   rd_lift_check.c   auto's run-time check of a rigid run on a friction
  *                     scene: the full ring over the rigid run's flights
- *   rd_lift_solve.c   the public solve (the model's choice and its check,
- *                     the accuracy driver's solves: rtol/10 and n/2, and
- *                     their comparison), on top
+ *   rd_lift_solve.c   the public handle and solve (what a scene's runs
+ *                     share, the model's choice and its check, the accuracy
+ *                     driver's solves: rtol/10 and n/2, and their
+ *                     comparison), on top
  *   rd_lift_hooks.c   the test hooks (Jacobian check, twist stiffness)
  * The piston's kinematics and tilt are core/engine's (rd_engine.h).
  *
@@ -311,7 +312,7 @@ int rd_lift_form_open(rd_lift_model *m, int model, int modes, rd_lift_form *form
  * (optional) receives the per-sample results and the counters, `lift`
  * (samples values) the mean lift, *events / *n_events the flank changes
  * (owned by the caller after the call, also on failure) (rd_lift_driver.c). */
-typedef struct rd_lift_run {
+typedef struct rd_lift_pass {
     double rtol, atol;
     int modes; /* elastic modes of the modal model */
     int dof;   /* out: degrees of freedom integrated (states / 2) */
@@ -325,9 +326,9 @@ typedef struct rd_lift_run {
     int samples;
     rd_lift_event *events;
     int n_events, cap_events;
-} rd_lift_run;
+} rd_lift_pass;
 int rd_lift_integrate(const rd_ring *ring, const rd_lift_params *p, const rd_lift_setup *setup,
-                      int model, const rd_monitor *mon, rd_lift_run *run, rd_error *err);
+                      int model, const rd_monitor *mon, rd_lift_pass *run, rd_error *err);
 
 /* The run-time check of a rigid run's flank changes against the full ring
  * over its flights (rd_lift_check.c): worst_deg the largest move of a
@@ -357,7 +358,7 @@ int rd_lift_check_rigid(const rd_ring *ring, const rd_lift_params *p, const rd_l
  * RD_ETIMEOUT) keeps its whole cycles in `out` (partial = 1, samples cut to
  * the last whole cycle, warning); returns RD_OK for RD_ELIMIT with at least
  * one whole cycle (err cleared), else `why` (rd_lift_partial.c). */
-int rd_lift_keep_partial(rd_lift_result *out, const rd_lift_params *p, const rd_lift_run *r,
+int rd_lift_keep_partial(rd_lift_result *out, const rd_lift_params *p, const rd_lift_pass *r,
                          int why, rd_error *err);
 /* A run stopped in its error-estimate run (`why`: a stop, or RD_ELIMIT at
  * `reached_deg`): every cycle, no estimate; returns RD_OK for RD_ELIMIT (err
@@ -381,6 +382,6 @@ typedef struct rd_lift_flank_track {
 /* A ring seated at rest on its lower flank; fz its load at time t. */
 rd_lift_flank_track rd_lift_track_seated(int banded, double fz, double t);
 int rd_lift_track_roots(rd_lift_flank_track *tr, const int *rf, double t, double deg_per_s,
-                        double fz, rd_lift_run *run, rd_error *err);
+                        double fz, rd_lift_pass *run, rd_error *err);
 
 #endif

@@ -23,7 +23,7 @@
  * those cycles) or RD_ECANCELED (the monitor asked to stop: a cancel or a
  * time limit; the stop stands and the cycles come with it).  Returns the
  * code the run ends with; err keeps the stop's message unless it succeeds. */
-int rd_lift_keep_partial(rd_lift_result *out, const rd_lift_params *p, const rd_lift_run *r,
+int rd_lift_keep_partial(rd_lift_result *out, const rd_lift_params *p, const rd_lift_pass *r,
                          int why, rd_error *err)
 {
     double step = p->step_deg, stored = (r->done - 1) * step;

@@ -1,9 +1,11 @@
 /*
- * rd_lift_solve.c — the lift analysis' public solve (rd_lift.h): the model a
+ * rd_lift_solve.c — the lift analysis' public handle and solve (rd_lift.h):
+ * the scene checked once and what its runs share (the ring and its n/2
+ * ring, the lubricated film, a distorted bore's static starts), the model a
  * scene gets, the accuracy plan (rd_accuracy.h: the scene at rtol and again
- * at rtol/10 for the error estimate), the static start in a distorted bore,
- * the result's arrays.  The top of the lift folder: it calls the driver,
- * the static start and the partial-result keeping, nothing calls it back.
+ * at rtol/10 for the error estimate), the result's arrays.  The top of the
+ * lift folder: it calls the driver, the static start and the
+ * partial-result keeping, nothing calls it back.
  *
  * Error estimate (estimate_error): the accuracy driver (rd_accuracy.h) runs
  * the scene again at rtol/10 and atol/10; the estimate is the largest lift
@@ -102,26 +104,46 @@ static void choose_model(const rd_lift_params *p, int n, double ring_d, rd_lift_
     }
 }
 
+/* The handle (rd_lift.h): the scene, checked once, and what its runs share,
+ * each made by the first run that needs it. */
+struct rd_lift {
+    rd_ring_params rp;
+    rd_lift_params p; /* p.film: the film below once it is solved */
+    int segments;
+    rd_ring *ring;        /* n segments (rd_lift_create) */
+    rd_ring *half;        /* n/2 segments: the segment-count estimate, auto's check */
+    rd_film film;         /* the lubricated model's film over the run */
+    rd_film_track track;  /* (track.pt: solved) */
+    double *y0, *y0_half; /* a distorted bore's static starts of n and n/2 segments */
+};
+
 /* The solves of the accuracy driver and what they keep.  Level 1, the
  * reference, is the scene at rtol/10 and atol/10 (the time integration's
  * error) and, for the flexible models, the scene at n/2 segments at the
  * scene's tolerances (the segment count's error, below). */
 typedef struct lift_solve {
+    rd_lift *h;
     const rd_ring *ring;
     const rd_ring *half; /* n/2 segments; NULL: no segment-count estimate */
     const rd_lift_params *p;
     const rd_lift_setup *setup, *setup_half;
     rd_lift_result *out;
-    rd_lift_run run[3]; /* the scene; rtol/10, atol/10; n/2 segments */
-    int main_done;      /* level 0 ran every cycle */
-    int check;          /* auto with friction: the rigid run is checked (check_rigid) */
+    rd_lift_pass run[3]; /* the scene; rtol/10, atol/10; n/2 segments */
+    int main_done;       /* level 0 ran every cycle */
+    int check;           /* auto with friction: the rigid run is checked (check_rigid) */
     const rd_ring_params *rp;
-    rd_ring *half_owned;   /* the n/2 ring (owned) */
     double *states;        /* the checked rigid run's state at every sample (6 each) */
     int states_next;       /* the sample keep_state stores next */
-    double *y0;            /* the bore starts of n and n/2 segments (owned) */
-    rd_lift_setup su, suh; /* the set-ups with those starts */
+    rd_lift_setup su, suh; /* the set-ups with the bore starts */
 } lift_solve;
+
+/* The handle's ring of n/2 segments, made at the first need. */
+static rd_ring *half_of(rd_lift *h, rd_error *err)
+{
+    if (!h->half)
+        h->half = rd_ring_create(&h->rp, h->segments / 2, 0, err);
+    return h->half;
+}
 
 /* The rigid run's states for the check's window starts (rd_lift_setup.state:
  * called once per output sample, in order; counted, not taken from t, whose
@@ -146,7 +168,7 @@ static void keep_state(void *ctx, double t, const double *y, int N)
 static int run_check(lift_solve *s, const rd_ring *ring, const rd_monitor *mon, double *flex,
                      rd_lift_check *ck, rd_error *err)
 {
-    const rd_lift_run *r = &s->run[0];
+    const rd_lift_pass *r = &s->run[0];
     rd_lift_model m;
     rd_lift_form form = {0};
     int rc = rd_lift_model_init(&m, ring, s->p, NULL, err);
@@ -170,7 +192,7 @@ static int check_half(lift_solve *s, const rd_monitor *mon, const double *fn, rd
     int n = out->segments, nh = n / 2, ne = s->run[0].n_events, rc;
     if (!s->p->estimate_error || nh < HALF_SEGMENTS_MIN)
         return RD_OK;
-    rd_ring *half = rd_ring_create(s->rp, nh, 0, err);
+    rd_ring *half = half_of(s->h, err);
     double *fh = malloc((size_t)(ne > 0 ? ne : 1) * sizeof *fh);
     rd_lift_check ck = {NAN, 0, 0, 0};
     rc = !half || !fh ? rd_error_set(err, RD_ENOMEM, "", "Out of memory for the auto check.")
@@ -178,7 +200,6 @@ static int check_half(lift_solve *s, const rd_monitor *mon, const double *fn, rd
     double dn = rc == RD_OK && isfinite(ck.worst_deg) ? 0.0 : NAN;
     for (int j = 0; isfinite(dn) && j < ne; j++)
         dn = fmax(dn, fabs(fn[j] - fh[j]));
-    rd_ring_free(half);
     free(fh);
     if (rc == RD_ECANCELED || rc == RD_ETIMEOUT || rc == RD_ENOMEM)
         return rc;
@@ -254,7 +275,7 @@ static int check_rigid(lift_solve *s, const rd_monitor *mon, rd_error *err)
 
 static int solve_run(lift_solve *s, int k, const rd_monitor *mon, rd_error *err)
 {
-    rd_lift_run *r = &s->run[k];
+    rd_lift_pass *r = &s->run[k];
     double scale = k == 1 ? 0.1 : 1.0;
     r->rtol = scale * s->p->rtol;
     r->atol = scale * s->p->atol;
@@ -292,10 +313,8 @@ static int half_ring(lift_solve *s, rd_error *err)
     int nh = s->out->segments / 2;
     if (!s->p->estimate_error || nh < HALF_SEGMENTS_MIN || s->half || (s->setup && s->setup->y0))
         return RD_OK;
-    s->half_owned = rd_ring_create(s->rp, nh, 0, err);
-    if (!s->half_owned)
+    if (!(s->half = half_of(s->h, err)))
         return err && err->code ? err->code : RD_ENOMEM;
-    s->half = s->half_owned;
     s->run[2].samples = s->run[0].samples;
     s->run[2].lift = malloc((size_t)s->run[2].samples * sizeof(double));
     if (!s->run[2].lift)
@@ -335,7 +354,7 @@ static int solve_level(void *ctx, int level, const rd_monitor *mon, rd_error *er
                      "full ring, but it failed (%.150s): the full ring ran",
                      err->message);
         rd_error_init(err);
-        rd_lift_run *r = &s->run[0];
+        rd_lift_pass *r = &s->run[0];
         free(r->events);
         r->events = NULL;
         r->n_events = r->cap_events = r->done = 0;
@@ -357,7 +376,7 @@ static int solve_level(void *ctx, int level, const rd_monitor *mon, rd_error *er
 /* Largest lift difference of two runs, m, and the largest angle change of
  * their matched flank changes, deg (NAN when they differ in number or kind:
  * the estimate cannot pair them). */
-static void run_diff(const rd_lift_run *a, const rd_lift_run *b, double *lift, double *deg)
+static void run_diff(const rd_lift_pass *a, const rd_lift_pass *b, double *lift, double *deg)
 {
     double e = 0.0, de = a->n_events == b->n_events ? 0.0 : NAN;
     for (int k = 0; k < a->samples; k++)
@@ -484,109 +503,182 @@ static int prepare(lift_solve *s, int S, rd_error *err)
     return out->model != RD_LIFT_MODEL_RIGID ? half_ring(s, err) : RD_OK;
 }
 
+/* A distorted bore's static start of `ring` into *y0 (12 n values), solved
+ * at the first need and kept by the handle. */
+static int bore_y0(lift_solve *s, const rd_ring *ring, double **y0, rd_error *err)
+{
+    if (*y0)
+        return RD_OK;
+    double *y = malloc(12 * (size_t)rd_ring_get_segments(ring) * sizeof *y);
+    if (!y)
+        return rd_error_set(err, RD_ENOMEM, "", "Out of memory for the bore start.");
+    int rc = rd_lift_bore_static(ring, s->p, y, err);
+    if (rc) {
+        free(y);
+        return rc;
+    }
+    *y0 = y;
+    return RD_OK;
+}
+
 /* A distorted bore: every run starts from its ring's static equilibrium in it. */
 static int bore_start(lift_solve *s, rd_error *err)
 {
-    int n = s->out->segments, nh = s->half ? rd_ring_get_segments(s->half) : 0, rc;
+    int rc;
     s->su = s->setup ? *s->setup : (rd_lift_setup){0};
     s->suh = s->su;
     s->setup_half = s->setup;
     if (!rd_lift_bore_distorted(s->p, s->rp->diameter) || s->su.y0)
         return RD_OK;
-    s->y0 = malloc(12 * (size_t)(n + nh) * sizeof *s->y0);
-    if (!s->y0)
-        return rd_error_set(err, RD_ENOMEM, "", "Out of memory for the bore start.");
-    if ((rc = rd_lift_bore_static(s->ring, s->p, s->y0, err)) ||
-        (s->half && (rc = rd_lift_bore_static(s->half, s->p, s->y0 + 12 * n, err))))
+    if ((rc = bore_y0(s, s->ring, &s->h->y0, err)) ||
+        (s->half && (rc = bore_y0(s, s->half, &s->h->y0_half, err))))
         return rc;
-    s->su.y0 = s->y0;
-    s->suh.y0 = s->y0 + 12 * n;
+    s->su.y0 = s->h->y0;
+    s->suh.y0 = s->h->y0_half;
     s->setup = &s->su;
     s->setup_half = &s->suh;
     return RD_OK;
 }
 
-int rd_lift_solve_setup(const rd_ring_params *rp, int segments, const rd_lift_params *p,
-                        const rd_lift_setup *setup, const rd_monitor *mon, rd_lift_result *out,
-                        rd_error *err)
+/* The lubricated model's film over the run (rd_lift_film.c), solved by the
+ * handle's first run and given to every run through p.film. */
+static int film_once(rd_lift *h, rd_error *err)
 {
-    lift_solve s = {.p = p, .setup = setup, .out = out};
-    int rc;
-    rd_film film = {0};
-    rd_film_track track = {0};
-    rd_lift_params pl;
+    if (h->p.friction.model != RD_FRICTION_LUBRICATED || h->p.film)
+        return RD_OK;
+    int rc = rd_lift_film_run(&h->rp, &h->p, &h->film, &h->track, err);
+    if (rc) {
+        rd_film_track_free(&h->track);
+        rd_film_free(&h->film);
+        return rc;
+    }
+    h->p.film = &h->track;
+    return RD_OK;
+}
+
+static void result_init(rd_lift_result *out)
+{
     memset(out, 0, sizeof *out);
     out->error_estimate = NAN;
     out->event_error_deg = NAN;
     out->event_error_time_deg = NAN;
     out->event_error_segments_deg = NAN;
     out->event_error_model_deg = NAN;
-    if ((rc = rd_lift_validate(p, rp, segments, err)))
-        return rc;
-    if (p->friction.model == RD_FRICTION_LUBRICATED && !p->film) {
-        /* the film over the run, once, for every run of this solve */
-        if ((rc = rd_lift_film_run(rp, p, &film, &track, err))) {
-            rd_film_track_free(&track);
-            rd_film_free(&film);
-            return rc;
-        }
-        pl = *p;
-        pl.film = &track;
-        p = s.p = &pl;
-    }
-    rd_ring *ring = rd_ring_create(rp, segments, 0, err);
-    if (!ring) {
-        rd_film_track_free(&track);
-        rd_film_free(&film);
-        return err ? err->code : RD_ENOMEM;
-    }
-    s.ring = ring;
-    int S = rd_lift_samples(p);
-    if ((rc = result_alloc(out, p, S, segments, err)))
-        goto out;
-    choose_model(p, segments, rp->diameter, out);
-    s.rp = rp;
-    if ((rc = prepare(&s, S, err)) || (rc = bore_start(&s, err)))
-        goto out;
+}
+
+/* The accuracy plan's runs (solve_level, compare_levels) and the result's
+ * events and film. */
+static int run_plan(lift_solve *s, const rd_monitor *mon, rd_error *err)
+{
+    rd_lift *h = s->h;
+    const rd_lift_params *p = s->p;
+    rd_lift_result *out = s->out;
     /* the reference run at rtol/10 typically costs 1.5-2x the main run, the n/2 one ~0.5x */
     rd_accuracy_plan plan = {.solve = solve_level,
                              .compare = compare_levels,
-                             .ctx = &s,
+                             .ctx = s,
                              .estimate = p->estimate_error,
-                             .main_share = s.half ? 0.3 : 0.4,
-                             .reference = s.half ? "rtol/10 and atol/10, and at n/2 segments"
-                                                 : "rtol/10 and atol/10"};
-    rc = rd_accuracy_run(&plan, mon, NULL, err);
-    if ((rc == RD_ECANCELED || rc == RD_ETIMEOUT || rc == RD_ELIMIT) && s.main_done)
-        rc = rd_lift_estimate_stopped(out, p, rc, fmax(s.run[1].reached_deg, s.run[2].reached_deg),
-                                      err);
-    if (out->model == RD_LIFT_MODEL_MODAL && s.run[0].dof > 0)
-        out->dof = s.run[0].dof; /* with the correction shapes kept */
-    out->n_events = s.run[0].n_events;
-    out->events = s.run[0].events;
-    s.run[0].events = NULL;
+                             .main_share = s->half ? 0.3 : 0.4,
+                             .reference = s->half ? "rtol/10 and atol/10, and at n/2 segments"
+                                                  : "rtol/10 and atol/10"};
+    int rc = rd_accuracy_run(&plan, mon, NULL, err);
+    if ((rc == RD_ECANCELED || rc == RD_ETIMEOUT || rc == RD_ELIMIT) && s->main_done)
+        rc = rd_lift_estimate_stopped(out, p, rc,
+                                      fmax(s->run[1].reached_deg, s->run[2].reached_deg), err);
+    if (out->model == RD_LIFT_MODEL_MODAL && s->run[0].dof > 0)
+        out->dof = s->run[0].dof; /* with the correction shapes kept */
+    out->n_events = s->run[0].n_events;
+    out->events = s->run[0].events;
+    s->run[0].events = NULL;
     if (rc == RD_OK && !out->partial)
         out->crank_deg_reached = 720.0 * p->engine.cycles;
     while (out->partial && out->n_events > 0 &&
            out->events[out->n_events - 1].crank_deg > out->crank_deg[out->samples - 1])
         out->n_events--; /* events after the last whole cycle */
-    if (track.pt && (rc == RD_OK || out->partial)) {
-        int frc = rd_lift_film_result(rp, p, &film, &track, out, err);
+    if (h->track.pt && (rc == RD_OK || out->partial)) {
+        int frc = rd_lift_film_result(&h->rp, p, &h->film, &h->track, out, err);
         if (frc == RD_OK && p->estimate_error)
-            frc = rd_lift_film_estimate(rp, p, out, err);
+            frc = rd_lift_film_estimate(&h->rp, p, out, err);
         rc = rc == RD_OK ? frc : rc;
     }
+    return rc;
+}
+
+/* One run of the handle's scene with a test's set-up (NULL: the scene's). */
+static int run_setup(rd_lift *h, const rd_lift_setup *setup, const rd_monitor *mon,
+                     rd_lift_result *out, rd_error *err)
+{
+    lift_solve s = {.h = h, .ring = h->ring, .rp = &h->rp, .setup = setup, .out = out};
+    result_init(out);
+    int rc = film_once(h, err);
+    if (rc)
+        return rc;
+    s.p = &h->p;
+    int S = rd_lift_samples(s.p);
+    if ((rc = result_alloc(out, s.p, S, h->segments, err)))
+        goto out;
+    choose_model(s.p, h->segments, h->rp.diameter, out);
+    if ((rc = prepare(&s, S, err)) || (rc = bore_start(&s, err)))
+        goto out;
+    rc = run_plan(&s, mon, err);
 out:
-    rd_film_track_free(&track);
-    rd_film_free(&film);
     for (int l = 0; l < 3; l++) {
         free(s.run[l].lift);
         free(s.run[l].events);
     }
-    rd_ring_free(ring);
-    rd_ring_free(s.half_owned);
     free(s.states);
-    free(s.y0);
+    return rc;
+}
+
+int rd_lift_create(const rd_ring_params *ring, int segments, const rd_lift_params *p, rd_lift **out,
+                   rd_error *err)
+{
+    *out = NULL;
+    int rc = rd_lift_validate(p, ring, segments, err);
+    if (rc)
+        return rc;
+    rd_lift *h = calloc(1, sizeof *h);
+    if (!h)
+        return rd_error_set(err, RD_ENOMEM, "", "Out of memory for the lift analysis.");
+    h->rp = *ring;
+    h->p = *p;
+    h->segments = segments;
+    if (!(h->ring = rd_ring_create(&h->rp, segments, 0, err))) {
+        rd_lift_free(h);
+        return err && err->code ? err->code : RD_ENOMEM;
+    }
+    *out = h;
+    return RD_OK;
+}
+
+int rd_lift_run(rd_lift *h, const rd_monitor *mon, rd_lift_result *out, rd_error *err)
+{
+    return run_setup(h, NULL, mon, out, err);
+}
+
+void rd_lift_free(rd_lift *h)
+{
+    if (!h)
+        return;
+    rd_ring_free(h->ring);
+    rd_ring_free(h->half);
+    rd_film_track_free(&h->track);
+    rd_film_free(&h->film);
+    free(h->y0);
+    free(h->y0_half);
+    free(h);
+}
+
+int rd_lift_solve_setup(const rd_ring_params *rp, int segments, const rd_lift_params *p,
+                        const rd_lift_setup *setup, const rd_monitor *mon, rd_lift_result *out,
+                        rd_error *err)
+{
+    rd_lift *h = NULL;
+    result_init(out);
+    int rc = rd_lift_create(rp, segments, p, &h, err);
+    if (rc == RD_OK)
+        rc = run_setup(h, setup, mon, out, err);
+    rd_lift_free(h);
     return rc;
 }
 

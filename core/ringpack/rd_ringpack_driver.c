@@ -3,7 +3,8 @@
  * layout in rd_ringpack.h): set-up, the flank state machine at CVODE's
  * roots, the output of the last cycle, the balance and periodicity of the
  * last two cycles, and the error estimate (rd_accuracy: the run again at
- * rtol/10, atol/10).
+ * rtol/10, atol/10); the public handle (rd_ringpack_create/run/free) that
+ * keeps the lift rings' models for its runs.
  *
  * Roots of an axial ring: a seated ring watches its net force F (it leaves
  * when F stops pressing it on the flank), a free ring watches z and a - z
@@ -55,9 +56,18 @@ typedef struct band_state {
     double cand;
 } band_state;
 
+/* The handle (rd_ringpack.h): the scene, checked once, and each lift
+ * ring's model, made by the first run and kept for the next runs and
+ * levels. */
+struct rd_ringpack {
+    rd_ringpack_params p;
+    rd_packring *ring[RD_RINGPACK_RINGS_MAX];
+};
+
 typedef struct drv {
     rd_ringpack_model m;
-    rd_cvode cs; /* the context and CVODE's memory (cs.cv) */
+    rd_packring **rings; /* the handle's */
+    rd_cvode cs;         /* the context and CVODE's memory (cs.cv) */
     N_Vector y, abstol;
     SUNMatrix A;
     SUNLinearSolver LS;
@@ -226,7 +236,9 @@ static int open_rings(drv *d, rd_error *err)
         r->ring_dof[i] = m->p->rings[i].pinned == RD_PIN_FREE ? 1 : 0;
         if (m->kind[i] == RD_RINGPACK_AXIAL)
             continue;
-        if ((rc = rd_packring_open(m, i, d->cs.ctx, &n, &modes, &k, err)))
+        if (!d->rings[i] && (rc = rd_packring_create(m, i, &d->rings[i], err)))
+            return rc;
+        if ((rc = rd_packring_open(m, i, d->rings[i], d->cs.ctx, &n, &modes, &k, err)))
             return rc;
         m->off[i] = m->N;
         m->N += n;
@@ -583,7 +595,7 @@ static int lift_events(drv *d, rd_error *err)
     for (int i = 0; i < d->m.R; i++) {
         if (!d->m.lr[i])
             continue;
-        const rd_lift_run *o = rd_packring_events(d->m.lr[i]);
+        const rd_lift_pass *o = rd_packring_events(d->m.lr[i]);
         for (int e = 0; e < o->n_events; e++) { /* its absolute angles; NAN stays NAN */
             const rd_lift_event *ev = &o->events[e];
             int rc = push_event(d, i, ev->crank_deg / d->deg_per_s, ev->kind,
@@ -595,12 +607,13 @@ static int lift_events(drv *d, rd_error *err)
     return RD_OK;
 }
 
-/* One run at (rtol, atol) into r. */
-static int run_once(const rd_ringpack_params *p, double rtol, double atol, const rd_monitor *mon,
-                    rd_ringpack_result *r, rd_error *err)
+/* One run of p at (rtol, atol) into r, on the handle's lift rings. */
+static int run_once(rd_ringpack *h, const rd_ringpack_params *p, double rtol, double atol,
+                    const rd_monitor *mon, rd_ringpack_result *r, rd_error *err)
 {
     drv d;
     memset(&d, 0, sizeof d);
+    d.rings = h->ring;
     d.rec.res = r;
     d.rec.C = (int)p->engine.cycles;
     d.rec.S = (int)lround(720.0 / p->step_deg);
@@ -619,20 +632,24 @@ static int run_once(const rd_ringpack_params *p, double rtol, double atol, const
 /* ------------------------------------------------------- accuracy driver */
 
 typedef struct acc {
+    rd_ringpack *h;
     const rd_ringpack_params *p;
     rd_ringpack_result *out, ref;
 } acc;
 
+/* Level 1 differs from level 0 in the cycles, the periodic rule and the
+ * tolerances only: the lift rings' models (which read none of them) are
+ * the same. */
 static int acc_solve(void *ctx, int level, const rd_monitor *mon, rd_error *err)
 {
     acc *a = ctx;
     if (!level)
-        return run_once(a->p, a->p->rtol, a->p->atol, mon, a->out, err);
+        return run_once(a->h, a->p, a->p->rtol, a->p->atol, mon, a->out, err);
     rd_ringpack_params q = *a->p; /* as many cycles as the run it checks */
     q.periodic = 0;
     q.engine.cycles = a->out->cycles;
     q.estimate_error = 0; /* the films' own estimate is the main run's */
-    return run_once(&q, q.rtol * 0.1, q.atol * 0.1, mon, &a->ref, err);
+    return run_once(a->h, &q, q.rtol * 0.1, q.atol * 0.1, mon, &a->ref, err);
 }
 
 /* The estimate: the larger of the blow-by's relative change and the
@@ -663,23 +680,57 @@ static int acc_compare(void *ctx, rd_error *err)
     return RD_OK;
 }
 
-int rd_ringpack_solve(const rd_ringpack_params *p, const rd_monitor *mon, rd_ringpack_result *out,
-                      rd_error *err)
+static void result_init(rd_ringpack_result *out)
 {
     memset(out, 0, sizeof *out);
     out->error_estimate = out->event_error_deg = NAN;
+}
+
+int rd_ringpack_create(const rd_ringpack_params *p, rd_ringpack **out, rd_error *err)
+{
+    *out = NULL;
     int rc = rd_ringpack_validate(p, err);
     if (rc)
         return rc;
-    acc a = {p, out, {0}};
+    if (!(*out = calloc(1, sizeof **out)))
+        return rd_error_set(err, RD_ENOMEM, "", "Out of memory for the ring pack.");
+    (*out)->p = *p;
+    return RD_OK;
+}
+
+int rd_ringpack_run(rd_ringpack *h, const rd_monitor *mon, rd_ringpack_result *out, rd_error *err)
+{
+    result_init(out);
+    acc a = {h, &h->p, out, {0}};
     rd_accuracy_plan plan = {.solve = acc_solve,
                              .compare = acc_compare,
                              .ctx = &a,
-                             .estimate = p->estimate_error,
+                             .estimate = h->p.estimate_error,
                              .main_share = 0.5,
                              .reference = "rtol/10, atol/10"};
-    rc = rd_accuracy_run(&plan, mon, NULL, err);
+    int rc = rd_accuracy_run(&plan, mon, NULL, err);
     rd_ringpack_result_cleanup(&a.ref);
+    return rc;
+}
+
+void rd_ringpack_free(rd_ringpack *h)
+{
+    if (!h)
+        return;
+    for (int i = 0; i < RD_RINGPACK_RINGS_MAX; i++)
+        rd_packring_free(h->ring[i]);
+    free(h);
+}
+
+int rd_ringpack_solve(const rd_ringpack_params *p, const rd_monitor *mon, rd_ringpack_result *out,
+                      rd_error *err)
+{
+    rd_ringpack *h = NULL;
+    result_init(out);
+    int rc = rd_ringpack_create(p, &h, err);
+    if (rc == RD_OK)
+        rc = rd_ringpack_run(h, mon, out, err);
+    rd_ringpack_free(h);
     return rc;
 }
 

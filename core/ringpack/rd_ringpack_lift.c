@@ -7,8 +7,11 @@
  * rd_lift_model (geometry, mass, stiffness, force elements) and its form
  * (rd_lift_rigid_open, rd_lift_modal_open or the full model), built from a
  * rd_lift_params that carries the pack's engine, groove, gravity and
- * friction.  Its states are appended to the pack's (rd_ringpack_model.h)
- * and its right-hand side is the form's, called on them.
+ * friction, all made once per job (rd_packring_create: the pack's handle
+ * keeps them across its runs and accuracy levels, whose parameters differ
+ * only in what the model does not read: cycles, tolerances).  Its states
+ * are appended to the pack's (rd_ringpack_model.h) and its right-hand side
+ * is the form's, called on them.
  *
  * Gas: the lift model's gas tables are replaced by the pack's pressures of
  * the moment (rd_lift_model.gas_now), gauge against the crankcase like the
@@ -62,7 +65,12 @@
 
 #include "rd_ringpack_model.h"
 
+/* What a job keeps (rd_packring_create: the parameters, ring, model and
+ * form, the bore start) and what one run adds (rd_packring_open: the views,
+ * the flank tracker, the events, the Newton solver; the gas and the film
+ * of the moment). */
 struct rd_packring {
+    int kind, modes; /* its model (enum rd_lift_model_kind), a modal one's elastic modes */
     rd_ring *ring;
     rd_lift_params lp;
     double tab_deg[2], tab_top[2], tab_zero[2]; /* the stiffness rule's table */
@@ -76,7 +84,7 @@ struct rd_packring {
     N_Vector ys, yd;             /* views on the ring's part of the pack's vectors */
     double circ;                 /* pi d */
     rd_lift_flank_track track;
-    rd_lift_run events;
+    rd_lift_pass events;
     rd_bore_map map; /* a bore map in the ring's frame (its gap at angle 0) */
     /* its Newton solver: the second-order one (rd_lift_newton.c) for a form
      * with blocks, else CVODE's dense or band LU of I - gamma J from the
@@ -171,41 +179,57 @@ const char *rd_ringpack_model_name(int model)
     return model == RD_RINGPACK_AXIAL ? "axial" : rd_lift_model_name(model);
 }
 
-int rd_packring_open(rd_ringpack_model *m, int i, SUNContext ctx, int *N, int *modes_out, double *k,
-                     rd_error *err)
+int rd_packring_create(const rd_ringpack_model *m, int i, rd_packring **out, rd_error *err)
 {
     const rd_ringpack_ring *pr = &m->p->rings[i];
+    int n = pr->segments, rc;
     rd_packring *L = calloc(1, sizeof *L);
+    *out = NULL;
     if (!L)
         return rd_error_set(err, RD_ENOMEM, "", "Out of memory for ring %d's lift model.", i + 1);
+    L->kind = m->kind[i];
+    L->modes = pr->modes ? pr->modes : (12 < 6 * n - 6 ? 12 : 6 * n - 6);
+    rc = lift_params(m, i, L)
+             ? rd_error_set(err, RD_ENOMEM, "", "Out of memory for ring %d's lift model.", i + 1)
+             : RD_OK;
+    rc = rc ? rc : rd_lift_validate(&L->lp, &pr->ring, n, err);
+    if (!rc && !(L->ring = rd_ring_create(&pr->ring, n, 0, err)))
+        rc = err ? err->code : RD_ENOMEM;
+    rc = rc ? rc : rd_lift_model_init(&L->m, L->ring, &L->lp, NULL, err);
+    rc = rc ? rc : rd_lift_form_open(&L->m, L->kind, L->modes, &L->form, err);
+    if (rc == RD_OK) {
+        L->m.gas_now = L->gas;
+        L->circ = M_PI * pr->ring.diameter;
+        L->seg = malloc(3 * (size_t)n * sizeof *L->seg);
+        L->zero = calloc((size_t)L->form.N, sizeof *L->zero);
+        L->seg_w = L->seg ? L->seg + n : NULL;
+        L->seg_0 = L->seg ? L->seg + 2 * n : NULL;
+        if (!L->seg || !L->zero)
+            rc = rd_error_set(err, RD_ENOMEM, "", "Out of memory for ring %d's lift model.", i + 1);
+        else
+            L->form.lift(L->form.user, L->zero, L->seg_0);
+    }
+    if (rc) {
+        rd_packring_free(L);
+        return rc;
+    }
+    *out = L;
+    return RD_OK;
+}
+
+int rd_packring_open(rd_ringpack_model *m, int i, rd_packring *L, SUNContext ctx, int *N,
+                     int *modes, double *k, rd_error *err)
+{
     m->lr[i] = L;
-    if (lift_params(m, i, L))
-        return rd_error_set(err, RD_ENOMEM, "", "Out of memory for ring %d's lift model.", i + 1);
-    int n = pr->segments;
-    int modes = pr->modes ? pr->modes : (12 < 6 * n - 6 ? 12 : 6 * n - 6);
-    int rc = rd_lift_validate(&L->lp, &pr->ring, n, err);
-    if (rc)
-        return rc;
-    L->ring = rd_ring_create(&pr->ring, n, 0, err);
-    if (!L->ring)
-        return err ? err->code : RD_ENOMEM;
-    if ((rc = rd_lift_model_init(&L->m, L->ring, &L->lp, NULL, err)) ||
-        (rc = rd_lift_form_open(&L->m, m->kind[i], modes, &L->form, err)))
-        return rc;
-    L->m.gas_now = L->gas;
-    L->circ = M_PI * pr->ring.diameter;
-    L->seg = malloc(3 * (size_t)n * sizeof *L->seg);
-    L->zero = calloc((size_t)L->form.N, sizeof *L->zero);
-    L->seg_w = L->seg ? L->seg + n : NULL;
-    L->seg_0 = L->seg ? L->seg + 2 * n : NULL;
+    memset(L->gas, 0, sizeof L->gas);
+    L->m.kin_t = NAN; /* as a model just made */
     L->ys = N_VMake_Serial(L->form.N, NULL, ctx);
     L->yd = N_VMake_Serial(L->form.N, NULL, ctx);
-    if (!L->seg || !L->zero || !L->ys || !L->yd)
+    if (!L->ys || !L->yd)
         return rd_error_set(err, RD_ENOMEM, "", "Out of memory for ring %d's lift model.", i + 1);
-    L->form.lift(L->form.user, L->zero, L->seg_0);
     L->track = rd_lift_track_seated(L->m.banded, 0.0, NAN);
     *N = (int)L->form.N;
-    *modes_out = modes;
+    *modes = L->modes;
     *k = L->m.k;
     return RD_OK;
 }
@@ -219,10 +243,6 @@ void rd_packring_close(rd_packring *L)
 {
     if (!L)
         return;
-    if (L->form.close)
-        L->form.close(&L->form);
-    rd_lift_model_cleanup(&L->m);
-    rd_ring_free(L->ring);
     if (L->LS)
         SUNLinSolFree(L->LS);
     if (L->J)
@@ -231,11 +251,28 @@ void rd_packring_close(rd_packring *L)
     for (size_t k = 0; k < sizeof v / sizeof v[0]; k++)
         if (v[k])
             N_VDestroy(v[k]);
+    free(L->events.events);
+    L->LS = NULL;
+    L->S = L->J = NULL;
+    L->nw = NULL;
+    L->ys = L->yd = L->x = L->b = L->t1 = L->t2 = L->t3 = NULL;
+    L->events = (rd_lift_pass){0};
+    L->lp.film = NULL; /* the run's film (rd_packring_film) */
+}
+
+void rd_packring_free(rd_packring *L)
+{
+    if (!L)
+        return;
+    rd_packring_close(L);
+    if (L->form.close)
+        L->form.close(&L->form);
+    rd_lift_model_cleanup(&L->m);
+    rd_ring_free(L->ring);
     free(L->seg);
     free(L->zero);
     free(L->tilt);
     free(L->y0);
-    free(L->events.events);
     free(L);
 }
 
@@ -248,15 +285,17 @@ int rd_packring_initial(rd_packring *L, double atol, double *y, double *ab, rd_e
 {
     rd_lift_setup su = {0};
     const rd_ring_params *rp = rd_ring_get_params(L->ring);
-    if (rd_lift_bore_distorted(&L->lp, rp->diameter)) { /* its static equilibrium there */
-        int rc;
-        free(L->y0);
-        if (!(L->y0 = malloc(12 * (size_t)L->m.n * sizeof *L->y0)))
-            return rd_error_set(err, RD_ENOMEM, "", "Out of memory for the bore start.");
-        if ((rc = rd_lift_bore_static(L->ring, &L->lp, L->y0, err)))
+    if (rd_lift_bore_distorted(&L->lp, rp->diameter) && !L->y0) { /* its static equilibrium */
+        double *y0 = malloc(12 * (size_t)L->m.n * sizeof *y0);
+        int rc = y0 ? rd_lift_bore_static(L->ring, &L->lp, y0, err)
+                    : rd_error_set(err, RD_ENOMEM, "", "Out of memory for the bore start.");
+        if (rc) {
+            free(y0);
             return rc;
-        su.y0 = L->y0;
+        }
+        L->y0 = y0; /* the same for every run: solved once */
     }
+    su.y0 = L->y0;
     return L->form.initial(L->form.user, &su, atol, y, ab, err);
 }
 
@@ -343,7 +382,7 @@ rd_lift_flank_track *rd_packring_track(rd_packring *L)
     return &L->track;
 }
 
-rd_lift_run *rd_packring_events(rd_packring *L)
+rd_lift_pass *rd_packring_events(rd_packring *L)
 {
     return &L->events;
 }

@@ -56,7 +56,9 @@ static inline int rp_below(const rd_ringpack_model *m, int i)
     return i + 1 < m->R ? 2 * (i + 1) + 1 : m->V + 1;
 }
 
-/* Builds the network of a valid scene (the synthetic trace included). */
+/* Builds the network of a valid scene (the synthetic trace included); the
+ * lift rings are attached by the driver (rd_packring_open), and the
+ * cleanup closes their run (rd_packring_close), not the rings. */
 int rd_ringpack_model_init(rd_ringpack_model *m, const rd_ringpack_params *p, rd_error *err);
 void rd_ringpack_model_cleanup(rd_ringpack_model *m);
 /* The model each ring gets (numerics.model per ring and pack-wide; auto:
@@ -171,16 +173,25 @@ int rd_packring_auto(const rd_ringpack_params *p, const char **why);
  * tilt and bore fields. */
 int rd_packring_validate(const rd_ringpack_params *p, rd_error *err);
 
-/* Opens ring i's lift model of kind m->kind[i] (its ring of `segments`, its
- * lift parameters from the pack's) with state vectors in ctx; its state
- * count into *N, a modal model's elastic modes into *modes, its contact
- * stiffness (Pa/m) into *k. */
-int rd_packring_open(rd_ringpack_model *m, int i, SUNContext ctx, int *N, int *modes, double *k,
-                     rd_error *err);
+/* Ring i's lift model of kind m->kind[i], made once per job (the pack's
+ * handle keeps it across its runs and accuracy levels): its lift
+ * parameters from the pack's, checked (rd_lift_validate), its ring of
+ * `segments`, its model and form.  *out is NULL on failure. */
+int rd_packring_create(const rd_ringpack_model *m, int i, rd_packring **out, rd_error *err);
+/* Ring i's part in one run of m (m->lr[i] = L): state vectors in ctx, the
+ * flank tracker seated, no events; its state count into *N, a modal
+ * model's elastic modes into *modes, its contact stiffness (Pa/m) into *k.
+ * rd_packring_close ends the run's part (also after a failed open);
+ * rd_packring_free frees the rest (NULL: no-op). */
+int rd_packring_open(rd_ringpack_model *m, int i, rd_packring *L, SUNContext ctx, int *N,
+                     int *modes, double *k, rd_error *err);
 void rd_packring_close(rd_packring *L);
+void rd_packring_free(rd_packring *L);
 /* Its form (rd_lift_model.h) and model. */
 rd_lift_form *rd_packring_form(rd_packring *L);
-/* Its initial state (seated at rest) and tolerances at y + off, ab + off. */
+/* Its initial state (seated at rest; in a distorted bore its static
+ * equilibrium there, solved by the first run and kept) and tolerances at
+ * y + off, ab + off. */
 int rd_packring_initial(rd_packring *L, double atol, double *y, double *ab, rd_error *err);
 /* Sets its gauge face pressures (above, behind, below), Pa. */
 void rd_packring_gas(rd_packring *L, const double g[3]);
@@ -202,7 +213,7 @@ double rd_packring_eps(const rd_packring *L);
 /* The flank-change tracker (rd_lift_track_roots) and its events (absolute
  * crank angles). */
 rd_lift_flank_track *rd_packring_track(rd_packring *L);
-rd_lift_run *rd_packring_events(rd_packring *L);
+rd_lift_pass *rd_packring_events(rd_packring *L);
 /* Its own Newton solver (M = I - gamma J of its states at fixed
  * pressures): opened once (nonzero: out of memory), set up at (t, y,
  * gamma) (y: its states; nonzero: failed, positive recoverable), and
