@@ -269,7 +269,7 @@ static int run(const rd_scene *s, const rd_monitor *mon, json_t **out, rd_error 
 {
     const struct rd_static_scene *o = s->opts;
     rd_free_run fr;
-    int rc = rd_free_run_prepare(s, &s->ring, &o->statics, &fr, err);
+    int rc = rd_free_run_prepare(s, &s->ring, &o->statics, mon, &fr, err);
     if (rc == RD_OK)
         rc = rd_contact_map_run(s, &fr.ring, fr.free_shape, mon, contact_result, out, err);
     if (rc == RD_OK && *out && rd_free_run_result(*out, &fr) != 0) {

@@ -204,7 +204,7 @@ static int run(const rd_scene *s, const rd_monitor *mon, json_t **out, rd_error 
             : RD_OK;
     rd_free_run fr; /* the ring, fitted first to a measured free shape */
     if (rc == RD_OK)
-        rc = rd_free_run_prepare(s, &sr, &o->statics, &fr, err);
+        rc = rd_free_run_prepare(s, &sr, &o->statics, mon, &fr, err);
     const rd_ring_params *ring = &fr.ring;
     rd_pretension_opts po = o->pretension;
     po.free_shape = fr.free_shape;

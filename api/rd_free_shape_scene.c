@@ -248,7 +248,7 @@ int rd_free_shape_finish(const rd_scene *s, rd_error *err)
 }
 
 int rd_free_run_prepare(const rd_scene *s, const rd_ring_params *ring, const rd_static_opts *so,
-                        rd_free_run *r, rd_error *err)
+                        const rd_monitor *mon, rd_free_run *r, rd_error *err)
 {
     memset(r, 0, sizeof *r);
     r->ring = *ring;
@@ -257,7 +257,7 @@ int rd_free_run_prepare(const rd_scene *s, const rd_ring_params *ring, const rd_
         return RD_OK;
     rd_static_opts fo = *so;
     fo.estimate_error = 0;
-    int rc = rd_free_shape_fit(ring, RD_FREE_FIT_SEGMENTS, &s->free_table, &fo, &r->fit, err);
+    int rc = rd_free_shape_fit(ring, RD_FREE_FIT_SEGMENTS, &s->free_table, &fo, mon, &r->fit, err);
     if (rc != RD_OK)
         return rc;
     r->fitted = 1;

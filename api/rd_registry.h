@@ -134,7 +134,8 @@ typedef struct rd_free_run {
     rd_free_fit fit;
 } rd_free_run;
 int rd_free_run_prepare(const struct rd_scene *s, const rd_ring_params *ring,
-                        const rd_static_opts *so, rd_free_run *r, rd_error *err);
+                        const rd_static_opts *so, const rd_monitor *mon, rd_free_run *r,
+                        rd_error *err);
 /* The result's "free_shape_fit" (null without a measured shape) added to
  * out; nonzero on out of memory. */
 int rd_free_run_result(struct json_t *out, const rd_free_run *r);

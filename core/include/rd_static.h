@@ -150,9 +150,11 @@ int rd_free_table_validate(const rd_free_table *t, const rd_ring_params *p, rd_e
  * 0.3-0.8 % of p0, test_free_shape).  RD_ENOCONV when it does not settle in
  * 30 iterations; RD_EINVAL when the table does not fix the orders (a
  * singular fit) or a point falls in the fitted shape's gap.  It fits again
- * at segments / 2 for the chain's error (order 2 in n, *_error). */
+ * at segments / 2 for the chain's error (order 2 in n, *_error).  mon is
+ * asked before each free solve (fraction 0): a stop ends it, RD_ECANCELED. */
 int rd_free_shape_fit(const rd_ring_params *p, int segments, const rd_free_table *t,
-                      const rd_static_opts *so, rd_free_fit *out, rd_error *err);
+                      const rd_static_opts *so, const rd_monitor *mon, rd_free_fit *out,
+                      rd_error *err);
 
 typedef struct rd_pretension_opts {
     int method;                      /* enum rd_pretension_method */

@@ -186,6 +186,7 @@ typedef struct fitter {
     const rd_ring_params *p;
     const rd_free_table *t;
     const rd_static_opts *so;
+    const rd_monitor *mon;         /* asked before each free solve: a stop ends the fit */
     int segments, K, P, N, rigid0; /* rigid0: the first rigid parameter's index (K) */
     int have_J;                    /* the pressure's columns taken (at the coarser chain) */
     double q[FIT_PARAMS_MAX];      /* F_t, F_t a_2..a_K, x0, [y0, d] */
@@ -229,7 +230,8 @@ static int fit_solve(const fitter *f, const rd_free_shape *fs, double Ft, fit_cu
                             "free shape of a ring opened by its pressure (its tips must stand "
                             "out from the closed ring's circle).",
                             Ft);
-    return curve_solve(f->p, f->segments, fs, Ft, f->so, c, err);
+    int rc = rd_monitor_report(f->mon, 0.0, err);
+    return rc != RD_OK ? rc : curve_solve(f->p, f->segments, fs, Ft, f->so, c, err);
 }
 
 /* The pressure's columns of the Jacobian (de/dq_j = -d(fitted radius)/dq_j),
@@ -305,10 +307,17 @@ static int normal_step(const fitter *f, const double *J, const double *e, double
         anorm = fmax(anorm, s);
     }
     /* a condition beyond 1e13 (scaled): the table does not fix every parameter */
-    if (LAPACKE_dpotrf(LAPACK_ROW_MAJOR, 'U', P, C, P) != 0 ||
-        LAPACKE_dpocon(LAPACK_ROW_MAJOR, 'U', P, C, P, anorm, &rcond) != 0 || !(rcond > 1e-13) ||
-        LAPACKE_dpotrs(LAPACK_ROW_MAJOR, 'U', P, 1, C, P, g, 1) != 0 ||
-        LAPACKE_dpotri(LAPACK_ROW_MAJOR, 'U', P, C, P) != 0)
+    lapack_int info = LAPACKE_dpotrf(LAPACK_ROW_MAJOR, 'U', P, C, P);
+    if (info == 0)
+        info = LAPACKE_dpocon(LAPACK_ROW_MAJOR, 'U', P, C, P, anorm, &rcond);
+    if (info == 0 && rcond > 1e-13)
+        info = LAPACKE_dpotrs(LAPACK_ROW_MAJOR, 'U', P, 1, C, P, g, 1);
+    if (info == 0 && rcond > 1e-13)
+        info = LAPACKE_dpotri(LAPACK_ROW_MAJOR, 'U', P, C, P);
+    /* (LAPACKE's row-major copies and work arrays: their allocation may fail) */
+    if (info == LAPACK_TRANSPOSE_MEMORY_ERROR || info == LAPACK_WORK_MEMORY_ERROR)
+        return RD_ENOMEM;
+    if (info != 0 || !(rcond > 1e-13))
         return RD_EINVAL;
     for (int a = 0; a < P; a++) {
         dq[a] = D[a] * g[a];
@@ -399,7 +408,12 @@ static int iterate(fitter *f, double *J, double *e, double *e1, double *C, rd_fr
     for (out->iterations = 1; out->iterations <= FIT_ITER_MAX; out->iterations++) {
         double dq[FIT_PARAMS_MAX];
         rigid_columns(f, &c, e, J, e1);
-        if (normal_step(f, J, e, dq, C) != RD_OK) {
+        int ns = normal_step(f, J, e, dq, C);
+        if (ns == RD_ENOMEM) {
+            rc = rd_error_set(err, RD_ENOMEM, "", "Out of memory for the free shape's fit.");
+            goto out;
+        }
+        if (ns != RD_OK) {
             rc = rd_error_set(err, RD_EINVAL, "/ring/free_shape/fit_order",
                               "/ring/free_shape does not fix the pressure's orders 2 to %d "
                               "(the fit is singular): give fewer orders (fit_order) or points "
@@ -441,7 +455,10 @@ static int iterate(fitter *f, double *J, double *e, double *e1, double *C, rd_fr
     }
     rigid_columns(f, &c, e, J, e1); /* the covariance at the fit */
     double dq[FIT_PARAMS_MAX];
-    if (normal_step(f, J, e, dq, C) != RD_OK)
+    int ns = normal_step(f, J, e, dq, C);
+    if (ns == RD_ENOMEM)
+        rc = rd_error_set(err, RD_ENOMEM, "", "Out of memory for the free shape's fit.");
+    else if (ns != RD_OK)
         rc = rd_error_set(err, RD_EINVAL, "/ring/free_shape/fit_order",
                           "/ring/free_shape does not fix the pressure's orders 2 to %d.", f->K);
 out:
@@ -479,7 +496,8 @@ static int fit_at(fitter *f, double *J, rd_free_fit *out, rd_error *err)
  * and its fit is the start at `segments`), then at `segments`; the
  * difference is the chain's error (order 2 in n: Richardson). */
 int rd_free_shape_fit(const rd_ring_params *p, int segments, const rd_free_table *t,
-                      const rd_static_opts *so, rd_free_fit *out, rd_error *err)
+                      const rd_static_opts *so, const rd_monitor *mon, rd_free_fit *out,
+                      rd_error *err)
 {
     memset(out, 0, sizeof *out);
     int rc = rd_free_table_validate(t, p, err);
@@ -490,6 +508,7 @@ int rd_free_shape_fit(const rd_ring_params *p, int segments, const rd_free_table
     fitter f = {.p = p,
                 .t = t,
                 .so = so,
+                .mon = mon,
                 .segments = segments / 2,
                 .K = t->fit_order,
                 .P = fit_parameters(t),

@@ -192,8 +192,11 @@ static int rest_of(const rd_static_problem *pb, int j, const double fm[6], doubl
     memcpy(K, pb->Kc + 36 * j, sizeof K);
     for (int k = 0; k < 6; k++)
         C[7 * k] = 1.0;
-    if (LAPACKE_dgesv(LAPACK_ROW_MAJOR, 6, 6, K, 6, ipiv, C, 6) != 0)
-        return RD_EINVAL;
+    lapack_int info = LAPACKE_dgesv(LAPACK_ROW_MAJOR, 6, 6, K, 6, ipiv, C, 6);
+    if (info != 0) /* (row-major copies: their allocation may fail) */
+        return info == LAPACK_TRANSPOSE_MEMORY_ERROR || info == LAPACK_WORK_MEMORY_ERROR
+                   ? RD_ENOMEM
+                   : RD_EINVAL;
     static const int in[3] = {0, 2, 4};
     memset(e0, 0, 6 * sizeof *e0);
     for (int r = 0; r < 3; r++)
@@ -317,8 +320,9 @@ static int pressure_rest(rd_static_problem *pb, const double *f)
             memcpy(fm, u, sizeof u);
             rd_mv3(E, Mg, u);
             memcpy(fm + 3, u, sizeof u);
-            if (rest_of(pb, j, fm, pb->e0 + 6 * j) != RD_OK)
-                return RD_EINVAL;
+            int rc = rest_of(pb, j, fm, pb->e0 + 6 * j);
+            if (rc != RD_OK)
+                return rc;
         }
     }
     return RD_OK;
@@ -341,6 +345,8 @@ int rd_free_shape_prestrain(rd_static_problem *pb, const rd_ring_params *p, cons
     if (rc == RD_OK)
         rc = pressure_rest(pb, f);
     free(f);
+    if (rc == RD_ENOMEM)
+        return rd_error_set(err, RD_ENOMEM, "", "Out of memory for the free shape.");
     return rc == RD_OK ? RD_OK
                        : rd_error_set(err, RD_EINVAL, "/ring", "a joint's stiffness is singular.");
 }

@@ -124,7 +124,7 @@ static int fit(const rd_ring_params *p, int n, const rd_free_table *t, rd_free_f
     rd_static_opts_default(&so);
     so.estimate_error = 0;
     rd_error_init(err);
-    return rd_free_shape_fit(p, n, t, &so, f, err);
+    return rd_free_shape_fit(p, n, t, &so, NULL, f, err);
 }
 
 /* The fitted a_k of order k (0 if not fitted). */
