@@ -594,14 +594,22 @@ static json_t *lift_result(const rd_scene *scene, const rd_lift_result *res, dou
     return out;
 }
 
-/* The lubrication block's method (rd_result_lube). */
-#define LUBE_METHOD                                                                            \
-    "one film for the whole running face (a rigid profile on a round bore), solved before "    \
-    "the ring's motion over the run plus one cycle of warm-up: the average Reynolds equation " \
+/* The lubrication block's method (rd_result_lube): one film in a round
+ * bore, a film per segment load in a distorted one. */
+#define LUBE_FILM_ONE                                                                       \
+    "one film for the whole running face (a rigid profile on a round bore), solved before " \
+    "the ring's motion over the run plus one cycle of warm-up: "
+#define LUBE_FILM_SEGMENTS                                                                      \
+    "a film per segment (a rigid profile): each segment presses on the liner with its static "  \
+    "contact load in the distorted bore, the contact analysis' exact contact of the same ring " \
+    "(film_load_n_per_m), plus the gas behind it; up to 5 distinct loads a film each, more "    \
+    "interpolated in log load between films at 3 to 17 loads (film_interpolation_error); "      \
+    "the films are solved before the ring's motion over the run plus one cycle of warm-up: "
+#define LUBE_METHOD_REST                                                                       \
+    "the average Reynolds equation "                                                           \
     "across the face (Patir-Cheng flow factors, gamma = 1; the cavitation condition and the "  \
     "oil supply of physics.friction; 41 points) with the squeeze term, Greenwood-Tripp "       \
-    "asperity "                                                                                \
-    "contact, and the radial balance elastic line load 2 F_t / D + gas behind = film + "       \
+    "asperity contact, and the radial balance elastic line load + gas behind = film + "        \
     "asperity load, by variable-step BDF2 (local error 1e-4 of the film, steps at most "       \
     "film_step_deg). Friction at the liner's speed past the "                                  \
     "piston. film_error and friction_work_error (with numerics.error_estimate): the film "     \
@@ -609,9 +617,8 @@ static json_t *lift_result(const rd_scene *scene, const rd_lift_result *res, dou
     "the local error): within x0.45-1.24 (film) and x0.35-0.90 (work) of the error against a " \
     "grid 8 times finer on an 18-scene battery. Not covered: the model (Patir-Cheng "          \
     "shear-stress factors, oil passed on from other rings (supply is one film for the run), "  \
-    "the film "                                                                                \
-    "varying around the ring, the ring's radial motion in the lift model (its bore contact "   \
-    "is the penalty's)."
+    "the ring's radial motion in the lift model (its bore contact is the penalty's; in a "     \
+    "distorted bore the films' loads are the ring's static ones)."
 
 static int run(const rd_scene *s, const rd_monitor *mon, json_t **out, rd_error *err)
 {
@@ -623,7 +630,10 @@ static int run(const rd_scene *s, const rd_monitor *mon, json_t **out, rd_error 
         *out = lift_result(s, &res, rd_clock_s() - t0);
         if (*out && res.lube.on &&
             json_object_set_new(*out, "lubrication",
-                                rd_result_lube(&res.lube, res.samples, LUBE_METHOD)) != 0) {
+                                rd_result_lube(&res.lube, res.samples,
+                                               res.lube.films > 1
+                                                   ? LUBE_FILM_SEGMENTS LUBE_METHOD_REST
+                                                   : LUBE_FILM_ONE LUBE_METHOD_REST)) != 0) {
             json_decref(*out);
             *out = NULL;
         }

@@ -405,7 +405,8 @@ function lubeSummary(lub, crank) {
   if (!isLube(lub)) return null;
   const parts = [];
   const least = thinnest(lub, crank);
-  if (least) parts.push(`thinnest oil film ${um(least.m, 3)} µm at ${deg(crank[least.i])}`);
+  const at = Array.isArray(lub.min_film_angle_deg) ? lub.min_film_angle_deg[least?.i] : undefined;
+  if (least) parts.push(`thinnest oil film ${um(least.m, 3)} µm at ${deg(crank[least.i])}${isNum(at) ? `, on the segment ${deg(at)} from the gap middle` : ''}`);
   const fmep = nums(lub.fmep_pa);
   if (fmep.length) parts.push(`FMEP ${fmep.map((p) => sig(p / 1e3)).join(', ')} kPa (${fmep.length === 1 ? 'the cycle' : 'per cycle'})`);
   else if (Array.isArray(lub.fmep_pa)) parts.push('no whole cycle, so no FMEP');

@@ -160,12 +160,32 @@ export function cavitationText(cavitation) {
   return cavitation === 'jfo' ? 'JFO (mass-conserving)' : 'Reynolds';
 }
 
+// A distorted bore's films (lubrication.films > 1): how many, and whether
+// each segment has its own or they are interpolated (with the estimate);
+// undefined for one film.
+export function filmsText(lub) {
+  if (!isNum(lub?.films) || lub.films <= 1) return undefined;
+  const e = lub.film_interpolation_error;
+  return isNum(e)
+    ? `${lub.films} films at loads across the range, each segment's interpolated at its load (error estimate ${percent(e, 2)})`
+    : `${lub.films} films, one per segment load`;
+}
+
+// The segments' elastic load range on the liner (N/m) where it varies.
+export function loadRangeText(lub) {
+  const r = lub?.film_load_n_per_m;
+  if (!isNum(lub?.films) || lub.films <= 1 || !isNum(r?.min) || !isNum(r?.max)) return undefined;
+  return `${sig(r.min, 3)} to ${sig(r.max, 3)} N/m around the ring (2 F_t / D in a round bore)`;
+}
+
 // The film's facts as kvTable rows (a value undefined where the block lacks
 // it); `supply` is the scene's physics.friction.supply (a row when starved),
 // `cavitation` its physics.friction.cavitation (always a row), `id` the
 // prefix of those rows' ids (lf, rp-2: lf-supply, rp-2-cavitation).
 export function filmFactRows(lub, { supply, cavitation, id } = {}) {
   return [
+    ['Films around the ring', filmsText(lub), { id: id ? `${id}-films` : undefined }],
+    ['Elastic load on the liner', loadRangeText(lub), { id: id ? `${id}-film-load` : undefined }],
     ['Oil supply', supplyText(supply) ?? undefined, { id: id ? `${id}-supply` : undefined }],
     ['Cavitation', cavitationText(cavitation), { id: id ? `${id}-cavitation` : undefined }],
     ['Composite roughness σ', isNum(lub.composite_roughness_m) ? `${um(lub.composite_roughness_m, 3)} µm` : undefined],

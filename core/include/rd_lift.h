@@ -98,6 +98,7 @@ typedef struct rd_gas_params {
 } rd_gas_params;
 
 struct rd_film_track; /* core/liner/rd_film_track.h */
+struct rd_lift_films; /* core/lift/rd_lift_internal.h */
 
 /* The lubricated model's numerics and defaults. */
 #define RD_LIFT_FILM_STEP_DEG     2.0 /* numerics.film_step_deg default: the film's largest step */
@@ -141,10 +142,12 @@ typedef struct rd_lift_params {
     /* The lubricated friction model (friction.model RD_FRICTION_LUBRICATED):
      * the running face, and the film's time step (crank degrees).  The film
      * is solved once per run before the ring's motion (rd_lift_film.c);
-     * `film` is core's own (NULL from callers). */
+     * `film` (one film for the whole face) and `films` (a distorted bore:
+     * a film per segment load) are core's own (NULL from callers). */
     rd_face_params face;
     double film_step_deg;
     const struct rd_film_track *film;
+    const struct rd_lift_films *films;
 } rd_lift_params;
 
 typedef struct rd_lift_event {
@@ -183,6 +186,16 @@ typedef struct rd_lift_lube {
     double film_step_deg;
     long film_solves;
     int held; /* film steps held at the largest film (the face pushed off) */
+    /* A distorted bore (films > 1): the segments' static contact loads
+     * around the ring (rd_lift_films.c); up to 5 distinct loads a film
+     * each, more interpolated between films at 3 to 17 loads.  min_film is
+     * the thinnest segment's film, min_film_angle_deg where it is (the
+     * segment's mid-angle from the gap middle), the friction their sum.
+     * films = 1: one film for the face, min_film_angle_deg NULL. */
+    int films;
+    double load_min, load_max; /* the segments' elastic radial line load, N/m */
+    double *min_film_angle_deg;
+    double interp_check; /* the interpolation's bound (NAN: none, rd_lift_films.c) */
     /* The film's error estimate (NAN: not estimated): against the same film
      * on a grid twice as fine (points, steps, local error / 4), the largest
      * relative film difference max |h - h'| / max(|h'|, sigma) over the

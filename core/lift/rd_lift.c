@@ -165,8 +165,9 @@ static int validate_bore_map(const rd_lift_params *p, double d, rd_error *err)
     return RD_OK;
 }
 
-/* The lubricated model: its inputs, a round bore (one film for the whole
- * face), the film's step. */
+/* The lubricated model: its inputs, a bore that is the same at every height
+ * (round: one film for the whole face; distorted: a film per segment load,
+ * rd_lift_film.c), the film's step. */
 static int validate_lubricated(const rd_lift_params *p, rd_error *err)
 {
     int rc = rd_lube_validate(&p->friction.lube, &p->face, p->bore.roughness_rq, err);
@@ -174,16 +175,11 @@ static int validate_lubricated(const rd_lift_params *p, rd_error *err)
         return rc;
     if (p->bore_map)
         return rd_error_set(err, RD_EINVAL, "/bore/layers",
-                            "the lubricated friction model solves one film for the whole running "
-                            "face (a round bore); a bore map, where the film varies around the "
-                            "ring, is not modelled yet: remove /bore/layers or use coulomb or "
-                            "stribeck friction.");
-    if (p->bore.n_distortion > 0)
-        return rd_error_set(err, RD_EINVAL, "/bore/distortion",
-                            "the lubricated friction model solves one film for the whole running "
-                            "face (a round bore); a distorted bore, where the film varies around "
-                            "the ring, is not modelled yet: remove /bore/distortion or use "
-                            "coulomb or stribeck friction.");
+                            "the lubricated friction model takes the segments' loads on the "
+                            "film from the ring's static state in a bore that is the same at "
+                            "every height; a bore map, whose distortion changes along the "
+                            "stroke, is not modelled with it yet: give one distortion "
+                            "(/bore/distortion) or use coulomb or stribeck friction.");
     if (rd_engine_tilted(&p->engine))
         return rd_error_set(err, RD_EINVAL, "/engine/piston_tilt_deg",
                             "the lubricated friction model does not take a tilting piston's own "

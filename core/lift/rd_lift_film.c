@@ -13,9 +13,13 @@
  * r_run); the film's edges see the gas below (lower edge) and above (upper
  * edge).  A tilting piston's own sliding is left out of U.
  *
- * The film is axisymmetric (one film for the whole face): the lift's
- * round bore.  A distorted bore (the film varying around the ring) is
- * refused with the lubricated model (rd_lift.c).
+ * A round bore: one film for the whole face.  A distorted bore
+ * (bore.distortion, bore.diameter): a film per segment load
+ * (rd_lift_films_*, rd_lift_internal.h): the contact analysis' exact
+ * contact of the same ring in the same bore gives each segment's elastic
+ * load (rd_lift_bore_loads), segments of one load share a film, and the
+ * force elements read each segment's film (rd_lift_segfilm.c).  A bore map
+ * and a tilting piston are refused with the lubricated model (rd_lift.c).
  */
 #include <math.h>
 #include <stdlib.h>
@@ -66,8 +70,8 @@ int rd_lift_film_run(const rd_ring_params *rp, const rd_lift_params *p, rd_film 
     return rd_lift_film_run_at(rp, p, 1, film, tr, err);
 }
 
-int rd_lift_film_run_at(const rd_ring_params *rp, const rd_lift_params *p, int fine, rd_film *film,
-                        rd_film_track *tr, rd_error *err)
+int rd_lift_film_run_load(const rd_ring_params *rp, const rd_lift_params *p, double w_el, int fine,
+                          rd_film *film, rd_film_track *tr, rd_error *err)
 {
     rd_section s;
     rd_section_init(&s, rp);
@@ -77,12 +81,18 @@ int rd_lift_film_run_at(const rd_ring_params *rp, const rd_lift_params *p, int f
     if (rc)
         return rc;
     film->rtol /= (double)fine * fine;
-    film_scene fs = {.p = p, .omega = rd_engine_omega(&p->engine)};
-    fs.w_el = 2.0 * rp->tangential_force / rp->diameter;
+    film_scene fs = {.p = p, .omega = rd_engine_omega(&p->engine), .w_el = w_el};
     fs.back = s.back.height * s.back.r / s.run.r;
     rd_film_loads ld = {loads_at, &fs};
     double cycle = 4.0 * M_PI / fs.omega, dt = p->film_step_deg / fine * M_PI / 180.0 / fs.omega;
     return rd_film_track_run(film, &ld, p->engine.cycles * cycle, dt, cycle, cycle, NAN, tr, err);
+}
+
+int rd_lift_film_run_at(const rd_ring_params *rp, const rd_lift_params *p, int fine, rd_film *film,
+                        rd_film_track *tr, rd_error *err)
+{
+    return rd_lift_film_run_load(rp, p, 2.0 * rp->tangential_force / rp->diameter, fine, film, tr,
+                                 err);
 }
 
 /* The friction on the ring of film point pt (N, + up): the film's shear
@@ -101,19 +111,81 @@ int rd_lift_film_result(const rd_ring_params *rp, const rd_lift_params *p, const
                                out->crank_deg, out->samples, 0.0,
                                (int)floor(p->engine.cycles + 1e-9), err);
     out->lube.film_step_deg = p->film_step_deg;
+    out->lube.load_min = out->lube.load_max = 2.0 * rp->tangential_force / rp->diameter;
     return rc;
 }
 
-int rd_lift_lube_fill(rd_lift_lube *lb, const rd_film *film, const rd_film_track *tr,
-                      const rd_lube_params *l, const rd_engine_params *e, double diameter,
-                      const double *crank_deg, int S, double t_first, int C, rd_error *err)
+/* Sample k of lb at time t: each film's point weighted by its share (the
+ * first assigned, so one film gives its own numbers bit for bit); the
+ * thinnest film over the films, or over the segments (fs->m). */
+static void fill_sample(rd_lift_lube *lb, const rd_lube_films *fs, const rd_engine_params *e,
+                        double omega, double circ, double mu_b, double ureg, double t, int k)
+{
+    double hf = 0.0, af = 0.0, pw = 0.0, wa = 0.0, ld = 0.0, h0[RD_LIFT_FILMS_NODES];
+    for (int g = 0; g < fs->count; g++) {
+        rd_film_point pt;
+        double w = fs->share ? fs->share[g] : 1.0, h, a;
+        rd_film_track_at(&fs->tr[g], t, &pt);
+        rd_engine_piston(e, omega * t, NULL, &pt.U, NULL); /* exact, as the motion's friction */
+        friction_of(&pt, circ, mu_b, ureg, &h, &a);
+        hf = g ? hf + w * h : w * h;
+        af = g ? af + w * a : w * a;
+        pw = g ? pw + w * (h + a) * pt.U : w * (h + a) * pt.U;
+        wa = g ? wa + w * pt.Wa : w * pt.Wa;
+        ld = g ? ld + w * (pt.W + pt.Wa) : w * (pt.W + pt.Wa);
+        h0[g] = pt.h0;
+        if (g == 0 || pt.h0 < lb->min_film[k])
+            lb->min_film[k] = pt.h0;
+    }
+    for (int j = 0; j < fs->m; j++) { /* each segment's film */
+        double h = 0.0;
+        for (int g = 0; g < fs->count; g++)
+            h += fs->wt[RD_LIFT_FILMS_NODES * j + g] * h0[g];
+        if (j == 0 || h < lb->min_film[k]) {
+            lb->min_film[k] = h;
+            lb->min_film_angle_deg[k] = fs->angle_deg[j];
+        }
+    }
+    lb->hydrodynamic_friction[k] = hf;
+    lb->asperity_friction[k] = af;
+    lb->power[k] = pw;
+    lb->asperity_share[k] = ld > 0.0 ? wa / ld : 0.0;
+    lb->regime[k] = lb->asperity_share[k] > RD_LUBE_BOUNDARY_SHARE ? RD_REGIME_BOUNDARY
+                    : lb->asperity_share[k] > RD_LUBE_MIXED_SHARE  ? RD_REGIME_MIXED
+                                                                   : RD_REGIME_HYDRODYNAMIC;
+}
+
+/* The friction work of one film over [t0, t0 + cycle]: the power over the
+ * film's own steps (trapezoid; they land on the cycles' ends). */
+double rd_lift_film_work(const rd_film_track *tr, double circ, double mu_b, double ureg, double t0,
+                         double cycle)
+{
+    double w = 0.0;
+    for (int k = 0; k < tr->steps; k++) {
+        const rd_film_point *a = &tr->pt[k], *b = &tr->pt[k + 1];
+        double mid = 0.5 * (a->t + b->t), h0, a0, h1, a1;
+        if (mid < t0 || mid > t0 + cycle)
+            continue;
+        friction_of(a, circ, mu_b, ureg, &h0, &a0);
+        friction_of(b, circ, mu_b, ureg, &h1, &a1);
+        w += 0.5 * (b->t - a->t) * ((h0 + a0) * a->U + (h1 + a1) * b->U);
+    }
+    return w;
+}
+
+int rd_lift_lube_fill_films(rd_lift_lube *lb, const rd_lube_films *fs, const rd_lube_params *l,
+                            const rd_engine_params *e, double diameter, const double *crank_deg,
+                            int S, double t_first, int C, rd_error *err)
 {
     size_t n = (size_t)(S > 0 ? S : 1);
     lb->on = 1;
+    lb->films = fs->count;
     lb->min_film = malloc(5 * n * sizeof(double));
     lb->regime = malloc(n * sizeof(int));
     lb->friction_work = calloc((size_t)(2 * (C > 0 ? C : 1)), sizeof(double));
-    if (!lb->min_film || !lb->regime || !lb->friction_work)
+    lb->min_film_angle_deg = fs->m > 0 ? malloc(n * sizeof(double)) : NULL;
+    if (!lb->min_film || !lb->regime || !lb->friction_work ||
+        (fs->m > 0 && !lb->min_film_angle_deg))
         return rd_error_set(err, RD_ENOMEM, NULL, "out of memory (the lubrication block).");
     lb->hydrodynamic_friction = lb->min_film + n;
     lb->asperity_friction = lb->min_film + 2 * n;
@@ -122,44 +194,28 @@ int rd_lift_lube_fill(rd_lift_lube *lb, const rd_film *film, const rd_film_track
     lb->fmep = lb->friction_work + (C > 0 ? C : 1);
     lb->cycles = C;
     lb->film_error = lb->work_error = NAN;
+    lb->interp_check = NAN;
+    lb->load_min = lb->load_max = NAN; /* the caller's */
     double omega = rd_engine_omega(e), circ = M_PI * diameter;
     double ureg = rd_liner_ureg(e), mu_b = l->boundary_coefficient;
-    for (int k = 0; k < S; k++) {
-        rd_film_point pt;
-        double t = t_first + crank_deg[k] * M_PI / 180.0 / omega;
-        rd_film_track_at(tr, t, &pt);
-        rd_engine_piston(e, omega * t, NULL, &pt.U, NULL); /* exact, as the motion's friction */
-        double h, a, load = pt.W + pt.Wa;
-        friction_of(&pt, circ, mu_b, ureg, &h, &a);
-        lb->min_film[k] = pt.h0;
-        lb->hydrodynamic_friction[k] = h;
-        lb->asperity_friction[k] = a;
-        lb->power[k] = (h + a) * pt.U;
-        lb->asperity_share[k] = load > 0.0 ? pt.Wa / load : 0.0;
-        lb->regime[k] = lb->asperity_share[k] > RD_LUBE_BOUNDARY_SHARE ? RD_REGIME_BOUNDARY
-                        : lb->asperity_share[k] > RD_LUBE_MIXED_SHARE  ? RD_REGIME_MIXED
-                                                                       : RD_REGIME_HYDRODYNAMIC;
-    }
-    /* per cycle: the power over the film's own steps (trapezoid; they land on
-     * the cycles' ends) */
+    for (int k = 0; k < S; k++)
+        fill_sample(lb, fs, e, omega, circ, mu_b, ureg,
+                    t_first + crank_deg[k] * M_PI / 180.0 / omega, k);
     double cycle = 4.0 * M_PI / omega, stroke = 2.0 * e->crank_radius,
            Vd = 0.25 * M_PI * diameter * diameter * stroke;
     for (int c = 0; c < C; c++) {
-        double w = 0.0, t0 = t_first + c * cycle;
-        for (int k = 0; k < tr->steps; k++) {
-            const rd_film_point *a = &tr->pt[k], *b = &tr->pt[k + 1];
-            double mid = 0.5 * (a->t + b->t), h0, a0, h1, a1;
-            if (mid < t0 || mid > t0 + cycle)
-                continue;
-            friction_of(a, circ, mu_b, ureg, &h0, &a0);
-            friction_of(b, circ, mu_b, ureg, &h1, &a1);
-            w += 0.5 * (b->t - a->t) * ((h0 + a0) * a->U + (h1 + a1) * b->U);
+        double w = 0.0;
+        for (int g = 0; g < fs->count; g++) {
+            double wg = fs->share ? fs->share[g] : 1.0;
+            double f =
+                wg * rd_lift_film_work(&fs->tr[g], circ, mu_b, ureg, t_first + c * cycle, cycle);
+            w = g ? w + f : f;
         }
         lb->friction_work[c] = w;
         lb->fmep[c] = w / Vd;
     }
-    lb->min_film_x = film->x_min;
-    lb->composite_sigma = film->sigma;
+    lb->min_film_x = fs->film->x_min;
+    lb->composite_sigma = fs->film->sigma;
     lb->viscosity_min = INFINITY;
     lb->viscosity_max = 0.0;
     for (double d = 0.0; d <= 720.0; d += 1.0) {
@@ -167,10 +223,23 @@ int rd_lift_lube_fill(rd_lift_lube *lb, const rd_film *film, const rd_film_track
         lb->viscosity_min = fmin(lb->viscosity_min, v);
         lb->viscosity_max = fmax(lb->viscosity_max, v);
     }
-    lb->periodic_change = tr->periodic_change;
-    lb->film_solves = tr->solves;
-    lb->held = tr->held;
+    lb->periodic_change = fs->tr[0].periodic_change;
+    lb->film_solves = fs->tr[0].solves;
+    lb->held = fs->tr[0].held;
+    for (int g = 1; g < fs->count; g++) {
+        lb->periodic_change = fmax(lb->periodic_change, fs->tr[g].periodic_change);
+        lb->film_solves += fs->tr[g].solves;
+        lb->held += fs->tr[g].held;
+    }
     return RD_OK;
+}
+
+int rd_lift_lube_fill(rd_lift_lube *lb, const rd_film *film, const rd_film_track *tr,
+                      const rd_lube_params *l, const rd_engine_params *e, double diameter,
+                      const double *crank_deg, int S, double t_first, int C, rd_error *err)
+{
+    rd_lube_films fs = {.film = film, .tr = tr, .count = 1};
+    return rd_lift_lube_fill_films(lb, &fs, l, e, diameter, crank_deg, S, t_first, C, err);
 }
 
 void rd_lift_lube_compare(rd_lift_lube *lb, const rd_lift_lube *fine, int S)
@@ -206,6 +275,7 @@ int rd_lift_film_estimate(const rd_ring_params *rp, const rd_lift_params *p, rd_
 
 void rd_lift_lube_cleanup(rd_lift_lube *lb)
 {
+    free(lb->min_film_angle_deg);
     free(lb->min_film);
     free(lb->regime);
     free(lb->friction_work);

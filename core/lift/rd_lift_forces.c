@@ -262,6 +262,7 @@ typedef struct force_env {
     double pa, pbh, pbl;            /* gas: above, behind, below, Pa */
     int gas, dynamic, linear, fric; /* which elements the scene asks for */
     rd_film_point film;             /* lubricated: the face's film at t (rd_lift_film.c) */
+    const rd_film_point *seg_film;  /* a distorted bore's: each segment's film at t, or NULL */
 } force_env;
 
 /* One segment's view: its state, its force and local Jacobian blocks (dq,
@@ -365,8 +366,9 @@ static void add_bore(rd_lift_model *c, const force_env *env, seg_view *s, double
             if (env->tilt) /* the groove frame's own axial speed at the point, beta' x */
                 u += env->bd * (rd_ring_get_section(c->ring)->R * c->e_r[2 * s->i] + d[0]);
             rd_liner_force lf;
-            rd_liner_eval(&c->liner,
-                          &(rd_liner_point){N, u, c->bo_area / (c->h * c->L_run), &env->film}, &lf);
+            const rd_film_point *fm = env->seg_film ? env->seg_film + s->i : &env->film;
+            rd_liner_eval(&c->liner, &(rd_liner_point){N, u, c->bo_area / (c->h * c->L_run), fm},
+                          &lf);
             double F = lf.F, F_N = lf.F_N, F_u = lf.F_u;
             add3(s->f, &a, F);
             if (c->energy)
@@ -480,7 +482,12 @@ static void force_env_at(rd_lift_model *c, double t, force_env *env)
     env->dynamic = env->gas && p->gas.active_area == RD_GAS_AREA_DYNAMIC;
     env->linear = env->gas && p->gas.active_area == RD_GAS_AREA_LINEAR;
     env->fric = p->friction.model != RD_FRICTION_NONE;
-    if (p->film) /* lubricated: the face's film now (rd_lift_film.c) */
+    env->seg_film = NULL;
+    if (p->films && c->film_seg) { /* a distorted bore: each segment's film now */
+        rd_lift_films_at(p->films, t, c->n, c->film_grp, c->film_seg);
+        env->seg_film = c->film_seg;
+        env->film = (rd_film_point){0};
+    } else if (p->film) /* lubricated: the face's film now (rd_lift_film.c) */
         rd_film_track_at(p->film, t, &env->film);
     else /* none solved (a caller below rd_lift_solve_setup): no film force */
         env->film = (rd_film_point){0};

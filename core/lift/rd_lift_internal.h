@@ -104,4 +104,104 @@ void rd_lift_lube_cleanup(rd_lift_lube *lb);
 /* The oil's viscosity at crank angle deg, Pa s (rd_lube_params). */
 double rd_lift_lube_viscosity(const rd_lube_params *l, double deg);
 
+/* The film under elastic line load w_el (N/m) on a grid `fine` times finer
+ * (rd_lift_film_run_at's, which takes 2 F_t / D). */
+int rd_lift_film_run_load(const rd_ring_params *rp, const rd_lift_params *p, double w_el, int fine,
+                          rd_film *film, rd_film_track *tr, rd_error *err);
+/* The friction work of one film track over [t0, t0 + cycle] (J, per the
+ * whole liner circumference circ): the power over its own steps. */
+double rd_lift_film_work(const rd_film_track *tr, double circ, double mu_b, double ureg, double t0,
+                         double cycle);
+
+/* A distorted bore's films (rd_lift_films.c).  The ring of m segments
+ * presses on the liner with each segment's static contact load: the
+ * contact analysis' exact contact of the same ring in the same bore
+ * (rd_contact_solve from 160 segments to 320 at accuracy 0.03: within
+ * 2.4e-3 of 2 F_t / D of the contact converged to 1e-3 at 2000 segments,
+ * test_lift_films, at a third of the default's cost; its pressure over its
+ * uniform p0, averaged over the segment's arc, times 2 F_t / D), plus the
+ * gas behind it.  Up to RD_LIFT_FILMS_EXACT distinct loads (within
+ * RD_LIFT_FILMS_SAME of 2 F_t / D) get a film each.  More are
+ * interpolated: films at Chebyshev-Lobatto nodes of log(load + 0.1 x
+ * 2 F_t / D) over the segments' range, 3, then 5, 9, 17 (nested), until the
+ * coarser level misses the new nodes' films (film over max(|h0|, sigma),
+ * friction work, relative) by at most RD_LIFT_FILMS_TOL; the finer level
+ * is used and that miss kept (interp_check: it tracked the used level's
+ * miss against each segment's own film within x0.45-1.1 on
+ * test_lift_films' battery, where that miss is the films' own time-step
+ * noise, 3e-3 to 9e-3, and more nodes do not lower it).  Each segment's
+ * film is the interpolation at its load (the film's quantities are linear
+ * in the films' points).  The films are
+ * solved before the ring's motion; its radial motion during the run does
+ * not feed back into the loads.  Usage:
+ *     rd_lift_films fs;
+ *     rc = rd_lift_films_bore(ring, p, &fs, err);   (or rd_lift_films_run)
+ *     q.films = &fs;   each force call: rd_lift_films_at(&fs, t, n, grp, seg)
+ *     rd_lift_films_free(&fs);   also after a failure */
+#define RD_LIFT_FILMS_NODES            17
+#define RD_LIFT_FILMS_EXACT            5
+#define RD_LIFT_FILMS_TOL              1e-2
+#define RD_LIFT_FILMS_SAME             1e-6
+#define RD_LIFT_FILMS_CONTACT_SEGMENTS 160  /* the contact solve's first level */
+#define RD_LIFT_FILMS_CONTACT_ACCURACY 0.03 /* its accuracy target (rd_contact_opts) */
+#define RD_LIFT_FILMS_CONTACT_MAX      320  /* and its largest segment count */
+typedef struct rd_lift_films {
+    int m;                             /* segments the loads were taken on */
+    int count;                         /* films (1 .. RD_LIFT_FILMS_NODES) */
+    int exact;                         /* 1: every segment's load is a film's; 0: interpolated */
+    double load[RD_LIFT_FILMS_NODES];  /* each film's elastic radial line load, N/m */
+    double share[RD_LIFT_FILMS_NODES]; /* its share of the ring: the sum of wt over m */
+    double *wt;          /* m x RD_LIFT_FILMS_NODES: segment j's film = sum_g wt film g */
+    double *seg_load;    /* m: each segment's load, N/m */
+    double *angle_deg;   /* m: each segment's mid-angle from the gap middle, deg */
+    double interp_check; /* the coarser level's miss (NAN: exact) */
+    int solved[RD_LIFT_FILMS_NODES];   /* film g is solved (to free) */
+    rd_film film[RD_LIFT_FILMS_NODES]; /* each keeps its own cavitation state */
+    rd_film_track tr[RD_LIFT_FILMS_NODES];
+} rd_lift_films;
+int rd_lift_films_run(const rd_ring_params *rp, const rd_lift_params *p, const double *load,
+                      const double *angle_deg, int m, int fine, rd_lift_films *fs, rd_error *err);
+void rd_lift_films_free(rd_lift_films *fs);
+/* The n segments' elastic radial line loads (N/m) on the liner of `ring` in
+ * p's bore (the contact analysis', above) and their mid-angles from the gap
+ * middle, deg in [0, 360); rd_lift_films_run on them. */
+int rd_lift_bore_loads(const struct rd_ring *ring, const rd_lift_params *p, double *load,
+                       double *angle_deg, rd_error *err);
+/* The same with the contact solve's accuracy target and largest segment
+ * count (rd_contact_opts; rd_lift_bore_loads: RD_LIFT_FILMS_CONTACT_*). */
+int rd_lift_bore_loads_at(const struct rd_ring *ring, const rd_lift_params *p, double accuracy,
+                          int max_segments, double *load, double *angle_deg, rd_error *err);
+int rd_lift_films_bore(const struct rd_ring *ring, const rd_lift_params *p, rd_lift_films *fs,
+                       rd_error *err);
+/* The films at t into grp (count points), and each of n segments' film into
+ * seg (rd_lift_segfilm.c): the films of the m segments its arc covers,
+ * weighted by the overlap (n = m: its own; n = m / 2: the mean of two), so
+ * the friction of a coarser ring is the sum of the finer one's over the
+ * same arc. */
+void rd_lift_films_at(const rd_lift_films *fs, double t, int n, rd_film_point *grp,
+                      rd_film_point *seg);
+
+/* A lubrication block's films (rd_lift_lube_fill_films): count tracks on one
+ * face, each with its share of the ring (NULL: one film, the whole ring);
+ * m > 0: the thinnest film is taken over m segments, segment j's film
+ * sum_g wt[j NODES + g] film g, at angle_deg[j]. */
+typedef struct rd_lube_films {
+    const rd_film *film; /* the face (its x_min, sigma) */
+    const rd_film_track *tr;
+    int count;
+    const double *share;
+    int m;
+    const double *wt, *angle_deg;
+} rd_lube_films;
+int rd_lift_lube_fill_films(rd_lift_lube *lb, const rd_lube_films *fs, const rd_lube_params *l,
+                            const rd_engine_params *e, double diameter, const double *crank_deg,
+                            int S, double t_first, int C, rd_error *err);
+/* The lubrication block of the films and its estimate against the same
+ * films on a grid twice as fine (the interpolation's error from the check
+ * film, fs's). */
+int rd_lift_films_result(const rd_ring_params *rp, const rd_lift_params *p, const rd_lift_films *fs,
+                         rd_lift_result *out, rd_error *err);
+int rd_lift_films_estimate(const rd_ring_params *rp, const rd_lift_params *p,
+                           const rd_lift_films *fs, rd_lift_result *out, rd_error *err);
+
 #endif

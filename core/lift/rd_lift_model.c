@@ -54,6 +54,7 @@ void rd_lift_model_cleanup(rd_lift_model *c)
     free(c->MK);
     free(c->Dq);
     free(c->Dv);
+    free(c->film_grp);
 }
 
 /* The scene's constants: clearances, penalty, damping, pretension, friction. */
@@ -100,6 +101,12 @@ static int model_alloc(rd_lift_model *c, rd_error *err)
     c->MK = calloc(108 * n, sizeof *c->MK);
     c->Dq = malloc(36 * n * sizeof *c->Dq);
     c->Dv = malloc(36 * n * sizeof *c->Dv);
+    if (c->p->films) { /* a distorted bore's films (rd_lift_films_at) */
+        c->film_grp = malloc(((size_t)c->p->films->count + n) * sizeof *c->film_grp);
+        c->film_seg = c->film_grp ? c->film_grp + c->p->films->count : NULL;
+        if (!c->film_grp)
+            return rd_error_set(err, RD_ENOMEM, "", "Out of memory for the segments' films.");
+    }
     if (!c->Minv || !c->Mez || !c->fl_d || !c->bo_d || !c->bo_e || !c->ba_d || !c->cen_d ||
         !c->e_r || !c->e_t || !c->qbuf || !c->fbuf || !c->MK || !c->Dq || !c->Dv)
         return rd_error_set(err, RD_ENOMEM, "", "Out of memory for a %d-segment lift model.", c->n);

@@ -147,6 +147,9 @@ typedef struct rd_lift_model {
      * iterations, Jacobian and roots share its time).  Set by the force
      * calls only. */
     double kin_t, kin[6]; /* sd, acc, cb, sb, bd, bdd (force_env) */
+    /* p->films (a distorted bore's films): scratch of each force call, the
+     * films (count) and each segment's (n) at t (rd_lift_films_at). */
+    rd_film_point *film_grp, *film_seg;
 } rd_lift_model;
 
 /* Builds the model of a valid scene on `ring` (borrowed, as p).  On failure

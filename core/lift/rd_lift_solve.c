@@ -114,6 +114,7 @@ struct rd_lift {
     rd_ring *half;        /* n/2 segments: the segment-count estimate, auto's check */
     rd_film film;         /* the lubricated model's film over the run */
     rd_film_track track;  /* (track.pt: solved) */
+    rd_lift_films films;  /* a distorted bore's films instead (films.count > 0: solved) */
     double *y0, *y0_half; /* a distorted bore's static starts of n and n/2 segments */
 };
 
@@ -541,12 +542,27 @@ static int bore_start(lift_solve *s, rd_error *err)
 }
 
 /* The lubricated model's film over the run (rd_lift_film.c), solved by the
- * handle's first run and given to every run through p.film. */
-static int film_once(rd_lift *h, rd_error *err)
+ * handle's first run and given to every run through p.film; in a distorted
+ * bore the films of the segments' static loads (p.films, or p.film where
+ * they are all one). */
+static int film_once(lift_solve *s, rd_error *err)
 {
-    if (h->p.friction.model != RD_FRICTION_LUBRICATED || h->p.film)
+    rd_lift *h = s->h;
+    if (h->p.friction.model != RD_FRICTION_LUBRICATED || h->p.film || h->p.films)
         return RD_OK;
-    int rc = rd_lift_film_run(&h->rp, &h->p, &h->film, &h->track, err);
+    int rc;
+    if (rd_lift_bore_distorted(&h->p, h->rp.diameter)) {
+        if ((rc = rd_lift_films_bore(h->ring, &h->p, &h->films, err))) {
+            rd_lift_films_free(&h->films);
+            return rc;
+        }
+        if (h->films.count == 1)
+            h->p.film = &h->films.tr[0];
+        else
+            h->p.films = &h->films;
+        return RD_OK;
+    }
+    rc = rd_lift_film_run(&h->rp, &h->p, &h->film, &h->track, err);
     if (rc) {
         rd_film_track_free(&h->track);
         rd_film_free(&h->film);
@@ -600,6 +616,11 @@ static int run_plan(lift_solve *s, const rd_monitor *mon, rd_error *err)
         if (frc == RD_OK && p->estimate_error)
             frc = rd_lift_film_estimate(&h->rp, p, out, err);
         rc = rc == RD_OK ? frc : rc;
+    } else if (h->films.count > 0 && (rc == RD_OK || out->partial)) {
+        int frc = rd_lift_films_result(&h->rp, p, &h->films, out, err);
+        if (frc == RD_OK && p->estimate_error)
+            frc = rd_lift_films_estimate(&h->rp, p, &h->films, out, err);
+        rc = rc == RD_OK ? frc : rc;
     }
     return rc;
 }
@@ -610,15 +631,12 @@ static int run_setup(rd_lift *h, const rd_lift_setup *setup, const rd_monitor *m
 {
     lift_solve s = {.h = h, .ring = h->ring, .rp = &h->rp, .setup = setup, .out = out};
     result_init(out);
-    int rc = film_once(h, err);
-    if (rc)
-        return rc;
     s.p = &h->p;
-    int S = rd_lift_samples(s.p);
+    int rc, S = rd_lift_samples(s.p);
     if ((rc = result_alloc(out, s.p, S, h->segments, err)))
         goto out;
     choose_model(s.p, h->segments, h->rp.diameter, out);
-    if ((rc = prepare(&s, S, err)) || (rc = bore_start(&s, err)))
+    if ((rc = prepare(&s, S, err)) || (rc = bore_start(&s, err)) || (rc = film_once(&s, err)))
         goto out;
     rc = run_plan(&s, mon, err);
 out:
@@ -664,6 +682,7 @@ void rd_lift_free(rd_lift *h)
     rd_ring_free(h->half);
     rd_film_track_free(&h->track);
     rd_film_free(&h->film);
+    rd_lift_films_free(&h->films);
     free(h->y0);
     free(h->y0_half);
     free(h);

@@ -280,6 +280,7 @@ int rd_ringpack_films_result(rd_ringpack_model *m, rd_ringpack_result *r, rd_err
                                    p->rings[i].ring.diameter, r->crank_deg, r->samples,
                                    f->tr.pt[0].t, 1, err);
         r->lube[i].film_step_deg = p->film_step_deg;
+        r->lube[i].load_min = r->lube[i].load_max = f->w_el;
         if (rc || (rc = film_lag(f, &r->film_lag[i], err)) ||
             (p->estimate_error && (rc = film_estimate(f, i, r, err))))
             return rc;

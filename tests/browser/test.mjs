@@ -833,9 +833,15 @@ test('lift renderer: a lubricated result draws its film and friction split, per 
       zoom.value = zoom.options[2].value; // cycle 2
       zoom.dispatchEvent(new Event('change'));
       const second = state();
+      // A distorted bore's films: how many, the load range, where the thinnest is.
+      const lub = result.lubrication;
+      mod.lift.render({ ...result, lubrication: { ...lub, films: 5, film_interpolation_error: 0.0012,
+        film_load_n_per_m: { min: 146.3, max: 373.6 }, min_film_angle_deg: lub.min_film_m.map(() => 278.9) } }, null, box);
+      const films = { summary: box.querySelector('#lf-lube-summary')?.textContent,
+        text: box.querySelector('#lf-lube-facts')?.textContent };
       mod.lift.render({ ...result, lubrication: {} }, null, box);
       const bare = state();
-      return { whole, second, bare };
+      return { whole, second, bare, films };
     } finally {
       box.remove();
     }
@@ -851,6 +857,10 @@ test('lift renderer: a lubricated result draws its film and friction split, per 
   assert.equal(drawn.second.film, 721);
   assert.equal(drawn.second.total, 721);
   assert.deepEqual(drawn.second.fmep, ['3.125', '3.75']);
+  assert.match(drawn.films.summary, /thinnest oil film 0\.400 µm at 540°, on the segment 278\.9° from the gap middle/);
+  assert.match(drawn.films.text, /5 films at loads across the range, each segment's interpolated at its load \(error estimate 0\.12 %\)/);
+  assert.match(drawn.films.text, /146 to 374 N\/m around the ring/);
+  assert.doesNotMatch(drawn.whole.summary, /from the gap middle/, 'one film: no angle');
   assert.deepEqual(drawn.bare, { film: 0, hydro: 0, asperity: 0, total: 0, fmep: [], work: [], method: undefined, summary: undefined, caption: undefined });
   assert.deepEqual(pageErrors, []);
 });
