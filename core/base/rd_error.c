@@ -31,6 +31,12 @@ void rd_error_leave(rd_error *err, size_t mark)
         err->base[mark] = '\0';
 }
 
+void rd_error_init_local(rd_error *local, const rd_error *err)
+{
+    rd_error_init(local);
+    rd_error_enter(local, err ? err->base : "");
+}
+
 int rd_error_forward(rd_error *dst, const rd_error *src)
 {
     if (dst && dst->code == RD_OK && src->code != RD_OK) {

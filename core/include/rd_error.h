@@ -25,9 +25,10 @@
  *     rc = rd_ring_validate(p, closed, err);    // "/ring/axial_height = ..."
  *     rd_error_leave(err, m);
  *
- * A record filled apart (a local rd_error whose message is kept or dropped)
- * is copied into the caller's as it stands with rd_error_forward: its path
- * already holds the base it was filled under.
+ * A record filled apart (a local rd_error whose message is kept, quoted or
+ * dropped) starts at the caller's base (rd_error_init_local), so its path
+ * and words are whole, and is copied back as it stands (rd_error_forward):
+ * the base is applied once.
  */
 #ifndef RD_ERROR_H
 #define RD_ERROR_H
@@ -79,6 +80,9 @@ size_t rd_error_enter(rd_error *err, const char *block);
 /* Leaves the blocks entered since `mark` (rd_error_enter's return). */
 void rd_error_leave(rd_error *err, size_t mark);
 
+/* Clears `local` for a sub-computation of err's: at err's base (err may be
+ * NULL: the root), to be copied back with rd_error_forward. */
+void rd_error_init_local(rd_error *local, const rd_error *err);
 /* Copies src's error into dst as it stands (its path is whole already),
  * unless dst holds an error already; returns src's code. */
 int rd_error_forward(rd_error *dst, const rd_error *src);

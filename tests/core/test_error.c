@@ -1,12 +1,14 @@
 /* test_error — the error record's block base (rd_error.h): paths relative to
  * the block entered, '@' in a message for the base (a '%' in the base kept
  * literal), enter/leave nesting, first error wins, rd_error_forward copying
- * as it stands. */
+ * as it stands, and the ring's validator under a lift's /ring and a pack's
+ * /rings/1/ring giving the same words at both places. */
 #include <stdio.h>
 #include <string.h>
 
 #include "check.h"
 #include "rd_error.h"
+#include "rd_ring.h"
 
 static void test_base(void)
 {
@@ -78,9 +80,44 @@ static void test_forward(void)
     CHECK(rd_error_forward(&e, &other) == RD_OK && e.code == RD_OK, "forwarding no error");
 }
 
+/* The same ring validator at a lift's /ring and a pack's /rings/1/ring. */
+static void test_ring_blocks(void)
+{
+    rd_ring_params p;
+    rd_ring_params_default(&p);
+    p.axial_height = 1e-4; /* b / h = 29 */
+    const char *at[2] = {"/ring", "/rings/1/ring"};
+    for (int k = 0; k < 2; k++) {
+        rd_error e;
+        rd_error_init(&e);
+        if (k == 1)
+            rd_error_enter(&e, "/rings/1");
+        size_t m = rd_error_enter(&e, "/ring");
+        CHECK(rd_ring_validate(&p, 0, &e) == RD_EINVAL, "refused");
+        rd_error_leave(&e, m);
+        char path[64], words[64];
+        snprintf(path, sizeof path, "%s/axial_height", at[k]);
+        snprintf(words, sizeof words, "%s/axial_height = 0.0001 m gives", at[k]);
+        CHECK(strcmp(e.path, path) == 0 && strncmp(e.message, words, strlen(words)) == 0,
+              "%s: %s: %s", at[k], e.path, e.message);
+    }
+    rd_error e;
+    rd_error_init(&e);
+    CHECK(rd_ring_scene_validate(&p, 20, 0, &e) == RD_EINVAL &&
+              strcmp(e.path, "/ring/axial_height") == 0 && e.base[0] == '\0',
+          "the scene's validator enters /ring and leaves it (%s)", e.path);
+    rd_ring_params_default(&p);
+    rd_error_init(&e);
+    CHECK(rd_ring_scene_validate(&p, 2, 0, &e) == RD_EINVAL &&
+              strcmp(e.path, "/discretization/segments") == 0 &&
+              strncmp(e.message, "/discretization/segments = 2", 28) == 0,
+          "segments under /discretization (%s)", e.message);
+}
+
 int main(void)
 {
     test_base();
     test_forward();
+    test_ring_blocks();
     return check_done();
 }
