@@ -360,7 +360,10 @@ static int lube_finish(struct rd_scene *s, struct lift_opts *o, rd_error *err)
     rd_lift_params *l = &o->lift;
     int lub = l->friction.model == RD_FRICTION_LUBRICATED;
     if (s->face_given && !lub) { /* its ranges first, then that it is not read */
-        int rc = rd_lube_validate(&l->friction.lube, &s->face, RD_LINER_RQ_DEFAULT, err);
+        size_t m = rd_error_enter(err, "/ring/face");
+        int rc = rd_face_validate(&s->face, err);
+        rd_error_leave(err, m);
+        rc = rc ? rc : rd_lube_validate(&l->friction.lube, RD_LINER_RQ_DEFAULT, err);
         if (rc)
             return rc;
     }

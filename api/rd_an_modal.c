@@ -59,7 +59,9 @@ static void defaults(struct rd_scene *s)
 
 static int finish(struct rd_scene *s, rd_error *err)
 {
+    size_t m = rd_error_enter(err, "/modal");
     int rc = rd_modal_validate(&s->modal, s->segments, err);
+    rd_error_leave(err, m);
     return rc != RD_OK
                ? rc
                : rd_modal_validate_ring(&s->ring, s->segments, s->modal.estimate_error, err);

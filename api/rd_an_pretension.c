@@ -55,7 +55,12 @@ static int finish(struct rd_scene *s, rd_error *err)
     int rc = rd_free_shape_finish(s, err);
     rc = rc != RD_OK ? rc : rd_static_validate(&o->statics, s->segments, s->closed, err);
     rc = rc != RD_OK ? rc : rd_pretension_validate(&o->pretension, &s->ring, s->segments, err);
-    return rc != RD_OK ? rc : rd_free_shape_validate(o->pretension.free_shape, &s->ring, err);
+    if (rc != RD_OK)
+        return rc;
+    size_t m = rd_error_enter(err, "/ring");
+    rc = rd_free_shape_validate(o->pretension.free_shape, &s->ring, err);
+    rd_error_leave(err, m);
+    return rc;
 }
 
 /* {"analysis", "scene", "gap_opening_inner", "lateral_opening",
@@ -198,10 +203,12 @@ static int run(const rd_scene *s, const rd_monitor *mon, json_t **out, rd_error 
     memset(&res, 0, sizeof res);
     double t0 = rd_clock_s();
     rd_ring_params sr = s->ring; /* a general section's J computed once, here */
+    size_t m = rd_error_enter(err, "/ring");
     int rc =
         sr.section >= RD_SECTION_TAPER_FACE
             ? rd_section_spec_solve(sr.section, &sr.spec, sr.radial_width, sr.axial_height, err)
             : RD_OK;
+    rd_error_leave(err, m);
     rd_free_run fr; /* the ring, fitted first to a measured free shape */
     if (rc == RD_OK)
         rc = rd_free_run_prepare(s, &sr, &o->statics, mon, &fr, err);

@@ -259,8 +259,13 @@ int rd_bore_map_of_points(struct rd_contact_map_scene *m, double d, double D, rd
     if (!m->map)
         return rd_error_set(err, RD_ENOMEM, "/bore/points", "out of memory for the bore map");
     int rc = points_of(m, &p, err);
-    rc = rc != RD_OK ? rc : rd_bore_points_validate(&p, d, err);
-    return rc != RD_OK ? rc : rd_bore_map_fit(&p, D, m->map, err);
+    if (rc != RD_OK)
+        return rc;
+    size_t mark = rd_error_enter(err, "/bore");
+    rc = rd_bore_points_validate(&p, d, err);
+    rc = rc != RD_OK ? rc : rd_bore_map_fit(&p, D, m->map, err);
+    rd_error_leave(err, mark);
+    return rc;
 }
 
 json_t *rd_bore_fit_json(const rd_scene *s, const struct rd_contact_map_scene *m)
@@ -283,12 +288,17 @@ int rd_contact_map_finish(rd_scene *s, rd_error *err)
         for (int i = 0; i < m->map->n_layers; i++) /* echoed as the diameter used */
             if (m->map->layer[i].bore.diameter == 0.0)
                 m->map->layer[i].bore.diameter = D;
+        size_t mark = rd_error_enter(err, "/bore");
         rc = rd_bore_map_validate(m->map, d, err);
+        rd_error_leave(err, mark);
     } else {
         rc = rd_bore_map_of_points(m, d, D, err);
     }
-    if (rc == RD_OK && !m->height_all)
+    if (rc == RD_OK && !m->height_all) {
+        size_t mark = rd_error_enter(err, "/contact");
         rc = rd_bore_map_at(m->map, m->height, d, &m->at, err);
+        rd_error_leave(err, mark);
+    }
     return rc;
 }
 

@@ -244,7 +244,10 @@ int rd_free_shape_finish(const rd_scene *s, rd_error *err)
                             "measured free shape gives F_t (free_shape_fit.tangential_force_n in "
                             "the result); leave it out.",
                             s->ring.tangential_force);
-    return rd_free_table_validate(&s->free_table, &s->ring, err);
+    size_t m = rd_error_enter(err, "/ring");
+    int rc = rd_free_table_validate(&s->free_table, &s->ring, err);
+    rd_error_leave(err, m);
+    return rc;
 }
 
 int rd_free_run_prepare(const rd_scene *s, const rd_ring_params *ring, const rd_static_opts *so,

@@ -246,7 +246,7 @@ int rd_scene_parse_issues(const rd_analysis_def *const *registry, json_t *root, 
     s->issues = NULL;
     /* Values and ranges: core's validators, messages passed on unchanged. */
     if (rc == RD_OK) {
-        rc = rd_ring_validate(&s->ring, s->segments, s->closed, err);
+        rc = rd_ring_scene_validate(&s->ring, s->segments, s->closed, err);
         if (rc == RD_OK && s->an->finish)
             rc = s->an->finish(s, err);
         if (rc != RD_OK)

@@ -144,7 +144,7 @@ static void name_value(const rd_sweep *s, size_t k, rd_error *e)
     char *text = v ? json_dumps(v, JSON_ENCODE_ANY | JSON_COMPACT |
                                        JSON_REAL_PRECISION(RD_SWEEP_REAL_DIGITS))
                    : NULL;
-    rd_error named = {e->code, "", ""};
+    rd_error named = {e->code, "", "", ""};
     memcpy(named.path, e->path, sizeof named.path);
     snprintf(named.message, sizeof named.message, "over %.80s = %.40s: %.380s", s->over.path,
              text ? text : "?", e->message[0] ? e->message : rd_error_summary(e->code));

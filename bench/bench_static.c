@@ -896,7 +896,7 @@ int main(int argc, char **argv)
         }
         rd_error err;
         rd_error_init(&err);
-        if (rd_ring_validate(&p, 20, 0, &err))
+        if (rd_ring_scene_validate(&p, 20, 0, &err))
             die("--ring", &err);
     }
     if (rigid_face)

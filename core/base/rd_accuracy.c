@@ -2,6 +2,7 @@
 #include "rd_accuracy.h"
 
 #include <math.h>
+#include <stdio.h>
 #include <time.h>
 
 double rd_accuracy_wall_now(void)
@@ -50,13 +51,19 @@ int rd_accuracy_run(const rd_accuracy_plan *plan, const rd_monitor *mon, rd_accu
         return rc;
 
     rd_error sub;
-    rd_error_init(&sub);
+    rd_error_init_local(&sub, err);
     rc = solve_level(plan, 1, mon, share, 1.0, cost, &sub);
     if (rc != RD_OK) {
-        if (rc == RD_ECANCELED || rc == RD_ETIMEOUT)
-            return rd_error_set(err, rc, sub.path, "%s", sub.message);
-        return rd_error_set(err, rc, sub.path, "The error-estimate solve at %s failed: %s",
-                            plan->reference ? plan->reference : "refined settings", sub.message);
+        if (rc == RD_ECANCELED || rc == RD_ETIMEOUT) {
+            rd_error_forward(err, &sub);
+            return rc;
+        }
+        char why[RD_ERROR_MESSAGE_MAX];
+        snprintf(why, sizeof why, "%s", sub.message);
+        snprintf(sub.message, sizeof sub.message, "The error-estimate solve at %s failed: %.400s",
+                 plan->reference ? plan->reference : "refined settings", why);
+        rd_error_forward(err, &sub);
+        return rc;
     }
     return plan->compare ? plan->compare(plan->ctx, err) : RD_OK;
 }

@@ -64,28 +64,28 @@ static int validate_tilt(const rd_engine_params *e, rd_error *err)
 {
     int rc;
     if ((rc = rd_error_range(e->piston_tilt_deg, -RD_ENGINE_TILT_MAX_DEG, RD_ENGINE_TILT_MAX_DEG,
-                             "/engine/piston_tilt_deg", "deg", err)))
+                             "/piston_tilt_deg", "deg", err)))
         return rc;
     if (e->tilt_points < 0 || e->tilt_points > RD_ENGINE_TABLE_MAX)
-        return rd_error_set(err, RD_EINVAL, "/engine/piston_tilt/crank_deg",
-                            "/engine/piston_tilt has %d points: allowed 1 to %d.", e->tilt_points,
+        return rd_error_set(err, RD_EINVAL, "/piston_tilt/crank_deg",
+                            "@/piston_tilt has %d points: allowed 1 to %d.", e->tilt_points,
                             RD_ENGINE_TABLE_MAX);
     double big = 0.0;
     for (int i = 0; i < e->tilt_points; i++) {
         double a = e->tilt_crank_deg[i], b = e->tilt_deg[i];
         if (!isfinite(a) || a < 0.0 || a > 720.0 || (i > 0 && !(a > e->tilt_crank_deg[i - 1])))
-            return rd_error_set(err, RD_EINVAL, "/engine/piston_tilt/crank_deg",
-                                "/engine/piston_tilt/crank_deg[%d] = %g deg: the crank angles "
+            return rd_error_set(err, RD_EINVAL, "/piston_tilt/crank_deg",
+                                "@/piston_tilt/crank_deg[%d] = %g deg: the crank angles "
                                 "must be strictly increasing within 0 to 720 deg.",
                                 i, a);
         if (!isfinite(b))
-            return rd_error_set(err, RD_EINVAL, "/engine/piston_tilt/tilt_deg",
-                                "/engine/piston_tilt/tilt_deg[%d] is not a finite number.", i);
+            return rd_error_set(err, RD_EINVAL, "/piston_tilt/tilt_deg",
+                                "@/piston_tilt/tilt_deg[%d] is not a finite number.", i);
         big = fmax(big, fabs(b));
     }
     if (fabs(e->piston_tilt_deg) + big > RD_ENGINE_TILT_MAX_DEG)
-        return rd_error_set(err, RD_EINVAL, "/engine/piston_tilt/tilt_deg",
-                            "/engine/piston_tilt_deg + the largest /engine/piston_tilt/tilt_deg "
+        return rd_error_set(err, RD_EINVAL, "/piston_tilt/tilt_deg",
+                            "@/piston_tilt_deg + the largest @/piston_tilt/tilt_deg "
                             "= %g deg: the tilt is allowed up to %g deg (small-angle model).",
                             fabs(e->piston_tilt_deg) + big, RD_ENGINE_TILT_MAX_DEG);
     return RD_OK;
@@ -94,19 +94,19 @@ static int validate_tilt(const rd_engine_params *e, rd_error *err)
 int rd_engine_validate(const rd_engine_params *e, rd_error *err)
 {
     int rc;
-    if ((rc = rd_error_range(e->speed_rpm, 1.0, 30000.0, "/engine/speed_rpm", "rpm", err)) ||
-        (rc = rd_error_range(e->crank_radius, 1e-3, 1.0, "/engine/crank_radius", "m", err)))
+    if ((rc = rd_error_range(e->speed_rpm, 1.0, 30000.0, "/speed_rpm", "rpm", err)) ||
+        (rc = rd_error_range(e->crank_radius, 1e-3, 1.0, "/crank_radius", "m", err)))
         return rc;
     /* lambda = r / l <= 0.9: the exact slider-crank needs lambda < 1; real
      * engines have 0.2..0.4. */
     if (!isfinite(e->rod_length) || e->rod_length < e->crank_radius / 0.9 || e->rod_length > 10.0)
-        return rd_error_set(err, RD_EINVAL, "/engine/rod_length",
-                            "/engine/rod_length = %g m is out of range: allowed %g m (crank "
+        return rd_error_set(err, RD_EINVAL, "/rod_length",
+                            "@/rod_length = %g m is out of range: allowed %g m (crank "
                             "radius / 0.9) to 10 m.",
                             e->rod_length, e->crank_radius / 0.9);
     if (e->kinematics != RD_KINEMATICS_EXACT && e->kinematics != RD_KINEMATICS_APPROXIMATE)
-        return rd_error_set(err, RD_EINVAL, "/engine/kinematics",
-                            "/engine/kinematics = %d is unknown: use exact or approximate.",
+        return rd_error_set(err, RD_EINVAL, "/kinematics",
+                            "@/kinematics = %d is unknown: use exact or approximate.",
                             e->kinematics);
     return validate_tilt(e, err);
 }

@@ -59,13 +59,13 @@ typedef struct rd_bore_points {
 } rd_bore_points;
 
 /* Range checks of given layers for a ring of diameter d, paths
- * "/bore/layers/<i>/...": 1..RD_BORE_LAYERS_MAX layers, z within 0 to
+ * "/layers/<i>/..." in the bore's block: 1..RD_BORE_LAYERS_MAX layers, z within 0 to
  * RD_BORE_Z_MAX m and strictly increasing, each layer a valid bore
- * (rd_bore_validate_at), and any two neighbours at most RD_BORE_ORDERS_MAX
+ * (rd_bore_validate), and any two neighbours at most RD_BORE_ORDERS_MAX
  * distinct orders together (a height between them combines them). */
 int rd_bore_map_validate(const rd_bore_map *m, double d, rd_error *err);
 
-/* Range checks of points, paths "/bore/points/...": n 1..RD_BORE_POINTS_MAX,
+/* Range checks of points, paths "/points/..." in the bore's block: n 1..RD_BORE_POINTS_MAX,
  * theta within +-720 deg, z within 0..RD_BORE_Z_MAX m, |dr| at most 1 % of
  * d, fit_order 0..RD_BORE_ORDERS_MAX, at most RD_BORE_LAYERS_MAX distinct z,
  * and 2 fit_order + 1 distinct angles in every layer. */
@@ -74,11 +74,11 @@ int rd_bore_points_validate(const rd_bore_points *p, double d, rd_error *err);
 /* Fits valid points (rd_bore_points_validate) about the nominal bore
  * diameter D (> 0): fills *m, layers in increasing z, residual_rms set.
  * A fitted layer that is not a valid bore is RD_EINVAL at
- * "/bore/points/dr"; RD_ENOMEM, RD_ENUMERIC (LAPACK) otherwise. */
+ * "/points/dr" (the bore's block); RD_ENOMEM, RD_ENUMERIC (LAPACK) otherwise. */
 int rd_bore_map_fit(const rd_bore_points *p, double D, rd_bore_map *m, rd_error *err);
 
 /* The bore at height z (m) of a valid map, for a ring of diameter d (a
- * layer's 0 diameter): RD_EINVAL at "/contact/height" when z is outside
+ * layer's 0 diameter): RD_EINVAL at "/height" (the contact block) when z is outside
  * the first to the last layer. */
 int rd_bore_map_at(const rd_bore_map *m, double z, double d, rd_bore *out, rd_error *err);
 

@@ -39,7 +39,8 @@ typedef struct rd_engine_params {
     const double *tilt_crank_deg, *tilt_deg;
 } rd_engine_params;
 
-/* Range checks of everything but `cycles` (paths "/engine/..."). */
+/* Range checks of everything but `cycles` (paths relative to the engine
+ * block: "/speed_rpm", ...). */
 int rd_engine_validate(const rd_engine_params *e, rd_error *err);
 
 /* The crank's angular speed, rad/s: the one place rpm becomes omega. */

@@ -8,6 +8,27 @@
  * jansson's json_error_t).  Messages are written for the user of the service:
  * what is wrong, the value, the allowed range.  `path` is a JSON Pointer to
  * the offending scene field ("/ring/radial_width") or "" when there is none.
+ *
+ * Error paths are relative.  Core never writes where in the scene a block
+ * sits: a function writes paths relative to the block it was given, and its
+ * caller enters the block's pointer first.  The record keeps that pointer
+ * as `base` ("" = the scene root); rd_error_set records base + path, and in
+ * its format each '@' stands for the base, so a message names the field by
+ * its whole pointer wherever the block sits:
+ *
+ *     // the ring validator: paths relative to the ring block
+ *     return rd_error_set(err, RD_EINVAL, "/axial_height",
+ *                         "@/axial_height = %g m gives ...", h);
+ *
+ *     // its caller: the block is at /ring (a lift scene) or /rings/1/ring
+ *     size_t m = rd_error_enter(err, "/ring");
+ *     rc = rd_ring_validate(p, closed, err);    // "/ring/axial_height = ..."
+ *     rd_error_leave(err, m);
+ *
+ * A record filled apart (a local rd_error whose message is kept, quoted or
+ * dropped) starts at the caller's base (rd_error_init_local), so its path
+ * and words are whole, and is copied back as it stands (rd_error_forward):
+ * the base is applied once.
  */
 #ifndef RD_ERROR_H
 #define RD_ERROR_H
@@ -47,13 +68,28 @@ typedef struct rd_error {
     int code;                           /* RD_OK while no error is recorded */
     char path[RD_ERROR_PATH_MAX];       /* JSON Pointer, or "" */
     char message[RD_ERROR_MESSAGE_MAX]; /* for the user, complete sentence */
+    char base[RD_ERROR_PATH_MAX];       /* the block being checked, "" = root */
 } rd_error;
 
-/* Clears the record (code RD_OK, empty strings). */
+/* Clears the record (code RD_OK, empty strings, the base at the root). */
 void rd_error_init(rd_error *err);
 
+/* Enters a block: appends `block` ("/ring", "/rings/1") to the base and
+ * returns the base's previous length, for rd_error_leave.  err may be NULL. */
+size_t rd_error_enter(rd_error *err, const char *block);
+/* Leaves the blocks entered since `mark` (rd_error_enter's return). */
+void rd_error_leave(rd_error *err, size_t mark);
+
+/* Clears `local` for a sub-computation of err's: at err's base (err may be
+ * NULL: the root), to be copied back with rd_error_forward. */
+void rd_error_init_local(rd_error *local, const rd_error *err);
+/* Copies src's error into dst as it stands (its path is whole already),
+ * unless dst holds an error already; returns src's code. */
+int rd_error_forward(rd_error *dst, const rd_error *src);
+
 /* Records an error unless one is already recorded; returns `code` so callers
- * can write `return rd_error_set(err, RD_EINVAL, "/ring/diameter", ...)`.
+ * can write `return rd_error_set(err, RD_EINVAL, "/diameter", ...)`.  The
+ * path recorded is base + path; each '@' in fmt stands for the base.
  * err may be NULL (then only the code is returned). */
 int rd_error_set(rd_error *err, int code, const char *path, const char *fmt, ...)
 #if defined(__GNUC__)
@@ -62,10 +98,15 @@ int rd_error_set(rd_error *err, int code, const char *path, const char *fmt, ...
     ;
 
 /* RD_OK when v is finite and within [lo, hi]; else RD_EINVAL at `path`
- * with the one wording every range error uses: "<path> = v unit is out of
- * range: allowed lo to hi unit." */
+ * (base + path) with the one wording every range error uses: "<base><path>
+ * = v unit is out of range: allowed lo to hi unit." */
 int rd_error_range(double v, double lo, double hi, const char *path, const char *unit,
                    rd_error *err);
+
+/* rd_error_range for a field of a sub-block: `block` ("/numerics") entered
+ * for the one check, `path` relative to it ("/rtol"). */
+int rd_error_range_in(const char *block, double v, double lo, double hi, const char *path,
+                      const char *unit, rd_error *err);
 
 /* rd_error_set with a va_list, for callers that forward their own format. */
 int rd_error_setv(rd_error *err, int code, const char *path, const char *fmt, va_list ap);

@@ -133,17 +133,22 @@ typedef struct rd_cylinder_synthetic {
     double intake_pa;         /* p_in, Pa (absolute) */
 } rd_cylinder_synthetic;
 
-/* Checks the synthetic inputs (paths under `path`, e.g.
- * "/cylinder_pressure/synthetic"); the fired peak must exceed the motored
- * one p_in eps^n by 5 %. */
-int rd_gasflow_synthetic_validate(const rd_cylinder_synthetic *s, const char *path, rd_error *err);
+/* Checks the synthetic inputs (paths relative to the synthetic block,
+ * "/peak_pa"); the fired peak must exceed the motored one p_in eps^n by 5 %. */
+int rd_gasflow_synthetic_validate(const rd_cylinder_synthetic *s, rd_error *err);
 
 /* Writes the synthetic trace: RD_GASFLOW_POINTS angles (0, 0.25, ..., 720)
  * into crank_deg and pressures into p (caller's arrays).  bore: the cylinder
  * diameter, m; e: crank radius, rod length, kinematics.  Validates first
  * (rd_gasflow_synthetic_validate). */
 int rd_gasflow_synthetic(const rd_cylinder_synthetic *s, const rd_engine_params *e, double bore,
-                         const char *path, double *crank_deg, double *p, rd_error *err);
+                         double *crank_deg, double *p, rd_error *err);
+
+/* Checks a measured cylinder pressure table, paths relative to the
+ * cylinder_pressure block ("/crank_deg", "/pressure_pa/3"): at least 2
+ * points, pressures 1e3..1e9 Pa (absolute), the angles strictly increasing
+ * from 0 to 720 deg. */
+int rd_gasflow_table_validate(int n, const double *deg, const double *pa, rd_error *err);
 
 /* Linear interpolation in a table (n >= 2, x strictly increasing, covering
  * 0..720), periodic over 720 deg. */

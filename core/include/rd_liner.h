@@ -96,20 +96,20 @@ typedef struct rd_bore {
 /* 1 if the bore is not the round bore of the ring's diameter. */
 int rd_bore_distorted(const rd_bore *b, double ring_diameter);
 
-/* Range checks of a bore for a ring of diameter d (paths "/bore/..."):
+/* Range checks of a bore for a ring of diameter d (paths relative to the
+ * bore's block, "/diameter", "/distortion/..."; the bore sits at /bore or
+ * /bore/layers/3: rd_error_enter):
  * D within 2 % of d, at most RD_BORE_ORDERS_MAX terms of order 1..64,
  * |A_k| and their sum at most 1 % of d, phases within +-360 deg, and
  * convex (rd_bore_convex_validate). */
 int rd_bore_validate(const rd_bore *b, double d, rd_error *err);
-/* The same checks for a bore found at JSON Pointer `at` ("/bore",
- * "/bore/layers/3"): its paths are `at` + "/diameter", "/distortion/...". */
-int rd_bore_validate_at(const rd_bore *b, double d, const char *at, rd_error *err);
 
 /* The convex-bore rule of a distorted bore r = D/2 + sum A_k cos(k (t -
  * phi_k)), shared by the contact and lift analyses: its curvature stays
  * positive when sum |A_k| (k^2 + 2) <= D/2 (to first order in A_k / D).
  * rd_bore_bend_term is one term of the sum; rd_bore_convex_validate checks
- * the sum `bend` against the bore of diameter d (path "/bore/distortion").
+ * the sum `bend` against the bore of diameter d (path "/distortion" in the
+ * bore's block).
  * A non-convex (petal-shaped) bore ends the contact solve unconverged and
  * is outside the lift model's small-offset contact geometry. */
 double rd_bore_bend_term(int order, double amplitude);
@@ -125,14 +125,16 @@ int rd_bore_convex_validate(double bend, double d, rd_error *err);
 void rd_lube_params_default(rd_lube_params *l, rd_face_params *face);
 #define RD_LINER_RQ_DEFAULT 0.2e-6 /* the liner's Rq default, m */
 
-/* Range checks of the lubricated model's inputs (paths "/ring/face/...",
- * "/bore/roughness_rq_m", "/physics/friction/..."): roughness within
+/* Range checks of the lubricated model's inputs: roughness within
  * [1e-9, 5e-6] m, crown [0, 1e-4] m, taper (0, 5] deg, the oil's viscosity
  * [1e-4, 10] Pa s, temperatures [-40, 250] deg C (kelvin typed as Celsius
  * named as such), the Vogel law above 10 K from its pole, asperity density
  * [1e6, 1e14] / m^2, radius [1e-7, 1e-2] m, mu_b [0, 1], E' 0 or [1e9, 1e12]
- * Pa.  The face's fit to its height is rd_film_init's. */
-int rd_lube_validate(const rd_lube_params *l, const rd_face_params *face, double liner_rq,
-                     rd_error *err);
+ * Pa.  The face's fit to its height is rd_film_init's.  rd_face_validate:
+ * the face, paths relative to its block ("/crown_m"); rd_lube_validate: the
+ * liner's roughness and the oil, paths relative to the scene's root
+ * ("/bore/roughness_rq_m", "/physics/friction/..."). */
+int rd_face_validate(const rd_face_params *face, rd_error *err);
+int rd_lube_validate(const rd_lube_params *l, double liner_rq, rd_error *err);
 
 #endif

@@ -67,7 +67,7 @@ typedef struct rd_modal_result {
 } rd_modal_result;
 
 void rd_modal_opts_default(rd_modal_opts *o);
-/* Checks opts against the ring (paths "/modal/modes"). */
+/* Checks opts against the ring (paths relative to the modal block: "/modes"). */
 int rd_modal_validate(const rd_modal_opts *o, int segments, rd_error *err);
 
 /* The ring's slenderness at n segments, n R / min(b, h) x sqrt(max(1, G / E)):
@@ -77,8 +77,8 @@ int rd_modal_validate(const rd_modal_opts *o, int segments, rd_error *err);
  * the error estimate is wanted (it needs the difference of two solves to
  * well below the discretization error) and above
  * RD_MODAL_SLENDERNESS_MAX_FREQ without it (frequencies to about 1e-3);
- * path "/discretization/segments", or "/ring" when even 3 segments are too
- * many. */
+ * paths relative to the scene's root: "/discretization/segments", or "/ring"
+ * when even 3 segments are too many. */
 #define RD_MODAL_SLENDERNESS_MAX      3e5
 #define RD_MODAL_SLENDERNESS_MAX_FREQ 3e6
 double rd_modal_slenderness(const rd_ring_params *p, int segments);

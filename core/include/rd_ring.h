@@ -75,10 +75,16 @@ typedef struct rd_segment_mass {
  * F_t 10 N, steel E 210 GPa, nu 0.3, rho 7850 kg/m^3. */
 void rd_ring_params_default(rd_ring_params *p);
 
-/* Checks every parameter (finite, in range) and the segment count
- * (RD_SEGMENTS_MIN..RD_SEGMENTS_MAX).  Paths name the scene fields
- * ("/ring/...", "/discretization/segments").  Returns RD_OK or RD_EINVAL. */
-int rd_ring_validate(const rd_ring_params *p, int segments, int closed, rd_error *err);
+/* Checks every parameter (finite, in range); paths relative to the ring's
+ * block ("/diameter", "/material/density": rd_error.h).  Returns RD_OK or
+ * RD_EINVAL. */
+int rd_ring_validate(const rd_ring_params *p, int closed, rd_error *err);
+/* The segment count, RD_SEGMENTS_MIN..RD_SEGMENTS_MAX (RD_ELIMIT above);
+ * path relative to the discretization block ("/segments"). */
+int rd_segments_validate(int segments, rd_error *err);
+/* Both, for a scene whose ring is at /ring and whose segments are at
+ * /discretization/segments, relative to the scene's root. */
+int rd_ring_scene_validate(const rd_ring_params *p, int segments, int closed, rd_error *err);
 
 /* The beam's constants of p's section, without a ring (the ring's own copy:
  * rd_ring_get_section); p must be valid. */
@@ -92,8 +98,9 @@ void rd_ring_segment_mass_get(const rd_ring_params *p, double phi, rd_segment_ma
 /* The assembled model: opaque. */
 typedef struct rd_ring rd_ring;
 
-/* Builds the n-segment model.  Validates first.  Returns NULL and fills err on
- * failure.  Free with rd_ring_free (NULL is a no-op). */
+/* Builds the n-segment model.  Validates first (rd_ring_scene_validate: its
+ * paths relative to a scene with the ring at /ring).  Returns NULL and fills
+ * err on failure.  Free with rd_ring_free (NULL is a no-op). */
 rd_ring *rd_ring_create(const rd_ring_params *p, int segments, int closed, rd_error *err);
 void rd_ring_free(rd_ring *ring);
 

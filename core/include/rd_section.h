@@ -137,7 +137,8 @@ double rd_section_torsion_constant(double a, double c);
 /* The outline of a general shape (shape = enum rd_section_shape >=
  * RD_SECTION_TAPER_FACE) with fields `spec` in the b x h box: its n points
  * (u radial from the inner edge, v axial from the bottom, m) written to
- * pts, counter-clockwise.  Checks the fields (paths "/ring/section/..."):
+ * pts, counter-clockwise.  Checks the fields (paths relative to the ring's
+ * block: "/section/..."):
  * side 0 or 1, a bevel's and a step's legs inside the box, angles that
  * leave a section, a polygon of 3..RD_SECTION_POINTS_MAX points that does
  * not cross itself, has an area, and whose bounding box is b x h (relative

@@ -139,7 +139,8 @@ typedef struct rd_free_fit {
     int parameters, iterations;
 } rd_free_fit;
 
-/* 0 or the table's error (its field under /ring/free_shape). */
+/* 0 or the table's error (its field under "/free_shape" of the ring's
+ * block). */
 int rd_free_table_validate(const rd_free_table *t, const rd_ring_params *p, rd_error *err);
 /* Fits t (rd_free_table) with the exact free shapes of p's ring at
  * `segments` (the fit's chain: 80..320 of them is ample, rd_free_fit.c):
@@ -379,8 +380,8 @@ void rd_static_opts_default(rd_static_opts *o);
 void rd_pretension_opts_default(rd_pretension_opts *o);
 void rd_contact_opts_default(rd_contact_opts *o);
 
-/* Range checks, paths "/pretension/...", "/bore/...", "/contact/...",
- * "/numerics/...". */
+/* Range checks of a scene's blocks, paths relative to its root (each block
+ * entered: "/pretension/...", "/bore/...", "/contact/...", "/numerics/..."). */
 int rd_static_validate(const rd_static_opts *o, int segments, int closed, rd_error *err);
 int rd_pretension_validate(const rd_pretension_opts *o, const rd_ring_params *p, int segments,
                            rd_error *err);
@@ -408,7 +409,8 @@ double rd_contact_gap_floor(const rd_ring_params *p);
  * (half the points' evaluations, about half the Newton iteration's cost). */
 int rd_contact_points(int m, int n);
 
-/* Checks a free shape (paths "/ring/pressure_distribution/..."): the
+/* Checks a free shape (paths relative to the ring's block,
+ * "/pressure_distribution/..."): the
  * orders, amplitudes and tables' ranges, and p > 0 around the ring.  Any
  * section: a turned one twists when closed (rd_pretension_result's
  * static_twist_deg). */

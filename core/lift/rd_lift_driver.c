@@ -516,7 +516,10 @@ static int step_error(driver *d, int flag, rd_error *err)
         return cv_fail(d, f2, "query", err);
     nst = c[0];
     rd_cvode_limit lim = {"lift", "ring's motion", d->m.p->max_steps, total, nst};
-    return rd_cvode_failure(&d->cs, flag, tc, &lim, err);
+    size_t m = rd_error_enter(err, flag == CV_TOO_MUCH_WORK ? "/numerics" : "");
+    int rc = rd_cvode_failure(&d->cs, flag, tc, &lim, err);
+    rd_error_leave(err, m);
+    return rc;
 }
 
 /* Integrates to tout in chunks of d->chunk steps, handling the roots on the

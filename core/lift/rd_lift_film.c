@@ -75,9 +75,12 @@ int rd_lift_film_run_load(const rd_ring_params *rp, const rd_lift_params *p, dou
 {
     rd_section s;
     rd_section_init(&s, rp);
+    size_t m = rd_error_enter(err, "/ring");
+    rd_error_enter(err, "/face");
     int rc = rd_film_init(film, &p->face, s.run.height, fine * (RD_FILM_NODES - 1) + 1,
                           p->bore.roughness_rq, &p->friction.lube, rp->youngs_modulus,
                           rp->poisson_ratio, err);
+    rd_error_leave(err, m);
     if (rc)
         return rc;
     film->rtol /= (double)fine * fine;

@@ -546,17 +546,23 @@ static int modal_build(modal *s, int modes, rd_error *err)
 
 int rd_lift_modal_open(rd_lift_model *m, int modes, rd_lift_form *form, rd_error *err)
 {
-    int n = m->n;
+    int n = m->n, rc = RD_OK;
+    size_t mark = rd_error_enter(err, "/discretization");
     if (n > RD_LIFT_MODAL_SEGMENTS_MAX)
-        return rd_error_set(err, RD_ELIMIT, "/discretization/segments",
-                            "The modal lift model solves its modes densely and allows at most "
-                            "%d segments (got %d): use fewer segments or numerics.model = full.",
-                            RD_LIFT_MODAL_SEGMENTS_MAX, n);
-    if (modes < 1 || modes > 6 * n - RIGID_MODES)
-        return rd_error_set(err, RD_EINVAL, "/numerics/modes",
-                            "/numerics/modes = %d is out of range: a ring of %d segments has 1 to "
-                            "%d elastic modes.",
-                            modes, n, 6 * n - RIGID_MODES);
+        rc = rd_error_set(err, RD_ELIMIT, "/segments",
+                          "The modal lift model solves its modes densely and allows at most %d "
+                          "segments (got %d): use fewer segments or numerics.model = full.",
+                          RD_LIFT_MODAL_SEGMENTS_MAX, n);
+    rd_error_leave(err, mark);
+    mark = rd_error_enter(err, "/numerics");
+    if (!rc && (modes < 1 || modes > 6 * n - RIGID_MODES))
+        rc = rd_error_set(err, RD_EINVAL, "/modes",
+                          "@/modes = %d is out of range: a ring of %d segments has 1 to %d "
+                          "elastic modes.",
+                          modes, n, 6 * n - RIGID_MODES);
+    rd_error_leave(err, mark);
+    if (rc)
+        return rc;
     modal *s = calloc(1, sizeof *s);
     if (!s)
         return rd_error_set(err, RD_ENOMEM, "", "Out of memory for the modal lift model.");
@@ -574,7 +580,7 @@ int rd_lift_modal_open(rd_lift_model *m, int modes, rd_lift_form *form, rd_error
                            .initial = modal_initial,
                            .fd_step = modal_fd_step,
                            .close = rd_lift_modal_close};
-    int rc = modal_build(s, modes, err); /* on failure the caller closes the form */
+    rc = modal_build(s, modes, err); /* on failure the caller closes the form */
     form->N = 2 * (sunindextype)s->r;
     return rc;
 }

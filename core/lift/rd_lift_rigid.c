@@ -307,10 +307,14 @@ static int rigid_initial(void *user, const rd_lift_setup *setup, double atol, do
 {
     rigid *r = user;
     const rd_lift_model *m = r->m;
-    if (setup && setup->y0)
-        return rd_error_set(err, RD_EINVAL, "/numerics/model",
-                            "The rigid lift model starts seated at rest; a given initial state "
-                            "needs the full model.");
+    if (setup && setup->y0) {
+        size_t mark = rd_error_enter(err, "/numerics");
+        int rc = rd_error_set(err, RD_EINVAL, "/model",
+                              "The rigid lift model starts seated at rest; a given initial state "
+                              "needs the full model.");
+        rd_error_leave(err, mark);
+        return rc;
+    }
     const rd_ring_params *rp = rd_ring_get_params(m->ring);
     double e = 0.0;
     for (int k = 0; k < RD_LIFT_FLANK_POINTS; k++)

@@ -224,7 +224,7 @@ static int check_rigid(lift_solve *s, const rd_monitor *mon, rd_error *err)
     rd_lift_result *out = s->out;
     rd_lift_check ck = {NAN, 0, 0, 0};
     rd_error e2;
-    rd_error_init(&e2);
+    rd_error_init_local(&e2, err);
     double tol = s->p->accuracy_deg;
     int ne = s->run[0].n_events;
     double *fn = malloc((size_t)(ne > 0 ? ne : 1) * sizeof *fn);
@@ -234,8 +234,10 @@ static int check_rigid(lift_solve *s, const rd_monitor *mon, rd_error *err)
     if (rc == RD_OK && isfinite(ck.worst_deg) && ck.worst_deg <= tol)
         rc = check_half(s, rd_monitor_span_init(&sp, mon, 0.67, 1.0), fn, &e2);
     free(fn);
-    if (rc == RD_ECANCELED || rc == RD_ETIMEOUT || rc == RD_ENOMEM) /* stopped, not refused */
-        return rd_error_set(err, rc, e2.path, "%s", e2.message);
+    if (rc == RD_ECANCELED || rc == RD_ETIMEOUT || rc == RD_ENOMEM) { /* stopped, not refused */
+        rd_error_forward(err, &e2);
+        return rc;
+    }
     if (rc == RD_OK && isfinite(ck.worst_deg) && ck.worst_deg <= tol) {
         out->event_error_model_deg = ck.worst_deg;
         if (ck.events == 0)

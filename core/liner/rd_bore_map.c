@@ -57,34 +57,36 @@ static int same_bore(const rd_bore *a, const rd_bore *b)
 int rd_bore_map_validate(const rd_bore_map *m, double d, rd_error *err)
 {
     if (m->n_layers < 1 || m->n_layers > RD_BORE_LAYERS_MAX)
-        return rd_error_set(err, m->n_layers < 1 ? RD_EINVAL : RD_ELIMIT, "/bore/layers",
-                            "/bore/layers has %d layers; allowed 1 to %d.", m->n_layers,
+        return rd_error_set(err, m->n_layers < 1 ? RD_EINVAL : RD_ELIMIT, "/layers",
+                            "@/layers has %d layers; allowed 1 to %d.", m->n_layers,
                             RD_BORE_LAYERS_MAX);
     for (int i = 0; i < m->n_layers; i++) {
-        char at[64], path[80];
-        snprintf(at, sizeof at, "/bore/layers/%d", i);
-        snprintf(path, sizeof path, "%s/z", at);
+        char path[64];
+        snprintf(path, sizeof path, "/layers/%d/z", i);
         double z = m->layer[i].z;
         int rc = rd_error_range(z, 0.0, RD_BORE_Z_MAX, path, "m", err);
         if (rc != RD_OK)
             return rc;
         if (i > 0 && !(z > m->layer[i - 1].z))
             return rd_error_set(err, RD_EINVAL, path,
-                                "%s = %g m is not below the layer before it (z = %g m): the "
+                                "@%s = %g m is not below the layer before it (z = %g m): the "
                                 "layers go down the bore, z strictly increasing; allowed above "
                                 "%g m to %g m.",
                                 path, z, m->layer[i - 1].z, m->layer[i - 1].z, RD_BORE_Z_MAX);
-        rc = rd_bore_validate_at(&m->layer[i].bore, d, at, err);
+        snprintf(path, sizeof path, "/layers/%d", i);
+        size_t mark = rd_error_enter(err, path);
+        rc = rd_bore_validate(&m->layer[i].bore, d, err);
+        rd_error_leave(err, mark);
         if (rc != RD_OK)
             return rc;
         int orders[2 * RD_BORE_ORDERS_MAX];
         int n = i > 0 && !same_bore(&m->layer[i - 1].bore, &m->layer[i].bore)
                     ? union_orders(&m->layer[i - 1].bore, &m->layer[i].bore, orders)
                     : 0;
-        snprintf(path, sizeof path, "%s/distortion", at);
+        snprintf(path, sizeof path, "/layers/%d/distortion", i);
         if (n > RD_BORE_ORDERS_MAX)
             return rd_error_set(err, RD_ELIMIT, path,
-                                "/bore/layers/%d and /bore/layers/%d have %d distinct orders "
+                                "@/layers/%d and @/layers/%d have %d distinct orders "
                                 "together; allowed at most %d (a height between them combines "
                                 "them).",
                                 i - 1, i, n, RD_BORE_ORDERS_MAX);
@@ -139,13 +141,13 @@ static int point_ranges(const rd_bore_points *p, double d, rd_error *err)
     for (int j = 0; j < p->n; j++) {
         char path[64];
         int rc;
-        snprintf(path, sizeof path, "/bore/points/theta_deg/%d", j);
+        snprintf(path, sizeof path, "/points/theta_deg/%d", j);
         if ((rc = rd_error_range(p->theta_deg[j], -720.0, 720.0, path, "deg", err)) != RD_OK)
             return rc;
-        snprintf(path, sizeof path, "/bore/points/z/%d", j);
+        snprintf(path, sizeof path, "/points/z/%d", j);
         if ((rc = rd_error_range(p->z[j], 0.0, RD_BORE_Z_MAX, path, "m", err)) != RD_OK)
             return rc;
-        snprintf(path, sizeof path, "/bore/points/dr/%d", j);
+        snprintf(path, sizeof path, "/points/dr/%d", j);
         if ((rc = rd_error_range(p->dr[j], -0.01 * d, 0.01 * d, path, "m", err)) != RD_OK)
             return rc;
     }
@@ -160,8 +162,8 @@ static int layers_rank(const rd_bore_points *p, const double *zs, int nz, double
     for (int l = 0; l < nz; l++) {
         int k = layer_angles(p, zs[l], work);
         if (k < need)
-            return rd_error_set(err, RD_EINVAL, "/bore/points/fit_order",
-                                "/bore/points/fit_order = %d needs at least %d points at "
+            return rd_error_set(err, RD_EINVAL, "/points/fit_order",
+                                "@/points/fit_order = %d needs at least %d points at "
                                 "distinct angles in every layer, but the layer at z = %g m has "
                                 "%d: allowed fit_order 0 to %d with these points (or measure "
                                 "more angles).",
@@ -173,23 +175,23 @@ static int layers_rank(const rd_bore_points *p, const double *zs, int nz, double
 int rd_bore_points_validate(const rd_bore_points *p, double d, rd_error *err)
 {
     if (p->n < 1 || p->n > RD_BORE_POINTS_MAX)
-        return rd_error_set(err, p->n < 1 ? RD_EINVAL : RD_ELIMIT, "/bore/points/dr",
-                            "/bore/points/dr has %d points; allowed 1 to %d.", p->n,
+        return rd_error_set(err, p->n < 1 ? RD_EINVAL : RD_ELIMIT, "/points/dr",
+                            "@/points/dr has %d points; allowed 1 to %d.", p->n,
                             RD_BORE_POINTS_MAX);
     if (p->fit_order < 0 || p->fit_order > RD_BORE_ORDERS_MAX)
-        return rd_error_set(err, RD_EINVAL, "/bore/points/fit_order",
-                            "/bore/points/fit_order = %d is out of range: allowed 0 to %d.",
+        return rd_error_set(err, RD_EINVAL, "/points/fit_order",
+                            "@/points/fit_order = %d is out of range: allowed 0 to %d.",
                             p->fit_order, RD_BORE_ORDERS_MAX);
     int rc = point_ranges(p, d, err);
     if (rc != RD_OK)
         return rc;
     double *work = malloc(2 * (size_t)p->n * sizeof *work);
     if (!work)
-        return rd_error_set(err, RD_ENOMEM, "/bore/points", "out of memory reading the points");
+        return rd_error_set(err, RD_ENOMEM, "/points", "out of memory reading the points");
     int nz = distinct(p->z, p->n, work, 0.0);
     if (nz > RD_BORE_LAYERS_MAX) {
-        rc = rd_error_set(err, RD_ELIMIT, "/bore/points/z",
-                          "/bore/points/z has %d distinct heights (layers); allowed 1 to %d.", nz,
+        rc = rd_error_set(err, RD_ELIMIT, "/points/z",
+                          "@/points/z has %d distinct heights (layers); allowed 1 to %d.", nz,
                           RD_BORE_LAYERS_MAX);
     } else {
         double zs[RD_BORE_LAYERS_MAX];
@@ -222,7 +224,7 @@ static int fit_layer(const rd_bore_points *p, double z, double *A, double *x, do
     }
     lapack_int info = LAPACKE_dgels(LAPACK_COL_MAJOR, 'N', m, nc, 1, A, m, b, m);
     if (info != 0)
-        return rd_error_set(err, RD_ENUMERIC, "/bore/points",
+        return rd_error_set(err, RD_ENUMERIC, "/points",
                             "the least-squares fit of the layer at z = %g m failed (LAPACK dgels "
                             "info %d).",
                             z, (int)info);
@@ -257,12 +259,12 @@ static void layer_from(rd_bore_layer *L, double z, const double *x, int K, doubl
 static int fitted_valid(const rd_bore_map *m, double D, rd_error *err)
 {
     for (int l = 0; l < m->n_layers; l++) {
-        rd_error e;
-        rd_error_init(&e);
-        int rc = rd_bore_validate_at(&m->layer[l].bore, D, "/bore", &e);
+        rd_error e; /* its message told as if the layer's bore were the block's */
+        rd_error_init_local(&e, err);
+        int rc = rd_bore_validate(&m->layer[l].bore, D, &e);
         if (rc != RD_OK)
-            return rd_error_set(err, rc, "/bore/points/dr",
-                                "/bore/points/dr: the layer at z = %g m fits to a bore that is "
+            return rd_error_set(err, rc, "/points/dr",
+                                "@/points/dr: the layer at z = %g m fits to a bore that is "
                                 "refused (%s)",
                                 m->layer[l].z, e.message);
     }
@@ -276,7 +278,7 @@ int rd_bore_map_fit(const rd_bore_points *p, double D, rd_bore_map *m, rd_error 
     double *A = malloc(((size_t)p->n * (size_t)(nc + 1) + (size_t)nc) * sizeof *A);
     int rc = RD_OK;
     if (!zs || !A) {
-        rc = rd_error_set(err, RD_ENOMEM, "/bore/points", "out of memory fitting the points");
+        rc = rd_error_set(err, RD_ENOMEM, "/points", "out of memory fitting the points");
         goto out;
     }
     memset(m, 0, sizeof *m);
@@ -331,8 +333,8 @@ int rd_bore_map_at(const rd_bore_map *m, double z, double d, rd_bore *out, rd_er
 {
     double lo = m->layer[0].z, hi = m->layer[m->n_layers - 1].z;
     if (!(z >= lo && z <= hi))
-        return rd_error_set(err, RD_EINVAL, "/contact/height",
-                            "/contact/height = %g m is outside the bore map: allowed %g to %g m "
+        return rd_error_set(err, RD_EINVAL, "/height",
+                            "@/height = %g m is outside the bore map: allowed %g to %g m "
                             "(its first and last layers' z), or \"all\".",
                             z, lo, hi);
     int i = 0;

@@ -45,31 +45,31 @@ static double profile_at(const rd_face_params *fp, double L, double x)
 int rd_film_face_validate(const rd_face_params *fp, double L, rd_error *err)
 {
     if (fp->profile == RD_FACE_BARREL && fabs(fp->offset) >= 0.5 * L)
-        return rd_error_set(err, RD_EINVAL, "/ring/face/offset",
+        return rd_error_set(err, RD_EINVAL, "/offset",
                             "the crown's offset %g m must lie on the face: |offset| < half the "
                             "running face's height (%g m).",
                             fp->offset, 0.5 * L);
     if (fp->profile == RD_FACE_FLAT && fp->edge_radius > 0.5 * L)
-        return rd_error_set(err, RD_EINVAL, "/ring/face/edge_radius",
+        return rd_error_set(err, RD_EINVAL, "/edge_radius",
                             "the edge radius %g m is above half the running face's height "
                             "(%g m): the two roundings would overlap.",
                             fp->edge_radius, 0.5 * L);
     if (fp->profile != RD_FACE_TABLE)
         return RD_OK;
     if (fp->points < 2)
-        return rd_error_set(err, RD_EINVAL, "/ring/face/table/x_m",
+        return rd_error_set(err, RD_EINVAL, "/table/x_m",
                             "a face table needs at least 2 points (got %d).", fp->points);
     for (int k = 0; k < fp->points; k++) {
         if (k > 0 && !(fp->x[k] > fp->x[k - 1]))
-            return rd_error_set(err, RD_EINVAL, "/ring/face/table/x_m",
+            return rd_error_set(err, RD_EINVAL, "/table/x_m",
                                 "x_m must increase strictly: x_m[%d] = %g after %g.", k, fp->x[k],
                                 fp->x[k - 1]);
         if (!(fp->drop[k] >= 0.0 && fp->drop[k] <= 1e-4))
-            return rd_error_set(err, RD_EINVAL, "/ring/face/table/drop_m",
+            return rd_error_set(err, RD_EINVAL, "/table/drop_m",
                                 "drop_m[%d] = %g m is outside [0, 1e-4] m.", k, fp->drop[k]);
     }
     if (fabs(fp->x[0]) > 1e-9 * L || fabs(fp->x[fp->points - 1] - L) > 1e-6 * L)
-        return rd_error_set(err, RD_EINVAL, "/ring/face/table/x_m",
+        return rd_error_set(err, RD_EINVAL, "/table/x_m",
                             "x_m must run from 0 (the face's lower edge) to the running face's "
                             "height %g m (got %g to %g).",
                             L, fp->x[0], fp->x[fp->points - 1]);

@@ -117,7 +117,8 @@ typedef struct rd_film_out {
 } rd_film_out;
 
 /* Builds the face of height L (m) on `nodes` points (3 ..
- * RD_FILM_NODES_MAX) and checks the profile (paths "/ring/face/..."); E,
+ * RD_FILM_NODES_MAX) and checks the profile (paths relative to the face's
+ * block: "/table/x_m"); E,
  * nu: the ring's material (for E' when lube's composite_modulus is 0). */
 /* The profile's fit to a face of height L alone (rd_film_init's first check). */
 int rd_film_face_validate(const rd_face_params *face, double L, rd_error *err);

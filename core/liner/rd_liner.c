@@ -84,7 +84,7 @@ static int check_temperature(double T, const char *path, rd_error *err)
 {
     if (in_range(T, -40.0, 250.0))
         return RD_OK;
-    return rd_error_set(err, RD_EINVAL, path, "%s = %g deg C is outside [-40, 250] deg C%s.", path,
+    return rd_error_set(err, RD_EINVAL, path, "@%s = %g deg C is outside [-40, 250] deg C%s.", path,
                         T,
                         T > 250.0 && T < 600.0 ? " (a temperature in kelvin? this field is in "
                                                  "deg C: subtract 273.15)"
@@ -95,72 +95,74 @@ static int check_temperature(double T, const char *path, rd_error *err)
 static int check_vogel(const rd_lube_params *l, rd_error *err)
 {
     if (!in_range(l->vogel_a, 1e-9, 1.0))
-        return rd_error_set(err, RD_EINVAL, "/physics/friction/oil/vogel/a_pa_s",
+        return rd_error_set(err, RD_EINVAL, "/oil/vogel/a_pa_s",
                             "a_pa_s = %g is outside [1e-9, 1] Pa s.", l->vogel_a);
     if (!in_range(l->vogel_b, 0.0, 1e4))
-        return rd_error_set(err, RD_EINVAL, "/physics/friction/oil/vogel/b_k",
-                            "b_k = %g is outside [0, 1e4] K.", l->vogel_b);
+        return rd_error_set(err, RD_EINVAL, "/oil/vogel/b_k", "b_k = %g is outside [0, 1e4] K.",
+                            l->vogel_b);
     if (!in_range(l->vogel_c, 0.0, 250.0))
-        return rd_error_set(err, RD_EINVAL, "/physics/friction/oil/vogel/c_k",
-                            "c_k = %g is outside [0, 250] K.", l->vogel_c);
+        return rd_error_set(err, RD_EINVAL, "/oil/vogel/c_k", "c_k = %g is outside [0, 250] K.",
+                            l->vogel_c);
     double Tmin = l->temperature_c;
     for (int k = 0; k < l->temp_points; k++)
         Tmin = fmin(Tmin, l->temp_c[k]);
     if (Tmin + 273.15 - l->vogel_c < 10.0)
-        return rd_error_set(err, RD_EINVAL, "/physics/friction/oil/vogel/c_k",
+        return rd_error_set(err, RD_EINVAL, "/oil/vogel/c_k",
                             "the Vogel law's pole c_k = %g K is within 10 K of the lowest liner "
                             "temperature %g K: the viscosity diverges there.",
                             l->vogel_c, Tmin + 273.15);
     return RD_OK;
 }
 
-/* Every field's range, whichever profile reads it. */
-static int check_face(const rd_face_params *f, rd_error *err)
+int rd_face_validate(const rd_face_params *f, rd_error *err)
 {
     if (!in_range(f->crown, 0.0, 1e-4))
-        return rd_error_set(err, RD_EINVAL, "/ring/face/crown_m",
+        return rd_error_set(err, RD_EINVAL, "/crown_m",
                             "crown_m = %g m is outside [0, 1e-4] m (the barrel's drop at the "
                             "face's edges; 0 is a flat face).",
                             f->crown);
     if (!(f->taper_deg >= 0.0 && f->taper_deg <= 5.0) ||
         (f->profile == RD_FACE_TAPER && f->taper_deg == 0.0))
-        return rd_error_set(err, RD_EINVAL, "/ring/face/taper_deg",
-                            "taper_deg = %g is outside (0, 5] deg.", f->taper_deg);
+        return rd_error_set(err, RD_EINVAL, "/taper_deg", "taper_deg = %g is outside (0, 5] deg.",
+                            f->taper_deg);
     if (!in_range(f->edge_radius, 0.0, 1e-2))
-        return rd_error_set(err, RD_EINVAL, "/ring/face/edge_radius_m",
+        return rd_error_set(err, RD_EINVAL, "/edge_radius_m",
                             "edge_radius_m = %g m is outside [0, 1e-2] m.", f->edge_radius);
     if (!in_range(f->roughness_rq, 1e-9, 5e-6))
-        return rd_error_set(err, RD_EINVAL, "/ring/face/roughness_rq_m",
+        return rd_error_set(err, RD_EINVAL, "/roughness_rq_m",
                             "roughness_rq_m = %g m is outside [1e-9, 5e-6] m (the asperity "
                             "model needs a rough face: Rq > 0).",
                             f->roughness_rq);
     return RD_OK;
 }
 
-int rd_lube_validate(const rd_lube_params *l, const rd_face_params *face, double liner_rq,
-                     rd_error *err)
+/* The liner's roughness, in the bore's block. */
+static int check_liner(double liner_rq, rd_error *err)
 {
-    int rc;
-    if ((rc = check_face(face, err)))
-        return rc;
     if (!in_range(liner_rq, 1e-9, 5e-6))
-        return rd_error_set(err, RD_EINVAL, "/bore/roughness_rq_m",
+        return rd_error_set(err, RD_EINVAL, "/roughness_rq_m",
                             "roughness_rq_m = %g m is outside [1e-9, 5e-6] m (the liner's Rq; "
                             "the asperity model needs Rq > 0).",
                             liner_rq);
+    return RD_OK;
+}
+
+/* The oil, cavitation, supply and asperities, in the friction block. */
+static int check_friction(const rd_lube_params *l, rd_error *err)
+{
+    int rc;
     if (l->viscosity != 0.0 && !in_range(l->viscosity, 1e-4, 10.0))
-        return rd_error_set(err, RD_EINVAL, "/physics/friction/oil/viscosity_pa_s",
+        return rd_error_set(err, RD_EINVAL, "/oil/viscosity_pa_s",
                             "viscosity_pa_s = %g is outside [1e-4, 10] Pa s%s.", l->viscosity,
                             l->viscosity > 10.0 ? " (a value in mPa s? 1 mPa s = 0.001 Pa s)" : "");
-    if ((rc = check_temperature(l->temperature_c, "/physics/friction/oil/temperature_c", err)))
+    if ((rc = check_temperature(l->temperature_c, "/oil/temperature_c", err)))
         return rc;
     for (int k = 0; k < l->temp_points; k++) {
-        if ((rc = check_temperature(l->temp_c[k], "/physics/friction/oil/temperature_table/value_c",
-                                    err)))
+        if ((rc = check_temperature(l->temp_c[k], "/oil/temperature_table/value_c", err)))
             return rc;
         double x = l->temp_crank_deg[k];
         if (!in_range(x, 0.0, 720.0) || (k > 0 && !(x > l->temp_crank_deg[k - 1])))
-            return rd_error_set(err, RD_EINVAL, "/physics/friction/oil/temperature_table/crank_deg",
+            return rd_error_set(err, RD_EINVAL, "/oil/temperature_table/crank_deg",
                                 "crank_deg[%d] = %g: the angles must increase strictly within "
                                 "[0, 720] deg.",
                                 k, x);
@@ -168,29 +170,43 @@ int rd_lube_validate(const rd_lube_params *l, const rd_face_params *face, double
     if (l->viscosity == 0.0 && (rc = check_vogel(l, err)))
         return rc;
     if (l->cavitation != RD_CAVITATION_REYNOLDS && l->cavitation != RD_CAVITATION_JFO)
-        return rd_error_set(err, RD_EINVAL, "/physics/friction/cavitation",
+        return rd_error_set(err, RD_EINVAL, "/cavitation",
                             "cavitation %d is not a model: reynolds (0) or jfo (1).",
                             l->cavitation);
     if (l->supply_film != 0.0 && !in_range(l->supply_film, 1e-8, 1e-3))
-        return rd_error_set(err, RD_EINVAL, "/physics/friction/supply/film_m",
+        return rd_error_set(err, RD_EINVAL, "/supply/film_m",
                             "film_m = %g m is outside [1e-8, 1e-3] m (the oil film on the liner; "
                             "0 for a flooded face).",
                             l->supply_film);
     if (!in_range(l->asperity_density, 1e6, 1e14))
-        return rd_error_set(err, RD_EINVAL, "/physics/friction/asperity/density_per_m2",
+        return rd_error_set(err, RD_EINVAL, "/asperity/density_per_m2",
                             "density_per_m2 = %g is outside [1e6, 1e14] per m^2.",
                             l->asperity_density);
     if (!in_range(l->asperity_radius, 1e-7, 1e-2))
-        return rd_error_set(err, RD_EINVAL, "/physics/friction/asperity/radius_m",
+        return rd_error_set(err, RD_EINVAL, "/asperity/radius_m",
                             "radius_m = %g is outside [1e-7, 1e-2] m.", l->asperity_radius);
     if (!in_range(l->boundary_coefficient, 0.0, 1.0))
-        return rd_error_set(err, RD_EINVAL, "/physics/friction/asperity/boundary_coefficient",
+        return rd_error_set(err, RD_EINVAL, "/asperity/boundary_coefficient",
                             "boundary_coefficient = %g is outside [0, 1].",
                             l->boundary_coefficient);
     if (l->composite_modulus != 0.0 && !in_range(l->composite_modulus, 1e9, 1e12))
-        return rd_error_set(err, RD_EINVAL, "/physics/friction/asperity/composite_modulus_pa",
+        return rd_error_set(err, RD_EINVAL, "/asperity/composite_modulus_pa",
                             "composite_modulus_pa = %g is outside [1e9, 1e12] Pa (0: from the "
                             "ring's material on cast iron).",
                             l->composite_modulus);
     return RD_OK;
+}
+
+int rd_lube_validate(const rd_lube_params *l, double liner_rq, rd_error *err)
+{
+    size_t m = rd_error_enter(err, "/bore");
+    int rc = check_liner(liner_rq, err);
+    rd_error_leave(err, m);
+    if (rc)
+        return rc;
+    m = rd_error_enter(err, "/physics");
+    rd_error_enter(err, "/friction");
+    rc = check_friction(l, err);
+    rd_error_leave(err, m);
+    return rc;
 }

@@ -85,8 +85,8 @@ int rd_cvode_failure(const rd_cvode *s, int flag, double t, const rd_cvode_limit
 {
     double deg = t * s->deg_per_s;
     if (flag == CV_TOO_MUCH_WORK)
-        return rd_error_set(err, RD_ELIMIT, "/numerics/max_steps",
-                            "The integration used its /numerics/max_steps = %ld steps by crank "
+        return rd_error_set(err, RD_ELIMIT, "/max_steps",
+                            "The integration used its @/max_steps = %ld steps by crank "
                             "angle %.3f deg (of %.1f): the %s needs more work than "
                             "allowed; raise max_steps, or make the run cheaper: fewer cycles, a "
                             "cheaper model (/numerics/model) or a looser /numerics/rtol.",

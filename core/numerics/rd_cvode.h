@@ -6,8 +6,9 @@
  * translation of CVODE's failures into rd_error statuses:
  *   - a set-up, query or restart call fails only on misuse: RD_EINTERNAL,
  *     with CVODE's flag name and message (rd_cvode_misuse);
- *   - an integration that used its step budget: RD_ELIMIT at
- *     "/numerics/max_steps"; any other integration failure: RD_ENOCONV;
+ *   - an integration that used its step budget: RD_ELIMIT at "/max_steps"
+ *     of the numerics block, which the caller enters for flag
+ *     CV_TOO_MUCH_WORK; any other integration failure: RD_ENOCONV at "";
  *     both dated at the crank angle the integrator reached, with what the
  *     flag means in words (rd_cvode_failure).
  *

@@ -63,19 +63,19 @@ int rd_modal_validate(const rd_modal_opts *o, int segments, rd_error *err)
 {
     int elastic = 6 * segments - 6;
     if (o->modes < 1 || o->modes > RD_MODAL_MODES_MAX)
-        return rd_error_set(err, o->modes > RD_MODAL_MODES_MAX ? RD_ELIMIT : RD_EINVAL,
-                            "/modal/modes", "/modal/modes = %d is out of range: allowed 1 to %d.",
-                            o->modes, RD_MODAL_MODES_MAX);
+        return rd_error_set(err, o->modes > RD_MODAL_MODES_MAX ? RD_ELIMIT : RD_EINVAL, "/modes",
+                            "@/modes = %d is out of range: allowed 1 to %d.", o->modes,
+                            RD_MODAL_MODES_MAX);
     if (o->modes > elastic)
-        return rd_error_set(err, RD_EINVAL, "/modal/modes",
-                            "/modal/modes = %d is more than the %d elastic modes a %d-segment "
+        return rd_error_set(err, RD_EINVAL, "/modes",
+                            "@/modes = %d is more than the %d elastic modes a %d-segment "
                             "ring has (6 n - 6); use more segments or fewer modes.",
                             o->modes, elastic, segments);
     if (!(o->tol >= 1e-15 && o->tol <= 1e-3))
-        return rd_error_set(err, RD_EINVAL, "/modal/tolerance",
+        return rd_error_set(err, RD_EINVAL, "/tolerance",
                             "modal tolerance %g is out of range: allowed 1e-15 to 1e-3.", o->tol);
     if (o->max_iterations < 1 || o->max_iterations > 10000)
-        return rd_error_set(err, RD_EINVAL, "/modal/max_iterations",
+        return rd_error_set(err, RD_EINVAL, "/max_iterations",
                             "modal max_iterations %d is out of range: allowed 1 to 10000.",
                             o->max_iterations);
     return RD_OK;
@@ -116,11 +116,24 @@ int rd_modal_validate_ring(const rd_ring_params *p, int segments, int estimate_e
                             "at %d segments; %s.  Use a thicker section (radial_width, "
                             "axial_height), a smaller diameter or poisson_ratio above -0.5.",
                             s, segments, s_max, what, RD_SEGMENTS_MIN, why);
-    return rd_error_set(err, RD_EINVAL, "/discretization/segments",
-                        "/discretization/segments = %d is too many for this ring in the modal "
-                        "analysis: the slenderness n R / min(b, h) x sqrt(max(1, G / E)) is "
-                        "%.3g, allowed up to %g%s, so at most %d segments here; %s.",
-                        segments, s, s_max, what, n_max, why);
+    size_t m = rd_error_enter(err, "/discretization");
+    int rc = rd_error_set(err, RD_EINVAL, "/segments",
+                          "@/segments = %d is too many for this ring in the modal analysis: the "
+                          "slenderness n R / min(b, h) x sqrt(max(1, G / E)) is %.3g, allowed "
+                          "up to %g%s, so at most %d segments here; %s.",
+                          segments, s, s_max, what, n_max, why);
+    rd_error_leave(err, m);
+    return rc;
+}
+
+/* The modal block's checks, entered: rd_modal_validate's paths are relative
+ * to it; the solves below take a scene's /modal. */
+static int modal_block_validate(const rd_modal_opts *o, int segments, rd_error *err)
+{
+    size_t m = rd_error_enter(err, "/modal");
+    int rc = rd_modal_validate(o, segments, err);
+    rd_error_leave(err, m);
+    return rc;
 }
 
 double rd_modal_thin_ring_inplane_hz(const rd_ring_params *p, int k)
@@ -464,7 +477,7 @@ static int solve_ring(const rd_ring *ring, const rd_modal_opts *o, const int *wa
     out->dof = w.N;
     out->error_estimate = NAN;
 
-    if ((rc = rd_modal_validate(o, n, err)) || (rc = setup(ring, o, &w, err)))
+    if ((rc = modal_block_validate(o, n, err)) || (rc = setup(ring, o, &w, err)))
         goto out;
     out->block_size = w.block;
     int per_kind = want_kind && w.nparts == 2;
@@ -473,7 +486,7 @@ static int solve_ring(const rd_ring *ring, const rd_modal_opts *o, const int *wa
         if (per_kind && want_kind[p] == 0)
             continue; /* the main solve found no mode of this kind */
         rd_error sub;
-        rd_error_init(&sub);
+        rd_error_init_local(&sub, err);
         rc = solve_part(&w, p, per_kind ? want_kind[p] : o->modes, o, mon, &sub);
         out->iterations += w.parts[p].res.steps;
         out->rigid_body_modes += w.parts[p].res.deflated + w.parts[p].res.zeros;
@@ -483,7 +496,7 @@ static int solve_ring(const rd_ring *ring, const rd_modal_opts *o, const int *wa
                          "%d modes): the largest residual is %.3g times its rounding floor.",
                          w.parts[p].res.steps, n, o->modes, w.parts[p].res.worst);
         else if (rc)
-            rd_error_set(err, rc, sub.path, "%s", sub.message);
+            rd_error_forward(err, &sub);
         if (rc)
             goto out;
     }
@@ -573,8 +586,8 @@ int rd_modal_solve(const rd_ring_params *p, int segments, int closed, const rd_m
     memset(&ref, 0, sizeof ref);
     memset(out, 0, sizeof *out);
     int rc;
-    if ((rc = rd_ring_validate(p, segments, closed, err)) ||
-        (rc = rd_modal_validate(o, segments, err)) ||
+    if ((rc = rd_ring_scene_validate(p, segments, closed, err)) ||
+        (rc = modal_block_validate(o, segments, err)) ||
         (rc = rd_modal_validate_ring(p, segments, o->estimate_error, err)))
         return rc;
     int m = rd_accuracy_refined_segments(segments, RD_SEGMENTS_MAX);

@@ -73,28 +73,27 @@ void rd_ring_params_default(rd_ring_params *p)
     p->section = RD_SECTION_RECTANGLE;
 }
 
-int rd_ring_validate(const rd_ring_params *p, int segments, int closed, rd_error *err)
+int rd_ring_validate(const rd_ring_params *p, int closed, rd_error *err)
 {
     int rc = RD_OK;
-    if ((rc = rd_error_range(p->diameter, 1e-3, 5.0, "/ring/diameter", "m", err)))
+    if ((rc = rd_error_range(p->diameter, 1e-3, 5.0, "/diameter", "m", err)))
         return rc;
-    if ((rc = rd_error_range(p->radial_width, 1e-5, 0.25 * p->diameter, "/ring/radial_width",
+    if ((rc = rd_error_range(p->radial_width, 1e-5, 0.25 * p->diameter, "/radial_width",
                              "m (at most a quarter of the diameter)", err)))
         return rc;
-    if ((rc = rd_error_range(p->axial_height, 1e-5, 0.5 * p->diameter, "/ring/axial_height",
+    if ((rc = rd_error_range(p->axial_height, 1e-5, 0.5 * p->diameter, "/axial_height",
                              "m (at most half the diameter)", err)))
         return rc;
     double ratio = p->radial_width / p->axial_height;
     if (ratio < 0.05 || ratio > 20.0)
-        return rd_error_set(err, RD_EINVAL, "/ring/axial_height",
-                            "/ring/axial_height = %g m gives a width/height ratio b/h = %g; "
+        return rd_error_set(err, RD_EINVAL, "/axial_height",
+                            "@/axial_height = %g m gives a width/height ratio b/h = %g; "
                             "allowed 0.05 to 20.",
                             p->axial_height, ratio);
     if (p->section < 0 || p->section >= RD_SECTION_SHAPES)
-        return rd_error_set(err, RD_EINVAL, "/ring/section", "unknown section shape %d.",
-                            p->section);
+        return rd_error_set(err, RD_EINVAL, "/section", "unknown section shape %d.", p->section);
     if (p->section == RD_SECTION_CIRCLE && p->radial_width != p->axial_height)
-        return rd_error_set(err, RD_EINVAL, "/ring/axial_height",
+        return rd_error_set(err, RD_EINVAL, "/axial_height",
                             "a circular section needs axial_height = radial_width (the wire "
                             "diameter); got %g m and %g m.",
                             p->axial_height, p->radial_width);
@@ -105,28 +104,43 @@ int rd_ring_validate(const rd_ring_params *p, int segments, int closed, rd_error
                                      &n, err)))
             return rc;
     }
-    if (!closed &&
-        (rc = rd_error_range(p->closed_gap, 0.0, 0.1 * M_PI * p->diameter, "/ring/closed_gap",
-                             "m (at most 10 % of the circumference)", err)))
+    if (!closed && (rc = rd_error_range(p->closed_gap, 0.0, 0.1 * M_PI * p->diameter, "/closed_gap",
+                                        "m (at most 10 % of the circumference)", err)))
         return rc;
-    if ((rc = rd_error_range(p->tangential_force, 0.0, 1e5, "/ring/tangential_force", "N", err)))
+    if ((rc = rd_error_range(p->tangential_force, 0.0, 1e5, "/tangential_force", "N", err)))
         return rc;
-    if ((rc = rd_error_range(p->youngs_modulus, 1e6, 1e15, "/ring/material/youngs_modulus", "Pa",
-                             err)))
+    if ((rc = rd_error_range(p->youngs_modulus, 1e6, 1e15, "/material/youngs_modulus", "Pa", err)))
         return rc;
     if (!isfinite(p->poisson_ratio) || p->poisson_ratio <= -1.0 || p->poisson_ratio >= 0.5)
-        return rd_error_set(err, RD_EINVAL, "/ring/material/poisson_ratio",
-                            "/ring/material/poisson_ratio = %g is out of range: allowed "
+        return rd_error_set(err, RD_EINVAL, "/material/poisson_ratio",
+                            "@/material/poisson_ratio = %g is out of range: allowed "
                             "-1 < nu < 0.5.",
                             p->poisson_ratio);
-    if ((rc = rd_error_range(p->density, 0.1, 1e7, "/ring/material/density", "kg/m^3", err)))
+    if ((rc = rd_error_range(p->density, 0.1, 1e7, "/material/density", "kg/m^3", err)))
         return rc;
-    if (segments < RD_SEGMENTS_MIN || segments > RD_SEGMENTS_MAX)
-        return rd_error_set(err, segments > RD_SEGMENTS_MAX ? RD_ELIMIT : RD_EINVAL,
-                            "/discretization/segments",
-                            "/discretization/segments = %d is out of range: allowed %d to %d.",
-                            segments, RD_SEGMENTS_MIN, RD_SEGMENTS_MAX);
     return RD_OK;
+}
+
+int rd_segments_validate(int segments, rd_error *err)
+{
+    if (segments < RD_SEGMENTS_MIN || segments > RD_SEGMENTS_MAX)
+        return rd_error_set(err, segments > RD_SEGMENTS_MAX ? RD_ELIMIT : RD_EINVAL, "/segments",
+                            "@/segments = %d is out of range: allowed %d to %d.", segments,
+                            RD_SEGMENTS_MIN, RD_SEGMENTS_MAX);
+    return RD_OK;
+}
+
+int rd_ring_scene_validate(const rd_ring_params *p, int segments, int closed, rd_error *err)
+{
+    size_t m = rd_error_enter(err, "/ring");
+    int rc = rd_ring_validate(p, closed, err);
+    rd_error_leave(err, m);
+    if (rc)
+        return rc;
+    m = rd_error_enter(err, "/discretization");
+    rc = rd_segments_validate(segments, err);
+    rd_error_leave(err, m);
+    return rc;
 }
 
 /* The beam's constants: the section's area and moments, G, the span. */
@@ -364,14 +378,17 @@ static int own_params(rd_ring *ring, const rd_ring_params *p, rd_error *err)
         return RD_OK;
     rd_section box; /* its b and h (J not yet) */
     rd_section_init(&box, p);
-    return rd_section_spec_solve(p->section, &ring->p.spec, box.b, box.h, err);
+    size_t m = rd_error_enter(err, "/ring");
+    int rc = rd_section_spec_solve(p->section, &ring->p.spec, box.b, box.h, err);
+    rd_error_leave(err, m);
+    return rc;
 }
 
 rd_ring *rd_ring_create_graded(const rd_ring_params *p, int segments, int closed,
                                const double *weights, rd_error *err)
 {
     rd_ring *ring = NULL;
-    if (rd_ring_validate(p, segments, closed, err) != RD_OK)
+    if (rd_ring_scene_validate(p, segments, closed, err) != RD_OK)
         return NULL;
     int n = segments;
     ring = calloc(1, sizeof *ring);
@@ -618,9 +635,13 @@ static void dense_add(void *vctx, int which, int gi, int gj, double v)
 
 int rd_ring_assemble_dense(const rd_ring *ring, double *K, double *M, rd_error *err)
 {
-    if (ring->n > 500)
-        return rd_error_set(err, RD_ELIMIT, "/discretization/segments",
-                            "Dense matrices are limited to 500 segments (got %d).", ring->n);
+    if (ring->n > 500) {
+        size_t m = rd_error_enter(err, "/discretization");
+        int rc = rd_error_set(err, RD_ELIMIT, "/segments",
+                              "Dense matrices are limited to 500 segments (got %d).", ring->n);
+        rd_error_leave(err, m);
+        return rc;
+    }
     int N = 6 * ring->n;
     memset(K, 0, (size_t)N * N * sizeof *K);
     memset(M, 0, (size_t)N * N * sizeof *M);

@@ -74,8 +74,8 @@ static int polygon_simple(const double (*pts)[2], int n, rd_error *err)
             if (i == 0 && j == n - 1)
                 continue; /* neighbours through the closing edge */
             if (segments_meet(pts[i], pts[(i + 1) % n], pts[j], pts[(j + 1) % n]))
-                return rd_error_set(err, RD_EINVAL, "/ring/section/points_m",
-                                    "/ring/section/points_m crosses itself: the edge from point "
+                return rd_error_set(err, RD_EINVAL, "/section/points_m",
+                                    "@/section/points_m crosses itself: the edge from point "
                                     "%d to %d meets the edge from point %d to %d; allowed: a "
                                     "simple polygon (its edges meet only at their shared "
                                     "corners).",
@@ -90,24 +90,24 @@ static int polygon_outline(const rd_section_spec *sp, double b, double h, double
 {
     int m = sp->n_points;
     if (m < 3 || m > RD_SECTION_POINTS_MAX)
-        return rd_error_set(err, RD_EINVAL, "/ring/section/points_m",
-                            "/ring/section/points_m has %d points; allowed 3 to %d.", m,
+        return rd_error_set(err, RD_EINVAL, "/section/points_m",
+                            "@/section/points_m has %d points; allowed 3 to %d.", m,
                             RD_SECTION_POINTS_MAX);
     double lo[2] = {INFINITY, INFINITY}, hi[2] = {-INFINITY, -INFINITY};
     for (int i = 0; i < m; i++)
         for (int k = 0; k < 2; k++) {
             if (!isfinite(sp->points[i][k]))
-                return rd_error_set(err, RD_EINVAL, "/ring/section/points_m",
-                                    "/ring/section/points_m/%d holds a value that is not a "
+                return rd_error_set(err, RD_EINVAL, "/section/points_m",
+                                    "@/section/points_m/%d holds a value that is not a "
                                     "finite number.",
                                     i);
             lo[k] = fmin(lo[k], sp->points[i][k]);
             hi[k] = fmax(hi[k], sp->points[i][k]);
         }
     if (fabs(hi[0] - lo[0] - b) > 1e-9 * b || fabs(hi[1] - lo[1] - h) > 1e-9 * h)
-        return rd_error_set(err, RD_EINVAL, "/ring/section/points_m",
-                            "/ring/section/points_m spans %.6g m radially and %.6g m axially; "
-                            "allowed: the box /ring/radial_width x /ring/axial_height = %.6g x "
+        return rd_error_set(err, RD_EINVAL, "/section/points_m",
+                            "@/section/points_m spans %.6g m radially and %.6g m axially; "
+                            "allowed: the box @/radial_width x @/axial_height = %.6g x "
                             "%.6g m (set them to the polygon's).",
                             hi[0] - lo[0], hi[1] - lo[1], b, h);
     for (int i = 0; i < m; i++) {
@@ -120,8 +120,8 @@ static int polygon_outline(const rd_section_spec *sp, double b, double h, double
         return rc;
     double area = rd_section_polygon_moment((const double(*)[2])pts, m, 0, 0);
     if (!(fabs(area) > 1e-6 * b * h))
-        return rd_error_set(err, RD_EINVAL, "/ring/section/points_m",
-                            "/ring/section/points_m encloses an area of %.3g m^2; allowed: at "
+        return rd_error_set(err, RD_EINVAL, "/section/points_m",
+                            "@/section/points_m encloses an area of %.3g m^2; allowed: at "
                             "least 1e-6 of its box.",
                             fabs(area));
     for (int i = 0; area < 0 && i < m / 2; i++) { /* clockwise: reverse */
@@ -132,13 +132,13 @@ static int polygon_outline(const rd_section_spec *sp, double b, double h, double
     return RD_OK;
 }
 
-/* A leg within (0, lim) m, else the error at /ring/section/<key>. */
+/* A leg within (0, lim) m, else the error at `key` (in the ring's block). */
 static int leg(double x, double lim, const char *key, const char *what, rd_error *err)
 {
     if (isfinite(x) && x > 0.0 && x < lim)
         return RD_OK;
     return rd_error_set(err, RD_EINVAL, key,
-                        "%s = %g m is out of range: allowed above 0 and below %g m (%s); a "
+                        "@%s = %g m is out of range: allowed above 0 and below %g m (%s); a "
                         "cut that large leaves no section.",
                         key, x, lim, what);
 }
@@ -149,8 +149,8 @@ static int angle_ok(double deg, double arm, double room, const char *what, rd_er
     double lim = atan(room / arm) * 180.0 / M_PI;
     if (isfinite(deg) && deg > 0.0 && deg < lim && deg <= 45.0)
         return RD_OK;
-    return rd_error_set(err, RD_EINVAL, "/ring/section/angle_deg",
-                        "/ring/section/angle_deg = %g deg is out of range: allowed above 0 and "
+    return rd_error_set(err, RD_EINVAL, "/section/angle_deg",
+                        "@/section/angle_deg = %g deg is out of range: allowed above 0 and "
                         "below %.4g deg (%s).",
                         deg, fmin(lim, 45.0), what);
 }
@@ -189,8 +189,8 @@ static int cut_shapes(int shape, const rd_section_spec *sp, double b, double h, 
         double q[4][2] = {{0, sp->double_sided ? drop : 0}, {b, 0}, {b, h}, {0, h - drop}};
         memcpy(pts, q, sizeof q), *n = 4;
     } else {
-        rc = leg(w, b, "/ring/section/width_m", "the radial width b", err);
-        rc = rc != RD_OK ? rc : leg(t, h, "/ring/section/height_m", "the axial height h", err);
+        rc = leg(w, b, "/section/width_m", "the radial width b", err);
+        rc = rc != RD_OK ? rc : leg(t, h, "/section/height_m", "the axial height h", err);
         if (shape == RD_SECTION_INNER_BEVEL) {
             double q[5][2] = {{0, 0}, {b, 0}, {b, h}, {w, h}, {0, h - t}};
             memcpy(pts, q, sizeof q), *n = 5;
@@ -209,14 +209,14 @@ int rd_section_outline(int shape, const rd_section_spec *sp, double b, double h,
 {
     *n = 0;
     if (sp->side != 0 && sp->side != 1)
-        return rd_error_set(err, RD_EINVAL, "/ring/section/side",
-                            "/ring/section/side = %d is out of range: allowed 0 (top) or 1 "
+        return rd_error_set(err, RD_EINVAL, "/section/side",
+                            "@/section/side = %d is out of range: allowed 0 (top) or 1 "
                             "(bottom).",
                             sp->side);
     if (shape == RD_SECTION_POLYGON)
         return polygon_outline(sp, b, h, pts, n, err);
     if (shape < RD_SECTION_TAPER_FACE || shape > RD_SECTION_POLYGON)
-        return rd_error_set(err, RD_EINVAL, "/ring/section", "unknown section shape %d", shape);
+        return rd_error_set(err, RD_EINVAL, "/section", "unknown section shape %d", shape);
     return cut_shapes(shape, sp, b, h, pts, n, err);
 }
 

@@ -324,7 +324,7 @@ static int solve_mesh(const mesh *M, double *J)
 int rd_section_torsion_polygon(const double (*pts)[2], int n, int level, double *J, rd_error *err)
 {
     if (n < 3 || n > RD_SECTION_POINTS_MAX || level < 0 || level > 9)
-        return rd_error_set(err, RD_EINVAL, "/ring/section", "torsion mesh: %d points, level %d", n,
+        return rd_error_set(err, RD_EINVAL, "/section", "torsion mesh: %d points, level %d", n,
                             level);
     double lo[2] = {INFINITY, INFINITY}, hi[2] = {-INFINITY, -INFINITY},
            P[RD_SECTION_POINTS_MAX][2];
@@ -349,12 +349,12 @@ int rd_section_torsion_polygon(const double (*pts)[2], int n, int level, double 
     if (rc == RD_OK)
         *J *= s * s * s * s;
     return rc == RD_OK       ? RD_OK
-           : rc == RD_ENOMEM ? rd_error_set(err, rc, "/ring/section",
+           : rc == RD_ENOMEM ? rd_error_set(err, rc, "/section",
                                             "out of memory for the torsion mesh (level %d)", level)
-           : rc == RD_EINVAL ? rd_error_set(err, rc, "/ring/section",
+           : rc == RD_EINVAL ? rd_error_set(err, rc, "/section",
                                             "the section's outline could not be cut into "
                                             "triangles: it is not a simple polygon")
-                             : rd_error_set(err, rc, "/ring/section",
+                             : rd_error_set(err, rc, "/section",
                                             "the torsion solve (conjugate gradients) did not "
                                             "converge at level %d",
                                             level);

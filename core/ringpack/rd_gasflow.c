@@ -228,16 +228,43 @@ double rd_gasflow_trace_at(int n, const double *x, const double *y, const double
     return hermite(x, y, lo, slope[lo], slope[lo + 1], t);
 }
 
+int rd_gasflow_table_validate(int n, const double *deg, const double *pa, rd_error *err)
+{
+    const char *at = "/crank_deg";
+    if (n < 2 || !deg || !pa)
+        return rd_error_set(err, RD_EINVAL, at, "@%s needs at least 2 points.", at);
+    for (int k = 0; k < n; k++) {
+        char f[RD_ERROR_PATH_MAX];
+        snprintf(f, sizeof f, "/pressure_pa/%d", k);
+        int rc = rd_error_range(pa[k], 1e3, 1e9, f, "Pa (absolute)", err);
+        if (rc)
+            return rc;
+        if (k > 0 && !(deg[k] > deg[k - 1])) {
+            snprintf(f, sizeof f, "%s/%d", at, k);
+            return rd_error_set(err, RD_EINVAL, f,
+                                "@%s = %g must exceed the angle before it "
+                                "(%g): the angles must increase strictly.",
+                                f, deg[k], deg[k - 1]);
+        }
+    }
+    if (!(deg[0] <= 0.0 && deg[0] >= -1e-9) || !(deg[n - 1] >= 720.0 && deg[n - 1] <= 720.0 + 1e-9))
+        return rd_error_set(err, RD_EINVAL, at,
+                            "@%s runs from %g to %g deg but must cover the whole cycle: first "
+                            "angle 0, last 720 (the trace repeats every 720 deg).",
+                            at, deg[0], deg[n - 1]);
+    return RD_OK;
+}
+
 /* ------------------------------------------------------ synthetic trace */
 
-int rd_gasflow_synthetic_validate(const rd_cylinder_synthetic *s, const char *path, rd_error *err)
+int rd_gasflow_synthetic_validate(const rd_cylinder_synthetic *s, rd_error *err)
 {
     char f[RD_ERROR_PATH_MAX];
-#define BAD(key, cond, range)                                                   \
-    do {                                                                        \
-        snprintf(f, sizeof f, "%s/%s", path, key);                              \
-        if (!(cond))                                                            \
-            return rd_error_set(err, RD_EINVAL, f, "%s must be %s.", f, range); \
+#define BAD(key, cond, range)                                                    \
+    do {                                                                         \
+        snprintf(f, sizeof f, "/%s", key);                                       \
+        if (!(cond))                                                             \
+            return rd_error_set(err, RD_EINVAL, f, "@%s must be %s.", f, range); \
     } while (0)
     BAD("compression_ratio", s->compression_ratio >= 2.0 && s->compression_ratio <= 40.0,
         "from 2 to 40");
@@ -247,10 +274,10 @@ int rd_gasflow_synthetic_validate(const rd_cylinder_synthetic *s, const char *pa
     BAD("peak_crank_deg", s->peak_crank_deg >= 0.0 && s->peak_crank_deg <= 60.0,
         "from 0 to 60 deg after firing TDC");
     double motored = s->intake_pa * pow(s->compression_ratio, RD_GASFLOW_POLYTROPIC);
-    snprintf(f, sizeof f, "%s/peak_pa", path);
+    snprintf(f, sizeof f, "/peak_pa");
     if (!(s->peak_pa > 1.05 * motored && s->peak_pa <= 1e8))
         return rd_error_set(err, RD_EINVAL, f,
-                            "%s = %g Pa must exceed the motored peak (intake_pa * "
+                            "@%s = %g Pa must exceed the motored peak (intake_pa * "
                             "compression_ratio^%g = %g Pa) by 5 %% and be at most 1e8 Pa.",
                             f, s->peak_pa, RD_GASFLOW_POLYTROPIC, motored);
 #undef BAD
@@ -350,9 +377,9 @@ static double smoothstep(double x, double a, double b)
 }
 
 int rd_gasflow_synthetic(const rd_cylinder_synthetic *s, const rd_engine_params *e, double bore,
-                         const char *path, double *crank_deg, double *p, rd_error *err)
+                         double *crank_deg, double *p, rd_error *err)
 {
-    int rc = rd_gasflow_synthetic_validate(s, path, err);
+    int rc = rd_gasflow_synthetic_validate(s, err);
     if (rc)
         return rc;
     trace tr = {e, M_PI * bore * bore / 4.0, 0.0};

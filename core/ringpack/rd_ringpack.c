@@ -100,25 +100,25 @@ double rd_ringpack_standard_density(double R)
     return 101325.0 / (R * 293.15);
 }
 
-static int validate_ring(const rd_ringpack_ring *r, int i, double bore, rd_error *err)
+/* Ring i's entry of /rings, paths relative to it. */
+static int validate_ring(const rd_ringpack_ring *r, double bore, rd_error *err)
 {
-    char at[16], f[RD_ERROR_PATH_MAX];
-    snprintf(at, sizeof at, "/rings/%d", i % 10);
+    char f[RD_ERROR_PATH_MAX];
     int rc = RD_OK;
-#define FIELD(key) (snprintf(f, sizeof f, "%s/%s", at, key), f)
+#define FIELD(key) (snprintf(f, sizeof f, "/%s", key), f)
     if (r->ring.section != RD_SECTION_RECTANGLE)
         return rd_error_set(err, RD_EINVAL, FIELD("ring/section"),
-                            "%s must be rectangle: the ring seals with its flat faces.", f);
+                            "@%s must be rectangle: the ring seals with its flat faces.", f);
     if (fabs(r->ring.diameter - bore) > 1e-9 * bore)
         return rd_error_set(err, RD_EINVAL, FIELD("ring/diameter"),
-                            "%s = %g m differs from the top ring's %g m: the rings of a pack "
+                            "@%s = %g m differs from the top ring's %g m: the rings of a pack "
                             "share one bore.",
                             f, r->ring.diameter, bore);
     rc =
         rc ? rc : rd_error_range(r->ring.closed_gap, 0.0, 0.01, FIELD("ring/closed_gap"), "m", err);
     if (!rc && !(r->groove.axial_clearance > 0.0))
         return rd_error_set(err, RD_EINVAL, FIELD("groove/axial_clearance"),
-                            "%s = %g m: the groove (ring height + axial clearance) must be "
+                            "@%s = %g m: the groove (ring height + axial clearance) must be "
                             "taller than the ring; allowed 1e-07 to 0.005 m.",
                             f, r->groove.axial_clearance);
     rc = rc ? rc
@@ -139,13 +139,13 @@ static int validate_ring(const rd_ringpack_ring *r, int i, double bore, rd_error
     rc = rc ? rc : rd_error_range(r->modes, 0, RD_LIFT_MODES_MAX, FIELD("modes"), "modes", err);
     if (!rc && r->modes > 6 * r->segments - 6)
         return rd_error_set(err, RD_EINVAL, FIELD("modes"),
-                            "%s = %d: a ring of %d segments has %d elastic modes; allowed 0 "
+                            "@%s = %d: a ring of %d segments has %d elastic modes; allowed 0 "
                             "(automatic) to %d.",
                             f, r->modes, r->segments, 6 * r->segments - 6, 6 * r->segments - 6);
     if (!rc && !(r->land_height > 0.0 && r->land_clearance > 0.0))
         return rd_error_set(err, RD_EINVAL,
                             FIELD(r->land_height > 0.0 ? "land/radial_clearance" : "land/height"),
-                            "%s must be > 0: the land's gas volume pi h c (d - c) must be "
+                            "@%s must be > 0: the land's gas volume pi h c (d - c) must be "
                             "positive (height %g m, radial clearance %g m).",
                             f, r->land_height, r->land_clearance);
     rc = rc ? rc : rd_error_range(r->land_height, 1e-5, 0.1, FIELD("land/height"), "m", err);
@@ -163,7 +163,7 @@ static int validate_ring(const rd_ringpack_ring *r, int i, double bore, rd_error
     rd_section_init(&s, &r->ring);
     if (!rc && r->groove.axial_clearance >= s.h)
         return rd_error_set(err, RD_EINVAL, FIELD("groove/axial_clearance"),
-                            "%s = %g m is not smaller than the ring's height %g m: the groove "
+                            "@%s = %g m is not smaller than the ring's height %g m: the groove "
                             "(ring height + axial clearance) would be more than twice as tall "
                             "as the ring, outside this model.",
                             f, r->groove.axial_clearance, s.h);
@@ -171,131 +171,148 @@ static int validate_ring(const rd_ringpack_ring *r, int i, double bore, rd_error
     return rc;
 }
 
-/* physics.gas: the gas's properties and the flank laws. */
+/* physics.gas: the gas's properties and the flank laws, paths relative
+ * to the gas block. */
 static int gas_validate(const rd_ringpack_params *p, rd_error *err)
 {
-    const char *k = "/physics/gas/heat_capacity_ratio", *v = "/physics/gas/viscosity_pa_s";
+    const char *k = "/heat_capacity_ratio", *v = "/viscosity_pa_s";
     if (!(p->kappa > 1.0 && p->kappa < 1.67))
         return rd_error_set(err, RD_EINVAL, k,
-                            "%s = %g is out of range: allowed above 1 and below 1.67 (a "
+                            "@%s = %g is out of range: allowed above 1 and below 1.67 (a "
                             "monatomic gas's 5/3 is the upper limit).",
                             k, p->kappa);
-    int rc =
-        rd_error_range(p->gas_constant, 50.0, 5000.0, "/physics/gas/gas_constant", "J/(kg K)", err);
+    int rc = rd_error_range(p->gas_constant, 50.0, 5000.0, "/gas_constant", "J/(kg K)", err);
     if (!rc && p->gas_viscosity != 0.0 && !(p->gas_viscosity >= 1e-6 && p->gas_viscosity <= 1e-3))
         return rd_error_set(err, RD_EINVAL, v,
-                            "%s = %g Pa s is out of range: allowed 1e-06 to 0.001 Pa s, or 0 "
+                            "@%s = %g Pa s is out of range: allowed 1e-06 to 0.001 Pa s, or 0 "
                             "(absent) for Sutherland's law at the passages' temperatures.",
                             v, p->gas_viscosity);
     rc = rc ? rc
-            : rd_error_range(p->flank_passage, 0, RD_PASSAGE_ORIFICE, "/physics/gas/flank_passage",
-                             "", err);
+            : rd_error_range(p->flank_passage, 0, RD_PASSAGE_ORIFICE, "/flank_passage", "", err);
     rc = rc ? rc
-            : rd_error_range(p->flank_pressure, 0, RD_FLANK_PRESSURE_LINEAR,
-                             "/physics/gas/flank_pressure", "", err);
+            : rd_error_range(p->flank_pressure, 0, RD_FLANK_PRESSURE_LINEAR, "/flank_pressure", "",
+                             err);
     if (!rc && p->flank_pressure == RD_FLANK_PRESSURE_LINEAR &&
         p->active_area == RD_GAS_AREA_DYNAMIC)
-        return rd_error_set(err, RD_EINVAL, "/physics/gas/flank_pressure",
-                            "/physics/gas/flank_pressure = linear with /physics/gas/active_area "
+        return rd_error_set(err, RD_EINVAL, "/flank_pressure",
+                            "@/flank_pressure = linear with @/active_area "
                             "= dynamic: both set the flanks' pressure (dynamic: the lift "
                             "models' sealing-weighted half pressure); use one.");
     return rc;
 }
 
-static int validate_table(const rd_ringpack_params *p, rd_error *err)
+/* Ring i at /rings/i: its ring block (rd_ring_validate), then the entry. */
+static int rings_validate(const rd_ringpack_params *p, rd_error *err)
 {
-    const char *at = "/cylinder_pressure/crank_deg";
-    int n = p->table_points;
-    if (n < 2 || !p->table_deg || !p->table_pa)
-        return rd_error_set(err, RD_EINVAL, at, "%s needs at least 2 points.", at);
-    for (int k = 0; k < n; k++) {
-        char f[RD_ERROR_PATH_MAX];
-        snprintf(f, sizeof f, "/cylinder_pressure/pressure_pa/%d", k);
-        int rc = rd_error_range(p->table_pa[k], 1e3, 1e9, f, "Pa (absolute)", err);
-        if (rc)
-            return rc;
-        if (k > 0 && !(p->table_deg[k] > p->table_deg[k - 1])) {
-            snprintf(f, sizeof f, "%s/%d", at, k);
-            return rd_error_set(err, RD_EINVAL, f,
-                                "%s = %g must exceed the angle before it "
-                                "(%g): the angles must increase strictly.",
-                                f, p->table_deg[k], p->table_deg[k - 1]);
-        }
+    if (p->n_rings < 1 || p->n_rings > RD_RINGPACK_RINGS_MAX)
+        return rd_error_set(err, RD_EINVAL, "/rings", "@/rings has %d rings; allowed 1 to %d.",
+                            p->n_rings, RD_RINGPACK_RINGS_MAX);
+    int rc = RD_OK;
+    for (int i = 0; !rc && i < p->n_rings; i++) {
+        char at[16];
+        snprintf(at, sizeof at, "/rings/%d", i % 10);
+        size_t m = rd_error_enter(err, at);
+        rd_error_enter(err, "/ring");
+        rc = rd_ring_validate(&p->rings[i].ring, 0, err);
+        rd_error_leave(err, m);
+        rd_error_enter(err, at);
+        rc = rc ? rc : validate_ring(&p->rings[i], p->rings[0].ring.diameter, err);
+        rd_error_leave(err, m);
     }
-    if (!(p->table_deg[0] <= 0.0 && p->table_deg[0] >= -1e-9) ||
-        !(p->table_deg[n - 1] >= 720.0 && p->table_deg[n - 1] <= 720.0 + 1e-9))
-        return rd_error_set(err, RD_EINVAL, at,
-                            "%s runs from %g to %g deg but must cover the whole cycle: first "
-                            "angle 0, last 720 (the trace repeats every 720 deg).",
-                            at, p->table_deg[0], p->table_deg[n - 1]);
-    return RD_OK;
+    for (int i = 0; !rc && i + 1 < p->n_rings; i++) {
+        if (p->rings[i].kind != RD_RING_OIL)
+            continue;
+        char at[16];
+        snprintf(at, sizeof at, "/rings/%d", i % 10);
+        size_t m = rd_error_enter(err, at);
+        rc = rd_error_set(err, RD_EINVAL, "/kind",
+                          "@/kind = oil: the oil-control ring must be the last ring of the pack "
+                          "(it is ring %d of %d).",
+                          i + 1, p->n_rings);
+        rd_error_leave(err, m);
+    }
+    return rc;
+}
+
+/* The cylinder pressure: a table or the synthetic trace's parameters. */
+static int cylinder_validate(const rd_ringpack_params *p, rd_error *err)
+{
+    size_t m = rd_error_enter(err, "/cylinder_pressure");
+    if (p->cylinder_kind != RD_CYLINDER_TABLE)
+        rd_error_enter(err, "/synthetic");
+    int rc = p->cylinder_kind == RD_CYLINDER_TABLE
+                 ? rd_gasflow_table_validate(p->table_points, p->table_deg, p->table_pa, err)
+                 : rd_gasflow_synthetic_validate(&p->synthetic, err);
+    rd_error_leave(err, m);
+    return rc;
+}
+
+/* The gas block (gas_validate) under /physics. */
+static int physics_gas_validate(const rd_ringpack_params *p, rd_error *err)
+{
+    size_t m = rd_error_enter(err, "/physics");
+    rd_error_enter(err, "/gas");
+    int rc = gas_validate(p, err);
+    rd_error_leave(err, m);
+    return rc;
+}
+
+/* /physics/friction: the coefficient, and no Stribeck law. */
+static int friction_validate(const rd_ringpack_params *p, rd_error *err)
+{
+    size_t m = rd_error_enter(err, "/physics");
+    rd_error_enter(err, "/friction");
+    int rc = RD_OK;
+    if (p->friction.model != RD_FRICTION_NONE)
+        rc = rd_error_range(p->friction.coefficient, 0.0, 10.0, "/coefficient", "", err);
+    if (!rc && p->friction.model == RD_FRICTION_STRIBECK)
+        rc = rd_error_set(err, RD_EINVAL, "/model",
+                          "@/model: stribeck is the lift analysis' only; the ring pack takes "
+                          "coulomb or lubricated (the oil film).");
+    rd_error_leave(err, m);
+    return rc;
 }
 
 int rd_ringpack_validate(const rd_ringpack_params *p, rd_error *err)
 {
     const rd_engine_params *e = &p->engine;
-    int rc = rd_error_range(p->step_deg, 0.01, 90.0, "/output/step_deg", "deg", err);
+    int rc = rd_error_range_in("/output", p->step_deg, 0.01, 90.0, "/step_deg", "deg", err);
     rc = rc ? rc
-            : rd_error_range(p->flank_band, 0.0, RD_LIFT_FLANK_BAND_MAX, "/output/flank_band",
-                             "of the axial clearance", err);
-    rc = rc ? rc : rd_error_range((double)p->max_steps, 100.0, 1e9, "/numerics/max_steps", "", err);
+            : rd_error_range_in("/output", p->flank_band, 0.0, RD_LIFT_FLANK_BAND_MAX,
+                                "/flank_band", "of the axial clearance", err);
+    rc = rc ? rc
+            : rd_error_range_in("/numerics", (double)p->max_steps, 100.0, 1e9, "/max_steps", "",
+                                err);
+    size_t m = rd_error_enter(err, "/engine");
     rc = rc ? rc : rd_engine_validate(e, err);
-    rc =
-        rc ? rc : rd_error_range(e->cycles, 2.0, RD_RINGPACK_CYCLES_MAX, "/engine/cycles", "", err);
+    rc = rc ? rc : rd_error_range(e->cycles, 2.0, RD_RINGPACK_CYCLES_MAX, "/cycles", "", err);
     if (!rc && e->cycles != floor(e->cycles))
-        return rd_error_set(err, RD_EINVAL, "/engine/cycles",
-                            "/engine/cycles = %g must be a whole number of cycles (2 to 50): the "
-                            "last two are compared for the periodic state.",
-                            e->cycles);
+        rc = rd_error_set(err, RD_EINVAL, "/cycles",
+                          "@/cycles = %g must be a whole number of cycles (2 to 50): the last "
+                          "two are compared for the periodic state.",
+                          e->cycles);
+    rd_error_leave(err, m);
     rc = rc ? rc
-            : rd_error_range(p->periodic_tolerance, 1e-6, 0.1, "/numerics/periodic_tolerance", "",
-                             err);
-    if (!rc && (p->n_rings < 1 || p->n_rings > RD_RINGPACK_RINGS_MAX))
-        return rd_error_set(err, RD_EINVAL, "/rings", "/rings has %d rings; allowed 1 to %d.",
-                            p->n_rings, RD_RINGPACK_RINGS_MAX);
-    for (int i = 0; !rc && i < p->n_rings; i++) {
-        rd_error re;
-        rd_error_init(&re);
-        if ((rc = rd_ring_validate(&p->rings[i].ring, 4, 0, &re))) { /* its paths are /ring/... */
-            char at[RD_ERROR_PATH_MAX];
-            snprintf(at, sizeof at, "/rings/%d%.100s", i % 10, re.path);
-            return rd_error_set(err, rc, at, "/rings/%d: %.400s", i, re.message);
-        }
-        rc = validate_ring(&p->rings[i], i, p->rings[0].ring.diameter, err);
-    }
-    for (int i = 0; !rc && i + 1 < p->n_rings; i++) {
-        char f[32];
-        snprintf(f, sizeof f, "/rings/%d/kind", i % 10);
-        if (p->rings[i].kind == RD_RING_OIL)
-            return rd_error_set(err, RD_EINVAL, f,
-                                "%s = oil: the oil-control ring must be the last ring of the "
-                                "pack (it is ring %d of %d).",
-                                f, i + 1, p->n_rings);
-    }
+            : rd_error_range_in("/numerics", p->periodic_tolerance, 1e-6, 0.1,
+                                "/periodic_tolerance", "", err);
+    rc = rc ? rc : rings_validate(p, err);
     rc = rc ? rc
             : rd_error_range(p->crankcase_pa, 1e3, 1e7, "/crankcase_pressure_pa", "Pa (absolute)",
                              err);
-    rc = rc ? rc : gas_validate(p, err);
-    rc = rc ? rc : rd_error_range(p->T_lands, 200.0, 1500.0, "/gas_temperature_k/lands", "K", err);
+    rc = rc ? rc : physics_gas_validate(p, err);
+    rc =
+        rc ? rc
+           : rd_error_range_in("/gas_temperature_k", p->T_lands, 200.0, 1500.0, "/lands", "K", err);
     rc = rc ? rc
-            : rd_error_range(p->T_crankcase, 200.0, 1500.0, "/gas_temperature_k/crankcase", "K",
-                             err);
-    rc = rc ? rc : rd_error_range(p->rtol, 1e-12, 0.01, "/numerics/rtol", "", err);
-    rc = rc ? rc : rd_error_range(p->model, 0, RD_RINGPACK_AXIAL, "/numerics/model", "", err);
-    if (!rc && p->friction.model != RD_FRICTION_NONE)
-        rc = rd_error_range(p->friction.coefficient, 0.0, 10.0, "/physics/friction/coefficient", "",
-                            err);
-    if (!rc && p->friction.model == RD_FRICTION_STRIBECK)
-        return rd_error_set(err, RD_EINVAL, "/physics/friction/model",
-                            "/physics/friction/model: stribeck is the lift analysis' only; the "
-                            "ring pack takes coulomb or lubricated (the oil film).");
+            : rd_error_range_in("/gas_temperature_k", p->T_crankcase, 200.0, 1500.0, "/crankcase",
+                                "K", err);
+    rc = rc ? rc : rd_error_range_in("/numerics", p->rtol, 1e-12, 0.01, "/rtol", "", err);
+    rc =
+        rc ? rc : rd_error_range_in("/numerics", p->model, 0, RD_RINGPACK_AXIAL, "/model", "", err);
+    rc = rc ? rc : friction_validate(p, err);
     rc = rc ? rc : rd_ringpack_lube_validate(p, err);
-    rc = rc ? rc : rd_error_range(p->atol, 1e-16, 1e-5, "/numerics/atol", "m", err);
-    if (rc)
-        return rc;
-    rc = p->cylinder_kind == RD_CYLINDER_TABLE
-             ? validate_table(p, err)
-             : rd_gasflow_synthetic_validate(&p->synthetic, "/cylinder_pressure/synthetic", err);
+    rc = rc ? rc : rd_error_range_in("/numerics", p->atol, 1e-16, 1e-5, "/atol", "m", err);
+    rc = rc ? rc : cylinder_validate(p, err);
     return rc ? rc : rd_packring_validate(p, err); /* bore, tilt, active areas */
 }
 
@@ -370,8 +387,12 @@ static int cylinder_trace(rd_ringpack_model *m, rd_error *err)
     if (!m->cyl_deg)
         return rd_error_set(err, RD_ENOMEM, "", "Out of memory for the cylinder pressure.");
     m->cyl_pa = m->cyl_deg + RD_GASFLOW_POINTS;
-    return rd_gasflow_synthetic(&p->synthetic, &p->engine, p->rings[0].ring.diameter,
-                                "/cylinder_pressure/synthetic", m->cyl_deg, m->cyl_pa, err);
+    size_t mark = rd_error_enter(err, "/cylinder_pressure");
+    rd_error_enter(err, "/synthetic");
+    int rc = rd_gasflow_synthetic(&p->synthetic, &p->engine, p->rings[0].ring.diameter, m->cyl_deg,
+                                  m->cyl_pa, err);
+    rd_error_leave(err, mark);
+    return rc;
 }
 
 /* The trace's slopes, once (rd_ringpack_pressures reads the trace at

@@ -171,7 +171,10 @@ static int cv_failed(const drv *d, int flag, rd_error *err)
         return cv_fail(d, flag, "query", err);
     rd_cvode_limit lim = {"ring-pack", "ring pack's run", d->m.p->max_steps, 720.0 * d->rec.C,
                           steps + now};
-    return rd_cvode_failure(&d->cs, flag, t, &lim, err);
+    size_t m = rd_error_enter(err, flag == CV_TOO_MUCH_WORK ? "/numerics" : "");
+    int rc = rd_cvode_failure(&d->cs, flag, t, &lim, err);
+    rd_error_leave(err, m);
+    return rc;
 }
 
 static void drv_close(drv *d)
@@ -525,13 +528,15 @@ static void record(drv *d, int k, double t)
 static int work_bound(drv *d, double t, rd_error *err)
 {
     long now = 0;
-    if (!CVodeGetNumSteps(d->cs.cv, &now) && d->rec.res->steps + now > d->m.p->max_steps)
-        return rd_error_set(err, RD_ELIMIT, "/numerics/max_steps",
-                            "The run needed more than /numerics/max_steps = %ld CVODE steps "
-                            "by crank angle %.2f deg (of %d cycles); raise it, or loosen "
-                            "/numerics/rtol.",
-                            d->m.p->max_steps, t * d->deg_per_s, d->rec.C);
-    return RD_OK;
+    if (CVodeGetNumSteps(d->cs.cv, &now) || d->rec.res->steps + now <= d->m.p->max_steps)
+        return RD_OK;
+    size_t m = rd_error_enter(err, "/numerics");
+    int rc = rd_error_set(err, RD_ELIMIT, "/max_steps",
+                          "The run needed more than @/max_steps = %ld CVODE steps by crank angle "
+                          "%.2f deg (of %d cycles); raise it, or loosen @/rtol.",
+                          d->m.p->max_steps, t * d->deg_per_s, d->rec.C);
+    rd_error_leave(err, m);
+    return rc;
 }
 
 /* Steps per CVode call with lift rings, so the monitor is asked often: as

@@ -36,47 +36,78 @@
 #include "rd_lift_internal.h"
 #include "rd_ringpack_model.h"
 
-/* The lubricated model's inputs, each ring's face under /rings/i (the
- * liner's checks name /ring/face), and the round bore its one film per
- * ring needs. */
+/* Enters ring i's face block, /rings/i/ring/face; returns the mark to leave. */
+static size_t enter_face(rd_error *err, int i)
+{
+    char at[16];
+    snprintf(at, sizeof at, "/rings/%d", i % 10);
+    size_t m = rd_error_enter(err, at);
+    rd_error_enter(err, "/ring");
+    rd_error_enter(err, "/face");
+    return m;
+}
+
+/* The round bore (one film per ring) and no tilt, at the scene's root. */
+static int lube_scene_validate(const rd_ringpack_params *p, rd_error *err)
+{
+    int rc = rd_error_range_in("/numerics", p->film_step_deg, 0.01, RD_LIFT_FILM_STEP_MAX_DEG,
+                               "/film_step_deg", "deg", err);
+    size_t m = rd_error_enter(err, "/bore");
+    if (!rc && rd_bore_distorted(&p->bore, p->rings[0].ring.diameter))
+        rc = rd_error_set(err, RD_EINVAL, "/distortion",
+                          "@/distortion with the lubricated friction model: each ring's film is "
+                          "one for its whole face (axisymmetric); a film varying around the ring "
+                          "is not modelled. Remove the distortion, or use coulomb.");
+    if (!rc && p->bore_map)
+        rc = rd_error_set(err, RD_EINVAL, "/layers",
+                          "@/layers with the lubricated friction model: each ring's film is one "
+                          "for its whole face (a round bore); a film varying around the ring is "
+                          "not modelled. Remove the layers, or use coulomb.");
+    rd_error_leave(err, m);
+    m = rd_error_enter(err, "/engine");
+    if (!rc && (p->engine.piston_tilt_deg != 0.0 || p->engine.tilt_points > 0))
+        rc = rd_error_set(err, RD_EINVAL, "/piston_tilt_deg",
+                          "a piston tilt with the lubricated friction model: the film takes the "
+                          "piston's sliding speed, not the tilt's own; remove the tilt, or use "
+                          "coulomb.");
+    rd_error_leave(err, m);
+    return rc;
+}
+
+/* The lubricated model's inputs: each ring's face under /rings/i/ring/face
+ * (the liner and the oil, shared, with the first ring's), and the round
+ * bore its one film per ring needs. */
 int rd_ringpack_lube_validate(const rd_ringpack_params *p, rd_error *err)
 {
     if (p->friction.model != RD_FRICTION_LUBRICATED)
         return RD_OK;
-    int rc = rd_error_range(p->film_step_deg, 0.01, RD_LIFT_FILM_STEP_MAX_DEG,
-                            "/numerics/film_step_deg", "deg", err);
-    if (!rc && rd_bore_distorted(&p->bore, p->rings[0].ring.diameter))
-        return rd_error_set(err, RD_EINVAL, "/bore/distortion",
-                            "/bore/distortion with the lubricated friction model: each ring's "
-                            "film is one for its whole face (axisymmetric); a film varying around "
-                            "the ring is not modelled. Remove the distortion, or use coulomb.");
-    if (!rc && p->bore_map)
-        return rd_error_set(err, RD_EINVAL, "/bore/layers",
-                            "/bore/layers with the lubricated friction model: each ring's film is "
-                            "one for its whole face (a round bore); a film varying around the "
-                            "ring is not modelled. Remove the layers, or use coulomb.");
-    if (!rc && (p->engine.piston_tilt_deg != 0.0 || p->engine.tilt_points > 0))
-        return rd_error_set(err, RD_EINVAL, "/engine/piston_tilt_deg",
-                            "a piston tilt with the lubricated friction model: the film takes the "
-                            "piston's sliding speed, not the tilt's own; remove the tilt, or use "
-                            "coulomb.");
+    int rc = lube_scene_validate(p, err);
     for (int i = 0; !rc && i < p->n_rings; i++) {
-        rd_error re;
-        rd_error_init(&re);
-        const rd_ring_params *rp = &p->rings[i].ring;
         rd_section s;
-        rd_section_init(&s, rp);
-        rc = rd_lube_validate(&p->friction.lube, &p->rings[i].face, p->bore.roughness_rq, &re);
+        rd_section_init(&s, &p->rings[i].ring);
+        size_t m = enter_face(err, i);
+        rc = rd_face_validate(&p->rings[i].face, err);
+        rd_error_leave(err, m);
+        if (!rc && i == 0)
+            rc = rd_lube_validate(&p->friction.lube, p->bore.roughness_rq, err);
+        m = enter_face(err, i);
         if (!rc) /* the face on its ring's running face (a table's ends, ...) */
-            rc = rd_film_face_validate(&p->rings[i].face, s.run.height, &re);
-        if (rc) {
-            char at[RD_ERROR_PATH_MAX];
-            if (strncmp(re.path, "/ring/", 6) != 0)
-                return rd_error_set(err, rc, re.path, "%.400s", re.message);
-            snprintf(at, sizeof at, "/rings/%d%.100s", i % 10, re.path);
-            return rd_error_set(err, rc, at, "/rings/%d: %.400s", i, re.message);
-        }
+            rc = rd_film_face_validate(&p->rings[i].face, s.run.height, err);
+        rd_error_leave(err, m);
     }
+    return rc;
+}
+
+/* rd_film_init of ring i's face, its paths under /rings/i/ring/face. */
+static int film_init(const rd_ringpack_params *p, int i, rd_film *film, int nodes, rd_error *err)
+{
+    const rd_ring_params *rp = &p->rings[i].ring;
+    rd_section s;
+    rd_section_init(&s, rp);
+    size_t m = enter_face(err, i);
+    int rc = rd_film_init(film, &p->rings[i].face, s.run.height, nodes, p->bore.roughness_rq,
+                          &p->friction.lube, rp->youngs_modulus, rp->poisson_ratio, err);
+    rd_error_leave(err, m);
     return rc;
 }
 
@@ -160,11 +191,7 @@ static int film_estimate(rd_packfilm *f, int i, rd_ringpack_result *r, rd_error 
     rd_film fine;
     rd_film_track tr = {0};
     rd_lift_lube lb = {0};
-    rd_section s;
-    rd_section_init(&s, rp);
-    int rc = rd_film_init(&fine, &p->rings[i].face, s.run.height, 2 * (RD_FILM_NODES - 1) + 1,
-                          p->bore.roughness_rq, &p->friction.lube, rp->youngs_modulus,
-                          rp->poisson_ratio, err);
+    int rc = film_init(p, i, &fine, 2 * (RD_FILM_NODES - 1) + 1, err);
     fine.rtol /= 4.0;
     f->load = f->gas;
     rc = rc ? rc : cycle_film_on(f, &fine, 0.5 * f->dt, f->tr.pt[0].h0, f->tr.pt[0].t, &tr, err);
@@ -200,9 +227,7 @@ int rd_ringpack_films_open(rd_ringpack_model *m, int S, rd_error *err)
         rd_section_init(&s, rp);
         f->w_el = 2.0 * rp->tangential_force / rp->diameter;
         f->back = s.back.height * s.back.r / s.run.r;
-        int rc = rd_film_init(&f->film, &p->rings[i].face, s.run.height, RD_FILM_NODES,
-                              p->bore.roughness_rq, &p->friction.lube, rp->youngs_modulus,
-                              rp->poisson_ratio, err);
+        int rc = film_init(p, i, &f->film, RD_FILM_NODES, err);
         rc = rc ? rc : cycle_film(f, NAN, 0.0, &f->tr, err); /* no gas yet */
         if (rc)
             return rc;

@@ -477,44 +477,51 @@ int rd_packring_auto(const rd_ringpack_params *p, const char **why)
     return -1;
 }
 
-/* Ring i's model, asked for (not auto), against what the scene needs. */
-static int validate_model(const rd_ringpack_params *p, int i, rd_error *err)
+/* Ring i's model k against what the scene needs, at "/model" of the block
+ * that asks for it (the ring's entry, or /numerics for auto). */
+static int model_fits(const rd_ringpack_params *p, int k, rd_error *err)
 {
-    const rd_ringpack_ring *r = &p->rings[i];
-    int k = r->model != RD_LIFT_MODEL_AUTO ? r->model : p->model;
-    char at[32];
-    if (r->model != RD_LIFT_MODEL_AUTO)
-        snprintf(at, sizeof at, "/rings/%d/model", i % 10);
-    else
-        snprintf(at, sizeof at, "/numerics/model");
     const char *name = rd_ringpack_model_name(k);
     if (needs_flexible(p) && (k == RD_RINGPACK_AXIAL || k == RD_LIFT_MODEL_RIGID)) {
         int bore = bore_distorted(p);
-        return rd_error_set(err, RD_EINVAL, at,
-                            "%s = %s cannot represent %s: the %s varies around the ring; use "
-                            "auto, modal or full.",
-                            at, name,
+        return rd_error_set(err, RD_EINVAL, "/model",
+                            "@/model = %s cannot represent %s: the %s varies around the ring; "
+                            "use auto, modal or full.",
+                            name,
                             bore ? "a distorted bore (/bore/distortion, /bore/layers, "
                                    "/bore/diameter)"
                                  : "a tilted piston (/engine/piston_tilt_deg, /engine/piston_tilt)",
                             bore ? "contact pressure" : "flank gap");
     }
     if (p->active_area == RD_GAS_AREA_DYNAMIC && k == RD_RINGPACK_AXIAL)
-        return rd_error_set(err, RD_EINVAL, at,
-                            "%s = axial cannot carry /physics/gas/active_area = dynamic: its hard "
-                            "flank stops have no sealing contact to weight the faces' pressures; "
-                            "use auto, rigid, modal or full.",
-                            at);
-    if (rd_engine_tilted(&p->engine) && fabs(wrap_deg(r->gap_angle_deg)) > 1e-6 &&
-        !gap_opposite(r)) {
-        snprintf(at, sizeof at, "/rings/%d/gap_angle_deg", i % 10);
-        return rd_error_set(err, RD_EINVAL, at,
-                            "%s = %g deg with a tilted piston: the lift models tilt the groove "
-                            "about the axis 90 deg from the ring's gap, so the gap must sit on "
-                            "the tilt plane: 0 or 180 deg (or a multiple of 360 from them).",
-                            at, r->gap_angle_deg);
-    }
+        return rd_error_set(err, RD_EINVAL, "/model",
+                            "@/model = axial cannot carry /physics/gas/active_area = dynamic: its "
+                            "hard flank stops have no sealing contact to weight the faces' "
+                            "pressures; use auto, rigid, modal or full.");
     return RD_OK;
+}
+
+/* Ring i's model, asked for (not auto), against what the scene needs, and
+ * its gap on the tilt plane. */
+static int validate_model(const rd_ringpack_params *p, int i, rd_error *err)
+{
+    const rd_ringpack_ring *r = &p->rings[i];
+    char at[16];
+    snprintf(at, sizeof at, "/rings/%d", i % 10);
+    size_t m = rd_error_enter(err, r->model != RD_LIFT_MODEL_AUTO ? at : "/numerics");
+    int rc = model_fits(p, r->model != RD_LIFT_MODEL_AUTO ? r->model : p->model, err);
+    rd_error_leave(err, m);
+    if (rc || !rd_engine_tilted(&p->engine) || !(fabs(wrap_deg(r->gap_angle_deg)) > 1e-6) ||
+        gap_opposite(r))
+        return rc;
+    m = rd_error_enter(err, at);
+    rc = rd_error_set(err, RD_EINVAL, "/gap_angle_deg",
+                      "@/gap_angle_deg = %g deg with a tilted piston: the lift models tilt the "
+                      "groove about the axis 90 deg from the ring's gap, so the gap must sit on "
+                      "the tilt plane: 0 or 180 deg (or a multiple of 360 from them).",
+                      r->gap_angle_deg);
+    rd_error_leave(err, m);
+    return rc;
 }
 
 double rd_ringpack_ring_depth(const rd_ringpack_params *p, int i)
@@ -535,27 +542,34 @@ static int map_covers(const rd_ringpack_params *p, int i, rd_error *err)
     const rd_bore_map *m = p->bore_map;
     if (!m || m->n_layers < 1)
         return RD_OK;
+    size_t mark = rd_error_enter(err, "/bore");
     int rc = rd_bore_map_validate(m, p->rings[0].ring.diameter, err);
     if (!rc)
-        rc = rd_error_range(p->ring_z_tdc, 0.0, RD_BORE_Z_MAX, "/bore/ring_z_tdc_m", "m", err);
+        rc = rd_error_range(p->ring_z_tdc, 0.0, RD_BORE_Z_MAX, "/ring_z_tdc_m", "m", err);
     double lo = rd_ringpack_ring_depth(p, i), hi = lo + 2.0 * p->engine.crank_radius;
     double top = m->layer[0].z, bottom = m->layer[m->n_layers - 1].z;
     if (!rc && (lo < top || hi > bottom))
-        return rd_error_set(err, RD_EINVAL, "/bore/layers",
-                            "ring %d runs from %g m (TDC: /bore/ring_z_tdc_m = %g m for the top "
-                            "ring, plus the rings and lands above it) to %g m (BDC) down the "
-                            "bore, but /bore/layers covers %g to %g m: the map must cover every "
-                            "moving ring's whole travel.",
-                            i + 1, lo, p->ring_z_tdc, hi, top, bottom);
+        rc = rd_error_set(err, RD_EINVAL, "/layers",
+                          "ring %d runs from %g m (TDC: @/ring_z_tdc_m = %g m for the top ring, "
+                          "plus the rings and lands above it) to %g m (BDC) down the bore, but "
+                          "@/layers covers %g to %g m: the map must cover every moving ring's "
+                          "whole travel.",
+                          i + 1, lo, p->ring_z_tdc, hi, top, bottom);
+    rd_error_leave(err, mark);
     return rc;
 }
 
 int rd_packring_validate(const rd_ringpack_params *p, rd_error *err)
 {
-    if (p->active_area != RD_GAS_AREA_FIXED && p->active_area != RD_GAS_AREA_DYNAMIC)
-        return rd_error_set(err, RD_EINVAL, "/physics/gas/active_area",
-                            "/physics/gas/active_area = %d is unknown: use fixed or dynamic.",
-                            p->active_area);
+    if (p->active_area != RD_GAS_AREA_FIXED && p->active_area != RD_GAS_AREA_DYNAMIC) {
+        size_t m = rd_error_enter(err, "/physics");
+        rd_error_enter(err, "/gas");
+        int rc =
+            rd_error_set(err, RD_EINVAL, "/active_area",
+                         "@/active_area = %d is unknown: use fixed or dynamic.", p->active_area);
+        rd_error_leave(err, m);
+        return rc;
+    }
     for (int i = 0; i < p->n_rings; i++) {
         const rd_ringpack_ring *r = &p->rings[i];
         if (r->pinned != RD_PIN_FREE)

@@ -24,11 +24,16 @@ int rd_contact_solve_layers(const rd_ring_params *p, int segments, const rd_cont
         const rd_monitor *sub =
             rd_monitor_span_init(&span, mon, (double)i / n, (double)(i + 1) / n);
         rd_error e;
-        rd_error_init(&e);
+        rd_error_init_local(&e, err);
         int rc = rd_contact_solve(p, segments, &oi, so, sub, &res[i], &e);
-        if (rc != RD_OK)
-            return rd_error_set(err, rc, e.path, "in the layer at z = %g m (/bore/layers/%d): %s",
-                                map->layer[i].z, i, e.message);
+        if (rc != RD_OK) {
+            char why[RD_ERROR_MESSAGE_MAX];
+            snprintf(why, sizeof why, "%s", e.message);
+            snprintf(e.message, sizeof e.message,
+                     "in the layer at z = %g m (/bore/layers/%d): %.400s", map->layer[i].z, i, why);
+            rd_error_forward(err, &e);
+            return rc;
+        }
     }
     return RD_OK;
 }

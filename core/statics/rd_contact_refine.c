@@ -395,7 +395,7 @@ static int shiftable(const contact_run *run, const rd_contact_result *fine, int 
 static int reestimate(contact_run *run, const rd_monitor *mon, rd_error *err)
 {
     rd_error e2;
-    rd_error_init(&e2);
+    rd_error_init_local(&e2, err);
     rd_contact_result *f = &run->level[1], *c = &run->level[0];
     double own[RD_CONTACT_BINS] = {0}, below[RD_CONTACT_BINS];
     int rc = shifted_move(run, 0, mon, below, &e2);
@@ -406,8 +406,10 @@ static int reestimate(contact_run *run, const rd_monitor *mon, rd_error *err)
             return RD_OK;
         rc = shifted_move(run, 1, mon, own, &e2);
     }
-    if (rc == RD_ECANCELED || rc == RD_ETIMEOUT)
-        return rd_error_set(err, rc, e2.path, "%s", e2.message);
+    if (rc == RD_ECANCELED || rc == RD_ETIMEOUT) {
+        rd_error_forward(err, &e2);
+        return rc;
+    }
     if (rc == RD_OK)
         rd_contact_estimate_shifted(f, c, own, below, &f->estimates);
     return RD_OK;
@@ -445,7 +447,7 @@ static int refine(contact_run *run, const rd_monitor *mon, rd_error *err)
         double f1 = last ? 1.0 : f0 + 0.5 * (1.0 - f0);
         rd_monitor_span span;
         rd_error e2;
-        rd_error_init(&e2);
+        rd_error_init_local(&e2, err);
         rc = rd_accuracy_run(&plan, rd_monitor_span_init(&span, mon, f0, f1), NULL, &e2);
         if (rc != RD_OK && run->fallback.points > 0 && rc != RD_ECANCELED && rc != RD_ETIMEOUT) {
             fall_back(run, e2.message);
@@ -467,8 +469,10 @@ static int refine(contact_run *run, const rd_monitor *mon, rd_error *err)
             best->accuracy_met = 0;
             return RD_OK;
         }
-        if (rc != RD_OK)
-            return rd_error_set(err, rc, e2.path, "%s", e2.message);
+        if (rc != RD_OK) {
+            rd_error_forward(err, &e2);
+            return rc;
+        }
         rd_contact_result *fine = &run->level[1];
         if (shiftable(run, fine, early, last) &&
             (rc = reestimate(run, rd_monitor_span_init(&span, mon, f1, f1), err)) != RD_OK)
@@ -592,7 +596,7 @@ static int stiffen(contact_run *run, const rd_monitor *mon, rd_error *err)
                      .factor = run->factor,
                      .same = {&run->shape[0], &run->shape[1]}};
     rd_error e2;
-    rd_error_init(&e2);
+    rd_error_init_local(&e2, err);
     rd_monitor_span span;
     const rd_monitor *m4 = rd_monitor_span_init(&span, mon, 1.0, 1.0);
     int rc = refine(&s, m4, &e2);
@@ -600,7 +604,8 @@ static int stiffen(contact_run *run, const rd_monitor *mon, rd_error *err)
         rc = probe_if_solved(&s, m4, &e2);
     if (rc == RD_ECANCELED || rc == RD_ETIMEOUT) {
         run_cleanup(&s);
-        return rd_error_set(err, rc, e2.path, "%s", e2.message);
+        rd_error_forward(err, &e2);
+        return rc;
     }
     rd_contact_result *r = &run->level[0], *t = &s.level[0];
     if (rc == RD_OK && t->stats.reference_segments > 0) {
@@ -706,7 +711,7 @@ int rd_contact_solve(const rd_ring_params *p, int segments, const rd_contact_opt
     memset(out, 0, sizeof *out);
     out->stats.error_estimate = NAN;
     out->law_share = NAN;
-    if ((rc = rd_ring_validate(p, segments, 0, err)) ||
+    if ((rc = rd_ring_scene_validate(p, segments, 0, err)) ||
         (rc = rd_static_validate(so, segments, 0, err)) || (rc = rd_contact_validate(o, p, err)))
         return rc;
     contact_run run = {.p = p, .o = o, .so = so, .n = {segments, 2 * segments}};

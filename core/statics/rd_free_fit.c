@@ -35,6 +35,7 @@
  */
 #include <lapacke.h>
 #include <math.h>
+#include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -43,6 +44,24 @@
 
 #define FIT_PARAMS_MAX (RD_FREE_FIT_ORDER_MAX + 3) /* F_t, the orders, x0, y0, turn */
 #define FIT_ITER_MAX   30
+
+/* An error of the fit in the ring's block (the table is its free_shape):
+ * path relative to it, '@' in fmt for its pointer. */
+static int ring_error(rd_error *err, int code, const char *path, const char *fmt, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 4, 5)))
+#endif
+    ;
+static int ring_error(rd_error *err, int code, const char *path, const char *fmt, ...)
+{
+    size_t m = rd_error_enter(err, "/ring");
+    va_list ap;
+    va_start(ap, fmt);
+    int rc = rd_error_setv(err, code, path, fmt, ap);
+    va_end(ap);
+    rd_error_leave(err, m);
+    return rc;
+}
 
 static int mirrored_table(const rd_free_table *t)
 {
@@ -58,41 +77,41 @@ int rd_free_table_validate(const rd_free_table *t, const rd_ring_params *p, rd_e
 {
     if (!t || t->n_points == 0)
         return RD_OK;
-    const char *at = "/ring/free_shape";
+    const char *at = "/free_shape";
     if (t->fit_order < 2 || t->fit_order > RD_FREE_FIT_ORDER_MAX)
-        return rd_error_set(err, RD_EINVAL, "/ring/free_shape/fit_order",
-                            "/ring/free_shape/fit_order = %d is out of range: allowed 2 to %d "
+        return rd_error_set(err, RD_EINVAL, "/free_shape/fit_order",
+                            "@/free_shape/fit_order = %d is out of range: allowed 2 to %d "
                             "(the pressure's orders 2..K fitted).",
                             t->fit_order, RD_FREE_FIT_ORDER_MAX);
     int n = t->n_points, need = fit_parameters(t) + 4;
     need = need < 8 ? 8 : need;
     if (n < need || n > RD_FREE_POINTS_MAX)
-        return rd_error_set(err, RD_EINVAL, "/ring/free_shape/theta_deg",
-                            "/ring/free_shape has %d points: allowed %d to %d (%d parameters "
+        return rd_error_set(err, RD_EINVAL, "/free_shape/theta_deg",
+                            "@/free_shape has %d points: allowed %d to %d (%d parameters "
                             "with fit_order %d, and 4 more to measure the scatter).",
                             n, need, RD_FREE_POINTS_MAX, fit_parameters(t), t->fit_order);
     for (int i = 0; i < n; i++) {
         double th = t->theta_deg[i], r = t->radius[i], R = 0.5 * p->diameter;
         if (!isfinite(th) || th < -180.0 || th > 180.0)
-            return rd_error_set(err, RD_EINVAL, "/ring/free_shape/theta_deg",
-                                "/ring/free_shape/theta_deg[%d] = %g deg is out of range: allowed "
+            return rd_error_set(err, RD_EINVAL, "/free_shape/theta_deg",
+                                "@/free_shape/theta_deg[%d] = %g deg is out of range: allowed "
                                 "-180 to 180 deg (from the point opposite the gap).",
                                 i, th);
         if (i > 0 && !(th > t->theta_deg[i - 1]))
-            return rd_error_set(err, RD_EINVAL, "/ring/free_shape/theta_deg",
-                                "/ring/free_shape/theta_deg[%d] = %g deg does not increase (the "
+            return rd_error_set(err, RD_EINVAL, "/free_shape/theta_deg",
+                                "@/free_shape/theta_deg[%d] = %g deg does not increase (the "
                                 "one before is %g deg).",
                                 i, th, t->theta_deg[i - 1]);
         if (!isfinite(r) || fabs(r - R) > 0.3 * R)
-            return rd_error_set(err, RD_EINVAL, "/ring/free_shape/radius_m",
-                                "/ring/free_shape/radius_m[%d] = %g m is out of range: allowed "
+            return rd_error_set(err, RD_EINVAL, "/free_shape/radius_m",
+                                "@/free_shape/radius_m[%d] = %g m is out of range: allowed "
                                 "%g to %g m (within 30 %% of the ring's radius d / 2 = %g m).",
                                 i, r, 0.7 * R, 1.3 * R, R);
     }
     double lo = t->theta_deg[0], hi = t->theta_deg[n - 1];
     if (lo >= 0.0 ? (lo > 20.0 || hi < 150.0) : (lo > -150.0 || hi < 150.0))
         return rd_error_set(err, RD_EINVAL, at,
-                            "%s/theta_deg runs from %g to %g deg: give one side, from 0-20 to "
+                            "@%s/theta_deg runs from %g to %g deg: give one side, from 0-20 to "
                             "150 deg or beyond (mirrored), or the whole ring, from -150 deg or "
                             "below to 150 deg or beyond (theta from the point opposite the gap).",
                             at, lo, hi);
@@ -144,11 +163,11 @@ static int curve_solve(const rd_ring_params *p, int segments, const rd_free_shap
             c->th[k] = r.face_theta_deg[k] * M_PI / 180.0;
             c->r[k] = r.face_radius[k];
             if (k > 0 && !(c->th[k] > c->th[k - 1]))
-                rc = rd_error_set(err, RD_EINVAL, "/ring/free_shape",
-                                  "the fitted free shape's running face does not turn once "
-                                  "round its centre (F_t %.4g N): the table is not a ring's free "
-                                  "shape about a centre inside it.",
-                                  Ft);
+                rc = ring_error(err, RD_EINVAL, "/free_shape",
+                                "the fitted free shape's running face does not turn once "
+                                "round its centre (F_t %.4g N): the table is not a ring's free "
+                                "shape about a centre inside it.",
+                                Ft);
         }
         for (int k = 0; rc == RD_OK && k < m; k++)
             c->d[k] = slope3(c->th, c->r, k == 0 ? 0 : k == m - 1 ? m - 3 : k - 1, k);
@@ -225,11 +244,11 @@ static int fit_solve(const fitter *f, const rd_free_shape *fs, double Ft, fit_cu
                      rd_error *err)
 {
     if (!(Ft > 0.0))
-        return rd_error_set(err, RD_EINVAL, "/ring/free_shape",
-                            "the fitted tangential force came out %.4g N: the table is not the "
-                            "free shape of a ring opened by its pressure (its tips must stand "
-                            "out from the closed ring's circle).",
-                            Ft);
+        return ring_error(err, RD_EINVAL, "/free_shape",
+                          "the fitted tangential force came out %.4g N: the table is not the "
+                          "free shape of a ring opened by its pressure (its tips must stand "
+                          "out from the closed ring's circle).",
+                          Ft);
     int rc = rd_monitor_report(f->mon, 0.0, err);
     return rc != RD_OK ? rc : curve_solve(f->p, f->segments, fs, Ft, f->so, c, err);
 }
@@ -383,10 +402,10 @@ static int settled(const fitter *f, const double *dq, const double *e, const dou
 
 static int outside_error(int outside, rd_error *err)
 {
-    return rd_error_set(err, RD_EINVAL, "/ring/free_shape/theta_deg",
-                        "%d of /ring/free_shape's points lie in the fitted free shape's gap "
-                        "(beyond its tips): leave out the points on the gap faces and beyond.",
-                        outside);
+    return ring_error(err, RD_EINVAL, "/free_shape/theta_deg",
+                      "%d of @/free_shape's points lie in the fitted free shape's gap "
+                      "(beyond its tips): leave out the points on the gap faces and beyond.",
+                      outside);
 }
 
 /* The Gauss-Newton loop (the header): f->q from its start to the fit. */
@@ -414,11 +433,11 @@ static int iterate(fitter *f, double *J, double *e, double *e1, double *C, rd_fr
             goto out;
         }
         if (ns != RD_OK) {
-            rc = rd_error_set(err, RD_EINVAL, "/ring/free_shape/fit_order",
-                              "/ring/free_shape does not fix the pressure's orders 2 to %d "
-                              "(the fit is singular): give fewer orders (fit_order) or points "
-                              "spread round the ring.",
-                              f->K);
+            rc = ring_error(err, RD_EINVAL, "/free_shape/fit_order",
+                            "@/free_shape does not fix the pressure's orders 2 to %d "
+                            "(the fit is singular): give fewer orders (fit_order) or points "
+                            "spread round the ring.",
+                            f->K);
             goto out;
         }
         for (int j = 0; j < f->P; j++)
@@ -443,10 +462,10 @@ static int iterate(fitter *f, double *J, double *e, double *e1, double *C, rd_fr
         last = size;
     }
     if (out->iterations > FIT_ITER_MAX) {
-        rc = rd_error_set(err, RD_ENOCONV, "/ring/free_shape",
-                          "the free shape's fit did not settle in %d iterations: the table is "
-                          "far from a ring's free shape of pressure orders 2 to %d.",
-                          FIT_ITER_MAX, f->K);
+        rc = ring_error(err, RD_ENOCONV, "/free_shape",
+                        "the free shape's fit did not settle in %d iterations: the table is "
+                        "far from a ring's free shape of pressure orders 2 to %d.",
+                        FIT_ITER_MAX, f->K);
         goto out;
     }
     if (outside) {
@@ -459,8 +478,8 @@ static int iterate(fitter *f, double *J, double *e, double *e1, double *C, rd_fr
     if (ns == RD_ENOMEM)
         rc = rd_error_set(err, RD_ENOMEM, "", "Out of memory for the free shape's fit.");
     else if (ns != RD_OK)
-        rc = rd_error_set(err, RD_EINVAL, "/ring/free_shape/fit_order",
-                          "/ring/free_shape does not fix the pressure's orders 2 to %d.", f->K);
+        rc = ring_error(err, RD_EINVAL, "/free_shape/fit_order",
+                        "@/free_shape does not fix the pressure's orders 2 to %d.", f->K);
 out:
     curve_free(&c);
     return rc;
@@ -500,11 +519,13 @@ int rd_free_shape_fit(const rd_ring_params *p, int segments, const rd_free_table
                       rd_error *err)
 {
     memset(out, 0, sizeof *out);
+    size_t m = rd_error_enter(err, "/ring");
     int rc = rd_free_table_validate(t, p, err);
+    rd_error_leave(err, m);
     if (rc != RD_OK)
         return rc;
     if (!t || t->n_points == 0)
-        return rd_error_set(err, RD_EINVAL, "/ring/free_shape", "/ring/free_shape is empty.");
+        return ring_error(err, RD_EINVAL, "/free_shape", "@/free_shape is empty.");
     fitter f = {.p = p,
                 .t = t,
                 .so = so,

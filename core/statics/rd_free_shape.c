@@ -80,22 +80,22 @@ static int table_check(const rd_free_shape *fs, const char *path, int min_points
     int n = fs->n_points;
     const double *t = fs->theta_deg;
     if (n < min_points || n > RD_FREE_POINTS_MAX)
-        return rd_error_set(err, RD_EINVAL, path, "%s has %d points: allowed %d to %d.", path, n,
+        return rd_error_set(err, RD_EINVAL, path, "@%s has %d points: allowed %d to %d.", path, n,
                             min_points, RD_FREE_POINTS_MAX);
     for (int i = 0; i < n; i++) {
         if (!isfinite(t[i]) || t[i] < -180.0 || t[i] > 180.0)
             return rd_error_set(err, RD_EINVAL, path,
-                                "%s[%d] = %g deg is out of range: allowed -180 to 180 deg (from "
+                                "@%s[%d] = %g deg is out of range: allowed -180 to 180 deg (from "
                                 "the point opposite the gap).",
                                 path, i, t[i]);
         if (i > 0 && !(t[i] > t[i - 1]))
             return rd_error_set(err, RD_EINVAL, path,
-                                "%s[%d] = %g deg does not increase (the one before is %g deg).",
+                                "@%s[%d] = %g deg does not increase (the one before is %g deg).",
                                 path, i, t[i], t[i - 1]);
     }
     if (!(t[0] == 0.0 || t[0] == -180.0) || t[n - 1] != 180.0)
         return rd_error_set(err, RD_EINVAL, path,
-                            "%s runs from %g to %g deg: run from 0 (the pressure mirrored about "
+                            "@%s runs from %g to %g deg: run from 0 (the pressure mirrored about "
                             "the point opposite the gap) or from -180 (the whole ring) to 180.",
                             path, t[0], t[n - 1]);
     return RD_OK;
@@ -103,36 +103,36 @@ static int table_check(const rd_free_shape *fs, const char *path, int min_points
 
 static int pressure_check(const rd_free_shape *fs, rd_error *err)
 {
-    const char *path = "/ring/pressure_distribution";
+    const char *path = "/pressure_distribution";
     if (fs->n_orders > 0 && fs->n_points > 0)
         return rd_error_set(err, RD_EINVAL, path,
-                            "%s has both orders and a table (theta_deg, ratio): give one.", path);
+                            "@%s has both orders and a table (theta_deg, ratio): give one.", path);
     if (fs->n_orders < 0 || fs->n_orders > RD_FREE_ORDERS_MAX)
-        return rd_error_set(err, RD_EINVAL, "/ring/pressure_distribution/orders",
-                            "/ring/pressure_distribution/orders has %d entries: allowed 0 to %d.",
+        return rd_error_set(err, RD_EINVAL, "/pressure_distribution/orders",
+                            "@/pressure_distribution/orders has %d entries: allowed 0 to %d.",
                             fs->n_orders, RD_FREE_ORDERS_MAX);
     for (int q = 0; q < fs->n_orders; q++) {
         if (fs->order[q] < 2 || fs->order[q] > 64)
-            return rd_error_set(err, RD_EINVAL, "/ring/pressure_distribution/orders",
-                                "/ring/pressure_distribution/orders/%d/order = %d is out of "
+            return rd_error_set(err, RD_EINVAL, "/pressure_distribution/orders",
+                                "@/pressure_distribution/orders/%d/order = %d is out of "
                                 "range: allowed 2 to 64 (order 1 pushes the ring off the bore's "
                                 "centre; a pressure of it has no equilibrium).",
                                 q, fs->order[q]);
         double a_max = fs->measured ? 5.0 : 1.0;
         if (!isfinite(fs->amplitude[q]) || fabs(fs->amplitude[q]) > a_max)
-            return rd_error_set(err, RD_EINVAL, "/ring/pressure_distribution/orders",
-                                "/ring/pressure_distribution/orders/%d/amplitude = %g is out of "
+            return rd_error_set(err, RD_EINVAL, "/pressure_distribution/orders",
+                                "@/pressure_distribution/orders/%d/amplitude = %g is out of "
                                 "range: allowed -%g to %g (of the mean pressure p0).",
                                 q, fs->amplitude[q], a_max, a_max);
     }
     if (fs->n_points > 0) {
-        int rc = table_check(fs, "/ring/pressure_distribution/theta_deg", 2, err);
+        int rc = table_check(fs, "/pressure_distribution/theta_deg", 2, err);
         if (rc)
             return rc;
         for (int i = 0; i < fs->n_points; i++)
             if (!isfinite(fs->value[i]) || fs->value[i] < 0.0 || fs->value[i] > 20.0)
-                return rd_error_set(err, RD_EINVAL, "/ring/pressure_distribution/ratio",
-                                    "/ring/pressure_distribution/ratio[%d] = %g is out of range: "
+                return rd_error_set(err, RD_EINVAL, "/pressure_distribution/ratio",
+                                    "@/pressure_distribution/ratio[%d] = %g is out of range: "
                                     "allowed 0 to 20 (of the mean pressure p0).",
                                     i, fs->value[i]);
     }
@@ -150,7 +150,7 @@ static int pressure_check(const rd_free_shape *fs, rd_error *err)
     }
     if (!(lo > 0.0))
         return rd_error_set(err, RD_EINVAL, path,
-                            "%s falls to %.4g p0 at %.1f deg from the point opposite the gap: "
+                            "@%s falls to %.4g p0 at %.1f deg from the point opposite the gap: "
                             "the pressure must stay above 0 around the ring.",
                             path, lo, at * 180.0 / M_PI);
     return RD_OK;
@@ -161,7 +161,7 @@ int rd_free_shape_validate(const rd_free_shape *fs, const rd_ring_params *p, rd_
     if (!fs || fs->kind == RD_FREE_CLOSED)
         return RD_OK;
     if (fs->kind != RD_FREE_PRESSURE)
-        return rd_error_set(err, RD_EINVAL, "/ring", "unknown free shape kind %d.", fs->kind);
+        return rd_error_set(err, RD_EINVAL, "", "unknown free shape kind %d.", fs->kind);
     (void)p;
     return pressure_check(fs, err);
 }
@@ -347,8 +347,12 @@ int rd_free_shape_prestrain(rd_static_problem *pb, const rd_ring_params *p, cons
     free(f);
     if (rc == RD_ENOMEM)
         return rd_error_set(err, RD_ENOMEM, "", "Out of memory for the free shape.");
-    return rc == RD_OK ? RD_OK
-                       : rd_error_set(err, RD_EINVAL, "/ring", "a joint's stiffness is singular.");
+    if (rc == RD_OK)
+        return RD_OK;
+    size_t m = rd_error_enter(err, "/ring");
+    rc = rd_error_set(err, RD_EINVAL, "", "a joint's stiffness is singular.");
+    rd_error_leave(err, m);
+    return rc;
 }
 
 /* ---- the ring closed by the pressure it was made for --------------------- */
@@ -420,14 +424,16 @@ int rd_free_shape_installed(const rd_ring_params *p, int segments, const rd_free
             rd_section_init(&sec, p);
             char why[RD_ERROR_MESSAGE_MAX];
             snprintf(why, sizeof why, "%s", err ? err->message : "");
+            size_t m = rd_error_enter(err, "/ring");
             rc = rd_error_set(
-                err, RD_ENOCONV, "/ring/section",
+                err, RD_ENOCONV, "/section",
                 "the ring closed by its pressure distribution has no equilibrium with this "
                 "section: its principal axes are turned by %.3g deg, and the twist that closing "
                 "turns them further grows without bound (the twist's coupling rises with the "
                 "twist; a ring whose linear twist nears the principal angle turns over).  Lower "
                 "F_t or the section's asymmetry.  (%s)",
                 sec.angle * 180.0 / M_PI, why);
+            rd_error_leave(err, m);
         }
         goto out;
     }

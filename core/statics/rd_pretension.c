@@ -44,29 +44,48 @@ void rd_pretension_opts_default(rd_pretension_opts *o)
 #define PRETENSION_K_MAX    4.0
 #define PRETENSION_K_MAX_N4 0.5
 
-int rd_pretension_validate(const rd_pretension_opts *o, const rd_ring_params *p, int segments,
-                           rd_error *err)
+/* The method and the lateral force, in the pretension block. */
+static int pretension_checks(const rd_pretension_opts *o, const rd_ring_params *p, rd_error *err)
 {
     if (o->method != RD_PRETENSION_FORCE && o->method != RD_PRETENSION_FIELD)
-        return rd_error_set(err, RD_EINVAL, "/pretension/method", "unknown method %d.", o->method);
+        return rd_error_set(err, RD_EINVAL, "/method", "unknown method %d.", o->method);
     double hi = 100.0 * fmax(p->tangential_force, 1.0);
     if (!isfinite(o->lateral_force) || o->lateral_force < 0.0 || o->lateral_force > hi)
-        return rd_error_set(err, RD_EINVAL, "/pretension/lateral_force",
-                            "/pretension/lateral_force = %g N is out of range: allowed 0 to %g N "
-                            "(100 times the tangential force, at least 100 N).",
+        return rd_error_set(err, RD_EINVAL, "/lateral_force",
+                            "@/lateral_force = %g N is out of range: allowed 0 to %g N (100 "
+                            "times the tangential force, at least 100 N).",
                             o->lateral_force, hi);
+    return RD_OK;
+}
+
+/* The ring's load parameter, in the ring's block (a rule of the ring, not
+ * of the field). */
+static int load_check(const rd_ring_params *p, int segments, rd_error *err)
+{
     double k = rd_ring_conformability(p);
     double k_max = segments <= 4 ? PRETENSION_K_MAX_N4 : PRETENSION_K_MAX;
     if (!(k <= k_max))
         return rd_error_set(
-            err, RD_EINVAL, "/ring",
-            "/ring/tangential_force = %g N is too large for this ring's free shape: the load "
+            err, RD_EINVAL, "",
+            "@/tangential_force = %g N is too large for this ring's free shape: the load "
             "parameter F_t (D - b)^2 / (4 E I) is %.3g, allowed up to %g with %d segments "
             "(%g with 4), so F_t up to %.4g N here.  Beyond it Newton's continuation from the "
             "closed ring does not converge (the ring would open to a gap of several diameters).",
             p->tangential_force, k, k_max, segments, PRETENSION_K_MAX_N4,
             p->tangential_force * k_max / k);
     return RD_OK;
+}
+
+int rd_pretension_validate(const rd_pretension_opts *o, const rd_ring_params *p, int segments,
+                           rd_error *err)
+{
+    size_t m = rd_error_enter(err, "/pretension");
+    int rc = pretension_checks(o, p, err);
+    rd_error_leave(err, m);
+    m = rd_error_enter(err, "/ring");
+    rc = rc ? rc : load_check(p, segments, err);
+    rd_error_leave(err, m);
+    return rc;
 }
 
 /* The running face's tips at the centroid's height (the free gap) and its
@@ -344,10 +363,14 @@ int rd_pretension_solve(const rd_ring_params *p, int segments, const rd_pretensi
     int rc;
     memset(out, 0, sizeof *out);
     out->stats.error_estimate = NAN;
-    if ((rc = rd_ring_validate(p, segments, 0, err)) ||
+    if ((rc = rd_ring_scene_validate(p, segments, 0, err)) ||
         (rc = rd_static_validate(so, segments, 0, err)) ||
-        (rc = rd_pretension_validate(o, p, segments, err)) ||
-        (rc = rd_free_shape_validate(o->free_shape, p, err)))
+        (rc = rd_pretension_validate(o, p, segments, err)))
+        return rc;
+    size_t mark = rd_error_enter(err, "/ring");
+    rc = rd_free_shape_validate(o->free_shape, p, err);
+    rd_error_leave(err, mark);
+    if (rc)
         return rc;
     int m = rd_accuracy_refined_segments(segments, RD_STATIC_SEGMENTS_MAX);
     pretension_run run = {

@@ -606,27 +606,46 @@ void rd_static_opts_default(rd_static_opts *o)
     o->update_eta = 0.03;
 }
 
-int rd_static_validate(const rd_static_opts *o, int segments, int closed, rd_error *err)
+/* A split ring of 4..RD_STATIC_SEGMENTS_MAX segments, in the
+ * discretization block. */
+static int discretization_checks(int segments, int closed, rd_error *err)
 {
     if (closed)
-        return rd_error_set(err, RD_EINVAL, "/discretization/closed",
-                            "/discretization/closed = true joins the gap, but pretension and "
-                            "contact act on the gap faces: use a split ring (closed = false).");
+        return rd_error_set(err, RD_EINVAL, "/closed",
+                            "@/closed = true joins the gap, but pretension and contact act on "
+                            "the gap faces: use a split ring (closed = false).");
     if (segments < 4 || segments > RD_STATIC_SEGMENTS_MAX)
         return rd_error_set(err, segments > RD_STATIC_SEGMENTS_MAX ? RD_ELIMIT : RD_EINVAL,
-                            "/discretization/segments",
-                            "/discretization/segments = %d is out of range for a static "
-                            "analysis: allowed 4 to %d.",
+                            "/segments",
+                            "@/segments = %d is out of range for a static analysis: allowed 4 "
+                            "to %d.",
                             segments, RD_STATIC_SEGMENTS_MAX);
+    return RD_OK;
+}
+
+/* The tolerance and the iteration bound, in the numerics block. */
+static int numerics_checks(const rd_static_opts *o, rd_error *err)
+{
     if (!isfinite(o->tol) || o->tol < 1e-13 || o->tol > 1e-3)
-        return rd_error_set(err, RD_EINVAL, "/numerics/tolerance",
-                            "/numerics/tolerance = %g is out of range: allowed 1e-13 to 1e-3.",
-                            o->tol);
+        return rd_error_set(err, RD_EINVAL, "/tolerance",
+                            "@/tolerance = %g is out of range: allowed 1e-13 to 1e-3.", o->tol);
     if (o->max_iterations < 1 || o->max_iterations > 100000)
-        return rd_error_set(err, o->max_iterations > 100000 ? RD_ELIMIT : RD_EINVAL,
-                            "/numerics/max_iterations",
-                            "/numerics/max_iterations = %d is out of range: allowed 1 to 100000.",
-                            o->max_iterations);
+        return rd_error_set(
+            err, o->max_iterations > 100000 ? RD_ELIMIT : RD_EINVAL, "/max_iterations",
+            "@/max_iterations = %d is out of range: allowed 1 to 100000.", o->max_iterations);
+    return RD_OK;
+}
+
+int rd_static_validate(const rd_static_opts *o, int segments, int closed, rd_error *err)
+{
+    size_t m = rd_error_enter(err, "/discretization");
+    int rc = discretization_checks(segments, closed, err);
+    rd_error_leave(err, m);
+    m = rd_error_enter(err, "/numerics");
+    rc = rc ? rc : numerics_checks(o, err);
+    rd_error_leave(err, m);
+    if (rc)
+        return rc;
     if (o->max_updates < 1 || o->max_updates > 1000) /* core's own: not in the API */
         return rd_error_set(err, RD_EINVAL, "",
                             "rd_static_opts.max_updates = %d is out of range: allowed 1 to 1000.",

@@ -230,11 +230,13 @@ static void test_errors(void)
     known_map(&m);
     m.layer[2].z = 0.02; /* equal to the one before */
     rd_error_init(&err);
+    rd_error_enter(&err, "/bore"); /* core writes paths relative to the block */
     expect_error(rd_bore_map_validate(&m, D, &err), &err, "/bore/layers/2/z",
                  "= 0.02 m is not below the layer before it");
     known_map(&m);
     m.layer[1].bore.distortion[0].amplitude = 1e-3; /* 1.3 % of d */
     rd_error_init(&err);
+    rd_error_enter(&err, "/bore"); /* core writes paths relative to the block */
     expect_error(rd_bore_map_validate(&m, D, &err), &err, "/bore/layers/1/distortion/0/amplitude",
                  "allowed -0.000765 to 0.000765 m");
     known_map(&m);
@@ -244,11 +246,13 @@ static void test_errors(void)
     }
     m.layer[1].bore.n_distortion = m.layer[2].bore.n_distortion = 13;
     rd_error_init(&err);
+    rd_error_enter(&err, "/bore"); /* core writes paths relative to the block */
     expect_error(rd_bore_map_validate(&m, D, &err), &err, "/bore/layers/2/distortion",
                  "23 distinct orders together; allowed at most 16");
     known_map(&m);
     rd_bore b;
     rd_error_init(&err);
+    rd_error_enter(&err, "/contact"); /* core writes paths relative to the block */
     expect_error(rd_bore_map_at(&m, 0.06, D, &b, &err), &err, "/contact/height",
                  "= 0.06 m is outside the bore map: allowed 0 to 0.05 m");
     /* 8 angles in the second layer, order 4 needs 9 */
@@ -258,11 +262,13 @@ static void test_errors(void)
         z[j] = j < 9 ? 0.0 : 0.01, dr[j] = 0.0;
     rd_bore_points p = {17, th, z, dr, 4};
     rd_error_init(&err);
+    rd_error_enter(&err, "/bore"); /* core writes paths relative to the block */
     expect_error(rd_bore_points_validate(&p, D, &err), &err, "/bore/points/fit_order",
                  "fit_order = 4 needs at least 9 points at distinct angles in every layer, but "
                  "the layer at z = 0.01 m has 8: allowed fit_order 0 to 3");
     dr[5] = 1e-3;
     rd_error_init(&err);
+    rd_error_enter(&err, "/bore"); /* core writes paths relative to the block */
     expect_error(rd_bore_points_validate(&p, D, &err), &err, "/bore/points/dr/5", "out of range");
 }
 

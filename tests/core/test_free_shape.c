@@ -194,6 +194,7 @@ static void refused(const char *what, const rd_free_shape *fs, const rd_ring_par
 {
     rd_error err;
     rd_error_init(&err);
+    rd_error_enter(&err, "/ring"); /* the validator's paths are relative to the ring's block */
     int rc = rd_free_shape_validate(fs, p, &err);
     CHECK(rc == RD_EINVAL && strcmp(err.path, path) == 0, "%s: refused at %s (rc %d, %s: %s)", what,
           path, rc, err.path, err.message);

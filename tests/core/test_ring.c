@@ -297,7 +297,7 @@ static void test_validation(void)
     rd_ring_params_default(&p);
     rd_error err;
     rd_error_init(&err);
-    CHECK(rd_ring_validate(&p, 20, 0, &err) == RD_OK, "defaults valid: %s", err.message);
+    CHECK(rd_ring_scene_validate(&p, 20, 0, &err) == RD_OK, "defaults valid: %s", err.message);
 
     struct {
         const char *path;
@@ -318,18 +318,18 @@ static void test_validation(void)
         rd_ring_params_default(&p);
         *bad[i].field = bad[i].value;
         rd_error_init(&err);
-        int rc = rd_ring_validate(&p, 20, 0, &err);
+        int rc = rd_ring_scene_validate(&p, 20, 0, &err);
         CHECK(rc == RD_EINVAL && strcmp(err.path, bad[i].path) == 0,
               "value %g: rc %d path '%s' want '%s'", bad[i].value, rc, err.path, bad[i].path);
         CHECK(strstr(err.message, "allowed") != NULL, "message names the range: %s", err.message);
     }
     rd_ring_params_default(&p);
     rd_error_init(&err);
-    CHECK(rd_ring_validate(&p, 2, 0, &err) == RD_EINVAL &&
+    CHECK(rd_ring_scene_validate(&p, 2, 0, &err) == RD_EINVAL &&
               strcmp(err.path, "/discretization/segments") == 0,
           "2 segments: %s", err.message);
     rd_error_init(&err);
-    CHECK(rd_ring_validate(&p, RD_SEGMENTS_MAX + 1, 0, &err) == RD_ELIMIT,
+    CHECK(rd_ring_scene_validate(&p, RD_SEGMENTS_MAX + 1, 0, &err) == RD_ELIMIT,
           "over the segment limit: %s", err.message);
     rd_error_init(&err);
     CHECK(rd_ring_create(&p, 1, 0, &err) == NULL && err.code == RD_EINVAL,

@@ -72,7 +72,7 @@ static void test_trace(void)
     rd_ringpack_params_default(&p);
     rd_error err;
     rd_error_init(&err);
-    CHECK(rd_gasflow_synthetic(&p.synthetic, &p.engine, 0.0765, "", x, y, &err) == RD_OK, "trace");
+    CHECK(rd_gasflow_synthetic(&p.synthetic, &p.engine, 0.0765, x, y, &err) == RD_OK, "trace");
     int bad_node = 0, bad_range = 0, bad_c1 = 0;
     for (int k = 1; k < RD_GASFLOW_POINTS - 1; k += 7) {
         bad_node |= rd_gasflow_trace(RD_GASFLOW_POINTS, x, y, x[k]) != y[k];
@@ -98,8 +98,7 @@ static void test_trace(void)
     CHECK_REL(y[at], p.synthetic.peak_pa, 1e-9, "fired peak");
     CHECK_ABS(x[at], p.synthetic.peak_crank_deg, 0.25 + 1e-9, "fired peak angle");
     p.synthetic.kind = RD_CYLINDER_MOTORED;
-    CHECK(rd_gasflow_synthetic(&p.synthetic, &p.engine, 0.0765, "", x, y, &err) == RD_OK,
-          "motored");
+    CHECK(rd_gasflow_synthetic(&p.synthetic, &p.engine, 0.0765, x, y, &err) == RD_OK, "motored");
     for (int k = 0; k < RD_GASFLOW_POINTS; k++)
         at = y[k] > y[at] ? k : at;
     CHECK_REL(y[at], p.synthetic.intake_pa * pow(p.synthetic.compression_ratio, 1.32), 1e-12,
@@ -349,8 +348,8 @@ static double against_lift(double mu, int model, double band)
     static double cd[RD_GASFLOW_POINTS], cp[RD_GASFLOW_POINTS];
     rd_error err;
     rd_error_init(&err);
-    CHECK(rd_gasflow_synthetic(&p.synthetic, &p.engine, 0.0765, "", cd, cp, &err) == RD_OK,
-          "trace: %s", err.message);
+    CHECK(rd_gasflow_synthetic(&p.synthetic, &p.engine, 0.0765, cd, cp, &err) == RD_OK, "trace: %s",
+          err.message);
     for (int k = 0; k < NT; k++) { /* below: 30 % of the cylinder's gauge, 20 deg late */
         deg[k] = k;
         above[k] = rd_gasflow_table(RD_GASFLOW_POINTS, cd, cp, k) - 1e5;

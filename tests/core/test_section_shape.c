@@ -270,6 +270,7 @@ static void expect(int shape, const rd_section_spec *sp, const char *path, const
     int n;
     rd_error e;
     rd_error_init(&e);
+    rd_error_enter(&e, "/ring"); /* the outline's paths are relative to the ring's block */
     int rc = rd_section_outline(shape, sp, B, H, pts, &n, &e);
     CHECK(rc == RD_EINVAL && strcmp(e.path, path) == 0, "refused at %s (got %d at %s)", path, rc,
           e.path);
