@@ -36,22 +36,12 @@
 #include <string.h>
 
 #include "check.h"
+#include "lift_distort.h"
 #include "lift_segments.h"
 #include "rd_lift.h"
 #include "rd_lift_internal.h"
 
 #define PI 3.14159265358979323846
-
-static void distort(rd_lift_params *p, double A)
-{
-    p->bore.n_distortion = 2;
-    p->bore.distortion[0].order = 2;
-    p->bore.distortion[0].amplitude = A;
-    p->bore.distortion[0].phase_deg = 0.0;
-    p->bore.distortion[1].order = 4;
-    p->bore.distortion[1].amplitude = 0.4 * A;
-    p->bore.distortion[1].phase_deg = 30.0;
-}
 
 static double bore_offset(const rd_lift_params *p, double psi)
 {

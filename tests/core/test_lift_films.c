@@ -37,21 +37,11 @@
 
 #include "check.h"
 #include "fired_cycle.h"
+#include "lift_distort.h"
 #include "rd_lift_internal.h"
 #include "rd_lift_model.h"
 
 #define PI 3.14159265358979323846
-
-static void distort(rd_lift_params *p, double A)
-{
-    p->bore.n_distortion = 2;
-    p->bore.distortion[0].order = 2;
-    p->bore.distortion[0].amplitude = A;
-    p->bore.distortion[0].phase_deg = 0.0;
-    p->bore.distortion[1].order = 4;
-    p->bore.distortion[1].amplitude = 0.4 * A;
-    p->bore.distortion[1].phase_deg = 30.0;
-}
 
 static void scene(rd_ring_params *rp, rd_lift_params *p, double A)
 {
