@@ -243,6 +243,13 @@ int rd_lift_bore_loads_at(const rd_ring *ring, const rd_lift_params *p, double a
 {
     const rd_ring_params *rp = rd_ring_get_params(ring);
     int n = rd_ring_get_segments(ring);
+    for (int i = 0; i < n; i++) {
+        double a = rd_ring_get_segment_angle(ring, i) * 180.0 / M_PI;
+        angle_deg[i] = a < 0.0 ? a + 360.0 : a;
+        load[i] = 0.0;
+    }
+    if (!(rp->tangential_force > 0.0))
+        return RD_OK; /* no pretension: no elastic load (the gas behind still presses) */
     rd_contact_opts o;
     rd_static_opts so;
     rd_contact_opts_default(&o);
@@ -256,12 +263,9 @@ int rd_lift_bore_loads_at(const rd_ring *ring, const rd_lift_params *p, double a
     if (rc == RD_OK) {
         double w_el = 2.0 * rp->tangential_force / rp->diameter;
         double phi = rd_ring_get_section(ring)->span / n * 180.0 / M_PI;
-        for (int i = 0; i < n; i++) {
-            double a = rd_ring_get_segment_angle(ring, i) * 180.0 / M_PI;
-            angle_deg[i] = a < 0.0 ? a + 360.0 : a;
+        for (int i = 0; i < n; i++)
             load[i] = w_el * arc_pressure(&c, angle_deg[i] - 0.5 * phi, angle_deg[i] + 0.5 * phi) /
                       c.uniform_pressure;
-        }
     }
     rd_contact_result_cleanup(&c);
     return rc;
