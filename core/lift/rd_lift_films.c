@@ -102,9 +102,12 @@ static void films_weights(rd_lift_films *fs, const double *xs, double scale)
 
 /* Film g's track solved at fs->load[g] (fs->count counts the solved). */
 static int solve_film(const rd_ring_params *rp, const rd_lift_params *p, rd_lift_films *fs, int g,
-                      int fine, rd_error *err)
+                      int fine, const rd_monitor *mon, rd_error *err)
 {
-    int rc = rd_lift_film_run_load(rp, p, fs->load[g], fine, &fs->film[g], &fs->tr[g], err);
+    int rc = rd_monitor_report(mon, 0.0, err);
+    if (rc)
+        return rc;
+    rc = rd_lift_film_run_load(rp, p, fs->load[g], fine, &fs->film[g], &fs->tr[g], err);
     fs->solved[g] = 1;
     return rc;
 }
@@ -145,7 +148,7 @@ static double miss_at(const rd_lift_params *p, const rd_ring_params *rp, const r
  * more than RD_LIFT_FILMS_TOL; the finer level is used, fs->interp_check
  * is that miss (an estimate of the films' miss against each segment's own film). */
 static int films_interpolated(const rd_ring_params *rp, const rd_lift_params *p, rd_lift_films *fs,
-                              int fine, double scale, rd_error *err)
+                              int fine, double scale, const rd_monitor *mon, rd_error *err)
 {
     double lo = INFINITY, hi = -INFINITY, xs[RD_LIFT_FILMS_NODES];
     for (int j = 0; j < fs->m; j++) {
@@ -176,7 +179,7 @@ static int films_interpolated(const rd_ring_params *rp, const rd_lift_params *p,
             if (fs->solved[k] && level > 0)
                 continue;
             fs->load[k] = exp(xs[k]) - 0.1 * scale;
-            rc = solve_film(rp, p, fs, k, fine, err);
+            rc = solve_film(rp, p, fs, k, fine, mon, err);
             if (rc == RD_OK && level > 0)
                 miss = fmax(miss, miss_at(p, rp, fs, old, K, xo, xs[k], k));
         }
@@ -192,7 +195,8 @@ static int films_interpolated(const rd_ring_params *rp, const rd_lift_params *p,
 }
 
 int rd_lift_films_run(const rd_ring_params *rp, const rd_lift_params *p, const double *load,
-                      const double *angle_deg, int m, int fine, rd_lift_films *fs, rd_error *err)
+                      const double *angle_deg, int m, int fine, const rd_monitor *mon,
+                      rd_lift_films *fs, rd_error *err)
 {
     memset(fs, 0, sizeof *fs);
     fs->m = m;
@@ -208,10 +212,10 @@ int rd_lift_films_run(const rd_ring_params *rp, const rd_lift_params *p, const d
     int D = distinct_loads(fs, scale, fs->load, RD_LIFT_FILMS_EXACT);
     fs->exact = D <= RD_LIFT_FILMS_EXACT;
     if (!fs->exact)
-        return films_interpolated(rp, p, fs, fine, scale, err);
+        return films_interpolated(rp, p, fs, fine, scale, mon, err);
     int rc = RD_OK;
     for (int g = 0; rc == RD_OK && g < D; g++, fs->count++)
-        rc = solve_film(rp, p, fs, g, fine, err);
+        rc = solve_film(rp, p, fs, g, fine, mon, err);
     if (rc == RD_OK)
         films_weights(fs, NULL, scale);
     return rc;
@@ -234,12 +238,13 @@ static double arc_pressure(const rd_contact_result *c, double a0, double a1)
 int rd_lift_bore_loads(const rd_ring *ring, const rd_lift_params *p, double *load,
                        double *angle_deg, rd_error *err)
 {
-    return rd_lift_bore_loads_at(ring, p, RD_LIFT_FILMS_CONTACT_ACCURACY, RD_LIFT_FILMS_CONTACT_MAX,
-                                 load, angle_deg, err);
+    int n = rd_ring_get_segments(ring), m = 16 * n;
+    m = m < 64 ? 64 : (m > RD_LIFT_FILMS_CONTACT_SEGMENTS ? RD_LIFT_FILMS_CONTACT_SEGMENTS : m);
+    return rd_lift_bore_loads_at(ring, p, m, NULL, load, angle_deg, err);
 }
 
-int rd_lift_bore_loads_at(const rd_ring *ring, const rd_lift_params *p, double accuracy,
-                          int max_segments, double *load, double *angle_deg, rd_error *err)
+int rd_lift_bore_loads_at(const rd_ring *ring, const rd_lift_params *p, int segments,
+                          const rd_monitor *mon, double *load, double *angle_deg, rd_error *err)
 {
     const rd_ring_params *rp = rd_ring_get_params(ring);
     int n = rd_ring_get_segments(ring);
@@ -255,11 +260,11 @@ int rd_lift_bore_loads_at(const rd_ring *ring, const rd_lift_params *p, double a
     rd_contact_opts_default(&o);
     rd_static_opts_default(&so);
     o.bore = p->bore;
-    o.accuracy = accuracy;
-    o.max_segments = max_segments;
+    so.estimate_error = 0; /* one solve at `segments` (test_lift_films: its accuracy) */
     rd_contact_result c;
     memset(&c, 0, sizeof c);
-    int rc = rd_contact_solve(rp, RD_LIFT_FILMS_CONTACT_SEGMENTS, &o, &so, NULL, &c, err);
+    int rc = rd_monitor_report(mon, 0.0, err);
+    rc = rc ? rc : rd_contact_solve(rp, segments, &o, &so, mon, &c, err);
     if (rc == RD_OK) {
         double w_el = 2.0 * rp->tangential_force / rp->diameter;
         double phi = rd_ring_get_section(ring)->span / n * 180.0 / M_PI;
@@ -271,17 +276,19 @@ int rd_lift_bore_loads_at(const rd_ring *ring, const rd_lift_params *p, double a
     return rc;
 }
 
-int rd_lift_films_bore(const rd_ring *ring, const rd_lift_params *p, rd_lift_films *fs,
-                       rd_error *err)
+int rd_lift_films_bore(const rd_ring *ring, const rd_lift_params *p, const rd_monitor *mon,
+                       rd_lift_films *fs, rd_error *err)
 {
     int n = rd_ring_get_segments(ring);
     memset(fs, 0, sizeof *fs);
     double *load = malloc(2 * (size_t)n * sizeof *load);
     if (!load)
         return rd_error_set(err, RD_ENOMEM, "", "Out of memory for the films' loads.");
-    int rc = rd_lift_bore_loads(ring, p, load, load + n, err);
+    int m = 16 * n;
+    m = m < 64 ? 64 : (m > RD_LIFT_FILMS_CONTACT_SEGMENTS ? RD_LIFT_FILMS_CONTACT_SEGMENTS : m);
+    int rc = rd_lift_bore_loads_at(ring, p, m, mon, load, load + n, err);
     if (rc == RD_OK)
-        rc = rd_lift_films_run(rd_ring_get_params(ring), p, load, load + n, n, 1, fs, err);
+        rc = rd_lift_films_run(rd_ring_get_params(ring), p, load, load + n, n, 1, mon, fs, err);
     free(load);
     return rc;
 }
@@ -316,11 +323,12 @@ int rd_lift_films_result(const rd_ring_params *rp, const rd_lift_params *p, cons
 }
 
 int rd_lift_films_estimate(const rd_ring_params *rp, const rd_lift_params *p,
-                           const rd_lift_films *fs, rd_lift_result *out, rd_error *err)
+                           const rd_lift_films *fs, const rd_monitor *mon, rd_lift_result *out,
+                           rd_error *err)
 {
     rd_lift_films f2;
     rd_lift_lube fine = {0};
-    int rc = rd_lift_films_run(rp, p, fs->seg_load, fs->angle_deg, fs->m, 2, &f2, err);
+    int rc = rd_lift_films_run(rp, p, fs->seg_load, fs->angle_deg, fs->m, 2, mon, &f2, err);
     rd_lube_films set = lube_films(&f2);
     rc = rc ? rc
             : rd_lift_lube_fill_films(&fine, &set, &p->friction.lube, &p->engine, rp->diameter,

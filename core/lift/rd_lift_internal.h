@@ -116,11 +116,10 @@ double rd_lift_film_work(const rd_film_track *tr, double circ, double mu_b, doub
 /* A distorted bore's films (rd_lift_films.c).  The ring of m segments
  * presses on the liner with each segment's static contact load: the
  * contact analysis' exact contact of the same ring in the same bore
- * (rd_contact_solve from 160 segments to 320 at accuracy 0.03: within
- * 2.4e-3 of 2 F_t / D of the contact converged to 1e-3 at 2000 segments,
- * test_lift_films, at a third of the default's cost; its pressure over its
- * uniform p0, averaged over the segment's arc, times 2 F_t / D), plus the
- * gas behind it.  Up to RD_LIFT_FILMS_EXACT distinct loads (within
+ * (rd_contact_solve once at 16 n segments, 64 to 320, no estimate:
+ * test_lift_films measures it against the contact at 2000 segments; its
+ * pressure over its uniform p0, averaged over the segment's arc, times
+ * 2 F_t / D), plus the gas behind it.  Up to RD_LIFT_FILMS_EXACT distinct loads (within
  * RD_LIFT_FILMS_SAME of 2 F_t / D) get a film each.  More are
  * interpolated: films at Chebyshev-Lobatto nodes of log(load + 0.1 x
  * 2 F_t / D) over the segments' range, 3, then 5, 9, 17 (nested), until the
@@ -142,9 +141,7 @@ double rd_lift_film_work(const rd_film_track *tr, double circ, double mu_b, doub
 #define RD_LIFT_FILMS_EXACT            5
 #define RD_LIFT_FILMS_TOL              1e-2
 #define RD_LIFT_FILMS_SAME             1e-6
-#define RD_LIFT_FILMS_CONTACT_SEGMENTS 160  /* the contact solve's first level */
-#define RD_LIFT_FILMS_CONTACT_ACCURACY 0.03 /* its accuracy target (rd_contact_opts) */
-#define RD_LIFT_FILMS_CONTACT_MAX      320  /* and its largest segment count */
+#define RD_LIFT_FILMS_CONTACT_SEGMENTS 320 /* the contact solve's segments: 16 n, 64 to this */
 typedef struct rd_lift_films {
     int m;                             /* segments the loads were taken on */
     int count;                         /* films (1 .. RD_LIFT_FILMS_NODES) */
@@ -159,20 +156,24 @@ typedef struct rd_lift_films {
     rd_film film[RD_LIFT_FILMS_NODES]; /* each keeps its own cavitation state */
     rd_film_track tr[RD_LIFT_FILMS_NODES];
 } rd_lift_films;
+/* mon: asked before each film (NULL: none). */
 int rd_lift_films_run(const rd_ring_params *rp, const rd_lift_params *p, const double *load,
-                      const double *angle_deg, int m, int fine, rd_lift_films *fs, rd_error *err);
+                      const double *angle_deg, int m, int fine, const rd_monitor *mon,
+                      rd_lift_films *fs, rd_error *err);
 void rd_lift_films_free(rd_lift_films *fs);
 /* The n segments' elastic radial line loads (N/m) on the liner of `ring` in
  * p's bore (the contact analysis', above) and their mid-angles from the gap
  * middle, deg in [0, 360); rd_lift_films_run on them. */
 int rd_lift_bore_loads(const struct rd_ring *ring, const rd_lift_params *p, double *load,
                        double *angle_deg, rd_error *err);
-/* The same with the contact solve's accuracy target and largest segment
- * count (rd_contact_opts; rd_lift_bore_loads: RD_LIFT_FILMS_CONTACT_*). */
-int rd_lift_bore_loads_at(const struct rd_ring *ring, const rd_lift_params *p, double accuracy,
-                          int max_segments, double *load, double *angle_deg, rd_error *err);
-int rd_lift_films_bore(const struct rd_ring *ring, const rd_lift_params *p, rd_lift_films *fs,
-                       rd_error *err);
+/* The same with the contact solved once at `segments` (rd_lift_bore_loads:
+ * 16 n within 64 .. RD_LIFT_FILMS_CONTACT_SEGMENTS), asking mon (NULL: none). */
+int rd_lift_bore_loads_at(const struct rd_ring *ring, const rd_lift_params *p, int segments,
+                          const rd_monitor *mon, double *load, double *angle_deg, rd_error *err);
+/* mon: the job's, asked by the contact solve and before the films (a stop
+ * or the time limit ends them). */
+int rd_lift_films_bore(const struct rd_ring *ring, const rd_lift_params *p, const rd_monitor *mon,
+                       rd_lift_films *fs, rd_error *err);
 /* The films at t into grp (count points), and each of n segments' film into
  * seg (rd_lift_segfilm.c): the films of the m segments its arc covers,
  * weighted by the overlap (n = m: its own; n = m / 2: the mean of two), so
@@ -202,6 +203,7 @@ int rd_lift_lube_fill_films(rd_lift_lube *lb, const rd_lube_films *fs, const rd_
 int rd_lift_films_result(const rd_ring_params *rp, const rd_lift_params *p, const rd_lift_films *fs,
                          rd_lift_result *out, rd_error *err);
 int rd_lift_films_estimate(const rd_ring_params *rp, const rd_lift_params *p,
-                           const rd_lift_films *fs, rd_lift_result *out, rd_error *err);
+                           const rd_lift_films *fs, const rd_monitor *mon, rd_lift_result *out,
+                           rd_error *err);
 
 #endif

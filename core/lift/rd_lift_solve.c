@@ -547,14 +547,14 @@ static int bore_start(lift_solve *s, rd_error *err)
  * handle's first run and given to every run through p.film; in a distorted
  * bore the films of the segments' static loads (p.films, or p.film where
  * they are all one). */
-static int film_once(lift_solve *s, rd_error *err)
+static int film_once(lift_solve *s, const rd_monitor *mon, rd_error *err)
 {
     rd_lift *h = s->h;
     if (h->p.friction.model != RD_FRICTION_LUBRICATED || h->p.film || h->p.films)
         return RD_OK;
     int rc;
     if (rd_lift_bore_distorted(&h->p, h->rp.diameter)) {
-        if ((rc = rd_lift_films_bore(h->ring, &h->p, &h->films, err))) {
+        if ((rc = rd_lift_films_bore(h->ring, &h->p, mon, &h->films, err))) {
             rd_lift_films_free(&h->films);
             return rc;
         }
@@ -621,7 +621,7 @@ static int run_plan(lift_solve *s, const rd_monitor *mon, rd_error *err)
     } else if (h->films.count > 0 && (rc == RD_OK || out->partial)) {
         int frc = rd_lift_films_result(&h->rp, p, &h->films, out, err);
         if (frc == RD_OK && p->estimate_error)
-            frc = rd_lift_films_estimate(&h->rp, p, &h->films, out, err);
+            frc = rd_lift_films_estimate(&h->rp, p, &h->films, mon, out, err);
         rc = rc == RD_OK ? frc : rc;
     }
     return rc;
@@ -638,7 +638,7 @@ static int run_setup(rd_lift *h, const rd_lift_setup *setup, const rd_monitor *m
     if ((rc = result_alloc(out, s.p, S, h->segments, err)))
         goto out;
     choose_model(s.p, h->segments, h->rp.diameter, out);
-    if ((rc = prepare(&s, S, err)) || (rc = bore_start(&s, err)) || (rc = film_once(&s, err)))
+    if ((rc = prepare(&s, S, err)) || (rc = bore_start(&s, err)) || (rc = film_once(&s, mon, err)))
         goto out;
     rc = run_plan(&s, mon, err);
 out:
