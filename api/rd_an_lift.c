@@ -608,6 +608,16 @@ static json_t *lift_result(const rd_scene *scene, const rd_lift_result *res, dou
     "(film_load_n_per_m), plus the gas behind it; up to 5 distinct loads a film each, more "    \
     "interpolated in log load between films at 3 to 17 loads (film_interpolation_error); "      \
     "the films are solved before the ring's motion over the run plus one cycle of warm-up: "
+#define LUBE_FILM_MAP                                                                            \
+    "a film per segment (a rigid profile) along the bore map: each segment presses on the "      \
+    "liner with its static contact load, the contact analysis' exact contact of the same ring "  \
+    "in each layer the ring passes (film_load_n_per_m over them all), linear in depth between "  \
+    "them as the bore is, at the ring's depth at each instant, plus the gas behind it; up to 5 " \
+    "distinct load histories a film each under its own, more interpolated in log load between "  \
+    "films at 3 to 17 constant loads at each instant (quasi-static in the load: the two "        \
+    "segments whose loads swing most are solved under their own histories, and "                 \
+    "film_interpolation_error is the larger of their miss and the nodes'); the films are "       \
+    "solved before the ring's motion over the run plus one cycle of warm-up: "
 #define LUBE_METHOD_REST                                                                       \
     "the average Reynolds equation "                                                           \
     "across the face (Patir-Cheng flow factors, gamma = 1; the cavitation condition and the "  \
@@ -623,6 +633,13 @@ static json_t *lift_result(const rd_scene *scene, const rd_lift_result *res, dou
     "the ring's radial motion in the lift model (its bore contact is the penalty's; in a "     \
     "distorted bore the films' loads are the ring's static ones)."
 
+static const char *lube_method(const rd_lift_lube *lb)
+{
+    if (lb->load_depths > 1)
+        return LUBE_FILM_MAP LUBE_METHOD_REST;
+    return lb->films > 1 ? LUBE_FILM_SEGMENTS LUBE_METHOD_REST : LUBE_FILM_ONE LUBE_METHOD_REST;
+}
+
 static int run(const rd_scene *s, const rd_monitor *mon, json_t **out, rd_error *err)
 {
     const struct lift_opts *o = s->opts;
@@ -633,10 +650,8 @@ static int run(const rd_scene *s, const rd_monitor *mon, json_t **out, rd_error 
         *out = lift_result(s, &res, rd_clock_s() - t0);
         if (*out && res.lube.on &&
             json_object_set_new(*out, "lubrication",
-                                rd_result_lube(&res.lube, res.samples,
-                                               res.lube.films > 1
-                                                   ? LUBE_FILM_SEGMENTS LUBE_METHOD_REST
-                                                   : LUBE_FILM_ONE LUBE_METHOD_REST)) != 0) {
+                                rd_result_lube(&res.lube, res.samples, lube_method(&res.lube))) !=
+                0) {
             json_decref(*out);
             *out = NULL;
         }

@@ -19,7 +19,7 @@ json_t *rd_result_lube(const rd_lift_lube *lb, int N, const char *method)
         lb->min_film_angle_deg ? rd_result_reals(lb->min_film_angle_deg, N, 1, 1.0) : json_null();
     return json_pack(
         "{s:o, s:o, s:o, s:o, s:o, s:o, s:o, s:o, s:o, s:o, s:{s:o, s:o}, s:o, s:I, s:o, s:i, "
-        "s:o, s:o, s:i, s:{s:o, s:o}, s:o, s:o, s:s}",
+        "s:o, s:o, s:i, s:{s:o, s:o, s:i, s:o}, s:o, s:o, s:s}",
         "min_film_m", rd_result_reals(lb->min_film, N, 1, 1.0), "hydrodynamic_friction_n",
         rd_result_reals(lb->hydrodynamic_friction, N, 1, 1.0), "asperity_friction_n",
         rd_result_reals(lb->asperity_friction, N, 1, 1.0), "friction_power_w",
@@ -34,6 +34,7 @@ json_t *rd_result_lube(const rd_lift_lube *lb, int N, const char *method)
         (json_int_t)lb->film_solves, "periodic_change", rd_result_real(lb->periodic_change),
         "held_steps", lb->held, "film_error", rd_result_real(lb->film_error), "friction_work_error",
         rd_result_real(lb->work_error), "films", lb->films, "film_load_n_per_m", "min",
-        rd_result_real(lb->load_min), "max", rd_result_real(lb->load_max), "min_film_angle_deg",
+        rd_result_real(lb->load_min), "max", rd_result_real(lb->load_max), "depths",
+        lb->load_depths, "depth_error", rd_result_real(lb->load_depth_error), "min_film_angle_deg",
         angle, "film_interpolation_error", rd_result_real(lb->interp_check), "method", method);
 }

@@ -194,6 +194,9 @@ typedef struct rd_lift_lube {
      * films = 1: one film for the face, min_film_angle_deg NULL. */
     int films;
     double load_min, load_max; /* the segments' elastic radial line load, N/m */
+    int load_depths; /* > 1: the bore map's depths the loads were solved at, linear between */
+    double
+        load_depth_error; /* their largest miss at an interval's middle over 2 F_t / D (NAN: one) */
     double *min_film_angle_deg;
     double interp_check; /* the interpolation's bound (NAN: none, rd_lift_films.c) */
     /* The film's error estimate (NAN: not estimated): against the same film

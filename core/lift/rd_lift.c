@@ -175,23 +175,9 @@ static int validate_bore(const rd_lift_params *p, double d, rd_error *err)
     return rc;
 }
 
-/* The lubricated model's bore, in the bore's block: the same at every
- * height (round: one film for the whole face; distorted: a film per segment
+/* The lubricated model: its inputs (the face at /ring/face), no tilt, the
+ * film's step (any bore: a distorted one or a map gets a film per segment
  * load, rd_lift_films.c). */
-static int lubricated_bore(const rd_lift_params *p, rd_error *err)
-{
-    if (p->bore_map)
-        return rd_error_set(err, RD_EINVAL, "/layers",
-                            "the lubricated friction model takes the segments' loads on the "
-                            "film from the ring's static state in a bore that is the same at "
-                            "every height; a bore map, whose distortion changes along the "
-                            "stroke, is not modelled with it yet: give one distortion "
-                            "(@/distortion) or use coulomb or stribeck friction.");
-    return RD_OK;
-}
-
-/* The lubricated model: its inputs (the face at /ring/face), a bore the same
- * at every height, no tilt, the film's step. */
 static int validate_lubricated(const rd_lift_params *p, rd_error *err)
 {
     size_t m = rd_error_enter(err, "/ring");
@@ -199,9 +185,6 @@ static int validate_lubricated(const rd_lift_params *p, rd_error *err)
     int rc = rd_face_validate(&p->face, err);
     rd_error_leave(err, m);
     rc = rc ? rc : rd_lube_validate(&p->friction.lube, p->bore.roughness_rq, err);
-    m = rd_error_enter(err, "/bore");
-    rc = rc ? rc : lubricated_bore(p, err);
-    rd_error_leave(err, m);
     m = rd_error_enter(err, "/engine");
     if (!rc && rd_engine_tilted(&p->engine))
         rc = rd_error_set(err, RD_EINVAL, "/piston_tilt_deg",

@@ -31,7 +31,9 @@
 
 typedef struct film_scene {
     const rd_lift_params *p;
-    double omega, w_el, back;
+    double omega, back;
+    const double *z, *w_el; /* the elastic line load over nz depths (nz 1: constant) */
+    int nz;
 } film_scene;
 
 double rd_lift_lube_viscosity(const rd_lube_params *l, double deg)
@@ -55,7 +57,8 @@ static void loads_at(void *ctx, double t, double *U, double *eta, double *W, dou
     rd_engine_piston(&p->engine, alpha, NULL, &v, NULL);
     *U = v;
     *eta = rd_lift_lube_viscosity(&p->friction.lube, deg);
-    *W = fs->w_el;
+    *W = fs->nz > 1 ? rd_lift_depth_interp(fs->z, fs->w_el, fs->nz, rd_lift_depth_at(p, t))
+                    : fs->w_el[0];
     *plo = *phi = 0.0;
     if (p->gas.points > 0) {
         *W += fs->back * rd_lift_gas_at(&p->gas, p->gas.behind, deg);
@@ -73,6 +76,13 @@ int rd_lift_film_run(const rd_ring_params *rp, const rd_lift_params *p, rd_film 
 int rd_lift_film_run_load(const rd_ring_params *rp, const rd_lift_params *p, double w_el, int fine,
                           rd_film *film, rd_film_track *tr, rd_error *err)
 {
+    return rd_lift_film_run_table(rp, p, NULL, &w_el, 1, fine, film, tr, err);
+}
+
+int rd_lift_film_run_table(const rd_ring_params *rp, const rd_lift_params *p, const double *z,
+                           const double *w_el, int nz, int fine, rd_film *film, rd_film_track *tr,
+                           rd_error *err)
+{
     rd_section s;
     rd_section_init(&s, rp);
     size_t m = rd_error_enter(err, "/ring");
@@ -84,7 +94,7 @@ int rd_lift_film_run_load(const rd_ring_params *rp, const rd_lift_params *p, dou
     if (rc)
         return rc;
     film->rtol /= (double)fine * fine;
-    film_scene fs = {.p = p, .omega = rd_engine_omega(&p->engine), .w_el = w_el};
+    film_scene fs = {.p = p, .omega = rd_engine_omega(&p->engine), .z = z, .w_el = w_el, .nz = nz};
     fs.back = s.back.height * s.back.r / s.run.r;
     rd_film_loads ld = {loads_at, &fs};
     double cycle = 4.0 * M_PI / fs.omega, dt = p->film_step_deg / fine * M_PI / 180.0 / fs.omega;
@@ -118,16 +128,25 @@ int rd_lift_film_result(const rd_ring_params *rp, const rd_lift_params *p, const
     return rc;
 }
 
+/* Film g's share of the ring at t. */
+static double share_at(const rd_lube_films *fs, double t, int g)
+{
+    if (fs->src && fs->src->varying)
+        return rd_lift_films_share(fs->src, t, g);
+    return fs->share ? fs->share[g] : 1.0;
+}
+
 /* Sample k of lb at time t: each film's point weighted by its share (the
  * first assigned, so one film gives its own numbers bit for bit); the
  * thinnest film over the films, or over the segments (fs->m). */
 static void fill_sample(rd_lift_lube *lb, const rd_lube_films *fs, const rd_engine_params *e,
-                        double omega, double circ, double mu_b, double ureg, double t, int k)
+                        double omega, double circ, double mu_b, double ureg, double t, int k,
+                        double *h0)
 {
-    double hf = 0.0, af = 0.0, pw = 0.0, wa = 0.0, ld = 0.0, h0[RD_LIFT_FILMS_NODES];
+    double hf = 0.0, af = 0.0, pw = 0.0, wa = 0.0, ld = 0.0;
     for (int g = 0; g < fs->count; g++) {
         rd_film_point pt;
-        double w = fs->share ? fs->share[g] : 1.0, h, a;
+        double w = share_at(fs, t, g), h, a;
         rd_film_track_at(&fs->tr[g], t, &pt);
         rd_engine_piston(e, omega * t, NULL, &pt.U, NULL); /* exact, as the motion's friction */
         friction_of(&pt, circ, mu_b, ureg, &h, &a);
@@ -141,9 +160,14 @@ static void fill_sample(rd_lift_lube *lb, const rd_lube_films *fs, const rd_engi
             lb->min_film[k] = pt.h0;
     }
     for (int j = 0; j < fs->m; j++) { /* each segment's film */
-        double h = 0.0;
+        double h = 0.0, wj[RD_LIFT_FILMS_NODES];
+        const double *w = fs->wt + (size_t)fs->stride * j;
+        if (fs->src && fs->src->varying) {
+            rd_lift_films_weights(fs->src, t, j, wj);
+            w = wj;
+        }
         for (int g = 0; g < fs->count; g++)
-            h += fs->wt[RD_LIFT_FILMS_NODES * j + g] * h0[g];
+            h += w[g] * h0[g];
         if (j == 0 || h < lb->min_film[k]) {
             lb->min_film[k] = h;
             lb->min_film_angle_deg[k] = fs->angle_deg[j];
@@ -156,6 +180,35 @@ static void fill_sample(rd_lift_lube *lb, const rd_lube_films *fs, const rd_engi
     lb->regime[k] = lb->asperity_share[k] > RD_LUBE_BOUNDARY_SHARE ? RD_REGIME_BOUNDARY
                     : lb->asperity_share[k] > RD_LUBE_MIXED_SHARE  ? RD_REGIME_MIXED
                                                                    : RD_REGIME_HYDRODYNAMIC;
+}
+
+double rd_lift_film_power(const rd_film_point *pt, double circ, double mu_b, double ureg)
+{
+    double h, a;
+    friction_of(pt, circ, mu_b, ureg, &h, &a);
+    return (h + a) * pt->U;
+}
+
+/* The friction work of film g of fs over [t0, t0 + cycle], times its share
+ * (at each step where it varies): the power over the film's own steps
+ * (trapezoid; they land on the cycles' ends). */
+static double film_work(const rd_lube_films *fs, int g, double circ, double mu_b, double ureg,
+                        double t0, double cycle)
+{
+    const rd_film_track *tr = &fs->tr[g];
+    if (!(fs->src && fs->src->varying))
+        return share_at(fs, t0, g) * rd_lift_film_work(tr, circ, mu_b, ureg, t0, cycle);
+    double w = 0.0;
+    for (int k = 0; k < tr->steps; k++) {
+        const rd_film_point *a = &tr->pt[k], *b = &tr->pt[k + 1];
+        double mid = 0.5 * (a->t + b->t);
+        if (mid < t0 || mid > t0 + cycle)
+            continue;
+        w += 0.5 * (b->t - a->t) *
+             (share_at(fs, a->t, g) * rd_lift_film_power(a, circ, mu_b, ureg) +
+              share_at(fs, b->t, g) * rd_lift_film_power(b, circ, mu_b, ureg));
+    }
+    return w;
 }
 
 /* The friction work of one film over [t0, t0 + cycle]: the power over the
@@ -197,21 +250,24 @@ int rd_lift_lube_fill_films(rd_lift_lube *lb, const rd_lube_films *fs, const rd_
     lb->fmep = lb->friction_work + (C > 0 ? C : 1);
     lb->cycles = C;
     lb->film_error = lb->work_error = NAN;
-    lb->interp_check = NAN;
+    lb->interp_check = lb->load_depth_error = NAN;
+    lb->load_depths = 1;
     lb->load_min = lb->load_max = NAN; /* the caller's */
     double omega = rd_engine_omega(e), circ = M_PI * diameter;
     double ureg = rd_liner_ureg(e), mu_b = l->boundary_coefficient;
+    double *h0 = malloc((size_t)fs->count * sizeof *h0);
+    if (!h0)
+        return rd_error_set(err, RD_ENOMEM, NULL, "out of memory (the lubrication block).");
     for (int k = 0; k < S; k++)
         fill_sample(lb, fs, e, omega, circ, mu_b, ureg,
-                    t_first + crank_deg[k] * M_PI / 180.0 / omega, k);
+                    t_first + crank_deg[k] * M_PI / 180.0 / omega, k, h0);
+    free(h0);
     double cycle = 4.0 * M_PI / omega, stroke = 2.0 * e->crank_radius,
            Vd = 0.25 * M_PI * diameter * diameter * stroke;
     for (int c = 0; c < C; c++) {
         double w = 0.0;
         for (int g = 0; g < fs->count; g++) {
-            double wg = fs->share ? fs->share[g] : 1.0;
-            double f =
-                wg * rd_lift_film_work(&fs->tr[g], circ, mu_b, ureg, t_first + c * cycle, cycle);
+            double f = film_work(fs, g, circ, mu_b, ureg, t_first + c * cycle, cycle);
             w = g ? w + f : f;
         }
         lb->friction_work[c] = w;

@@ -108,6 +108,15 @@ double rd_lift_lube_viscosity(const rd_lube_params *l, double deg);
  * (rd_lift_film_run_at's, which takes 2 F_t / D). */
 int rd_lift_film_run_load(const rd_ring_params *rp, const rd_lift_params *p, double w_el, int fine,
                           rd_film *film, rd_film_track *tr, rd_error *err);
+/* The same under an elastic line load that follows the ring's depth: w_el
+ * over nz depths z (rd_lift_depth_interp at rd_lift_depth_at; nz 1: the
+ * constant w_el[0], z unread). */
+int rd_lift_film_run_table(const rd_ring_params *rp, const rd_lift_params *p, const double *z,
+                           const double *w_el, int nz, int fine, rd_film *film, rd_film_track *tr,
+                           rd_error *err);
+/* The friction power of film point pt on the ring (W, per the whole liner
+ * circumference circ): its shear and its asperities' friction times U. */
+double rd_lift_film_power(const rd_film_point *pt, double circ, double mu_b, double ureg);
 /* The friction work of one film track over [t0, t0 + cycle] (J, per the
  * whole liner circumference circ): the power over its own steps. */
 double rd_lift_film_work(const rd_film_track *tr, double circ, double mu_b, double ureg, double t0,
@@ -119,20 +128,28 @@ double rd_lift_film_work(const rd_film_track *tr, double circ, double mu_b, doub
  * (rd_contact_solve once at 16 n segments, 64 to 320, no estimate:
  * test_lift_films measures it against the contact at 2000 segments; its
  * pressure over its uniform p0, averaged over the segment's arc, times
- * 2 F_t / D), plus the gas behind it.  Up to RD_LIFT_FILMS_EXACT distinct loads (within
- * RD_LIFT_FILMS_SAME of 2 F_t / D) get a film each.  More are
- * interpolated: films at Chebyshev-Lobatto nodes of log(load + 0.1 x
- * 2 F_t / D) over the segments' range, 3, then 5, 9, 17 (nested), until the
- * coarser level misses the new nodes' films (film over max(|h0|, sigma),
- * friction work, relative) by at most RD_LIFT_FILMS_TOL; the finer level
- * is used and that miss kept (interp_check: it tracked the used level's
- * miss against each segment's own film within x0.45-1.1 on
- * test_lift_films' battery, where that miss is the films' own time-step
- * noise, 3e-3 to 9e-3, and more nodes do not lower it).  Each segment's
- * film is the interpolation at its load (the film's quantities are linear
- * in the films' points).  The films are
- * solved before the ring's motion; its radial motion during the run does
- * not feed back into the loads.  Usage:
+ * 2 F_t / D), plus the gas behind it.  On a bore map the loads are solved
+ * so at each layer the ring passes (depths) and are linear in depth
+ * between them, as the map's bore is; the ring's depth at t is
+ * rd_lift_depth_at.  Up to RD_LIFT_FILMS_EXACT distinct load histories
+ * (within RD_LIFT_FILMS_SAME of 2 F_t / D at every depth) get a film each,
+ * under that history.  More are interpolated: films under constant loads
+ * at Chebyshev-Lobatto nodes of log(load + 0.1 x 2 F_t / D) over the
+ * segments' range, 3, then 5, 9, 17 (nested), until the coarser level
+ * misses the new nodes' films (film over max(|h0|, sigma), friction work,
+ * relative) by at most RD_LIFT_FILMS_TOL; the finer level is used and that
+ * miss kept (interp_check: it tracked the used level's miss against each
+ * segment's own film within x0.45-1.1 on test_lift_films' battery, where
+ * that miss is the films' own time-step noise, 3e-3 to 9e-3, and more
+ * nodes do not lower it).  Each segment's film is the interpolation at
+ * its load; along a map at its load at the ring's depth now (varying),
+ * quasi-static in the load, and the two segments whose loads swing most
+ * are solved under their own histories to measure that (interp_check
+ * the larger miss); where that misses by more than RD_LIFT_FILMS_TOL
+ * every distinct history gets its own film instead (exact, up to m
+ * films).  The film's quantities are linear in the films'
+ * points.  The films are solved before the ring's motion; its radial
+ * motion during the run does not feed back into the loads.  Usage:
  *     rd_lift_films fs;
  *     rc = rd_lift_films_bore(ring, p, &fs, err);   (or rd_lift_films_run)
  *     q.films = &fs;   each force call: rd_lift_films_at(&fs, t, n, grp, seg)
@@ -142,23 +159,45 @@ double rd_lift_film_work(const rd_film_track *tr, double circ, double mu_b, doub
 #define RD_LIFT_FILMS_TOL              1e-2
 #define RD_LIFT_FILMS_SAME             1e-6
 #define RD_LIFT_FILMS_CONTACT_SEGMENTS 320 /* the contact solve's segments: 16 n, 64 to this */
+#define RD_LIFT_FILMS_CHECKS           2   /* along a map: segments solved under their history */
+/* The segments' loads: m x depths, over the depths z (depths 1: the same
+ * all along the stroke, z unread); arrays borrowed. */
+typedef struct rd_lift_film_loads {
+    int m, depths;
+    const double *z;    /* m down the bore, increasing */
+    const double *load; /* segment j's elastic radial line load at depth d: [j depths + d], N/m */
+    const double *angle_deg; /* m: each segment's mid-angle from the gap middle, deg */
+    int exact; /* 1: each distinct history its own film, whatever their number; -1: interpolated
+                  where the histories' check misses too (the tests measure it); 0: as above */
+} rd_lift_film_loads;
 typedef struct rd_lift_films {
-    int m;                             /* segments the loads were taken on */
-    int count;                         /* films (1 .. RD_LIFT_FILMS_NODES) */
-    int exact;                         /* 1: every segment's load is a film's; 0: interpolated */
-    double load[RD_LIFT_FILMS_NODES];  /* each film's elastic radial line load, N/m */
-    double share[RD_LIFT_FILMS_NODES]; /* its share of the ring: the sum of wt over m */
-    double *wt;          /* m x RD_LIFT_FILMS_NODES: segment j's film = sum_g wt film g */
-    double *seg_load;    /* m: each segment's load, N/m */
+    const rd_lift_params *p;        /* the scene the films are of (borrowed) */
+    int m;                          /* segments the loads were taken on */
+    int depths;                     /* 1, or the map's depths the loads were solved at */
+    int count;                      /* films (1 .. cap) */
+    int cap;                        /* RD_LIFT_FILMS_NODES, or m if larger along a map */
+    int exact;                      /* 1: every segment's loads are a film's; 0: interpolated */
+    int varying;                    /* interpolated and the loads change with the depth */
+    double scale;                   /* 2 F_t / D, N/m */
+    double z[RD_BORE_LAYERS_MAX];   /* the depths, m */
+    double xs[RD_LIFT_FILMS_NODES]; /* interpolated: the nodes' coordinates */
+    double *load;        /* cap: each film's elastic radial line load (exact: at z[0]), N/m */
+    double *share;       /* cap: its share of the ring, the sum of wt over m / m */
+    double *acc;         /* cap: scratch of rd_lift_films_at */
+    int *follows;        /* cap: exact, the segment whose loads film g is under */
+    int *solved;         /* cap: film g is solved (to free) */
+    double *wt;          /* m x cap: segment j's film = sum_g wt[j cap + g] film g */
+    double *seg_load;    /* m x depths: each segment's loads, N/m */
     double *angle_deg;   /* m: each segment's mid-angle from the gap middle, deg */
-    double interp_check; /* the coarser level's miss (NAN: exact) */
-    int solved[RD_LIFT_FILMS_NODES];   /* film g is solved (to free) */
-    rd_film film[RD_LIFT_FILMS_NODES]; /* each keeps its own cavitation state */
-    rd_film_track tr[RD_LIFT_FILMS_NODES];
+    double interp_check; /* the interpolation's miss (NAN: exact) */
+    double depth_check;  /* a map: the loads' miss between depths over 2 F_t / D (NAN: none) */
+    rd_film *film;       /* cap, each keeps its own cavitation state */
+    rd_film_track *tr;   /* cap */
 } rd_lift_films;
-/* mon: asked before each film (NULL: none). */
-int rd_lift_films_run(const rd_ring_params *rp, const rd_lift_params *p, const double *load,
-                      const double *angle_deg, int m, int fine, const rd_monitor *mon,
+/* mon: asked before each film (NULL: none); p is kept (fs->p).  fine > 1
+ * (the estimate's films) does not repeat the histories' check. */
+int rd_lift_films_run(const rd_ring_params *rp, const rd_lift_params *p,
+                      const rd_lift_film_loads *ld, int fine, const rd_monitor *mon,
                       rd_lift_films *fs, rd_error *err);
 void rd_lift_films_free(rd_lift_films *fs);
 /* The n segments' elastic radial line loads (N/m) on the liner of `ring` in
@@ -167,9 +206,25 @@ void rd_lift_films_free(rd_lift_films *fs);
 int rd_lift_bore_loads(const struct rd_ring *ring, const rd_lift_params *p, double *load,
                        double *angle_deg, rd_error *err);
 /* The same with the contact solved once at `segments` (rd_lift_bore_loads:
- * 16 n within 64 .. RD_LIFT_FILMS_CONTACT_SEGMENTS), asking mon (NULL: none). */
-int rd_lift_bore_loads_at(const struct rd_ring *ring, const rd_lift_params *p, int segments,
+ * 16 n within 64 .. RD_LIFT_FILMS_CONTACT_SEGMENTS), asking mon (NULL: none),
+ * in bore b (p's bore, or a map's layer). */
+int rd_lift_bore_loads_at(const struct rd_ring *ring, const rd_bore *b, int segments,
                           const rd_monitor *mon, double *load, double *angle_deg, rd_error *err);
+/* A bore map's loads: the layers the ring passes (from the one at or
+ * above its depth at TDC to the one at or below it at BDC), and between
+ * two depths their middle where the loads there miss the straight line
+ * between them by more than RD_LIFT_FILMS_DEPTH_TOL x 2 F_t / D (the
+ * contact is not linear in the distortion where the ring lifts off),
+ * halving RD_LIFT_FILMS_DEPTH_LEVELS times at most: the depths into z
+ * (their count in *depths, at most RD_BORE_LAYERS_MAX), each of the n
+ * segments' loads there into load (n x RD_BORE_LAYERS_MAX, [j depths + d]),
+ * and the largest miss of a kept interval's middle over 2 F_t / D into
+ * *miss. */
+#define RD_LIFT_FILMS_DEPTH_TOL    2e-3
+#define RD_LIFT_FILMS_DEPTH_LEVELS 4
+int rd_lift_map_loads(const struct rd_ring *ring, const rd_lift_params *p, int segments,
+                      const rd_monitor *mon, double *load, double *angle_deg, double *z,
+                      int *depths, double *miss, rd_error *err);
 /* mon: the job's, asked by the contact solve and before the films (a stop
  * or the time limit ends them). */
 int rd_lift_films_bore(const struct rd_ring *ring, const rd_lift_params *p, const rd_monitor *mon,
@@ -181,11 +236,26 @@ int rd_lift_films_bore(const struct rd_ring *ring, const rd_lift_params *p, cons
  * same arc. */
 void rd_lift_films_at(const rd_lift_films *fs, double t, int n, rd_film_point *grp,
                       rd_film_point *seg);
+/* Segment j's weights over the films at t into w (count; constant unless
+ * fs->varying), and film g's share of the ring at t (rd_lift_segfilm.c).
+ * rd_lift_films_at writes fs->acc: one caller at a time. */
+void rd_lift_films_weights(const rd_lift_films *fs, double t, int j, double *w);
+double rd_lift_films_share(const rd_lift_films *fs, double t, int g);
+/* The interpolation's coordinate of a load (log, floored at a tenth of
+ * scale) and the barycentric weights at x over the K Chebyshev-Lobatto
+ * nodes xs (a node itself one-hot). */
+double rd_lift_films_coord(double load, double scale);
+void rd_lift_films_cheb(const double *xs, int K, double x, double *w);
+/* The ring's depth in the bore at t (m down: ring_z_tdc + the piston's
+ * travel) and a table v over nz depths zs read at z, linear between the
+ * two around it and clamped (rd_lift_depth.c). */
+double rd_lift_depth_at(const rd_lift_params *p, double t);
+double rd_lift_depth_interp(const double *zs, const double *v, int nz, double z);
 
 /* A lubrication block's films (rd_lift_lube_fill_films): count tracks on one
  * face, each with its share of the ring (NULL: one film, the whole ring);
  * m > 0: the thinnest film is taken over m segments, segment j's film
- * sum_g wt[j NODES + g] film g, at angle_deg[j]. */
+ * sum_g wt[j stride + g] film g, at angle_deg[j]. */
 typedef struct rd_lube_films {
     const rd_film *film; /* the face (its x_min, sigma) */
     const rd_film_track *tr;
@@ -193,6 +263,8 @@ typedef struct rd_lube_films {
     const double *share;
     int m;
     const double *wt, *angle_deg;
+    int stride;
+    const rd_lift_films *src; /* src->varying: the shares and wt at each time from it */
 } rd_lube_films;
 int rd_lift_lube_fill_films(rd_lift_lube *lb, const rd_lube_films *fs, const rd_lube_params *l,
                             const rd_engine_params *e, double diameter, const double *crank_deg,

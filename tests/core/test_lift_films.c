@@ -113,7 +113,7 @@ static void loads_converged(void)
         rd_ring *ring = rd_ring_create(&rp, 20, 0, &err);
         double l0[20], l1[20], ang[20], w_el = 2.0 * rp.tangential_force / rp.diameter;
         int rc = ring ? rd_lift_bore_loads(ring, &p, l0, ang, &err) : RD_ENOMEM;
-        rc = rc ? rc : rd_lift_bore_loads_at(ring, &p, 2000, NULL, l1, ang, &err);
+        rc = rc ? rc : rd_lift_bore_loads_at(ring, &p.bore, 2000, NULL, l1, ang, &err);
         CHECK(rc == RD_OK, "loads: %s", err.message);
         for (int j = 0; rc == RD_OK && j < 20; j++)
             worst = fmax(worst, fabs(l0[j] - l1[j]) / w_el);
@@ -145,7 +145,8 @@ static void films_loads(void)
     }
     rd_lift_films fs;
     rd_error err = {0};
-    int rc = rd_lift_films_run(&rp, &p, load, ang, 5, 4, NULL, &fs, &err);
+    int rc = rd_lift_films_run(&rp, &p, &(rd_lift_film_loads){5, 1, NULL, load, ang, 0}, 4, NULL,
+                               &fs, &err);
     CHECK(rc == RD_OK && fs.count == 5 && fs.exact, "five films: %s (%d)", err.message, fs.count);
     double off = 0.0, h90[5] = {0};
     int thinner = 1;
@@ -181,9 +182,10 @@ static void films_loads(void)
 static void coarse(void)
 {
     enum { M = 20 };
-    rd_lift_films fs = {.m = M, .count = 3};
     enum { S = RD_LIFT_FILMS_NODES };
-    static double wt[S * M];
+    static double wt[S * M], acc[S];
+    static rd_film_track trs[S];
+    rd_lift_films fs = {.m = M, .count = 3, .cap = S, .acc = acc, .tr = trs};
     rd_film_point pts[6];
     for (int j = 0; j < M; j++) {
         double a = 0.05 * j - 0.3, b = 0.5 - 0.02 * j;
@@ -272,7 +274,9 @@ static void interpolation(void)
         double load[20], ang[20];
         rd_lift_films fs = {0};
         int rc = ring ? rd_lift_bore_loads(ring, &p, load, ang, &err) : RD_ENOMEM;
-        rc = rc ? rc : rd_lift_films_run(&rp, &p, load, ang, n, 1, NULL, &fs, &err);
+        rc = rc ? rc
+                : rd_lift_films_run(&rp, &p, &(rd_lift_film_loads){n, 1, NULL, load, ang, 0}, 1,
+                                    NULL, &fs, &err);
         CHECK(rc == RD_OK && !fs.exact, "battery %d: %s", b, err.message);
         double fe = 0.0, we = 0.0, omega = 2.0 * PI * bat[b].rpm / 60.0, cycle = 4.0 * PI / omega;
         double circ = PI * rp.diameter, ureg = rd_liner_ureg(&p.engine);
@@ -280,7 +284,7 @@ static void interpolation(void)
         for (int j = 0; rc == RD_OK && j < n; j++) {
             rd_film f;
             rd_film_track tr = {0};
-            const double *w = fs.wt + RD_LIFT_FILMS_NODES * j;
+            const double *w = fs.wt + (size_t)fs.cap * j;
             rc = rd_lift_film_run_load(&rp, &p, load[j], 1, &f, &tr, &err);
             for (int k = 0; rc == RD_OK && k <= tr.steps; k++) {
                 double h = 0.0;
