@@ -166,16 +166,23 @@ export function cavitationText(cavitation) {
 export function filmsText(lub) {
   if (!isNum(lub?.films) || lub.films <= 1) return undefined;
   const e = lub.film_interpolation_error;
-  return isNum(e)
-    ? `${lub.films} films at loads across the range, each segment's interpolated at its load (error estimate ${percent(e, 2)})`
-    : `${lub.films} films, one per segment load`;
+  const map = lub.film_load_n_per_m?.depths > 1;
+  if (isNum(e))
+    return map
+      ? `${lub.films} films at loads across the range, each segment's interpolated at its load at the ring's depth (error estimate ${percent(e, 2)})`
+      : `${lub.films} films at loads across the range, each segment's interpolated at its load (error estimate ${percent(e, 2)})`;
+  return map ? `${lub.films} films, one per segment load history along the stroke` : `${lub.films} films, one per segment load`;
 }
 
-// The segments' elastic load range on the liner (N/m) where it varies.
+// The segments' elastic load range on the liner (N/m) where it varies: around
+// the ring, and on a bore map along the stroke too.
 export function loadRangeText(lub) {
   const r = lub?.film_load_n_per_m;
-  if (!isNum(lub?.films) || lub.films <= 1 || !isNum(r?.min) || !isNum(r?.max)) return undefined;
-  return `${sig(r.min, 3)} to ${sig(r.max, 3)} N/m around the ring (2 F_t / D in a round bore)`;
+  const map = r?.depths > 1;
+  if (!isNum(lub?.films) || (lub.films <= 1 && !map) || !isNum(r?.min) || !isNum(r?.max)) return undefined;
+  if (!map) return `${sig(r.min, 3)} to ${sig(r.max, 3)} N/m around the ring (2 F_t / D in a round bore)`;
+  const e = isNum(r.depth_error) ? `, linear between them within ${percent(r.depth_error, 2)} of 2 F_t / D` : '';
+  return `${sig(r.min, 3)} to ${sig(r.max, 3)} N/m around the ring and along the stroke (solved at ${r.depths} depths of the bore map${e})`;
 }
 
 // The film's facts as kvTable rows (a value undefined where the block lacks
