@@ -1070,8 +1070,16 @@ async function smallText(minPx = 10) {
 // Two frames: the charts' ResizeObserver has refitted them.
 const settled = () => page.evaluate(() => new Promise((r) => requestAnimationFrame(() => requestAnimationFrame(r))));
 
+// Chromium 156 drops a page's downloads that come too fast: the 11th of
+// downloads 50 ms apart never starts, 16 at 600 ms apart all do (measured
+// 2026-12-03; the suite passed before only where a loaded machine spaced
+// them).  So one download at most every 700 ms.
+let lastDownload = 0;
 async function download(click) {
+  const wait = lastDownload + 700 - Date.now();
+  if (wait > 0) await new Promise((r) => setTimeout(r, wait));
   const [dl] = await Promise.all([page.waitForEvent('download'), click()]);
+  lastDownload = Date.now();
   return { name: dl.suggestedFilename(), data: fs.readFileSync(await dl.path()) };
 }
 
