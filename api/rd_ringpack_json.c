@@ -34,6 +34,13 @@ static json_t *volumes_json(const rd_ringpack_result *r)
 }
 
 /* A pack ring's lubrication block's method (rd_result_lube). */
+#define PACK_LUBE_FILMS                                                                         \
+    "in a distorted bore, a film per segment load: each segment presses on the liner with its " \
+    "static contact load in the bore turned into the ring's frame (its gap angle), the "        \
+    "contact analysis' exact contact of the ring (film_load_n_per_m), plus the gas behind it; " \
+    "up to 5 distinct loads a film each, more interpolated in log load between films at 3 to "  \
+    "17 loads, the number chosen on the films of one cycle without gas "                        \
+    "(film_interpolation_error: that choice's miss); each film as follows. "
 #define PACK_LUBE_METHOD                                                                       \
     "the lift analysis' film (one for the whole running face: a rigid profile on a round "     \
     "bore; the average Reynolds equation across the face with Patir-Cheng flow factors, gamma" \
@@ -81,7 +88,10 @@ static json_t *ring_json(const rd_ringpack_result *r, int i)
                   rd_result_reals(r->lift + (size_t)i * N, N, 1, 1.0), "flank", flank, "events",
                   events, "friction_n", rd_result_reals(r->friction + (size_t)i * N, N, 1, 1.0));
     if (o && r->lube[i].on) {
-        json_t *lb = rd_result_lube(&r->lube[i], N, PACK_LUBE_METHOD);
+        json_t *lb = rd_result_lube(&r->lube[i], N,
+                                    r->lube[i].films > 1 || isfinite(r->lube[i].interp_check)
+                                        ? PACK_LUBE_FILMS PACK_LUBE_METHOD
+                                        : PACK_LUBE_METHOD);
         if (!lb || json_object_set_new(lb, "film_lag", rd_result_real(r->film_lag[i])) != 0 ||
             json_object_set_new(o, "lubrication", lb) != 0) {
             json_decref(o);

@@ -545,7 +545,7 @@ int rd_lift_films_bore(const rd_ring *ring, const rd_lift_params *p, const rd_mo
     return rc;
 }
 
-static rd_lube_films lube_films(const rd_lift_films *fs)
+rd_lube_films rd_lift_films_view(const rd_lift_films *fs)
 {
     return (rd_lube_films){.film = &fs->film[0],
                            .tr = fs->tr,
@@ -561,7 +561,7 @@ static rd_lube_films lube_films(const rd_lift_films *fs)
 int rd_lift_films_result(const rd_ring_params *rp, const rd_lift_params *p, const rd_lift_films *fs,
                          rd_lift_result *out, rd_error *err)
 {
-    rd_lube_films set = lube_films(fs);
+    rd_lube_films set = rd_lift_films_view(fs);
     int rc = rd_lift_lube_fill_films(&out->lube, &set, &p->friction.lube, &p->engine, rp->diameter,
                                      out->crank_deg, out->samples, 0.0,
                                      (int)floor(p->engine.cycles + 1e-9), err);
@@ -586,7 +586,7 @@ int rd_lift_films_estimate(const rd_ring_params *rp, const rd_lift_params *p,
     rd_lift_lube fine = {0};
     rd_lift_film_loads ld = {fs->m, fs->depths, fs->z, fs->seg_load, fs->angle_deg, fs->exact};
     int rc = rd_lift_films_run(rp, p, &ld, 2, mon, &f2, err);
-    rd_lube_films set = lube_films(&f2);
+    rd_lube_films set = rd_lift_films_view(&f2);
     rc = rc ? rc
             : rd_lift_lube_fill_films(&fine, &set, &p->friction.lube, &p->engine, rp->diameter,
                                       out->crank_deg, out->samples, 0.0, out->lube.cycles, err);

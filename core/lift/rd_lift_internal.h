@@ -266,6 +266,8 @@ typedef struct rd_lube_films {
     int stride;
     const rd_lift_films *src; /* src->varying: the shares and wt at each time from it */
 } rd_lube_films;
+/* The lubrication block's view of a distorted bore's films. */
+rd_lube_films rd_lift_films_view(const rd_lift_films *fs);
 int rd_lift_lube_fill_films(rd_lift_lube *lb, const rd_lube_films *fs, const rd_lube_params *l,
                             const rd_engine_params *e, double diameter, const double *crank_deg,
                             int S, double t_first, int C, rd_error *err);

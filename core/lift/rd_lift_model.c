@@ -101,12 +101,8 @@ static int model_alloc(rd_lift_model *c, rd_error *err)
     c->MK = calloc(108 * n, sizeof *c->MK);
     c->Dq = malloc(36 * n * sizeof *c->Dq);
     c->Dv = malloc(36 * n * sizeof *c->Dv);
-    if (c->p->films) { /* a distorted bore's films (rd_lift_films_at) */
-        c->film_grp = malloc(((size_t)c->p->films->count + n) * sizeof *c->film_grp);
-        c->film_seg = c->film_grp ? c->film_grp + c->p->films->count : NULL;
-        if (!c->film_grp)
-            return rd_error_set(err, RD_ENOMEM, "", "Out of memory for the segments' films.");
-    }
+    if (rd_lift_model_films(c, err))
+        return err ? err->code : RD_ENOMEM;
     if (!c->Minv || !c->Mez || !c->fl_d || !c->bo_d || !c->bo_e || !c->ba_d || !c->cen_d ||
         !c->e_r || !c->e_t || !c->qbuf || !c->fbuf || !c->MK || !c->Dq || !c->Dv)
         return rd_error_set(err, RD_ENOMEM, "", "Out of memory for a %d-segment lift model.", c->n);
@@ -212,6 +208,18 @@ static void model_stiffness_blocks(rd_lift_model *c, int i)
                 B[6 * r + k] = v;
             }
     }
+}
+
+int rd_lift_model_films(rd_lift_model *c, rd_error *err)
+{
+    free(c->film_grp);
+    c->film_grp = c->film_seg = NULL;
+    if (!c->p->films) /* a distorted bore's films (rd_lift_films_at) */
+        return RD_OK;
+    c->film_grp = malloc(((size_t)c->p->films->count + (size_t)c->n) * sizeof *c->film_grp);
+    c->film_seg = c->film_grp ? c->film_grp + c->p->films->count : NULL;
+    return c->film_grp ? RD_OK
+                       : rd_error_set(err, RD_ENOMEM, "", "Out of memory for the segments' films.");
 }
 
 int rd_lift_model_init(rd_lift_model *c, const rd_ring *ring, const rd_lift_params *p,

@@ -152,6 +152,10 @@ typedef struct rd_lift_model {
     rd_film_point *film_grp, *film_seg;
 } rd_lift_model;
 
+/* The scratch of p->films' points (film_grp, film_seg) for the films now
+ * set (none: freed); the model's init calls it, and whoever sets p->films
+ * on a model already made (the ring pack's rings). */
+int rd_lift_model_films(rd_lift_model *m, rd_error *err);
 /* Builds the model of a valid scene on `ring` (borrowed, as p).  On failure
  * the model is still safe to clean up. */
 int rd_lift_model_init(rd_lift_model *m, const rd_ring *ring, const rd_lift_params *p,

@@ -47,22 +47,19 @@ static size_t enter_face(rd_error *err, int i)
     return m;
 }
 
-/* The round bore (one film per ring) and no tilt, at the scene's root. */
+/* No bore map and no tilt, at the scene's root (a distorted bore: a film
+ * per segment load). */
 static int lube_scene_validate(const rd_ringpack_params *p, rd_error *err)
 {
     int rc = rd_error_range_in("/numerics", p->film_step_deg, 0.01, RD_LIFT_FILM_STEP_MAX_DEG,
                                "/film_step_deg", "deg", err);
     size_t m = rd_error_enter(err, "/bore");
-    if (!rc && rd_bore_distorted(&p->bore, p->rings[0].ring.diameter))
-        rc = rd_error_set(err, RD_EINVAL, "/distortion",
-                          "@/distortion with the lubricated friction model: each ring's film is "
-                          "one for its whole face (axisymmetric); a film varying around the ring "
-                          "is not modelled. Remove the distortion, or use coulomb.");
     if (!rc && p->bore_map)
         rc = rd_error_set(err, RD_EINVAL, "/layers",
-                          "@/layers with the lubricated friction model: each ring's film is one "
-                          "for its whole face (a round bore); a film varying around the ring is "
-                          "not modelled. Remove the layers, or use coulomb.");
+                          "@/layers with the lubricated friction model in the ring pack: each "
+                          "ring's films follow its static loads in one bore; a bore whose "
+                          "distortion changes along the stroke is modelled by the lift analysis "
+                          "alone. Give one distortion (@/distortion), or use coulomb.");
     rd_error_leave(err, m);
     m = rd_error_enter(err, "/engine");
     if (!rc && (p->engine.piston_tilt_deg != 0.0 || p->engine.tilt_points > 0))
@@ -131,13 +128,37 @@ void rd_ringpack_around(const rd_ringpack_model *m, int i, double t, const doubl
 struct rd_packfilm {
     rd_film film;
     rd_film_track tr;   /* the film of the cycle running (pack time) */
+    rd_lift_films fs;   /* a distorted bore (fs.count > 0): a film per segment load instead */
     double *gas;        /* 3 x (S + 1): above, behind, below (gauge, Pa) at the cycle's samples */
-    double w_el, back;  /* N/m: the elastic line load; the back face's share of p_groove */
+    double w_el, back;  /* N/m: the elastic line load now (loads_at); the back face's share */
+    double w_ring;      /* N/m: the ring's 2 F_t / D */
     double period, dt;  /* s: a cycle, the film's largest step */
     const double *load; /* the samples the loads read (gas, or NULL: no gas) */
     const rd_ringpack_params *p;
     int S;
 };
+
+/* f's films: one, or a distorted bore's (fs). */
+static int films_n(const rd_packfilm *f)
+{
+    return f->fs.count > 0 ? f->fs.count : 1;
+}
+
+static rd_film *film_g(rd_packfilm *f, int g)
+{
+    return f->fs.count > 0 ? &f->fs.film[g] : &f->film;
+}
+
+static rd_film_track *tr_g(rd_packfilm *f, int g)
+{
+    return f->fs.count > 0 ? &f->fs.tr[g] : &f->tr;
+}
+
+/* Film g's elastic line load into f->w_el (loads_at's). */
+static void load_g(rd_packfilm *f, int g)
+{
+    f->w_el = f->fs.count > 0 ? f->fs.load[g] : f->w_ring;
+}
 
 static void loads_at(void *ctx, double t, double *U, double *eta, double *W, double *plo,
                      double *phi)
@@ -181,28 +202,99 @@ static int cycle_film(rd_packfilm *f, double h_start, double t0, rd_film_track *
     return cycle_film_on(f, &f->film, f->dt, h_start, t0, tr, err);
 }
 
-/* Ring i's film error estimate (rd_lift_lube): the last cycle's film again
+/* The lubrication block of f's films (each track's first point at t0)
+ * over ring i's samples into lb: one film, or a distorted bore's by their
+ * shares. */
+static int fill_block(rd_packfilm *f, int i, rd_film *film, rd_film_track *tr,
+                      const rd_ringpack_result *r, rd_lift_lube *lb, rd_error *err)
+{
+    const rd_ringpack_params *p = f->p;
+    double d = p->rings[i].ring.diameter, t0 = tr[0].pt[0].t;
+    if (f->fs.count == 0)
+        return rd_lift_lube_fill(lb, film, tr, &p->friction.lube, &p->engine, d, r->crank_deg,
+                                 r->samples, t0, 1, err);
+    rd_lube_films set = rd_lift_films_view(&f->fs);
+    set.film = film;
+    set.tr = tr;
+    return rd_lift_lube_fill_films(lb, &set, &p->friction.lube, &p->engine, d, r->crank_deg,
+                                   r->samples, t0, 1, err);
+}
+
+/* Ring i's film error estimate (rd_lift_lube): the last cycle's films again
  * from the same start on a grid twice as fine (points, steps, local error
  * / 4), its block against the reported one. */
 static int film_estimate(rd_packfilm *f, int i, rd_ringpack_result *r, rd_error *err)
 {
-    const rd_ringpack_params *p = f->p;
-    const rd_ring_params *rp = &p->rings[i].ring;
-    rd_film fine;
-    rd_film_track tr = {0};
+    int G = films_n(f), rc = RD_OK;
+    rd_film *fine = calloc((size_t)G, sizeof *fine);
+    rd_film_track *tr = calloc((size_t)G, sizeof *tr);
     rd_lift_lube lb = {0};
-    int rc = film_init(p, i, &fine, 2 * (RD_FILM_NODES - 1) + 1, err);
-    fine.rtol /= 4.0;
+    if (!fine || !tr)
+        rc = rd_error_set(err, RD_ENOMEM, "", "Out of memory for ring %d's film estimate.", i + 1);
     f->load = f->gas;
-    rc = rc ? rc : cycle_film_on(f, &fine, 0.5 * f->dt, f->tr.pt[0].h0, f->tr.pt[0].t, &tr, err);
-    rc = rc ? rc
-            : rd_lift_lube_fill(&lb, &fine, &tr, &p->friction.lube, &p->engine, rp->diameter,
-                                r->crank_deg, r->samples, f->tr.pt[0].t, 1, err);
+    for (int g = 0; rc == RD_OK && g < G; g++) {
+        const rd_film_track *t = tr_g(f, g);
+        rc = film_init(f->p, i, &fine[g], 2 * (RD_FILM_NODES - 1) + 1, err);
+        fine[g].rtol /= 4.0;
+        load_g(f, g);
+        rc =
+            rc ? rc : cycle_film_on(f, &fine[g], 0.5 * f->dt, t->pt[0].h0, t->pt[0].t, &tr[g], err);
+    }
+    rc = rc ? rc : fill_block(f, i, fine, tr, r, &lb, err);
     if (!rc)
         rd_lift_lube_compare(&r->lube[i], &lb, r->samples);
     rd_lift_lube_cleanup(&lb);
-    rd_film_track_free(&tr);
-    rd_film_free(&fine);
+    for (int g = 0; tr && fine && g < G; g++) {
+        rd_film_track_free(&tr[g]);
+        rd_film_free(&fine[g]);
+    }
+    free(tr);
+    free(fine);
+    return rc;
+}
+
+/* The films' loads of ring i in a distorted bore (its frame: the phases
+ * from its gap) and the films on them (rd_lift_films_run: a film per
+ * distinct load, or interpolated between films at 3 to 17, chosen on the
+ * films of one cycle without gas) into f->fs; each film's track then
+ * f's first cycle. */
+static int segment_films(rd_ringpack_model *m, int i, rd_packfilm *f, rd_error *err)
+{
+    const rd_ringpack_params *p = m->p;
+    const rd_ringpack_ring *pr = &p->rings[i];
+    rd_lift_params lp;
+    rd_lift_params_default(&lp);
+    lp.engine = p->engine;
+    lp.engine.cycles = 1.0;
+    lp.friction = p->friction;
+    lp.face = pr->face;
+    lp.film_step_deg = p->film_step_deg;
+    lp.bore = p->bore;
+    for (int k = 0; k < lp.bore.n_distortion; k++) {
+        double a = fmod(p->bore.distortion[k].phase_deg - pr->gap_angle_deg, 360.0);
+        lp.bore.distortion[k].phase_deg = a < 0.0 ? a + 360.0 : a;
+    }
+    int n = pr->segments;
+    rd_ring *ring = rd_ring_create(&pr->ring, n, 0, err);
+    double *load = malloc(2 * (size_t)n * sizeof *load);
+    int rc = !ring   ? (err ? err->code : RD_ENOMEM)
+             : !load ? rd_error_set(err, RD_ENOMEM, "", "Out of memory for ring %d's films.", i + 1)
+                     : rd_lift_bore_loads(ring, &lp, load, load + n, err);
+    rc =
+        rc ? rc
+           : rd_lift_films_run(&pr->ring, &lp, &(rd_lift_film_loads){n, 1, NULL, load, load + n, 0},
+                               1, NULL, &f->fs, err);
+    free(load);
+    rd_ring_free(ring);
+    f->fs.p = NULL; /* lp is gone: the weights are constant (one bore) */
+    f->load = NULL;
+    for (int g = 0; rc == RD_OK && g < f->fs.count; g++) {
+        rd_film_track tr = {0};
+        load_g(f, g);
+        rc = cycle_film_on(f, &f->fs.film[g], f->dt, NAN, 0.0, &tr, err); /* no gas yet */
+        rd_film_track_free(&f->fs.tr[g]);
+        f->fs.tr[g] = tr;
+    }
     return rc;
 }
 
@@ -225,14 +317,19 @@ int rd_ringpack_films_open(rd_ringpack_model *m, int S, rd_error *err)
         f->dt = p->film_step_deg * M_PI / 180.0 / m->omega;
         rd_section s;
         rd_section_init(&s, rp);
-        f->w_el = 2.0 * rp->tangential_force / rp->diameter;
+        f->w_el = f->w_ring = 2.0 * rp->tangential_force / rp->diameter;
         f->back = s.back.height * s.back.r / s.run.r;
-        int rc = film_init(p, i, &f->film, RD_FILM_NODES, err);
-        rc = rc ? rc : cycle_film(f, NAN, 0.0, &f->tr, err); /* no gas yet */
+        int rc = rd_bore_distorted(&p->bore, rp->diameter)
+                     ? segment_films(m, i, f, err)
+                     : film_init(p, i, &f->film, RD_FILM_NODES, err);
+        if (!rc && f->fs.count == 0)
+            rc = cycle_film(f, NAN, 0.0, &f->tr, err); /* no gas yet */
         if (rc)
             return rc;
-        if (m->lr[i])
-            rd_packring_film(m->lr[i], &f->tr);
+        if (m->lr[i] && f->fs.count > 1 && (rc = rd_packring_films(m->lr[i], &f->fs, err)))
+            return rc;
+        if (m->lr[i] && f->fs.count <= 1)
+            rd_packring_film(m->lr[i], tr_g(f, 0));
     }
     return RD_OK;
 }
@@ -256,15 +353,19 @@ int rd_ringpack_films_cycle(rd_ringpack_model *m, int next, rd_error *err)
         rd_packfilm *f = m->film[i];
         if (!f)
             continue;
-        rd_film_track tr;
         f->load = f->gas;
-        int rc = cycle_film(f, f->tr.pt[f->tr.steps].h0, next * f->period, &tr, err);
-        if (rc) {
-            rd_film_track_free(&tr);
-            return rc;
+        for (int g = 0; g < films_n(f); g++) {
+            rd_film_track tr, *cur = tr_g(f, g);
+            load_g(f, g);
+            int rc = cycle_film_on(f, film_g(f, g), f->dt, cur->pt[cur->steps].h0, next * f->period,
+                                   &tr, err);
+            if (rc) {
+                rd_film_track_free(&tr);
+                return rc;
+            }
+            rd_film_track_free(cur);
+            *cur = tr; /* in place: the lift ring keeps its address */
         }
-        rd_film_track_free(&f->tr);
-        f->tr = tr;                 /* in place: the lift ring keeps &f->tr */
         for (int r = 0; r < 3; r++) /* this cycle's end starts the next */
             f->gas[(size_t)r * (f->S + 1)] = f->gas[(size_t)r * (f->S + 1) + f->S];
     }
@@ -273,24 +374,47 @@ int rd_ringpack_films_cycle(rd_ringpack_model *m, int next, rd_error *err)
 
 void rd_ringpack_film_at(const rd_ringpack_model *m, int i, double t, rd_film_point *pt)
 {
-    rd_film_track_at(&m->film[i]->tr, t, pt);
+    const rd_packfilm *f = m->film[i];
+    if (f->fs.count == 0) {
+        rd_film_track_at(&f->tr, t, pt);
+        return;
+    }
+    *pt = (rd_film_point){0}; /* the ring's: the films by their shares (linear in them) */
+    for (int g = 0; g < f->fs.count; g++) {
+        rd_film_point q;
+        double w = f->fs.share[g];
+        rd_film_track_at(&f->fs.tr[g], t, &q);
+        pt->t = q.t;
+        pt->U = q.U;
+        pt->h0 += w * q.h0;
+        pt->W += w * q.W;
+        pt->Wa += w * q.Wa;
+        pt->Cc += w * q.Cc;
+        pt->Fp += w * q.Fp;
+        pt->cavitated += w * q.cavitated;
+    }
 }
 
-/* Ring i's film_lag (rd_ringpack.h): the film over the last cycle's own
- * pressures from the same start, against the film the cycle used. */
+/* Ring i's film_lag (rd_ringpack.h): each film over the last cycle's own
+ * pressures from the same start, against the film the cycle used; the
+ * largest. */
 static int film_lag(rd_packfilm *f, double *lag, rd_error *err)
 {
-    rd_film_track chk;
-    const rd_film_track *tr = &f->tr;
-    f->load = f->gas;
-    int rc = cycle_film(f, tr->pt[0].h0, tr->pt[0].t, &chk, err);
+    int rc = RD_OK;
     *lag = 0.0;
-    for (int k = 0; !rc && k <= tr->steps; k++) {
-        rd_film_point a;
-        rd_film_track_at(&chk, tr->pt[k].t, &a);
-        *lag = fmax(*lag, fabs(tr->pt[k].h0 - a.h0) / fmax(a.h0, f->film.sigma));
+    f->load = f->gas;
+    for (int g = 0; rc == RD_OK && g < films_n(f); g++) {
+        rd_film_track chk;
+        const rd_film_track *tr = tr_g(f, g);
+        load_g(f, g);
+        rc = cycle_film_on(f, film_g(f, g), f->dt, tr->pt[0].h0, tr->pt[0].t, &chk, err);
+        for (int k = 0; !rc && k <= tr->steps; k++) {
+            rd_film_point a;
+            rd_film_track_at(&chk, tr->pt[k].t, &a);
+            *lag = fmax(*lag, fabs(tr->pt[k].h0 - a.h0) / fmax(a.h0, film_g(f, g)->sigma));
+        }
+        rd_film_track_free(&chk);
     }
-    rd_film_track_free(&chk);
     return rc;
 }
 
@@ -301,11 +425,15 @@ int rd_ringpack_films_result(rd_ringpack_model *m, rd_ringpack_result *r, rd_err
         if (!f)
             continue;
         const rd_ringpack_params *p = m->p;
-        int rc = rd_lift_lube_fill(&r->lube[i], &f->film, &f->tr, &p->friction.lube, &p->engine,
-                                   p->rings[i].ring.diameter, r->crank_deg, r->samples,
-                                   f->tr.pt[0].t, 1, err);
-        r->lube[i].film_step_deg = p->film_step_deg;
-        r->lube[i].load_min = r->lube[i].load_max = f->w_el;
+        rd_lift_lube *lb = &r->lube[i];
+        int rc = fill_block(f, i, film_g(f, 0), tr_g(f, 0), r, lb, err);
+        lb->film_step_deg = p->film_step_deg;
+        lb->load_min = lb->load_max = f->w_ring;
+        for (int j = 0; f->fs.count > 0 && j < f->fs.m; j++) {
+            lb->load_min = j ? fmin(lb->load_min, f->fs.seg_load[j]) : f->fs.seg_load[j];
+            lb->load_max = j ? fmax(lb->load_max, f->fs.seg_load[j]) : f->fs.seg_load[j];
+        }
+        lb->interp_check = f->fs.count > 0 ? f->fs.interp_check : NAN;
         if (rc || (rc = film_lag(f, &r->film_lag[i], err)) ||
             (p->estimate_error && (rc = film_estimate(f, i, r, err))))
             return rc;
@@ -321,6 +449,7 @@ void rd_ringpack_films_close(rd_ringpack_model *m)
             continue;
         rd_film_track_free(&f->tr);
         rd_film_free(&f->film);
+        rd_lift_films_free(&f->fs);
         free(f->gas);
         free(f);
         m->film[i] = NULL;

@@ -237,6 +237,14 @@ int rd_packring_open(rd_ringpack_model *m, int i, rd_packring *L, SUNContext ctx
 void rd_packring_film(rd_packring *L, const rd_film_track *tr)
 {
     L->lp.film = tr;
+    L->lp.films = NULL;
+}
+
+int rd_packring_films(rd_packring *L, const rd_lift_films *fs, rd_error *err)
+{
+    L->lp.film = NULL;
+    L->lp.films = fs;
+    return rd_lift_model_films(&L->m, err);
 }
 
 void rd_packring_close(rd_packring *L)
@@ -257,7 +265,8 @@ void rd_packring_close(rd_packring *L)
     L->nw = NULL;
     L->ys = L->yd = L->x = L->b = L->t1 = L->t2 = L->t3 = NULL;
     L->events = (rd_lift_pass){0};
-    L->lp.film = NULL; /* the run's film (rd_packring_film) */
+    L->lp.film = NULL; /* the run's film (rd_packring_film) or films */
+    L->lp.films = NULL;
 }
 
 void rd_packring_free(rd_packring *L)

@@ -207,6 +207,8 @@ void rd_packring_area_slope(rd_packring *L, const double *y, const double *w, do
 /* Its axial load without the flanks (N, +z up) and friction (N) at (t, y). */
 /* Its lift parameters' film (the lubricated model: rd_ringpack_film.c). */
 void rd_packring_film(rd_packring *L, const rd_film_track *tr);
+/* Or a distorted bore's films, a film per segment load (rd_lift_films_at). */
+int rd_packring_films(rd_packring *L, const struct rd_lift_films *fs, rd_error *err);
 void rd_packring_loads(rd_packring *L, double t, const double *y, double *fz, double *friction);
 /* Its event threshold eps and clearance. */
 double rd_packring_eps(const rd_packring *L);

@@ -424,7 +424,14 @@ static void test_validate(void)
     p.bore.n_distortion = 1;
     p.bore.distortion[0].order = 2;
     p.bore.distortion[0].amplitude = 5e-6;
-    refused(&p, "/bore/distortion", 0, "distorted bore");
+    rd_error_init(&err);
+    CHECK(rd_ringpack_validate(&p, &err) == RD_OK, "a distorted bore (a film per segment load): %s",
+          err.message); /* test_ringpack_films runs it */
+    static rd_bore_map map = {.n_layers = 1};
+    p.bore.n_distortion = 0;
+    map.layer[0].bore = p.bore;
+    p.bore_map = &map;
+    refused(&p, "/bore/layers", 0, "bore map");
     scene(&p, 0, 3);
     p.engine.piston_tilt_deg = 0.05;
     refused(&p, "/engine/piston_tilt_deg", 0, "piston tilt");

@@ -1,0 +1,188 @@
+/*
+ * test_ringpack_films — the ring pack's lubricated rings in a distorted
+ * bore: a film per segment load on every ring (core/ringpack/
+ * rd_ringpack_film.c, the lift analysis' rd_lift_films_run on each ring's
+ * static contact loads in its own frame).
+ *
+ * Scenes: the thesis pack (three rings, gaps at 0, 180 and 90 deg, the oil
+ * ring pinned on its lower flank), 2400 rpm, 8 segments a ring, three
+ * cycles, no error estimate, the rings' faces fed the fired cycle's gauge
+ * tables (the test hook face_tables) so that a second driver can be given
+ * the same loads.
+ *  (1) a second driver: the lift analysis alone on the top ring (full
+ *      model, lubricated, the same bore turned into the ring's frame, the
+ *      same tables as its gas, two cycles): its films' loads bit for bit
+ *      (the same contact solve), its film count, and over the pack's last
+ *      cycle its thinnest segment film within FILM_TOL and its friction
+ *      work within WORK_TOL of the pack's (order 2: the segments mirror
+ *      into at most 5 loads, a film each on both sides).  If the pack gave
+ *      a ring another ring's frame, another load or another share, the two
+ *      would part.
+ *  (2) the pinned oil ring, many loads (orders 2 and 4, films
+ *      interpolated): the friction in its motion is its block's
+ *      hydrodynamic + asperity friction at every sample (the ring rubs on
+ *      the films' share-weighted sum that is reported), within PIN_TOL.
+ *  (3) the friction work of each ring against the trapezoid of its
+ *      block's friction times the piston's speed over its samples.
+ *  (4) the films' loads around each ring span what the contact analysis
+ *      gives for the ring in the bore turned by its gap angle: the top
+ *      ring's range is the middle ring's (both gaps on the order-2 axis)
+ *      and not the oil ring's (90 deg: the bore's ovality the other way).
+ */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "check.h"
+#include "fired_cycle.h"
+#include "rd_lift.h"
+#include "rd_ringpack.h"
+
+#define FILM_TOL 2e-3 /* the pack's last cycle against the lift's second: the films' periodicity */
+#define WORK_TOL 1e-2
+#define PIN_TOL  1e-9
+
+static fired_tables tables;
+static rd_gas_params gas;
+
+static void scene(rd_ringpack_params *p, int order4)
+{
+    rd_ringpack_params_thesis(p);
+    p->friction.model = RD_FRICTION_LUBRICATED;
+    p->estimate_error = 0;
+    p->periodic = 0;
+    p->engine.cycles = 3;
+    for (int i = 0; i < p->n_rings; i++)
+        p->rings[i].segments = 8;
+    p->bore.n_distortion = order4 ? 2 : 1;
+    p->bore.distortion[0] = (rd_distortion){.order = 2, .amplitude = 5e-6};
+    p->bore.distortion[1] = (rd_distortion){.order = 4, .amplitude = 2e-6, .phase_deg = 30.0};
+    gas = fired_cycle_gas(&tables, 1e5);
+    p->face_tables = &gas;
+}
+
+static int run(const rd_ringpack_params *p, rd_ringpack_result *r, const char *what)
+{
+    rd_error err;
+    rd_error_init(&err);
+    int rc = rd_ringpack_solve(p, NULL, r, &err);
+    CHECK(rc == RD_OK, "%s: %s", what, err.message);
+    for (int i = 0; rc == RD_OK && i < r->n_rings; i++)
+        printf("%s, ring %d (%s): %d films, loads %.1f to %.1f N/m, interpolation %.3g, work "
+               "%.6g J\n",
+               what, i, r->ring_why[i], r->lube[i].films, r->lube[i].load_min, r->lube[i].load_max,
+               r->lube[i].interp_check, r->lube[i].friction_work[0]);
+    return rc;
+}
+
+/* (1) */
+static void second_driver(void)
+{
+    rd_ringpack_params p;
+    scene(&p, 0);
+    rd_ringpack_result r;
+    if (run(&p, &r, "order 2") != RD_OK) {
+        rd_ringpack_result_cleanup(&r);
+        return;
+    }
+    rd_lift_params lp;
+    rd_lift_params_default(&lp);
+    lp.engine = p.engine;
+    lp.engine.cycles = 2;
+    lp.bore = p.bore; /* the top ring's gap at 0 deg: its frame is the bore's */
+    lp.groove = p.rings[0].groove;
+    lp.friction = p.friction;
+    lp.face = p.rings[0].face;
+    lp.film_step_deg = p.film_step_deg;
+    lp.gas = gas;
+    lp.model = RD_LIFT_MODEL_FULL;
+    lp.estimate_error = 0;
+    lp.step_deg = p.step_deg;
+    rd_lift_result l;
+    memset(&l, 0, sizeof l);
+    rd_error err;
+    rd_error_init(&err);
+    int rc = rd_lift_solve(&p.rings[0].ring, p.rings[0].segments, &lp, NULL, &l, &err);
+    CHECK(rc == RD_OK && l.lube.on, "the lift analysis: %s", err.message);
+    if (rc == RD_OK && l.lube.on) {
+        const rd_lift_lube *a = &r.lube[0], *b = &l.lube;
+        int S = r.samples, k0 = l.samples - S;
+        double sig = a->composite_sigma, film = 0.0;
+        for (int k = 0; k < S && k0 >= 0; k++)
+            film = fmax(film, fabs(a->min_film[k] - b->min_film[k0 + k]) /
+                                  fmax(fabs(b->min_film[k0 + k]), sig));
+        double work = fabs(a->friction_work[0] - b->friction_work[1]) / fabs(b->friction_work[1]);
+        printf("second driver (the lift analysis): %d films, loads %.6g to %.6g N/m (the pack's "
+               "%.6g to %.6g); the thinnest film within %.3g, work %.6g vs %.6g J (%.3g)\n",
+               b->films, b->load_min, b->load_max, a->load_min, a->load_max, film,
+               b->friction_work[1], a->friction_work[0], work);
+        CHECK(a->films == b->films && a->films > 1 && a->films <= 5 && isnan(a->interp_check),
+              "films %d (lift %d)", a->films, b->films);
+        CHECK(a->load_min == b->load_min && a->load_max == b->load_max, "the loads differ");
+        CHECK(k0 >= 0 && film < FILM_TOL, "the thinnest film %g apart", film);
+        CHECK(work < WORK_TOL, "the work %g apart", work);
+    }
+    /* (4) the rings' frames */
+    const rd_lift_lube *t = &r.lube[0], *m = &r.lube[1], *o = &r.lube[2];
+    CHECK(fabs(t->load_max - m->load_max) < 0.05 * t->load_max &&
+              fabs(t->load_min - m->load_min) < 0.05 * t->load_max,
+          "top %g..%g, middle %g..%g N/m", t->load_min, t->load_max, m->load_min, m->load_max);
+    CHECK(o->load_max - o->load_min > 0.0 && o->films > 1, "the oil ring's films: %d", o->films);
+    rd_lift_result_cleanup(&l);
+    rd_ringpack_result_cleanup(&r);
+}
+
+static double piston_speed(const rd_engine_params *e, double a)
+{
+    double r = e->crank_radius, l = e->rod_length, s = sin(a);
+    return r * e->speed_rpm * M_PI / 30.0 * (s + r * s * cos(a) / sqrt(l * l - r * r * s * s));
+}
+
+/* (2), (3) */
+static void shares(void)
+{
+    rd_ringpack_params p;
+    scene(&p, 1);
+    rd_ringpack_result r;
+    if (run(&p, &r, "orders 2 + 4") != RD_OK) {
+        rd_ringpack_result_cleanup(&r);
+        return;
+    }
+    int S = r.samples, oil = 2;
+    const rd_lift_lube *o = &r.lube[oil];
+    double pin = 0.0, size = 0.0;
+    for (int k = 0; k < S; k++) {
+        double f = o->hydrodynamic_friction[k] + o->asperity_friction[k];
+        pin = fmax(pin, fabs(r.friction[(size_t)oil * S + k] - f));
+        size = fmax(size, fabs(f));
+    }
+    printf("the pinned oil ring (%d films, interpolation %.3g): its friction within %.3g of its "
+           "block's (size %.3g N)\n",
+           o->films, o->interp_check, pin / size, size);
+    CHECK(o->films >= 3 && isfinite(o->interp_check), "interpolated films: %d", o->films);
+    CHECK(pin <= PIN_TOL * size, "the oil ring's friction %g apart", pin / size);
+    for (int i = 0; i < r.n_rings; i++) {
+        const rd_lift_lube *b = &r.lube[i];
+        double w = 0.0;
+        for (int k = 0; k + 1 < S; k++) {
+            double a0 = r.crank_deg[k] * M_PI / 180.0, a1 = r.crank_deg[k + 1] * M_PI / 180.0;
+            double f0 = b->hydrodynamic_friction[k] + b->asperity_friction[k],
+                   f1 = b->hydrodynamic_friction[k + 1] + b->asperity_friction[k + 1];
+            w += 0.5 * (a1 - a0) / (p.engine.speed_rpm * M_PI / 30.0) *
+                 (f0 * piston_speed(&p.engine, a0) + f1 * piston_speed(&p.engine, a1));
+        }
+        double d = fabs(w - b->friction_work[0]) / fabs(b->friction_work[0]);
+        printf("ring %d: work %.6g J, the samples' trapezoid %.6g (%.3g)\n", i, b->friction_work[0],
+               w, d);
+        CHECK(d < 2e-2, "ring %d: work %g apart", i, d);
+    }
+    rd_ringpack_result_cleanup(&r);
+}
+
+int main(void)
+{
+    second_driver();
+    shares();
+    return check_done();
+}
