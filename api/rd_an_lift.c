@@ -633,8 +633,16 @@ static json_t *lift_result(const rd_scene *scene, const rd_lift_result *res, dou
     "the ring's radial motion in the lift model (its bore contact is the penalty's; in a "     \
     "distorted bore the films' loads are the ring's static ones)."
 
+#define LUBE_FILM_TILT                                                                           \
+    "On a tilting piston (a tilt table) the groove slides each segment past the liner at "       \
+    "beta' x besides the piston's speed, x its arm about the pin axis (R cos theta, theta from " \
+    "the gap middle): each distinct arm and load its own film at that speed. "
+
 static const char *lube_method(const rd_lift_lube *lb)
 {
+    if (lb->tilt_films)
+        return lb->load_depths > 1 ? LUBE_FILM_TILT LUBE_FILM_MAP LUBE_METHOD_REST
+                                   : LUBE_FILM_TILT LUBE_FILM_SEGMENTS LUBE_METHOD_REST;
     if (lb->load_depths > 1)
         return LUBE_FILM_MAP LUBE_METHOD_REST;
     return lb->films > 1 ? LUBE_FILM_SEGMENTS LUBE_METHOD_REST : LUBE_FILM_ONE LUBE_METHOD_REST;

@@ -91,8 +91,8 @@ static void parts_ms(const rd_ring_params *rp, const rd_lift_params *p, int reps
         if (rd_lift_bore_loads(ring, p, load, ang, &err))
             fprintf(stderr, "loads: %s\n", err.message);
         double t1 = bench_now();
-        if (rd_lift_films_run(rp, p, &(rd_lift_film_loads){20, 1, NULL, load, ang, 0}, 1, NULL, &fs,
-                              &err))
+        if (rd_lift_films_run(rp, p, &(rd_lift_film_loads){20, 1, NULL, load, ang, 0, NULL}, 1,
+                              NULL, &fs, &err))
             fprintf(stderr, "films: %s\n", err.message);
         t[0][k] = 1e3 * (t1 - t0);
         t[1][k] = 1e3 * (bench_now() - t1);

@@ -195,6 +195,7 @@ typedef struct rd_lift_lube {
     int films;
     double load_min, load_max; /* the segments' elastic radial line load, N/m */
     int load_depths; /* > 1: the bore map's depths the loads were solved at, linear between */
+    int tilt_films;  /* 1: each film at its segments' sliding speed on a tilting piston */
     double
         load_depth_error; /* their largest miss at an interval's middle over 2 F_t / D (NAN: one) */
     double *min_film_angle_deg;

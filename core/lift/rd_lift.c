@@ -175,9 +175,9 @@ static int validate_bore(const rd_lift_params *p, double d, rd_error *err)
     return rc;
 }
 
-/* The lubricated model: its inputs (the face at /ring/face), no tilt, the
- * film's step (any bore: a distorted one or a map gets a film per segment
- * load, rd_lift_films.c). */
+/* The lubricated model: its inputs (the face at /ring/face), the film's
+ * step (any bore and tilt: a distorted bore, a map or a moving tilt gets a
+ * film per segment, rd_lift_films.c). */
 static int validate_lubricated(const rd_lift_params *p, rd_error *err)
 {
     size_t m = rd_error_enter(err, "/ring");
@@ -185,13 +185,6 @@ static int validate_lubricated(const rd_lift_params *p, rd_error *err)
     int rc = rd_face_validate(&p->face, err);
     rd_error_leave(err, m);
     rc = rc ? rc : rd_lube_validate(&p->friction.lube, p->bore.roughness_rq, err);
-    m = rd_error_enter(err, "/engine");
-    if (!rc && rd_engine_tilted(&p->engine))
-        rc = rd_error_set(err, RD_EINVAL, "/piston_tilt_deg",
-                          "the lubricated friction model does not take a tilting piston's own "
-                          "sliding on the liner yet: remove the tilt or use coulomb or "
-                          "stribeck friction.");
-    rd_error_leave(err, m);
     return rc ? rc
               : rd_error_range_in("/numerics", p->film_step_deg, 0.01, RD_LIFT_FILM_STEP_MAX_DEG,
                                   "/film_step_deg", "deg", err);

@@ -11,15 +11,17 @@
  * ring's elastic line load 2 F_t / D plus the gas behind the ring over the
  * back face (per metre of the liner's circumference: times r_back /
  * r_run); the film's edges see the gas below (lower edge) and above (upper
- * edge).  A tilting piston's own sliding is left out of U.
+ * edge).  On a tilting piston whose tilt moves (a table) a segment at arm
+ * x about the pin axis (R cos theta) slides at U + beta' x: its film's
+ * lever (rd_lift_film_run_history), each arm its own film.
  *
  * A round bore: one film for the whole face.  A distorted bore
  * (bore.distortion, bore.diameter): a film per segment load
  * (rd_lift_films_*, rd_lift_internal.h): the contact analysis' exact
  * contact of the same ring in the same bore gives each segment's elastic
  * load (rd_lift_bore_loads), segments of one load share a film, and the
- * force elements read each segment's film (rd_lift_segfilm.c).  A bore map
- * and a tilting piston are refused with the lubricated model (rd_lift.c).
+ * force elements read each segment's film (rd_lift_segfilm.c).  A bore map:
+ * each segment's load at the ring's depth (rd_lift_map_loads).
  */
 #include <math.h>
 #include <stdlib.h>
@@ -34,6 +36,7 @@ typedef struct film_scene {
     double omega, back;
     const double *z, *w_el; /* the elastic line load over nz depths (nz 1: constant) */
     int nz;
+    double lever; /* m: the face's arm about the piston pin (its tilt's own sliding), 0: none */
 } film_scene;
 
 double rd_lift_lube_viscosity(const rd_lube_params *l, double deg)
@@ -56,6 +59,11 @@ static void loads_at(void *ctx, double t, double *U, double *eta, double *W, dou
     double alpha = fs->omega * t, deg = alpha * 180.0 / M_PI, v;
     rd_engine_piston(&p->engine, alpha, NULL, &v, NULL);
     *U = v;
+    if (fs->lever != 0.0) { /* the groove's own axial speed there, beta' x (rd_lift_forces.c) */
+        double b, b1, b2;
+        rd_engine_tilt_at(&p->engine, deg, &b, &b1, &b2);
+        *U += b1 * fs->omega * fs->lever;
+    }
     *eta = rd_lift_lube_viscosity(&p->friction.lube, deg);
     *W = fs->nz > 1 ? rd_lift_depth_interp(fs->z, fs->w_el, fs->nz, rd_lift_depth_at(p, t))
                     : fs->w_el[0];
@@ -83,6 +91,13 @@ int rd_lift_film_run_table(const rd_ring_params *rp, const rd_lift_params *p, co
                            const double *w_el, int nz, int fine, rd_film *film, rd_film_track *tr,
                            rd_error *err)
 {
+    return rd_lift_film_run_history(rp, p, z, w_el, nz, 0.0, fine, film, tr, err);
+}
+
+int rd_lift_film_run_history(const rd_ring_params *rp, const rd_lift_params *p, const double *z,
+                             const double *w_el, int nz, double lever, int fine, rd_film *film,
+                             rd_film_track *tr, rd_error *err)
+{
     rd_section s;
     rd_section_init(&s, rp);
     size_t m = rd_error_enter(err, "/ring");
@@ -94,7 +109,12 @@ int rd_lift_film_run_table(const rd_ring_params *rp, const rd_lift_params *p, co
     if (rc)
         return rc;
     film->rtol /= (double)fine * fine;
-    film_scene fs = {.p = p, .omega = rd_engine_omega(&p->engine), .z = z, .w_el = w_el, .nz = nz};
+    film_scene fs = {.p = p,
+                     .omega = rd_engine_omega(&p->engine),
+                     .z = z,
+                     .w_el = w_el,
+                     .nz = nz,
+                     .lever = lever};
     fs.back = s.back.height * s.back.r / s.run.r;
     rd_film_loads ld = {loads_at, &fs};
     double cycle = 4.0 * M_PI / fs.omega, dt = p->film_step_deg / fine * M_PI / 180.0 / fs.omega;
@@ -128,6 +148,19 @@ int rd_lift_film_result(const rd_ring_params *rp, const rd_lift_params *p, const
     return rc;
 }
 
+/* Film g's own sliding besides the piston's at t: a tilting piston's
+ * groove, beta' x (its segments' arm; 0 without). */
+static double lever_speed(const rd_lube_films *fs, const rd_engine_params *e, double omega,
+                          double t, int g)
+{
+    const rd_lift_films *src = fs->src;
+    if (!src || !src->lever || !src->exact)
+        return 0.0;
+    double b, b1, b2;
+    rd_engine_tilt_at(e, omega * t * 180.0 / M_PI, &b, &b1, &b2);
+    return b1 * omega * src->lever[src->follows[g]];
+}
+
 /* Film g's share of the ring at t. */
 static double share_at(const rd_lube_films *fs, double t, int g)
 {
@@ -149,6 +182,7 @@ static void fill_sample(rd_lift_lube *lb, const rd_lube_films *fs, const rd_engi
         double w = share_at(fs, t, g), h, a;
         rd_film_track_at(&fs->tr[g], t, &pt);
         rd_engine_piston(e, omega * t, NULL, &pt.U, NULL); /* exact, as the motion's friction */
+        pt.U += lever_speed(fs, e, omega, t, g);
         friction_of(&pt, circ, mu_b, ureg, &h, &a);
         hf = g ? hf + w * h : w * h;
         af = g ? af + w * a : w * a;

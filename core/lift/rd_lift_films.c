@@ -43,7 +43,7 @@ static int films_alloc(rd_lift_films *fs, int m, int D, int cap, rd_error *err)
 {
     size_t c = (size_t)cap;
     fs->cap = cap;
-    fs->load = malloc((3 * c + (size_t)m * (c + 1 + (size_t)D)) * sizeof *fs->load);
+    fs->load = malloc((3 * c + (size_t)m * (c + 2 + (size_t)D)) * sizeof *fs->load);
     fs->follows = calloc(2 * c, sizeof *fs->follows);
     fs->film = calloc(c, sizeof *fs->film);
     fs->tr = calloc(c, sizeof *fs->tr);
@@ -54,6 +54,7 @@ static int films_alloc(rd_lift_films *fs, int m, int D, int cap, rd_error *err)
     fs->wt = fs->acc + c;
     fs->seg_load = fs->wt + (size_t)m * c;
     fs->angle_deg = fs->seg_load + (size_t)m * (size_t)D;
+    fs->lever_buf = fs->angle_deg + m;
     fs->solved = fs->follows + c;
     return RD_OK;
 }
@@ -67,6 +68,8 @@ static const double *row(const rd_lift_films *fs, int j)
 /* Segments j and k have the same loads at every depth. */
 static int same_loads(const rd_lift_films *fs, int j, int k)
 {
+    if (fs->lever && fabs(fs->lever[j] - fs->lever[k]) > 1e-12)
+        return 0; /* another sliding speed (a tilting piston) */
     for (int d = 0; d < fs->depths; d++)
         if (fabs(row(fs, j)[d] - row(fs, k)[d]) > RD_LIFT_FILMS_SAME * fs->scale)
             return 0;
@@ -123,9 +126,10 @@ static int solve_film(const rd_ring_params *rp, const rd_lift_params *p, rd_lift
     int rc = rd_monitor_report(mon, 0.0, err);
     if (rc)
         return rc;
-    if (fs->exact && fs->depths > 1)
-        rc = rd_lift_film_run_table(rp, p, fs->z, row(fs, fs->follows[g]), fs->depths, fine,
-                                    &fs->film[g], &fs->tr[g], err);
+    if (fs->exact && (fs->depths > 1 || fs->lever))
+        rc = rd_lift_film_run_history(rp, p, fs->z, row(fs, fs->follows[g]), fs->depths,
+                                      fs->lever ? fs->lever[fs->follows[g]] : 0.0, fine,
+                                      &fs->film[g], &fs->tr[g], err);
     else
         rc = rd_lift_film_run_load(rp, p, fs->load[g], fine, &fs->film[g], &fs->tr[g], err);
     fs->solved[g] = 1;
@@ -351,7 +355,12 @@ int rd_lift_films_run(const rd_ring_params *rp, const rd_lift_params *p,
         return rc;
     memcpy(fs->seg_load, ld->load, (size_t)m * D * sizeof *ld->load);
     memcpy(fs->angle_deg, ld->angle_deg, (size_t)m * sizeof *ld->angle_deg);
-    if (ld->exact > 0 || distinct_loads(fs, RD_LIFT_FILMS_EXACT) <= RD_LIFT_FILMS_EXACT)
+    for (int j = 0; ld->lever && j < m; j++)
+        fs->lever = ld->lever[j] != 0.0 ? fs->lever_buf : fs->lever;
+    if (fs->lever)
+        memcpy(fs->lever, ld->lever, (size_t)m * sizeof *ld->lever);
+    if (ld->exact > 0 || fs->lever ||
+        distinct_loads(fs, RD_LIFT_FILMS_EXACT) <= RD_LIFT_FILMS_EXACT)
         return films_exact(rp, p, fs, fine, mon, err);
     for (int j = 0; j < m && D > 1 && !fs->varying; j++)
         for (int d = 1; d < D; d++)
@@ -523,23 +532,42 @@ int rd_lift_map_loads(const rd_ring *ring, const rd_lift_params *p, int segments
     return rc;
 }
 
+int rd_lift_films_needed(const rd_lift_params *p, double d)
+{
+    return rd_lift_bore_distorted(p, d) || p->engine.tilt_points > 1;
+}
+
 int rd_lift_films_bore(const rd_ring *ring, const rd_lift_params *p, const rd_monitor *mon,
                        rd_lift_films *fs, rd_error *err)
 {
+    const rd_ring_params *rp = rd_ring_get_params(ring);
     int n = rd_ring_get_segments(ring), m = contact_segments(n);
     memset(fs, 0, sizeof *fs);
-    double *load = malloc((size_t)n * (RD_BORE_LAYERS_MAX + 1) * sizeof *load),
+    double *load = malloc((size_t)n * (RD_BORE_LAYERS_MAX + 2) * sizeof *load),
            z[RD_BORE_LAYERS_MAX];
     if (!load)
         return rd_error_set(err, RD_ENOMEM, "", "Out of memory for the films' loads.");
-    double *angle = load + (size_t)n * RD_BORE_LAYERS_MAX;
+    double *angle = load + (size_t)n * RD_BORE_LAYERS_MAX, *lever = angle + n;
     rd_lift_film_loads ld = {.m = n, .depths = 1, .z = z, .load = load, .angle_deg = angle};
-    double miss = NAN;
-    int rc = p->bore_map
-                 ? rd_lift_map_loads(ring, p, m, mon, load, angle, z, &ld.depths, &miss, err)
-                 : rd_lift_bore_loads_at(ring, &p->bore, m, mon, load, angle, err);
+    double miss = NAN, R = rd_ring_get_section(ring)->R;
+    int rc = RD_OK;
+    if (p->bore_map)
+        rc = rd_lift_map_loads(ring, p, m, mon, load, angle, z, &ld.depths, &miss, err);
+    else if (rd_lift_bore_distorted(p, rp->diameter))
+        rc = rd_lift_bore_loads_at(ring, &p->bore, m, mon, load, angle, err);
+    else /* a round bore (a tilting piston's films): 2 F_t / D all round */
+        for (int i = 0; i < n; i++) {
+            double a = rd_ring_get_segment_angle(ring, i) * 180.0 / M_PI;
+            angle[i] = a < 0.0 ? a + 360.0 : a;
+            load[i] = 2.0 * rp->tangential_force / rp->diameter;
+        }
+    if (p->engine.tilt_points > 1) { /* a tilt that moves: each segment's arm about the pin */
+        for (int i = 0; i < n; i++)
+            lever[i] = R * cos(angle[i] * M_PI / 180.0);
+        ld.lever = lever;
+    }
     if (rc == RD_OK)
-        rc = rd_lift_films_run(rd_ring_get_params(ring), p, &ld, 1, mon, fs, err);
+        rc = rd_lift_films_run(rp, p, &ld, 1, mon, fs, err);
     fs->depth_check = miss;
     free(load);
     return rc;
@@ -574,6 +602,7 @@ int rd_lift_films_result(const rd_ring_params *rp, const rd_lift_params *p, cons
     }
     out->lube.interp_check = fs->interp_check;
     out->lube.load_depths = fs->depths;
+    out->lube.tilt_films = fs->lever != NULL;
     out->lube.load_depth_error = fs->depth_check;
     return rc;
 }
@@ -584,7 +613,8 @@ int rd_lift_films_estimate(const rd_ring_params *rp, const rd_lift_params *p,
 {
     rd_lift_films f2;
     rd_lift_lube fine = {0};
-    rd_lift_film_loads ld = {fs->m, fs->depths, fs->z, fs->seg_load, fs->angle_deg, fs->exact};
+    rd_lift_film_loads ld = {fs->m,         fs->depths,    fs->z,    fs->seg_load,
+                             fs->angle_deg, fs->exact > 0, fs->lever};
     int rc = rd_lift_films_run(rp, p, &ld, 2, mon, &f2, err);
     rd_lube_films set = rd_lift_films_view(&f2);
     rc = rc ? rc

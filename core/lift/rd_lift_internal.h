@@ -114,6 +114,13 @@ int rd_lift_film_run_load(const rd_ring_params *rp, const rd_lift_params *p, dou
 int rd_lift_film_run_table(const rd_ring_params *rp, const rd_lift_params *p, const double *z,
                            const double *w_el, int nz, int fine, rd_film *film, rd_film_track *tr,
                            rd_error *err);
+/* The same with the face at arm `lever` (m, along the ring frame's x: R
+ * cos of its angle from the gap middle) about the piston pin: a tilting
+ * piston's groove slides it past the liner at beta' lever besides the
+ * piston's speed (0: none). */
+int rd_lift_film_run_history(const rd_ring_params *rp, const rd_lift_params *p, const double *z,
+                             const double *w_el, int nz, double lever, int fine, rd_film *film,
+                             rd_film_track *tr, rd_error *err);
 /* The friction power of film point pt on the ring (W, per the whole liner
  * circumference circ): its shear and its asperities' friction times U. */
 double rd_lift_film_power(const rd_film_point *pt, double circ, double mu_b, double ureg);
@@ -169,6 +176,9 @@ typedef struct rd_lift_film_loads {
     const double *angle_deg; /* m: each segment's mid-angle from the gap middle, deg */
     int exact; /* 1: each distinct history its own film, whatever their number; -1: interpolated
                   where the histories' check misses too (the tests measure it); 0: as above */
+    const double *lever; /* m: each segment's arm about the piston pin, m (a tilting piston's
+                            own sliding: rd_lift_film_run_history; any nonzero: each history its
+                            own film); NULL: none */
 } rd_lift_film_loads;
 typedef struct rd_lift_films {
     const rd_lift_params *p;        /* the scene the films are of (borrowed) */
@@ -189,6 +199,8 @@ typedef struct rd_lift_films {
     double *wt;          /* m x cap: segment j's film = sum_g wt[j cap + g] film g */
     double *seg_load;    /* m x depths: each segment's loads, N/m */
     double *angle_deg;   /* m: each segment's mid-angle from the gap middle, deg */
+    double *lever;       /* m: each segment's arm about the piston pin (NULL: none), m */
+    double *lever_buf;   /* its storage */
     double interp_check; /* the interpolation's miss (NAN: exact) */
     double depth_check;  /* a map: the loads' miss between depths over 2 F_t / D (NAN: none) */
     rd_film *film;       /* cap, each keeps its own cavitation state */
@@ -225,6 +237,10 @@ int rd_lift_bore_loads_at(const struct rd_ring *ring, const rd_bore *b, int segm
 int rd_lift_map_loads(const struct rd_ring *ring, const rd_lift_params *p, int segments,
                       const rd_monitor *mon, double *load, double *angle_deg, double *z,
                       int *depths, double *miss, rd_error *err);
+/* The scene needs films per segment: a distorted bore or a map, or a
+ * piston tilt that moves (its groove slides each segment at its own
+ * speed). */
+int rd_lift_films_needed(const rd_lift_params *p, double d);
 /* mon: the job's, asked by the contact solve and before the films (a stop
  * or the time limit ends them). */
 int rd_lift_films_bore(const struct rd_ring *ring, const rd_lift_params *p, const rd_monitor *mon,

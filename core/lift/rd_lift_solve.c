@@ -553,7 +553,7 @@ static int film_once(lift_solve *s, const rd_monitor *mon, rd_error *err)
     if (h->p.friction.model != RD_FRICTION_LUBRICATED || h->p.film || h->p.films)
         return RD_OK;
     int rc;
-    if (rd_lift_bore_distorted(&h->p, h->rp.diameter)) {
+    if (rd_lift_films_needed(&h->p, h->rp.diameter)) {
         if ((rc = rd_lift_films_bore(h->ring, &h->p, mon, &h->films, err))) {
             rd_lift_films_free(&h->films);
             return rc;

@@ -280,10 +280,10 @@ static int segment_films(rd_ringpack_model *m, int i, rd_packfilm *f, rd_error *
     int rc = !ring   ? (err ? err->code : RD_ENOMEM)
              : !load ? rd_error_set(err, RD_ENOMEM, "", "Out of memory for ring %d's films.", i + 1)
                      : rd_lift_bore_loads(ring, &lp, load, load + n, err);
-    rc =
-        rc ? rc
-           : rd_lift_films_run(&pr->ring, &lp, &(rd_lift_film_loads){n, 1, NULL, load, load + n, 0},
-                               1, NULL, &f->fs, err);
+    rc = rc ? rc
+            : rd_lift_films_run(&pr->ring, &lp,
+                                &(rd_lift_film_loads){n, 1, NULL, load, load + n, 0, NULL}, 1, NULL,
+                                &f->fs, err);
     free(load);
     rd_ring_free(ring);
     f->fs.p = NULL; /* lp is gone: the weights are constant (one bore) */

@@ -145,8 +145,8 @@ static void films_loads(void)
     }
     rd_lift_films fs;
     rd_error err = {0};
-    int rc = rd_lift_films_run(&rp, &p, &(rd_lift_film_loads){5, 1, NULL, load, ang, 0}, 4, NULL,
-                               &fs, &err);
+    int rc = rd_lift_films_run(&rp, &p, &(rd_lift_film_loads){5, 1, NULL, load, ang, 0, NULL}, 4,
+                               NULL, &fs, &err);
     CHECK(rc == RD_OK && fs.count == 5 && fs.exact, "five films: %s (%d)", err.message, fs.count);
     double off = 0.0, h90[5] = {0};
     int thinner = 1;
@@ -275,8 +275,8 @@ static void interpolation(void)
         rd_lift_films fs = {0};
         int rc = ring ? rd_lift_bore_loads(ring, &p, load, ang, &err) : RD_ENOMEM;
         rc = rc ? rc
-                : rd_lift_films_run(&rp, &p, &(rd_lift_film_loads){n, 1, NULL, load, ang, 0}, 1,
-                                    NULL, &fs, &err);
+                : rd_lift_films_run(&rp, &p, &(rd_lift_film_loads){n, 1, NULL, load, ang, 0, NULL},
+                                    1, NULL, &fs, &err);
         CHECK(rc == RD_OK && !fs.exact, "battery %d: %s", b, err.message);
         double fe = 0.0, we = 0.0, omega = 2.0 * PI * bat[b].rpm / 60.0, cycle = 4.0 * PI / omega;
         double circ = PI * rp.diameter, ureg = rd_liner_ureg(&p.engine);

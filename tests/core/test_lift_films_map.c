@@ -220,12 +220,12 @@ static int histories(double A_top, double A_bot, int gas, int rpm)
     rd_lift_films fs = {0}, lift = {0};
     int rc = ring ? rd_lift_map_loads(ring, &p, 320, NULL, load, ang, z, &D, &dm, &err) : RD_ENOMEM;
     rc = rc ? rc
-            : rd_lift_films_run(&rp, &p, &(rd_lift_film_loads){n, D, z, load, ang, -1}, 1, NULL,
-                                &fs, &err);
+            : rd_lift_films_run(&rp, &p, &(rd_lift_film_loads){n, D, z, load, ang, -1, NULL}, 1,
+                                NULL, &fs, &err);
     CHECK(rc == RD_OK && fs.varying && !fs.exact, "films along the map: %s", err.message);
     rc = rc ? rc
-            : rd_lift_films_run(&rp, &p, &(rd_lift_film_loads){n, D, z, load, ang, 0}, 1, NULL,
-                                &lift, &err);
+            : rd_lift_films_run(&rp, &p, &(rd_lift_film_loads){n, D, z, load, ang, 0, NULL}, 1,
+                                NULL, &lift, &err);
     double worst = 0.0, worst_film = 0.0, balance = 0.0, own = 0.0;
     for (int j = 0; rc == RD_OK && j < n; j++) {
         rd_film f = {0};
