@@ -638,8 +638,14 @@ static json_t *lift_result(const rd_scene *scene, const rd_lift_result *res, dou
     "beta' x besides the piston's speed, x its arm about the pin axis (R cos theta, theta from " \
     "the gap middle): each distinct arm and load its own film at that speed. "
 
+#define LUBE_FILM_TILT_ROUND                                                                    \
+    "In the round bore every segment presses with 2 F_t / D plus the gas behind it; the films " \
+    "are solved before the ring's motion over the run plus one cycle of warm-up: "
+
 static const char *lube_method(const rd_lift_lube *lb)
 {
+    if (lb->tilt_films && lb->load_depths <= 1 && lb->load_min == lb->load_max)
+        return LUBE_FILM_TILT LUBE_FILM_TILT_ROUND LUBE_METHOD_REST;
     if (lb->tilt_films)
         return lb->load_depths > 1 ? LUBE_FILM_TILT LUBE_FILM_MAP LUBE_METHOD_REST
                                    : LUBE_FILM_TILT LUBE_FILM_SEGMENTS LUBE_METHOD_REST;
