@@ -350,7 +350,9 @@ int rd_lift_films_run(const rd_ring_params *rp, const rd_lift_params *p,
     fs->scale = 2.0 * rp->tangential_force / rp->diameter;
     for (int d = 0; d < D && D > 1; d++)
         fs->z[d] = ld->z[d];
-    int rc = films_alloc(fs, m, D, D > 1 && m > RD_LIFT_FILMS_NODES ? m : RD_LIFT_FILMS_NODES, err);
+    /* each distinct history its own film: up to m along a map or on a tilting piston */
+    int own = (D > 1 || ld->lever || ld->exact > 0) && m > RD_LIFT_FILMS_NODES;
+    int rc = films_alloc(fs, m, D, own ? m : RD_LIFT_FILMS_NODES, err);
     if (rc)
         return rc;
     memcpy(fs->seg_load, ld->load, (size_t)m * D * sizeof *ld->load);
