@@ -47,8 +47,8 @@ static size_t enter_face(rd_error *err, int i)
     return m;
 }
 
-/* No bore map and no tilt, at the scene's root (a distorted bore: a film
- * per segment load). */
+/* No bore map, at the scene's root (a distorted bore or a moving tilt: a
+ * film per segment load and sliding speed). */
 static int lube_scene_validate(const rd_ringpack_params *p, rd_error *err)
 {
     int rc = rd_error_range_in("/numerics", p->film_step_deg, 0.01, RD_LIFT_FILM_STEP_MAX_DEG,
@@ -60,13 +60,6 @@ static int lube_scene_validate(const rd_ringpack_params *p, rd_error *err)
                           "ring's films follow its static loads in one bore; a bore whose "
                           "distortion changes along the stroke is modelled by the lift analysis "
                           "alone. Give one distortion (@/distortion), or use coulomb.");
-    rd_error_leave(err, m);
-    m = rd_error_enter(err, "/engine");
-    if (!rc && (p->engine.piston_tilt_deg != 0.0 || p->engine.tilt_points > 0))
-        rc = rd_error_set(err, RD_EINVAL, "/piston_tilt_deg",
-                          "a piston tilt with the lubricated friction model: the film takes the "
-                          "piston's sliding speed, not the tilt's own; remove the tilt, or use "
-                          "coulomb.");
     rd_error_leave(err, m);
     return rc;
 }
@@ -132,6 +125,7 @@ struct rd_packfilm {
     double *gas;        /* 3 x (S + 1): above, behind, below (gauge, Pa) at the cycle's samples */
     double w_el, back;  /* N/m: the elastic line load now (loads_at); the back face's share */
     double w_ring;      /* N/m: the ring's 2 F_t / D */
+    double lever;       /* m: the film's arm about the pin now (loads_at's; 0: none) */
     double period, dt;  /* s: a cycle, the film's largest step */
     const double *load; /* the samples the loads read (gas, or NULL: no gas) */
     const rd_ringpack_params *p;
@@ -158,6 +152,7 @@ static rd_film_track *tr_g(rd_packfilm *f, int g)
 static void load_g(rd_packfilm *f, int g)
 {
     f->w_el = f->fs.count > 0 ? f->fs.load[g] : f->w_ring;
+    f->lever = f->fs.count > 0 && f->fs.lever ? f->fs.lever[f->fs.follows[g]] : 0.0;
 }
 
 static void loads_at(void *ctx, double t, double *U, double *eta, double *W, double *plo,
@@ -167,6 +162,11 @@ static void loads_at(void *ctx, double t, double *U, double *eta, double *W, dou
     double omega = 4.0 * M_PI / f->period, v, x = t / f->period * f->S;
     rd_engine_piston(&f->p->engine, omega * t, NULL, &v, NULL);
     *U = v;
+    if (f->lever != 0.0) { /* a tilting piston's groove: beta' x (rd_lift_film.c) */
+        double b, b1, b2;
+        rd_engine_tilt_at(&f->p->engine, t / f->period * 720.0, &b, &b1, &b2);
+        *U += b1 * omega * f->lever;
+    }
     *eta = rd_lift_lube_viscosity(&f->p->friction.lube, t / f->period * 720.0);
     *W = f->w_el;
     *plo = *phi = 0.0;
@@ -253,11 +253,13 @@ static int film_estimate(rd_packfilm *f, int i, rd_ringpack_result *r, rd_error 
     return rc;
 }
 
-/* The films' loads of ring i in a distorted bore (its frame: the phases
- * from its gap) and the films on them (rd_lift_films_run: a film per
- * distinct load, or interpolated between films at 3 to 17, chosen on the
- * films of one cycle without gas) into f->fs; each film's track then
- * f's first cycle. */
+/* The films of ring i in a distorted bore or on a moving tilt: its
+ * segments' loads (the bore in its frame: the phases from its gap; round:
+ * 2 F_t / D) and arms about the pin axis (in the scene's frame: R cos
+ * theta, negated for a gap on the far side, 180 deg), the films on them
+ * (rd_lift_films_run: a film per distinct load and arm, or interpolated
+ * between films at 3 to 17 loads, chosen on the films of one cycle
+ * without gas) into f->fs; each film's track then f's first cycle. */
 static int segment_films(rd_ringpack_model *m, int i, rd_packfilm *f, rd_error *err)
 {
     const rd_ringpack_params *p = m->p;
@@ -274,16 +276,24 @@ static int segment_films(rd_ringpack_model *m, int i, rd_packfilm *f, rd_error *
         double a = fmod(p->bore.distortion[k].phase_deg - pr->gap_angle_deg, 360.0);
         lp.bore.distortion[k].phase_deg = a < 0.0 ? a + 360.0 : a;
     }
-    int n = pr->segments;
+    int n = pr->segments, tilt = p->engine.tilt_points > 1;
+    int round = !rd_bore_distorted(&lp.bore, pr->ring.diameter);
     rd_ring *ring = rd_ring_create(&pr->ring, n, 0, err);
-    double *load = malloc(2 * (size_t)n * sizeof *load);
+    double *load = malloc(3 * (size_t)n * sizeof *load), *angle = load ? load + n : NULL;
     int rc = !ring   ? (err ? err->code : RD_ENOMEM)
              : !load ? rd_error_set(err, RD_ENOMEM, "", "Out of memory for ring %d's films.", i + 1)
-                     : rd_lift_bore_loads(ring, &lp, load, load + n, err);
-    rc = rc ? rc
-            : rd_lift_films_run(&pr->ring, &lp,
-                                &(rd_lift_film_loads){n, 1, NULL, load, load + n, 0, NULL}, 1, NULL,
-                                &f->fs, err);
+             : round ? RD_OK
+                     : rd_lift_bore_loads(ring, &lp, load, angle, err);
+    for (int j = 0; rc == RD_OK && round && j < n; j++) {
+        angle[j] = rd_ring_get_segment_angle(ring, j) * 180.0 / M_PI;
+        load[j] = f->w_ring;
+    }
+    double sign = fabs(fabs(fmod(pr->gap_angle_deg, 360.0)) - 180.0) < 1e-6 ? -1.0 : 1.0;
+    for (int j = 0; rc == RD_OK && tilt && j < n; j++)
+        load[2 * n + j] = sign * rd_ring_get_section(ring)->R * cos(angle[j] * M_PI / 180.0);
+    rd_lift_film_loads ld = {
+        .m = n, .depths = 1, .load = load, .angle_deg = angle, .lever = tilt ? load + 2 * n : NULL};
+    rc = rc ? rc : rd_lift_films_run(&pr->ring, &lp, &ld, 1, NULL, &f->fs, err);
     free(load);
     rd_ring_free(ring);
     f->fs.p = NULL; /* lp is gone: the weights are constant (one bore) */
@@ -319,7 +329,7 @@ int rd_ringpack_films_open(rd_ringpack_model *m, int S, rd_error *err)
         rd_section_init(&s, rp);
         f->w_el = f->w_ring = 2.0 * rp->tangential_force / rp->diameter;
         f->back = s.back.height * s.back.r / s.run.r;
-        int rc = rd_bore_distorted(&p->bore, rp->diameter)
+        int rc = rd_bore_distorted(&p->bore, rp->diameter) || p->engine.tilt_points > 1
                      ? segment_films(m, i, f, err)
                      : film_init(p, i, &f->film, RD_FILM_NODES, err);
         if (!rc && f->fs.count == 0)
