@@ -313,21 +313,10 @@ static void test_validation(void)
     rd_lift_result_cleanup(&r);
 }
 
-/* The map of test_map: the distortion of distort() at amplitude A_top at
- * z = 0 and A_bot at z = 0.1 m. */
+/* The map of test_map: distort_map (lift_distort.h). */
 static void map_of(rd_bore_map *m, double A_top, double A_bot)
 {
-    memset(m, 0, sizeof *m);
-    m->n_layers = 2;
-    m->residual_rms = NAN;
-    double A[2] = {A_top, A_bot};
-    for (int i = 0; i < 2; i++) {
-        rd_lift_params q;
-        rd_lift_params_default(&q);
-        distort(&q, A[i]);
-        m->layer[i].z = 0.1 * i;
-        m->layer[i].bore = q.bore;
-    }
+    distort_map(m, A_top, A_bot);
 }
 
 typedef struct follow {

@@ -45,15 +45,7 @@
 
 static void scene(rd_ring_params *rp, rd_lift_params *p, double A)
 {
-    rd_ring_params_default(rp);
-    rd_lift_params_default(p);
-    p->engine.speed_rpm = 2400.0;
-    p->engine.cycles = 1.0;
-    p->friction.model = RD_FRICTION_LUBRICATED;
-    p->model = RD_LIFT_MODEL_FULL;
-    p->estimate_error = 0;
-    if (A > 0.0)
-        distort(p, A);
+    lubricated_scene(rp, p, A);
 }
 
 /* The closed form's load over 2 F_t / D at psi (rad). */

@@ -37,33 +37,13 @@
 
 static void scene(rd_ring_params *rp, rd_lift_params *p, double A)
 {
-    rd_ring_params_default(rp);
-    rd_lift_params_default(p);
-    p->engine.speed_rpm = 2400.0;
-    p->engine.cycles = 1.0;
-    p->friction.model = RD_FRICTION_LUBRICATED;
-    p->model = RD_LIFT_MODEL_FULL;
-    p->estimate_error = 0;
-    if (A > 0.0)
-        distort(p, A);
+    lubricated_scene(rp, p, A);
 }
 
-/* Two layers: distort() at A_top at z = 0 and A_bot at z = 0.1 m; the
- * ring 5 mm down at TDC. */
+/* distort_map's two layers, the ring 5 mm down at TDC. */
 static void map_of(rd_lift_params *p, rd_bore_map *m, double A_top, double A_bot)
 {
-    memset(m, 0, sizeof *m);
-    m->n_layers = 2;
-    m->residual_rms = NAN;
-    double A[2] = {A_top, A_bot};
-    for (int i = 0; i < 2; i++) {
-        rd_lift_params q;
-        rd_lift_params_default(&q);
-        if (A[i] > 0.0)
-            distort(&q, A[i]);
-        m->layer[i].z = 0.1 * i;
-        m->layer[i].bore = q.bore;
-    }
+    distort_map(m, A_top, A_bot);
     p->bore.n_distortion = 0;
     p->bore_map = m;
     p->ring_z_tdc = 0.005;

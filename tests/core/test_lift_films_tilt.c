@@ -25,6 +25,7 @@
 #include <string.h>
 
 #include "check.h"
+#include "lift_distort.h"
 #include "rd_lift_internal.h"
 #include "rd_lift_model.h"
 
@@ -33,13 +34,7 @@ static double tilt_deg[4];
 
 static void scene(rd_ring_params *rp, rd_lift_params *p, double amplitude_deg, int moving)
 {
-    rd_ring_params_default(rp);
-    rd_lift_params_default(p);
-    p->engine.speed_rpm = 2400.0;
-    p->engine.cycles = 1.0;
-    p->friction.model = RD_FRICTION_LUBRICATED;
-    p->model = RD_LIFT_MODEL_FULL;
-    p->estimate_error = 0;
+    lubricated_scene(rp, p, 0.0);
     if (!moving) {
         p->engine.piston_tilt_deg = amplitude_deg;
         return;
