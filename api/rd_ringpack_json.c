@@ -34,15 +34,17 @@ static json_t *volumes_json(const rd_ringpack_result *r)
 }
 
 /* A pack ring's lubrication block's method (rd_result_lube). */
-#define PACK_LUBE_FILMS                                                                          \
-    "in a distorted bore or on a moving piston tilt, a film per segment load and sliding "       \
-    "speed: each segment presses on the liner with its static contact load in the bore turned "  \
-    "into the ring's frame (its gap angle), the contact analysis' exact contact of the ring "    \
-    "(film_load_n_per_m; 2 F_t / D in a round bore), plus the gas behind it, and slides at the " \
-    "piston's speed plus beta' x on a tilting piston (x its arm about the pin axis); up to 5 "   \
-    "distinct loads a film each (each distinct arm too), more interpolated in log load between " \
-    "films at 3 to 17 loads, the number chosen on the films of one cycle without gas "           \
-    "(film_interpolation_error: that choice's miss); each film as follows. "
+#define PACK_LUBE_FILMS                                                                        \
+    "in a distorted bore, on a bore map or on a moving piston tilt, a film per segment load "  \
+    "and sliding speed: each segment presses on the liner with its static contact load in "    \
+    "the bore turned into the ring's frame (its gap angle), the contact analysis' exact "      \
+    "contact of the ring (film_load_n_per_m; 2 F_t / D in a round bore; on a map at each "     \
+    "layer the ring passes, linear between them, read at the ring's depth), plus the gas "     \
+    "behind it, and slides at the piston's speed plus beta' x on a tilting piston (x its arm " \
+    "about the pin axis); up to 5 distinct loads a film each (each distinct arm too), more "   \
+    "interpolated in log load between films at 3 to 17 loads, the number chosen on the "       \
+    "films of one cycle without gas (film_interpolation_error: that choice's miss); each "     \
+    "film as follows. "
 #define PACK_LUBE_METHOD                                                                       \
     "the lift analysis' film (one for the whole running face: a rigid profile on a round "     \
     "bore; the average Reynolds equation across the face with Patir-Cheng flow factors, gamma" \

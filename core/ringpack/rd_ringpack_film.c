@@ -47,19 +47,13 @@ static size_t enter_face(rd_error *err, int i)
     return m;
 }
 
-/* No bore map, at the scene's root (a distorted bore or a moving tilt: a
- * film per segment load and sliding speed). */
+/* The film's step, at the scene's root (a distorted bore, a bore map or a
+ * moving tilt: a film per segment load and sliding speed). */
 static int lube_scene_validate(const rd_ringpack_params *p, rd_error *err)
 {
     int rc = rd_error_range_in("/numerics", p->film_step_deg, 0.01, RD_LIFT_FILM_STEP_MAX_DEG,
                                "/film_step_deg", "deg", err);
     size_t m = rd_error_enter(err, "/bore");
-    if (!rc && p->bore_map)
-        rc = rd_error_set(err, RD_EINVAL, "/layers",
-                          "@/layers with the lubricated friction model in the ring pack: each "
-                          "ring's films follow its static loads in one bore; a bore whose "
-                          "distortion changes along the stroke is modelled by the lift analysis "
-                          "alone. Give one distortion (@/distortion), or use coulomb.");
     rd_error_leave(err, m);
     return rc;
 }
@@ -126,6 +120,9 @@ struct rd_packfilm {
     double w_el, back;  /* N/m: the elastic line load now (loads_at); the back face's share */
     double w_ring;      /* N/m: the ring's 2 F_t / D */
     double lever;       /* m: the film's arm about the pin now (loads_at's; 0: none) */
+    const double *row;  /* a map: the film's loads over the depths now (loads_at's; NULL: w_el) */
+    rd_lift_params lp;  /* the films' scene (fs.p: the ring's depth at t on a map) */
+    rd_bore_map map;    /* a map in the ring's frame */
     double period, dt;  /* s: a cycle, the film's largest step */
     const double *load; /* the samples the loads read (gas, or NULL: no gas) */
     const rd_ringpack_params *p;
@@ -153,6 +150,9 @@ static void load_g(rd_packfilm *f, int g)
 {
     f->w_el = f->fs.count > 0 ? f->fs.load[g] : f->w_ring;
     f->lever = f->fs.count > 0 && f->fs.lever ? f->fs.lever[f->fs.follows[g]] : 0.0;
+    f->row = f->fs.count > 0 && f->fs.exact && f->fs.depths > 1
+                 ? f->fs.seg_load + (size_t)f->fs.depths * f->fs.follows[g]
+                 : NULL;
 }
 
 static void loads_at(void *ctx, double t, double *U, double *eta, double *W, double *plo,
@@ -168,7 +168,8 @@ static void loads_at(void *ctx, double t, double *U, double *eta, double *W, dou
         *U += b1 * omega * f->lever;
     }
     *eta = rd_lift_lube_viscosity(&f->p->friction.lube, t / f->period * 720.0);
-    *W = f->w_el;
+    *W = f->row ? rd_lift_depth_interp(f->fs.z, f->row, f->fs.depths, rd_lift_depth_at(&f->lp, t))
+                : f->w_el;
     *plo = *phi = 0.0;
     if (!f->load)
         return;
@@ -264,39 +265,37 @@ static int segment_films(rd_ringpack_model *m, int i, rd_packfilm *f, rd_error *
 {
     const rd_ringpack_params *p = m->p;
     const rd_ringpack_ring *pr = &p->rings[i];
-    rd_lift_params lp;
-    rd_lift_params_default(&lp);
-    lp.engine = p->engine;
-    lp.engine.cycles = 1.0;
-    lp.friction = p->friction;
-    lp.face = pr->face;
-    lp.film_step_deg = p->film_step_deg;
-    lp.bore = p->bore;
-    for (int k = 0; k < lp.bore.n_distortion; k++) {
-        double a = fmod(p->bore.distortion[k].phase_deg - pr->gap_angle_deg, 360.0);
-        lp.bore.distortion[k].phase_deg = a < 0.0 ? a + 360.0 : a;
+    rd_lift_params *lp = &f->lp;
+    rd_lift_params_default(lp);
+    lp->engine = p->engine;
+    lp->engine.cycles = 1.0;
+    lp->friction = p->friction;
+    lp->face = pr->face;
+    lp->film_step_deg = p->film_step_deg;
+    lp->bore = p->bore;
+    rd_bore *turn[RD_BORE_LAYERS_MAX + 1] = {&lp->bore};
+    int nb = 1;
+    if (p->bore_map) { /* the map in the ring's frame, at its own depth (rd_ringpack_lift.c) */
+        f->map = *p->bore_map;
+        lp->bore_map = &f->map;
+        lp->ring_z_tdc = rd_ringpack_ring_depth(p, i);
+        for (int j = 0; j < f->map.n_layers; j++)
+            turn[nb++] = &f->map.layer[j].bore;
     }
+    for (int b = 0; b < nb; b++)
+        for (int k = 0; k < turn[b]->n_distortion; k++) {
+            double a = fmod(turn[b]->distortion[k].phase_deg - pr->gap_angle_deg, 360.0);
+            turn[b]->distortion[k].phase_deg = a < 0.0 ? a + 360.0 : a;
+        }
     int n = pr->segments, tilt = p->engine.tilt_points > 1;
-    int round = !rd_bore_distorted(&lp.bore, pr->ring.diameter);
     rd_ring *ring = rd_ring_create(&pr->ring, n, 0, err);
-    double *load = malloc(3 * (size_t)n * sizeof *load), *angle = load ? load + n : NULL;
-    int rc = !ring   ? (err ? err->code : RD_ENOMEM)
-             : !load ? rd_error_set(err, RD_ENOMEM, "", "Out of memory for ring %d's films.", i + 1)
-             : round ? RD_OK
-                     : rd_lift_bore_loads(ring, &lp, load, angle, err);
-    for (int j = 0; rc == RD_OK && round && j < n; j++) {
-        angle[j] = rd_ring_get_segment_angle(ring, j) * 180.0 / M_PI;
-        load[j] = f->w_ring;
-    }
-    double sign = fabs(fabs(fmod(pr->gap_angle_deg, 360.0)) - 180.0) < 1e-6 ? -1.0 : 1.0;
-    for (int j = 0; rc == RD_OK && tilt && j < n; j++)
-        load[2 * n + j] = sign * rd_ring_get_section(ring)->R * cos(angle[j] * M_PI / 180.0);
-    rd_lift_film_loads ld = {
-        .m = n, .depths = 1, .load = load, .angle_deg = angle, .lever = tilt ? load + 2 * n : NULL};
-    rc = rc ? rc : rd_lift_films_run(&pr->ring, &lp, &ld, 1, NULL, &f->fs, err);
-    free(load);
+    rd_lift_films_free(&f->fs);
+    int rc = !ring ? (err ? err->code : RD_ENOMEM)
+                   : rd_lift_films_bore(ring, lp, NULL, &f->fs, err); /* loads, arms, films */
+    if (rc == RD_OK && tilt && fabs(fabs(fmod(pr->gap_angle_deg, 360.0)) - 180.0) < 1e-6)
+        for (int j = 0; f->fs.lever && j < f->fs.m; j++) /* a gap at 180 deg: the arms negated */
+            f->fs.lever[j] = -f->fs.lever[j];
     rd_ring_free(ring);
-    f->fs.p = NULL; /* lp is gone: the weights are constant (one bore) */
     f->load = NULL;
     for (int g = 0; rc == RD_OK && g < f->fs.count; g++) {
         rd_film_track tr = {0};
@@ -329,9 +328,10 @@ int rd_ringpack_films_open(rd_ringpack_model *m, int S, rd_error *err)
         rd_section_init(&s, rp);
         f->w_el = f->w_ring = 2.0 * rp->tangential_force / rp->diameter;
         f->back = s.back.height * s.back.r / s.run.r;
-        int rc = rd_bore_distorted(&p->bore, rp->diameter) || p->engine.tilt_points > 1
-                     ? segment_films(m, i, f, err)
-                     : film_init(p, i, &f->film, RD_FILM_NODES, err);
+        int rc =
+            rd_bore_distorted(&p->bore, rp->diameter) || p->bore_map || p->engine.tilt_points > 1
+                ? segment_films(m, i, f, err)
+                : film_init(p, i, &f->film, RD_FILM_NODES, err);
         if (!rc && f->fs.count == 0)
             rc = cycle_film(f, NAN, 0.0, &f->tr, err); /* no gas yet */
         if (rc)
@@ -439,11 +439,15 @@ int rd_ringpack_films_result(rd_ringpack_model *m, rd_ringpack_result *r, rd_err
         int rc = fill_block(f, i, film_g(f, 0), tr_g(f, 0), r, lb, err);
         lb->film_step_deg = p->film_step_deg;
         lb->load_min = lb->load_max = f->w_ring;
-        for (int j = 0; f->fs.count > 0 && j < f->fs.m; j++) {
+        for (int j = 0; f->fs.count > 0 && j < f->fs.m * f->fs.depths; j++) {
             lb->load_min = j ? fmin(lb->load_min, f->fs.seg_load[j]) : f->fs.seg_load[j];
             lb->load_max = j ? fmax(lb->load_max, f->fs.seg_load[j]) : f->fs.seg_load[j];
         }
         lb->interp_check = f->fs.count > 0 ? f->fs.interp_check : NAN;
+        if (f->fs.count > 0) {
+            lb->load_depths = f->fs.depths;
+            lb->load_depth_error = f->fs.depth_check;
+        }
         if (rc || (rc = film_lag(f, &r->film_lag[i], err)) ||
             (p->estimate_error && (rc = film_estimate(f, i, r, err))))
             return rc;

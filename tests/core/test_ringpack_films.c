@@ -29,6 +29,8 @@
  *      (gap 180: the tilt negated in its frame) against the lift analysis
  *      alone, as (1), and the thinnest segment where it has it at every
  *      sample (with the arms' sign flipped for the middle ring: at none).
+ *  (6) a bore map: each ring's films under its loads at its own depth; the
+ *      top ring against the lift analysis alone on the same map, as (1).
  *  (4) the films' loads around each ring span what the contact analysis
  *      gives for the ring in the bore turned by its gap angle: the top
  *      ring's range is the middle ring's (both gaps on the order-2 axis)
@@ -44,7 +46,8 @@
 #include "rd_lift.h"
 #include "rd_ringpack.h"
 
-#define FILM_TOL 2e-3 /* the pack's last cycle against the lift's second: the films' periodicity */
+#define FILM_TOL \
+    3e-3 /* the pack's last cycle against the lift's second: the films' periodicity (1.3e-3 to 2.4e-3) */
 #define WORK_TOL 1e-2
 #define PIN_TOL  1e-9
 
@@ -101,6 +104,17 @@ static void lift_alone(const rd_ringpack_params *p, const rd_ringpack_result *r,
     for (int k = 0; k < lp.bore.n_distortion; k++)
         lp.bore.distortion[k].phase_deg =
             fmod(p->bore.distortion[k].phase_deg - p->rings[i].gap_angle_deg + 720.0, 360.0);
+    static rd_bore_map map;
+    if (p->bore_map) { /* the map in the ring's frame, at its depth */
+        map = *p->bore_map;
+        for (int j = 0; j < map.n_layers; j++)
+            for (int k = 0; k < map.layer[j].bore.n_distortion; k++)
+                map.layer[j].bore.distortion[k].phase_deg = fmod(
+                    map.layer[j].bore.distortion[k].phase_deg - p->rings[i].gap_angle_deg + 720.0,
+                    360.0);
+        lp.bore_map = &map;
+        lp.ring_z_tdc = rd_ringpack_ring_depth(p, i);
+    }
     lp.groove = p->rings[i].groove;
     lp.friction = p->friction;
     lp.face = p->rings[i].face;
@@ -132,7 +146,7 @@ static void lift_alone(const rd_ringpack_params *p, const rd_ringpack_result *r,
                "(%.3g)\n",
                what, i, b->films, a->films, b->load_min, b->load_max, a->load_min, a->load_max,
                film, b->friction_work[1], a->friction_work[0], work);
-        CHECK(a->films == b->films && a->films > 1 && isnan(a->interp_check),
+        CHECK(a->films == b->films && a->films > 1 && (p->bore_map || isnan(a->interp_check)),
               "%s: films %d (lift %d)", what, a->films, b->films);
         CHECK(a->load_min == b->load_min && a->load_max == b->load_max, "%s: the loads differ",
               what);
@@ -194,6 +208,34 @@ static double piston_speed(const rd_engine_params *e, double a)
     return r * e->speed_rpm * M_PI / 30.0 * (s + r * s * cos(a) / sqrt(l * l - r * r * s * s));
 }
 
+/* (6) a bore map (order 2 growing from 2 to 8 um down 0.1 m): each ring's
+ * films follow its loads at its depth; the top ring against the lift
+ * analysis alone on the same map at the same depth. */
+static void mapped(void)
+{
+    rd_ringpack_params p;
+    scene(&p, 0);
+    static rd_bore_map map;
+    memset(&map, 0, sizeof map);
+    map.n_layers = 2;
+    map.residual_rms = NAN;
+    for (int j = 0; j < 2; j++) {
+        map.layer[j].z = 0.1 * j;
+        map.layer[j].bore = p.bore;
+        map.layer[j].bore.distortion[0].amplitude = j ? 8e-6 : 2e-6;
+    }
+    p.bore.n_distortion = 0;
+    p.bore_map = &map;
+    p.ring_z_tdc = 0.005;
+    rd_ringpack_result r;
+    if (run(&p, &r, "bore map") == RD_OK) {
+        for (int i = 0; i < r.n_rings; i++)
+            CHECK(r.lube[i].load_depths >= 2, "ring %d: %d depths", i, r.lube[i].load_depths);
+        lift_alone(&p, &r, 0, "bore map", 0);
+    }
+    rd_ringpack_result_cleanup(&r);
+}
+
 /* (2), (3) */
 static void shares(void)
 {
@@ -239,6 +281,7 @@ int main(void)
 {
     second_driver();
     tilting();
+    mapped();
     shares();
     return check_done();
 }

@@ -427,11 +427,6 @@ static void test_validate(void)
     rd_error_init(&err);
     CHECK(rd_ringpack_validate(&p, &err) == RD_OK, "a distorted bore (a film per segment load): %s",
           err.message); /* test_ringpack_films runs it */
-    static rd_bore_map map = {.n_layers = 1};
-    p.bore.n_distortion = 0;
-    map.layer[0].bore = p.bore;
-    p.bore_map = &map;
-    refused(&p, "/bore/layers", 0, "bore map");
     scene(&p, 0, 3);
     p.engine.piston_tilt_deg = 0.05;
     p.rings[2].gap_angle_deg = 0.0; /* a tilt takes gaps on its plane */
