@@ -254,9 +254,10 @@ static int film_estimate(rd_packfilm *f, int i, rd_ringpack_result *r, rd_error 
     return rc;
 }
 
-/* The films of ring i in a distorted bore or on a moving tilt: its
- * segments' loads (the bore in its frame: the phases from its gap; round:
- * 2 F_t / D) and arms about the pin axis (in the scene's frame: R cos
+/* The films of ring i in a distorted bore, on a bore map or on a moving
+ * tilt (rd_lift_films_bore on the scene turned into the ring's frame): its
+ * segments' loads (the bore's phases from its gap; a map's at its own
+ * depth; round: 2 F_t / D) and arms about the pin axis (in the scene's frame: R cos
  * theta, negated for a gap on the far side, 180 deg), the films on them
  * (rd_lift_films_run: a film per distinct load and arm, or interpolated
  * between films at 3 to 17 loads, chosen on the films of one cycle
