@@ -25,6 +25,12 @@
  * pinned rings' in rd_ringpack_friction, the lift rings' through their
  * lift parameters' film (rd_packring_film).  A film track holds pack time:
  * its points are shifted to the cycle they serve.
+ *
+ * In a distorted bore, on a bore map or on a moving piston tilt a ring has
+ * a film per segment load and sliding speed instead (segment_films, the
+ * lift analysis' rd_lift_films_*), each coupled as above; lift rings read
+ * their segments' (rd_packring_films), axial and pinned rings the films'
+ * share-weighted sum (rd_ringpack_film_at).
  */
 #include <math.h>
 #include <stdio.h>
